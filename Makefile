@@ -1,0 +1,37 @@
+# propwhirl — every target sets itself up on a fresh machine (virtual environment in .venv).
+#   make run       main analysis (wingtip-mounted propeller wing), plots in out/
+#   make test      the whole test suite (long reproduction checks included)
+#   make generate  rebuild generated/ from the SymPy derivations
+PYTHON ?= python3
+VENV   := .venv
+BIN    := $(VENV)/bin
+# One BLAS thread: the eigenproblems are small and parallelism is over cases.
+export OPENBLAS_NUM_THREADS ?= 1
+export OMP_NUM_THREADS ?= 1
+
+.PHONY: run test test-fast generate clean
+
+$(BIN)/python:
+	$(PYTHON) -m venv $(VENV)
+
+# One stamp per set of extras; re-installed when pyproject.toml changes.
+$(VENV)/.stamp-%: pyproject.toml | $(BIN)/python
+	$(BIN)/python -m pip install --quiet --disable-pip-version-check -e ".[$(subst +,$(comma),$*)]"
+	touch $@
+
+comma := ,
+
+generate: $(VENV)/.stamp-codegen
+	$(BIN)/python -m derivations.generate --out generated
+
+test: $(VENV)/.stamp-codegen+test+plots
+	$(BIN)/python -m pytest -q
+
+test-fast: $(VENV)/.stamp-codegen+test+plots
+	$(BIN)/python -m pytest -q -m "not long"
+
+run: $(VENV)/.stamp-plots
+	$(BIN)/propwhirl run --out out
+
+clean:
+	rm -rf $(VENV) out build src/*.egg-info .pytest_cache .hypothesis

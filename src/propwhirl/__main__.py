@@ -1,0 +1,6 @@
+"""`python -m propwhirl` — the command-line interface (see propwhirl.cli)."""
+import sys
+
+from propwhirl.cli import main
+
+sys.exit(main())

@@ -1,0 +1,47 @@
+"""Chapter 7: the Patil et al. HALE wing (Table 7.1), the verification case of the wing model.
+
+Half span 16 m, chord 1 m, m = 0.75 kg/m, polar inertia 0.1 kg m, elastic axis and centre of
+gravity at mid-chord, EI = 2e4 N m², GJ = 1e4 N m², air density 0.0889 kg/m³ (20 km).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from propwhirl.reproduce import register
+from propwhirl.vibration import classify_wing_modes
+from propwhirl.wing import LiftSlope, Wing
+
+#: Air density at 20 km used with the Patil wing (Table 7.1) [kg/m³]
+PATIL_DENSITY = 0.0889
+
+
+def patil_wing(n_elements: int = 20, lift_slope: LiftSlope = 2 * np.pi,
+               aero_model: str = "leishman-nguyen") -> Wing:
+    """The Patil wing of Table 7.1 (lift_slope="elliptic" gives the §7.5 variant, Table 7.4)."""
+    return Wing(
+        name="Patil HALE wing (Table 7.1)",
+        semi_span=16.0,
+        root_chord=1.0,
+        mass_per_length=0.75,
+        polar_inertia=0.1,
+        elastic_axis=0.5,
+        centre_of_gravity=0.5,
+        EI=2.0e4,
+        GJ=1.0e4,
+        aerodynamic_centre=0.25,
+        lift_slope=lift_slope,
+        n_elements=n_elements,
+        aero_model=aero_model,
+    )
+
+
+@register("t7.2")
+def table_7_2() -> dict[str, float]:
+    """Table 7.2: in-vacuo frequencies [rad/s] of the Patil wing with 3 beam elements."""
+    modes = dict(classify_wing_modes(patil_wing(n_elements=3), count=4))
+    return {
+        "t7.2/first_bending": modes["bending 1"],
+        "t7.2/second_bending": modes["bending 2"],
+        "t7.2/third_bending": modes["bending 3"],
+        "t7.2/first_torsion": modes["torsion 1"],
+    }

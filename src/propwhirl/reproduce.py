@@ -1,0 +1,170 @@
+"""Reproduction harness: every number the thesis reports, recomputed and compared.
+
+The reference values, their ids and tolerances come from `propwhirl/data/thesis_values.toml`
+(an unchanged copy of `shared/reference/thesis_values.toml`).  Model modules register the
+functions that recompute them:
+
+    from propwhirl.reproduce import register
+
+    @register("t7.2")                 # the id prefix this case computes
+    def patil_in_vacuo() -> dict[str, float]:
+        return {"t7.2/first_bending": ..., ...}
+
+`run()` imports the modules listed in CASE_MODULES (so their cases register), runs the cases
+whose prefix matches, and returns one :class:`Record` per id of the reference file — with
+`computed = None` for ids no registered case produces yet.  A value is compared against the
+thesis's own value, or against the literature value where the reference says
+``check = "literature"``.
+"""
+from __future__ import annotations
+
+import importlib
+import json
+import math
+import tomllib
+from dataclasses import asdict, dataclass
+from importlib import resources
+from pathlib import Path
+from typing import Callable, Iterable
+
+#: Modules whose import registers reproduction cases.
+CASE_MODULES: tuple[str, ...] = ("propwhirl.cases",)  # imports every propwhirl.cases.* module
+
+CaseFunction = Callable[[], dict[str, float]]
+_CASES: dict[str, CaseFunction] = {}
+
+
+@dataclass(frozen=True)
+class Reference:
+    id: str
+    table: str
+    quantity: str
+    unit: str
+    thesis: float
+    tol: float
+    literature: float | None = None
+    check: str = "thesis"
+    note: str = ""
+
+    @property
+    def target(self) -> float:
+        """The value the reproduction is held to."""
+        return self.literature if self.check == "literature" else self.thesis
+
+
+@dataclass(frozen=True)
+class Record:
+    id: str
+    table: str
+    quantity: str
+    unit: str
+    thesis: float
+    computed: float | None
+    rel_error: float | None
+    within_tol: bool
+    tol: float
+    target: float
+    note: str = ""
+
+
+def register(prefix: str) -> Callable[[CaseFunction], CaseFunction]:
+    """Decorator: register a case computing the ids starting with `prefix`."""
+
+    def deco(func: CaseFunction) -> CaseFunction:
+        if prefix in _CASES and _CASES[prefix] is not func:
+            raise ValueError(f"reproduction case {prefix!r} registered twice")
+        _CASES[prefix] = func
+        return func
+
+    return deco
+
+
+def load_references(path: Path | None = None) -> list[Reference]:
+    """Read the reference values (the package copy unless `path` is given)."""
+    if path is None:
+        text = resources.files("propwhirl").joinpath("data/thesis_values.toml").read_text()
+    else:
+        text = Path(path).read_text()
+    data = tomllib.loads(text)
+    fields = Reference.__dataclass_fields__
+    return [Reference(**{k: v for k, v in item.items() if k in fields}) for item in data["value"]]
+
+
+def registered_cases() -> dict[str, CaseFunction]:
+    for name in CASE_MODULES:
+        importlib.import_module(name)
+    return dict(_CASES)
+
+
+def _selected(prefix: str, only: Iterable[str] | None) -> bool:
+    if not only:
+        return True
+    return any(prefix.startswith(o) or o.startswith(prefix) for o in only)
+
+
+def compare(ref: Reference, computed: float | None, note: str = "") -> Record:
+    if computed is None or not math.isfinite(computed):
+        return Record(ref.id, ref.table, ref.quantity, ref.unit, ref.thesis, None, None,
+                      False, ref.tol, ref.target, note)
+    rel = (computed - ref.target) / abs(ref.target) if ref.target != 0 else abs(computed)
+    return Record(ref.id, ref.table, ref.quantity, ref.unit, ref.thesis, float(computed),
+                  float(rel), abs(rel) <= ref.tol, ref.tol, ref.target, note)
+
+
+def run(only: Iterable[str] | None = None, processes: int = 1) -> list[Record]:
+    """Run the registered cases (those matching `only` prefixes) and compare every id."""
+    only = list(only) if only else None
+    refs = load_references()
+    cases = {p: f for p, f in registered_cases().items() if _selected(p, only)}
+    computed: dict[str, float] = {}
+    results = _run_cases(cases, processes)
+    for prefix, values in results.items():
+        for key in values:
+            if not key.startswith(prefix):
+                raise ValueError(f"case {prefix!r} returned id {key!r} outside its prefix")
+        computed.update(values)
+    records = []
+    for ref in refs:
+        if only and not any(ref.id.startswith(o) for o in only):
+            continue
+        records.append(compare(ref, computed.get(ref.id)))
+    return records
+
+
+def _call(item: tuple[str, str]) -> tuple[str, dict[str, float]]:
+    prefix, qualname = item
+    module, name = qualname.rsplit(":", 1)
+    func = getattr(importlib.import_module(module), name)
+    return prefix, func()
+
+
+def _run_cases(cases: dict[str, CaseFunction], processes: int) -> dict[str, dict[str, float]]:
+    items = sorted((p, f"{f.__module__}:{f.__name__}") for p, f in cases.items())
+    if processes <= 1 or len(items) <= 1:
+        return dict(_call(i) for i in items)
+    from concurrent.futures import ProcessPoolExecutor
+
+    with ProcessPoolExecutor(max_workers=processes) as pool:
+        return dict(pool.map(_call, items))
+
+
+def format_table(records: list[Record]) -> str:
+    """One row per number: id, thesis, computed, relative difference, within tolerance."""
+    head = f"{'id':52s} {'unit':7s} {'thesis':>10s} {'computed':>12s} {'rel.diff':>9s} {'tol':>6s}  ok"
+    lines = [head, "-" * len(head)]
+    for r in records:
+        comp = "—" if r.computed is None else f"{r.computed:12.5g}"
+        rel = "—" if r.rel_error is None else f"{100 * r.rel_error:+8.2f}%"
+        mark = "yes" if r.within_tol else ("n/a" if r.computed is None else "NO")
+        lines.append(
+            f"{r.id:52s} {r.unit:7s} {r.thesis:10.5g} {comp:>12s} {rel:>9s} {100 * r.tol:5.1f}%  {mark}"
+        )
+    n_ok = sum(r.within_tol for r in records)
+    n_run = sum(r.computed is not None for r in records)
+    lines.append(f"{n_ok} of {len(records)} within tolerance ({n_run} computed)")
+    return "\n".join(lines)
+
+
+def to_json(records: list[Record]) -> str:
+    keys = ("id", "table", "quantity", "unit", "thesis", "computed", "rel_error", "within_tol")
+    return json.dumps({"records": [{k: asdict(r)[k] for k in keys} for r in records]}, indent=2)
