@@ -2,5 +2,6 @@
 """NumPy modules generated from the SymPy derivations in `derivations/` (one per model).
 
 - `beam_element`: Euler–Bernoulli bending–torsion beam element (thesis eq. 7.1–7.16), from `derivations/beam_element.py`
+- `strip_aero`: Strip aerodynamics: Theodorsen section loads with Wagner and Leishman–Nguyen states (thesis eq. 7.24–7.56, 7.64–7.80), from `derivations/strip_aero.py`
 """
-MODULES = ("beam_element", )
+MODULES = ("beam_element", "strip_aero", )
