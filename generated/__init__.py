@@ -2,6 +2,8 @@
 """NumPy modules generated from the SymPy derivations in `derivations/` (one per model).
 
 - `beam_element`: Euler–Bernoulli bending–torsion beam element (thesis eq. 7.1–7.16), from `derivations/beam_element.py`
+- `prop_flexwing`: Propeller on a flexible wing (propeller rows and wing-node coupling) (thesis eq. 8.1–8.42), from `derivations/prop_flexwing.py`
+- `prop_rigid`: Propeller on a rigid wing (pitch–yaw whirl) (thesis eq. 6.1–6.17), from `derivations/prop_rigid.py`
 - `strip_aero`: Strip aerodynamics: Theodorsen section loads with Wagner and Leishman–Nguyen states (thesis eq. 7.24–7.56, 7.64–7.80), from `derivations/strip_aero.py`
 """
-MODULES = ("beam_element", "strip_aero", )
+MODULES = ("beam_element", "prop_flexwing", "prop_rigid", "strip_aero", )
