@@ -59,3 +59,62 @@ def free_dofs(n_nodes: int) -> np.ndarray:
 def wing_dof_labels(n_nodes: int) -> tuple[str, ...]:
     """Labels 'node i h' / 'node i phi' / 'node i alpha' for all wing DOFs (root = node 0)."""
     return tuple(f"node {i} {d}" for i in range(n_nodes) for d in WING_DOF_NAMES)
+
+
+def place(blocks: np.ndarray, rows: np.ndarray, cols: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
+    """Put non-overlapping blocks (..., nb, r, c) at global rows (nb, r) and cols (nb, c)."""
+    out = np.zeros(blocks.shape[:-3] + shape)
+    out[..., rows[:, :, None], cols[:, None, :]] = blocks
+    return out
+
+
+LAG_STATES = {"leishman-nguyen": 2, "wagner": 4}
+
+
+def call(module, name: str, shape: tuple[int, ...], **values) -> np.ndarray:
+    """Call generated function `name` with the arguments it takes (picked from `values` by
+    name, per the module's OUTPUTS table), broadcast to `shape` + the matrix shape."""
+    argnames = module.OUTPUTS[name][0]
+    out = getattr(module, name)(**{a: values[a] for a in argnames})
+    return np.broadcast_to(out, shape + out.shape[-2:])
+
+
+def wing_aero(wing: Wing, rho: float, V: np.ndarray) -> dict[str, np.ndarray | tuple[str, ...]]:
+    """Global strip-aerodynamic matrices of the wing over all nodes (root included).
+
+    The section loads of the generated strip-aerodynamics module (per unit span, §7.2, §7.5)
+    act at the nodes, each multiplied by the node's tributary strip width (C.38–C.52, D.1–D.16);
+    each node carries its own lag states (2 Leishman–Nguyen or 4 Wagner).  Returns, for the
+    speeds V (nV,): Ma, Ca, Ka (nV, 3N, 3N) with Q_W = Ma q̈ + Ca q̇ + Ka q + W0 w, the state
+    equation ẇ = Ww w + Wv q̇ + Wq q, and the lag-state labels.
+    """
+    from propwhirl.generated import strip_aero
+
+    node = wing.node_properties()
+    nn = wing.n_nodes
+    nq = 3 * nn
+    k = LAG_STATES[wing.aero_model]
+    Vc = np.asarray(V, dtype=float)[:, None]
+    values = dict(rho=rho, V=Vc, b=node["b"], a=node["a"], Cla=node["Cla"], ac=node["ac"])
+    shape = (Vc.shape[0], nn)
+    width = node["width"][None, :, None, None]
+    qrows = 3 * np.arange(nn)[:, None] + np.array([0, 2])[None, :]  # h_i, α_i
+    wrows = k * np.arange(nn)[:, None] + np.arange(k)[None, :]
+    names = {  # role -> generated function
+        "leishman-nguyen": dict(M="ln_M", C="ln_C", K="ln_K", W0="ln_W0", Ww="ln_W1", Wv="ln_W2", Wq="ln_W3"),
+        "wagner": dict(M="wagner_M", C="wagner_C", K="wagner_K", W0="wagner_W0", Ww="wagner_W2", Wq="wagner_W1"),
+    }[wing.aero_model]
+    mats = {role: call(strip_aero, fn, shape, **values) for role, fn in names.items()}
+    M, C, K, W0, Ww, Wq = (mats[r] for r in ("M", "C", "K", "W0", "Ww", "Wq"))
+    Wv = mats.get("Wv", np.zeros_like(Wq))
+    m = k * nn
+    return {
+        "Ma": place(width * M, qrows, qrows, (nq, nq)),
+        "Ca": place(width * C, qrows, qrows, (nq, nq)),
+        "Ka": place(width * K, qrows, qrows, (nq, nq)),
+        "W0": place(width * W0, qrows, wrows, (nq, m)),
+        "Ww": place(Ww, wrows, wrows, (m, m)),
+        "Wv": place(Wv, wrows, qrows, (m, nq)),
+        "Wq": place(Wq, wrows, qrows, (m, nq)),
+        "labels": tuple(f"node {i} w{j + 1}" for i in range(nn) for j in range(k)),
+    }

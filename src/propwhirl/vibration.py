@@ -7,6 +7,7 @@ the same solve with the gyroscopic terms included (see propwhirl.model).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 import scipy.linalg as sl
@@ -73,3 +74,91 @@ def classify_wing_modes(wing: Wing, count: int) -> list[tuple[str, float]]:
             nb += 1
             out.append((f"bending {nb}", float(w)))
     return out
+
+
+def energy_fractions(X: np.ndarray, M: np.ndarray, labels: tuple[str, ...],
+                     groups: dict[str, Callable[[str], bool]]) -> dict[str, np.ndarray]:
+    """Share of each mode's (column of X) kinetic energy xᵀMx in each group of DOFs.
+
+    Group g's share is Re Σ_{i∈g} conj(x_i) (M x)_i / xᴴMx; shares of all DOFs sum to one.
+    """
+    e = np.real(np.conj(X) * (M @ X))
+    total = e.sum(axis=0)
+    return {
+        name: e[np.array([sel(lab) for lab in labels])].sum(axis=0) / total
+        for name, sel in groups.items()
+    }
+
+
+def model_modes(model) -> tuple[Modes, np.ndarray]:
+    """Undamped, non-rotating modes of a PropellerWing (V = 0: no aerodynamics, Ω = 0).
+
+    Returns the modes and the reduced structural mass matrix they are normalised with.
+    """
+    quiet = model.with_(wing_aero=False, propeller_aero=False, rotating=False)
+    s = quiet.second_order(np.array([1.0]))
+    return undamped_modes(s.S1[0], s.S3[0], s.q_labels), s.S1[0]
+
+
+def label_modes(model) -> list[tuple[str, float]]:
+    """All non-rotating modes of a PropellerWing as (label, frequency [Hz]), ascending.
+
+    The thesis names one backward and one forward whirl mode per flexibly mounted propeller
+    (at Ω = 0 the propeller pitch and yaw modes) and calls the others wing modes (§9.3.2,
+    Tables 9.8, 10.3, 10.7); its names follow the Campbell diagrams (Figures 9.16, 10.3, 10.11):
+    backward modes fall and forward modes rise as the rotor spins up.  Here the frequencies at
+    Ω = 0 are compared with those at a small spin rate (one tenth of the lowest mount frequency,
+    so the shifts stay far below the gaps between modes); with N flexible propellers the N
+    modes that fall most are 'backward k', the N that rise most 'forward k' (k by frequency),
+    the rest 'wing n'.
+    """
+    modes, _ = model_modes(model)
+    f0 = modes.frequency_hz
+    kinds = ["wing"] * f0.size
+    flex = [model.propellers[j].propeller for j in model.flexible]
+    if flex:
+        f_mount = min(min(p.stiffness()[0] / p.pivot_inertia()["I_theta_P"],
+                          p.stiffness()[1] / p.pivot_inertia()["I_psi_P"]) for p in flex) ** 0.5
+        rpm = 0.1 * f_mount * 60.0 / (2.0 * np.pi)
+        _, f1 = campbell(model, np.array([rpm]))
+        delta = f1[0] - f0
+        n = len(flex)
+        order = np.argsort(delta)
+        for i in order[:n]:
+            kinds[i] = "backward"
+        for i in order[::-1][:n]:
+            kinds[i] = "forward"
+    counters = {"backward": 0, "forward": 0, "wing": 0}
+    out = []
+    for kind, f in zip(kinds, f0):
+        counters[kind] += 1
+        out.append((f"{kind} {counters[kind]}", float(f)))
+    return out
+
+
+def campbell(model, rpm: np.ndarray, include_damping: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """Natural frequencies [Hz] against propeller rotational speed (Figures 8.6, 9.16, 10.3).
+
+    Aerodynamics off; all propellers at the given speeds `rpm` [rev/min] (array).  Returns
+    (rpm, frequencies) with frequencies of shape (len(rpm), n_modes), sorted per speed.
+    Damping is left out unless asked for (the undamped gyroscopic system).
+    """
+    rpm = v.non_negative("rpm", np.atleast_1d(rpm), "rev/min")
+    quiet = model.with_(wing_aero=False, propeller_aero=False, rotating=True)
+    omega = rpm * 2.0 * np.pi / 60.0
+    V = np.ones_like(omega)  # no aerodynamics: the airspeed plays no part
+    s = quiet.second_order(V, omega)
+    from propwhirl.statespace import SecondOrder, state_matrix
+
+    S2 = s.S2 if include_damping else s.S2 - _symmetric_part(s.S2)
+    A = state_matrix(SecondOrder(s.S1, S2, s.S3, s.S4, s.Ww, s.Wv, s.Wq, s.q_labels, s.w_labels), V)
+    lam = np.linalg.eigvals(A)
+    f = np.abs(lam.imag) / (2.0 * np.pi)
+    f = np.sort(np.where(lam.imag >= 0, f, np.inf), axis=1)
+    n = s.n_dof
+    return rpm, f[:, :n]
+
+
+def _symmetric_part(C: np.ndarray) -> np.ndarray:
+    """Symmetric (dissipative) part of damping matrices (..., n, n); the skew part is gyroscopic."""
+    return 0.5 * (C + np.swapaxes(C, -1, -2))

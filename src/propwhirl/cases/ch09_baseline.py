@@ -10,8 +10,16 @@ from __future__ import annotations
 
 import numpy as np
 
+from propwhirl.model import (
+    SPEED_OF_SOUND_8000FT,
+    FlightCondition,
+    Installation,
+    IsolatedPropeller,
+    PropellerWing,
+)
+from propwhirl.propeller import PointMass, Propeller
 from propwhirl.reproduce import register
-from propwhirl.vibration import wing_modes
+from propwhirl.vibration import label_modes, wing_modes
 from propwhirl.wing import Wing
 
 #: Air density at 8000 ft used throughout chapters 9–11 (Table 9.1) [kg/m³]
@@ -43,3 +51,108 @@ def table_9_2_frequencies() -> dict[str, float]:
     """Table 9.2a: the first five natural frequencies [Hz] of the baseline wing (20 elements)."""
     f = wing_modes(baseline_wing()).frequency_hz
     return {f"t9.2/freq{i + 1}": float(f[i]) for i in range(5)}
+
+
+# ----------------------------------------------------------------------------- §9.2 propeller
+def baseline_propeller(**changes) -> Propeller:
+    """The baseline propeller of Tables 9.3–9.4 (X-57 cruise propeller, simplified).
+
+    3 blades, R = 0.762 m, hub radius 0.125 m, constant chord 0.094 m, β_0.75 = 35°,
+    fixed pitch windmilling with J = π tan(β − 3°) = 1.96 (eq. 9.1); rotor 8 kg at −1.16 m
+    (the propeller plane), motor-nacelle 35 kg at −0.86 m, pitch and yaw pivots on the wing
+    mid-chord axis (l = 0, e = −1.16 m), f_θ = f_ψ = 7 Hz, g_θ = g_ψ = 0.005; I_Ω = M_r R²/3.
+    Keyword arguments replace any field (e.g. f_psi=4.0, operation="constant-speed", rpm=2250).
+    """
+    base = dict(
+        name="baseline propeller (Tables 9.3-9.4)",
+        radius=0.762,
+        hub_radius=0.125,
+        blade_chord=0.094,
+        n_blades=3,
+        rotor=PointMass(8.0, -1.16),
+        masses=(PointMass(35.0, -0.86),),
+        pivot_pitch=0.0,
+        pivot_yaw=0.0,
+        f_theta=7.0,
+        f_psi=7.0,
+        damping_theta=0.005,
+        damping_psi=0.005,
+        damping="g",
+        beta_075_deg=35.0,
+        zero_lift_angle_deg=-3.0,
+    )
+    base.update(changes)
+    return Propeller(**base)
+
+
+def baseline_flight() -> FlightCondition:
+    """8000 ft: ρ = 0.962870 kg/m³ (Table 9.1), ISA speed of sound 330.8 m/s."""
+    return FlightCondition(BASELINE_DENSITY, SPEED_OF_SOUND_8000FT)
+
+
+def isolated_baseline_propeller(**changes) -> IsolatedPropeller:
+    """The baseline propeller on a rigid wing (§9.2, chapter 6 model)."""
+    return IsolatedPropeller(baseline_propeller(**changes), baseline_flight())
+
+
+# ----------------------------------------------------------------------------- §9.3 prop-wing
+N_ELEMENTS_WITH_PROPELLERS = 25
+INBOARD_NODE = 7  # the thesis's node 8 counting the root as node 1: y = 7·5.7/25 = 1.596 m
+
+
+def inboard_y(n_elements: int = N_ELEMENTS_WITH_PROPELLERS) -> float:
+    """Spanwise position [m] of the inboard propeller node (≈ 1.6 m, node 8 of 25 in the thesis)."""
+    return baseline_wing(n_elements).node_y[INBOARD_NODE * n_elements // N_ELEMENTS_WITH_PROPELLERS]
+
+
+def propeller_wing(positions: tuple[float, ...], mount: str = "flexible",
+                   propeller: Propeller | None = None, **switches) -> PropellerWing:
+    """Baseline wing (25 elements) with baseline propellers at the given node positions [m].
+
+    `switches`: wing_aero, propeller_aero, rotating (all True by default).
+    """
+    prop = baseline_propeller() if propeller is None else propeller
+    return PropellerWing(
+        baseline_wing(N_ELEMENTS_WITH_PROPELLERS),
+        baseline_flight(),
+        tuple(Installation(prop, y, mount) for y in positions),
+        **switches,
+    )
+
+
+def inboard_propeller_wing(mount: str = "flexible", **switches) -> PropellerWing:
+    """§9.3: baseline wing with the baseline propeller at 1.6 m (node 8 of 25)."""
+    return propeller_wing((inboard_y(),), mount, **switches)
+
+
+def _by_label(model: PropellerWing) -> dict[str, float]:
+    return dict(label_modes(model))
+
+
+@register("t9.4")
+def table_9_4() -> dict[str, float]:
+    """Table 9.4: inertia parameters of the baseline propeller (eq. 8.5, 8.6, 9.2)."""
+    p = baseline_propeller()
+    inertia = p.pivot_inertia()
+    return {
+        "t9.4/I_theta_P": inertia["I_theta_P"],
+        "t9.4/S_theta_P": inertia["S_theta_P"],
+        "t9.4/I_Omega": p.I_Omega,
+    }
+
+
+@register("t9.6")
+def table_9_6() -> dict[str, float]:
+    """Table 9.6: wing with a rigidly mounted, non-rotating inboard propeller [Hz]."""
+    modes = _by_label(inboard_propeller_wing("rigid", rotating=False))
+    return {f"t9.6/freq{i}": modes[f"wing {i}"] for i in range(1, 6)}
+
+
+@register("t9.8")
+def table_9_8() -> dict[str, float]:
+    """Table 9.8: flexibly mounted inboard propeller, Ω = 0 [Hz]."""
+    modes = _by_label(inboard_propeller_wing())
+    out = {f"t9.8/wing{i}": modes[f"wing {i}"] for i in range(1, 6)}
+    out["t9.8/prop_pitch"] = modes["backward 1"]
+    out["t9.8/prop_yaw"] = modes["forward 1"]
+    return out

@@ -1,0 +1,293 @@
+"""Aeroelastic models: wing with propellers (chapter 8, appendices C–D), isolated propeller
+(chapter 6), and the state space they produce for the stability engine.
+
+:class:`PropellerWing` assembles, for an array of airspeeds, the second-order system of
+appendix D (D.18–D.29) with any number of propellers at any nodes:
+
+    [M_s,g + G*_s,g − M_a,g − P*_2,g   F*_s,g − P*_1,g] [q̈_W]   (and likewise C, K)   = [W_0,g] w
+    [(B_s,g − B_a,g)*                (A_s − A_a)*    ] [q̈_P]                          [  0  ]
+
+Each propeller contributes a 4×4 block on its local coordinates [θ_j, ψ_j, h_P, α_P]:
+
+    M_loc = [[A_s − A_a, B_s − B_a], [F_s − P_1, G_s − P_2]]
+    C_loc = [[C_s − C_a, D_s − D_a], [H_s − P_3,    − P_4 ]]
+    K_loc = [[E_s − E_a,     − F_a], [   − P_5,     − P_6 ]]
+
+(all from `propwhirl.generated.prop_flexwing`), added at the propeller's node.  The clamped root
+degrees of freedom and the root node's lag states are removed (7.59, D.27).  Switches: wing
+aerodynamics, propeller aerodynamics, rotation, and per propeller flexible or rigid mounts (a
+rigid mount keeps only the inert mass block G_s, §9.3.1).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from typing import Literal
+
+import numpy as np
+
+from propwhirl import validate as v
+from propwhirl.assembly import (
+    LAG_STATES,
+    call,
+    free_dofs,
+    wing_aero,
+    wing_dof_labels,
+    wing_structure,
+)
+from propwhirl.generated import prop_flexwing, prop_rigid
+from propwhirl.propeller import Propeller
+from propwhirl.statespace import SecondOrder, state_matrix
+from propwhirl.wing import Wing
+
+#: ISA speed of sound at 8000 ft (2438.4 m): T = 272.30 K, a = √(γ R T) [m/s]
+SPEED_OF_SOUND_8000FT = float(np.sqrt(1.4 * 287.05287 * (288.15 - 0.0065 * 2438.4)))
+
+
+@dataclass(frozen=True)
+class FlightCondition:
+    """Air density [kg/m³] and speed of sound [m/s]."""
+
+    density: float
+    speed_of_sound: float = SPEED_OF_SOUND_8000FT
+
+    def __post_init__(self) -> None:
+        v.positive("density", self.density, "kg/m^3")
+        v.positive("speed_of_sound", self.speed_of_sound, "m/s")
+
+
+@dataclass(frozen=True)
+class Installation:
+    """A propeller attached to the wing at spanwise position y [m] (must be a node)."""
+
+    propeller: Propeller
+    y: float
+    mount: Literal["flexible", "rigid"] = "flexible"
+
+    def __post_init__(self) -> None:
+        v.finite("installation y", self.y, "m")
+        if self.mount not in ("flexible", "rigid"):
+            raise v.InputError(f"mount = {self.mount!r} is invalid: must be 'flexible' or 'rigid'")
+
+
+def node_at(wing: Wing, y: float, tol: float = 1e-6) -> int:
+    """Index of the node at spanwise position y; an error names the nearest nodes otherwise.
+
+    Propellers must sit on a node (§8.3.3).  A position off the mesh is not moved silently:
+    choose `n_elements` so that a node falls there.
+    """
+    ys = wing.node_y
+    if y < -tol or y > wing.semi_span + tol:
+        raise v.InputError(
+            f"propeller position y = {y!r} m is outside the wing: must be in [0, {wing.semi_span}] m"
+        )
+    i = int(np.argmin(np.abs(ys - y)))
+    if abs(ys[i] - y) > tol * max(1.0, wing.semi_span):
+        lo = int(np.searchsorted(ys, y)) - 1
+        raise v.InputError(
+            f"propeller position y = {y!r} m is not a node of the {wing.n_elements}-element mesh: "
+            f"nearest nodes are {lo} (y = {ys[lo]:.6g} m) and {lo + 1} (y = {ys[lo + 1]:.6g} m); "
+            "change n_elements or the position"
+        )
+    if i == 0:
+        raise v.InputError(f"propeller position y = {y!r} m is the clamped root: must be > 0")
+    return i
+
+
+@dataclass(frozen=True)
+class PropellerWing:
+    """A cantilever wing with flexibly (or rigidly) mounted propellers (chapter 8, appendix D).
+
+    With no propellers it is the wing model of chapter 7.
+    """
+
+    wing: Wing
+    flight: FlightCondition
+    propellers: tuple[Installation, ...] = ()
+    wing_aero: bool = True
+    propeller_aero: bool = True
+    rotating: bool = True
+    name: str = "propeller-wing"
+    _nodes: tuple[int, ...] = field(default=(), repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        nodes = tuple(node_at(self.wing, inst.y) for inst in self.propellers)
+        if len(set(nodes)) != len(nodes):
+            dup = next(n for n in nodes if nodes.count(n) > 1)
+            raise v.InputError(
+                f"two propellers at node {dup} (y = {self.wing.node_y[dup]:.6g} m): at most one per node"
+            )
+        object.__setattr__(self, "_nodes", nodes)
+
+    def with_(self, **changes) -> "PropellerWing":
+        """A copy with fields replaced (switches, flight condition, ...)."""
+        return replace(self, **changes)
+
+    # ------------------------------------------------------------------ layout
+    @property
+    def nodes(self) -> tuple[int, ...]:
+        return self._nodes
+
+    @property
+    def flexible(self) -> list[int]:
+        """Indices (into `propellers`) of flexibly mounted propellers (those with θ, ψ DOFs)."""
+        return [j for j, inst in enumerate(self.propellers) if inst.mount == "flexible"]
+
+    def q_labels(self) -> tuple[str, ...]:
+        wing = wing_dof_labels(self.wing.n_nodes)
+        prop = tuple(f"propeller {j} {d}" for j in self.flexible for d in ("theta", "psi"))
+        return wing + prop
+
+    # ------------------------------------------------------------------ propeller blocks
+    def _propeller_blocks(self, j: int, V: np.ndarray, omega: np.ndarray | None = None):
+        """Local (M, C, K) over [θ, ψ, h_P, α_P] (flexible) or [h_P, α_P] (rigid), (nV, k, k).
+
+        `omega` [rad/s] (shape of V) overrides the propeller's own rotational speed."""
+        inst = self.propellers[j]
+        p = inst.propeller
+        node = self.nodes[j]
+        nV = V.shape[0]
+        a_b = self.wing.node_properties()
+        ea = a_b["a"][node] * a_b["b"][node]  # elastic axis aft of mid-chord [m] (a_P b_P)
+        inertia = p.pivot_inertia()
+        S_alpha, I_alpha, I_theta_alpha = prop_flexwing.inertia(
+            inertia["M_P"], inertia["S_theta_P"], inertia["I_theta_P"], p.pivot_pitch, ea
+        )[..., 0]
+        e_alpha = float(prop_flexwing.e_alpha_geometry(p.e_theta, p.pivot_pitch, ea)[..., 0, 0])
+        if not self.rotating:
+            Omega = np.zeros_like(V)
+        elif omega is not None:
+            Omega = np.broadcast_to(np.asarray(omega, dtype=float), V.shape)
+        else:
+            Omega = p.rotational_speed(V)
+        Kt, Kp = p.stiffness()
+        zt, zp = p.viscous_damping_ratios()
+        values = dict(
+            inertia, S_alpha_P=S_alpha, I_alpha_P=I_alpha, I_theta_alpha_P=I_theta_alpha,
+            I_Omega=p.I_Omega, Omega=Omega, K_theta=Kt, K_psi=Kp, zeta_theta=zt, zeta_psi=zp,
+            rho=self.flight.density, V=V, R=p.radius, e_theta=p.e_theta, e_psi=p.e_psi,
+            e_alpha=e_alpha,
+        )
+        shape = (nV,)
+        get = lambda name: call(prop_flexwing, name, shape, **values)  # noqa: E731
+        if self.propeller_aero:
+            values.update(p.aerodynamic_derivatives(V, self.flight.speed_of_sound))
+            aero = {n: get(n) for n in ("Aa", "Ba", "Ca", "Da", "Ea", "Fa", "P1", "P2", "P3", "P4", "P5", "P6")}
+        else:
+            z = np.zeros((nV, 2, 2))
+            aero = {n: z for n in ("Aa", "Ba", "Ca", "Da", "Ea", "Fa", "P1", "P2", "P3", "P4", "P5", "P6")}
+        if inst.mount == "rigid":
+            return get("Gs") - aero["P2"], -aero["P4"], -aero["P6"]
+        M = np.block([[get("As") - aero["Aa"], get("Bs") - aero["Ba"]],
+                      [get("Fs") - aero["P1"], get("Gs") - aero["P2"]]])
+        C = np.block([[get("Cs_viscous") - aero["Ca"], get("Ds") - aero["Da"]],
+                      [get("Hs") - aero["P3"], -aero["P4"]]])
+        K = np.block([[get("Es") - aero["Ea"], -aero["Fa"]],
+                      [-aero["P5"], -aero["P6"]]])
+        return M, C, K
+
+    # ------------------------------------------------------------------ system
+    def second_order(self, V, omega=None) -> SecondOrder:
+        """The reduced second-order system (root removed) at airspeeds V [m/s] (array).
+
+        `omega` [rad/s], broadcast to V, overrides every propeller's rotational speed (used for
+        Campbell diagrams and rotational-speed studies)."""
+        V = np.atleast_1d(v.positive("airspeed V", V, "m/s"))
+        nV = V.shape[0]
+        wing = self.wing
+        nqw = 3 * wing.n_nodes
+        flex = self.flexible
+        n = nqw + 2 * len(flex)
+        Ms, Cs, Ks = wing_structure(wing)
+        S1 = np.zeros((nV, n, n))
+        S2 = np.zeros((nV, n, n))
+        S3 = np.zeros((nV, n, n))
+        S1[:, :nqw, :nqw] = Ms
+        S2[:, :nqw, :nqw] = Cs
+        S3[:, :nqw, :nqw] = Ks
+        if self.wing_aero:
+            aero = wing_aero(wing, self.flight.density, V)
+            S1[:, :nqw, :nqw] -= aero["Ma"]
+            S2[:, :nqw, :nqw] -= aero["Ca"]
+            S3[:, :nqw, :nqw] -= aero["Ka"]
+            m = aero["Ww"].shape[-1]
+            S4 = np.zeros((nV, n, m))
+            S4[:, :nqw, :] = aero["W0"]
+            Ww = aero["Ww"]
+            Wv = np.zeros((nV, m, n))
+            Wq = np.zeros((nV, m, n))
+            Wv[:, :, :nqw] = aero["Wv"]
+            Wq[:, :, :nqw] = aero["Wq"]
+            w_labels = aero["labels"]
+            k = LAG_STATES[wing.aero_model]
+            keep_w = np.arange(k, m)
+        else:
+            S4 = np.zeros((nV, n, 0))
+            Ww, Wv, Wq = np.zeros((nV, 0, 0)), np.zeros((nV, 0, n)), np.zeros((nV, 0, n))
+            w_labels, keep_w = (), np.arange(0)
+        for j, inst in enumerate(self.propellers):
+            node = self.nodes[j]
+            wing_idx = [3 * node, 3 * node + 2]
+            if inst.mount == "flexible":
+                pj = nqw + 2 * flex.index(j)
+                idx = np.array([pj, pj + 1] + wing_idx)
+            else:
+                idx = np.array(wing_idx)
+            M, C, K = self._propeller_blocks(j, V, omega)
+            ix = np.ix_(idx, idx)
+            S1[(slice(None),) + ix] += M
+            S2[(slice(None),) + ix] += C
+            S3[(slice(None),) + ix] += K
+        full = SecondOrder(S1, S2, S3, S4, Ww, Wv, Wq, self.q_labels(), w_labels)
+        keep_q = np.concatenate([free_dofs(wing.n_nodes), np.arange(nqw, n)])
+        return full.reduced(keep_q, keep_w)
+
+    def state_matrix(self, V, omega=None) -> np.ndarray:
+        """A(V), shape (nV, n_state, n_state), for the state [q, q̇, w] (D.27)."""
+        V = np.atleast_1d(np.asarray(V, dtype=float))
+        return state_matrix(self.second_order(V, omega), V)
+
+    def state_labels(self) -> tuple[str, ...]:
+        return self.second_order(np.array([1.0])).labels
+
+
+@dataclass(frozen=True)
+class IsolatedPropeller:
+    """A propeller flexibly mounted on a rigid wing: 2-DOF pitch/yaw whirl (chapter 6, 6.18)."""
+
+    propeller: Propeller
+    flight: FlightCondition
+    propeller_aero: bool = True
+    rotating: bool = True
+    name: str = "isolated propeller"
+
+    def with_(self, **changes) -> "IsolatedPropeller":
+        return replace(self, **changes)
+
+    def second_order(self, V) -> SecondOrder:
+        V = np.atleast_1d(v.positive("airspeed V", V, "m/s"))
+        nV = V.shape[0]
+        p = self.propeller
+        inertia = p.pivot_inertia()
+        Kt, Kp = p.stiffness()
+        zt, zp = p.viscous_damping_ratios()
+        values = dict(
+            I_X=p.I_Omega, I_Y=inertia["I_theta_P"], I_Z=inertia["I_psi_P"],
+            Omega=p.rotational_speed(V) if self.rotating else np.zeros_like(V),
+            K_theta=Kt, K_psi=Kp, zeta_theta=zt, zeta_psi=zp, rho=self.flight.density, V=V,
+            R=p.radius, e_theta=-p.e_theta, e_psi=-p.e_psi,  # chapter 6: distances, positive
+        )
+        get = lambda name: call(prop_rigid, name, (nV,), **values)  # noqa: E731
+        S1, S2, S3 = get("Ms"), get("Cs_viscous"), get("Ks")
+        if self.propeller_aero:
+            values.update(p.aerodynamic_derivatives(V, self.flight.speed_of_sound))
+            S1, S2, S3 = S1 - get("Ma"), S2 - get("Ca"), S3 - get("Ka")
+        z = np.zeros((nV, 0, 2))
+        return SecondOrder(S1, S2, S3, np.zeros((nV, 2, 0)), np.zeros((nV, 0, 0)), z, z,
+                           ("propeller 0 theta", "propeller 0 psi"), ())
+
+    def state_matrix(self, V) -> np.ndarray:
+        V = np.atleast_1d(np.asarray(V, dtype=float))
+        return state_matrix(self.second_order(V), V)
+
+    def state_labels(self) -> tuple[str, ...]:
+        return self.second_order(np.array([1.0])).labels

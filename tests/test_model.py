@@ -1,0 +1,120 @@
+"""The assembled propeller–wing model (chapter 8, appendix D): structure, switches, errors."""
+import numpy as np
+import pytest
+
+from propwhirl.cases.ch07_patil import PATIL_DENSITY, patil_wing
+from propwhirl.cases.ch09_baseline import baseline_propeller, baseline_wing, baseline_flight, propeller_wing
+from propwhirl.cases.ch10_other_wings import tip_y, two_propeller_wing, wingtip_propeller_wing
+from propwhirl.model import FlightCondition, Installation, PropellerWing, node_at
+from propwhirl.propeller import MeasuredDerivatives
+from propwhirl.validate import InputError
+from propwhirl.vibration import campbell, label_modes
+
+NO_AERO = MeasuredDerivatives({})
+
+
+def quiet(model):
+    return model.with_(wing_aero=False, propeller_aero=False)
+
+
+def test_propeller_off_node_names_nearest_nodes():
+    wing = baseline_wing(25)
+    with pytest.raises(InputError) as exc:
+        node_at(wing, 1.6)
+    msg = str(exc.value)
+    assert "1.6" in msg and "nearest nodes are 7" in msg and "8" in msg
+
+
+@pytest.mark.parametrize("y", [-0.1, 6.0])
+def test_propeller_outside_wing(y):
+    with pytest.raises(InputError, match="outside the wing"):
+        node_at(baseline_wing(25), y)
+
+
+def test_propeller_at_root_rejected():
+    with pytest.raises(InputError, match="clamped root"):
+        node_at(baseline_wing(25), 0.0)
+
+
+def test_two_propellers_at_one_node_rejected():
+    with pytest.raises(InputError, match="two propellers at node 25"):
+        propeller_wing((tip_y(), tip_y()))
+
+
+def test_density_must_be_positive():
+    with pytest.raises(InputError, match="density = 0.0"):
+        FlightCondition(0.0)
+
+
+def test_nonpositive_speed_rejected():
+    with pytest.raises(InputError, match="airspeed V"):
+        wingtip_propeller_wing().second_order(np.array([0.0, 10.0]))
+
+
+def test_dof_counts_and_labels():
+    model = two_propeller_wing()
+    s = model.second_order(np.array([50.0]))
+    assert s.n_dof == 3 * 25 + 4 and s.n_lag == 2 * 25
+    assert s.q_labels[:3] == ("node 1 h", "node 1 phi", "node 1 alpha")
+    assert s.q_labels[-4:] == ("propeller 0 theta", "propeller 0 psi", "propeller 1 theta", "propeller 1 psi")
+    rigid = two_propeller_wing("rigid").second_order(np.array([50.0]))
+    assert rigid.n_dof == 3 * 25
+
+
+def test_gyroscopic_terms_skew_symmetric_and_vanish_at_rest():
+    model = quiet(wingtip_propeller_wing(propeller=baseline_propeller(damping_theta=0.0, damping_psi=0.0)))
+    S2 = model.second_order(np.array([150.0])).S2[0]
+    np.testing.assert_allclose(S2, -S2.T, atol=1e-12)
+    assert np.abs(S2).max() > 1.0  # Ω(150 m/s) gives I_Ω Ω ≈ 500 N m s
+    still = model.with_(rotating=False).second_order(np.array([150.0])).S2[0]
+    assert np.abs(still).max() == 0.0
+
+
+def test_omega_zero_removes_pitch_yaw_coupling():
+    model = quiet(wingtip_propeller_wing()).with_(rotating=False)
+    s = model.second_order(np.array([100.0]))
+    th, ps = s.q_labels.index("propeller 0 theta"), s.q_labels.index("propeller 0 psi")
+    for Mx in (s.S1[0], s.S2[0], s.S3[0]):
+        assert Mx[th, ps] == 0.0 and Mx[ps, th] == 0.0
+        # yaw couples to nothing at rest: no lateral wing motion
+        assert np.count_nonzero(Mx[ps]) <= 1
+
+
+def test_structural_mass_symmetric_positive_definite():
+    S1 = quiet(two_propeller_wing()).second_order(np.array([1.0])).S1[0]
+    np.testing.assert_allclose(S1, S1.T, atol=1e-12)
+    assert np.linalg.eigvalsh(S1).min() > 0
+
+
+def test_campbell_backward_falls_forward_rises():
+    model = wingtip_propeller_wing()
+    rpm, f = campbell(model, np.array([0.0, 2000.0, 4000.0]))
+    labels = [lab for lab, _ in label_modes(model)]
+    b, fw = labels.index("backward 1"), labels.index("forward 1")
+    assert f[2, b] < f[1, b] < f[0, b]
+    assert f[2, fw] > f[1, fw] > f[0, fw]
+
+
+def patil_model(aero_model):
+    return PropellerWing(patil_wing(20, aero_model=aero_model), FlightCondition(PATIL_DENSITY))
+
+
+def test_wagner_and_leishman_nguyen_have_the_same_aeroelastic_roots():
+    """Both realise Jones' C(s) exactly: the physical eigenvalues coincide (Wagner adds only
+    uncontrollable lag roots at −ε_i V/b)."""
+    V = np.array([20.0, 33.0])
+    ln = np.linalg.eigvals(patil_model("leishman-nguyen").state_matrix(V))
+    wa = np.linalg.eigvals(patil_model("wagner").state_matrix(V))
+    for k in range(len(V)):
+        for lam in ln[k]:
+            assert np.min(np.abs(wa[k] - lam)) < 1e-6 * max(1.0, abs(lam))
+
+
+def test_patil_divergence_matches_closed_form_strip_theory():
+    """q_D = (π/2L)² GJ / (e c C_lα), e = 0.25 m: V_D = 37.15 m/s (Table 7.3 note)."""
+    e, c, GJ, L = 0.25, 1.0, 1e4, 16.0
+    VD = np.sqrt(2 * (np.pi / (2 * L)) ** 2 * GJ / (e * c * 2 * np.pi) / PATIL_DENSITY)
+    assert abs(VD - 37.15) < 0.01
+    lam = np.linalg.eigvals(patil_model("leishman-nguyen").state_matrix(np.array([0.995 * VD, 1.005 * VD])))
+    real = lambda row: row[np.abs(row.imag) < 1e-9].real  # noqa: E731
+    assert real(lam[0]).max() < 0 < real(lam[1]).max()
