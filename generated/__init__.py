@@ -5,5 +5,6 @@
 - `prop_flexwing`: Propeller on a flexible wing (propeller rows and wing-node coupling) (thesis eq. 8.1–8.42), from `derivations/prop_flexwing.py`
 - `prop_rigid`: Propeller on a rigid wing (pitch–yaw whirl) (thesis eq. 6.1–6.17), from `derivations/prop_rigid.py`
 - `strip_aero`: Strip aerodynamics: Theodorsen section loads with Wagner and Leishman–Nguyen states (thesis eq. 7.24–7.56, 7.64–7.80), from `derivations/strip_aero.py`
+- `typical_section`: Typical section (pitch–plunge aerofoil on springs) (thesis eq. 5.1, 7.1–7.3), from `derivations/typical_section.py`
 """
-MODULES = ("beam_element", "prop_flexwing", "prop_rigid", "strip_aero", )
+MODULES = ("beam_element", "prop_flexwing", "prop_rigid", "strip_aero", "typical_section", )

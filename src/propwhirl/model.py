@@ -291,3 +291,78 @@ class IsolatedPropeller:
 
     def state_labels(self) -> tuple[str, ...]:
         return self.second_order(np.array([1.0])).labels
+
+
+@dataclass(frozen=True)
+class TypicalSection:
+    """The 2-DOF pitch–plunge aerofoil on springs with the wing's strip aerodynamics.
+
+    Per unit span (SI): semichord b [m], elastic axis a and centre of gravity offset x_alpha
+    (both in semichords, a from mid-chord, x_α aft of the elastic axis), mass m [kg/m], radius
+    of gyration r_alpha about the elastic axis [semichords], uncoupled frequencies
+    omega_h, omega_alpha [rad/s], lift-curve slope Cla [1/rad], aerodynamic centre ac
+    [semichords from mid-chord], aero_model "leishman-nguyen" or "wagner".
+    """
+
+    b: float
+    a: float
+    x_alpha: float
+    r_alpha: float
+    m: float
+    omega_h: float
+    omega_alpha: float
+    flight: FlightCondition
+    Cla: float = 2 * np.pi
+    ac: float = -0.5
+    aero_model: Literal["leishman-nguyen", "wagner"] = "leishman-nguyen"
+    name: str = "typical section"
+
+    def __post_init__(self) -> None:
+        v.positive("b", self.b, "m")
+        v.in_range("a", self.a, -1.0, 1.0)
+        v.finite("x_alpha", self.x_alpha)
+        v.positive("r_alpha", self.r_alpha)
+        v.positive("m", self.m, "kg/m")
+        v.positive("omega_h", self.omega_h, "rad/s")
+        v.positive("omega_alpha", self.omega_alpha, "rad/s")
+        v.non_negative("Cla", self.Cla, "1/rad")
+        v.in_range("ac", self.ac, -1.0, 1.0)
+        if self.r_alpha**2 <= self.x_alpha**2:
+            raise v.InputError(
+                f"r_alpha = {self.r_alpha!r} is invalid: must exceed |x_alpha| = {abs(self.x_alpha)!r}"
+                " (inertia about the elastic axis includes the centre-of-gravity offset)"
+            )
+        if self.aero_model not in LAG_STATES:
+            raise v.InputError(f"aero_model = {self.aero_model!r} is invalid: must be one of {tuple(LAG_STATES)}")
+
+    def with_(self, **changes) -> "TypicalSection":
+        return replace(self, **changes)
+
+    def second_order(self, V) -> SecondOrder:
+        from propwhirl.generated import strip_aero, typical_section
+
+        V = np.atleast_1d(v.positive("airspeed V", V, "m/s"))
+        nV = V.shape[0]
+        S = self.m * self.x_alpha * self.b
+        I = self.m * (self.r_alpha * self.b) ** 2
+        Ms = typical_section.mass(self.m, S, I)
+        Ks = typical_section.stiffness(self.m * self.omega_h**2, I * self.omega_alpha**2)
+        values = dict(rho=self.flight.density, V=V, b=self.b, a=self.a, Cla=self.Cla, ac=self.ac)
+        names = {
+            "leishman-nguyen": ("ln_M", "ln_C", "ln_K", "ln_W0", "ln_W1", "ln_W2", "ln_W3"),
+            "wagner": ("wagner_M", "wagner_C", "wagner_K", "wagner_W0", "wagner_W2", None, "wagner_W1"),
+        }[self.aero_model]
+        get = lambda n: call(strip_aero, n, (nV,), **values)  # noqa: E731
+        Ma, Ca, Ka, W0, Ww = (get(n) for n in names[:5])
+        Wq = get(names[6])
+        Wv = get(names[5]) if names[5] else np.zeros_like(Wq)
+        k = LAG_STATES[self.aero_model]
+        return SecondOrder(Ms - Ma, -Ca, Ks - Ka, W0, Ww, Wv, Wq, ("h", "alpha"),
+                           tuple(f"w{j + 1}" for j in range(k)))
+
+    def state_matrix(self, V) -> np.ndarray:
+        V = np.atleast_1d(np.asarray(V, dtype=float))
+        return state_matrix(self.second_order(V), V)
+
+    def state_labels(self) -> tuple[str, ...]:
+        return self.second_order(np.array([1.0])).labels
