@@ -28,7 +28,13 @@ from typing import Callable, Literal, Mapping, Protocol
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.aero import DERIVATIVE_NAMES, AeroSettings, houbolt_reed_source
+from propwhirl.aero import (
+    DERIVATIVE_NAMES,
+    AdvanceRule,
+    AeroSettings,
+    advance_ratio_from_blade_angle,
+    houbolt_reed_source,
+)
 
 
 
@@ -89,9 +95,14 @@ class Propeller:
     damping : "g" (structural coefficient, viscous equivalent c = K g/ω) or "zeta" (ratio)
     spin_inertia : I_Ω [kg m²]; default M_r R²/3 (9.2)
     n_blades : number of blades (≥ 3: the method assumes polar symmetry)
-    operation : "fixed-pitch" (windmilling, μ = r_ref tan(β_0.75 + α_0L), eq. 9.1) or
+    operation : "fixed-pitch" (windmilling: μ from the blade angle, Ω rises with V) or
         "constant-speed" (`rpm` fixed)
     beta_075_deg, zero_lift_angle_deg : blade angle at 0.75 R and zero-lift angle [deg]
+    advance_rule : "thesis_eq_9_1" (μ = tan(β + α_0L), eq. 9.1 as chapters 9–11 use it) or
+        "blade_element" (zero lift at 0.75 R: μ = 0.75 tan(β − α_0L), Table 4.1)
+    inertia : optional measured inertia about the pivots overriding the point-mass values,
+        any of M_P [kg], S_theta_P [kg m], I_theta_P, I_psi_P [kg m²] (e.g. Bennett & Bland's
+        I_Y = I_Z); the point masses still place the propeller plane (the rotor's x)
     rpm : rotational speed for constant-speed operation [rev/min]
     hub_radius : hub radius r0 [m] (η0 = r0/R)
     blade_chord : blade chord [m], a number or a function of η = r/R (Houbolt–Reed input)
@@ -122,7 +133,8 @@ class Propeller:
     operation: Literal["fixed-pitch", "constant-speed"] = "fixed-pitch"
     beta_075_deg: float = 35.0
     zero_lift_angle_deg: float = -3.0
-    advance_ratio_station: float = 1.0
+    advance_rule: AdvanceRule = "thesis_eq_9_1"
+    inertia: Mapping[str, float] | None = None
     rpm: float | None = None
     derivatives: DerivativeSource | None = field(default=None, compare=False)
     aero_settings: AeroSettings = AeroSettings()
@@ -155,9 +167,14 @@ class Propeller:
                 raise v.InputError("rpm is required for operation = 'constant-speed'")
             v.positive("rpm", self.rpm, "rev/min")
         else:
-            v.in_range("beta_075_deg + zero_lift_angle_deg", self.beta_075_deg + self.zero_lift_angle_deg,
-                       0.0, 90.0, "deg", low_open=True, high_open=True)
-        v.in_range("advance_ratio_station", self.advance_ratio_station, 0.0, 1.0, low_open=True)
+            self.advance_ratio  # validates the blade angle (inflow angle in (0°, 90°))
+        if self.inertia is not None:
+            allowed = {"M_P", "S_theta_P", "I_theta_P", "I_psi_P"}
+            unknown = set(self.inertia) - allowed
+            if unknown:
+                raise v.InputError(f"inertia keys {sorted(unknown)} are invalid: allowed {sorted(allowed)}")
+            for k, val in self.inertia.items():
+                (v.finite if k == "S_theta_P" else v.positive)(k, val)
         if self.rotation not in (1, -1):
             raise v.InputError(f"rotation = {self.rotation!r} is invalid: must be +1 or -1")
         v.finite("pivot_pitch", self.pivot_pitch, "m")
@@ -186,12 +203,14 @@ class Propeller:
         """M_P [kg], S_θ,P [kg m], I_θ,P, I_ψ,P [kg m²] about the pivots (8.5–8.6)."""
         m = np.array([p.mass for p in self.all_masses])
         x = np.array([p.x for p in self.all_masses])
-        return {
+        out = {
             "M_P": float(m.sum()),
             "S_theta_P": float(np.sum(m * (x - self.pivot_pitch))),
             "I_theta_P": float(np.sum(m * (x - self.pivot_pitch) ** 2)),
             "I_psi_P": float(np.sum(m * (x - self.pivot_yaw) ** 2)),
         }
+        out.update({k: float(val) for k, val in (self.inertia or {}).items()})
+        return out
 
     @property
     def I_Omega(self) -> float:
@@ -216,13 +235,14 @@ class Propeller:
     # ------------------------------------------------------------------ operation
     @property
     def advance_ratio(self) -> float:
-        """μ = V/(ΩR) of fixed-pitch windmilling: r_ref·tan(β_0.75 + α_0L) (eq. 9.1, J = πμ).
+        """μ = V/(ΩR) of fixed-pitch windmilling from the blade angle (J = πμ).
 
-        With the default station r_ref = 1 this is the thesis's eq. 9.1 (J = π tan(β − 3°),
-        confirmed by Tables 9.3 and 9.5); r_ref = 0.75 is the zero-lift condition at 0.75 R.
+        "thesis_eq_9_1": tan(β_0.75 + α_0L) — eq. 9.1 as printed and used in chapters 9–11
+        (J = π tan(β − 3°) = 1.96 at 35°, Table 9.3; 221 m/s at 4433 RPM, Table 9.5);
+        "blade_element": 0.75 tan(β_0.75 − α_0L), zero lift at 0.75 R (Table 4.1).
         """
-        beta = np.radians(self.beta_075_deg + self.zero_lift_angle_deg)
-        return float(self.advance_ratio_station * np.tan(beta))
+        return float(advance_ratio_from_blade_angle(
+            np.radians(self.beta_075_deg), np.radians(self.zero_lift_angle_deg), self.advance_rule))
 
     def rotational_speed(self, V: np.ndarray) -> np.ndarray:
         """Ω [rad/s] at airspeeds V [m/s]."""
