@@ -7,6 +7,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from propwhirl.analysis import analyse, first_of_kind, speed_and_frequency
+from propwhirl.model import FlightCondition, PropellerWing
 from propwhirl.reproduce import register
 from propwhirl.vibration import classify_wing_modes
 from propwhirl.wing import LiftSlope, Wing
@@ -45,3 +47,33 @@ def table_7_2() -> dict[str, float]:
         "t7.2/third_bending": modes["bending 3"],
         "t7.2/first_torsion": modes["torsion 1"],
     }
+
+
+def patil_model(n_elements: int = 20, lift_slope: LiftSlope = 2 * np.pi,
+                aero_model: str = "leishman-nguyen") -> PropellerWing:
+    """The Patil wing with its flight condition (ρ = 0.0889 kg/m³) as an aeroelastic model."""
+    return PropellerWing(patil_wing(n_elements, lift_slope, aero_model),
+                         FlightCondition(PATIL_DENSITY), name="Patil wing")
+
+
+PATIL_SPEEDS = np.arange(1.0, 61.0, 2.0)
+
+
+def _flutter_divergence(prefix: str, lift_slope) -> dict[str, float]:
+    a = analyse(patil_model(20, lift_slope), PATIL_SPEEDS)
+    Vf, ff = speed_and_frequency(first_of_kind(a, "flutter"))
+    Vd, _ = speed_and_frequency(first_of_kind(a, "divergence"))
+    return {f"{prefix}/flutter_speed": Vf, f"{prefix}/flutter_frequency": 2 * np.pi * ff,
+            f"{prefix}/divergence_speed": Vd}
+
+
+@register("t7.3")
+def table_7_3() -> dict[str, float]:
+    """Table 7.3: flutter speed [m/s], frequency [rad/s] and divergence speed, 20 elements."""
+    return _flutter_divergence("t7.3", 2 * np.pi)
+
+
+@register("t7.4")
+def table_7_4() -> dict[str, float]:
+    """Table 7.4: as 7.3 with the elliptic lift-curve slope 2π√(1 − x²) (eq. 7.81)."""
+    return _flutter_divergence("t7.4", "elliptic")

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from propwhirl.analysis import analyse, first_of_kind, speed_and_frequency
 from propwhirl.model import (
     SPEED_OF_SOUND_8000FT,
     FlightCondition,
@@ -46,11 +47,23 @@ def baseline_wing(n_elements: int = 20, aero_model: str = "leishman-nguyen") -> 
     )
 
 
-@register("t9.2/freq")
-def table_9_2_frequencies() -> dict[str, float]:
-    """Table 9.2a: the first five natural frequencies [Hz] of the baseline wing (20 elements)."""
+@register("t9.2")
+def table_9_2() -> dict[str, float]:
+    """Table 9.2: natural frequencies [Hz] and flutter/divergence of the baseline wing (20 elements).
+
+    Flutter is the first torsion mode (the second wing mode); divergence a real root through 0.
+    """
     f = wing_modes(baseline_wing()).frequency_hz
-    return {f"t9.2/freq{i + 1}": float(f[i]) for i in range(5)}
+    out = {f"t9.2/freq{i + 1}": float(f[i]) for i in range(5)}
+    a = analyse(baseline_wing_model())
+    out["t9.2/flutter_speed"], out["t9.2/flutter_frequency"] = speed_and_frequency(a.first("wing 2", "flutter"))
+    out["t9.2/divergence_speed"] = speed_and_frequency(first_of_kind(a, "divergence"))[0]
+    return out
+
+
+def baseline_wing_model(n_elements: int = 20) -> PropellerWing:
+    """The baseline wing alone at 8000 ft (§9.1)."""
+    return PropellerWing(baseline_wing(n_elements), baseline_flight(), name="baseline wing")
 
 
 # ----------------------------------------------------------------------------- §9.2 propeller
@@ -156,3 +169,64 @@ def table_9_8() -> dict[str, float]:
     out["t9.8/prop_pitch"] = modes["backward 1"]
     out["t9.8/prop_yaw"] = modes["forward 1"]
     return out
+
+
+# ----------------------------------------------------------------------------- reproduction
+@register("t9.5")
+def table_9_5() -> dict[str, float]:
+    """Table 9.5: the baseline propeller on a rigid wing: backward whirl flutter."""
+    a = analyse(isolated_baseline_propeller())
+    V, f = speed_and_frequency(a.first("backward", "flutter"))
+    rpm = float(baseline_propeller().rotational_speed(np.array([V]))[0] * 60 / (2 * np.pi))
+    return {"t9.5/whirl_flutter_speed": V, "t9.5/whirl_flutter_frequency": f, "t9.5/rpm_at_flutter": rpm}
+
+
+@register("s9.2")
+def section_9_2() -> dict[str, float]:
+    """§9.2: unsymmetric stiffness (f_ψ = 4 Hz, Figure 9.10) and constant speed 2250 RPM (9.13).
+
+    The constant-speed propeller is unstable at very low speeds (the advance ratio tends to 0,
+    §9.2); as the thesis asks, that low-speed instability is ignored: the flutter speed is the
+    backward-whirl onset after the mode first becomes stable.
+    """
+    a = analyse(isolated_baseline_propeller(f_psi=4.0))
+    out = {"s9.2/unsymmetric_whirl_flutter_speed": speed_and_frequency(a.first("backward", "flutter"))[0]}
+    cs = analyse(isolated_baseline_propeller(operation="constant-speed", rpm=2250.0),
+                 np.arange(1.0, 601.0, 10.0))
+    onsets = [e for e in cs.events if e.label == "backward" and e.kind == "flutter" and e.event == "onset"]
+    out["s9.2/constant_speed_whirl_flutter_speed"] = onsets[0].V if onsets else float("nan")
+    return out
+
+
+@register("t9.7")
+def table_9_7() -> dict[str, float]:
+    """Table 9.7: rigidly mounted, non-rotating inboard propeller (an inert mass, §9.3.1)."""
+    a = analyse(inboard_propeller_wing("rigid", rotating=False, propeller_aero=False))
+    V, f = speed_and_frequency(a.first("wing 2", "flutter"))
+    return {"t9.7/flutter_speed": V, "t9.7/flutter_frequency": f,
+            "t9.7/divergence_speed": speed_and_frequency(first_of_kind(a, "divergence"))[0]}
+
+
+def _table_9_9(prefix: str, **switches) -> dict[str, float]:
+    a = analyse(inboard_propeller_wing(**switches))
+    Vw, fw = speed_and_frequency(a.first("wing 2", "flutter"))
+    Vf, ff = speed_and_frequency(a.first("forward 1", "flutter"))
+    return {f"{prefix}/wing_flutter_speed": Vw, f"{prefix}/wing_flutter_frequency": fw,
+            f"{prefix}/divergence_speed": speed_and_frequency(first_of_kind(a, "divergence"))[0],
+            f"{prefix}/fw_whirl_flutter_speed": Vf, f"{prefix}/fw_whirl_flutter_frequency": ff}
+
+
+@register("t9.9")
+def table_9_9() -> dict[str, float]:
+    """Table 9.9: flexibly mounted rotating inboard propeller, without and with propeller aero."""
+    return {**_table_9_9("t9.9/no_prop_aero", propeller_aero=False), **_table_9_9("t9.9/full")}
+
+
+@register("f9.19")
+def figure_9_19() -> dict[str, float]:
+    """Figure 9.19: inboard propeller wing without wing aerodynamics."""
+    a = analyse(inboard_propeller_wing(wing_aero=False))
+    V, f = speed_and_frequency(a.first("backward 1", "flutter"))
+    return {"f9.19/no_wing_aero/bw_whirl_flutter_speed": V,
+            "f9.19/no_wing_aero/bw_whirl_flutter_frequency": f,
+            "f9.19/no_wing_aero/wing1_flutter_speed": speed_and_frequency(a.first("wing 1"))[0]}

@@ -1,0 +1,260 @@
+"""Stability analysis of a model: labelled V-g-f sweep, instabilities, the critical one.
+
+:func:`analyse` runs the engine of :mod:`propwhirl.stability` on a model's state matrix
+(PropellerWing, IsolatedPropeller or TypicalSection) and names the tracked modes the way the
+thesis does (chapters 9–11):
+
+* propeller–wing models: each aeroelastic mode is matched at the first speed, by an optimal
+  one-to-one MAC assignment on the displacement part, to the in-vacuo modes named by
+  :func:`propwhirl.vibration.label_modes` ("wing n", "backward k", "forward k"); the real
+  aerodynamic lag roots are "lag k";
+* the isolated propeller: "backward" and "forward" whirl from the sense of the θ–ψ orbit at the
+  first speed (or, without rotation, by frequency);
+* the typical section: "plunge" and "pitch" by their displacement content.
+
+A mode keeps its name along the sweep (it is a tracked branch).  At each instability the whirl
+sense of the propeller motion is also reported, because strongly coupled modes may change it.
+
+Instabilities are the onsets of the engine's crossings (flutter: a complex pair; divergence: a
+real root through zero) plus *frequency-zero* events: an already unstable oscillatory mode whose
+frequency falls to zero (the pair splits into real roots) — the thesis's "whirl divergence"
+(Table 10.4).  Results are saved and re-read with :meth:`ModelAnalysis.save` / :func:`load`.
+"""
+from __future__ import annotations
+
+import json
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from scipy.optimize import linear_sum_assignment
+
+from propwhirl import stability as st
+from propwhirl import validate as v
+
+#: Default airspeed grid of the thesis's analyses (0–350 m/s; the engine refines it) [m/s]
+DEFAULT_SPEEDS = np.arange(1.0, 351.0, 10.0)
+
+
+@dataclass(frozen=True)
+class Instability:
+    """One instability event of a tracked mode.
+
+    kind:   "flutter" (oscillatory) or "divergence" (non-oscillatory)
+    event:  "onset" (Re λ becomes positive), "recovery" (becomes negative again; hump modes),
+            "frequency-zero" (an unstable pair turns into real roots: divergence of that mode)
+    mode, label: tracked mode id and its name (e.g. "forward 1", "wing 2", "lag 1")
+    V [m/s], frequency_hz [Hz] at the event; whirl: "forward"/"backward"/"planar" sense of the
+    propeller θ–ψ orbit (None without flexible propellers); benignity [m/s] (eq. 5.13) at
+    flutter onsets.
+    """
+
+    kind: str
+    event: str
+    mode: int
+    label: str
+    V: float
+    frequency_hz: float
+    whirl: str | None = None
+    benignity: float | None = None
+
+
+@dataclass
+class ModelAnalysis:
+    """A labelled sweep and its instabilities (sorted by speed)."""
+
+    model_name: str
+    sweep: st.Sweep
+    events: tuple[Instability, ...]
+    criticals: st.Criticals | None = field(default=None, repr=False)
+
+    @property
+    def onsets(self) -> list[Instability]:
+        """Events that make the system (more) unstable: onsets and frequency-zero events."""
+        return [e for e in self.events if e.event in ("onset", "frequency-zero")]
+
+    @property
+    def critical(self) -> Instability | None:
+        """The instability at the lowest speed."""
+        ons = [e for e in self.events if e.event == "onset"]
+        return min(ons, key=lambda e: e.V) if ons else None
+
+    def first(self, label: str, kind: str | None = None, event: str = "onset") -> Instability | None:
+        """The lowest-speed event of the mode named `label` (optionally of one kind)."""
+        hits = [e for e in self.events
+                if e.label == label and e.event == event and (kind is None or e.kind == kind)]
+        return min(hits, key=lambda e: e.V) if hits else None
+
+    def summary(self) -> str:
+        lines = [f"{self.model_name}: instabilities between {self.sweep.V[0]:g} and {self.sweep.V[-1]:g} m/s"]
+        lines.append(f"  {'type':10s} {'event':15s} {'mode':14s} {'whirl':9s} {'V [m/s]':>9s} {'f [Hz]':>8s}")
+        for e in self.events:
+            lines.append(
+                f"  {e.kind:10s} {e.event:15s} {e.label:14s} {e.whirl or '-':9s} {e.V:9.2f} {e.frequency_hz:8.3f}"
+            )
+        c = self.critical
+        lines.append("  critical: " + (f"{c.kind} of {c.label} at {c.V:.2f} m/s, {c.frequency_hz:.3f} Hz"
+                                       if c else "none in the speed range"))
+        return "\n".join(lines)
+
+    def to_dict(self, include_eigenvectors: bool = False) -> dict[str, Any]:
+        return {
+            "model_name": self.model_name,
+            "events": [asdict(e) for e in self.events],
+            "sweep": self.sweep.to_dict(include_eigenvectors=include_eigenvectors),
+        }
+
+    @classmethod
+    def from_dict(cls, d: dict[str, Any]) -> "ModelAnalysis":
+        return cls(d["model_name"], st.Sweep.from_dict(d["sweep"]),
+                   tuple(Instability(**e) for e in d["events"]))
+
+    def save(self, path: str | Path, include_eigenvectors: bool = False) -> None:
+        """Write the analysis as JSON (V-g-f table, labels, instabilities)."""
+        Path(path).write_text(json.dumps(self.to_dict(include_eigenvectors)))
+
+
+def load(path: str | Path) -> ModelAnalysis:
+    """Re-read an analysis written by :meth:`ModelAnalysis.save`."""
+    return ModelAnalysis.from_dict(json.loads(Path(path).read_text()))
+
+
+# ----------------------------------------------------------------------------- labels
+def _propeller_indices(labels: tuple[str, ...]) -> list[tuple[int, int]]:
+    """(θ, ψ) state indices of each flexible propeller."""
+    out = []
+    j = 0
+    while f"propeller {j} theta" in labels:
+        out.append((labels.index(f"propeller {j} theta"), labels.index(f"propeller {j} psi")))
+        j += 1
+    return out
+
+
+def _mode_names(model, sw: st.Sweep) -> list[str]:
+    """Names of the tracked modes, decided at the first speed (see the module docstring)."""
+    n = sw.n_modes
+    lam0 = sw.eigenvalues[0]
+    X0 = sw.eigenvectors[0]
+    disp = sw.displacement
+    names = [f"mode {k}" for k in range(n)]
+    phys = sw.physical[0]
+    osc = [k for k in range(n) if phys[k] and abs(lam0[k].imag) > 1e-9 * max(1.0, abs(lam0[k]))]
+    real = [k for k in range(n) if phys[k] and k not in osc]
+    for i, k in enumerate(sorted(real, key=lambda k: -lam0[k].real)):
+        names[k] = f"lag {i + 1}"
+    for k in range(n):
+        if not phys[k] and sw.partner[k] >= 0:
+            names[k] = f"{names[sw.partner[k]]}'"
+    kind = type(model).__name__
+    if kind == "PropellerWing":
+        from propwhirl.vibration import label_modes, model_modes
+
+        modes, _ = model_modes(model)
+        ref = [lab for lab, _ in label_modes(model)]
+        M = st.mac(X0[disp][:, osc][:, :, None], modes.shapes[:, None, :].astype(complex))
+        rows, cols = linear_sum_assignment(-M)
+        for r, c in zip(rows, cols):
+            names[osc[r]] = ref[c]
+    elif kind == "IsolatedPropeller":
+        order = sorted(osc, key=lambda k: abs(lam0[k].imag))
+        if model.rotating and len(order) == 2:
+            th, ps = 0, 1
+            for k in order:
+                names[k] = st.whirl_sense(X0[th, k], X0[ps, k], 1, lam0[k]) or f"mode {k}"
+        else:
+            for k, nm in zip(order, ("pitch", "yaw")):
+                names[k] = nm
+    elif kind == "TypicalSection":
+        for k in osc:
+            c = st.content(X0[:2, k], {"plunge": [0], "pitch": [1]})
+            names[k] = max(c, key=lambda g: c[g])
+    for k in range(n):  # re-derive partner names after the physical modes were named
+        if not phys[k] and sw.partner[k] >= 0:
+            names[k] = f"{names[sw.partner[k]]}'"
+    return names
+
+
+def _whirl(model, x: np.ndarray, lam: complex, labels: tuple[str, ...]) -> str | None:
+    """Whirl sense of the propeller with the largest θ–ψ motion in full-state vector x."""
+    props = _propeller_indices(labels)
+    if not props or abs(lam.imag) == 0 or not getattr(model, "rotating", True):
+        return None
+    th, ps = max(props, key=lambda p: abs(x[p[0]]) ** 2 + abs(x[p[1]]) ** 2)
+    return st.whirl_sense(x[th], x[ps], 1, lam)
+
+
+# ----------------------------------------------------------------------------- frequency zero
+def _frequency_zero_events(model, sw: st.Sweep, names: list[str], xtol: float) -> list[Instability]:
+    """Unstable oscillatory modes whose pair turns into real roots (frequency → 0)."""
+    out = []
+    lam, phys = sw.eigenvalues, sw.physical
+    for k in range(sw.n_modes):
+        for t in range(len(sw.V) - 1):
+            a, b = lam[t, k], lam[t + 1, k]
+            if not (phys[t, k] and a.imag > 0 and a.real > 0):
+                continue
+            if abs(b.imag) > 1e-9 * max(1.0, abs(b)) or b.real <= 0:
+                continue
+            lo, hi = float(sw.V[t]), float(sw.V[t + 1])
+            shape = sw.eigenvectors[t, :, k]
+            guess = a
+            while hi - lo > xtol:  # bisection on "is the tracked root still complex?"
+                mid = 0.5 * (lo + hi)
+                lm, x = st.tracked_eigenvalue(model.state_matrix, mid, guess, shape,
+                                              displacement=sw.displacement)
+                if abs(lm.imag) > 1e-7 * max(1.0, abs(lm)):
+                    lo, guess, shape = mid, lm, x
+                else:
+                    hi = mid
+            out.append(Instability("divergence", "frequency-zero", k, names[k], 0.5 * (lo + hi), 0.0))
+            break
+    return out
+
+
+# ----------------------------------------------------------------------------- analyse
+def analyse(model, speeds=None, *, xtol: float = 0.01,
+            options: st.TrackingOptions | None = None) -> ModelAnalysis:
+    """V-g-f sweep with mode tracking and every instability of `model` over `speeds` [m/s].
+
+    `speeds` is the initial grid (default 1–341 m/s every 10 m/s plus 350 — the thesis's
+    0–350 m/s range; the engine refines it where needed); crossings are refined to `xtol`.
+    """
+    grid = DEFAULT_SPEEDS if speeds is None else np.asarray(speeds, dtype=float)
+    if speeds is None:
+        grid = np.append(grid, 350.0) if grid[-1] < 350.0 else grid
+    v.positive("xtol", xtol, "m/s")
+    s = model.second_order(np.array([float(grid[0])]))
+    labels = s.labels
+    an = st.analyse(model.state_matrix, grid, n_dof=s.n_dof, state_labels=labels,
+                    options=options, xtol=xtol)
+    sw = an.sweep
+    names = _mode_names(model, sw)
+    sw = sw.relabel(names)
+    events = []
+    for p in an.criticals.points:
+        whirl = _whirl(model, p.eigenvector, p.eigenvalue, labels) if p.kind == "flutter" else None
+        events.append(Instability(p.kind, p.direction, p.mode, names[p.mode], float(p.V),
+                                  float(p.frequency_hz), whirl,
+                                  None if p.benignity is None else float(p.benignity)))
+    for k in an.criticals.unstable_at_start:
+        lam0 = sw.eigenvalues[0, k]
+        kind = "flutter" if abs(lam0.imag) > 0 else "divergence"
+        events.append(Instability(kind, "unstable-at-start", int(k), names[k], float(sw.V[0]),
+                                  float(abs(lam0.imag) / (2 * np.pi))))
+    events += _frequency_zero_events(model, sw, names, xtol)
+    events.sort(key=lambda e: (e.V, e.mode))
+    return ModelAnalysis(getattr(model, "name", type(model).__name__), sw, tuple(events), an.criticals)
+
+
+def speed_and_frequency(event: Instability | None) -> tuple[float, float]:
+    """(V [m/s], f [Hz]) of an event; NaN (reported as not computed) when there is none."""
+    if event is None:
+        return float("nan"), float("nan")
+    return event.V, event.frequency_hz
+
+
+def first_of_kind(a: ModelAnalysis, kind: str, event: str = "onset") -> Instability | None:
+    """The lowest-speed event of a kind ("flutter" or "divergence"), whatever the mode."""
+    hits = [e for e in a.events if e.kind == kind and e.event == event]
+    return min(hits, key=lambda e: e.V) if hits else None
