@@ -118,3 +118,16 @@ def test_patil_divergence_matches_closed_form_strip_theory():
     lam = np.linalg.eigvals(patil_model("leishman-nguyen").state_matrix(np.array([0.995 * VD, 1.005 * VD])))
     real = lambda row: row[np.abs(row.imag) < 1e-9].real  # noqa: E731
     assert real(lam[0]).max() < 0 < real(lam[1]).max()
+
+
+def test_per_propeller_aero_switch():
+    """Switching one propeller's aerodynamics off equals zero derivatives for that propeller."""
+    from dataclasses import replace
+
+    base = two_propeller_wing()
+    off = replace(base, propellers=(base.propellers[0], replace(base.propellers[1], aero=False)))
+    zero = replace(base, propellers=(base.propellers[0], replace(
+        base.propellers[1], propeller=replace(base.propellers[1].propeller, derivatives=NO_AERO))))
+    V = np.array([80.0, 200.0])
+    np.testing.assert_allclose(off.state_matrix(V), zero.state_matrix(V), rtol=1e-12, atol=1e-9)
+    assert not np.allclose(off.state_matrix(V), base.state_matrix(V))

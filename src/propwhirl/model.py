@@ -57,11 +57,17 @@ class FlightCondition:
 
 @dataclass(frozen=True)
 class Installation:
-    """A propeller attached to the wing at spanwise position y [m] (must be a node)."""
+    """A propeller attached to the wing at spanwise position y [m] (must be a node).
+
+    `aero=False` switches this propeller's aerodynamic loads off (e.g. folded blades, as the
+    X-57's inboard high-lift propellers in cruise); the model-wide `propeller_aero` switch
+    acts on all propellers.
+    """
 
     propeller: Propeller
     y: float
     mount: Literal["flexible", "rigid"] = "flexible"
+    aero: bool = True
 
     def __post_init__(self) -> None:
         v.finite("installation y", self.y, "m")
@@ -169,7 +175,7 @@ class PropellerWing:
         )
         shape = (nV,)
         get = lambda name: call(prop_flexwing, name, shape, **values)  # noqa: E731
-        if self.propeller_aero:
+        if self.propeller_aero and inst.aero:
             values.update(p.aerodynamic_derivatives(V, self.flight.speed_of_sound))
             aero = {n: get(n) for n in ("Aa", "Ba", "Ca", "Da", "Ea", "Fa", "P1", "P2", "P3", "P4", "P5", "P6")}
         else:
