@@ -33,6 +33,18 @@ CASE_MODULES: tuple[str, ...] = ("propwhirl.cases",)  # imports every propwhirl.
 CaseFunction = Callable[[], dict[str, float]]
 _CASES: dict[str, CaseFunction] = {}
 
+#: Ids that stay out of tolerance with a root cause demonstrated in docs/validation.md
+#: (section named).  The test suite fails on any other id out of tolerance, and on an id
+#: listed here that is in fact within tolerance (so this list cannot go stale).
+DOCUMENTED_DEVIATIONS: dict[str, str] = {
+    "t10.2/flutter_frequency": "thesis misprint (validation.md, chapter 10: Table 10.2 flutter frequency)",
+    "t10.8/full/bw2_whirl_flutter_speed": "two-propeller aero in the thesis (validation.md, chapter 10)",
+    "f10.14/no_wing_aero/bw1_whirl_flutter_speed": "two-propeller aero in the thesis (validation.md, chapter 10)",
+    "f10.14/no_wing_aero/bw1_whirl_flutter_frequency": "two-propeller aero in the thesis (validation.md, chapter 10)",
+    "f10.14/no_wing_aero/bw2_whirl_flutter_speed": "two-propeller aero in the thesis (validation.md, chapter 10)",
+    "f10.14/no_wing_aero/bw2_whirl_flutter_frequency": "two-propeller aero in the thesis (validation.md, chapter 10)",
+}
+
 
 @dataclass(frozen=True)
 class Reference:
@@ -156,12 +168,17 @@ def format_table(records: list[Record]) -> str:
         comp = "—" if r.computed is None else f"{r.computed:12.5g}"
         rel = "—" if r.rel_error is None else f"{100 * r.rel_error:+8.2f}%"
         mark = "yes" if r.within_tol else ("n/a" if r.computed is None else "NO")
+        if not r.within_tol and r.id in DOCUMENTED_DEVIATIONS:
+            mark += " (documented)"
         lines.append(
             f"{r.id:52s} {r.unit:7s} {r.thesis:10.5g} {comp:>12s} {rel:>9s} {100 * r.tol:5.1f}%  {mark}"
         )
     n_ok = sum(r.within_tol for r in records)
     n_run = sum(r.computed is not None for r in records)
-    lines.append(f"{n_ok} of {len(records)} within tolerance ({n_run} computed)")
+    n_doc = sum((not r.within_tol) and r.computed is not None and r.id in DOCUMENTED_DEVIATIONS
+                for r in records)
+    lines.append(f"{n_ok} of {len(records)} within tolerance ({n_run} computed; "
+                 f"{n_doc} out of tolerance with a documented root cause, docs/validation.md)")
     return "\n".join(lines)
 
 
