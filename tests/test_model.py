@@ -131,3 +131,17 @@ def test_per_propeller_aero_switch():
     V = np.array([80.0, 200.0])
     np.testing.assert_allclose(off.state_matrix(V), zero.state_matrix(V), rtol=1e-12, atol=1e-9)
     assert not np.allclose(off.state_matrix(V), base.state_matrix(V))
+
+
+@pytest.mark.parametrize("model_fn", [
+    lambda r: wingtip_propeller_wing(propeller=baseline_propeller(rotation=r)),
+    lambda r: __import__("propwhirl.cases.ch09_baseline", fromlist=["x"]).isolated_baseline_propeller(rotation=r),
+])
+def test_mirror_image_propeller_has_the_same_eigenvalues(model_fn):
+    """A clockwise propeller is the mirror image (ψ → −ψ) of the counter-clockwise one: the
+    gyroscopic terms and the cross-coupling derivatives change sign, the roots do not."""
+    V = np.array([60.0, 160.0, 300.0])
+    ccw = np.sort_complex(np.linalg.eigvals(model_fn(1).state_matrix(V)))
+    cw = np.sort_complex(np.linalg.eigvals(model_fn(-1).state_matrix(V)))
+    np.testing.assert_allclose(cw, ccw, rtol=1e-8, atol=1e-8)
+    assert not np.allclose(model_fn(1).state_matrix(V), model_fn(-1).state_matrix(V))

@@ -161,7 +161,7 @@ def _mode_names(model, sw: st.Sweep) -> list[str]:
         if model.rotating and len(order) == 2:
             th, ps = 0, 1
             for k in order:
-                names[k] = st.whirl_sense(X0[th, k], X0[ps, k], 1, lam0[k]) or f"mode {k}"
+                names[k] = st.whirl_sense(X0[th, k], X0[ps, k], model.propeller.rotation, lam0[k])
         else:
             for k, nm in zip(order, ("pitch", "yaw")):
                 names[k] = nm
@@ -175,13 +175,24 @@ def _mode_names(model, sw: st.Sweep) -> list[str]:
     return names
 
 
+def _rotations(model) -> list[int]:
+    """Sense of rotation (+1 counter-clockwise from the front) of each flexible propeller."""
+    if hasattr(model, "flexible"):
+        return [model.propellers[j].propeller.rotation for j in model.flexible]
+    if hasattr(model, "propeller"):
+        return [model.propeller.rotation]
+    return []
+
+
 def _whirl(model, x: np.ndarray, lam: complex, labels: tuple[str, ...]) -> str | None:
-    """Whirl sense of the propeller with the largest θ–ψ motion in full-state vector x."""
+    """Whirl sense of the propeller with the largest θ–ψ motion in full-state vector x,
+    relative to that propeller's own sense of rotation."""
     props = _propeller_indices(labels)
     if not props or abs(lam.imag) == 0 or not getattr(model, "rotating", True):
         return None
-    th, ps = max(props, key=lambda p: abs(x[p[0]]) ** 2 + abs(x[p[1]]) ** 2)
-    return st.whirl_sense(x[th], x[ps], 1, lam)
+    j = max(range(len(props)), key=lambda i: abs(x[props[i][0]]) ** 2 + abs(x[props[i][1]]) ** 2)
+    th, ps = props[j]
+    return st.whirl_sense(x[th], x[ps], _rotations(model)[j], lam)
 
 
 # ----------------------------------------------------------------------------- frequency zero

@@ -162,9 +162,9 @@ class PropellerWing:
         if not self.rotating:
             Omega = np.zeros_like(V)
         elif omega is not None:
-            Omega = np.broadcast_to(np.asarray(omega, dtype=float), V.shape)
+            Omega = p.rotation * np.broadcast_to(np.asarray(omega, dtype=float), V.shape)
         else:
-            Omega = p.rotational_speed(V)
+            Omega = p.spin_rate(V)
         Kt, Kp = p.stiffness()
         zt, zp = p.viscous_damping_ratios()
         values = dict(
@@ -278,7 +278,7 @@ class IsolatedPropeller:
         zt, zp = p.viscous_damping_ratios()
         values = dict(
             I_X=p.I_Omega, I_Y=inertia["I_theta_P"], I_Z=inertia["I_psi_P"],
-            Omega=p.rotational_speed(V) if self.rotating else np.zeros_like(V),
+            Omega=p.spin_rate(V) if self.rotating else np.zeros_like(V),
             K_theta=Kt, K_psi=Kp, zeta_theta=zt, zeta_psi=zp, rho=self.flight.density, V=V,
             R=p.radius, e_theta=-p.e_theta, e_psi=-p.e_psi,  # chapter 6: distances, positive
         )

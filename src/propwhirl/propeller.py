@@ -38,6 +38,10 @@ from propwhirl.aero import (
 
 
 
+#: Derivatives coupling pitch with yaw: they change sign with the sense of rotation.
+CROSS_DERIVATIVES = ("CZ_psi", "CZ_r", "Cm_psi", "Cm_r", "CY_theta", "CY_q", "Cn_theta", "Cn_q")
+
+
 class DerivativeSource(Protocol):
     """Gives the 16 propeller aerodynamic derivatives (4.25) at airspeeds V [m/s] and
     rotational speeds Ω [rad/s] (arrays of equal shape), for a propeller of radius R [m]."""
@@ -110,8 +114,11 @@ class Propeller:
         (propwhirl.aero) for this propeller's blades with `aero_settings`
     aero_settings : Houbolt–Reed switches (wake, compressibility, aspect ratio, ...);
         the thesis's defaults
-    rotation : +1 if the rotor turns counter-clockwise seen from the front (thesis Fig. 6.1),
-        −1 otherwise; sets the whirl sense of the labels
+    rotation : +1 if the rotor turns counter-clockwise seen from the front (the thesis's
+        sense, Figure 6.1), −1 for clockwise: the mirror image about the vertical plane through
+        the shaft (ψ → −ψ), which reverses the gyroscopic terms (Ω → −Ω) and the eight
+        cross-coupling Houbolt–Reed derivatives (C_Zψ, C_Zr, C_mψ, C_mr, C_Yθ, C_Yq, C_nθ,
+        C_nq); user-supplied `derivatives` are taken as given for the actual propeller
     """
 
     radius: float
@@ -251,11 +258,19 @@ class Propeller:
             return np.full(V.shape, self.rpm * 2 * np.pi / 60.0)
         return V / (self.advance_ratio * self.radius)
 
+    def spin_rate(self, V: np.ndarray) -> np.ndarray:
+        """Signed Ω [rad/s] of the gyroscopic terms: rotation × rotational speed."""
+        return self.rotation * self.rotational_speed(V)
+
     def aerodynamic_derivatives(self, V: np.ndarray, speed_of_sound: float) -> dict[str, np.ndarray]:
         """The 16 derivatives at airspeeds V (arrays over V)."""
-        source = self.derivatives if self.derivatives is not None else self.default_derivatives()
         V = np.asarray(V, dtype=float)
-        return source(V, self.rotational_speed(V), speed_of_sound)
+        if self.derivatives is not None:
+            return self.derivatives(V, self.rotational_speed(V), speed_of_sound)
+        d = self.default_derivatives()(V, self.rotational_speed(V), speed_of_sound)
+        if self.rotation == -1:  # mirror image of the counter-clockwise rotor
+            d = {k: (-x if k in CROSS_DERIVATIVES else x) for k, x in d.items()}
+        return d
 
     def default_derivatives(self) -> DerivativeSource:
         """Houbolt–Reed for this propeller's blades with `aero_settings` (chapter 4)."""
