@@ -145,3 +145,29 @@ def test_mirror_image_propeller_has_the_same_eigenvalues(model_fn):
     cw = np.sort_complex(np.linalg.eigvals(model_fn(-1).state_matrix(V)))
     np.testing.assert_allclose(cw, ccw, rtol=1e-8, atol=1e-8)
     assert not np.allclose(model_fn(1).state_matrix(V), model_fn(-1).state_matrix(V))
+
+
+@pytest.mark.parametrize("bad, words", [
+    ((0.0, 350.0, 10.0), "first speed = 0.0"),
+    ((100.0, 50.0, 10.0), "last speed = 50.0"),
+    ((1.0, 350.0, -1.0), "step = -1.0"),
+    ((1.0, 2.0), "(first, last, step)"),
+])
+def test_flight_condition_speed_range_validated(bad, words):
+    with pytest.raises(InputError) as exc:
+        FlightCondition(1.0, speed_range=bad)
+    assert words in str(exc.value)
+
+
+def test_flight_condition_default_grid_covers_the_thesis_range():
+    V = FlightCondition(1.0).speeds()
+    assert V[0] == 1.0 and V[-1] == 350.0 and np.all(np.diff(V) > 0)
+
+
+def test_analysis_describes_modes_by_content():
+    from propwhirl.analysis import analyse
+    from propwhirl.cases.ch09_baseline import baseline_wing_model
+
+    a = analyse(baseline_wing_model(), np.arange(100.0, 200.0, 10.0))
+    assert a.describe("wing 1") == "wing 1 (bending)" and a.describe("wing 2") == "wing 2 (torsion)"
+    assert a.first("wing 2", "flutter").V == pytest.approx(149.88, abs=0.02)

@@ -68,6 +68,16 @@ class ModelAnalysis:
     sweep: st.Sweep
     events: tuple[Instability, ...]
     criticals: st.Criticals | None = field(default=None, repr=False)
+    #: mode label -> share of its kinetic energy at the first speed per group of degrees of
+    #: freedom ("bending": h, φ; "torsion": α; "pitch", "yaw": propeller θ, ψ; "plunge")
+    content: dict[str, dict[str, float]] = field(default_factory=dict)
+
+    def describe(self, label: str) -> str:
+        """'label (dominant content)', e.g. 'wing 2 (torsion)'."""
+        c = self.content.get(label)
+        if not c:
+            return label
+        return f"{label} ({max(c, key=lambda g: c[g])})"
 
     @property
     def onsets(self) -> list[Instability]:
@@ -88,13 +98,13 @@ class ModelAnalysis:
 
     def summary(self) -> str:
         lines = [f"{self.model_name}: instabilities between {self.sweep.V[0]:g} and {self.sweep.V[-1]:g} m/s"]
-        lines.append(f"  {'type':10s} {'event':15s} {'mode':14s} {'whirl':9s} {'V [m/s]':>9s} {'f [Hz]':>8s}")
+        lines.append(f"  {'type':10s} {'event':15s} {'mode (content at V0)':24s} {'whirl':9s} {'V [m/s]':>9s} {'f [Hz]':>8s}")
         for e in self.events:
             lines.append(
-                f"  {e.kind:10s} {e.event:15s} {e.label:14s} {e.whirl or '-':9s} {e.V:9.2f} {e.frequency_hz:8.3f}"
+                f"  {e.kind:10s} {e.event:15s} {self.describe(e.label):24s} {e.whirl or '-':9s} {e.V:9.2f} {e.frequency_hz:8.3f}"
             )
         c = self.critical
-        lines.append("  critical: " + (f"{c.kind} of {c.label} at {c.V:.2f} m/s, {c.frequency_hz:.3f} Hz"
+        lines.append("  critical: " + (f"{c.kind} of {self.describe(c.label)} at {c.V:.2f} m/s, {c.frequency_hz:.3f} Hz"
                                        if c else "none in the speed range"))
         return "\n".join(lines)
 
@@ -102,13 +112,14 @@ class ModelAnalysis:
         return {
             "model_name": self.model_name,
             "events": [asdict(e) for e in self.events],
+            "content": self.content,
             "sweep": self.sweep.to_dict(include_eigenvectors=include_eigenvectors),
         }
 
     @classmethod
     def from_dict(cls, d: dict[str, Any]) -> "ModelAnalysis":
         return cls(d["model_name"], st.Sweep.from_dict(d["sweep"]),
-                   tuple(Instability(**e) for e in d["events"]))
+                   tuple(Instability(**e) for e in d["events"]), content=d.get("content", {}))
 
     def save(self, path: str | Path, include_eigenvectors: bool = False) -> None:
         """Write the analysis as JSON (V-g-f table, labels, instabilities)."""
@@ -195,6 +206,36 @@ def _whirl(model, x: np.ndarray, lam: complex, labels: tuple[str, ...]) -> str |
     return st.whirl_sense(x[th], x[ps], _rotations(model)[j], lam)
 
 
+CONTENT_GROUPS = {
+    "bending": lambda lab: lab.endswith(" h") or lab.endswith(" phi"),
+    "torsion": lambda lab: lab.endswith(" alpha") and lab.startswith("node"),
+    "pitch": lambda lab: lab.endswith(" theta"),
+    "yaw": lambda lab: lab.endswith(" psi"),
+    "plunge": lambda lab: lab == "h",
+    "pitch ": lambda lab: lab == "alpha",  # typical section pitch (named apart from propeller pitch)
+}
+
+
+def _content(model, sw: st.Sweep, names: list[str]) -> dict[str, dict[str, float]]:
+    """Kinetic-energy shares of each physical oscillatory mode at the first speed."""
+    from propwhirl.vibration import energy_fractions
+
+    V0 = np.array([float(sw.V[0])])
+    quiet = model.with_(**{k: False for k in ("wing_aero", "propeller_aero") if hasattr(model, k)}) \
+        if hasattr(model, "with_") else model
+    s = quiet.second_order(V0)
+    M = s.S1[0]
+    X = sw.eigenvectors[0][sw.displacement]
+    out = {}
+    for k in range(sw.n_modes):
+        lam = sw.eigenvalues[0, k]
+        if not sw.physical[0, k] or abs(lam.imag) == 0:
+            continue
+        frac = energy_fractions(X[:, [k]], M, s.q_labels, CONTENT_GROUPS)
+        out[names[k]] = {g.strip(): round(float(f[0]), 4) for g, f in frac.items() if abs(f[0]) > 1e-3}
+    return out
+
+
 # ----------------------------------------------------------------------------- frequency zero
 def _frequency_zero_events(model, sw: st.Sweep, names: list[str], xtol: float) -> list[Instability]:
     """Unstable oscillatory modes whose pair turns into real roots (frequency → 0)."""
@@ -228,12 +269,15 @@ def analyse(model, speeds=None, *, xtol: float = 0.01,
             options: st.TrackingOptions | None = None) -> ModelAnalysis:
     """V-g-f sweep with mode tracking and every instability of `model` over `speeds` [m/s].
 
-    `speeds` is the initial grid (default 1–341 m/s every 10 m/s plus 350 — the thesis's
-    0–350 m/s range; the engine refines it where needed); crossings are refined to `xtol`.
+    `speeds` is the initial grid [m/s] (default: the model's FlightCondition.speed_range,
+    1–350 m/s every 10 m/s — the thesis's 0–350 m/s); the engine refines it where needed;
+    crossings are refined to `xtol` [m/s].
     """
-    grid = DEFAULT_SPEEDS if speeds is None else np.asarray(speeds, dtype=float)
     if speeds is None:
-        grid = np.append(grid, 350.0) if grid[-1] < 350.0 else grid
+        flight = getattr(model, "flight", None)
+        grid = flight.speeds() if flight is not None else np.append(DEFAULT_SPEEDS, 350.0)
+    else:
+        grid = np.asarray(speeds, dtype=float)
     v.positive("xtol", xtol, "m/s")
     s = model.second_order(np.array([float(grid[0])]))
     labels = s.labels
@@ -255,7 +299,8 @@ def analyse(model, speeds=None, *, xtol: float = 0.01,
                                   float(abs(lam0.imag) / (2 * np.pi))))
     events += _frequency_zero_events(model, sw, names, xtol)
     events.sort(key=lambda e: (e.V, e.mode))
-    return ModelAnalysis(getattr(model, "name", type(model).__name__), sw, tuple(events), an.criticals)
+    return ModelAnalysis(getattr(model, "name", type(model).__name__), sw, tuple(events), an.criticals,
+                         _content(model, sw, names))
 
 
 def speed_and_frequency(event: Instability | None) -> tuple[float, float]:

@@ -45,14 +45,35 @@ SPEED_OF_SOUND_8000FT = float(np.sqrt(1.4 * 287.05287 * (288.15 - 0.0065 * 2438.
 
 @dataclass(frozen=True)
 class FlightCondition:
-    """Air density [kg/m³] and speed of sound [m/s]."""
+    """Air density [kg/m³], speed of sound [m/s] and the airspeed range of an analysis.
+
+    `speed_range` = (first, last, step) [m/s] is the initial grid of a V-g-f sweep
+    (propwhirl.analysis.analyse refines it); the thesis analyses 0–350 m/s.  The first speed
+    must be > 0 (the aerodynamic matrices carry 1/V).
+    """
 
     density: float
     speed_of_sound: float = SPEED_OF_SOUND_8000FT
+    speed_range: tuple[float, float, float] = (1.0, 350.0, 10.0)
 
     def __post_init__(self) -> None:
         v.positive("density", self.density, "kg/m^3")
         v.positive("speed_of_sound", self.speed_of_sound, "m/s")
+        if len(self.speed_range) != 3:
+            raise v.InputError(
+                f"speed_range = {self.speed_range!r} is invalid: give (first, last, step) in m/s")
+        first, last, step = self.speed_range
+        v.positive("speed_range first speed", first, "m/s")
+        v.positive("speed_range step", step, "m/s")
+        if not last > first:
+            raise v.InputError(
+                f"speed_range last speed = {last!r} m/s is invalid: must be > the first, {first!r} m/s")
+
+    def speeds(self) -> np.ndarray:
+        """The initial grid [m/s]: first, first + step, ..., with the last speed included."""
+        first, last, step = (float(x) for x in self.speed_range)
+        grid = np.arange(first, last, step)
+        return np.append(grid, last) if grid[-1] < last else grid
 
 
 @dataclass(frozen=True)

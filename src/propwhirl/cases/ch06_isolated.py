@@ -83,13 +83,14 @@ def bennett_bland_propeller(case: int, settings: aero.AeroSettings = aero.AeroSe
         beta_075_deg=c.beta_deg, advance_rule=advance_rule,
         derivatives=aero.HouboltReedSource(bennett_bland_geometry(), settings),
     )
-    return IsolatedPropeller(prop, FlightCondition(c.density_slug_ft3 * SLUG_FT3, RR_SPEED_OF_SOUND),
+    return IsolatedPropeller(prop, FlightCondition(c.density_slug_ft3 * SLUG_FT3, RR_SPEED_OF_SOUND,
+                                                   speed_range=(1.0, 60.0, 2.0)),
                              name=prop.name)
 
 
 @register("f6.2")
 def figure_6_2() -> dict[str, float]:
     """Figure 6.2: configuration (A) case 1, whirl flutter speed [ft/s]."""
-    a = analyse(bennett_bland_propeller(1), np.arange(1.0, 60.0, 2.0))
+    a = analyse(bennett_bland_propeller(1))
     V, _ = speed_and_frequency(a.first("backward", "flutter"))
     return {"f6.2/configA_case1/whirl_flutter_speed": V / FT}

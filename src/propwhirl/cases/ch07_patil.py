@@ -53,14 +53,12 @@ def patil_model(n_elements: int = 20, lift_slope: LiftSlope = 2 * np.pi,
                 aero_model: str = "leishman-nguyen") -> PropellerWing:
     """The Patil wing with its flight condition (ρ = 0.0889 kg/m³) as an aeroelastic model."""
     return PropellerWing(patil_wing(n_elements, lift_slope, aero_model),
-                         FlightCondition(PATIL_DENSITY), name="Patil wing")
-
-
-PATIL_SPEEDS = np.arange(1.0, 61.0, 2.0)
+                         FlightCondition(PATIL_DENSITY, speed_range=(1.0, 60.0, 2.0)),
+                         name="Patil wing")
 
 
 def _flutter_divergence(prefix: str, lift_slope) -> dict[str, float]:
-    a = analyse(patil_model(20, lift_slope), PATIL_SPEEDS)
+    a = analyse(patil_model(20, lift_slope))
     Vf, ff = speed_and_frequency(first_of_kind(a, "flutter"))
     Vd, _ = speed_and_frequency(first_of_kind(a, "divergence"))
     return {f"{prefix}/flutter_speed": Vf, f"{prefix}/flutter_frequency": 2 * np.pi * ff,
