@@ -4,6 +4,13 @@ Commands
   run          the main analysis (wingtip-mounted propeller wing), plots to --out
   reproduce    recompute the thesis's numbers and compare (ids from thesis_values.toml)
   derivatives  Houbolt–Reed propeller aerodynamic derivatives for one operating point
+  analyse      stability analysis of a TOML model file (instabilities, V-g-f plot/JSON/CSV)
+  modes        in-vacuo modes of a model file, with the thesis's names
+  campbell     frequencies against propeller RPM (Campbell diagram) of a model file
+  case         export a model of the thesis's case library as a TOML model file
+
+Bad input (a missing or unreadable file, bad TOML, an unknown field, an invalid value) is
+reported as one line ``propwhirl: error: ...`` on stderr with exit code 2.
 """
 from __future__ import annotations
 
@@ -148,6 +155,211 @@ def _add_derivatives(sub) -> None:
     p.set_defaults(func=_derivatives)
 
 
+# ----------------------------------------------------------------------------- model files
+#: Case-library models exported by `propwhirl case NAME` (module, function, description).
+CASES: dict[str, tuple[str, str, str]] = {
+    "patil": ("propwhirl.cases.ch07_patil", "patil_model", "Patil HALE wing (Table 7.1)"),
+    "baseline-wing": ("propwhirl.cases.ch09_baseline", "baseline_wing_model",
+                      "baseline wing alone (Table 9.1)"),
+    "isolated-propeller": ("propwhirl.cases.ch09_baseline", "isolated_baseline_propeller",
+                           "baseline propeller on a rigid wing (section 9.2)"),
+    "inboard": ("propwhirl.cases.ch09_baseline", "inboard_propeller_wing",
+                "baseline wing with the propeller at 1.6 m (section 9.3)"),
+    "wingtip": ("propwhirl.cases.ch10_other_wings", "wingtip_propeller_wing",
+                "baseline wing with a wingtip propeller (section 10.1, the headline case)"),
+    "two-propeller": ("propwhirl.cases.ch10_other_wings", "two_propeller_wing",
+                      "baseline wing with propellers at 1.6 m and the tip (section 10.2)"),
+}
+
+
+def case_model(name: str):
+    """The case-library model called `name` (see CASES)."""
+    import importlib
+
+    if name not in CASES:
+        raise InputError(f"case = {name!r} is invalid: must be one of {', '.join(CASES)}")
+    module, func, _ = CASES[name]
+    return getattr(importlib.import_module(module), func)()
+
+
+def _load(path: str):
+    from propwhirl import io
+    from propwhirl.model import IsolatedPropeller, PropellerWing
+
+    model = io.load_model(path)
+    if not isinstance(model, (PropellerWing, IsolatedPropeller)):
+        raise InputError(f"{path} holds a {type(model).__name__}, not a model to analyse: "
+                         "type must be \"propeller-wing\" or \"isolated-propeller\"")
+    return model
+
+
+def speed_grid(start: float, stop: float, step: float):
+    """Airspeeds START, START+STEP, ... and STOP [m/s] (STOP always included)."""
+    import numpy as np
+
+    from propwhirl import validate as v
+
+    v.positive("--speeds START", start, "m/s")
+    v.positive("--speeds STEP", step, "m/s")
+    if not stop > start:
+        raise InputError(f"--speeds STOP = {stop!r} m/s is invalid: must be > START = {start!r} m/s")
+    n = (stop - start) / step
+    if n > 100_000:
+        raise InputError(f"--speeds gives {n:.0f} speeds: must be at most 100000 (a larger STEP)")
+    grid = start + step * np.arange(int(np.floor(n + 1e-9)) + 1)
+    return grid if grid[-1] >= stop - 1e-9 * step else np.append(grid, stop)
+
+
+def _check_outputs(**paths: str | None) -> None:
+    """Fail before a long computation if an output file's folder does not exist."""
+    for option, path in paths.items():
+        if path is not None and not Path(path).resolve().parent.is_dir():
+            raise InputError(f"--{option} {path}: the folder {str(Path(path).parent)!r} does not exist")
+
+
+def _analyse(args: argparse.Namespace) -> int:
+    from propwhirl import io
+    from propwhirl.analysis import analyse
+
+    _check_outputs(json=args.json, csv=args.csv, plot=args.plot)
+    model = _load(args.model)
+    speeds = speed_grid(*args.speeds) if args.speeds else None
+    a = analyse(model, speeds)
+    print(a.summary())
+    if args.json:
+        a.save(args.json)
+        print(f"wrote {args.json}")
+    if args.csv:
+        io.write_vgf_csv(a, args.csv)
+        print(f"wrote {args.csv}")
+    if args.plot:
+        from propwhirl import plots
+
+        plots.vgf(a, n_modes=args.plot_modes, path=args.plot)
+        print(f"wrote {args.plot}")
+    return 0
+
+
+def _add_analyse(sub) -> None:
+    p = sub.add_parser("analyse", help="stability analysis of a TOML model file")
+    p.add_argument("model", metavar="MODEL.toml", help="model file (see `propwhirl case`)")
+    p.add_argument("--speeds", nargs=3, type=float, metavar=("START", "STOP", "STEP"),
+                   help="initial airspeed grid [m/s] (default: the model file's "
+                   "flight.speed_range_m_per_s; refined automatically)")
+    p.add_argument("--json", metavar="OUT", help="write the analysis as JSON")
+    p.add_argument("--csv", metavar="OUT", help="write the V-g-f table as CSV")
+    p.add_argument("--plot", metavar="PNG", help="write the V-g-f plot")
+    p.add_argument("--plot-modes", type=int, default=8, metavar="N",
+                   help="lowest N modes in the plot (default 8)")
+    p.set_defaults(func=_analyse)
+
+
+def _modes(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from propwhirl import validate as v
+    from propwhirl.model import PropellerWing
+    from propwhirl.vibration import energy_fractions, label_modes, model_modes, undamped_modes
+
+    model = _load(args.model)
+    count = v.integer_at_least("--count", args.count, 1)
+    if isinstance(model, PropellerWing):
+        modes, M = model_modes(model)
+        names = label_modes(model)
+    else:  # isolated propeller: the uncoupled pitch and yaw modes (no spin, no aerodynamics)
+        s = model.with_(propeller_aero=False, rotating=False).second_order(np.array([1.0]))
+        modes, M = undamped_modes(s.S1[0], s.S3[0], s.q_labels), s.S1[0]
+        names = None
+    share = energy_fractions(modes.shapes, M, modes.labels, {
+        "bending": lambda lab: lab.endswith((" h", " phi")),
+        "torsion": lambda lab: lab.endswith(" alpha"),
+        "pitch": lambda lab: lab.endswith(" theta"),
+        "yaw": lambda lab: lab.endswith(" psi"),
+    })
+    print(f"{model.name}: in-vacuo modes (V = 0, not rotating; kinetic-energy shares)")
+    print(f"  {'mode':12s} {'f [Hz]':>10s} {'bending':>8s} {'torsion':>8s} {'pitch':>8s} {'yaw':>8s}")
+    order = np.argsort(modes.omega, kind="stable")
+    groups = ("bending", "torsion", "pitch", "yaw")
+    for r, i in enumerate(order[:count]):
+        if names is not None:
+            label, f = names[r]
+        else:  # isolated propeller: named by its dominant motion
+            label, f = max(groups, key=lambda g: share[g][i]), float(modes.frequency_hz[i])
+        print(f"  {label:12s} {f:10.4f} " + " ".join(f"{share[g][i]:8.3f}" for g in groups))
+    return 0
+
+
+def _add_modes(sub) -> None:
+    p = sub.add_parser("modes", help="in-vacuo modes of a TOML model file")
+    p.add_argument("model", metavar="MODEL.toml")
+    p.add_argument("--count", type=int, default=10, help="number of modes (default 10)")
+    p.set_defaults(func=_modes)
+
+
+def _campbell(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from propwhirl import validate as v
+    from propwhirl.model import PropellerWing
+    from propwhirl.vibration import campbell
+
+    _check_outputs(plot=args.plot)
+    model = _load(args.model)
+    if not isinstance(model, PropellerWing):
+        raise InputError(f"{args.model}: a Campbell diagram needs a propeller-wing model")
+    lo, hi, n = args.rpm
+    v.non_negative("--rpm START", lo, "rev/min")
+    v.non_negative("--rpm STOP", hi, "rev/min")
+    n_pts = v.integer_at_least("--rpm N", int(n) if float(n).is_integer() else n, 1)
+    if n_pts > 10_000:
+        raise InputError(f"--rpm N = {n_pts} is invalid: must be <= 10000")
+    count = v.integer_at_least("--count", args.count, 1)
+    rpm, f = campbell(model, np.linspace(lo, hi, n_pts))
+    count = min(count, f.shape[1])
+    print(f"{model.name}: natural frequencies [Hz] against propeller speed (no aerodynamics)")
+    print(f"  {'RPM':>8s} " + " ".join(f"{'f' + str(i + 1):>8s}" for i in range(count)))
+    for r, row in zip(rpm, f):
+        print(f"  {r:8.1f} " + " ".join(f"{x:8.3f}" for x in row[:count]))
+    if args.plot:
+        from propwhirl import plots
+
+        plots.campbell(model, rpm, n_modes=count, path=args.plot)
+        print(f"wrote {args.plot}")
+    return 0
+
+
+def _add_campbell(sub) -> None:
+    p = sub.add_parser("campbell", help="Campbell diagram of a propeller-wing model file")
+    p.add_argument("model", metavar="MODEL.toml")
+    p.add_argument("--rpm", nargs=3, type=float, required=True, metavar=("START", "STOP", "N"),
+                   help="N propeller speeds from START to STOP [rev/min]")
+    p.add_argument("--count", type=int, default=8, help="number of modes (default 8)")
+    p.add_argument("--plot", metavar="PNG", help="write the Campbell diagram")
+    p.set_defaults(func=_campbell)
+
+
+def _case(args: argparse.Namespace) -> int:
+    from propwhirl import io
+
+    _check_outputs(save=args.save)
+    model = case_model(args.name)
+    if args.save:
+        io.save_model(model, args.save)
+        print(f"wrote {args.save} ({CASES[args.name][2]})")
+    else:
+        sys.stdout.write(io.dumps(model))
+    return 0
+
+
+def _add_case(sub) -> None:
+    p = sub.add_parser("case", help="export a case-library model as a TOML model file",
+                       description="Models: " + "; ".join(f"{k}: {d}" for k, (_, _, d) in CASES.items()))
+    p.add_argument("name", choices=tuple(CASES), metavar="NAME",
+                   help="one of " + ", ".join(CASES))
+    p.add_argument("--save", metavar="MODEL.toml", help="write the model file (default: print it)")
+    p.set_defaults(func=_case)
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="propwhirl",
@@ -158,6 +370,10 @@ def build_parser() -> argparse.ArgumentParser:
     _add_run(sub)
     _add_reproduce(sub)
     _add_derivatives(sub)
+    _add_analyse(sub)
+    _add_modes(sub)
+    _add_campbell(sub)
+    _add_case(sub)
     return parser
 
 
@@ -167,5 +383,14 @@ def main(argv: list[str] | None = None) -> int:
     try:
         return args.func(args)
     except InputError as exc:
-        print(f"propwhirl: error: {exc}", file=sys.stderr)
+        print(f"propwhirl: error: {_one_line(str(exc))}", file=sys.stderr)
         return 2
+    except OSError as exc:  # an output file that cannot be written, ...
+        name = f" {exc.filename!r}" if getattr(exc, "filename", None) else ""
+        print(f"propwhirl: error: {exc.strerror or exc}{name}", file=sys.stderr)
+        return 2
+
+
+def _one_line(text: str) -> str:
+    """Error messages on one line (tomllib's and numpy's may span several)."""
+    return " ".join(text.split())

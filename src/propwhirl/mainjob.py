@@ -1,31 +1,179 @@
-"""`make run` / `propwhirl run`: the main analysis.
+"""`make run` / `propwhirl run`: the main analysis — the wingtip-mounted propeller wing.
 
-Until the propeller–wing aeroelastic model lands this runs the most complete analysis that
-exists: the in-vacuo modes of the baseline wing (Table 9.1) with their bending/torsion
-classification, compared with Table 9.2, and the reproduction of every thesis number the
-package can compute so far.
+The thesis's headline configuration (§10.1): the baseline wing of Table 9.1 (25 elements,
+Leishman–Nguyen strip aerodynamics) with the baseline propeller of Tables 9.3–9.4 flexibly
+mounted at the tip, windmilling at fixed pitch (β_0.75 = 35°, Ω ∝ V), Houbolt–Reed propeller
+derivatives, 8000 ft, airspeeds 1–350 m/s (the engine refines the grid and every crossing to
+0.01 m/s).
+
+Printed (and written to ``report.txt``): the in-vacuo modes with their thesis names and the
+Table 10.3 values, every instability (type, event, mode, whirl sense, speed, frequency,
+benignity, the thesis's value where it reports one) and the critical one.  Written to the
+output folder: the V-g-f plot, the mode shapes of the critical instability and of the forward
+whirl flutter, the analysis as JSON, the V-g-f table as CSV and the model as a TOML model file.
 """
 from __future__ import annotations
 
+import importlib.util
+import time
 from pathlib import Path
 
-from propwhirl import reproduce
-from propwhirl.cases.ch09_baseline import baseline_wing
-from propwhirl.vibration import classify_wing_modes
+import numpy as np
+
+from propwhirl import io
+from propwhirl.analysis import Instability, ModelAnalysis, analyse
+from propwhirl.model import PropellerWing
+from propwhirl.reproduce import load_references
+from propwhirl.vibration import label_modes
+
+#: Modes drawn in the V-g-f plot (the thesis's Tables 10.3/10.4 name these).
+VGF_MODES = 7
+
+#: Thesis ids (thesis_values.toml) of the events Table 10.4 reports: (label, kind, event).
+THESIS_EVENTS = {
+    ("forward 1", "flutter", "onset"): ("t10.4/full/fw_whirl_flutter_speed",
+                                        "t10.4/full/fw_whirl_flutter_frequency"),
+    ("backward 1", "flutter", "onset"): ("t10.4/full/bw_whirl_flutter_speed",
+                                         "t10.4/full/bw_whirl_flutter_frequency"),
+    ("forward 1", "divergence", "frequency-zero"): ("t10.4/full/fw_divergence_speed", None),
+}
+THESIS_MODES = {"wing 1": "t10.3/wing1", "wing 2": "t10.3/wing2", "wing 3": "t10.3/wing3",
+                "wing 4": "t10.3/wing4", "wing 5": "t10.3/wing5",
+                "backward 1": "t10.3/backward", "forward 1": "t10.3/forward"}
+
+
+def headline_model() -> PropellerWing:
+    """The wingtip-mounted propeller wing with full aerodynamics (§10.1, Table 10.4 'full')."""
+    from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
+
+    return wingtip_propeller_wing().with_(name="wingtip-mounted propeller wing (thesis 10.1)")
+
+
+def describe(model: PropellerWing) -> list[str]:
+    """Header lines: the configuration in SI units."""
+    w, inst = model.wing, model.propellers[0]
+    p = inst.propeller
+    first, last, step = model.flight.speed_range
+    return [
+        f"{model.name}",
+        f"  wing: {w.name}; semi-span {w.semi_span:g} m, chord {w.root_chord:g}-{w.tip_chord:g} m, "
+        f"{w.n_elements} elements, {w.aero_model} strip aerodynamics",
+        f"  propeller: {p.name} at y = {inst.y:g} m ({inst.mount} mount), R = {p.radius:g} m, "
+        f"f_theta = {p.f_theta:g} Hz, f_psi = {p.f_psi:g} Hz, {p.damping} = {p.damping_theta:g}",
+        f"  operation: {p.operation}, beta_0.75 = {p.beta_075_deg:g} deg, "
+        f"J = pi mu = {np.pi * p.advance_ratio:.3f} (Omega proportional to V), Houbolt-Reed "
+        "derivatives",
+        f"  flight: density {model.flight.density:g} kg/m^3, speed of sound "
+        f"{model.flight.speed_of_sound:.2f} m/s (8000 ft)",
+        f"  airspeeds {first:g}-{last:g} m/s (initial step {step:g} m/s, refined automatically; "
+        "V = 0 is excluded: the strip aerodynamics carry 1/V)",
+    ]
+
+
+def _thesis_values() -> dict[str, float]:
+    return {r.id: r.thesis for r in load_references()}
+
+
+def mode_lines(model: PropellerWing, thesis: dict[str, float], count: int = 10) -> list[str]:
+    """In-vacuo modes (V = 0, Ω = 0) with their names and Table 10.3's values."""
+    lines = ["", "In-vacuo modes (V = 0, not rotating):",
+             f"  {'mode':12s} {'f [Hz]':>9s} {'thesis (Table 10.3)':>21s}"]
+    for label, f in label_modes(model)[:count]:
+        ref = thesis.get(THESIS_MODES.get(label, ""), None)
+        lines.append(f"  {label:12s} {f:9.3f} {'' if ref is None else f'{ref:21.2f}'}")
+    return lines
+
+
+def _fmt_thesis(e: Instability, thesis: dict[str, float], seen: set) -> str:
+    key = (e.label, e.kind, e.event)
+    if key not in THESIS_EVENTS or key in seen:
+        return "not reported" if e.event != "recovery" else ""
+    seen.add(key)
+    v_id, f_id = THESIS_EVENTS[key]
+    text = f"{thesis[v_id]:g} m/s"
+    if f_id is not None:
+        text += f", {thesis[f_id]:g} Hz"
+    return text + " (Table 10.4)"
+
+
+def event_lines(a: ModelAnalysis, thesis: dict[str, float]) -> list[str]:
+    """Every instability, the critical one, and the note on the thesis's critical speed."""
+    lines = ["", f"Instabilities between {a.sweep.V[0]:g} and {a.sweep.V[-1]:g} m/s "
+             "(crossings refined to 0.01 m/s):",
+             f"  {'type':10s} {'event':14s} {'mode (content)':22s} {'whirl':9s} {'V [m/s]':>8s} "
+             f"{'f [Hz]':>7s} {'benignity':>10s}  thesis"]
+    seen: set = set()
+    for e in a.events:
+        ben = "" if e.benignity is None else f"{e.benignity:10.1f}"
+        lines.append(f"  {e.kind:10s} {e.event:14s} {a.describe(e.label):22s} {e.whirl or '-':9s} "
+                     f"{e.V:8.2f} {e.frequency_hz:7.3f} {ben:>10s}  {_fmt_thesis(e, thesis, seen)}")
+    lines.append("  content: dominant kinetic-energy share at the first speed; whirl: sense of the "
+                 "propeller's theta-psi orbit\n  at the event; benignity [m/s] = (d zeta/dV)^-1 at "
+                 "flutter onsets (eq. 5.13)")
+    c = a.critical
+    if c is None:
+        lines.append("Critical: no instability in the speed range")
+        return lines
+    f = f", {c.frequency_hz:.3f} Hz" if c.kind == "flutter" else ""
+    lines.append(f"Critical: {c.kind} of {a.describe(c.label)} at {c.V:.2f} m/s{f}")
+    fw = a.first("forward 1", "flutter")
+    if c.kind == "divergence" and fw is not None and fw.V > c.V:
+        thesis_fw = thesis[THESIS_EVENTS[("forward 1", "flutter", "onset")][0]]
+        lines.append(
+            f"Note: the thesis reports the forward whirl flutter ({thesis_fw:g} m/s; here "
+            f"{fw.V:.2f} m/s) as critical; it does not report this static divergence (a real root "
+            "through zero) - see docs/validation.md, 'The wingtip models have a static divergence "
+            "the thesis does not report'.")
+    return lines
+
+
+def write_plots(a: ModelAnalysis, model: PropellerWing, out: Path) -> list[Path]:
+    """V-g-f plot and the mode shapes of the critical instability and the forward whirl
+    flutter; skipped with a note when matplotlib is not installed."""
+    if importlib.util.find_spec("matplotlib") is None:
+        print("plots skipped: matplotlib is not installed (pip install propwhirl[plots])")
+        return []
+    from propwhirl import plots
+
+    span = model.wing.semi_span
+    paths = [plots.save(plots.vgf(a, n_modes=VGF_MODES), out / "wingtip_vgf.png")]
+    if a.critical is not None:
+        paths.append(plots.save(plots.event_mode_shape(a, a.critical, semi_span=span),
+                                out / "wingtip_mode_critical.png"))
+    fw = a.first("forward 1", "flutter")
+    if fw is not None:
+        paths.append(plots.save(plots.event_mode_shape(a, fw, semi_span=span),
+                                out / "wingtip_mode_forward_whirl_flutter.png"))
+    return paths
 
 
 def main(out: Path) -> int:
+    """Run the main analysis, print the report and write the results to `out`."""
+    t0 = time.perf_counter()
+    out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    wing = baseline_wing()
-    print(f"{wing.name}: {wing.n_elements} elements, semi-span {wing.semi_span} m")
-    print("In-vacuo modes (V = 0):")
-    rows = classify_wing_modes(wing, count=5)
-    for label, omega in rows:
-        print(f"  {label:12s} {omega / 6.283185307179586:8.3f} Hz")
-    records = reproduce.run()
-    table = reproduce.format_table([r for r in records if r.computed is not None])
-    print("\nReproduction of the thesis's numbers computed so far:")
-    print(table)
-    (out / "reproduction.json").write_text(reproduce.to_json(records))
-    print(f"\nwrote {out / 'reproduction.json'}")
+    model = headline_model()
+    thesis = _thesis_values()
+    lines = describe(model) + mode_lines(model, thesis)
+    print("\n".join(lines), flush=True)
+    a = analyse(model, xtol=0.01)  # speeds: model.flight.speed_range (1-350 m/s)
+    more = event_lines(a, thesis)
+    print("\n".join(more), flush=True)
+    lines += more
+    written = [
+        io.save_model(model, out / "wingtip_model.toml"),
+        _save_json(a, out / "wingtip_analysis.json"),
+        io.write_vgf_csv(a, out / "wingtip_vgf.csv"),
+    ]
+    written += write_plots(a, model, out)
+    report = out / "report.txt"
+    report.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    written.append(report)
+    print("\nWrote " + ", ".join(str(p) for p in written))
+    print(f"Done in {time.perf_counter() - t0:.1f} s")
     return 0
+
+
+def _save_json(a: ModelAnalysis, path: Path) -> Path:
+    a.save(path)  # the V-g-f table, labels and instabilities (no eigenvectors: ~60 MB)
+    return path

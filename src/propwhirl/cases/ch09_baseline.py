@@ -119,7 +119,8 @@ def inboard_y(n_elements: int = N_ELEMENTS_WITH_PROPELLERS) -> float:
 
 
 def propeller_wing(positions: tuple[float, ...], mount: str = "flexible",
-                   propeller: Propeller | None = None, **switches) -> PropellerWing:
+                   propeller: Propeller | None = None, name: str = "propeller-wing",
+                   **switches) -> PropellerWing:
     """Baseline wing (25 elements) with baseline propellers at the given node positions [m].
 
     `switches`: wing_aero, propeller_aero, rotating (all True by default).
@@ -129,12 +130,14 @@ def propeller_wing(positions: tuple[float, ...], mount: str = "flexible",
         baseline_wing(N_ELEMENTS_WITH_PROPELLERS),
         baseline_flight(),
         tuple(Installation(prop, y, mount) for y in positions),
+        name=name,
         **switches,
     )
 
 
 def inboard_propeller_wing(mount: str = "flexible", **switches) -> PropellerWing:
     """§9.3: baseline wing with the baseline propeller at 1.6 m (node 8 of 25)."""
+    switches.setdefault("name", f"inboard propeller wing ({mount} mount, §9.3)")
     return propeller_wing((inboard_y(),), mount, **switches)
 
 

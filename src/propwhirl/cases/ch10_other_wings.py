@@ -20,11 +20,13 @@ def wingtip_propeller_wing(mount: str = "flexible", **kwargs) -> PropellerWing:
     kwargs: `propeller` (a modified baseline propeller) and the switches wing_aero,
     propeller_aero, rotating.
     """
+    kwargs.setdefault("name", f"wingtip-mounted propeller wing ({mount} mount, §10.1)")
     return propeller_wing((tip_y(),), mount, **kwargs)
 
 
 def two_propeller_wing(mount: str = "flexible", **kwargs) -> PropellerWing:
     """§10.2: baseline propellers at 1.6 m (node 8 of 25) and at the wing tip."""
+    kwargs.setdefault("name", f"two-propeller wing ({mount} mounts, §10.2)")
     return propeller_wing((inboard_y(), tip_y()), mount, **kwargs)
 
 
