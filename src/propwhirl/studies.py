@@ -1,0 +1,636 @@
+"""Parametric studies of chapter 11 (Figures 11.1–11.15): critical speed against one parameter.
+
+Each study varies one property of the baseline propeller (Tables 9.3–9.4) and analyses, for
+every value, the models the thesis compares:
+
+* ``"wingtip"``  — the baseline wing with the flexibly mounted, rotating propeller at the tip,
+  wing and propeller aerodynamics on (§10.1, the headline configuration);
+* ``"isolated"`` — the same propeller on a rigid wing (chapter 6 model, §9.2);
+* ``"rigid"``    — the wingtip model with a rigid, non-rotating mount and no propeller
+  aerodynamics (the inert tip mass of §10.1.1; Figure 11.6 shows it for the motor mass).
+
+Every study returns a :class:`StudyTable`: one row per (model, parameter value) with the
+parameter column(s), the critical speed [m/s], the critical frequency [Hz], the critical mode's
+label ("forward 1", "backward", "wing 2", ...) and dominant content ("torsion", "yaw", ...),
+the instability kind ("flutter"/"divergence"), the event and the whirl sense at the critical
+point, plus the wing's static divergence speed.
+
+Definition of "critical" (:func:`critical_instability`)
+--------------------------------------------------------
+The critical instability is the lowest-speed event that makes the system unstable: a flutter
+onset (a complex pair crosses into the right half-plane), a divergence onset (a real root
+through zero) or a frequency-zero event (an unstable pair splitting into real roots).  Two
+classes of events are left out by default, as in the thesis's figures:
+
+* static divergence of the wing.  The thesis does not report it for the wingtip models
+  although its own equations have it (docs/validation.md, chapter 10); pass
+  ``static_divergence=True`` to count it.  It is always reported in the column
+  ``static_divergence_speed``.  A divergence is the wing's when less than half of the strain
+  energy of its (static) mode shape is in the propeller mount springs
+  (:func:`wing_divergence_predicate`); otherwise it is a divergence of the propeller mount (e.g.
+  a very soft yaw mount, Figure 11.1) and always counts.  The shape decides, not the mode's
+  name: with soft mounts the in-vacuo names can sit on other modes (at f_ψ = 2 Hz the wing's
+  divergence happens on the branch named "backward 1", at f_θ = 1 Hz a mount divergence on
+  "wing 1");
+* instabilities present at the first speed of the grid that recover further on: the
+  windmilling propeller has (almost) no aerodynamic or structural damping as V → 0, and the
+  thesis tells the reader to ignore such low-speed instabilities (§9.2).  An instability present
+  at the first speed that never recovers counts, at that speed.  ``low_speed=True`` counts all.
+
+Speed ranges: the propeller–wing models use the thesis's 0–350 m/s (their FlightCondition's
+speed_range, refined by the engine); the isolated propeller, whose critical speeds the thesis
+plots beyond the speed of sound (Figures 11.1, 11.15), uses 1–1000 m/s.  Points with no
+instability in the range have NaN speed and frequency and kind "none".
+
+Parallelism: the analyses of a study are independent; ``processes > 1`` runs them in a
+:class:`concurrent.futures.ProcessPoolExecutor` whose workers pin BLAS to one thread (a pool of
+`processes` single-threaded workers, not a pool of multi-threaded BLAS calls).  The results do
+not depend on ``processes``.  Models are built in the calling process and sent to the workers,
+so a propeller with a user-supplied callable (blade chord, derivatives) must be picklable (a
+module-level function) for ``processes > 1``.
+"""
+from __future__ import annotations
+
+import csv
+import io
+import math
+import os
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any, Callable, Literal, Mapping, Sequence
+
+import numpy as np
+
+from propwhirl import validate as v
+from propwhirl.analysis import Instability, ModelAnalysis, analyse
+from propwhirl.propeller import PointMass, Propeller
+
+#: Model names a study can analyse (see the module docstring).
+MODELS: tuple[str, ...] = ("wingtip", "isolated", "rigid")
+
+#: Initial speed grid of the isolated propeller [m/s] (its critical speeds exceed 350 m/s).
+ISOLATED_SPEEDS = np.arange(1.0, 1001.0, 10.0)
+
+#: Units of the result columns.
+RESULT_UNITS: dict[str, str] = {
+    "critical_speed": "m/s", "critical_frequency": "Hz", "critical_mode": "", "content": "", "kind": "",
+    "event": "", "whirl": "", "static_divergence_speed": "m/s",
+}
+
+_WHIRL_PREFIXES = ("backward", "forward")
+
+
+# ----------------------------------------------------------------------------- result table
+@dataclass(frozen=True)
+class StudyTable:
+    """Result of a parametric study: equal-length columns, one row per (model, value).
+
+    name:      what was varied (e.g. "nacelle stiffness, yaw varied")
+    parameter: the column plotted on the x-axis (e.g. "mean_frequency")
+    columns:   "model", the parameter column(s), then critical_speed [m/s],
+               critical_frequency [Hz], critical_mode (the tracked mode's name), content (its
+               dominant degrees of freedom at the first speed: "bending", "torsion", "pitch",
+               "yaw" — with soft mounts a mode named "wing 1" can be the propeller pitch),
+               kind, event, whirl (sense of the propeller orbit at the critical point),
+               static_divergence_speed [m/s]
+    units:     unit of each column ("" for text and dimensionless columns)
+    """
+
+    name: str
+    parameter: str
+    columns: Mapping[str, np.ndarray]
+    units: Mapping[str, str] = field(default_factory=dict)
+
+    def __len__(self) -> int:
+        return len(self.columns["model"])
+
+    @property
+    def models(self) -> tuple[str, ...]:
+        """The models in the table, in order of appearance."""
+        return tuple(dict.fromkeys(str(m) for m in self.columns["model"]))
+
+    def for_model(self, model: str) -> "StudyTable":
+        """The rows of one model (e.g. ``table.for_model("isolated")``)."""
+        if model not in self.models:
+            raise v.InputError(f"model = {model!r} is invalid: this table has {self.models}")
+        keep = np.asarray(self.columns["model"]) == model
+        return replace(self, columns={k: np.asarray(c)[keep] for k, c in self.columns.items()})
+
+    def curve(self, model: str) -> tuple[np.ndarray, np.ndarray]:
+        """(parameter values, critical speeds [m/s]) of one model, as plotted in chapter 11."""
+        t = self.for_model(model)
+        return np.asarray(t.columns[self.parameter], dtype=float), np.asarray(t.columns["critical_speed"], dtype=float)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict: name, parameter, units and columns as lists (NaN → None)."""
+        def clean(x):
+            if isinstance(x, (float, np.floating)):
+                return None if not math.isfinite(x) else float(x)
+            if isinstance(x, np.integer):
+                return int(x)
+            return x if x is None or isinstance(x, (int, str)) else str(x)
+
+        return {"name": self.name, "parameter": self.parameter, "units": dict(self.units),
+                "columns": {k: [clean(x) for x in np.asarray(c).tolist()] for k, c in self.columns.items()}}
+
+    def to_csv(self, path: str | Path | None = None) -> str:
+        """The table as CSV text (header "column [unit]"); also written to `path` if given."""
+        buf = io.StringIO()
+        w = csv.writer(buf, lineterminator="\n")
+        keys = list(self.columns)
+        w.writerow([f"{k} [{self.units[k]}]" if self.units.get(k) else k for k in keys])
+        for i in range(len(self)):
+            row = []
+            for k in keys:
+                x = np.asarray(self.columns[k])[i]
+                row.append("" if isinstance(x, (float, np.floating)) and not math.isfinite(x)
+                           else (f"{x:.10g}" if isinstance(x, (float, np.floating)) else str(x)))
+            w.writerow(row)
+        text = buf.getvalue()
+        if path is not None:
+            Path(path).write_text(text)
+        return text
+
+    def format(self) -> str:
+        """A fixed-width text table for the terminal."""
+        keys = ["model", self.parameter, "critical_speed", "critical_frequency", "critical_mode",
+                "content", "kind", "static_divergence_speed"]
+        head = (f"{'model':9s} {self.parameter:>16s} {'V_crit [m/s]':>12s} {'f [Hz]':>8s} "
+                f"{'mode (content)':22s} {'kind':10s} {'V_div [m/s]':>11s}")
+        lines = [self.name, head, "-" * len(head)]
+        for i in range(len(self)):
+            m, x, V, f, lab, c, kind, Vd = (np.asarray(self.columns[k])[i] for k in keys)
+            name = f"{lab} ({c})" if c else lab
+            lines.append(f"{m:9s} {x:16.6g} {V:12.2f} {f:8.3f} {name:22s} {kind:10s} {Vd:11.2f}")
+        return "\n".join(lines)
+
+
+# ----------------------------------------------------------------------------- critical point
+def _label_is_wing(e: Instability) -> bool:
+    return not e.label.startswith(_WHIRL_PREFIXES)
+
+
+def critical_instability(a: ModelAnalysis, *, static_divergence: bool = False, low_speed: bool = False,
+                         is_wing_divergence: Callable[[Instability], bool] | None = None) -> Instability | None:
+    """The critical (lowest-speed) instability of an analysis, as defined in the module docstring.
+
+    static_divergence: count the wing's static divergence (default: no, as the thesis).
+    low_speed: count instabilities present at the first speed even when they recover later.
+    is_wing_divergence: says whether a divergence event is the wing's; build it with
+        :func:`wing_divergence_predicate` (mode shapes).  Without it the mode's name decides
+        (not "backward…"/"forward…" → wing), a fallback for analyses re-read from a file.
+    """
+    is_wing = _label_is_wing if is_wing_divergence is None else is_wing_divergence
+    recovered = {e.mode for e in a.events if e.event == "recovery"}
+    cands = []
+    for e in a.events:
+        if e.event == "unstable-at-start":
+            if not (low_speed or e.mode not in recovered):
+                continue
+        elif e.event not in ("onset", "frequency-zero"):
+            continue
+        if e.kind == "divergence" and not static_divergence and is_wing(e):
+            continue
+        cands.append(e)
+    return min(cands, key=lambda e: (e.V, e.mode)) if cands else None
+
+
+def static_divergence_speed(a: ModelAnalysis,
+                            is_wing_divergence: Callable[[Instability], bool] | None = None) -> float:
+    """Lowest divergence onset [m/s] of the wing (see :func:`critical_instability`; NaN if none)."""
+    is_wing = _label_is_wing if is_wing_divergence is None else is_wing_divergence
+    hits = [e.V for e in a.events if e.kind == "divergence" and e.event == "onset" and is_wing(e)]
+    return min(hits) if hits else float("nan")
+
+
+def mount_strain_share(model, V: float, q: np.ndarray) -> float:
+    """Share of the strain energy qᵀKq of displacement vector `q` in the propeller mount springs
+    (degrees of freedom "propeller j theta/psi"), K the structural stiffness of `model` at V
+    [m/s] without aerodynamics.  1 for the isolated propeller (it has no wing)."""
+    from propwhirl.vibration import energy_fractions
+
+    if not hasattr(model, "wing"):
+        return 1.0
+    quiet = model.with_(wing_aero=False, propeller_aero=False)
+    s = quiet.second_order(np.array([float(V)]))
+    x = np.asarray(q)[: s.n_dof, None]
+    frac = energy_fractions(x, s.S3[0], s.q_labels, {"mount": lambda lab: lab.startswith("propeller")})
+    return float(frac["mount"][0])
+
+
+def wing_divergence_predicate(model, a: ModelAnalysis) -> Callable[[Instability], bool]:
+    """Predicate "is this divergence event the wing's?" for `a` = analyse(model): less than half
+    of the strain energy of the diverging shape in the propeller mounts (:func:`mount_strain_share`),
+    shape taken at the event (onsets) or at the first speed (unstable-at-start); other events
+    (frequency-zero: no shape stored) fall back on the mode's name."""
+    shares: dict[tuple[int, float], float] = {}
+    for p in (a.criticals.points if a.criticals is not None else ()):
+        if p.kind == "divergence":
+            shares[(p.mode, float(p.V))] = mount_strain_share(model, p.V, p.eigenvector)
+    sw = a.sweep
+    for e in a.events:
+        if e.kind == "divergence" and e.event == "unstable-at-start" and sw.eigenvectors is not None:
+            shares[(e.mode, e.V)] = mount_strain_share(model, e.V, sw.eigenvectors[0, :, e.mode])
+
+    def is_wing(e: Instability) -> bool:
+        share = shares.get((e.mode, float(e.V)))
+        return _label_is_wing(e) if share is None else share < 0.5
+
+    return is_wing
+
+
+# ----------------------------------------------------------------------------- models
+def build_model(name: str, propeller: Propeller):
+    """The study model `name` ("wingtip", "isolated" or "rigid") with `propeller`."""
+    from propwhirl.cases.ch09_baseline import baseline_flight
+    from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
+    from propwhirl.model import IsolatedPropeller
+
+    if name == "wingtip":
+        return wingtip_propeller_wing("flexible", propeller=propeller)
+    if name == "isolated":
+        return IsolatedPropeller(propeller, baseline_flight())
+    if name == "rigid":
+        return wingtip_propeller_wing("rigid", propeller=propeller, rotating=False, propeller_aero=False)
+    raise v.InputError(f"model = {name!r} is invalid: must be one of {MODELS}")
+
+
+def _check_models(models: Sequence[str]) -> tuple[str, ...]:
+    if isinstance(models, str):
+        models = (models,)
+    models = tuple(models)
+    if not models:
+        raise v.InputError(f"models = () is invalid: give at least one of {MODELS}")
+    for m in models:
+        if m not in MODELS:
+            raise v.InputError(f"model = {m!r} is invalid: must be one of {MODELS}")
+    if len(set(models)) != len(models):
+        raise v.InputError(f"models = {models!r} is invalid: a model appears twice")
+    return models
+
+
+def _speeds_for(model: str, speeds) -> np.ndarray | None:
+    if isinstance(speeds, Mapping):
+        s = speeds.get(model)
+    else:
+        s = speeds
+    if s is None:
+        return ISOLATED_SPEEDS if model == "isolated" else None
+    return v.increasing(f"speeds ({model})", s, "m/s")
+
+
+def _grid(name: str, values, unit: str = "", check: Callable[..., np.ndarray] = v.finite) -> np.ndarray:
+    """A non-empty 1-D grid of parameter values, each checked with `check`."""
+    arr = np.atleast_1d(np.asarray(v.finite(name, values, unit), dtype=float))
+    if arr.ndim != 1 or arr.size == 0:
+        raise v.InputError(f"{name} is invalid: must be a non-empty 1-D sequence of values, got shape {arr.shape}")
+    check(name, arr, unit)
+    return arr
+
+
+# ----------------------------------------------------------------------------- runner
+def _init_worker() -> None:
+    """Pin BLAS to one thread in a pool worker (2 cores: processes × 1 thread)."""
+    for var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ[var] = "1"
+    from threadpoolctl import threadpool_limits
+
+    threadpool_limits(limits=1)
+
+
+def _evaluate(task: tuple) -> dict[str, Any]:
+    """Analyse one model and return its result row (small: no sweep is sent back)."""
+    model, speeds, xtol, static_div, low_speed = task
+    a = analyse(model, speeds, xtol=xtol)
+    is_wing = wing_divergence_predicate(model, a)
+    e = critical_instability(a, static_divergence=static_div, low_speed=low_speed, is_wing_divergence=is_wing)
+    return {
+        "critical_speed": float("nan") if e is None else float(e.V),
+        "critical_frequency": float("nan") if e is None else float(e.frequency_hz),
+        "critical_mode": "" if e is None else e.label,
+        "content": "" if e is None else _dominant(a, e.label),
+        "kind": "none" if e is None else e.kind,
+        "event": "" if e is None else e.event,
+        "whirl": "" if e is None or e.whirl is None else e.whirl,
+        "static_divergence_speed": static_divergence_speed(a, is_wing),
+    }
+
+
+def _dominant(a: ModelAnalysis, label: str) -> str:
+    """Dominant degree-of-freedom group of mode `label` at the first speed ("bending", "torsion",
+    "pitch", "yaw"; "" when not recorded, e.g. real roots)."""
+    c = getattr(a, "content", {}).get(label.rstrip("'"))
+    return max(c, key=lambda g: c[g]) if c else ""
+
+
+def map_analyses(func: Callable[[Any], Any], tasks: Sequence[Any], processes: int = 1) -> list[Any]:
+    """``[func(t) for t in tasks]``, in a process pool of `processes` single-BLAS-thread workers
+    (at most one per CPU) when ``processes > 1``; order preserved; `func` and the tasks must be
+    picklable."""
+    v.integer_at_least("processes", processes, 1)
+    tasks = list(tasks)
+    if processes == 1 or len(tasks) <= 1:
+        return [func(t) for t in tasks]
+    workers = min(processes, len(tasks), os.cpu_count() or 1)
+    if workers == 1:
+        return [func(t) for t in tasks]
+    with ProcessPoolExecutor(max_workers=workers, initializer=_init_worker) as pool:
+        return list(pool.map(func, tasks, chunksize=1))
+
+
+def propeller_study(name: str, parameter: str, unit: str, parameters: Mapping[str, np.ndarray],
+                    propellers: Sequence[Propeller], *, models: Sequence[str] = ("wingtip", "isolated"),
+                    parameter_units: Mapping[str, str] | None = None,
+                    static_divergence: bool = False, low_speed: bool = False,
+                    speeds=None, xtol: float = 0.01, processes: int = 1) -> StudyTable:
+    """The generic study: analyse each model with each propeller; one row per (model, propeller).
+
+    parameters: columns describing each propeller (equal length to `propellers`), the x-axis
+        column `parameter` [unit] among them;
+    speeds: initial speed grid [m/s] for all models, or a mapping model → grid (default: the
+        module docstring's ranges); xtol [m/s]: crossing accuracy; processes: pool size.
+    """
+    models = _check_models(models)
+    n = len(propellers)
+    if n == 0:
+        raise v.InputError(f"{parameter}: the parameter grid is empty (give at least one value)")
+    for k, col in parameters.items():
+        if len(col) != n:
+            raise v.InputError(f"parameter column {k!r} has {len(col)} values, expected {n}")
+    if parameter not in parameters:
+        raise v.InputError(f"parameter {parameter!r} is not among the columns {list(parameters)}")
+    v.positive("xtol", xtol, "m/s")
+    v.integer_at_least("processes", processes, 1)
+    grids = {m: _speeds_for(m, speeds) for m in models}
+    tasks = [(build_model(m, p), grids[m], xtol, static_divergence, low_speed)
+             for m in models for p in propellers]
+    rows = map_analyses(_evaluate, tasks, processes)
+    columns: dict[str, np.ndarray] = {"model": np.array([m for m in models for _ in propellers], dtype=object)}
+    for k, col in parameters.items():
+        columns[k] = np.tile(np.asarray(col, dtype=float), len(models))
+    for k in RESULT_UNITS:
+        vals = [r[k] for r in rows]
+        columns[k] = np.array(vals, dtype=float if isinstance(vals[0], float) else object)
+    units = {"model": "", **{k: (parameter_units or {}).get(k, unit if k == parameter else "")
+                             for k in parameters}, **RESULT_UNITS}
+    return StudyTable(name, parameter, columns, units)
+
+
+def _base(propeller: Propeller | None) -> Propeller:
+    if propeller is None:
+        from propwhirl.cases.ch09_baseline import baseline_propeller
+
+        return baseline_propeller()
+    if not isinstance(propeller, Propeller):
+        raise v.InputError(f"propeller = {propeller!r} is invalid: must be a propwhirl.propeller.Propeller")
+    return propeller
+
+
+_Vary = Literal["pitch", "yaw", "both"]
+
+
+def _check_vary(vary: str) -> str:
+    if vary not in ("pitch", "yaw", "both"):
+        raise v.InputError(f"vary = {vary!r} is invalid: must be 'pitch', 'yaw' or 'both'")
+    return vary
+
+
+# ----------------------------------------------------------------------------- §11.1 stiffness
+#: Default mount frequencies of the stiffness study [Hz] (the thesis sweeps 1–12 Hz)
+STIFFNESS_FREQUENCIES = (1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 10.0, 12.0)
+
+
+def nacelle_stiffness(vary: _Vary = "both", frequencies=STIFFNESS_FREQUENCIES, *,
+                      fixed_frequency: float = 7.0, propeller: Propeller | None = None,
+                      models: Sequence[str] = ("wingtip", "isolated"), **options) -> StudyTable:
+    """§11.1, Figures 11.1–11.2: critical speed against the nacelle stiffness.
+
+    vary: "yaw" (f_θ = `fixed_frequency`, f_ψ swept — the thesis's case 1), "pitch" (f_ψ fixed,
+    f_θ swept — case 2) or "both" (f_θ = f_ψ swept — case 3).  `frequencies` [Hz] are the
+    uncoupled mount frequencies (K = I (2π f)², §8.1).  The x-axis column is the mean frequency
+    (f_θ + f_ψ)/2 of Figures 11.1–11.2; the columns f_theta, f_psi give both.
+    options: see :func:`propeller_study` (static_divergence, low_speed, speeds, xtol, processes).
+    """
+    _check_vary(vary)
+    f = _grid("frequencies", frequencies, "Hz", v.positive)
+    v.positive("fixed_frequency", fixed_frequency, "Hz")
+    base = _base(propeller)
+    ft = f if vary in ("pitch", "both") else np.full_like(f, fixed_frequency)
+    fp = f if vary in ("yaw", "both") else np.full_like(f, fixed_frequency)
+    props = [replace(base, f_theta=float(a), f_psi=float(b), K_theta=None, K_psi=None) for a, b in zip(ft, fp)]
+    return propeller_study(f"nacelle stiffness, {vary} varied", "mean_frequency", "Hz",
+                           {"f_theta": ft, "f_psi": fp, "mean_frequency": 0.5 * (ft + fp)}, props,
+                           models=models, parameter_units={"f_theta": "Hz", "f_psi": "Hz"}, **options)
+
+
+# ----------------------------------------------------------------------------- §11.2 damping
+#: Default damping values of the damping study (the thesis sweeps 0–1, with a close-up near 0)
+DAMPING_VALUES = (0.0, 0.0025, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1.0)
+
+
+def nacelle_damping(vary: _Vary = "both", values=DAMPING_VALUES, *, fixed_value: float = 0.005,
+                    damping: Literal["g", "zeta"] | None = None, propeller: Propeller | None = None,
+                    models: Sequence[str] = ("wingtip", "isolated"), **options) -> StudyTable:
+    """§11.2, Figures 11.4–11.5: critical speed against the nacelle structural damping.
+
+    vary: "yaw" (pitch damping = `fixed_value`, yaw swept — the thesis's case 1), "pitch" or
+    "both".  The values are read as `damping` ("g": structural coefficient, viscous equivalent
+    ζ = g/2; "zeta": viscous ratio, eq. 6.4–6.6); default: the reading of the base propeller.
+    Chapter 11 calls the baseline value 0.005 "ζ", but it is the g = 0.005 of Table 9.4, read
+    as g throughout propwhirl (docs/validation.md, Table 9.5 evidence); with the default the
+    swept values are on the same footing as that baseline.  x-axis: the mean value.
+    """
+    _check_vary(vary)
+    d = _grid("damping values", values, "", v.non_negative)
+    v.non_negative("fixed_value", fixed_value)
+    base = _base(propeller)
+    reading = base.damping if damping is None else damping
+    if reading not in ("g", "zeta"):
+        raise v.InputError(f"damping = {reading!r} is invalid: must be 'g' or 'zeta'")
+    dt = d if vary in ("pitch", "both") else np.full_like(d, fixed_value)
+    dp = d if vary in ("yaw", "both") else np.full_like(d, fixed_value)
+    props = [replace(base, damping_theta=float(a), damping_psi=float(b), damping=reading) for a, b in zip(dt, dp)]
+    return propeller_study(f"nacelle damping ({reading}), {vary} varied", "mean_damping", "",
+                           {"damping_theta": dt, "damping_psi": dp, "mean_damping": 0.5 * (dt + dp)}, props,
+                           models=models, **options)
+
+
+# ----------------------------------------------------------------------------- §11.3 motor mass
+#: Default motor-nacelle masses [kg] (baseline 35 kg; 17.5 kg is half of it)
+MOTOR_MASSES = (10.0, 17.5, 25.0, 30.0, 35.0, 40.0, 50.0, 60.0, 70.0)
+
+
+def motor_mass(masses=MOTOR_MASSES, *, propeller: Propeller | None = None,
+               models: Sequence[str] = ("wingtip", "isolated", "rigid"), **options) -> StudyTable:
+    """§11.3, Figure 11.6: critical speed against the motor-nacelle mass [kg].
+
+    The first of the base propeller's `masses` (the motor-nacelle, 35 kg at −0.86 m) takes each
+    mass; its position stays (the thesis: "its CG location remains the same"); I_Ω does not
+    change (it depends on the rotor only, eq. 9.2).  Default models: wingtip, isolated and the
+    rigid non-rotating mount, as Figure 11.6.
+    """
+    m = _grid("motor masses", masses, "kg", v.positive)
+    base = _base(propeller)
+    if not base.masses:
+        raise v.InputError("propeller has no motor-nacelle mass (its `masses` is empty)")
+    motor = base.masses[0]
+    props = [replace(base, masses=(PointMass(float(x), motor.x),) + tuple(base.masses[1:])) for x in m]
+    return propeller_study("motor-nacelle mass", "motor_mass", "kg", {"motor_mass": m}, props,
+                           models=models, **options)
+
+
+# ----------------------------------------------------------------------------- §11.4 pivot / CG
+#: Default shifts [m] of the pivot-length study (Tables 11.1–11.5 use −0.6 … +0.46)
+PIVOT_SHIFTS = (-0.6, -0.4, -0.2, 0.0, 0.2, 0.4)
+
+
+def pivot_length(variant: Literal["cg", "pivot", "cg+pivot"] = "pivot", shifts=PIVOT_SHIFTS, *,
+                 propeller: Propeller | None = None,
+                 models: Sequence[str] = ("wingtip", "isolated"), **options) -> StudyTable:
+    """§11.4, Tables 11.1–11.6: critical speed against the propeller pivot/CG position.
+
+    variant (positions from the wing mid-chord, positive aft, shifts s [m]):
+      "cg"       — every point mass moves by s, the pivots stay (§11.4.1: s = −0.40 is Table
+                   11.1 case 1, s = +0.46 case 2);
+      "pivot"    — both pivots move to l_θ = l_ψ = base + s, the masses stay (§11.4.2, Table 11.3);
+      "cg+pivot" — masses and pivots move together by s: the pivoting length is unchanged but
+                   S_α,P, I_α,P, I_θα,P about the wing elastic axis change (§11.4.3, Table 11.5).
+    Columns: shift [m], pivot_length e_θ = hub − l_θ [m] (signed, negative for a tractor),
+    I_theta_P [kg m²], S_theta_P [kg m].
+    """
+    if variant not in ("cg", "pivot", "cg+pivot"):
+        raise v.InputError(f"variant = {variant!r} is invalid: must be 'cg', 'pivot' or 'cg+pivot'")
+    s = _grid("shifts", shifts, "m")
+    base = _base(propeller)
+    props = []
+    for x in s:
+        x = float(x)
+        p = base
+        if variant in ("cg", "cg+pivot"):
+            p = replace(p, rotor=PointMass(p.rotor.mass, p.rotor.x + x),
+                        masses=tuple(PointMass(q.mass, q.x + x) for q in p.masses))
+        if variant in ("pivot", "cg+pivot"):
+            p = replace(p, pivot_pitch=p.pivot_pitch + x, pivot_yaw=p.pivot_yaw + x)
+        props.append(p)
+    inertia = [p.pivot_inertia() for p in props]
+    cols = {"shift": s, "pivot_length": np.array([p.e_theta for p in props]),
+            "I_theta_P": np.array([i["I_theta_P"] for i in inertia]),
+            "S_theta_P": np.array([i["S_theta_P"] for i in inertia])}
+    return propeller_study(f"pivot length ({variant} moved)", "shift", "m", cols, props, models=models,
+                           parameter_units={"pivot_length": "m", "I_theta_P": "kg m^2", "S_theta_P": "kg m"},
+                           **options)
+
+
+# ----------------------------------------------------------------------------- §11.5 spin inertia
+#: Default rotor masses [kg] (baseline 8 kg → I_Ω = 1.55 kg m²)
+ROTOR_MASSES = (2.0, 4.0, 6.0, 8.0, 10.0, 12.0, 16.0, 20.0)
+
+
+def spin_inertia(rotor_masses=ROTOR_MASSES, *, propeller: Propeller | None = None,
+                 models: Sequence[str] = ("wingtip", "isolated"), **options) -> StudyTable:
+    """§11.5, Figure 11.14: critical speed against I_Ω, varied through the rotor mass M_r [kg].
+
+    I_Ω = M_r R²/3 (eq. 9.2) with R fixed; the rotor mass also raises the pitch/yaw inertia
+    parameters (as in the thesis).  A base propeller with a given `spin_inertia` is switched to
+    eq. 9.2.  x-axis: I_Omega [kg m²]; the column rotor_mass [kg] gives the input.
+    """
+    m = _grid("rotor masses", rotor_masses, "kg", v.positive)
+    base = _base(propeller)
+    props = [replace(base, rotor=PointMass(float(x), base.rotor.x), spin_inertia=None) for x in m]
+    return propeller_study("spin inertia (rotor mass)", "I_Omega", "kg m^2",
+                           {"rotor_mass": m, "I_Omega": np.array([p.I_Omega for p in props])}, props,
+                           models=models, parameter_units={"rotor_mass": "kg"}, **options)
+
+
+# ----------------------------------------------------------------------------- §11.6 blade angle
+#: Default blade angles β_0.75 [deg] (baseline 35°; the critical mode switches near 73.5°)
+BLADE_ANGLES = (20.0, 30.0, 35.0, 40.0, 50.0, 60.0, 70.0, 73.0, 74.0, 78.0)
+
+
+def blade_angle(betas=BLADE_ANGLES, *, propeller: Propeller | None = None,
+                models: Sequence[str] = ("wingtip", "isolated"), **options) -> StudyTable:
+    """§11.6, Figure 11.15: critical speed against the blade angle β_0.75 [deg].
+
+    Fixed-pitch windmilling: the advance ratio follows from β (eq. 9.1 as printed,
+    J = π tan(β − 3°)); the column advance_ratio gives J.  β must give an inflow angle in
+    (0°, 90°).
+    """
+    b = _grid("blade angles", betas, "deg")
+    base = _base(propeller)
+    if base.operation != "fixed-pitch":
+        raise v.InputError("the blade-angle study needs a fixed-pitch propeller (operation='fixed-pitch')")
+    props = [replace(base, beta_075_deg=float(x)) for x in b]  # validates each angle
+    J = np.array([np.pi * p.advance_ratio for p in props])
+    return propeller_study("blade angle", "beta_075_deg", "deg", {"beta_075_deg": b, "advance_ratio": J},
+                           props, models=models, **options)
+
+
+@dataclass(frozen=True)
+class ModeSwitch:
+    """Blade angle [deg] where the wingtip model's critical whirl mode changes sense (§11.6).
+
+    beta: the switch angle, midpoint of the final bracket (β_forward, β_backward) [deg];
+    evaluations: (β, V_forward, V_backward) of every analysis, sorted by β [deg, m/s, m/s]
+    (NaN: no flutter of that mode in the speed range).
+
+    Mechanism: the flutter itself is continuous in β (≈160.7 m/s,
+    10.6 Hz on both sides); what changes is which low-speed whirl mode continues into it.  The
+    two whirl branches coalesce (an exceptional point) near V ≈ 97 m/s, f ≈ 6.9 Hz at the switch
+    angle; on either side of it the branches exchange identity differently.
+    """
+
+    beta: float
+    bracket: tuple[float, float]
+    evaluations: tuple[tuple[float, float, float], ...]
+
+
+def whirl_flutter_speeds(beta: float, propeller: Propeller | None = None, speeds=None,
+                         xtol: float = 0.01) -> tuple[float, float]:
+    """Flutter onset speeds [m/s] of "forward 1" and "backward 1" of the wingtip model at blade
+    angle `beta` [deg] (NaN where that mode does not flutter in the speed range)."""
+    base = _base(propeller)
+    a = analyse(build_model("wingtip", replace(base, beta_075_deg=float(beta))), speeds, xtol=xtol)
+    fw, bw = a.first("forward 1", "flutter"), a.first("backward 1", "flutter")
+    return (float("nan") if fw is None else fw.V), (float("nan") if bw is None else bw.V)
+
+
+def blade_angle_mode_switch(bracket: tuple[float, float] = (60.0, 80.0), *, xtol: float = 0.1,
+                            propeller: Propeller | None = None, speeds=None) -> ModeSwitch:
+    """§11.6: the β_0.75 at which the wingtip model's whirl flutter changes from the forward to
+    the backward whirl mode (the thesis: between 73° and 74°).
+
+    Root of g(β) = V_fw(β) − V_bw(β), the flutter onset speeds of "forward 1" and "backward 1"
+    (a mode without flutter in the speed range counts as the range's upper end, so g jumps from
+    negative to positive where the flutter changes mode).  Bracketing + bisection
+    (scipy.optimize.brentq on the step function), one wingtip analysis per evaluation;
+    `bracket` [deg] must have the forward-whirl flutter first at its lower end and the backward
+    at its upper end; `xtol` [deg].
+    """
+    from scipy.optimize import brentq
+
+    lo, hi = (float(x) for x in v.increasing("bracket", bracket, "deg"))
+    v.positive("xtol", xtol, "deg")
+    top = 350.0 if speeds is None else float(np.max(speeds))
+    evals: dict[float, tuple[float, float]] = {}
+
+    def g(beta: float) -> float:
+        beta = float(beta)
+        if beta not in evals:  # brentq re-evaluates the bracket ends
+            evals[beta] = whirl_flutter_speeds(beta, propeller, speeds)
+        Vf, Vb = evals[beta]
+        if math.isnan(Vf) and math.isnan(Vb):
+            raise v.InputError(f"no whirl flutter of the wingtip model at beta = {beta:g} deg "
+                               f"below {top:g} m/s: cannot locate the mode switch")
+        return (top if math.isnan(Vf) else Vf) - (top if math.isnan(Vb) else Vb)
+
+    g_lo, g_hi = g(lo), g(hi)
+    if not (g_lo < 0 < g_hi):
+        raise v.InputError(f"bracket = ({lo:g}, {hi:g}) deg is invalid: the flutter must be forward whirl "
+                           f"at the lower end and backward whirl at the upper end "
+                           f"(V_fw − V_bw = {g_lo:.4g}, {g_hi:.4g} m/s)")
+    root = float(brentq(g, lo, hi, xtol=xtol))
+    gap = {b: g(b) for b in evals}
+    neg = max(b for b, d in gap.items() if d < 0 and b <= root)
+    pos = min(b for b, d in gap.items() if d > 0 and b >= root)
+    return ModeSwitch(0.5 * (neg + pos), (neg, pos), tuple((b, *evals[b]) for b in sorted(evals)))
