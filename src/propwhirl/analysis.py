@@ -237,30 +237,38 @@ def _content(model, sw: st.Sweep, names: list[str]) -> dict[str, dict[str, float
 
 
 # ----------------------------------------------------------------------------- frequency zero
+def _n_unstable_pairs(model, V: float) -> int:
+    """Number of eigenvalues with Re λ > 0 and Im λ > 0 at airspeed V (a full eigvals)."""
+    lam = np.linalg.eigvals(model.state_matrix(np.array([V]))[0])
+    return int(np.sum((lam.real > 0) & (lam.imag > 1e-9 * np.maximum(1.0, np.abs(lam)))))
+
+
 def _frequency_zero_events(model, sw: st.Sweep, names: list[str], xtol: float) -> list[Instability]:
-    """Unstable oscillatory modes whose pair turns into real roots (frequency → 0)."""
+    """Unstable oscillatory modes whose pair turns into real roots (frequency → 0).
+
+    Located by bisection on the number of unstable complex pairs (full eigenvalue solves: the
+    branch point is a square-root singularity where a tracked single-root evaluation is
+    ill-conditioned), to `xtol` [m/s]."""
     out = []
     lam, phys = sw.eigenvalues, sw.physical
-    for k in range(sw.n_modes):
-        for t in range(len(sw.V) - 1):
-            a, b = lam[t, k], lam[t + 1, k]
-            if not (phys[t, k] and a.imag > 0 and a.real > 0):
-                continue
-            if abs(b.imag) > 1e-9 * max(1.0, abs(b)) or b.real <= 0:
-                continue
-            lo, hi = float(sw.V[t]), float(sw.V[t + 1])
-            shape = sw.eigenvectors[t, :, k]
-            guess = a
-            while hi - lo > xtol:  # bisection on "is the tracked root still complex?"
-                mid = 0.5 * (lo + hi)
-                lm, x = st.tracked_eigenvalue(model.state_matrix, mid, guess, shape,
-                                              displacement=sw.displacement)
-                if abs(lm.imag) > 1e-7 * max(1.0, abs(lm)):
-                    lo, guess, shape = mid, lm, x
-                else:
-                    hi = mid
-            out.append(Instability("divergence", "frequency-zero", k, names[k], 0.5 * (lo + hi), 0.0))
-            break
+    with st.single_thread_blas():
+        for k in range(sw.n_modes):
+            for t in range(len(sw.V) - 1):
+                a, b = lam[t, k], lam[t + 1, k]
+                if not (phys[t, k] and a.imag > 0 and a.real > 0):
+                    continue
+                if abs(b.imag) > 1e-9 * max(1.0, abs(b)) or b.real <= 0:
+                    continue
+                lo, hi = float(sw.V[t]), float(sw.V[t + 1])
+                n_lo = _n_unstable_pairs(model, lo)
+                while hi - lo > xtol:
+                    mid = 0.5 * (lo + hi)
+                    if _n_unstable_pairs(model, mid) >= n_lo:
+                        lo = mid
+                    else:
+                        hi = mid
+                out.append(Instability("divergence", "frequency-zero", k, names[k], 0.5 * (lo + hi), 0.0))
+                break
     return out
 
 

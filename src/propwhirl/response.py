@@ -1,0 +1,297 @@
+"""Time response to initial conditions (§9.2, Figures 9.11–9.12) and Campbell tables (§8.4.1,
+§9.3.2, §10.1.2; Figures 8.6, 9.16, 10.3).
+
+Time response
+-------------
+:func:`simulate` integrates a model's linear aeroelastic system ẋ = A(V) x (eq. 5.3 for the
+structure, 6.18 for the isolated propeller, D.27 for propellers on a wing) at one airspeed from
+given initial conditions with the exact transition matrix e^{AΔt}
+(:func:`propwhirl.stability.time_response`; the thesis used MATLAB's ode45, available here as
+``method="ivp"``).  It returns a :class:`Response` whose histories are labelled like the
+model's states, in SI: displacements ("propeller 0 theta" [rad], "node 3 h" [m, positive
+down], "node 3 alpha" [rad, nose up] ...), their rates ("d/dt ..." [rad/s, m/s]) and the
+aerodynamic lag states.  :func:`baseline_propeller_responses` reproduces the setting of
+Figures 9.11–9.12: the isolated baseline propeller (symmetric, or f_ψ = 4 Hz) released from an
+initial pitch of 1° at 77, 222 and 250 m/s, 10 s.
+
+The response is the superposition of the modes, x(t) = Σ c_k x̂_k e^{λ_k t} (eq. 5.8), so its
+modal coordinates η_k(t) = (X⁻¹ x(t))_k grow exactly like e^{λ_k t} (:meth:`Response.modal`),
+and after the well-damped forward whirl mode has died out the envelope of the propeller motion
+grows at the rate Re λ of the backward whirl mode (:meth:`Response.growth_rate`).  The whirl
+sense of the motion is the sense of the θ–ψ path (θ on X, ψ on Y, :meth:`Response.orbit_area`)
+relative to the rotation of the propeller (:func:`rotation_sign`).
+
+Campbell table
+--------------
+:func:`campbell_table` tracks the natural frequencies of a propeller–wing model against the
+propeller rotational speed (aerodynamics off, undamped gyroscopic system, as
+:func:`propwhirl.vibration.campbell`) with the stability engine's mode tracker (MAC and
+eigenvalue continuity, veering resolved), and names the curves with the in-vacuo labels of
+:func:`propwhirl.vibration.label_modes` ("wing n", "backward k", "forward k").
+"""
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import linear_sum_assignment
+
+from propwhirl import stability as st
+from propwhirl import validate as v
+
+__all__ = [
+    "Response", "simulate", "baseline_propeller_responses", "rotation_sign", "campbell_table",
+    "THESIS_RESPONSE_SPEEDS",
+]
+
+#: Airspeeds of Figures 9.11–9.12 [m/s]: below (cruise), near and above the whirl flutter speed
+THESIS_RESPONSE_SPEEDS = (77.0, 222.0, 250.0)
+
+
+# ----------------------------------------------------------------------------------------------
+# Time response
+# ----------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Response:
+    """Free response of a model at one airspeed.
+
+    model_name; V [m/s]; t (T,) [s]; x (T, n) state histories (SI) with ``labels`` (n);
+    n_dof: the first n_dof states are the displacements (degrees of freedom), the next n_dof
+    their rates, the rest aerodynamic lag states; eigenvalues (n,) [1/s] and right
+    eigenvectors (n, n) of A(V), used by :meth:`modal`.
+    """
+
+    model_name: str
+    V: float
+    t: np.ndarray
+    x: np.ndarray
+    labels: tuple[str, ...]
+    n_dof: int
+    eigenvalues: np.ndarray
+    eigenvectors: np.ndarray
+
+    def __getitem__(self, label: str) -> np.ndarray:
+        """History of the state called ``label`` (SI)."""
+        try:
+            return self.x[:, self.labels.index(label)]
+        except ValueError:
+            raise v.InputError(f"no state labelled {label!r}; states are {self.labels}") from None
+
+    @property
+    def dof_labels(self) -> tuple[str, ...]:
+        return self.labels[: self.n_dof]
+
+    @property
+    def dofs(self) -> dict[str, np.ndarray]:
+        """Displacement histories by degree of freedom [m or rad]."""
+        return {lab: self.x[:, i] for i, lab in enumerate(self.dof_labels)}
+
+    @property
+    def rates(self) -> dict[str, np.ndarray]:
+        """Velocity histories [m/s or rad/s], keyed by the degree of freedom's label."""
+        return {lab: self.x[:, self.n_dof + i] for i, lab in enumerate(self.dof_labels)}
+
+    def table(self) -> dict[str, np.ndarray]:
+        """Tidy long-format columns of the displacements: t [s], dof, value [SI]."""
+        T, n = self.t.size, self.n_dof
+        return {"t": np.repeat(self.t, n), "dof": np.tile(np.asarray(self.dof_labels, dtype=object), T),
+                "value": self.x[:, :n].reshape(-1)}
+
+    def amplitude(self, labels: Sequence[str]) -> np.ndarray:
+        """√(Σ x_i²) over the given states (e.g. θ and ψ: radius of the whirl path) [SI]."""
+        return np.sqrt(sum(self[lab] ** 2 for lab in labels))
+
+    def _window(self, t_from: float, t_to: float | None) -> np.ndarray:
+        hi = self.t[-1] if t_to is None else t_to
+        sel = (self.t >= t_from) & (self.t <= hi)
+        if sel.sum() < 3:
+            raise v.InputError(f"time window [{t_from}, {hi}] s holds fewer than 3 samples of "
+                               f"the response (t = {self.t[0]}..{self.t[-1]} s)")
+        return sel
+
+    def orbit_area(self, theta: str = "propeller 0 theta", psi: str = "propeller 0 psi",
+                   t_from: float = 0.0, t_to: float | None = None) -> float:
+        """Signed area swept by the (θ on X, ψ on Y) path, ½∫(θ dψ − ψ dθ) [rad²].
+
+        Positive for a counter-clockwise path.  Trapezoidal rule on the samples in
+        [t_from, t_to] [s].
+        """
+        sel = self._window(t_from, t_to)
+        th, ps = self[theta][sel], self[psi][sel]
+        return float(0.5 * np.sum(th[:-1] * ps[1:] - ps[:-1] * th[1:]))
+
+    def growth_rate(self, label: str = "propeller 0 theta", t_from: float = 0.0,
+                    t_to: float | None = None) -> float:
+        """Exponential rate σ [1/s] of the envelope of one history: least-squares line through
+        log|x| at its local extrema (one per half cycle) in [t_from, t_to] [s].
+
+        For a response dominated by one mode λ this is Re λ (eq. 5.8).
+        """
+        sel = self._window(t_from, t_to)
+        y, tt = self[label][sel], self.t[sel]
+        a = np.abs(y)
+        i = np.nonzero((a[1:-1] > a[:-2]) & (a[1:-1] >= a[2:]))[0] + 1
+        if i.size < 3:
+            raise v.InputError(f"{label}: fewer than 3 extrema in [{tt[0]}, {tt[-1]}] s; "
+                               "lengthen the window or refine the time step")
+        # parabolic refinement of each extremum of |y| (sampling error of the peak height)
+        y0, y1, y2 = a[i - 1], a[i], a[i + 1]
+        den = y0 - 2 * y1 + y2
+        d = np.divide(0.5 * (y0 - y2), den, out=np.zeros_like(den), where=den != 0)
+        peak = y1 - 0.25 * (y0 - y2) * d
+        tp = tt[i] + d * (tt[1] - tt[0])
+        return float(np.polyfit(tp, np.log(peak), 1)[0])
+
+    def modal(self) -> np.ndarray:
+        """Modal coordinates η(t) = X⁻¹ x(t), shape (T, n): η_k(t) = η_k(0) e^{λ_k t} (eq. 5.8)."""
+        return np.linalg.solve(self.eigenvectors, self.x.T.astype(complex)).T
+
+
+def _model_labels(model) -> tuple[tuple[str, ...], int]:
+    s = model.second_order(np.array([1.0]))
+    return tuple(s.labels), int(s.n_dof)
+
+
+def simulate(model, V: float, initial: Mapping[str, float], *, duration: float = 10.0,
+             dt: float = 0.002, method: str = "expm") -> Response:
+    """Linear free response of ``model`` at airspeed ``V`` [m/s] (§9.2, Figures 9.11–9.12).
+
+    ``initial``: initial values of states by label, SI — e.g. ``{"propeller 0 theta":
+    np.radians(1.0)}`` (rad), ``{"node 25 h": 0.01}`` (m, down), ``{"d/dt node 25 alpha": 0.1}``
+    (rad/s); every other state starts at zero (aerodynamic lag states included).  Sampled every
+    ``dt`` [s] for ``duration`` [s]; ``method`` "expm" (exact transition matrix) or "ivp"
+    (scipy's RK45, like the thesis's ode45).  Works for any model with ``state_matrix`` and
+    ``second_order`` (PropellerWing, IsolatedPropeller, TypicalSection).
+    """
+    Vf = float(v.positive("V", V, "m/s"))
+    T = float(v.positive("duration", duration, "s"))
+    h = float(v.positive("dt", dt, "s"))
+    if h >= T:
+        raise v.InputError(f"dt = {dt!r} s is invalid: must be smaller than duration = {duration!r} s")
+    labels, n_dof = _model_labels(model)
+    if not initial:
+        raise v.InputError("initial must give at least one nonzero initial state "
+                           f"(by label, e.g. {labels[0]!r})")
+    x0 = np.zeros(len(labels))
+    for lab, val in initial.items():
+        if lab not in labels:
+            raise v.InputError(f"initial: no state labelled {lab!r}; states are {labels}")
+        x0[labels.index(lab)] = float(v.finite(f"initial[{lab!r}]", val))
+    n_steps = int(round(T / h))
+    t = np.arange(n_steps + 1) * h
+    A = np.asarray(model.state_matrix(np.array([Vf])))[0]
+    r = st.time_response(A, x0, t, labels, method=method)
+    lam, X = st.eigen(A)
+    return Response(getattr(model, "name", type(model).__name__), Vf, r.t, r.x, labels, n_dof,
+                    lam, X)
+
+
+def rotation_sign(model, propeller: int = 0) -> int:
+    """Sense of the spin of a flexible propeller in the (θ on X, ψ on Y) plane: +1 counter-
+    clockwise (the thesis's rotor, Figure 6.1), from the gyroscopic coupling of the model
+    (:func:`propwhirl.stability.rotation_sign_from_gyroscopic`; aerodynamics off, at 100 m/s for
+    a fixed-pitch rotor)."""
+    quiet = model.with_(propeller_aero=False, **({"wing_aero": False} if hasattr(model, "wing_aero") else {}))
+    s = quiet.second_order(np.array([100.0]))
+    labels = s.q_labels
+    th, ps = f"propeller {propeller} theta", f"propeller {propeller} psi"
+    if th not in labels:
+        raise v.InputError(f"propeller {propeller} has no pitch/yaw degrees of freedom "
+                           f"(states: {labels})")
+    i, j = labels.index(th), labels.index(ps)
+    C = s.S2[0]
+    return st.rotation_sign_from_gyroscopic(0.5 * (C[i, j] - C[j, i]))
+
+
+def baseline_propeller_responses(speeds: Sequence[float] = THESIS_RESPONSE_SPEEDS, *,
+                                 f_psi: float = 7.0, theta0_deg: float = 1.0,
+                                 duration: float = 10.0, dt: float = 0.002,
+                                 method: str = "expm") -> dict[float, Response]:
+    """Figures 9.11 (f_ψ = 7 Hz, symmetric) and 9.12 (f_ψ = 4 Hz): the isolated baseline
+    propeller (§9.2, fixed-pitch windmilling) released from θ = ``theta0_deg`` [deg] at rest,
+    at each airspeed [m/s], for ``duration`` [s].  Returns {V: Response}."""
+    from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+
+    model = isolated_baseline_propeller(f_psi=f_psi)
+    th0 = float(np.radians(v.finite("theta0_deg", theta0_deg, "deg")))
+    return {float(V): simulate(model, V, {"propeller 0 theta": th0}, duration=duration, dt=dt,
+                               method=method)
+            for V in speeds}
+
+
+# ----------------------------------------------------------------------------------------------
+# Campbell table
+# ----------------------------------------------------------------------------------------------
+def _campbell_state_matrix(model, offset: float):
+    """A(s) of the undamped gyroscopic system at rotational speed s − offset [rev/min]."""
+    from propwhirl.statespace import SecondOrder, state_matrix
+
+    quiet = model.with_(wing_aero=False, propeller_aero=False, rotating=True)
+
+    def fn(s: np.ndarray) -> np.ndarray:
+        rpm = np.asarray(s, dtype=float) - offset
+        omega = rpm * 2.0 * np.pi / 60.0
+        V = np.ones_like(omega)                  # no aerodynamics: the airspeed plays no part
+        so = quiet.second_order(V, omega)
+        S2 = 0.5 * (so.S2 - np.swapaxes(so.S2, -1, -2))   # gyroscopic (skew) part only
+        return state_matrix(SecondOrder(so.S1, S2, so.S3, so.S4, so.Ww, so.Wv, so.Wq,
+                                        so.q_labels, so.w_labels), V)
+
+    return fn
+
+
+def campbell_table(model, rpm=None, *, max_frequency_hz: float | None = None
+                   ) -> dict[str, np.ndarray]:
+    """Tracked natural frequencies against propeller rotational speed (a Campbell diagram).
+
+    ``model``: a PropellerWing with at least one flexibly mounted propeller; every propeller
+    spins at ``rpm`` [rev/min] (increasing, ≥ 0; default 0–6000 every 250).  Aerodynamics and
+    dissipative damping off (the gyroscopic system of Figures 8.6, 9.16, 10.3, as
+    :func:`propwhirl.vibration.campbell`).  The modes are followed along the speeds by the
+    engine's tracker (:func:`propwhirl.stability.sweep`: MAC and eigenvalue continuity, steps
+    refined where ambiguous, so a veering pair keeps its branches and does not cross) and named
+    at the first speed by an optimal MAC assignment to the in-vacuo modes of
+    :func:`propwhirl.vibration.label_modes`.  Returns tidy columns sorted by rpm then
+    frequency at the first speed: rpm [rev/min], mode (int), label, frequency_hz [Hz] — only
+    modes below ``max_frequency_hz`` at the first speed when given — and "resolved" (bool):
+    False where the tracker left the step to or from that speed ambiguous.
+    """
+    from propwhirl.vibration import label_modes, model_modes
+
+    if not getattr(model, "flexible", None):
+        raise v.InputError("campbell_table needs a model with a flexibly mounted propeller "
+                           "(the rotational speed acts through the pitch/yaw mounts)")
+    r = np.arange(0.0, 6001.0, 250.0) if rpm is None else v.non_negative("rpm", rpm, "rev/min")
+    r = v.increasing("rpm", r, "rev/min")
+    if max_frequency_hz is not None:
+        v.positive("max_frequency_hz", max_frequency_hz, "Hz")
+    offset = 1.0                                  # the tracker's parameter must be > 0
+    fn = _campbell_state_matrix(model, offset)
+    n_dof = model.with_(wing_aero=False).second_order(np.array([1.0])).n_dof
+    sw = st.sweep(fn, r + offset, n_dof=n_dof)
+    modes, _ = model_modes(model)
+    ref = [lab for lab, _ in label_modes(model)]
+    X0 = sw.eigenvectors[0][sw.displacement]
+    lam0 = sw.eigenvalues[0]
+    osc = [k for k in range(sw.n_modes) if sw.physical[0, k] and lam0[k].imag > 0]
+    M = st.mac(X0[:, osc], modes.shapes.astype(complex))
+    rows, cols = linear_sum_assignment(-M)
+    names = {osc[i]: ref[j] for i, j in zip(rows, cols)}
+    keep = sorted(names, key=lambda k: lam0[k].imag)
+    if max_frequency_hz is not None:
+        keep = [k for k in keep if lam0[k].imag / (2 * np.pi) <= max_frequency_hz]
+    grid = np.isin(sw.V, r + offset)              # report the asked speeds only
+    Vg = sw.V[grid] - offset
+    lam = sw.eigenvalues[grid][:, keep]
+    T, K = lam.shape
+    bad = np.zeros(Vg.size, dtype=bool)           # the step into this speed was not resolved
+    for a, b in sw.unresolved:
+        bad |= (Vg + offset > a) & (Vg + offset <= b) | (Vg + offset == a)
+    return {
+        "rpm": np.repeat(Vg, K),
+        "mode": np.tile(np.asarray(keep), T),
+        "label": np.tile(np.asarray([names[k] for k in keep], dtype=object), T),
+        "frequency_hz": (np.abs(lam.imag) / (2 * np.pi)).reshape(-1),
+        "resolved": np.repeat(~bad, K),
+    }
