@@ -553,3 +553,224 @@ def test_bad_state_matrices_name_the_speed():
         st.time_response(np.eye(2), [1.0, 0.0], [0.0, 1.0], method="euler")
     with pytest.raises(InputError, match="x0"):
         st.time_response(np.eye(2), [1.0, 0.0, 0.0], [0.0, 1.0])
+
+
+# ----------------------------------------------------------------------------------------------
+# (i) the fast engine: coarse steps, real roots, clusters through branch points, tolerances
+# ----------------------------------------------------------------------------------------------
+def lag_family(n_lag=20, eps=0.02):
+    """An oscillator whose damping 0.5 − 0.01 V changes sign at V = 50 m/s, coupled weakly to
+    ``n_lag`` real 'aerodynamic lag' roots ≈ −b_i V in a cluster 2 % apart (like Leishman–Nguyen
+    states: no displacement of their own), mixed by a nearest-neighbour coupling that grows
+    with V (so their shapes rotate into each other along V, while they stay real)."""
+    b = 0.5 * 1.02 ** np.arange(n_lag)
+    T = np.eye(n_lag, k=1) + np.eye(n_lag, k=-1)
+
+    def fn(V):
+        V = np.atleast_1d(np.asarray(V, dtype=float))
+        n = 2 + n_lag
+        A = np.zeros((V.size, n, n))
+        A[:, 0, 1] = 1.0
+        A[:, 1, 0] = -100.0
+        A[:, 1, 1] = -(0.5 - 0.01 * V)
+        A[:, 1, 2:] = eps
+        A[:, 2:, 1] = eps
+        A[:, 2:, 2:] = -V[:, None, None] * (np.diag(b)[None] + (0.005 + 1e-4 * V)[:, None, None]
+                                             * T[None])
+        return A
+    return fn, 2 + n_lag
+
+
+def test_lag_root_clusters_need_no_refinement():
+    """Real roots that stay real with the same sign need no shape identity: a cluster of 20
+    lag roots 2 % apart along a 1–101 m/s sweep costs no refinement, and the flutter crossing
+    of the oscillator is exact."""
+    fn, n = lag_family()
+    disp = np.zeros(n, dtype=bool)
+    disp[0] = True
+    an = st.analyse(fn, np.arange(1.0, 102.0, 10.0), displacement=disp, xtol=0.01)
+    assert an.sweep.stats["refined"] == 0 and an.sweep.unresolved == ()
+    lam = np.linalg.eigvals(fn(an.sweep.V))
+    np.testing.assert_allclose(np.sort_complex(an.sweep.eigenvalues), np.sort_complex(lam),
+                               atol=1e-9)
+    (p,) = an.criticals.points
+    Vd = np.arange(45.0, 55.0, 1e-3)
+    nun = (np.linalg.eigvals(fn(Vd)).real > 0).sum(axis=1)
+    V_exact = Vd[np.argmax(nun > 0)]
+    assert p.kind == "flutter" and p.direction == "onset" and p.mode == 0
+    assert abs(p.V - V_exact) <= 0.01
+
+
+def cubic_cluster(V):
+    """Companion matrix of a real cubic whose coefficients are linear in V: a lightly damped
+    pair that turns real (131.98 m/s) while its lower root merges with a third, real root
+    into a new pair (132.12 m/s); the remaining real root crosses zero (144.33 m/s); the new
+    pair turns real again (146.94 m/s) — the wing-1 events of the wingtip model."""
+    r101 = np.array([-2.207 + 7.742j, -2.207 - 7.742j, -7.555])
+    r141 = np.array([-0.558, -8.12 + 1.256j, -8.12 - 1.256j])
+    c0, c1 = np.real(np.poly(r101)), np.real(np.poly(r141))
+    V = np.atleast_1d(np.asarray(V, dtype=float))
+    c = c0[None, :] + ((V - 101.0) / 40.0)[:, None] * (c1 - c0)[None, :]
+    A = np.zeros((V.size, 3, 3))
+    A[:, 0, :] = -c[:, 1:]
+    A[:, 1, 0] = A[:, 2, 1] = 1.0
+    return A
+
+
+def test_cluster_followed_through_split_and_merge():
+    """A pair turning real and its lower root merging with a real root 0.14 m/s later, inside
+    one 49 m/s step: followed as a cluster (coefficients of its characteristic polynomial),
+    with the module's conventions — the oscillatory mode keeps the larger root and owns the
+    divergence, the merged pair's Im > 0 member goes to the smaller id (the real root's) —
+    and no refinement down to the events."""
+    an = st.analyse(cubic_cluster, np.array([91.0, 161.0]), initial_step=None, xtol=0.001)
+    sw = an.sweep
+    assert sw.unresolved == () and sw.stats["eig"] <= 6
+    np.testing.assert_allclose(np.sort_complex(sw.eigenvalues),
+                               np.sort_complex(np.linalg.eigvals(cubic_cluster(sw.V))),
+                               atol=1e-9)
+    assert sw.eigenvalues[0, 0].imag > 0 and sw.eigenvalues[0, 1].imag == 0
+    after = np.nonzero((sw.V > 132.2) & (sw.V < 144.3))[0]
+    assert after.size
+    for t in after:
+        assert sw.eigenvalues[t, 0].imag == 0                 # mode 0 owns the real root
+        assert sw.eigenvalues[t, 1].imag > 0 and sw.physical[t, 1]   # smaller id: Im > 0
+        assert not sw.physical[t, 2]
+    (p,) = an.criticals.points
+    Vd = np.arange(143.0, 146.0, 1e-4)
+    det = np.linalg.det(cubic_cluster(Vd))
+    V_exact = Vd[np.nonzero(np.diff(np.sign(det)))[0][0]]
+    assert (p.kind, p.direction, p.mode) == ("divergence", "onset", 0)
+    assert abs(p.V - V_exact) <= 1e-3 and p.frequency_hz == 0
+
+
+def toy_fz(V):
+    """A stable oscillator (−0.2 ± 5i) and an unstable pair 1 ± √(V − 30): it turns into two
+    real roots at V = 30 m/s (frequency zero) and its smaller root recovers at 31 m/s."""
+    V = np.atleast_1d(np.asarray(V, dtype=float))
+    A = np.zeros((V.size, 4, 4))
+    A[:, 0, 0] = A[:, 1, 1] = -0.2
+    A[:, 0, 1], A[:, 1, 0] = 5.0, -5.0
+    A[:, 2, 2] = A[:, 3, 3] = 1.0
+    A[:, 2, 3], A[:, 3, 2] = 1.0, V - 30.0
+    return A
+
+
+def test_unstable_pair_turning_real_is_bracketed_by_two_nodes():
+    """The branch point of an unstable pair turning real (the thesis's whirl divergence) is
+    located from the discriminant of the pair's 2 × 2 Ritz matrix and bracketed by two sweep
+    nodes 0.9·min_step apart: complex at the lower, real at the upper."""
+    opts = st.TrackingOptions()
+    sw = st.sweep(toy_fz, np.arange(1.0, 52.0, 10.0), options=opts)
+    V = sw.V
+    i = int(np.searchsorted(V, 30.0))
+    assert V[i - 1] < 30.0 < V[i] and V[i] - V[i - 1] <= 0.9 * opts.min_step + 1e-12
+    k = int(np.argmax(sw.eigenvalues[0].real))               # the unstable mode
+    assert sw.eigenvalues[i - 1, k].imag != 0 and sw.eigenvalues[i, k].imag == 0
+    assert sw.eigenvalues[i, k].real > 1.0                    # it keeps the larger root
+    assert sw.stats["branch_point_nodes"] == 2
+
+
+def rotating_shapes(V):
+    """Fixed, well separated eigenvalues (−0.1 ± 10i, −0.2 ± 20i) whose mode shapes rotate by
+    90° in the displacement plane every 50 m/s."""
+    V = np.atleast_1d(np.asarray(V, dtype=float))
+    out = np.zeros((V.size, 4, 4))
+    M, C = np.eye(2), np.diag([0.2, 0.4])
+    K = np.diag([100.0, 400.0])
+    for t, v in enumerate(V):
+        c, s = np.cos(np.pi * v / 100), np.sin(np.pi * v / 100)
+        R = np.array([[c, -s], [s, c]])
+        out[t] = st.state_matrix_from_mck(M, R @ C @ R.T, R @ K @ R.T)[0]
+    return out
+
+
+def test_decisive_eigenvalue_evidence_accepts_rotating_shapes():
+    """Shapes may change completely between samples while the eigenvalue continuation stays
+    unique: accepted without refinement by default, refined when the MAC is always required
+    (``decisive_ratio`` 0); the same branches either way."""
+    grid = np.arange(1.0, 102.0, 25.0)
+    fast = st.sweep(rotating_shapes, grid, n_dof=2)
+    strict = st.sweep(rotating_shapes, grid, n_dof=2,
+                      options=st.TrackingOptions(decisive_ratio=0.0))
+    macs = [st.mac(fast.mode_shape(0, t), fast.mode_shape(0, t + 1)) for t in range(4)]
+    assert min(macs) < 0.8 and fast.stats["refined"] == 0
+    assert strict.stats["refined"] > 0
+    on_grid = np.isin(strict.V, grid)
+    np.testing.assert_allclose(strict.eigenvalues[on_grid], fast.eigenvalues, atol=1e-12)
+
+
+def test_veering_inside_a_long_step_is_not_taken_for_a_crossing():
+    """Random family (seed 639): two modes veer inside the first 14 m/s step while one of them
+    has a hump (unstable 7.27–9.35 m/s).  Straight-line predictions and MAC both accept the
+    swap of a crossing; the Hermite paths through both samples meet — refined, hump found."""
+    fn = random_family(639)
+    an = st.analyse(fn, np.arange(1.0, 60.0, 7.0), n_dof=3)
+    on = sorted(p.V for p in an.criticals.points)
+    assert np.allclose(on[:2], [7.274, 9.350], atol=0.01)
+
+
+def badly_scaled(delta=1e-2, stiff=1e10, seed=4):
+    """A 4 × 4 real matrix like a stiff structure's state matrix: a stiff oscillator
+    (±1e5 i, entries 1e10) and a nearly defective pair 50 ± i√delta, mixed by a similarity."""
+    B = np.zeros((4, 4))
+    B[0, 1], B[1, 0], B[1, 1] = 1.0, -stiff, -1.0
+    B[2, 2] = B[3, 3] = 50.0
+    B[2, 3], B[3, 2] = 1.0, -delta
+    S = np.eye(4) + 0.3 * np.random.default_rng(seed).standard_normal((4, 4))
+    return S @ B @ np.linalg.inv(S)
+
+
+def test_inverse_iteration_tolerance_scales_with_the_eigenvalue():
+    """‖A‖₁ ≈ 1e10 here, so a tolerance on ‖A‖ ("converged" below 1e-13 ‖A‖, acceptable
+    below 1e-8 ‖A‖ ≈ 100) accepts anything for an eigenvalue of size 50.  The residual must be
+    small relative to |λ| or at the rounding floor of A x (eps ‖|A||x|‖): one step from a
+    poor start is not accepted, a converged run is accurate."""
+    A = badly_scaled()
+    normA = np.linalg.norm(A, 1)
+    exact = np.linalg.eigvals(A)
+    pair = exact[np.abs(exact - 50) < 1]
+    x0 = np.random.default_rng(0).standard_normal(4) + 0j
+    lam, x, ok = st._inverse_iteration(A, 50.3 + 0.2j, x0, maxit=1)
+    res = np.linalg.norm(A @ x - lam * x)
+    assert res <= 1e-8 * normA                 # the old rule would have accepted this
+    floor = np.finfo(float).eps * np.linalg.norm(np.abs(A) @ np.abs(x))
+    assert res > max(1e-8 * abs(lam), 1e3 * floor) and not ok
+    err1 = np.min(np.abs(pair - lam))
+    lam, x, ok = st._inverse_iteration(A, 50.3 + 0.2j, x0)
+    res = np.linalg.norm(A @ x - lam * x)
+    floor = np.finfo(float).eps * np.linalg.norm(np.abs(A) @ np.abs(x))
+    assert ok and res <= 64 * floor            # at the rounding floor of A x (~1e-5 here)
+    err = np.min(np.abs(pair - lam))
+    assert err <= 1e-5 * abs(lam) and err < 1e-2 * err1
+    # through the public API, with the shape of the pair as the start
+    fn = lambda V: np.broadcast_to(A, (np.size(V), 4, 4)).copy()  # noqa: E731
+    w, X = np.linalg.eig(A)
+    j = int(np.argmin(np.abs(w - (50 + 0.1j))))
+    lam1, _ = st.tracked_eigenvalue(fn, 1.0, 50.3 + 0.2j, X[:, j])
+    assert abs(lam1 - w[j]) <= 1e-5 * abs(w[j])
+
+
+def test_analyse_evaluates_a_subset_of_the_grid_and_all_on_request():
+    fn, _, _ = section()
+    grid = np.arange(1.0, 202.0, 5.0)
+    coarse = st.analyse(fn, grid, n_dof=2)
+    full = st.analyse(fn, grid, n_dof=2, initial_step=None)
+    assert np.all(np.isin(grid, full.sweep.V))
+    assert coarse.sweep.V.size < 0.5 * grid.size
+    assert np.all(np.isin(coarse.sweep.grid, grid)) and coarse.sweep.V[0] == grid[0]
+    assert coarse.sweep.V[-1] == grid[-1]
+    for p, q in zip(coarse.criticals.points, full.criticals.points):
+        assert (p.kind, p.direction) == (q.kind, q.direction) and abs(p.V - q.V) < 1e-3
+    with pytest.raises(InputError, match="initial_step"):
+        st.analyse(fn, grid, n_dof=2, initial_step=0.0)
+
+
+def test_benignity_by_central_difference_on_request(section_analysis):
+    """With ``benignity_step`` the benignity is a central difference of ζ (as the thesis),
+    agreeing with the default, from dλ/dV at the crossing."""
+    fn, _, _, an = section_analysis
+    p = [q for q in an.criticals.points if q.kind == "flutter"][0]
+    cd = st.critical_points(an.sweep, fn, benignity_step=0.01)
+    q = [r for r in cd.points if r.kind == "flutter"][0]
+    assert q.dzeta_dV == pytest.approx(p.dzeta_dV, rel=1e-4)

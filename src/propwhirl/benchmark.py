@@ -3,7 +3,8 @@
 One run of ``python -m propwhirl.benchmark`` times, side by side on the same machine,
 
 (a) the engine — :func:`propwhirl.analysis.analyse` with its default grid (1–350 m/s every
-    10 m/s, refined where tracking is ambiguous; crossings refined to 0.01 m/s) — locating
+    10 m/s; :func:`propwhirl.stability.analyse` evaluates the grid speeds ~50 m/s apart first
+    and adds speeds only where tracking needs them; crossings refined to 0.01 m/s) — locating
     every critical speed of the wingtip propeller-wing model of §10.1 (25 elements,
     Leishman–Nguyen, baseline propeller, 0–350 m/s);
 (b) the thesis's method (§5.2.1): a fixed ΔV = 1 m/s sweep from 1 to 350 m/s with a full
@@ -20,10 +21,11 @@ step a full ``eigvals`` of A(V), down to 1e-4 m/s — and reports the engine's e
 
 Timing: wall-clock (``time.perf_counter``) and process CPU time (``time.process_time``); on a
 shared machine the CPU time of a one-thread run is the steadier number.  The engine is run once
-untimed first (imports, generated-code loading, caches), then ``repeats`` times (minimum
-reported); the one-thread fixed-grid sweep is run twice (the run with the smaller CPU time
-reported), the two-thread one once (each is ~350 identical evaluations, so it averages
-itself).
+untimed first (imports, generated-code loading, caches); then ``repeats`` rounds alternate one
+timed engine run and one timed one-thread fixed-grid sweep, so that both sample the same
+spells of load from other jobs, and the minimum of each is reported (the sweep with the
+smaller CPU time); the two-thread sweep is run once (each is ~350 identical evaluations, so it
+averages itself).
 
 Reproduce::
 
@@ -301,14 +303,15 @@ def match_crossings(found: Sequence[Crossing], reference: Sequence[Crossing], *,
 # ----------------------------------------------------------------------------------------------
 # Engine timing and profile
 # ----------------------------------------------------------------------------------------------
-def time_engine(model, repeats: int = 3, speeds=None, options=None) -> tuple[list[Timing], Any]:
-    """Run :func:`propwhirl.analysis.analyse` once untimed, then ``repeats`` times timed (BLAS
-    one thread).  Returns the timings and the last analysis."""
+def time_engine(model, repeats: int = 3, speeds=None, options=None,
+                warm: bool = True) -> tuple[list[Timing], Any]:
+    """Run :func:`propwhirl.analysis.analyse` once untimed (unless ``warm`` is False), then
+    ``repeats`` times timed (BLAS one thread).  Returns the timings and the last analysis."""
     from propwhirl.analysis import analyse
 
     v.integer_at_least("repeats", repeats, 1)
     with threadpool_limits(limits=1):
-        an = analyse(model, speeds, options=options)
+        an = analyse(model, speeds, options=options) if warm else None
         times = []
         for _ in range(repeats):
             t, an = Timing.measure(lambda: analyse(model, speeds, options=options))
@@ -316,31 +319,52 @@ def time_engine(model, repeats: int = 3, speeds=None, options=None) -> tuple[lis
     return times, an
 
 
+#: variants of the engine's core (:func:`propwhirl.stability.analyse` on the default grid):
+#: (name, initial_step [m/s] or None for every grid speed, TrackingOptions changes)
+ENGINE_VARIANTS: tuple[tuple[str, float | None, dict[str, Any]], ...] = (
+    ("default (initial step 50 m/s)", 50.0, {}),
+    ("every grid speed (10 m/s)", None, {}),
+    ("initial step 25 m/s", 25.0, {}),
+    ("initial step 100 m/s", 100.0, {}),
+    ("MAC always required", 50.0, {"decisive_ratio": 0.0}),
+    ("no Hermite margin (sign test)", 50.0, {"margin": 0.0}),
+)
+
+
 def engine_variants(model, converged: Sequence[tuple[Crossing, float, float]],
                     repeats: int = 2) -> list[tuple[str, Timing, int, float, int]]:
-    """Lower bounds of the current engine: the default 10 m/s grid and coarser 20/35 m/s grids
-    with the node budget set to the grid (no refinement at all — NOT a valid analysis, the
-    sweep then lists ambiguous intervals as unresolved).  Rows: (name, best time, speeds
-    evaluated, max |V − converged| over the onsets/recoveries [m/s] (inf: one was missed),
-    unresolved intervals)."""
-    from propwhirl.stability import TrackingOptions
+    """The engine's core, :func:`propwhirl.stability.analyse` alone (no mode names, no
+    frequency-zero events), on the default grid with the variants of :data:`ENGINE_VARIANTS`:
+    how the initial subset of the grid and the tracking options change the cost and the
+    result.  Rows: (name, best time, speeds evaluated, max |V − converged| over the
+    onsets/recoveries [m/s] (inf: one was missed), unresolved intervals)."""
+    from propwhirl import stability as st
 
+    grid = model.flight.speeds()
+    s = model.second_order(np.array([float(grid[0])]))
     rows = []
-    for step in (10.0, 20.0, 35.0):
-        grid = np.append(np.arange(1.0, 350.0, step), 350.0)
-        opts = TrackingOptions(max_nodes=grid.size, hump_check=False)
-        times, an = time_engine(model, repeats, grid, opts)
+    for name, step, changes in ENGINE_VARIANTS:
+        opts = st.TrackingOptions(**changes)
+
+        def run():
+            return st.analyse(model.state_matrix, grid, n_dof=s.n_dof, state_labels=s.labels,
+                              options=opts, xtol=0.01, initial_step=step)
+
+        with threadpool_limits(limits=1):
+            run()
+            times = []
+            for _ in range(repeats):
+                t, an = Timing.measure(run)
+                times.append(t)
         best = Timing(min(t.wall for t in times), min(t.cpu for t in times))
-        eng = engine_crossings(an)
         err = 0.0
         for c, Vc, _ in converged:
             if c.event == "frequency-zero":
-                continue                 # located by analysis.py, not by the sweep's grid
-            same = [e for e in eng if e.event == c.event and e.kind == c.kind
-                    and abs(e.V - c.V) <= 1.0]
-            err = max(err, min((abs(e.V - Vc) for e in same), default=float("inf")))
-        rows.append((f"{step:g} m/s grid, no refinement", best, int(an.sweep.V.size), err,
-                     len(an.sweep.unresolved)))
+                continue                 # an event of analysis.py, not of the core
+            same = [p for p in an.criticals.points if p.direction == c.event
+                    and p.kind == c.kind and abs(p.V - c.V) <= 1.0]
+            err = max(err, min((abs(p.V - Vc) for p in same), default=float("inf")))
+        rows.append((name, best, int(an.sweep.V.size), err, len(an.sweep.unresolved)))
     return rows
 
 
@@ -348,8 +372,11 @@ def engine_variants(model, converged: Sequence[tuple[Crossing, float, float]],
 _PROFILE_PARTS = (
     ("state-matrix assembly (all calls)", "propwhirl/model.py", "state_matrix"),
     ("sweep: full eig (LAPACK geev)", "numpy/linalg/_linalg.py", "eig"),
-    ("sweep: dλ/dV (X⁻¹ A' X)", "propwhirl/stability.py", "_eig_derivative"),
+    ("sweep: dλ/dV (diagonal of X⁻¹ A' X)", "propwhirl/stability.py", "_eig_derivative"),
     ("sweep: linking speeds (MAC, assignment)", "propwhirl/stability.py", "_link"),
+    ("  of which: clusters through branch points", "propwhirl/stability.py",
+     "_cluster_continuations"),
+    ("sweep: branch points of unstable pairs", "propwhirl/stability.py", "_branch_point_speeds"),
     ("sweep: collecting the result", "propwhirl/stability.py", "_assemble"),
     ("crossing refinement (inverse iteration)", "propwhirl/stability.py", "_critical_points"),
     ("mode names (in-vacuo modes, MAC)", "propwhirl/analysis.py", "_mode_names"),
@@ -459,8 +486,13 @@ def run_benchmark(model=None, repeats: int = 3, two_threads: bool = True,
 
         model = wingtip_propeller_wing()
     fn = model.state_matrix
-    engine_times, an = time_engine(model, repeats)
-    runs = [fixed_grid_sweep(fn, THESIS_SPEEDS, threads=1) for _ in range(max(1, min(repeats, 2)))]
+    v.integer_at_least("repeats", repeats, 1)
+    engine_times, runs = [], []
+    _, an = time_engine(model, 1)                      # warm-up and a first timed run
+    for _ in range(repeats):                           # alternate: same spells of load
+        times, an = time_engine(model, 1, warm=False)
+        engine_times += times
+        runs.append(fixed_grid_sweep(fn, THESIS_SPEEDS, threads=1))
     fixed = {1: min(runs, key=lambda r: r.total.cpu)}
     if two_threads:
         fixed[2] = fixed_grid_sweep(fn, THESIS_SPEEDS, threads=2)
@@ -539,8 +571,8 @@ def report(res: BenchmarkResult) -> str:
     L.append(f"Engine counters: {res.engine_stats}")
     if res.variants:
         L.append("")
-        L.append("Lower bounds of the current engine (node budget = grid, no refinement; not valid "
-                 "analyses; error over onsets/recoveries, inf = one missed):")
+        L.append("Variants of the engine's core (propwhirl.stability.analyse alone, default grid; "
+                 "error over onsets/recoveries, inf = one missed):")
         L.append(f"  {'variant':32s} {'wall [s]':>8s} {'cpu [s]':>8s} {'speeds':>6s} "
                  f"{'(b)/variant':>11s} {'max err [m/s]':>13s} {'unresolved':>10s}")
         f1 = res.fixed[1].total
@@ -556,7 +588,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap.add_argument("--no-two-threads", action="store_true", help="skip (b) with 2 BLAS threads")
     ap.add_argument("--no-profile", action="store_true", help="skip the cProfile breakdown")
     ap.add_argument("--no-variants", action="store_true",
-                    help="skip the no-refinement lower bounds of the engine")
+                    help="skip the variants of the engine's core (initial step, options)")
     ap.add_argument("--markdown", type=Path, default=None,
                     help="also write the tables (as a fenced block) to this file's "
                          "'<!-- benchmark -->' section")
