@@ -59,7 +59,7 @@ def test_analyse_prints_the_summary_and_writes_results(small_file, tmp_path, cap
             "--csv", str(out_csv), "--plot", str(out_png), "--plot-modes", "5"]
     assert cli.main(argv) == 0
     text = capsys.readouterr().out
-    ref = analyse(io.load_model(small_file), np.append(np.arange(1.0, 350.0, 10.0), 350.0))
+    ref = analyse(io.load_model(small_file), np.append(np.arange(1.0, 350.0, 10.0), 350.0), vgf=True)
     assert ref.summary() in text
     saved = load(out_json)
     assert saved.events == ref.events

@@ -171,3 +171,15 @@ def test_analysis_describes_modes_by_content():
     a = analyse(baseline_wing_model(), np.arange(100.0, 200.0, 10.0))
     assert a.describe("wing 1") == "wing 1 (bending)" and a.describe("wing 2") == "wing 2 (torsion)"
     assert a.first("wing 2", "flutter").V == pytest.approx(149.88, abs=0.02)
+
+
+def test_vgf_sweep_evaluates_every_grid_speed_and_finds_the_same_events():
+    from propwhirl.analysis import analyse
+
+    model = wingtip_propeller_wing()
+    grid = model.flight.speeds()
+    fast, full = analyse(model), analyse(model, vgf=True)
+    assert set(grid) <= set(full.sweep.V) and len(fast.sweep.V) < len(grid)
+    assert [(e.label, e.event) for e in fast.events] == [(e.label, e.event) for e in full.events]
+    for a, b in zip(fast.events, full.events):
+        assert abs(a.V - b.V) <= 0.02

@@ -273,13 +273,15 @@ def _frequency_zero_events(model, sw: st.Sweep, names: list[str], xtol: float) -
 
 
 # ----------------------------------------------------------------------------- analyse
-def analyse(model, speeds=None, *, xtol: float = 0.01,
+def analyse(model, speeds=None, *, xtol: float = 0.01, vgf: bool = False,
             options: st.TrackingOptions | None = None) -> ModelAnalysis:
-    """V-g-f sweep with mode tracking and every instability of `model` over `speeds` [m/s].
+    """Every instability of `model` over `speeds` [m/s], with tracked, named modes.
 
-    `speeds` is the initial grid [m/s] (default: the model's FlightCondition.speed_range,
-    1–350 m/s every 10 m/s — the thesis's 0–350 m/s); the engine refines it where needed;
-    crossings are refined to `xtol` [m/s].
+    `speeds` is the grid [m/s] (default: the model's FlightCondition.speed_range, 1–350 m/s
+    every 10 m/s — the thesis's 0–350 m/s); crossings are located to `xtol` [m/s].  To find
+    the critical speeds the engine needs only a subset of the grid (it starts ≈ 50 m/s apart
+    and adds speeds where tracking or a possible crossing asks for them), so by default
+    `.sweep` is coarse; `vgf=True` evaluates every grid speed (for V-g-f plots and tables).
     """
     if speeds is None:
         flight = getattr(model, "flight", None)
@@ -290,7 +292,7 @@ def analyse(model, speeds=None, *, xtol: float = 0.01,
     s = model.second_order(np.array([float(grid[0])]))
     labels = s.labels
     an = st.analyse(model.state_matrix, grid, n_dof=s.n_dof, state_labels=labels,
-                    options=options, xtol=xtol)
+                    options=options, xtol=xtol, **({"initial_step": None} if vgf else {}))
     sw = an.sweep
     names = _mode_names(model, sw)
     sw = sw.relabel(names)

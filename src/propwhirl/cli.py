@@ -224,7 +224,7 @@ def _analyse(args: argparse.Namespace) -> int:
     _check_outputs(json=args.json, csv=args.csv, plot=args.plot)
     model = _load(args.model)
     speeds = speed_grid(*args.speeds) if args.speeds else None
-    a = analyse(model, speeds)
+    a = analyse(model, speeds, vgf=True)
     print(a.summary())
     if args.json:
         a.save(args.json)

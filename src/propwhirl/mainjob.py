@@ -156,7 +156,7 @@ def main(out: Path) -> int:
     thesis = _thesis_values()
     lines = describe(model) + mode_lines(model, thesis)
     print("\n".join(lines), flush=True)
-    a = analyse(model, xtol=0.01)  # speeds: model.flight.speed_range (1-350 m/s)
+    a = analyse(model, xtol=0.01, vgf=True)  # every grid speed of model.flight.speed_range (1-350 m/s)
     more = event_lines(a, thesis)
     print("\n".join(more), flush=True)
     lines += more
