@@ -154,9 +154,6 @@ def _mode_names(model, sw: st.Sweep) -> list[str]:
     real = [k for k in range(n) if phys[k] and k not in osc]
     for i, k in enumerate(sorted(real, key=lambda k: -lam0[k].real)):
         names[k] = f"lag {i + 1}"
-    for k in range(n):
-        if not phys[k] and sw.partner[k] >= 0:
-            names[k] = f"{names[sw.partner[k]]}'"
     kind = type(model).__name__
     if kind == "PropellerWing":
         from propwhirl.vibration import label_modes, model_modes
@@ -180,7 +177,7 @@ def _mode_names(model, sw: st.Sweep) -> list[str]:
         for k in osc:
             c = st.content(X0[:2, k], {"plunge": [0], "pitch": [1]})
             names[k] = max(c, key=lambda g: c[g])
-    for k in range(n):  # re-derive partner names after the physical modes were named
+    for k in range(n):  # hidden conjugate partners: "<name>'"
         if not phys[k] and sw.partner[k] >= 0:
             names[k] = f"{names[sw.partner[k]]}'"
     return names
