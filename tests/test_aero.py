@@ -1,4 +1,4 @@
-"""Houbolt–Reed propeller derivatives (propwhirl.aero, thesis chapter 4)."""
+"""Houbolt–Reed propeller derivatives (propwhirl.model.propeller_aero, thesis chapter 4)."""
 from __future__ import annotations
 
 import json
@@ -12,11 +12,11 @@ from hypothesis import given, settings as hsettings, strategies as st
 from scipy import integrate
 from scipy.special import hankel2, jv, yv
 
-from propwhirl import aero
-from propwhirl.aero import (AeroSettings, DERIVATIVE_NAMES, Distribution, PropellerGeometry,
+from propwhirl.model import propeller_aero as aero
+from propwhirl.model.propeller_aero import (AeroSettings, DERIVATIVE_NAMES, Distribution, PropellerGeometry,
                             advance_ratio_from_blade_angle, constant_speed, derivatives,
                             theodorsen, windmilling)
-from propwhirl.cli import main
+from propwhirl.app.cli import main
 from propwhirl.validate import InputError
 
 GEO = PropellerGeometry(n_blades=4, radius=1.2, hub_ratio=0.2, chord=0.15)

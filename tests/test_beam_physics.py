@@ -4,10 +4,10 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from propwhirl.assembly import wing_structure
+from propwhirl.model.assembly import wing_structure
 from propwhirl.cases.ch07_patil import patil_wing
 from propwhirl.generated import beam_element
-from propwhirl.vibration import classify_wing_modes
+from propwhirl.analysis.vibration import classify_wing_modes
 
 pos = st.floats(min_value=1e-2, max_value=1e3)
 

@@ -7,7 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from propwhirl import aero, reproduce
+from propwhirl.model import propeller_aero as aero
+from propwhirl.reproduce import harness as reproduce
 from propwhirl.cases import ch04_propeller_aero as ch4
 
 IDS = [f"t4.1/beta{b}/{r}" for b in ch4.TABLE_4_1_BETAS for r in ch4.TABLE_4_1_ROWS]

@@ -8,11 +8,11 @@ from __future__ import annotations
 
 import pytest
 
-from propwhirl import reproduce
-from propwhirl.analysis import analyse, speed_and_frequency
+from propwhirl.reproduce import harness as reproduce
+from propwhirl.analysis.stability import analyse, speed_and_frequency
 from propwhirl.cases import ch11_parametric as ch11
 from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
-from propwhirl.studies import blade_angle_mode_switch, whirl_flutter_speeds
+from propwhirl.studies.parametric import blade_angle_mode_switch, whirl_flutter_speeds
 from propwhirl.validate import InputError
 
 pytestmark = pytest.mark.long

@@ -7,9 +7,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from propwhirl import cli, io
-from propwhirl.analysis import analyse, load
-from propwhirl.vibration import campbell, label_modes
+from propwhirl.app import cli
+from propwhirl.io import files as io
+from propwhirl.analysis.stability import analyse, load
+from propwhirl.analysis.vibration import campbell, label_modes
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -17,7 +18,7 @@ ROOT = Path(__file__).resolve().parent.parent
 def small_tip_model():
     """Baseline wing with 5 elements and the baseline propeller at the tip (fast)."""
     from propwhirl.cases.ch09_baseline import baseline_flight, baseline_propeller, baseline_wing
-    from propwhirl.model import Installation, PropellerWing
+    from propwhirl.model.systems import Installation, PropellerWing
 
     return PropellerWing(baseline_wing(5), baseline_flight(),
                          (Installation(baseline_propeller(), 5.7),), name="small tip model")

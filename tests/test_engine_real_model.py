@@ -22,8 +22,8 @@ import pytest
 from scipy.optimize import linear_sum_assignment
 from threadpoolctl import threadpool_limits
 
-from propwhirl import stability as st
-from propwhirl.analysis import analyse
+from propwhirl.engine import core as st
+from propwhirl.analysis.stability import analyse
 from propwhirl.benchmark import (
     converge_crossing,
     detect_crossings,
@@ -31,8 +31,8 @@ from propwhirl.benchmark import (
     match_crossings,
 )
 from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
-from propwhirl.reproduce import load_references
-from propwhirl.response import rotation_sign
+from propwhirl.reproduce.harness import load_references
+from propwhirl.analysis.response import rotation_sign
 
 LOW_MODES = ("wing 1", "backward 1", "forward 1", "wing 2", "wing 3", "wing 4", "wing 5")
 DENSE_STEP = 0.5        # [m/s]

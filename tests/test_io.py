@@ -10,9 +10,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from propwhirl import io
-from propwhirl.aero import AeroSettings, Distribution, HouboltReedSource, PropellerGeometry
-from propwhirl.analysis import analyse
+from propwhirl.io import files as io
+from propwhirl.model.propeller_aero import AeroSettings, Distribution, HouboltReedSource, PropellerGeometry
+from propwhirl.analysis.stability import analyse
 from propwhirl.cases.ch06_isolated import bennett_bland_propeller
 from propwhirl.cases.ch07_patil import patil_model
 from propwhirl.cases.ch09_baseline import (
@@ -22,10 +22,10 @@ from propwhirl.cases.ch09_baseline import (
     isolated_baseline_propeller,
 )
 from propwhirl.cases.ch10_other_wings import two_propeller_wing, wingtip_propeller_wing
-from propwhirl.model import FlightCondition, Installation, IsolatedPropeller, PropellerWing
-from propwhirl.propeller import MeasuredDerivatives, PointMass
+from propwhirl.model.systems import FlightCondition, Installation, IsolatedPropeller, PropellerWing
+from propwhirl.model.propeller import MeasuredDerivatives, PointMass
 from propwhirl.validate import InputError
-from propwhirl.wing import Wing
+from propwhirl.model.wing import Wing
 
 ROOT = Path(__file__).resolve().parent.parent
 SPEEDS = np.array([5.0, 120.0, 300.0])

@@ -9,10 +9,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from propwhirl import io, mainjob
-from propwhirl.analysis import load
-from propwhirl.reproduce import load_references
-from propwhirl.vibration import label_modes
+from propwhirl.io import files as io
+from propwhirl.app import run as mainjob
+from propwhirl.analysis.stability import load
+from propwhirl.reproduce.harness import load_references
+from propwhirl.analysis.vibration import label_modes
 
 PNG = b"\x89PNG\r\n\x1a\n"
 

@@ -5,10 +5,10 @@ import pytest
 from propwhirl.cases.ch07_patil import PATIL_DENSITY, patil_wing
 from propwhirl.cases.ch09_baseline import baseline_propeller, baseline_wing, baseline_flight, propeller_wing
 from propwhirl.cases.ch10_other_wings import tip_y, two_propeller_wing, wingtip_propeller_wing
-from propwhirl.model import FlightCondition, Installation, PropellerWing, node_at
-from propwhirl.propeller import MeasuredDerivatives
+from propwhirl.model.systems import FlightCondition, Installation, PropellerWing, node_at
+from propwhirl.model.propeller import MeasuredDerivatives
 from propwhirl.validate import InputError
-from propwhirl.vibration import campbell, label_modes
+from propwhirl.analysis.vibration import campbell, label_modes
 
 NO_AERO = MeasuredDerivatives({})
 
@@ -165,7 +165,7 @@ def test_flight_condition_default_grid_covers_the_thesis_range():
 
 
 def test_analysis_describes_modes_by_content():
-    from propwhirl.analysis import analyse
+    from propwhirl.analysis.stability import analyse
     from propwhirl.cases.ch09_baseline import baseline_wing_model
 
     a = analyse(baseline_wing_model(), np.arange(100.0, 200.0, 10.0))
@@ -174,7 +174,7 @@ def test_analysis_describes_modes_by_content():
 
 
 def test_vgf_sweep_evaluates_every_grid_speed_and_finds_the_same_events():
-    from propwhirl.analysis import analyse
+    from propwhirl.analysis.stability import analyse
 
     model = wingtip_propeller_wing()
     grid = model.flight.speeds()

@@ -19,7 +19,7 @@ from hypothesis import strategies as st
 
 from propwhirl.generated import prop_flexwing as g8
 from propwhirl.generated import prop_rigid as g6
-from propwhirl.reproduce import load_references
+from propwhirl.reproduce.harness import load_references
 
 SETTINGS = settings(max_examples=40, deadline=None)
 DERIVS = tuple(f"{c}_{v}" for c in ("CZ", "Cm", "CY", "Cn") for v in ("theta", "psi", "q", "r"))

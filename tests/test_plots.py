@@ -9,18 +9,18 @@ import numpy as np
 import pytest
 from matplotlib.colors import to_rgba
 
-from propwhirl import plots
-from propwhirl import stability as st
-from propwhirl.analysis import ModelAnalysis, analyse
+from propwhirl.app import plots
+from propwhirl.engine import core as st
+from propwhirl.analysis.stability import ModelAnalysis, analyse
 from propwhirl.cases.ch09_baseline import (
     baseline_flight,
     baseline_propeller,
     baseline_wing,
     isolated_baseline_propeller,
 )
-from propwhirl.model import Installation, PropellerWing
+from propwhirl.model.systems import Installation, PropellerWing
 from propwhirl.validate import InputError
-from propwhirl.vibration import campbell
+from propwhirl.analysis.vibration import campbell
 
 PNG = b"\x89PNG\r\n\x1a\n"
 
@@ -244,12 +244,12 @@ def test_runtime_and_cli_import_without_matplotlib():
                 if name.split('.')[0] == 'matplotlib':
                     raise ImportError('matplotlib blocked for this test')
         sys.meta_path.insert(0, Block())
-        import propwhirl.plots, propwhirl.io, propwhirl.cli, propwhirl.mainjob
-        from propwhirl import cli
+        import propwhirl.app.plots, propwhirl.io.files, propwhirl.app.cli, propwhirl.app.run
+        from propwhirl.app import cli
         assert cli.main(['case', 'isolated-propeller']) == 0
         assert 'matplotlib' not in sys.modules
         try:
-            propwhirl.plots.campbell_diagram([0.0, 1.0], [[1.0], [1.0]])
+            propwhirl.app.plots.campbell_diagram([0.0, 1.0], [[1.0], [1.0]])
         except propwhirl.validate.InputError as exc:
             assert 'pip install propwhirl[plots]' in str(exc)
             print('ok')

@@ -3,7 +3,7 @@ from pathlib import Path
 
 import pytest
 
-from propwhirl.reproduce import load_references
+from propwhirl.reproduce.harness import load_references
 
 ROOT = Path(__file__).resolve().parent.parent
 SHARED = ROOT.parent / "shared" / "reference" / "thesis_values.toml"

@@ -3,7 +3,8 @@ import json
 
 import pytest
 
-from propwhirl import cli, reproduce
+from propwhirl.app import cli
+from propwhirl.reproduce import harness as reproduce
 
 
 @pytest.fixture(scope="module")

@@ -12,18 +12,18 @@ Campbell: at Ω = 0 the tracked frequencies equal Tables 9.8, 10.3 and 10.7 (ref
 and tolerances from thesis_values.toml); backward whirl falls and forward whirl rises with the
 rotational speed, modes below the backward whirl fall and modes above the forward whirl rise
 (§10.1.2); curves never cross (they veer, §8.4.1, §9.3.2), also far beyond the operating range
-where the whirl modes meet the wing modes; the table equals propwhirl.vibration.campbell.
+where the whirl modes meet the wing modes; the table equals propwhirl.analysis.vibration.campbell.
 """
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from propwhirl.analysis import analyse
+from propwhirl.analysis.stability import analyse
 from propwhirl.cases.ch09_baseline import inboard_propeller_wing, isolated_baseline_propeller
 from propwhirl.cases.ch10_other_wings import two_propeller_wing, wingtip_propeller_wing
-from propwhirl.reproduce import load_references
-from propwhirl.response import (
+from propwhirl.reproduce.harness import load_references
+from propwhirl.analysis.response import (
     THESIS_RESPONSE_SPEEDS,
     baseline_propeller_responses,
     campbell_table,
@@ -31,7 +31,7 @@ from propwhirl.response import (
     simulate,
 )
 from propwhirl.validate import InputError
-from propwhirl.vibration import campbell
+from propwhirl.analysis.vibration import campbell
 
 TH, PS = "propeller 0 theta", "propeller 0 psi"
 T_SETTLED = 2.0        # [s] the forward whirl mode (Re λ ≈ −2.4 … −2.9 1/s at 222–250 m/s) is gone

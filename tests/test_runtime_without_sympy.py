@@ -14,7 +14,7 @@ def test_runtime_runs_with_codegen_packages_blocked():
                     raise ImportError(f'{name} blocked for this test')
         sys.meta_path.insert(0, Block())
         import propwhirl
-        from propwhirl import reproduce
+        from propwhirl.reproduce import harness as reproduce
         from propwhirl.generated import MODULES
         import importlib
         for m in MODULES:

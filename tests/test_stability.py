@@ -20,7 +20,7 @@ from hypothesis import strategies as st_
 from numpy.polynomial import polynomial as P
 from scipy.optimize import brentq
 
-from propwhirl import stability as st
+from propwhirl.engine import core as st
 from propwhirl.validate import InputError
 
 

@@ -1,4 +1,4 @@
-"""Chapter 11 parametric studies (propwhirl.studies): table shape, the thesis's robust trends,
+"""Chapter 11 parametric studies (propwhirl.studies.parametric): table shape, the thesis's robust trends,
 parallel == serial, bad input.  Small grids, mostly the (fast) isolated propeller."""
 from __future__ import annotations
 
@@ -8,8 +8,8 @@ import math
 import numpy as np
 import pytest
 
-from propwhirl import studies as S
-from propwhirl.analysis import Instability, ModelAnalysis
+from propwhirl.studies import parametric as S
+from propwhirl.analysis.stability import Instability, ModelAnalysis
 from propwhirl.cases.ch09_baseline import baseline_propeller
 from propwhirl.validate import InputError
 

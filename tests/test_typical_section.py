@@ -5,9 +5,9 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from propwhirl.aero import theodorsen
+from propwhirl.model.propeller_aero import theodorsen
 from propwhirl.generated import typical_section
-from propwhirl.model import FlightCondition, TypicalSection
+from propwhirl.model.systems import FlightCondition, TypicalSection
 from propwhirl.validate import InputError
 
 RHO = 1.225

@@ -1,6 +1,6 @@
-"""`python -m propwhirl` — the command-line interface (see propwhirl.cli)."""
+"""`python -m propwhirl` — the command-line interface (see propwhirl.app.cli)."""
 import sys
 
-from propwhirl.cli import main
+from propwhirl.app.cli import main
 
 sys.exit(main())

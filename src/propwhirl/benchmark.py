@@ -2,8 +2,8 @@
 
 One run of ``python -m propwhirl.benchmark`` times, side by side on the same machine,
 
-(a) the engine — :func:`propwhirl.analysis.analyse` with its default grid (1–350 m/s every
-    10 m/s; :func:`propwhirl.stability.analyse` evaluates the grid speeds ~50 m/s apart first
+(a) the engine — :func:`propwhirl.analysis.stability.analyse` with its default grid (1–350 m/s every
+    10 m/s; :func:`propwhirl.engine.core.analyse` evaluates the grid speeds ~50 m/s apart first
     and adds speeds only where tracking needs them; crossings refined to 0.01 m/s) — locating
     every critical speed of the wingtip propeller-wing model of §10.1 (25 elements,
     Leishman–Nguyen, baseline propeller, 0–350 m/s);
@@ -265,7 +265,7 @@ def converge_crossing(state_matrix: Callable[[np.ndarray], np.ndarray], lo: floa
 
 
 def engine_crossings(analysis) -> tuple[Crossing, ...]:
-    """Crossings of a :class:`propwhirl.analysis.ModelAnalysis`: onsets, recoveries and
+    """Crossings of a :class:`propwhirl.analysis.stability.ModelAnalysis`: onsets, recoveries and
     frequency-zero events (``unstable-at-start`` is not a crossing and is left out)."""
     bracket = {(p.mode, float(p.V)): tuple(map(float, p.bracket))
                for p in analysis.criticals.points}
@@ -305,9 +305,9 @@ def match_crossings(found: Sequence[Crossing], reference: Sequence[Crossing], *,
 # ----------------------------------------------------------------------------------------------
 def time_engine(model, repeats: int = 3, speeds=None, options=None,
                 warm: bool = True) -> tuple[list[Timing], Any]:
-    """Run :func:`propwhirl.analysis.analyse` once untimed (unless ``warm`` is False), then
+    """Run :func:`propwhirl.analysis.stability.analyse` once untimed (unless ``warm`` is False), then
     ``repeats`` times timed (BLAS one thread).  Returns the timings and the last analysis."""
-    from propwhirl.analysis import analyse
+    from propwhirl.analysis.stability import analyse
 
     v.integer_at_least("repeats", repeats, 1)
     with threadpool_limits(limits=1):
@@ -319,7 +319,7 @@ def time_engine(model, repeats: int = 3, speeds=None, options=None,
     return times, an
 
 
-#: variants of the engine's core (:func:`propwhirl.stability.analyse` on the default grid):
+#: variants of the engine's core (:func:`propwhirl.engine.core.analyse` on the default grid):
 #: (name, initial_step [m/s] or None for every grid speed, TrackingOptions changes)
 ENGINE_VARIANTS: tuple[tuple[str, float | None, dict[str, Any]], ...] = (
     ("default (initial step 50 m/s)", 50.0, {}),
@@ -333,12 +333,12 @@ ENGINE_VARIANTS: tuple[tuple[str, float | None, dict[str, Any]], ...] = (
 
 def engine_variants(model, converged: Sequence[tuple[Crossing, float, float]],
                     repeats: int = 2) -> list[tuple[str, Timing, int, float, int]]:
-    """The engine's core, :func:`propwhirl.stability.analyse` alone (no mode names, no
+    """The engine's core, :func:`propwhirl.engine.core.analyse` alone (no mode names, no
     frequency-zero events), on the default grid with the variants of :data:`ENGINE_VARIANTS`:
     how the initial subset of the grid and the tracking options change the cost and the
     result.  Rows: (name, best time, speeds evaluated, max |V − converged| over the
     onsets/recoveries [m/s] (inf: one was missed), unresolved intervals)."""
-    from propwhirl import stability as st
+    from propwhirl.engine import core as st
 
     grid = model.flight.speeds()
     s = model.second_order(np.array([float(grid[0])]))
@@ -390,7 +390,7 @@ def profile_engine(model) -> tuple[float, list[tuple[str, float, int]]]:
     The parts overlap (assembly is also called inside the sweep and the refinement); the
     profiler's own overhead inflates Python-heavy parts.
     """
-    from propwhirl.analysis import analyse
+    from propwhirl.analysis.stability import analyse
 
     prof = cProfile.Profile()
     with threadpool_limits(limits=1):
@@ -571,7 +571,7 @@ def report(res: BenchmarkResult) -> str:
     L.append(f"Engine counters: {res.engine_stats}")
     if res.variants:
         L.append("")
-        L.append("Variants of the engine's core (propwhirl.stability.analyse alone, default grid; "
+        L.append("Variants of the engine's core (propwhirl.engine.core.analyse alone, default grid; "
                  "error over onsets/recoveries, inf = one missed):")
         L.append(f"  {'variant':32s} {'wall [s]':>8s} {'cpu [s]':>8s} {'speeds':>6s} "
                  f"{'(b)/variant':>11s} {'max err [m/s]':>13s} {'unresolved':>10s}")

@@ -1,7 +1,7 @@
 """The thesis's models as a case library, one module per chapter.
 
 Each module defines named, documented functions returning models, and registers with
-:func:`propwhirl.reproduce.register` the functions that recompute the thesis's numbers.
+:func:`propwhirl.reproduce.harness.register` the functions that recompute the thesis's numbers.
 Importing this package imports every case module (so all reproduction cases register).
 """
 import importlib

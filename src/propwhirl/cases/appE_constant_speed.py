@@ -7,12 +7,12 @@ instabilities recover within a few m/s and are not what the appendix reports.
 """
 from __future__ import annotations
 
-from propwhirl.analysis import analyse, first_of_kind, speed_and_frequency
+from propwhirl.analysis.stability import analyse, first_of_kind, speed_and_frequency
 from propwhirl.cases.ch09_baseline import baseline_propeller, inboard_y, propeller_wing
 from propwhirl.cases.ch10_other_wings import two_propeller_wing, wingtip_propeller_wing
-from propwhirl.model import PropellerWing
-from propwhirl.propeller import Propeller
-from propwhirl.reproduce import register
+from propwhirl.model.systems import PropellerWing
+from propwhirl.model.propeller import Propeller
+from propwhirl.reproduce.harness import register
 
 #: Cruise rotational speed of appendix E [rev/min] (Table 9.3)
 CRUISE_RPM = 2250.0

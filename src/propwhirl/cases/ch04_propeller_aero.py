@@ -13,7 +13,7 @@ values below were inferred by numerical experiment (docs/validation.md, "Chapter
   0.1823 ft chord, A = R(1 − η0)/0.1823 ft (not recomputed for the doubled chord);
 * hub ratio η0 = 0.22;
 * windmilling advance ratio μ = 0.75 tan(β_0.75R + 3°) (zero lift at the 0.75R section
-  with α_0L = −3°, rule "blade_element" of :func:`propwhirl.aero.advance_ratio_from_blade_angle`).
+  with α_0L = −3°, rule "blade_element" of :func:`propwhirl.model.propeller_aero.advance_ratio_from_blade_angle`).
 """
 from __future__ import annotations
 
@@ -22,8 +22,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from propwhirl import aero
-from propwhirl.reproduce import register
+from propwhirl.model import propeller_aero as aero
+from propwhirl.reproduce.harness import register
 
 FT = 0.3048  # m per ft
 
@@ -57,7 +57,7 @@ class Table41Assumptions:
                       "eq_4_21": eq. 4.21 with the doubled chord
     taper             c_tip/c_root of a linear chord with c(0.75) = the chord (1: constant)
     zero_lift_deg     α_0L [deg] of the windmilling relation
-    advance_rule      see :func:`propwhirl.aero.advance_ratio_from_blade_angle`
+    advance_rule      see :func:`propwhirl.model.propeller_aero.advance_ratio_from_blade_angle`
     settings          model switches (default: wake + compressibility + aspect ratio)
     speed_of_sound    [m/s]
     """
@@ -136,7 +136,7 @@ SENSITIVITY_CASES: dict[str, Table41Assumptions] = {
 
 def table_4_1_sensitivity() -> dict[str, dict[str, float]]:
     """Per variation: max |relative difference| to the thesis values per row, and rms."""
-    from propwhirl.reproduce import load_references
+    from propwhirl.reproduce.harness import load_references
 
     refs = {r.id: r.thesis for r in load_references() if r.id.startswith("t4.1/")}
     out = {}

@@ -14,12 +14,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from propwhirl import aero
-from propwhirl.analysis import analyse, speed_and_frequency
+from propwhirl.model import propeller_aero as aero
+from propwhirl.analysis.stability import analyse, speed_and_frequency
 from propwhirl.cases.ch04_propeller_aero import BB_RADIUS, FT, RR_SPEED_OF_SOUND, bennett_bland_geometry
-from propwhirl.model import FlightCondition, IsolatedPropeller
-from propwhirl.propeller import PointMass, Propeller
-from propwhirl.reproduce import register
+from propwhirl.model.systems import FlightCondition, IsolatedPropeller
+from propwhirl.model.propeller import PointMass, Propeller
+from propwhirl.reproduce.harness import register
 
 SLUG = 14.593903  # kg
 SLUG_FT2 = SLUG * FT**2  # kg m²

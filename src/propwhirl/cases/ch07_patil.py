@@ -7,11 +7,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from propwhirl.analysis import analyse, first_of_kind, speed_and_frequency
-from propwhirl.model import FlightCondition, PropellerWing
-from propwhirl.reproduce import register
-from propwhirl.vibration import classify_wing_modes
-from propwhirl.wing import LiftSlope, Wing
+from propwhirl.analysis.stability import analyse, first_of_kind, speed_and_frequency
+from propwhirl.model.systems import FlightCondition, PropellerWing
+from propwhirl.reproduce.harness import register
+from propwhirl.analysis.vibration import classify_wing_modes
+from propwhirl.model.wing import LiftSlope, Wing
 
 #: Air density at 20 km used with the Patil wing (Table 7.1) [kg/m³]
 PATIL_DENSITY = 0.0889

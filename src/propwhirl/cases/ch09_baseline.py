@@ -10,18 +10,18 @@ from __future__ import annotations
 
 import numpy as np
 
-from propwhirl.analysis import analyse, first_of_kind, speed_and_frequency
-from propwhirl.model import (
+from propwhirl.analysis.stability import analyse, first_of_kind, speed_and_frequency
+from propwhirl.model.systems import (
     SPEED_OF_SOUND_8000FT,
     FlightCondition,
     Installation,
     IsolatedPropeller,
     PropellerWing,
 )
-from propwhirl.propeller import PointMass, Propeller
-from propwhirl.reproduce import register
-from propwhirl.vibration import label_modes, wing_modes
-from propwhirl.wing import Wing
+from propwhirl.model.propeller import PointMass, Propeller
+from propwhirl.reproduce.harness import register
+from propwhirl.analysis.vibration import label_modes, wing_modes
+from propwhirl.model.wing import Wing
 
 #: Air density at 8000 ft used throughout chapters 9–11 (Table 9.1) [kg/m³]
 BASELINE_DENSITY = 0.962870

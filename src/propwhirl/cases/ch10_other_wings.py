@@ -2,11 +2,11 @@
 (inboard at 1.6 m and wingtip), §10.1–10.2; 25 elements, baseline propellers."""
 from __future__ import annotations
 
-from propwhirl.analysis import analyse, speed_and_frequency
+from propwhirl.analysis.stability import analyse, speed_and_frequency
 from propwhirl.cases.ch09_baseline import baseline_wing, inboard_y, propeller_wing
-from propwhirl.model import PropellerWing
-from propwhirl.reproduce import register
-from propwhirl.vibration import label_modes
+from propwhirl.model.systems import PropellerWing
+from propwhirl.reproduce.harness import register
+from propwhirl.analysis.vibration import label_modes
 
 
 def tip_y() -> float:

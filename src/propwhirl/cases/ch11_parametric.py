@@ -2,14 +2,14 @@
 
 Positions are measured from the wing mid-chord, positive aft (Table 9.4).  The cases here are
 the thesis's tabulated ones (Figure 11.3, Tables 11.1–11.6, the §11.6 mode switch); the swept
-curves of Figures 11.1–11.15 are functions of :mod:`propwhirl.studies`.
+curves of Figures 11.1–11.15 are functions of :mod:`propwhirl.studies.parametric`.
 """
 from __future__ import annotations
 
 from propwhirl.cases.ch09_baseline import baseline_propeller
 from propwhirl.generated import prop_flexwing
-from propwhirl.propeller import PointMass, Propeller
-from propwhirl.reproduce import register
+from propwhirl.model.propeller import PointMass, Propeller
+from propwhirl.reproduce.harness import register
 
 
 def cg_moved(rotor_x: float, motor_x: float) -> Propeller:
@@ -87,7 +87,7 @@ def wingtip_with(propeller: Propeller):
 
 def mode_onset(propeller: Propeller, label: str) -> tuple[float, float]:
     """(V [m/s], f [Hz]) of the flutter onset of mode `label` of the wingtip model with `propeller`."""
-    from propwhirl.analysis import analyse, speed_and_frequency
+    from propwhirl.analysis.stability import analyse, speed_and_frequency
 
     return speed_and_frequency(analyse(wingtip_with(propeller)).first(label, "flutter"))
 
@@ -134,6 +134,6 @@ def table_11_6() -> dict[str, float]:
 def section_11_6() -> dict[str, float]:
     """§11.6: blade angle at which the wingtip model's critical whirl mode switches from forward
     to backward whirl (bisection on β between 60° and 80°, 0.1° accuracy)."""
-    from propwhirl.studies import blade_angle_mode_switch
+    from propwhirl.studies.parametric import blade_angle_mode_switch
 
     return {"s11.6/critical_mode_switch_beta": blade_angle_mode_switch((60.0, 80.0), xtol=0.1).beta}

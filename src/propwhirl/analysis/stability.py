@@ -1,12 +1,12 @@
 """Stability analysis of a model: labelled V-g-f sweep, instabilities, the critical one.
 
-:func:`analyse` runs the engine of :mod:`propwhirl.stability` on a model's state matrix
+:func:`analyse` runs the engine of :mod:`propwhirl.engine.core` on a model's state matrix
 (PropellerWing, IsolatedPropeller or TypicalSection) and names the tracked modes the way the
 thesis does (chapters 9–11):
 
 * propeller–wing models: each aeroelastic mode is matched at the first speed, by an optimal
   one-to-one MAC assignment on the displacement part, to the in-vacuo modes named by
-  :func:`propwhirl.vibration.label_modes` ("wing n", "backward k", "forward k"); the real
+  :func:`propwhirl.analysis.vibration.label_modes` ("wing n", "backward k", "forward k"); the real
   aerodynamic lag roots are "lag k";
 * the isolated propeller: "backward" and "forward" whirl from the sense of the θ–ψ orbit at the
   first speed (or, without rotation, by frequency);
@@ -30,7 +30,7 @@ from typing import Any
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
-from propwhirl import stability as st
+from propwhirl.engine import core as st
 from propwhirl import validate as v
 
 #: Default airspeed grid of the thesis's analyses (0–350 m/s; the engine refines it) [m/s]
@@ -156,7 +156,7 @@ def _mode_names(model, sw: st.Sweep) -> list[str]:
         names[k] = f"lag {i + 1}"
     kind = type(model).__name__
     if kind == "PropellerWing":
-        from propwhirl.vibration import label_modes, model_modes
+        from propwhirl.analysis.vibration import label_modes, model_modes
 
         modes, _ = model_modes(model)
         ref = [lab for lab, _ in label_modes(model)]
@@ -215,7 +215,7 @@ CONTENT_GROUPS = {
 
 def _content(model, sw: st.Sweep, names: list[str]) -> dict[str, dict[str, float]]:
     """Kinetic-energy shares of each physical oscillatory mode at the first speed."""
-    from propwhirl.vibration import energy_fractions
+    from propwhirl.analysis.vibration import energy_fractions
 
     V0 = np.array([float(sw.V[0])])
     quiet = model.with_(**{k: False for k in ("wing_aero", "propeller_aero") if hasattr(model, k)}) \

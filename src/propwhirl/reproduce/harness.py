@@ -4,7 +4,7 @@ The reference values, their ids and tolerances come from `propwhirl/data/thesis_
 (an unchanged copy of `shared/reference/thesis_values.toml`).  Model modules register the
 functions that recompute them:
 
-    from propwhirl.reproduce import register
+    from propwhirl.reproduce.harness import register
 
     @register("t7.2")                 # the id prefix this case computes
     def patil_in_vacuo() -> dict[str, float]:

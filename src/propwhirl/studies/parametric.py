@@ -63,8 +63,8 @@ from typing import Any, Callable, Literal, Mapping, Sequence
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.analysis import Instability, ModelAnalysis, analyse
-from propwhirl.propeller import PointMass, Propeller
+from propwhirl.analysis.stability import Instability, ModelAnalysis, analyse
+from propwhirl.model.propeller import PointMass, Propeller
 
 #: Model names a study can analyse (see the module docstring).
 MODELS: tuple[str, ...] = ("wingtip", "isolated", "rigid")
@@ -208,7 +208,7 @@ def mount_strain_share(model, V: float, q: np.ndarray) -> float:
     """Share of the strain energy qᵀKq of displacement vector `q` in the propeller mount springs
     (degrees of freedom "propeller j theta/psi"), K the structural stiffness of `model` at V
     [m/s] without aerodynamics.  1 for the isolated propeller (it has no wing)."""
-    from propwhirl.vibration import energy_fractions
+    from propwhirl.analysis.vibration import energy_fractions
 
     if not hasattr(model, "wing"):
         return 1.0
@@ -245,7 +245,7 @@ def build_model(name: str, propeller: Propeller):
     """The study model `name` ("wingtip", "isolated" or "rigid") with `propeller`."""
     from propwhirl.cases.ch09_baseline import baseline_flight
     from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
-    from propwhirl.model import IsolatedPropeller
+    from propwhirl.model.systems import IsolatedPropeller
 
     if name == "wingtip":
         return wingtip_propeller_wing("flexible", propeller=propeller)
@@ -383,7 +383,7 @@ def _base(propeller: Propeller | None) -> Propeller:
 
         return baseline_propeller()
     if not isinstance(propeller, Propeller):
-        raise v.InputError(f"propeller = {propeller!r} is invalid: must be a propwhirl.propeller.Propeller")
+        raise v.InputError(f"propeller = {propeller!r} is invalid: must be a propwhirl.model.propeller.Propeller")
     return propeller
 
 

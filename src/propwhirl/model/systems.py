@@ -26,7 +26,7 @@ from typing import Literal
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.assembly import (
+from propwhirl.model.assembly import (
     LAG_STATES,
     call,
     free_dofs,
@@ -35,9 +35,9 @@ from propwhirl.assembly import (
     wing_structure,
 )
 from propwhirl.generated import prop_flexwing, prop_rigid
-from propwhirl.propeller import Propeller
-from propwhirl.statespace import SecondOrder, state_matrix
-from propwhirl.wing import Wing
+from propwhirl.model.propeller import Propeller
+from propwhirl.model.statespace import SecondOrder, state_matrix
+from propwhirl.model.wing import Wing
 
 #: ISA speed of sound at 8000 ft (2438.4 m): T = 272.30 K, a = √(γ R T) [m/s]
 SPEED_OF_SOUND_8000FT = float(np.sqrt(1.4 * 287.05287 * (288.15 - 0.0065 * 2438.4)))
@@ -48,7 +48,7 @@ class FlightCondition:
     """Air density [kg/m³], speed of sound [m/s] and the airspeed range of an analysis.
 
     `speed_range` = (first, last, step) [m/s] is the initial grid of a V-g-f sweep
-    (propwhirl.analysis.analyse refines it); the thesis analyses 0–350 m/s.  The first speed
+    (propwhirl.analysis.stability.analyse refines it); the thesis analyses 0–350 m/s.  The first speed
     must be > 0 (the aerodynamic matrices carry 1/V).
     """
 

@@ -6,7 +6,7 @@ Time response
 :func:`simulate` integrates a model's linear aeroelastic system ẋ = A(V) x (eq. 5.3 for the
 structure, 6.18 for the isolated propeller, D.27 for propellers on a wing) at one airspeed from
 given initial conditions with the exact transition matrix e^{AΔt}
-(:func:`propwhirl.stability.time_response`; the thesis used MATLAB's ode45, available here as
+(:func:`propwhirl.engine.core.time_response`; the thesis used MATLAB's ode45, available here as
 ``method="ivp"``).  It returns a :class:`Response` whose histories are labelled like the
 model's states, in SI: displacements ("propeller 0 theta" [rad], "node 3 h" [m, positive
 down], "node 3 alpha" [rad, nose up] ...), their rates ("d/dt ..." [rad/s, m/s]) and the
@@ -25,9 +25,9 @@ Campbell table
 --------------
 :func:`campbell_table` tracks the natural frequencies of a propeller–wing model against the
 propeller rotational speed (aerodynamics off, undamped gyroscopic system, as
-:func:`propwhirl.vibration.campbell`) with the stability engine's mode tracker (MAC and
+:func:`propwhirl.analysis.vibration.campbell`) with the stability engine's mode tracker (MAC and
 eigenvalue continuity, veering resolved), and names the curves with the in-vacuo labels of
-:func:`propwhirl.vibration.label_modes` ("wing n", "backward k", "forward k").
+:func:`propwhirl.analysis.vibration.label_modes` ("wing n", "backward k", "forward k").
 """
 from __future__ import annotations
 
@@ -37,7 +37,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
-from propwhirl import stability as st
+from propwhirl.engine import core as st
 from propwhirl import validate as v
 
 __all__ = [
@@ -190,7 +190,7 @@ def simulate(model, V: float, initial: Mapping[str, float], *, duration: float =
 def rotation_sign(model, propeller: int = 0) -> int:
     """Sense of the spin of a flexible propeller in the (θ on X, ψ on Y) plane: +1 counter-
     clockwise (the thesis's rotor, Figure 6.1), from the gyroscopic coupling of the model
-    (:func:`propwhirl.stability.rotation_sign_from_gyroscopic`; aerodynamics off, at 100 m/s for
+    (:func:`propwhirl.engine.core.rotation_sign_from_gyroscopic`; aerodynamics off, at 100 m/s for
     a fixed-pitch rotor)."""
     quiet = model.with_(propeller_aero=False, **({"wing_aero": False} if hasattr(model, "wing_aero") else {}))
     s = quiet.second_order(np.array([100.0]))
@@ -225,7 +225,7 @@ def baseline_propeller_responses(speeds: Sequence[float] = THESIS_RESPONSE_SPEED
 # ----------------------------------------------------------------------------------------------
 def _campbell_state_matrix(model, offset: float):
     """A(s) of the undamped gyroscopic system at rotational speed s − offset [rev/min]."""
-    from propwhirl.statespace import SecondOrder, state_matrix
+    from propwhirl.model.statespace import SecondOrder, state_matrix
 
     quiet = model.with_(wing_aero=False, propeller_aero=False, rotating=True)
 
@@ -248,16 +248,16 @@ def campbell_table(model, rpm=None, *, max_frequency_hz: float | None = None
     ``model``: a PropellerWing with at least one flexibly mounted propeller; every propeller
     spins at ``rpm`` [rev/min] (increasing, ≥ 0; default 0–6000 every 250).  Aerodynamics and
     dissipative damping off (the gyroscopic system of Figures 8.6, 9.16, 10.3, as
-    :func:`propwhirl.vibration.campbell`).  The modes are followed along the speeds by the
-    engine's tracker (:func:`propwhirl.stability.sweep`: MAC and eigenvalue continuity, steps
+    :func:`propwhirl.analysis.vibration.campbell`).  The modes are followed along the speeds by the
+    engine's tracker (:func:`propwhirl.engine.core.sweep`: MAC and eigenvalue continuity, steps
     refined where ambiguous, so a veering pair keeps its branches and does not cross) and named
     at the first speed by an optimal MAC assignment to the in-vacuo modes of
-    :func:`propwhirl.vibration.label_modes`.  Returns tidy columns sorted by rpm then
+    :func:`propwhirl.analysis.vibration.label_modes`.  Returns tidy columns sorted by rpm then
     frequency at the first speed: rpm [rev/min], mode (int), label, frequency_hz [Hz] — only
     modes below ``max_frequency_hz`` at the first speed when given — and "resolved" (bool):
     False where the tracker left the step to or from that speed ambiguous.
     """
-    from propwhirl.vibration import label_modes, model_modes
+    from propwhirl.analysis.vibration import label_modes, model_modes
 
     if not getattr(model, "flexible", None):
         raise v.InputError("campbell_table needs a model with a flexibly mounted propeller "

@@ -2,9 +2,9 @@
 
 Model files
 -----------
-:func:`save_model` / :func:`dumps` write a :class:`~propwhirl.model.PropellerWing` (wing, flight
-condition, installed propellers, switches), an :class:`~propwhirl.model.IsolatedPropeller` or a
-bare :class:`~propwhirl.propeller.Propeller` as TOML; :func:`load_model` / :func:`loads` read
+:func:`save_model` / :func:`dumps` write a :class:`~propwhirl.model.systems.PropellerWing` (wing, flight
+condition, installed propellers, switches), an :class:`~propwhirl.model.systems.IsolatedPropeller` or a
+bare :class:`~propwhirl.model.propeller.Propeller` as TOML; :func:`load_model` / :func:`loads` read
 them back (with the standard library's ``tomllib``).  The TOML is written by hand here — the
 standard library has no TOML writer and the package adds no dependency for one.
 
@@ -12,7 +12,7 @@ SI units throughout; the unit of every quantity is the suffix of its key (``semi
 ``EI_N_m2``, ``f_theta_hz``, ...; the table :data:`UNIT_SUFFIXES` is repeated as a comment at
 the top of every file).  Chordwise wing positions are fractions of the local chord from the
 leading edge (suffix ``_chord``); positions on the propeller shaft are from the wing mid-chord,
-positive aft (as in :class:`~propwhirl.propeller.Propeller`).  Floats are written with
+positive aft (as in :class:`~propwhirl.model.propeller.Propeller`).  Floats are written with
 ``repr`` so a save → load round trip reproduces every number exactly.
 
 Layout of a file::
@@ -36,16 +36,16 @@ Layout of a file::
 
 What cannot be saved raises :class:`~propwhirl.validate.InputError` naming the field: spanwise
 properties or chords given as Python functions (tabulate them per element instead), a blade
-chord given as a function that is not a :class:`~propwhirl.aero.Distribution`, and derivative
-sources other than :class:`~propwhirl.propeller.MeasuredDerivatives` and
-:class:`~propwhirl.aero.HouboltReedSource`.  Reading is strict: an unknown field, a missing
+chord given as a function that is not a :class:`~propwhirl.model.propeller_aero.Distribution`, and derivative
+sources other than :class:`~propwhirl.model.propeller.MeasuredDerivatives` and
+:class:`~propwhirl.model.propeller_aero.HouboltReedSource`.  Reading is strict: an unknown field, a missing
 required field or a value of the wrong type is an InputError naming the field.
 
 Result tables
 -------------
 :func:`write_vgf_csv` / :func:`read_vgf_csv`: the tidy V-g-f table of a sweep
-(:meth:`propwhirl.stability.Sweep.table`) as CSV with unit-suffixed column names.
-(The whole analysis is saved as JSON by :meth:`propwhirl.analysis.ModelAnalysis.save`.)
+(:meth:`propwhirl.engine.core.Sweep.table`) as CSV with unit-suffixed column names.
+(The whole analysis is saved as JSON by :meth:`propwhirl.analysis.stability.ModelAnalysis.save`.)
 """
 from __future__ import annotations
 
@@ -61,10 +61,10 @@ from typing import Any, Iterable, Iterator, Mapping
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.aero import DERIVATIVE_NAMES, AeroSettings, Distribution, HouboltReedSource, PropellerGeometry
-from propwhirl.model import FlightCondition, Installation, IsolatedPropeller, PropellerWing
-from propwhirl.propeller import MeasuredDerivatives, PointMass, Propeller
-from propwhirl.wing import Wing
+from propwhirl.model.propeller_aero import DERIVATIVE_NAMES, AeroSettings, Distribution, HouboltReedSource, PropellerGeometry
+from propwhirl.model.systems import FlightCondition, Installation, IsolatedPropeller, PropellerWing
+from propwhirl.model.propeller import MeasuredDerivatives, PointMass, Propeller
+from propwhirl.model.wing import Wing
 
 FORMAT = "propwhirl-model"
 FORMAT_VERSION = 1
@@ -223,7 +223,7 @@ def _chord_value(chord, where: str):
     if callable(chord):
         raise v.InputError(
             f"{where} is a function and cannot be saved to TOML: give a number or a "
-            "propwhirl.aero.Distribution (tabulated chord)"
+            "propwhirl.model.propeller_aero.Distribution (tabulated chord)"
         )
     return _float(chord), None
 
@@ -772,7 +772,7 @@ def load_model(path: str | Path):
 
 
 # =============================================================================== V-g-f CSV
-#: CSV column names (unit suffixes) ↔ keys of :meth:`propwhirl.stability.Sweep.table`.
+#: CSV column names (unit suffixes) ↔ keys of :meth:`propwhirl.engine.core.Sweep.table`.
 VGF_COLUMNS: tuple[tuple[str, str], ...] = (
     ("V_m_per_s", "V"), ("mode", "mode"), ("label", "label"), ("frequency_hz", "frequency_hz"),
     ("damping_ratio", "damping_ratio"), ("real_per_s", "real"), ("imag_per_s", "imag"),

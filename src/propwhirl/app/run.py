@@ -20,11 +20,11 @@ from pathlib import Path
 
 import numpy as np
 
-from propwhirl import io
-from propwhirl.analysis import Instability, ModelAnalysis, analyse
-from propwhirl.model import PropellerWing
-from propwhirl.reproduce import load_references
-from propwhirl.vibration import label_modes
+from propwhirl.io import files as io
+from propwhirl.analysis.stability import Instability, ModelAnalysis, analyse
+from propwhirl.model.systems import PropellerWing
+from propwhirl.reproduce.harness import load_references
+from propwhirl.analysis.vibration import label_modes
 
 #: Modes drawn in the V-g-f plot (the thesis's Tables 10.3/10.4 name these).
 VGF_MODES = 7
@@ -133,7 +133,7 @@ def write_plots(a: ModelAnalysis, model: PropellerWing, out: Path) -> list[Path]
     if importlib.util.find_spec("matplotlib") is None:
         print("plots skipped: matplotlib is not installed (pip install propwhirl[plots])")
         return []
-    from propwhirl import plots
+    from propwhirl.app import plots
 
     span = model.wing.semi_span
     paths = [plots.save(plots.vgf(a, n_modes=VGF_MODES), out / "wingtip_vgf.png")]

@@ -22,7 +22,7 @@ from propwhirl.validate import InputError
 
 
 def _reproduce(args: argparse.Namespace) -> int:
-    from propwhirl import reproduce
+    from propwhirl.reproduce import harness as reproduce
 
     records = reproduce.run(args.only, processes=args.processes)
     print(reproduce.format_table(records))
@@ -41,7 +41,7 @@ def _add_reproduce(sub) -> None:
 
 
 def _run(args: argparse.Namespace) -> int:
-    from propwhirl import mainjob
+    from propwhirl.app import run as mainjob
 
     return mainjob.main(Path(args.out))
 
@@ -64,7 +64,7 @@ def _derivatives(args: argparse.Namespace) -> int:
 
     import numpy as np
 
-    from propwhirl import aero
+    from propwhirl.model import propeller_aero as aero
 
     if args.chord_table:
         chord = aero.Distribution.tabulated(*_pairs("--chord-table", args.chord_table), "chord")
@@ -183,8 +183,8 @@ def case_model(name: str):
 
 
 def _load(path: str):
-    from propwhirl import io
-    from propwhirl.model import IsolatedPropeller, PropellerWing
+    from propwhirl.io import files as io
+    from propwhirl.model.systems import IsolatedPropeller, PropellerWing
 
     model = io.load_model(path)
     if not isinstance(model, (PropellerWing, IsolatedPropeller)):
@@ -218,8 +218,8 @@ def _check_outputs(**paths: str | None) -> None:
 
 
 def _analyse(args: argparse.Namespace) -> int:
-    from propwhirl import io
-    from propwhirl.analysis import analyse
+    from propwhirl.io import files as io
+    from propwhirl.analysis.stability import analyse
 
     _check_outputs(json=args.json, csv=args.csv, plot=args.plot)
     model = _load(args.model)
@@ -233,7 +233,7 @@ def _analyse(args: argparse.Namespace) -> int:
         io.write_vgf_csv(a, args.csv)
         print(f"wrote {args.csv}")
     if args.plot:
-        from propwhirl import plots
+        from propwhirl.app import plots
 
         plots.vgf(a, n_modes=args.plot_modes, path=args.plot)
         print(f"wrote {args.plot}")
@@ -258,8 +258,8 @@ def _modes(args: argparse.Namespace) -> int:
     import numpy as np
 
     from propwhirl import validate as v
-    from propwhirl.model import PropellerWing
-    from propwhirl.vibration import energy_fractions, label_modes, model_modes, undamped_modes
+    from propwhirl.model.systems import PropellerWing
+    from propwhirl.analysis.vibration import energy_fractions, label_modes, model_modes, undamped_modes
 
     model = _load(args.model)
     count = v.integer_at_least("--count", args.count, 1)
@@ -300,8 +300,8 @@ def _campbell(args: argparse.Namespace) -> int:
     import numpy as np
 
     from propwhirl import validate as v
-    from propwhirl.model import PropellerWing
-    from propwhirl.vibration import campbell
+    from propwhirl.model.systems import PropellerWing
+    from propwhirl.analysis.vibration import campbell
 
     _check_outputs(plot=args.plot)
     model = _load(args.model)
@@ -321,7 +321,7 @@ def _campbell(args: argparse.Namespace) -> int:
     for r, row in zip(rpm, f):
         print(f"  {r:8.1f} " + " ".join(f"{x:8.3f}" for x in row[:count]))
     if args.plot:
-        from propwhirl import plots
+        from propwhirl.app import plots
 
         plots.campbell(model, rpm, n_modes=count, path=args.plot)
         print(f"wrote {args.plot}")
@@ -339,7 +339,7 @@ def _add_campbell(sub) -> None:
 
 
 def _case(args: argparse.Namespace) -> int:
-    from propwhirl import io
+    from propwhirl.io import files as io
 
     _check_outputs(save=args.save)
     model = case_model(args.name)

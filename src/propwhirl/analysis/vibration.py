@@ -2,7 +2,7 @@
 
 For the wing alone (chapter 7 verification, Tables 7.2 and 9.2) and, with rotating propellers,
 the Campbell diagram (frequencies against propeller RPM, Figures 8.6, 9.16, 10.3) is built on
-the same solve with the gyroscopic terms included (see propwhirl.model).
+the same solve with the gyroscopic terms included (see propwhirl.model.systems).
 """
 from __future__ import annotations
 
@@ -13,8 +13,8 @@ import numpy as np
 import scipy.linalg as sl
 
 from propwhirl import validate as v
-from propwhirl.assembly import free_dofs, wing_dof_labels, wing_structure
-from propwhirl.wing import Wing
+from propwhirl.model.assembly import free_dofs, wing_dof_labels, wing_structure
+from propwhirl.model.wing import Wing
 
 
 @dataclass(frozen=True)
@@ -148,7 +148,7 @@ def campbell(model, rpm: np.ndarray, include_damping: bool = False) -> tuple[np.
     omega = rpm * 2.0 * np.pi / 60.0
     V = np.ones_like(omega)  # no aerodynamics: the airspeed plays no part
     s = quiet.second_order(V, omega)
-    from propwhirl.statespace import SecondOrder, state_matrix
+    from propwhirl.model.statespace import SecondOrder, state_matrix
 
     S2 = s.S2 if include_damping else s.S2 - _symmetric_part(s.S2)
     A = state_matrix(SecondOrder(s.S1, S2, s.S3, s.S4, s.Ww, s.Wv, s.Wq, s.q_labels, s.w_labels), V)

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from propwhirl.generated import beam_element
-from propwhirl.wing import Wing
+from propwhirl.model.wing import Wing
 
 WING_DOF_NAMES = ("h", "phi", "alpha")
 

@@ -567,7 +567,7 @@ def houbolt_reed_source(propeller, settings: AeroSettings = AeroSettings(),
                         aspect_ratio: float | None = None) -> HouboltReedSource:
     """Derivative source for an object with ``n_blades``, ``radius`` [m], ``hub_radius`` [m]
     and ``blade_chord`` (a number [m], a :class:`Distribution` or a callable of η = r/R),
-    such as :class:`propwhirl.propeller.Propeller`.  Thesis settings by default."""
+    such as :class:`propwhirl.model.propeller.Propeller`.  Thesis settings by default."""
     radius = float(v.positive("radius", propeller.radius, "m"))
     geo = PropellerGeometry(
         n_blades=propeller.n_blades, radius=radius,

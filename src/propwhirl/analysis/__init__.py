@@ -1,0 +1,6 @@
+"""Analyses of a model: stability (labelled instabilities), vibration, time response."""
+from propwhirl.analysis.stability import (DEFAULT_SPEEDS, Instability, ModelAnalysis, analyse,
+                                          first_of_kind, load, speed_and_frequency)
+
+__all__ = ["DEFAULT_SPEEDS", "Instability", "ModelAnalysis", "analyse", "first_of_kind", "load",
+           "speed_and_frequency"]

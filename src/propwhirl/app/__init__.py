@@ -1,0 +1,1 @@
+"""The applications: command line, the main job, plots."""

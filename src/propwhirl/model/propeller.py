@@ -1,0 +1,277 @@
+"""Flexibly mounted propeller (thesis chapters 6, 8, §9.2): inertia, mounts, operation, aerodynamics.
+
+Positions along the shaft are measured from the wing mid-chord axis, positive REARWARD (thesis
+Table 9.4, Figure 8.1): a tractor propeller ahead of the leading edge has negative positions.
+The pitch/yaw pivots are at `pivot_pitch` (l_θ) and `pivot_yaw` (l_ψ); the propeller plane (hub)
+at `hub`, so e_θ = hub − l_θ and e_ψ = hub − l_ψ (negative for a tractor, chapter 8 sign
+convention; chapter 6 uses the distances −e_θ, −e_ψ).
+
+Inertia parameters about the pivots follow from the point masses (8.5–8.6):
+M_P = Σ m, S_θ,P = Σ m (x − l_θ), I_θ,P = Σ m (x − l_θ)², I_ψ,P = Σ m (x − l_ψ)², and
+S_α,P, I_α,P, I_θα,P from the generated `prop_flexwing.inertia` (relative to the wing's elastic
+axis at a_P b_P).  The spin inertia I_Ω is given, or M_r R²/3 with the rotor mass M_r (9.2).
+
+Mount stiffness: K given [N m/rad], or the uncoupled frequency f [Hz] with K = I (2π f)²
+(ω_θ = √(K_θ/I_θ,P), §8.1).  Structural damping (6.4–6.7): `damping="g"` reads the values as
+structural damping coefficients g in the viscous-equivalent form c = K g/ω_θ (6.6 with
+ω = ω_θ, i.e. ζ = g/2); `damping="zeta"` reads them as viscous damping ratios ζ
+(c = 2 ζ ω_θ I).
+
+Operation: "fixed-pitch" windmilling (advance ratio μ = V/(ΩR) fixed by the blade angle,
+eq. 9.1, so Ω rises with V) or "constant-speed" (Ω fixed, μ varies with V).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable, Literal, Mapping, Protocol
+
+import numpy as np
+
+from propwhirl import validate as v
+from propwhirl.model.propeller_aero import (
+    DERIVATIVE_NAMES,
+    AdvanceRule,
+    AeroSettings,
+    advance_ratio_from_blade_angle,
+    houbolt_reed_source,
+)
+
+
+
+#: Derivatives coupling pitch with yaw: they change sign with the sense of rotation.
+CROSS_DERIVATIVES = ("CZ_psi", "CZ_r", "Cm_psi", "Cm_r", "CY_theta", "CY_q", "Cn_theta", "Cn_q")
+
+
+class DerivativeSource(Protocol):
+    """Gives the 16 propeller aerodynamic derivatives (4.25) at airspeeds V [m/s] and
+    rotational speeds Ω [rad/s] (arrays of equal shape), for a propeller of radius R [m]."""
+
+    def __call__(self, V: np.ndarray, Omega: np.ndarray, speed_of_sound: float) -> dict[str, np.ndarray]: ...
+
+
+@dataclass(frozen=True)
+class MeasuredDerivatives:
+    """User-supplied derivatives (any subset of the 16; the rest are zero), constant in V.
+
+    Example: Bennett & Bland's measured set (§6.2, §8.4).  Keys are DERIVATIVE_NAMES.
+    """
+
+    values: Mapping[str, float]
+
+    def __post_init__(self) -> None:
+        unknown = set(self.values) - set(DERIVATIVE_NAMES)
+        if unknown:
+            raise v.InputError(
+                f"unknown aerodynamic derivative(s) {sorted(unknown)}: valid names are {DERIVATIVE_NAMES}"
+            )
+        for k, val in self.values.items():
+            v.finite(k, val)
+
+    def __call__(self, V, Omega, speed_of_sound):
+        V = np.asarray(V, dtype=float)
+        return {k: np.full(V.shape, float(self.values.get(k, 0.0))) for k in DERIVATIVE_NAMES}
+
+
+@dataclass(frozen=True)
+class PointMass:
+    """A concentrated mass [kg] on the propeller shaft at x [m] from the wing mid-chord, aft positive."""
+
+    mass: float
+    x: float
+
+    def __post_init__(self) -> None:
+        v.positive("point mass", self.mass, "kg")
+        v.finite("point mass position", self.x, "m")
+
+
+@dataclass(frozen=True)
+class Propeller:
+    """A flexibly mounted tractor propeller (SI units; positions aft of the wing mid-chord).
+
+    Parameters
+    ----------
+    radius : rotor radius R [m]
+    rotor : rotor (blades + spinner) point mass; its position is the propeller plane (hub)
+    masses : further point masses on the shaft (motor, nacelle, ...)
+    pivot_pitch, pivot_yaw : pivot positions l_θ, l_ψ [m]
+    f_theta, f_psi : uncoupled mount frequencies [Hz]   (or K_theta, K_psi [N m/rad])
+    damping_theta, damping_psi : structural damping values, read according to `damping`
+    damping : "g" (structural coefficient, viscous equivalent c = K g/ω) or "zeta" (ratio)
+    spin_inertia : I_Ω [kg m²]; default M_r R²/3 (9.2)
+    n_blades : number of blades (≥ 3: the method assumes polar symmetry)
+    operation : "fixed-pitch" (windmilling: μ from the blade angle, Ω rises with V) or
+        "constant-speed" (`rpm` fixed)
+    beta_075_deg, zero_lift_angle_deg : blade angle at 0.75 R and zero-lift angle [deg]
+    advance_rule : "thesis_eq_9_1" (μ = tan(β + α_0L), eq. 9.1 as chapters 9–11 use it) or
+        "blade_element" (zero lift at 0.75 R: μ = 0.75 tan(β − α_0L), Table 4.1)
+    inertia : optional measured inertia about the pivots overriding the point-mass values,
+        any of M_P [kg], S_theta_P [kg m], I_theta_P, I_psi_P [kg m²] (e.g. Bennett & Bland's
+        I_Y = I_Z); the point masses still place the propeller plane (the rotor's x)
+    rpm : rotational speed for constant-speed operation [rev/min]
+    hub_radius : hub radius r0 [m] (η0 = r0/R)
+    blade_chord : blade chord [m], a number or a function of η = r/R (Houbolt–Reed input)
+    derivatives : a DerivativeSource (e.g. MeasuredDerivatives) — None means Houbolt–Reed
+        (propwhirl.model.propeller_aero) for this propeller's blades with `aero_settings`
+    aero_settings : Houbolt–Reed switches (wake, compressibility, aspect ratio, ...);
+        the thesis's defaults
+    rotation : +1 if the rotor turns counter-clockwise seen from the front (the thesis's
+        sense, Figure 6.1), −1 for clockwise: the mirror image about the vertical plane through
+        the shaft (ψ → −ψ), which reverses the gyroscopic terms (Ω → −Ω) and the eight
+        cross-coupling Houbolt–Reed derivatives (C_Zψ, C_Zr, C_mψ, C_mr, C_Yθ, C_Yq, C_nθ,
+        C_nq); user-supplied `derivatives` are taken as given for the actual propeller
+    """
+
+    radius: float
+    rotor: PointMass
+    masses: tuple[PointMass, ...] = ()
+    pivot_pitch: float = 0.0
+    pivot_yaw: float = 0.0
+    f_theta: float | None = None
+    f_psi: float | None = None
+    K_theta: float | None = None
+    K_psi: float | None = None
+    damping_theta: float = 0.0
+    damping_psi: float = 0.0
+    damping: Literal["g", "zeta"] = "g"
+    spin_inertia: float | None = None
+    n_blades: int = 3
+    hub_radius: float = 0.0
+    blade_chord: float | Callable[[np.ndarray], np.ndarray] = 0.1
+    operation: Literal["fixed-pitch", "constant-speed"] = "fixed-pitch"
+    beta_075_deg: float = 35.0
+    zero_lift_angle_deg: float = -3.0
+    advance_rule: AdvanceRule = "thesis_eq_9_1"
+    inertia: Mapping[str, float] | None = None
+    rpm: float | None = None
+    derivatives: DerivativeSource | None = field(default=None, compare=False)
+    aero_settings: AeroSettings = AeroSettings()
+    rotation: int = 1
+    name: str = "propeller"
+
+    def __post_init__(self) -> None:
+        v.positive("radius", self.radius, "m")
+        v.in_range("hub_radius", self.hub_radius, 0.0, self.radius, "m", high_open=True)
+        v.integer_at_least("n_blades", self.n_blades, 3)
+        if (self.f_theta is None) == (self.K_theta is None):
+            raise v.InputError("give exactly one of f_theta [Hz] or K_theta [N m/rad]")
+        if (self.f_psi is None) == (self.K_psi is None):
+            raise v.InputError("give exactly one of f_psi [Hz] or K_psi [N m/rad]")
+        for name in ("f_theta", "f_psi", "K_theta", "K_psi"):
+            if getattr(self, name) is not None:
+                v.positive(name, getattr(self, name), "Hz" if name.startswith("f") else "N m/rad")
+        v.non_negative("damping_theta", self.damping_theta)
+        v.non_negative("damping_psi", self.damping_psi)
+        if self.damping not in ("g", "zeta"):
+            raise v.InputError(f"damping = {self.damping!r} is invalid: must be 'g' or 'zeta'")
+        if self.spin_inertia is not None:
+            v.non_negative("spin_inertia", self.spin_inertia, "kg m^2")
+        if self.operation not in ("fixed-pitch", "constant-speed"):
+            raise v.InputError(
+                f"operation = {self.operation!r} is invalid: must be 'fixed-pitch' or 'constant-speed'"
+            )
+        if self.operation == "constant-speed":
+            if self.rpm is None:
+                raise v.InputError("rpm is required for operation = 'constant-speed'")
+            v.positive("rpm", self.rpm, "rev/min")
+        else:
+            self.advance_ratio  # validates the blade angle (inflow angle in (0°, 90°))
+        if self.inertia is not None:
+            allowed = {"M_P", "S_theta_P", "I_theta_P", "I_psi_P"}
+            unknown = set(self.inertia) - allowed
+            if unknown:
+                raise v.InputError(f"inertia keys {sorted(unknown)} are invalid: allowed {sorted(allowed)}")
+            for k, val in self.inertia.items():
+                (v.finite if k == "S_theta_P" else v.positive)(k, val)
+        if self.rotation not in (1, -1):
+            raise v.InputError(f"rotation = {self.rotation!r} is invalid: must be +1 or -1")
+        v.finite("pivot_pitch", self.pivot_pitch, "m")
+        v.finite("pivot_yaw", self.pivot_yaw, "m")
+
+    # ------------------------------------------------------------------ inertia (8.5–8.6)
+    @property
+    def all_masses(self) -> tuple[PointMass, ...]:
+        return (self.rotor,) + tuple(self.masses)
+
+    @property
+    def hub(self) -> float:
+        """Position of the propeller plane (the rotor mass) [m]."""
+        return self.rotor.x
+
+    @property
+    def e_theta(self) -> float:
+        """Pitch pivot to propeller plane, chapter-8 sign (negative for a tractor) [m]."""
+        return self.hub - self.pivot_pitch
+
+    @property
+    def e_psi(self) -> float:
+        return self.hub - self.pivot_yaw
+
+    def pivot_inertia(self) -> dict[str, float]:
+        """M_P [kg], S_θ,P [kg m], I_θ,P, I_ψ,P [kg m²] about the pivots (8.5–8.6)."""
+        m = np.array([p.mass for p in self.all_masses])
+        x = np.array([p.x for p in self.all_masses])
+        out = {
+            "M_P": float(m.sum()),
+            "S_theta_P": float(np.sum(m * (x - self.pivot_pitch))),
+            "I_theta_P": float(np.sum(m * (x - self.pivot_pitch) ** 2)),
+            "I_psi_P": float(np.sum(m * (x - self.pivot_yaw) ** 2)),
+        }
+        out.update({k: float(val) for k, val in (self.inertia or {}).items()})
+        return out
+
+    @property
+    def I_Omega(self) -> float:
+        """Spin inertia I_Ω [kg m²]: given, or M_r R²/3 (9.2)."""
+        if self.spin_inertia is not None:
+            return float(self.spin_inertia)
+        return self.rotor.mass * self.radius**2 / 3.0
+
+    def stiffness(self) -> tuple[float, float]:
+        """(K_θ, K_ψ) [N m/rad], from the frequencies with K = I (2π f)² where given."""
+        inertia = self.pivot_inertia()
+        Kt = self.K_theta if self.K_theta is not None else inertia["I_theta_P"] * (2 * np.pi * self.f_theta) ** 2
+        Kp = self.K_psi if self.K_psi is not None else inertia["I_psi_P"] * (2 * np.pi * self.f_psi) ** 2
+        return float(Kt), float(Kp)
+
+    def viscous_damping_ratios(self) -> tuple[float, float]:
+        """(ζ_θ, ζ_ψ) of the viscous-equivalent damping (6.4–6.6)."""
+        if self.damping == "zeta":
+            return float(self.damping_theta), float(self.damping_psi)
+        return 0.5 * float(self.damping_theta), 0.5 * float(self.damping_psi)
+
+    # ------------------------------------------------------------------ operation
+    @property
+    def advance_ratio(self) -> float:
+        """μ = V/(ΩR) of fixed-pitch windmilling from the blade angle (J = πμ).
+
+        "thesis_eq_9_1": tan(β_0.75 + α_0L) — eq. 9.1 as printed and used in chapters 9–11
+        (J = π tan(β − 3°) = 1.96 at 35°, Table 9.3; 221 m/s at 4433 RPM, Table 9.5);
+        "blade_element": 0.75 tan(β_0.75 − α_0L), zero lift at 0.75 R (Table 4.1).
+        """
+        return float(advance_ratio_from_blade_angle(
+            np.radians(self.beta_075_deg), np.radians(self.zero_lift_angle_deg), self.advance_rule))
+
+    def rotational_speed(self, V: np.ndarray) -> np.ndarray:
+        """Ω [rad/s] at airspeeds V [m/s]."""
+        V = np.asarray(V, dtype=float)
+        if self.operation == "constant-speed":
+            return np.full(V.shape, self.rpm * 2 * np.pi / 60.0)
+        return V / (self.advance_ratio * self.radius)
+
+    def spin_rate(self, V: np.ndarray) -> np.ndarray:
+        """Signed Ω [rad/s] of the gyroscopic terms: rotation × rotational speed."""
+        return self.rotation * self.rotational_speed(V)
+
+    def aerodynamic_derivatives(self, V: np.ndarray, speed_of_sound: float) -> dict[str, np.ndarray]:
+        """The 16 derivatives at airspeeds V (arrays over V)."""
+        V = np.asarray(V, dtype=float)
+        if self.derivatives is not None:
+            return self.derivatives(V, self.rotational_speed(V), speed_of_sound)
+        d = self.default_derivatives()(V, self.rotational_speed(V), speed_of_sound)
+        if self.rotation == -1:  # mirror image of the counter-clockwise rotor
+            d = {k: (-x if k in CROSS_DERIVATIVES else x) for k, x in d.items()}
+        return d
+
+    def default_derivatives(self) -> DerivativeSource:
+        """Houbolt–Reed for this propeller's blades with `aero_settings` (chapter 4)."""
+        return houbolt_reed_source(self, self.aero_settings)

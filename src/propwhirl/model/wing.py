@@ -1,0 +1,226 @@
+"""The flexible cantilever wing (thesis chapter 7): geometry, properties, discretisation.
+
+A :class:`Wing` is an unswept, possibly tapered beam clamped at the root (y = 0) and free at the
+tip (y = semi_span), discretised into `n_elements` equal Euler–Bernoulli elements (§7.1).
+Per-element properties (mass, inertia, stiffness, centre of gravity) are evaluated at element
+mid-span; strip-aerodynamic properties (chord, elastic axis, aerodynamic centre, lift-curve
+slope) at the nodes, where the thesis applies the aerodynamic loads (§7.2).
+
+Every spanwise property accepts a scalar (uniform), an array with one value per element, or a
+callable of the spanwise position y [m].  Chordwise positions are fractions of the local chord
+from the leading edge.  SI units.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable, Literal, Union
+
+import numpy as np
+
+from propwhirl import validate as v
+
+Spanwise = Union[float, np.ndarray, Callable[[np.ndarray], np.ndarray]]
+LiftSlope = Union[float, Literal["elliptic"], Callable[[np.ndarray], np.ndarray]]
+
+TWO_PI = 2.0 * np.pi
+
+
+def _spanwise(name: str, value: Spanwise, y: np.ndarray, n_elements: int, unit: str) -> np.ndarray:
+    """Evaluate a spanwise property at element mid-points `y` (scalar, per element, callable)."""
+    if callable(value):
+        out = np.asarray(value(y), dtype=float)
+        if out.shape != y.shape:
+            raise v.InputError(
+                f"{name}(y) must return one value per position, got shape {out.shape} for {y.shape}"
+            )
+        return v.finite(name, out, unit)
+    arr = np.asarray(value, dtype=float)
+    if arr.ndim == 0:
+        return np.full(y.shape, v.finite(name, arr, unit))
+    if arr.shape != (n_elements,):
+        raise v.InputError(
+            f"{name} has {arr.size} values but the wing has n_elements = {n_elements}: "
+            f"give a scalar, one value per element, or a function of y"
+        )
+    return v.finite(name, arr, unit)
+
+
+@dataclass(frozen=True)
+class Wing:
+    """Cantilever wing; SI units, chordwise positions as fractions of chord from the LE.
+
+    Parameters
+    ----------
+    semi_span : root-to-tip length [m]
+    root_chord, tip_chord : chord at root and tip [m] (linear taper); `chord` overrides both
+    chord : optional chord as a function of y [m] (tabulated data: use numpy.interp in a lambda)
+    mass_per_length : m_W [kg/m]
+    polar_inertia : ρI_p about the elastic axis [kg m]; or give `radius_of_gyration` instead
+    radius_of_gyration : radius of gyration about the centre of gravity, fraction of chord
+    elastic_axis : elastic-axis position, fraction of chord from LE (0.5 = mid-chord)
+    centre_of_gravity : centre-of-gravity position, fraction of chord from LE
+    EI, GJ : bending and torsional rigidity [N m²]
+    lift_slope : C_lα [1/rad]: a number, "elliptic" (2π√(1−(y/L)²), eq. 7.81) or a function of y
+    aerodynamic_centre : fraction of chord from LE (0.25 = quarter chord, a_c = −1/2)
+    n_elements : number of beam elements
+    aero_model : "leishman-nguyen" (2 lag states per node) or "wagner" (4 per node)
+    rayleigh : (μ [1/s], λ [s]) of Rayleigh damping C = μM + λK (eq. 7.22)
+    """
+
+    semi_span: float
+    mass_per_length: Spanwise
+    EI: Spanwise
+    GJ: Spanwise
+    root_chord: float = 1.0
+    tip_chord: float | None = None
+    chord: Callable[[np.ndarray], np.ndarray] | None = None
+    polar_inertia: Spanwise | None = None
+    radius_of_gyration: Spanwise | None = None
+    elastic_axis: Spanwise = 0.5
+    centre_of_gravity: Spanwise = 0.5
+    lift_slope: LiftSlope = TWO_PI
+    aerodynamic_centre: Spanwise = 0.25
+    n_elements: int = 20
+    aero_model: Literal["leishman-nguyen", "wagner"] = "leishman-nguyen"
+    rayleigh: tuple[float, float] = (0.0, 0.0)
+    name: str = "wing"
+
+    def __post_init__(self) -> None:
+        v.positive("semi_span", self.semi_span, "m")
+        v.integer_at_least("n_elements", self.n_elements, 1)
+        v.positive("root_chord", self.root_chord, "m")
+        if self.tip_chord is not None:
+            v.positive("tip_chord", self.tip_chord, "m")
+        if (self.polar_inertia is None) == (self.radius_of_gyration is None):
+            raise v.InputError("give exactly one of polar_inertia [kg m] or radius_of_gyration")
+        if self.aero_model not in ("leishman-nguyen", "wagner"):
+            raise v.InputError(
+                f"aero_model = {self.aero_model!r} is invalid: must be 'leishman-nguyen' or 'wagner'"
+            )
+        mu, lam = self.rayleigh
+        v.non_negative("rayleigh mu", mu, "1/s")
+        v.non_negative("rayleigh lambda", lam, "s")
+        if isinstance(self.lift_slope, str) and self.lift_slope != "elliptic":
+            raise v.InputError(
+                f"lift_slope = {self.lift_slope!r} is invalid: a number, 'elliptic' or a function of y"
+            )
+        # Evaluate everything once so bad input fails at construction, naming the parameter.
+        self.element_properties()
+        self.node_properties()
+
+    # ------------------------------------------------------------------ discretisation
+    @property
+    def n_nodes(self) -> int:
+        return self.n_elements + 1
+
+    @property
+    def node_y(self) -> np.ndarray:
+        """Spanwise node positions [m], root (node 0) to tip."""
+        return np.linspace(0.0, self.semi_span, self.n_nodes)
+
+    @property
+    def element_length(self) -> np.ndarray:
+        return np.diff(self.node_y)
+
+    @property
+    def element_y(self) -> np.ndarray:
+        """Element mid-span positions [m]."""
+        y = self.node_y
+        return 0.5 * (y[:-1] + y[1:])
+
+    def chord_at(self, y: np.ndarray) -> np.ndarray:
+        """Local chord [m] at spanwise positions y [m]."""
+        y = np.asarray(y, dtype=float)
+        if self.chord is not None:
+            c = np.asarray(self.chord(y), dtype=float)
+            if c.shape != y.shape:
+                raise v.InputError(f"chord(y) must return one value per position, got {c.shape}")
+            return v.positive("chord", c, "m")
+        tip = self.root_chord if self.tip_chord is None else self.tip_chord
+        return self.root_chord + (tip - self.root_chord) * y / self.semi_span
+
+    # ------------------------------------------------------------------ properties
+    def element_properties(self) -> dict[str, np.ndarray]:
+        """Per-element beam properties at element mid-span (arguments of the beam element).
+
+        Returns length [m], m [kg/m], rho_Ip [kg m] (about the elastic axis), x_alpha_b [m]
+        (centre of gravity aft of the elastic axis), EI, GJ [N m²].
+        """
+        y, n = self.element_y, self.n_elements
+        c = self.chord_at(y)
+        m = v.positive("mass_per_length", _spanwise("mass_per_length", self.mass_per_length, y, n, "kg/m"), "kg/m")
+        ea = v.in_range("elastic_axis", _spanwise("elastic_axis", self.elastic_axis, y, n, ""), 0.0, 1.0)
+        cg = v.in_range("centre_of_gravity", _spanwise("centre_of_gravity", self.centre_of_gravity, y, n, ""), 0.0, 1.0)
+        xab = (cg - ea) * c
+        if self.polar_inertia is not None:
+            Ip = v.positive("polar_inertia", _spanwise("polar_inertia", self.polar_inertia, y, n, "kg m"), "kg m")
+        else:
+            rg = v.positive("radius_of_gyration", _spanwise("radius_of_gyration", self.radius_of_gyration, y, n, ""))
+            Ip = m * ((rg * c) ** 2 + xab**2)  # parallel-axis theorem: about the elastic axis
+        return {
+            "length": self.element_length,
+            "m": m,
+            "rho_Ip": Ip,
+            "x_alpha_b": xab,
+            "EI": v.positive("EI", _spanwise("EI", self.EI, y, n, "N m^2"), "N m^2"),
+            "GJ": v.positive("GJ", _spanwise("GJ", self.GJ, y, n, "N m^2"), "N m^2"),
+        }
+
+    def node_properties(self) -> dict[str, np.ndarray]:
+        """Per-node strip-aerodynamic properties (thesis §7.2, §7.5).
+
+        Returns y [m], strip width [m] (tributary length: half of each adjacent element),
+        b (semichord) [m], a (elastic axis, semichords aft of mid-chord), ac (aerodynamic
+        centre, semichords aft of mid-chord) and Cla [1/rad].
+        """
+        y = self.node_y
+        n = self.n_nodes
+        c = self.chord_at(y)
+        le = self.element_length
+        width = np.zeros(n)
+        width[:-1] += 0.5 * le
+        width[1:] += 0.5 * le
+        ea = v.in_range("elastic_axis", _node_value("elastic_axis", self.elastic_axis, y, self.element_y), 0.0, 1.0)
+        xac = v.in_range(
+            "aerodynamic_centre", _node_value("aerodynamic_centre", self.aerodynamic_centre, y, self.element_y), 0.0, 1.0
+        )
+        return {
+            "y": y,
+            "width": width,
+            "b": 0.5 * c,
+            "a": 2.0 * ea - 1.0,
+            "ac": 2.0 * xac - 1.0,
+            "Cla": self.lift_slope_at(y),
+        }
+
+    def lift_slope_at(self, y: np.ndarray) -> np.ndarray:
+        """Section lift-curve slope C_lα [1/rad] at y (eq. 7.81 for "elliptic")."""
+        y = np.asarray(y, dtype=float)
+        if isinstance(self.lift_slope, str):
+            x = np.clip(y / self.semi_span, 0.0, 1.0)
+            return TWO_PI * np.sqrt(1.0 - x**2)
+        if callable(self.lift_slope):
+            out = np.asarray(self.lift_slope(y), dtype=float)
+            if out.shape != y.shape:
+                raise v.InputError(f"lift_slope(y) must return one value per position, got {out.shape}")
+            return v.non_negative("lift_slope", out, "1/rad")
+        return np.full(y.shape, v.non_negative("lift_slope", self.lift_slope, "1/rad"))
+
+
+def _node_value(name: str, value: Spanwise, y_nodes: np.ndarray, y_elem: np.ndarray) -> np.ndarray:
+    """A spanwise property at the nodes: callables are evaluated there; per-element arrays are
+    interpolated linearly between element mid-points (held constant beyond them)."""
+    if callable(value):
+        out = np.asarray(value(y_nodes), dtype=float)
+        if out.shape != y_nodes.shape:
+            raise v.InputError(f"{name}(y) must return one value per position, got {out.shape}")
+        return v.finite(name, out)
+    arr = np.asarray(value, dtype=float)
+    if arr.ndim == 0:
+        return np.full(y_nodes.shape, v.finite(name, arr))
+    if arr.shape != y_elem.shape:
+        raise v.InputError(
+            f"{name} has {arr.size} values but the wing has n_elements = {y_elem.size}: "
+            f"give a scalar, one value per element, or a function of y"
+        )
+    return np.interp(y_nodes, y_elem, v.finite(name, arr))

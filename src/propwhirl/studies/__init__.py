@@ -1,0 +1,1 @@
+"""Design studies: parametric sweeps of the critical speed."""
