@@ -1,0 +1,1 @@
+"""Shared test helpers: independent oracles and fixtures (not part of the package)."""
