@@ -183,25 +183,19 @@ def simulate(model, V: float, initial: Mapping[str, float], *, duration: float =
     A = np.asarray(model.state_matrix(np.array([Vf])))[0]
     r = st.time_response(A, x0, t, labels, method=method)
     lam, X = st.eigen(A)
-    return Response(getattr(model, "name", type(model).__name__), Vf, r.t, r.x, labels, n_dof,
+    return Response(model.name, Vf, r.t, r.x, labels, n_dof,
                     lam, X)
 
 
 def rotation_sign(model, propeller: int = 0) -> int:
     """Sense of the spin of a flexible propeller in the (θ on X, ψ on Y) plane: +1 counter-
     clockwise (the thesis's rotor, Figure 6.1), from the gyroscopic coupling of the model
-    (:func:`propwhirl.engine.core.rotation_sign_from_gyroscopic`; aerodynamics off, at 100 m/s for
-    a fixed-pitch rotor)."""
-    quiet = model.with_(propeller_aero=False, **({"wing_aero": False} if hasattr(model, "wing_aero") else {}))
-    s = quiet.second_order(np.array([100.0]))
-    labels = s.q_labels
-    th, ps = f"propeller {propeller} theta", f"propeller {propeller} psi"
-    if th not in labels:
-        raise v.InputError(f"propeller {propeller} has no pitch/yaw degrees of freedom "
-                           f"(states: {labels})")
-    i, j = labels.index(th), labels.index(ps)
+    (:func:`~propwhirl.engine.rotation_sign_from_gyroscopic`; aerodynamics off, at 100 m/s for
+    a fixed-pitch rotor).  An independent check of the DOF map's ``rotation``."""
+    p = model.dof_map().propeller(propeller)
+    s = model.without_aerodynamics().second_order(np.array([100.0]))
     C = s.S2[0]
-    return st.rotation_sign_from_gyroscopic(0.5 * (C[i, j] - C[j, i]))
+    return st.rotation_sign_from_gyroscopic(0.5 * (C[p.theta, p.psi] - C[p.psi, p.theta]))
 
 
 def baseline_propeller_responses(speeds: Sequence[float] = THESIS_RESPONSE_SPEEDS, *,

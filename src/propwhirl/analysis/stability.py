@@ -1,24 +1,18 @@
 """Stability analysis of a model: labelled V-g-f sweep, instabilities, the critical one.
 
-:func:`analyse` runs the engine of :mod:`propwhirl.engine.core` on a model's state matrix
-(PropellerWing, IsolatedPropeller or TypicalSection) and names the tracked modes the way the
-thesis does (chapters 9–11):
-
-* propeller–wing models: each aeroelastic mode is matched at the first speed, by an optimal
-  one-to-one MAC assignment on the displacement part, to the in-vacuo modes named by
-  :func:`propwhirl.analysis.vibration.label_modes` ("wing n", "backward k", "forward k"); the real
-  aerodynamic lag roots are "lag k";
-* the isolated propeller: "backward" and "forward" whirl from the sense of the θ–ψ orbit at the
-  first speed (or, without rotation, by frequency);
-* the typical section: "plunge" and "pitch" by their displacement content.
-
-A mode keeps its name along the sweep (it is a tracked branch).  At each instability the whirl
-sense of the propeller motion is also reported, because strongly coupled modes may change it.
+:func:`analyse` runs the engine (:mod:`propwhirl.engine`) on any
+:class:`~propwhirl.model.protocol.Model` — its state matrix A(V) and its DOF map — and names
+the tracked modes the way the thesis does (chapters 9–11; :mod:`propwhirl.analysis.naming`:
+"wing n", "backward k", "forward k", "lag k", ...).  A mode keeps its name along the sweep (it
+is a tracked branch).  At each flutter event the whirl sense of the propeller motion is also
+reported, because strongly coupled modes may change it.
 
 Instabilities are the onsets of the engine's crossings (flutter: a complex pair; divergence: a
-real root through zero) plus *frequency-zero* events: an already unstable oscillatory mode whose
-frequency falls to zero (the pair splits into real roots) — the thesis's "whirl divergence"
-(Table 10.4).  Results are saved and re-read with :meth:`ModelAnalysis.save` / :func:`load`.
+real root through zero), modes already unstable at the first speed, and *frequency-zero* events:
+an already unstable oscillatory mode whose frequency falls to zero (the pair splits into real
+roots) — the thesis's "whirl divergence" (Table 10.4).  :func:`critical` is the one definition
+of the critical instability.  Results are saved and re-read with :meth:`ModelAnalysis.save` /
+:func:`load`.
 """
 from __future__ import annotations
 
@@ -28,10 +22,11 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from scipy.optimize import linear_sum_assignment
 
 from propwhirl.engine import core as st
 from propwhirl import validate as v
+from propwhirl.analysis.naming import mode_content, mode_names, whirl
+from propwhirl.model.protocol import Model
 
 #: Default airspeed grid of the thesis's analyses (0–350 m/s; the engine refines it) [m/s]
 DEFAULT_SPEEDS = np.arange(1.0, 351.0, 10.0)
@@ -131,108 +126,6 @@ def load(path: str | Path) -> ModelAnalysis:
     return ModelAnalysis.from_dict(json.loads(Path(path).read_text()))
 
 
-# ----------------------------------------------------------------------------- labels
-def _propeller_indices(labels: tuple[str, ...]) -> list[tuple[int, int]]:
-    """(θ, ψ) state indices of each flexible propeller."""
-    out = []
-    j = 0
-    while f"propeller {j} theta" in labels:
-        out.append((labels.index(f"propeller {j} theta"), labels.index(f"propeller {j} psi")))
-        j += 1
-    return out
-
-
-def _mode_names(model, sw: st.Sweep) -> list[str]:
-    """Names of the tracked modes, decided at the first speed (see the module docstring)."""
-    n = sw.n_modes
-    lam0 = sw.eigenvalues[0]
-    X0 = sw.eigenvectors[0]
-    disp = sw.displacement
-    names = [f"mode {k}" for k in range(n)]
-    phys = sw.physical[0]
-    osc = [k for k in range(n) if phys[k] and abs(lam0[k].imag) > 1e-9 * max(1.0, abs(lam0[k]))]
-    real = [k for k in range(n) if phys[k] and k not in osc]
-    for i, k in enumerate(sorted(real, key=lambda k: -lam0[k].real)):
-        names[k] = f"lag {i + 1}"
-    kind = type(model).__name__
-    if kind == "PropellerWing":
-        from propwhirl.analysis.vibration import label_modes, model_modes
-
-        modes, _ = model_modes(model)
-        ref = [lab for lab, _ in label_modes(model)]
-        M = st.mac(X0[disp][:, osc][:, :, None], modes.shapes[:, None, :].astype(complex))
-        rows, cols = linear_sum_assignment(-M)
-        for r, c in zip(rows, cols):
-            names[osc[r]] = ref[c]
-    elif kind == "IsolatedPropeller":
-        order = sorted(osc, key=lambda k: abs(lam0[k].imag))
-        if model.rotating and len(order) == 2:
-            th, ps = 0, 1
-            for k in order:
-                names[k] = st.whirl_sense(X0[th, k], X0[ps, k], model.propeller.rotation, lam0[k])
-        else:
-            for k, nm in zip(order, ("pitch", "yaw")):
-                names[k] = nm
-    elif kind == "TypicalSection":
-        for k in osc:
-            c = st.content(X0[:2, k], {"plunge": [0], "pitch": [1]})
-            names[k] = max(c, key=lambda g: c[g])
-    for k in range(n):  # hidden conjugate partners: "<name>'"
-        if not phys[k] and sw.partner[k] >= 0:
-            names[k] = f"{names[sw.partner[k]]}'"
-    return names
-
-
-def _rotations(model) -> list[int]:
-    """Sense of rotation (+1 counter-clockwise from the front) of each flexible propeller."""
-    if hasattr(model, "flexible"):
-        return [model.propellers[j].propeller.rotation for j in model.flexible]
-    if hasattr(model, "propeller"):
-        return [model.propeller.rotation]
-    return []
-
-
-def _whirl(model, x: np.ndarray, lam: complex, labels: tuple[str, ...]) -> str | None:
-    """Whirl sense of the propeller with the largest θ–ψ motion in full-state vector x,
-    relative to that propeller's own sense of rotation."""
-    props = _propeller_indices(labels)
-    if not props or abs(lam.imag) == 0 or not getattr(model, "rotating", True):
-        return None
-    j = max(range(len(props)), key=lambda i: abs(x[props[i][0]]) ** 2 + abs(x[props[i][1]]) ** 2)
-    th, ps = props[j]
-    return st.whirl_sense(x[th], x[ps], _rotations(model)[j], lam)
-
-
-CONTENT_GROUPS = {
-    "bending": lambda lab: lab.endswith(" h") or lab.endswith(" phi"),
-    "torsion": lambda lab: lab.endswith(" alpha") and lab.startswith("node"),
-    "pitch": lambda lab: lab.endswith(" theta"),
-    "yaw": lambda lab: lab.endswith(" psi"),
-    "plunge": lambda lab: lab == "h",
-    "pitch ": lambda lab: lab == "alpha",  # typical section pitch (named apart from propeller pitch)
-}
-
-
-def _content(model, sw: st.Sweep, names: list[str]) -> dict[str, dict[str, float]]:
-    """Kinetic-energy shares of each physical oscillatory mode at the first speed."""
-    from propwhirl.analysis.vibration import energy_fractions
-
-    V0 = np.array([float(sw.V[0])])
-    quiet = model.with_(**{k: False for k in ("wing_aero", "propeller_aero") if hasattr(model, k)}) \
-        if hasattr(model, "with_") else model
-    s = quiet.second_order(V0)
-    M = s.S1[0]
-    X = sw.eigenvectors[0][sw.displacement]
-    out = {}
-    for k in range(sw.n_modes):
-        lam = sw.eigenvalues[0, k]
-        if not sw.physical[0, k] or abs(lam.imag) == 0:
-            continue
-        frac = energy_fractions(X[:, [k]], M, s.q_labels, CONTENT_GROUPS)
-        out[names[k]] = {g.strip(): round(float(f[0]), 4) for g, f in frac.items() if abs(f[0]) > 1e-3}
-    return out
-
-
 # ----------------------------------------------------------------------------- frequency zero
 def _n_unstable_pairs(model, V: float) -> int:
     """Number of eigenvalues with Re λ > 0 and Im λ > 0 at airspeed V (a full eigvals)."""
@@ -270,7 +163,7 @@ def _frequency_zero_events(model, sw: st.Sweep, names: list[str], xtol: float) -
 
 
 # ----------------------------------------------------------------------------- analyse
-def analyse(model, speeds=None, *, xtol: float = 0.01, vgf: bool = False,
+def analyse(model: Model, speeds=None, *, xtol: float = 0.01, vgf: bool = False,
             options: st.TrackingOptions | None = None) -> ModelAnalysis:
     """Every instability of `model` over `speeds` [m/s], with tracked, named modes.
 
@@ -280,24 +173,20 @@ def analyse(model, speeds=None, *, xtol: float = 0.01, vgf: bool = False,
     and adds speeds where tracking or a possible crossing asks for them), so by default
     `.sweep` is coarse; `vgf=True` evaluates every grid speed (for V-g-f plots and tables).
     """
-    if speeds is None:
-        flight = getattr(model, "flight", None)
-        grid = flight.speeds() if flight is not None else np.append(DEFAULT_SPEEDS, 350.0)
-    else:
-        grid = np.asarray(speeds, dtype=float)
+    grid = model.flight.speeds() if speeds is None else np.asarray(speeds, dtype=float)
     v.positive("xtol", xtol, "m/s")
-    s = model.second_order(np.array([float(grid[0])]))
-    labels = s.labels
-    an = st.analyse(model.state_matrix, grid, n_dof=s.n_dof, state_labels=labels,
-                    options=options, xtol=xtol, **({"initial_step": None} if vgf else {}))
+    dm = model.dof_map()
+    an = st.analyse(model.state_matrix, grid, displacement=dm.displacement,
+                    state_labels=dm.state_labels, options=options, xtol=xtol,
+                    **({"initial_step": None} if vgf else {}))
     sw = an.sweep
-    names = _mode_names(model, sw)
+    names = mode_names(model, sw)
     sw = sw.relabel(names)
     events = []
     for p in an.criticals.points:
-        whirl = _whirl(model, p.eigenvector, p.eigenvalue, labels) if p.kind == "flutter" else None
+        sense = whirl(dm, p.eigenvector, p.eigenvalue) if p.kind == "flutter" else None
         events.append(Instability(p.kind, p.direction, p.mode, names[p.mode], float(p.V),
-                                  float(p.frequency_hz), whirl,
+                                  float(p.frequency_hz), sense,
                                   None if p.benignity is None else float(p.benignity)))
     for k in an.criticals.unstable_at_start:
         lam0 = sw.eigenvalues[0, k]
@@ -306,8 +195,8 @@ def analyse(model, speeds=None, *, xtol: float = 0.01, vgf: bool = False,
                                   float(abs(lam0.imag) / (2 * np.pi))))
     events += _frequency_zero_events(model, sw, names, xtol)
     events.sort(key=lambda e: (e.V, e.mode))
-    return ModelAnalysis(getattr(model, "name", type(model).__name__), sw, tuple(events), an.criticals,
-                         _content(model, sw, names))
+    return ModelAnalysis(model.name, sw, tuple(events), an.criticals,
+                         mode_content(model, sw, names))
 
 
 def speed_and_frequency(event: Instability | None) -> tuple[float, float]:

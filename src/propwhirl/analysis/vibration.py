@@ -7,7 +7,6 @@ the same solve with the gyroscopic terms included (see propwhirl.model.systems).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 import scipy.linalg as sl
@@ -76,27 +75,14 @@ def classify_wing_modes(wing: Wing, count: int) -> list[tuple[str, float]]:
     return out
 
 
-def energy_fractions(X: np.ndarray, M: np.ndarray, labels: tuple[str, ...],
-                     groups: dict[str, Callable[[str], bool]]) -> dict[str, np.ndarray]:
-    """Share of each mode's (column of X) kinetic energy xᵀMx in each group of DOFs.
-
-    Group g's share is Re Σ_{i∈g} conj(x_i) (M x)_i / xᴴMx; shares of all DOFs sum to one.
-    """
-    e = np.real(np.conj(X) * (M @ X))
-    total = e.sum(axis=0)
-    return {
-        name: e[np.array([sel(lab) for lab in labels])].sum(axis=0) / total
-        for name, sel in groups.items()
-    }
-
-
 def model_modes(model) -> tuple[Modes, np.ndarray]:
-    """Undamped, non-rotating modes of a PropellerWing (V = 0: no aerodynamics, Ω = 0).
+    """Undamped in-vacuo modes of any model (no aerodynamics; the gyroscopic and dissipative
+    terms, which live in the damping matrix, play no part): K x = ω² M x with the structural
+    M and K of ``model.without_aerodynamics()``.
 
-    Returns the modes and the reduced structural mass matrix they are normalised with.
+    Returns the modes and the (reduced) structural mass matrix they are normalised with.
     """
-    quiet = model.with_(wing_aero=False, propeller_aero=False, rotating=False)
-    s = quiet.second_order(np.array([1.0]))
+    s = model.without_aerodynamics().second_order(np.array([1.0]))
     return undamped_modes(s.S1[0], s.S3[0], s.q_labels), s.S1[0]
 
 

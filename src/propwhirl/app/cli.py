@@ -184,10 +184,10 @@ def case_model(name: str):
 
 def _load(path: str):
     from propwhirl.io import files as io
-    from propwhirl.model.systems import IsolatedPropeller, PropellerWing
+    from propwhirl.model.protocol import Model
 
     model = io.load_model(path)
-    if not isinstance(model, (PropellerWing, IsolatedPropeller)):
+    if not isinstance(model, Model):
         raise InputError(f"{path} holds a {type(model).__name__}, not a model to analyse: "
                          "type must be \"propeller-wing\" or \"isolated-propeller\"")
     return model
@@ -258,32 +258,24 @@ def _modes(args: argparse.Namespace) -> int:
     import numpy as np
 
     from propwhirl import validate as v
-    from propwhirl.model.systems import PropellerWing
-    from propwhirl.analysis.vibration import energy_fractions, label_modes, model_modes, undamped_modes
+    from propwhirl.analysis.naming import kinetic_energy_shares
+    from propwhirl.analysis.vibration import label_modes, model_modes
 
     model = _load(args.model)
     count = v.integer_at_least("--count", args.count, 1)
-    if isinstance(model, PropellerWing):
-        modes, M = model_modes(model)
-        names = label_modes(model)
-    else:  # isolated propeller: the uncoupled pitch and yaw modes (no spin, no aerodynamics)
-        s = model.with_(propeller_aero=False, rotating=False).second_order(np.array([1.0]))
-        modes, M = undamped_modes(s.S1[0], s.S3[0], s.q_labels), s.S1[0]
-        names = None
-    share = energy_fractions(modes.shapes, M, modes.labels, {
-        "bending": lambda lab: lab.endswith((" h", " phi")),
-        "torsion": lambda lab: lab.endswith(" alpha"),
-        "pitch": lambda lab: lab.endswith(" theta"),
-        "yaw": lambda lab: lab.endswith(" psi"),
-    })
+    modes, M = model_modes(model)
+    dm = model.dof_map()
+    names = label_modes(model) if any(n >= 0 for n in dm.q_node) else None
+    found = dm.groups()
+    groups = ("bending", "torsion", "pitch", "yaw")
+    share = kinetic_energy_shares(modes.shapes, M, {g: found.get(g, []) for g in groups})
     print(f"{model.name}: in-vacuo modes (V = 0, not rotating; kinetic-energy shares)")
     print(f"  {'mode':12s} {'f [Hz]':>10s} {'bending':>8s} {'torsion':>8s} {'pitch':>8s} {'yaw':>8s}")
     order = np.argsort(modes.omega, kind="stable")
-    groups = ("bending", "torsion", "pitch", "yaw")
     for r, i in enumerate(order[:count]):
         if names is not None:
             label, f = names[r]
-        else:  # isolated propeller: named by its dominant motion
+        else:  # no wing (isolated propeller): named by its dominant motion
             label, f = max(groups, key=lambda g: share[g][i]), float(modes.frequency_hz[i])
         print(f"  {label:12s} {f:10.4f} " + " ".join(f"{share[g][i]:8.3f}" for g in groups))
     return 0

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from propwhirl import validate as v
+from propwhirl.model.protocol import rate_label
 
 
 @dataclass(frozen=True)
@@ -46,7 +47,7 @@ class SecondOrder:
     @property
     def labels(self) -> tuple[str, ...]:
         """Labels of the first-order state [q, q̇, w]."""
-        return self.q_labels + tuple(f"d/dt {s}" for s in self.q_labels) + self.w_labels
+        return self.q_labels + tuple(rate_label(s) for s in self.q_labels) + self.w_labels
 
     def reduced(self, keep_q: np.ndarray, keep_w: np.ndarray) -> "SecondOrder":
         """Keep only the listed degrees of freedom and lag states (e.g. remove a clamped root)."""

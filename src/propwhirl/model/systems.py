@@ -28,6 +28,7 @@ import numpy as np
 from propwhirl import validate as v
 from propwhirl.model.assembly import (
     LAG_STATES,
+    WING_DOF_NAMES,
     call,
     free_dofs,
     wing_aero,
@@ -36,6 +37,7 @@ from propwhirl.model.assembly import (
 )
 from propwhirl.generated import prop_flexwing, prop_rigid
 from propwhirl.model.propeller import Propeller
+from propwhirl.model.protocol import DofMap, PropellerDofs
 from propwhirl.model.statespace import SecondOrder, state_matrix
 from propwhirl.model.wing import Wing
 
@@ -120,8 +122,27 @@ def node_at(wing: Wing, y: float, tol: float = 1e-6) -> int:
     return i
 
 
+class StateSpaceModel:
+    """What every model shares (the :class:`~propwhirl.model.protocol.Model` contract): A(V)
+    from its second-order matrices by the one builder, and its state labels from its DOF map.
+
+    Subclasses define ``second_order(V, ...)``, ``dof_map()`` and ``without_aerodynamics()``.
+    """
+
+    def state_matrix(self, V, **options) -> np.ndarray:
+        """A(V), shape (nV, n_state, n_state), of the state [q, q̇, w] (eq. 5.3, 6.18, 7.59,
+        D.27), by :func:`propwhirl.model.statespace.state_matrix`.  V [m/s], array; `options`
+        go to ``second_order`` (e.g. ``omega`` of a PropellerWing)."""
+        V = np.atleast_1d(np.asarray(V, dtype=float))
+        return state_matrix(self.second_order(V, **options), V)
+
+    def state_labels(self) -> tuple[str, ...]:
+        """Labels of the first-order state [q, q̇, w] (:attr:`DofMap.state_labels`)."""
+        return self.dof_map().state_labels
+
+
 @dataclass(frozen=True)
-class PropellerWing:
+class PropellerWing(StateSpaceModel):
     """A cantilever wing with flexibly (or rigidly) mounted propellers (chapter 8, appendix D).
 
     With no propellers it is the wing model of chapter 7.
@@ -268,17 +289,41 @@ class PropellerWing:
         keep_q = np.concatenate([free_dofs(wing.n_nodes), np.arange(nqw, n)])
         return full.reduced(keep_q, keep_w)
 
-    def state_matrix(self, V, omega=None) -> np.ndarray:
-        """A(V), shape (nV, n_state, n_state), for the state [q, q̇, w] (D.27)."""
-        V = np.atleast_1d(np.asarray(V, dtype=float))
-        return state_matrix(self.second_order(V, omega), V)
+    def without_aerodynamics(self) -> "PropellerWing":
+        """The same wing and propellers with wing and propeller aerodynamics off."""
+        return replace(self, wing_aero=False, propeller_aero=False)
 
-    def state_labels(self) -> tuple[str, ...]:
-        return self.second_order(np.array([1.0])).labels
+    def dof_map(self) -> DofMap:
+        """The states of :meth:`second_order`: the free wing DOFs (node ≥ 1: h, φ, α, eq. 7.20),
+        then θ, ψ of each flexibly mounted propeller, then the lag states of nodes ≥ 1."""
+        nn = self.wing.n_nodes
+        keep = free_dofs(nn)
+        labels = list(np.asarray(wing_dof_labels(nn), dtype=object)[keep])
+        kinds = [WING_DOF_NAMES[i % 3] for i in keep]
+        node = [int(i // 3) for i in keep]
+        prop = [-1] * keep.size
+        props = []
+        ys = self.wing.node_y
+        for j in self.flexible:
+            inst = self.propellers[j]
+            props.append(PropellerDofs(j, len(labels), len(labels) + 1, inst.propeller.rotation,
+                                       self.rotating, float(ys[self.nodes[j]]), self.nodes[j]))
+            labels += [f"propeller {j} theta", f"propeller {j} psi"]
+            kinds += ["theta", "psi"]
+            node += [-1, -1]
+            prop += [j, j]
+        if self.wing_aero:
+            k = LAG_STATES[self.wing.aero_model]
+            w_node = tuple(i for i in range(1, nn) for _ in range(k))
+            w_labels = tuple(f"node {i} w{r + 1}" for i in range(1, nn) for r in range(k))
+        else:
+            w_node, w_labels = (), ()
+        return DofMap(tuple(labels), tuple(kinds), tuple(node), tuple(prop), w_labels, w_node,
+                      tuple(props))
 
 
 @dataclass(frozen=True)
-class IsolatedPropeller:
+class IsolatedPropeller(StateSpaceModel):
     """A propeller flexibly mounted on a rigid wing: 2-DOF pitch/yaw whirl (chapter 6, 6.18)."""
 
     propeller: Propeller
@@ -312,16 +357,19 @@ class IsolatedPropeller:
         return SecondOrder(S1, S2, S3, np.zeros((nV, 2, 0)), np.zeros((nV, 0, 0)), z, z,
                            ("propeller 0 theta", "propeller 0 psi"), ())
 
-    def state_matrix(self, V) -> np.ndarray:
-        V = np.atleast_1d(np.asarray(V, dtype=float))
-        return state_matrix(self.second_order(V), V)
+    def without_aerodynamics(self) -> "IsolatedPropeller":
+        """The same propeller with its aerodynamic derivatives off."""
+        return replace(self, propeller_aero=False)
 
-    def state_labels(self) -> tuple[str, ...]:
-        return self.second_order(np.array([1.0])).labels
+    def dof_map(self) -> DofMap:
+        """Two states θ, ψ of the propeller (6.18) and their rates; no lag states."""
+        return DofMap(("propeller 0 theta", "propeller 0 psi"), ("theta", "psi"), (-1, -1), (0, 0),
+                      propellers=(PropellerDofs(0, 0, 1, self.propeller.rotation, self.rotating,
+                                                None, None),))
 
 
 @dataclass(frozen=True)
-class TypicalSection:
+class TypicalSection(StateSpaceModel):
     """The 2-DOF pitch–plunge aerofoil on springs with the wing's strip aerodynamics.
 
     Per unit span (SI): semichord b [m], elastic axis a and centre of gravity offset x_alpha
@@ -343,6 +391,8 @@ class TypicalSection:
     ac: float = -0.5
     aero_model: Literal["leishman-nguyen", "wagner"] = "leishman-nguyen"
     name: str = "typical section"
+    #: strip aerodynamics on (False: the structural system alone, no lag states)
+    aero: bool = True
 
     def __post_init__(self) -> None:
         v.positive("b", self.b, "m")
@@ -374,6 +424,11 @@ class TypicalSection:
         I = self.m * (self.r_alpha * self.b) ** 2
         Ms = typical_section.mass(self.m, S, I)
         Ks = typical_section.stiffness(self.m * self.omega_h**2, I * self.omega_alpha**2)
+        if not self.aero:
+            Ms, Ks = np.broadcast_to(Ms, (nV, 2, 2)), np.broadcast_to(Ks, (nV, 2, 2))
+            return SecondOrder(Ms, np.zeros((nV, 2, 2)), Ks, np.zeros((nV, 2, 0)),
+                               np.zeros((nV, 0, 0)), np.zeros((nV, 0, 2)), np.zeros((nV, 0, 2)),
+                               ("h", "alpha"), ())
         values = dict(rho=self.flight.density, V=V, b=self.b, a=self.a, Cla=self.Cla, ac=self.ac)
         names = {
             "leishman-nguyen": ("ln_M", "ln_C", "ln_K", "ln_W0", "ln_W1", "ln_W2", "ln_W3"),
@@ -387,9 +442,12 @@ class TypicalSection:
         return SecondOrder(Ms - Ma, -Ca, Ks - Ka, W0, Ww, Wv, Wq, ("h", "alpha"),
                            tuple(f"w{j + 1}" for j in range(k)))
 
-    def state_matrix(self, V) -> np.ndarray:
-        V = np.atleast_1d(np.asarray(V, dtype=float))
-        return state_matrix(self.second_order(V), V)
+    def without_aerodynamics(self) -> "TypicalSection":
+        """The same section with its strip aerodynamics off (no lag states)."""
+        return replace(self, aero=False)
 
-    def state_labels(self) -> tuple[str, ...]:
-        return self.second_order(np.array([1.0])).labels
+    def dof_map(self) -> DofMap:
+        """Plunge h [m] and pitch α [rad] (and rates), then the lag states w1…wk."""
+        k = LAG_STATES[self.aero_model] if self.aero else 0
+        return DofMap(("h", "alpha"), ("plunge", "pitch"), (-1, -1), (-1, -1),
+                      tuple(f"w{j + 1}" for j in range(k)), (-1,) * k)

@@ -206,16 +206,17 @@ def static_divergence_speed(a: ModelAnalysis,
 
 def mount_strain_share(model, V: float, q: np.ndarray) -> float:
     """Share of the strain energy qᵀKq of displacement vector `q` in the propeller mount springs
-    (degrees of freedom "propeller j theta/psi"), K the structural stiffness of `model` at V
-    [m/s] without aerodynamics.  1 for the isolated propeller (it has no wing)."""
-    from propwhirl.analysis.vibration import energy_fractions
+    (the θ, ψ degrees of freedom of the model's DOF map), K the structural stiffness of `model`
+    at V [m/s] without aerodynamics.  1 for a model without wing degrees of freedom (the
+    isolated propeller)."""
+    from propwhirl.analysis.naming import kinetic_energy_shares
 
-    if not hasattr(model, "wing"):
+    dm = model.dof_map()
+    if not any(n >= 0 for n in dm.q_node):
         return 1.0
-    quiet = model.with_(wing_aero=False, propeller_aero=False)
-    s = quiet.second_order(np.array([float(V)]))
+    s = model.without_aerodynamics().second_order(np.array([float(V)]))
     x = np.asarray(q)[: s.n_dof, None]
-    frac = energy_fractions(x, s.S3[0], s.q_labels, {"mount": lambda lab: lab.startswith("propeller")})
+    frac = kinetic_energy_shares(x, s.S3[0], {"mount": dm.dofs("theta", "psi")})
     return float(frac["mount"][0])
 
 

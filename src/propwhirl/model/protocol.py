@@ -1,0 +1,197 @@
+"""The model contract: what the analyses need of a model, and an explicit map of its states.
+
+Every model — :class:`~propwhirl.model.systems.PropellerWing`,
+:class:`~propwhirl.model.systems.IsolatedPropeller`,
+:class:`~propwhirl.model.systems.TypicalSection` — implements :class:`Model`:
+
+* ``second_order(V)`` — the matrices of S1 q̈ + S2 q̇ + S3 q = S4 w, ẇ = Ww w + Wv q̇ + Wq q
+  at airspeeds V [m/s] (:class:`~propwhirl.model.statespace.SecondOrder`);
+* ``state_matrix(V)`` — A(V) of the first-order state x = [q, q̇, w] (eq. 5.3, 6.18, 7.59,
+  D.27), always built by :func:`propwhirl.model.statespace.state_matrix` (one builder, one
+  singularity rule);
+* ``dof_map()`` — a :class:`DofMap` saying, for every state, what it is: which wing node and
+  which of h, φ, α; which propeller and whether θ or ψ; the typical section's plunge or pitch;
+  which aerodynamic lag state of which node; and for every flexibly mounted propeller its θ
+  and ψ indices, sense of rotation and spanwise position;
+* ``without_aerodynamics()`` — the same model with every aerodynamic load switched off (its
+  structural matrices: kinetic and strain energies, in-vacuo modes);
+* ``name`` and ``flight`` (the :class:`~propwhirl.model.systems.FlightCondition`).
+
+The analyses read the states' meaning from the map only — never from a model's class name,
+its attributes or its state labels.  Labels are for people: ``"node 3 h"``, ``"propeller 0
+psi"``, ``"d/dt node 3 h"`` (the one rule for rates, :func:`rate_label`), ``"node 3 w1"``.
+
+Examples
+--------
+>>> from propwhirl.model.protocol import DofMap, PropellerDofs
+>>> dm = DofMap(q_labels=("propeller 0 theta", "propeller 0 psi"), q_kinds=("theta", "psi"),
+...             q_node=(-1, -1), q_propeller=(0, 0),
+...             propellers=(PropellerDofs(0, 0, 1, rotation=1, spinning=True, y=None),))
+>>> dm.state_labels
+('propeller 0 theta', 'propeller 0 psi', 'd/dt propeller 0 theta', 'd/dt propeller 0 psi')
+>>> dm.displacement.tolist()
+[True, True, False, False]
+>>> dm.groups()
+{'pitch': array([0]), 'yaw': array([1])}
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Protocol, runtime_checkable
+
+import numpy as np
+
+from propwhirl import validate as v
+
+if TYPE_CHECKING:
+    from propwhirl.model.statespace import SecondOrder
+    from propwhirl.model.systems import FlightCondition
+
+#: Kinds of degrees of freedom a model may have, with their units and the content group
+#: (kinetic-energy shares, :meth:`DofMap.groups`) each belongs to.
+DOF_KINDS: dict[str, tuple[str, str]] = {
+    "h": ("m", "bending"),            # wing bending displacement, positive down (7.20)
+    "phi": ("rad", "bending"),        # wing bending slope
+    "alpha": ("rad", "torsion"),      # wing twist, nose up
+    "theta": ("rad", "pitch"),        # propeller pitch about its pivot (6.1, 8.1)
+    "psi": ("rad", "yaw"),            # propeller yaw about its pivot
+    "plunge": ("m", "plunge"),        # typical-section plunge h, positive down
+    "pitch": ("rad", "pitch"),        # typical-section pitch α, nose up
+}
+
+
+def rate_label(label: str) -> str:
+    """Label of the rate of a displacement state: ``"d/dt " + label``.
+
+    >>> rate_label("node 3 h")
+    'd/dt node 3 h'
+    """
+    return f"d/dt {label}"
+
+
+@dataclass(frozen=True)
+class PropellerDofs:
+    """The pitch and yaw degrees of freedom of one flexibly mounted propeller.
+
+    number:   the propeller's index in its model (``PropellerWing.propellers``; 0 for the
+              isolated propeller).
+    theta:    index of θ (pitch) in the displacement vector q (and in the state x = [q, q̇, w]).
+    psi:      index of ψ (yaw) in q.
+    rotation: +1 for a propeller spinning counter-clockwise seen from the front (the thesis's,
+              Figure 6.1), −1 clockwise.
+    spinning: whether the rotor turns in this model (gyroscopic terms on).
+    y:        spanwise position of its wing node [m], None without a wing.
+    node:     index of that wing node, None without a wing.
+    """
+
+    number: int
+    theta: int
+    psi: int
+    rotation: int
+    spinning: bool
+    y: float | None
+    node: int | None = None
+
+
+@dataclass(frozen=True)
+class DofMap:
+    """What every state of a model is.  The state is x = [q, q̇, w] (eq. 5.3, D.27).
+
+    q_labels:    labels of the displacement degrees of freedom q (n_dof).
+    q_kinds:     kind of each DOF, a key of :data:`DOF_KINDS`.
+    q_node:      wing node of each DOF (node 0 is the clamped root), −1 if not a wing DOF.
+    q_propeller: propeller number of each DOF, −1 if not a propeller DOF.
+    w_labels:    labels of the aerodynamic lag states w (n_lag).
+    w_node:      wing node of each lag state, −1 for a typical section's.
+    propellers:  the flexibly mounted propellers' pitch/yaw DOFs.
+    """
+
+    q_labels: tuple[str, ...]
+    q_kinds: tuple[str, ...]
+    q_node: tuple[int, ...]
+    q_propeller: tuple[int, ...]
+    w_labels: tuple[str, ...] = ()
+    w_node: tuple[int, ...] = ()
+    propellers: tuple[PropellerDofs, ...] = ()
+
+    def __post_init__(self) -> None:
+        n = len(self.q_labels)
+        for name in ("q_kinds", "q_node", "q_propeller"):
+            if len(getattr(self, name)) != n:
+                raise v.InputError(f"DofMap.{name} has {len(getattr(self, name))} entries, "
+                                   f"need one per degree of freedom ({n})")
+        if len(self.w_node) != len(self.w_labels):
+            raise v.InputError(f"DofMap.w_node has {len(self.w_node)} entries, need one per "
+                               f"lag state ({len(self.w_labels)})")
+        bad = sorted(set(self.q_kinds) - set(DOF_KINDS))
+        if bad:
+            raise v.InputError(f"DofMap.q_kinds: unknown kind(s) {bad}; valid: {tuple(DOF_KINDS)}")
+
+    @property
+    def n_dof(self) -> int:
+        """Number of displacement degrees of freedom (length of q)."""
+        return len(self.q_labels)
+
+    @property
+    def n_lag(self) -> int:
+        """Number of aerodynamic lag states (length of w)."""
+        return len(self.w_labels)
+
+    @property
+    def n_states(self) -> int:
+        """Number of first-order states, 2 n_dof + n_lag."""
+        return 2 * self.n_dof + self.n_lag
+
+    @property
+    def state_labels(self) -> tuple[str, ...]:
+        """Labels of x = [q, q̇, w]."""
+        return self.q_labels + tuple(rate_label(s) for s in self.q_labels) + self.w_labels
+
+    @property
+    def displacement(self) -> np.ndarray:
+        """Boolean mask (n_states,) of the displacement states q (eq. 5.7)."""
+        mask = np.zeros(self.n_states, dtype=bool)
+        mask[: self.n_dof] = True
+        return mask
+
+    def dofs(self, *kinds: str) -> np.ndarray:
+        """Indices in q of the DOFs of the given kinds (e.g. ``dofs("h", "phi")``)."""
+        bad = sorted(set(kinds) - set(DOF_KINDS))
+        if bad:
+            raise v.InputError(f"unknown DOF kind(s) {bad}; valid: {tuple(DOF_KINDS)}")
+        return np.array([i for i, k in enumerate(self.q_kinds) if k in kinds], dtype=int)
+
+    def groups(self) -> dict[str, np.ndarray]:
+        """Content groups present in the model → indices in q: "bending" (h, φ), "torsion"
+        (wing α), "pitch" (propeller θ, or the section's pitch), "yaw" (ψ), "plunge"."""
+        out: dict[str, list[int]] = {}
+        for i, k in enumerate(self.q_kinds):
+            out.setdefault(DOF_KINDS[k][1], []).append(i)
+        return {g: np.array(ix, dtype=int) for g, ix in out.items()}
+
+    def propeller(self, number: int) -> PropellerDofs:
+        """The pitch/yaw DOFs of propeller ``number`` (an error if it has none)."""
+        for p in self.propellers:
+            if p.number == number:
+                return p
+        have = [p.number for p in self.propellers]
+        raise v.InputError(f"propeller {number} has no pitch/yaw degrees of freedom "
+                           f"(flexibly mounted propellers: {have})")
+
+
+@runtime_checkable
+class Model(Protocol):
+    """What the analyses need of a model (see the module docstring)."""
+
+    name: str
+
+    @property
+    def flight(self) -> "FlightCondition": ...
+
+    def second_order(self, V) -> "SecondOrder": ...
+
+    def state_matrix(self, V) -> np.ndarray: ...
+
+    def dof_map(self) -> DofMap: ...
+
+    def without_aerodynamics(self) -> "Model": ...
