@@ -1,6 +1,7 @@
-"""Analyses of a model: stability (labelled instabilities), vibration, time response."""
+"""Analyses of a model: stability (labelled instabilities, the critical one), names of modes,
+free vibration, time response."""
 from propwhirl.analysis.stability import (DEFAULT_SPEEDS, Instability, ModelAnalysis, analyse,
-                                          first_of_kind, load, speed_and_frequency)
+                                          critical, first_of_kind, load, speed_and_frequency)
 
-__all__ = ["DEFAULT_SPEEDS", "Instability", "ModelAnalysis", "analyse", "first_of_kind", "load",
-           "speed_and_frequency"]
+__all__ = ["DEFAULT_SPEEDS", "Instability", "ModelAnalysis", "analyse", "critical",
+           "first_of_kind", "load", "speed_and_frequency"]

@@ -19,6 +19,7 @@ from __future__ import annotations
 import json
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
@@ -55,6 +56,72 @@ class Instability:
     benignity: float | None = None
 
 
+#: Events that make the system (more) unstable, candidates for the critical instability.
+UNSTABLE_EVENTS = ("onset", "unstable-at-start", "frequency-zero")
+
+#: What :func:`critical` may leave out: kinds ("flutter", "divergence"), or a predicate on an
+#: event that is True for events to leave out.
+Exclusion = str | Sequence[str] | Callable[[Instability], bool]
+
+
+def critical(events: Sequence[Instability], *, exclude: Exclusion = ()) -> Instability | None:
+    """The critical instability: the lowest-speed event that makes the system unstable.
+
+    This is the one definition used by the summary, the CLI, ``propwhirl run``, the studies and
+    the result files.  Candidates are the onsets of flutter and of divergence (static
+    divergence included), frequency-zero events (an unstable pair turning real), and modes
+    already unstable at the first analysed speed — event "unstable-at-start", reported at that
+    speed, never skipped.  Ties at one speed go to the lower mode id.
+
+    Parameters
+    ----------
+    events : sequence of Instability
+        The events of an analysis (:attr:`ModelAnalysis.events`).
+    exclude : str, sequence of str or callable, optional
+        Leave out events of these kinds ("flutter", "divergence"), or the events for which
+        ``exclude(event)`` is True (e.g. the wing's static divergence, which the thesis's
+        chapter-11 studies ignore).  Default: nothing is left out.
+
+    Returns
+    -------
+    Instability or None
+        None when nothing is unstable in the analysed range.
+
+    Examples
+    --------
+    >>> from propwhirl.analysis.stability import Instability, critical
+    >>> ev = [Instability("flutter", "onset", 3, "forward 1", 159.39, 11.25),
+    ...       Instability("divergence", "onset", 0, "wing 1", 143.15, 0.0)]
+    >>> critical(ev).label
+    'wing 1'
+    >>> critical(ev, exclude="divergence").V
+    159.39
+    """
+    if callable(exclude):
+        leave_out = exclude
+    else:
+        kinds = {exclude} if isinstance(exclude, str) else set(exclude)
+        bad = sorted(kinds - {"flutter", "divergence"})
+        if bad:
+            raise v.InputError(f"exclude = {bad!r} is invalid: kinds are 'flutter' and 'divergence'")
+        leave_out = lambda e: e.kind in kinds  # noqa: E731
+    cands = [e for e in events if e.event in UNSTABLE_EVENTS and not leave_out(e)]
+    return min(cands, key=lambda e: (e.V, e.mode)) if cands else None
+
+
+def describe_critical(c: Instability | None, describe: Callable[[str], str] = str) -> str:
+    """One line for the critical instability, e.g. 'flutter of forward 1 (yaw) at 159.39 m/s,
+    11.247 Hz' or 'unstable from V = 150 m/s, the start of the range: divergence of wing 1'."""
+    if c is None:
+        return "none in the speed range"
+    what = f"{c.kind} of {describe(c.label)}"
+    if c.event == "unstable-at-start":
+        f = f" ({c.frequency_hz:.3f} Hz)" if c.kind == "flutter" else ""
+        return f"unstable from V = {c.V:g} m/s, the start of the range: {what}{f}"
+    f = f", {c.frequency_hz:.3f} Hz" if c.kind == "flutter" else ""
+    return f"{what} at {c.V:.2f} m/s{f}"
+
+
 @dataclass
 class ModelAnalysis:
     """A labelled sweep and its instabilities (sorted by speed)."""
@@ -81,9 +148,14 @@ class ModelAnalysis:
 
     @property
     def critical(self) -> Instability | None:
-        """The instability at the lowest speed."""
-        ons = [e for e in self.events if e.event == "onset"]
-        return min(ons, key=lambda e: e.V) if ons else None
+        """The critical instability (:func:`critical`: the lowest-speed instability of any
+        kind, static divergence included; a mode unstable at the first speed counts there)."""
+        return critical(self.events)
+
+    def critical_excluding(self, exclude: Exclusion) -> Instability | None:
+        """The critical instability leaving out some events (see :func:`critical`), e.g.
+        ``a.critical_excluding("divergence")`` as the thesis's chapter-11 studies."""
+        return critical(self.events, exclude=exclude)
 
     def first(self, label: str, kind: str | None = None, event: str = "onset") -> Instability | None:
         """The lowest-speed event of the mode named `label` (optionally of one kind)."""
@@ -98,15 +170,15 @@ class ModelAnalysis:
             lines.append(
                 f"  {e.kind:10s} {e.event:15s} {self.describe(e.label):24s} {e.whirl or '-':9s} {e.V:9.2f} {e.frequency_hz:8.3f}"
             )
-        c = self.critical
-        lines.append("  critical: " + (f"{c.kind} of {self.describe(c.label)} at {c.V:.2f} m/s, {c.frequency_hz:.3f} Hz"
-                                       if c else "none in the speed range"))
+        lines.append("  critical: " + describe_critical(self.critical, self.describe))
         return "\n".join(lines)
 
     def to_dict(self, include_eigenvectors: bool = False) -> dict[str, Any]:
+        c = self.critical
         return {
             "model_name": self.model_name,
             "events": [asdict(e) for e in self.events],
+            "critical": None if c is None else asdict(c),
             "content": self.content,
             "sweep": self.sweep.to_dict(include_eigenvectors=include_eigenvectors),
         }

@@ -63,7 +63,7 @@ from typing import Any, Callable, Literal, Mapping, Sequence
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.analysis.stability import Instability, ModelAnalysis, analyse
+from propwhirl.analysis.stability import Instability, ModelAnalysis, analyse, critical
 from propwhirl.model.propeller import PointMass, Propeller
 
 #: Model names a study can analyse (see the module docstring).
@@ -173,27 +173,25 @@ def _label_is_wing(e: Instability) -> bool:
 
 def critical_instability(a: ModelAnalysis, *, static_divergence: bool = False, low_speed: bool = False,
                          is_wing_divergence: Callable[[Instability], bool] | None = None) -> Instability | None:
-    """The critical (lowest-speed) instability of an analysis, as defined in the module docstring.
+    """The critical instability of an analysis (:func:`propwhirl.analysis.stability.critical`,
+    the one definition) with the thesis's exclusions of the module docstring as options.
 
     static_divergence: count the wing's static divergence (default: no, as the thesis).
     low_speed: count instabilities present at the first speed even when they recover later.
     is_wing_divergence: says whether a divergence event is the wing's; build it with
         :func:`wing_divergence_predicate` (mode shapes).  Without it the mode's name decides
         (not "backward…"/"forward…" → wing), a fallback for analyses re-read from a file.
+    With both options True this is exactly ``a.critical``.
     """
     is_wing = _label_is_wing if is_wing_divergence is None else is_wing_divergence
     recovered = {e.mode for e in a.events if e.event == "recovery"}
-    cands = []
-    for e in a.events:
-        if e.event == "unstable-at-start":
-            if not (low_speed or e.mode not in recovered):
-                continue
-        elif e.event not in ("onset", "frequency-zero"):
-            continue
-        if e.kind == "divergence" and not static_divergence and is_wing(e):
-            continue
-        cands.append(e)
-    return min(cands, key=lambda e: (e.V, e.mode)) if cands else None
+
+    def leave_out(e: Instability) -> bool:
+        if e.event == "unstable-at-start" and not low_speed and e.mode in recovered:
+            return True
+        return e.kind == "divergence" and not static_divergence and is_wing(e)
+
+    return critical(a.events, exclude=leave_out)
 
 
 def static_divergence_speed(a: ModelAnalysis,
