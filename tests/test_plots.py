@@ -128,17 +128,26 @@ def test_select_modes_takes_the_lowest_frequencies(analysis):
 
 
 # ----------------------------------------------------------------------------- mode shapes
-def test_mode_shape_plots_the_normalised_eigenvector():
+def _two_node_map(rotation=1):
+    from propwhirl.model.protocol import DofMap, PropellerDofs
+
     labels = ("node 1 h", "node 1 phi", "node 1 alpha", "node 2 h", "node 2 phi", "node 2 alpha",
               "propeller 0 theta", "propeller 0 psi")
+    return DofMap(labels, ("h", "phi", "alpha", "h", "phi", "alpha", "theta", "psi"),
+                  (1, 1, 1, 2, 2, 2, -1, -1), (-1,) * 6 + (0, 0),
+                  propellers=(PropellerDofs(0, 6, 7, rotation, True, 2.0, 2),),
+                  node_y=(0.0, 0.7, 2.0))
+
+
+def test_mode_shape_plots_the_normalised_eigenvector():
     x = np.array([0.1 + 0.2j, 9.0, 0.05j, 0.4 - 0.1j, 9.0, -0.02, 0.3, 0.3j])  # φ is not plotted
     lam = -0.1 + 30.0j
-    fig = plots.mode_shape(x, lam, labels, semi_span=2.0)
+    fig = plots.mode_shape(x, lam, _two_node_map())
     ax_h, ax_a, ax_o = fig.axes[:3]
     ref = x[3]  # the largest |entry| among h, α, θ, ψ
     xn = x / ref
     h_re = next(ln for ln in ax_h.get_lines() if ln.get_linestyle() == "-" and len(ln.get_xdata()) == 3)
-    np.testing.assert_allclose(h_re.get_xdata(), [0.0, 1.0, 2.0])
+    np.testing.assert_allclose(h_re.get_xdata(), [0.0, 0.7, 2.0])   # the nodes' positions [m]
     np.testing.assert_allclose(h_re.get_ydata(), [0.0, xn[0].real, xn[3].real])
     assert h_re.get_ydata()[2] == pytest.approx(1.0)  # normalised: the reference entry is 1
     a_im = next(ln for ln in ax_a.get_lines() if ln.get_linestyle() == "--")
@@ -148,21 +157,29 @@ def test_mode_shape_plots_the_normalised_eigenvector():
     np.testing.assert_allclose(orbit.get_xdata(), (xn[6] * np.exp(1j * phase)).real, atol=1e-12)
     np.testing.assert_allclose(orbit.get_ydata(), (xn[7] * np.exp(1j * phase)).real, atol=1e-12)
     sense = st.whirl_sense(xn[6], xn[7], 1, lam)
-    assert sense in ax_o.get_title()
+    assert f"{sense} whirl" in ax_o.get_title() and "y = 2 m" in ax_o.get_title()
+    # the sense is relative to the propeller's own rotation (a clockwise rotor reverses it)
+    flipped = plots.mode_shape(x, lam, _two_node_map(rotation=-1)).axes[2].get_title()
+    other = {"forward": "backward", "backward": "forward"}[sense]
+    assert f"{other} whirl" in flipped
 
 
 def test_mode_shape_bad_input():
+    from propwhirl.model.protocol import DofMap
+
+    lag_only = DofMap(("h",), ("plunge",), (-1,), (-1,))
     with pytest.raises(InputError, match="nothing to plot"):
-        plots.mode_shape(np.ones(2), 1j, ("a", "b"))
+        plots.mode_shape(np.ones(2), 1j, lag_only)
+    with pytest.raises(InputError, match="need 8 .* or 16"):
+        plots.mode_shape(np.ones(3), 1j, _two_node_map())
     with pytest.raises(InputError, match="zero"):
-        plots.mode_shape(np.zeros(3), 1j, ("node 1 h", "node 1 phi", "node 1 alpha"))
+        plots.mode_shape(np.zeros(8), 1j, _two_node_map())
 
 
 def test_event_mode_shapes_of_the_critical_points(analysis, model, tmp_path):
     crit = analysis.critical
     assert crit is not None
-    fig = plots.event_mode_shape(analysis, crit, semi_span=model.wing.semi_span,
-                                 path=tmp_path / "crit.png")
+    fig = plots.event_mode_shape(analysis, crit, path=tmp_path / "crit.png")
     assert (tmp_path / "crit.png").read_bytes().startswith(PNG)
     assert f"{crit.V:.2f} m/s" in fig.get_suptitle()
     x, lam, V = plots.event_eigenvector(analysis, crit)

@@ -70,7 +70,7 @@ def mode_names(model: Model, sw: Sweep) -> list[str]:
     real = [k for k in range(n) if sw.physical[0, k] and k not in osc]
     for i, k in enumerate(sorted(real, key=lambda k: -lam0[k].real)):
         names[k] = f"lag {i + 1}"
-    if any(node >= 0 for node in dm.q_node):
+    if dm.has_wing:
         from propwhirl.analysis.vibration import label_modes, model_modes
 
         modes, _ = model_modes(model)

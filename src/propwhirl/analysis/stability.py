@@ -27,7 +27,7 @@ import numpy as np
 from propwhirl.engine import core as st
 from propwhirl import validate as v
 from propwhirl.analysis.naming import mode_content, mode_names, whirl
-from propwhirl.model.protocol import Model
+from propwhirl.model.protocol import DofMap, Model
 
 #: Default airspeed grid of the thesis's analyses (0–350 m/s; the engine refines it) [m/s]
 DEFAULT_SPEEDS = np.arange(1.0, 351.0, 10.0)
@@ -133,6 +133,8 @@ class ModelAnalysis:
     #: mode label -> share of its kinetic energy at the first speed per group of degrees of
     #: freedom ("bending": h, φ; "torsion": α; "pitch", "yaw": propeller θ, ψ; "plunge")
     content: dict[str, dict[str, float]] = field(default_factory=dict)
+    #: what each state of the analysed model is (wing node and DOF, propeller, lag state)
+    dof_map: DofMap | None = field(default=None, repr=False)
 
     def describe(self, label: str) -> str:
         """'label (dominant content)', e.g. 'wing 2 (torsion)'."""
@@ -179,14 +181,17 @@ class ModelAnalysis:
             "model_name": self.model_name,
             "events": [asdict(e) for e in self.events],
             "critical": None if c is None else asdict(c),
+            "dof_map": None if self.dof_map is None else self.dof_map.to_dict(),
             "content": self.content,
             "sweep": self.sweep.to_dict(include_eigenvectors=include_eigenvectors),
         }
 
     @classmethod
     def from_dict(cls, d: dict[str, Any]) -> "ModelAnalysis":
+        dm = d.get("dof_map")
         return cls(d["model_name"], st.Sweep.from_dict(d["sweep"]),
-                   tuple(Instability(**e) for e in d["events"]), content=d.get("content", {}))
+                   tuple(Instability(**e) for e in d["events"]), content=d.get("content", {}),
+                   dof_map=None if dm is None else DofMap.from_dict(dm))
 
     def save(self, path: str | Path, include_eigenvectors: bool = False) -> None:
         """Write the analysis as JSON (V-g-f table, labels, instabilities)."""
@@ -268,7 +273,7 @@ def analyse(model: Model, speeds=None, *, xtol: float = 0.01, vgf: bool = False,
     events += _frequency_zero_events(model, sw, names, xtol)
     events.sort(key=lambda e: (e.V, e.mode))
     return ModelAnalysis(model.name, sw, tuple(events), an.criticals,
-                         mode_content(model, sw, names))
+                         mode_content(model, sw, names), dm)
 
 
 def speed_and_frequency(event: Instability | None) -> tuple[float, float]:

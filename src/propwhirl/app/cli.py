@@ -265,7 +265,7 @@ def _modes(args: argparse.Namespace) -> int:
     count = v.integer_at_least("--count", args.count, 1)
     modes, M = model_modes(model)
     dm = model.dof_map()
-    names = label_modes(model) if any(n >= 0 for n in dm.q_node) else None
+    names = label_modes(model) if dm.has_wing else None
     found = dm.groups()
     groups = ("bending", "torsion", "pitch", "yaw")
     share = kinetic_energy_shares(modes.shapes, M, {g: found.get(g, []) for g in groups})

@@ -19,7 +19,6 @@ backend switch), so they work headless and in threads.  Every function returns t
 """
 from __future__ import annotations
 
-import re
 from pathlib import Path
 from typing import TYPE_CHECKING, Mapping, Sequence
 
@@ -32,6 +31,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
 
     from propwhirl.analysis.stability import Instability, ModelAnalysis
+    from propwhirl.model.protocol import DofMap
 
 #: Marker colours of Figure 7.4
 FLUTTER_COLOUR = "red"
@@ -219,46 +219,32 @@ def campbell_diagram(rpm, frequencies, *, n_modes: int | None = 8,
 
 
 # ----------------------------------------------------------------------------- mode shapes
-_NODE = re.compile(r"^node (\d+) (h|phi|alpha)$")
-_PROP = re.compile(r"^propeller (\d+) (theta|psi)$")
+def mode_shape(eigenvector, eigenvalue: complex, dof_map: "DofMap", *,
+               title: str | None = None, path: str | Path | None = None) -> "Figure":
+    """Plot a complex mode shape (full-state or displacement eigenvector) of a model.
 
-
-def _parse_labels(labels: Sequence[str]) -> tuple[dict[int, dict[str, int]], dict[int, dict[str, int]]]:
-    nodes: dict[int, dict[str, int]] = {}
-    props: dict[int, dict[str, int]] = {}
-    for i, lab in enumerate(labels):
-        if m := _NODE.match(lab):
-            nodes.setdefault(int(m.group(1)), {})[m.group(2)] = i
-        elif m := _PROP.match(lab):
-            props.setdefault(int(m.group(1)), {})[m.group(2)] = i
-    return nodes, props
-
-
-def mode_shape(eigenvector, eigenvalue: complex, state_labels: Sequence[str], *,
-               semi_span: float | None = None, rotation_sign: int = 1, title: str | None = None,
-               path: str | Path | None = None) -> "Figure":
-    """Plot a complex mode shape (full-state or displacement eigenvector, labelled states).
-
-    Wing panels: h and α at the nodes ('node i h' / 'node i alpha'; the clamped root, node 0,
-    is added as zero) against y/semi-span (or y [m] given `semi_span`; the mesh is uniform).
-    Shown are Re(x̂) (the shape at ωt = 0), Im(x̂) (dashed: x(t) at ωt = −π/2 by eq. 5.12) and
-    the envelope ±|x̂| (shaded) that x(t) = Re(x̂) cos ωt − Im(x̂) sin ωt sweeps over a cycle
+    ``dof_map`` (``model.dof_map()``, or ``ModelAnalysis.dof_map``) says which entries are
+    which wing node's h and α and which propeller's θ and ψ.  Wing panels: h and α at the nodes
+    (the clamped root, node 0, is added as zero) against the node positions y [m].  Shown are
+    Re(x̂) (the shape at ωt = 0), Im(x̂) (dashed: x(t) at ωt = −π/2 by eq. 5.12) and the
+    envelope ±|x̂| (shaded) that x(t) = Re(x̂) cos ωt − Im(x̂) sin ωt sweeps over a cycle
     (eq. 5.11 without the decay).  Propeller panels: the θ–ψ orbit over one cycle, the start
-    (ωt = 0) dotted, an arrow in the direction of motion, titled with the whirl sense
-    (:func:`propwhirl.engine.core.whirl_sense`; `rotation_sign` as there).
+    (ωt = 0) dotted, an arrow in the direction of motion, titled with the whirl sense relative
+    to that propeller's own sense of rotation (:func:`propwhirl.engine.whirl_sense`).
     The vector is normalised so that its largest displacement entry is 1 and real (entries in
     m and rad per unit of that entry).
     """
     x = np.asarray(eigenvector, dtype=complex).ravel()
-    labels = tuple(state_labels)
-    if x.size == 0:
-        raise v.InputError("eigenvector is empty")
-    nodes, props = _parse_labels(labels[: x.size])
-    shown = [i for d in list(nodes.values()) + list(props.values()) for key, i in d.items()
-             if key != "phi"]
+    dm = dof_map
+    if x.size not in (dm.n_dof, dm.n_states):
+        raise v.InputError(f"eigenvector has {x.size} entries: need {dm.n_dof} (displacements) "
+                           f"or {dm.n_states} (states) for this model")
+    props = {p.number: p for p in dm.propellers}
+    nodes = sorted({n for n in dm.q_node if n >= 0})
+    shown = [i for i, k in enumerate(dm.q_kinds) if k in ("h", "alpha", "theta", "psi")]
     if not shown:
-        raise v.InputError("the state labels name no wing node (h, alpha) or propeller "
-                           "(theta, psi) states: nothing to plot")
+        raise v.InputError("the model has no wing node (h, alpha) or propeller (theta, psi) "
+                           "states: nothing to plot")
     ref = shown[int(np.argmax(np.abs(x[shown])))]
     if abs(x[ref]) == 0:
         raise v.InputError("the eigenvector is zero in every plotted state")
@@ -269,21 +255,20 @@ def mode_shape(eigenvector, eigenvalue: complex, state_labels: Sequence[str], *,
     axes = np.atleast_1d(fig.subplots(1, n_panels))
     col = 0
     if nodes:
-        n_max = max(nodes)
-        idx = np.arange(n_max + 1)
-        y = idx / n_max * (semi_span if semi_span is not None else 1.0)
+        y = np.asarray(dm.node_y, dtype=float)
         for key, name, unit in (("h", "h (positive down)", "m"), ("alpha", "α (nose up)", "rad")):
-            vals = np.zeros(idx.size, dtype=complex)
-            for i, d in nodes.items():
-                if key in d:
-                    vals[i] = x[d[key]]
+            vals = np.zeros(y.size, dtype=complex)
+            for node in range(y.size):
+                i = dm.wing_dof(node, key)
+                if i is not None:
+                    vals[node] = x[i]
             ax = axes[col]
             env = np.abs(vals)
             ax.fill_between(y, -env, env, color="C0", alpha=0.15, lw=0, label="envelope ±|x̂|")
             ax.plot(y, vals.real, "-", color="C0", lw=1.6, label="Re x̂  (ωt = 0)")
             ax.plot(y, vals.imag, "--", color="C3", lw=1.4, label="Im x̂  (ωt = −π/2)")
             ax.axhline(0.0, color="0.3", lw=0.8)
-            ax.set_xlabel("y [m]" if semi_span is not None else "y / semi-span")
+            ax.set_xlabel("spanwise position y [m]")
             ax.set_ylabel(f"{name} [{unit}, normalised]")
             ax.set_title(f"wing {name.split(' ')[0]}")
             ax.grid(True, alpha=0.3)
@@ -292,9 +277,8 @@ def mode_shape(eigenvector, eigenvalue: complex, state_labels: Sequence[str], *,
     phase = np.linspace(0.0, 2.0 * np.pi, 181)
     w_sign = 1.0 if lam.imag >= 0 else -1.0
     for j in sorted(props):
-        d = props[j]
-        th = x[d["theta"]] if "theta" in d else 0j
-        ps = x[d["psi"]] if "psi" in d else 0j
+        p = props[j]
+        th, ps = x[p.theta], x[p.psi]
         rot = np.exp(1j * w_sign * phase)
         t_path, p_path = (th * rot).real, (ps * rot).real
         ax = axes[col]
@@ -303,8 +287,10 @@ def mode_shape(eigenvector, eigenvalue: complex, state_labels: Sequence[str], *,
         k = 12
         ax.annotate("", xy=(t_path[k + 3], p_path[k + 3]), xytext=(t_path[k], p_path[k]),
                     arrowprops=dict(arrowstyle="->", color="C2", lw=1.6))
-        sense = st.whirl_sense(th, ps, rotation_sign, lam) if lam.imag != 0 else "planar (real root)"
-        ax.set_title(f"propeller {j}: {sense} whirl" if "real" not in sense else f"propeller {j}: {sense}")
+        sense = st.whirl_sense(th, ps, p.rotation, lam) if lam.imag != 0 else "planar (real root)"
+        where = f" (y = {p.y:.3g} m)" if p.y is not None else ""
+        ax.set_title(f"propeller {j}{where}: {sense} whirl" if "real" not in sense
+                     else f"propeller {j}{where}: {sense}")
         ax.set_xlabel("θ (pitch) [rad, normalised]")
         ax.set_ylabel("ψ (yaw) [rad, normalised]")
         ax.axhline(0.0, color="0.3", lw=0.8)
@@ -339,16 +325,18 @@ def event_eigenvector(analysis: "ModelAnalysis", event: "Instability") -> tuple[
 
 
 def event_mode_shape(analysis: "ModelAnalysis", event: "Instability", *,
-                     semi_span: float | None = None, path: str | Path | None = None) -> "Figure":
+                     path: str | Path | None = None) -> "Figure":
     """:func:`mode_shape` of an instability of `analysis` (e.g. ``analysis.critical``)."""
     if event is None:
         raise v.InputError("no instability to plot (event is None)")
+    if analysis.dof_map is None:
+        raise v.InputError("this analysis has no DOF map (saved by an older propwhirl): "
+                           "re-run the analysis to plot its mode shapes")
     x, lam, V = event_eigenvector(analysis, event)
     whirl = f", {event.whirl} whirl" if event.whirl else ""
     title = (f"{analysis.model_name}: {event.kind} ({event.event}) of {event.label} at "
              f"V = {V:.2f} m/s, f = {abs(lam.imag) / (2 * np.pi):.3f} Hz{whirl}")
-    return mode_shape(x, lam, analysis.sweep.state_labels, semi_span=semi_span, title=title,
-                      path=path)
+    return mode_shape(x, lam, analysis.dof_map, title=title, path=path)
 
 
 # ----------------------------------------------------------------------------- time histories

@@ -135,14 +135,13 @@ def write_plots(a: ModelAnalysis, model: PropellerWing, out: Path) -> list[Path]
         return []
     from propwhirl.app import plots
 
-    span = model.wing.semi_span
     paths = [plots.save(plots.vgf(a, n_modes=VGF_MODES), out / "wingtip_vgf.png")]
     if a.critical is not None:
-        paths.append(plots.save(plots.event_mode_shape(a, a.critical, semi_span=span),
+        paths.append(plots.save(plots.event_mode_shape(a, a.critical),
                                 out / "wingtip_mode_critical.png"))
     fw = a.first("forward 1", "flutter")
     if fw is not None:
-        paths.append(plots.save(plots.event_mode_shape(a, fw, semi_span=span),
+        paths.append(plots.save(plots.event_mode_shape(a, fw),
                                 out / "wingtip_mode_forward_whirl_flutter.png"))
     return paths
 

@@ -104,6 +104,8 @@ class DofMap:
     w_labels:    labels of the aerodynamic lag states w (n_lag).
     w_node:      wing node of each lag state, −1 for a typical section's.
     propellers:  the flexibly mounted propellers' pitch/yaw DOFs.
+    node_y:      spanwise position [m] of every wing node, the clamped root (node 0)
+                 included; empty without a wing.
     """
 
     q_labels: tuple[str, ...]
@@ -113,6 +115,7 @@ class DofMap:
     w_labels: tuple[str, ...] = ()
     w_node: tuple[int, ...] = ()
     propellers: tuple[PropellerDofs, ...] = ()
+    node_y: tuple[float, ...] = ()
 
     def __post_init__(self) -> None:
         n = len(self.q_labels)
@@ -168,6 +171,33 @@ class DofMap:
         for i, k in enumerate(self.q_kinds):
             out.setdefault(DOF_KINDS[k][1], []).append(i)
         return {g: np.array(ix, dtype=int) for g, ix in out.items()}
+
+    @property
+    def has_wing(self) -> bool:
+        """Whether the model has wing degrees of freedom (h, φ, α at nodes)."""
+        return any(n >= 0 for n in self.q_node)
+
+    def wing_dof(self, node: int, kind: str) -> int | None:
+        """Index in q of DOF ``kind`` ("h", "phi", "alpha") of wing node ``node``; None if that
+        DOF is not a state (the clamped root)."""
+        for i, (k, n) in enumerate(zip(self.q_kinds, self.q_node)):
+            if n == node and k == kind:
+                return i
+        return None
+
+    def to_dict(self) -> dict:
+        """JSON-able dict (re-read with :meth:`from_dict`)."""
+        d = {f: list(getattr(self, f)) for f in ("q_labels", "q_kinds", "q_node", "q_propeller",
+                                                 "w_labels", "w_node", "node_y")}
+        d["propellers"] = [vars(p).copy() for p in self.propellers]
+        return d
+
+    @classmethod
+    def from_dict(cls, d: dict) -> "DofMap":
+        """The map written by :meth:`to_dict`."""
+        kw = {f: tuple(d[f]) for f in ("q_labels", "q_kinds", "q_node", "q_propeller",
+                                       "w_labels", "w_node", "node_y")}
+        return cls(**kw, propellers=tuple(PropellerDofs(**p) for p in d["propellers"]))
 
     def propeller(self, number: int) -> PropellerDofs:
         """The pitch/yaw DOFs of propeller ``number`` (an error if it has none)."""

@@ -319,7 +319,7 @@ class PropellerWing(StateSpaceModel):
         else:
             w_node, w_labels = (), ()
         return DofMap(tuple(labels), tuple(kinds), tuple(node), tuple(prop), w_labels, w_node,
-                      tuple(props))
+                      tuple(props), tuple(float(y) for y in ys))
 
 
 @dataclass(frozen=True)

@@ -210,7 +210,7 @@ def mount_strain_share(model, V: float, q: np.ndarray) -> float:
     from propwhirl.analysis.naming import kinetic_energy_shares
 
     dm = model.dof_map()
-    if not any(n >= 0 for n in dm.q_node):
+    if not dm.has_wing:
         return 1.0
     s = model.without_aerodynamics().second_order(np.array([float(V)]))
     x = np.asarray(q)[: s.n_dof, None]
