@@ -1,8 +1,12 @@
-"""The chapter modules of the reproduction: each registers the ids of its own chapter."""
+"""The chapter modules of the reproduction: each registers the ids of its own chapter, and
+builds its models with the case library's factories (the functions the named cases name)."""
 from __future__ import annotations
 
 import re
 
+import pytest
+
+from propwhirl.cases import registry
 from propwhirl.reproduce import harness
 
 #: chapter module -> the chapter (or appendix) its id prefixes must name
@@ -27,3 +31,14 @@ def test_every_function_is_registered_by_the_module_of_its_chapter():
     for prefix, func in harness.registered_cases().items():
         chapter = CHAPTER[func.__module__.rsplit(".", 1)[1]]
         assert re.fullmatch(rf"[tfs]{chapter}\.\d+", prefix), (prefix, func.__module__)
+
+
+@pytest.mark.parametrize("name, chapter", [("patil", "ch07"), ("baseline-wing", "ch09"),
+                                           ("isolated-propeller", "ch09"), ("inboard", "ch09"),
+                                           ("wingtip", "ch10"), ("two-propeller", "ch10")])
+def test_chapters_use_the_named_case_factories(name, chapter):
+    import importlib
+
+    module = importlib.import_module(f"propwhirl.reproduce.{chapter}")
+    func = registry.CASES[name].function()
+    assert getattr(module, func.__name__) is func
