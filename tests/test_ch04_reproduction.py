@@ -10,8 +10,9 @@ import pytest
 from propwhirl.model import propeller_aero as aero
 from propwhirl.reproduce import harness as reproduce
 from propwhirl.cases import ch04_propeller_aero as ch4
+from propwhirl.reproduce import ch04 as reproduce_ch4
 
-IDS = [f"t4.1/beta{b}/{r}" for b in ch4.TABLE_4_1_BETAS for r in ch4.TABLE_4_1_ROWS]
+IDS = [f"t4.1/beta{b}/{r}" for b in ch4.TABLE_4_1_BETAS for r in reproduce_ch4.TABLE_4_1_ROWS]
 
 
 @pytest.fixture(scope="module")
@@ -33,7 +34,7 @@ def test_table_4_1_within_tolerance(records, rid):
 def test_table_4_1_also_matches_rodden_rose():
     """The literature values (R&R) are reproduced as closely as the thesis's own: < 3.5 %."""
     refs = {r.id: r for r in reproduce.load_references() if r.id.startswith("t4.1/")}
-    vals = ch4.table_4_1_values()
+    vals = reproduce_ch4.table_4_1_values()
     rel = [abs(vals[k] / refs[k].literature - 1) for k in refs]
     assert max(rel) < 0.035
     assert math.sqrt(np.mean(np.square(rel))) < 0.015
@@ -41,7 +42,7 @@ def test_table_4_1_also_matches_rodden_rose():
 
 def test_inferred_assumptions_beat_every_alternative():
     """The inference is the best of the tried variations (rms difference to the thesis)."""
-    sens = ch4.table_4_1_sensitivity()
+    sens = reproduce_ch4.table_4_1_sensitivity()
     base = sens["inferred (baseline)"]["rms"]
     assert base < 0.015
     for label, row in sens.items():

@@ -12,6 +12,7 @@ from propwhirl.reproduce import harness as reproduce
 from propwhirl.analysis.stability import analyse, speed_and_frequency
 from propwhirl.cases import ch11_parametric as ch11
 from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
+from propwhirl.reproduce.ch11 import mode_onset
 from propwhirl.studies.parametric import blade_angle_mode_switch, whirl_flutter_speeds
 from propwhirl.validate import InputError
 
@@ -53,14 +54,14 @@ def test_table_11_1_case_3_both_readings():
     assert inertia["S_theta_P"] == pytest.approx(-16.28, abs=0.005)
     printed = ch11.cg_moved(*ch11.TABLE_11_1_CASES[3]).pivot_inertia()
     assert printed["I_theta_P"] == pytest.approx(16.36, abs=0.005)
-    V, f = ch11.mode_onset(alt, "forward 1")
+    V, f = mode_onset(alt, "forward 1")
     assert abs(V / V_ref.thesis - 1) <= V_ref.tol and abs(f / f_ref.thesis - 1) <= f_ref.tol
 
 
 def test_stiff_nacelle_tends_to_the_rigid_mount():
     """Figure 11.3 vs Table 10.2: with 50 Hz mounts the flutter approaches that of the rigid,
     non-rotating tip propeller (the thesis: "very close"), within 2 % in V and f here."""
-    V50, f50 = ch11.mode_onset(ch11.stiff_nacelle(50.0), "wing 2")
+    V50, f50 = mode_onset(ch11.stiff_nacelle(50.0), "wing 2")
     a = analyse(wingtip_propeller_wing("rigid", rotating=False, propeller_aero=False))
     Vr, fr = speed_and_frequency(a.first("wing 2", "flutter"))
     assert V50 == pytest.approx(Vr, rel=0.02) and f50 == pytest.approx(fr, rel=0.02)

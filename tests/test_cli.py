@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from propwhirl.app import cli
+from propwhirl.cases import registry
 from propwhirl.io import files as io
 from propwhirl.analysis.stability import analyse, load
 from propwhirl.analysis.vibration import campbell, label_modes
@@ -34,12 +35,12 @@ def small_file(tmp_path_factory):
     return path
 
 
-@pytest.mark.parametrize("name", list(cli.CASES))
+@pytest.mark.parametrize("name", list(registry.CASES))
 def test_case_export_round_trips(name, tmp_path, capsys):
     path = tmp_path / f"{name}.toml"
     assert cli.main(["case", name, "--save", str(path)]) == 0
     assert f"wrote {path}" in capsys.readouterr().out
-    model = cli.case_model(name)
+    model = registry.case_model(name)
     back = io.load_model(path)
     V = np.array([10.0, 200.0])
     np.testing.assert_array_equal(back.state_matrix(V), model.state_matrix(V))
@@ -190,11 +191,21 @@ def test_campbell_needs_a_propeller_wing(tmp_path, capsys):
     assert "needs a propeller-wing model" in capsys.readouterr().err
 
 
-def test_unknown_case_is_a_usage_error(capsys):
+def test_unknown_case_is_one_line_listing_the_names(capsys):
+    assert cli.main(["case", "concorde", "--save", "/nonexistent-folder/w.toml"]) == 2
+    err = capsys.readouterr().err
+    assert err == ("propwhirl: error: case = 'concorde' is invalid: must be one of patil, "
+                   "baseline-wing, isolated-propeller, inboard, wingtip, two-propeller\n")
+
+
+def test_case_help_lists_every_named_case(capsys, monkeypatch):
+    monkeypatch.setenv("COLUMNS", "1000")  # argparse wraps the help to the terminal width
     with pytest.raises(SystemExit) as exc:
-        cli.main(["case", "concorde"])
-    assert exc.value.code == 2
-    assert "invalid choice" in capsys.readouterr().err
+        cli.main(["case", "--help"])
+    assert exc.value.code == 0
+    text = " ".join(capsys.readouterr().out.split())
+    for case in registry.CASES.values():
+        assert f"{case.name}: {case.summary}" in text
 
 
 def test_json_output_is_valid(small_file, tmp_path, capsys):

@@ -18,6 +18,7 @@ import argparse
 import sys
 from pathlib import Path
 
+from propwhirl.cases import registry
 from propwhirl.validate import InputError
 
 
@@ -156,32 +157,6 @@ def _add_derivatives(sub) -> None:
 
 
 # ----------------------------------------------------------------------------- model files
-#: Case-library models exported by `propwhirl case NAME` (module, function, description).
-CASES: dict[str, tuple[str, str, str]] = {
-    "patil": ("propwhirl.cases.ch07_patil", "patil_model", "Patil HALE wing (Table 7.1)"),
-    "baseline-wing": ("propwhirl.cases.ch09_baseline", "baseline_wing_model",
-                      "baseline wing alone (Table 9.1)"),
-    "isolated-propeller": ("propwhirl.cases.ch09_baseline", "isolated_baseline_propeller",
-                           "baseline propeller on a rigid wing (section 9.2)"),
-    "inboard": ("propwhirl.cases.ch09_baseline", "inboard_propeller_wing",
-                "baseline wing with the propeller at 1.6 m (section 9.3)"),
-    "wingtip": ("propwhirl.cases.ch10_other_wings", "wingtip_propeller_wing",
-                "baseline wing with a wingtip propeller (section 10.1, the headline case)"),
-    "two-propeller": ("propwhirl.cases.ch10_other_wings", "two_propeller_wing",
-                      "baseline wing with propellers at 1.6 m and the tip (section 10.2)"),
-}
-
-
-def case_model(name: str):
-    """The case-library model called `name` (see CASES)."""
-    import importlib
-
-    if name not in CASES:
-        raise InputError(f"case = {name!r} is invalid: must be one of {', '.join(CASES)}")
-    module, func, _ = CASES[name]
-    return getattr(importlib.import_module(module), func)()
-
-
 def _load(path: str):
     from propwhirl.io import files as io
     from propwhirl.model.protocol import Model
@@ -333,11 +308,12 @@ def _add_campbell(sub) -> None:
 def _case(args: argparse.Namespace) -> int:
     from propwhirl.io import files as io
 
+    case = registry.get(args.name)  # an unknown name: one line listing the valid names
     _check_outputs(save=args.save)
-    model = case_model(args.name)
+    model = case.model()
     if args.save:
         io.save_model(model, args.save)
-        print(f"wrote {args.save} ({CASES[args.name][2]})")
+        print(f"wrote {args.save} ({case.summary})")
     else:
         sys.stdout.write(io.dumps(model))
     return 0
@@ -345,9 +321,9 @@ def _case(args: argparse.Namespace) -> int:
 
 def _add_case(sub) -> None:
     p = sub.add_parser("case", help="export a case-library model as a TOML model file",
-                       description="Models: " + "; ".join(f"{k}: {d}" for k, (_, _, d) in CASES.items()))
-    p.add_argument("name", choices=tuple(CASES), metavar="NAME",
-                   help="one of " + ", ".join(CASES))
+                       description="Models: " + "; ".join(f"{c.name}: {c.summary}"
+                                                           for c in registry.CASES.values()))
+    p.add_argument("name", metavar="NAME", help="one of " + ", ".join(registry.CASES))
     p.add_argument("--save", metavar="MODEL.toml", help="write the model file (default: print it)")
     p.set_defaults(func=_case)
 

@@ -22,9 +22,13 @@ import numpy as np
 
 from propwhirl.io import files as io
 from propwhirl.analysis.stability import Instability, ModelAnalysis, analyse
+from propwhirl.cases.registry import case_model
 from propwhirl.model.systems import PropellerWing
 from propwhirl.reproduce.harness import load_references
 from propwhirl.analysis.vibration import label_modes
+
+#: The named case (propwhirl.cases.registry) this analysis runs: the wingtip-mounted propeller wing.
+MAIN_CASE = "wingtip"
 
 #: Modes drawn in the V-g-f plot (the thesis's Tables 10.3/10.4 name these).
 VGF_MODES = 7
@@ -43,10 +47,9 @@ THESIS_MODES = {"wing 1": "t10.3/wing1", "wing 2": "t10.3/wing2", "wing 3": "t10
 
 
 def headline_model() -> PropellerWing:
-    """The wingtip-mounted propeller wing with full aerodynamics (§10.1, Table 10.4 'full')."""
-    from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
-
-    return wingtip_propeller_wing().with_(name="wingtip-mounted propeller wing (thesis 10.1)")
+    """The wingtip-mounted propeller wing with full aerodynamics (§10.1, Table 10.4 'full'):
+    the named case MAIN_CASE of :mod:`propwhirl.cases.registry`."""
+    return case_model(MAIN_CASE).with_(name="wingtip-mounted propeller wing (thesis 10.1)")
 
 
 def describe(model: PropellerWing) -> list[str]:

@@ -1,12 +1,12 @@
-"""The thesis's models as a case library, one module per chapter.
+"""The thesis's models as a case library: named, documented functions returning models.
 
-Each module defines named, documented functions returning models, and registers with
-:func:`propwhirl.reproduce.harness.register` the functions that recompute the thesis's numbers.
-Importing this package imports every case module (so all reproduction cases register).
+One module per chapter (``ch04_propeller_aero``, ``ch06_isolated``, ``ch07_patil``,
+``ch09_baseline``, ``ch10_other_wings``, ``ch11_parametric``, ``appE_constant_speed``); the
+short names of the command line (``wingtip``, ``patil``, ...) are in :mod:`propwhirl.cases.registry`.
+The cases only build models: the functions recomputing the thesis's numbers from them are in
+:mod:`propwhirl.reproduce`, the parametric studies in :mod:`propwhirl.studies`.  Nothing here
+imports those packages (tests/cases/test_layering.py).
 """
-import importlib
-import pkgutil
+from propwhirl.cases.registry import CASES, NamedCase, case_model
 
-MODULES = tuple(sorted(m.name for m in pkgutil.iter_modules(__path__)))
-for _name in MODULES:
-    importlib.import_module(f"{__name__}.{_name}")
+__all__ = ["CASES", "NamedCase", "case_model"]

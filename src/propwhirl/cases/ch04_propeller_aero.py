@@ -1,4 +1,4 @@
-"""Chapter 4 cases: the Bennett & Bland / Rodden & Rose propeller and Table 4.1.
+"""Chapter 4 cases: the Bennett & Bland / Rodden & Rose propeller and Table 4.1's operating data.
 
 The thesis (§4.2) validates its Houbolt–Reed implementation against Rodden & Rose's
 derivatives for "the Bennett & Bland propeller with twice the chord": 4 blades,
@@ -14,6 +14,9 @@ values below were inferred by numerical experiment (docs/validation.md, "Chapter
 * hub ratio η0 = 0.22;
 * windmilling advance ratio μ = 0.75 tan(β_0.75R + 3°) (zero lift at the 0.75R section
   with α_0L = −3°, rule "blade_element" of :func:`propwhirl.model.propeller_aero.advance_ratio_from_blade_angle`).
+
+Table 4.1's values and the sensitivity of the inference are recomputed in
+:mod:`propwhirl.reproduce.ch04`.
 """
 from __future__ import annotations
 
@@ -23,7 +26,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from propwhirl.model import propeller_aero as aero
-from propwhirl.reproduce.harness import register
 
 FT = 0.3048  # m per ft
 
@@ -40,11 +42,6 @@ BB_ADVANCE_RULE: aero.AdvanceRule = "blade_element"
 RR_RPM = 1800.0
 RR_SPEED_OF_SOUND = 1116.0 * FT
 TABLE_4_1_BETAS = (25, 35, 46, 52, 58)
-#: Table 4.1 rows and the id suffix each one is stored under.
-TABLE_4_1_ROWS = {
-    "CZ_theta": "CZ_theta", "Cm_theta": "Cm_theta", "Cmq": "Cm_q",
-    "CZ_psi": "CZ_psi", "Cm_psi": "Cm_psi",
-}
 
 
 @dataclass(frozen=True)
@@ -101,55 +98,6 @@ def table_4_1_derivatives(a: Table41Assumptions = Table41Assumptions()) -> aero.
                                speed_of_sound=a.speed_of_sound, settings=a.settings)
 
 
-def table_4_1_values(a: Table41Assumptions = Table41Assumptions()) -> dict[str, float]:
-    """{"t4.1/beta25/CZ_theta": value, ...} for the 25 entries of Table 4.1."""
-    d = table_4_1_derivatives(a)
-    out = {}
-    for i, beta in enumerate(TABLE_4_1_BETAS):
-        for row, name in TABLE_4_1_ROWS.items():
-            out[f"t4.1/beta{beta}/{row}"] = float(getattr(d, name)[i])
-    return out
-
-
-@register("t4.1")
-def table_4_1() -> dict[str, float]:
-    """Table 4.1 with the inferred planform and advance-ratio relation."""
-    return table_4_1_values()
-
-
-#: Variations of the inferred data for the sensitivity table of docs/validation.md.
-SENSITIVITY_CASES: dict[str, Table41Assumptions] = {
-    "inferred (baseline)": Table41Assumptions(),
-    "hub ratio 0.20": Table41Assumptions(hub_ratio=0.20),
-    "hub ratio 0.24": Table41Assumptions(hub_ratio=0.24),
-    "alpha_0L = -2 deg": Table41Assumptions(zero_lift_deg=-2.0),
-    "alpha_0L = -4 deg": Table41Assumptions(zero_lift_deg=-4.0),
-    "mu = tan(beta - 3 deg) (eq. 9.1)": Table41Assumptions(advance_rule="thesis_eq_9_1"),
-    "mu = 0.75 tan(beta - 3 deg)": Table41Assumptions(zero_lift_deg=3.0),
-    "A from eq. 4.21 with doubled chord": Table41Assumptions(aspect_ratio_rule="eq_4_21"),
-    "linear taper c_tip/c_root = 0.7": Table41Assumptions(taper=0.7),
-    "no compressibility": Table41Assumptions(
-        settings=aero.AeroSettings(compressibility=False)),
-    "no wake (F=1, G=0)": Table41Assumptions(settings=aero.AeroSettings(wake=False)),
-}
-
-
-def table_4_1_sensitivity() -> dict[str, dict[str, float]]:
-    """Per variation: max |relative difference| to the thesis values per row, and rms."""
-    from propwhirl.reproduce.harness import load_references
-
-    refs = {r.id: r.thesis for r in load_references() if r.id.startswith("t4.1/")}
-    out = {}
-    for label, a in SENSITIVITY_CASES.items():
-        vals = table_4_1_values(a)
-        rel = {k: vals[k] / refs[k] - 1.0 for k in refs}
-        row = {r: max(abs(e) for k, e in rel.items() if k.endswith("/" + r))
-               for r in TABLE_4_1_ROWS}
-        row["rms"] = math.sqrt(sum(e * e for e in rel.values()) / len(rel))
-        out[label] = row
-    return out
-
-
 def bennett_bland_geometry(hub_ratio: float = BB_HUB_RATIO) -> aero.PropellerGeometry:
     """The Bennett & Bland propeller with its normal chord (Tables 6.1/6.2), A by eq. 4.21."""
     return aero.PropellerGeometry(BB_BLADES, BB_RADIUS, hub_ratio, BB_CHORD)
@@ -172,4 +120,3 @@ def config_a_derivatives(airspeed, blade_angle_deg: float = 35.0,
                             speed_of_sound=speed_of_sound,
                             zero_lift_angle=math.radians(zero_lift_deg), rule=rule,
                             settings=settings)
-

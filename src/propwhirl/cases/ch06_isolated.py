@@ -7,19 +7,17 @@ the spin inertia I_Ω = 0.00858 slug ft² is Table 8.1's.  Damping is the viscou
 2ζ of Tables 6.1/6.2.  Windmilling at β_0.75: μ = 0.75 tan(β + 3°) (the relation inferred for
 Table 4.1; Figure 6.2's result is insensitive to it, docs/validation.md).  Speed of sound
 1116 ft/s.  Houbolt–Reed derivatives with wake, compressibility and aspect-ratio correction.
+Figure 6.2's whirl flutter speed is recomputed in :mod:`propwhirl.reproduce.ch06`.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-import numpy as np
-
-from propwhirl.model import propeller_aero as aero
-from propwhirl.analysis.stability import analyse, speed_and_frequency
 from propwhirl.cases.ch04_propeller_aero import BB_RADIUS, FT, RR_SPEED_OF_SOUND, bennett_bland_geometry
-from propwhirl.model.systems import FlightCondition, IsolatedPropeller
+from propwhirl.model import propeller_aero as aero
 from propwhirl.model.propeller import PointMass, Propeller
-from propwhirl.reproduce.harness import register
+from propwhirl.model.systems import FlightCondition, IsolatedPropeller
+from propwhirl.validate import InputError
 
 SLUG = 14.593903  # kg
 SLUG_FT2 = SLUG * FT**2  # kg m²
@@ -68,8 +66,6 @@ def bennett_bland_propeller(case: int, settings: aero.AeroSettings = aero.AeroSe
     elif case in CONFIG_B:
         c, e, inertia = CONFIG_B[case], 0.691, 0.0937
     else:
-        from propwhirl.validate import InputError
-
         raise InputError(f"case = {case!r} is invalid: Tables 6.1/6.2 have cases 1 to 13")
     R = BB_RADIUS
     prop = Propeller(
@@ -86,11 +82,3 @@ def bennett_bland_propeller(case: int, settings: aero.AeroSettings = aero.AeroSe
     return IsolatedPropeller(prop, FlightCondition(c.density_slug_ft3 * SLUG_FT3, RR_SPEED_OF_SOUND,
                                                    speed_range=(1.0, 60.0, 2.0)),
                              name=prop.name)
-
-
-@register("f6.2")
-def figure_6_2() -> dict[str, float]:
-    """Figure 6.2: configuration (A) case 1, whirl flutter speed [ft/s]."""
-    a = analyse(bennett_bland_propeller(1))
-    V, _ = speed_and_frequency(a.first("backward", "flutter"))
-    return {"f6.2/configA_case1/whirl_flutter_speed": V / FT}

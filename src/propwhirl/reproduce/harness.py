@@ -1,20 +1,21 @@
 """Reproduction harness: every number the thesis reports, recomputed and compared.
 
 The reference values, their ids and tolerances come from `propwhirl/data/thesis_values.toml`
-(an unchanged copy of `shared/reference/thesis_values.toml`).  Model modules register the
-functions that recompute them:
+(an unchanged copy of `shared/reference/thesis_values.toml`).  One module per thesis chapter,
+next to this one (listed in CHAPTER_MODULES), registers the functions that recompute them from
+the models of :mod:`propwhirl.cases`:
 
     from propwhirl.reproduce.harness import register
 
-    @register("t7.2")                 # the id prefix this case computes
-    def patil_in_vacuo() -> dict[str, float]:
+    @register("t7.2")                 # the id prefix this function computes
+    def table_7_2() -> dict[str, float]:
         return {"t7.2/first_bending": ..., ...}
 
-`run()` imports the modules listed in CASE_MODULES (so their cases register), runs the cases
+`run()` imports the modules listed in CHAPTER_MODULES (so their functions register), runs those
 whose prefix matches, and returns one :class:`Record` per id of the reference file — with
-`computed = None` for ids no registered case produces yet.  A value is compared against the
+`computed = None` for ids no registered function produces yet.  A value is compared against the
 thesis's own value, or against the literature value where the reference says
-``check = "literature"``.
+``check = "literature"``.  Importing this module imports no chapter module.
 """
 from __future__ import annotations
 
@@ -27,8 +28,10 @@ from importlib import resources
 from pathlib import Path
 from typing import Callable, Iterable
 
-#: Modules whose import registers reproduction cases.
-CASE_MODULES: tuple[str, ...] = ("propwhirl.cases",)  # imports every propwhirl.cases.* module
+#: The chapter modules whose import registers the reproduction functions (one per chapter).
+CHAPTER_MODULES: tuple[str, ...] = tuple(
+    f"propwhirl.reproduce.{name}" for name in ("ch04", "ch06", "ch07", "ch09", "ch10", "ch11", "appE")
+)
 
 CaseFunction = Callable[[], dict[str, float]]
 _CASES: dict[str, CaseFunction] = {}
@@ -103,7 +106,8 @@ def load_references(path: Path | None = None) -> list[Reference]:
 
 
 def registered_cases() -> dict[str, CaseFunction]:
-    for name in CASE_MODULES:
+    """{id prefix: function} of every chapter module in CHAPTER_MODULES (imported here)."""
+    for name in CHAPTER_MODULES:
         importlib.import_module(name)
     return dict(_CASES)
 

@@ -64,7 +64,10 @@ import numpy as np
 
 from propwhirl import validate as v
 from propwhirl.analysis.stability import Instability, ModelAnalysis, analyse, critical
+from propwhirl.cases.ch09_baseline import baseline_flight, baseline_propeller
+from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
 from propwhirl.model.propeller import PointMass, Propeller
+from propwhirl.model.systems import IsolatedPropeller
 
 #: Model names a study can analyse (see the module docstring).
 MODELS: tuple[str, ...] = ("wingtip", "isolated", "rigid")
@@ -242,10 +245,6 @@ def wing_divergence_predicate(model, a: ModelAnalysis) -> Callable[[Instability]
 # ----------------------------------------------------------------------------- models
 def build_model(name: str, propeller: Propeller):
     """The study model `name` ("wingtip", "isolated" or "rigid") with `propeller`."""
-    from propwhirl.cases.ch09_baseline import baseline_flight
-    from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
-    from propwhirl.model.systems import IsolatedPropeller
-
     if name == "wingtip":
         return wingtip_propeller_wing("flexible", propeller=propeller)
     if name == "isolated":
@@ -378,8 +377,6 @@ def propeller_study(name: str, parameter: str, unit: str, parameters: Mapping[st
 
 def _base(propeller: Propeller | None) -> Propeller:
     if propeller is None:
-        from propwhirl.cases.ch09_baseline import baseline_propeller
-
         return baseline_propeller()
     if not isinstance(propeller, Propeller):
         raise v.InputError(f"propeller = {propeller!r} is invalid: must be a propwhirl.model.propeller.Propeller")
