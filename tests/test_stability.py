@@ -20,7 +20,13 @@ from hypothesis import strategies as st_
 from numpy.polynomial import polynomial as P
 from scipy.optimize import brentq
 
-from propwhirl.engine import core as st
+from propwhirl.analysis.whirl import (content, dominant, orbit_signed_area,
+                                      rotation_sign_from_gyroscopic, whirl_sense)
+from propwhirl.engine import (Analysis, Sweep, TimeResponse, TrackingOptions, analyse,
+                              critical_points, eigen, eigenvalues, mac, sweep, time_response,
+                              tracked_eigenvalue)
+from propwhirl.engine.eigensolve import _inverse_iteration
+from propwhirl.model.statespace import second_order_labels, state_matrix_from_mck
 from propwhirl.validate import InputError
 
 
@@ -47,7 +53,7 @@ def section(x_alpha=0.2, Pq=0.05, e=0.4, zeta=0.02, wh=4.0, wa=10.0, r2=0.25):
 
     def fn(V):
         M, C, K = mck(V)
-        return st.state_matrix_from_mck(M, C, K, V)
+        return state_matrix_from_mck(M, C, K, V)
 
     return fn, mck, np.sqrt(ka / (Pq * e))
 
@@ -81,7 +87,7 @@ def oscillators(kc, c1=0.1, c2=0.3):
         K[:, 1, 1] = 100 + kc
         K[:, 0, 1] = K[:, 1, 0] = -kc
         C = np.broadcast_to(np.diag([c1, c2]), (T, 2, 2))
-        return st.state_matrix_from_mck(np.broadcast_to(np.eye(2), (T, 2, 2)), C, K, V)
+        return state_matrix_from_mck(np.broadcast_to(np.eye(2), (T, 2, 2)), C, K, V)
     return fn
 
 
@@ -96,7 +102,7 @@ def hump_system(c0, beta, gamma, Vc):
         C[:, 0, 0] = c0 + gamma * (V - Vc) ** 2 - beta
         C[:, 1, 1] = 0.5
         K = np.broadcast_to(np.diag([100.0, 400.0]), (T, 2, 2))
-        return st.state_matrix_from_mck(np.broadcast_to(np.eye(2), (T, 2, 2)), C, K, V)
+        return state_matrix_from_mck(np.broadcast_to(np.eye(2), (T, 2, 2)), C, K, V)
     return fn
 
 
@@ -111,7 +117,7 @@ def propeller(I_X=0.5, I_Y=2.0, I_Z=2.5, K_t=4000.0, K_p=1500.0, c=0.5):
         C[:, 0, 1] = I_X * W
         C[:, 1, 0] = -I_X * W
         K = np.broadcast_to(np.diag([K_t, K_p]), (T, 2, 2))
-        return st.state_matrix_from_mck(M, C, K, W)
+        return state_matrix_from_mck(M, C, K, W)
     return fn
 
 
@@ -121,8 +127,8 @@ def propeller(I_X=0.5, I_Y=2.0, I_Z=2.5, K_t=4000.0, K_p=1500.0, c=0.5):
 @pytest.fixture(scope="module")
 def section_analysis():
     fn, mck, VD = section()
-    an = st.analyse(fn, np.arange(1.0, 61.0, 5.0), n_dof=2,
-                    state_labels=st.second_order_labels(["h", "alpha"]))
+    an = analyse(fn, np.arange(1.0, 61.0, 5.0), n_dof=2,
+                 state_labels=second_order_labels(["h", "alpha"]))
     return fn, mck, VD, an
 
 
@@ -170,7 +176,7 @@ def test_divergence_matches_det_K(section_analysis):
 
 def test_divergence_alone_is_critical():
     fn, _, VD = section(x_alpha=-0.2, wa=6.0, zeta=0.05)
-    an = st.analyse(fn, np.arange(1.0, 61.0, 5.0), n_dof=2)
+    an = analyse(fn, np.arange(1.0, 61.0, 5.0), n_dof=2)
     c = an.criticals.critical
     assert c.kind == "divergence" and abs(c.V - VD) < 1e-3
     assert "divergence" in an.criticals.summary()
@@ -179,7 +185,7 @@ def test_divergence_alone_is_critical():
 def test_refinement_to_one_hundredth(section_analysis):
     fn, mck, VD, _ = section_analysis
     V_rh, _ = routh_hurwitz_flutter(mck, 1.0, 30.0)
-    an = st.analyse(fn, np.arange(1.0, 61.0, 10.0), n_dof=2, xtol=0.01)
+    an = analyse(fn, np.arange(1.0, 61.0, 10.0), n_dof=2, xtol=0.01)
     got = sorted(p.V for p in an.criticals.points)
     assert np.allclose(got, sorted([V_rh, VD]), atol=0.01, rtol=0)
     for p in an.criticals.points:
@@ -197,7 +203,7 @@ def test_refinement_to_one_hundredth(section_analysis):
 def test_hump_mode_both_crossings_and_benignity():
     fn = hump_system(**HUMP)
     grid = np.arange(1.0, 102.0, 20.0)        # 41 and 61 bracket the hump at 47.3 … 53.3
-    an = st.analyse(fn, grid, n_dof=2)
+    an = analyse(fn, grid, n_dof=2)
     half = np.sqrt((HUMP["beta"] - HUMP["c0"]) / HUMP["gamma"])
     assert len(an.criticals.humps) == 1
     hump = an.criticals.humps[0]
@@ -213,7 +219,7 @@ def test_hump_mode_both_crossings_and_benignity():
     assert on.frequency_hz == pytest.approx(10 / (2 * np.pi), rel=1e-9)
     assert an.sweep.stats.get("hump_refined", 0) >= 1
     # without the Hermite check the coarse grid never sees the hump
-    blind = st.analyse(fn, grid, n_dof=2, options=st.TrackingOptions(hump_check=False))
+    blind = analyse(fn, grid, n_dof=2, options=TrackingOptions(hump_check=False))
     assert blind.criticals.points == ()
 
 
@@ -222,14 +228,14 @@ def test_hump_mode_both_crossings_and_benignity():
 # ----------------------------------------------------------------------------------------------
 def _consecutive_mac(sw, k):
     X = sw.eigenvectors[:, sw.displacement, k]
-    return np.array([st.mac(a, b) for a, b in zip(X[:-1], X[1:])])
+    return np.array([mac(a, b) for a, b in zip(X[:-1], X[1:])])
 
 
 def test_true_crossing_keeps_shapes():
-    sw = st.sweep(oscillators(kc=0.0), np.arange(10.0, 251.0, 40.0), n_dof=2)
+    sw = sweep(oscillators(kc=0.0), np.arange(10.0, 251.0, 40.0), n_dof=2)
     e = np.eye(2)
     for k, dof in ((0, 0), (1, 1)):
-        macs = [st.mac(sw.eigenvectors[t, :2, k], e[dof]) for t in range(sw.V.size)]
+        macs = [mac(sw.eigenvectors[t, :2, k], e[dof]) for t in range(sw.V.size)]
         assert min(macs) > 0.999
     f = sw.frequency_hz
     assert f[0, 0] < f[0, 1] and f[-1, 0] > f[-1, 1]         # the frequencies did cross
@@ -249,10 +255,10 @@ def test_mac_decides_when_eigenvalue_evidence_is_tied():
             A[:, j, j] = A[:, j + 1, j + 1] = -0.1
             A[:, j, j + 1], A[:, j + 1, j] = w, -w
         return A
-    for opts in (st.TrackingOptions(min_step=100.0), st.TrackingOptions()):
-        sw = st.sweep(fn, [1.0, 9.0], options=opts)
+    for opts in (TrackingOptions(min_step=100.0), TrackingOptions()):
+        sw = sweep(fn, [1.0, 9.0], options=opts)
         for k in (0, 1):
-            assert st.mac(sw.eigenvectors[0, :, k], sw.eigenvectors[-1, :, k]) > 0.999
+            assert mac(sw.eigenvectors[0, :, k], sw.eigenvectors[-1, :, k]) > 0.999
         np.testing.assert_allclose(sw.eigenvalues[-1, :2].imag, [14.0, 6.0])
 
 
@@ -261,26 +267,26 @@ def test_weak_coupling_passes_without_veering():
 
     (κ ≈ kc/2ω = 0.025 < |Δσ|/2 = 0.05: no exchange; a frequency-sorted tracker would swap.)
     """
-    sw = st.sweep(oscillators(kc=0.5, c1=0.1, c2=0.3), np.arange(10.0, 251.0, 40.0), n_dof=2)
+    sw = sweep(oscillators(kc=0.5, c1=0.1, c2=0.3), np.arange(10.0, 251.0, 40.0), n_dof=2)
     np.testing.assert_allclose(sw.eigenvalues[:, 0].real, -0.05, atol=0.01)
     np.testing.assert_allclose(sw.eigenvalues[:, 1].real, -0.15, atol=0.01)
     f = sw.frequency_hz
     assert f[0, 0] < f[0, 1] and f[-1, 0] > f[-1, 1]
-    assert min(st.mac(sw.mode_shape(0, t), [1, 0]) for t in range(sw.V.size)) > 0.9
+    assert min(mac(sw.mode_shape(0, t), [1, 0]) for t in range(sw.V.size)) > 0.9
 
 
 @pytest.mark.parametrize("kc, c", [(3.0, (0.1, 0.3)), (0.1, (0.2, 0.2)), (0.01, (0.2, 0.2))])
 def test_veering_followed_along_its_branch(kc, c):
     """Wide (kc = 3) and narrow veerings (width ≈ 2kc/(dk1/dV) = 0.4 and 0.04 m/s ≪ 40 m/s)."""
     fn = oscillators(kc, *c)
-    sw = st.sweep(fn, np.arange(10.0, 251.0, 40.0), n_dof=2)
+    sw = sweep(fn, np.arange(10.0, 251.0, 40.0), n_dof=2)
     # along a veering the branches never cross: the analytic continuation is frequency order
     w = np.sort(np.abs(np.linalg.eigvals(fn(sw.V)).imag), axis=1)[:, ::2]
     np.testing.assert_allclose(np.abs(sw.eigenvalues[:, :2].imag), w, rtol=1e-12)
     for k in (0, 1):
-        assert _consecutive_mac(sw, k).min() > st.TrackingOptions().mac_min
+        assert _consecutive_mac(sw, k).min() > TrackingOptions().mac_min
         # the shapes exchanged through the veering
-        assert st.mac(sw.mode_shape(k, 0), sw.mode_shape(k, -1)) < 0.05
+        assert mac(sw.mode_shape(k, 0), sw.mode_shape(k, -1)) < 0.05
     assert sw.stats["refined"] > 0 and sw.unresolved == ()
     assert sw.stats["eig"] <= 30
 
@@ -288,8 +294,8 @@ def test_veering_followed_along_its_branch(kc, c):
 def test_veering_on_coarse_grid_is_flagged_not_swapped():
     """A step across a narrow veering is ambiguous (paths approach); with refinement forbidden
     it is reported as unresolved instead of being accepted silently."""
-    opts = st.TrackingOptions(min_step=100.0)
-    sw = st.sweep(oscillators(0.1, 0.2, 0.2), np.array([130.0, 170.0]), n_dof=2, options=opts)
+    opts = TrackingOptions(min_step=100.0)
+    sw = sweep(oscillators(0.1, 0.2, 0.2), np.array([130.0, 170.0]), n_dof=2, options=opts)
     assert sw.unresolved == ((130.0, 170.0),)
 
 
@@ -310,22 +316,22 @@ def _shoelace(theta_hat, psi_hat, n=2001):
 @pytest.mark.parametrize("rotation", [1, -1])
 def test_whirl_sense_from_orbit(theta_hat, psi_hat, rotation):
     area = _shoelace(theta_hat, psi_hat)
-    assert st.orbit_signed_area(theta_hat, psi_hat) == pytest.approx(area, rel=1e-5)
+    assert orbit_signed_area(theta_hat, psi_hat) == pytest.approx(area, rel=1e-5)
     ccw = area > 0
     expected = "forward" if ccw == (rotation > 0) else "backward"
-    assert st.whirl_sense(theta_hat, psi_hat, rotation) == expected
+    assert whirl_sense(theta_hat, psi_hat, rotation) == expected
     # the conjugate eigenvalue (ω < 0) runs the orbit the other way round
     other = "backward" if expected == "forward" else "forward"
-    assert st.whirl_sense(theta_hat, psi_hat, rotation, eigenvalue=-0.1 - 3j) == other
+    assert whirl_sense(theta_hat, psi_hat, rotation, eigenvalue=-0.1 - 3j) == other
 
 
 def test_whirl_sense_planar_and_bad_sign():
-    assert st.whirl_sense(1.0, 0.5, 1) == "planar"
-    assert st.whirl_sense(1.0, 0.5j, 1, eigenvalue=-2.0 + 0j) == "planar"
+    assert whirl_sense(1.0, 0.5, 1) == "planar"
+    assert whirl_sense(1.0, 0.5j, 1, eigenvalue=-2.0 + 0j) == "planar"
     with pytest.raises(InputError, match="rotation_sign"):
-        st.whirl_sense(1.0, 1j, 0)
+        whirl_sense(1.0, 1j, 0)
     with pytest.raises(InputError, match="g_theta_psi"):
-        st.rotation_sign_from_gyroscopic(0.0)
+        rotation_sign_from_gyroscopic(0.0)
 
 
 @pytest.mark.parametrize("omega", [60.0, -60.0])
@@ -335,40 +341,40 @@ def test_gyroscopic_propeller_backward_is_lower(omega):
     §9.2: for the thesis' counter-clockwise rotation (Ω > 0) the backward orbit is clockwise
     with ψ on the Y-axis and θ on the X-axis.
     """
-    lam, X = st.eigen(propeller()(np.array([omega])))
+    lam, X = eigen(propeller()(np.array([omega])))
     keep = lam[0].imag > 0
     lam, X = lam[0][keep], X[0][:, keep]
     order = np.argsort(lam.imag)
-    rot = st.rotation_sign_from_gyroscopic(0.5 * omega)       # I_X Ω
-    assert [st.whirl_sense(X[0, j], X[1, j], rot, eigenvalue=lam[j]) for j in order] == \
+    rot = rotation_sign_from_gyroscopic(0.5 * omega)       # I_X Ω
+    assert [whirl_sense(X[0, j], X[1, j], rot, eigenvalue=lam[j]) for j in order] == \
         ["backward", "forward"]
     low = order[0]
     assert not 0.95 < abs(X[0, low]) / abs(X[1, low]) < 1.05                # elliptical
-    assert np.sign(st.orbit_signed_area(X[0, low], X[1, low])) == -np.sign(omega)
+    assert np.sign(orbit_signed_area(X[0, low], X[1, low])) == -np.sign(omega)
 
 
 def test_sweep_mode_labels_from_whirl_sense():
-    sw = st.sweep(propeller(), np.linspace(5.0, 80.0, 6), n_dof=2)
-    sw = sw.relabel(lambda lam, x: st.whirl_sense(x[0], x[1], 1, lam) + " whirl")
+    sw = sweep(propeller(), np.linspace(5.0, 80.0, 6), n_dof=2)
+    sw = sw.relabel(lambda lam, x: whirl_sense(x[0], x[1], 1, lam) + " whirl")
     assert sw.mode_labels[:2] == ("backward whirl", "forward whirl")
     # along Ω the backward frequency falls and the forward one rises (§9.2, Figure 9.16)
     f = sw.frequency_hz
     assert np.all(np.diff(f[:, 0]) < 0) and np.all(np.diff(f[:, 1]) > 0)
-    senses = {st.whirl_sense(sw.eigenvectors[t, 0, k], sw.eigenvectors[t, 1, k], 1,
+    senses = {whirl_sense(sw.eigenvectors[t, 0, k], sw.eigenvectors[t, 1, k], 1,
                              sw.eigenvalues[t, k]) for t in range(sw.V.size) for k in (0, 1)}
     assert senses == {"backward", "forward"}
 
 
 def test_content_and_dominant():
     x = np.array([3.0, 4.0j, 0.0, 1.0])
-    c = st.content(x, {"bending": [0, 1], "torsion": [3]})
+    c = content(x, {"bending": [0, 1], "torsion": [3]})
     assert c == pytest.approx({"bending": 25 / 26, "torsion": 1 / 26})
-    assert st.dominant(x, {"bending": [0, 1], "torsion": np.array([0, 0, 0, 1], bool)}) == \
+    assert dominant(x, {"bending": [0, 1], "torsion": np.array([0, 0, 0, 1], bool)}) == \
         "bending"
-    many = st.content(np.stack([x, x[::-1]], axis=1), {"a": [0], "b": [3]})
+    many = content(np.stack([x, x[::-1]], axis=1), {"a": [0], "b": [3]})
     np.testing.assert_allclose(many["a"], [0.9, 0.1])
     with pytest.raises(InputError):
-        st.content(x, {"a": [7]})
+        content(x, {"a": [7]})
 
 
 # ----------------------------------------------------------------------------------------------
@@ -388,7 +394,7 @@ def random_family(seed, N=3):
         V = np.atleast_1d(V)
         K = K0[None] + (V**2)[:, None, None] * K1[None]
         C = C0[None] + V[:, None, None] * C1[None]
-        return st.state_matrix_from_mck(np.broadcast_to(M, K.shape), C, K, V)
+        return state_matrix_from_mck(np.broadcast_to(M, K.shape), C, K, V)
     return fn
 
 
@@ -397,7 +403,7 @@ def random_family(seed, N=3):
 def test_every_crossing_found_against_dense_sweep(seed):
     fn = random_family(seed)
     grid = np.arange(1.0, 60.0, 7.0)
-    an = st.analyse(fn, grid, n_dof=3)
+    an = analyse(fn, grid, n_dof=3)
     Vd = np.arange(grid[0], grid[-1], 0.004)
     nun = (np.linalg.eigvals(fn(Vd)).real > 0).sum(axis=1)     # number of unstable roots
     i = np.nonzero(nun[1:] != nun[:-1])[0]
@@ -422,7 +428,7 @@ def test_every_crossing_found_against_dense_sweep(seed):
 def test_save_load_round_trip(section_analysis):
     an = section_analysis[3]
     text = json.dumps(an.to_dict())
-    back = st.Analysis.from_dict(json.loads(text))
+    back = Analysis.from_dict(json.loads(text))
     for name in ("V", "eigenvalues", "eigenvectors", "dlam_dV", "physical", "displacement",
                  "partner", "grid", "floor"):
         np.testing.assert_array_equal(getattr(back.sweep, name), getattr(an.sweep, name))
@@ -439,29 +445,29 @@ def test_save_load_round_trip(section_analysis):
 
 def test_saved_without_eigenvectors_and_unstable_at_start():
     fn = section()[0]
-    an = st.analyse(fn, np.arange(25.0, 61.0, 5.0), n_dof=2)      # flutter began at 19.66
+    an = analyse(fn, np.arange(25.0, 61.0, 5.0), n_dof=2)      # flutter began at 19.66
     unstable = an.criticals.unstable_at_start
     assert len(unstable) == 1 and an.sweep.eigenvalues[0, unstable[0]].imag > 0
-    lean = st.Sweep.from_dict(json.loads(json.dumps(an.sweep.to_dict(include_eigenvectors=False))))
+    lean = Sweep.from_dict(json.loads(json.dumps(an.sweep.to_dict(include_eigenvectors=False))))
     assert lean.eigenvectors is None
     np.testing.assert_array_equal(lean.eigenvalues, an.sweep.eigenvalues)
     with pytest.raises(InputError, match="without eigenvectors"):
         lean.mode_shape(0, 0)
     with pytest.raises(InputError, match="without them"):
-        st.critical_points(lean, fn)
+        critical_points(lean, fn)
 
 
 def test_time_response_matches_closed_form():
     k, c = 40.0, 0.8
-    A = st.state_matrix_from_mck(np.eye(1), c * np.eye(1), k * np.eye(1))[0]
+    A = state_matrix_from_mck(np.eye(1), c * np.eye(1), k * np.eye(1))[0]
     t = np.linspace(0.0, 5.0, 501)
     wn, z = np.sqrt(k), c / (2 * np.sqrt(k))
     wd = wn * np.sqrt(1 - z**2)
     exact = np.exp(-z * wn * t) * (np.cos(wd * t) + z * wn / wd * np.sin(wd * t))
     for method in ("expm", "ivp"):
-        r = st.time_response(A, [1.0, 0.0], t, st.second_order_labels(["h"]), method=method)
+        r = time_response(A, [1.0, 0.0], t, second_order_labels(["h"]), method=method)
         np.testing.assert_allclose(r["h"], exact, atol=1e-7)
-    back = st.TimeResponse.from_dict(json.loads(json.dumps(r.to_dict())))
+    back = TimeResponse.from_dict(json.loads(json.dumps(r.to_dict())))
     np.testing.assert_array_equal(back.x, r.x)
     with pytest.raises(InputError, match="no state"):
         r["alpha"]
@@ -472,8 +478,8 @@ def test_time_response_nonuniform_and_whirl_orbit():
     fn = propeller(c=0.0, K_p=4000.0, I_Z=2.0)
     A = fn(np.array([60.0]))[0]
     t = np.concatenate([np.linspace(0, 1, 300), np.linspace(1.01, 3, 50)])
-    r = st.time_response(A, [np.radians(1.0), 0, 0, 0], t)
-    ivp = st.time_response(A, [np.radians(1.0), 0, 0, 0], t, method="ivp")
+    r = time_response(A, [np.radians(1.0), 0, 0, 0], t)
+    ivp = time_response(A, [np.radians(1.0), 0, 0, 0], t, method="ivp")
     np.testing.assert_allclose(r.x, ivp.x, atol=1e-7)
     energy = 0.5 * 2.0 * (r.x[:, 2] ** 2 + r.x[:, 3] ** 2) + 0.5 * 4000 * (r.x[:, 0] ** 2 +
                                                                           r.x[:, 1] ** 2)
@@ -483,20 +489,20 @@ def test_time_response_nonuniform_and_whirl_orbit():
 def test_mac_and_eigen_helpers():
     rng = np.random.default_rng(3)
     phi = rng.standard_normal(5) + 1j * rng.standard_normal(5)
-    assert st.mac(phi, (2 - 3j) * phi) == pytest.approx(1.0)
-    assert st.mac(phi, np.zeros(5)) == 0.0
+    assert mac(phi, (2 - 3j) * phi) == pytest.approx(1.0)
+    assert mac(phi, np.zeros(5)) == 0.0
     A = rng.standard_normal((4, 6, 6))
-    lam, X = st.eigen(A)
+    lam, X = eigen(A)
     np.testing.assert_allclose(A @ X, X * lam[:, None, :], atol=1e-10)
-    np.testing.assert_allclose(np.sort_complex(st.eigenvalues(A)), np.sort_complex(lam),
+    np.testing.assert_allclose(np.sort_complex(eigenvalues(A)), np.sort_complex(lam),
                                atol=1e-10)
     # tracked_eigenvalue: one mode by inverse iteration, same as the full solution
     fn, _, _ = section()
     full = np.linalg.eig(fn(np.array([15.0]))[0])
     j = int(np.argmax(full[0].imag))
-    lam1, x1 = st.tracked_eigenvalue(fn, 15.0, full[0][j] * 1.01, full[1][:, j], n_dof=2)
+    lam1, x1 = tracked_eigenvalue(fn, 15.0, full[0][j] * 1.01, full[1][:, j], n_dof=2)
     assert lam1 == pytest.approx(full[0][j], rel=1e-12)
-    assert st.mac(x1, full[1][:, j]) == pytest.approx(1.0)
+    assert mac(x1, full[1][:, j]) == pytest.approx(1.0)
 
 
 @given(re=st_.floats(-5, 5), im=st_.floats(-5, 5))
@@ -504,8 +510,8 @@ def test_mac_is_phase_and_scale_invariant(re, im):
     c = complex(re, im)
     phi = np.array([1.0 + 2j, -0.5j, 3.0])
     if abs(c) > 1e-6:
-        assert st.mac(phi, c * phi) == pytest.approx(1.0)
-    assert 0.0 <= st.mac(phi, np.array([c, 1.0, -1j])) <= 1.0 + 1e-12
+        assert mac(phi, c * phi) == pytest.approx(1.0)
+    assert 0.0 <= mac(phi, np.array([c, 1.0, -1j])) <= 1.0 + 1e-12
 
 
 # ----------------------------------------------------------------------------------------------
@@ -514,15 +520,15 @@ def test_mac_is_phase_and_scale_invariant(re, im):
 def test_bad_speeds():
     fn = section()[0]
     with pytest.raises(InputError, match=r"speeds\[0\] = 0.0 m/s.*> 0"):
-        st.sweep(fn, [0.0, 10.0])
+        sweep(fn, [0.0, 10.0])
     with pytest.raises(InputError, match="> 0"):
-        st.analyse(fn, [-5.0, 10.0])
+        analyse(fn, [-5.0, 10.0])
     with pytest.raises(InputError, match="strictly increasing"):
-        st.sweep(fn, [10.0, 10.0, 20.0])
+        sweep(fn, [10.0, 10.0, 20.0])
     with pytest.raises(InputError, match="at least 2"):
-        st.sweep(fn, [])
+        sweep(fn, [])
     with pytest.raises(InputError, match="finite"):
-        st.sweep(fn, [1.0, np.nan])
+        sweep(fn, [1.0, np.nan])
 
 
 def test_bad_state_matrices_name_the_speed():
@@ -535,24 +541,24 @@ def test_bad_state_matrices_name_the_speed():
 
     with pytest.raises(InputError, match=r"V = 30.0 m/s, row 3 \(d\(alpha\)/dt\), column 1 "
                                          r"\(alpha\)"):
-        st.sweep(nan_at_30, [10.0, 20.0, 30.0], state_labels=st.second_order_labels(["h", "alpha"]))
+        sweep(nan_at_30, [10.0, 20.0, 30.0], state_labels=second_order_labels(["h", "alpha"]))
     with pytest.raises(InputError, match="shape"):
-        st.sweep(lambda V: np.zeros((V.size, 3, 2)), [1.0, 2.0])
+        sweep(lambda V: np.zeros((V.size, 3, 2)), [1.0, 2.0])
     with pytest.raises(InputError, match="complex"):
-        st.sweep(lambda V: base(V) * (1 + 1j), [1.0, 2.0])
+        sweep(lambda V: base(V) * (1 + 1j), [1.0, 2.0])
     with pytest.raises(InputError, match="n_dof"):
-        st.sweep(base, [1.0, 2.0], n_dof=7)
+        sweep(base, [1.0, 2.0], n_dof=7)
     with pytest.raises(InputError, match="either n_dof or displacement"):
-        st.sweep(base, [1.0, 2.0], n_dof=2, displacement=np.ones(4, bool))
+        sweep(base, [1.0, 2.0], n_dof=2, displacement=np.ones(4, bool))
     with pytest.raises(InputError, match="mass matrix M is singular.*V = 2.0 m/s"):
-        st.state_matrix_from_mck(np.stack([np.eye(2), np.diag([1.0, 0.0])]), np.zeros((2, 2)),
+        state_matrix_from_mck(np.stack([np.eye(2), np.diag([1.0, 0.0])]), np.zeros((2, 2)),
                                  np.eye(2), V=[1.0, 2.0])
     with pytest.raises(InputError, match="min_step"):
-        st.TrackingOptions(min_step=0.0)
+        TrackingOptions(min_step=0.0)
     with pytest.raises(InputError, match="method"):
-        st.time_response(np.eye(2), [1.0, 0.0], [0.0, 1.0], method="euler")
+        time_response(np.eye(2), [1.0, 0.0], [0.0, 1.0], method="euler")
     with pytest.raises(InputError, match="x0"):
-        st.time_response(np.eye(2), [1.0, 0.0, 0.0], [0.0, 1.0])
+        time_response(np.eye(2), [1.0, 0.0, 0.0], [0.0, 1.0])
 
 
 # ----------------------------------------------------------------------------------------------
@@ -588,7 +594,7 @@ def test_lag_root_clusters_need_no_refinement():
     fn, n = lag_family()
     disp = np.zeros(n, dtype=bool)
     disp[0] = True
-    an = st.analyse(fn, np.arange(1.0, 102.0, 10.0), displacement=disp, xtol=0.01)
+    an = analyse(fn, np.arange(1.0, 102.0, 10.0), displacement=disp, xtol=0.01)
     assert an.sweep.stats["refined"] == 0 and an.sweep.unresolved == ()
     lam = np.linalg.eigvals(fn(an.sweep.V))
     np.testing.assert_allclose(np.sort_complex(an.sweep.eigenvalues), np.sort_complex(lam),
@@ -623,7 +629,7 @@ def test_cluster_followed_through_split_and_merge():
     with the module's conventions — the oscillatory mode keeps the larger root and owns the
     divergence, the merged pair's Im > 0 member goes to the smaller id (the real root's) —
     and no refinement down to the events."""
-    an = st.analyse(cubic_cluster, np.array([91.0, 161.0]), initial_step=None, xtol=0.001)
+    an = analyse(cubic_cluster, np.array([91.0, 161.0]), initial_step=None, xtol=0.001)
     sw = an.sweep
     assert sw.unresolved == () and sw.stats["eig"] <= 6
     np.testing.assert_allclose(np.sort_complex(sw.eigenvalues),
@@ -660,8 +666,8 @@ def test_unstable_pair_turning_real_is_bracketed_by_two_nodes():
     """The branch point of an unstable pair turning real (the thesis's whirl divergence) is
     located from the discriminant of the pair's 2 × 2 Ritz matrix and bracketed by two sweep
     nodes 0.9·min_step apart: complex at the lower, real at the upper."""
-    opts = st.TrackingOptions()
-    sw = st.sweep(toy_fz, np.arange(1.0, 52.0, 10.0), options=opts)
+    opts = TrackingOptions()
+    sw = sweep(toy_fz, np.arange(1.0, 52.0, 10.0), options=opts)
     V = sw.V
     i = int(np.searchsorted(V, 30.0))
     assert V[i - 1] < 30.0 < V[i] and V[i] - V[i - 1] <= 0.9 * opts.min_step + 1e-12
@@ -681,7 +687,7 @@ def rotating_shapes(V):
     for t, v in enumerate(V):
         c, s = np.cos(np.pi * v / 100), np.sin(np.pi * v / 100)
         R = np.array([[c, -s], [s, c]])
-        out[t] = st.state_matrix_from_mck(M, R @ C @ R.T, R @ K @ R.T)[0]
+        out[t] = state_matrix_from_mck(M, R @ C @ R.T, R @ K @ R.T)[0]
     return out
 
 
@@ -690,10 +696,10 @@ def test_decisive_eigenvalue_evidence_accepts_rotating_shapes():
     unique: accepted without refinement by default, refined when the MAC is always required
     (``decisive_ratio`` 0); the same branches either way."""
     grid = np.arange(1.0, 102.0, 25.0)
-    fast = st.sweep(rotating_shapes, grid, n_dof=2)
-    strict = st.sweep(rotating_shapes, grid, n_dof=2,
-                      options=st.TrackingOptions(decisive_ratio=0.0))
-    macs = [st.mac(fast.mode_shape(0, t), fast.mode_shape(0, t + 1)) for t in range(4)]
+    fast = sweep(rotating_shapes, grid, n_dof=2)
+    strict = sweep(rotating_shapes, grid, n_dof=2,
+                      options=TrackingOptions(decisive_ratio=0.0))
+    macs = [mac(fast.mode_shape(0, t), fast.mode_shape(0, t + 1)) for t in range(4)]
     assert min(macs) < 0.8 and fast.stats["refined"] == 0
     assert strict.stats["refined"] > 0
     on_grid = np.isin(strict.V, grid)
@@ -705,7 +711,7 @@ def test_veering_inside_a_long_step_is_not_taken_for_a_crossing():
     has a hump (unstable 7.27–9.35 m/s).  Straight-line predictions and MAC both accept the
     swap of a crossing; the Hermite paths through both samples meet — refined, hump found."""
     fn = random_family(639)
-    an = st.analyse(fn, np.arange(1.0, 60.0, 7.0), n_dof=3)
+    an = analyse(fn, np.arange(1.0, 60.0, 7.0), n_dof=3)
     on = sorted(p.V for p in an.criticals.points)
     assert np.allclose(on[:2], [7.274, 9.350], atol=0.01)
 
@@ -731,13 +737,13 @@ def test_inverse_iteration_tolerance_scales_with_the_eigenvalue():
     exact = np.linalg.eigvals(A)
     pair = exact[np.abs(exact - 50) < 1]
     x0 = np.random.default_rng(0).standard_normal(4) + 0j
-    lam, x, ok = st._inverse_iteration(A, 50.3 + 0.2j, x0, maxit=1)
+    lam, x, ok = _inverse_iteration(A, 50.3 + 0.2j, x0, maxit=1)
     res = np.linalg.norm(A @ x - lam * x)
     assert res <= 1e-8 * normA                 # the old rule would have accepted this
     floor = np.finfo(float).eps * np.linalg.norm(np.abs(A) @ np.abs(x))
     assert res > max(1e-8 * abs(lam), 1e3 * floor) and not ok
     err1 = np.min(np.abs(pair - lam))
-    lam, x, ok = st._inverse_iteration(A, 50.3 + 0.2j, x0)
+    lam, x, ok = _inverse_iteration(A, 50.3 + 0.2j, x0)
     res = np.linalg.norm(A @ x - lam * x)
     floor = np.finfo(float).eps * np.linalg.norm(np.abs(A) @ np.abs(x))
     assert ok and res <= 64 * floor            # at the rounding floor of A x (~1e-5 here)
@@ -747,15 +753,15 @@ def test_inverse_iteration_tolerance_scales_with_the_eigenvalue():
     fn = lambda V: np.broadcast_to(A, (np.size(V), 4, 4)).copy()  # noqa: E731
     w, X = np.linalg.eig(A)
     j = int(np.argmin(np.abs(w - (50 + 0.1j))))
-    lam1, _ = st.tracked_eigenvalue(fn, 1.0, 50.3 + 0.2j, X[:, j])
+    lam1, _ = tracked_eigenvalue(fn, 1.0, 50.3 + 0.2j, X[:, j])
     assert abs(lam1 - w[j]) <= 1e-5 * abs(w[j])
 
 
 def test_analyse_evaluates_a_subset_of_the_grid_and_all_on_request():
     fn, _, _ = section()
     grid = np.arange(1.0, 202.0, 5.0)
-    coarse = st.analyse(fn, grid, n_dof=2)
-    full = st.analyse(fn, grid, n_dof=2, initial_step=None)
+    coarse = analyse(fn, grid, n_dof=2)
+    full = analyse(fn, grid, n_dof=2, initial_step=None)
     assert np.all(np.isin(grid, full.sweep.V))
     assert coarse.sweep.V.size < 0.5 * grid.size
     assert np.all(np.isin(coarse.sweep.grid, grid)) and coarse.sweep.V[0] == grid[0]
@@ -763,7 +769,7 @@ def test_analyse_evaluates_a_subset_of_the_grid_and_all_on_request():
     for p, q in zip(coarse.criticals.points, full.criticals.points):
         assert (p.kind, p.direction) == (q.kind, q.direction) and abs(p.V - q.V) < 1e-3
     with pytest.raises(InputError, match="initial_step"):
-        st.analyse(fn, grid, n_dof=2, initial_step=0.0)
+        analyse(fn, grid, n_dof=2, initial_step=0.0)
 
 
 def test_benignity_by_central_difference_on_request(section_analysis):
@@ -771,6 +777,6 @@ def test_benignity_by_central_difference_on_request(section_analysis):
     agreeing with the default, from dλ/dV at the crossing."""
     fn, _, _, an = section_analysis
     p = [q for q in an.criticals.points if q.kind == "flutter"][0]
-    cd = st.critical_points(an.sweep, fn, benignity_step=0.01)
+    cd = critical_points(an.sweep, fn, benignity_step=0.01)
     q = [r for r in cd.points if r.kind == "flutter"][0]
     assert q.dzeta_dV == pytest.approx(p.dzeta_dV, rel=1e-4)

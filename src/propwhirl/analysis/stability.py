@@ -1,6 +1,6 @@
 """Stability analysis of a model: labelled V-g-f sweep, instabilities, the critical one.
 
-:func:`analyse` runs the engine of :mod:`propwhirl.engine.core` on a model's state matrix
+:func:`analyse` runs the engine of :mod:`propwhirl.engine` on a model's state matrix
 (PropellerWing, IsolatedPropeller or TypicalSection) and names the tracked modes the way the
 thesis does (chapters 9–11):
 
@@ -30,7 +30,9 @@ from typing import Any
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
-from propwhirl.engine import core as st
+from propwhirl.analysis.whirl import content, whirl_sense
+from propwhirl.engine import Criticals, Sweep, TrackingOptions, frequency_zero_points, mac
+from propwhirl.engine import analyse as engine_analyse
 from propwhirl import validate as v
 
 #: Default airspeed grid of the thesis's analyses (0–350 m/s; the engine refines it) [m/s]
@@ -65,9 +67,9 @@ class ModelAnalysis:
     """A labelled sweep and its instabilities (sorted by speed)."""
 
     model_name: str
-    sweep: st.Sweep
+    sweep: Sweep
     events: tuple[Instability, ...]
-    criticals: st.Criticals | None = field(default=None, repr=False)
+    criticals: Criticals | None = field(default=None, repr=False)
     #: mode label -> share of its kinetic energy at the first speed per group of degrees of
     #: freedom ("bending": h, φ; "torsion": α; "pitch", "yaw": propeller θ, ψ; "plunge")
     content: dict[str, dict[str, float]] = field(default_factory=dict)
@@ -118,7 +120,7 @@ class ModelAnalysis:
 
     @classmethod
     def from_dict(cls, d: dict[str, Any]) -> "ModelAnalysis":
-        return cls(d["model_name"], st.Sweep.from_dict(d["sweep"]),
+        return cls(d["model_name"], Sweep.from_dict(d["sweep"]),
                    tuple(Instability(**e) for e in d["events"]), content=d.get("content", {}))
 
     def save(self, path: str | Path, include_eigenvectors: bool = False) -> None:
@@ -142,7 +144,7 @@ def _propeller_indices(labels: tuple[str, ...]) -> list[tuple[int, int]]:
     return out
 
 
-def _mode_names(model, sw: st.Sweep) -> list[str]:
+def _mode_names(model, sw: Sweep) -> list[str]:
     """Names of the tracked modes, decided at the first speed (see the module docstring)."""
     n = sw.n_modes
     lam0 = sw.eigenvalues[0]
@@ -160,7 +162,7 @@ def _mode_names(model, sw: st.Sweep) -> list[str]:
 
         modes, _ = model_modes(model)
         ref = [lab for lab, _ in label_modes(model)]
-        M = st.mac(X0[disp][:, osc][:, :, None], modes.shapes[:, None, :].astype(complex))
+        M = mac(X0[disp][:, osc][:, :, None], modes.shapes[:, None, :].astype(complex))
         rows, cols = linear_sum_assignment(-M)
         for r, c in zip(rows, cols):
             names[osc[r]] = ref[c]
@@ -169,13 +171,13 @@ def _mode_names(model, sw: st.Sweep) -> list[str]:
         if model.rotating and len(order) == 2:
             th, ps = 0, 1
             for k in order:
-                names[k] = st.whirl_sense(X0[th, k], X0[ps, k], model.propeller.rotation, lam0[k])
+                names[k] = whirl_sense(X0[th, k], X0[ps, k], model.propeller.rotation, lam0[k])
         else:
             for k, nm in zip(order, ("pitch", "yaw")):
                 names[k] = nm
     elif kind == "TypicalSection":
         for k in osc:
-            c = st.content(X0[:2, k], {"plunge": [0], "pitch": [1]})
+            c = content(X0[:2, k], {"plunge": [0], "pitch": [1]})
             names[k] = max(c, key=lambda g: c[g])
     for k in range(n):  # hidden conjugate partners: "<name>'"
         if not phys[k] and sw.partner[k] >= 0:
@@ -200,7 +202,7 @@ def _whirl(model, x: np.ndarray, lam: complex, labels: tuple[str, ...]) -> str |
         return None
     j = max(range(len(props)), key=lambda i: abs(x[props[i][0]]) ** 2 + abs(x[props[i][1]]) ** 2)
     th, ps = props[j]
-    return st.whirl_sense(x[th], x[ps], _rotations(model)[j], lam)
+    return whirl_sense(x[th], x[ps], _rotations(model)[j], lam)
 
 
 CONTENT_GROUPS = {
@@ -213,7 +215,7 @@ CONTENT_GROUPS = {
 }
 
 
-def _content(model, sw: st.Sweep, names: list[str]) -> dict[str, dict[str, float]]:
+def _content(model, sw: Sweep, names: list[str]) -> dict[str, dict[str, float]]:
     """Kinetic-energy shares of each physical oscillatory mode at the first speed."""
     from propwhirl.analysis.vibration import energy_fractions
 
@@ -233,45 +235,9 @@ def _content(model, sw: st.Sweep, names: list[str]) -> dict[str, dict[str, float
     return out
 
 
-# ----------------------------------------------------------------------------- frequency zero
-def _n_unstable_pairs(model, V: float) -> int:
-    """Number of eigenvalues with Re λ > 0 and Im λ > 0 at airspeed V (a full eigvals)."""
-    lam = np.linalg.eigvals(model.state_matrix(np.array([V]))[0])
-    return int(np.sum((lam.real > 0) & (lam.imag > 1e-9 * np.maximum(1.0, np.abs(lam)))))
-
-
-def _frequency_zero_events(model, sw: st.Sweep, names: list[str], xtol: float) -> list[Instability]:
-    """Unstable oscillatory modes whose pair turns into real roots (frequency → 0).
-
-    Located by bisection on the number of unstable complex pairs (full eigenvalue solves: the
-    branch point is a square-root singularity where a tracked single-root evaluation is
-    ill-conditioned), to `xtol` [m/s]."""
-    out = []
-    lam, phys = sw.eigenvalues, sw.physical
-    with st.single_thread_blas():
-        for k in range(sw.n_modes):
-            for t in range(len(sw.V) - 1):
-                a, b = lam[t, k], lam[t + 1, k]
-                if not (phys[t, k] and a.imag > 0 and a.real > 0):
-                    continue
-                if abs(b.imag) > 1e-9 * max(1.0, abs(b)) or b.real <= 0:
-                    continue
-                lo, hi = float(sw.V[t]), float(sw.V[t + 1])
-                n_lo = _n_unstable_pairs(model, lo)
-                while hi - lo > xtol:
-                    mid = 0.5 * (lo + hi)
-                    if _n_unstable_pairs(model, mid) >= n_lo:
-                        lo = mid
-                    else:
-                        hi = mid
-                out.append(Instability("divergence", "frequency-zero", k, names[k], 0.5 * (lo + hi), 0.0))
-                break
-    return out
-
-
 # ----------------------------------------------------------------------------- analyse
 def analyse(model, speeds=None, *, xtol: float = 0.01, vgf: bool = False,
-            options: st.TrackingOptions | None = None) -> ModelAnalysis:
+            options: TrackingOptions | None = None) -> ModelAnalysis:
     """Every instability of `model` over `speeds` [m/s], with tracked, named modes.
 
     `speeds` is the grid [m/s] (default: the model's FlightCondition.speed_range, 1–350 m/s
@@ -288,7 +254,7 @@ def analyse(model, speeds=None, *, xtol: float = 0.01, vgf: bool = False,
     v.positive("xtol", xtol, "m/s")
     s = model.second_order(np.array([float(grid[0])]))
     labels = s.labels
-    an = st.analyse(model.state_matrix, grid, n_dof=s.n_dof, state_labels=labels,
+    an = engine_analyse(model.state_matrix, grid, n_dof=s.n_dof, state_labels=labels,
                     options=options, xtol=xtol, **({"initial_step": None} if vgf else {}))
     sw = an.sweep
     names = _mode_names(model, sw)
@@ -304,7 +270,8 @@ def analyse(model, speeds=None, *, xtol: float = 0.01, vgf: bool = False,
         kind = "flutter" if abs(lam0.imag) > 0 else "divergence"
         events.append(Instability(kind, "unstable-at-start", int(k), names[k], float(sw.V[0]),
                                   float(abs(lam0.imag) / (2 * np.pi))))
-    events += _frequency_zero_events(model, sw, names, xtol)
+    events += [Instability("divergence", "frequency-zero", p.mode, names[p.mode], p.V, 0.0)
+               for p in frequency_zero_points(sw, model.state_matrix, xtol=xtol)]
     events.sort(key=lambda e: (e.V, e.mode))
     return ModelAnalysis(getattr(model, "name", type(model).__name__), sw, tuple(events), an.criticals,
                          _content(model, sw, names))
