@@ -128,7 +128,7 @@ def propeller(I_X=0.5, I_Y=2.0, I_Z=2.5, K_t=4000.0, K_p=1500.0, c=0.5):
 def section_analysis():
     fn, mck, VD = section()
     an = analyse(fn, np.arange(1.0, 61.0, 5.0), n_dof=2,
-                 state_labels=second_order_labels(["h", "alpha"]))
+                 state_labels=second_order_labels(["h", "alpha"]), xtol=1e-3)
     return fn, mck, VD, an
 
 
@@ -176,7 +176,7 @@ def test_divergence_matches_det_K(section_analysis):
 
 def test_divergence_alone_is_critical():
     fn, _, VD = section(x_alpha=-0.2, wa=6.0, zeta=0.05)
-    an = analyse(fn, np.arange(1.0, 61.0, 5.0), n_dof=2)
+    an = analyse(fn, np.arange(1.0, 61.0, 5.0), n_dof=2, xtol=1e-3)
     c = an.criticals.critical
     assert c.kind == "divergence" and abs(c.V - VD) < 1e-3
     assert "divergence" in an.criticals.summary()
@@ -203,7 +203,7 @@ def test_refinement_to_one_hundredth(section_analysis):
 def test_hump_mode_both_crossings_and_benignity():
     fn = hump_system(**HUMP)
     grid = np.arange(1.0, 102.0, 20.0)        # 41 and 61 bracket the hump at 47.3 … 53.3
-    an = analyse(fn, grid, n_dof=2)
+    an = analyse(fn, grid, n_dof=2, xtol=1e-3)
     half = np.sqrt((HUMP["beta"] - HUMP["c0"]) / HUMP["gamma"])
     assert len(an.criticals.humps) == 1
     hump = an.criticals.humps[0]
@@ -403,7 +403,7 @@ def random_family(seed, N=3):
 def test_every_crossing_found_against_dense_sweep(seed):
     fn = random_family(seed)
     grid = np.arange(1.0, 60.0, 7.0)
-    an = analyse(fn, grid, n_dof=3)
+    an = analyse(fn, grid, n_dof=3, xtol=1e-3)
     Vd = np.arange(grid[0], grid[-1], 0.004)
     nun = (np.linalg.eigvals(fn(Vd)).real > 0).sum(axis=1)     # number of unstable roots
     i = np.nonzero(nun[1:] != nun[:-1])[0]
@@ -711,7 +711,7 @@ def test_veering_inside_a_long_step_is_not_taken_for_a_crossing():
     has a hump (unstable 7.27–9.35 m/s).  Straight-line predictions and MAC both accept the
     swap of a crossing; the Hermite paths through both samples meet — refined, hump found."""
     fn = random_family(639)
-    an = analyse(fn, np.arange(1.0, 60.0, 7.0), n_dof=3)
+    an = analyse(fn, np.arange(1.0, 60.0, 7.0), n_dof=3, xtol=1e-3)
     on = sorted(p.V for p in an.criticals.points)
     assert np.allclose(on[:2], [7.274, 9.350], atol=0.01)
 
@@ -760,8 +760,8 @@ def test_inverse_iteration_tolerance_scales_with_the_eigenvalue():
 def test_analyse_evaluates_a_subset_of_the_grid_and_all_on_request():
     fn, _, _ = section()
     grid = np.arange(1.0, 202.0, 5.0)
-    coarse = analyse(fn, grid, n_dof=2)
-    full = analyse(fn, grid, n_dof=2, initial_step=None)
+    coarse = analyse(fn, grid, n_dof=2, xtol=1e-3)
+    full = analyse(fn, grid, n_dof=2, initial_step=None, xtol=1e-3)
     assert np.all(np.isin(grid, full.sweep.V))
     assert coarse.sweep.V.size < 0.5 * grid.size
     assert np.all(np.isin(coarse.sweep.grid, grid)) and coarse.sweep.V[0] == grid[0]
@@ -777,6 +777,6 @@ def test_benignity_by_central_difference_on_request(section_analysis):
     agreeing with the default, from dλ/dV at the crossing."""
     fn, _, _, an = section_analysis
     p = [q for q in an.criticals.points if q.kind == "flutter"][0]
-    cd = critical_points(an.sweep, fn, benignity_step=0.01)
+    cd = critical_points(an.sweep, fn, benignity_step=0.01, xtol=1e-3)
     q = [r for r in cd.points if r.kind == "flutter"][0]
     assert q.dzeta_dV == pytest.approx(p.dzeta_dV, rel=1e-4)

@@ -31,7 +31,7 @@ import numpy as np
 from scipy.optimize import linear_sum_assignment
 
 from propwhirl.analysis.whirl import content, whirl_sense
-from propwhirl.engine import Criticals, Sweep, TrackingOptions, frequency_zero_points, mac
+from propwhirl.engine import XTOL, Criticals, Sweep, TrackingOptions, frequency_zero_points, mac
 from propwhirl.engine import analyse as engine_analyse
 from propwhirl import validate as v
 
@@ -236,7 +236,7 @@ def _content(model, sw: Sweep, names: list[str]) -> dict[str, dict[str, float]]:
 
 
 # ----------------------------------------------------------------------------- analyse
-def analyse(model, speeds=None, *, xtol: float = 0.01, vgf: bool = False,
+def analyse(model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
             options: TrackingOptions | None = None) -> ModelAnalysis:
     """Every instability of `model` over `speeds` [m/s], with tracked, named modes.
 

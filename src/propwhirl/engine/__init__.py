@@ -32,7 +32,7 @@ ordering
     Branch (mode) ids along the chain of nodes, with the real-axis conventions.
 crossings
     All critical-point refinement: crossings of Re λ = 0 (flutter, divergence), branch points
-    of unstable pairs turning real, frequency-zero events.
+    of unstable pairs turning real, frequency-zero events; the default tolerance :data:`XTOL`.
 tracker
     The sweep loop (:func:`sweep`, :func:`analyse`): refinement of ambiguous steps, hump
     check, branch-point bracketing.
@@ -45,7 +45,7 @@ time_response
 The state-matrix builder from M, C, K (eq. 5.4) lives in :mod:`propwhirl.model.statespace`;
 whirl sense and modal content in :mod:`propwhirl.analysis.whirl`.
 """
-from propwhirl.engine.crossings import critical_points, frequency_zero_points
+from propwhirl.engine.crossings import XTOL, critical_points, frequency_zero_points
 from propwhirl.engine.eigensolve import eigen, eigenvalues, mac, single_thread_blas, tracked_eigenvalue
 from propwhirl.engine.options import TrackingOptions
 from propwhirl.engine.results import Analysis, CriticalPoint, Criticals, FrequencyZero, Hump, Sweep
@@ -56,5 +56,5 @@ __all__ = [
     "TrackingOptions", "Sweep", "CriticalPoint", "Hump", "Criticals", "FrequencyZero", "Analysis",
     "TimeResponse", "eigen", "eigenvalues", "single_thread_blas", "mac", "sweep",
     "critical_points", "frequency_zero_points", "analyse", "tracked_eigenvalue", "time_response",
-    "ANALYSE_INITIAL_STEP",
+    "ANALYSE_INITIAL_STEP", "XTOL",
 ]

@@ -2,7 +2,7 @@
 
 :func:`critical_points`
     Every sign change of a tracked mode's real part, refined to ``xtol`` (default
-    1e-3 m/s) with eigenvalue-only evaluations, all crossings batched into one
+    :data:`XTOL`) with eigenvalue-only evaluations, all crossings batched into one
     ``state_matrix`` call per round: shifted inverse iteration at the predicted eigenvalue (one
     LU factorisation and a few triangular solves instead of a full eigendecomposition); two
     evaluations at the predicted root ± 0.45 xtol, then a Newton step on their local slope
@@ -36,6 +36,11 @@ from propwhirl.engine.nodes import _Node
 from propwhirl.engine.options import TrackingOptions
 from propwhirl.engine.results import CriticalPoint, Criticals, FrequencyZero, Hump, Sweep
 from propwhirl.validate import InputError, positive
+
+#: Default width [m/s] to which critical speeds are refined (:func:`critical_points`,
+#: :func:`frequency_zero_points`, :func:`propwhirl.engine.analyse`,
+#: :func:`propwhirl.analysis.analyse`): 0.01 m/s, the last digit the thesis prints.
+XTOL = 0.01
 
 
 @dataclass
@@ -407,7 +412,7 @@ def _dzeta(lam: complex, dlam: complex) -> float:
     return float(-(dlam.real * m * m - lam.real * (lam.conjugate() * dlam).real) / m ** 3)
 
 
-def critical_points(result: Sweep, state_matrix: StateMatrixFn, *, xtol: float = 1e-3,
+def critical_points(result: Sweep, state_matrix: StateMatrixFn, *, xtol: float = XTOL,
                     benignity_step: float | None = None, zero_tol: float = 1e-9) -> Criticals:
     """Every sign change of a tracked mode's Re λ, refined to ``xtol`` [m/s].
 
@@ -491,7 +496,7 @@ def _n_unstable_pairs(state_matrix: StateMatrixFn, V: float) -> int:
 
 
 def frequency_zero_points(result: Sweep, state_matrix: StateMatrixFn, *,
-                          xtol: float = 0.01) -> tuple[FrequencyZero, ...]:
+                          xtol: float = XTOL) -> tuple[FrequencyZero, ...]:
     """Unstable oscillatory modes whose pair turns into real roots (frequency → 0).
 
     A physical mode that is an unstable complex pair (Re λ > 0, Im λ > 0) at one sample of
@@ -509,7 +514,7 @@ def frequency_zero_points(result: Sweep, state_matrix: StateMatrixFn, *,
     state_matrix : callable
         The model's ``state_matrix(V)`` (called with one speed at a time).
     xtol : float
-        Width of the final bracket [m/s].
+        Width of the final bracket [m/s] (default :data:`XTOL`).
 
     Returns
     -------

@@ -33,7 +33,7 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from propwhirl.engine.crossings import _branch_point_speeds, _critical_points
+from propwhirl.engine.crossings import XTOL, _branch_point_speeds, _critical_points
 from propwhirl.engine.eigensolve import StateMatrixFn, _displacement_mask, single_thread_blas
 from propwhirl.engine.hermite import _CHECK_S, _hermite_coeffs, _hermite_eval
 from propwhirl.engine.linking import _link, _Link
@@ -255,7 +255,7 @@ def _step_models(nodes: list[_Node], R: np.ndarray, links: list[_Link]):
 def analyse(state_matrix: StateMatrixFn, speeds, *, n_dof: int | None = None,
             displacement=None, state_labels: Sequence[str] | None = None,
             mode_labels=None, options: TrackingOptions | None = None,
-            xtol: float = 1e-3, benignity_step: float | None = None,
+            xtol: float = XTOL, benignity_step: float | None = None,
             initial_step: float | None = ANALYSE_INITIAL_STEP) -> Analysis:
     """:func:`sweep` followed by :func:`critical_points` (one BLAS-limited context).
 
