@@ -46,7 +46,8 @@ The state-matrix builder from M, C, K (eq. 5.4) lives in :mod:`propwhirl.model.s
 whirl sense and modal content in :mod:`propwhirl.analysis.whirl`.
 """
 from propwhirl.engine.crossings import XTOL, critical_points, frequency_zero_points
-from propwhirl.engine.eigensolve import eigen, eigenvalues, mac, single_thread_blas, tracked_eigenvalue
+from propwhirl.engine.eigensolve import (eigen, eigenvalues, mac, single_thread_blas,
+                                         tracked_eigenvalue)
 from propwhirl.engine.options import TrackingOptions
 from propwhirl.engine.results import Analysis, CriticalPoint, Criticals, FrequencyZero, Hump, Sweep
 from propwhirl.engine.time_response import TimeResponse, time_response

@@ -422,6 +422,44 @@ def critical_points(result: Sweep, state_matrix: StateMatrixFn, *, xtol: float =
     dζ/dV from dλ/dV = wᵀA'x/(wᵀx) at the crossing (A' by a forward difference of step
     1e-6·max(V, 1 m/s)); with ``benignity_step`` [m/s] given, by a central difference of ζ of
     that step instead.
+
+    Parameters
+    ----------
+    result : Sweep
+        A tracked sweep with eigenvectors (:func:`propwhirl.engine.sweep`).
+    state_matrix : callable
+        The model's ``state_matrix(V)``, as given to the sweep.
+    xtol : float
+        Width [m/s] of the final bracket of each crossing (default :data:`XTOL`).
+    benignity_step : float, optional
+        Central-difference step [m/s] of ζ for the benignity.
+    zero_tol : float
+        |Re λ| ≤ zero_tol·max(|λ|, floor) counts as neutral (no sign) at a sample.
+
+    Returns
+    -------
+    Criticals
+        The crossings sorted by V, hump modes, modes unstable at the first speed.
+
+    Examples
+    --------
+    An oscillator whose damping 0.5 − 0.01 V [1/s] changes sign at V = 50 m/s, where ω = 10
+    rad/s and dζ/dV = 0.01/(2ω) = 5e-4 s/m:
+
+    >>> import numpy as np
+    >>> from propwhirl.engine import critical_points, sweep
+    >>> def state_matrix(V):
+    ...     A = np.zeros((V.size, 2, 2))
+    ...     A[:, 0, 1] = 1.0
+    ...     A[:, 1, 0] = -100.0
+    ...     A[:, 1, 1] = -(0.5 - 0.01 * V)
+    ...     return A
+    >>> sw = sweep(state_matrix, np.arange(10.0, 101.0, 10.0), n_dof=1)
+    >>> (p,) = critical_points(sw, state_matrix).points
+    >>> p.kind, p.direction, round(p.V, 2), round(p.frequency_hz, 4)
+    ('flutter', 'onset', 50.0, 1.5915)
+    >>> round(p.dzeta_dV, 6), p.bracket[1] - p.bracket[0] <= 0.01
+    (-0.0005, True)
     """
     positive("xtol", xtol, "m/s")
     if benignity_step is not None:

@@ -63,7 +63,31 @@ def eigen(A_stack) -> tuple[np.ndarray, np.ndarray]:
 
 
 def eigenvalues(A_stack) -> np.ndarray:
-    """Eigenvalues only (cheaper than :func:`eigen`), complex, BLAS limited to one thread."""
+    """Eigenvalues only (cheaper than :func:`eigen`), complex, BLAS limited to one thread.
+
+    Parameters
+    ----------
+    A_stack : array_like, shape (..., n, n)
+        Real square matrices (e.g. state matrices, eq. 5.4), vectorised over leading axes.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., n), complex
+        The eigenvalues λ [1/s for a state matrix]; conjugate pairs adjacent, Im > 0 first.
+
+    Examples
+    --------
+    The oscillator ẍ + 0.4 ẋ + 4 x = 0 in first-order form: λ = −0.2 ± i√3.96.
+
+    >>> import numpy as np
+    >>> from propwhirl.engine import eigenvalues
+    >>> A = np.array([[0.0, 1.0], [-4.0, -0.4]])
+    >>> lam = eigenvalues(A)
+    >>> np.allclose(lam, [-0.2 + 1j * np.sqrt(3.96), -0.2 - 1j * np.sqrt(3.96)])
+    True
+    >>> eigenvalues(np.stack([A, 2 * A])).shape          # a stack of two matrices
+    (2, 2)
+    """
     A = _as_square_stack(A_stack)
     with single_thread_blas():
         return np.linalg.eigvals(A).astype(complex)
@@ -75,9 +99,31 @@ def mac(phi1, phi2) -> np.ndarray:
     ``MAC = |φ1ᴴ φ2|² / ((φ1ᴴ φ1)(φ2ᴴ φ2))``, in [0, 1], 1 for any complex multiple.  The printed
     (5.14) uses the plain transpose, which is fine for real shapes but not for complex ones: it is
     complex in general, 0/0 for a circular whirl shape φ = (1, i) (φᵀφ = 0), and for φ2 = φ̄1 it
-    equals |φ|⁴/|φᵀφ|² ≥ 1.  Vectors ``(n,)`` give a
-    scalar, matrices ``(n, k1)``, ``(n, k2)`` (shapes in columns) give ``(k1, k2)``.  A zero
-    vector gives MAC 0.
+    equals |φ|⁴/|φᵀφ|² ≥ 1.
+
+    Parameters
+    ----------
+    phi1, phi2 : array_like, shape (n,) or (n, k)
+        Mode shapes (real or complex), one per column for matrices.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Vectors ``(n,)`` give a scalar, matrices ``(n, k1)``, ``(n, k2)`` (shapes in columns)
+        give ``(k1, k2)``.  A zero vector gives MAC 0.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from propwhirl.engine import mac
+    >>> whirl = np.array([1.0, 1j])                  # a circular whirl shape (φᵀφ = 0)
+    >>> round(mac(whirl, (2 - 3j) * whirl), 12)      # any complex multiple: 1
+    1.0
+    >>> round(mac(whirl, whirl.conj()), 12)          # the opposite sense of whirl: 0
+    0.0
+    >>> np.round(mac(np.eye(2), np.array([[1.0], [1.0]])), 12)
+    array([[0.5],
+           [0.5]])
     """
     a = np.asarray(phi1, dtype=complex)
     b = np.asarray(phi2, dtype=complex)

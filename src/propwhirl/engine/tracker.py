@@ -80,9 +80,48 @@ def sweep(state_matrix: StateMatrixFn, speeds, *, n_dof: int | None = None,
           options: TrackingOptions | None = None) -> Sweep:
     """Eigen-analysis along the speeds with mode tracking (see the module docstring).
 
-    speeds: increasing grid [m/s], all > 0 (the aerodynamic matrices carry 1/V); every grid
-    speed is evaluated (the V-g-f table), and the grid is refined automatically where
-    tracking is ambiguous and where a hump may hide between samples.
+    Parameters
+    ----------
+    state_matrix : callable
+        ``state_matrix(V) -> A``: the real state matrices ``(len(V), n, n)`` for a 1-D array of
+        speeds V [m/s] (also called just above each speed, for dA/dV).
+    speeds : array_like
+        Increasing grid [m/s], all > 0 (the aerodynamic matrices carry 1/V); every grid
+        speed is evaluated (the V-g-f table), and the grid is refined automatically where
+        tracking is ambiguous and where a hump may hide between samples.
+    n_dof : int, optional
+        The first ``n_dof`` states are displacements (eq. 5.7); default: all states.
+    displacement : array_like of bool, optional
+        Mask of the displacement states instead of ``n_dof``.
+    state_labels : sequence of str, optional
+        The ``n`` state labels (used in error messages); default ``"x0"``, ``"x1"``, ….
+    mode_labels : sequence of str or callable, optional
+        ``n`` mode labels, or ``f(λ, eigenvector)`` at the first speed; default ``"mode k"``.
+    options : TrackingOptions, optional
+        Tuning of the tracker.
+
+    Returns
+    -------
+    Sweep
+        The tracked eigenvalues, eigenvectors and dλ/dV, one column per branch (mode id).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> def state_matrix(V):     # ẍ + (0.5 − 0.01 V) ẋ + 100 x = 0: flutter at 50 m/s
+    ...     A = np.zeros((V.size, 2, 2))
+    ...     A[:, 0, 1] = 1.0
+    ...     A[:, 1, 0] = -100.0
+    ...     A[:, 1, 1] = -(0.5 - 0.01 * V)
+    ...     return A
+    >>> from propwhirl.engine import sweep
+    >>> sw = sweep(state_matrix, np.arange(10.0, 101.0, 10.0), n_dof=1)
+    >>> sw.mode_labels
+    ('mode 0', "mode 0'")
+    >>> np.round(sw.damping_ratio[[0, -1], 0], 4)     # ζ = −Re λ/|λ| of mode 0 at 10, 100 m/s
+    array([ 0.02 , -0.025])
+    >>> round(float(sw.frequency_hz[0, 0]), 3)            # f = |Im λ|/2π [Hz] at 10 m/s
+    1.591
     """
     opts = options or TrackingOptions()
     grid = _check_speeds(speeds)
@@ -266,6 +305,39 @@ def analyse(state_matrix: StateMatrixFn, speeds, *, n_dof: int | None = None,
     where the assignment is ambiguous or a Hermite model of Re λ may hide a crossing (see
     :class:`TrackingOptions`).  So ``Analysis.sweep.V`` is not the whole grid: for a V-g-f
     table at every grid speed use :func:`sweep` (or ``initial_step=None``).
+
+    Parameters
+    ----------
+    state_matrix, speeds, n_dof, displacement, state_labels, mode_labels, options
+        As for :func:`sweep`.
+    xtol : float
+        Width [m/s] to which each crossing is bracketed (default
+        :data:`~propwhirl.engine.crossings.XTOL`).
+    benignity_step : float, optional
+        Central-difference step [m/s] of ζ for the benignity; default: from dλ/dV.
+    initial_step : float or None
+        Spacing [m/s] of the grid speeds evaluated first; None: every grid speed.
+
+    Returns
+    -------
+    Analysis
+        The sweep and its :class:`~propwhirl.engine.results.Criticals`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> def state_matrix(V):     # ẍ + (0.5 − 0.01 V) ẋ + 100 x = 0: flutter at 50 m/s
+    ...     A = np.zeros((V.size, 2, 2))
+    ...     A[:, 0, 1] = 1.0
+    ...     A[:, 1, 0] = -100.0
+    ...     A[:, 1, 1] = -(0.5 - 0.01 * V)
+    ...     return A
+    >>> from propwhirl.engine import analyse
+    >>> an = analyse(state_matrix, np.arange(1.0, 201.0, 10.0), n_dof=1)
+    >>> an.criticals.summary()
+    'critical: flutter of mode 0 at 50.00 m/s, 1.592 Hz'
+    >>> an.sweep.V.size < 20                      # a subset of the 20 grid speeds
+    True
     """
     opts = options or TrackingOptions()
     grid = _check_speeds(speeds)
