@@ -22,7 +22,8 @@ import pytest
 from scipy.optimize import linear_sum_assignment
 from threadpoolctl import threadpool_limits
 
-from propwhirl.engine import core as st
+from propwhirl.analysis.whirl import whirl_sense
+from propwhirl.engine import TrackingOptions, mac
 from propwhirl.analysis.stability import analyse
 from propwhirl.benchmark import (
     converge_crossing,
@@ -95,7 +96,7 @@ def test_names_at_first_speed_are_the_thesis_modes(engine, model):
     for name in ("backward 1", "forward 1"):
         k = sw.mode_labels.index(name)
         x = sw.eigenvectors[0, :, k]
-        assert st.whirl_sense(x[th], x[ps], rot, lam0[k]) == name.split()[0]
+        assert whirl_sense(x[th], x[ps], rot, lam0[k]) == name.split()[0]
 
 
 # ----------------------------------------------------------------------------------------------
@@ -181,7 +182,7 @@ def dense_tracks(engine, dense):
     for t in range(1, V.size):
         lam_c, Xc = cands[t]
         live = [lab for lab in LOW_MODES if len(track[lab]) == t]
-        M = st.mac(np.stack([cur[lab] for lab in live], axis=1), Xc)
+        M = mac(np.stack([cur[lab] for lab in live], axis=1), Xc)
         for i, j in zip(*linear_sum_assignment(-M)):
             if M[i, j] >= 0.5:
                 cur[live[i]] = Xc[:, j]
@@ -237,7 +238,7 @@ def test_shape_changes_between_nodes_are_confirmed_by_dense_tracking(engine, den
     unresolved = np.zeros(sw.V.size - 1, dtype=bool)
     for a, b in sw.unresolved:
         unresolved |= (sw.V[:-1] >= a) & (sw.V[1:] <= b)
-    low = osc & (mac < st.TrackingOptions().mac_min) & ~unresolved[:, None]
+    low = osc & (mac < TrackingOptions().mac_min) & ~unresolved[:, None]
     for t, k in zip(*np.nonzero(low)):
         lab = sw.mode_labels[k]
         assert lab in LOW_MODES, (sw.V[t], lab, mac[t, k])

@@ -10,7 +10,8 @@ import pytest
 from matplotlib.colors import to_rgba
 
 from propwhirl.app import plots
-from propwhirl.engine import core as st
+from propwhirl.analysis.whirl import whirl_sense
+from propwhirl.engine import time_response
 from propwhirl.analysis.stability import ModelAnalysis, analyse
 from propwhirl.cases.ch09_baseline import (
     baseline_flight,
@@ -156,7 +157,7 @@ def test_mode_shape_plots_the_normalised_eigenvector():
     phase = np.linspace(0.0, 2 * np.pi, orbit.get_xdata().size)
     np.testing.assert_allclose(orbit.get_xdata(), (xn[6] * np.exp(1j * phase)).real, atol=1e-12)
     np.testing.assert_allclose(orbit.get_ydata(), (xn[7] * np.exp(1j * phase)).real, atol=1e-12)
-    sense = st.whirl_sense(xn[6], xn[7], 1, lam)
+    sense = whirl_sense(xn[6], xn[7], 1, lam)
     assert f"{sense} whirl" in ax_o.get_title() and "y = 2 m" in ax_o.get_title()
     # the sense is relative to the propeller's own rotation (a clockwise rotor reverses it)
     flipped = plots.mode_shape(x, lam, _two_node_map(rotation=-1)).axes[2].get_title()
@@ -229,7 +230,7 @@ def test_time_history_plots_theta_psi_in_degrees(tmp_path):
     iso = isolated_baseline_propeller()
     t = np.linspace(0.0, 1.0, 201)
     x0 = np.array([np.radians(1.0), 0.0, 0.0, 0.0])
-    rs = {f"V = {V:g} m/s": st.time_response(iso.state_matrix(V)[0], x0, t, iso.state_labels())
+    rs = {f"V = {V:g} m/s": time_response(iso.state_matrix(V)[0], x0, t, iso.state_labels())
           for V in (77.0, 250.0)}
     fig = plots.time_history(rs, path=tmp_path / "t.png")
     assert (tmp_path / "t.png").read_bytes().startswith(PNG)

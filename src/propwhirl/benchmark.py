@@ -3,7 +3,7 @@
 One run of ``python -m propwhirl.benchmark`` times, side by side on the same machine,
 
 (a) the engine — :func:`propwhirl.analysis.stability.analyse` with its default grid (1–350 m/s every
-    10 m/s; :func:`propwhirl.engine.core.analyse` evaluates the grid speeds ~50 m/s apart first
+    10 m/s; :func:`propwhirl.engine.analyse` evaluates the grid speeds ~50 m/s apart first
     and adds speeds only where tracking needs them; crossings refined to 0.01 m/s) — locating
     every critical speed of the wingtip propeller-wing model of §10.1 (25 elements,
     Leishman–Nguyen, baseline propeller, 0–350 m/s);
@@ -319,7 +319,7 @@ def time_engine(model, repeats: int = 3, speeds=None, options=None,
     return times, an
 
 
-#: variants of the engine's core (:func:`propwhirl.engine.core.analyse` on the default grid):
+#: variants of the engine's core (:func:`propwhirl.engine.analyse` on the default grid):
 #: (name, initial_step [m/s] or None for every grid speed, TrackingOptions changes)
 ENGINE_VARIANTS: tuple[tuple[str, float | None, dict[str, Any]], ...] = (
     ("default (initial step 50 m/s)", 50.0, {}),
@@ -333,22 +333,22 @@ ENGINE_VARIANTS: tuple[tuple[str, float | None, dict[str, Any]], ...] = (
 
 def engine_variants(model, converged: Sequence[tuple[Crossing, float, float]],
                     repeats: int = 2) -> list[tuple[str, Timing, int, float, int]]:
-    """The engine's core, :func:`propwhirl.engine.core.analyse` alone (no mode names, no
+    """The engine's core, :func:`propwhirl.engine.analyse` alone (no mode names, no
     frequency-zero events), on the default grid with the variants of :data:`ENGINE_VARIANTS`:
     how the initial subset of the grid and the tracking options change the cost and the
     result.  Rows: (name, best time, speeds evaluated, max |V − converged| over the
     onsets/recoveries [m/s] (inf: one was missed), unresolved intervals)."""
-    from propwhirl.engine import core as st
+    from propwhirl.engine import TrackingOptions, analyse as engine_analyse
 
     grid = model.flight.speeds()
     s = model.second_order(np.array([float(grid[0])]))
     rows = []
     for name, step, changes in ENGINE_VARIANTS:
-        opts = st.TrackingOptions(**changes)
+        opts = TrackingOptions(**changes)
 
         def run():
-            return st.analyse(model.state_matrix, grid, n_dof=s.n_dof, state_labels=s.labels,
-                              options=opts, xtol=0.01, initial_step=step)
+            return engine_analyse(model.state_matrix, grid, n_dof=s.n_dof, state_labels=s.labels,
+                                  options=opts, xtol=0.01, initial_step=step)
 
         with threadpool_limits(limits=1):
             run()
@@ -571,7 +571,7 @@ def report(res: BenchmarkResult) -> str:
     L.append(f"Engine counters: {res.engine_stats}")
     if res.variants:
         L.append("")
-        L.append("Variants of the engine's core (propwhirl.engine.core.analyse alone, default grid; "
+        L.append("Variants of the engine's core (propwhirl.engine.analyse alone, default grid; "
                  "error over onsets/recoveries, inf = one missed):")
         L.append(f"  {'variant':32s} {'wall [s]':>8s} {'cpu [s]':>8s} {'speeds':>6s} "
                  f"{'(b)/variant':>11s} {'max err [m/s]':>13s} {'unresolved':>10s}")

@@ -26,7 +26,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
-from propwhirl.engine import whirl_sense  # moves to propwhirl.analysis.whirl
+from propwhirl.analysis.whirl import whirl_sense
 from propwhirl.engine import Sweep, mac
 from propwhirl.model.protocol import DofMap, Model
 

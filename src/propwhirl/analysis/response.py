@@ -6,7 +6,7 @@ Time response
 :func:`simulate` integrates a model's linear aeroelastic system ẋ = A(V) x (eq. 5.3 for the
 structure, 6.18 for the isolated propeller, D.27 for propellers on a wing) at one airspeed from
 given initial conditions with the exact transition matrix e^{AΔt}
-(:func:`propwhirl.engine.core.time_response`; the thesis used MATLAB's ode45, available here as
+(:func:`propwhirl.engine.time_response`; the thesis used MATLAB's ode45, available here as
 ``method="ivp"``).  It returns a :class:`Response` whose histories are labelled like the
 model's states, in SI: displacements ("propeller 0 theta" [rad], "node 3 h" [m, positive
 down], "node 3 alpha" [rad, nose up] ...), their rates ("d/dt ..." [rad/s, m/s]) and the
@@ -37,7 +37,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
-from propwhirl.engine import core as st
+from propwhirl.analysis.whirl import rotation_sign_from_gyroscopic
+from propwhirl.engine import eigen, mac, sweep, time_response
 from propwhirl import validate as v
 
 __all__ = [
@@ -181,8 +182,8 @@ def simulate(model, V: float, initial: Mapping[str, float], *, duration: float =
     n_steps = int(round(T / h))
     t = np.arange(n_steps + 1) * h
     A = np.asarray(model.state_matrix(np.array([Vf])))[0]
-    r = st.time_response(A, x0, t, labels, method=method)
-    lam, X = st.eigen(A)
+    r = time_response(A, x0, t, labels, method=method)
+    lam, X = eigen(A)
     return Response(model.name, Vf, r.t, r.x, labels, n_dof,
                     lam, X)
 
@@ -190,12 +191,12 @@ def simulate(model, V: float, initial: Mapping[str, float], *, duration: float =
 def rotation_sign(model, propeller: int = 0) -> int:
     """Sense of the spin of a flexible propeller in the (θ on X, ψ on Y) plane: +1 counter-
     clockwise (the thesis's rotor, Figure 6.1), from the gyroscopic coupling of the model
-    (:func:`~propwhirl.engine.rotation_sign_from_gyroscopic`; aerodynamics off, at 100 m/s for
+    (:func:`~propwhirl.analysis.whirl.rotation_sign_from_gyroscopic`; aerodynamics off, at 100 m/s for
     a fixed-pitch rotor).  An independent check of the DOF map's ``rotation``."""
     p = model.dof_map().propeller(propeller)
     s = model.without_aerodynamics().second_order(np.array([100.0]))
     C = s.S2[0]
-    return st.rotation_sign_from_gyroscopic(0.5 * (C[p.theta, p.psi] - C[p.psi, p.theta]))
+    return rotation_sign_from_gyroscopic(0.5 * (C[p.theta, p.psi] - C[p.psi, p.theta]))
 
 
 def baseline_propeller_responses(speeds: Sequence[float] = THESIS_RESPONSE_SPEEDS, *,
@@ -243,7 +244,7 @@ def campbell_table(model, rpm=None, *, max_frequency_hz: float | None = None
     spins at ``rpm`` [rev/min] (increasing, ≥ 0; default 0–6000 every 250).  Aerodynamics and
     dissipative damping off (the gyroscopic system of Figures 8.6, 9.16, 10.3, as
     :func:`propwhirl.analysis.vibration.campbell`).  The modes are followed along the speeds by the
-    engine's tracker (:func:`propwhirl.engine.core.sweep`: MAC and eigenvalue continuity, steps
+    engine's tracker (:func:`propwhirl.engine.sweep`: MAC and eigenvalue continuity, steps
     refined where ambiguous, so a veering pair keeps its branches and does not cross) and named
     at the first speed by an optimal MAC assignment to the in-vacuo modes of
     :func:`propwhirl.analysis.vibration.label_modes`.  Returns tidy columns sorted by rpm then
@@ -263,13 +264,13 @@ def campbell_table(model, rpm=None, *, max_frequency_hz: float | None = None
     offset = 1.0                                  # the tracker's parameter must be > 0
     fn = _campbell_state_matrix(model, offset)
     n_dof = model.with_(wing_aero=False).second_order(np.array([1.0])).n_dof
-    sw = st.sweep(fn, r + offset, n_dof=n_dof)
+    sw = sweep(fn, r + offset, n_dof=n_dof)
     modes, _ = model_modes(model)
     ref = [lab for lab, _ in label_modes(model)]
     X0 = sw.eigenvectors[0][sw.displacement]
     lam0 = sw.eigenvalues[0]
     osc = [k for k in range(sw.n_modes) if sw.physical[0, k] and lam0[k].imag > 0]
-    M = st.mac(X0[:, osc], modes.shapes.astype(complex))
+    M = mac(X0[:, osc], modes.shapes.astype(complex))
     rows, cols = linear_sum_assignment(-M)
     names = {osc[i]: ref[j] for i, j in zip(rows, cols)}
     keep = sorted(names, key=lambda k: lam0[k].imag)

@@ -24,7 +24,8 @@ from typing import Any
 
 import numpy as np
 
-from propwhirl.engine import core as st
+from propwhirl.engine import XTOL, Criticals, Sweep, TrackingOptions, frequency_zero_points
+from propwhirl.engine import analyse as engine_analyse
 from propwhirl import validate as v
 from propwhirl.analysis.naming import mode_content, mode_names, whirl
 from propwhirl.model.protocol import DofMap, Model
@@ -127,9 +128,9 @@ class ModelAnalysis:
     """A labelled sweep and its instabilities (sorted by speed)."""
 
     model_name: str
-    sweep: st.Sweep
+    sweep: Sweep
     events: tuple[Instability, ...]
-    criticals: st.Criticals | None = field(default=None, repr=False)
+    criticals: Criticals | None = field(default=None, repr=False)
     #: mode label -> share of its kinetic energy at the first speed per group of degrees of
     #: freedom ("bending": h, φ; "torsion": α; "pitch", "yaw": propeller θ, ψ; "plunge")
     content: dict[str, dict[str, float]] = field(default_factory=dict)
@@ -189,7 +190,7 @@ class ModelAnalysis:
     @classmethod
     def from_dict(cls, d: dict[str, Any]) -> "ModelAnalysis":
         dm = d.get("dof_map")
-        return cls(d["model_name"], st.Sweep.from_dict(d["sweep"]),
+        return cls(d["model_name"], Sweep.from_dict(d["sweep"]),
                    tuple(Instability(**e) for e in d["events"]), content=d.get("content", {}),
                    dof_map=None if dm is None else DofMap.from_dict(dm))
 
@@ -203,45 +204,9 @@ def load(path: str | Path) -> ModelAnalysis:
     return ModelAnalysis.from_dict(json.loads(Path(path).read_text()))
 
 
-# ----------------------------------------------------------------------------- frequency zero
-def _n_unstable_pairs(model, V: float) -> int:
-    """Number of eigenvalues with Re λ > 0 and Im λ > 0 at airspeed V (a full eigvals)."""
-    lam = np.linalg.eigvals(model.state_matrix(np.array([V]))[0])
-    return int(np.sum((lam.real > 0) & (lam.imag > 1e-9 * np.maximum(1.0, np.abs(lam)))))
-
-
-def _frequency_zero_events(model, sw: st.Sweep, names: list[str], xtol: float) -> list[Instability]:
-    """Unstable oscillatory modes whose pair turns into real roots (frequency → 0).
-
-    Located by bisection on the number of unstable complex pairs (full eigenvalue solves: the
-    branch point is a square-root singularity where a tracked single-root evaluation is
-    ill-conditioned), to `xtol` [m/s]."""
-    out = []
-    lam, phys = sw.eigenvalues, sw.physical
-    with st.single_thread_blas():
-        for k in range(sw.n_modes):
-            for t in range(len(sw.V) - 1):
-                a, b = lam[t, k], lam[t + 1, k]
-                if not (phys[t, k] and a.imag > 0 and a.real > 0):
-                    continue
-                if abs(b.imag) > 1e-9 * max(1.0, abs(b)) or b.real <= 0:
-                    continue
-                lo, hi = float(sw.V[t]), float(sw.V[t + 1])
-                n_lo = _n_unstable_pairs(model, lo)
-                while hi - lo > xtol:
-                    mid = 0.5 * (lo + hi)
-                    if _n_unstable_pairs(model, mid) >= n_lo:
-                        lo = mid
-                    else:
-                        hi = mid
-                out.append(Instability("divergence", "frequency-zero", k, names[k], 0.5 * (lo + hi), 0.0))
-                break
-    return out
-
-
 # ----------------------------------------------------------------------------- analyse
-def analyse(model: Model, speeds=None, *, xtol: float = 0.01, vgf: bool = False,
-            options: st.TrackingOptions | None = None) -> ModelAnalysis:
+def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
+            options: TrackingOptions | None = None) -> ModelAnalysis:
     """Every instability of `model` over `speeds` [m/s], with tracked, named modes.
 
     `speeds` is the grid [m/s] (default: the model's FlightCondition.speed_range, 1–350 m/s
@@ -253,9 +218,9 @@ def analyse(model: Model, speeds=None, *, xtol: float = 0.01, vgf: bool = False,
     grid = model.flight.speeds() if speeds is None else np.asarray(speeds, dtype=float)
     v.positive("xtol", xtol, "m/s")
     dm = model.dof_map()
-    an = st.analyse(model.state_matrix, grid, displacement=dm.displacement,
-                    state_labels=dm.state_labels, options=options, xtol=xtol,
-                    **({"initial_step": None} if vgf else {}))
+    an = engine_analyse(model.state_matrix, grid, displacement=dm.displacement,
+                        state_labels=dm.state_labels, options=options, xtol=xtol,
+                        **({"initial_step": None} if vgf else {}))
     sw = an.sweep
     names = mode_names(model, sw)
     sw = sw.relabel(names)
@@ -270,7 +235,8 @@ def analyse(model: Model, speeds=None, *, xtol: float = 0.01, vgf: bool = False,
         kind = "flutter" if abs(lam0.imag) > 0 else "divergence"
         events.append(Instability(kind, "unstable-at-start", int(k), names[k], float(sw.V[0]),
                                   float(abs(lam0.imag) / (2 * np.pi))))
-    events += _frequency_zero_events(model, sw, names, xtol)
+    events += [Instability("divergence", "frequency-zero", p.mode, names[p.mode], p.V, 0.0)
+               for p in frequency_zero_points(sw, model.state_matrix, xtol=xtol)]
     events.sort(key=lambda e: (e.V, e.mode))
     return ModelAnalysis(model.name, sw, tuple(events), an.criticals,
                          mode_content(model, sw, names), dm)

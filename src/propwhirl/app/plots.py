@@ -15,7 +15,7 @@ backend switch), so they work headless and in threads.  Every function returns t
   wing h and α along the span (real and imaginary parts and the envelope |x̂| of
   x(t) = Re(x̂) cos ωt − Im(x̂) sin ωt, eq. 5.11–5.12) and each propeller's θ–ψ orbit;
 * :func:`time_history` — θ(t), ψ(t) and the θ–ψ path of
-  :class:`~propwhirl.engine.core.TimeResponse` results (Figures 9.11–9.12).
+  :class:`~propwhirl.engine.TimeResponse` results (Figures 9.11–9.12).
 """
 from __future__ import annotations
 
@@ -24,7 +24,8 @@ from typing import TYPE_CHECKING, Mapping, Sequence
 
 import numpy as np
 
-from propwhirl.engine import core as st
+from propwhirl.analysis.whirl import whirl_sense
+from propwhirl.engine import TimeResponse
 from propwhirl import validate as v
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -230,7 +231,7 @@ def mode_shape(eigenvector, eigenvalue: complex, dof_map: "DofMap", *,
     envelope ±|x̂| (shaded) that x(t) = Re(x̂) cos ωt − Im(x̂) sin ωt sweeps over a cycle
     (eq. 5.11 without the decay).  Propeller panels: the θ–ψ orbit over one cycle, the start
     (ωt = 0) dotted, an arrow in the direction of motion, titled with the whirl sense relative
-    to that propeller's own sense of rotation (:func:`propwhirl.engine.whirl_sense`).
+    to that propeller's own sense of rotation (:func:`propwhirl.analysis.whirl.whirl_sense`).
     The vector is normalised so that its largest displacement entry is 1 and real (entries in
     m and rad per unit of that entry).
     """
@@ -287,7 +288,7 @@ def mode_shape(eigenvector, eigenvalue: complex, dof_map: "DofMap", *,
         k = 12
         ax.annotate("", xy=(t_path[k + 3], p_path[k + 3]), xytext=(t_path[k], p_path[k]),
                     arrowprops=dict(arrowstyle="->", color="C2", lw=1.6))
-        sense = st.whirl_sense(th, ps, p.rotation, lam) if lam.imag != 0 else "planar (real root)"
+        sense = whirl_sense(th, ps, p.rotation, lam) if lam.imag != 0 else "planar (real root)"
         where = f" (y = {p.y:.3g} m)" if p.y is not None else ""
         ax.set_title(f"propeller {j}{where}: {sense} whirl" if "real" not in sense
                      else f"propeller {j}{where}: {sense}")
@@ -340,14 +341,14 @@ def event_mode_shape(analysis: "ModelAnalysis", event: "Instability", *,
 
 
 # ----------------------------------------------------------------------------- time histories
-def time_history(responses: st.TimeResponse | Mapping[str, st.TimeResponse], *,
+def time_history(responses: TimeResponse | Mapping[str, TimeResponse], *,
                  propeller: int = 0, title: str | None = None,
                  path: str | Path | None = None) -> "Figure":
     """θ(t), ψ(t) [deg] and the θ–ψ path of one propeller (Figures 9.11–9.12).
 
     `responses`: one TimeResponse or {legend label: TimeResponse} (e.g. one per airspeed);
     the states 'propeller j theta' / 'propeller j psi' are plotted."""
-    if isinstance(responses, st.TimeResponse):
+    if isinstance(responses, TimeResponse):
         responses = {"": responses}
     if not responses:
         raise v.InputError("responses is empty: give at least one TimeResponse")

@@ -14,12 +14,14 @@ for the state x = [q, q̇, w], solving S1 once per speed (stacked `numpy.linalg.
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
 from propwhirl import validate as v
 from propwhirl.model.protocol import rate_label
+from propwhirl.validate import InputError
 
 
 @dataclass(frozen=True)
@@ -100,3 +102,48 @@ def state_matrix(sys: SecondOrder, V: np.ndarray) -> np.ndarray:
     A[:, 2 * n :, n : 2 * n] = sys.Wv
     A[:, 2 * n :, 2 * n :] = sys.Ww
     return A
+
+
+def state_matrix_from_mck(M, C, K, V=None) -> np.ndarray:
+    """First-order state matrix J = [[0, I], [−M⁻¹K, −M⁻¹C]] of eq. (5.4), vectorised.
+
+    ``M, C, K``: ``(N, N)`` or stacks ``(T, N, N)`` (broadcast against each other).  ``V``
+    [m/s] (optional, length T) is used only to name the speed in errors.  A singular or
+    ill-conditioned (cond > 1e12) mass matrix raises :class:`InputError` naming the speed.
+    """
+    M, C, K = (np.asarray(x, dtype=float) for x in (M, C, K))
+    M, C, K = np.broadcast_arrays(*(x if x.ndim == 3 else x[None] for x in (M, C, K)))
+    for name, arr in (("M", M), ("C", C), ("K", K)):
+        bad = ~np.isfinite(arr)
+        if bad.any():
+            t = int(np.argwhere(bad)[0][0])
+            raise InputError(f"{name} has a non-finite entry at {_where(V, t)}")
+    with np.errstate(all="ignore"):
+        cond = np.linalg.cond(M)
+    bad = ~(cond < 1e12)
+    if bad.any():
+        t = int(np.argmax(bad))
+        raise InputError(f"mass matrix M is singular (condition number {cond[t]:.3g}) at "
+                         f"{_where(V, t)}: check the inertia parameters")
+    N = M.shape[-1]
+    T = M.shape[0]
+    rhs = np.concatenate([K, C], axis=-1)
+    sol = np.linalg.solve(M, rhs)
+    J = np.zeros((T, 2 * N, 2 * N))
+    J[:, :N, N:] = np.eye(N)
+    J[:, N:, :N] = -sol[..., :N]
+    J[:, N:, N:] = -sol[..., N:]
+    return J
+
+
+def _where(V, t: int) -> str:
+    if V is None:
+        return f"index {t}"
+    Va = np.atleast_1d(np.asarray(V, dtype=float))
+    return f"V = {float(Va[min(t, Va.size - 1)])!r} m/s"
+
+
+def second_order_labels(dof_labels: Sequence[str]) -> tuple[str, ...]:
+    """State labels for [q, q̇] (eq. 5.3): the dof labels followed by ``"d(<label>)/dt"``."""
+    dof = tuple(str(s) for s in dof_labels)
+    return dof + tuple(f"d({s})/dt" for s in dof)

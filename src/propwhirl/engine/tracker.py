@@ -1,0 +1,352 @@
+"""The sweep loop: eigen-analysis along the speeds with mode tracking and refinement.
+
+:func:`sweep`
+    Eigenvalues/eigenvectors along V with *mode tracking*: every eigenvalue branch is followed
+    from speed to speed (nodes: :mod:`propwhirl.engine.nodes`; linking two speeds, clusters
+    through branch points, veering and crossing: :mod:`propwhirl.engine.linking` and
+    :mod:`propwhirl.engine.clusters`; branch ids: :mod:`propwhirl.engine.ordering`).
+
+    An ambiguous step is bisected (down to ``min_step``; at a grid speed near its middle if
+    there is one, between a crossing and a branch point when a cluster shows both, at an
+    unstable pair's branch point when a cluster shows one).  Then the Hermite model of Re λ of
+    each branch between samples — values and slopes, with the trapezoidal mismatch as its
+    uncertainty (``margin``) — inserts samples where a crossing may hide inside a step
+    (:func:`_hump_candidates`), and an unstable pair turning real (the thesis's "whirl
+    divergence") is bracketed by two nodes 0.9·``min_step`` apart around its branch point
+    (:func:`propwhirl.engine.crossings._branch_point_speeds`).  Intervals still ambiguous at
+    ``min_step`` (or when the node budget runs out) are listed in ``Sweep.unresolved``.
+    :func:`sweep` evaluates every grid speed (the V-g-f table).
+:func:`analyse`
+    The sweep and :func:`~propwhirl.engine.crossings.critical_points`, in one call.  Locating
+    critical speeds does not need an eigendecomposition at every grid speed: analyse starts
+    from a subset of the grid ``initial_step`` (default 50 m/s) apart and lets the tracker add
+    speeds where they are needed.
+
+Cost on the wingtip propeller-wing (204 states, one thread; docs/performance.md): full
+``eig`` ≈ 7 ms, ``eigvals`` ≈ 5 ms, dλ/dV of all roots ≈ 1 ms, ``state_matrix`` ≈ 0.7–0.9 ms
+per speed in a batch (≈ 2.7 ms for a single speed), one inverse-iteration evaluation ≈ 1 ms.
+"""
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+
+import numpy as np
+
+from propwhirl.engine.crossings import XTOL, _branch_point_speeds, _critical_points
+from propwhirl.engine.eigensolve import StateMatrixFn, _displacement_mask, single_thread_blas
+from propwhirl.engine.hermite import _CHECK_S, _hermite_coeffs, _hermite_eval
+from propwhirl.engine.linking import _link, _Link
+from propwhirl.engine.nodes import _evaluate_nodes, _Node
+from propwhirl.engine.options import TrackingOptions, _check_speeds
+from propwhirl.engine.ordering import _initial_order, _order_chain
+from propwhirl.engine.results import Analysis, Sweep
+from propwhirl.validate import InputError, positive
+
+
+#: default spacing [m/s] of the speeds :func:`analyse` evaluates first (see its docstring)
+ANALYSE_INITIAL_STEP = 50.0
+
+
+def _initial_subset(grid: np.ndarray, step: float | None) -> np.ndarray:
+    """The grid speeds nearest to an even division of [first, last] at spacing ≤ ``step``.
+
+    Always the first and the last grid speed; the whole grid when ``step`` is None or the grid
+    is already at least that coarse.
+    """
+    if step is None or grid.size <= 2:
+        return grid
+    m = int(math.ceil((grid[-1] - grid[0]) / step - 1e-9)) + 1
+    if m >= grid.size:
+        return grid
+    targets = np.linspace(grid[0], grid[-1], m)
+    idx = np.clip(np.searchsorted(grid, targets), 1, grid.size - 1)
+    idx = np.where(np.abs(grid[idx - 1] - targets) <= np.abs(grid[idx] - targets), idx - 1, idx)
+    return grid[np.unique(np.concatenate([[0], idx, [grid.size - 1]]))]
+
+
+def _split_speed(Va: float, Vb: float, grid: np.ndarray) -> float:
+    """Where to bisect the step (Va, Vb): the grid speed nearest its middle if one lies in its
+    middle half (so refined sweeps report at asked speeds), else the midpoint."""
+    mid = 0.5 * (Va + Vb)
+    q = 0.25 * (Vb - Va)
+    inside = grid[(grid > mid - q) & (grid < mid + q)]
+    return float(inside[np.argmin(np.abs(inside - mid))]) if inside.size else mid
+
+
+def sweep(state_matrix: StateMatrixFn, speeds, *, n_dof: int | None = None,
+          displacement=None, state_labels: Sequence[str] | None = None,
+          mode_labels: Sequence[str] | Callable[[complex, np.ndarray], str] | None = None,
+          options: TrackingOptions | None = None) -> Sweep:
+    """Eigen-analysis along the speeds with mode tracking (see the module docstring).
+
+    Parameters
+    ----------
+    state_matrix : callable
+        ``state_matrix(V) -> A``: the real state matrices ``(len(V), n, n)`` for a 1-D array of
+        speeds V [m/s] (also called just above each speed, for dA/dV).
+    speeds : array_like
+        Increasing grid [m/s], all > 0 (the aerodynamic matrices carry 1/V); every grid
+        speed is evaluated (the V-g-f table), and the grid is refined automatically where
+        tracking is ambiguous and where a hump may hide between samples.
+    n_dof : int, optional
+        The first ``n_dof`` states are displacements (eq. 5.7); default: all states.
+    displacement : array_like of bool, optional
+        Mask of the displacement states instead of ``n_dof``.
+    state_labels : sequence of str, optional
+        The ``n`` state labels (used in error messages); default ``"x0"``, ``"x1"``, ….
+    mode_labels : sequence of str or callable, optional
+        ``n`` mode labels, or ``f(λ, eigenvector)`` at the first speed; default ``"mode k"``.
+    options : TrackingOptions, optional
+        Tuning of the tracker.
+
+    Returns
+    -------
+    Sweep
+        The tracked eigenvalues, eigenvectors and dλ/dV, one column per branch (mode id).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> def state_matrix(V):     # ẍ + (0.5 − 0.01 V) ẋ + 100 x = 0: flutter at 50 m/s
+    ...     A = np.zeros((V.size, 2, 2))
+    ...     A[:, 0, 1] = 1.0
+    ...     A[:, 1, 0] = -100.0
+    ...     A[:, 1, 1] = -(0.5 - 0.01 * V)
+    ...     return A
+    >>> from propwhirl.engine import sweep
+    >>> sw = sweep(state_matrix, np.arange(10.0, 101.0, 10.0), n_dof=1)
+    >>> sw.mode_labels
+    ('mode 0', "mode 0'")
+    >>> np.round(sw.damping_ratio[[0, -1], 0], 4)     # ζ = −Re λ/|λ| of mode 0 at 10, 100 m/s
+    array([ 0.02 , -0.025])
+    >>> round(float(sw.frequency_hz[0, 0]), 3)            # f = |Im λ|/2π [Hz] at 10 m/s
+    1.591
+    """
+    opts = options or TrackingOptions()
+    grid = _check_speeds(speeds)
+    labels = None if state_labels is None else tuple(str(s) for s in state_labels)
+    with single_thread_blas():
+        return _sweep(state_matrix, grid, n_dof, displacement, labels, mode_labels, opts)
+
+
+def _sweep(fn, grid, n_dof, displacement, labels, mode_labels, opts,
+           initial_step: float | None = None) -> Sweep:
+    stats: dict[str, int] = {}
+    n = None if labels is None else len(labels)
+    nodes = _evaluate_nodes(fn, _initial_subset(grid, initial_step), n, labels, opts, stats)
+    n = nodes[0].lam.size
+    if labels is None:
+        labels = tuple(f"x{i}" for i in range(n))
+    disp = _displacement_mask(n, n_dof, displacement)
+    budget = opts.max_nodes or (20 * grid.size + 200)
+    links: dict[tuple[float, float], _Link] = {}
+    refined = 0
+    while True:
+        new_V = []
+        located = []
+        for a, b in zip(nodes[:-1], nodes[1:]):
+            key = (a.V, b.V)
+            if key in links:
+                continue
+            lk = _link(a, b, disp, opts)
+            if (lk.ambiguous and 0.5 * (b.V - a.V) >= opts.min_step
+                    and len(nodes) + len(new_V) < budget):
+                if lk.branch_points:        # refine there: bracket the unstable branch point
+                    located.append((a, b, lk))
+                else:
+                    new_V.append(_split_speed(a.V, b.V, grid) if lk.split_at is None
+                                 else lk.split_at)
+                continue
+            links[key] = lk
+        if located:
+            found = _branch_point_speeds(fn, located, n, labels, opts, stats)
+            stats["branch_point_nodes"] = stats.get("branch_point_nodes", 0) + len(found)
+            for a, b, _ in located:
+                here = [v for v in found if a.V < v < b.V]
+                new_V += here if here else [_split_speed(a.V, b.V, grid)]
+        if not new_V:
+            chain = [links[(a.V, b.V)] for a, b in zip(nodes[:-1], nodes[1:])]
+            R = _order_chain(nodes, [lk.perm for lk in chain])
+            if not opts.hump_check:
+                break
+            V = np.array([nd.V for nd in nodes])
+            fl = np.array([nd.floor for nd in nodes])
+            new_V = _hump_candidates(V, _step_models(nodes, R, chain), fl, opts)
+            stats["hump_refined"] = stats.get("hump_refined", 0) + len(new_V)
+            if not new_V:
+                new_V = _branch_point_speeds(fn, list(zip(nodes[:-1], nodes[1:], chain)), n,
+                                             labels, opts, stats)
+                stats["branch_point_nodes"] = stats.get("branch_point_nodes", 0) + len(new_V)
+            new_V = new_V[: max(0, budget - len(nodes))]
+            if not new_V:
+                break
+        else:
+            refined += len(new_V)
+        nodes = sorted(nodes + _evaluate_nodes(fn, np.array(new_V), n, labels, opts, stats),
+                       key=lambda nd: nd.V)
+    stats["refined"] = refined
+    stats["nodes"] = len(nodes)
+    unresolved = tuple((a.V, b.V) for a, b in zip(nodes[:-1], nodes[1:])
+                       if links[(a.V, b.V)].ambiguous)
+    return _assemble(nodes, R, grid, labels, disp, mode_labels, unresolved, stats)
+
+
+def _assemble(nodes, R, grid, labels, disp, mode_labels, unresolved, stats) -> Sweep:
+    T, n = R.shape
+    V = np.array([nd.V for nd in nodes])
+    lam = np.stack([nd.lam[R[t]] for t, nd in enumerate(nodes)])
+    dl = np.stack([nd.dlam[R[t]] for t, nd in enumerate(nodes)])
+    X = np.stack([nd.X[:, R[t]] for t, nd in enumerate(nodes)])
+    # phase: first speed — largest displacement entry real positive; then aligned step by step
+    P = X[0][disp]
+    big = P[np.argmax(np.abs(P), axis=0), np.arange(n)]
+    ph0 = np.where(np.abs(big) > 0, np.conj(big) / np.where(big == 0, 1, np.abs(big)), 1.0)
+    inner = np.einsum("tik,tik->tk", X[:-1].conj(), X[1:])
+    step = np.where(np.abs(inner) > 0, np.conj(inner) / np.where(inner == 0, 1, np.abs(inner)),
+                    1.0)
+    phase = np.concatenate([ph0[None], ph0[None] * np.cumprod(step, axis=0)], axis=0)
+    X *= phase[:, None, :]
+    _, partner, n_phys = _initial_order(nodes[0])
+    if mode_labels is None:
+        ml = tuple(f"mode {k}" if k < n_phys else f"mode {partner[k]}'" for k in range(n))
+    elif callable(mode_labels):
+        ml = tuple(str(mode_labels(lam[0, k], X[0, :, k])) for k in range(n))
+    else:
+        ml = tuple(str(s) for s in mode_labels)
+        if len(ml) != n:
+            raise InputError(f"mode_labels: got {len(ml)}, need {n}")
+    return Sweep(V=V, eigenvalues=lam, eigenvectors=X, dlam_dV=dl, physical=lam.imag >= 0,
+                 state_labels=labels, displacement=disp, mode_labels=ml, partner=partner,
+                 grid=grid, floor=np.array([nd.floor for nd in nodes]),
+                 unresolved=unresolved, stats=dict(stats))
+
+
+def _hump_candidates(V: np.ndarray, models, floor: np.ndarray,
+                     opts: TrackingOptions) -> list[float]:
+    """Speeds where a branch may hide a sign change of Re λ between samples of equal sign.
+
+    ``models``: the per-step models of :func:`_step_models` (T−1, n) — values and slopes of
+    Re λ at both samples, their uncertainty, which branches to check.  Per step and branch
+    with Re λ of equal, non-zero sign at both samples: the cubic Hermite model p(s) of Re λ
+    is evaluated at its stationary points and at ``_CHECK_S``; a sample is inserted at the
+    worst s where sign·p(s) < margin · err · 16 s²(1 − s)² (the model crosses zero, or comes
+    closer to it than its uncertainty).  One sample per step.
+    """
+    fa, fb, ga, gb, e, phys = models
+    h = np.diff(V)[:, None]
+    tola = opts.zero_tol * np.maximum(np.abs(fa), floor[:-1, None])
+    tolb = opts.zero_tol * np.maximum(np.abs(fb), floor[1:, None])
+    sa = np.where(np.abs(fa) <= tola, 0, np.sign(fa))
+    sb = np.where(np.abs(fb) <= tolb, 0, np.sign(fb))
+    ok = phys & (sa == sb) & (sa != 0) & (h >= 2 * opts.min_step)
+    if not ok.any():
+        return []
+    t_i, k_i = np.nonzero(ok)
+    hh = h[t_i, 0]
+    c = _hermite_coeffs(fa[t_i, k_i], fb[t_i, k_i], ga[t_i, k_i], gb[t_i, k_i], hh)
+    A, B, C = 3 * c[3], 2 * c[2], c[1]
+    disc = B * B - 4 * A * C
+    sq = np.sqrt(np.maximum(disc, 0.0))
+    with np.errstate(all="ignore"):
+        s1 = np.where(np.abs(A) > 1e-300, (-B + sq) / (2 * A), -C / B)
+        s2 = np.where(np.abs(A) > 1e-300, (-B - sq) / (2 * A), -C / B)
+    S = np.concatenate([np.stack([s1, s2], axis=1),
+                        np.broadcast_to(_CHECK_S, (t_i.size, _CHECK_S.size))], axis=1)
+    valid = np.isfinite(S) & (S > 0) & (S < 1)
+    S = np.where(valid, S, 0.5)
+    p = _hermite_eval(tuple(ci[:, None] for ci in c), S)
+    tol_mid = np.maximum(tola[t_i, k_i], tolb[t_i, k_i])[:, None]
+    env = opts.margin * e[t_i, k_i][:, None] * 16 * S ** 2 * (1 - S) ** 2
+    viol = (p * sa[t_i, k_i][:, None] < np.maximum(env, 0.0) - tol_mid) & valid
+    bad = viol.any(axis=1)
+    out: dict[int, tuple[float, float]] = {}
+    for r in np.nonzero(bad)[0]:
+        score = np.where(viol[r], env[r] - p[r] * sa[t_i[r], k_i[r]], -np.inf)
+        j = int(np.argmax(score))
+        t = int(t_i[r])
+        if t not in out or score[j] > out[t][1]:
+            s = float(np.clip(S[r, j], 0.05, 0.95))
+            out[t] = (V[t] + s * (V[t + 1] - V[t]), float(score[j]))
+    return sorted(v for v, _ in out.values())
+
+
+def _step_models(nodes: list[_Node], R: np.ndarray, links: list[_Link]):
+    """Per step and branch: (Re λ_a, Re λ_b, Re λ'_a, Re λ'_b, uncertainty, checked) (T−1, n).
+
+    Members of clusters followed as a set over a step (:func:`_cluster_continuations`) were
+    checked there and are not checked again.
+    """
+    lam = np.stack([nd.lam[R[t]] for t, nd in enumerate(nodes)])
+    dl = np.stack([nd.dlam[R[t]] for t, nd in enumerate(nodes)])
+    T, n = lam.shape
+    e = np.empty((T - 1, n))
+    phys = (lam[:-1].imag >= 0) & (lam[1:].imag >= 0)
+    for t, lk in enumerate(links):
+        inv = np.empty(n, dtype=int)
+        inv[R[t]] = np.arange(n)
+        e[t] = lk.err[R[t]]
+        for rows in lk.clusters:
+            phys[t, inv[list(rows)]] = False
+    return lam[:-1].real, lam[1:].real, dl[:-1].real, dl[1:].real, e, phys
+
+
+def analyse(state_matrix: StateMatrixFn, speeds, *, n_dof: int | None = None,
+            displacement=None, state_labels: Sequence[str] | None = None,
+            mode_labels=None, options: TrackingOptions | None = None,
+            xtol: float = XTOL, benignity_step: float | None = None,
+            initial_step: float | None = ANALYSE_INITIAL_STEP) -> Analysis:
+    """:func:`sweep` followed by :func:`critical_points` (one BLAS-limited context).
+
+    Locating the critical speeds does not need an eigendecomposition at every grid speed: the
+    sweep starts from the grid speeds nearest an even division of the range at spacing
+    ``initial_step`` [m/s] (default :data:`ANALYSE_INITIAL_STEP`; first and last speed always)
+    and the tracker adds speeds — grid speeds where they fall in the middle of a step — only
+    where the assignment is ambiguous or a Hermite model of Re λ may hide a crossing (see
+    :class:`TrackingOptions`).  So ``Analysis.sweep.V`` is not the whole grid: for a V-g-f
+    table at every grid speed use :func:`sweep` (or ``initial_step=None``).
+
+    Parameters
+    ----------
+    state_matrix, speeds, n_dof, displacement, state_labels, mode_labels, options
+        As for :func:`sweep`.
+    xtol : float
+        Width [m/s] to which each crossing is bracketed (default
+        :data:`~propwhirl.engine.crossings.XTOL`).
+    benignity_step : float, optional
+        Central-difference step [m/s] of ζ for the benignity; default: from dλ/dV.
+    initial_step : float or None
+        Spacing [m/s] of the grid speeds evaluated first; None: every grid speed.
+
+    Returns
+    -------
+    Analysis
+        The sweep and its :class:`~propwhirl.engine.results.Criticals`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> def state_matrix(V):     # ẍ + (0.5 − 0.01 V) ẋ + 100 x = 0: flutter at 50 m/s
+    ...     A = np.zeros((V.size, 2, 2))
+    ...     A[:, 0, 1] = 1.0
+    ...     A[:, 1, 0] = -100.0
+    ...     A[:, 1, 1] = -(0.5 - 0.01 * V)
+    ...     return A
+    >>> from propwhirl.engine import analyse
+    >>> an = analyse(state_matrix, np.arange(1.0, 201.0, 10.0), n_dof=1)
+    >>> an.criticals.summary()
+    'critical: flutter of mode 0 at 50.00 m/s, 1.592 Hz'
+    >>> an.sweep.V.size < 20                      # a subset of the 20 grid speeds
+    True
+    """
+    opts = options or TrackingOptions()
+    grid = _check_speeds(speeds)
+    positive("xtol", xtol, "m/s")
+    if initial_step is not None:
+        positive("initial_step", initial_step, "m/s")
+    labels = None if state_labels is None else tuple(str(s) for s in state_labels)
+    with single_thread_blas():
+        sw = _sweep(state_matrix, grid, n_dof, displacement, labels, mode_labels, opts,
+                    initial_step)
+        cr = _critical_points(sw, state_matrix, xtol, benignity_step, opts.zero_tol)
+    return Analysis(sw, cr)
