@@ -183,7 +183,7 @@ def case_model(name: str):
 
 
 def _load(path: str):
-    from propwhirl.io import files as io
+    from propwhirl import io
     from propwhirl.model.systems import IsolatedPropeller, PropellerWing
 
     model = io.load_model(path)
@@ -218,7 +218,7 @@ def _check_outputs(**paths: str | None) -> None:
 
 
 def _analyse(args: argparse.Namespace) -> int:
-    from propwhirl.io import files as io
+    from propwhirl import io
     from propwhirl.analysis.stability import analyse
 
     _check_outputs(json=args.json, csv=args.csv, plot=args.plot)
@@ -339,7 +339,7 @@ def _add_campbell(sub) -> None:
 
 
 def _case(args: argparse.Namespace) -> int:
-    from propwhirl.io import files as io
+    from propwhirl import io
 
     _check_outputs(save=args.save)
     model = case_model(args.name)
