@@ -24,13 +24,13 @@ comma := ,
 generate: $(VENV)/.stamp-codegen
 	$(BIN)/python -m derivations.generate --out generated
 
-test: $(VENV)/.stamp-codegen+test+plots
+test: $(VENV)/.stamp-codegen+test+plots+toml
 	$(BIN)/python -m pytest -q
 
-test-fast: $(VENV)/.stamp-codegen+test+plots
+test-fast: $(VENV)/.stamp-codegen+test+plots+toml
 	$(BIN)/python -m pytest -q -m "not long"
 
-run: $(VENV)/.stamp-plots
+run: $(VENV)/.stamp-plots+toml
 	$(BIN)/propwhirl run --out out
 
 clean:

@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from propwhirl.app import cli
+from propwhirl import io
 from propwhirl.cases import registry
-from propwhirl.io import files as io
 from propwhirl.analysis.stability import analyse, load
 from propwhirl.analysis.vibration import campbell, label_modes
 

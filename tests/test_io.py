@@ -2,7 +2,11 @@
 from __future__ import annotations
 
 import dataclasses
+import os
+import subprocess
+import sys
 import tomllib
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -10,7 +14,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from propwhirl.io import files as io
+from propwhirl import io
+from propwhirl.io import schema
 from propwhirl.model.propeller_aero import AeroSettings, Distribution, HouboltReedSource, PropellerGeometry
 from propwhirl.analysis.stability import analyse
 from propwhirl.cases.ch06_isolated import bennett_bland_propeller
@@ -25,6 +30,7 @@ from propwhirl.cases.ch10_other_wings import two_propeller_wing, wingtip_propell
 from propwhirl.model.systems import FlightCondition, Installation, IsolatedPropeller, PropellerWing
 from propwhirl.model.propeller import MeasuredDerivatives, PointMass
 from propwhirl.validate import InputError
+from propwhirl.model.fields import spec
 from propwhirl.model.wing import Wing
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -136,7 +142,7 @@ def test_file_states_units_and_is_valid_toml():
     assert data["flight"]["density_kg_per_m3"] == 0.96287
     p = data["propellers"]["p1"]
     assert p["rotor"] == {"mass_kg": 8.0, "x_m": -1.16} and p["f_theta_hz"] == 7.0
-    for suffix, unit in io.UNIT_SUFFIXES:
+    for suffix, unit in schema.UNIT_SUFFIXES:
         assert f"{suffix}" in text and unit in text  # the unit table is in the header comment
 
 
@@ -178,8 +184,132 @@ def test_every_model_field_is_known_to_the_writer():
         "PointMass": {"mass", "x"},
         "PropellerGeometry": {"n_blades", "radius", "hub_ratio", "chord", "lift_slope",
                               "reference_chord", "aspect_ratio"},
+        "MeasuredDerivatives": {"values"},
+        "HouboltReedSource": {"geometry", "settings"},
     }
     assert {k: set(v) for k, v in io.model_fields().items()} == known
+
+
+# ----------------------------------------------------------------------------- the schema
+def test_schema_declares_every_field_and_the_docs_are_current():
+    schema.check()  # every field of every saved class carries a consistent spec
+    doc = (ROOT / "docs" / "model-file.md").read_text(encoding="utf-8")
+    assert doc == schema.markdown(), (
+        "docs/model-file.md is stale: regenerate it with `python -m propwhirl.io > docs/model-file.md`")
+
+
+def test_docs_list_every_key_with_its_unit_and_default():
+    text = schema.markdown()
+    for cls in schema.SCHEMA_CLASSES:
+        for f in schema.fields_of(cls):
+            for key in f.keys():
+                assert f"| `{key}` |" in text, (cls.__name__, key)
+    rows = {s.title: {r[0]: r for r in s.rows} for s in schema.sections()}
+    assert rows["[wing]"]["EI_N_m2"][2:4] == ("N m^2", "required")
+    assert rows["[wing]"]["elastic_axis_chord"][3] == "`0.5` (physical)"
+    assert rows["[wing]"]["root_chord_m"][3] == "required"  # a file must give it (Python: 1.0)
+    assert rows["[propellers.KEY]"]["beta_075_deg"][3] == "`35.0` (physical)"
+    assert rows["[flight]"]["speed_range_m_per_s"][3] == "`[1.0, 350.0, 10.0]` (setting)"
+    hr = rows['[propellers.KEY.derivatives] with source = "houbolt-reed"']
+    assert hr["hub_ratio"][3] == "`0.0` (physical)"  # the file's default, the class has none
+
+
+def test_omitted_keys_take_the_dataclass_defaults():
+    """The reader has no defaults of its own: every omitted key gives the class's default."""
+    text = """
+type = "propeller-wing"
+installations = [{ propeller = "x", y_m = 2.0 }]
+[wing]
+semi_span_m = 4.0
+root_chord_m = 1.0
+mass_per_length_kg_per_m = 20.0
+EI_N_m2 = 1e6
+GJ_N_m2 = 1e5
+radius_of_gyration_chord = 0.25
+n_elements = 4
+[flight]
+density_kg_per_m3 = 1.225
+[propellers.x]
+radius_m = 1.0
+rotor = { mass_kg = 10.0, x_m = -0.5 }
+f_theta_hz = 5.0
+f_psi_hz = 5.0
+"""
+    m = io.loads(text)
+    given = {"semi_span", "root_chord", "mass_per_length", "EI", "GJ", "radius_of_gyration",
+             "n_elements", "density", "radius", "rotor", "f_theta", "f_psi", "propeller", "y",
+             "wing", "flight", "propellers", "_nodes"}
+    objects = [m, m.wing, m.flight, m.propellers[0], m.propellers[0].propeller]
+    checked = 0
+    for obj in objects:
+        for f in schema.fields_of(type(obj)):
+            if f.name not in given:
+                assert f.default is not dataclasses.MISSING, (type(obj).__name__, f.name)
+                assert getattr(obj, f.name) == f.default, (type(obj).__name__, f.name)
+                checked += 1
+    assert checked >= 35
+
+
+def test_houbolt_reed_geometry_without_hub_ratio_reads_zero():
+    p = baseline_propeller(derivatives=HouboltReedSource(PropellerGeometry(4, 0.8, 0.0, 0.1)))
+    text = io.dumps(p)
+    assert "hub_ratio = 0.0\n" in text
+    back = io.loads(text.replace("hub_ratio = 0.0\n", ""))  # PropellerGeometry requires it
+    assert back.derivatives == p.derivatives
+
+
+def test_incomplete_declarations_are_caught():
+    @dataclass(frozen=True)
+    class NoSpec:
+        x: float
+
+    @dataclass(frozen=True)
+    class WrongUnit:
+        x: float = field(metadata=spec("x_m", "kg", "a position"))
+
+    @dataclass(frozen=True)
+    class DefaultKindMissing:
+        x: float = field(default=1.0, metadata=spec("x_m", "m", "a position"))
+
+    @dataclass(frozen=True)
+    class DefaultKindForRequired:
+        x: float = field(metadata=spec("x_m", "m", "a position", default="physical"))
+
+    for cls, message in ((NoSpec, "has no model-file spec"), (WrongUnit, "does not end with"),
+                         (DefaultKindMissing, "exactly when the field has a default"),
+                         (DefaultKindForRequired, "exactly when the field has a default")):
+        with pytest.raises(TypeError, match=message):
+            schema.fields_of(cls)
+
+
+def test_file_starts_with_the_header():
+    text = io.dumps(MODELS["bennett-bland"])
+    assert text.startswith(schema.header())
+    assert "docs/model-file.md" in schema.header() and "format version 1" in schema.header()
+
+
+def test_saving_without_tomli_w_names_the_extra(monkeypatch, tmp_path):
+    monkeypatch.setitem(sys.modules, "tomli_w", None)  # `import tomli_w` now fails
+    for call in (lambda: io.dumps(MODELS["wingtip"]),
+                 lambda: io.save_model(MODELS["wingtip"], tmp_path / "m.toml")):
+        with pytest.raises(InputError, match=r"pip install propwhirl\[toml\]") as exc:
+            call()
+        assert "\n" not in str(exc.value)
+    assert not (tmp_path / "m.toml").exists()
+    assert io.load_model(ROOT / "examples" / "wingtip.toml").name == MODELS["wingtip"].name
+
+
+def test_text_is_byte_identical_across_processes():
+    code = ("import sys; from propwhirl import io; "
+            "from propwhirl.cases.ch10_other_wings import two_propeller_wing; "
+            "from propwhirl.cases.ch06_isolated import bennett_bland_propeller; "
+            "sys.stdout.buffer.write((io.dumps(two_propeller_wing()) + "
+            "io.dumps(bennett_bland_propeller(3))).encode())")
+    outs = [subprocess.run([sys.executable, "-c", code], capture_output=True, check=True,
+                           env={**os.environ, "PYTHONHASHSEED": seed}).stdout
+            for seed in ("1", "2")]
+    here = (io.dumps(two_propeller_wing()) + io.dumps(bennett_bland_propeller(3))).encode()
+    assert outs[0] == outs[1] == here
 
 
 # ----------------------------------------------------------------------------- cannot be saved
@@ -214,7 +344,7 @@ EXAMPLE = (ROOT / "examples" / "wingtip.toml").read_text()
     ("format_version = 1", "format_version = 1\ncolour = \"red\"", "unknown field 'colour'"),
     ("rotation = 1", "rotation = 1\nspin = 2", "unknown field 'propellers.p1.spin'"),
     ("wake = true", "wake = true\nwakes = 1", "unknown field 'propellers.p1.aero_settings.wakes'"),
-    ("rotor = { mass_kg = 8.0, x_m = -1.16 }", "rotor = { mass = 8.0, x_m = -1.16 }",
+    ("[propellers.p1.rotor]\nmass_kg = 8.0", "[propellers.p1.rotor]\nmass = 8.0",
      "unknown field 'propellers.p1.rotor.mass'"),
     ("semi_span_m = 5.7", "", "missing field 'wing.semi_span_m'"),
     ("[flight]", "[flite]", "unknown field 'flite'"),
@@ -233,11 +363,23 @@ EXAMPLE = (ROOT / "examples" / "wingtip.toml").read_text()
     ("aero_model = \"leishman-nguyen\"", "aero_model = \"doublet-lattice\"", "wing.aero_model"),
     ("cnq_sign = \"thesis\"", "cnq_sign = \"other\"", "cnq_sign = 'other' is invalid"),
     ("[wing]", "[wing", "not valid TOML"),
-    ("speed_range_m_per_s = [1.0, 350.0, 10.0]", "speed_range_m_per_s = [1.0, 350.0]",
-     "flight.speed_range_m_per_s = [1.0, 350.0] is invalid"),
-    ("speed_range_m_per_s = [1.0, 350.0, 10.0]", "speed_range_m_per_s = [0.0, 350.0, 10.0]",
+    ("    350.0,\n    10.0,\n]", "    350.0,\n]", "flight.speed_range_m_per_s = [1.0, 350.0] is invalid"),
+    ("    1.0,\n    350.0,", "    0.0,\n    350.0,",
      "in [flight]: speed_range first speed = 0.0 m/s is invalid"),
-    ("\naero = true", "\naero = \"yes\"", "installations[0].aero = 'yes' is invalid"),
+    ("aero = true }", "aero = \"yes\" }", "installations[0].aero = 'yes' is invalid"),
+    ("semi_span_m = 5.7", "semi_span_m = 5.7\nsemi_span_m = 6.0",
+     "column 18): 'semi_span_m = 6.0'"),
+    ("blade_chord_m = 0.094", "blade_chord_m = 0.094\nblade_chord = { eta = [0.0, 1.0], chord_m = [0.1, 0.1] }",
+     "propellers.p1: give exactly one of blade_chord_m (a number) or [propellers.p1.blade_chord]"),
+    ("[propellers.p1.rotor]\nmass_kg = 8.0\n", "[propellers.p1.rotor]\n",
+     "missing field 'propellers.p1.rotor.mass_kg' (mass, kg)"),
+    ("[flight]\ndensity_kg_per_m3 = 0.96287", "[flight]",
+     "missing field 'flight.density_kg_per_m3' (air density, kg/m^3)"),
+    ("root_chord_m = 1.25\n", "", "missing field 'wing.root_chord_m'"),
+    ("radius_m = 0.762", "radius_m = true", "propellers.p1.radius_m = True is invalid: must be a number"),
+    ("damping = \"g\"", "damping = \"G\"", "propellers.p1.damping = 'G' is invalid: must be one of g, zeta"),
+    ("semi_span_m = 5.7", "semispan_m = 5.7", "(did you mean semi_span_m?)"),
+    ("EI_N_m2 = 700000.0", "EI_N_m2 = -1.0", "must be > 0 (key wing.EI_N_m2)"),
 ])
 def test_bad_model_files_raise_input_errors_naming_the_field(old, new, message):
     assert old in EXAMPLE

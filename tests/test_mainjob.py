@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from propwhirl.io import files as io
+from propwhirl import io
 from propwhirl.app import run as mainjob
 from propwhirl.analysis.stability import load
 from propwhirl.reproduce.harness import load_references

@@ -262,7 +262,7 @@ def test_runtime_and_cli_import_without_matplotlib():
                 if name.split('.')[0] == 'matplotlib':
                     raise ImportError('matplotlib blocked for this test')
         sys.meta_path.insert(0, Block())
-        import propwhirl.app.plots, propwhirl.io.files, propwhirl.app.cli, propwhirl.app.run
+        import propwhirl.app.plots, propwhirl.io, propwhirl.app.cli, propwhirl.app.run
         from propwhirl.app import cli
         assert cli.main(['case', 'isolated-propeller']) == 0
         assert 'matplotlib' not in sys.modules

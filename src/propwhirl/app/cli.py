@@ -158,7 +158,7 @@ def _add_derivatives(sub) -> None:
 
 # ----------------------------------------------------------------------------- model files
 def _load(path: str):
-    from propwhirl.io import files as io
+    from propwhirl import io
     from propwhirl.model.protocol import Model
 
     model = io.load_model(path)
@@ -193,7 +193,7 @@ def _check_outputs(**paths: str | None) -> None:
 
 
 def _analyse(args: argparse.Namespace) -> int:
-    from propwhirl.io import files as io
+    from propwhirl import io
     from propwhirl.analysis.stability import analyse
 
     _check_outputs(json=args.json, csv=args.csv, plot=args.plot)
@@ -306,7 +306,7 @@ def _add_campbell(sub) -> None:
 
 
 def _case(args: argparse.Namespace) -> int:
-    from propwhirl.io import files as io
+    from propwhirl import io
 
     case = registry.get(args.name)  # an unknown name: one line listing the valid names
     _check_outputs(save=args.save)

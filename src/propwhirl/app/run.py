@@ -20,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from propwhirl.io import files as io
+from propwhirl import io
 from propwhirl.analysis.stability import Instability, ModelAnalysis, analyse
 from propwhirl.cases.registry import case_model
 from propwhirl.model.systems import PropellerWing

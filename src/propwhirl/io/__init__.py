@@ -1,6 +1,8 @@
-"""Files: model files (TOML) and result files (JSON, CSV)."""
-from propwhirl.io.files import (dumps, load_model, loads, model_fields, read_vgf_csv, save_model,
-                                write_vgf_csv)
+"""Files: model files (TOML, :mod:`.model_files` with the schema of :mod:`.schema`) and result
+files (V-g-f CSV, :mod:`.results`)."""
+from propwhirl.io.model_files import dumps, load_model, loads, save_model
+from propwhirl.io.results import read_vgf_csv, write_vgf_csv
+from propwhirl.io.schema import model_fields
 
 __all__ = ["dumps", "load_model", "loads", "model_fields", "read_vgf_csv", "save_model",
            "write_vgf_csv"]

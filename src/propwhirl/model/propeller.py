@@ -28,6 +28,7 @@ from typing import Callable, Literal, Mapping, Protocol
 import numpy as np
 
 from propwhirl import validate as v
+from propwhirl.model.fields import Entry, spec
 from propwhirl.model.propeller_aero import (
     DERIVATIVE_NAMES,
     AdvanceRule,
@@ -56,7 +57,10 @@ class MeasuredDerivatives:
     Example: Bennett & Bland's measured set (§6.2, §8.4).  Keys are DERIVATIVE_NAMES.
     """
 
-    values: Mapping[str, float]
+    values: Mapping[str, float] = field(metadata=spec(
+        "values", "", "the derivatives of eq. 4.25 (any subset; the rest are zero)",
+        form="mapping", entries=tuple(Entry(k, k, "", "dimensionless derivative (eq. 4.25)")
+                                      for k in DERIVATIVE_NAMES)))
 
     def __post_init__(self) -> None:
         unknown = set(self.values) - set(DERIVATIVE_NAMES)
@@ -76,8 +80,8 @@ class MeasuredDerivatives:
 class PointMass:
     """A concentrated mass [kg] on the propeller shaft at x [m] from the wing mid-chord, aft positive."""
 
-    mass: float
-    x: float
+    mass: float = field(metadata=spec("mass_kg", "kg", "mass"))
+    x: float = field(metadata=spec("x_m", "m", "position on the shaft, aft of the wing mid-chord"))
 
     def __post_init__(self) -> None:
         v.positive("point mass", self.mass, "kg")
@@ -121,32 +125,69 @@ class Propeller:
         C_nq); user-supplied `derivatives` are taken as given for the actual propeller
     """
 
-    radius: float
-    rotor: PointMass
-    masses: tuple[PointMass, ...] = ()
-    pivot_pitch: float = 0.0
-    pivot_yaw: float = 0.0
-    f_theta: float | None = None
-    f_psi: float | None = None
-    K_theta: float | None = None
-    K_psi: float | None = None
-    damping_theta: float = 0.0
-    damping_psi: float = 0.0
-    damping: Literal["g", "zeta"] = "g"
-    spin_inertia: float | None = None
-    n_blades: int = 3
-    hub_radius: float = 0.0
-    blade_chord: float | Callable[[np.ndarray], np.ndarray] = 0.1
-    operation: Literal["fixed-pitch", "constant-speed"] = "fixed-pitch"
-    beta_075_deg: float = 35.0
-    zero_lift_angle_deg: float = -3.0
-    advance_rule: AdvanceRule = "thesis_eq_9_1"
-    inertia: Mapping[str, float] | None = None
-    rpm: float | None = None
-    derivatives: DerivativeSource | None = field(default=None, compare=False)
-    aero_settings: AeroSettings = AeroSettings()
-    rotation: int = 1
-    name: str = "propeller"
+    radius: float = field(metadata=spec("radius_m", "m", "rotor radius R"))
+    rotor: PointMass = field(metadata=spec(
+        "rotor", "", "rotor (blades + spinner) point mass; its x is the propeller plane"))
+    masses: tuple[PointMass, ...] = field(default=(), metadata=spec(
+        "masses", "", "further point masses on the shaft (motor, nacelle, ...)",
+        default="physical"))
+    pivot_pitch: float = field(default=0.0, metadata=spec(
+        "pivot_pitch_m", "m", "pitch pivot position l_theta", default="physical"))
+    pivot_yaw: float = field(default=0.0, metadata=spec(
+        "pivot_yaw_m", "m", "yaw pivot position l_psi", default="physical"))
+    f_theta: float | None = field(default=None, metadata=spec(
+        "f_theta_hz", "Hz", "uncoupled pitch frequency (or K_theta)", default="none"))
+    f_psi: float | None = field(default=None, metadata=spec(
+        "f_psi_hz", "Hz", "uncoupled yaw frequency (or K_psi)", default="none"))
+    K_theta: float | None = field(default=None, metadata=spec(
+        "K_theta_N_m_per_rad", "N m/rad", "pitch mount stiffness (or f_theta)", default="none"))
+    K_psi: float | None = field(default=None, metadata=spec(
+        "K_psi_N_m_per_rad", "N m/rad", "yaw mount stiffness (or f_psi)", default="none"))
+    damping_theta: float = field(default=0.0, metadata=spec(
+        "damping_theta", "", "pitch mount damping, read according to damping", default="physical"))
+    damping_psi: float = field(default=0.0, metadata=spec(
+        "damping_psi", "", "yaw mount damping, read according to damping", default="physical"))
+    damping: Literal["g", "zeta"] = field(default="g", metadata=spec(
+        "damping", "", "g: structural coefficients (zeta = g/2); zeta: viscous damping ratios",
+        default="setting"))
+    spin_inertia: float | None = field(default=None, metadata=spec(
+        "spin_inertia_kg_m2", "kg m^2", "spin inertia I_Omega; omitted: M_r R^2/3 (eq. 9.2)",
+        default="none"))
+    n_blades: int = field(default=3, metadata=spec(
+        "n_blades", "", "number of blades (>= 3)", default="physical"))
+    hub_radius: float = field(default=0.0, metadata=spec(
+        "hub_radius_m", "m", "hub radius r0", default="physical"))
+    blade_chord: float | Callable[[np.ndarray], np.ndarray] = field(default=0.1, metadata=spec(
+        "blade_chord", "m", "blade chord (Houbolt-Reed input)",
+        default="physical", form="distribution", number_key="blade_chord_m", value_key="chord_m"))
+    operation: Literal["fixed-pitch", "constant-speed"] = field(default="fixed-pitch", metadata=spec(
+        "operation", "", "fixed-pitch windmilling (Omega rises with V) or constant-speed (rpm)",
+        default="setting"))
+    beta_075_deg: float = field(default=35.0, metadata=spec(
+        "beta_075_deg", "deg", "blade angle at 0.75 R", default="physical"))
+    zero_lift_angle_deg: float = field(default=-3.0, metadata=spec(
+        "zero_lift_angle_deg", "deg", "blade-section zero-lift angle", default="physical"))
+    advance_rule: AdvanceRule = field(default="thesis_eq_9_1", metadata=spec(
+        "advance_rule", "", "advance ratio of fixed-pitch operation: eq. 9.1 as the thesis uses "
+        "it, or zero lift at 0.75 R (Table 4.1)", default="setting"))
+    inertia: Mapping[str, float] | None = field(default=None, metadata=spec(
+        "inertia", "", "measured inertia about the pivots, overriding the point masses' values",
+        default="none", form="mapping", entries=(
+            Entry("M_P", "M_P_kg", "kg", "propeller mass M_P"),
+            Entry("S_theta_P", "S_theta_P_kg_m", "kg m", "static moment about the pitch pivot"),
+            Entry("I_theta_P", "I_theta_P_kg_m2", "kg m^2", "inertia about the pitch pivot"),
+            Entry("I_psi_P", "I_psi_P_kg_m2", "kg m^2", "inertia about the yaw pivot"))))
+    rpm: float | None = field(default=None, metadata=spec(
+        "rpm", "rev/min", "rotational speed of constant-speed operation", default="none"))
+    derivatives: DerivativeSource | None = field(default=None, compare=False, metadata=spec(
+        "derivatives", "", "aerodynamic derivative source; omitted: Houbolt-Reed for these blades "
+        "with aero_settings", default="none", form="derivatives"))
+    aero_settings: AeroSettings = field(default=AeroSettings(), metadata=spec(
+        "aero_settings", "", "Houbolt-Reed switches", default="setting"))
+    rotation: int = field(default=1, metadata=spec(
+        "rotation", "", "+1 counter-clockwise seen from the front (the thesis's sense), -1 "
+        "clockwise", default="physical"))
+    name: str = field(default="propeller", metadata=spec("name", "", "label", default="setting"))
 
     def __post_init__(self) -> None:
         v.positive("radius", self.radius, "m")

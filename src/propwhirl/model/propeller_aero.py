@@ -37,6 +37,7 @@ import numpy as np
 from scipy.special import hankel2e
 
 from propwhirl import validate as v
+from propwhirl.model.fields import spec
 
 #: The sixteen derivatives in the order of eq. 4.25 (F_Z, M_Y, F_Y, M_Z rows).
 DERIVATIVE_NAMES: tuple[str, ...] = (
@@ -159,13 +160,20 @@ class PropellerGeometry:
     aspect_ratio    A of eq. 4.20; None → eq. 4.21, A = R(1−η0)² / ∫_{η0}^{1} c dη
     """
 
-    n_blades: int
-    radius: float
-    hub_ratio: float
-    chord: float | Distribution | Callable[[np.ndarray], np.ndarray]
-    lift_slope: Distribution | None = None
-    reference_chord: float | None = None
-    aspect_ratio: float | None = None
+    n_blades: int = field(metadata=spec("n_blades", "", "number of blades N_b (>= 3)"))
+    radius: float = field(metadata=spec("radius_m", "m", "rotor radius R"))
+    hub_ratio: float = field(metadata=spec(
+        "hub_ratio", "", "eta0 = r0/R", default="physical", file_default=0.0))
+    chord: float | Distribution | Callable[[np.ndarray], np.ndarray] = field(metadata=spec(
+        "chord", "m", "blade chord c(eta)",
+        form="distribution", number_key="chord_m", value_key="chord_m"))
+    lift_slope: Distribution | None = field(default=None, metadata=spec(
+        "lift_slope", "1/rad", "lift-curve slope a(eta); omitted: 2 pi",
+        default="none", form="distribution", value_key="lift_slope_per_rad"))
+    reference_chord: float | None = field(default=None, metadata=spec(
+        "reference_chord_m", "m", "reference chord c0; omitted: c(0.75)", default="none"))
+    aspect_ratio: float | None = field(default=None, metadata=spec(
+        "aspect_ratio", "", "blade aspect ratio A of eq. 4.20; omitted: eq. 4.21", default="none"))
 
     def __post_init__(self) -> None:
         v.integer_at_least("n_blades", self.n_blades, 3)
@@ -259,13 +267,24 @@ class AeroSettings:
                         variable is t = asinh(η/μ), which makes the integrand smooth)
     """
 
-    wake: bool = True
-    compressibility: bool = True
-    aspect_ratio_correction: bool = True
-    cnq_sign: Literal["thesis", "rodden_rose"] = "thesis"
-    method: Literal["houbolt_reed", "bennett_bland"] = "houbolt_reed"
-    cutoff_lift_slope: float = 4.0 * math.pi
-    quadrature_order: int = 32
+    wake: bool = field(default=True, metadata=spec(
+        "wake", "", "Theodorsen lift lag F + iG (section 4.1.4)", default="setting"))
+    compressibility: bool = field(default=True, metadata=spec(
+        "compressibility", "", "Prandtl-Glauert with the Rodden-Rose cut-off (eq. 4.18-4.24)",
+        default="setting"))
+    aspect_ratio_correction: bool = field(default=True, metadata=spec(
+        "aspect_ratio_correction", "", "finite-blade factor A'/(A'+2) (eq. 4.19)",
+        default="setting"))
+    cnq_sign: Literal["thesis", "rodden_rose"] = field(default="thesis", metadata=spec(
+        "cnq_sign", "", "sign of C_nq = -C_mr (eq. 4.39 or section 4.1.6)", default="setting"))
+    method: Literal["houbolt_reed", "bennett_bland"] = field(default="houbolt_reed", metadata=spec(
+        "method", "", "Houbolt-Reed (eq. 4.39-4.42) or Bennett-Bland (section 4.2)",
+        default="setting"))
+    cutoff_lift_slope: float = field(default=4.0 * math.pi, metadata=spec(
+        "cutoff_lift_slope_per_rad", "1/rad", "a_m of the cut-off (eq. 4.23-4.24)",
+        default="physical"))
+    quadrature_order: int = field(default=32, metadata=spec(
+        "quadrature_order", "", "Gauss-Legendre points per panel", default="setting"))
 
     def __post_init__(self) -> None:
         if self.cnq_sign not in ("thesis", "rodden_rose"):
@@ -555,8 +574,10 @@ class HouboltReedSource:
     allowed only with compressibility off).
     """
 
-    geometry: PropellerGeometry
-    settings: AeroSettings = AeroSettings()
+    geometry: PropellerGeometry = field(metadata=spec(
+        "geometry", "", "blade geometry (its keys sit in this table)", form="flat"))
+    settings: AeroSettings = field(default=AeroSettings(), metadata=spec(
+        "settings", "", "Houbolt-Reed switches", default="setting"))
 
     def __call__(self, V, Omega, speed_of_sound=None) -> dict[str, np.ndarray]:
         return derivatives(self.geometry, V, Omega, speed_of_sound=speed_of_sound,

@@ -26,6 +26,7 @@ from typing import Literal
 import numpy as np
 
 from propwhirl import validate as v
+from propwhirl.model.fields import spec
 from propwhirl.model.assembly import (
     LAG_STATES,
     WING_DOF_NAMES,
@@ -54,9 +55,13 @@ class FlightCondition:
     must be > 0 (the aerodynamic matrices carry 1/V).
     """
 
-    density: float
-    speed_of_sound: float = SPEED_OF_SOUND_8000FT
-    speed_range: tuple[float, float, float] = (1.0, 350.0, 10.0)
+    density: float = field(metadata=spec("density_kg_per_m3", "kg/m^3", "air density"))
+    speed_of_sound: float = field(default=SPEED_OF_SOUND_8000FT, metadata=spec(
+        "speed_of_sound_m_per_s", "m/s", "speed of sound; omitted: ISA at 8000 ft",
+        default="physical"))
+    speed_range: tuple[float, float, float] = field(default=(1.0, 350.0, 10.0), metadata=spec(
+        "speed_range_m_per_s", "m/s", "[first, last, step]: initial grid of the V-g-f sweep",
+        default="setting", form="numbers", length=3))
 
     def __post_init__(self) -> None:
         v.positive("density", self.density, "kg/m^3")
@@ -87,10 +92,13 @@ class Installation:
     acts on all propellers.
     """
 
-    propeller: Propeller
-    y: float
-    mount: Literal["flexible", "rigid"] = "flexible"
-    aero: bool = True
+    propeller: Propeller = field(metadata=spec(
+        "propeller", "", "key of a [propellers.KEY] table", form="reference"))
+    y: float = field(metadata=spec("y_m", "m", "spanwise position (must be a node)"))
+    mount: Literal["flexible", "rigid"] = field(default="flexible", metadata=spec(
+        "mount", "", "flexible (pitch and yaw DOFs) or rigid", default="setting"))
+    aero: bool = field(default=True, metadata=spec(
+        "aero", "", "this propeller's aerodynamic loads", default="setting"))
 
     def __post_init__(self) -> None:
         v.finite("installation y", self.y, "m")
@@ -148,14 +156,22 @@ class PropellerWing(StateSpaceModel):
     With no propellers it is the wing model of chapter 7.
     """
 
-    wing: Wing
-    flight: FlightCondition
-    propellers: tuple[Installation, ...] = ()
-    wing_aero: bool = True
-    propeller_aero: bool = True
-    rotating: bool = True
-    name: str = "propeller-wing"
-    _nodes: tuple[int, ...] = field(default=(), repr=False, compare=False)
+    wing: Wing = field(metadata=spec("wing", "", "the wing"))
+    flight: FlightCondition = field(metadata=spec("flight", "", "the flight condition"))
+    propellers: tuple[Installation, ...] = field(default=(), metadata=spec(
+        "installations", "", "the installed propellers", default="none", form="installations"))
+    wing_aero: bool = field(default=True, metadata=spec(
+        "wing_aero", "", "strip aerodynamics of the wing", default="setting", section="switches"))
+    propeller_aero: bool = field(default=True, metadata=spec(
+        "propeller_aero", "", "propeller aerodynamic derivatives", default="setting",
+        section="switches"))
+    rotating: bool = field(default=True, metadata=spec(
+        "rotating", "", "propellers spinning (gyroscopic terms)", default="setting",
+        section="switches"))
+    name: str = field(default="propeller-wing", metadata=spec(
+        "name", "", "label", default="setting"))
+    _nodes: tuple[int, ...] = field(default=(), repr=False, compare=False, metadata=spec(
+        None, "", "node of each propeller (derived)", default="none", form="derived"))
 
     def __post_init__(self) -> None:
         nodes = tuple(node_at(self.wing, inst.y) for inst in self.propellers)
@@ -326,11 +342,17 @@ class PropellerWing(StateSpaceModel):
 class IsolatedPropeller(StateSpaceModel):
     """A propeller flexibly mounted on a rigid wing: 2-DOF pitch/yaw whirl (chapter 6, 6.18)."""
 
-    propeller: Propeller
-    flight: FlightCondition
-    propeller_aero: bool = True
-    rotating: bool = True
-    name: str = "isolated propeller"
+    propeller: Propeller = field(metadata=spec(
+        "propeller", "", "key of a [propellers.KEY] table", form="reference"))
+    flight: FlightCondition = field(metadata=spec("flight", "", "the flight condition"))
+    propeller_aero: bool = field(default=True, metadata=spec(
+        "propeller_aero", "", "propeller aerodynamic derivatives", default="setting",
+        section="switches"))
+    rotating: bool = field(default=True, metadata=spec(
+        "rotating", "", "propeller spinning (gyroscopic terms)", default="setting",
+        section="switches"))
+    name: str = field(default="isolated propeller", metadata=spec(
+        "name", "", "label", default="setting"))
 
     def with_(self, **changes) -> "IsolatedPropeller":
         return replace(self, **changes)

@@ -12,12 +12,13 @@ from the leading edge.  SI units.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Callable, Literal, Union
 
 import numpy as np
 
 from propwhirl import validate as v
+from propwhirl.model.fields import spec
 
 Spanwise = Union[float, np.ndarray, Callable[[np.ndarray], np.ndarray]]
 LiftSlope = Union[float, Literal["elliptic"], Callable[[np.ndarray], np.ndarray]]
@@ -67,23 +68,46 @@ class Wing:
     rayleigh : (μ [1/s], λ [s]) of Rayleigh damping C = μM + λK (eq. 7.22)
     """
 
-    semi_span: float
-    mass_per_length: Spanwise
-    EI: Spanwise
-    GJ: Spanwise
-    root_chord: float = 1.0
-    tip_chord: float | None = None
-    chord: Callable[[np.ndarray], np.ndarray] | None = None
-    polar_inertia: Spanwise | None = None
-    radius_of_gyration: Spanwise | None = None
-    elastic_axis: Spanwise = 0.5
-    centre_of_gravity: Spanwise = 0.5
-    lift_slope: LiftSlope = TWO_PI
-    aerodynamic_centre: Spanwise = 0.25
-    n_elements: int = 20
-    aero_model: Literal["leishman-nguyen", "wagner"] = "leishman-nguyen"
-    rayleigh: tuple[float, float] = (0.0, 0.0)
-    name: str = "wing"
+    semi_span: float = field(metadata=spec("semi_span_m", "m", "root-to-tip length"))
+    mass_per_length: Spanwise = field(metadata=spec(
+        "mass_per_length_kg_per_m", "kg/m", "mass per unit span m_W", form="spanwise"))
+    EI: Spanwise = field(metadata=spec("EI_N_m2", "N m^2", "bending rigidity", form="spanwise"))
+    GJ: Spanwise = field(metadata=spec("GJ_N_m2", "N m^2", "torsional rigidity", form="spanwise"))
+    root_chord: float = field(default=1.0, metadata=spec(
+        "root_chord_m", "m", "chord at the root", default="physical", file_required=True))
+    tip_chord: float | None = field(default=None, metadata=spec(
+        "tip_chord_m", "m", "chord at the tip (linear taper); omitted: the root chord",
+        default="none"))
+    chord: Callable[[np.ndarray], np.ndarray] | None = field(default=None, metadata=spec(
+        None, "m", "chord as a function of y: not saved, use root_chord/tip_chord (linear taper)",
+        default="none", form="unsaved"))
+    polar_inertia: Spanwise | None = field(default=None, metadata=spec(
+        "polar_inertia_kg_m", "kg m", "polar inertia rho I_p about the elastic axis "
+        "(or radius_of_gyration)", default="none", form="spanwise"))
+    radius_of_gyration: Spanwise | None = field(default=None, metadata=spec(
+        "radius_of_gyration_chord", "chord", "radius of gyration about the centre of gravity "
+        "(or polar_inertia)", default="none", form="spanwise"))
+    elastic_axis: Spanwise = field(default=0.5, metadata=spec(
+        "elastic_axis_chord", "chord", "elastic-axis position", default="physical",
+        form="spanwise"))
+    centre_of_gravity: Spanwise = field(default=0.5, metadata=spec(
+        "centre_of_gravity_chord", "chord", "centre-of-gravity position", default="physical",
+        form="spanwise"))
+    lift_slope: LiftSlope = field(default=TWO_PI, metadata=spec(
+        "lift_slope_per_rad", "1/rad", "section lift-curve slope C_l_alpha, or \"elliptic\" "
+        "(eq. 7.81)", default="physical", form="number_or_string"))
+    aerodynamic_centre: Spanwise = field(default=0.25, metadata=spec(
+        "aerodynamic_centre_chord", "chord", "aerodynamic-centre position", default="physical",
+        form="spanwise"))
+    n_elements: int = field(default=20, metadata=spec(
+        "n_elements", "", "number of equal beam elements", default="setting"))
+    aero_model: Literal["leishman-nguyen", "wagner"] = field(default="leishman-nguyen", metadata=spec(
+        "aero_model", "", "unsteady strip aerodynamics: 2 (Leishman-Nguyen) or 4 (Wagner) lag "
+        "states per node", default="setting"))
+    rayleigh: tuple[float, float] = field(default=(0.0, 0.0), metadata=spec(
+        ("rayleigh_mu_per_s", "rayleigh_lambda_s"), ("1/s", "s"),
+        "Rayleigh damping C = mu M + lambda K (eq. 7.22)", default="physical", form="split"))
+    name: str = field(default="wing", metadata=spec("name", "", "label", default="setting"))
 
     def __post_init__(self) -> None:
         v.positive("semi_span", self.semi_span, "m")

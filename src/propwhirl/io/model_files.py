@@ -1,0 +1,494 @@
+"""Model files (TOML): :func:`loads` / :func:`load_model` read them, :func:`dumps` /
+:func:`save_model` write them.
+
+A file holds a :class:`~propwhirl.model.systems.PropellerWing`, an
+:class:`~propwhirl.model.systems.IsolatedPropeller` or a bare
+:class:`~propwhirl.model.propeller.Propeller`.  Reader and writer are driven by the field
+declarations of the model dataclasses (:mod:`propwhirl.io.schema`); every key, unit and
+default is listed in ``docs/model-file.md``.  Reading uses the standard library's ``tomllib``;
+writing uses tomli-w (the optional extra ``pip install propwhirl[toml]``), with the informative
+header of :func:`propwhirl.io.schema.header` prepended.  Floats are written as their shortest
+round-trip text, so save → load reproduces every number exactly, and the text is
+deterministic.
+
+Layout of a file (TOML tables in this order)::
+
+    format = "propwhirl-model"
+    format_version = 1
+    type = "propeller-wing"          # or "isolated-propeller", "propeller"
+    name = "..."
+    installations = [...]            # propeller-wing: propeller key, y_m, mount, aero
+    propeller = "p1"                 # isolated-propeller / propeller files
+    [wing]                           # propeller-wing
+    [flight]
+    [switches]
+    [propellers.p1]                  # identical propellers share one key
+    [propellers.p1.rotor]            # and .inertia, .aero_settings, .derivatives, ...
+"""
+from __future__ import annotations
+
+import difflib
+import math
+import re
+import tomllib
+from pathlib import Path
+from typing import Any, Iterable
+
+import numpy as np
+
+from propwhirl import validate as v
+from propwhirl.io import schema
+from propwhirl.io.schema import DERIVATIVE_SOURCES, FORMAT, FORMAT_VERSION, MODEL_TYPES, Field
+from propwhirl.model.propeller import Propeller
+from propwhirl.model.propeller_aero import Distribution
+from propwhirl.model.systems import Installation, PropellerWing
+
+_MISSING = object()
+_NUMBER_HELP = {"spanwise": "give a number or one value per element (evaluate the function at "
+                            "wing.element_y)",
+                "number_or_string": "give a number or one of the strings",
+                "distribution": "give a number or a propwhirl.model.propeller_aero.Distribution "
+                                "(tabulated)"}
+
+
+def _join(where: str, key: str) -> str:
+    return f"{where}.{key}" if where else key
+
+
+# =============================================================================== reading
+class _Table:
+    """A TOML table being read: known keys only; errors name the key as written."""
+
+    def __init__(self, data: Any, where: str, allowed: Iterable[str]):
+        if not isinstance(data, dict):
+            raise v.InputError(f"{where} = {data!r} is invalid: must be a table")
+        self.data, self.where = data, where
+        allowed = tuple(allowed)
+        unknown = [k for k in data if k not in allowed]
+        if unknown:
+            close = difflib.get_close_matches(unknown[0], allowed, 1)
+            hint = f" (did you mean {close[0]}?)" if close else ""
+            raise v.InputError(
+                f"unknown field {self.name(unknown[0])!r}{hint}: valid fields of "
+                f"[{where or 'top level'}] are {', '.join(allowed)}")
+
+    def name(self, key: str) -> str:
+        return _join(self.where, key)
+
+    def has(self, key: str) -> bool:
+        return key in self.data
+
+    def raw(self, key: str, what: str = "") -> Any:
+        if key not in self.data:
+            raise v.InputError(f"missing field {self.name(key)!r}{f' ({what})' if what else ''}")
+        return self.data[key]
+
+    def bad(self, key: str, must: str, what: str = "") -> v.InputError:
+        return v.InputError(f"{self.name(key)} = {self.data[key]!r} is invalid: must be {must}"
+                            + (f" ({what})" if what else ""))
+
+    def number(self, key: str, what: str = "") -> float:
+        x = self.raw(key, what)
+        if isinstance(x, bool) or not isinstance(x, (int, float)):
+            raise self.bad(key, "a number", what)
+        return float(x)
+
+    def numbers(self, key: str, what: str = "", length: int | None = None) -> list[float]:
+        x = self.raw(key, what)
+        if (not isinstance(x, list) or not x or (length is not None and len(x) != length)
+                or any(isinstance(i, bool) or not isinstance(i, (int, float)) for i in x)):
+            raise self.bad(key, f"a list of {length or 'one or more'} numbers", what)
+        return [float(i) for i in x]
+
+    def integer(self, key: str, what: str = "") -> int:
+        x = self.raw(key, what)
+        if isinstance(x, bool) or not isinstance(x, int):
+            raise self.bad(key, "an integer", what)
+        return x
+
+    def string(self, key: str, what: str = "", choices: tuple[str, ...] = ()) -> str:
+        x = self.raw(key, what)
+        if not isinstance(x, str):
+            raise self.bad(key, "a string", what)
+        if choices and x not in choices:
+            raise self.bad(key, f"one of {', '.join(choices)}", what)
+        return x
+
+    def boolean(self, key: str, what: str = "") -> bool:
+        x = self.raw(key, what)
+        if not isinstance(x, bool):
+            raise self.bad(key, "true or false", what)
+        return x
+
+    def sub(self, key: str, allowed: Iterable[str]) -> "_Table":
+        return _Table(self.raw(key), self.name(key), allowed)
+
+
+def _what(f: Field) -> str:
+    unit = f.spec.unit if isinstance(f.spec.unit, str) else ""
+    return f.spec.doc + (f", {unit}" if unit else "")
+
+
+def _read_scalar(f: Field, t: _Table, key: str) -> Any:
+    what, form = _what(f), f.form
+    if form == "number":
+        return t.number(key, what)
+    if form == "integer":
+        return t.integer(key, what)
+    if form == "boolean":
+        return t.boolean(key, what)
+    if form == "string":
+        return t.string(key, what, f.choices)
+    if form == "numbers":
+        return tuple(t.numbers(key, what, f.spec.length))
+    if form == "spanwise":
+        x = t.raw(key)
+        return np.asarray(t.numbers(key, what)) if isinstance(x, list) else t.number(key, what)
+    if form == "number_or_string":
+        return (t.string(key, what, f.choices) if isinstance(t.raw(key), str)
+                else t.number(key, what))
+    raise AssertionError(form)
+
+
+def _read_distribution(f: Field, t: _Table) -> Any:
+    s = f.spec
+    given = [k for k in (s.number_key, s.key) if k and t.has(k)]
+    if not given:
+        if f.required:
+            raise v.InputError(f"missing field {t.name(s.number_key or s.key)!r} ({_what(f)})")
+        return _MISSING
+    if len(given) == 2:
+        raise v.InputError(f"{t.where}: give exactly one of {s.number_key} (a number) or "
+                           f"[{t.name(s.key)}] (a table eta, {s.value_key})")
+    if given[0] == s.number_key:
+        return t.number(s.number_key, _what(f))
+    d = t.sub(s.key, ("name", "eta", s.value_key))
+    eta, values = d.numbers("eta"), d.numbers(s.value_key)
+    name = d.string("name") if d.has("name") else schema.distribution_name(s)
+    with _Context(d.where):
+        return Distribution.tabulated(eta, values, name)
+
+
+def _read_field(f: Field, t: _Table | None, ctx: dict[str, Propeller]) -> Any:
+    """The value of field `f` from table `t`; _MISSING when optional and not given."""
+    s, form = f.spec, f.form
+    if form == "flat":
+        return _build(f.item, t, ctx)
+    if form == "distribution":
+        return _read_distribution(f, t)
+    keys = s.key if form == "split" else (s.key,)
+    if t is None or not any(t.has(k) for k in keys):
+        if f.required:
+            where = _join(t.where, keys[0]) if t is not None else _join(s.section, keys[0])
+            kind = "table" if form in ("table", "mapping", "derivatives") else "field"
+            raise v.InputError(f"missing {kind} {where!r} ({_what(f)})")
+        return s.file_default if s.file_default is not None else _MISSING
+    if form == "split":
+        return tuple(t.number(k, s.doc) if t.has(k) else f.default[i] for i, k in enumerate(keys))
+    if form == "table":
+        return _build(f.item, t.sub(s.key, schema.table_keys(f.item)), ctx)
+    if form in ("tables", "installations"):
+        item = Installation if form == "installations" else f.item
+        raw = t.raw(s.key)
+        if not isinstance(raw, list):
+            raise t.bad(s.key, "a list of tables", _what(f))
+        return tuple(_build(item, _Table(x, f"{t.name(s.key)}[{i}]", schema.table_keys(item)), ctx)
+                     for i, x in enumerate(raw))
+    if form == "mapping":
+        m = t.sub(s.key, [e.key for e in s.entries])
+        return {e.name: m.number(e.key, e.doc) for e in s.entries if m.has(e.key)}
+    if form == "derivatives":
+        raw = t.raw(s.key)
+        source = raw.get("source") if isinstance(raw, dict) else None
+        if source not in DERIVATIVE_SOURCES:
+            raise v.InputError(f"{t.name(s.key)}.source = {source!r} is invalid: must be one of "
+                               + ", ".join(f'"{k}"' for k in DERIVATIVE_SOURCES))
+        cls = DERIVATIVE_SOURCES[source]
+        return _build(cls, t.sub(s.key, ("source",) + schema.table_keys(cls)), ctx)
+    if form == "reference":
+        key = t.raw(s.key)
+        if not isinstance(key, str) or key not in ctx:
+            raise t.bad(s.key, f"the key of a [propellers.*] table ({', '.join(ctx) or 'none given'})")
+        return ctx[key]
+    return _read_scalar(f, t, s.key)
+
+
+def _build(cls: type, t: _Table, ctx: dict[str, Propeller], context: str | None = None) -> Any:
+    """An instance of schema class `cls` from table `t` (whose keys were checked)."""
+    kw: dict[str, Any] = {}
+    sections: dict[str, _Table | None] = {}
+    for f in schema.fields_of(cls):
+        if f.spec.key is None:
+            continue
+        table: _Table | None = t
+        if f.spec.section is not None:
+            sec = f.spec.section
+            if sec not in sections:
+                allowed = [k for g in schema.section_fields(cls, sec) for k in g.keys()]
+                sections[sec] = t.sub(sec, allowed) if t.has(sec) else None
+            table = sections[sec]
+        value = _read_field(f, table, ctx)
+        if value is not _MISSING:
+            kw[f.name] = value
+    with _Context(t.where if context is None else context, cls):
+        return cls(**kw)
+
+
+class _Context:
+    """Prefix errors raised while building an object with its table, and name the key."""
+
+    def __init__(self, where: str, cls: type | None = None):
+        self.where, self.cls = where, cls
+
+    def __enter__(self) -> None:
+        return None
+
+    def __exit__(self, kind, exc, tb) -> None:
+        if not isinstance(exc, v.InputError) or str(exc).startswith("in ["):
+            return
+        msg = str(exc)
+        if self.where:
+            msg = f"in [{self.where}]: {msg}"
+        first = re.match(r"[A-Za-z_]\w*", str(exc))
+        if self.cls is not None and first:
+            f = next((f for f in schema.fields_of(self.cls) if f.name == first.group()), None)
+            if f is not None and f.spec.key is not None and f.keys():
+                msg += f" (key {' or '.join(_join(self.where, k) for k in f.keys())})"
+        raise v.InputError(msg) from exc
+
+
+def _from_dict(data: dict[str, Any]) -> Any:
+    kind = data.get("type")
+    if kind not in MODEL_TYPES:
+        raise v.InputError(f"type = {kind!r} is invalid: must be one of {', '.join(MODEL_TYPES)}")
+    cls = MODEL_TYPES[kind]
+    file_keys = ("format", "format_version", "type")
+    body = ("name", "propeller") if cls is Propeller else schema.table_keys(cls)
+    top = _Table(data, "", file_keys + body + ("propellers",))
+    if top.has("format") and top.string("format") != FORMAT:
+        raise top.bad("format", repr(FORMAT))
+    if top.has("format_version") and top.integer("format_version") != FORMAT_VERSION:
+        raise top.bad("format_version", f"{FORMAT_VERSION}: this propwhirl reads version "
+                                        f"{FORMAT_VERSION}")
+    props_raw = data.get("propellers", {})
+    if not isinstance(props_raw, dict):
+        raise top.bad("propellers", "tables [propellers.KEY]")
+    keys = schema.table_keys(Propeller)
+    ctx = {k: _build(Propeller, _Table(p, f"propellers.{k}", keys), {})
+           for k, p in props_raw.items()}
+    if cls is Propeller:
+        if top.has("name"):
+            top.string("name")
+        ref = next(f for f in schema.fields_of(Installation) if f.form == "reference")
+        return _read_field(ref, top, ctx)  # the top-level key "propeller"
+    # Cross-field checks of a wing (propellers on nodes, one per node) concern the installations.
+    return _build(cls, top, ctx, "installations" if cls is PropellerWing else "")
+
+
+def _toml_error(exc: tomllib.TOMLDecodeError, text: str) -> str:
+    m = re.search(r"line (\d+)", str(exc))
+    lines = text.splitlines()
+    if m and 0 < int(m.group(1)) <= len(lines):
+        return f"{exc}: {lines[int(m.group(1)) - 1].strip()!r}"
+    return str(exc)
+
+
+def loads(text: str, source: str = "<string>") -> Any:
+    """The model in TOML `text` (a PropellerWing, IsolatedPropeller or Propeller).
+
+    Every problem — bad TOML, a key given twice, an unknown or missing key, a wrong type, an
+    invalid value — is a one-line InputError whose message starts with `source` and names the
+    key as written in the file.
+
+    Examples
+    --------
+    >>> from propwhirl.io import loads
+    >>> p = loads('''
+    ... type = "propeller"
+    ... propeller = "p"
+    ... [propellers.p]
+    ... radius_m = 1.0
+    ... rotor = { mass_kg = 10.0, x_m = -0.5 }
+    ... f_theta_hz = 5.0
+    ... f_psi_hz = 5.0
+    ... ''')
+    >>> p.radius, p.beta_075_deg
+    (1.0, 35.0)
+    """
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise v.InputError(f"{source}: not valid TOML: {_toml_error(exc, text)}") from exc
+    try:
+        return _from_dict(data)
+    except v.InputError as exc:
+        raise v.InputError(f"{source}: {exc}") from exc
+    except (TypeError, ValueError) as exc:  # anything a constructor let through unchecked
+        raise v.InputError(f"{source}: invalid model: {exc}") from exc
+
+
+def load_model(path: str | Path) -> Any:
+    """Read a TOML model file written by :func:`save_model` (or by hand); errors as
+    :func:`loads`, starting with the path."""
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise v.InputError(f"model file {str(path)!r} not found") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise v.InputError(f"cannot read model file {str(path)!r}: {exc}") from exc
+    return loads(text, str(path))
+
+
+# =============================================================================== writing
+def _float(x: Any, where: str) -> float:
+    f = float(x)
+    if not math.isfinite(f):
+        raise v.InputError(f"{where} = {f!r} cannot be saved: must be finite")
+    return f
+
+
+def _function(where: str, form: str) -> v.InputError:
+    return v.InputError(f"{where} is a function and cannot be saved to TOML: {_NUMBER_HELP[form]}")
+
+
+class _Writer:
+    """Encodes schema objects as dicts for tomli-w; numbers distinct propellers p1, p2, ..."""
+
+    def __init__(self) -> None:
+        self.keys: dict[int, str] = {}
+        self.by_text: dict[str, str] = {}
+        self.propellers: dict[str, dict[str, Any]] = {}
+
+    def propeller_key(self, p: Propeller) -> str:
+        """Identical propellers (identical tables) share one key."""
+        if id(p) not in self.keys:
+            key = f"p{len(self.propellers) + 1}"
+            table = self.encode(p, f"propellers.{key}")
+            text = repr(table)
+            if text not in self.by_text:
+                self.by_text[text] = key
+                self.propellers[key] = table
+            self.keys[id(p)] = self.by_text[text]
+        return self.keys[id(p)]
+
+    def encode(self, obj: Any, where: str) -> dict[str, Any]:
+        out: dict[str, Any] = {}
+        fields = schema.fields_of(type(obj))
+        for f in sorted(fields, key=lambda f: f.name != "name"):  # the name first
+            target = out if f.spec.section is None else out.setdefault(f.spec.section, {})
+            self.field(f, getattr(obj, f.name), target, where)
+        return out
+
+    def field(self, f: Field, value: Any, out: dict[str, Any], where: str) -> None:
+        s, form = f.spec, f.form
+        name = _join(where, f.name)
+        if form == "derived":
+            return
+        if form == "unsaved":
+            if value is not f.default:
+                raise v.InputError(f"{name} is set and cannot be saved to TOML: {s.doc}")
+            return
+        if value is None:
+            return
+        if form == "flat":
+            out.update(self.encode(value, where))
+        elif form == "split":
+            out.update({k: _float(x, name) for k, x in zip(s.key, value)})
+        elif form == "distribution":
+            if isinstance(value, Distribution):
+                if s.number_key and value.eta == (0.0, 1.0) and value.values[0] == value.values[1]:
+                    out[s.number_key] = value.values[0]
+                else:
+                    out[s.key] = {"name": value.name, "eta": list(value.eta),
+                                  s.value_key: list(value.values)}
+            elif callable(value) or not s.number_key:
+                raise _function(name, form)
+            else:
+                out[s.number_key] = _float(value, name)
+        elif form == "table":
+            out[s.key] = self.encode(value, _join(where, s.key))
+        elif form in ("tables", "installations"):
+            out[s.key] = [self.encode(x, f"{_join(where, s.key)}[{i}]") for i, x in enumerate(value)]
+        elif form == "mapping":
+            out[s.key] = {e.key: _float(value[e.name], name) for e in s.entries if e.name in value}
+        elif form == "derivatives":
+            source = next((k for k, c in DERIVATIVE_SOURCES.items() if type(value) is c), None)
+            if source is None:
+                raise v.InputError(
+                    f"{name} = {value!r} cannot be saved to TOML: only "
+                    + " and ".join(c.__name__ for c in DERIVATIVE_SOURCES.values())
+                    + " (or None, Houbolt-Reed from the propeller) can")
+            out[s.key] = {"source": source, **self.encode(value, _join(where, s.key))}
+        elif form == "reference":
+            out[s.key] = self.propeller_key(value)
+        elif form in ("spanwise", "number_or_string") and callable(value) and not isinstance(value, str):
+            raise _function(name, form)
+        elif form == "spanwise":
+            arr = np.asarray(value, dtype=float)
+            out[s.key] = _float(arr, name) if arr.ndim == 0 else [_float(x, name) for x in arr]
+        elif form == "number_or_string":
+            out[s.key] = value if isinstance(value, str) else _float(value, name)
+        elif form == "number":
+            out[s.key] = _float(value, name)
+        elif form == "integer":
+            out[s.key] = int(value)
+        elif form == "boolean":
+            out[s.key] = bool(value)
+        elif form == "string":
+            out[s.key] = str(value)
+        elif form == "numbers":
+            out[s.key] = [_float(x, name) for x in value]
+        else:
+            raise AssertionError(form)
+
+
+def to_dict(model: Any) -> dict[str, Any]:
+    """The TOML document of a model as plain Python data (what :func:`dumps` writes)."""
+    kind = next((k for k, c in MODEL_TYPES.items() if type(model) is c), None)
+    if kind is None:
+        raise v.InputError(
+            f"cannot save a {type(model).__name__}: model files hold a "
+            + ", ".join(c.__name__ for c in MODEL_TYPES.values()))
+    w = _Writer()
+    doc: dict[str, Any] = {"format": FORMAT, "format_version": FORMAT_VERSION, "type": kind}
+    if isinstance(model, Propeller):
+        doc["name"] = model.name
+        doc["propeller"] = w.propeller_key(model)
+    else:
+        doc.update(w.encode(model, ""))
+    doc["propellers"] = w.propellers
+    return doc
+
+
+def dumps(model: Any) -> str:
+    """The TOML text of a model: the header comment, then the tables (see the module docs).
+
+    Needs tomli-w (``pip install propwhirl[toml]``).
+
+    Examples
+    --------
+    >>> from propwhirl.io import dumps, loads
+    >>> from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
+    >>> model = wingtip_propeller_wing()
+    >>> text = dumps(model)
+    >>> loads(text).wing == model.wing
+    True
+    """
+    doc = to_dict(model)  # fails first if the model cannot be saved
+    try:
+        import tomli_w
+    except ImportError:
+        raise v.InputError("writing a model file needs tomli-w: pip install propwhirl[toml]") from None
+    return schema.header() + tomli_w.dumps(doc)
+
+
+def save_model(model: Any, path: str | Path) -> Path:
+    """Write `model` as a TOML model file; returns the path (needs ``propwhirl[toml]``)."""
+    text = dumps(model)  # fails before touching the file if the model cannot be saved
+    path = Path(path)
+    try:
+        path.write_text(text, encoding="utf-8")
+    except OSError as exc:
+        raise v.InputError(f"cannot write model file {str(path)!r}: {exc.strerror or exc}") from exc
+    return path
