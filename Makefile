@@ -2,6 +2,7 @@
 #   make run       main analysis (wingtip-mounted propeller wing), plots in out/
 #   make test      the whole test suite (long reproduction checks included)
 #   make generate  rebuild generated/ from the SymPy derivations
+#   make bench     engine vs the thesis's fixed-grid sweep; rewrites the tables of docs/performance.md
 PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
@@ -9,7 +10,7 @@ BIN    := $(VENV)/bin
 export OPENBLAS_NUM_THREADS ?= 1
 export OMP_NUM_THREADS ?= 1
 
-.PHONY: run test test-fast generate clean
+.PHONY: run test test-fast generate bench clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -29,6 +30,11 @@ test: $(VENV)/.stamp-codegen+test+plots+toml
 
 test-fast: $(VENV)/.stamp-codegen+test+plots+toml
 	$(BIN)/python -m pytest -q -m "not long"
+
+# BENCH_MD=path writes the tables elsewhere; BENCH_ARGS e.g. "--repeats 1 --no-variants"
+BENCH_MD ?= docs/performance.md
+bench: $(VENV)/.stamp-codegen+test+plots+toml
+	$(BIN)/python benchmarks/engine_vs_fixed_grid.py --markdown $(BENCH_MD) $(BENCH_ARGS)
 
 run: $(VENV)/.stamp-plots+toml
 	$(BIN)/propwhirl run --out out

@@ -7,7 +7,7 @@ Leishman–Nguyen, baseline propeller, 1–350 m/s, 204 states), against brute f
   is the first sign change of max Re λ; frequency-zero events coincide with an unstable pair
   turning into two unstable real roots.
 * Each crossing is within 0.01 m/s of its converged value (bisection with full ``eigvals`` to
-  1e-4 m/s, :func:`propwhirl.benchmark.converge_crossing`).
+  1e-4 m/s, :func:`helpers.brute_force.converge_crossing`).
 * No mode swaps identity: a thesis-style MAC tracking (§5.2.3) on the dense grid follows the
   seven lowest modes through the same eigenvalues as the engine at its nodes, and every step
   over which a mode's shape changes by more than the engine's MAC threshold (accepted on
@@ -22,15 +22,17 @@ import pytest
 from scipy.optimize import linear_sum_assignment
 from threadpoolctl import threadpool_limits
 
-from propwhirl.analysis.whirl import whirl_sense
-from propwhirl.engine import TrackingOptions, mac
-from propwhirl.analysis.stability import analyse
-from propwhirl.benchmark import (
+from helpers.brute_force import (
+    Crossing,
     converge_crossing,
     detect_crossings,
     engine_crossings,
+    fixed_grid_sweep,
     match_crossings,
 )
+from propwhirl.analysis.stability import analyse
+from propwhirl.analysis.whirl import whirl_sense
+from propwhirl.engine import TrackingOptions, mac
 from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
 from propwhirl.reproduce.harness import load_references
 from propwhirl.analysis.response import rotation_sign
@@ -136,7 +138,7 @@ def test_every_crossing_against_the_dense_unstable_count(engine, dense):
 
 @pytest.mark.long
 def test_crossings_match_the_thesis_style_detection(engine, dense):
-    """The fixed-grid detection of the benchmark (sign changes of Re λ between consecutive
+    """The thesis-style fixed-grid detection (sign changes of Re λ between consecutive
     speeds, kind and frequency) finds the same events as the engine, one to one."""
     V, lam, _ = dense
     pairs, e_only, d_only = match_crossings(engine_crossings(engine), detect_crossings(V, lam),
@@ -264,7 +266,6 @@ def toy(V):
 
 
 def test_brute_force_helpers_on_known_events():
-    from propwhirl.benchmark import Crossing, fixed_grid_sweep
     from propwhirl.validate import InputError
 
     res = fixed_grid_sweep(toy, np.arange(1.0, 41.0, 1.0), chunk=7)

@@ -88,7 +88,7 @@ def test_structural_mass_symmetric_positive_definite():
 
 def test_campbell_backward_falls_forward_rises():
     model = wingtip_propeller_wing()
-    rpm, f = campbell(model, np.array([0.0, 2000.0, 4000.0]))
+    f = campbell(model, np.array([0.0, 2000.0, 4000.0])).frequency_hz
     labels = [lab for lab, _ in label_modes(model)]
     b, fw = labels.index("backward 1"), labels.index("forward 1")
     assert f[2, b] < f[1, b] < f[0, b]

@@ -209,7 +209,7 @@ def test_campbell_plots_the_vibration_data(model, tmp_path):
     fig = plots.campbell(model, rpm, n_modes=4, path=tmp_path / "c.png")
     assert (tmp_path / "c.png").read_bytes().startswith(PNG)
     ax = fig.axes[0]
-    _, f = campbell(model, rpm)
+    f = campbell(model, rpm).frequency_hz
     curves = [ln for ln in ax.get_lines() if ln.get_label().startswith("_")]
     assert len(curves) == 4
     for i, ln in enumerate(curves):

@@ -8,11 +8,13 @@ modal coordinates grow exactly as e^{λt} (eq. 5.8); the path is clockwise in th
 while the rotor turns counter-clockwise (backward whirl, §9.2); exact transition matrices agree
 with an RK45 integration (the thesis's ode45).
 
-Campbell: at Ω = 0 the tracked frequencies equal Tables 9.8, 10.3 and 10.7 (reference values
-and tolerances from thesis_values.toml); backward whirl falls and forward whirl rises with the
-rotational speed, modes below the backward whirl fall and modes above the forward whirl rise
-(§10.1.2); curves never cross (they veer, §8.4.1, §9.3.2), also far beyond the operating range
-where the whirl modes meet the wing modes; the table equals propwhirl.analysis.vibration.campbell.
+Campbell (propwhirl.analysis.vibration.campbell, tracked from rpm = 0): at Ω = 0 the tracked
+frequencies equal Tables 9.8, 10.3 and 10.7 (reference values and tolerances from
+thesis_values.toml) and are the in-vacuo modes; backward whirl falls and forward whirl rises
+with the rotational speed, modes below the backward whirl fall and modes above the forward
+whirl rise (§10.1.2); curves never cross (they veer, §8.4.1, §9.3.2), also far beyond the
+operating range where the whirl modes meet the wing modes; at every speed the tracked
+frequencies are the eigenvalues of the gyroscopic state matrix (an independent eigvals).
 """
 from __future__ import annotations
 
@@ -26,12 +28,12 @@ from propwhirl.reproduce.harness import load_references
 from propwhirl.analysis.response import (
     THESIS_RESPONSE_SPEEDS,
     baseline_propeller_responses,
-    campbell_table,
     rotation_sign,
     simulate,
 )
 from propwhirl.validate import InputError
-from propwhirl.analysis.vibration import campbell
+from propwhirl.analysis.vibration import campbell, label_modes, model_modes
+from propwhirl.model.statespace import SecondOrder, state_matrix
 
 TH, PS = "propeller 0 theta", "propeller 0 psi"
 T_SETTLED = 2.0        # [s] the forward whirl mode (Re λ ≈ −2.4 … −2.9 1/s at 222–250 m/s) is gone
@@ -208,21 +210,33 @@ MODELS = {
 
 @pytest.fixture(scope="module")
 def campbells():
-    return {key: (factory(), campbell_table(factory(), max_frequency_hz=60.0))
+    return {key: (factory(), campbell(factory(), max_frequency_hz=60.0))
             for key, (factory, _) in MODELS.items()}
 
 
-def curves(tab):
-    rpm = np.unique(tab["rpm"])
-    F = tab["frequency_hz"].reshape(rpm.size, -1)
-    labels = list(tab["label"][: F.shape[1]])
-    return rpm, F, labels
+def curves(c):
+    return c.rpm, c.frequency_hz, list(c.labels)
+
+
+def sorted_gyroscopic_frequencies(model, rpm):
+    """Independent oracle: all natural frequencies [Hz] of the undamped gyroscopic system,
+    sorted per speed, from a full eigvals of its first-order state matrix."""
+    quiet = model.with_(wing_aero=False, propeller_aero=False, rotating=True)
+    omega = np.asarray(rpm, dtype=float) * 2.0 * np.pi / 60.0
+    V = np.ones_like(omega)
+    s = quiet.second_order(V, omega)
+    G = 0.5 * (s.S2 - np.swapaxes(s.S2, -1, -2))
+    A = state_matrix(SecondOrder(s.S1, G, s.S3, s.S4, s.Ww, s.Wv, s.Wq, s.q_labels,
+                                 s.w_labels), V)
+    lam = np.linalg.eigvals(A)
+    f = np.where(lam.imag > 0, lam.imag / (2 * np.pi), np.inf)
+    return np.sort(f, axis=1)[:, : s.n_dof]
 
 
 @pytest.mark.parametrize("key", list(MODELS))
 def test_frequencies_at_zero_rpm_equal_the_tables(campbells, key):
-    _, tab = campbells[key]
-    rpm, F, labels = curves(tab)
+    _, c = campbells[key]
+    rpm, F, labels = curves(c)
     assert rpm[0] == 0.0
     at0 = dict(zip(labels, F[0]))
     ids = {f"wing {i}": f"wing{i}" for i in range(1, 6)} | MODELS[key][1]
@@ -232,12 +246,23 @@ def test_frequencies_at_zero_rpm_equal_the_tables(campbells, key):
 
 
 @pytest.mark.parametrize("key", list(MODELS))
+def test_at_zero_rpm_the_tracked_modes_are_the_in_vacuo_modes(campbells, key):
+    """No offset: the first tracked speed is rpm = 0, where the curves start at the in-vacuo
+    frequencies (K x = ω² M x) with the in-vacuo names."""
+    model, c = campbells[key]
+    modes, _ = model_modes(model)
+    K = c.n_modes
+    np.testing.assert_allclose(c.frequency_hz[0], modes.frequency_hz[:K], rtol=1e-9)
+    assert list(c.labels) == [lab for lab, _ in label_modes(model)][:K]
+
+
+@pytest.mark.parametrize("key", list(MODELS))
 def test_whirl_modes_split_and_wing_modes_follow(campbells, key):
     """Backward whirl falls, forward whirl rises (§9.2, §9.3.2); wing modes below the backward
     whirl mode fall and those above the forward whirl mode rise (§10.1.2)."""
-    model, tab = campbells[key]
-    rpm, F, labels = curves(tab)
-    assert tab["resolved"].all()
+    model, c = campbells[key]
+    rpm, F, labels = curves(c)
+    assert c.resolved.all() and not c.unresolved
     dF = np.diff(F, axis=0)
     back = [i for i, lab in enumerate(labels) if lab.startswith("backward")]
     fwd = [i for i, lab in enumerate(labels) if lab.startswith("forward")]
@@ -247,18 +272,29 @@ def test_whirl_modes_split_and_wing_modes_follow(campbells, key):
     for i, lab in enumerate(labels):
         if i in back or (lab.startswith("wing") and F[0, i] < lowest_whirl):
             assert np.all(dF[:, i] < 0), lab
+            assert np.all(c.slope_hz_per_rpm[1:, i] < 0), lab
         elif i in fwd or (lab.startswith("wing") and F[0, i] > highest_whirl):
             assert np.all(dF[:, i] > 0), lab
+            assert np.all(c.slope_hz_per_rpm[1:, i] > 0), lab
     # a clear split over the operating range (0-6000 rpm; 4433 rpm at Table 9.5's flutter)
     assert np.all(F[-1, back] < F[0, back] - 1.0) and np.all(F[-1, fwd] > F[0, fwd] + 1.0)
 
 
 @pytest.mark.parametrize("key", list(MODELS))
-def test_table_equals_vibration_campbell(campbells, key):
-    model, tab = campbells[key]
-    rpm, F, _ = curves(tab)
-    _, ref = campbell(model, rpm)
-    np.testing.assert_allclose(np.sort(F, axis=1), ref[:, : F.shape[1]], rtol=1e-6)
+def test_tracked_frequencies_are_the_gyroscopic_eigenvalues(campbells, key):
+    model, c = campbells[key]
+    ref = sorted_gyroscopic_frequencies(model, c.rpm)
+    np.testing.assert_allclose(np.sort(c.frequency_hz, axis=1), ref[:, : c.n_modes], rtol=1e-6)
+
+
+def test_slopes_are_the_derivative_of_the_curves():
+    """The exact slopes df/d(rpm) agree with a central difference of the tracked curves."""
+    model = wingtip_propeller_wing()
+    h = 1.0
+    c = campbell(model, [3000.0 - h, 3000.0, 3000.0 + h], max_frequency_hz=30.0)
+    fd = (c.frequency_hz[2] - c.frequency_hz[0]) / (2 * h)
+    np.testing.assert_allclose(c.slope_hz_per_rpm[1], fd, rtol=1e-5, atol=1e-12)
+    assert abs(c.slope_hz_per_rpm[1, c.labels.index("backward 1")]) > 1e-4
 
 
 def test_curves_veer_instead_of_crossing():
@@ -267,10 +303,10 @@ def test_curves_veer_instead_of_crossing():
     operating range the wingtip propeller's backward whirl mode runs into the first wing mode
     and the forward whirl mode towards the second: the tracked curves keep their order and
     the first wing mode is pushed down by the backward whirl mode."""
-    tab = campbell_table(wingtip_propeller_wing(), np.arange(0.0, 60001.0, 1000.0),
-                         max_frequency_hz=30.0)
-    rpm, F, labels = curves(tab)
-    assert tab["resolved"].all()
+    c = campbell(wingtip_propeller_wing(), np.arange(0.0, 60001.0, 1000.0),
+                 max_frequency_hz=30.0)
+    rpm, F, labels = curves(c)
+    assert c.resolved.all()
     order = np.argsort(F, axis=1)
     assert np.all(order == order[0])                         # never cross
     w1, b1 = labels.index("wing 1"), labels.index("backward 1")
@@ -280,10 +316,25 @@ def test_curves_veer_instead_of_crossing():
     assert F[-1, b1] > 0.25 * F[0, b1]                       # backward whirl held up
 
 
+def test_result_table_and_dict():
+    c = campbell(wingtip_propeller_wing(), [0.0, 1000.0], max_frequency_hz=10.0)
+    tab = c.table()
+    assert list(tab["rpm"]) == [0.0] * 3 + [1000.0] * 3
+    assert list(tab["label"][:3]) == ["wing 1", "backward 1", "forward 1"]
+    np.testing.assert_array_equal(tab["frequency_hz"], c.frequency_hz.reshape(-1))
+    np.testing.assert_array_equal(c.curve("forward 1"), c.frequency_hz[:, 2])
+    d = c.to_dict()
+    assert d["labels"] == list(c.labels) and d["rpm"] == [0.0, 1000.0]
+    with pytest.raises(InputError, match="label"):
+        c.curve("wing 9")
+
+
 def test_campbell_bad_input():
     with pytest.raises(InputError, match="flexibly mounted"):
-        campbell_table(wingtip_propeller_wing("rigid"))
+        campbell(wingtip_propeller_wing("rigid"))
+    with pytest.raises(InputError, match="flexibly mounted"):
+        campbell(isolated_baseline_propeller())
     with pytest.raises(InputError, match="rpm"):
-        campbell_table(wingtip_propeller_wing(), [0.0, -10.0])
+        campbell(wingtip_propeller_wing(), [0.0, -10.0])
     with pytest.raises(InputError, match="increasing"):
-        campbell_table(wingtip_propeller_wing(), [100.0, 50.0])
+        campbell(wingtip_propeller_wing(), [100.0, 50.0])

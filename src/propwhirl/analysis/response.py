@@ -1,5 +1,4 @@
-"""Time response to initial conditions (§9.2, Figures 9.11–9.12) and Campbell tables (§8.4.1,
-§9.3.2, §10.1.2; Figures 8.6, 9.16, 10.3).
+"""Time response to initial conditions (§9.2, Figures 9.11–9.12).
 
 Time response
 -------------
@@ -21,13 +20,8 @@ grows at the rate Re λ of the backward whirl mode (:meth:`Response.growth_rate`
 sense of the motion is the sense of the θ–ψ path (θ on X, ψ on Y, :meth:`Response.orbit_area`)
 relative to the rotation of the propeller (:func:`rotation_sign`).
 
-Campbell table
---------------
-:func:`campbell_table` tracks the natural frequencies of a propeller–wing model against the
-propeller rotational speed (aerodynamics off, undamped gyroscopic system, as
-:func:`propwhirl.analysis.vibration.campbell`) with the stability engine's mode tracker (MAC and
-eigenvalue continuity, veering resolved), and names the curves with the in-vacuo labels of
-:func:`propwhirl.analysis.vibration.label_modes` ("wing n", "backward k", "forward k").
+The Campbell diagram (frequencies against propeller speed) is
+:func:`propwhirl.analysis.vibration.campbell`.
 """
 from __future__ import annotations
 
@@ -35,14 +29,13 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import linear_sum_assignment
 
 from propwhirl.analysis.whirl import rotation_sign_from_gyroscopic
-from propwhirl.engine import eigen, mac, sweep, time_response
+from propwhirl.engine import eigen, time_response
 from propwhirl import validate as v
 
 __all__ = [
-    "Response", "simulate", "baseline_propeller_responses", "rotation_sign", "campbell_table",
+    "Response", "simulate", "baseline_propeller_responses", "rotation_sign",
     "THESIS_RESPONSE_SPEEDS",
 ]
 
@@ -213,80 +206,3 @@ def baseline_propeller_responses(speeds: Sequence[float] = THESIS_RESPONSE_SPEED
     return {float(V): simulate(model, V, {"propeller 0 theta": th0}, duration=duration, dt=dt,
                                method=method)
             for V in speeds}
-
-
-# ----------------------------------------------------------------------------------------------
-# Campbell table
-# ----------------------------------------------------------------------------------------------
-def _campbell_state_matrix(model, offset: float):
-    """A(s) of the undamped gyroscopic system at rotational speed s − offset [rev/min]."""
-    from propwhirl.model.statespace import SecondOrder, state_matrix
-
-    quiet = model.with_(wing_aero=False, propeller_aero=False, rotating=True)
-
-    def fn(s: np.ndarray) -> np.ndarray:
-        rpm = np.asarray(s, dtype=float) - offset
-        omega = rpm * 2.0 * np.pi / 60.0
-        V = np.ones_like(omega)                  # no aerodynamics: the airspeed plays no part
-        so = quiet.second_order(V, omega)
-        S2 = 0.5 * (so.S2 - np.swapaxes(so.S2, -1, -2))   # gyroscopic (skew) part only
-        return state_matrix(SecondOrder(so.S1, S2, so.S3, so.S4, so.Ww, so.Wv, so.Wq,
-                                        so.q_labels, so.w_labels), V)
-
-    return fn
-
-
-def campbell_table(model, rpm=None, *, max_frequency_hz: float | None = None
-                   ) -> dict[str, np.ndarray]:
-    """Tracked natural frequencies against propeller rotational speed (a Campbell diagram).
-
-    ``model``: a PropellerWing with at least one flexibly mounted propeller; every propeller
-    spins at ``rpm`` [rev/min] (increasing, ≥ 0; default 0–6000 every 250).  Aerodynamics and
-    dissipative damping off (the gyroscopic system of Figures 8.6, 9.16, 10.3, as
-    :func:`propwhirl.analysis.vibration.campbell`).  The modes are followed along the speeds by the
-    engine's tracker (:func:`propwhirl.engine.sweep`: MAC and eigenvalue continuity, steps
-    refined where ambiguous, so a veering pair keeps its branches and does not cross) and named
-    at the first speed by an optimal MAC assignment to the in-vacuo modes of
-    :func:`propwhirl.analysis.vibration.label_modes`.  Returns tidy columns sorted by rpm then
-    frequency at the first speed: rpm [rev/min], mode (int), label, frequency_hz [Hz] — only
-    modes below ``max_frequency_hz`` at the first speed when given — and "resolved" (bool):
-    False where the tracker left the step to or from that speed ambiguous.
-    """
-    from propwhirl.analysis.vibration import label_modes, model_modes
-
-    if not getattr(model, "flexible", None):
-        raise v.InputError("campbell_table needs a model with a flexibly mounted propeller "
-                           "(the rotational speed acts through the pitch/yaw mounts)")
-    r = np.arange(0.0, 6001.0, 250.0) if rpm is None else v.non_negative("rpm", rpm, "rev/min")
-    r = v.increasing("rpm", r, "rev/min")
-    if max_frequency_hz is not None:
-        v.positive("max_frequency_hz", max_frequency_hz, "Hz")
-    offset = 1.0                                  # the tracker's parameter must be > 0
-    fn = _campbell_state_matrix(model, offset)
-    n_dof = model.with_(wing_aero=False).second_order(np.array([1.0])).n_dof
-    sw = sweep(fn, r + offset, n_dof=n_dof)
-    modes, _ = model_modes(model)
-    ref = [lab for lab, _ in label_modes(model)]
-    X0 = sw.eigenvectors[0][sw.displacement]
-    lam0 = sw.eigenvalues[0]
-    osc = [k for k in range(sw.n_modes) if sw.physical[0, k] and lam0[k].imag > 0]
-    M = mac(X0[:, osc], modes.shapes.astype(complex))
-    rows, cols = linear_sum_assignment(-M)
-    names = {osc[i]: ref[j] for i, j in zip(rows, cols)}
-    keep = sorted(names, key=lambda k: lam0[k].imag)
-    if max_frequency_hz is not None:
-        keep = [k for k in keep if lam0[k].imag / (2 * np.pi) <= max_frequency_hz]
-    grid = np.isin(sw.V, r + offset)              # report the asked speeds only
-    Vg = sw.V[grid] - offset
-    lam = sw.eigenvalues[grid][:, keep]
-    T, K = lam.shape
-    bad = np.zeros(Vg.size, dtype=bool)           # the step into this speed was not resolved
-    for a, b in sw.unresolved:
-        bad |= (Vg + offset > a) & (Vg + offset <= b) | (Vg + offset == a)
-    return {
-        "rpm": np.repeat(Vg, K),
-        "mode": np.tile(np.asarray(keep), T),
-        "label": np.tile(np.asarray([names[k] for k in keep], dtype=object), T),
-        "frequency_hz": (np.abs(lam.imag) / (2 * np.pi)).reshape(-1),
-        "resolved": np.repeat(~bad, K),
-    }

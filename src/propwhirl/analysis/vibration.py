@@ -1,17 +1,47 @@
 """Free vibration: natural frequencies and mode shapes of an undamped structure (V = 0).
 
 For the wing alone (chapter 7 verification, Tables 7.2 and 9.2) and, with rotating propellers,
-the Campbell diagram (frequencies against propeller RPM, Figures 8.6, 9.16, 10.3) is built on
-the same solve with the gyroscopic terms included (see propwhirl.model.systems).
+the Campbell diagram (frequencies against propeller RPM, Figures 8.6, 9.16, 10.3, 10.11).
+
+Campbell diagram
+----------------
+:func:`campbell` follows every mode of the undamped gyroscopic system M q̈ + G(Ω) q̇ + K q = 0
+(aerodynamics and dissipative damping off; G the skew-symmetric gyroscopic matrix of the
+spinning rotors, linear in the rotational speed Ω) from Ω = 0 up the asked speeds.  With
+z = [q̇; q] it is the Hermitian-definite problem
+
+    ω B z = H(Ω) z,   B = [[M, 0], [0, K]],   H(Ω) = i [[G(Ω), K], [−K, 0]]
+
+(B symmetric positive definite, H Hermitian because G is skew and K symmetric), so the
+frequencies ω are real, the eigenvectors B-orthonormal, and the slope of each frequency is
+exact, dω/dΩ = zᴴ (∂H/∂Ω) z.  The parameter is the rotational speed itself, starting at Ω = 0:
+nothing in this problem divides by it (unlike the airspeed of the aeroelastic state matrix), so
+no offset is needed.  At Ω = 0 the problem is the in-vacuo one (K x = ω² M x); a repeated
+frequency there (a symmetric mount, f_θ = f_ψ) is resolved in the basis that continues
+analytically, the eigenvectors of ∂H/∂Ω within the repeated subspace (first-order degenerate
+perturbation theory: the backward and forward whirl combinations).
+
+Between two evaluated speeds the modes are matched by the modal assurance criterion in the
+energy norm, MAC = |z_aᴴ B z_b|², maximised by an optimal assignment.  A step is split while a
+match has MAC < ``mac_min`` or the matching reorders the frequencies (two curves cross inside
+it).  A veering pair — the thesis's Campbell diagrams: "when the frequency of a propeller mode
+comes close to the frequency of a wing mode, they do not cross" (§8.4.1) — is thus resolved
+into its two analytic branches (the curves do not cross, the shapes exchange along them); a
+true crossing of uncoupled modes keeps its reordering down to ``min_step`` with MAC ≈ 1 and is
+accepted there: the curves cross, each mode keeps its shape (a diagram sorted by frequency at
+each speed would swap them).  A step left ambiguous at ``min_step`` is reported as unresolved.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from typing import Any, Callable
 
 import numpy as np
 import scipy.linalg as sl
+from scipy.optimize import linear_sum_assignment
 
 from propwhirl import validate as v
+from propwhirl.engine import single_thread_blas
 from propwhirl.model.assembly import free_dofs, wing_dof_labels, wing_structure
 from propwhirl.model.wing import Wing
 
@@ -94,9 +124,9 @@ def label_modes(model) -> list[tuple[str, float]]:
     Tables 9.8, 10.3, 10.7); its names follow the Campbell diagrams (Figures 9.16, 10.3, 10.11):
     backward modes fall and forward modes rise as the rotor spins up.  Here the frequencies at
     Ω = 0 are compared with those at a small spin rate (one tenth of the lowest mount frequency,
-    so the shifts stay far below the gaps between modes); with N flexible propellers the N
-    modes that fall most are 'backward k', the N that rise most 'forward k' (k by frequency),
-    the rest 'wing n'.
+    so the shifts stay far below the gaps between modes), each mode followed by the Campbell
+    tracker (module docstring); with N flexible propellers the N modes that fall most are
+    'backward k', the N that rise most 'forward k' (k by frequency), the rest 'wing n'.
     """
     modes, _ = model_modes(model)
     f0 = modes.frequency_hz
@@ -106,8 +136,8 @@ def label_modes(model) -> list[tuple[str, float]]:
         f_mount = min(min(p.stiffness()[0] / p.pivot_inertia()["I_theta_P"],
                           p.stiffness()[1] / p.pivot_inertia()["I_psi_P"]) for p in flex) ** 0.5
         rpm = 0.1 * f_mount * 60.0 / (2.0 * np.pi)
-        _, f1 = campbell(model, np.array([rpm]))
-        delta = f1[0] - f0
+        tracks = _track(_GyroscopicSystem.of(model), np.array([0.0, rpm]) * 2.0 * np.pi / 60.0)
+        delta = tracks.omega[-1] - tracks.omega[0]
         n = len(flex)
         order = np.argsort(delta)
         for i in order[:n]:
@@ -122,29 +152,302 @@ def label_modes(model) -> list[tuple[str, float]]:
     return out
 
 
-def campbell(model, rpm: np.ndarray, include_damping: bool = False) -> tuple[np.ndarray, np.ndarray]:
-    """Natural frequencies [Hz] against propeller rotational speed (Figures 8.6, 9.16, 10.3).
+# ----------------------------------------------------------------------------------------------
+# Campbell diagram (module docstring)
+# ----------------------------------------------------------------------------------------------
+#: Default propeller speeds of :func:`campbell`: 0–6000 rev/min every 250 (covers the
+#: operating range of chapters 9–10; 4433 rev/min at the flutter point of Table 9.5)
+CAMPBELL_RPM = np.arange(0.0, 6001.0, 250.0)
 
-    Aerodynamics off; all propellers at the given speeds `rpm` [rev/min] (array).  Returns
-    (rpm, frequencies) with frequencies of shape (len(rpm), n_modes), sorted per speed.
-    Damping is left out unless asked for (the undamped gyroscopic system).
+
+@dataclass(frozen=True)
+class CampbellResult:
+    """A tracked Campbell diagram: natural frequencies against propeller rotational speed.
+
+    rpm:           (T,) propeller speeds [rev/min], increasing (every propeller spins at it).
+    frequency_hz:  (T, K) natural frequencies [Hz]; column k is one mode followed along rpm
+                   (columns ordered by frequency at rpm = 0).
+    labels:        K mode names at rpm = 0 (:func:`label_modes`: "wing n", "backward k",
+                   "forward k").
+    slope_hz_per_rpm: (T, K) exact df/d(rpm) [Hz per rev/min] of each curve.
+    resolved:      (T,) bool, False where a step of the tracking between the previous speed
+                   (or rpm = 0) and this one was left ambiguous at the smallest step.
+    unresolved:    the ambiguous steps as (rpm_a, rpm_b) [rev/min].
+    nodes:         speeds evaluated (asked speeds, rpm = 0 and the refinement).
     """
-    rpm = v.non_negative("rpm", np.atleast_1d(rpm), "rev/min")
-    quiet = model.with_(wing_aero=False, propeller_aero=False, rotating=True)
-    omega = rpm * 2.0 * np.pi / 60.0
-    V = np.ones_like(omega)  # no aerodynamics: the airspeed plays no part
-    s = quiet.second_order(V, omega)
-    from propwhirl.model.statespace import SecondOrder, state_matrix
 
-    S2 = s.S2 if include_damping else s.S2 - _symmetric_part(s.S2)
-    A = state_matrix(SecondOrder(s.S1, S2, s.S3, s.S4, s.Ww, s.Wv, s.Wq, s.q_labels, s.w_labels), V)
-    lam = np.linalg.eigvals(A)
-    f = np.abs(lam.imag) / (2.0 * np.pi)
-    f = np.sort(np.where(lam.imag >= 0, f, np.inf), axis=1)
-    n = s.n_dof
-    return rpm, f[:, :n]
+    rpm: np.ndarray
+    frequency_hz: np.ndarray
+    labels: tuple[str, ...]
+    slope_hz_per_rpm: np.ndarray
+    resolved: np.ndarray
+    unresolved: tuple[tuple[float, float], ...] = ()
+    nodes: int = 0
+
+    @property
+    def n_modes(self) -> int:
+        return self.frequency_hz.shape[1]
+
+    def curve(self, label: str) -> np.ndarray:
+        """Frequencies [Hz] of the mode named ``label`` along rpm."""
+        if label not in self.labels:
+            raise v.InputError(f"label = {label!r} is invalid: must be one of {list(self.labels)}")
+        return self.frequency_hz[:, self.labels.index(label)]
+
+    def table(self) -> dict[str, np.ndarray]:
+        """Tidy columns sorted by rpm then mode: rpm [rev/min], mode (int), label,
+        frequency_hz [Hz], resolved (bool)."""
+        T, K = self.frequency_hz.shape
+        return {
+            "rpm": np.repeat(self.rpm, K),
+            "mode": np.tile(np.arange(K), T),
+            "label": np.tile(np.asarray(self.labels, dtype=object), T),
+            "frequency_hz": self.frequency_hz.reshape(-1),
+            "resolved": np.repeat(self.resolved, K),
+        }
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-able dict of the fields (units as in the field names and docstring)."""
+        return {
+            "rpm": self.rpm.tolist(), "frequency_hz": self.frequency_hz.tolist(),
+            "labels": list(self.labels), "slope_hz_per_rpm": self.slope_hz_per_rpm.tolist(),
+            "resolved": self.resolved.tolist(), "unresolved": [list(u) for u in self.unresolved],
+            "nodes": self.nodes,
+        }
 
 
-def _symmetric_part(C: np.ndarray) -> np.ndarray:
-    """Symmetric (dissipative) part of damping matrices (..., n, n); the skew part is gyroscopic."""
-    return 0.5 * (C + np.swapaxes(C, -1, -2))
+@dataclass(frozen=True)
+class _GyroscopicSystem:
+    """M q̈ + G(Ω) q̇ + K q = 0 of a PropellerWing with aerodynamics and dissipation off.
+
+    ``matrices(Ω)`` gives the model's (M, G, K) stacks at rotational speeds Ω [rad/s];
+    ``dG``: ∂G/∂Ω [kg m²] (the rotor's gyroscopic moment I_Ω Ω is linear in Ω).
+    """
+
+    matrices: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray, np.ndarray]]
+    dG: np.ndarray
+
+    @classmethod
+    def of(cls, model) -> "_GyroscopicSystem":
+        quiet = model.with_(wing_aero=False, propeller_aero=False, rotating=True)
+
+        def matrices(omega: np.ndarray):
+            omega = np.asarray(omega, dtype=float)
+            s = quiet.second_order(np.ones_like(omega), omega)   # V plays no part here
+            return s.S1, _skew_part(s.S2), s.S3
+
+        _, G, _ = matrices(np.array([0.0, 1.0]))
+        return cls(matrices, G[1] - G[0])
+
+
+@dataclass(frozen=True)
+class _Node:
+    """Positive frequencies ω (n,) [rad/s] ascending, B-orthonormal z (2n, n), dω/dΩ (n,)."""
+
+    Omega: float
+    omega: np.ndarray
+    Z: np.ndarray
+    slope: np.ndarray
+    B: np.ndarray
+    dH: np.ndarray
+    groups: tuple[np.ndarray, ...] = ()      # indices of repeated frequencies
+
+
+def _hermitian_pencil(M, G, K):
+    n = M.shape[0]
+    Zn = np.zeros((n, n))
+    H = 1j * np.block([[G, K], [-K, Zn]])
+    B = np.block([[M, Zn], [Zn, K]])
+    return 0.5 * (H + H.conj().T), 0.5 * (B + B.T)
+
+
+def _evaluate(system: _GyroscopicSystem, Omega: np.ndarray, degenerate_tol: float) -> list[_Node]:
+    """Eigen-solutions of ω B z = H(Ω) z at each rotational speed (module docstring)."""
+    Ms, Gs, Ks = system.matrices(Omega)
+    n = Ms.shape[-1]
+    dH, _ = _hermitian_pencil(np.zeros((n, n)), system.dG, np.zeros((n, n)))
+    out = []
+    for Om, M, G, K in zip(Omega, Ms, Gs, Ks):
+        H, B = _hermitian_pencil(M, G, K)
+        try:
+            w, Z = sl.eigh(H, B, subset_by_index=[n, 2 * n - 1])
+        except np.linalg.LinAlgError as exc:
+            raise v.InputError(f"the Campbell diagram needs positive definite mass and stiffness "
+                               f"matrices (a clamped, flexibly mounted structure): {exc}") from exc
+        D = Z.conj().T @ dH @ Z
+        groups, i = [], 0
+        while i < n:                     # repeated frequencies: the analytic-continuation basis
+            j = i + 1
+            while j < n and w[j] - w[i] <= degenerate_tol * max(abs(w[j]), 1.0):
+                j += 1
+            if j - i > 1:                # first order: eigenvectors of ∂H/∂Ω in the subspace
+                s_g, U = np.linalg.eigh(D[i:j, i:j])
+                Z[:, i:j] = Z[:, i:j] @ U
+                D[i:j, i:j] = np.diag(s_g)
+                groups.append(np.arange(i, j))
+            i = j
+        out.append(_Node(float(Om), w, Z, np.real(np.diag(D)).copy(), B, dH, tuple(groups)))
+    return out
+
+
+def _continue_repeated(a: _Node, b: _Node) -> _Node:
+    """``a`` with the basis of each repeated frequency rotated onto its continuation at ``b``.
+
+    Where ∂H/∂Ω does not split a repeated frequency (e.g. two identical, uncoupled mounts)
+    the first-order basis is arbitrary; the continuation is the limit of the eigenvectors as
+    the speed approaches from the right, approximated by the unitary best fit (orthogonal
+    Procrustes) of the subspace to the modes of the next speed it contains most of.
+    """
+    if not a.groups:
+        return a
+    Z = a.Z.copy()
+    for g in a.groups:
+        C = Z[:, g].conj().T @ b.B @ b.Z
+        cols = np.sort(np.argsort(-np.sum(np.abs(C) ** 2, axis=0))[: g.size])
+        U, _, Vh = np.linalg.svd(C[:, cols])
+        Z[:, g] = Z[:, g] @ (U @ Vh)
+    slope = np.real(np.einsum("ik,ij,jk->k", Z.conj(), a.dH, Z))
+    return replace(a, Z=Z, slope=slope)
+
+
+def _link(a: _Node, b: _Node) -> tuple[np.ndarray, np.ndarray]:
+    """perm (b's index of each of a's modes) maximising Σ MAC, and the MACs of the matches."""
+    O = np.abs(a.Z.conj().T @ b.B @ b.Z) ** 2
+    _, perm = linear_sum_assignment(-O)
+    return perm, O[np.arange(perm.size), perm]
+
+
+@dataclass(frozen=True)
+class _Tracks:
+    """Tracked modes at the asked rotational speeds Omega (T,) [rad/s]: omega (T, n) [rad/s]
+    and slope (T, n) dω/dΩ, column k the mode that is k-th by frequency at Ω = 0 (omega0 (n,));
+    resolved (T,): every step since the previous asked speed (or Ω = 0) was resolved;
+    unresolved steps (Ω_a, Ω_b) [rad/s]; nodes: speeds evaluated."""
+
+    Omega: np.ndarray
+    omega: np.ndarray
+    slope: np.ndarray
+    omega0: np.ndarray
+    resolved: np.ndarray
+    unresolved: tuple[tuple[float, float], ...] = ()
+    nodes: int = 0
+
+
+def _track(system: _GyroscopicSystem, Omega: np.ndarray, *, mac_min: float = 0.8,
+           min_step: float = 0.01 * 2.0 * np.pi / 60.0, degenerate_tol: float = 1e-8,
+           max_nodes: int | None = None) -> _Tracks:
+    """Follow every mode from Ω = 0 through the increasing speeds ``Omega`` [rad/s] ≥ 0."""
+    with single_thread_blas():           # small dense eigenproblems: one BLAS thread is fastest
+        return _track_nodes(system, np.asarray(Omega, dtype=float), mac_min, min_step,
+                            degenerate_tol, max_nodes)
+
+
+def _track_nodes(system, grid, mac_min, min_step, degenerate_tol, max_nodes) -> _Tracks:
+    start = np.union1d([0.0], grid)
+    nodes = _evaluate(system, start, degenerate_tol)
+    budget = max_nodes or (20 * start.size + 200)
+    links: dict[tuple[float, float], tuple[np.ndarray, bool]] = {}
+    while True:
+        new = []
+        for t, (a, b) in enumerate(zip(nodes[:-1], nodes[1:])):
+            if (a.Omega, b.Omega) in links:
+                continue
+            if t == 0:                   # Ω = 0: repeated in-vacuo frequencies
+                a = nodes[0] = _continue_repeated(nodes[0], b)
+            perm, mac = _link(a, b)
+            good = bool(mac.min() >= mac_min)
+            ordered = bool(np.all(perm == np.arange(perm.size)))
+            if (not (good and ordered) and 0.5 * (b.Omega - a.Omega) >= min_step
+                    and len(nodes) + len(new) < budget):
+                new.append(0.5 * (a.Omega + b.Omega))
+                continue
+            links[(a.Omega, b.Omega)] = (perm, good)
+        if not new:
+            break
+        nodes = sorted(nodes + _evaluate(system, np.array(new), degenerate_tol),
+                       key=lambda nd: nd.Omega)
+    idx = np.arange(nodes[0].omega.size)
+    om, sl_, ok, unresolved = [], [], [], []
+    clean = True                         # every step since the last asked speed resolved
+    for t, nd in enumerate(nodes):
+        if t:
+            perm, good = links[(nodes[t - 1].Omega, nd.Omega)]
+            idx = perm[idx]
+            clean &= good
+            if not good:
+                unresolved.append((nodes[t - 1].Omega, nd.Omega))
+        if nd.Omega in grid:
+            om.append(nd.omega[idx])
+            sl_.append(nd.slope[idx])
+            ok.append(clean)
+            clean = True
+    return _Tracks(grid, np.array(om), np.array(sl_), nodes[0].omega.copy(), np.array(ok),
+                   tuple(unresolved), len(nodes))
+
+
+def campbell(model, rpm=None, *, max_frequency_hz: float | None = None, mac_min: float = 0.8,
+             min_step: float = 0.01) -> CampbellResult:
+    """Tracked Campbell diagram of a propeller–wing model (Figures 8.6, 9.16, 10.3, 10.11).
+
+    Parameters
+    ----------
+    model : PropellerWing
+        With at least one flexibly mounted propeller; aerodynamics and dissipative damping are
+        switched off (the undamped gyroscopic system; the airspeed plays no part).
+    rpm : array_like, optional
+        Propeller rotational speeds [rev/min], ≥ 0, increasing; every propeller spins at each
+        (default :data:`CAMPBELL_RPM`, 0–6000 every 250).  The modes are followed from
+        rpm = 0 whether or not it is asked for.
+    max_frequency_hz : float, optional
+        Keep only the modes below this frequency [Hz] at rpm = 0.
+    mac_min : float
+        A step whose matching has a MAC below this is split (module docstring).
+    min_step : float
+        Smallest step of the refinement [rev/min].
+
+    Returns
+    -------
+    CampbellResult
+        Frequencies [Hz] of each mode along rpm, named at rpm = 0 by :func:`label_modes`.
+        At rpm = 0 they are the in-vacuo frequencies of :func:`model_modes`.
+
+    Examples
+    --------
+    >>> from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
+    >>> c = campbell(wingtip_propeller_wing(), [0.0, 2000.0, 4000.0], max_frequency_hz=10.0)
+    >>> c.labels
+    ('wing 1', 'backward 1', 'forward 1')
+    >>> bool(c.curve("backward 1")[-1] < c.curve("backward 1")[0] < c.curve("forward 1")[-1])
+    True
+    """
+    from propwhirl.model.systems import PropellerWing
+
+    if not isinstance(model, PropellerWing) or not model.flexible:
+        raise v.InputError("campbell needs a propeller-wing model with a flexibly mounted "
+                           "propeller (the rotational speed acts through the pitch/yaw mounts)")
+    r = CAMPBELL_RPM.copy() if rpm is None else v.non_negative("rpm", np.atleast_1d(rpm), "rev/min")
+    if r.ndim != 1:
+        raise v.InputError(f"rpm must be a 1-D array, got shape {r.shape}")
+    if r.size > 1:
+        r = v.increasing("rpm", r, "rev/min")
+    if max_frequency_hz is not None:
+        v.positive("max_frequency_hz", max_frequency_hz, "Hz")
+    v.in_range("mac_min", mac_min, 0.0, 1.0)
+    v.positive("min_step", min_step, "rev/min")
+    per_rpm = 2.0 * np.pi / 60.0                      # [rad/s per rev/min]
+    tr = _track(_GyroscopicSystem.of(model), r * per_rpm, mac_min=mac_min,
+                min_step=min_step * per_rpm)
+    names = tuple(lab for lab, _ in label_modes(model))
+    keep = np.arange(tr.omega0.size)
+    if max_frequency_hz is not None:
+        keep = keep[tr.omega0 / (2.0 * np.pi) <= max_frequency_hz]
+    return CampbellResult(
+        rpm=r, frequency_hz=tr.omega[:, keep] / (2.0 * np.pi),
+        labels=tuple(names[k] for k in keep), slope_hz_per_rpm=tr.slope[:, keep] / 60.0,
+        resolved=tr.resolved, nodes=tr.nodes,
+        unresolved=tuple((a / per_rpm, b / per_rpm) for a, b in tr.unresolved))
+
+
+def _skew_part(C: np.ndarray) -> np.ndarray:
+    """Skew (gyroscopic) part of damping matrices (..., n, n); the symmetric part dissipates."""
+    return 0.5 * (C - np.swapaxes(C, -1, -2))

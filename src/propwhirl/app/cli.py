@@ -281,16 +281,21 @@ def _campbell(args: argparse.Namespace) -> int:
     if n_pts > 10_000:
         raise InputError(f"--rpm N = {n_pts} is invalid: must be <= 10000")
     count = v.integer_at_least("--count", args.count, 1)
-    rpm, f = campbell(model, np.linspace(lo, hi, n_pts))
-    count = min(count, f.shape[1])
-    print(f"{model.name}: natural frequencies [Hz] against propeller speed (no aerodynamics)")
-    print(f"  {'RPM':>8s} " + " ".join(f"{'f' + str(i + 1):>8s}" for i in range(count)))
-    for r, row in zip(rpm, f):
-        print(f"  {r:8.1f} " + " ".join(f"{x:8.3f}" for x in row[:count]))
+    result = campbell(model, np.linspace(lo, hi, n_pts))
+    count = min(count, result.n_modes)
+    print(f"{model.name}: natural frequencies [Hz] against propeller speed (no aerodynamics), "
+          "each mode followed from RPM 0")
+    print(f"  {'RPM':>8s} " + " ".join(f"{lab:>11s}" for lab in result.labels[:count]))
+    for r, row in zip(result.rpm, result.frequency_hz):
+        print(f"  {r:8.1f} " + " ".join(f"{x:11.3f}" for x in row[:count]))
+    if not result.resolved.all():
+        print(f"  note: mode identity left ambiguous between (RPM) {list(result.unresolved)}")
     if args.plot:
         from propwhirl.app import plots
 
-        plots.campbell(model, rpm, n_modes=count, path=args.plot)
+        plots.campbell_diagram(result.rpm, result.frequency_hz, n_modes=count,
+                               names=result.labels, title=f"{model.name}: Campbell diagram",
+                               path=args.plot)
         print(f"wrote {args.plot}")
     return 0
 

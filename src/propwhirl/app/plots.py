@@ -10,7 +10,7 @@ backend switch), so they work headless and in threads.  Every function returns t
   :class:`~propwhirl.analysis.stability.ModelAnalysis`, one line per tracked physical mode with its name,
   instabilities marked as in Figure 7.4 (flutter red, divergence green; filled at an onset,
   open at a recovery);
-* :func:`campbell` — frequencies against propeller RPM (:func:`propwhirl.analysis.vibration.campbell`);
+* :func:`campbell` — tracked frequencies against propeller RPM (:func:`propwhirl.analysis.vibration.campbell`);
 * :func:`mode_shape` / :func:`event_mode_shape` — the complex mode shape at a critical point:
   wing h and α along the span (real and imaginary parts and the envelope |x̂| of
   x(t) = Re(x̂) cos ωt − Im(x̂) sin ωt, eq. 5.11–5.12) and each propeller's θ–ψ orbit;
@@ -177,15 +177,13 @@ def _colours(n: int) -> list:
 # ----------------------------------------------------------------------------- Campbell
 def campbell(model, rpm, *, n_modes: int | None = 8, title: str | None = None,
              path: str | Path | None = None) -> "Figure":
-    """Campbell diagram of a PropellerWing: natural frequencies [Hz] against RPM
-    (:func:`propwhirl.analysis.vibration.campbell`, aerodynamics off), lowest `n_modes` at each speed,
-    with the in-vacuo mode names at RPM 0 and the 1P line (f = RPM/60)."""
+    """Campbell diagram of a PropellerWing: natural frequencies [Hz] against RPM, each mode
+    followed along the speeds (:func:`propwhirl.analysis.vibration.campbell`, aerodynamics off):
+    the `n_modes` lowest at RPM 0, named there (in-vacuo names), and the 1P line (f = RPM/60)."""
     from propwhirl.analysis.vibration import campbell as campbell_data
-    from propwhirl.analysis.vibration import label_modes
 
-    rpm, f = campbell_data(model, rpm)
-    names = [lab for lab, _ in label_modes(model)] if 0.0 in rpm else None
-    return campbell_diagram(rpm, f, n_modes=n_modes, names=names,
+    c = campbell_data(model, rpm)
+    return campbell_diagram(c.rpm, c.frequency_hz, n_modes=n_modes, names=c.labels,
                             title=title or f"{getattr(model, 'name', 'model')}: Campbell diagram",
                             path=path)
 
@@ -193,7 +191,9 @@ def campbell(model, rpm, *, n_modes: int | None = 8, title: str | None = None,
 def campbell_diagram(rpm, frequencies, *, n_modes: int | None = 8,
                      names: Sequence[str] | None = None, title: str | None = None,
                      path: str | Path | None = None) -> "Figure":
-    """Plot frequencies (len(rpm), n) [Hz], sorted per speed, against rpm [rev/min]."""
+    """Plot frequencies (len(rpm), n) [Hz] against rpm [rev/min]: column i is one curve (a
+    tracked mode of :class:`propwhirl.analysis.vibration.CampbellResult`, lowest first), named
+    ``names[i]`` at the lowest rpm; the first `n_modes` columns are drawn."""
     rpm = np.asarray(rpm, dtype=float)
     f = np.asarray(frequencies, dtype=float)
     if f.ndim != 2 or f.shape[0] != rpm.size:
