@@ -42,7 +42,7 @@ from scipy.optimize import linear_sum_assignment
 
 from propwhirl import validate as v
 from propwhirl.engine import single_thread_blas
-from propwhirl.model.assembly import free_dofs, wing_dof_labels, wing_structure
+from propwhirl.model.assembly import WING_DOF_NAMES, free_dofs, wing_dof_labels, wing_structure
 from propwhirl.model.wing import Wing
 
 
@@ -76,16 +76,15 @@ def wing_modes(wing: Wing) -> Modes:
     return undamped_modes(M[np.ix_(f, f)], K[np.ix_(f, f)], labels)
 
 
-def torsion_fraction(modes: Modes, M: np.ndarray) -> np.ndarray:
+def torsion_fraction(modes: Modes, M: np.ndarray, twist: np.ndarray) -> np.ndarray:
     """Share of each mode's kinetic energy in the twist degrees of freedom (0 = pure bending).
 
     Energy share of DOF group g: Σ_{i∈g} x_i (M x)_i / xᵀMx, with M the (reduced) mass matrix
-    the modes were computed with.
+    the modes were computed with; ``twist`` the indices of the twist DOFs α in it.
     """
     X = modes.shapes
     e = X * (M @ X)
-    alpha = np.array([lab.endswith("alpha") for lab in modes.labels])
-    return e[alpha].sum(axis=0) / e.sum(axis=0)
+    return e[np.asarray(twist, dtype=int)].sum(axis=0) / e.sum(axis=0)
 
 
 def classify_wing_modes(wing: Wing, count: int) -> list[tuple[str, float]]:
@@ -93,7 +92,8 @@ def classify_wing_modes(wing: Wing, count: int) -> list[tuple[str, float]]:
     M, _, K = wing_structure(wing)
     f = free_dofs(wing.n_nodes)
     modes = wing_modes(wing)
-    tors = torsion_fraction(modes, M[np.ix_(f, f)])
+    twist = np.nonzero(f % 3 == WING_DOF_NAMES.index("alpha"))[0]   # (7.20): [h, φ, α] per node
+    tors = torsion_fraction(modes, M[np.ix_(f, f)], twist)
     out, nb, nt = [], 0, 0
     for w, share in zip(modes.omega[:count], tors[:count]):
         if share > 0.5:
