@@ -63,7 +63,7 @@ def test_bad_state_matrices_name_the_speed():
         A[np.isclose(V, 30.0), 3, 1] = np.nan
         return A
 
-    with pytest.raises(InputError, match=r"V = 30.0 m/s, row 3 \(d\(alpha\)/dt\), column 1 "
+    with pytest.raises(InputError, match=r"V = 30.0 m/s, row 3 \(d/dt alpha\), column 1 "
                                          r"\(alpha\)"):
         sweep(nan_at_30, [10.0, 20.0, 30.0], state_labels=second_order_labels(["h", "alpha"]))
     with pytest.raises(InputError, match="shape"):
@@ -74,7 +74,7 @@ def test_bad_state_matrices_name_the_speed():
         sweep(base, [1.0, 2.0], n_dof=7)
     with pytest.raises(InputError, match="either n_dof or displacement"):
         sweep(base, [1.0, 2.0], n_dof=2, displacement=np.ones(4, bool))
-    with pytest.raises(InputError, match="mass matrix M is singular.*V = 2.0 m/s"):
+    with pytest.raises(InputError, match=r"mass matrix .* is singular at V = 2.0 m/s"):
         state_matrix_from_mck(np.stack([np.eye(2), np.diag([1.0, 0.0])]), np.zeros((2, 2)),
                                  np.eye(2), V=[1.0, 2.0])
     with pytest.raises(InputError, match="min_step"):

@@ -21,7 +21,6 @@ import numpy as np
 
 from propwhirl import validate as v
 from propwhirl.model.protocol import rate_label
-from propwhirl.validate import InputError
 
 
 @dataclass(frozen=True)
@@ -67,30 +66,51 @@ class SecondOrder:
         )
 
 
-def check_finite(name: str, arr: np.ndarray, V: np.ndarray) -> None:
+#: Condition number of the mass matrix S1 above which a model is refused as singular (a DOF
+#: without inertia): the one singularity rule of every state matrix.
+SINGULAR_CONDITION = 1e14
+
+
+def _where(V, t: int) -> str:
+    """'V = … m/s' of stack index t (or 'index t' without speeds), for error messages."""
+    if V is None:
+        return f"index {t}"
+    Va = np.atleast_1d(np.asarray(V, dtype=float))
+    return f"V = {float(Va[min(t, Va.size - 1)])!r} m/s"
+
+
+def check_finite(name: str, arr: np.ndarray, V: np.ndarray | None) -> None:
     """Raise InputError naming the matrix and the first speed where it is not finite."""
     bad = ~np.isfinite(arr).reshape(arr.shape[0], -1).all(axis=1)
     if bad.any():
         raise v.InputError(
-            f"{name} has non-finite entries at V = {float(V[np.argmax(bad)])!r} m/s: "
+            f"{name} has non-finite entries at {_where(V, int(np.argmax(bad)))}: "
             "check the model parameters feeding it (e.g. a zero semichord, radius or speed)"
         )
 
 
-def state_matrix(sys: SecondOrder, V: np.ndarray) -> np.ndarray:
-    """The state matrix A(V) (nV, 2n+m, 2n+m) of x = [q, q̇, w] (eq. 7.59, D.27)."""
+def state_matrix(sys: SecondOrder, V: np.ndarray | None = None) -> np.ndarray:
+    """The state matrix A(V) (nV, 2n+m, 2n+m) of x = [q, q̇, w] (eq. 5.4, 7.59, D.27).
+
+    The one builder of every model's A: ``A = [[0, I, 0], [−S1⁻¹S3, −S1⁻¹S2, S1⁻¹S4],
+    [Wq, Wv, Ww]]``, S1 solved once per speed.  Non-finite matrices and a mass matrix S1 with
+    condition number above :data:`SINGULAR_CONDITION` raise :class:`InputError` naming the
+    speed ``V`` [m/s] (optional; only used in the messages).
+    """
     n, m = sys.n_dof, sys.n_lag
     nV = sys.S1.shape[0]
     for name in ("S1", "S2", "S3", "S4", "Ww", "Wv", "Wq"):
         check_finite(name, getattr(sys, name), V)
     rhs = np.concatenate([sys.S3, sys.S2, sys.S4], axis=-1)
-    cond = np.linalg.cond(sys.S1)
-    bad = ~np.isfinite(cond) | (cond > 1e14)
+    with np.errstate(all="ignore"):
+        cond = np.linalg.cond(sys.S1)
+    bad = ~(cond <= SINGULAR_CONDITION)
     if bad.any():
+        t = int(np.argmax(bad))
         raise v.InputError(
-            f"the structural-plus-aerodynamic mass matrix is singular at V = "
-            f"{float(V[np.argmax(bad)])!r} m/s (condition number {cond[np.argmax(bad)]:.3g}): "
-            "a degree of freedom has no inertia (zero mass or inertia?)"
+            f"the mass matrix (structural plus aerodynamic, S1) is singular at {_where(V, t)} "
+            f"(condition number {cond[t]:.3g} > {SINGULAR_CONDITION:.0e}): a degree of freedom "
+            "has no inertia (zero mass or inertia?)"
         )
     X = np.linalg.solve(sys.S1, rhs)
     A = np.zeros((nV, 2 * n + m, 2 * n + m))
@@ -105,45 +125,31 @@ def state_matrix(sys: SecondOrder, V: np.ndarray) -> np.ndarray:
 
 
 def state_matrix_from_mck(M, C, K, V=None) -> np.ndarray:
-    """First-order state matrix J = [[0, I], [−M⁻¹K, −M⁻¹C]] of eq. (5.4), vectorised.
+    """State matrix J = [[0, I], [−M⁻¹K, −M⁻¹C]] of M q̈ + C q̇ + K q = 0 (eq. 5.4), vectorised.
 
     ``M, C, K``: ``(N, N)`` or stacks ``(T, N, N)`` (broadcast against each other).  ``V``
-    [m/s] (optional, length T) is used only to name the speed in errors.  A singular or
-    ill-conditioned (cond > 1e12) mass matrix raises :class:`InputError` naming the speed.
+    [m/s] (optional, length T) is used only to name the speed in errors.  Built by
+    :func:`state_matrix` (a system without lag states), so the same singularity rule applies.
+
+    Examples
+    --------
+    >>> state_matrix_from_mck(2.0 * np.eye(1), np.zeros((1, 1)), 8.0 * np.eye(1))[0]
+    array([[ 0.,  1.],
+           [-4., -0.]])
     """
     M, C, K = (np.asarray(x, dtype=float) for x in (M, C, K))
     M, C, K = np.broadcast_arrays(*(x if x.ndim == 3 else x[None] for x in (M, C, K)))
-    for name, arr in (("M", M), ("C", C), ("K", K)):
-        bad = ~np.isfinite(arr)
-        if bad.any():
-            t = int(np.argwhere(bad)[0][0])
-            raise InputError(f"{name} has a non-finite entry at {_where(V, t)}")
-    with np.errstate(all="ignore"):
-        cond = np.linalg.cond(M)
-    bad = ~(cond < 1e12)
-    if bad.any():
-        t = int(np.argmax(bad))
-        raise InputError(f"mass matrix M is singular (condition number {cond[t]:.3g}) at "
-                         f"{_where(V, t)}: check the inertia parameters")
-    N = M.shape[-1]
-    T = M.shape[0]
-    rhs = np.concatenate([K, C], axis=-1)
-    sol = np.linalg.solve(M, rhs)
-    J = np.zeros((T, 2 * N, 2 * N))
-    J[:, :N, N:] = np.eye(N)
-    J[:, N:, :N] = -sol[..., :N]
-    J[:, N:, N:] = -sol[..., N:]
-    return J
-
-
-def _where(V, t: int) -> str:
-    if V is None:
-        return f"index {t}"
-    Va = np.atleast_1d(np.asarray(V, dtype=float))
-    return f"V = {float(Va[min(t, Va.size - 1)])!r} m/s"
+    T, N = M.shape[0], M.shape[-1]
+    sys = SecondOrder(M, C, K, np.zeros((T, N, 0)), np.zeros((T, 0, 0)), np.zeros((T, 0, N)),
+                      np.zeros((T, 0, N)), tuple(f"q{i}" for i in range(N)), ())
+    return state_matrix(sys, V)
 
 
 def second_order_labels(dof_labels: Sequence[str]) -> tuple[str, ...]:
-    """State labels for [q, q̇] (eq. 5.3): the dof labels followed by ``"d(<label>)/dt"``."""
+    """State labels of [q, q̇] (eq. 5.3): the DOF labels, then their rates (:func:`rate_label`).
+
+    >>> second_order_labels(["h", "alpha"])
+    ('h', 'alpha', 'd/dt h', 'd/dt alpha')
+    """
     dof = tuple(str(s) for s in dof_labels)
-    return dof + tuple(f"d({s})/dt" for s in dof)
+    return dof + tuple(rate_label(s) for s in dof)
