@@ -105,4 +105,5 @@ def derive() -> Derivation:
                 DOFS,
             ),
         ],
+        blocks={"blocks": ("mass", "stiffness")},
     )

@@ -10,7 +10,8 @@ linearised about q = q̇ = q̈ = 0, so that the left side is M q̈ + C q̇ + K q
 these expressions with respect to q̈, q̇ and q.
 
 The generator (`derivations/generate.py`) turns each :class:`Output` into a vectorised NumPy
-function in `generated/`.
+function in `generated/`, and each entry of :attr:`Derivation.blocks` into one function that
+returns several outputs computed with one shared common-subexpression elimination.
 """
 from __future__ import annotations
 
@@ -59,6 +60,9 @@ class Derivation:
     doc: str
     params: Sequence[Param]
     outputs: list[Output] = field(default_factory=list)
+    #: shared-CSE block functions: function name -> names of the outputs it returns together
+    #: (one ``sympy.cse`` over all of them; the runtime assembles from these)
+    blocks: dict[str, Sequence[str]] = field(default_factory=dict)
 
     def param(self, name: str) -> Param:
         for p in self.params:

@@ -4,7 +4,18 @@
 
 Each module in `derivations/` that defines ``derive()`` becomes `generated/<module>.py`:
 common subexpressions are eliminated (``sympy.cse``) and the expressions printed with SymPy's
-NumPy printer, through the jinja2 template `templates/module.py.j2`.  The output is
+NumPy printer, through the jinja2 template `templates/module.py.j2`.  Two forms of code:
+
+- one function per matrix (``Derivation.outputs``), each with its own ``sympy.cse`` — the
+  documented API, checked by the oracle tests against the thesis's printed matrices;
+- one *block function* per entry of ``Derivation.blocks``, returning the matrices the assembly
+  uses together (a dict) after broadcasting the arguments once.  Its subexpressions are
+  ``--block-cse merged`` (default): each matrix's own ``sympy.cse``, identical subexpressions
+  computed once, so the results are bit-identical to the per-matrix functions; or ``shared``:
+  one ``sympy.cse`` over all the matrices (PyDy's way; last-bit differences).  The
+  measurement behind the choice: benchmarks/generator_cse.py, docs/performance.md.
+
+The output is
 deterministic (sorted discovery, fixed entry order, pinned SymPy), so running the generator
 twice gives byte-identical files; tests/test_freshness.py holds `generated/` to that.
 """
@@ -13,9 +24,11 @@ from __future__ import annotations
 import argparse
 import importlib
 import pkgutil
+import re
 import sys
 import time
 from pathlib import Path
+from typing import Sequence
 
 import jinja2
 import sympy as sp
@@ -39,28 +52,41 @@ class _Printer(NumPyPrinter):
     """SymPy's NumPy printer (rationals print as Python float divisions, e.g. 13/420)."""
 
 
-def _render_function(out: Output, d: Derivation, printer: _Printer) -> dict:
-    matrix = sp.Matrix(out.matrix)
-    args = list(out.args)
-    free = set().union(*(e.free_symbols for e in matrix)) if matrix else set()
+def _check_args(label: str, exprs, args, d: Derivation) -> None:
+    free = set().union(*(e.free_symbols for e in exprs)) if exprs else set()
     missing = free - set(args)
     if missing:
-        raise ValueError(f"{d.module}.{out.name}: symbols {sorted(map(str, missing))} not in args")
+        raise ValueError(f"{d.module}.{label}: symbols {sorted(map(str, missing))} not in args")
+
+
+def _nonzero_entries(matrix: sp.Matrix) -> list[tuple[int, int, sp.Expr]]:
     entries = [(i, j, matrix[i, j]) for i in range(matrix.rows) for j in range(matrix.cols)]
-    entries = [(i, j, e) for i, j, e in entries if e != 0]
-    replacements, reduced = sp.cse(
-        [e for _, _, e in entries], symbols=sp.numbered_symbols("_c"), order="canonical"
-    )
+    return [(i, j, e) for i, j, e in entries if e != 0]
+
+
+def _cse(exprs: list[sp.Expr]):
+    return sp.cse(exprs, symbols=sp.numbered_symbols("_c"), order="canonical")
+
+
+def _arginfo(args, d: Derivation) -> list[dict]:
     params = {p.symbol: p for p in d.params}
+    return [{"name": a.name, "doc": params[a].doc, "unit": params[a].unit} for a in args]
+
+
+def _render_function(out: Output, d: Derivation, printer: _Printer) -> dict:
+    """One function per matrix, with its own ``sympy.cse``."""
+    matrix = sp.Matrix(out.matrix)
+    args = list(out.args)
+    _check_args(out.name, list(matrix), args, d)
+    entries = _nonzero_entries(matrix)
+    replacements, reduced = _cse([e for _, _, e in entries])
     return {
         "name": out.name,
         "doc": out.doc,
         "equations": out.equations,
         "signature": ", ".join(a.name for a in args),
         "argnames": repr(tuple(a.name for a in args)),
-        "arginfo": [
-            {"name": a.name, "doc": params[a].doc, "unit": params[a].unit} for a in args
-        ],
+        "arginfo": _arginfo(args, d),
         "rows": repr(tuple(out.rows)),
         "cols": repr(tuple(out.cols)),
         "rows_text": ", ".join(out.rows),
@@ -72,22 +98,150 @@ def _render_function(out: Output, d: Derivation, printer: _Printer) -> dict:
     }
 
 
-def render(d: Derivation, env: jinja2.Environment) -> str:
+def _render_blocks(
+    name: str, members: Sequence[str], d: Derivation, printer: _Printer, cse: str = "shared"
+) -> dict:
+    """One function returning several outputs, broadcasting its arguments once.
+
+    Its arguments are the union of the members' arguments, in the derivation's parameter
+    order; every returned array has the full broadcast shape.  `cse` chooses the common
+    subexpressions:
+
+    - ``"shared"``: one ``sympy.cse`` over all entries of all members (as PyDy's codegen);
+    - ``"merged"``: each member's own ``sympy.cse`` (exactly the per-matrix function's code),
+      the subexpressions renamed apart and identical ones computed once.  Every entry is then
+      evaluated by the same floating-point operations as in the per-matrix function, so the
+      results are bit-identical to it.
+    """
+    if cse not in BLOCK_CSE:
+        raise ValueError(f"cse = {cse!r} is invalid: must be one of {BLOCK_CSE}")
+    by_name = {o.name: o for o in d.outputs}
+    unknown = [m for m in members if m not in by_name]
+    if unknown or not members:
+        raise ValueError(f"{d.module}.{name}: unknown or no outputs {unknown}")
+    outs = [by_name[m] for m in members]
+    used = set().union(*(set(o.args) for o in outs))
+    args = [p.symbol for p in d.params if p.symbol in used]
+    if len(args) != len(used):
+        raise ValueError(f"{d.module}.{name}: arguments not declared as parameters")
+    tables = []
+    for o in outs:
+        matrix = sp.Matrix(o.matrix)
+        _check_args(o.name, list(matrix), o.args, d)
+        tables.append((o, matrix, _nonzero_entries(matrix)))
+    if cse == "shared":
+        replacements, reduced = _cse([e for _, _, entries in tables for _, _, e in entries])
+        lines = [(str(sym), printer.doprint(e)) for sym, e in replacements]
+        texts = iter(printer.doprint(e) for e in reduced)
+        entry_texts = [[next(texts) for _ in entries] for _, _, entries in tables]
+    else:
+        lines, entry_texts = _merge_cse(tables, printer)
+    rendered = [
+        {
+            "name": o.name,
+            "var": f"_o{k}",
+            "nrows": matrix.rows,
+            "ncols": matrix.cols,
+            "entries": [(i, j, text) for (i, j, _), text in zip(entries, entry_texts[k])],
+        }
+        for k, (o, matrix, entries) in enumerate(tables)
+    ]
+    return {
+        "name": name,
+        "signature": ", ".join(a.name for a in args),
+        "argnames": repr(tuple(a.name for a in args)),
+        "members": repr(tuple(members)),
+        "arginfo": _arginfo(args, d),
+        "cse": lines,
+        "outputs": rendered,
+    }
+
+
+_CSE_NAME = re.compile(r"\b_c(\d+)\b")
+
+
+def _merge_cse(tables, printer: _Printer) -> tuple[list[tuple[str, str]], list[list[str]]]:
+    """Each member's own ``sympy.cse``, printed as in its per-matrix function, with the
+    subexpression names renumbered apart; a subexpression whose text (after renaming) is
+    already defined reuses that definition."""
+    lines: list[tuple[str, str]] = []
+    defined: dict[str, str] = {}  # text -> merged name
+    entry_texts = []
+    for _, _, entries in tables:
+        replacements, reduced = _cse([e for _, _, e in entries])
+        local: dict[str, str] = {}  # this member's name -> merged name
+
+        def rename(text: str) -> str:
+            return _CSE_NAME.sub(lambda m: local[f"_c{m.group(1)}"], text)
+
+        for sym, e in replacements:
+            text = rename(printer.doprint(e))
+            if text not in defined:
+                defined[text] = f"_c{len(lines)}"
+                lines.append((defined[text], text))
+            local[str(sym)] = defined[text]
+        entry_texts.append([rename(printer.doprint(e)) for e in reduced])
+    return lines, entry_texts
+
+
+#: how a block function eliminates common subexpressions (see `_render_blocks`)
+BLOCK_CSE = ("shared", "merged")
+CSE_NOTES = {
+    "shared": "Their code is one common-subexpression\nelimination over all the matrices: "
+              "the results equal the per-matrix functions' to rounding.",
+    "merged": "Their code is each matrix's own common\nsubexpressions, identical ones computed "
+              "once: the results are bit-identical to the per-matrix\nfunctions.",
+}
+
+
+#: the two forms of generated code: one function per matrix, and shared-CSE block functions
+FORMS = ("matrices", "blocks")
+
+
+def render(
+    d: Derivation,
+    env: jinja2.Environment,
+    forms: Sequence[str] = FORMS,
+    block_cse: str = "merged",
+) -> str:
+    """The text of `generated/<d.module>.py` with the requested forms of generated code."""
+    if not set(forms) <= set(FORMS):
+        raise ValueError(f"forms = {forms!r} is invalid: must be a subset of {FORMS}")
     printer = _Printer({"fully_qualified_modules": True})
-    functions = [_render_function(o, d, printer) for o in d.outputs]
+    functions = [_render_function(o, d, printer) for o in d.outputs] if "matrices" in forms else []
+    blocks = (
+        [_render_blocks(n, m, d, printer, block_cse) for n, m in d.blocks.items()] if "blocks" in forms else []
+    )
     doc = (d.doc or "").strip().replace('"""', "'''")
-    text = env.get_template("module.py.j2").render(d=d, functions=functions, doc=doc)
+    text = env.get_template("module.py.j2").render(
+        d=d, functions=functions, blocks=blocks, doc=doc, cse_note=CSE_NOTES[block_cse]
+    )
     return text.rstrip() + "\n"
 
 
-def generate(out_dir: Path, only: list[str] | None = None, verbose: bool = True) -> dict[str, str]:
-    """Write all generated modules to `out_dir`; return {file name: text}."""
-    env = jinja2.Environment(
+def environment() -> jinja2.Environment:
+    """The jinja2 environment of `templates/` (strict: an undefined name is an error)."""
+    return jinja2.Environment(
         loader=jinja2.FileSystemLoader(str(TEMPLATES)),
         keep_trailing_newline=True,
         undefined=jinja2.StrictUndefined,
         autoescape=False,
     )
+
+
+def generate(
+    out_dir: Path,
+    only: list[str] | None = None,
+    verbose: bool = True,
+    forms: Sequence[str] = FORMS,
+    block_cse: str = "merged",
+) -> dict[str, str]:
+    """Write all generated modules to `out_dir`; return {file name: text}.
+
+    `forms` selects the generated code (default both; the benchmark
+    `benchmarks/generator_cse.py` renders each form alone to compare them).
+    """
+    env = environment()
     out_dir.mkdir(parents=True, exist_ok=True)
     written: dict[str, str] = {}
     derivs = []
@@ -96,7 +250,7 @@ def generate(out_dir: Path, only: list[str] | None = None, verbose: bool = True)
             continue
         start = time.perf_counter()
         d = importlib.import_module(f"derivations.{name}").derive()
-        text = render(d, env)
+        text = render(d, env, forms, block_cse)
         (out_dir / f"{d.module}.py").write_text(text)
         written[f"{d.module}.py"] = text
         derivs.append(d)
@@ -113,9 +267,14 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, default=ROOT / "generated")
     parser.add_argument("--only", nargs="*", help="derivation modules to regenerate")
+    parser.add_argument(
+        "--block-cse", choices=BLOCK_CSE, default="merged",
+        help="common subexpressions of the block functions (default merged: bit-identical to "
+        "the per-matrix functions; see docs/performance.md)",
+    )
     args = parser.parse_args(argv)
     start = time.perf_counter()
-    generate(args.out, args.only)
+    generate(args.out, args.only, block_cse=args.block_cse)
     print(f"total {time.perf_counter() - start:.2f} s")
     return 0
 

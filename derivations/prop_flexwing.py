@@ -265,6 +265,10 @@ def derive() -> Derivation:
         doc=__doc__,
         params=PARAMS,
         outputs=outputs,
+        blocks={
+            "structure_blocks": ("As", "Bs", "Cs_viscous", "Ds", "Es", "Fs", "Gs", "Hs"),
+            "aero_blocks": ("Aa", "Ba", "Ca", "Da", "Ea", "Fa", "P1", "P2", "P3", "P4", "P5", "P6"),
+        },
     )
 
 

@@ -211,4 +211,8 @@ def derive() -> Derivation:
             Output("Ka", Ka, AERO_ARGS, "Propeller aerodynamic stiffness matrix K_a [θ, ψ].",
                    "4.25, 4.26, 6.9, 6.17", **sdofs),
         ],
+        blocks={
+            "structure_blocks": ("Ms", "Cs_viscous", "Ks"),
+            "aero_blocks": ("Ma", "Ca", "Ka"),
+        },
     )

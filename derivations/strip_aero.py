@@ -306,4 +306,8 @@ def derive() -> Derivation:
         doc=__doc__,
         params=PARAMS,
         outputs=outputs,
+        blocks={
+            "ln_blocks": ("ln_M", "ln_C", "ln_K", "ln_W0", "ln_W1", "ln_W2", "ln_W3"),
+            "wagner_blocks": ("wagner_M", "wagner_C", "wagner_K", "wagner_W0", "wagner_W1", "wagner_W2"),
+        },
     )

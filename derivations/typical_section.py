@@ -49,4 +49,5 @@ def derive() -> Derivation:
             Output("mass", M, (m, S, I_alpha), "Structural mass matrix [h, α].", "5.1, 7.3", DOFS, DOFS),
             Output("stiffness", K, (K_h, K_alpha), "Spring stiffness matrix [h, α].", "5.1", DOFS, DOFS),
         ],
+        blocks={"blocks": ("mass", "stiffness")},
     )

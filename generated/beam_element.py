@@ -7,6 +7,11 @@ Generated from `derivations/beam_element.py`; plain NumPy, vectorised over leadi
 may be an array and all arguments broadcast together; each function returns an array of
 shape ``broadcast_shape + (rows, cols)``.
 
+The block functions (`blocks`) return several of these matrices
+at once (a dict), broadcasting their arguments once.  Their code is each matrix's own common
+subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
+functions.
+
 Euler–Bernoulli bending–torsion beam element of the cantilever wing (thesis §7.1).
 
 Element degrees of freedom (7.16):  q_e = [h1, φ1, α1, h2, φ2, α2]
@@ -42,6 +47,11 @@ PARAMETERS = {
 OUTPUTS = {
     "mass": (('length', 'm', 'rho_Ip', 'x_alpha_b'), ('h1', 'phi1', 'alpha1', 'h2', 'phi2', 'alpha2'), ('h1', 'phi1', 'alpha1', 'h2', 'phi2', 'alpha2'), "7.9–7.13"),
     "stiffness": (('length', 'EI', 'GJ'), ('h1', 'phi1', 'alpha1', 'h2', 'phi2', 'alpha2'), ('h1', 'phi1', 'alpha1', 'h2', 'phi2', 'alpha2'), "7.9, 7.14–7.15"),
+}
+
+#: block function name -> (argument names, names of the returned matrices)
+BLOCKS = {
+    "blocks": (('length', 'm', 'rho_Ip', 'x_alpha_b', 'EI', 'GJ'), ('mass', 'stiffness')),
 }
 
 
@@ -189,3 +199,129 @@ def stiffness(length, EI, GJ):
     out[..., 5, 2] = _c9
     out[..., 5, 5] = _c8
     return out
+
+
+def blocks(length, m, rho_Ip, x_alpha_b, EI, GJ):
+    """mass, stiffness at once.
+
+    The arguments are broadcast together once.  Their code is each matrix's own common
+    subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
+    functions.
+
+    Parameters
+    ----------
+    length : array_like
+        element length [m]
+    m : array_like
+        mass per unit span [kg/m]
+    rho_Ip : array_like
+        polar mass moment of inertia per unit span about the elastic axis [kg m]
+    x_alpha_b : array_like
+        centre of gravity aft of the elastic axis (x_α b) [m]
+    EI : array_like
+        bending rigidity [N m^2]
+    GJ : array_like
+        torsional rigidity [N m^2]
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        "mass", shape (..., 6, 6): as `mass`
+        "stiffness", shape (..., 6, 6): as `stiffness`
+        (``...`` is the broadcast shape of all the arguments).
+    """
+    shape, (length, m, rho_Ip, x_alpha_b, EI, GJ,) = _broadcast(length, m, rho_Ip, x_alpha_b, EI, GJ)
+    _c0 = length*m
+    _c1 = (13/35)*_c0
+    _c2 = length**2*m
+    _c3 = (11/210)*_c2
+    _c4 = _c0*x_alpha_b
+    _c5 = (7/20)*_c4
+    _c6 = (9/70)*_c0
+    _c7 = (13/420)*_c2
+    _c8 = -_c7
+    _c9 = (3/20)*_c4
+    _c10 = length**3*m
+    _c11 = (1/105)*_c10
+    _c12 = _c2*x_alpha_b
+    _c13 = (1/20)*_c12
+    _c14 = -1/140*_c10
+    _c15 = (1/30)*_c12
+    _c16 = length*rho_Ip
+    _c17 = (1/3)*_c16
+    _c18 = -_c15
+    _c19 = (1/6)*_c16
+    _c20 = -_c3
+    _c21 = -_c13
+    _c22 = 12*EI/length**3
+    _c23 = 6*EI/length**2
+    _c24 = -_c22
+    _c25 = length**(-1.0)
+    _c26 = EI*_c25
+    _c27 = 4*_c26
+    _c28 = -_c23
+    _c29 = 2*_c26
+    _c30 = GJ*_c25
+    _c31 = -_c30
+    _o0 = numpy.zeros(shape + (6, 6))
+    _o0[..., 0, 0] = _c1
+    _o0[..., 0, 1] = _c3
+    _o0[..., 0, 2] = _c5
+    _o0[..., 0, 3] = _c6
+    _o0[..., 0, 4] = _c8
+    _o0[..., 0, 5] = _c9
+    _o0[..., 1, 0] = _c3
+    _o0[..., 1, 1] = _c11
+    _o0[..., 1, 2] = _c13
+    _o0[..., 1, 3] = _c7
+    _o0[..., 1, 4] = _c14
+    _o0[..., 1, 5] = _c15
+    _o0[..., 2, 0] = _c5
+    _o0[..., 2, 1] = _c13
+    _o0[..., 2, 2] = _c17
+    _o0[..., 2, 3] = _c9
+    _o0[..., 2, 4] = _c18
+    _o0[..., 2, 5] = _c19
+    _o0[..., 3, 0] = _c6
+    _o0[..., 3, 1] = _c7
+    _o0[..., 3, 2] = _c9
+    _o0[..., 3, 3] = _c1
+    _o0[..., 3, 4] = _c20
+    _o0[..., 3, 5] = _c5
+    _o0[..., 4, 0] = _c8
+    _o0[..., 4, 1] = _c14
+    _o0[..., 4, 2] = _c18
+    _o0[..., 4, 3] = _c20
+    _o0[..., 4, 4] = _c11
+    _o0[..., 4, 5] = _c21
+    _o0[..., 5, 0] = _c9
+    _o0[..., 5, 1] = _c15
+    _o0[..., 5, 2] = _c19
+    _o0[..., 5, 3] = _c5
+    _o0[..., 5, 4] = _c21
+    _o0[..., 5, 5] = _c17
+    _o1 = numpy.zeros(shape + (6, 6))
+    _o1[..., 0, 0] = _c22
+    _o1[..., 0, 1] = _c23
+    _o1[..., 0, 3] = _c24
+    _o1[..., 0, 4] = _c23
+    _o1[..., 1, 0] = _c23
+    _o1[..., 1, 1] = _c27
+    _o1[..., 1, 3] = _c28
+    _o1[..., 1, 4] = _c29
+    _o1[..., 2, 2] = _c30
+    _o1[..., 2, 5] = _c31
+    _o1[..., 3, 0] = _c24
+    _o1[..., 3, 1] = _c28
+    _o1[..., 3, 3] = _c22
+    _o1[..., 3, 4] = _c28
+    _o1[..., 4, 0] = _c23
+    _o1[..., 4, 1] = _c29
+    _o1[..., 4, 3] = _c28
+    _o1[..., 4, 4] = _c27
+    _o1[..., 5, 2] = _c31
+    _o1[..., 5, 5] = _c30
+    return {
+        "mass": _o0,
+        "stiffness": _o1,
+    }

@@ -7,6 +7,11 @@ Generated from `derivations/prop_flexwing.py`; plain NumPy, vectorised over lead
 may be an array and all arguments broadcast together; each function returns an array of
 shape ``broadcast_shape + (rows, cols)``.
 
+The block functions (`structure_blocks`, `aero_blocks`) return several of these matrices
+at once (a dict), broadcasting their arguments once.  Their code is each matrix's own common
+subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
+functions.
+
 Propeller on a flexible cantilever wing: propeller and wing-node coupling (thesis §8.1–8.2).
 
 Degrees of freedom:  q_P = [θ, ψ] (propeller pitch and yaw about their pivots)  and
@@ -117,6 +122,12 @@ OUTPUTS = {
     "P6": (('rho', 'V', 'R', 'e_theta', 'e_psi', 'e_alpha', 'CZ_theta', 'CZ_psi', 'CZ_q', 'CZ_r', 'Cm_theta', 'Cm_psi', 'Cm_q', 'Cm_r', 'CY_theta', 'CY_psi', 'CY_q', 'CY_r', 'Cn_theta', 'Cn_psi', 'Cn_q', 'Cn_r'), ('h_P', 'alpha_P'), ('h_P', 'alpha_P'), "4.25, 8.26, 8.34, 8.42"),
     "e_alpha_geometry": (('e_theta', 'l_theta', 'a_P_b_P'), ('e_alpha',), ('value',), "8.35"),
     "inertia": (('M_P', 'S_theta_P', 'I_theta_P', 'l_theta', 'a_P_b_P'), ('S_alpha_P', 'I_alpha_P', 'I_theta_alpha_P'), ('value',), "8.5, 8.6"),
+}
+
+#: block function name -> (argument names, names of the returned matrices)
+BLOCKS = {
+    "structure_blocks": (('I_Omega', 'M_P', 'S_theta_P', 'I_theta_P', 'I_psi_P', 'S_alpha_P', 'I_alpha_P', 'I_theta_alpha_P', 'Omega', 'K_theta', 'K_psi', 'zeta_theta', 'zeta_psi'), ('As', 'Bs', 'Cs_viscous', 'Ds', 'Es', 'Fs', 'Gs', 'Hs')),
+    "aero_blocks": (('e_theta', 'e_psi', 'e_alpha', 'rho', 'V', 'R', 'CZ_theta', 'CZ_psi', 'CZ_q', 'CZ_r', 'Cm_theta', 'Cm_psi', 'Cm_q', 'Cm_r', 'CY_theta', 'CY_psi', 'CY_q', 'CY_r', 'Cn_theta', 'Cn_psi', 'Cn_q', 'Cn_r'), ('Aa', 'Ba', 'Ca', 'Da', 'Ea', 'Fa', 'P1', 'P2', 'P3', 'P4', 'P5', 'P6')),
 }
 
 
@@ -1313,3 +1324,289 @@ def inertia(M_P, S_theta_P, I_theta_P, l_theta, a_P_b_P):
     out[..., 1, 0] = I_theta_P + M_P*_c0**2 + S_theta_P*(-2*a_P_b_P + 2*l_theta)
     out[..., 2, 0] = I_theta_P + S_theta_P*_c0
     return out
+
+
+def structure_blocks(I_Omega, M_P, S_theta_P, I_theta_P, I_psi_P, S_alpha_P, I_alpha_P, I_theta_alpha_P, Omega, K_theta, K_psi, zeta_theta, zeta_psi):
+    """As, Bs, Cs_viscous, Ds, Es, Fs, Gs, Hs at once.
+
+    The arguments are broadcast together once.  Their code is each matrix's own common
+    subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
+    functions.
+
+    Parameters
+    ----------
+    I_Omega : array_like
+        rotor mass moment of inertia about its rotation axis [kg m^2]
+    M_P : array_like
+        pivoting propeller–engine mass [kg]
+    S_theta_P : array_like
+        static moment of the pivoting mass about the pitch pivot, Σ m (x − l_θ) [kg m]
+    I_theta_P : array_like
+        moment of inertia of the pivoting mass about the pitch pivot [kg m^2]
+    I_psi_P : array_like
+        moment of inertia of the pivoting mass about the yaw pivot [kg m^2]
+    S_alpha_P : array_like
+        static moment of the pivoting mass about the wing elastic axis [kg m]
+    I_alpha_P : array_like
+        moment of inertia of the pivoting mass about the wing elastic axis [kg m^2]
+    I_theta_alpha_P : array_like
+        product of inertia Σ m (x − a_P b_P)(x − l_θ) [kg m^2]
+    Omega : array_like
+        propeller rotational speed [rad/s]
+    K_theta : array_like
+        pitch stiffness of the propeller attachment [N m/rad]
+    K_psi : array_like
+        yaw stiffness of the propeller attachment [N m/rad]
+    zeta_theta : array_like
+        viscous damping ratio in pitch (fraction of critical) [-]
+    zeta_psi : array_like
+        viscous damping ratio in yaw (fraction of critical) [-]
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        "As", shape (..., 2, 2): as `As`
+        "Bs", shape (..., 2, 2): as `Bs`
+        "Cs_viscous", shape (..., 2, 2): as `Cs_viscous`
+        "Ds", shape (..., 2, 2): as `Ds`
+        "Es", shape (..., 2, 2): as `Es`
+        "Fs", shape (..., 2, 2): as `Fs`
+        "Gs", shape (..., 2, 2): as `Gs`
+        "Hs", shape (..., 2, 2): as `Hs`
+        (``...`` is the broadcast shape of all the arguments).
+    """
+    shape, (I_Omega, M_P, S_theta_P, I_theta_P, I_psi_P, S_alpha_P, I_alpha_P, I_theta_alpha_P, Omega, K_theta, K_psi, zeta_theta, zeta_psi,) = _broadcast(I_Omega, M_P, S_theta_P, I_theta_P, I_psi_P, S_alpha_P, I_alpha_P, I_theta_alpha_P, Omega, K_theta, K_psi, zeta_theta, zeta_psi)
+    _c0 = I_Omega*Omega
+    _o0 = numpy.zeros(shape + (2, 2))
+    _o0[..., 0, 0] = I_theta_P
+    _o0[..., 1, 1] = I_psi_P
+    _o1 = numpy.zeros(shape + (2, 2))
+    _o1[..., 0, 0] = S_theta_P
+    _o1[..., 0, 1] = I_theta_alpha_P
+    _o2 = numpy.zeros(shape + (2, 2))
+    _o2[..., 0, 0] = 2*numpy.sqrt(I_theta_P)*numpy.sqrt(K_theta)*zeta_theta
+    _o2[..., 0, 1] = _c0
+    _o2[..., 1, 0] = -_c0
+    _o2[..., 1, 1] = 2*numpy.sqrt(I_psi_P)*numpy.sqrt(K_psi)*zeta_psi
+    _o3 = numpy.zeros(shape + (2, 2))
+    _o3[..., 1, 1] = -I_Omega*Omega
+    _o4 = numpy.zeros(shape + (2, 2))
+    _o4[..., 0, 0] = K_theta
+    _o4[..., 1, 1] = K_psi
+    _o5 = numpy.zeros(shape + (2, 2))
+    _o5[..., 0, 0] = S_theta_P
+    _o5[..., 1, 0] = I_theta_alpha_P
+    _o6 = numpy.zeros(shape + (2, 2))
+    _o6[..., 0, 0] = M_P
+    _o6[..., 0, 1] = S_alpha_P
+    _o6[..., 1, 0] = S_alpha_P
+    _o6[..., 1, 1] = I_alpha_P
+    _o7 = numpy.zeros(shape + (2, 2))
+    _o7[..., 1, 1] = I_Omega*Omega
+    return {
+        "As": _o0,
+        "Bs": _o1,
+        "Cs_viscous": _o2,
+        "Ds": _o3,
+        "Es": _o4,
+        "Fs": _o5,
+        "Gs": _o6,
+        "Hs": _o7,
+    }
+
+
+def aero_blocks(e_theta, e_psi, e_alpha, rho, V, R, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
+    """Aa, Ba, Ca, Da, Ea, Fa, P1, P2, P3, P4, P5, P6 at once.
+
+    The arguments are broadcast together once.  Their code is each matrix's own common
+    subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
+    functions.
+
+    Parameters
+    ----------
+    e_theta : array_like
+        propeller plane aft of the pitch pivot (signed; < 0 for a tractor) [m]
+    e_psi : array_like
+        propeller plane aft of the yaw pivot (signed; < 0 for a tractor) [m]
+    e_alpha : array_like
+        propeller plane aft of the wing elastic axis, e_θ + l_θ − a_P b_P (8.35) [m]
+    rho : array_like
+        air density [kg/m^3]
+    V : array_like
+        free-stream (inflow) velocity [m/s]
+    R : array_like
+        propeller radius [m]
+    CZ_theta : array_like
+        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
+    CZ_psi : array_like
+        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
+    CZ_q : array_like
+        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
+    CZ_r : array_like
+        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    Cm_theta : array_like
+        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
+    Cm_psi : array_like
+        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
+    Cm_q : array_like
+        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
+    Cm_r : array_like
+        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    CY_theta : array_like
+        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
+    CY_psi : array_like
+        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
+    CY_q : array_like
+        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
+    CY_r : array_like
+        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    Cn_theta : array_like
+        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
+    Cn_psi : array_like
+        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
+    Cn_q : array_like
+        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
+    Cn_r : array_like
+        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        "Aa", shape (..., 2, 2): as `Aa`
+        "Ba", shape (..., 2, 2): as `Ba`
+        "Ca", shape (..., 2, 2): as `Ca`
+        "Da", shape (..., 2, 2): as `Da`
+        "Ea", shape (..., 2, 2): as `Ea`
+        "Fa", shape (..., 2, 2): as `Fa`
+        "P1", shape (..., 2, 2): as `P1`
+        "P2", shape (..., 2, 2): as `P2`
+        "P3", shape (..., 2, 2): as `P3`
+        "P4", shape (..., 2, 2): as `P4`
+        "P5", shape (..., 2, 2): as `P5`
+        "P6", shape (..., 2, 2): as `P6`
+        (``...`` is the broadcast shape of all the arguments).
+    """
+    shape, (e_theta, e_psi, e_alpha, rho, V, R, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(e_theta, e_psi, e_alpha, rho, V, R, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
+    _c0 = R**4
+    _c1 = numpy.pi*rho
+    _c2 = _c0*_c1
+    _c3 = (1/2)*R**3*_c1
+    _c4 = _c3*e_psi*e_theta
+    _c5 = Cm_q*_c0*_c1
+    _c6 = CZ_q*_c3*e_theta
+    _c7 = CY_q*_c3*e_psi
+    _c8 = numpy.pi*V*rho
+    _c9 = _c0*_c8
+    _c10 = R**3
+    _c11 = _c8*_c10
+    _c12 = _c11*e_theta
+    _c13 = (1/2)*_c12
+    _c14 = (1/2)*R**2*_c8
+    _c15 = _c11*e_psi
+    _c16 = _c14*e_psi*e_theta
+    _c17 = (1/2)*_c15
+    _c18 = _c10*_c8
+    _c19 = Cm_theta*_c18
+    _c20 = (1/2)*e_theta
+    _c21 = R**2*_c8
+    _c22 = CZ_theta*_c20*_c21
+    _c23 = (1/2)*e_psi
+    _c24 = CY_theta*_c21*_c23
+    _c25 = V**2
+    _c26 = numpy.pi*_c25*rho
+    _c27 = _c10*_c26
+    _c28 = (1/2)*R**2*_c26
+    _c29 = _c28*e_theta
+    _c30 = _c28*e_psi
+    _c31 = CZ_r*_c3*e_psi
+    _c32 = R**4*_c1
+    _c33 = (1/2)*CZ_q*R**3*_c1
+    _c34 = _c33*e_alpha
+    _c35 = Cm_q*R**4*_c1
+    _c36 = R**3*_c8
+    _c37 = (1/2)*_c36
+    _c38 = CZ_q*_c37
+    _c39 = CZ_theta*_c14*e_theta
+    _c40 = CZ_r*_c37
+    _c41 = CZ_psi*_c14*e_psi
+    _c42 = R**4*_c8
+    _c43 = (1/2)*CZ_theta*R**2*_c8
+    _c44 = (1/2)*CZ_q*_c36
+    _c45 = _c43*e_alpha
+    _c46 = Cm_theta*_c36
+    _c47 = numpy.pi*V**2*rho
+    _c48 = (1/2)*R**2*_c47
+    _c49 = CZ_theta*_c48
+    _c50 = CZ_psi*_c48
+    _c51 = R**3*_c47
+    _c52 = (1/2)*CZ_theta*R**2*_c47
+    _o0 = numpy.zeros(shape + (2, 2))
+    _o0[..., 0, 0] = CZ_q*_c3*e_theta**2 + Cm_q*_c2*e_theta
+    _o0[..., 0, 1] = CZ_r*_c4 + Cm_r*_c2*e_psi
+    _o0[..., 1, 0] = -CY_q*_c4 + numpy.pi*Cn_q*_c0*e_theta*rho
+    _o0[..., 1, 1] = -CY_r*_c3*e_psi**2 + numpy.pi*Cn_r*_c0*e_psi*rho
+    _o1 = numpy.zeros(shape + (2, 2))
+    _o1[..., 0, 0] = _c5 + _c6
+    _o1[..., 0, 1] = _c5*e_alpha + _c6*e_alpha
+    _o1[..., 1, 0] = numpy.pi*Cn_q*_c0*rho - _c7
+    _o1[..., 1, 1] = numpy.pi*Cn_q*_c0*e_alpha*rho - _c7*e_alpha
+    _o2 = numpy.zeros(shape + (2, 2))
+    _o2[..., 0, 0] = CZ_q*_c13 + CZ_theta*_c14*e_theta**2 + Cm_q*_c9 + Cm_theta*_c12
+    _o2[..., 0, 1] = CZ_psi*_c16 + CZ_r*_c13 + Cm_psi*_c15 + Cm_r*_c9
+    _o2[..., 1, 0] = -CY_q*_c17 - CY_theta*_c16 + numpy.pi*Cn_q*V*_c0*rho + numpy.pi*Cn_theta*V*_c10*e_theta*rho
+    _o2[..., 1, 1] = -CY_psi*_c14*e_psi**2 - CY_r*_c17 + numpy.pi*Cn_psi*V*_c10*e_psi*rho + numpy.pi*Cn_r*V*_c0*rho
+    _o3 = numpy.zeros(shape + (2, 2))
+    _o3[..., 0, 0] = _c19 + _c22
+    _o3[..., 0, 1] = CZ_q*_c18*_c20 + Cm_q*_c8*_c0 + _c19*e_alpha + _c22*e_alpha
+    _o3[..., 1, 0] = numpy.pi*Cn_theta*V*_c10*rho - _c24
+    _o3[..., 1, 1] = -CY_q*_c18*_c23 + numpy.pi*Cn_q*V*_c0*rho + numpy.pi*Cn_theta*V*_c10*e_alpha*rho - _c24*e_alpha
+    _o4 = numpy.zeros(shape + (2, 2))
+    _o4[..., 0, 0] = CZ_theta*_c29 + Cm_theta*_c27
+    _o4[..., 0, 1] = CZ_psi*_c29 + Cm_psi*_c27
+    _o4[..., 1, 0] = -CY_theta*_c30 + numpy.pi*Cn_theta*_c10*_c25*rho
+    _o4[..., 1, 1] = -CY_psi*_c30 + numpy.pi*Cn_psi*_c10*_c25*rho
+    _o5 = numpy.zeros(shape + (2, 2))
+    _o5[..., 0, 1] = CZ_theta*_c28*e_theta + Cm_theta*_c10*_c26
+    _o5[..., 1, 1] = -CY_theta*_c28*e_psi + numpy.pi*Cn_theta*_c10*_c25*rho
+    _o6 = numpy.zeros(shape + (2, 2))
+    _o6[..., 0, 0] = _c6
+    _o6[..., 0, 1] = _c31
+    _o6[..., 1, 0] = Cm_q*_c32*e_theta + _c6*e_alpha
+    _o6[..., 1, 1] = Cm_r*_c32*e_psi + _c31*e_alpha
+    _o7 = numpy.zeros(shape + (2, 2))
+    _o7[..., 0, 0] = _c33
+    _o7[..., 0, 1] = _c34
+    _o7[..., 1, 0] = _c34 + _c35
+    _o7[..., 1, 1] = _c33*e_alpha**2 + _c35*e_alpha
+    _o8 = numpy.zeros(shape + (2, 2))
+    _o8[..., 0, 0] = _c38 + _c39
+    _o8[..., 0, 1] = _c40 + _c41
+    _o8[..., 1, 0] = Cm_q*_c42 + Cm_theta*_c36*e_theta + _c38*e_alpha + _c39*e_alpha
+    _o8[..., 1, 1] = Cm_psi*_c36*e_psi + Cm_r*_c42 + _c40*e_alpha + _c41*e_alpha
+    _o9 = numpy.zeros(shape + (2, 2))
+    _o9[..., 0, 0] = _c43
+    _o9[..., 0, 1] = _c44 + _c45
+    _o9[..., 1, 0] = _c45 + _c46
+    _o9[..., 1, 1] = Cm_q*R**4*_c8 + _c43*e_alpha**2 + _c44*e_alpha + _c46*e_alpha
+    _o10 = numpy.zeros(shape + (2, 2))
+    _o10[..., 0, 0] = _c49
+    _o10[..., 0, 1] = _c50
+    _o10[..., 1, 0] = Cm_theta*_c51 + _c49*e_alpha
+    _o10[..., 1, 1] = Cm_psi*_c51 + _c50*e_alpha
+    _o11 = numpy.zeros(shape + (2, 2))
+    _o11[..., 0, 1] = _c52
+    _o11[..., 1, 1] = Cm_theta*R**3*_c47 + _c52*e_alpha
+    return {
+        "Aa": _o0,
+        "Ba": _o1,
+        "Ca": _o2,
+        "Da": _o3,
+        "Ea": _o4,
+        "Fa": _o5,
+        "P1": _o6,
+        "P2": _o7,
+        "P3": _o8,
+        "P4": _o9,
+        "P5": _o10,
+        "P6": _o11,
+    }

@@ -7,6 +7,11 @@ Generated from `derivations/prop_rigid.py`; plain NumPy, vectorised over leading
 may be an array and all arguments broadcast together; each function returns an array of
 shape ``broadcast_shape + (rows, cols)``.
 
+The block functions (`structure_blocks`, `aero_blocks`) return several of these matrices
+at once (a dict), broadcasting their arguments once.  Their code is each matrix's own common
+subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
+functions.
+
 Propeller flexibly mounted on a rigid wing: pitch–yaw whirl model (thesis chapter 6, §6.1).
 
 Degrees of freedom (6.11):  q = [θ, ψ]
@@ -90,6 +95,12 @@ OUTPUTS = {
     "Ma": (('rho', 'V', 'R', 'e_theta', 'e_psi', 'CZ_theta', 'CZ_psi', 'CZ_q', 'CZ_r', 'Cm_theta', 'Cm_psi', 'Cm_q', 'Cm_r', 'CY_theta', 'CY_psi', 'CY_q', 'CY_r', 'Cn_theta', 'Cn_psi', 'Cn_q', 'Cn_r'), ('theta', 'psi'), ('theta', 'psi'), "4.25, 4.26, 6.9, 6.15"),
     "Ca": (('rho', 'V', 'R', 'e_theta', 'e_psi', 'CZ_theta', 'CZ_psi', 'CZ_q', 'CZ_r', 'Cm_theta', 'Cm_psi', 'Cm_q', 'Cm_r', 'CY_theta', 'CY_psi', 'CY_q', 'CY_r', 'Cn_theta', 'Cn_psi', 'Cn_q', 'Cn_r'), ('theta', 'psi'), ('theta', 'psi'), "4.25, 4.26, 6.9, 6.16"),
     "Ka": (('rho', 'V', 'R', 'e_theta', 'e_psi', 'CZ_theta', 'CZ_psi', 'CZ_q', 'CZ_r', 'Cm_theta', 'Cm_psi', 'Cm_q', 'Cm_r', 'CY_theta', 'CY_psi', 'CY_q', 'CY_r', 'Cn_theta', 'Cn_psi', 'Cn_q', 'Cn_r'), ('theta', 'psi'), ('theta', 'psi'), "4.25, 4.26, 6.9, 6.17"),
+}
+
+#: block function name -> (argument names, names of the returned matrices)
+BLOCKS = {
+    "structure_blocks": (('I_X', 'I_Y', 'I_Z', 'Omega', 'K_theta', 'K_psi', 'zeta_theta', 'zeta_psi'), ('Ms', 'Cs_viscous', 'Ks')),
+    "aero_blocks": (('rho', 'V', 'R', 'e_theta', 'e_psi', 'CZ_theta', 'CZ_psi', 'CZ_q', 'CZ_r', 'Cm_theta', 'Cm_psi', 'Cm_q', 'Cm_r', 'CY_theta', 'CY_psi', 'CY_q', 'CY_r', 'Cn_theta', 'Cn_psi', 'Cn_q', 'Cn_r'), ('Ma', 'Ca', 'Ka')),
 }
 
 
@@ -471,3 +482,163 @@ def Ka(rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi
     out[..., 1, 0] = CY_theta*_c6 + Cn_theta*_c5
     out[..., 1, 1] = CY_psi*_c6 + Cn_psi*_c5
     return out
+
+
+def structure_blocks(I_X, I_Y, I_Z, Omega, K_theta, K_psi, zeta_theta, zeta_psi):
+    """Ms, Cs_viscous, Ks at once.
+
+    The arguments are broadcast together once.  Their code is each matrix's own common
+    subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
+    functions.
+
+    Parameters
+    ----------
+    I_X : array_like
+        propeller mass moment of inertia about its rotation axis [kg m^2]
+    I_Y : array_like
+        mass moment of inertia of the pivoting system about the pitch axis [kg m^2]
+    I_Z : array_like
+        mass moment of inertia of the pivoting system about the yaw axis [kg m^2]
+    Omega : array_like
+        propeller rotational speed [rad/s]
+    K_theta : array_like
+        pitch stiffness of the propeller attachment [N m/rad]
+    K_psi : array_like
+        yaw stiffness of the propeller attachment [N m/rad]
+    zeta_theta : array_like
+        viscous damping ratio in pitch (fraction of critical) [-]
+    zeta_psi : array_like
+        viscous damping ratio in yaw (fraction of critical) [-]
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        "Ms", shape (..., 2, 2): as `Ms`
+        "Cs_viscous", shape (..., 2, 2): as `Cs_viscous`
+        "Ks", shape (..., 2, 2): as `Ks`
+        (``...`` is the broadcast shape of all the arguments).
+    """
+    shape, (I_X, I_Y, I_Z, Omega, K_theta, K_psi, zeta_theta, zeta_psi,) = _broadcast(I_X, I_Y, I_Z, Omega, K_theta, K_psi, zeta_theta, zeta_psi)
+    _c0 = I_X*Omega
+    _o0 = numpy.zeros(shape + (2, 2))
+    _o0[..., 0, 0] = I_Y
+    _o0[..., 1, 1] = I_Z
+    _o1 = numpy.zeros(shape + (2, 2))
+    _o1[..., 0, 0] = 2*numpy.sqrt(I_Y)*numpy.sqrt(K_theta)*zeta_theta
+    _o1[..., 0, 1] = _c0
+    _o1[..., 1, 0] = -_c0
+    _o1[..., 1, 1] = 2*numpy.sqrt(I_Z)*numpy.sqrt(K_psi)*zeta_psi
+    _o2 = numpy.zeros(shape + (2, 2))
+    _o2[..., 0, 0] = K_theta
+    _o2[..., 1, 1] = K_psi
+    return {
+        "Ms": _o0,
+        "Cs_viscous": _o1,
+        "Ks": _o2,
+    }
+
+
+def aero_blocks(rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
+    """Ma, Ca, Ka at once.
+
+    The arguments are broadcast together once.  Their code is each matrix's own common
+    subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
+    functions.
+
+    Parameters
+    ----------
+    rho : array_like
+        air density [kg/m^3]
+    V : array_like
+        free-stream (inflow) velocity [m/s]
+    R : array_like
+        propeller radius [m]
+    e_theta : array_like
+        distance from the pitch pivot forward to the propeller plane (> 0) [m]
+    e_psi : array_like
+        distance from the yaw pivot forward to the propeller plane (> 0) [m]
+    CZ_theta : array_like
+        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
+    CZ_psi : array_like
+        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
+    CZ_q : array_like
+        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
+    CZ_r : array_like
+        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    Cm_theta : array_like
+        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
+    Cm_psi : array_like
+        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
+    Cm_q : array_like
+        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
+    Cm_r : array_like
+        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    CY_theta : array_like
+        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
+    CY_psi : array_like
+        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
+    CY_q : array_like
+        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
+    CY_r : array_like
+        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    Cn_theta : array_like
+        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
+    Cn_psi : array_like
+        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
+    Cn_q : array_like
+        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
+    Cn_r : array_like
+        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        "Ma", shape (..., 2, 2): as `Ma`
+        "Ca", shape (..., 2, 2): as `Ca`
+        "Ka", shape (..., 2, 2): as `Ka`
+        (``...`` is the broadcast shape of all the arguments).
+    """
+    shape, (rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
+    _c0 = numpy.pi*rho
+    _c1 = R**4*_c0
+    _c2 = _c1*e_theta
+    _c3 = (1/2)*R**3*_c0
+    _c4 = _c1*e_psi
+    _c5 = _c3*e_psi*e_theta
+    _c6 = R**4
+    _c7 = R**3
+    _c8 = numpy.pi*V*rho
+    _c9 = _c7*_c8
+    _c10 = _c9*e_theta
+    _c11 = (1/2)*_c10
+    _c12 = R**2
+    _c13 = _c6*_c8
+    _c14 = _c9*e_psi
+    _c15 = (1/2)*_c8*_c12
+    _c16 = _c15*e_psi*e_theta
+    _c17 = V**2
+    _c18 = numpy.pi*_c17*rho
+    _c19 = (1/2)*R**2*_c18
+    _c20 = _c19*e_theta
+    _c21 = _c7*_c18
+    _c22 = _c19*e_psi
+    _o0 = numpy.zeros(shape + (2, 2))
+    _o0[..., 0, 0] = CZ_q*_c3*e_theta**2 - Cm_q*_c2
+    _o0[..., 0, 1] = CZ_r*_c5 - Cm_r*_c4
+    _o0[..., 1, 0] = -CY_q*_c5 - Cn_q*_c2
+    _o0[..., 1, 1] = -CY_r*_c3*e_psi**2 - Cn_r*_c4
+    _o1 = numpy.zeros(shape + (2, 2))
+    _o1[..., 0, 0] = -CZ_q*_c11 + (1/2)*numpy.pi*CZ_theta*V*_c12*e_theta**2*rho + numpy.pi*Cm_q*V*_c6*rho - Cm_theta*_c10
+    _o1[..., 0, 1] = CZ_psi*_c16 - CZ_r*_c11 - Cm_psi*_c14 + Cm_r*_c13
+    _o1[..., 1, 0] = (1/2)*CY_q*_c14 - CY_theta*_c16 + Cn_q*_c13 - Cn_theta*_c10
+    _o1[..., 1, 1] = -CY_psi*_c15*e_psi**2 + (1/2)*numpy.pi*CY_r*V*_c7*e_psi*rho - Cn_psi*_c14 + numpy.pi*Cn_r*V*_c6*rho
+    _o2 = numpy.zeros(shape + (2, 2))
+    _o2[..., 0, 0] = -CZ_theta*_c20 + numpy.pi*Cm_theta*_c7*_c17*rho
+    _o2[..., 0, 1] = -CZ_psi*_c20 + numpy.pi*Cm_psi*_c7*_c17*rho
+    _o2[..., 1, 0] = CY_theta*_c22 + Cn_theta*_c21
+    _o2[..., 1, 1] = CY_psi*_c22 + Cn_psi*_c21
+    return {
+        "Ma": _o0,
+        "Ca": _o1,
+        "Ka": _o2,
+    }

@@ -7,6 +7,11 @@ Generated from `derivations/strip_aero.py`; plain NumPy, vectorised over leading
 may be an array and all arguments broadcast together; each function returns an array of
 shape ``broadcast_shape + (rows, cols)``.
 
+The block functions (`ln_blocks`, `wagner_blocks`) return several of these matrices
+at once (a dict), broadcasting their arguments once.  Their code is each matrix's own common
+subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
+functions.
+
 Strip aerodynamics of a wing section: Theodorsen loads in the time domain (thesis §7.2, §7.5).
 
 Section loads per unit span of a thin aerofoil, semichord b, elastic axis at a semichords aft of
@@ -83,6 +88,12 @@ OUTPUTS = {
     "ln_W1": (('V', 'b'), ('w1', 'w2'), ('w1', 'w2'), "7.54, 7.78"),
     "ln_W2": (('V', 'b', 'a', 'Cla', 'ac'), ('w1', 'w2'), ('h', 'alpha'), "7.55, 7.79"),
     "ln_W3": (('V',), ('w1', 'w2'), ('h', 'alpha'), "7.56, 7.80"),
+}
+
+#: block function name -> (argument names, names of the returned matrices)
+BLOCKS = {
+    "ln_blocks": (('rho', 'V', 'b', 'a', 'Cla', 'ac'), ('ln_M', 'ln_C', 'ln_K', 'ln_W0', 'ln_W1', 'ln_W2', 'ln_W3')),
+    "wagner_blocks": (('rho', 'V', 'b', 'a', 'Cla', 'ac'), ('wagner_M', 'wagner_C', 'wagner_K', 'wagner_W0', 'wagner_W1', 'wagner_W2')),
 }
 
 
@@ -671,3 +682,224 @@ def ln_W3(V):
     out = numpy.zeros(shape + (2, 2))
     out[..., 1, 1] = 1
     return out
+
+
+def ln_blocks(rho, V, b, a, Cla, ac):
+    """ln_M, ln_C, ln_K, ln_W0, ln_W1, ln_W2, ln_W3 at once.
+
+    The arguments are broadcast together once.  Their code is each matrix's own common
+    subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
+    functions.
+
+    Parameters
+    ----------
+    rho : array_like
+        air density [kg/m^3]
+    V : array_like
+        airspeed [m/s]
+    b : array_like
+        semichord [m]
+    a : array_like
+        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+    Cla : array_like
+        section lift-curve slope (2π for Theodorsen's flat plate) [1/rad]
+    ac : array_like
+        aerodynamic centre aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        "ln_M", shape (..., 2, 2): as `ln_M`
+        "ln_C", shape (..., 2, 2): as `ln_C`
+        "ln_K", shape (..., 2, 2): as `ln_K`
+        "ln_W0", shape (..., 2, 2): as `ln_W0`
+        "ln_W1", shape (..., 2, 2): as `ln_W1`
+        "ln_W2", shape (..., 2, 2): as `ln_W2`
+        "ln_W3", shape (..., 2, 2): as `ln_W3`
+        (``...`` is the broadcast shape of all the arguments).
+    """
+    shape, (rho, V, b, a, Cla, ac,) = _broadcast(rho, V, b, a, Cla, ac)
+    _c0 = numpy.pi*rho
+    _c1 = _c0*a*b**3
+    _c2 = _c0*b**4
+    _c3 = V*rho
+    _c4 = (1/2)*Cla*_c3
+    _c5 = b**2
+    _c6 = numpy.pi*_c3
+    _c7 = _c4*_c5
+    _c8 = _c7*ac
+    _c9 = numpy.pi**(-1.0)
+    _c10 = Cla**2
+    _c11 = (1/4)*_c3*_c9*_c10
+    _c12 = b**3
+    _c13 = _c4*_c12
+    _c14 = (1/2)*Cla*V**2*rho
+    _c15 = _c14*b**2
+    _c16 = Cla*rho
+    _c17 = (273/40000)*V**4*_c16
+    _c18 = (43203/400000)*V**3*_c16
+    _c19 = _c18*b
+    _c20 = V**(-1.0)
+    _c21 = _c20*b
+    _o0 = numpy.zeros(shape + (2, 2))
+    _o0[..., 0, 0] = -_c0*b**2
+    _o0[..., 0, 1] = _c1
+    _o0[..., 1, 0] = _c1
+    _o0[..., 1, 1] = -_c2*a**2 - 1/8*_c2
+    _o1 = numpy.zeros(shape + (2, 2))
+    _o1[..., 0, 0] = -_c4*b
+    _o1[..., 0, 1] = (1/2)*Cla*V*_c5*a*rho - _c5*_c6 - _c5*_c11 - _c8
+    _o1[..., 1, 0] = _c7*a - _c8
+    _o1[..., 1, 1] = Cla*V*_c12*a*ac*rho + (1/4)*V*_c9*_c10*_c12*a*rho + numpy.pi*V*_c12*a*rho - _c13*a**2 - _c13*ac**2 - _c13 - _c6*_c12*ac - _c11*_c12*ac
+    _o2 = numpy.zeros(shape + (2, 2))
+    _o2[..., 0, 1] = -_c14*b
+    _o2[..., 1, 1] = _c15*a - _c15*ac
+    _o3 = numpy.zeros(shape + (2, 2))
+    _o3[..., 0, 0] = -_c17/b
+    _o3[..., 0, 1] = -_c18
+    _o3[..., 1, 0] = _c17*a - _c17*ac
+    _o3[..., 1, 1] = _c19*a - _c19*ac
+    _o4 = numpy.zeros(shape + (2, 2))
+    _o4[..., 0, 1] = 1
+    _o4[..., 1, 0] = -273/20000*V**2/b**2
+    _o4[..., 1, 1] = -691/2000*V/b
+    _o5 = numpy.zeros(shape + (2, 2))
+    _o5[..., 1, 0] = _c20
+    _o5[..., 1, 1] = (1/2)*Cla*_c21/numpy.pi - _c21*a + _c21*ac
+    _o6 = numpy.zeros(shape + (2, 2))
+    _o6[..., 1, 1] = 1
+    return {
+        "ln_M": _o0,
+        "ln_C": _o1,
+        "ln_K": _o2,
+        "ln_W0": _o3,
+        "ln_W1": _o4,
+        "ln_W2": _o5,
+        "ln_W3": _o6,
+    }
+
+
+def wagner_blocks(rho, V, b, a, Cla, ac):
+    """wagner_M, wagner_C, wagner_K, wagner_W0, wagner_W1, wagner_W2 at once.
+
+    The arguments are broadcast together once.  Their code is each matrix's own common
+    subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
+    functions.
+
+    Parameters
+    ----------
+    rho : array_like
+        air density [kg/m^3]
+    V : array_like
+        airspeed [m/s]
+    b : array_like
+        semichord [m]
+    a : array_like
+        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+    Cla : array_like
+        section lift-curve slope (2π for Theodorsen's flat plate) [1/rad]
+    ac : array_like
+        aerodynamic centre aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        "wagner_M", shape (..., 2, 2): as `wagner_M`
+        "wagner_C", shape (..., 2, 2): as `wagner_C`
+        "wagner_K", shape (..., 2, 2): as `wagner_K`
+        "wagner_W0", shape (..., 2, 4): as `wagner_W0`
+        "wagner_W1", shape (..., 4, 2): as `wagner_W1`
+        "wagner_W2", shape (..., 4, 4): as `wagner_W2`
+        (``...`` is the broadcast shape of all the arguments).
+    """
+    shape, (rho, V, b, a, Cla, ac,) = _broadcast(rho, V, b, a, Cla, ac)
+    _c0 = numpy.pi*rho
+    _c1 = _c0*a*b**3
+    _c2 = _c0*b**4
+    _c3 = V*rho
+    _c4 = (1/2)*Cla*_c3
+    _c5 = b**2
+    _c6 = numpy.pi*_c3
+    _c7 = _c4*_c5
+    _c8 = _c7*ac
+    _c9 = numpy.pi**(-1.0)
+    _c10 = Cla**2
+    _c11 = (1/4)*_c3*_c9*_c10
+    _c12 = b**3
+    _c13 = _c4*_c12
+    _c14 = V**2
+    _c15 = _c14*rho
+    _c16 = Cla*_c15
+    _c17 = (43203/400000)*_c16
+    _c18 = (1/2)*_c16
+    _c19 = _c17*b
+    _c20 = _c19*ac
+    _c21 = (43203/800000)*_c15*_c9*_c10
+    _c22 = _c5*_c17
+    _c23 = V**3
+    _c24 = _c23*rho
+    _c25 = Cla*_c24
+    _c26 = _c25/b
+    _c27 = (3003/400000)*_c25
+    _c28 = (273273/800000000)*_c25
+    _c29 = _c28*a
+    _c30 = Cla**2*_c24/numpy.pi
+    _c31 = (273273/1600000000)*_c30
+    _c32 = (201/2000)*_c25
+    _c33 = (603/20000)*_c25
+    _c34 = _c33*a
+    _c35 = (603/40000)*_c30
+    _c36 = _c27*b
+    _c37 = a*b
+    _c38 = _c37*_c25*ac
+    _c39 = a**2
+    _c40 = _c28*b
+    _c41 = ac**2
+    _c42 = ac*b
+    _c43 = _c32*b
+    _c44 = _c33*b
+    _c45 = V/b
+    _c46 = -91/2000*_c45
+    _c47 = -3/10*_c45
+    _o0 = numpy.zeros(shape + (2, 2))
+    _o0[..., 0, 0] = -_c0*b**2
+    _o0[..., 0, 1] = _c1
+    _o0[..., 1, 0] = _c1
+    _o0[..., 1, 1] = -_c2*a**2 - 1/8*_c2
+    _o1 = numpy.zeros(shape + (2, 2))
+    _o1[..., 0, 0] = -_c4*b
+    _o1[..., 0, 1] = (1/2)*Cla*V*_c5*a*rho - _c5*_c6 - _c5*_c11 - _c8
+    _o1[..., 1, 0] = _c7*a - _c8
+    _o1[..., 1, 1] = Cla*V*_c12*a*ac*rho + (1/4)*V*_c9*_c10*_c12*a*rho + numpy.pi*V*_c12*a*rho - _c13*a**2 - _c13*ac**2 - _c13 - _c6*_c12*ac - _c11*_c12*ac
+    _o2 = numpy.zeros(shape + (2, 2))
+    _o2[..., 0, 0] = -_c17
+    _o2[..., 0, 1] = (43203/400000)*Cla*_c14*a*b*rho - _c18*b - _c20 - _c21*b
+    _o2[..., 1, 0] = _c19*a - _c20
+    _o2[..., 1, 1] = (43203/200000)*Cla*_c14*_c5*a*ac*rho + (1/2)*Cla*_c14*_c5*a*rho + (43203/800000)*_c14*_c5*_c9*_c10*a*rho - _c5*_c18*ac - _c5*_c21*ac - _c22*a**2 - _c22*ac**2
+    _o3 = numpy.zeros(shape + (2, 4))
+    _o3[..., 0, 0] = (273273/800000000)*_c26
+    _o3[..., 0, 1] = (603/20000)*_c26
+    _o3[..., 0, 2] = -_c27 + _c28*ac - _c29 + _c31
+    _o3[..., 0, 3] = _c33*ac - _c34 + _c35 - _c32
+    _o3[..., 1, 0] = (273273/800000000)*Cla*_c23*ac*rho - _c29
+    _o3[..., 1, 1] = (603/20000)*Cla*_c23*ac*rho - _c34
+    _o3[..., 1, 2] = _c36*a - _c36*ac - _c37*_c31 - 273273/400000000*_c38 + _c39*_c40 + _c40*_c41 + _c42*_c31
+    _o3[..., 1, 3] = -_c35*_c37 + _c35*_c42 - 603/10000*_c38 + _c39*_c44 + _c41*_c44 + _c43*a - _c43*ac
+    _o4 = numpy.zeros(shape + (4, 2))
+    _o4[..., 0, 0] = 1
+    _o4[..., 1, 0] = 1
+    _o4[..., 2, 1] = 1
+    _o4[..., 3, 1] = 1
+    _o5 = numpy.zeros(shape + (4, 4))
+    _o5[..., 0, 0] = _c46
+    _o5[..., 1, 1] = _c47
+    _o5[..., 2, 2] = _c46
+    _o5[..., 3, 3] = _c47
+    return {
+        "wagner_M": _o0,
+        "wagner_C": _o1,
+        "wagner_K": _o2,
+        "wagner_W0": _o3,
+        "wagner_W1": _o4,
+        "wagner_W2": _o5,
+    }

@@ -7,6 +7,11 @@ Generated from `derivations/typical_section.py`; plain NumPy, vectorised over le
 may be an array and all arguments broadcast together; each function returns an array of
 shape ``broadcast_shape + (rows, cols)``.
 
+The block functions (`blocks`) return several of these matrices
+at once (a dict), broadcasting their arguments once.  Their code is each matrix's own common
+subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
+functions.
+
 Typical section: a rigid aerofoil on plunge and pitch springs (the classic 2-DOF flutter model).
 
 Coordinates q = [h, α]: plunge of the elastic axis (positive DOWN) and pitch about it (nose UP),
@@ -39,6 +44,11 @@ PARAMETERS = {
 OUTPUTS = {
     "mass": (('m', 'S', 'I_alpha'), ('h', 'alpha'), ('h', 'alpha'), "5.1, 7.3"),
     "stiffness": (('K_h', 'K_alpha'), ('h', 'alpha'), ('h', 'alpha'), "5.1"),
+}
+
+#: block function name -> (argument names, names of the returned matrices)
+BLOCKS = {
+    "blocks": (('m', 'S', 'I_alpha', 'K_h', 'K_alpha'), ('mass', 'stiffness')),
 }
 
 
@@ -100,3 +110,45 @@ def stiffness(K_h, K_alpha):
     out[..., 0, 0] = K_h
     out[..., 1, 1] = K_alpha
     return out
+
+
+def blocks(m, S, I_alpha, K_h, K_alpha):
+    """mass, stiffness at once.
+
+    The arguments are broadcast together once.  Their code is each matrix's own common
+    subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
+    functions.
+
+    Parameters
+    ----------
+    m : array_like
+        mass per unit span [kg/m]
+    S : array_like
+        static unbalance per unit span, m x_α b (centre of gravity aft positive) [kg]
+    I_alpha : array_like
+        pitch inertia per unit span about the elastic axis [kg m]
+    K_h : array_like
+        plunge spring per unit span [N/m^2]
+    K_alpha : array_like
+        pitch spring per unit span [N]
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        "mass", shape (..., 2, 2): as `mass`
+        "stiffness", shape (..., 2, 2): as `stiffness`
+        (``...`` is the broadcast shape of all the arguments).
+    """
+    shape, (m, S, I_alpha, K_h, K_alpha,) = _broadcast(m, S, I_alpha, K_h, K_alpha)
+    _o0 = numpy.zeros(shape + (2, 2))
+    _o0[..., 0, 0] = m
+    _o0[..., 0, 1] = S
+    _o0[..., 1, 0] = S
+    _o0[..., 1, 1] = I_alpha
+    _o1 = numpy.zeros(shape + (2, 2))
+    _o1[..., 0, 0] = K_h
+    _o1[..., 1, 1] = K_alpha
+    return {
+        "mass": _o0,
+        "stiffness": _o1,
+    }

@@ -41,8 +41,8 @@ def wing_structure(wing: Wing) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     damping by the Rayleigh model C = μM + λK (7.22).  Shapes (3 n_nodes, 3 n_nodes).
     """
     p = wing.element_properties()
-    Me = beam_element.mass(p["length"], p["m"], p["rho_Ip"], p["x_alpha_b"])
-    Ke = beam_element.stiffness(p["length"], p["EI"], p["GJ"])
+    blocks = call_blocks(beam_element, "blocks", (wing.n_elements,), **p)
+    Me, Ke = blocks["mass"], blocks["stiffness"]
     size = 3 * wing.n_nodes
     dofs = element_dofs(wing.n_elements)
     M = scatter(Me, dofs, size)
@@ -79,6 +79,15 @@ def call(module, name: str, shape: tuple[int, ...], **values) -> np.ndarray:
     return np.broadcast_to(out, shape + out.shape[-2:])
 
 
+def call_blocks(module, name: str, shape: tuple[int, ...], **values) -> dict[str, np.ndarray]:
+    """Call generated block function `name` — several matrices from one shared common-
+    subexpression elimination — with the arguments it takes (picked from `values` by name,
+    per the module's BLOCKS table); each matrix broadcast to `shape` + its matrix shape."""
+    argnames = module.BLOCKS[name][0]
+    out = getattr(module, name)(**{a: values[a] for a in argnames})
+    return {k: np.broadcast_to(x, shape + x.shape[-2:]) for k, x in out.items()}
+
+
 def wing_aero(wing: Wing, rho: float, V: np.ndarray) -> dict[str, np.ndarray | tuple[str, ...]]:
     """Global strip-aerodynamic matrices of the wing over all nodes (root included).
 
@@ -100,11 +109,12 @@ def wing_aero(wing: Wing, rho: float, V: np.ndarray) -> dict[str, np.ndarray | t
     width = node["width"][None, :, None, None]
     qrows = 3 * np.arange(nn)[:, None] + np.array([0, 2])[None, :]  # h_i, α_i
     wrows = k * np.arange(nn)[:, None] + np.arange(k)[None, :]
-    names = {  # role -> generated function
-        "leishman-nguyen": dict(M="ln_M", C="ln_C", K="ln_K", W0="ln_W0", Ww="ln_W1", Wv="ln_W2", Wq="ln_W3"),
-        "wagner": dict(M="wagner_M", C="wagner_C", K="wagner_K", W0="wagner_W0", Ww="wagner_W2", Wq="wagner_W1"),
+    group, names = {  # generated block function, role -> generated matrix
+        "leishman-nguyen": ("ln_blocks", dict(M="ln_M", C="ln_C", K="ln_K", W0="ln_W0", Ww="ln_W1", Wv="ln_W2", Wq="ln_W3")),
+        "wagner": ("wagner_blocks", dict(M="wagner_M", C="wagner_C", K="wagner_K", W0="wagner_W0", Ww="wagner_W2", Wq="wagner_W1")),
     }[wing.aero_model]
-    mats = {role: call(strip_aero, fn, shape, **values) for role, fn in names.items()}
+    blocks = call_blocks(strip_aero, group, shape, **values)
+    mats = {role: blocks[fn] for role, fn in names.items()}
     M, C, K, W0, Ww, Wq = (mats[r] for r in ("M", "C", "K", "W0", "Ww", "Wq"))
     Wv = mats.get("Wv", np.zeros_like(Wq))
     m = k * nn

@@ -30,7 +30,7 @@ from propwhirl.model.fields import spec
 from propwhirl.model.assembly import (
     LAG_STATES,
     WING_DOF_NAMES,
-    call,
+    call_blocks,
     free_dofs,
     wing_aero,
     wing_dof_labels,
@@ -232,10 +232,10 @@ class PropellerWing(StateSpaceModel):
             e_alpha=e_alpha,
         )
         shape = (nV,)
-        get = lambda name: call(prop_flexwing, name, shape, **values)  # noqa: E731
+        get = call_blocks(prop_flexwing, "structure_blocks", shape, **values).__getitem__
         if self.propeller_aero and inst.aero:
             values.update(p.aerodynamic_derivatives(V, self.flight.speed_of_sound))
-            aero = {n: get(n) for n in ("Aa", "Ba", "Ca", "Da", "Ea", "Fa", "P1", "P2", "P3", "P4", "P5", "P6")}
+            aero = call_blocks(prop_flexwing, "aero_blocks", shape, **values)
         else:
             z = np.zeros((nV, 2, 2))
             aero = {n: z for n in ("Aa", "Ba", "Ca", "Da", "Ea", "Fa", "P1", "P2", "P3", "P4", "P5", "P6")}
@@ -370,11 +370,12 @@ class IsolatedPropeller(StateSpaceModel):
             K_theta=Kt, K_psi=Kp, zeta_theta=zt, zeta_psi=zp, rho=self.flight.density, V=V,
             R=p.radius, e_theta=-p.e_theta, e_psi=-p.e_psi,  # chapter 6: distances, positive
         )
-        get = lambda name: call(prop_rigid, name, (nV,), **values)  # noqa: E731
-        S1, S2, S3 = get("Ms"), get("Cs_viscous"), get("Ks")
+        get = lambda group: call_blocks(prop_rigid, group, (nV,), **values)  # noqa: E731
+        S1, S2, S3 = (get("structure_blocks")[n] for n in ("Ms", "Cs_viscous", "Ks"))
         if self.propeller_aero:
             values.update(p.aerodynamic_derivatives(V, self.flight.speed_of_sound))
-            S1, S2, S3 = S1 - get("Ma"), S2 - get("Ca"), S3 - get("Ka")
+            Ma, Ca, Ka = (get("aero_blocks")[n] for n in ("Ma", "Ca", "Ka"))
+            S1, S2, S3 = S1 - Ma, S2 - Ca, S3 - Ka
         z = np.zeros((nV, 0, 2))
         return SecondOrder(S1, S2, S3, np.zeros((nV, 2, 0)), np.zeros((nV, 0, 0)), z, z,
                            ("propeller 0 theta", "propeller 0 psi"), ())
@@ -444,8 +445,10 @@ class TypicalSection(StateSpaceModel):
         nV = V.shape[0]
         S = self.m * self.x_alpha * self.b
         I = self.m * (self.r_alpha * self.b) ** 2
-        Ms = typical_section.mass(self.m, S, I)
-        Ks = typical_section.stiffness(self.m * self.omega_h**2, I * self.omega_alpha**2)
+        structure = typical_section.blocks(
+            m=self.m, S=S, I_alpha=I, K_h=self.m * self.omega_h**2, K_alpha=I * self.omega_alpha**2
+        )
+        Ms, Ks = structure["mass"], structure["stiffness"]
         if not self.aero:
             Ms, Ks = np.broadcast_to(Ms, (nV, 2, 2)), np.broadcast_to(Ks, (nV, 2, 2))
             return SecondOrder(Ms, np.zeros((nV, 2, 2)), Ks, np.zeros((nV, 2, 0)),
@@ -456,7 +459,8 @@ class TypicalSection(StateSpaceModel):
             "leishman-nguyen": ("ln_M", "ln_C", "ln_K", "ln_W0", "ln_W1", "ln_W2", "ln_W3"),
             "wagner": ("wagner_M", "wagner_C", "wagner_K", "wagner_W0", "wagner_W2", None, "wagner_W1"),
         }[self.aero_model]
-        get = lambda n: call(strip_aero, n, (nV,), **values)  # noqa: E731
+        group = {"leishman-nguyen": "ln_blocks", "wagner": "wagner_blocks"}[self.aero_model]
+        get = call_blocks(strip_aero, group, (nV,), **values).__getitem__
         Ma, Ca, Ka, W0, Ww = (get(n) for n in names[:5])
         Wq = get(names[6])
         Wv = get(names[5]) if names[5] else np.zeros_like(Wq)
