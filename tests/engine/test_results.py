@@ -24,7 +24,7 @@ def test_save_load_round_trip(section_analysis):
     for p, q in zip(back.criticals.points, an.criticals.points):
         assert (p.V, p.kind, p.eigenvalue, p.benignity) == (q.V, q.kind, q.eigenvalue, q.benignity)
         np.testing.assert_array_equal(p.eigenvector, q.eigenvector)
-    assert back.criticals.critical.V == an.criticals.critical.V
+    assert back.criticals.first_onset.V == an.criticals.first_onset.V
     tab = back.sweep.table()
     assert set(tab) == {"V", "mode", "label", "frequency_hz", "damping_ratio", "real", "imag"}
     assert np.all(np.diff(tab["V"]) >= 0) and tab["V"].size == an.sweep.physical.sum()

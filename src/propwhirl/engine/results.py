@@ -201,17 +201,14 @@ class Criticals:
     stats: Mapping[str, int] = field(default_factory=dict)
 
     @property
-    def critical(self) -> CriticalPoint | None:
-        """The lowest-speed onset (the critical instability), or None."""
+    def first_onset(self) -> CriticalPoint | None:
+        """The lowest-speed onset crossing, or None.
+
+        A fact of the sweep, not the decision "critical": that is
+        :func:`propwhirl.analysis.critical`, which also counts the modes unstable at the first
+        speed (:attr:`unstable_at_start`) and frequency-zero events."""
         on = [p for p in self.points if p.direction == "onset"]
         return min(on, key=lambda p: p.V) if on else None
-
-    def summary(self) -> str:
-        c = self.critical
-        if c is None:
-            return "no instability onset in the speed range"
-        f = f", {c.frequency_hz:.3f} Hz" if c.kind == "flutter" else ""
-        return f"critical: {c.kind} of {c.label} at {c.V:.2f} m/s{f}"
 
     def to_dict(self) -> dict[str, Any]:
         return {"points": [p.to_dict() for p in self.points],

@@ -334,8 +334,9 @@ def analyse(state_matrix: StateMatrixFn, speeds, *, n_dof: int | None = None,
     ...     return A
     >>> from propwhirl.engine import analyse
     >>> an = analyse(state_matrix, np.arange(1.0, 201.0, 10.0), n_dof=1)
-    >>> an.criticals.summary()
-    'critical: flutter of mode 0 at 50.00 m/s, 1.592 Hz'
+    >>> p = an.criticals.first_onset
+    >>> p.kind, round(p.V, 2), round(p.frequency_hz, 3)
+    ('flutter', 50.0, 1.592)
     >>> an.sweep.V.size < 20                      # a subset of the 20 grid speeds
     True
     """
