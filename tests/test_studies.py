@@ -44,14 +44,20 @@ def test_table_shape_columns_and_export(tmp_path):
 
 
 def test_two_models_rows_and_for_model():
-    t = S.motor_mass([35.0], models=("isolated", "rigid"))
+    t = S.motor_mass([35.0], models=("isolated", "rigid"), static_divergence=False, low_speed=False)
     assert len(t) == 2 and t.models == ("isolated", "rigid")
+    assert "thesis convention" in t.convention and t.convention in t.format()
     r = t.for_model("rigid")
     assert list(r.columns["model"]) == ["rigid"]
     # rigid, non-rotating mount: no whirl modes — the second wing mode flutters (§11.3, Table 10.2)
     assert r.columns["critical_mode"][0] == "wing 2" and r.columns["kind"][0] == "flutter"
     # its static divergence is reported, not counted as critical (the thesis omits it)
     assert r.columns["static_divergence_speed"][0] < r.columns["critical_speed"][0]
+    # by default (the one definition) the static divergence is the critical instability
+    d = S.motor_mass([35.0], models=("rigid",))
+    assert d.convention.startswith("every instability counts")
+    assert d.columns["kind"][0] == "divergence"
+    assert d.columns["critical_speed"][0] == r.columns["static_divergence_speed"][0]
     with pytest.raises(InputError, match="model"):
         t.for_model("wingtip")
 
@@ -120,12 +126,17 @@ def test_wingtip_soft_yaw_mount_divergence_counts_wing_divergence_does_not():
     divergence near 144 m/s is the wing's static divergence although it happens on the branch
     named "backward 1": its shape decides, it is reported apart, and the forward whirl flutter
     is critical (§11.1: forward whirl drives the wingtip model)."""
-    t = S.nacelle_stiffness("yaw", [1.0, 2.0], models=("wingtip",))
+    t = S.nacelle_stiffness("yaw", [1.0, 2.0], models=("wingtip",), static_divergence=False,
+                            low_speed=False)
     kind, mode, V = (t.columns[k] for k in ("kind", "critical_mode", "critical_speed"))
     assert kind[0] == "divergence" and mode[0] == "backward 1" and 60.0 < V[0] < 120.0
     assert t.columns["content"][0] == "yaw"
     assert kind[1] == "flutter" and mode[1] == "forward 1" and V[1] == pytest.approx(163.0, rel=0.03)
-    assert 130.0 < t.columns["static_divergence_speed"][1] < V[1]
+    Vd = t.columns["static_divergence_speed"][1]
+    assert 130.0 < Vd < V[1]
+    # the one definition counts the wing's static divergence: it is critical at f_ψ = 2 Hz
+    d = S.nacelle_stiffness("yaw", [2.0], models=("wingtip",))
+    assert d.columns["kind"][0] == "divergence" and d.columns["critical_speed"][0] == Vd
 
 
 # ----------------------------------------------------------------------------- critical rule
@@ -142,17 +153,20 @@ def test_critical_rule():
         Instability("flutter", "onset", 1, "forward 1", 160.0, 11.0),
     ]
     a = _analysis(ev)
-    assert S.critical_instability(a).V == 150.0  # whirl divergence counts, wing divergence not
-    assert S.critical_instability(a, static_divergence=True).V == 140.0
-    assert S.critical_instability(a, low_speed=True).V == 1.0
+    thesis = dict(static_divergence=False, low_speed=False)
+    assert S.critical_instability(a) == a.critical      # default: the one definition
+    assert S.critical_instability(a).V == 1.0
+    assert S.critical_instability(a, **thesis).V == 150.0  # whirl divergence counts, wing's not
+    assert S.critical_instability(a, static_divergence=True, low_speed=False).V == 140.0
+    assert S.critical_instability(a, static_divergence=False, low_speed=True).V == 1.0
     assert S.static_divergence_speed(a) == 140.0
     # an instability present from the first speed that never recovers counts
     b = _analysis([Instability("flutter", "unstable-at-start", 0, "backward", 1.0, 7.0), ev[4]])
-    assert S.critical_instability(b).V == 1.0
+    assert S.critical_instability(b, **thesis).V == 1.0
     assert S.critical_instability(_analysis([])) is None
     # a shape-based predicate overrides the names: here the "backward'" divergence is the wing's
     by_shape = lambda e: e.mode == 4  # noqa: E731
-    assert S.critical_instability(a, is_wing_divergence=by_shape).V == 140.0
+    assert S.critical_instability(a, is_wing_divergence=by_shape, **thesis).V == 140.0
     assert S.static_divergence_speed(a, by_shape) == 150.0
     assert math.isnan(S.static_divergence_speed(_analysis([])))
 

@@ -17,25 +17,26 @@ point, plus the wing's static divergence speed.
 
 Definition of "critical" (:func:`critical_instability`)
 --------------------------------------------------------
-The critical instability is the lowest-speed event that makes the system unstable: a flutter
-onset (a complex pair crosses into the right half-plane), a divergence onset (a real root
-through zero) or a frequency-zero event (an unstable pair splitting into real roots).  Two
-classes of events are left out by default, as in the thesis's figures:
+By default the critical instability is the one of :func:`propwhirl.analysis.critical` — the
+lowest-speed event that makes the system unstable, of any kind: a flutter onset, a divergence
+onset (the wing's static divergence included), a frequency-zero event, or an instability present
+at the first speed (counted there).  The thesis's figures leave two classes of events out; pass
+``static_divergence=False, low_speed=False`` (the *thesis convention*, recorded in the table's
+``convention``) to do the same:
 
-* static divergence of the wing.  The thesis does not report it for the wingtip models
-  although its own equations have it (docs/validation.md, chapter 10); pass
-  ``static_divergence=True`` to count it.  It is always reported in the column
-  ``static_divergence_speed``.  A divergence is the wing's when less than half of the strain
-  energy of its (static) mode shape is in the propeller mount springs
-  (:func:`wing_divergence_predicate`); otherwise it is a divergence of the propeller mount (e.g.
-  a very soft yaw mount, Figure 11.1) and always counts.  The shape decides, not the mode's
-  name: with soft mounts the in-vacuo names can sit on other modes (at f_ψ = 2 Hz the wing's
-  divergence happens on the branch named "backward 1", at f_θ = 1 Hz a mount divergence on
-  "wing 1");
-* instabilities present at the first speed of the grid that recover further on: the
-  windmilling propeller has (almost) no aerodynamic or structural damping as V → 0, and the
-  thesis tells the reader to ignore such low-speed instabilities (§9.2).  An instability present
-  at the first speed that never recovers counts, at that speed.  ``low_speed=True`` counts all.
+* static divergence of the wing (``static_divergence=False``).  The thesis does not report it
+  for the wingtip models although its own equations have it (docs/validation.md, chapter 10).
+  It is always reported in the column ``static_divergence_speed``.  A divergence is the wing's
+  when less than half of the strain energy of its (static) mode shape is in the propeller mount
+  springs (:func:`wing_divergence_predicate`); otherwise it is a divergence of the propeller
+  mount (e.g. a very soft yaw mount, Figure 11.1) and always counts.  The shape decides, not the
+  mode's name: with soft mounts the in-vacuo names can sit on other modes (at f_ψ = 2 Hz the
+  wing's divergence happens on the branch named "backward 1", at f_θ = 1 Hz a mount divergence
+  on "wing 1");
+* instabilities present at the first speed of the grid that recover further on
+  (``low_speed=False``): the windmilling propeller has (almost) no aerodynamic or structural
+  damping as V → 0, and the thesis tells the reader to ignore such low-speed instabilities
+  (§9.2).  An instability present at the first speed that never recovers counts, at that speed.
 
 Speed ranges: the propeller–wing models use the thesis's 0–350 m/s (their FlightCondition's
 speed_range, refined by the engine); the isolated propeller, whose critical speeds the thesis
@@ -98,12 +99,15 @@ class StudyTable:
                kind, event, whirl (sense of the propeller orbit at the critical point),
                static_divergence_speed [m/s]
     units:     unit of each column ("" for text and dimensionless columns)
+    convention: which events count as critical (module docstring)
     """
 
     name: str
     parameter: str
     columns: Mapping[str, np.ndarray]
     units: Mapping[str, str] = field(default_factory=dict)
+    #: which events the critical instability counts (:func:`convention`)
+    convention: str = "every instability counts (propwhirl.analysis.critical)"
 
     def __len__(self) -> int:
         return len(self.columns["model"])
@@ -134,7 +138,8 @@ class StudyTable:
                 return int(x)
             return x if x is None or isinstance(x, (int, str)) else str(x)
 
-        return {"name": self.name, "parameter": self.parameter, "units": dict(self.units),
+        return {"name": self.name, "parameter": self.parameter, "convention": self.convention,
+                "units": dict(self.units),
                 "columns": {k: [clean(x) for x in np.asarray(c).tolist()] for k, c in self.columns.items()}}
 
     def to_csv(self, path: str | Path | None = None) -> str:
@@ -161,7 +166,7 @@ class StudyTable:
                 "content", "kind", "static_divergence_speed"]
         head = (f"{'model':9s} {self.parameter:>16s} {'V_crit [m/s]':>12s} {'f [Hz]':>8s} "
                 f"{'mode (content)':22s} {'kind':10s} {'V_div [m/s]':>11s}")
-        lines = [self.name, head, "-" * len(head)]
+        lines = [self.name, f"critical instability: {self.convention}", head, "-" * len(head)]
         for i in range(len(self)):
             m, x, V, f, lab, c, kind, Vd = (np.asarray(self.columns[k])[i] for k in keys)
             name = f"{lab} ({c})" if c else lab
@@ -174,17 +179,18 @@ def _label_is_wing(e: Instability) -> bool:
     return not e.label.startswith(_WHIRL_PREFIXES)
 
 
-def critical_instability(a: ModelAnalysis, *, static_divergence: bool = False, low_speed: bool = False,
+def critical_instability(a: ModelAnalysis, *, static_divergence: bool = True, low_speed: bool = True,
                          is_wing_divergence: Callable[[Instability], bool] | None = None) -> Instability | None:
     """The critical instability of an analysis (:func:`propwhirl.analysis.stability.critical`,
     the one definition) with the thesis's exclusions of the module docstring as options.
 
-    static_divergence: count the wing's static divergence (default: no, as the thesis).
-    low_speed: count instabilities present at the first speed even when they recover later.
+    static_divergence: count the wing's static divergence (default: yes; the thesis: no).
+    low_speed: count instabilities present at the first speed even when they recover later
+        (default: yes; the thesis: no).
     is_wing_divergence: says whether a divergence event is the wing's; build it with
         :func:`wing_divergence_predicate` (mode shapes).  Without it the mode's name decides
         (not "backward…"/"forward…" → wing), a fallback for analyses re-read from a file.
-    With both options True this is exactly ``a.critical``.
+    With both options True (the default) this is exactly ``a.critical``.
     """
     is_wing = _label_is_wing if is_wing_divergence is None else is_wing_divergence
     recovered = {e.mode for e in a.events if e.event == "recovery"}
@@ -340,7 +346,7 @@ def map_analyses(func: Callable[[Any], Any], tasks: Sequence[Any], processes: in
 def propeller_study(name: str, parameter: str, unit: str, parameters: Mapping[str, np.ndarray],
                     propellers: Sequence[Propeller], *, models: Sequence[str] = ("wingtip", "isolated"),
                     parameter_units: Mapping[str, str] | None = None,
-                    static_divergence: bool = False, low_speed: bool = False,
+                    static_divergence: bool = True, low_speed: bool = True,
                     speeds=None, xtol: float = 0.01, processes: int = 1) -> StudyTable:
     """The generic study: analyse each model with each propeller; one row per (model, propeller).
 
@@ -372,7 +378,18 @@ def propeller_study(name: str, parameter: str, unit: str, parameters: Mapping[st
         columns[k] = np.array(vals, dtype=float if isinstance(vals[0], float) else object)
     units = {"model": "", **{k: (parameter_units or {}).get(k, unit if k == parameter else "")
                              for k in parameters}, **RESULT_UNITS}
-    return StudyTable(name, parameter, columns, units)
+    return StudyTable(name, parameter, columns, units, convention(static_divergence, low_speed))
+
+
+def convention(static_divergence: bool, low_speed: bool) -> str:
+    """In words, which events a study's critical instability counts (module docstring)."""
+    if static_divergence and low_speed:
+        return "every instability counts (propwhirl.analysis.critical)"
+    left = [what for flag, what in ((static_divergence, "the wing's static divergence"),
+                                    (low_speed, "low-speed instabilities that recover"))
+            if not flag]
+    thesis = " (the thesis convention)" if len(left) == 2 else ""
+    return "left out: " + " and ".join(left) + thesis
 
 
 def _base(propeller: Propeller | None) -> Propeller:
