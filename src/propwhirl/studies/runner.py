@@ -1,0 +1,157 @@
+"""Running a parametric study: the study models, the process pool, one row per analysis."""
+from __future__ import annotations
+
+import os
+from concurrent.futures import ProcessPoolExecutor
+from typing import Any, Callable, Mapping, Sequence
+
+import numpy as np
+
+from propwhirl import validate as v
+from propwhirl.analysis.stability import ModelAnalysis, analyse
+from propwhirl.cases.ch09_baseline import baseline_flight
+from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
+from propwhirl.model.propeller import Propeller
+from propwhirl.model.systems import IsolatedPropeller
+from propwhirl.studies.critical import (convention, critical_instability, static_divergence_speed,
+                                        wing_divergence_predicate)
+from propwhirl.studies.table import RESULT_UNITS, StudyTable
+
+#: Model names a study can analyse (see :mod:`propwhirl.studies.parametric`).
+MODELS: tuple[str, ...] = ("wingtip", "isolated", "rigid")
+
+#: Initial speed grid of the isolated propeller [m/s] (its critical speeds exceed 350 m/s).
+ISOLATED_SPEEDS = np.arange(1.0, 1001.0, 10.0)
+
+
+# ----------------------------------------------------------------------------- models
+def build_model(name: str, propeller: Propeller):
+    """The study model `name` ("wingtip", "isolated" or "rigid") with `propeller`."""
+    if name == "wingtip":
+        return wingtip_propeller_wing("flexible", propeller=propeller)
+    if name == "isolated":
+        return IsolatedPropeller(propeller, baseline_flight())
+    if name == "rigid":
+        return wingtip_propeller_wing("rigid", propeller=propeller, rotating=False, propeller_aero=False)
+    raise v.InputError(f"model = {name!r} is invalid: must be one of {MODELS}")
+
+
+def _check_models(models: Sequence[str]) -> tuple[str, ...]:
+    if isinstance(models, str):
+        models = (models,)
+    models = tuple(models)
+    if not models:
+        raise v.InputError(f"models = () is invalid: give at least one of {MODELS}")
+    for m in models:
+        if m not in MODELS:
+            raise v.InputError(f"model = {m!r} is invalid: must be one of {MODELS}")
+    if len(set(models)) != len(models):
+        raise v.InputError(f"models = {models!r} is invalid: a model appears twice")
+    return models
+
+
+def _speeds_for(model: str, speeds) -> np.ndarray | None:
+    if isinstance(speeds, Mapping):
+        s = speeds.get(model)
+    else:
+        s = speeds
+    if s is None:
+        return ISOLATED_SPEEDS if model == "isolated" else None
+    return v.increasing(f"speeds ({model})", s, "m/s")
+
+
+def _grid(name: str, values, unit: str = "", check: Callable[..., np.ndarray] = v.finite) -> np.ndarray:
+    """A non-empty 1-D grid of parameter values, each checked with `check`."""
+    arr = np.atleast_1d(np.asarray(v.finite(name, values, unit), dtype=float))
+    if arr.ndim != 1 or arr.size == 0:
+        raise v.InputError(f"{name} is invalid: must be a non-empty 1-D sequence of values, got shape {arr.shape}")
+    check(name, arr, unit)
+    return arr
+
+
+# ----------------------------------------------------------------------------- runner
+def _init_worker() -> None:
+    """Pin BLAS to one thread in a pool worker (2 cores: processes × 1 thread)."""
+    for var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ[var] = "1"
+    from threadpoolctl import threadpool_limits
+
+    threadpool_limits(limits=1)
+
+
+def _evaluate(task: tuple) -> dict[str, Any]:
+    """Analyse one model and return its result row (small: no sweep is sent back)."""
+    model, speeds, xtol, static_div, low_speed = task
+    a = analyse(model, speeds, xtol=xtol)
+    is_wing = wing_divergence_predicate(model, a)
+    e = critical_instability(a, static_divergence=static_div, low_speed=low_speed, is_wing_divergence=is_wing)
+    return {
+        "critical_speed": float("nan") if e is None else float(e.V),
+        "critical_frequency": float("nan") if e is None else float(e.frequency_hz),
+        "critical_mode": "" if e is None else e.label,
+        "content": "" if e is None else _dominant(a, e.label),
+        "kind": "none" if e is None else e.kind,
+        "event": "" if e is None else e.event,
+        "whirl": "" if e is None or e.whirl is None else e.whirl,
+        "static_divergence_speed": static_divergence_speed(a, is_wing),
+    }
+
+
+def _dominant(a: ModelAnalysis, label: str) -> str:
+    """Dominant degree-of-freedom group of mode `label` at the first speed ("bending", "torsion",
+    "pitch", "yaw"; "" when not recorded, e.g. real roots)."""
+    c = getattr(a, "content", {}).get(label.rstrip("'"))
+    return max(c, key=lambda g: c[g]) if c else ""
+
+
+def map_analyses(func: Callable[[Any], Any], tasks: Sequence[Any], processes: int = 1) -> list[Any]:
+    """``[func(t) for t in tasks]``, in a process pool of `processes` single-BLAS-thread workers
+    (at most one per CPU) when ``processes > 1``; order preserved; `func` and the tasks must be
+    picklable."""
+    v.integer_at_least("processes", processes, 1)
+    tasks = list(tasks)
+    if processes == 1 or len(tasks) <= 1:
+        return [func(t) for t in tasks]
+    workers = min(processes, len(tasks), os.cpu_count() or 1)
+    if workers == 1:
+        return [func(t) for t in tasks]
+    with ProcessPoolExecutor(max_workers=workers, initializer=_init_worker) as pool:
+        return list(pool.map(func, tasks, chunksize=1))
+
+
+def propeller_study(name: str, parameter: str, unit: str, parameters: Mapping[str, np.ndarray],
+                    propellers: Sequence[Propeller], *, models: Sequence[str] = ("wingtip", "isolated"),
+                    parameter_units: Mapping[str, str] | None = None,
+                    static_divergence: bool = True, low_speed: bool = True,
+                    speeds=None, xtol: float = 0.01, processes: int = 1) -> StudyTable:
+    """The generic study: analyse each model with each propeller; one row per (model, propeller).
+
+    parameters: columns describing each propeller (equal length to `propellers`), the x-axis
+        column `parameter` [unit] among them;
+    speeds: initial speed grid [m/s] for all models, or a mapping model → grid (default: the
+        module docstring's ranges); xtol [m/s]: crossing accuracy; processes: pool size.
+    """
+    models = _check_models(models)
+    n = len(propellers)
+    if n == 0:
+        raise v.InputError(f"{parameter}: the parameter grid is empty (give at least one value)")
+    for k, col in parameters.items():
+        if len(col) != n:
+            raise v.InputError(f"parameter column {k!r} has {len(col)} values, expected {n}")
+    if parameter not in parameters:
+        raise v.InputError(f"parameter {parameter!r} is not among the columns {list(parameters)}")
+    v.positive("xtol", xtol, "m/s")
+    v.integer_at_least("processes", processes, 1)
+    grids = {m: _speeds_for(m, speeds) for m in models}
+    tasks = [(build_model(m, p), grids[m], xtol, static_divergence, low_speed)
+             for m in models for p in propellers]
+    rows = map_analyses(_evaluate, tasks, processes)
+    columns: dict[str, np.ndarray] = {"model": np.array([m for m in models for _ in propellers], dtype=object)}
+    for k, col in parameters.items():
+        columns[k] = np.tile(np.asarray(col, dtype=float), len(models))
+    for k in RESULT_UNITS:
+        vals = [r[k] for r in rows]
+        columns[k] = np.array(vals, dtype=float if isinstance(vals[0], float) else object)
+    units = {"model": "", **{k: (parameter_units or {}).get(k, unit if k == parameter else "")
+                             for k in parameters}, **RESULT_UNITS}
+    return StudyTable(name, parameter, columns, units, convention(static_divergence, low_speed))
