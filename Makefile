@@ -1,6 +1,7 @@
 # propwhirl — every target sets itself up on a fresh machine (virtual environment in .venv).
 #   make run       main analysis (wingtip-mounted propeller wing), plots in out/
-#   make test      the whole test suite (long reproduction checks included)
+#   make test      the whole test suite (long checks included: pytest marker `long`)
+#   make test-fast the suite without the `long` checks
 #   make generate  rebuild generated/ from the SymPy derivations
 #   make bench     engine vs the thesis's fixed-grid sweep; rewrites the tables of docs/performance.md
 PYTHON ?= python3

@@ -17,7 +17,7 @@ NumPy printer, through the jinja2 template `templates/module.py.j2`.  Two forms 
 
 The output is
 deterministic (sorted discovery, fixed entry order, pinned SymPy), so running the generator
-twice gives byte-identical files; tests/test_freshness.py holds `generated/` to that.
+twice gives byte-identical files; tests/generated/test_freshness.py holds `generated/` to that.
 """
 from __future__ import annotations
 

@@ -10,7 +10,7 @@ gravity aft of the elastic axis positive), inertia I_α about the elastic axis, 
 Lagrange's equations (5.1) give the structural mass and stiffness; the aerodynamic loads are the
 same strip aerodynamics as the wing (generated/strip_aero.py), so this model is a standard check
 of the unsteady-aerodynamics implementation (compare with the exact Theodorsen flutter
-determinant in tests/test_typical_section.py).
+determinant in tests/model/test_typical_section.py).
 """
 from __future__ import annotations
 

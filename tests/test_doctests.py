@@ -19,7 +19,17 @@ MODULES = sorted(m.name for m in pkgutil.walk_packages(propwhirl.__path__, "prop
 PUBLIC_WITH_EXAMPLES = [
     "propwhirl", "propwhirl.analysis.stability.critical",
     "propwhirl.analysis.naming.kinetic_energy_shares", "propwhirl.model.protocol",
+    "propwhirl.model.statespace.state_matrix_from_mck",
+    "propwhirl.engine.eigensolve.mac", "propwhirl.engine.eigensolve.eigenvalues",
+    "propwhirl.engine.tracker.sweep", "propwhirl.engine.tracker.analyse",
+    "propwhirl.engine.crossings.critical_points", "propwhirl.engine.crossings.frequency_zero_points",
+    "propwhirl.engine.free_response.time_response", "propwhirl.io.model_files.loads",
+    "propwhirl.io.model_files.dumps", "propwhirl.cases.registry",
 ]
+
+
+def test_every_module_is_collected():
+    assert len(MODULES) >= 50 and "propwhirl.engine.crossings" in MODULES
 
 
 @pytest.mark.parametrize("name", MODULES)

@@ -39,7 +39,7 @@ tracker
 results
     Result types: :class:`Sweep`, :class:`CriticalPoint`, :class:`Hump`, :class:`Criticals`,
     :class:`FrequencyZero`, :class:`Analysis`.
-time_response
+free_response
     Free response of ẋ = A x in time (:func:`time_response`, :class:`TimeResponse`).
 
 The state-matrix builder from M, C, K (eq. 5.4) lives in :mod:`propwhirl.model.statespace`;
@@ -50,7 +50,7 @@ from propwhirl.engine.eigensolve import (eigen, eigenvalues, mac, single_thread_
                                          tracked_eigenvalue)
 from propwhirl.engine.options import TrackingOptions
 from propwhirl.engine.results import Analysis, CriticalPoint, Criticals, FrequencyZero, Hump, Sweep
-from propwhirl.engine.time_response import TimeResponse, time_response
+from propwhirl.engine.free_response import TimeResponse, time_response
 from propwhirl.engine.tracker import ANALYSE_INITIAL_STEP, analyse, sweep
 
 __all__ = [

@@ -5,7 +5,7 @@ import pytest
 
 from propwhirl.reproduce.harness import load_references
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 SHARED = ROOT.parent / "shared" / "reference" / "thesis_values.toml"
 COPY = ROOT / "src" / "propwhirl" / "data" / "thesis_values.toml"
 

@@ -13,7 +13,7 @@ from propwhirl.cases import registry
 from propwhirl.analysis.stability import analyse, load
 from propwhirl.analysis.vibration import campbell, label_modes
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def small_tip_model():

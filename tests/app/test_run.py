@@ -96,7 +96,7 @@ def test_divergence_note_appears_exactly_when_the_divergence_is_critical(run):
         assert "docs/validation.md" in text
         heading = "The wingtip models have a static divergence the thesis does not report"
         assert heading in text
-        docs = Path(__file__).resolve().parent.parent / "docs" / "validation.md"
+        docs = Path(__file__).resolve().parents[2] / "docs" / "validation.md"
         assert heading in docs.read_text()  # the pointer leads somewhere
 
 

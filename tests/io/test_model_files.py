@@ -33,7 +33,7 @@ from propwhirl.validate import InputError
 from propwhirl.model.fields import spec
 from propwhirl.model.wing import Wing
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 SPEEDS = np.array([5.0, 120.0, 300.0])
 
 
