@@ -131,7 +131,7 @@ def label_modes(model) -> list[tuple[str, float]]:
     modes, _ = model_modes(model)
     f0 = modes.frequency_hz
     kinds = ["wing"] * f0.size
-    flex = [model.propellers[j].propeller for j in model.flexible]
+    flex = [model.propellers[p.number].propeller for p in model.dof_map().propellers]
     if flex:
         f_mount = min(min(p.stiffness()[0] / p.pivot_inertia()["I_theta_P"],
                           p.stiffness()[1] / p.pivot_inertia()["I_psi_P"]) for p in flex) ** 0.5
@@ -420,9 +420,8 @@ def campbell(model, rpm=None, *, max_frequency_hz: float | None = None, mac_min:
     >>> bool(c.curve("backward 1")[-1] < c.curve("backward 1")[0] < c.curve("forward 1")[-1])
     True
     """
-    from propwhirl.model.systems import PropellerWing
-
-    if not isinstance(model, PropellerWing) or not model.flexible:
+    dm = model.dof_map()
+    if not (dm.has_wing and dm.propellers):
         raise v.InputError("campbell needs a propeller-wing model with a flexibly mounted "
                            "propeller (the rotational speed acts through the pitch/yaw mounts)")
     r = CAMPBELL_RPM.copy() if rpm is None else v.non_negative("rpm", np.atleast_1d(rpm), "rev/min")

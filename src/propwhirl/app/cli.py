@@ -267,13 +267,14 @@ def _campbell(args: argparse.Namespace) -> int:
     import numpy as np
 
     from propwhirl import validate as v
-    from propwhirl.model.systems import PropellerWing
     from propwhirl.analysis.vibration import campbell
 
     _check_outputs(plot=args.plot)
     model = _load(args.model)
-    if not isinstance(model, PropellerWing):
-        raise InputError(f"{args.model}: a Campbell diagram needs a propeller-wing model")
+    dm = model.dof_map()
+    if not (dm.has_wing and dm.propellers):
+        raise InputError(f"{args.model}: a Campbell diagram needs a propeller-wing model with a "
+                         "flexibly mounted propeller")
     lo, hi, n = args.rpm
     v.non_negative("--rpm START", lo, "rev/min")
     v.non_negative("--rpm STOP", hi, "rev/min")

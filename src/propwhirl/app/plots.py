@@ -184,7 +184,7 @@ def campbell(model, rpm, *, n_modes: int | None = 8, title: str | None = None,
 
     c = campbell_data(model, rpm)
     return campbell_diagram(c.rpm, c.frequency_hz, n_modes=n_modes, names=c.labels,
-                            title=title or f"{getattr(model, 'name', 'model')}: Campbell diagram",
+                            title=title or f"{model.name}: Campbell diagram",
                             path=path)
 
 

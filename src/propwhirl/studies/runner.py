@@ -100,7 +100,7 @@ def _evaluate(task: tuple) -> dict[str, Any]:
 def _dominant(a: ModelAnalysis, label: str) -> str:
     """Dominant degree-of-freedom group of mode `label` at the first speed ("bending", "torsion",
     "pitch", "yaw"; "" when not recorded, e.g. real roots)."""
-    c = getattr(a, "content", {}).get(label.rstrip("'"))
+    c = a.content.get(label.rstrip("'"))
     return max(c, key=lambda g: c[g]) if c else ""
 
 
