@@ -24,7 +24,9 @@ PUBLIC_WITH_EXAMPLES = [
     "propwhirl.engine.tracker.sweep", "propwhirl.engine.tracker.analyse",
     "propwhirl.engine.crossings.critical_points", "propwhirl.engine.crossings.frequency_zero_points",
     "propwhirl.engine.free_response.time_response", "propwhirl.io.model_files.loads",
-    "propwhirl.io.model_files.dumps", "propwhirl.cases.registry",
+    "propwhirl.io.model_files.dumps", "propwhirl.io.model_files.save_model",
+    "propwhirl.analysis.stability.analyse", "propwhirl.analysis.stability.load",
+    "propwhirl.cases.registry",
 ]
 
 

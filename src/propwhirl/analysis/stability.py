@@ -200,7 +200,19 @@ class ModelAnalysis:
 
 
 def load(path: str | Path) -> ModelAnalysis:
-    """Re-read an analysis written by :meth:`ModelAnalysis.save`."""
+    """Re-read an analysis written by :meth:`ModelAnalysis.save`.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from propwhirl.analysis import analyse, load
+    >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+    >>> a = analyse(isolated_baseline_propeller(), speeds=[100.0, 200.0, 250.0])
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "a.json"
+    >>> a.save(path)
+    >>> load(path).critical == a.critical
+    True
+    """
     return ModelAnalysis.from_dict(json.loads(Path(path).read_text()))
 
 
@@ -209,11 +221,41 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
             options: TrackingOptions | None = None) -> ModelAnalysis:
     """Every instability of `model` over `speeds` [m/s], with tracked, named modes.
 
-    `speeds` is the grid [m/s] (default: the model's FlightCondition.speed_range, 1–350 m/s
-    every 10 m/s — the thesis's 0–350 m/s); crossings are located to `xtol` [m/s].  To find
-    the critical speeds the engine needs only a subset of the grid (it starts ≈ 50 m/s apart
-    and adds speeds where tracking or a possible crossing asks for them), so by default
-    `.sweep` is coarse; `vgf=True` evaluates every grid speed (for V-g-f plots and tables).
+    Parameters
+    ----------
+    model : Model
+        Any model of :mod:`propwhirl.model` (its state matrix A(V) and DOF map).
+    speeds : array_like, optional
+        Increasing airspeed grid [m/s], all > 0.  Default: the model's
+        ``FlightCondition.speed_range`` (1–350 m/s every 10 m/s, the thesis's 0–350 m/s).
+    xtol : float, optional
+        Accuracy of every critical speed [m/s] (default :data:`propwhirl.engine.XTOL`,
+        0.01 m/s).
+    vgf : bool, optional
+        Evaluate every grid speed (for V-g-f plots and tables).  By default the engine starts
+        from grid speeds ≈ 50 m/s apart and adds speeds only where tracking or a possible
+        crossing asks for them, so ``.sweep`` is coarse.
+    options : TrackingOptions, optional
+        Tuning of the mode tracker.
+
+    Returns
+    -------
+    ModelAnalysis
+        The tracked sweep, its instability events (sorted by speed) and
+        :attr:`ModelAnalysis.critical`.
+
+    Examples
+    --------
+    The isolated baseline propeller of §9.2 (Table 9.5: backward whirl flutter at 221 m/s):
+
+    >>> from propwhirl.analysis import analyse
+    >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+    >>> a = analyse(isolated_baseline_propeller(), speeds=[100.0, 200.0, 250.0])
+    >>> e = a.critical
+    >>> e.kind, e.event, e.label, round(e.V, 2), round(e.frequency_hz, 3)
+    ('flutter', 'onset', 'backward', 221.5, 5.011)
+    >>> print(a.summary().splitlines()[-1])
+      critical: flutter of backward (pitch) at 221.50 m/s, 5.011 Hz
     """
     grid = model.flight.speeds() if speeds is None else np.asarray(speeds, dtype=float)
     v.positive("xtol", xtol, "m/s")

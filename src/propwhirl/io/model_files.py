@@ -484,7 +484,18 @@ def dumps(model: Any) -> str:
 
 
 def save_model(model: Any, path: str | Path) -> Path:
-    """Write `model` as a TOML model file; returns the path (needs ``propwhirl[toml]``)."""
+    """Write `model` as a TOML model file; returns the path (needs ``propwhirl[toml]``).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from propwhirl.io import load_model, save_model
+    >>> from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
+    >>> model = wingtip_propeller_wing()
+    >>> path = save_model(model, pathlib.Path(tempfile.mkdtemp()) / "wingtip.toml")
+    >>> load_model(path) == model
+    True
+    """
     text = dumps(model)  # fails before touching the file if the model cannot be saved
     path = Path(path)
     try:
