@@ -25,12 +25,8 @@ from propwhirl.analysis.stability import analyse
 from propwhirl.cases.ch09_baseline import inboard_propeller_wing, isolated_baseline_propeller
 from propwhirl.cases.ch10_other_wings import two_propeller_wing, wingtip_propeller_wing
 from propwhirl.reproduce.harness import load_references
-from propwhirl.analysis.response import (
-    THESIS_RESPONSE_SPEEDS,
-    baseline_propeller_responses,
-    rotation_sign,
-    simulate,
-)
+from propwhirl.analysis.response import rotation_sign, simulate
+from propwhirl.reproduce.ch09 import THESIS_RESPONSE_SPEEDS, baseline_propeller_responses
 from propwhirl.validate import InputError
 from propwhirl.analysis.vibration import campbell, label_modes, model_modes
 from propwhirl.model.statespace import SecondOrder, state_matrix

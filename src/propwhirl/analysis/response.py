@@ -9,7 +9,7 @@ given initial conditions with the exact transition matrix e^{AΔt}
 ``method="ivp"``).  It returns a :class:`Response` whose histories are labelled like the
 model's states, in SI: displacements ("propeller 0 theta" [rad], "node 3 h" [m, positive
 down], "node 3 alpha" [rad, nose up] ...), their rates ("d/dt ..." [rad/s, m/s]) and the
-aerodynamic lag states.  :func:`baseline_propeller_responses` reproduces the setting of
+aerodynamic lag states.  :func:`propwhirl.reproduce.ch09.baseline_propeller_responses` reproduces the setting of
 Figures 9.11–9.12: the isolated baseline propeller (symmetric, or f_ψ = 4 Hz) released from an
 initial pitch of 1° at 77, 222 and 250 m/s, 10 s.
 
@@ -35,12 +35,8 @@ from propwhirl.engine import eigen, time_response
 from propwhirl import validate as v
 
 __all__ = [
-    "Response", "simulate", "baseline_propeller_responses", "rotation_sign",
-    "THESIS_RESPONSE_SPEEDS",
+    "Response", "simulate", "rotation_sign",
 ]
-
-#: Airspeeds of Figures 9.11–9.12 [m/s]: below (cruise), near and above the whirl flutter speed
-THESIS_RESPONSE_SPEEDS = (77.0, 222.0, 250.0)
 
 
 # ----------------------------------------------------------------------------------------------
@@ -190,19 +186,3 @@ def rotation_sign(model, propeller: int = 0) -> int:
     s = model.without_aerodynamics().second_order(np.array([100.0]))
     C = s.S2[0]
     return rotation_sign_from_gyroscopic(0.5 * (C[p.theta, p.psi] - C[p.psi, p.theta]))
-
-
-def baseline_propeller_responses(speeds: Sequence[float] = THESIS_RESPONSE_SPEEDS, *,
-                                 f_psi: float = 7.0, theta0_deg: float = 1.0,
-                                 duration: float = 10.0, dt: float = 0.002,
-                                 method: str = "expm") -> dict[float, Response]:
-    """Figures 9.11 (f_ψ = 7 Hz, symmetric) and 9.12 (f_ψ = 4 Hz): the isolated baseline
-    propeller (§9.2, fixed-pitch windmilling) released from θ = ``theta0_deg`` [deg] at rest,
-    at each airspeed [m/s], for ``duration`` [s].  Returns {V: Response}."""
-    from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
-
-    model = isolated_baseline_propeller(f_psi=f_psi)
-    th0 = float(np.radians(v.finite("theta0_deg", theta0_deg, "deg")))
-    return {float(V): simulate(model, V, {"propeller 0 theta": th0}, duration=duration, dt=dt,
-                               method=method)
-            for V in speeds}

@@ -2,8 +2,12 @@
 propeller-wing (Tables 9.2–9.9, §9.2, Figure 9.19; the cases are :mod:`propwhirl.cases.ch09_baseline`)."""
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 
+from propwhirl import validate as v
+from propwhirl.analysis.response import Response, simulate
 from propwhirl.analysis.stability import analyse, first_of_kind, speed_and_frequency
 from propwhirl.analysis.vibration import label_modes, wing_modes
 from propwhirl.cases.ch09_baseline import (
@@ -123,3 +127,22 @@ def figure_9_19() -> dict[str, float]:
     return {"f9.19/no_wing_aero/bw_whirl_flutter_speed": V,
             "f9.19/no_wing_aero/bw_whirl_flutter_frequency": f,
             "f9.19/no_wing_aero/wing1_flutter_speed": speed_and_frequency(a.first("wing 1"))[0]}
+
+
+# ----------------------------------------------------------------------------- Figures 9.11–9.12
+#: Airspeeds of Figures 9.11–9.12 [m/s]: below (cruise), near and above the whirl flutter speed
+THESIS_RESPONSE_SPEEDS = (77.0, 222.0, 250.0)
+
+
+def baseline_propeller_responses(speeds: Sequence[float] = THESIS_RESPONSE_SPEEDS, *,
+                                 f_psi: float = 7.0, theta0_deg: float = 1.0,
+                                 duration: float = 10.0, dt: float = 0.002,
+                                 method: str = "expm") -> dict[float, Response]:
+    """Figures 9.11 (f_ψ = 7 Hz, symmetric) and 9.12 (f_ψ = 4 Hz): the isolated baseline
+    propeller (§9.2, fixed-pitch windmilling) released from θ = ``theta0_deg`` [deg] at rest,
+    at each airspeed [m/s], for ``duration`` [s].  Returns {V: Response}."""
+    model = isolated_baseline_propeller(f_psi=f_psi)
+    th0 = float(np.radians(v.finite("theta0_deg", theta0_deg, "deg")))
+    return {float(V): simulate(model, V, {"propeller 0 theta": th0}, duration=duration, dt=dt,
+                               method=method)
+            for V in speeds}

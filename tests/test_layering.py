@@ -1,0 +1,58 @@
+"""The data flow is one way: generated → model → engine → analysis → studies, reproduce → app.
+
+Every import between propwhirl's packages (module level and inside functions) must follow the
+allowed edges below; an import against the flow (say, the engine importing a model, or a model
+importing an analysis) fails here.
+"""
+import ast
+from pathlib import Path
+
+import pytest
+
+SRC = Path(__file__).resolve().parent.parent / "src" / "propwhirl"
+
+#: package -> the propwhirl packages it may import (validate: the shared input checks)
+ALLOWED = {
+    "validate": set(),
+    "model": {"generated", "validate"},
+    "engine": {"validate"},                       # model-agnostic: A(V) in, eigen-data out
+    "analysis": {"engine", "model", "validate"},
+    "cases": {"model", "validate"},               # model factories only
+    "studies": {"analysis", "cases", "engine", "model", "validate"},
+    "reproduce": {"analysis", "cases", "engine", "generated", "model", "studies", "validate"},
+    "io": {"model", "validate"},
+    "app": {"analysis", "cases", "engine", "io", "model", "reproduce", "studies", "validate"},
+    # entry point and compatibility re-exports
+    "__main__": {"app"}, "__init__": set(), "wing": {"model"}, "propeller": {"model"},
+    "plots": {"app"},
+}
+
+
+def _imports(path: Path) -> set[str]:
+    out = set()
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+            if node.module == "propwhirl":
+                out |= {a.name for a in node.names}
+            elif node.module.startswith("propwhirl."):
+                out.add(node.module.split(".")[1])
+        elif isinstance(node, ast.Import):
+            out |= {a.name.split(".")[1] for a in node.names if a.name.startswith("propwhirl.")}
+    return out
+
+
+FILES = sorted(SRC.rglob("*.py"))
+
+
+@pytest.mark.parametrize("path", FILES, ids=[str(p.relative_to(SRC)) for p in FILES])
+def test_imports_follow_the_data_flow(path):
+    rel = path.relative_to(SRC)
+    pkg = rel.parts[0] if len(rel.parts) > 1 else rel.stem
+    assert pkg in ALLOWED, f"{rel}: package {pkg!r} has no place in the layering; add it"
+    wrong = _imports(path) - ALLOWED[pkg] - {pkg}
+    assert not wrong, f"{rel} imports {sorted(wrong)} against the data flow"
+
+
+def test_the_check_sees_imports():
+    assert _imports(SRC / "analysis" / "stability.py") >= {"engine", "model"}
+    assert len(FILES) > 50
