@@ -1,11 +1,13 @@
 """Models: the wing, the propellers and their installation, assembled into A(V).
 
-The physical components (:mod:`.wing`, :mod:`.propeller`, :mod:`.propeller_aero`), the
+The physical components (:mod:`.wing`, :mod:`.propeller`, :mod:`.propeller_aero`, :mod:`.flight`), the
 assembly of the generated element matrices (:mod:`.assembly`), the first-order state space
-(:mod:`.statespace`) and the complete systems (:mod:`.systems`).  SI units throughout.
+(:mod:`.statespace`), the complete systems (:mod:`.systems`) and the contract every model
+meets, with the explicit map of its states (:mod:`.protocol`).  SI units throughout.
 """
+from propwhirl.model.flight import FlightCondition
 from propwhirl.model.propeller import MeasuredDerivatives, PointMass, Propeller
-from propwhirl.model.systems import (FlightCondition, Installation, IsolatedPropeller,
+from propwhirl.model.systems import (Installation, IsolatedPropeller,
                                      PropellerWing, TypicalSection, node_at)
 from propwhirl.model.wing import LiftSlope, Wing
 

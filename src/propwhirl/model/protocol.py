@@ -15,11 +15,11 @@ Every model — :class:`~propwhirl.model.systems.PropellerWing`,
   and ψ indices, sense of rotation and spanwise position;
 * ``without_aerodynamics()`` — the same model with every aerodynamic load switched off (its
   structural matrices: kinetic and strain energies, in-vacuo modes);
-* ``name`` and ``flight`` (the :class:`~propwhirl.model.systems.FlightCondition`).
+* ``name`` and ``flight`` (the :class:`~propwhirl.model.flight.FlightCondition`).
 
 The analyses read the states' meaning from the map only — never from a model's class name,
 its attributes or its state labels.  Labels are for people: ``"node 3 h"``, ``"propeller 0
-psi"``, ``"d/dt node 3 h"`` (the one rule for rates, :func:`rate_label`), ``"node 3 w1"``.
+psi"``, ``"d/dt node 3 h"`` (the one rule for rates, :func:`~propwhirl.model.statespace.rate_label`), ``"node 3 w1"``.
 
 Examples
 --------
@@ -37,15 +37,14 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Protocol, runtime_checkable
+from typing import Protocol, runtime_checkable
 
 import numpy as np
 
 from propwhirl import validate as v
 
-if TYPE_CHECKING:
-    from propwhirl.model.statespace import SecondOrder
-    from propwhirl.model.systems import FlightCondition
+from propwhirl.model.flight import FlightCondition
+from propwhirl.model.statespace import SecondOrder, rate_label
 
 #: Kinds of degrees of freedom a model may have, with their units and the content group
 #: (kinetic-energy shares, :meth:`DofMap.groups`) each belongs to.
@@ -58,15 +57,6 @@ DOF_KINDS: dict[str, tuple[str, str]] = {
     "plunge": ("m", "plunge"),        # typical-section plunge h, positive down
     "pitch": ("rad", "pitch"),        # typical-section pitch α, nose up
 }
-
-
-def rate_label(label: str) -> str:
-    """Label of the rate of a displacement state: ``"d/dt " + label``.
-
-    >>> rate_label("node 3 h")
-    'd/dt node 3 h'
-    """
-    return f"d/dt {label}"
 
 
 @dataclass(frozen=True)
@@ -216,9 +206,9 @@ class Model(Protocol):
     name: str
 
     @property
-    def flight(self) -> "FlightCondition": ...
+    def flight(self) -> FlightCondition: ...
 
-    def second_order(self, V) -> "SecondOrder": ...
+    def second_order(self, V) -> SecondOrder: ...
 
     def state_matrix(self, V) -> np.ndarray: ...
 

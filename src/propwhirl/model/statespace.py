@@ -20,7 +20,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.model.protocol import rate_label
+
+
+def rate_label(label: str) -> str:
+    """Label of the rate of a displacement state: ``"d/dt " + label`` (the one rule).
+
+    >>> rate_label("node 3 h")
+    'd/dt node 3 h'
+    """
+    return f"d/dt {label}"
 
 
 @dataclass(frozen=True)
