@@ -52,6 +52,8 @@ def test_range_starting_in_an_unstable_state_reports_it(from_150, tmp_path):
     assert c.event == "unstable-at-start" and c.V == 150.0 and c.kind == "divergence"
     line = from_150.summary().splitlines()[-1]
     assert "unstable from V = 150 m/s, the start of the range" in line
+    # the diverged real root is not an aerodynamic lag: named "static 1", by its content
+    assert c.label == "static 1" and "divergence of static 1 (bending)" in line
     # the saved analysis names the same critical instability
     p = tmp_path / "a.json"
     from_150.save(p)

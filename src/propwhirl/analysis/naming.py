@@ -12,8 +12,10 @@ speed of a sweep (a tracked mode keeps its name along the sweep):
   the sense of the θ–ψ orbit; not spinning: "pitch" and "yaw" by increasing frequency;
 * any other model (the typical section): the dominant content group of each mode ("plunge",
   "pitch");
-* real roots are "lag k" (by decreasing real part) and the hidden conjugate partner of mode
-  "x" is "x'".
+* real roots are "lag k" (by decreasing real part) — or "static k" where the root is already
+  unstable at the first speed (a range starting beyond a divergence speed: a diverged
+  structural mode, described by its content) — and the hidden
+  conjugate partner of mode "x" is "x'".
 
 Content is the share of a mode's kinetic energy x̂ᴴ M x̂ (M the structural mass, aerodynamics
 off) in each group of :meth:`~propwhirl.model.protocol.DofMap.groups`: "bending" (h, φ),
@@ -68,17 +70,23 @@ def mode_names(model: Model, sw: Sweep) -> list[str]:
     names = [f"mode {k}" for k in range(n)]
     osc = _oscillatory(sw)
     real = [k for k in range(n) if sw.physical[0, k] and k not in osc]
-    for i, k in enumerate(sorted(real, key=lambda k: -lam0[k].real)):
+    real = sorted(real, key=lambda k: -lam0[k].real)
+    diverged = [k for k in real if lam0[k].real > 0]
+    for i, k in enumerate(diverged):        # unstable real roots: not aerodynamic lags
+        names[k] = f"static {i + 1}"
+    for i, k in enumerate(k for k in real if k not in diverged):
         names[k] = f"lag {i + 1}"
     if dm.has_wing:
         from propwhirl.analysis.vibration import label_modes, model_modes
 
         modes, _ = model_modes(model)
         ref = [lab for lab, _ in label_modes(model)]
-        M = mac(X0[sw.displacement][:, osc][:, :, None], modes.shapes[:, None, :].astype(complex))
+        shapes = modes.shapes.astype(complex)
+        M = mac(X0[sw.displacement][:, osc][:, :, None], shapes[:, None, :])
         rows, cols = linear_sum_assignment(-M)
         for r, c in zip(rows, cols):
             names[osc[r]] = ref[c]
+
     elif dm.propellers:
         p = dm.propellers[0]
         order = sorted(osc, key=lambda k: abs(lam0[k].imag))
@@ -112,15 +120,17 @@ def whirl(dm: DofMap, x: np.ndarray, lam: complex) -> str | None:
 
 
 def mode_content(model: Model, sw: Sweep, names: Sequence[str]) -> dict[str, dict[str, float]]:
-    """Kinetic-energy shares of each physical oscillatory mode at the first speed of ``sw``,
-    by content group, rounded to 4 digits (shares ≤ 1e-3 left out): {name: {group: share}}."""
+    """Kinetic-energy shares of each physical oscillatory mode (and of each real root already
+    unstable) at the first speed of ``sw``, by content group, rounded to 4 digits (shares
+    ≤ 1e-3 left out): {name: {group: share}}."""
     quiet = model.without_aerodynamics()
     s = quiet.second_order(np.array([float(sw.V[0])]))
     groups = quiet.dof_map().groups()
     X = sw.eigenvectors[0][sw.displacement]
     out = {}
     for k in range(sw.n_modes):
-        if not sw.physical[0, k] or abs(sw.eigenvalues[0, k].imag) == 0:
+        lam = sw.eigenvalues[0, k]
+        if not sw.physical[0, k] or (lam.imag == 0 and lam.real <= 0):   # not the lag roots
             continue
         frac = kinetic_energy_shares(X[:, [k]], s.S1[0], groups)
         out[names[k]] = {g: round(float(f[0]), 4) for g, f in frac.items() if abs(f[0]) > 1e-3}

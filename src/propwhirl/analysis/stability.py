@@ -40,7 +40,8 @@ class Instability:
 
     kind:   "flutter" (oscillatory) or "divergence" (non-oscillatory)
     event:  "onset" (Re λ becomes positive), "recovery" (becomes negative again; hump modes),
-            "frequency-zero" (an unstable pair turns into real roots: divergence of that mode)
+            "frequency-zero" (an unstable pair turns into real roots: divergence of that mode),
+            "unstable-at-start" (Re λ > 0 already at the first analysed speed, V = that speed)
     mode, label: tracked mode id and its name (e.g. "forward 1", "wing 2", "lag 1")
     V [m/s], frequency_hz [Hz] at the event; whirl: "forward"/"backward"/"planar" sense of the
     propeller θ–ψ orbit (None without flexible propellers); benignity [m/s] (eq. 5.13) at
@@ -146,8 +147,9 @@ class ModelAnalysis:
 
     @property
     def onsets(self) -> list[Instability]:
-        """Events that make the system (more) unstable: onsets and frequency-zero events."""
-        return [e for e in self.events if e.event in ("onset", "frequency-zero")]
+        """Events that make the system (more) unstable (:data:`UNSTABLE_EVENTS`): onsets,
+        frequency-zero events and modes unstable at the first speed."""
+        return [e for e in self.events if e.event in UNSTABLE_EVENTS]
 
     @property
     def critical(self) -> Instability | None:
