@@ -79,7 +79,8 @@ MAX_QUADRATURE_ORDER = 256
 #: propeller rotational speed [rev/min] of a Campbell diagram (tip speed of a 1 m propeller
 #: at 100,000 rev/min: 10.5 km/s)
 MAX_RPM = 100_000.0
-#: nesting of arrays and tables in a model file (a model file needs 4)
+#: nesting of arrays and tables in a model file, the document itself counted (the case
+#: library's model files have 3 to 5 levels)
 MAX_NESTING = 32
 
 
@@ -243,7 +244,7 @@ def nesting_depth(data, limit: int = MAX_NESTING) -> int:
 def nesting_error(source: str) -> InputError:
     """The one-line error of a document nested deeper than :data:`MAX_NESTING` levels."""
     return InputError(f"{source}: nesting deeper than {MAX_NESTING} levels (arrays or tables "
-                      "inside each other; a model file needs at most 4)")
+                      "inside each other; a model file needs at most 5)")
 
 
 def check_nesting(data, source: str) -> None:
