@@ -14,7 +14,9 @@ Memory of an analysis (:func:`sweep_bytes`)
     :data:`BATCH_BYTES_PER_ENTRY` = 48 bytes per entry and speed of the batch.  Measured
     (tracemalloc) on the wingtip propeller-wing, 204 states, one batch of 50 and 200 speeds:
     61–64 bytes per entry and speed, = 32 + 32 of the two terms above.  Each node also holds
-    a few vectors and a Python object: :data:`NODE_OVERHEAD_BYTES`.
+    a few vectors and a Python object: :data:`NODE_OVERHEAD_BYTES`; a batch also holds the
+    model's own temporaries, :data:`BATCH_MODEL_BYTES` per speed (the Houbolt–Reed integrals:
+    ≈ 25 kB per speed measured on the isolated propeller, where they dominate).
 
 The memory limit (:func:`memory_limit`)
     ``PROPWHIRL_MEMORY_LIMIT`` (bytes, or a number with a unit: ``"512MiB"``, ``"4GiB"``,
@@ -60,6 +62,9 @@ NODE_OVERHEAD_BYTES = 4096
 MAX_BATCH = 256
 #: temporaries of one batch at most [bytes] (fewer speeds per batch for large models)
 BATCH_MEMORY = 256 * MiB
+#: the model's own temporaries per speed of a batch [bytes]: the Houbolt–Reed integrals of a
+#: propeller at the default order, measured ≈ 25 kB per speed (isolated propeller, tracemalloc)
+BATCH_MODEL_BYTES = 32 * 2 ** 10
 
 #: speeds in one grid: a sweep refined to the tracker's 0.01 m/s over 0–1000 m/s has 100,000
 MAX_SPEEDS = 100_000
@@ -145,7 +150,8 @@ def sweep_bytes(n_speeds: int, n_states: int) -> int:
     (module docstring): kept eigenvectors, one batch's temporaries, per-node overhead."""
     n2 = float(n_states) ** 2
     return int(n_speeds * (RETAINED_BYTES_PER_ENTRY * n2 + NODE_OVERHEAD_BYTES)
-               + min(n_speeds, batch_size(n_states)) * BATCH_BYTES_PER_ENTRY * n2)
+               + min(n_speeds, batch_size(n_states)) * (BATCH_BYTES_PER_ENTRY * n2
+                                                        + BATCH_MODEL_BYTES))
 
 
 def check_sweep(n_speeds: int, n_states: int, what: str = "the analysis",
@@ -164,7 +170,9 @@ def node_budget(n_grid: int, n_first: int, n_states: int, requested: int | None 
     refinements and at most ``20 · n_grid + 200``; in any case no more than fit in
     :func:`memory_limit` (:func:`sweep_bytes`), and never fewer than ``n_first``."""
     per_node = RETAINED_BYTES_PER_ENTRY * float(n_states) ** 2 + NODE_OVERHEAD_BYTES
-    batch = min(n_first, batch_size(n_states)) * BATCH_BYTES_PER_ENTRY * float(n_states) ** 2
+    # a refinement batch may be a full one: its temporaries are reserved whole
+    batch = batch_size(n_states) * (BATCH_BYTES_PER_ENTRY * float(n_states) ** 2
+                                    + BATCH_MODEL_BYTES)
     fit = int(max(memory_limit() - batch, 0) // per_node)
     want = (min(20 * n_grid + 200, n_first + MAX_REFINED_NODES) if requested is None
             else int(requested))

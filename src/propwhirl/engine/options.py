@@ -102,7 +102,10 @@ def check_speeds(speeds, name: str = "speeds") -> np.ndarray:
         raise InputError(f"{name} must be a 1-D array of at least 2 values, got shape "
                          f"{raw.shape}: give {SPEEDS_FORM}")
     limits.check_speed_count(name, raw.size, "fewer speeds")
-    V = increasing(name, raw.astype(float), "m/s")
+    try:
+        V = increasing(name, raw.astype(float), "m/s")
+    except InputError as exc:       # non-finite or not increasing: say what is valid
+        raise InputError(f"{exc} ({name}: {SPEEDS_FORM})") from None
     if V[0] <= 0:
         raise InputError(
             f"{name}[0] = {float(V[0])!r} m/s is invalid: must be > 0 (the aerodynamic matrices "
