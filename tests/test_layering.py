@@ -11,17 +11,20 @@ import pytest
 
 SRC = Path(__file__).resolve().parent.parent / "src" / "propwhirl"
 
-#: package -> the propwhirl packages it may import (validate: the shared input checks)
+#: package -> the propwhirl packages it may import (validate: the shared input checks;
+#: limits: memory estimates, size limits, safe terminal text)
 ALLOWED = {
     "validate": set(),
-    "model": {"generated", "validate"},
-    "engine": {"validate"},                       # model-agnostic: A(V) in, eigen-data out
-    "analysis": {"engine", "model", "validate"},
+    "limits": {"validate"},                       # memory estimates and size limits
+    "model": {"generated", "limits", "validate"},
+    "engine": {"limits", "validate"},             # model-agnostic: A(V) in, eigen-data out
+    "analysis": {"engine", "limits", "model", "validate"},
     "cases": {"model", "validate"},               # model factories only
     "studies": {"analysis", "cases", "engine", "model", "validate"},
     "reproduce": {"analysis", "cases", "engine", "generated", "model", "studies", "validate"},
-    "io": {"model", "validate"},
-    "app": {"analysis", "cases", "engine", "io", "model", "reproduce", "studies", "validate"},
+    "io": {"limits", "model", "validate"},
+    "app": {"analysis", "cases", "engine", "io", "limits", "model", "reproduce", "studies",
+            "validate"},
     # entry point and compatibility re-exports
     "__main__": {"app"}, "__init__": set(), "wing": {"model"}, "propeller": {"model"},
     "plots": {"app"},

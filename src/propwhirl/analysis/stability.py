@@ -26,6 +26,7 @@ import numpy as np
 
 from propwhirl.engine import XTOL, Criticals, Sweep, TrackingOptions, frequency_zero_points
 from propwhirl.engine import analyse as engine_analyse
+from propwhirl.engine.options import check_speeds
 from propwhirl import validate as v
 from propwhirl.analysis.naming import mode_content, mode_names, whirl
 from propwhirl.model.protocol import DofMap, Model
@@ -259,8 +260,15 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
     >>> print(a.summary().splitlines()[-1])
       critical: flutter of backward (pitch) at 221.50 m/s, 5.011 Hz
     """
-    grid = model.flight.speeds() if speeds is None else np.asarray(speeds, dtype=float)
+    if not isinstance(model, Model):
+        raise v.InputError(f"model = {model!r:.60} is invalid: must be a model of "
+                           "propwhirl.model (PropellerWing, IsolatedPropeller, TypicalSection)")
+    grid = model.flight.speeds() if speeds is None else check_speeds(speeds)
     v.positive("xtol", xtol, "m/s")
+    if not isinstance(vgf, (bool, np.bool_)):
+        raise v.InputError(f"vgf = {vgf!r} is invalid: must be True or False")
+    if options is not None and not isinstance(options, TrackingOptions):
+        raise v.InputError(f"options = {options!r} is invalid: must be a TrackingOptions")
     dm = model.dof_map()
     an = engine_analyse(model.state_matrix, grid, displacement=dm.displacement,
                         state_labels=dm.state_labels, options=options, xtol=xtol,

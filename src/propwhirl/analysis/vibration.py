@@ -40,6 +40,7 @@ import numpy as np
 import scipy.linalg as sl
 from scipy.optimize import linear_sum_assignment
 
+from propwhirl import limits
 from propwhirl import validate as v
 from propwhirl.engine import single_thread_blas
 from propwhirl.model.assembly import WING_DOF_NAMES, free_dofs, wing_dof_labels, wing_structure
@@ -424,11 +425,7 @@ def campbell(model, rpm=None, *, max_frequency_hz: float | None = None, mac_min:
     if not (dm.has_wing and dm.propellers):
         raise v.InputError("campbell needs a propeller-wing model with a flexibly mounted "
                            "propeller (the rotational speed acts through the pitch/yaw mounts)")
-    r = CAMPBELL_RPM.copy() if rpm is None else v.non_negative("rpm", np.atleast_1d(rpm), "rev/min")
-    if r.ndim != 1:
-        raise v.InputError(f"rpm must be a 1-D array, got shape {r.shape}")
-    if r.size > 1:
-        r = v.increasing("rpm", r, "rev/min")
+    r = CAMPBELL_RPM.copy() if rpm is None else _check_rpm(rpm)
     if max_frequency_hz is not None:
         v.positive("max_frequency_hz", max_frequency_hz, "Hz")
     v.in_range("mac_min", mac_min, 0.0, 1.0)
@@ -445,6 +442,31 @@ def campbell(model, rpm=None, *, max_frequency_hz: float | None = None, mac_min:
         labels=tuple(names[k] for k in keep), slope_hz_per_rpm=tr.slope[:, keep] / 60.0,
         resolved=tr.resolved, nodes=tr.nodes,
         unresolved=tuple((a / per_rpm, b / per_rpm) for a, b in tr.unresolved))
+
+
+#: the valid form of Campbell rotational speeds, for error messages
+RPM_FORM = (f"an increasing 1-D array of propeller speeds in [0, {limits.MAX_RPM:,.0f}] rev/min, "
+            "e.g. numpy.linspace(0.0, 6000.0, 25)")
+
+
+def _check_rpm(rpm) -> np.ndarray:
+    """Rotational speeds [rev/min]: 1-D, finite, in [0, MAX_RPM], strictly increasing, at
+    most :data:`propwhirl.limits.MAX_SPEEDS` values (a number: one speed)."""
+    bad = v.InputError(f"rpm = {rpm!r:.60} is invalid: must be {RPM_FORM}")
+    if rpm is None or isinstance(rpm, (str, bytes, dict, set, frozenset, bool, np.bool_)):
+        raise bad
+    try:
+        raw = np.atleast_1d(np.asarray(rpm))
+    except (TypeError, ValueError, OverflowError) as exc:
+        raise bad from exc
+    if raw.dtype.kind not in "iuf":
+        raise bad
+    if raw.ndim != 1 or raw.size == 0:
+        raise v.InputError(f"rpm must be a 1-D array of at least 1 value, got shape "
+                           f"{raw.shape}: give {RPM_FORM}")
+    limits.check_speed_count("rpm", raw.size, "fewer rotational speeds")
+    r = v.in_range("rpm", raw.astype(float), 0.0, limits.MAX_RPM, "rev/min")
+    return v.increasing("rpm", r, "rev/min") if r.size > 1 else r
 
 
 def _skew_part(C: np.ndarray) -> np.ndarray:

@@ -18,8 +18,15 @@ import argparse
 import sys
 from pathlib import Path
 
+from propwhirl import limits
 from propwhirl.cases import registry
 from propwhirl.validate import InputError
+
+
+def _echo(text: str) -> None:
+    """Print text that carries user strings (model names): control characters escaped
+    (:func:`propwhirl.limits.printable`), line by line."""
+    print("\n".join(limits.printable(line) for line in str(text).split("\n")))
 
 
 def _reproduce(args: argparse.Namespace) -> int:
@@ -175,12 +182,13 @@ def speed_grid(start: float, stop: float, step: float):
     from propwhirl import validate as v
 
     v.positive("--speeds START", start, "m/s")
+    v.positive("--speeds STOP", stop, "m/s")
     v.positive("--speeds STEP", step, "m/s")
     if not stop > start:
         raise InputError(f"--speeds STOP = {stop!r} m/s is invalid: must be > START = {start!r} m/s")
+    limits.check_speed_count(f"--speeds {start:g} {stop:g} {step:g}",
+                             limits.grid_count(start, stop, step), "a larger STEP")
     n = (stop - start) / step
-    if n > 100_000:
-        raise InputError(f"--speeds gives {n:.0f} speeds: must be at most 100000 (a larger STEP)")
     grid = start + step * np.arange(int(np.floor(n + 1e-9)) + 1)
     return grid if grid[-1] >= stop - 1e-9 * step else np.append(grid, stop)
 
@@ -200,7 +208,7 @@ def _analyse(args: argparse.Namespace) -> int:
     model = _load(args.model)
     speeds = speed_grid(*args.speeds) if args.speeds else None
     a = analyse(model, speeds, vgf=True)
-    print(a.summary())
+    _echo(a.summary())
     if args.json:
         a.save(args.json)
         print(f"wrote {args.json}")
@@ -244,7 +252,7 @@ def _modes(args: argparse.Namespace) -> int:
     found = dm.groups()
     groups = ("bending", "torsion", "pitch", "yaw")
     share = kinetic_energy_shares(modes.shapes, M, {g: found.get(g, []) for g in groups})
-    print(f"{model.name}: in-vacuo modes (V = 0, not rotating; kinetic-energy shares)")
+    _echo(f"{model.name}: in-vacuo modes (V = 0, not rotating; kinetic-energy shares)")
     print(f"  {'mode':12s} {'f [Hz]':>10s} {'bending':>8s} {'torsion':>8s} {'pitch':>8s} {'yaw':>8s}")
     order = np.argsort(modes.omega, kind="stable")
     for r, i in enumerate(order[:count]):
@@ -252,7 +260,7 @@ def _modes(args: argparse.Namespace) -> int:
             label, f = names[r]
         else:  # no wing (isolated propeller): named by its dominant motion
             label, f = max(groups, key=lambda g: share[g][i]), float(modes.frequency_hz[i])
-        print(f"  {label:12s} {f:10.4f} " + " ".join(f"{share[g][i]:8.3f}" for g in groups))
+        _echo(f"  {label:12s} {f:10.4f} " + " ".join(f"{share[g][i]:8.3f}" for g in groups))
     return 0
 
 
@@ -276,17 +284,20 @@ def _campbell(args: argparse.Namespace) -> int:
         raise InputError(f"{args.model}: a Campbell diagram needs a propeller-wing model with a "
                          "flexibly mounted propeller")
     lo, hi, n = args.rpm
-    v.non_negative("--rpm START", lo, "rev/min")
-    v.non_negative("--rpm STOP", hi, "rev/min")
+    v.in_range("--rpm START", lo, 0.0, limits.MAX_RPM, "rev/min")
+    v.in_range("--rpm STOP", hi, 0.0, limits.MAX_RPM, "rev/min")
     n_pts = v.integer_at_least("--rpm N", int(n) if float(n).is_integer() else n, 1)
     if n_pts > 10_000:
         raise InputError(f"--rpm N = {n_pts} is invalid: must be <= 10000")
+    if n_pts > 1 and not hi > lo:
+        raise InputError(f"--rpm STOP = {hi!r} rev/min is invalid: must be > START = {lo!r} "
+                         "rev/min (or N = 1)")
     count = v.integer_at_least("--count", args.count, 1)
     result = campbell(model, np.linspace(lo, hi, n_pts))
     count = min(count, result.n_modes)
-    print(f"{model.name}: natural frequencies [Hz] against propeller speed (no aerodynamics), "
+    _echo(f"{model.name}: natural frequencies [Hz] against propeller speed (no aerodynamics), "
           "each mode followed from RPM 0")
-    print(f"  {'RPM':>8s} " + " ".join(f"{lab:>11s}" for lab in result.labels[:count]))
+    _echo(f"  {'RPM':>8s} " + " ".join(f"{lab:>11s}" for lab in result.labels[:count]))
     for r, row in zip(result.rpm, result.frequency_hz):
         print(f"  {r:8.1f} " + " ".join(f"{x:11.3f}" for x in row[:count]))
     if not result.resolved.all():
@@ -295,7 +306,8 @@ def _campbell(args: argparse.Namespace) -> int:
         from propwhirl.app import plots
 
         plots.campbell_diagram(result.rpm, result.frequency_hz, n_modes=count,
-                               names=result.labels, title=f"{model.name}: Campbell diagram",
+                               names=result.labels,
+                               title=f"{limits.printable(model.name)}: Campbell diagram",
                                path=args.plot)
         print(f"wrote {args.plot}")
     return 0

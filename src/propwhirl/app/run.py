@@ -21,6 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from propwhirl import io
+from propwhirl.limits import printable
 from propwhirl.analysis.stability import Instability, ModelAnalysis, analyse
 from propwhirl.cases.registry import case_model
 from propwhirl.model.systems import PropellerWing
@@ -58,10 +59,10 @@ def describe(model: PropellerWing) -> list[str]:
     p = inst.propeller
     first, last, step = model.flight.speed_range
     return [
-        f"{model.name}",
-        f"  wing: {w.name}; semi-span {w.semi_span:g} m, chord {w.root_chord:g}-{w.tip_chord:g} m, "
+        f"{printable(model.name)}",
+        f"  wing: {printable(w.name)}; semi-span {w.semi_span:g} m, chord {w.root_chord:g}-{w.tip_chord:g} m, "
         f"{w.n_elements} elements, {w.aero_model} strip aerodynamics",
-        f"  propeller: {p.name} at y = {inst.y:g} m ({inst.mount} mount), R = {p.radius:g} m, "
+        f"  propeller: {printable(p.name)} at y = {inst.y:g} m ({inst.mount} mount), R = {p.radius:g} m, "
         f"f_theta = {p.f_theta:g} Hz, f_psi = {p.f_psi:g} Hz, {p.damping} = {p.damping_theta:g}",
         f"  operation: {p.operation}, beta_0.75 = {p.beta_075_deg:g} deg, "
         f"J = pi mu = {np.pi * p.advance_ratio:.3f} (Omega proportional to V), Houbolt-Reed "

@@ -184,7 +184,11 @@ def _follow_cluster(ca, dca, cb, dcb, la, lb, h, margin):
     with np.errstate(all="ignore"):
         lin = err / np.abs(d1)
         quad = np.sqrt(2 * err / np.abs(d2))
-    unc = env[:, None] * np.nan_to_num(np.minimum(lin, quad), nan=np.inf, posinf=np.inf)
+    # p' = p'' = 0 at a root of multiplicity ≥ 3 (e.g. lag roots shared by several nodes):
+    # the estimates are unbounded (inf, or 0/0); but the envelope is 0 at the ends, where the
+    # roots are the exact ones, so the uncertainty there is 0 — not 0·inf
+    est = np.nan_to_num(np.minimum(lin, quad), nan=np.inf, posinf=np.inf)
+    unc = np.multiply(env[:, None], est, out=np.zeros_like(est), where=env[:, None] > 0)
     flip = np.any(np.sign(track.real) != sign0, axis=1)
     thin = np.any(np.abs(track.real) < margin * unc, axis=1)
     if flip.any() or thin.any():

@@ -5,7 +5,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from propwhirl import limits
 from propwhirl.validate import InputError, in_range, increasing, integer_at_least, positive
+
+#: the valid form of a speed grid, for error messages
+SPEEDS_FORM = ("an increasing 1-D array of at least 2 airspeeds > 0 m/s, "
+               "e.g. numpy.arange(1.0, 351.0, 10.0)")
 
 
 @dataclass(frozen=True)
@@ -26,7 +31,9 @@ class TrackingOptions:
     fd_rel:           relative finite-difference step for dA/dV (h = fd_rel·max(V, 1 m/s)).
     degenerate_tol:   eigenvalues closer than this (relative) are treated as repeated.
     zero_tol:         |Re λ| ≤ zero_tol·max(|λ|, floor) counts as neutral (no sign).
-    max_nodes:        budget of speeds (grid + refinement); None → 20·len(grid) + 200.
+    max_nodes:        budget of speeds (grid + refinement); None → the first evaluation plus
+                      at most ``limits.MAX_REFINED_NODES`` (2,000), at most 20·len(grid) + 200,
+                      and no more than fit in the memory limit (:func:`propwhirl.limits.node_budget`).
     hump_check:       insert samples where the cubic Hermite model of Re λ between two samples
                       of equal sign crosses zero, or comes closer to zero than ``margin`` times
                       its uncertainty (below).
@@ -71,10 +78,39 @@ class TrackingOptions:
             integer_at_least("max_nodes", self.max_nodes, 2)
 
 
-def _check_speeds(speeds) -> np.ndarray:
-    V = increasing("speeds", speeds, "m/s")
+def _short(value) -> str:
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+def check_speeds(speeds, name: str = "speeds") -> np.ndarray:
+    """A speed grid [m/s] as a float array: 1-D, at least 2 and at most
+    :data:`propwhirl.limits.MAX_SPEEDS` finite values, strictly increasing, all > 0; else a
+    one-line InputError naming ``name`` and the valid form (:data:`SPEEDS_FORM`)."""
+    bad = InputError(f"{name} = {_short(speeds)} is invalid: must be {SPEEDS_FORM}")
+    if speeds is None or isinstance(speeds, (str, bytes, dict, set, frozenset)):
+        raise bad
+    try:
+        raw = np.asarray(speeds)
+    except (TypeError, ValueError, OverflowError) as exc:   # ragged nested sequences
+        raise bad from exc
+    if raw.dtype.kind not in "iuf" and not (raw.dtype.kind == "O" and raw.size and all(
+            isinstance(x, (int, float, np.integer, np.floating)) and not isinstance(x, bool)
+            for x in raw.flat)):
+        raise bad                   # bool, complex, strings, None, nested objects
+    if raw.ndim != 1 or raw.size < 2:
+        raise InputError(f"{name} must be a 1-D array of at least 2 values, got shape "
+                         f"{raw.shape}: give {SPEEDS_FORM}")
+    limits.check_speed_count(name, raw.size, "fewer speeds")
+    try:
+        V = increasing(name, raw.astype(float), "m/s")
+    except InputError as exc:       # non-finite or not increasing: say what is valid
+        raise InputError(f"{exc} ({name}: {SPEEDS_FORM})") from None
     if V[0] <= 0:
         raise InputError(
-            f"speeds[0] = {float(V[0])!r} m/s is invalid: must be > 0 (the aerodynamic matrices "
+            f"{name}[0] = {float(V[0])!r} m/s is invalid: must be > 0 (the aerodynamic matrices "
             f"carry 1/V; start the sweep at a small positive speed, e.g. 0.1 m/s)")
     return V
+
+
+_check_speeds = check_speeds

@@ -15,6 +15,12 @@
     divergence") is bracketed by two nodes 0.9·``min_step`` apart around its branch point
     (:func:`propwhirl.engine.crossings._branch_point_speeds`).  Intervals still ambiguous at
     ``min_step`` (or when the node budget runs out) are listed in ``Sweep.unresolved``.
+
+    Memory: before the first evaluation the sweep's need is estimated
+    (:func:`propwhirl.limits.sweep_bytes`: the eigenvectors kept per node and one batch's
+    temporaries) and refused beyond :func:`propwhirl.limits.memory_limit`; speeds are
+    evaluated in batches of at most :func:`propwhirl.limits.batch_size`; the refinement's node
+    budget (:func:`propwhirl.limits.node_budget`) is bounded absolutely and by memory.
     :func:`sweep` evaluates every grid speed (the V-g-f table).
 :func:`analyse`
     The sweep and :func:`~propwhirl.engine.crossings.critical_points`, in one call.  Locating
@@ -34,7 +40,9 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from propwhirl.engine.crossings import XTOL, _branch_point_speeds, _critical_points
-from propwhirl.engine.eigensolve import StateMatrixFn, _displacement_mask, single_thread_blas
+from propwhirl import limits
+from propwhirl.engine.eigensolve import (StateMatrixFn, _call_state_matrix, _displacement_mask,
+                                         single_thread_blas)
 from propwhirl.engine.hermite import _CHECK_S, _hermite_coeffs, _hermite_eval
 from propwhirl.engine.linking import _link, _Link
 from propwhirl.engine.nodes import _evaluate_nodes, _Node
@@ -130,16 +138,32 @@ def sweep(state_matrix: StateMatrixFn, speeds, *, n_dof: int | None = None,
         return _sweep(state_matrix, grid, n_dof, displacement, labels, mode_labels, opts)
 
 
+def _evaluate(fn, V, n: int, labels, opts: TrackingOptions, stats: dict[str, int]) -> list[_Node]:
+    """:func:`_evaluate_nodes` in batches of at most :func:`propwhirl.limits.batch_size`
+    speeds (bounds the temporaries of the model and of the eigen-solutions)."""
+    V = np.asarray(V, dtype=float)
+    b = limits.batch_size(n)
+    if V.size <= b:
+        return _evaluate_nodes(fn, V, n, labels, opts, stats)
+    out: list[_Node] = []
+    for i in range(0, V.size, b):
+        out += _evaluate_nodes(fn, V[i:i + b], n, labels, opts, stats)
+    return out
+
+
 def _sweep(fn, grid, n_dof, displacement, labels, mode_labels, opts,
            initial_step: float | None = None) -> Sweep:
     stats: dict[str, int] = {}
-    n = None if labels is None else len(labels)
-    nodes = _evaluate_nodes(fn, _initial_subset(grid, initial_step), n, labels, opts, stats)
-    n = nodes[0].lam.size
+    first = _initial_subset(grid, initial_step)
+    # the number of states before any batch: from the labels, else from A at one speed
+    n = len(labels) if labels is not None else _call_state_matrix(fn, first[:1], None,
+                                                                   None).shape[-1]
+    limits.check_sweep(first.size, n)
+    nodes = _evaluate(fn, first, n, labels, opts, stats)
     if labels is None:
         labels = tuple(f"x{i}" for i in range(n))
     disp = _displacement_mask(n, n_dof, displacement)
-    budget = opts.max_nodes or (20 * grid.size + 200)
+    budget = limits.node_budget(grid.size, first.size, n, opts.max_nodes)
     links: dict[tuple[float, float], _Link] = {}
     refined = 0
     while True:
@@ -183,7 +207,7 @@ def _sweep(fn, grid, n_dof, displacement, labels, mode_labels, opts,
                 break
         else:
             refined += len(new_V)
-        nodes = sorted(nodes + _evaluate_nodes(fn, np.array(new_V), n, labels, opts, stats),
+        nodes = sorted(nodes + _evaluate(fn, np.array(new_V), n, labels, opts, stats),
                        key=lambda nd: nd.V)
     stats["refined"] = refined
     stats["nodes"] = len(nodes)

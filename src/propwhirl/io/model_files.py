@@ -36,6 +36,7 @@ from typing import Any, Iterable
 
 import numpy as np
 
+from propwhirl import limits
 from propwhirl import validate as v
 from propwhirl.io import schema
 from propwhirl.io.schema import DERIVATIVE_SOURCES, FORMAT, FORMAT_VERSION, MODEL_TYPES, Field
@@ -319,6 +320,9 @@ def loads(text: str, source: str = "<string>") -> Any:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise v.InputError(f"{source}: not valid TOML: {_toml_error(exc, text)}") from exc
+    except RecursionError:          # tomllib recurses per level of nested arrays/tables
+        raise limits.nesting_error(source) from None
+    limits.check_nesting(data, source)
     try:
         return _from_dict(data)
     except v.InputError as exc:

@@ -5,6 +5,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from propwhirl import limits
 from propwhirl import validate as v
 from propwhirl.model.fields import spec
 
@@ -41,6 +42,8 @@ class FlightCondition:
         if not last > first:
             raise v.InputError(
                 f"speed_range last speed = {last!r} m/s is invalid: must be > the first, {first!r} m/s")
+        limits.check_speed_count(f"speed_range = {list(self.speed_range)!r} m/s",
+                                 limits.grid_count(first, last, step))
 
     def speeds(self) -> np.ndarray:
         """The initial grid [m/s]: first, first + step, ..., with the last speed included."""

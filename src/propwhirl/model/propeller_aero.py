@@ -36,6 +36,7 @@ from typing import Callable, Literal
 import numpy as np
 from scipy.special import hankel2e
 
+from propwhirl import limits
 from propwhirl import validate as v
 from propwhirl.model.fields import spec
 
@@ -302,6 +303,7 @@ class AeroSettings:
                 f"cutoff_lift_slope = {am!r} 1/rad is invalid: must be > 2π (a0 = 2π)")
         object.__setattr__(self, "cutoff_lift_slope", am)
         v.integer_at_least("quadrature_order", self.quadrature_order, 2)
+        limits.check_quadrature_order(self.quadrature_order)
 
 
 # ----------------------------------------------------------------------------- result

@@ -25,6 +25,7 @@ from typing import Literal
 
 import numpy as np
 
+from propwhirl import limits
 from propwhirl import validate as v
 from propwhirl.model.fields import spec
 from propwhirl.model.assembly import (
@@ -134,6 +135,7 @@ class PropellerWing(StateSpaceModel):
         None, "", "node of each propeller (derived)", default="none", form="derived"))
 
     def __post_init__(self) -> None:
+        limits.check_propellers(len(self.propellers))
         nodes = tuple(node_at(self.wing, inst.y) for inst in self.propellers)
         if len(set(nodes)) != len(nodes):
             dup = next(n for n in nodes if nodes.count(n) > 1)

@@ -17,6 +17,7 @@ from typing import Callable, Literal, Union
 
 import numpy as np
 
+from propwhirl import limits
 from propwhirl import validate as v
 from propwhirl.model.fields import spec
 
@@ -112,6 +113,7 @@ class Wing:
     def __post_init__(self) -> None:
         v.positive("semi_span", self.semi_span, "m")
         v.integer_at_least("n_elements", self.n_elements, 1)
+        limits.check_elements(self.n_elements)
         v.positive("root_chord", self.root_chord, "m")
         if self.tip_chord is not None:
             v.positive("tip_chord", self.tip_chord, "m")

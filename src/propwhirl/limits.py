@@ -1,0 +1,285 @@
+"""Size limits: memory estimates of an analysis, bounds on model sizes, safe terminal text.
+
+Every limit here refuses *before* allocating, with a one-line
+:class:`~propwhirl.validate.InputError` that gives the estimate and the limit.
+
+Memory of an analysis (:func:`sweep_bytes`)
+    A sweep of ``T`` speeds of a model with ``n`` first-order states (``n = 2 n_dof + n_lag``,
+    :attr:`propwhirl.model.protocol.DofMap.n_states`) keeps, per speed, the complex eigenvectors
+    of its node (``n² · 16`` bytes) and again in the assembled
+    :class:`~propwhirl.engine.results.Sweep` (``n² · 16``): :data:`RETAINED_BYTES_PER_ENTRY`
+    = 32 bytes per entry of ``A``.  The engine evaluates at most :data:`MAX_BATCH` speeds per
+    call of the state matrix; a batch holds ``A(V)`` and ``A(V + h)`` (2 · 8 bytes), dA/dV (8),
+    LAPACK's eigenvectors before they are stored (16) and workspace:
+    :data:`BATCH_BYTES_PER_ENTRY` = 48 bytes per entry and speed of the batch.  Measured
+    (tracemalloc) on the wingtip propeller-wing, 204 states, one batch of 50 and 200 speeds:
+    61–64 bytes per entry and speed, = 32 + 32 of the two terms above.  Each node also holds
+    a few vectors and a Python object: :data:`NODE_OVERHEAD_BYTES`; a batch also holds the
+    model's own temporaries, :data:`BATCH_MODEL_BYTES` per speed (the Houbolt–Reed integrals:
+    ≈ 25 kB per speed measured on the isolated propeller, where they dominate).
+
+The memory limit (:func:`memory_limit`)
+    ``PROPWHIRL_MEMORY_LIMIT`` (bytes, or a number with a unit: ``"512MiB"``, ``"4GiB"``,
+    ``"2GB"``), else half of the machine's physical memory (``os.sysconf``), at most
+    :data:`DEFAULT_LIMIT_CAP` (8 GiB: an analysis that needs more is refused unless asked for
+    explicitly), at least 256 MiB; 2 GiB where the machine does not report its memory.
+
+Sizes bounded outright (the memory they imply is no question of the machine)
+    :data:`MAX_SPEEDS` speeds in a grid, :data:`MAX_ELEMENTS` wing elements,
+    :data:`MAX_PROPELLERS` propellers, :data:`MAX_QUADRATURE_ORDER` Gauss–Legendre points,
+    :data:`MAX_RPM` rev/min, :data:`MAX_NESTING` levels of nesting in a model file, and
+    :data:`MAX_REFINED_NODES` speeds the tracker may add to a sweep.
+"""
+from __future__ import annotations
+
+import math
+import os
+import re
+import unicodedata
+
+from propwhirl.validate import InputError
+
+GiB = 2 ** 30
+MiB = 2 ** 20
+
+#: environment variable of the memory limit (bytes, or e.g. "4GiB", "512MB")
+MEMORY_ENV = "PROPWHIRL_MEMORY_LIMIT"
+#: the default limit is at most this [bytes] (half the physical memory below 16 GiB of RAM)
+DEFAULT_LIMIT_CAP = 8 * GiB
+#: fraction of the physical memory the default limit allows
+DEFAULT_FRACTION = 0.5
+#: default limit where the machine does not report its memory [bytes]
+FALLBACK_LIMIT = 2 * GiB
+
+#: bytes kept per entry of A(V) and per node: eigenvectors in the node and in the Sweep
+RETAINED_BYTES_PER_ENTRY = 32
+#: bytes per entry of A(V) and per speed of one batch while it is evaluated
+BATCH_BYTES_PER_ENTRY = 48
+#: per node: eigenvalues, dλ/dV, conjugate index, the Python objects [bytes] (n ≤ a few 1000)
+NODE_OVERHEAD_BYTES = 4096
+#: speeds per call of the state matrix in the engine (bounds a batch's temporaries; the
+#: Houbolt–Reed integrals of a propeller take ≈ 25 kB per speed at the default order)
+MAX_BATCH = 256
+#: temporaries of one batch at most [bytes] (fewer speeds per batch for large models)
+BATCH_MEMORY = 256 * MiB
+#: the model's own temporaries per speed of a batch [bytes]: the Houbolt–Reed integrals of a
+#: propeller at the default order, measured ≈ 25 kB per speed (isolated propeller, tracemalloc)
+BATCH_MODEL_BYTES = 32 * 2 ** 10
+
+#: speeds in one grid: a sweep refined to the tracker's 0.01 m/s over 0–1000 m/s has 100,000
+MAX_SPEEDS = 100_000
+#: speeds the tracker may add to a sweep (refinement and hump checks) beyond its first
+#: evaluation; besides ``20 · len(grid) + 200`` and the memory limit.  The thesis's analyses
+#: add fewer than 100.
+MAX_REFINED_NODES = 2_000
+#: wing elements: the thesis's wing results converge within a few elements (§7.4, Figures 7.3
+#: and 7.5) and its analyses use 25; 200 elements are ≈ 1,600–2,000 states, one
+#: eigen-solution ≈ 5 s and ≈ 0.2 GB per speed
+MAX_ELEMENTS = 200
+#: propellers on one wing (X-57 has 14); each adds 2 DOFs and its Houbolt–Reed integrals
+MAX_PROPELLERS = 64
+#: Gauss–Legendre points per panel: 8× the default 32, which agrees with 64 points to 1e-8
+#: (tests/model/test_propeller_aero.py); numpy's nodes cost O(order²) memory, O(order³) time
+MAX_QUADRATURE_ORDER = 256
+#: propeller rotational speed [rev/min] of a Campbell diagram (tip speed of a 1 m propeller
+#: at 100,000 rev/min: 10.5 km/s)
+MAX_RPM = 100_000.0
+#: nesting of arrays and tables in a model file, the document itself counted (the case
+#: library's model files have 3 to 5 levels)
+MAX_NESTING = 32
+
+
+# ----------------------------------------------------------------------------- memory
+_UNITS = {"": 1, "b": 1, "k": 1000, "kb": 1000, "kib": 2 ** 10, "m": 1000 ** 2, "mb": 1000 ** 2,
+          "mib": MiB, "g": 1000 ** 3, "gb": 1000 ** 3, "gib": GiB, "t": 1000 ** 4,
+          "tb": 1000 ** 4, "tib": 2 ** 40}
+
+
+def parse_bytes(text: str, name: str = MEMORY_ENV) -> int:
+    """Bytes from ``"4GiB"``, ``"512 MB"``, ``"2e9"`` (units: B, kB, KiB, MB, MiB, GB, GiB, …)."""
+    m = re.fullmatch(r"\s*([0-9]*\.?[0-9]+(?:[eE][+-]?[0-9]+)?)\s*([A-Za-z]*)\s*", str(text))
+    unit = m.group(2).lower() if m else ""
+    if m is None or unit not in _UNITS:
+        raise InputError(f"{name} = {text!r} is invalid: give bytes or a number with a unit, "
+                         "e.g. 4GiB or 512MB")
+    value = float(m.group(1)) * _UNITS[unit]
+    if not (math.isfinite(value) and value >= MiB):
+        raise InputError(f"{name} = {text!r} is invalid: must be at least 1 MiB")
+    return int(value)
+
+
+def physical_memory() -> int | None:
+    """The machine's physical memory [bytes] (``os.sysconf``), None where not reported."""
+    try:
+        pages, size = os.sysconf("SC_PHYS_PAGES"), os.sysconf("SC_PAGE_SIZE")
+    except (AttributeError, ValueError, OSError):
+        return None
+    return pages * size if pages > 0 and size > 0 else None
+
+
+def memory_limit() -> int:
+    """The memory an analysis may use [bytes] (module docstring): ``PROPWHIRL_MEMORY_LIMIT``,
+    else half the physical memory, within [256 MiB, 8 GiB]."""
+    env = os.environ.get(MEMORY_ENV)
+    if env is not None and env.strip():
+        return parse_bytes(env)
+    phys = physical_memory()
+    if phys is None:
+        return FALLBACK_LIMIT
+    return int(min(max(DEFAULT_FRACTION * phys, 256 * MiB), DEFAULT_LIMIT_CAP))
+
+
+def format_bytes(n: float) -> str:
+    """'9.5 GiB', '310 MiB', '2.5 TiB'."""
+    for unit, size in (("TiB", 2 ** 40), ("GiB", GiB), ("MiB", MiB), ("KiB", 2 ** 10)):
+        if n >= size:
+            x = n / size
+            return f"{x:.1f} {unit}" if x < 100 else f"{x:,.0f} {unit}"
+    return f"{n:.0f} B"
+
+
+def batch_size(n_states: int) -> int:
+    """Speeds per call of the state matrix in the engine: at most :data:`MAX_BATCH`, and
+    temporaries of at most :data:`BATCH_MEMORY` (≥ 1 speed)."""
+    per_speed = BATCH_BYTES_PER_ENTRY * float(n_states) ** 2
+    return int(max(1, min(MAX_BATCH, BATCH_MEMORY // max(per_speed, 1.0))))
+
+
+def sweep_bytes(n_speeds: int, n_states: int) -> int:
+    """Estimated peak memory [bytes] of a sweep of ``n_speeds`` nodes of ``n_states`` states
+    (module docstring): kept eigenvectors, one batch's temporaries, per-node overhead."""
+    n2 = float(n_states) ** 2
+    return int(n_speeds * (RETAINED_BYTES_PER_ENTRY * n2 + NODE_OVERHEAD_BYTES)
+               + min(n_speeds, batch_size(n_states)) * (BATCH_BYTES_PER_ENTRY * n2
+                                                        + BATCH_MODEL_BYTES))
+
+
+def check_sweep(n_speeds: int, n_states: int, what: str = "the analysis",
+                advice: str = "pass fewer speeds") -> None:
+    """Refuse a sweep whose :func:`sweep_bytes` exceeds :func:`memory_limit`."""
+    need, limit = sweep_bytes(n_speeds, n_states), memory_limit()
+    if need > limit:
+        raise InputError(
+            f"{what} needs ≈ {format_bytes(need)} for {n_speeds:,} speeds × {n_states:,} states "
+            f"(limit {format_bytes(limit)}, set {MEMORY_ENV} or {advice})")
+
+
+def node_budget(n_grid: int, n_first: int, n_states: int, requested: int | None = None) -> int:
+    """Most nodes (speeds) a sweep may hold: ``requested`` (``TrackingOptions.max_nodes``), by
+    default its first ``n_first`` evaluations plus at most :data:`MAX_REFINED_NODES`
+    refinements and at most ``20 · n_grid + 200``; in any case no more than fit in
+    :func:`memory_limit` (:func:`sweep_bytes`), and never fewer than ``n_first``."""
+    per_node = RETAINED_BYTES_PER_ENTRY * float(n_states) ** 2 + NODE_OVERHEAD_BYTES
+    # a refinement batch may be a full one: its temporaries are reserved whole
+    batch = batch_size(n_states) * (BATCH_BYTES_PER_ENTRY * float(n_states) ** 2
+                                    + BATCH_MODEL_BYTES)
+    fit = int(max(memory_limit() - batch, 0) // per_node)
+    want = (min(20 * n_grid + 200, n_first + MAX_REFINED_NODES) if requested is None
+            else int(requested))
+    return max(n_first, min(want, fit))
+
+
+# ----------------------------------------------------------------------------- sizes
+def grid_count(first: float, last: float, step: float) -> float:
+    """Number of speeds of the grid first, first + step, …, last (last included); inf when
+    the range or the step is not finite or the step is not positive."""
+    try:
+        n = (float(last) - float(first)) / float(step)
+    except (TypeError, ValueError, ZeroDivisionError):
+        return math.inf
+    if not math.isfinite(n) or not float(step) > 0:
+        return math.inf
+    return math.ceil(n - 1e-9) + 1
+
+
+def check_speed_count(name: str, count: float, form: str = "a larger step") -> None:
+    """At most :data:`MAX_SPEEDS` speeds in a grid."""
+    if not count <= MAX_SPEEDS:
+        what = "infinitely many" if not math.isfinite(count) else f"{int(count):,}"
+        raise InputError(f"{name} gives {what} speeds: must be at most {MAX_SPEEDS:,} "
+                         f"({form})")
+
+
+def _at_most(name: str, value, maximum, why: str) -> None:
+    try:
+        ok = value <= maximum
+    except TypeError:
+        return                      # the type is the field check's business
+    if not ok:
+        raise InputError(f"{name} = {value!r} is invalid: must be at most {maximum:,} ({why})")
+
+
+def check_elements(n_elements) -> None:
+    """At most :data:`MAX_ELEMENTS` wing elements."""
+    _at_most("n_elements", n_elements, MAX_ELEMENTS,
+             "the states grow as 8-10 per element, memory and time of an eigen-solution as "
+             "their square and cube; the thesis's wing results converge within a few elements")
+
+
+def check_propellers(count: int) -> None:
+    """At most :data:`MAX_PROPELLERS` propellers on a wing."""
+    _at_most("number of propellers", count, MAX_PROPELLERS, "each adds 2 DOFs and its "
+             "Houbolt-Reed integrals at every speed")
+
+
+def check_quadrature_order(order) -> None:
+    """At most :data:`MAX_QUADRATURE_ORDER` Gauss–Legendre points per panel."""
+    _at_most("quadrature_order", order, MAX_QUADRATURE_ORDER,
+             "the default 32 is converged to 1e-8; the nodes cost order^2 memory")
+
+
+# ----------------------------------------------------------------------------- nesting
+def nesting_depth(data, limit: int = MAX_NESTING) -> int:
+    """Depth of nested dicts and lists in ``data`` (a scalar: 0), iteratively; counting stops
+    at ``limit + 1``."""
+    deepest, stack = 0, [(data, 0)]
+    while stack:
+        item, depth = stack.pop()
+        if isinstance(item, dict):
+            children = item.values()
+        elif isinstance(item, (list, tuple)):
+            children = item
+        else:
+            continue
+        depth += 1
+        deepest = max(deepest, depth)
+        if deepest > limit:
+            return deepest
+        stack.extend((c, depth) for c in children)
+    return deepest
+
+
+def nesting_error(source: str) -> InputError:
+    """The one-line error of a document nested deeper than :data:`MAX_NESTING` levels."""
+    return InputError(f"{source}: nesting deeper than {MAX_NESTING} levels (arrays or tables "
+                      "inside each other; a model file needs at most 5)")
+
+
+def check_nesting(data, source: str) -> None:
+    """Refuse parsed data nested deeper than :data:`MAX_NESTING` levels."""
+    if nesting_depth(data) > MAX_NESTING:
+        raise nesting_error(source)
+
+
+# ----------------------------------------------------------------------------- terminal text
+_BIDI = {0x061C, 0x200E, 0x200F, *range(0x202A, 0x202F), *range(0x2066, 0x206A)}
+
+
+def _escape(ch: str) -> str:
+    o = ord(ch)
+    return f"\\x{o:02x}" if o < 0x100 else (f"\\u{o:04x}" if o < 0x10000 else f"\\U{o:08x}")
+
+
+def printable(text) -> str:
+    """``text`` safe to print: control characters (C0, DEL, C1 — ESC among them), line and
+    paragraph separators and bidirectional overrides become visible escapes (``\\x1b``,
+    ``\\u202e``); everything else is kept.
+
+    >>> printable("wing\\x1b[2J\\x9b1m")
+    'wing\\\\x1b[2J\\\\x9b1m'
+    """
+    s = str(text)
+    if s.isprintable() and not any(ord(c) in _BIDI for c in s):
+        return s
+    return "".join(_escape(c) if (unicodedata.category(c) in ("Cc", "Zl", "Zp")
+                                  or ord(c) in _BIDI) else c for c in s)
