@@ -14,14 +14,16 @@ SRC = Path(__file__).resolve().parent.parent / "src" / "propwhirl"
 #: package -> the propwhirl packages it may import (validate: the shared input checks)
 ALLOWED = {
     "validate": set(),
+    "fileio": {"validate"},                       # atomic file writes, writability checks
     "model": {"generated", "validate"},
     "engine": {"validate"},                       # model-agnostic: A(V) in, eigen-data out
-    "analysis": {"engine", "model", "validate"},
+    "analysis": {"engine", "fileio", "model", "validate"},
     "cases": {"model", "validate"},               # model factories only
-    "studies": {"analysis", "cases", "engine", "model", "validate"},
+    "studies": {"analysis", "cases", "engine", "fileio", "model", "validate"},
     "reproduce": {"analysis", "cases", "engine", "generated", "model", "studies", "validate"},
-    "io": {"model", "validate"},
-    "app": {"analysis", "cases", "engine", "io", "model", "reproduce", "studies", "validate"},
+    "io": {"fileio", "model", "validate"},
+    "app": {"analysis", "cases", "engine", "fileio", "io", "model", "reproduce", "studies",
+            "validate"},
     # entry point and compatibility re-exports
     "__main__": {"app"}, "__init__": set(), "wing": {"model"}, "propeller": {"model"},
     "plots": {"app"},
