@@ -26,7 +26,7 @@ def _d2c(d: Mapping[str, Any]) -> np.ndarray:
 
 
 def _shape_text(shape: tuple[int, ...]) -> str:
-    return "(" + ", ".join(str(s) for s in shape) + ")"
+    return str(tuple(int(s) for s in shape))
 
 
 class SavedDict:
@@ -154,7 +154,8 @@ class SavedDict:
         """A speed interval [lo, hi] [m/s], finite, lo <= hi."""
         b = self.array(key, shape=(2,))
         if not b[0] <= b[1]:
-            raise self._fail(key, f"= [{b[0]!r}, {b[1]!r}] is invalid: must have lo <= hi")
+            raise self._fail(key, f"= [{float(b[0])!r}, {float(b[1])!r}] is invalid: must "
+                             "have lo <= hi")
         return float(b[0]), float(b[1])
 
 
