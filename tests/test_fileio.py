@@ -109,23 +109,72 @@ def test_full_disk_in_the_file_objects_write(tmp_path, small_analysis):
     assert leftovers(tmp_path, {"fig.png"}) == []
 
 
-@pytest.mark.parametrize("writer", ["csv", "model", "table"])
-def test_every_writer_is_atomic_on_a_full_disk(tmp_path, monkeypatch, writer, small_analysis):
-    from propwhirl.studies.table import StudyTable
+SYNTHETIC = """
+import numpy as np
+from propwhirl.engine import Sweep
 
-    target = tmp_path / "out"
-    target.write_text("old")
-    monkeypatch.setattr(os, "write", FullDisk(10))
-    with pytest.raises(InputError, match="out'?: No space left on device"):
-        if writer == "csv":
-            io.write_vgf_csv(small_analysis, target)
+def synthetic_sweep(me=1, T=400, n=8):
+    V = np.arange(1.0, T + 1.0)
+    lam = (-0.01 * me - 0.1 * np.arange(n)) + 1j * (1.0 + me + np.arange(n)) * np.ones((T, 1))
+    return Sweep(V=V, eigenvalues=lam, eigenvectors=None, dlam_dV=0 * lam,
+                 physical=np.ones((T, n), bool), state_labels=tuple("s%d" % k for k in range(n)),
+                 displacement=np.ones(n, bool), mode_labels=tuple("m%d" % k for k in range(n)),
+                 partner=-np.ones(n, int), grid=V, floor=np.ones(T))
+"""
+
+FULL_DISK = SYNTHETIC + textwrap.dedent("""
+    import resource, signal, sys
+    from propwhirl.analysis.stability import ModelAnalysis
+    from propwhirl.validate import InputError
+
+    writer, path = sys.argv[1], sys.argv[2]
+    sweep = synthetic_sweep()
+    # the kernel refuses every byte past 1000 in any file this process writes (EFBIG)
+    signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+    resource.setrlimit(resource.RLIMIT_FSIZE, (1000, resource.RLIM_INFINITY))
+    try:
+        if writer == "analysis":
+            ModelAnalysis("synthetic", sweep, ()).save(path)
+        elif writer == "csv":
+            from propwhirl.io import write_vgf_csv
+            write_vgf_csv(sweep, path)
         elif writer == "model":
-            io.save_model(isolated_baseline_propeller(), target)
-        else:
-            StudyTable("t", "x", {"model": np.array(["a"]), "x": np.array([1.0])}).to_csv(target)
-    monkeypatch.undo()
+            from propwhirl.cases.registry import case_model
+            from propwhirl.io import save_model
+            save_model(case_model("wingtip"), path)
+        elif writer == "table":
+            from propwhirl.studies.table import StudyTable
+            StudyTable("t", "x", {"model": np.array(["a"] * 400),
+                                  "x": np.arange(400.0)}).to_csv(path)
+        elif writer == "plot":
+            from propwhirl.app import plots
+            plots.save(plots.vgf(ModelAnalysis("synthetic", sweep, ())), path)
+    except InputError as exc:
+        print(exc, file=sys.stderr)
+        sys.exit(2)
+""")
+
+
+@pytest.mark.parametrize("writer", ["analysis", "csv", "model", "table", "plot"])
+def test_a_file_size_limit_of_the_kernel_leaves_the_old_file(tmp_path, writer):
+    """Issue 9.5: a full disk left a 65,536-byte invalid JSON and the error named no file.
+    A real write failure of the kernel (RLIMIT_FSIZE: EFBIG past 1000 bytes, as a full disk
+    gives ENOSPC) in every writer: an InputError naming the file, the old file untouched,
+    no temporary file."""
+    if writer == "plot":
+        pytest.importorskip("matplotlib")
+    target = tmp_path / ("out.png" if writer == "plot" else "out.file")
+    target.write_text("old")
+    script = tmp_path / "full.py"
+    script.write_text(FULL_DISK)
+    env = dict(os.environ, PYTHONPATH=str(ROOT / "src"), PYTHONDONTWRITEBYTECODE="1")
+    r = subprocess.run([sys.executable, str(script), writer, str(target)], env=env,
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 2, r.stderr
+    assert r.stderr.count("\n") == 1
+    assert f"{str(target)!r}: File too large" in r.stderr
     assert target.read_text() == "old"
-    assert leftovers(tmp_path, {"out"}) == []
+    assert leftovers(tmp_path, {target.name, "full.py"}) == []
 
 
 def test_keyboard_interrupt_mid_write_removes_the_temporary_file(tmp_path):
@@ -189,21 +238,12 @@ def test_check_writable(tmp_path):
         fileio.check_writable(ro / "a.csv", what="--csv")
 
 
-WRITER = textwrap.dedent("""
+WRITER = SYNTHETIC + textwrap.dedent("""
     import sys
-    import numpy as np
-    from propwhirl.analysis.stability import Instability, ModelAnalysis
-    from propwhirl.engine import Sweep
     from propwhirl.io import write_vgf_csv
 
     me, path = int(sys.argv[1]), sys.argv[2]
-    T, n = 400, 8
-    V = np.arange(1.0, T + 1.0)
-    lam = (-0.01 * me - 0.1 * np.arange(n)) + 1j * (1.0 + me + np.arange(n)) * np.ones((T, 1))
-    sweep = Sweep(V=V, eigenvalues=lam, eigenvectors=None, dlam_dV=0 * lam,
-                  physical=np.ones((T, n), bool), state_labels=tuple("s%d" % k for k in range(n)),
-                  displacement=np.ones(n, bool), mode_labels=tuple("m%d" % k for k in range(n)),
-                  partner=-np.ones(n, int), grid=V, floor=np.ones(T))
+    sweep = synthetic_sweep(me)
     for _ in range(20):
         write_vgf_csv(sweep, path)
 """)
