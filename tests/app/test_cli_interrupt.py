@@ -144,6 +144,31 @@ def test_sigint_exits_130_with_one_line_and_no_partial_output(small_file, tmp_pa
     assert list(out.iterdir()) == []            # no a.json, no a.csv, no temporary file
 
 
+@pytest.mark.skipif(not Path("/proc/self/maps").exists(), reason="needs Linux /proc")
+def test_sigint_to_the_real_command(tmp_path):
+    """`python -m propwhirl analyse` (no patches) interrupted while it computes: once scipy's
+    compiled modules are loaded (the engine's import, inside main), send SIGINT."""
+    model = tmp_path / "m.toml"
+    assert cli.main(["case", "wingtip", "--save", str(model)]) == 0
+    out = tmp_path / "out"
+    out.mkdir()
+    argv = [sys.executable, "-m", "propwhirl", "analyse", str(model), "--speeds", "1", "350",
+            "0.5", "--json", str(out / "a.json"), "--csv", str(out / "a.csv")]
+    env = dict(os.environ, PYTHONPATH=str(ROOT / "src"))
+    proc = subprocess.Popen(argv, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True)
+    maps = Path(f"/proc/{proc.pid}/maps")
+    t0 = time.monotonic()
+    while "/scipy/linalg/" not in maps.read_text():
+        assert proc.poll() is None, proc.communicate()
+        assert time.monotonic() - t0 < 60
+        time.sleep(0.02)
+    proc.send_signal(signal.SIGINT)
+    stdout, stderr = proc.communicate(timeout=60)
+    assert (proc.returncode, stderr) == (130, "propwhirl: interrupted\n")
+    assert list(out.iterdir()) == []
+
+
 def test_keyboard_interrupt_in_main(small_file, monkeypatch, capsys):
     import propwhirl.analysis.stability as stability
 
