@@ -79,7 +79,8 @@ def read_vgf_csv(path: str | Path) -> dict[str, np.ndarray]:
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as exc:
-        raise v.InputError(f"{path}: not a V-g-f table: not UTF-8 text (byte {exc.start})") from None
+        raise v.InputError(f"{path}: not a V-g-f table: not UTF-8 text (byte {exc.start})"
+                           ) from None
     if not text.strip():
         raise v.InputError(f"{path}: the file is empty, not a V-g-f table")
     try:
