@@ -16,14 +16,15 @@ SRC = Path(__file__).resolve().parent.parent / "src" / "propwhirl"
 ALLOWED = {
     "validate": set(),
     "limits": {"validate"},                       # memory estimates and size limits
+    "fileio": {"validate"},                       # atomic file writes, writability checks
     "model": {"generated", "limits", "validate"},
     "engine": {"limits", "validate"},             # model-agnostic: A(V) in, eigen-data out
-    "analysis": {"engine", "limits", "model", "validate"},
+    "analysis": {"engine", "fileio", "limits", "model", "validate"},
     "cases": {"model", "validate"},               # model factories only
-    "studies": {"analysis", "cases", "engine", "model", "validate"},
+    "studies": {"analysis", "cases", "engine", "fileio", "model", "validate"},
     "reproduce": {"analysis", "cases", "engine", "generated", "model", "studies", "validate"},
-    "io": {"limits", "model", "validate"},
-    "app": {"analysis", "cases", "engine", "io", "limits", "model", "reproduce", "studies",
+    "io": {"fileio", "limits", "model", "validate"},
+    "app": {"analysis", "cases", "engine", "fileio", "io", "limits", "model", "reproduce", "studies",
             "validate"},
     # entry point and compatibility re-exports
     "__main__": {"app"}, "__init__": set(), "wing": {"model"}, "propeller": {"model"},

@@ -27,9 +27,11 @@ import numpy as np
 from propwhirl.engine import XTOL, Criticals, Sweep, TrackingOptions, frequency_zero_points
 from propwhirl.engine import analyse as engine_analyse
 from propwhirl.engine.options import check_speeds
+from propwhirl.engine.results import SavedDict
+from propwhirl import fileio
 from propwhirl import validate as v
 from propwhirl.analysis.naming import mode_content, mode_names, whirl
-from propwhirl.model.protocol import DofMap, Model
+from propwhirl.model.protocol import DofMap, Model, PropellerDofs
 
 #: Default airspeed grid of the thesis's analyses (0–350 m/s; the engine refines it) [m/s]
 DEFAULT_SPEEDS = np.arange(1.0, 351.0, 10.0)
@@ -180,11 +182,14 @@ class ModelAnalysis:
         return "\n".join(lines)
 
     def to_dict(self, include_eigenvectors: bool = False) -> dict[str, Any]:
+        """The analysis as a JSON-able dict (the document :meth:`save` writes, format
+        :data:`FORMAT` version :data:`FORMAT_VERSION`); a non-finite benignity becomes None."""
         c = self.critical
         return {
+            "format": FORMAT, "format_version": FORMAT_VERSION,
             "model_name": self.model_name,
-            "events": [asdict(e) for e in self.events],
-            "critical": None if c is None else asdict(c),
+            "events": [_event_dict(e) for e in self.events],
+            "critical": None if c is None else _event_dict(c),
             "dof_map": None if self.dof_map is None else self.dof_map.to_dict(),
             "content": self.content,
             "sweep": self.sweep.to_dict(include_eigenvectors=include_eigenvectors),
@@ -192,18 +197,169 @@ class ModelAnalysis:
 
     @classmethod
     def from_dict(cls, d: dict[str, Any]) -> "ModelAnalysis":
-        dm = d.get("dof_map")
-        return cls(d["model_name"], Sweep.from_dict(d["sweep"]),
-                   tuple(Instability(**e) for e in d["events"]), content=d.get("content", {}),
-                   dof_map=None if dm is None else DofMap.from_dict(dm))
+        """The analysis of a dict written by :meth:`to_dict`, checked: format and version,
+        every key, types, shapes (T speeds, n modes), finite numbers, mode ids and names, the
+        DOF map against the sweep's states, the saved critical instability against the events.
+        Anything else is an :class:`~propwhirl.validate.InputError` naming the key.
+
+        A dict without "format" and "format_version" (written before they were introduced,
+        otherwise the same layout) is read as version 1."""
+        return _analysis_from_dict(d)
 
     def save(self, path: str | Path, include_eigenvectors: bool = False) -> None:
-        """Write the analysis as JSON (V-g-f table, labels, instabilities)."""
-        Path(path).write_text(json.dumps(self.to_dict(include_eigenvectors)))
+        """Write the analysis as JSON (V-g-f table, labels, instabilities).
+
+        The file is replaced atomically (:func:`propwhirl.fileio.write_text`: a full disk or a
+        Ctrl-C leaves the old file or none, never a partial one).  JSON without NaN or
+        infinity: a non-finite number is an :class:`~propwhirl.validate.InputError` naming
+        the key, and nothing is written."""
+        d = self.to_dict(include_eigenvectors)
+        try:
+            text = json.dumps(d, allow_nan=False)
+        except ValueError:
+            raise v.InputError(f"cannot save the analysis to {str(path)!r}: "
+                               f"{_non_finite_key(d)} is not a finite number") from None
+        fileio.write_text(path, text, what="analysis file")
+
+
+#: The "format" of an analysis file and the version this propwhirl writes and reads.
+FORMAT = "propwhirl-analysis"
+FORMAT_VERSION = 1
+
+_EVENT_KINDS = ("flutter", "divergence")
+_EVENTS = ("onset", "recovery", "frequency-zero", "unstable-at-start")
+_WHIRL = ("forward", "backward", "planar")
+
+
+def _finite_or_none(x: float | None) -> float | None:
+    return None if x is None or not np.isfinite(x) else float(x)
+
+
+def _event_dict(e: Instability) -> dict[str, Any]:
+    d = asdict(e)
+    d["benignity"] = _finite_or_none(e.benignity)
+    return d
+
+
+def _non_finite_key(obj: Any, where: str = "") -> str:
+    """The dotted key of the first non-finite number in a JSON-able document."""
+    if isinstance(obj, dict):
+        for k, x in obj.items():
+            found = _non_finite_key(x, f"{where}.{k}" if where else str(k))
+            if found:
+                return found
+    elif isinstance(obj, (list, tuple)):
+        for i, x in enumerate(obj):
+            found = _non_finite_key(x, f"{where}[{i}]")
+            if found:
+                return found
+    elif isinstance(obj, float) and not np.isfinite(obj):
+        return where or "the value"
+    return ""
+
+
+def _event_from_dict(d: Any, where: str, sweep: Sweep) -> Instability:
+    r = SavedDict(d, where, ("kind", "event", "mode", "label", "V", "frequency_hz"),
+                  ("whirl", "benignity"))
+    mode = r.integer("mode", 0, sweep.n_modes - 1)
+    label = r.string("label")
+    if label != sweep.mode_labels[mode]:
+        raise v.InputError(f"{where}.label = {label!r} is not the name of mode {mode} in the "
+                           f"sweep ({sweep.mode_labels[mode]!r})")
+    return Instability(r.string("kind", _EVENT_KINDS), r.string("event", _EVENTS), mode, label,
+                       r.number("V"), r.number("frequency_hz"),
+                       r.string("whirl", _WHIRL, optional=True) if r.has("whirl") else None,
+                       r.number("benignity", optional=True) if r.has("benignity") else None)
+
+
+def _dof_map_from_dict(d: Any, sweep: Sweep) -> DofMap:
+    keys = ("q_labels", "q_kinds", "q_node", "q_propeller", "w_labels", "w_node", "node_y",
+            "propellers")
+    r = SavedDict(d, "dof_map", keys)
+    n_dof = len(r.strings("q_labels"))
+    props = r.raw("propellers")
+    if not isinstance(props, list):
+        raise v.InputError("dof_map.propellers: must be a list")
+    dofs = []
+    for i, p in enumerate(props):
+        pr = SavedDict(p, f"dof_map.propellers[{i}]",
+                       ("number", "theta", "psi", "rotation", "spinning", "y", "node"))
+        spinning = pr.raw("spinning")
+        if not isinstance(spinning, bool):
+            raise v.InputError(f"{pr.name('spinning')}: must be true or false")
+        node = pr.raw("node")
+        dofs.append(PropellerDofs(
+            pr.integer("number", 0), pr.integer("theta", 0, n_dof - 1),
+            pr.integer("psi", 0, n_dof - 1), pr.integer("rotation", -1, 1), spinning,
+            pr.number("y", optional=True), None if node is None else pr.integer("node", 0)))
+    kw = dict(q_labels=r.strings("q_labels"), q_kinds=r.strings("q_kinds"),
+              q_node=tuple(int(k) for k in r.array("q_node", int)),
+              q_propeller=tuple(int(k) for k in r.array("q_propeller", int)),
+              w_labels=r.strings("w_labels"),
+              w_node=tuple(int(k) for k in r.array("w_node", int)),
+              propellers=tuple(dofs), node_y=tuple(float(y) for y in r.array("node_y")))
+    try:
+        dm = DofMap(**kw)
+    except v.InputError as exc:
+        raise v.InputError(f"dof_map: {exc}") from None
+    if dm.state_labels != sweep.state_labels:
+        raise v.InputError(f"dof_map: its {dm.n_states} states do not match the sweep's "
+                           f"{len(sweep.state_labels)} state labels")
+    return dm
+
+
+def _content_from_dict(d: Any, sweep: Sweep) -> dict[str, dict[str, float]]:
+    if not isinstance(d, dict):
+        raise v.InputError("content: must be an object {mode name: {group: share}}")
+    out = {}
+    for label, shares in d.items():
+        if label not in sweep.mode_labels:
+            raise v.InputError(f"content: {label!r} is not a mode of the sweep")
+        r = SavedDict(shares, f"content.{label}", (), tuple(shares) if isinstance(shares, dict)
+                      else ())
+        out[label] = {g: r.number(g) for g in shares}
+    return out
+
+
+def _analysis_from_dict(d: Any) -> ModelAnalysis:
+    keys = ("model_name", "events", "critical", "dof_map", "content", "sweep")
+    r = SavedDict(d, "", keys, ("format", "format_version"))
+    if r.has("format") or r.has("format_version"):
+        got = r.raw("format") if r.has("format") else None
+        if got != FORMAT:
+            raise v.InputError(f"format = {got!r} is invalid: not a propwhirl analysis file "
+                               f"(format {FORMAT!r})")
+        if not r.has("format_version"):
+            raise v.InputError("missing key 'format_version'")
+        version = r.raw("format_version")
+        if version != FORMAT_VERSION or isinstance(version, bool):
+            raise v.InputError(f"format_version = {version!r} is not supported: this propwhirl "
+                               f"reads version {FORMAT_VERSION}")
+    sweep = Sweep.from_dict(r.raw("sweep"))
+    if not isinstance(r.raw("events"), list):
+        raise v.InputError("events: must be a list")
+    events = tuple(_event_from_dict(e, f"events[{i}]", sweep)
+                   for i, e in enumerate(r.raw("events")))
+    dm = None if r.raw("dof_map") is None else _dof_map_from_dict(r.raw("dof_map"), sweep)
+    a = ModelAnalysis(r.string("model_name"), sweep, events,
+                      content=_content_from_dict(r.raw("content"), sweep), dof_map=dm)
+    c = a.critical
+    if r.raw("critical") != (None if c is None else _event_dict(c)):
+        raise v.InputError("critical: does not match the critical instability of the events")
+    return a
+
+
+def _refuse_constant(name: str) -> Any:
+    raise v.InputError(f"holds {name}, which an analysis file must not (numbers are finite)")
 
 
 def load(path: str | Path) -> ModelAnalysis:
     """Re-read an analysis written by :meth:`ModelAnalysis.save`.
+
+    The file is checked throughout (:meth:`ModelAnalysis.from_dict`): an empty, truncated or
+    non-JSON file, another format or version, a missing key, a wrong type, NaN or infinity,
+    inconsistent shapes is an :class:`~propwhirl.validate.InputError` of one line starting
+    with the path.
 
     Examples
     --------
@@ -216,7 +372,37 @@ def load(path: str | Path) -> ModelAnalysis:
     >>> load(path).critical == a.critical
     True
     """
-    return ModelAnalysis.from_dict(json.loads(Path(path).read_text()))
+    path = Path(path)
+    try:
+        data = path.read_bytes()
+    except FileNotFoundError:
+        raise v.InputError(f"analysis file {str(path)!r} not found") from None
+    except OSError as exc:
+        raise v.InputError(f"cannot read analysis file {str(path)!r}: "
+                           f"{fileio.reason(exc)}") from exc
+    if not data.strip():
+        raise v.InputError(f"{path}: the file is empty, not an analysis file")
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise v.InputError(f"{path}: not an analysis file: not UTF-8 text (byte {exc.start})"
+                           ) from None
+    try:
+        doc = json.loads(text, parse_constant=_refuse_constant)
+    except json.JSONDecodeError as exc:
+        end = " (the file ends early: truncated?)" if exc.pos >= len(text.rstrip()) else ""
+        raise v.InputError(f"{path}: not valid JSON: {exc.msg} at line {exc.lineno}, column "
+                           f"{exc.colno}{end}") from None
+    except RecursionError:
+        raise v.InputError(f"{path}: not an analysis file: nested too deeply") from None
+    except ValueError as exc:  # InputError from _refuse_constant, too-long integers
+        raise v.InputError(f"{path}: not an analysis file: {exc}") from None
+    try:
+        return ModelAnalysis.from_dict(doc)
+    except v.InputError as exc:
+        raise v.InputError(f"{path}: {exc}") from None
+    except RecursionError:
+        raise v.InputError(f"{path}: not an analysis file: nested too deeply") from None
 
 
 # ----------------------------------------------------------------------------- analyse

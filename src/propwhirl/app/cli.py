@@ -19,6 +19,7 @@ import sys
 from pathlib import Path
 
 from propwhirl import limits
+from propwhirl import fileio
 from propwhirl.cases import registry
 from propwhirl.validate import InputError
 
@@ -32,10 +33,11 @@ def _echo(text: str) -> None:
 def _reproduce(args: argparse.Namespace) -> int:
     from propwhirl.reproduce import harness as reproduce
 
+    _check_outputs(json=args.json)
     records = reproduce.run(args.only, processes=args.processes)
     print(reproduce.format_table(records))
     if args.json:
-        Path(args.json).write_text(reproduce.to_json(records))
+        fileio.write_text(args.json, reproduce.to_json(records), what="records file")
         print(f"wrote {args.json}")
     return 0
 
@@ -194,10 +196,28 @@ def speed_grid(start: float, stop: float, step: float):
 
 
 def _check_outputs(**paths: str | None) -> None:
-    """Fail before a long computation if an output file's folder does not exist."""
+    """Fail before a long computation if an output file cannot be written: its folder does
+    not exist or is not writable, the path is a folder, a plot's suffix is not a format."""
     for option, path in paths.items():
-        if path is not None and not Path(path).resolve().parent.is_dir():
-            raise InputError(f"--{option} {path}: the folder {str(Path(path).parent)!r} does not exist")
+        if path is None:
+            continue
+        fileio.check_writable(path, what=f"--{option}")
+        if option == "plot":
+            _check_plot_format(path)
+
+
+def _check_plot_format(path: str) -> None:
+    """A plot's suffix names a format matplotlib writes (checked before computing)."""
+    try:
+        from matplotlib.backend_bases import FigureCanvasBase
+    except ImportError:
+        raise InputError("--plot needs matplotlib, which is not installed: "
+                         "pip install propwhirl[plots]") from None
+    fmt = Path(path).suffix[1:].lower() or "png"
+    supported = FigureCanvasBase.get_supported_filetypes()
+    if fmt not in supported:
+        raise InputError(f"--plot {path}: format {fmt!r} is not supported "
+                         f"(suffixes: {', '.join(sorted(supported))})")
 
 
 def _analyse(args: argparse.Namespace) -> int:
@@ -363,17 +383,28 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+#: Exit code after Ctrl-C (128 + SIGINT, the shell's convention).
+EXIT_INTERRUPTED = 130
+
+
 def main(argv: list[str] | None = None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
+    """Run one command; returns the exit code: 0, 2 for bad input or a file that cannot be
+    read or written (one line on stderr naming it), 130 after Ctrl-C (one line, and no partial
+    output file: every file is written atomically, :mod:`propwhirl.fileio`)."""
     try:
+        parser = build_parser()
+        args = parser.parse_args(argv)
         return args.func(args)
+    except KeyboardInterrupt:
+        print("propwhirl: interrupted", file=sys.stderr, flush=True)
+        return EXIT_INTERRUPTED
     except InputError as exc:
         print(f"propwhirl: error: {_one_line(str(exc))}", file=sys.stderr)
         return 2
-    except OSError as exc:  # an output file that cannot be written, ...
-        name = f" {exc.filename!r}" if getattr(exc, "filename", None) else ""
-        print(f"propwhirl: error: {exc.strerror or exc}{name}", file=sys.stderr)
+    except OSError as exc:  # a file error not raised through propwhirl.fileio
+        name = getattr(exc, "filename", None)
+        where = f"cannot access {str(name)!r}: " if name else ""
+        print(f"propwhirl: error: {where}{_one_line(fileio.reason(exc))}", file=sys.stderr)
         return 2
 
 

@@ -26,6 +26,7 @@ import numpy as np
 
 from propwhirl.analysis.whirl import whirl_sense
 from propwhirl.engine import TimeResponse
+from propwhirl import fileio
 from propwhirl import validate as v
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -54,13 +55,21 @@ def _figure(**kwargs) -> "Figure":
 
 
 def save(fig: "Figure", path: str | Path, dpi: int = 150) -> Path:
-    """Write `fig` to `path` (format from the suffix, e.g. .png); returns the path."""
+    """Write `fig` to `path` (format from the suffix, e.g. .png; PNG without one); returns
+    the path.  The file is replaced atomically (:func:`propwhirl.fileio.write_with`)."""
     path = Path(path)
+    fmt = path.suffix[1:].lower() or "png"
+    supported = fig.canvas.get_supported_filetypes()
+    if fmt not in supported:
+        raise v.InputError(f"cannot write plot {str(path)!r}: format {fmt!r} is not supported "
+                           f"(suffixes: {', '.join(sorted(supported))})")
     try:
-        fig.savefig(path, dpi=dpi)
-    except (OSError, ValueError) as exc:
+        return fileio.write_with(path, lambda fh: fig.savefig(fh, format=fmt, dpi=dpi),
+                                 what="plot")
+    except ValueError as exc:  # matplotlib's (InputError from fileio passes as it is)
+        if isinstance(exc, v.InputError):
+            raise
         raise v.InputError(f"cannot write plot {str(path)!r}: {exc}") from exc
-    return path
 
 
 def _finish(fig: "Figure", path: str | Path | None) -> "Figure":

@@ -20,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from propwhirl import io
+from propwhirl import fileio, io
 from propwhirl.limits import printable
 from propwhirl.analysis.stability import Instability, ModelAnalysis, analyse
 from propwhirl.cases.registry import case_model
@@ -154,7 +154,7 @@ def main(out: Path) -> int:
     """Run the main analysis, print the report and write the results to `out`."""
     t0 = time.perf_counter()
     out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
+    fileio.check_writable(out, folder=True, create=True, what="--out")  # before computing
     model = headline_model()
     thesis = _thesis_values()
     lines = describe(model) + mode_lines(model, thesis)
@@ -169,9 +169,8 @@ def main(out: Path) -> int:
         io.write_vgf_csv(a, out / "wingtip_vgf.csv"),
     ]
     written += write_plots(a, model, out)
-    report = out / "report.txt"
-    report.write_text("\n".join(lines) + "\n", encoding="utf-8")
-    written.append(report)
+    written.append(fileio.write_text(out / "report.txt", "\n".join(lines) + "\n",
+                                     what="report"))
     print("\nWrote " + ", ".join(str(p) for p in written))
     print(f"Done in {time.perf_counter() - t0:.1f} s")
     return 0

@@ -25,6 +25,152 @@ def _d2c(d: Mapping[str, Any]) -> np.ndarray:
     return np.asarray(d["re"], dtype=float) + 1j * np.asarray(d["im"], dtype=float)
 
 
+def _shape_text(shape: tuple[int, ...]) -> str:
+    return str(tuple(int(s) for s in shape))
+
+
+class SavedDict:
+    """Reading a dict re-read from a result file: every value is checked for its type, shape
+    and finiteness, and an error names the key (``sweep.eigenvalues.re: shape (35, 12) does
+    not match 3 speeds``) — never a ``KeyError`` or ``TypeError``.
+
+    `where` is the dotted path of the dict in the file ("sweep", "events[3]"); `required` and
+    `optional` are its keys (any other key is an error).
+    """
+
+    _KINDS = {float: "fiu", int: "iu", bool: "b"}
+    _TYPE_NAMES = {float: "numbers", int: "integers", bool: "booleans (true/false)"}
+
+    def __init__(self, d: Any, where: str, required: Sequence[str], optional: Sequence[str] = ()):
+        self.where = where
+        if not isinstance(d, Mapping):
+            raise InputError(f"{where}: must be an object, got {_json_type(d)}")
+        missing = [k for k in required if k not in d]
+        if missing:
+            raise InputError(f"{where}: missing key{'s' * (len(missing) > 1)} "
+                             + ", ".join(repr(k) for k in missing))
+        unknown = sorted(str(k) for k in d if k not in required and k not in optional)
+        if unknown:
+            raise InputError(f"{where}: unknown key{'s' * (len(unknown) > 1)} "
+                             + ", ".join(repr(k) for k in unknown))
+        self.d = d
+
+    def name(self, key: str) -> str:
+        return f"{self.where}.{key}" if self.where else key
+
+    def has(self, key: str) -> bool:
+        return key in self.d
+
+    def raw(self, key: str) -> Any:
+        return self.d[key]
+
+    def sub(self, key: str, required: Sequence[str], optional: Sequence[str] = ()) -> "SavedDict":
+        return SavedDict(self.d[key], self.name(key), required, optional)
+
+    def _fail(self, key: str, must: str) -> InputError:
+        return InputError(f"{self.name(key)}: {must}")
+
+    def array(self, key: str, kind: type = float, ndim: int = 1,
+              shape: Sequence[int | None] | None = None, finite: bool = True) -> np.ndarray:
+        """`key` as an array of `kind` (float, int or bool) with `ndim` dimensions; `shape`
+        entries that are not None must match."""
+        raw = self.d[key]
+        if not isinstance(raw, list):
+            raise self._fail(key, f"must be a list, got {_json_type(raw)}")
+        try:
+            arr = np.asarray(raw)
+        except (ValueError, TypeError, RecursionError):
+            raise self._fail(key, "must be a rectangular list of lists "
+                             f"({ndim}-dimensional)") from None
+        if arr.size == 0 and arr.ndim == 1 and ndim > 1:  # [] for an empty (0, m) table
+            rest = tuple(shape[1:]) if shape is not None else (None,) * (ndim - 1)
+            arr = arr.reshape((0,) + tuple(0 if m is None else m for m in rest))
+        if arr.ndim != ndim:
+            raise self._fail(key, f"must be {ndim}-dimensional, got shape {_shape_text(arr.shape)}")
+        if arr.size and arr.dtype.kind not in self._KINDS[kind]:
+            raise self._fail(key, f"must hold {self._TYPE_NAMES[kind]} only")
+        arr = arr.astype(kind)
+        if finite and kind is float and not np.isfinite(arr).all():
+            raise self._fail(key, "holds non-finite numbers (NaN or infinity)")
+        if shape is not None:
+            for axis, (got, want) in enumerate(zip(arr.shape, shape)):
+                if want is not None and got != want:
+                    raise self._fail(key, f"shape {_shape_text(arr.shape)}: axis {axis} must "
+                                     f"have {want} entries")
+        return arr
+
+    def complex_array(self, key: str, ndim: int, shape: Sequence[int | None] | None = None
+                      ) -> np.ndarray:
+        """`key` saved as ``{"re": ..., "im": ...}`` (finite, same shape)."""
+        c = self.sub(key, ("re", "im"))
+        re = c.array("re", ndim=ndim, shape=shape)
+        im = c.array("im", ndim=ndim, shape=re.shape)
+        return re + 1j * im
+
+    def number(self, key: str, optional: bool = False) -> float | None:
+        """A finite number (None allowed with `optional`)."""
+        x = self.d[key]
+        if x is None and optional:
+            return None
+        if isinstance(x, bool) or not isinstance(x, (int, float)) or not np.isfinite(x):
+            raise self._fail(key, f"must be a finite number, got {_json_value(x)}")
+        return float(x)
+
+    def integer(self, key: str, low: int | None = None, high: int | None = None) -> int:
+        x = self.d[key]
+        if isinstance(x, bool) or not isinstance(x, int):
+            raise self._fail(key, f"must be an integer, got {_json_value(x)}")
+        if (low is not None and x < low) or (high is not None and x > high):
+            raise self._fail(key, f"= {x} is outside [{low}, {high}]")
+        return x
+
+    def string(self, key: str, choices: Sequence[str] = (), optional: bool = False) -> str | None:
+        x = self.d[key]
+        if x is None and optional:
+            return None
+        if not isinstance(x, str):
+            raise self._fail(key, f"must be a string, got {_json_value(x)}")
+        if choices and x not in choices:
+            raise self._fail(key, f"= {x!r} is invalid: must be one of {', '.join(choices)}")
+        return x
+
+    def strings(self, key: str, n: int | None = None) -> tuple[str, ...]:
+        x = self.d[key]
+        if not isinstance(x, list) or not all(isinstance(s, str) for s in x):
+            raise self._fail(key, "must be a list of strings")
+        if n is not None and len(x) != n:
+            raise self._fail(key, f"has {len(x)} entries, need {n}")
+        return tuple(x)
+
+    def counters(self, key: str) -> dict[str, int]:
+        x = self.d[key]
+        if not isinstance(x, Mapping) or not all(
+                isinstance(k, str) and isinstance(c, int) and not isinstance(c, bool)
+                for k, c in x.items()):
+            raise self._fail(key, "must be an object of integer counters")
+        return dict(x)
+
+    def bracket(self, key: str) -> tuple[float, float]:
+        """A speed interval [lo, hi] [m/s], finite, lo <= hi."""
+        b = self.array(key, shape=(2,))
+        if not b[0] <= b[1]:
+            raise self._fail(key, f"= [{float(b[0])!r}, {float(b[1])!r}] is invalid: must "
+                             "have lo <= hi")
+        return float(b[0]), float(b[1])
+
+
+def _json_type(x: Any) -> str:
+    return {dict: "an object", list: "a list", str: "a string", bool: "a boolean",
+            int: "a number", float: "a number", type(None): "null"}.get(type(x), type(x).__name__)
+
+
+def _json_value(x: Any) -> str:
+    if isinstance(x, (dict, list)):
+        return _json_type(x)
+    text = repr(x)
+    return text if len(text) <= 40 else text[:37] + "..."
+
+
 @dataclass(frozen=True)
 class Sweep:
     """Tracked eigen-solutions along the airspeed.
@@ -123,18 +269,44 @@ class Sweep:
             d["eigenvectors"] = _c2d(self.eigenvectors)
         return d
 
+    #: keys of :meth:`to_dict` ("eigenvectors" only when saved with them)
+    KEYS = ("V", "eigenvalues", "dlam_dV", "physical", "state_labels", "displacement",
+            "mode_labels", "partner", "grid", "floor", "unresolved", "stats")
+
     @classmethod
-    def from_dict(cls, d: Mapping[str, Any]) -> "Sweep":
-        lam = _d2c(d["eigenvalues"])
-        X = _d2c(d["eigenvectors"]) if "eigenvectors" in d else None
+    def from_dict(cls, d: Mapping[str, Any], where: str = "sweep") -> "Sweep":
+        """The sweep written by :meth:`to_dict`, checked: every key present, shapes consistent
+        (T speeds, n modes), numbers finite, speeds increasing; else an :class:`InputError`
+        naming the key (`where` is its path in the file)."""
+        r = SavedDict(d, where, cls.KEYS, ("eigenvectors",))
+        V = r.array("V")
+        T = V.size
+        if T == 0:
+            raise InputError(f"{r.name('V')}: no speeds")
+        if not (np.diff(V) > 0).all():
+            t = int(np.argmax(np.diff(V) <= 0))
+            raise InputError(f"{r.name('V')}: speeds must increase, but V[{t + 1}] = {V[t + 1]!r}"
+                             f" follows V[{t}] = {V[t]!r}")
+        lam = r.complex_array("eigenvalues", 2, (T, None))
+        n = lam.shape[1]
+        if n == 0:
+            raise InputError(f"{r.name('eigenvalues')}: no modes")
+        X = r.complex_array("eigenvectors", 3, (T, n, n)) if r.has("eigenvectors") else None
+        partner = r.array("partner", int, shape=(n,))
+        if ((partner < -1) | (partner >= n)).any():
+            bad = int(partner[(partner < -1) | (partner >= n)][0])
+            raise InputError(f"{r.name('partner')}: mode id {bad} is outside [-1, {n - 1}]")
+        unresolved = r.array("unresolved", ndim=2, shape=(None, 2))
         return cls(
-            V=np.asarray(d["V"], dtype=float), eigenvalues=lam, eigenvectors=X,
-            dlam_dV=_d2c(d["dlam_dV"]), physical=np.asarray(d["physical"], dtype=bool),
-            state_labels=tuple(d["state_labels"]),
-            displacement=np.asarray(d["displacement"], dtype=bool),
-            mode_labels=tuple(d["mode_labels"]), partner=np.asarray(d["partner"], dtype=int),
-            grid=np.asarray(d["grid"], dtype=float), floor=np.asarray(d["floor"], dtype=float),
-            unresolved=tuple(tuple(u) for u in d["unresolved"]), stats=dict(d["stats"]),
+            V=V, eigenvalues=lam, eigenvectors=X,
+            dlam_dV=r.complex_array("dlam_dV", 2, (T, n)),
+            physical=r.array("physical", bool, 2, (T, n)),
+            state_labels=r.strings("state_labels", n),
+            displacement=r.array("displacement", bool, shape=(n,)),
+            mode_labels=r.strings("mode_labels", n), partner=partner,
+            grid=r.array("grid"), floor=r.array("floor", shape=(T,)),
+            unresolved=tuple((float(lo), float(hi)) for lo, hi in unresolved),
+            stats=r.counters("stats"),
         )
 
 
@@ -172,12 +344,18 @@ class CriticalPoint:
         return d
 
     @classmethod
-    def from_dict(cls, d: Mapping[str, Any]) -> "CriticalPoint":
-        kw = dict(d)
-        kw["eigenvalue"] = complex(d["eigenvalue"]["re"], d["eigenvalue"]["im"])
-        kw["eigenvector"] = _d2c(d["eigenvector"])
-        kw["bracket"] = tuple(d["bracket"])
-        return cls(**kw)
+    def from_dict(cls, d: Mapping[str, Any], where: str = "point") -> "CriticalPoint":
+        """The point written by :meth:`to_dict`, checked (an :class:`InputError` naming the key)."""
+        r = SavedDict(d, where, [f.name for f in fields(cls)])
+        e = r.sub("eigenvalue", ("re", "im"))
+        lam = complex(e.number("re"), e.number("im"))
+        return cls(mode=r.integer("mode", 0), label=r.string("label"),
+                   kind=r.string("kind", ("flutter", "divergence")),
+                   direction=r.string("direction", ("onset", "recovery")), V=r.number("V"),
+                   bracket=r.bracket("bracket"), frequency_hz=r.number("frequency_hz"),
+                   eigenvalue=lam, dzeta_dV=r.number("dzeta_dV", optional=True),
+                   benignity=r.number("benignity", optional=True),
+                   eigenvector=r.complex_array("eigenvector", 1))
 
 
 @dataclass(frozen=True)
@@ -216,10 +394,26 @@ class Criticals:
                 "unstable_at_start": list(self.unstable_at_start), "stats": dict(self.stats)}
 
     @classmethod
-    def from_dict(cls, d: Mapping[str, Any]) -> "Criticals":
-        return cls(points=tuple(CriticalPoint.from_dict(p) for p in d["points"]),
-                   humps=tuple(Hump(**h) for h in d["humps"]),
-                   unstable_at_start=tuple(d["unstable_at_start"]), stats=dict(d["stats"]))
+    def from_dict(cls, d: Mapping[str, Any], where: str = "criticals") -> "Criticals":
+        """The crossings written by :meth:`to_dict`, checked (an :class:`InputError` naming
+        the key)."""
+        r = SavedDict(d, where, ("points", "humps", "unstable_at_start", "stats"))
+        for key in ("points", "humps"):
+            if not isinstance(r.raw(key), list):
+                raise InputError(f"{r.name(key)}: must be a list, got {_json_type(r.raw(key))}")
+        humps = []
+        for i, h in enumerate(r.raw("humps")):
+            hr = SavedDict(h, f"{r.name('humps')}[{i}]", [f.name for f in fields(Hump)])
+            humps.append(Hump(hr.integer("mode", 0), hr.string("label"),
+                              hr.string("kind", ("flutter", "divergence")),
+                              hr.number("V_onset"), hr.number("V_recovery")))
+        start = r.array("unstable_at_start", int)
+        if (start < 0).any():
+            raise InputError(f"{r.name('unstable_at_start')}: mode ids must be >= 0")
+        return cls(points=tuple(CriticalPoint.from_dict(p, f"{r.name('points')}[{i}]")
+                                for i, p in enumerate(r.raw("points"))),
+                   humps=tuple(humps), unstable_at_start=tuple(int(k) for k in start),
+                   stats=r.counters("stats"))
 
 
 @dataclass(frozen=True)
@@ -245,8 +439,10 @@ class FrequencyZero:
                 "bracket": list(self.bracket)}
 
     @classmethod
-    def from_dict(cls, d: Mapping[str, Any]) -> "FrequencyZero":
-        return cls(int(d["mode"]), str(d["label"]), float(d["V"]), tuple(d["bracket"]))
+    def from_dict(cls, d: Mapping[str, Any], where: str = "frequency_zero") -> "FrequencyZero":
+        """The event written by :meth:`to_dict`, checked (an :class:`InputError` naming the key)."""
+        r = SavedDict(d, where, ("mode", "label", "V", "bracket"))
+        return cls(r.integer("mode", 0), r.string("label"), r.number("V"), r.bracket("bracket"))
 
 
 @dataclass(frozen=True)
@@ -262,4 +458,15 @@ class Analysis:
 
     @classmethod
     def from_dict(cls, d: Mapping[str, Any]) -> "Analysis":
-        return cls(Sweep.from_dict(d["sweep"]), Criticals.from_dict(d["criticals"]))
+        """The analysis written by :meth:`to_dict`, checked (an :class:`InputError` naming the
+        key): the sweep, its crossings, and mode ids within the sweep's modes."""
+        r = SavedDict(d, "", ("sweep", "criticals"))
+        sweep = Sweep.from_dict(r.raw("sweep"))
+        crit = Criticals.from_dict(r.raw("criticals"))
+        ids = [("points", p.mode) for p in crit.points] + [("humps", h.mode) for h in crit.humps]
+        ids += [("unstable_at_start", k) for k in crit.unstable_at_start]
+        for key, k in ids:
+            if k >= sweep.n_modes:
+                raise InputError(f"criticals.{key}: mode id {k} is outside the sweep's "
+                                 f"{sweep.n_modes} modes")
+        return cls(sweep, crit)

@@ -37,6 +37,7 @@ from typing import Any, Iterable
 import numpy as np
 
 from propwhirl import limits
+from propwhirl import fileio
 from propwhirl import validate as v
 from propwhirl.io import schema
 from propwhirl.io.schema import DERIVATIVE_SOURCES, FORMAT, FORMAT_VERSION, MODEL_TYPES, Field
@@ -501,9 +502,5 @@ def save_model(model: Any, path: str | Path) -> Path:
     True
     """
     text = dumps(model)  # fails before touching the file if the model cannot be saved
-    path = Path(path)
-    try:
-        path.write_text(text, encoding="utf-8")
-    except OSError as exc:
-        raise v.InputError(f"cannot write model file {str(path)!r}: {exc.strerror or exc}") from exc
-    return path
+    # atomic: a full disk or a Ctrl-C leaves the old file (or none), never a partial one
+    return fileio.write_text(path, text, what="model file")

@@ -7,10 +7,13 @@ is saved as JSON by :meth:`propwhirl.analysis.stability.ModelAnalysis.save`.)
 from __future__ import annotations
 
 import csv
+import io
+import math
 from pathlib import Path
 
 import numpy as np
 
+from propwhirl import fileio
 from propwhirl import validate as v
 
 VGF_COLUMNS: tuple[tuple[str, str], ...] = (
@@ -21,53 +24,127 @@ VGF_COLUMNS: tuple[tuple[str, str], ...] = (
 
 def write_vgf_csv(result, path: str | Path) -> Path:
     """Write the V-g-f table of a ModelAnalysis or Sweep as CSV (one row per speed and
-    physical mode: V [m/s], mode id, label, f [Hz], ζ (eq. 5.5), Re λ, Im λ [1/s])."""
+    physical mode: V [m/s], mode id, label, f [Hz], ζ (eq. 5.5), Re λ, Im λ [1/s]).
+
+    The file is replaced atomically (:func:`propwhirl.fileio.write_text`): a reader never
+    sees a partial table, not after a full disk, a Ctrl-C or a second writer."""
     sweep = getattr(result, "sweep", result)
     table = sweep.table()
-    path = Path(path)
-    try:
-        with path.open("w", newline="", encoding="utf-8") as fh:
-            out = csv.writer(fh)
-            out.writerow([c for c, _ in VGF_COLUMNS])
-            cols = [table[k] for _, k in VGF_COLUMNS]
-            for row in zip(*cols):
-                out.writerow([repr(float(x)) if isinstance(x, (float, np.floating)) else
-                              str(int(x)) if isinstance(x, (int, np.integer)) else str(x)
-                              for x in row])
-    except OSError as exc:
-        raise v.InputError(f"cannot write {str(path)!r}: {exc.strerror or exc}") from exc
-    return path
+    for name, key in VGF_COLUMNS:
+        if key != "label" and not np.isfinite(np.asarray(table[key], dtype=float)).all():
+            raise v.InputError(f"cannot write {str(path)!r}: column {name} has non-finite values")
+    buf = io.StringIO()
+    out = csv.writer(buf)
+    out.writerow([c for c, _ in VGF_COLUMNS])
+    cols = [table[k] for _, k in VGF_COLUMNS]
+    for row in zip(*cols):
+        out.writerow([repr(float(x)) if isinstance(x, (float, np.floating)) else
+                      str(int(x)) if isinstance(x, (int, np.integer)) else str(x)
+                      for x in row])
+    return fileio.write_text(path, buf.getvalue(), what="V-g-f table")
+
+
+def _header_error(path: Path, header: list[str]) -> v.InputError:
+    expected = [c for c, _ in VGF_COLUMNS]
+    missing = [c for c in expected if c not in header]
+    unknown = [c for c in header if c not in expected]
+    why = []
+    if missing:
+        why.append("missing column" + "s" * (len(missing) > 1) + " " + ", ".join(missing))
+    if unknown:
+        why.append("unknown column" + "s" * (len(unknown) > 1) + " "
+                   + ", ".join(repr(c) for c in unknown[:5]))
+    if not why:
+        why.append("columns out of order")
+    return v.InputError(f"{path}: not a V-g-f table: line 1: {'; '.join(why)} "
+                        f"(the header must be {','.join(expected)})")
 
 
 def read_vgf_csv(path: str | Path) -> dict[str, np.ndarray]:
-    """Read a table written by :func:`write_vgf_csv` back into Sweep.table() columns."""
+    """Read a table written by :func:`write_vgf_csv` back into Sweep.table() columns.
+
+    The table is checked: the exact header, at least one row, every row complete (seven
+    columns, the last line ended by a line break), numbers finite, mode ids >= 0, rows in the
+    writer's order (by speed, then mode id), and each row's frequency and damping ratio those
+    of its eigenvalue (f = |Im λ|/2π, ζ = −Re λ/|λ|, eq. 5.5: a number cut short is found).
+    Anything else is an :class:`~propwhirl.validate.InputError` naming the file and the line.
+    """
     path = Path(path)
     try:
-        with path.open(newline="", encoding="utf-8") as fh:
-            rows = list(csv.reader(fh))
+        data = path.read_bytes()
     except FileNotFoundError:
         raise v.InputError(f"V-g-f table {str(path)!r} not found") from None
     except OSError as exc:
-        raise v.InputError(f"cannot read {str(path)!r}: {exc}") from exc
-    expected = [c for c, _ in VGF_COLUMNS]
-    if not rows or rows[0] != expected:
-        raise v.InputError(f"{path}: not a V-g-f table: the header must be {','.join(expected)}")
-    body = rows[1:]
-    if any(len(r) != len(expected) for r in body):
-        bad = next(i for i, r in enumerate(body) if len(r) != len(expected))
-        raise v.InputError(f"{path}: row {bad + 2} has {len(body[bad])} columns, need {len(expected)}")
-    cols = list(zip(*body)) if body else [()] * len(expected)
-    out: dict[str, np.ndarray] = {}
+        raise v.InputError(f"cannot read {str(path)!r}: {fileio.reason(exc)}") from exc
     try:
-        for (name, key), col in zip(VGF_COLUMNS, cols):
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise v.InputError(f"{path}: not a V-g-f table: not UTF-8 text (byte {exc.start})"
+                           ) from None
+    if not text.strip():
+        raise v.InputError(f"{path}: the file is empty, not a V-g-f table")
+    try:
+        rows = list(csv.reader(io.StringIO(text, newline="")))
+    except csv.Error as exc:
+        raise v.InputError(f"{path}: not a V-g-f table: {exc}") from None
+    expected = [c for c, _ in VGF_COLUMNS]
+    if rows[0] != expected:
+        raise _header_error(path, rows[0])
+    body = rows[1:]
+    if not body:
+        raise v.InputError(f"{path}: the V-g-f table has a header but no rows")
+    out: dict[str, list] = {key: [] for _, key in VGF_COLUMNS}
+    for i, row in enumerate(body):
+        line = i + 2
+        if len(row) != len(expected):
+            raise v.InputError(f"{path}: line {line} has {len(row)} columns, need "
+                               f"{len(expected)} (truncated?)")
+        for (name, key), cell in zip(VGF_COLUMNS, row):
             if key == "label":
-                out[key] = np.asarray(col, dtype=object)
-            elif key == "mode":
-                out[key] = np.asarray([int(x) for x in col], dtype=int)
-            else:
-                out[key] = np.asarray([float(x) for x in col], dtype=float)
-    except ValueError as exc:
-        raise v.InputError(f"{path}: column {name}: {exc}") from exc
-    return out
+                if not cell.strip():
+                    raise v.InputError(f"{path}: line {line}: column {name} is empty")
+                out[key].append(cell)
+                continue
+            try:
+                x = int(cell) if key == "mode" else float(cell)
+            except ValueError:
+                need = "an integer" if key == "mode" else "a number"
+                raise v.InputError(f"{path}: line {line}: column {name} = {cell[:40]!r} is not "
+                                   f"{need}") from None
+            if key == "mode" and x < 0:
+                raise v.InputError(f"{path}: line {line}: column {name} = {x} is invalid: "
+                                   "must be >= 0")
+            if not math.isfinite(x):
+                raise v.InputError(f"{path}: line {line}: column {name} = {cell!r} is invalid: "
+                                   "must be finite")
+            out[key].append(x)
+    if not text.endswith("\n"):
+        raise v.InputError(f"{path}: line {len(rows)} is incomplete: the file ends without a "
+                           "line break (truncated?)")
+    table = {key: np.asarray(col, dtype=object if key == "label" else int if key == "mode"
+                             else float) for key, col in out.items()}
+    _check_rows(path, table)
+    return table
 
 
+def _check_rows(path: Path, t: dict[str, np.ndarray]) -> None:
+    """Rows in the writer's order; f and ζ those of λ (eq. 5.5)."""
+    V, mode = t["V"], t["mode"]
+    later = (V[1:] > V[:-1]) | ((V[1:] == V[:-1]) & (mode[1:] > mode[:-1]))
+    if not later.all():
+        i = int(np.argmin(later))
+        raise v.InputError(f"{path}: line {i + 3}: (V, mode) = ({float(V[i + 1])!r}, "
+                           f"{int(mode[i + 1])}) does not follow ({float(V[i])!r}, "
+                           f"{int(mode[i])}): rows must be sorted by speed then mode id")
+    lam = t["real"] + 1j * t["imag"]
+    mag = np.abs(lam)
+    f = np.abs(t["imag"]) / (2 * np.pi)
+    zeta = np.divide(-t["real"], mag, out=np.zeros_like(mag), where=mag > 0)
+    for key, want, scale in (("frequency_hz", f, float(f.max(initial=0.0))),
+                             ("damping_ratio", zeta, 1.0)):
+        ok = np.isclose(t[key], want, rtol=1e-9, atol=1e-12 * scale)
+        if not ok.all():
+            i = int(np.argmin(ok))
+            raise v.InputError(f"{path}: line {i + 2}: column {key} = {float(t[key][i])!r} "
+                               f"does not match the eigenvalue {complex(lam[i])!r}: expected "
+                               f"{float(want[i])!r} (eq. 5.5)")

@@ -10,6 +10,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
+from propwhirl import fileio
 from propwhirl import validate as v
 
 #: Units of the result columns.
@@ -76,7 +77,8 @@ class StudyTable:
                 "columns": {k: [clean(x) for x in np.asarray(c).tolist()] for k, c in self.columns.items()}}
 
     def to_csv(self, path: str | Path | None = None) -> str:
-        """The table as CSV text (header "column [unit]"); also written to `path` if given."""
+        """The table as CSV text (header "column [unit]"); also written to `path` if given
+        (atomically, :func:`propwhirl.fileio.write_text`: never a partial file)."""
         buf = io.StringIO()
         w = csv.writer(buf, lineterminator="\n")
         keys = list(self.columns)
@@ -90,7 +92,7 @@ class StudyTable:
             w.writerow(row)
         text = buf.getvalue()
         if path is not None:
-            Path(path).write_text(text)
+            fileio.write_text(path, text, what="study table")
         return text
 
     def format(self) -> str:

@@ -1,0 +1,200 @@
+"""Writing files safely: atomic replacement, one-line errors naming the file.
+
+Every file propwhirl writes (model TOML, analysis JSON, V-g-f and study CSV, the report and the
+plots) goes through :func:`write_text`, :func:`write_bytes` or :func:`write_with`:
+
+1. the content is written to a temporary file in the target's folder (``.NAME.XXXX.tmp``,
+   created exclusively, permissions as for a new file: ``0o666`` less the umask),
+2. flushed and ``os.fsync``-ed,
+3. moved onto the target with :func:`os.replace` (atomic on POSIX and Windows within one
+   file system).
+
+So a reader sees either the old file or the complete new one — never a half-written file, not
+after a full disk, a Ctrl-C (``KeyboardInterrupt``) or a second process writing the same path.
+On any failure the temporary file is removed and the target is left untouched; an ``OSError``
+becomes one :class:`~propwhirl.validate.InputError` naming the file and the operating system's
+reason, e.g. ``cannot write 'out/a.json': No space left on device``.
+
+:func:`check_writable` lets a command fail *before* a long computation when an output folder
+does not exist or cannot be written to.
+"""
+from __future__ import annotations
+
+import os
+import secrets
+from collections.abc import Callable
+from pathlib import Path
+from typing import BinaryIO
+
+from propwhirl.validate import InputError
+
+#: Bytes handed to one ``os.write`` call.
+CHUNK = 1 << 16
+
+
+def reason(exc: BaseException) -> str:
+    """The operating system's reason for an error ("No space left on device"), else its text."""
+    return (getattr(exc, "strerror", None) or str(exc) or type(exc).__name__).strip()
+
+
+def _name(path: Path, what: str) -> str:
+    return f"{what} {str(path)!r}" if what else repr(str(path))
+
+
+def _create_temporary(path: Path) -> tuple[int, Path]:
+    """A new temporary file beside `path`: (file descriptor, its path)."""
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0)
+    for _ in range(100):
+        tmp = path.with_name(f".{path.name}.{secrets.token_hex(4)}.tmp")
+        try:
+            return os.open(tmp, flags, 0o666), tmp
+        except FileExistsError:
+            continue
+    raise FileExistsError(f"no free temporary name beside {path}")
+
+
+def _sync_folder(folder: Path) -> None:
+    """Make the rename itself durable (POSIX; best effort)."""
+    if os.name != "posix":
+        return
+    try:
+        fd = os.open(folder, os.O_RDONLY)
+    except OSError:
+        return
+    try:
+        os.fsync(fd)
+    except OSError:
+        pass
+    finally:
+        os.close(fd)
+
+
+def write_with(path: str | Path, fill: Callable[[BinaryIO], None], *, what: str = "") -> Path:
+    """Write `path` atomically: ``fill(fh)`` writes the content to a binary file object.
+
+    Parameters
+    ----------
+    path : str or Path
+        The target file; its folder must exist.
+    fill : callable
+        Writes the whole content to the binary file object it is given (e.g.
+        ``lambda fh: figure.savefig(fh, format="png")``).
+    what : str, optional
+        What the file is, for the error message ("model file", "plot").
+
+    Returns
+    -------
+    Path
+        The target path.
+
+    Raises
+    ------
+    InputError
+        The file cannot be written (the message names it and the reason); the target keeps its
+        old content (or still does not exist) and no temporary file is left.
+    """
+    path = Path(path)
+    if path.is_dir():
+        raise InputError(f"cannot write {_name(path, what)}: it is a folder")
+    tmp: Path | None = None
+    try:
+        fd, tmp = _create_temporary(path)
+        with os.fdopen(fd, "wb") as fh:
+            fill(fh)
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.replace(tmp, path)
+        tmp = None
+    except OSError as exc:
+        raise InputError(f"cannot write {_name(path, what)}: {reason(exc)}") from exc
+    finally:  # also on KeyboardInterrupt and on errors of `fill`
+        if tmp is not None:
+            try:
+                os.unlink(tmp)
+            except OSError:
+                pass
+    _sync_folder(path.parent)
+    return path
+
+
+def _write_all(fh: BinaryIO, data: bytes) -> None:
+    """``os.write`` until every byte is written (a short write is continued, an error raised)."""
+    fd = fh.fileno()
+    view = memoryview(data)
+    while view:
+        n = os.write(fd, view[:CHUNK])
+        view = view[n:]
+
+
+def write_bytes(path: str | Path, data: bytes, *, what: str = "") -> Path:
+    """Write `data` to `path` atomically (see :func:`write_with`); returns the path."""
+    return write_with(path, lambda fh: _write_all(fh, data), what=what)
+
+
+def write_text(path: str | Path, text: str, *, encoding: str = "utf-8", what: str = "") -> Path:
+    """Write `text` to `path` atomically (see :func:`write_with`); returns the path.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from propwhirl.fileio import write_text
+    >>> path = write_text(pathlib.Path(tempfile.mkdtemp()) / "a.txt", "complete\\n")
+    >>> path.read_text()
+    'complete\\n'
+    """
+    return write_bytes(path, text.encode(encoding), what=what)
+
+
+def check_writable(path: str | Path, *, folder: bool = False, create: bool = False,
+                   what: str = "") -> Path:
+    """Check, before any computation, that a file can be written to `path`.
+
+    Parameters
+    ----------
+    path : str or Path
+        An output file (its folder is checked) or, with ``folder=True``, an output folder.
+    folder : bool, optional
+        `path` is the folder itself.
+    create : bool, optional
+        Create the folder (and its parents) when it does not exist, instead of an error.
+    what : str, optional
+        How the user gave the path (e.g. "--json"), for the error message.
+
+    Returns
+    -------
+    Path
+        The folder that was checked.
+
+    Raises
+    ------
+    InputError
+        The folder does not exist (and may not or cannot be created), is not a folder, or a
+        file cannot be created in it; or `path` is an existing folder where a file is meant.
+        The message names the path and the reason.
+    """
+    path = Path(path)
+    target = path if folder else path.parent
+    label = f"{what} {path}" if what else str(path)
+    if not folder and path.is_dir():
+        raise InputError(f"{label}: is a folder, not a file")
+    if not target.is_dir():
+        if target.exists():
+            raise InputError(f"{label}: {str(target)!r} is not a folder")
+        if not create:
+            raise InputError(f"{label}: the folder {str(target)!r} does not exist")
+        try:
+            target.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise InputError(f"{label}: cannot create the folder {str(target)!r}: "
+                             f"{reason(exc)}") from exc
+    try:
+        fd, tmp = _create_temporary(target / "propwhirl-write-check")
+    except OSError as exc:
+        raise InputError(f"{label}: cannot write to the folder {str(target)!r}: "
+                         f"{reason(exc)}") from exc
+    os.close(fd)
+    try:
+        os.unlink(tmp)
+    except OSError:
+        pass
+    return target

@@ -1,0 +1,73 @@
+"""Fuzz: the Python constructors (one field of a valid object replaced by a value of any type
+and size) and the analysis arguments (speed grids of any shape and value)."""
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+from hypothesis import given
+from hypothesis import strategies as st
+
+from fuzz.conftest import FUZZ, held_to_the_rule
+from propwhirl.analysis import analyse
+from propwhirl.cases.ch09_baseline import baseline_propeller, isolated_baseline_propeller
+from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
+
+ANY = st.one_of(
+    st.none(), st.booleans(), st.text(max_size=8),
+    st.floats(allow_nan=True, allow_infinity=True),
+    st.sampled_from([0.0, -1.0, 1e-300, 1e300, -1e300, 1e12, 2**63]),
+    st.integers(min_value=-10**6, max_value=10**6), st.complex_numbers(max_magnitude=1e3),
+    st.lists(st.floats(allow_nan=False, allow_infinity=False, width=32), max_size=3),
+    st.tuples(st.floats(-2, 2), st.floats(-2, 2)),
+)
+
+
+def _wing_model(n=4):
+    m = wingtip_propeller_wing()
+    return m.with_(wing=dataclasses.replace(m.wing, n_elements=n))
+
+
+def _targets():
+    m = _wing_model()
+    p = m.propellers[0]
+    return {"Wing": m.wing, "Propeller": baseline_propeller(), "Installation": p,
+            "FlightCondition": m.flight, "PropellerWing": m,
+            "IsolatedPropeller": isolated_baseline_propeller()}
+
+
+TARGETS = _targets()
+
+
+@FUZZ
+@given(name=st.sampled_from(sorted(TARGETS)), data=st.data())
+def test_constructors(name, data):
+    obj = TARGETS[name]
+    fields = [f.name for f in dataclasses.fields(obj) if f.init and not f.name.startswith("_")]
+    field = data.draw(st.sampled_from(fields), label="field")
+    value = data.draw(ANY, label="value")
+    with held_to_the_rule(f"python: {name}(...)"):
+        new = dataclasses.replace(obj, **{field: value})
+        if name in ("PropellerWing", "IsolatedPropeller"):
+            A = new.state_matrix(np.array([10.0, 100.0]))
+            assert np.isfinite(A).all()
+
+
+SPEEDS = st.one_of(
+    st.lists(st.floats(allow_nan=True, allow_infinity=True), max_size=6),
+    st.lists(st.floats(min_value=-10.0, max_value=400.0), max_size=6),
+    st.floats(allow_nan=True, allow_infinity=True), st.text(max_size=4), st.none(),
+    st.lists(st.lists(st.floats(1.0, 300.0), min_size=2, max_size=2), min_size=1, max_size=3),
+)
+
+
+@FUZZ
+@given(speeds=SPEEDS)
+def test_analysis_arguments(speeds):
+    model = isolated_baseline_propeller()
+    with held_to_the_rule("python: analyse(model, speeds)"):
+        if speeds is None:
+            return                                       # None is the documented default
+        a = analyse(model, speeds)
+        assert all(math.isfinite(e.V) for e in a.events)

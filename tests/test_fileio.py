@@ -1,0 +1,283 @@
+"""Atomic file writes (propwhirl.fileio): a full disk, Ctrl-C mid-write and two concurrent
+writers never leave a partial file or a temporary file; errors name the file (issue 9, item 5)."""
+from __future__ import annotations
+
+import errno
+import os
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from propwhirl import fileio, io
+from propwhirl.analysis.stability import analyse, load
+from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+from propwhirl.validate import InputError
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def leftovers(folder: Path, keep: set[str]) -> list[str]:
+    """Files in `folder` other than `keep` (temporary files would be here)."""
+    return sorted(p.name for p in folder.iterdir() if p.name not in keep)
+
+
+@pytest.fixture(scope="module")
+def small_analysis():
+    return analyse(isolated_baseline_propeller(), np.arange(1.0, 351.0, 50.0))
+
+
+def test_write_text_replaces_the_file_and_leaves_nothing_else(tmp_path):
+    target = tmp_path / "a.txt"
+    target.write_text("old")
+    assert fileio.write_text(target, "new content\n") == target
+    assert target.read_text() == "new content\n"
+    assert leftovers(tmp_path, {"a.txt"}) == []
+    fileio.write_bytes(target, b"\x00\x01")
+    assert target.read_bytes() == b"\x00\x01"
+
+
+def test_a_new_file_gets_the_usual_permissions(tmp_path):
+    """Not mkstemp's 0o600: 0o666 less the umask, as open() would give."""
+    mask = os.umask(0o022)
+    os.umask(mask)
+    path = fileio.write_text(tmp_path / "p.txt", "x")
+    assert path.stat().st_mode & 0o777 == 0o666 & ~mask
+
+
+class FullDisk:
+    """os.write that writes `room` bytes in total, then raises ENOSPC (a full disk)."""
+
+    def __init__(self, room: int):
+        self.room = room
+        self.real = os.write
+
+    def __call__(self, fd, data):
+        if self.room <= 0:
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+        n = self.real(fd, bytes(data[: self.room]))
+        self.room -= n
+        return n
+
+
+@pytest.mark.parametrize("existing", [True, False])
+def test_full_disk_keeps_the_old_file_and_names_the_file(tmp_path, monkeypatch, existing):
+    target = tmp_path / "a.json"
+    if existing:
+        target.write_text('{"old": true}')
+    monkeypatch.setattr(os, "write", FullDisk(65_536))
+    with pytest.raises(InputError) as err:
+        fileio.write_text(target, "x" * 300_000)
+    monkeypatch.undo()
+    assert str(err.value) == f"cannot write {str(target)!r}: No space left on device"
+    if existing:
+        assert target.read_text() == '{"old": true}'
+    else:
+        assert not target.exists()
+    assert leftovers(tmp_path, {"a.json"}) == []
+
+
+def test_full_disk_during_analysis_save(tmp_path, monkeypatch, small_analysis):
+    """Issue 9.5: a full disk left a 65,536-byte invalid JSON and the error named no file."""
+    target = tmp_path / "a.json"
+    small_analysis.save(target)
+    before = target.read_bytes()
+    monkeypatch.setattr(os, "write", FullDisk(1000))
+    with pytest.raises(InputError, match=r"cannot write analysis file '.*a\.json': No space left"):
+        small_analysis.save(target, include_eigenvectors=True)
+    monkeypatch.undo()
+    assert target.read_bytes() == before
+    assert load(target).events == small_analysis.events
+    assert leftovers(tmp_path, {"a.json"}) == []
+
+
+def test_full_disk_in_the_file_objects_write(tmp_path, small_analysis):
+    """The plots' path: a writer that fills a file object (fh.write raising ENOSPC)."""
+    target = tmp_path / "fig.png"
+    target.write_bytes(b"old")
+
+    def fill(fh):
+        fh.write(b"partial")
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+
+    with pytest.raises(InputError, match=r"cannot write plot '.*fig\.png': No space left"):
+        fileio.write_with(target, fill, what="plot")
+    assert target.read_bytes() == b"old"
+    assert leftovers(tmp_path, {"fig.png"}) == []
+
+
+SYNTHETIC = """
+import numpy as np
+from propwhirl.engine import Sweep
+
+def synthetic_sweep(me=1, T=400, n=8):
+    V = np.arange(1.0, T + 1.0)
+    lam = (-0.01 * me - 0.1 * np.arange(n)) + 1j * (1.0 + me + np.arange(n)) * np.ones((T, 1))
+    return Sweep(V=V, eigenvalues=lam, eigenvectors=None, dlam_dV=0 * lam,
+                 physical=np.ones((T, n), bool), state_labels=tuple("s%d" % k for k in range(n)),
+                 displacement=np.ones(n, bool), mode_labels=tuple("m%d" % k for k in range(n)),
+                 partner=-np.ones(n, int), grid=V, floor=np.ones(T))
+"""
+
+FULL_DISK = SYNTHETIC + textwrap.dedent("""
+    import resource, signal, sys
+    from propwhirl.analysis.stability import ModelAnalysis
+    from propwhirl.validate import InputError
+
+    writer, path = sys.argv[1], sys.argv[2]
+    sweep = synthetic_sweep()
+    # the kernel refuses every byte past 1000 in any file this process writes (EFBIG)
+    signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+    resource.setrlimit(resource.RLIMIT_FSIZE, (1000, resource.RLIM_INFINITY))
+    try:
+        if writer == "analysis":
+            ModelAnalysis("synthetic", sweep, ()).save(path)
+        elif writer == "csv":
+            from propwhirl.io import write_vgf_csv
+            write_vgf_csv(sweep, path)
+        elif writer == "model":
+            from propwhirl.cases.registry import case_model
+            from propwhirl.io import save_model
+            save_model(case_model("wingtip"), path)
+        elif writer == "table":
+            from propwhirl.studies.table import StudyTable
+            StudyTable("t", "x", {"model": np.array(["a"] * 400),
+                                  "x": np.arange(400.0)}).to_csv(path)
+        elif writer == "plot":
+            from propwhirl.app import plots
+            plots.save(plots.vgf(ModelAnalysis("synthetic", sweep, ())), path)
+    except InputError as exc:
+        print(exc, file=sys.stderr)
+        sys.exit(2)
+""")
+
+
+@pytest.mark.parametrize("writer", ["analysis", "csv", "model", "table", "plot"])
+def test_a_file_size_limit_of_the_kernel_leaves_the_old_file(tmp_path, writer):
+    """Issue 9.5: a full disk left a 65,536-byte invalid JSON and the error named no file.
+    A real write failure of the kernel (RLIMIT_FSIZE: EFBIG past 1000 bytes, as a full disk
+    gives ENOSPC) in every writer: an InputError naming the file, the old file untouched,
+    no temporary file."""
+    if writer == "plot":
+        pytest.importorskip("matplotlib")
+    target = tmp_path / ("out.png" if writer == "plot" else "out.file")
+    target.write_text("old")
+    script = tmp_path / "full.py"
+    script.write_text(FULL_DISK)
+    env = dict(os.environ, PYTHONPATH=str(ROOT / "src"), PYTHONDONTWRITEBYTECODE="1")
+    r = subprocess.run([sys.executable, str(script), writer, str(target)], env=env,
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 2, r.stderr
+    assert r.stderr.count("\n") == 1
+    assert f"{str(target)!r}: File too large" in r.stderr
+    assert target.read_text() == "old"
+    assert leftovers(tmp_path, {target.name, "full.py"}) == []
+
+
+def test_keyboard_interrupt_mid_write_removes_the_temporary_file(tmp_path):
+    target = tmp_path / "a.csv"
+    target.write_text("old,complete\n")
+    seen = []
+
+    def fill(fh):
+        fh.write(b"half,")
+        fh.flush()
+        seen.extend(leftovers(tmp_path, {"a.csv"}))   # the temporary file, beside the target
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        fileio.write_with(target, fill)
+    assert len(seen) == 1 and seen[0].startswith(".a.csv.") and seen[0].endswith(".tmp")
+    assert target.read_text() == "old,complete\n"
+    assert leftovers(tmp_path, {"a.csv"}) == []
+
+
+def test_a_folder_or_a_missing_folder_is_an_error_naming_the_path(tmp_path):
+    with pytest.raises(InputError, match="cannot write .*: it is a folder"):
+        fileio.write_text(tmp_path, "x")
+    with pytest.raises(InputError, match=r"cannot write '.*missing/a\.txt': No such file"):
+        fileio.write_text(tmp_path / "missing" / "a.txt", "x")
+
+
+def unwritable_folder(tmp_path: Path) -> Path:
+    """A folder no file can be created in: read-only permissions, or /sys for root (which
+    permissions do not stop)."""
+    folder = tmp_path / "ro"
+    folder.mkdir()
+    folder.chmod(0o555)
+    try:
+        (folder / "probe").write_text("x")
+    except OSError:
+        return folder
+    (folder / "probe").unlink()
+    if Path("/sys").is_dir():
+        try:
+            (Path("/sys") / "propwhirl-probe").write_text("x")
+        except OSError:
+            return Path("/sys")
+    pytest.skip("no unwritable folder on this machine")
+
+
+def test_check_writable(tmp_path):
+    assert fileio.check_writable(tmp_path / "a.json") == tmp_path
+    assert leftovers(tmp_path, set()) == []           # the probe file is removed
+    with pytest.raises(InputError, match=r"--json .*: the folder '.*nope' does not exist"):
+        fileio.check_writable(tmp_path / "nope" / "a.json", what="--json")
+    made = fileio.check_writable(tmp_path / "new" / "sub", folder=True, create=True)
+    assert made.is_dir()
+    (tmp_path / "file").write_text("x")
+    with pytest.raises(InputError, match="is not a folder"):
+        fileio.check_writable(tmp_path / "file" / "a.json")
+    with pytest.raises(InputError, match="is a folder, not a file"):
+        fileio.check_writable(tmp_path)
+    ro = unwritable_folder(tmp_path)
+    with pytest.raises(InputError, match=f"--csv .*cannot write to the folder '{ro}'"):
+        fileio.check_writable(ro / "a.csv", what="--csv")
+
+
+WRITER = SYNTHETIC + textwrap.dedent("""
+    import sys
+    from propwhirl.io import write_vgf_csv
+
+    me, path = int(sys.argv[1]), sys.argv[2]
+    sweep = synthetic_sweep(me)
+    for _ in range(20):
+        write_vgf_csv(sweep, path)
+""")
+
+
+def test_two_processes_writing_the_same_csv(tmp_path):
+    """Issue 9.5: two processes writing the same CSV corrupted 8 of 20; now each final file
+    is one writer's complete table."""
+    path = tmp_path / "vgf.csv"
+    script = tmp_path / "writer.py"
+    script.write_text(WRITER)
+    env = dict(os.environ, PYTHONPATH=str(ROOT / "src"))
+    procs = [subprocess.Popen([sys.executable, str(script), str(me), str(path)], env=env)
+             for me in (1, 2)]
+    assert [p.wait(timeout=120) for p in procs] == [0, 0]
+    t = io.read_vgf_csv(path)                       # complete and valid
+    assert len(t["V"]) == 400 * 8
+    assert set(t["imag"][:8] - np.arange(8)) in ({2.0}, {3.0})   # one writer's, not a mix
+    assert leftovers(tmp_path, {"vgf.csv", "writer.py"}) == []
+
+
+def test_two_writers_never_show_a_partial_file(tmp_path):
+    """While two processes rewrite the file, every read sees a complete table."""
+    path = tmp_path / "vgf.csv"
+    script = tmp_path / "writer.py"
+    script.write_text(WRITER)
+    env = dict(os.environ, PYTHONPATH=str(ROOT / "src"))
+    procs = [subprocess.Popen([sys.executable, str(script), str(me), str(path)], env=env)
+             for me in (1, 2)]
+    reads = 0
+    while any(p.poll() is None for p in procs):
+        if path.exists():
+            t = io.read_vgf_csv(path)               # raises on a partial file
+            assert len(t["V"]) == 400 * 8
+            reads += 1
+    assert [p.wait(timeout=120) for p in procs] == [0, 0]
+    assert leftovers(tmp_path, {"vgf.csv", "writer.py"}) == []
