@@ -28,6 +28,7 @@ from propwhirl.engine import XTOL, Criticals, Sweep, TrackingOptions, frequency_
 from propwhirl.engine import analyse as engine_analyse
 from propwhirl import validate as v
 from propwhirl.analysis.naming import mode_content, mode_names, whirl
+from propwhirl.model import validity
 from propwhirl.model.protocol import DofMap, Model
 
 #: Default airspeed grid of the thesis's analyses (0–350 m/s; the engine refines it) [m/s]
@@ -137,6 +138,9 @@ class ModelAnalysis:
     content: dict[str, dict[str, float]] = field(default_factory=dict)
     #: what each state of the analysed model is (wing node and DOF, propeller, lag state)
     dof_map: DofMap | None = field(default=None, repr=False)
+    #: results outside the methods' validity, one line each (:mod:`propwhirl.model.validity`:
+    #: Mach above 0.7 or supersonic, supersonic propeller tips); saved and re-read
+    warnings: tuple[str, ...] = ()
 
     def describe(self, label: str) -> str:
         """'label (dominant content)', e.g. 'wing 2 (torsion)'."""
@@ -187,6 +191,7 @@ class ModelAnalysis:
             "dof_map": None if self.dof_map is None else self.dof_map.to_dict(),
             "content": self.content,
             "sweep": self.sweep.to_dict(include_eigenvectors=include_eigenvectors),
+            "warnings": list(self.warnings),
         }
 
     @classmethod
@@ -194,7 +199,8 @@ class ModelAnalysis:
         dm = d.get("dof_map")
         return cls(d["model_name"], Sweep.from_dict(d["sweep"]),
                    tuple(Instability(**e) for e in d["events"]), content=d.get("content", {}),
-                   dof_map=None if dm is None else DofMap.from_dict(dm))
+                   dof_map=None if dm is None else DofMap.from_dict(dm),
+                   warnings=tuple(str(w) for w in d.get("warnings", ())))
 
     def save(self, path: str | Path, include_eigenvectors: bool = False) -> None:
         """Write the analysis as JSON (V-g-f table, labels, instabilities)."""
@@ -282,8 +288,12 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
     events += [Instability("divergence", "frequency-zero", p.mode, names[p.mode], p.V, 0.0)
                for p in frequency_zero_points(sw, model.state_matrix, xtol=xtol)]
     events.sort(key=lambda e: (e.V, e.mode))
+    notes = validity.analysis_warnings(
+        model, (float(sw.V[0]), float(sw.V[-1])),
+        [(e.V, f"{e.kind} {e.event} of {e.label}") for e in events],
+        any(e.event in UNSTABLE_EVENTS for e in events))
     return ModelAnalysis(model.name, sw, tuple(events), an.criticals,
-                         mode_content(model, sw, names), dm)
+                         mode_content(model, sw, names), dm, notes)
 
 
 def speed_and_frequency(event: Instability | None) -> tuple[float, float]:
