@@ -181,10 +181,14 @@ def analysis_warnings(model, speed_range: tuple[float, float],
         more = f" ({n} more event{'s' if n > 1 else ''} above it)" if n else ""
         tail = (f"; {len(sup)} at Mach >= 1 (supersonic free stream, from V = {sup[0]:.2f} m/s)"
                 if sup else "")
+        what = [w for w, on in (("the incompressible strip aerodynamics",
+                                 getattr(model, "wing_aero", False) or getattr(model, "aero", False) is True),
+                                ("the Prandtl-Glauert correction of the propeller derivatives",
+                                 bool(houbolt_reed_propellers(model)))) if on] or ["the aerodynamics"]
         out.append(
             f"V = {V0:.2f} m/s ({d0}) is Mach {V0 / a:.2f}{more}{tail}: beyond Mach "
-            f"{MACH_COMPRESSIBLE:g} the incompressible strip aerodynamics and the "
-            "Prandtl-Glauert correction of the propeller derivatives are not valid")
+            f"{MACH_COMPRESSIBLE:g} {' and '.join(what)} {'is' if len(what) == 1 else 'are'} "
+            "not valid")
     for j, p in houbolt_reed_propellers(model):
         hits = [(V, d, float(tip_mach(p, V, a))) for V, d in ev]
         hits = [h for h in hits if h[2] > TIP_MACH]
