@@ -31,6 +31,7 @@ from propwhirl.engine.results import SavedDict
 from propwhirl import fileio
 from propwhirl import validate as v
 from propwhirl.analysis.naming import mode_content, mode_names, whirl
+from propwhirl.model import validity
 from propwhirl.model.protocol import DofMap, Model, PropellerDofs
 
 #: Default airspeed grid of the thesis's analyses (0–350 m/s; the engine refines it) [m/s]
@@ -140,6 +141,9 @@ class ModelAnalysis:
     content: dict[str, dict[str, float]] = field(default_factory=dict)
     #: what each state of the analysed model is (wing node and DOF, propeller, lag state)
     dof_map: DofMap | None = field(default=None, repr=False)
+    #: results outside the methods' validity, one line each (:mod:`propwhirl.model.validity`:
+    #: Mach above 0.7 or supersonic, supersonic propeller tips); saved and re-read
+    warnings: tuple[str, ...] = ()
 
     def describe(self, label: str) -> str:
         """'label (dominant content)', e.g. 'wing 2 (torsion)'."""
@@ -193,6 +197,7 @@ class ModelAnalysis:
             "dof_map": None if self.dof_map is None else self.dof_map.to_dict(),
             "content": self.content,
             "sweep": self.sweep.to_dict(include_eigenvectors=include_eigenvectors),
+            "warnings": list(self.warnings),
         }
 
     @classmethod
@@ -323,7 +328,7 @@ def _content_from_dict(d: Any, sweep: Sweep) -> dict[str, dict[str, float]]:
 
 def _analysis_from_dict(d: Any) -> ModelAnalysis:
     keys = ("model_name", "events", "critical", "dof_map", "content", "sweep")
-    r = SavedDict(d, "", keys, ("format", "format_version"))
+    r = SavedDict(d, "", keys, ("format", "format_version", "warnings"))
     if r.has("format") or r.has("format_version"):
         got = r.raw("format") if r.has("format") else None
         if got != FORMAT:
@@ -341,8 +346,12 @@ def _analysis_from_dict(d: Any) -> ModelAnalysis:
     events = tuple(_event_from_dict(e, f"events[{i}]", sweep)
                    for i, e in enumerate(r.raw("events")))
     dm = None if r.raw("dof_map") is None else _dof_map_from_dict(r.raw("dof_map"), sweep)
+    notes = r.raw("warnings") if r.has("warnings") else []
+    if not isinstance(notes, list) or not all(isinstance(w, str) for w in notes):
+        raise v.InputError("warnings: must be a list of strings")
     a = ModelAnalysis(r.string("model_name"), sweep, events,
-                      content=_content_from_dict(r.raw("content"), sweep), dof_map=dm)
+                      content=_content_from_dict(r.raw("content"), sweep), dof_map=dm,
+                      warnings=tuple(notes))
     c = a.critical
     if r.raw("critical") != (None if c is None else _event_dict(c)):
         raise v.InputError("critical: does not match the critical instability of the events")
@@ -476,8 +485,12 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
     events += [Instability("divergence", "frequency-zero", p.mode, names[p.mode], p.V, 0.0)
                for p in frequency_zero_points(sw, model.state_matrix, xtol=xtol)]
     events.sort(key=lambda e: (e.V, e.mode))
+    notes = validity.analysis_warnings(
+        model, (float(sw.V[0]), float(sw.V[-1])),
+        [(e.V, f"{e.kind} {e.event} of {e.label}") for e in events],
+        any(e.event in UNSTABLE_EVENTS for e in events))
     return ModelAnalysis(model.name, sw, tuple(events), an.criticals,
-                         mode_content(model, sw, names), dm)
+                         mode_content(model, sw, names), dm, notes)
 
 
 def speed_and_frequency(event: Instability | None) -> tuple[float, float]:

@@ -102,6 +102,8 @@ def _derivatives(args: argparse.Namespace) -> int:
         omega = args.omega if args.omega is not None else args.rpm * math.pi / 30.0
         d = aero.constant_speed(geo, args.speed, omega, sound, args.mach, settings)
     points = [d.at(i) for i in range(np.size(d.airspeed))]
+    for note in aero.validity_warnings(d):
+        print(f"propwhirl: warning: {note}", file=sys.stderr)
     if args.json:
         print(json.dumps({"aspect_ratio": d.aspect_ratio, "reference_chord": d.reference_chord,
                           "points": points}, indent=2))
@@ -229,6 +231,8 @@ def _analyse(args: argparse.Namespace) -> int:
     speeds = speed_grid(*args.speeds) if args.speeds else None
     a = analyse(model, speeds, vgf=True)
     _echo(a.summary())
+    for note in a.warnings:
+        print(f"propwhirl: warning: {limits.printable(note)}", file=sys.stderr)
     if args.json:
         a.save(args.json)
         print(f"wrote {args.json}")

@@ -128,3 +128,68 @@ def wing_aero(wing: Wing, rho: float, V: np.ndarray) -> dict[str, np.ndarray | t
         "Wq": place(Wq, wrows, qrows, (m, nq)),
         "labels": tuple(f"node {i} w{j + 1}" for i in range(nn) for j in range(k)),
     }
+
+
+# ----------------------------------------------------------------------------- diagnosis
+_ROLE_INDEX = {"S1": (0, "mass"), "S2": (1, "damping"), "S3": (2, "stiffness")}
+
+
+def _badness(mats, k: int, r: int, c: int, ratio: bool) -> float:
+    """Orders of magnitude of entry (r, c) of matrix k (over the mass diagonal if `ratio`)
+    away from 1: |log10 |x||, inf where it is not finite."""
+    x = abs(float(np.asarray(mats[k])[0, r, c]))
+    if ratio:
+        x = x / abs(float(np.asarray(mats[0])[0, r, r]))
+    if not np.isfinite(x) or x == 0.0:
+        return np.inf
+    return abs(float(np.log10(x)))
+
+
+def blame_entry(contributions, err) -> str | None:
+    """Which block and model parameter make the state-matrix entry of `err` bad.
+
+    `contributions`: (label, global DOF labels, evaluate(values) -> (M, C, K), values, units)
+    of each block of a model at the one failing speed; `err`: a
+    :class:`~propwhirl.model.statespace.StateMatrixError` (matrix, row, col).  The block
+    containing the entry whose value there is furthest from 1 (in orders of magnitude, a
+    non-finite one first) is the culprit; within it, the argument whose replacement by 1 (sign
+    kept) brings the entry back by the most — at least three orders of magnitude, or to a
+    finite value — is named with its value.  Returns e.g. "propeller 0: K_theta =
+    3.2e+305 N m/rad makes its stiffness block far too large (…)", or None.
+    """
+    matrix = err.matrix.split()[-1]
+    if matrix not in _ROLE_INDEX:
+        return None
+    k, role = _ROLE_INDEX[matrix]
+    ratio = err.matrix.startswith("S1^-1")
+    found = []
+    for label, dofs, evaluate, values, units in contributions:
+        for row, col in err.entries:
+            if row in dofs and col in dofs:
+                r, c = dofs.index(row), dofs.index(col)
+                found.append((_badness(evaluate(values), k, r, c, ratio), label, evaluate,
+                              values, units, r, c))
+    if not found:
+        return None
+    base, label, evaluate, values, units, r, c = max(found, key=lambda f: f[0])
+    best, cause = 3.0, None
+    for name, x in values.items():
+        if isinstance(x, (bool, np.bool_)) or not isinstance(x, (int, float, np.ndarray)):
+            continue
+        arr = np.asarray(x, dtype=float)
+        trial = dict(values)
+        trial[name] = np.where(arr < 0, -1.0, 1.0) if arr.ndim else (-1.0 if arr < 0 else 1.0)
+        gain = base - _badness(evaluate(trial), k, r, c, ratio)
+        if gain > best or (np.isinf(base) and gain == np.inf and cause is None):
+            best, cause = gain, name
+    entry = np.asarray(evaluate(values)[k], dtype=float)[0, r, c]
+    if ratio:
+        entry = entry / np.asarray(evaluate(values)[0], dtype=float)[0, r, r]
+    what = ("non-finite" if np.isinf(base) else
+            "far too large" if abs(entry) > 1 else "far too small")
+    if cause is None:
+        return f"{label} makes its {role} block {what} ({err})"
+    val = float(np.ravel(np.asarray(values[cause], dtype=float))[0])
+    unit = units.get(cause, "")
+    return (f"{label}: {cause} = {val:.3g}{' ' + unit if unit else ''} makes its {role} block "
+            f"{what} ({err})")

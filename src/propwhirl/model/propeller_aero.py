@@ -38,6 +38,7 @@ from scipy.special import hankel2e
 
 from propwhirl import limits
 from propwhirl import validate as v
+from propwhirl.model import validity
 from propwhirl.model.fields import spec
 
 #: The sixteen derivatives in the order of eq. 4.25 (F_Z, M_Y, F_Y, M_Z rows).
@@ -472,6 +473,49 @@ def derivatives(geometry: PropellerGeometry, airspeed, omega, speed_of_sound=Non
                 "speed_of_sound (or mach) is missing: required with compressibility on")
         M = np.zeros(shape)
     Vf, omf, Mf = (np.ascontiguousarray(x, dtype=float).ravel() for x in (V, om, M))
+    validity.check_propeller(geometry.n_blades, geometry.radius, geometry.blade_area(), Vf, Mf)
+    with np.errstate(over="ignore", under="ignore", invalid="ignore", divide="ignore"):
+        d, mu, cutoff, integrals = _derivatives(geometry, settings, Vf, omf, Mf)
+    _check_finite(geometry, d, Vf, omf, mu)
+    r = lambda x: np.asarray(x, dtype=float).reshape(shape)            # noqa: E731
+    bennett_bland = settings.method == "bennett_bland"
+    return PropellerDerivatives(
+        airspeed=r(Vf), omega=r(omf), advance_ratio=r(mu), mach=r(Mf),
+        cutoff_applied=np.asarray(cutoff & settings.compressibility & (not bennett_bland),
+                                  dtype=bool).reshape(shape),
+        **{n: r(x) for n, x in integrals.items()},
+        **{n: r(x) for n, x in d.items()},
+        reference_chord=geometry.c0, aspect_ratio=geometry.blade_aspect_ratio,
+    )
+
+
+def solidity(geometry: PropellerGeometry) -> float:
+    """Disc solidity σ = N_b ∫_{r0}^{R} c dr / (π R²) (blade planform over disc area)."""
+    return geometry.n_blades * geometry.blade_area() / (math.pi * geometry.radius ** 2)
+
+
+def validity_warnings(d: PropellerDerivatives) -> tuple[str, ...]:
+    """One line per validity bound the operating points of `d` exceed
+    (:func:`propwhirl.model.validity.operating_point_warnings`)."""
+    return validity.operating_point_warnings(d.airspeed, d.mach, d.advance_ratio)
+
+
+def _check_finite(geometry: PropellerGeometry, d: dict[str, np.ndarray], V: np.ndarray,
+                  omega: np.ndarray, mu: np.ndarray) -> None:
+    """InputError naming the derivative and the operating point where one is not finite."""
+    for name, x in d.items():
+        if not np.isfinite(x).all():
+            t = int(np.argmax(~np.isfinite(x)))
+            raise v.InputError(
+                f"Houbolt-Reed derivative {name} is not finite at V = {V[t]:g} m/s, Omega = "
+                f"{omega[t]:g} rad/s (advance ratio V/(Omega R) = {mu[t]:.4g}, radius = "
+                f"{geometry.radius:g} m, reference chord {geometry.c0:g} m): the operating "
+                "point or the blade geometry is outside what the method can represent")
+
+
+def _derivatives(geometry: PropellerGeometry, settings: AeroSettings, Vf: np.ndarray,
+                 omf: np.ndarray, Mf: np.ndarray):
+    """The sixteen derivatives (flat arrays), μ, the cut-off flag and the six integrals."""
     mu = Vf / (omf * geometry.radius)
 
     bennett_bland = settings.method == "bennett_bland"
@@ -503,15 +547,7 @@ def derivatives(geometry: PropellerGeometry, airspeed, omega, speed_of_sound=Non
         CY_theta=CZ_psi, CY_psi=CY_psi, CY_q=CY_q, CY_r=CY_r,
         Cn_theta=-Cm_psi, Cn_psi=Cm_theta, Cn_q=-Cm_r, Cn_r=Cm_q,
     )
-    r = lambda x: np.asarray(x, dtype=float).reshape(shape)            # noqa: E731
-    return PropellerDerivatives(
-        airspeed=r(Vf), omega=r(omf), advance_ratio=r(mu), mach=r(Mf),
-        cutoff_applied=np.asarray(cutoff & settings.compressibility & (not bennett_bland),
-                                  dtype=bool).reshape(shape),
-        I1=r(I1), I2=r(I2), I3=r(I3), J1=r(J1), J2=r(J2), J3=r(J3),
-        **{n: r(x) for n, x in d.items()},
-        reference_chord=geometry.c0, aspect_ratio=geometry.blade_aspect_ratio,
-    )
+    return d, mu, cutoff, dict(I1=I1, I2=I2, I3=I3, J1=J1, J2=J2, J3=J3)
 
 
 def constant_speed(geometry: PropellerGeometry, airspeed, omega: float, speed_of_sound=None,

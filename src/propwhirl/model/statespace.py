@@ -74,9 +74,36 @@ class SecondOrder:
         )
 
 
-#: Condition number of the mass matrix S1 above which a model is refused as singular (a DOF
-#: without inertia): the one singularity rule of every state matrix.
+#: Condition number of the mass matrix S1 above which a model is refused: the one singularity
+#: rule of every state matrix.  The message tells a badly scaled S1 (a mass or inertia far
+#: outside the others: the condition number of D^-1/2 S1 D^-1/2, D = |diag S1|, is below the
+#: limit) from a singular one (a degree of freedom without independent inertia).
 SINGULAR_CONDITION = 1e14
+
+#: Largest magnitude of an entry of S1⁻¹S2, S1⁻¹S3, S1⁻¹S4 and of Ww, Wv, Wq (SI: 1/s, 1/s², …):
+#: rates of about 1e25 rad/s, far beyond any structure, while the eigen-analysis (which forms
+#: products of up to four roots) stays far from floating-point overflow.
+RATE_LIMIT = 1e50
+
+#: What each matrix of :class:`SecondOrder` is, for the messages.
+ROLES = {"S1": "mass", "S2": "damping", "S3": "stiffness", "S4": "lag-state coupling",
+         "Ww": "lag-state", "Wv": "lag-state rate coupling", "Wq": "lag-state coupling"}
+
+
+class StateMatrixError(v.InputError):
+    """A state matrix that cannot be built: names the matrix, the speed and the entry.
+
+    matrix: "S1" … "Wq", or "S1^-1 S3" (etc.) for the solved blocks; index: speed index;
+    row, col: labels of the offending entry's state (degree of freedom or lag state).
+    Models catch it to name the model parameter behind the entry.
+    """
+
+    def __init__(self, message: str, matrix: str, index: int, row: str, col: str,
+                 also: tuple[tuple[str, str], ...] = ()) -> None:
+        super().__init__(message)
+        self.matrix, self.index, self.row, self.col = matrix, index, row, col
+        #: further suspect entries (row, col), e.g. both ends of a badly scaled diagonal
+        self.entries = ((row, col),) + tuple(also)
 
 
 def _where(V, t: int) -> str:
@@ -87,40 +114,112 @@ def _where(V, t: int) -> str:
     return f"V = {float(Va[min(t, Va.size - 1)])!r} m/s"
 
 
-def check_finite(name: str, arr: np.ndarray, V: np.ndarray | None) -> None:
-    """Raise InputError naming the matrix and the first speed where it is not finite."""
-    bad = ~np.isfinite(arr).reshape(arr.shape[0], -1).all(axis=1)
-    if bad.any():
-        raise v.InputError(
-            f"{name} has non-finite entries at {_where(V, int(np.argmax(bad)))}: "
-            "check the model parameters feeding it (e.g. a zero semichord, radius or speed)"
-        )
+def _axes(sys: SecondOrder, name: str) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """Row and column labels of matrix `name` of `sys`."""
+    q, w = sys.q_labels, sys.w_labels
+    return {"S1": (q, q), "S2": (q, q), "S3": (q, q), "S4": (q, w), "Ww": (w, w),
+            "Wv": (w, q), "Wq": (w, q)}[name]
+
+
+def check_finite(name: str, arr: np.ndarray, V: np.ndarray | None,
+                 rows: tuple[str, ...] = (), cols: tuple[str, ...] = ()) -> None:
+    """Raise :class:`StateMatrixError` naming the matrix, the first speed where it is not
+    finite and the entry (by its row and column labels when given)."""
+    finite = np.isfinite(arr)
+    if finite.all():
+        return
+    t, r, c = (int(i) for i in np.argwhere(~finite)[0])
+    lab = lambda labels, i: labels[i] if i < len(labels) else f"{i}"  # noqa: E731
+    role = ROLES.get(name, "")
+    raise StateMatrixError(
+        f"the {role + ' matrix ' if role else ''}{name} is not finite at {_where(V, t)} "
+        f"(row {lab(rows, r)}, column {lab(cols, c)})", name, t, lab(rows, r), lab(cols, c))
+
+
+def check_system(sys: SecondOrder, V: np.ndarray | None = None) -> None:
+    """Every matrix of `sys` finite (:func:`check_finite`, entries named by their states)."""
+    for name in ROLES:
+        check_finite(name, getattr(sys, name), V, *_axes(sys, name))
+
+
+def _check_mass(sys: SecondOrder, V) -> None:
+    """The singularity rule (:data:`SINGULAR_CONDITION`), badly scaled told from singular."""
+    with np.errstate(all="ignore"):
+        cond = np.linalg.cond(sys.S1)
+    bad = ~(cond <= SINGULAR_CONDITION)
+    if not bad.any():
+        return
+    t = int(np.argmax(bad))
+    S1, labels = sys.S1[t], sys.q_labels
+    d = np.abs(np.diag(S1))
+    hi, lo = int(np.argmax(d)), int(np.argmin(d))
+    head = "the mass matrix (structural plus aerodynamic, S1) is"
+    where = f"at {_where(V, t)} (condition number {cond[t]:.3g} > {SINGULAR_CONDITION:.0e})"
+    if d[lo] > 0 and d[hi] / d[lo] > SINGULAR_CONDITION:
+        raise StateMatrixError(
+            f"{head} numerically singular {where} because it is badly scaled: its diagonal "
+            f"spans {d[lo]:.3g} at {labels[lo]} to {d[hi]:.3g} at {labels[hi]} (SI units), a "
+            "mass or inertia far outside the others", "S1", t, labels[hi], labels[hi],
+            ((labels[lo], labels[lo]),))
+    if d[lo] > 0:
+        s = 1.0 / np.sqrt(d)
+        try:
+            with np.errstate(all="ignore"):
+                null = np.linalg.svd(s[:, None] * S1 * s[None, :])[2][-1] * s
+        except np.linalg.LinAlgError:
+            null = (np.arange(d.size) == lo).astype(float)
+    else:
+        null = (d == 0).astype(float)
+    share = np.abs(null) / np.max(np.abs(null))
+    dofs = [labels[i] for i in np.argsort(-share, kind="stable")[:3] if share[i] > 0.1]
+    raise StateMatrixError(
+        f"{head} singular {where}: {', '.join(dofs)} {'has' if len(dofs) == 1 else 'have'} "
+        "no independent inertia (a zero mass or inertia?)", "S1", t, dofs[0], dofs[0])
+
+
+def _check_solved(sys: SecondOrder, X: np.ndarray, V) -> None:
+    """Every solved block and lag-state matrix finite and within :data:`RATE_LIMIT`; the
+    error names the entry of S2/S3/S4 (or W) that feeds the offending one."""
+    n = sys.n_dof
+    q, w = sys.q_labels, sys.w_labels
+    for name, block, src, rows, cols in (
+            ("S1^-1 S3", X[..., :n], sys.S3, q, q), ("S1^-1 S2", X[..., n:2 * n], sys.S2, q, q),
+            ("S1^-1 S4", X[..., 2 * n:], sys.S4, q, w), ("Ww", sys.Ww, None, w, w),
+            ("Wv", sys.Wv, None, w, q), ("Wq", sys.Wq, None, w, q)):
+        big = ~(np.abs(block) <= RATE_LIMIT)
+        if not big.any():
+            continue
+        t, r, c = (int(i) for i in np.argwhere(big)[0])
+        feed = ""
+        if src is not None:   # the entry of S2/S3/S4 in column c largest against its mass
+            with np.errstate(all="ignore"):
+                ratio = np.abs(src[t, :, c]) / np.abs(np.diagonal(sys.S1[t]))
+            k = int(np.argmax(np.where(np.isnan(ratio), np.inf, ratio)))
+            feed = f", fed by {name.split()[-1]} at row {rows[k]}"
+            r = k
+        raise StateMatrixError(
+            f"{name} reaches {float(block[t, int(np.argwhere(big)[0][1]), c]):.3g} (SI) at "
+            f"{_where(V, t)} (column {cols[c]}{feed}), beyond {RATE_LIMIT:.0e}: a stiffness, "
+            "damping or mass far outside the others", name, t, rows[r], cols[c])
 
 
 def state_matrix(sys: SecondOrder, V: np.ndarray | None = None) -> np.ndarray:
     """The state matrix A(V) (nV, 2n+m, 2n+m) of x = [q, q̇, w] (eq. 5.4, 7.59, D.27).
 
     The one builder of every model's A: ``A = [[0, I, 0], [−S1⁻¹S3, −S1⁻¹S2, S1⁻¹S4],
-    [Wq, Wv, Ww]]``, S1 solved once per speed.  Non-finite matrices and a mass matrix S1 with
-    condition number above :data:`SINGULAR_CONDITION` raise :class:`InputError` naming the
-    speed ``V`` [m/s] (optional; only used in the messages).
+    [Wq, Wv, Ww]]``, S1 solved once per speed.  Non-finite matrices, a mass matrix S1 with
+    condition number above :data:`SINGULAR_CONDITION` (badly scaled or singular) and solved
+    blocks beyond :data:`RATE_LIMIT` raise :class:`StateMatrixError` (an InputError) naming
+    the speed ``V`` [m/s] (optional; only used in the messages) and the entry's states.
     """
     n, m = sys.n_dof, sys.n_lag
     nV = sys.S1.shape[0]
-    for name in ("S1", "S2", "S3", "S4", "Ww", "Wv", "Wq"):
-        check_finite(name, getattr(sys, name), V)
+    check_system(sys, V)
     rhs = np.concatenate([sys.S3, sys.S2, sys.S4], axis=-1)
+    _check_mass(sys, V)
     with np.errstate(all="ignore"):
-        cond = np.linalg.cond(sys.S1)
-    bad = ~(cond <= SINGULAR_CONDITION)
-    if bad.any():
-        t = int(np.argmax(bad))
-        raise v.InputError(
-            f"the mass matrix (structural plus aerodynamic, S1) is singular at {_where(V, t)} "
-            f"(condition number {cond[t]:.3g} > {SINGULAR_CONDITION:.0e}): a degree of freedom "
-            "has no inertia (zero mass or inertia?)"
-        )
-    X = np.linalg.solve(sys.S1, rhs)
+        X = np.linalg.solve(sys.S1, rhs)
+    _check_solved(sys, X, V)
     A = np.zeros((nV, 2 * n + m, 2 * n + m))
     A[:, :n, n : 2 * n] = np.eye(n)
     A[:, n : 2 * n, :n] = -X[..., :n]

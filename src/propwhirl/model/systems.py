@@ -30,6 +30,7 @@ from propwhirl import validate as v
 from propwhirl.model.fields import spec
 from propwhirl.model.assembly import (
     LAG_STATES,
+    blame_entry,
     WING_DOF_NAMES,
     call_blocks,
     free_dofs,
@@ -37,12 +38,24 @@ from propwhirl.model.assembly import (
     wing_dof_labels,
     wing_structure,
 )
-from propwhirl.generated import prop_flexwing, prop_rigid
+from propwhirl.generated import beam_element, prop_flexwing, prop_rigid
 from propwhirl.model.flight import SPEED_OF_SOUND_8000FT, FlightCondition  # noqa: F401 (re-export)
 from propwhirl.model.propeller import Propeller
 from propwhirl.model.protocol import DofMap, PropellerDofs
-from propwhirl.model.statespace import SecondOrder, state_matrix
+from propwhirl.model import validity
+from propwhirl.model.statespace import SecondOrder, StateMatrixError, check_system, state_matrix
 from propwhirl.model.wing import Wing
+
+#: Units of the arguments of the generated propeller blocks, for the error messages.
+PROPELLER_UNITS = dict(
+    M_P="kg", S_theta_P="kg m", I_theta_P="kg m^2", I_psi_P="kg m^2", S_alpha_P="kg m",
+    I_alpha_P="kg m^2", I_theta_alpha_P="kg m^2", I_Omega="kg m^2", I_X="kg m^2",
+    I_Y="kg m^2", I_Z="kg m^2", Omega="rad/s", K_theta="N m/rad", K_psi="N m/rad",
+    rho="kg/m^3", V="m/s", R="m", e_theta="m", e_psi="m", e_alpha="m")
+#: Units of the wing element properties (:meth:`Wing.element_properties`) and Rayleigh terms.
+ELEMENT_UNITS = dict(length="m", m="kg/m", rho_Ip="kg m", x_alpha_b="m", EI="N m^2",
+                     GJ="N m^2", rayleigh_mu="1/s", rayleigh_lambda="s")
+
 
 @dataclass(frozen=True)
 class Installation:
@@ -103,7 +116,35 @@ class StateSpaceModel:
         D.27), by :func:`propwhirl.model.statespace.state_matrix`.  V [m/s], array; `options`
         go to ``second_order`` (e.g. ``omega`` of a PropellerWing)."""
         V = np.atleast_1d(np.asarray(V, dtype=float))
-        return state_matrix(self.second_order(V, **options), V)
+        sys = self.second_order(V, **options)
+        try:
+            return state_matrix(sys, V)
+        except StateMatrixError as err:
+            raise self._explained(err, V, options) from None
+
+    def _checked(self, sys: SecondOrder, V: np.ndarray, options: dict) -> SecondOrder:
+        """`sys` after :func:`~propwhirl.model.statespace.check_system` (every entry finite),
+        a failure explained by :meth:`_explained`."""
+        try:
+            check_system(sys, V)
+        except StateMatrixError as err:
+            raise self._explained(err, V, options) from None
+        return sys
+
+    def _explained(self, err: StateMatrixError, V: np.ndarray, options: dict) -> v.InputError:
+        """The error prefixed with the model parameter behind the offending entry, if found
+        (:meth:`_contributions` and :func:`propwhirl.model.blame.blame_entry`)."""
+        t = min(err.index, V.size - 1)
+        omega = options.get("omega")
+        om = None if omega is None else np.broadcast_to(np.asarray(omega, float), V.shape)[t:t + 1]
+        with np.errstate(all="ignore"):
+            cause = blame_entry(self._contributions(V[t:t + 1], om), err)
+        return v.InputError(cause or str(err))
+
+    def _contributions(self, V: np.ndarray, omega):
+        """(label, global DOF labels, evaluate(values) -> (M, C, K), values, units) of each
+        block of the model (none by default: the error keeps naming the entry's states)."""
+        return []
 
     def state_labels(self) -> tuple[str, ...]:
         """Labels of the first-order state [q, q̇, w] (:attr:`DofMap.state_labels`)."""
@@ -168,10 +209,13 @@ class PropellerWing(StateSpaceModel):
         """Local (M, C, K) over [θ, ψ, h_P, α_P] (flexible) or [h_P, α_P] (rigid), (nV, k, k).
 
         `omega` [rad/s] (shape of V) overrides the propeller's own rotational speed."""
+        return self._propeller_matrices(j, self._propeller_values(j, V, omega))
+
+    def _propeller_values(self, j: int, V: np.ndarray, omega: np.ndarray | None = None) -> dict:
+        """The arguments of the generated propeller blocks (inertia, mounts, spin, derivatives)."""
         inst = self.propellers[j]
         p = inst.propeller
         node = self.nodes[j]
-        nV = V.shape[0]
         a_b = self.wing.node_properties()
         ea = a_b["a"][node] * a_b["b"][node]  # elastic axis aft of mid-chord [m] (a_P b_P)
         inertia = p.pivot_inertia()
@@ -193,10 +237,17 @@ class PropellerWing(StateSpaceModel):
             rho=self.flight.density, V=V, R=p.radius, e_theta=p.e_theta, e_psi=p.e_psi,
             e_alpha=e_alpha,
         )
+        if self.propeller_aero and inst.aero:
+            values.update(p.aerodynamic_derivatives(V, self.flight.speed_of_sound))
+        return values
+
+    def _propeller_matrices(self, j: int, values: dict):
+        """(M, C, K) of propeller j from :meth:`_propeller_values`."""
+        inst = self.propellers[j]
+        nV = np.shape(values["V"])[0]
         shape = (nV,)
         get = call_blocks(prop_flexwing, "structure_blocks", shape, **values).__getitem__
         if self.propeller_aero and inst.aero:
-            values.update(p.aerodynamic_derivatives(V, self.flight.speed_of_sound))
             aero = call_blocks(prop_flexwing, "aero_blocks", shape, **values)
         else:
             z = np.zeros((nV, 2, 2))
@@ -211,13 +262,54 @@ class PropellerWing(StateSpaceModel):
                       [-aero["P5"], -aero["P6"]]])
         return M, C, K
 
+    def _propeller_dofs(self, j: int) -> tuple[str, ...]:
+        """Global DOF labels of propeller j's local block ([θ, ψ,] h, α at its node)."""
+        node = self.nodes[j]
+        wing = (f"node {node} h", f"node {node} alpha")
+        if self.propellers[j].mount == "rigid":
+            return wing
+        return (f"propeller {j} theta", f"propeller {j} psi") + wing
+
+    def _contributions(self, V: np.ndarray, omega):
+        out = []
+        for j in range(len(self.propellers)):
+            out.append((f"propeller {j}", self._propeller_dofs(j),
+                        lambda vals, j=j: self._propeller_matrices(j, vals),
+                        self._propeller_values(j, V, omega), PROPELLER_UNITS))
+        p = self.wing.element_properties()
+        mu, lam = self.wing.rayleigh
+
+        def element(vals):
+            b = call_blocks(beam_element, "blocks", (1,), **{k: vals[k] for k in p})
+            Mb, Kb = b["mass"], b["stiffness"]
+            return Mb, vals["rayleigh_mu"] * Mb + vals["rayleigh_lambda"] * Kb, Kb
+
+        for e in range(self.wing.n_elements):
+            vals = {k: x[e:e + 1] for k, x in p.items()}
+            vals.update(rayleigh_mu=mu, rayleigh_lambda=lam)
+            dofs = tuple(f"node {i} {d}" for i in (e, e + 1) for d in WING_DOF_NAMES)
+            out.append((f"wing element {e}", dofs, element, vals, ELEMENT_UNITS))
+        return out
+
     # ------------------------------------------------------------------ system
     def second_order(self, V, omega=None) -> SecondOrder:
         """The reduced second-order system (root removed) at airspeeds V [m/s] (array).
 
         `omega` [rad/s], broadcast to V, overrides every propeller's rotational speed (used for
-        Campbell diagrams and rotational-speed studies)."""
+        Campbell diagrams and rotational-speed studies).  Refuses what the aerodynamics cannot
+        represent (:mod:`propwhirl.model.validity`); a non-finite entry is an InputError naming
+        the model parameter behind it."""
         V = np.atleast_1d(v.positive("airspeed V", V, "m/s"))
+        if validity.has_aerodynamics(self):
+            validity.check_mach(V, self.flight.speed_of_sound)
+        if self.wing_aero:
+            validity.check_lift_slope(self.wing.node_properties()["Cla"][1:], "lift_slope",
+                                      "wing_aero = false")
+        with np.errstate(all="ignore"):
+            sys = self._assemble(V, omega)
+        return self._checked(sys, V, {"omega": omega})
+
+    def _assemble(self, V: np.ndarray, omega) -> SecondOrder:
         nV = V.shape[0]
         wing = self.wing
         nqw = 3 * wing.n_nodes
@@ -320,8 +412,17 @@ class IsolatedPropeller(StateSpaceModel):
         return replace(self, **changes)
 
     def second_order(self, V) -> SecondOrder:
+        """The 2-DOF pitch/yaw system (6.18) at airspeeds V [m/s] (array); checks as
+        :meth:`PropellerWing.second_order`."""
         V = np.atleast_1d(v.positive("airspeed V", V, "m/s"))
-        nV = V.shape[0]
+        if self.propeller_aero:
+            validity.check_mach(V, self.flight.speed_of_sound)
+        with np.errstate(all="ignore"):
+            sys = self._assemble(V)
+        return self._checked(sys, V, {})
+
+    def _values(self, V: np.ndarray) -> dict:
+        """The arguments of the generated rigid-wing propeller blocks at airspeeds V."""
         p = self.propeller
         inertia = p.pivot_inertia()
         Kt, Kp = p.stiffness()
@@ -332,12 +433,27 @@ class IsolatedPropeller(StateSpaceModel):
             K_theta=Kt, K_psi=Kp, zeta_theta=zt, zeta_psi=zp, rho=self.flight.density, V=V,
             R=p.radius, e_theta=-p.e_theta, e_psi=-p.e_psi,  # chapter 6: distances, positive
         )
+        if self.propeller_aero:
+            values.update(p.aerodynamic_derivatives(V, self.flight.speed_of_sound))
+        return values
+
+    def _matrices(self, values: dict):
+        """(S1, S2, S3) of the 2-DOF system from :meth:`_values`."""
+        nV = np.shape(values["V"])[0]
         get = lambda group: call_blocks(prop_rigid, group, (nV,), **values)  # noqa: E731
         S1, S2, S3 = (get("structure_blocks")[n] for n in ("Ms", "Cs_viscous", "Ks"))
         if self.propeller_aero:
-            values.update(p.aerodynamic_derivatives(V, self.flight.speed_of_sound))
             Ma, Ca, Ka = (get("aero_blocks")[n] for n in ("Ma", "Ca", "Ka"))
             S1, S2, S3 = S1 - Ma, S2 - Ca, S3 - Ka
+        return S1, S2, S3
+
+    def _contributions(self, V: np.ndarray, omega):
+        return [("propeller 0", ("propeller 0 theta", "propeller 0 psi"), self._matrices,
+                 self._values(V), PROPELLER_UNITS)]
+
+    def _assemble(self, V: np.ndarray) -> SecondOrder:
+        nV = V.shape[0]
+        S1, S2, S3 = self._matrices(self._values(V))
         z = np.zeros((nV, 0, 2))
         return SecondOrder(S1, S2, S3, np.zeros((nV, 2, 0)), np.zeros((nV, 0, 0)), z, z,
                            ("propeller 0 theta", "propeller 0 psi"), ())
@@ -401,9 +517,19 @@ class TypicalSection(StateSpaceModel):
         return replace(self, **changes)
 
     def second_order(self, V) -> SecondOrder:
+        """S1 q̈ + S2 q̇ + S3 q = S4 w of the section at airspeeds V [m/s] (array); checks as
+        :meth:`PropellerWing.second_order`."""
+        V = np.atleast_1d(v.positive("airspeed V", V, "m/s"))
+        if self.aero:
+            validity.check_mach(V, self.flight.speed_of_sound)
+            validity.check_lift_slope(np.array([self.Cla]), "Cla", "aero = False")
+        with np.errstate(all="ignore"):
+            sys = self._assemble(V)
+        return self._checked(sys, V, {})
+
+    def _assemble(self, V: np.ndarray) -> SecondOrder:
         from propwhirl.generated import strip_aero, typical_section
 
-        V = np.atleast_1d(v.positive("airspeed V", V, "m/s"))
         nV = V.shape[0]
         S = self.m * self.x_alpha * self.b
         I = self.m * (self.r_alpha * self.b) ** 2
