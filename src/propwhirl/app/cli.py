@@ -370,8 +370,16 @@ def _add_case(sub) -> None:
     p.set_defaults(func=_case)
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse with the project's error style: a usage error is one line naming the command
+    and pointing to its --help (exit code 2, through :func:`main`), not the usage text."""
+
+    def error(self, message: str):  # noqa: D102 (argparse's hook)
+        raise InputError(f"{self.prog}: {message} (see `{self.prog} --help`)")
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="propwhirl",
         description="Wing flutter, propeller whirl flutter and divergence of flexible wings "
         "with flexibly mounted propellers (SI units).",
@@ -403,12 +411,13 @@ def main(argv: list[str] | None = None) -> int:
         print("propwhirl: interrupted", file=sys.stderr, flush=True)
         return EXIT_INTERRUPTED
     except InputError as exc:
-        print(f"propwhirl: error: {_one_line(str(exc))}", file=sys.stderr)
+        print(f"propwhirl: error: {limits.printable(_one_line(str(exc)))}", file=sys.stderr)
         return 2
     except OSError as exc:  # a file error not raised through propwhirl.fileio
         name = getattr(exc, "filename", None)
         where = f"cannot access {str(name)!r}: " if name else ""
-        print(f"propwhirl: error: {where}{_one_line(fileio.reason(exc))}", file=sys.stderr)
+        print(f"propwhirl: error: {limits.printable(where + _one_line(fileio.reason(exc)))}",
+              file=sys.stderr)
         return 2
 
 
