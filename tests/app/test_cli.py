@@ -144,9 +144,9 @@ def _bad_files(tmp_path: Path) -> dict[str, Path]:
 @pytest.mark.parametrize("case, argv_tail, message", [
     ("missing file", None, "not found"),
     ("bad toml", None, "not valid TOML"),
-    ("unknown field", None, "unknown field 'wing.semispan_m'"),
-    ("invalid value", None, "GJ = -2.0 N m^2 is invalid: must be > 0"),
-    ("wrong type", None, "propellers.p1.n_blades = 'three' is invalid"),
+    ("unknown field", None, "unknown key 'semispan_m' in [wing]"),
+    ("invalid value", None, "[wing] GJ_N_m2 = -2.0 is outside the valid range [1e-3, 1e12] N m^2"),
+    ("wrong type", None, "[propellers.p1] n_blades = 'three' is invalid"),
     ("not a model", None, "holds a Propeller"),
     ("speeds", ["--speeds", "0", "10", "1"], "--speeds START = 0.0 m/s is invalid"),
     ("speeds", ["--speeds", "10", "5", "1"], "--speeds STOP = 5.0 m/s is invalid"),
