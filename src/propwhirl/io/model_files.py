@@ -41,7 +41,7 @@ from propwhirl.io import schema
 from propwhirl.io.schema import DERIVATIVE_SOURCES, FORMAT, FORMAT_VERSION, MODEL_TYPES, Field
 from propwhirl.model.propeller import Propeller
 from propwhirl.model.propeller_aero import Distribution
-from propwhirl.model.systems import Installation, PropellerWing
+from propwhirl.model.systems import Installation
 
 _MISSING = object()
 _NUMBER_HELP = {"spanwise": "give a number or one value per element (evaluate the function at "
@@ -51,8 +51,7 @@ _NUMBER_HELP = {"spanwise": "give a number or one value per element (evaluate th
                                 "(tabulated)"}
 
 
-def _join(where: str, key: str) -> str:
-    return f"{where}.{key}" if where else key
+_join = schema.join
 
 
 # =============================================================================== reading
@@ -140,12 +139,7 @@ class _Table:
         return _Table(self.raw(key), self.name(key), allowed)
 
 
-def _what(f: Field, i: int | None = None) -> str:
-    """The meaning of a field for messages: description, unit, valid range."""
-    unit = f.spec.unit_of(i)
-    rng = f.range_text(i)
-    return (f.spec.doc + (f"; {unit}" if unit else "")
-            + (f"; valid range {rng}" if rng else ""))
+_what = schema.what
 
 
 def _required(f: Field, t: _Table | None) -> bool:
@@ -283,45 +277,6 @@ def _build(cls: type, t: _Table, ctx: dict[str, Propeller]) -> Any:
         return cls(**kw)
 
 
-def _field(cls: type | None, name: Any) -> Field | None:
-    if cls is None or not isinstance(name, str):
-        return None
-    return next((f for f in schema.fields_of(cls) if f.name == name), None)
-
-
-def _locate(cls: type, where: str, path: tuple, value: Any) -> tuple[str, str, str] | None:
-    """(table, key as written, meaning) of the value at `path` of an object of `cls` built
-    from table `where`; None when the path leads to no key of the file."""
-    parts = list(path)
-    while parts:
-        f = _field(cls, parts.pop(0))
-        if f is None or f.spec.key is None:
-            return None
-        index = parts.pop(0) if parts else None
-        if f.form in ("tables", "installations") and isinstance(index, int):
-            where = f"{_join(where, f.spec.key)}[{index}]"
-            cls = Installation if f.form == "installations" else f.item
-            continue
-        if f.spec.section:
-            where = _join(where, f.spec.section)
-        if f.form == "split" and isinstance(index, int):
-            return where, f.spec.key[index], _what(f, index)
-        if f.form == "mapping" and isinstance(index, str):
-            e = next(e for e in f.spec.entries if e.name == index)
-            rng = f"; valid range {e.range}{' ' + e.unit if e.unit else ''}" if e.range else ""
-            return _join(where, f.spec.key), e.key, e.doc + rng
-        if f.form == "distribution":
-            if index is None and f.spec.number_key:
-                return where, f.spec.number_key, _what(f)
-            key = f.spec.value_key + ("" if index is None else f"[{index}]")
-            return _join(where, f.spec.key), key, _what(f)
-        if f.form == "flat":
-            return _locate(f.item, where, (index,) + tuple(parts), value) if index else None
-        key = f.spec.key + (f"[{index}]" if isinstance(index, int) else "")
-        return where, key, _what(f)
-    return None
-
-
 _NAME = re.compile(r"(?<![\w.\[])([A-Za-z_]\w*)(?![\w(])")
 
 
@@ -341,7 +296,7 @@ class _Context:
         raise _in_file(v.InputError(self.restate(exc))) from exc
 
     def restate(self, exc: v.InputError) -> str:
-        located = (_locate(self.cls, self.where, exc.path, exc.value)
+        located = (schema.locate(self.cls, self.where, exc.path)
                    if self.cls is not None and exc.structured else None)
         if located is not None:
             where, key, what = located

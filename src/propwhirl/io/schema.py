@@ -13,10 +13,9 @@ from __future__ import annotations
 import dataclasses
 import functools
 import json
-import types
 import typing
 from dataclasses import dataclass
-from typing import Any, Literal
+from typing import Any
 
 from propwhirl.model.fields import META_KEY, REQUIRED_WHEN, FieldSpec, infer_form, literals
 from propwhirl.model.propeller import MeasuredDerivatives, PointMass, Propeller
@@ -214,6 +213,59 @@ def check() -> None:
     for cls in SCHEMA_CLASSES:
         fields_of(cls)
         table_keys(cls)
+
+
+# =============================================================================== locating
+def join(where: str, key: str) -> str:
+    """"wing" + "EI_N_m2" → "wing.EI_N_m2" (a top-level key stays itself)."""
+    return f"{where}.{key}" if where else key
+
+
+def what(f: Field, i: int | None = None) -> str:
+    """The meaning of a field for messages: description, unit, valid range."""
+    unit = f.spec.unit_of(i)
+    rng = f.range_text(i)
+    return (f.spec.doc + (f"; {unit}" if unit else "")
+            + (f"; valid range {rng}" if rng else ""))
+
+
+def _field(cls: type | None, name: Any) -> Field | None:
+    if cls is None or not isinstance(name, str):
+        return None
+    return next((f for f in fields_of(cls) if f.name == name), None)
+
+
+def locate(cls: type, where: str, path: tuple) -> tuple[str, str, str] | None:
+    """(table, key as written, meaning) of the value at `path` (an InputError's path) of an
+    object of `cls` built from table `where`; None when the path leads to no key of the file."""
+    parts = list(path)
+    while parts:
+        f = _field(cls, parts.pop(0))
+        if f is None or f.spec.key is None:
+            return None
+        index = parts.pop(0) if parts else None
+        if f.form in ("tables", "installations") and isinstance(index, int):
+            where = f"{join(where, f.spec.key)}[{index}]"
+            cls = Installation if f.form == "installations" else f.item
+            continue
+        if f.spec.section:
+            where = join(where, f.spec.section)
+        if f.form == "split" and isinstance(index, int):
+            return where, f.spec.key[index], what(f, index)
+        if f.form == "mapping" and isinstance(index, str):
+            e = next(e for e in f.spec.entries if e.name == index)
+            rng = f"; valid range {e.range}{' ' + e.unit if e.unit else ''}" if e.range else ""
+            return join(where, f.spec.key), e.key, e.doc + rng
+        if f.form == "distribution":
+            if index is None and f.spec.number_key:
+                return where, f.spec.number_key, what(f)
+            key = f.spec.value_key + ("" if index is None else f"[{index}]")
+            return join(where, f.spec.key), key, what(f)
+        if f.form == "flat":
+            return locate(f.item, where, (index,) + tuple(parts)) if index else None
+        key = f.spec.key + (f"[{index}]" if isinstance(index, int) else "")
+        return where, key, what(f)
+    return None
 
 
 # =============================================================================== documentation
