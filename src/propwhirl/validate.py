@@ -1,74 +1,168 @@
 """Input checks shared by every model: clear errors naming parameter, value and valid range.
 
-All raise :class:`InputError` (a ValueError) with messages such as
-``radius = -1.0 m is invalid: must be > 0``.  Arrays are checked element-wise and the message
-shows the first offending value.
+All raise :class:`InputError` (a ValueError) with one-line messages such as
+``radius = -1.0 m is invalid: must be > 0`` or
+``EI = 1e+300 N m^2 is outside the valid range [1e-3, 1e12] N m^2``.  Arrays are checked
+element-wise and the message shows the first offending value.  Strict types: a number is a
+real int or float (numpy scalars included), never a bool, a string, a complex number or None.
 """
 from __future__ import annotations
 
+import math
+from typing import Any
+
 import numpy as np
+
+_UNSET: Any = object()
 
 
 class InputError(ValueError):
-    """Bad user input: the message names the parameter, its value and the valid range."""
+    """Bad user input: the message names the parameter, its value and the valid range.
+
+    Errors about one field carry, besides the message, where the value sits (`path`: field
+    names and indices from the object being built, e.g. ``("EI", 3)`` or
+    ``("propellers", 2, "y")``), the offending `value` and the `reason` (the text after
+    ``NAME = VALUE [UNIT] is``), so that a file reader can restate them with the key the
+    user wrote.
+    """
+
+    def __init__(self, message: str, *, path: tuple = (), value: Any = _UNSET,
+                 reason: str | None = None):
+        super().__init__(message)
+        self.path = tuple(path)
+        self.value = value
+        self.reason = reason
+
+    @property
+    def structured(self) -> bool:
+        """True when path, value and reason describe the error."""
+        return bool(self.path) and self.value is not _UNSET and self.reason is not None
+
+
+def short_repr(value: Any, limit: int = 60) -> str:
+    """repr(value), cut to `limit` characters (a huge list must not flood the terminal)."""
+    text = repr(value)
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
+def fmt_bound(x: float) -> str:
+    """A range end for messages: 0.001 → "1e-3", 1e12 → "1e12", 0.5 → "0.5", 4π → "12.5664"."""
+    if x == 0 or (1e-3 < abs(x) < 1e5):
+        return f"{x:.6g}"
+    mant, exp = f"{x:.6e}".split("e")
+    mant = mant.rstrip("0").rstrip(".")
+    return f"{mant}e{int(exp)}"
+
+
+def fmt_range(low: float, high: float, ends: str = "[]") -> str:
+    """"[1e-3, 1e12]", "(0, 1]", ... (`ends`: the two brackets)."""
+    return f"{ends[0]}{fmt_bound(low)}, {fmt_bound(high)}{ends[1]}"
 
 
 def _fmt(value, unit: str) -> str:
-    return f"{value!r}{' ' + unit if unit else ''}"
+    return f"{short_repr(value)}{' ' + unit if unit else ''}"
 
 
-def _first_bad(arr: np.ndarray, bad: np.ndarray):
-    return arr[bad].flat[0].item() if arr.ndim else arr.item()
+def fail(name: str, value: Any, reason: str, unit: str = "", path: tuple | None = None,
+         ) -> InputError:
+    """The InputError "NAME = VALUE UNIT is REASON", carrying path (default: (name,))."""
+    return InputError(f"{name} = {_fmt(value, unit)} is {reason}",
+                      path=(name,) if path is None else path, value=value, reason=reason)
 
 
-def finite(name: str, value, unit: str = "") -> np.ndarray:
-    """Return `value` as a float array; raise unless every element is finite."""
+def _first_bad(arr: np.ndarray, bad: np.ndarray, value: Any = _UNSET):
+    """The first offending value (the caller's own object for a scalar: 3 stays an int)."""
+    if not arr.ndim:
+        return value if value is not _UNSET and np.ndim(value) == 0 else arr.item()
+    return arr[bad].flat[0].item()
+
+
+def _first_index(bad: np.ndarray) -> tuple:
+    return tuple(int(i) for i in np.argwhere(bad)[0]) if bad.ndim else ()
+
+
+def real(name: str, value, unit: str = "", path: tuple | None = None) -> np.ndarray:
+    """`value` as a float array of real numbers (scalar or array); anything else
+    (bool, str, complex, None, dict, objects, ragged lists) is an InputError naming the type."""
+    path = (name,) if path is None else path
+    if isinstance(value, (bool, np.bool_, str, bytes, complex, np.complexfloating, dict)) \
+            or value is None:
+        raise fail(name, value, f"invalid: must be a real number, got {type(value).__name__}",
+                   "", path)
     try:
-        arr = np.asarray(value, dtype=float)
+        arr = np.asarray(value)
     except (TypeError, ValueError) as exc:
-        raise InputError(f"{name} = {value!r} is invalid: must be a real number") from exc
+        raise fail(name, value, f"invalid: must be a real number, got {type(value).__name__}",
+                   "", path) from exc
+    if arr.dtype.kind not in "iuf":
+        if isinstance(value, (list, tuple)):
+            got = f"{type(value).__name__} of {', '.join(sorted({type(x).__name__ for x in value}))}"
+        elif isinstance(value, np.ndarray):
+            got = f"array of {value.dtype}"
+        else:
+            got = type(value).__name__
+        raise fail(name, value, f"invalid: must be a real number, got {got}", "", path)
+    with np.errstate(over="ignore"):
+        return arr.astype(float)
+
+
+def finite(name: str, value, unit: str = "", path: tuple | None = None) -> np.ndarray:
+    """Return `value` as a float array; raise unless every element is a finite real number."""
+    arr = real(name, value, unit, path)
     bad = ~np.isfinite(arr)
     if bad.any():
-        raise InputError(f"{name} = {_fmt(_first_bad(arr, bad), unit)} is invalid: must be finite")
+        raise fail(name, _first_bad(arr, bad, value), "invalid: must be finite", unit,
+                   ((name,) if path is None else path) + _first_index(bad))
     return arr
 
 
-def positive(name: str, value, unit: str = "") -> np.ndarray:
+def positive(name: str, value, unit: str = "", path: tuple | None = None) -> np.ndarray:
     """Finite and > 0."""
-    arr = finite(name, value, unit)
+    arr = finite(name, value, unit, path)
     bad = arr <= 0
     if bad.any():
-        raise InputError(f"{name} = {_fmt(_first_bad(arr, bad), unit)} is invalid: must be > 0")
+        raise fail(name, _first_bad(arr, bad, value), "invalid: must be > 0", unit,
+                   ((name,) if path is None else path) + _first_index(bad))
     return arr
 
 
-def non_negative(name: str, value, unit: str = "") -> np.ndarray:
+def non_negative(name: str, value, unit: str = "", path: tuple | None = None) -> np.ndarray:
     """Finite and >= 0."""
-    arr = finite(name, value, unit)
+    arr = finite(name, value, unit, path)
     bad = arr < 0
     if bad.any():
-        raise InputError(f"{name} = {_fmt(_first_bad(arr, bad), unit)} is invalid: must be >= 0")
+        raise fail(name, _first_bad(arr, bad, value), "invalid: must be >= 0", unit,
+                   ((name,) if path is None else path) + _first_index(bad))
     return arr
 
 
 def in_range(name: str, value, low: float, high: float, unit: str = "",
-             low_open: bool = False, high_open: bool = False) -> np.ndarray:
-    """Finite and within [low, high] (ends open where asked)."""
-    arr = finite(name, value, unit)
+             low_open: bool = False, high_open: bool = False,
+             path: tuple | None = None) -> np.ndarray:
+    """Finite and within [low, high] (ends open where asked); the message states the range."""
+    arr = finite(name, value, unit, path)
     bad = (arr <= low if low_open else arr < low) | (arr >= high if high_open else arr > high)
     if bad.any():
-        rng = f"{'(' if low_open else '['}{low}, {high}{')' if high_open else ']'}"
-        raise InputError(
-            f"{name} = {_fmt(_first_bad(arr, bad), unit)} is invalid: must be in {rng}"
-        )
+        rng = fmt_range(low, high, ("(" if low_open else "[") + (")" if high_open else "]"))
+        raise fail(name, _first_bad(arr, bad, value),
+                   f"outside the valid range {rng}{' ' + unit if unit else ''}", unit,
+                   ((name,) if path is None else path) + _first_index(bad))
     return arr
 
 
 def integer_at_least(name: str, value, minimum: int) -> int:
     """An integer >= minimum."""
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
-        raise InputError(f"{name} = {value!r} is invalid: must be an integer >= {minimum}")
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)) \
+            or value < minimum:
+        raise fail(name, value, f"invalid: must be an integer >= {minimum}")
     return int(value)
+
+
+def boolean(name: str, value) -> bool:
+    """Strictly a bool (Python or numpy): "no", 0 or None are not taken for False."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise fail(name, value, f"invalid: must be True or False, got {type(value).__name__}")
+    return bool(value)
 
 
 def increasing(name: str, value, unit: str = "") -> np.ndarray:
@@ -84,3 +178,9 @@ def increasing(name: str, value, unit: str = "") -> np.ndarray:
             f"{_fmt(arr[i + 1].item(), unit)} follows {_fmt(arr[i].item(), unit)}"
         )
     return arr
+
+
+def is_finite_number(x: Any) -> bool:
+    """A real, finite int or float (no bool)."""
+    return (isinstance(x, (int, float, np.integer, np.floating))
+            and not isinstance(x, (bool, np.bool_)) and math.isfinite(x))

@@ -37,9 +37,9 @@ def test_speeds_out_of_bounds(tip_file, capsys, monkeypatch, speeds, match):
 
 
 @pytest.mark.parametrize("rpm, match", [
-    (["0", "1e300", "3"], "--rpm STOP = 1e+300 rev/min is invalid: must be in [0.0, 100000.0]"),
+    (["0", "1e300", "3"], "--rpm STOP = 1e+300 rev/min is outside the valid range [0, 1e5] rev/min"),
     (["0", "inf", "3"], "--rpm STOP = inf rev/min is invalid: must be finite"),
-    (["-5", "100", "3"], "--rpm START = -5.0 rev/min is invalid"),
+    (["-5", "100", "3"], "--rpm START = -5.0 rev/min is outside the valid range [0, 1e5] rev/min"),
     (["100", "0", "3"], "--rpm STOP = 0.0 rev/min is invalid: must be > START = 100.0"),
 ])
 def test_rpm_out_of_bounds(tip_file, capsys, rpm, match):

@@ -206,12 +206,15 @@ def test_docs_list_every_key_with_its_unit_and_default():
                 assert f"| `{key}` |" in text, (cls.__name__, key)
     rows = {s.title: {r[0]: r for r in s.rows} for s in schema.sections()}
     assert rows["[wing]"]["EI_N_m2"][2:4] == ("N m^2", "required")
-    assert rows["[wing]"]["elastic_axis_chord"][3] == "`0.5` (physical)"
+    assert rows["[wing]"]["EI_N_m2"][4] == "[1e-3, 1e12] N m^2"  # the valid range
+    assert rows["[wing]"]["elastic_axis_chord"][3] == "required"  # issue 9: no silent 0.5
+    assert rows["[wing]"]["aerodynamic_centre_chord"][3] == "`0.25` (physical)"
     assert rows["[wing]"]["root_chord_m"][3] == "required"  # a file must give it (Python: 1.0)
-    assert rows["[propellers.KEY]"]["beta_075_deg"][3] == "`35.0` (physical)"
+    assert rows["[propellers.KEY]"]["beta_075_deg"][3] == "required for fixed-pitch"
+    assert rows["[propellers.KEY]"]["blade_chord_m"][3] == "required without [derivatives]"
     assert rows["[flight]"]["speed_range_m_per_s"][3] == "`[1.0, 350.0, 10.0]` (setting)"
     hr = rows['[propellers.KEY.derivatives] with source = "houbolt-reed"']
-    assert hr["hub_ratio"][3] == "`0.0` (physical)"  # the file's default, the class has none
+    assert hr["hub_ratio"][3] == "required"  # issue 9: no longer a silent 0 in files
 
 
 def test_omitted_keys_take_the_dataclass_defaults():
@@ -226,19 +229,32 @@ mass_per_length_kg_per_m = 20.0
 EI_N_m2 = 1e6
 GJ_N_m2 = 1e5
 radius_of_gyration_chord = 0.25
+elastic_axis_chord = 0.4
+centre_of_gravity_chord = 0.45
 n_elements = 4
 [flight]
 density_kg_per_m3 = 1.225
+speed_of_sound_m_per_s = 340.0
 [propellers.x]
 radius_m = 1.0
 rotor = { mass_kg = 10.0, x_m = -0.5 }
 f_theta_hz = 5.0
 f_psi_hz = 5.0
+pivot_pitch_m = 0.0
+pivot_yaw_m = 0.0
+rotation = 1
+n_blades = 3
+hub_radius_m = 0.1
+blade_chord_m = 0.1
+beta_075_deg = 30.0
+zero_lift_angle_deg = -3.0
 """
     m = io.loads(text)
     given = {"semi_span", "root_chord", "mass_per_length", "EI", "GJ", "radius_of_gyration",
              "n_elements", "density", "radius", "rotor", "f_theta", "f_psi", "propeller", "y",
-             "wing", "flight", "propellers", "_nodes"}
+             "wing", "flight", "propellers", "_nodes", "elastic_axis", "centre_of_gravity",
+             "speed_of_sound", "pivot_pitch", "pivot_yaw", "rotation", "n_blades", "hub_radius",
+             "blade_chord", "beta_075_deg", "zero_lift_angle_deg"}
     objects = [m, m.wing, m.flight, m.propellers[0], m.propellers[0].propeller]
     checked = 0
     for obj in objects:
@@ -247,15 +263,16 @@ f_psi_hz = 5.0
                 assert f.default is not dataclasses.MISSING, (type(obj).__name__, f.name)
                 assert getattr(obj, f.name) == f.default, (type(obj).__name__, f.name)
                 checked += 1
-    assert checked >= 35
+    assert checked >= 24
 
 
-def test_houbolt_reed_geometry_without_hub_ratio_reads_zero():
+def test_houbolt_reed_geometry_requires_hub_ratio():
     p = baseline_propeller(derivatives=HouboltReedSource(PropellerGeometry(4, 0.8, 0.0, 0.1)))
     text = io.dumps(p)
     assert "hub_ratio = 0.0\n" in text
-    back = io.loads(text.replace("hub_ratio = 0.0\n", ""))  # PropellerGeometry requires it
-    assert back.derivatives == p.derivatives
+    assert io.loads(text).derivatives == p.derivatives
+    with pytest.raises(InputError, match=r"missing key 'hub_ratio' in \[propellers.p1.derivatives\]"):
+        io.loads(text.replace("hub_ratio = 0.0\n", ""))  # PropellerGeometry requires it
 
 
 def test_incomplete_declarations_are_caught():
@@ -340,46 +357,46 @@ EXAMPLE = (ROOT / "examples" / "wingtip.toml").read_text()
 
 
 @pytest.mark.parametrize("old, new, message", [
-    ("semi_span_m = 5.7", "semispan_m = 5.7", "unknown field 'wing.semispan_m'"),
-    ("format_version = 1", "format_version = 1\ncolour = \"red\"", "unknown field 'colour'"),
-    ("rotation = 1", "rotation = 1\nspin = 2", "unknown field 'propellers.p1.spin'"),
-    ("wake = true", "wake = true\nwakes = 1", "unknown field 'propellers.p1.aero_settings.wakes'"),
+    ("semi_span_m = 5.7", "semispan_m = 5.7", "unknown key 'semispan_m' in [wing]"),
+    ("format_version = 1", "format_version = 1\ncolour = \"red\"", "unknown key 'colour' in the top level"),
+    ("rotation = 1", "rotation = 1\nspin = 2", "unknown key 'spin' in [propellers.p1]"),
+    ("wake = true", "wake = true\nwakes = 1", "unknown key 'wakes' in [propellers.p1.aero_settings]"),
     ("[propellers.p1.rotor]\nmass_kg = 8.0", "[propellers.p1.rotor]\nmass = 8.0",
-     "unknown field 'propellers.p1.rotor.mass'"),
-    ("semi_span_m = 5.7", "", "missing field 'wing.semi_span_m'"),
-    ("[flight]", "[flite]", "unknown field 'flite'"),
-    ("EI_N_m2 = 700000.0", "EI_N_m2 = \"stiff\"", "wing.EI_N_m2 = 'stiff' is invalid"),
-    ("n_elements = 25", "n_elements = 25.0", "wing.n_elements = 25.0 is invalid: must be an integer"),
-    ("wing_aero = true", "wing_aero = 1", "switches.wing_aero = 1 is invalid: must be true or false"),
-    ("EI_N_m2 = 700000.0", "EI_N_m2 = -1.0", "EI = -1.0 N m^2 is invalid: must be > 0"),
-    ("EI_N_m2 = 700000.0", "EI_N_m2 = [1.0, 2.0]", "EI has 2 values but the wing has n_elements = 25"),
-    ("density_kg_per_m3 = 0.96287", "density_kg_per_m3 = 0.0", "density = 0.0 kg/m^3 is invalid"),
+     "unknown key 'mass' in [propellers.p1.rotor]"),
+    ("semi_span_m = 5.7", "", "missing key 'semi_span_m' in [wing] (root-to-tip length; m; valid range [0.01, 1000] m)"),
+    ("[flight]", "[flite]", "unknown key 'flite' in the top level"),
+    ("EI_N_m2 = 700000.0", "EI_N_m2 = \"stiff\"", "[wing] EI_N_m2 = 'stiff' is invalid: must be a number"),
+    ("n_elements = 25", "n_elements = 25.0", "[wing] n_elements = 25.0 is invalid: must be an integer"),
+    ("wing_aero = true", "wing_aero = 1", "[switches] wing_aero = 1 is invalid: must be true or false"),
+    ("EI_N_m2 = 700000.0", "EI_N_m2 = -1.0", "[wing] EI_N_m2 = -1.0 is outside the valid range [1e-3, 1e12] N m^2"),
+    ("EI_N_m2 = 700000.0", "EI_N_m2 = [1.0, 2.0]", "EI_N_m2 has 2 values but the wing has n_elements = 25"),
+    ("density_kg_per_m3 = 0.96287", "density_kg_per_m3 = 0.0", "[flight] density_kg_per_m3 = 0.0 is outside the valid range [1e-4, 10] kg/m^3 (air density)"),
     ("mount = \"flexible\"", "mount = \"glued\"", "mount = 'glued' is invalid"),
     ("y_m = 5.7", "y_m = 7.0", "outside the wing"),
-    ("propeller = \"p1\"", "propeller = \"p9\"", "installations[0].propeller = 'p9' is invalid"),
+    ("propeller = \"p1\"", "propeller = \"p9\"", "[installations[0]] propeller = 'p9' is invalid"),
     ("type = \"propeller-wing\"", "type = \"glider\"", "type = 'glider' is invalid"),
     ("format_version = 1", "format_version = 2", "format_version = 2 is invalid"),
     ("f_theta_hz = 7.0", "f_theta_hz = 7.0\nK_theta_N_m_per_rad = 1.0", "exactly one of f_theta"),
-    ("aero_model = \"leishman-nguyen\"", "aero_model = \"doublet-lattice\"", "wing.aero_model"),
+    ("aero_model = \"leishman-nguyen\"", "aero_model = \"doublet-lattice\"", "[wing] aero_model = 'doublet-lattice' is invalid"),
     ("cnq_sign = \"thesis\"", "cnq_sign = \"other\"", "cnq_sign = 'other' is invalid"),
     ("[wing]", "[wing", "not valid TOML"),
-    ("    350.0,\n    10.0,\n]", "    350.0,\n]", "flight.speed_range_m_per_s = [1.0, 350.0] is invalid"),
+    ("    350.0,\n    10.0,\n]", "    350.0,\n]", "[flight] speed_range_m_per_s = [1.0, 350.0] is invalid"),
     ("    1.0,\n    350.0,", "    0.0,\n    350.0,",
-     "in [flight]: speed_range first speed = 0.0 m/s is invalid"),
-    ("aero = true }", "aero = \"yes\" }", "installations[0].aero = 'yes' is invalid"),
+     "[flight] speed_range_m_per_s[0] = 0.0 is outside the valid range (0, 10000] m/s"),
+    ("aero = true }", "aero = \"yes\" }", "[installations[0]] aero = 'yes' is invalid"),
     ("semi_span_m = 5.7", "semi_span_m = 5.7\nsemi_span_m = 6.0",
      "column 18): 'semi_span_m = 6.0'"),
     ("blade_chord_m = 0.094", "blade_chord_m = 0.094\nblade_chord = { eta = [0.0, 1.0], chord_m = [0.1, 0.1] }",
-     "propellers.p1: give exactly one of blade_chord_m (a number) or [propellers.p1.blade_chord]"),
+     "[propellers.p1]: give exactly one of blade_chord_m (a number) or [propellers.p1.blade_chord]"),
     ("[propellers.p1.rotor]\nmass_kg = 8.0\n", "[propellers.p1.rotor]\n",
-     "missing field 'propellers.p1.rotor.mass_kg' (mass, kg)"),
+     "missing key 'mass_kg' in [propellers.p1.rotor] (mass; kg; valid range [1e-4, 1e5] kg)"),
     ("[flight]\ndensity_kg_per_m3 = 0.96287", "[flight]",
-     "missing field 'flight.density_kg_per_m3' (air density, kg/m^3)"),
-    ("root_chord_m = 1.25\n", "", "missing field 'wing.root_chord_m'"),
-    ("radius_m = 0.762", "radius_m = true", "propellers.p1.radius_m = True is invalid: must be a number"),
-    ("damping = \"g\"", "damping = \"G\"", "propellers.p1.damping = 'G' is invalid: must be one of g, zeta"),
+     "missing key 'density_kg_per_m3' in [flight] (air density; kg/m^3"),
+    ("root_chord_m = 1.25\n", "", "missing key 'root_chord_m' in [wing]"),
+    ("radius_m = 0.762", "radius_m = true", "[propellers.p1] radius_m = True is invalid: must be a number"),
+    ("damping = \"g\"", "damping = \"G\"", "[propellers.p1] damping = 'G' is invalid: must be one of g, zeta"),
     ("semi_span_m = 5.7", "semispan_m = 5.7", "(did you mean semi_span_m?)"),
-    ("EI_N_m2 = 700000.0", "EI_N_m2 = -1.0", "must be > 0 (key wing.EI_N_m2)"),
+    ("EI_N_m2 = 700000.0", "EI_N_m2 = -1.0", "(bending rigidity)"),
 ])
 def test_bad_model_files_raise_input_errors_naming_the_field(old, new, message):
     assert old in EXAMPLE
@@ -400,11 +417,17 @@ type = "isolated-propeller"
 propeller = "x"
 [flight]
 density_kg_per_m3 = 1.225
+speed_of_sound_m_per_s = 340.0
 [propellers.x]
 radius_m = 1.0
 rotor = { mass_kg = 10.0, x_m = -0.5 }
 f_theta_hz = 5.0
 f_psi_hz = 5.0
+pivot_pitch_m = 0.0
+pivot_yaw_m = 0.0
+rotation = 1
+beta_075_deg = 35.0
+zero_lift_angle_deg = -3.0
 [propellers.x.derivatives]
 source = "measured"
 [propellers.x.derivatives.values]

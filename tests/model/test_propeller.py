@@ -49,21 +49,22 @@ def test_measured_derivatives_subset_rest_zero():
 @pytest.mark.parametrize(
     "change, words",
     [
-        ({"n_blades": 2}, ["n_blades", "2", ">= 3"]),
-        ({"radius": 0.0}, ["radius", "> 0"]),
+        ({"n_blades": 2}, ["n_blades = 2 ", "[3, 20]"]),
+        ({"radius": 0.0}, ["radius = 0.0 m", "valid range [0.01, 20] m"]),
         ({"hub_radius": 0.9}, ["hub_radius", "0.9"]),
-        ({"f_theta": -1.0}, ["f_theta", "-1.0", "> 0"]),
+        ({"f_theta": -1.0}, ["f_theta", "-1.0", "[1e-3, 1000] Hz"]),
         ({"K_theta": 1e4}, ["exactly one of f_theta"]),
-        ({"damping_psi": -0.1}, ["damping_psi", ">= 0"]),
+        ({"damping_psi": -0.1}, ["damping_psi", "[0, 2]"]),
         ({"damping": "hysteretic"}, ["damping", "hysteretic"]),
         ({"operation": "constant-speed"}, ["rpm is required"]),
         ({"operation": "constant-speed", "rpm": -5.0}, ["rpm", "-5.0"]),
         ({"operation": "windmill"}, ["operation", "windmill"]),
-        ({"beta_075_deg": 2.0}, ["blade_angle", "inflow angle"]),
+        ({"beta_075_deg": 2.0}, ["beta_075_deg = 2.0 deg", "inflow angle"]),
         ({"rotation": 0}, ["rotation", "+1 or -1"]),
-        ({"inertia": {"I_x": 1.0}}, ["inertia keys", "I_x"]),
-        ({"inertia": {"I_theta_P": -1.0}}, ["I_theta_P", "> 0"]),
+        ({"inertia": {"I_x": 1.0}}, ["inertia", "unknown entry", "I_x"]),
+        ({"inertia": {"I_theta_P": -1.0}}, ["I_theta_P", "-1.0 kg m^2", "[1e-8, 1e9]"]),
         ({"pivot_pitch": np.inf}, ["pivot_pitch", "finite"]),
+        ({"blade_chord": None}, ["blade_chord is required", "Houbolt-Reed"]),
     ],
 )
 def test_bad_propeller_input(change, words):
@@ -74,5 +75,5 @@ def test_bad_propeller_input(change, words):
 
 
 def test_point_mass_validation():
-    with pytest.raises(InputError, match="point mass = 0"):
+    with pytest.raises(InputError, match=r"mass = 0.0 kg is outside the valid range \[1e-4, 1e5\]"):
         PointMass(0.0, 1.0)

@@ -148,10 +148,10 @@ def test_mirror_image_propeller_has_the_same_eigenvalues(model_fn):
 
 
 @pytest.mark.parametrize("bad, words", [
-    ((0.0, 350.0, 10.0), "first speed = 0.0"),
+    ((0.0, 350.0, 10.0), "speed_range[0] = 0.0 m/s is outside the valid range (0, 10000] m/s"),
     ((100.0, 50.0, 10.0), "last speed = 50.0"),
-    ((1.0, 350.0, -1.0), "step = -1.0"),
-    ((1.0, 2.0), "(first, last, step)"),
+    ((1.0, 350.0, -1.0), "speed_range[2] = -1.0 m/s"),
+    ((1.0, 2.0), "[first, last, step]"),
 ])
 def test_flight_condition_speed_range_validated(bad, words):
     with pytest.raises(InputError) as exc:

@@ -12,20 +12,20 @@ BASE = dict(semi_span=5.0, mass_per_length=10.0, EI=1e5, GJ=1e5, polar_inertia=1
 @pytest.mark.parametrize(
     "change, words",
     [
-        ({"semi_span": 0.0}, ["semi_span", "0.0", "> 0"]),
+        ({"semi_span": 0.0}, ["semi_span", "0.0", "[0.01, 1000] m"]),
         ({"semi_span": -2.0}, ["semi_span", "-2.0"]),
-        ({"mass_per_length": -1.0}, ["mass_per_length", "-1.0", "> 0"]),
-        ({"EI": 0.0}, ["EI", "> 0"]),
+        ({"mass_per_length": -1.0}, ["mass_per_length", "-1.0", "[1e-4, 1e5] kg/m"]),
+        ({"EI": 0.0}, ["EI = 0.0 N m^2 is outside the valid range [1e-3, 1e12] N m^2"]),
         ({"GJ": np.nan}, ["GJ", "finite"]),
-        ({"root_chord": 0.0}, ["root_chord", "> 0"]),
+        ({"root_chord": 0.0}, ["root_chord", "[1e-3, 100] m"]),
         ({"n_elements": 0}, ["n_elements", ">= 1"]),
         ({"n_elements": 2.5}, ["n_elements", "integer"]),
-        ({"elastic_axis": 1.2}, ["elastic_axis", "1.2", "[0.0, 1.0]"]),
+        ({"elastic_axis": 1.2}, ["elastic_axis", "1.2", "[0, 1]"]),
         ({"centre_of_gravity": -0.1}, ["centre_of_gravity", "-0.1"]),
         ({"mass_per_length": [1.0, 2.0]}, ["mass_per_length", "2 values", "n_elements = 4"]),
         ({"aero_model": "doublet"}, ["aero_model", "doublet"]),
         ({"lift_slope": "flat"}, ["lift_slope", "flat"]),
-        ({"rayleigh": (-1.0, 0.0)}, ["rayleigh mu", "-1.0"]),
+        ({"rayleigh": (-1.0, 0.0)}, ["rayleigh[0] = -1.0 1/s", "[0, 1000] 1/s"]),
     ],
 )
 def test_bad_input_names_parameter_value_and_range(change, words):

@@ -43,7 +43,7 @@ from propwhirl.io import schema
 from propwhirl.io.schema import DERIVATIVE_SOURCES, FORMAT, FORMAT_VERSION, MODEL_TYPES, Field
 from propwhirl.model.propeller import Propeller
 from propwhirl.model.propeller_aero import Distribution
-from propwhirl.model.systems import Installation, PropellerWing
+from propwhirl.model.systems import Installation
 
 _MISSING = object()
 _NUMBER_HELP = {"spanwise": "give a number or one value per element (evaluate the function at "
@@ -53,26 +53,35 @@ _NUMBER_HELP = {"spanwise": "give a number or one value per element (evaluate th
                                 "(tabulated)"}
 
 
-def _join(where: str, key: str) -> str:
-    return f"{where}.{key}" if where else key
+_join = schema.join
 
 
 # =============================================================================== reading
+def _table_label(where: str) -> str:
+    return f"[{where}]" if where else "the top level"
+
+
+def _in_file(exc: v.InputError) -> v.InputError:
+    exc.in_file = True  # type: ignore[attr-defined]  # restated with the file's keys already
+    return exc
+
+
 class _Table:
-    """A TOML table being read: known keys only; errors name the key as written."""
+    """A TOML table being read: known keys only; errors name the table and the key as written."""
 
     def __init__(self, data: Any, where: str, allowed: Iterable[str]):
         if not isinstance(data, dict):
-            raise v.InputError(f"{where} = {data!r} is invalid: must be a table")
+            raise _in_file(v.InputError(f"{where} = {v.short_repr(data)} is invalid: must be a "
+                                        "table"))
         self.data, self.where = data, where
         allowed = tuple(allowed)
         unknown = [k for k in data if k not in allowed]
         if unknown:
             close = difflib.get_close_matches(unknown[0], allowed, 1)
             hint = f" (did you mean {close[0]}?)" if close else ""
-            raise v.InputError(
-                f"unknown field {self.name(unknown[0])!r}{hint}: valid fields of "
-                f"[{where or 'top level'}] are {', '.join(allowed)}")
+            raise _in_file(v.InputError(
+                f"unknown key {unknown[0]!r} in {_table_label(where)}{hint}: valid keys are "
+                f"{', '.join(allowed)}"))
 
     def name(self, key: str) -> str:
         return _join(self.where, key)
@@ -80,14 +89,20 @@ class _Table:
     def has(self, key: str) -> bool:
         return key in self.data
 
+    def missing(self, key: str, what: str = "", kind: str = "key") -> v.InputError:
+        return _in_file(v.InputError(f"missing {kind} {key!r} in {_table_label(self.where)}"
+                                     + (f" ({what})" if what else "")))
+
     def raw(self, key: str, what: str = "") -> Any:
         if key not in self.data:
-            raise v.InputError(f"missing field {self.name(key)!r}{f' ({what})' if what else ''}")
+            raise self.missing(key, what)
         return self.data[key]
 
     def bad(self, key: str, must: str, what: str = "") -> v.InputError:
-        return v.InputError(f"{self.name(key)} = {self.data[key]!r} is invalid: must be {must}"
-                            + (f" ({what})" if what else ""))
+        prefix = f"[{self.where}] " if self.where else ""
+        return _in_file(v.InputError(
+            f"{prefix}{key} = {v.short_repr(self.data[key])} is invalid: must be {must}"
+            + (f" ({what})" if what else "")))
 
     def number(self, key: str, what: str = "") -> float:
         x = self.raw(key, what)
@@ -126,9 +141,19 @@ class _Table:
         return _Table(self.raw(key), self.name(key), allowed)
 
 
-def _what(f: Field) -> str:
-    unit = f.spec.unit if isinstance(f.spec.unit, str) else ""
-    return f.spec.doc + (f", {unit}" if unit else "")
+_what = schema.what
+
+
+def _required(f: Field, t: _Table | None) -> bool:
+    """The file must give `f` in table `t` (always, or under the field's condition)."""
+    if f.required:
+        return True
+    data = t.data if t is not None else {}
+    if f.required_when == "houbolt-reed":
+        return "derivatives" not in data
+    if f.required_when == "fixed-pitch":
+        return data.get("operation", "fixed-pitch") != "constant-speed"
+    return False
 
 
 def _read_scalar(f: Field, t: _Table, key: str) -> Any:
@@ -156,12 +181,14 @@ def _read_distribution(f: Field, t: _Table) -> Any:
     s = f.spec
     given = [k for k in (s.number_key, s.key) if k and t.has(k)]
     if not given:
-        if f.required:
-            raise v.InputError(f"missing field {t.name(s.number_key or s.key)!r} ({_what(f)})")
+        if _required(f, t):
+            raise t.missing(s.number_key or s.key, _what(f)
+                            + (f"; or a table [{t.name(s.key)}]" if s.number_key else ""))
         return _MISSING
     if len(given) == 2:
-        raise v.InputError(f"{t.where}: give exactly one of {s.number_key} (a number) or "
-                           f"[{t.name(s.key)}] (a table eta, {s.value_key})")
+        raise _in_file(v.InputError(
+            f"[{t.where}]: give exactly one of {s.number_key} (a number) or "
+            f"[{t.name(s.key)}] (a table eta, {s.value_key})"))
     if given[0] == s.number_key:
         return t.number(s.number_key, _what(f))
     d = t.sub(s.key, ("name", "eta", s.value_key))
@@ -171,8 +198,11 @@ def _read_distribution(f: Field, t: _Table) -> Any:
         return Distribution.tabulated(eta, values, name)
 
 
-def _read_field(f: Field, t: _Table | None, ctx: dict[str, Propeller]) -> Any:
-    """The value of field `f` from table `t`; _MISSING when optional and not given."""
+def _read_field(f: Field, t: _Table | None, ctx: dict[str, Propeller],
+                parent: _Table | None = None) -> Any:
+    """The value of field `f` from table `t`; _MISSING when optional and not given.
+
+    `parent`: the table holding `t` when `t` is a section such as [switches] (None if absent)."""
     s, form = f.spec, f.form
     if form == "flat":
         return _build(f.item, t, ctx)
@@ -180,13 +210,17 @@ def _read_field(f: Field, t: _Table | None, ctx: dict[str, Propeller]) -> Any:
         return _read_distribution(f, t)
     keys = s.key if form == "split" else (s.key,)
     if t is None or not any(t.has(k) for k in keys):
-        if f.required:
-            where = _join(t.where, keys[0]) if t is not None else _join(s.section, keys[0])
-            kind = "table" if form in ("table", "mapping", "derivatives") else "field"
-            raise v.InputError(f"missing {kind} {where!r} ({_what(f)})")
+        if _required(f, t):
+            kind = "table" if form in ("table", "mapping", "derivatives") else "key"
+            if t is None:
+                where = _join(parent.where if parent else "", s.section or "")
+                raise _in_file(v.InputError(f"missing key {keys[0]!r} in {_table_label(where)} "
+                                            f"({_what(f)})"))
+            raise t.missing(keys[0], _what(f), kind)
         return s.file_default if s.file_default is not None else _MISSING
     if form == "split":
-        return tuple(t.number(k, s.doc) if t.has(k) else f.default[i] for i, k in enumerate(keys))
+        return tuple(t.number(k, _what(f, i)) if t.has(k) else f.default[i]
+                     for i, k in enumerate(keys))
     if form == "table":
         return _build(f.item, t.sub(s.key, schema.table_keys(f.item)), ctx)
     if form in ("tables", "installations"):
@@ -198,13 +232,22 @@ def _read_field(f: Field, t: _Table | None, ctx: dict[str, Propeller]) -> Any:
                      for i, x in enumerate(raw))
     if form == "mapping":
         m = t.sub(s.key, [e.key for e in s.entries])
-        return {e.name: m.number(e.key, e.doc) for e in s.entries if m.has(e.key)}
+        out = {}
+        for e in s.entries:
+            if m.has(e.key):
+                rng = f"; valid range {e.range}{' ' + e.unit if e.unit else ''}" if e.range else ""
+                out[e.name] = m.number(e.key, e.doc + rng)
+        return out
     if form == "derivatives":
         raw = t.raw(s.key)
         source = raw.get("source") if isinstance(raw, dict) else None
         if source not in DERIVATIVE_SOURCES:
-            raise v.InputError(f"{t.name(s.key)}.source = {source!r} is invalid: must be one of "
-                               + ", ".join(f'"{k}"' for k in DERIVATIVE_SOURCES))
+            choices = ", ".join(f'"{k}"' for k in DERIVATIVE_SOURCES)
+            if isinstance(raw, dict) and "source" not in raw:
+                raise _in_file(v.InputError(f"missing key 'source' in [{t.name(s.key)}] "
+                                            f"(one of {choices})"))
+            raise _in_file(v.InputError(f"[{t.name(s.key)}] source = {v.short_repr(source)} is "
+                                        f"invalid: must be one of {choices}"))
         cls = DERIVATIVE_SOURCES[source]
         return _build(cls, t.sub(s.key, ("source",) + schema.table_keys(cls)), ctx)
     if form == "reference":
@@ -215,7 +258,7 @@ def _read_field(f: Field, t: _Table | None, ctx: dict[str, Propeller]) -> Any:
     return _read_scalar(f, t, s.key)
 
 
-def _build(cls: type, t: _Table, ctx: dict[str, Propeller], context: str | None = None) -> Any:
+def _build(cls: type, t: _Table, ctx: dict[str, Propeller]) -> Any:
     """An instance of schema class `cls` from table `t` (whose keys were checked)."""
     kw: dict[str, Any] = {}
     sections: dict[str, _Table | None] = {}
@@ -229,40 +272,64 @@ def _build(cls: type, t: _Table, ctx: dict[str, Propeller], context: str | None 
                 allowed = [k for g in schema.section_fields(cls, sec) for k in g.keys()]
                 sections[sec] = t.sub(sec, allowed) if t.has(sec) else None
             table = sections[sec]
-        value = _read_field(f, table, ctx)
+        value = _read_field(f, table, ctx, t)
         if value is not _MISSING:
             kw[f.name] = value
-    with _Context(t.where if context is None else context, cls):
+    with _Context(t.where, cls, t):
         return cls(**kw)
 
 
-class _Context:
-    """Prefix errors raised while building an object with its table, and name the key."""
+_NAME = re.compile(r"(?<![\w.\[])([A-Za-z_]\w*)(?![\w(])")
 
-    def __init__(self, where: str, cls: type | None = None):
-        self.where, self.cls = where, cls
+
+class _Context:
+    """Restate an InputError raised while building an object from table `where` (of class
+    `cls`) with the table and the keys as the file writes them."""
+
+    def __init__(self, where: str, cls: type | None = None, table: _Table | None = None):
+        self.where, self.cls, self.table = where, cls, table
 
     def __enter__(self) -> None:
         return None
 
     def __exit__(self, kind, exc, tb) -> None:
-        if not isinstance(exc, v.InputError) or str(exc).startswith("in ["):
+        if not isinstance(exc, v.InputError) or getattr(exc, "in_file", False):
             return
-        msg = str(exc)
-        if self.where:
-            msg = f"in [{self.where}]: {msg}"
-        first = re.match(r"[A-Za-z_]\w*", str(exc))
-        if self.cls is not None and first:
-            f = next((f for f in schema.fields_of(self.cls) if f.name == first.group()), None)
-            if f is not None and f.spec.key is not None and f.keys():
-                msg += f" (key {' or '.join(_join(self.where, k) for k in f.keys())})"
-        raise v.InputError(msg) from exc
+        raise _in_file(v.InputError(self.restate(exc))) from exc
+
+    def restate(self, exc: v.InputError) -> str:
+        located = (schema.locate(self.cls, self.where, exc.path)
+                   if self.cls is not None and exc.structured else None)
+        if located is not None:
+            where, key, what = located
+            reason = self.keys(exc.reason)
+            if "valid range" in reason:  # the range (and its unit) is already stated
+                what = what.split("; ")[0]
+            prefix = f"[{where}] " if where else ""
+            return f"{prefix}{key} = {v.short_repr(exc.value)} is {reason} ({what})"
+        prefix = f"[{self.where}]: " if self.where else ""
+        return prefix + self.keys(str(exc))
+
+    def keys(self, text: str) -> str:
+        """`text` with the Python names of the fields of `cls` replaced by their file keys."""
+        if self.cls is None:
+            return text
+        names = {f.name: f.keys()[0] for f in schema.fields_of(self.cls)
+                 if f.spec.key is not None and f.keys() and f.keys()[0] != f.name
+                 and f.form not in ("flat", "installations", "tables", "table")}
+        if not names:
+            return text
+        return _NAME.sub(lambda m: names.get(m.group(1), m.group(1)), text)
 
 
 def _from_dict(data: dict[str, Any]) -> Any:
-    kind = data.get("type")
+    if "type" not in data:
+        raise _in_file(v.InputError("missing key 'type' at the top level (one of "
+                                    + ", ".join(f'"{k}"' for k in MODEL_TYPES) + ")"))
+    kind = data["type"]
     if kind not in MODEL_TYPES:
-        raise v.InputError(f"type = {kind!r} is invalid: must be one of {', '.join(MODEL_TYPES)}")
+        raise _in_file(v.InputError(f"type = {v.short_repr(kind)} is invalid: must be one of "
+                                    + ", ".join(f'"{k}"' for k in MODEL_TYPES)))
     cls = MODEL_TYPES[kind]
     file_keys = ("format", "format_version", "type")
     body = ("name", "propeller") if cls is Propeller else schema.table_keys(cls)
@@ -283,8 +350,8 @@ def _from_dict(data: dict[str, Any]) -> Any:
             top.string("name")
         ref = next(f for f in schema.fields_of(Installation) if f.form == "reference")
         return _read_field(ref, top, ctx)  # the top-level key "propeller"
-    # Cross-field checks of a wing (propellers on nodes, one per node) concern the installations.
-    return _build(cls, top, ctx, "installations" if cls is PropellerWing else "")
+    # Cross-field checks of a wing (propellers on nodes, one per node) name the installation.
+    return _build(cls, top, ctx)
 
 
 def _toml_error(exc: tomllib.TOMLDecodeError, text: str) -> str:
@@ -313,9 +380,17 @@ def loads(text: str, source: str = "<string>") -> Any:
     ... rotor = { mass_kg = 10.0, x_m = -0.5 }
     ... f_theta_hz = 5.0
     ... f_psi_hz = 5.0
+    ... pivot_pitch_m = 0.0
+    ... pivot_yaw_m = 0.0
+    ... rotation = 1
+    ... n_blades = 3
+    ... hub_radius_m = 0.1
+    ... blade_chord_m = 0.08
+    ... beta_075_deg = 30.0
+    ... zero_lift_angle_deg = -3.0
     ... ''')
-    >>> p.radius, p.beta_075_deg
-    (1.0, 35.0)
+    >>> p.radius, p.beta_075_deg, p.damping
+    (1.0, 30.0, 'g')
     """
     try:
         data = tomllib.loads(text)

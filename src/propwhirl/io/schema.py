@@ -13,12 +13,11 @@ from __future__ import annotations
 import dataclasses
 import functools
 import json
-import types
 import typing
 from dataclasses import dataclass
-from typing import Any, Literal
+from typing import Any
 
-from propwhirl.model.fields import META_KEY, FieldSpec
+from propwhirl.model.fields import META_KEY, REQUIRED_WHEN, FieldSpec, infer_form, literals
 from propwhirl.model.propeller import MeasuredDerivatives, PointMass, Propeller
 from propwhirl.model.propeller_aero import AeroSettings, HouboltReedSource, PropellerGeometry
 from propwhirl.model.systems import FlightCondition, Installation, IsolatedPropeller, PropellerWing
@@ -94,9 +93,23 @@ class Field:
 
     @property
     def required(self) -> bool:
-        """The file must give this field."""
-        return self.spec.file_required or (self.default is dataclasses.MISSING
-                                           and self.spec.file_default is None)
+        """The file must always give this field."""
+        return self.spec.file_required is True or (self.default is dataclasses.MISSING
+                                                   and self.spec.file_default is None)
+
+    @property
+    def required_when(self) -> str | None:
+        """The condition (a key of fields.REQUIRED_WHEN) under which the file must give it."""
+        r = self.spec.file_required
+        return r if isinstance(r, str) else None
+
+    def range_text(self, i: int | None = None) -> str:
+        """"[1e-3, 1e12] N m^2" (entry `i` of a "split" field), or "" without a range."""
+        r = self.spec.range_of(i)
+        if r is None:
+            return ""
+        unit = self.spec.unit_of(i)
+        return f"{r}{' ' + unit if unit and unit != 'chord' else ''}"
 
     def keys(self) -> tuple[str, ...]:
         """The keys this field takes in its table (a "flat" field: its item's keys)."""
@@ -111,34 +124,8 @@ class Field:
         return (self.key,)
 
 
-def _literals(hint: Any) -> tuple[str, ...]:
-    if typing.get_origin(hint) is Literal:
-        return tuple(typing.get_args(hint))
-    if typing.get_origin(hint) in (typing.Union, types.UnionType):
-        return tuple(s for h in typing.get_args(hint) for s in _literals(h))
-    return ()
-
-
-def _infer_form(hint: Any) -> tuple[str | None, type | None]:
-    args = [a for a in typing.get_args(hint) if a is not type(None)]
-    if typing.get_origin(hint) in (typing.Union, types.UnionType) and len(args) == 1:
-        hint = args[0]  # X | None
-    if hint is bool:
-        return "boolean", None
-    if hint is int:
-        return "integer", None
-    if hint is float:
-        return "number", None
-    if hint is str or (typing.get_origin(hint) is Literal
-                       and all(isinstance(a, str) for a in typing.get_args(hint))):
-        return "string", None
-    if isinstance(hint, type) and dataclasses.is_dataclass(hint):
-        return "table", hint
-    if typing.get_origin(hint) is tuple:
-        a = typing.get_args(hint)
-        if len(a) == 2 and a[1] is Ellipsis and dataclasses.is_dataclass(a[0]):
-            return "tables", a[0]
-    return None, None
+_literals = literals
+_infer_form = infer_form
 
 
 def _check_units(cls: type, f: Field) -> None:
@@ -228,6 +215,59 @@ def check() -> None:
         table_keys(cls)
 
 
+# =============================================================================== locating
+def join(where: str, key: str) -> str:
+    """"wing" + "EI_N_m2" → "wing.EI_N_m2" (a top-level key stays itself)."""
+    return f"{where}.{key}" if where else key
+
+
+def what(f: Field, i: int | None = None) -> str:
+    """The meaning of a field for messages: description, unit, valid range."""
+    unit = f.spec.unit_of(i)
+    rng = f.range_text(i)
+    return (f.spec.doc + (f"; {unit}" if unit else "")
+            + (f"; valid range {rng}" if rng else ""))
+
+
+def _field(cls: type | None, name: Any) -> Field | None:
+    if cls is None or not isinstance(name, str):
+        return None
+    return next((f for f in fields_of(cls) if f.name == name), None)
+
+
+def locate(cls: type, where: str, path: tuple) -> tuple[str, str, str] | None:
+    """(table, key as written, meaning) of the value at `path` (an InputError's path) of an
+    object of `cls` built from table `where`; None when the path leads to no key of the file."""
+    parts = list(path)
+    while parts:
+        f = _field(cls, parts.pop(0))
+        if f is None or f.spec.key is None:
+            return None
+        index = parts.pop(0) if parts else None
+        if f.form in ("tables", "installations") and isinstance(index, int):
+            where = f"{join(where, f.spec.key)}[{index}]"
+            cls = Installation if f.form == "installations" else f.item
+            continue
+        if f.spec.section:
+            where = join(where, f.spec.section)
+        if f.form == "split" and isinstance(index, int):
+            return where, f.spec.key[index], what(f, index)
+        if f.form == "mapping" and isinstance(index, str):
+            e = next(e for e in f.spec.entries if e.name == index)
+            rng = f"; valid range {e.range}{' ' + e.unit if e.unit else ''}" if e.range else ""
+            return join(where, f.spec.key), e.key, e.doc + rng
+        if f.form == "distribution":
+            if index is None and f.spec.number_key:
+                return where, f.spec.number_key, what(f)
+            key = f.spec.value_key + ("" if index is None else f"[{index}]")
+            return join(where, f.spec.key), key, what(f)
+        if f.form == "flat":
+            return locate(f.item, where, (index,) + tuple(parts)) if index else None
+        key = f.spec.key + (f"[{index}]" if isinstance(index, int) else "")
+        return where, key, what(f)
+    return None
+
+
 # =============================================================================== documentation
 def _toml(x: Any) -> str:
     if isinstance(x, bool):
@@ -259,6 +299,8 @@ def _default(f: Field, value: Any = dataclasses.MISSING) -> str:
     """The default column: "required", "omitted", or the value and its kind."""
     if f.required:
         return "required"
+    if f.required_when:
+        return REQUIRED_LABEL[f.required_when]
     kind = f.spec.default
     if value is dataclasses.MISSING:
         value = f.default if f.default is not dataclasses.MISSING else f.spec.file_default
@@ -269,7 +311,12 @@ def _default(f: Field, value: Any = dataclasses.MISSING) -> str:
     return f"`{_toml(value)}` ({kind})"
 
 
-Row = tuple[str, str, str, str, str]  # key, value, unit, default, meaning
+#: Default column of a field required under a condition (fields.REQUIRED_WHEN).
+REQUIRED_LABEL = {"houbolt-reed": "required without [derivatives]",
+                  "fixed-pitch": "required for fixed-pitch"}
+assert set(REQUIRED_LABEL) == set(REQUIRED_WHEN)
+
+Row = tuple[str, str, str, str, str, str]  # key, value, unit, default, valid range, meaning
 
 
 @dataclass
@@ -311,32 +358,37 @@ def _rows(cls: type, path: str, out: list[Section], section: str | None = None) 
         s, doc = f.spec, f.spec.doc
         if f.form == "split":
             for i, (k, u) in enumerate(zip(s.key, s.unit)):
-                rows.append((k, "number", u, _default(f, f.default[i]), doc))
+                rows.append((k, "number", u, _default(f, f.default[i]), f.range_text(i), doc))
         elif f.form == "flat":
             rows.extend(_rows(f.item, path, out))
         elif f.form == "distribution":
             title = f"[{sub}{s.key}]"
             if s.number_key:
-                rows.append((s.number_key, "number", s.unit, _default(f), f"{doc}, constant"))
-            rows.append((s.key, "table", "", "omitted" if s.number_key else _default(f),
+                rows.append((s.number_key, "number", s.unit, _default(f), f.range_text(),
+                             f"{doc}, constant"))
+            rows.append((s.key, "table", "", "omitted" if s.number_key else _default(f), "",
                          f"{doc} as a table of eta = r/R: {title}"
                          + (f" (instead of {s.number_key})" if s.number_key else "")))
             _section(title, "A radial distribution, piecewise linear in eta = r/R; the table "
                      "must cover [hub ratio, 1].", out).rows = [
-                ("name", "string", "", f'`"{distribution_name(s)}"` (setting)', "label"),
-                ("eta", "list of numbers", "", "required", "stations r/R, strictly increasing"),
-                (s.value_key, "list of numbers", s.unit, "required", "one value per station")]
+                ("name", "string", "", f'`"{distribution_name(s)}"` (setting)', "", "label"),
+                ("eta", "list of numbers", "", "required", "", "stations r/R, strictly increasing"),
+                (s.value_key, "list of numbers", s.unit, "required", f.range_text(),
+                 "one value per station")]
         elif f.form == "mapping":
             title = f"[{sub}{s.key}]"
-            rows.append((s.key, "table", "", _default(f), f"{doc}: {title}"))
+            rows.append((s.key, "table", "", _default(f), "", f"{doc}: {title}"))
             _section(title, f"{doc[0].upper()}{doc[1:]}; any subset of:", out).rows = [
-                (e.key, "number", e.unit, "omitted", e.doc) for e in s.entries]
+                (e.key, "number", e.unit, "omitted",
+                 f"{e.range}{' ' + e.unit if e.unit else ''}" if e.range else "", e.doc)
+                for e in s.entries]
         elif f.form == "derivatives":
-            rows.append((s.key, "table", "", _default(f), f"{doc}: [{sub}{s.key}]"))
+            rows.append((s.key, "table", "", _default(f), "", f"{doc}: [{sub}{s.key}]"))
             for source, src_cls in DERIVATIVE_SOURCES.items():
                 sec = _section(f'[{sub}{s.key}] with source = "{source}"', _first_line(src_cls),
                                out)
-                sec.rows = [("source", f'`"{source}"`', "", "required", "the derivative source")]
+                sec.rows = [("source", f'`"{source}"`', "", "required", "",
+                             "the derivative source")]
                 sec.rows += _rows(src_cls, f"{sub}{s.key}", out)
         elif f.form in ("table", "tables", "installations"):
             item = Installation if f.form == "installations" else f.item
@@ -344,10 +396,10 @@ def _rows(cls: type, path: str, out: list[Section], section: str | None = None) 
                 title, text = f"[{sub}{s.key}]", _first_line(item)
             else:
                 title, text = f"{sub}{s.key}[i]", f"Each entry of the list: {_first_line(item)}"
-            rows.append((s.key, _value_type(f), "", _default(f), f"{doc}: {title}"))
+            rows.append((s.key, _value_type(f), "", _default(f), "", f"{doc}: {title}"))
             _section(title, text, out, item, title)
         else:
-            rows.append((s.key, _value_type(f), s.unit, _default(f), doc))
+            rows.append((s.key, _value_type(f), s.unit, _default(f), f.range_text(), doc))
     return rows
 
 
@@ -355,23 +407,25 @@ def sections() -> list[Section]:
     """Every table of every model type, in the order of docs/model-file.md."""
     out: list[Section] = []
     file_rows: list[Row] = [
-        ("format", f'`"{FORMAT}"`', "", f'`"{FORMAT}"`', "file format"),
-        ("format_version", f"`{FORMAT_VERSION}`", "", f"`{FORMAT_VERSION}`",
+        ("format", f'`"{FORMAT}"`', "", f'`"{FORMAT}"`', "", "file format"),
+        ("format_version", f"`{FORMAT_VERSION}`", "", f"`{FORMAT_VERSION}`", "",
          f"this propwhirl reads version {FORMAT_VERSION}"),
     ]
     for kind, cls in MODEL_TYPES.items():
         top = _section(f'Top level of type = "{kind}"', _first_line(cls), out)
-        top.rows = file_rows + [("type", f'`"{kind}"`', "", "required", cls.__name__)]
+        top.rows = file_rows + [("type", f'`"{kind}"`', "", "required", "", cls.__name__)]
         if cls is Propeller:
-            top.rows += [("name", "string", "", "omitted", "label (not read: the propeller's "
-                                                             "own name counts)"),
-                         ("propeller", "string", "", "required", "key of a [propellers.KEY] table")]
+            top.rows += [("name", "string", "", "omitted", "", "label (not read: the "
+                                                                 "propeller's own name counts)"),
+                         ("propeller", "string", "", "required", "",
+                          "key of a [propellers.KEY] table")]
         else:
             top.rows += _rows(cls, "", out)
-            top.rows.append(("switches", "table", "", "omitted", "on/off switches: [switches]"))
+            top.rows.append(("switches", "table", "", "omitted", "",
+                             "on/off switches: [switches]"))
             _section(f'[switches] of type = "{kind}"', "Model switches.", out, cls, "",
                      "switches")
-        top.rows.append(("propellers", "table", "", "required",
+        top.rows.append(("propellers", "table", "", "required", "",
                          "the propellers, one table [propellers.KEY] each"))
     _section("[propellers.KEY]", "One table per distinct propeller, under any key (the writer "
              "uses p1, p2, ...); installations refer to it by its key.", out, Propeller,
@@ -414,6 +468,30 @@ column gives the value an omitted key takes and its kind: *physical* (a value of
 or the air), *setting* (a modelling or numerical choice, a switch, a label); *omitted* means
 the key may be left out (its meaning says what then holds).
 
+Required keys: a value of the aircraft that no default can stand for is *required* (the
+reader names the missing key with its meaning, unit and range). Some keys are required only
+where they are used: the blade geometry (`n_blades`, `hub_radius_m`, `blade_chord_m`) when
+the propeller's derivatives come from its blades by Houbolt–Reed (no `[derivatives]` table),
+the blade angles (`beta_075_deg`, `zero_lift_angle_deg`) for fixed-pitch operation. Defaults
+kept: switches, labels and numerical settings; thin-aerofoil values (lift-curve slope 2 pi,
+aerodynamic centre at quarter chord); the Rodden–Rose cut-off slope 4 pi; the spin inertia
+M_r R^2/3 (eq. 9.2); and no structural damping (Rayleigh and mount damping 0: the
+conservative assumption).
+
+Valid ranges: every physical quantity has a *valid range* (column below), checked when a
+file is read and when a Python model is built, every value of a list or radial table
+included; a value outside is an error naming the key, the value and the range. The ranges are
+an envelope around real aircraft, from a small UAV to a large turboprop or tiltrotor, with a
+margin of about ten either way: semi-spans 1 cm to 1 km, masses per length 0.1 g/m to
+100 t/m, rigidities EI, GJ 1e-3 to 1e12 N m^2 (a balsa model wing to ten times a large
+transport's root), rotor radii 1 cm to 20 m (tiltrotors: about 6 m), blade chords 1 mm to
+5 m, mount frequencies 1 mHz to 1 kHz, air densities 1e-4 to 10 kg/m^3 (the stratosphere
+to a heavy-gas wind tunnel), speeds of sound 100 to 1000 m/s, airspeeds up to 10 km/s, mount
+damping g or zeta up to 2 (critically damped and beyond), Rayleigh coefficients up to
+1e3 1/s and 1 s, dimensionless derivatives within ±1e3, chordwise positions within the chord
+and lift-curve slopes in (0, 4 pi]. A value beyond is a typing or unit error, and the
+computation would overflow (an EI of 1e300 N m^2 gives infinite matrices).
+
 | suffix | unit |
 |---|---|
 """ + "".join(f"| `{s}` | {u} |\n" for s, u in UNIT_SUFFIXES)
@@ -423,9 +501,10 @@ def markdown() -> str:
     """docs/model-file.md: every table, key, unit, default and meaning of a model file."""
     parts = [_INTRO]
     for s in sections():
-        parts.append(f"\n## {s.title}\n\n{s.text}\n\n| key | value | unit | default | meaning |\n"
-                     "|---|---|---|---|---|\n")
-        parts += [f"| `{k}` | {t} | {u} | {d} | {m} |\n" for k, t, u, d, m in s.rows]
+        parts.append(f"\n## {s.title}\n\n{s.text}\n\n"
+                     "| key | value | unit | default | valid range | meaning |\n"
+                     "|---|---|---|---|---|---|\n")
+        parts += [f"| `{k}` | {t} | {u} | {d} | {r} | {m} |\n" for k, t, u, d, r, m in s.rows]
     return "".join(parts)
 
 

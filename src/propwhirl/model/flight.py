@@ -7,7 +7,7 @@ import numpy as np
 
 from propwhirl import limits
 from propwhirl import validate as v
-from propwhirl.model.fields import spec
+from propwhirl.model.fields import check_fields, spec
 
 #: ISA speed of sound at 8000 ft (2438.4 m): T = 272.30 K, a = √(γ R T) [m/s]
 SPEED_OF_SOUND_8000FT = float(np.sqrt(1.4 * 287.05287 * (288.15 - 0.0065 * 2438.4)))
@@ -22,23 +22,18 @@ class FlightCondition:
     must be > 0 (the aerodynamic matrices carry 1/V).
     """
 
-    density: float = field(metadata=spec("density_kg_per_m3", "kg/m^3", "air density"))
+    density: float = field(metadata=spec("density_kg_per_m3", "kg/m^3", "air density",
+                                         range=(1e-4, 10.0)))
     speed_of_sound: float = field(default=SPEED_OF_SOUND_8000FT, metadata=spec(
-        "speed_of_sound_m_per_s", "m/s", "speed of sound; omitted: ISA at 8000 ft",
-        default="physical"))
+        "speed_of_sound_m_per_s", "m/s", "speed of sound (Python default: ISA at 8000 ft, the "
+        "thesis's altitude)", default="physical", file_required=True, range=(100.0, 1000.0)))
     speed_range: tuple[float, float, float] = field(default=(1.0, 350.0, 10.0), metadata=spec(
         "speed_range_m_per_s", "m/s", "[first, last, step]: initial grid of the V-g-f sweep",
-        default="setting", form="numbers", length=3))
+        default="setting", form="numbers", length=3, range=(0.0, 1e4), ends="(]"))
 
     def __post_init__(self) -> None:
-        v.positive("density", self.density, "kg/m^3")
-        v.positive("speed_of_sound", self.speed_of_sound, "m/s")
-        if len(self.speed_range) != 3:
-            raise v.InputError(
-                f"speed_range = {self.speed_range!r} is invalid: give (first, last, step) in m/s")
+        check_fields(self)  # types and ranges (every speed in (0, 1e4] m/s)
         first, last, step = self.speed_range
-        v.positive("speed_range first speed", first, "m/s")
-        v.positive("speed_range step", step, "m/s")
         if not last > first:
             raise v.InputError(
                 f"speed_range last speed = {last!r} m/s is invalid: must be > the first, {first!r} m/s")

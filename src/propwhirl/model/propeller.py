@@ -28,7 +28,7 @@ from typing import Callable, Literal, Mapping, Protocol
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.model.fields import Entry, spec
+from propwhirl.model.fields import Entry, check_fields, spec
 from propwhirl.model.propeller_aero import (
     DERIVATIVE_NAMES,
     AdvanceRule,
@@ -59,17 +59,11 @@ class MeasuredDerivatives:
 
     values: Mapping[str, float] = field(metadata=spec(
         "values", "", "the derivatives of eq. 4.25 (any subset; the rest are zero)",
-        form="mapping", entries=tuple(Entry(k, k, "", "dimensionless derivative (eq. 4.25)")
-                                      for k in DERIVATIVE_NAMES)))
+        form="mapping", entries=tuple(Entry(k, k, "", "dimensionless derivative (eq. 4.25)",
+                                            (-1e3, 1e3)) for k in DERIVATIVE_NAMES)))
 
     def __post_init__(self) -> None:
-        unknown = set(self.values) - set(DERIVATIVE_NAMES)
-        if unknown:
-            raise v.InputError(
-                f"unknown aerodynamic derivative(s) {sorted(unknown)}: valid names are {DERIVATIVE_NAMES}"
-            )
-        for k, val in self.values.items():
-            v.finite(k, val)
+        check_fields(self)  # a dict of the known names, each a number in its range
 
     def __call__(self, V, Omega, speed_of_sound):
         V = np.asarray(V, dtype=float)
@@ -80,12 +74,12 @@ class MeasuredDerivatives:
 class PointMass:
     """A concentrated mass [kg] on the propeller shaft at x [m] from the wing mid-chord, aft positive."""
 
-    mass: float = field(metadata=spec("mass_kg", "kg", "mass"))
-    x: float = field(metadata=spec("x_m", "m", "position on the shaft, aft of the wing mid-chord"))
+    mass: float = field(metadata=spec("mass_kg", "kg", "mass", range=(1e-4, 1e5)))
+    x: float = field(metadata=spec("x_m", "m", "position on the shaft, aft of the wing mid-chord",
+                                   range=(-100.0, 100.0)))
 
     def __post_init__(self) -> None:
-        v.positive("point mass", self.mass, "kg")
-        v.finite("point mass position", self.x, "m")
+        check_fields(self)
 
 
 @dataclass(frozen=True)
@@ -125,60 +119,78 @@ class Propeller:
         C_nq); user-supplied `derivatives` are taken as given for the actual propeller
     """
 
-    radius: float = field(metadata=spec("radius_m", "m", "rotor radius R"))
+    radius: float = field(metadata=spec("radius_m", "m", "rotor radius R", range=(1e-2, 20.0)))
     rotor: PointMass = field(metadata=spec(
         "rotor", "", "rotor (blades + spinner) point mass; its x is the propeller plane"))
     masses: tuple[PointMass, ...] = field(default=(), metadata=spec(
         "masses", "", "further point masses on the shaft (motor, nacelle, ...)",
         default="physical"))
     pivot_pitch: float = field(default=0.0, metadata=spec(
-        "pivot_pitch_m", "m", "pitch pivot position l_theta", default="physical"))
+        "pivot_pitch_m", "m", "pitch pivot position l_theta", default="physical",
+        file_required=True, range=(-100.0, 100.0)))
     pivot_yaw: float = field(default=0.0, metadata=spec(
-        "pivot_yaw_m", "m", "yaw pivot position l_psi", default="physical"))
+        "pivot_yaw_m", "m", "yaw pivot position l_psi", default="physical", file_required=True,
+        range=(-100.0, 100.0)))
     f_theta: float | None = field(default=None, metadata=spec(
-        "f_theta_hz", "Hz", "uncoupled pitch frequency (or K_theta)", default="none"))
+        "f_theta_hz", "Hz", "uncoupled pitch frequency (or K_theta)", default="none",
+        range=(1e-3, 1e3)))
     f_psi: float | None = field(default=None, metadata=spec(
-        "f_psi_hz", "Hz", "uncoupled yaw frequency (or K_psi)", default="none"))
+        "f_psi_hz", "Hz", "uncoupled yaw frequency (or K_psi)", default="none",
+        range=(1e-3, 1e3)))
     K_theta: float | None = field(default=None, metadata=spec(
-        "K_theta_N_m_per_rad", "N m/rad", "pitch mount stiffness (or f_theta)", default="none"))
+        "K_theta_N_m_per_rad", "N m/rad", "pitch mount stiffness (or f_theta)", default="none",
+        range=(1e-6, 1e12)))
     K_psi: float | None = field(default=None, metadata=spec(
-        "K_psi_N_m_per_rad", "N m/rad", "yaw mount stiffness (or f_psi)", default="none"))
+        "K_psi_N_m_per_rad", "N m/rad", "yaw mount stiffness (or f_psi)", default="none",
+        range=(1e-6, 1e12)))
     damping_theta: float = field(default=0.0, metadata=spec(
-        "damping_theta", "", "pitch mount damping, read according to damping", default="physical"))
+        "damping_theta", "", "pitch mount damping, read according to damping; omitted: "
+        "undamped (conservative)", default="physical", range=(0.0, 2.0)))
     damping_psi: float = field(default=0.0, metadata=spec(
-        "damping_psi", "", "yaw mount damping, read according to damping", default="physical"))
+        "damping_psi", "", "yaw mount damping, read according to damping; omitted: undamped "
+        "(conservative)", default="physical", range=(0.0, 2.0)))
     damping: Literal["g", "zeta"] = field(default="g", metadata=spec(
         "damping", "", "g: structural coefficients (zeta = g/2); zeta: viscous damping ratios",
         default="setting"))
     spin_inertia: float | None = field(default=None, metadata=spec(
         "spin_inertia_kg_m2", "kg m^2", "spin inertia I_Omega; omitted: M_r R^2/3 (eq. 9.2)",
-        default="none"))
+        default="none", range=(0.0, 1e6)))
     n_blades: int = field(default=3, metadata=spec(
-        "n_blades", "", "number of blades (>= 3)", default="physical"))
+        "n_blades", "", "number of blades (>= 3)", default="physical",
+        file_required="houbolt-reed", range=(3, 20)))
     hub_radius: float = field(default=0.0, metadata=spec(
-        "hub_radius_m", "m", "hub radius r0", default="physical"))
-    blade_chord: float | Callable[[np.ndarray], np.ndarray] = field(default=0.1, metadata=spec(
-        "blade_chord", "m", "blade chord (Houbolt-Reed input)",
-        default="physical", form="distribution", number_key="blade_chord_m", value_key="chord_m"))
+        "hub_radius_m", "m", "hub radius r0 (< radius)", default="physical",
+        file_required="houbolt-reed", range=(0.0, 20.0)))
+    blade_chord: float | Callable[[np.ndarray], np.ndarray] | None = field(
+        default=None, metadata=spec(
+            "blade_chord", "m", "blade chord (Houbolt-Reed input; required when derivatives "
+            "is None)", default="none", form="distribution", number_key="blade_chord_m",
+            value_key="chord_m", file_required="houbolt-reed", range=(1e-3, 5.0)))
     operation: Literal["fixed-pitch", "constant-speed"] = field(default="fixed-pitch", metadata=spec(
         "operation", "", "fixed-pitch windmilling (Omega rises with V) or constant-speed (rpm)",
         default="setting"))
     beta_075_deg: float = field(default=35.0, metadata=spec(
-        "beta_075_deg", "deg", "blade angle at 0.75 R", default="physical"))
+        "beta_075_deg", "deg", "blade angle at 0.75 R", default="physical",
+        file_required="fixed-pitch", range=(-90.0, 90.0)))
     zero_lift_angle_deg: float = field(default=-3.0, metadata=spec(
-        "zero_lift_angle_deg", "deg", "blade-section zero-lift angle", default="physical"))
+        "zero_lift_angle_deg", "deg", "blade-section zero-lift angle", default="physical",
+        file_required="fixed-pitch", range=(-30.0, 30.0)))
     advance_rule: AdvanceRule = field(default="thesis_eq_9_1", metadata=spec(
         "advance_rule", "", "advance ratio of fixed-pitch operation: eq. 9.1 as the thesis uses "
         "it, or zero lift at 0.75 R (Table 4.1)", default="setting"))
     inertia: Mapping[str, float] | None = field(default=None, metadata=spec(
         "inertia", "", "measured inertia about the pivots, overriding the point masses' values",
         default="none", form="mapping", entries=(
-            Entry("M_P", "M_P_kg", "kg", "propeller mass M_P"),
-            Entry("S_theta_P", "S_theta_P_kg_m", "kg m", "static moment about the pitch pivot"),
-            Entry("I_theta_P", "I_theta_P_kg_m2", "kg m^2", "inertia about the pitch pivot"),
-            Entry("I_psi_P", "I_psi_P_kg_m2", "kg m^2", "inertia about the yaw pivot"))))
+            Entry("M_P", "M_P_kg", "kg", "propeller mass M_P", (1e-4, 1e5)),
+            Entry("S_theta_P", "S_theta_P_kg_m", "kg m", "static moment about the pitch pivot",
+                  (-1e7, 1e7)),
+            Entry("I_theta_P", "I_theta_P_kg_m2", "kg m^2", "inertia about the pitch pivot",
+                  (1e-8, 1e9)),
+            Entry("I_psi_P", "I_psi_P_kg_m2", "kg m^2", "inertia about the yaw pivot",
+                  (1e-8, 1e9)))))
     rpm: float | None = field(default=None, metadata=spec(
-        "rpm", "rev/min", "rotational speed of constant-speed operation", default="none"))
+        "rpm", "rev/min", "rotational speed of constant-speed operation", default="none",
+        range=(1.0, 1e5)))
     derivatives: DerivativeSource | None = field(default=None, compare=False, metadata=spec(
         "derivatives", "", "aerodynamic derivative source; omitted: Houbolt-Reed for these blades "
         "with aero_settings", default="none", form="derivatives"))
@@ -186,47 +198,33 @@ class Propeller:
         "aero_settings", "", "Houbolt-Reed switches", default="setting"))
     rotation: int = field(default=1, metadata=spec(
         "rotation", "", "+1 counter-clockwise seen from the front (the thesis's sense), -1 "
-        "clockwise", default="physical"))
+        "clockwise", default="physical", file_required=True))
     name: str = field(default="propeller", metadata=spec("name", "", "label", default="setting"))
 
     def __post_init__(self) -> None:
-        v.positive("radius", self.radius, "m")
-        v.in_range("hub_radius", self.hub_radius, 0.0, self.radius, "m", high_open=True)
-        v.integer_at_least("n_blades", self.n_blades, 3)
+        check_fields(self)  # types and the declared ranges of every field
+        if not self.hub_radius < self.radius:
+            raise v.fail("hub_radius", self.hub_radius,
+                         f"invalid: must be < radius = {self.radius!r} m", "m")
         if (self.f_theta is None) == (self.K_theta is None):
             raise v.InputError("give exactly one of f_theta [Hz] or K_theta [N m/rad]")
         if (self.f_psi is None) == (self.K_psi is None):
             raise v.InputError("give exactly one of f_psi [Hz] or K_psi [N m/rad]")
-        for name in ("f_theta", "f_psi", "K_theta", "K_psi"):
-            if getattr(self, name) is not None:
-                v.positive(name, getattr(self, name), "Hz" if name.startswith("f") else "N m/rad")
-        v.non_negative("damping_theta", self.damping_theta)
-        v.non_negative("damping_psi", self.damping_psi)
-        if self.damping not in ("g", "zeta"):
-            raise v.InputError(f"damping = {self.damping!r} is invalid: must be 'g' or 'zeta'")
-        if self.spin_inertia is not None:
-            v.non_negative("spin_inertia", self.spin_inertia, "kg m^2")
-        if self.operation not in ("fixed-pitch", "constant-speed"):
-            raise v.InputError(
-                f"operation = {self.operation!r} is invalid: must be 'fixed-pitch' or 'constant-speed'"
-            )
         if self.operation == "constant-speed":
             if self.rpm is None:
                 raise v.InputError("rpm is required for operation = 'constant-speed'")
-            v.positive("rpm", self.rpm, "rev/min")
         else:
-            self.advance_ratio  # validates the blade angle (inflow angle in (0°, 90°))
-        if self.inertia is not None:
-            allowed = {"M_P", "S_theta_P", "I_theta_P", "I_psi_P"}
-            unknown = set(self.inertia) - allowed
-            if unknown:
-                raise v.InputError(f"inertia keys {sorted(unknown)} are invalid: allowed {sorted(allowed)}")
-            for k, val in self.inertia.items():
-                (v.finite if k == "S_theta_P" else v.positive)(k, val)
+            try:
+                self.advance_ratio  # validates the blade angle (inflow angle in (0°, 90°))
+            except v.InputError as exc:  # restated with the field's name
+                raise v.fail("beta_075_deg", self.beta_075_deg,
+                             f"invalid: {str(exc).split(' is invalid: ', 1)[-1]}",
+                             "deg") from None
         if self.rotation not in (1, -1):
-            raise v.InputError(f"rotation = {self.rotation!r} is invalid: must be +1 or -1")
-        v.finite("pivot_pitch", self.pivot_pitch, "m")
-        v.finite("pivot_yaw", self.pivot_yaw, "m")
+            raise v.fail("rotation", self.rotation, "invalid: must be +1 or -1")
+        if self.derivatives is None and self.blade_chord is None:
+            raise v.InputError("blade_chord is required for Houbolt-Reed derivatives "
+                               "(derivatives = None): give the blade chord [m]")
 
     # ------------------------------------------------------------------ inertia (8.5–8.6)
     @property

@@ -39,7 +39,7 @@ from scipy.special import hankel2e
 from propwhirl import limits
 from propwhirl import validate as v
 from propwhirl.model import validity
-from propwhirl.model.fields import spec
+from propwhirl.model.fields import check_fields, check_values, spec
 
 #: The sixteen derivatives in the order of eq. 4.25 (F_Z, M_Y, F_Y, M_Z rows).
 DERIVATIVE_NAMES: tuple[str, ...] = (
@@ -162,40 +162,43 @@ class PropellerGeometry:
     aspect_ratio    A of eq. 4.20; None → eq. 4.21, A = R(1−η0)² / ∫_{η0}^{1} c dη
     """
 
-    n_blades: int = field(metadata=spec("n_blades", "", "number of blades N_b (>= 3)"))
-    radius: float = field(metadata=spec("radius_m", "m", "rotor radius R"))
-    hub_ratio: float = field(metadata=spec(
-        "hub_ratio", "", "eta0 = r0/R", default="physical", file_default=0.0))
+    n_blades: int = field(metadata=spec("n_blades", "", "number of blades N_b (>= 3)",
+                                        range=(3, 20)))
+    radius: float = field(metadata=spec("radius_m", "m", "rotor radius R", range=(1e-2, 20.0)))
+    hub_ratio: float = field(metadata=spec("hub_ratio", "", "eta0 = r0/R", range=(0.0, 1.0),
+                                           ends="[)"))
     chord: float | Distribution | Callable[[np.ndarray], np.ndarray] = field(metadata=spec(
         "chord", "m", "blade chord c(eta)",
-        form="distribution", number_key="chord_m", value_key="chord_m"))
+        form="distribution", number_key="chord_m", value_key="chord_m", range=(1e-3, 5.0)))
     lift_slope: Distribution | None = field(default=None, metadata=spec(
         "lift_slope", "1/rad", "lift-curve slope a(eta); omitted: 2 pi",
-        default="none", form="distribution", value_key="lift_slope_per_rad"))
+        default="none", form="distribution", value_key="lift_slope_per_rad",
+        range=(0.0, 4.0 * math.pi), ends="(]"))
     reference_chord: float | None = field(default=None, metadata=spec(
-        "reference_chord_m", "m", "reference chord c0; omitted: c(0.75)", default="none"))
+        "reference_chord_m", "m", "reference chord c0; omitted: c(0.75)", default="none",
+        range=(1e-3, 5.0)))
     aspect_ratio: float | None = field(default=None, metadata=spec(
-        "aspect_ratio", "", "blade aspect ratio A of eq. 4.20; omitted: eq. 4.21", default="none"))
+        "aspect_ratio", "", "blade aspect ratio A of eq. 4.20; omitted: eq. 4.21", default="none",
+        range=(1e-2, 1e3)))
 
     def __post_init__(self) -> None:
-        v.integer_at_least("n_blades", self.n_blades, 3)
-        object.__setattr__(self, "radius", float(v.positive("radius", self.radius, "m")))
-        eta0 = float(v.in_range("hub_ratio", self.hub_ratio, 0.0, 1.0, high_open=True))
+        check_fields(self)  # types and the declared ranges of every field
+        object.__setattr__(self, "radius", float(self.radius))
+        eta0 = float(self.hub_ratio)
         object.__setattr__(self, "hub_ratio", eta0)
         chord = self.chord
         if callable(chord) and not isinstance(chord, Distribution):
             sample = np.linspace(eta0, 1.0, 101)
             try:
-                values = np.broadcast_to(np.asarray(chord(sample), dtype=float), sample.shape)
-            except (TypeError, ValueError) as exc:
+                values = np.broadcast_to(v.real("chord(eta)", chord(sample)), sample.shape)
+            except (TypeError, ValueError, ArithmeticError, AttributeError, IndexError,
+                    KeyError) as exc:
+                if isinstance(exc, v.InputError):
+                    raise
                 raise v.InputError(f"chord function failed on eta in [{eta0}, 1]: {exc}") from exc
-            bad = ~np.isfinite(values) | (values <= 0)
-            if bad.any():
-                raise v.InputError(
-                    f"chord(eta = {sample[bad][0]!r}) = {values[bad][0]!r} m is invalid: "
-                    "must be finite and > 0 on [hub_ratio, 1]")
+            check_values(PropellerGeometry, "chord", values, sample, "eta", "")
         elif not isinstance(chord, Distribution):
-            chord = Distribution.constant(float(v.positive("chord", chord, "m")), "chord")
+            chord = Distribution.constant(float(chord), "chord")
         object.__setattr__(self, "chord", chord)
         for dist, label in ((chord, "chord"), (self.lift_slope, "lift_slope")):
             if dist is None or (label == "chord" and not isinstance(dist, Distribution)):
@@ -208,11 +211,9 @@ class PropellerGeometry:
                     f"invalid: must cover the blade, [hub_ratio, 1] = [{eta0}, 1.0]"
                 )
         if self.reference_chord is not None:
-            object.__setattr__(self, "reference_chord",
-                               float(v.positive("reference_chord", self.reference_chord, "m")))
+            object.__setattr__(self, "reference_chord", float(self.reference_chord))
         if self.aspect_ratio is not None:
-            object.__setattr__(self, "aspect_ratio",
-                               float(v.positive("aspect_ratio", self.aspect_ratio)))
+            object.__setattr__(self, "aspect_ratio", float(self.aspect_ratio))
 
     @property
     def c0(self) -> float:
@@ -283,26 +284,14 @@ class AeroSettings:
         "method", "", "Houbolt-Reed (eq. 4.39-4.42) or Bennett-Bland (section 4.2)",
         default="setting"))
     cutoff_lift_slope: float = field(default=4.0 * math.pi, metadata=spec(
-        "cutoff_lift_slope_per_rad", "1/rad", "a_m of the cut-off (eq. 4.23-4.24)",
-        default="physical"))
+        "cutoff_lift_slope_per_rad", "1/rad", "a_m of the cut-off (eq. 4.23-4.24); omitted: "
+        "4 pi (Rodden-Rose)", default="physical", range=(_TWO_PI, 1e3), ends="(]"))
     quadrature_order: int = field(default=32, metadata=spec(
         "quadrature_order", "", "Gauss-Legendre points per panel", default="setting"))
 
     def __post_init__(self) -> None:
-        if self.cnq_sign not in ("thesis", "rodden_rose"):
-            raise v.InputError(
-                f"cnq_sign = {self.cnq_sign!r} is invalid: must be 'thesis' or 'rodden_rose'")
-        if self.method not in ("houbolt_reed", "bennett_bland"):
-            raise v.InputError(
-                f"method = {self.method!r} is invalid: must be 'houbolt_reed' or 'bennett_bland'")
-        for name in ("wake", "compressibility", "aspect_ratio_correction"):
-            if not isinstance(getattr(self, name), (bool, np.bool_)):
-                raise v.InputError(f"{name} = {getattr(self, name)!r} is invalid: must be a bool")
-        am = float(v.positive("cutoff_lift_slope", self.cutoff_lift_slope, "1/rad"))
-        if am <= _TWO_PI:
-            raise v.InputError(
-                f"cutoff_lift_slope = {am!r} 1/rad is invalid: must be > 2π (a0 = 2π)")
-        object.__setattr__(self, "cutoff_lift_slope", am)
+        check_fields(self)  # types, choices and the range of the cut-off slope (> a0 = 2π)
+        object.__setattr__(self, "cutoff_lift_slope", float(self.cutoff_lift_slope))
         v.integer_at_least("quadrature_order", self.quadrature_order, 2)
         limits.check_quadrature_order(self.quadrature_order)
 
@@ -616,6 +605,9 @@ class HouboltReedSource:
         "geometry", "", "blade geometry (its keys sit in this table)", form="flat"))
     settings: AeroSettings = field(default=AeroSettings(), metadata=spec(
         "settings", "", "Houbolt-Reed switches", default="setting"))
+
+    def __post_init__(self) -> None:
+        check_fields(self)
 
     def __call__(self, V, Omega, speed_of_sound=None) -> dict[str, np.ndarray]:
         return derivatives(self.geometry, V, Omega, speed_of_sound=speed_of_sound,

@@ -27,7 +27,7 @@ import numpy as np
 
 from propwhirl import limits
 from propwhirl import validate as v
-from propwhirl.model.fields import spec
+from propwhirl.model.fields import check_fields, spec
 from propwhirl.model.assembly import (
     LAG_STATES,
     blame_entry,
@@ -68,39 +68,37 @@ class Installation:
 
     propeller: Propeller = field(metadata=spec(
         "propeller", "", "key of a [propellers.KEY] table", form="reference"))
-    y: float = field(metadata=spec("y_m", "m", "spanwise position (must be a node)"))
+    y: float = field(metadata=spec("y_m", "m", "spanwise position (must be a node)",
+                                   range=(0.0, 1e3)))
     mount: Literal["flexible", "rigid"] = field(default="flexible", metadata=spec(
         "mount", "", "flexible (pitch and yaw DOFs) or rigid", default="setting"))
     aero: bool = field(default=True, metadata=spec(
         "aero", "", "this propeller's aerodynamic loads", default="setting"))
 
     def __post_init__(self) -> None:
-        v.finite("installation y", self.y, "m")
-        if self.mount not in ("flexible", "rigid"):
-            raise v.InputError(f"mount = {self.mount!r} is invalid: must be 'flexible' or 'rigid'")
+        check_fields(self)  # a Propeller, y in range, mount one of the two, aero a bool
 
 
-def node_at(wing: Wing, y: float, tol: float = 1e-6) -> int:
+def node_at(wing: Wing, y: float, tol: float = 1e-6, name: str = "propeller position y",
+            path: tuple = ("y",)) -> int:
     """Index of the node at spanwise position y; an error names the nearest nodes otherwise.
 
     Propellers must sit on a node (§8.3.3).  A position off the mesh is not moved silently:
-    choose `n_elements` so that a node falls there.
+    choose `n_elements` so that a node falls there.  Errors name the position `name` and
+    carry `path` (see :class:`propwhirl.validate.InputError`).
     """
     ys = wing.node_y
     if y < -tol or y > wing.semi_span + tol:
-        raise v.InputError(
-            f"propeller position y = {y!r} m is outside the wing: must be in [0, {wing.semi_span}] m"
-        )
+        raise v.fail(name, y, f"outside the wing: must be in [0, {wing.semi_span}] m", "m", path)
     i = int(np.argmin(np.abs(ys - y)))
     if abs(ys[i] - y) > tol * max(1.0, wing.semi_span):
         lo = int(np.searchsorted(ys, y)) - 1
-        raise v.InputError(
-            f"propeller position y = {y!r} m is not a node of the {wing.n_elements}-element mesh: "
-            f"nearest nodes are {lo} (y = {ys[lo]:.6g} m) and {lo + 1} (y = {ys[lo + 1]:.6g} m); "
-            "change n_elements or the position"
-        )
+        raise v.fail(
+            name, y, f"not a node of the {wing.n_elements}-element mesh: nearest nodes are "
+            f"{lo} (y = {ys[lo]:.6g} m) and {lo + 1} (y = {ys[lo + 1]:.6g} m); change "
+            "n_elements or the position", "m", path)
     if i == 0:
-        raise v.InputError(f"propeller position y = {y!r} m is the clamped root: must be > 0")
+        raise v.fail(name, y, "the clamped root: must be > 0", "m", path)
     return i
 
 
@@ -176,13 +174,18 @@ class PropellerWing(StateSpaceModel):
         None, "", "node of each propeller (derived)", default="none", form="derived"))
 
     def __post_init__(self) -> None:
+        check_fields(self)  # a Wing, a FlightCondition, Installations, bool switches
         limits.check_propellers(len(self.propellers))
-        nodes = tuple(node_at(self.wing, inst.y) for inst in self.propellers)
+        nodes = tuple(node_at(self.wing, inst.y, name=f"propellers[{j}].y",
+                              path=("propellers", j, "y"))
+                      for j, inst in enumerate(self.propellers))
         if len(set(nodes)) != len(nodes):
             dup = next(n for n in nodes if nodes.count(n) > 1)
-            raise v.InputError(
-                f"two propellers at node {dup} (y = {self.wing.node_y[dup]:.6g} m): at most one per node"
-            )
+            j = [k for k, n in enumerate(nodes) if n == dup][1]
+            raise v.fail(
+                f"propellers[{j}].y", self.propellers[j].y, f"invalid: two propellers at "
+                f"node {dup} (y = {self.wing.node_y[dup]:.6g} m): at most one per node", "m",
+                ("propellers", j, "y"))
         object.__setattr__(self, "_nodes", nodes)
 
     def with_(self, **changes) -> "PropellerWing":
@@ -408,6 +411,9 @@ class IsolatedPropeller(StateSpaceModel):
     name: str = field(default="isolated propeller", metadata=spec(
         "name", "", "label", default="setting"))
 
+    def __post_init__(self) -> None:
+        check_fields(self)  # a Propeller, a FlightCondition, bool switches
+
     def with_(self, **changes) -> "IsolatedPropeller":
         return replace(self, **changes)
 
@@ -480,31 +486,37 @@ class TypicalSection(StateSpaceModel):
     [semichords from mid-chord], aero_model "leishman-nguyen" or "wagner".
     """
 
-    b: float
-    a: float
-    x_alpha: float
-    r_alpha: float
-    m: float
-    omega_h: float
-    omega_alpha: float
-    flight: FlightCondition
-    Cla: float = 2 * np.pi
-    ac: float = -0.5
-    aero_model: Literal["leishman-nguyen", "wagner"] = "leishman-nguyen"
-    name: str = "typical section"
+    # Not saved in model files (key None): the specs declare the ranges checked on construction.
+    b: float = field(metadata=spec(None, "m", "semichord", range=(5e-4, 50.0)))
+    a: float = field(metadata=spec(None, "", "elastic axis, semichords aft of mid-chord",
+                                   range=(-1.0, 1.0)))
+    x_alpha: float = field(metadata=spec(None, "", "centre of gravity aft of the elastic axis, "
+                                         "semichords", range=(-2.0, 2.0)))
+    r_alpha: float = field(metadata=spec(None, "", "radius of gyration about the elastic axis, "
+                                         "semichords", range=(1e-3, 10.0)))
+    m: float = field(metadata=spec(None, "kg/m", "mass per unit span", range=(1e-4, 1e5)))
+    omega_h: float = field(metadata=spec(None, "rad/s", "uncoupled plunge frequency",
+                                         range=(1e-3, 1e4)))
+    omega_alpha: float = field(metadata=spec(None, "rad/s", "uncoupled pitch frequency",
+                                             range=(1e-3, 1e4)))
+    flight: FlightCondition = field(metadata=spec(None, "", "the flight condition"))
+    Cla: float = field(default=2 * np.pi, metadata=spec(
+        None, "1/rad", "lift-curve slope", default="physical", range=(0.0, 4.0 * np.pi),
+        ends="(]"))
+    ac: float = field(default=-0.5, metadata=spec(
+        None, "", "aerodynamic centre, semichords from mid-chord", default="physical",
+        range=(-1.0, 1.0)))
+    aero_model: Literal["leishman-nguyen", "wagner"] = field(default="leishman-nguyen",
+                                                             metadata=spec(
+        None, "", "unsteady strip aerodynamics", default="setting"))
+    name: str = field(default="typical section", metadata=spec(None, "", "label",
+                                                               default="setting"))
     #: strip aerodynamics on (False: the structural system alone, no lag states)
-    aero: bool = True
+    aero: bool = field(default=True, metadata=spec(None, "", "strip aerodynamics on",
+                                                   default="setting"))
 
     def __post_init__(self) -> None:
-        v.positive("b", self.b, "m")
-        v.in_range("a", self.a, -1.0, 1.0)
-        v.finite("x_alpha", self.x_alpha)
-        v.positive("r_alpha", self.r_alpha)
-        v.positive("m", self.m, "kg/m")
-        v.positive("omega_h", self.omega_h, "rad/s")
-        v.positive("omega_alpha", self.omega_alpha, "rad/s")
-        v.non_negative("Cla", self.Cla, "1/rad")
-        v.in_range("ac", self.ac, -1.0, 1.0)
+        check_fields(self)  # types and the declared ranges of every field
         if self.r_alpha**2 <= self.x_alpha**2:
             raise v.InputError(
                 f"r_alpha = {self.r_alpha!r} is invalid: must exceed |x_alpha| = {abs(self.x_alpha)!r}"

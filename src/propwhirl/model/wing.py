@@ -19,7 +19,7 @@ import numpy as np
 
 from propwhirl import limits
 from propwhirl import validate as v
-from propwhirl.model.fields import spec
+from propwhirl.model.fields import check_fields, check_values, spec
 
 Spanwise = Union[float, np.ndarray, Callable[[np.ndarray], np.ndarray]]
 LiftSlope = Union[float, Literal["elliptic"], Callable[[np.ndarray], np.ndarray]]
@@ -27,10 +27,24 @@ LiftSlope = Union[float, Literal["elliptic"], Callable[[np.ndarray], np.ndarray]
 TWO_PI = 2.0 * np.pi
 
 
+#: Errors a user's function of y may raise; they become an InputError naming the property.
+_CALL_ERRORS = (TypeError, ValueError, ArithmeticError, AttributeError, IndexError, KeyError)
+
+
+def _call(name: str, fn: Callable, y: np.ndarray) -> np.ndarray:
+    """fn(y) as real numbers; an InputError naming the property if the function fails."""
+    try:
+        out = fn(y)
+    except _CALL_ERRORS as exc:
+        raise v.InputError(f"{name}(y) failed on y in [{y.min():.6g}, {y.max():.6g}] m: "
+                           f"{type(exc).__name__}: {exc}") from exc
+    return v.real(f"{name}(y)", out)
+
+
 def _spanwise(name: str, value: Spanwise, y: np.ndarray, n_elements: int, unit: str) -> np.ndarray:
     """Evaluate a spanwise property at element mid-points `y` (scalar, per element, callable)."""
     if callable(value):
-        out = np.asarray(value(y), dtype=float)
+        out = _call(name, value, y)
         if out.shape != y.shape:
             raise v.InputError(
                 f"{name}(y) must return one value per position, got shape {out.shape} for {y.shape}"
@@ -69,37 +83,43 @@ class Wing:
     rayleigh : (μ [1/s], λ [s]) of Rayleigh damping C = μM + λK (eq. 7.22)
     """
 
-    semi_span: float = field(metadata=spec("semi_span_m", "m", "root-to-tip length"))
+    semi_span: float = field(metadata=spec("semi_span_m", "m", "root-to-tip length",
+                                           range=(1e-2, 1e3)))
     mass_per_length: Spanwise = field(metadata=spec(
-        "mass_per_length_kg_per_m", "kg/m", "mass per unit span m_W", form="spanwise"))
-    EI: Spanwise = field(metadata=spec("EI_N_m2", "N m^2", "bending rigidity", form="spanwise"))
-    GJ: Spanwise = field(metadata=spec("GJ_N_m2", "N m^2", "torsional rigidity", form="spanwise"))
+        "mass_per_length_kg_per_m", "kg/m", "mass per unit span m_W", form="spanwise",
+        range=(1e-4, 1e5)))
+    EI: Spanwise = field(metadata=spec("EI_N_m2", "N m^2", "bending rigidity", form="spanwise",
+                                       range=(1e-3, 1e12)))
+    GJ: Spanwise = field(metadata=spec("GJ_N_m2", "N m^2", "torsional rigidity", form="spanwise",
+                                       range=(1e-3, 1e12)))
     root_chord: float = field(default=1.0, metadata=spec(
-        "root_chord_m", "m", "chord at the root", default="physical", file_required=True))
+        "root_chord_m", "m", "chord at the root", default="physical", file_required=True,
+        range=(1e-3, 1e2)))
     tip_chord: float | None = field(default=None, metadata=spec(
         "tip_chord_m", "m", "chord at the tip (linear taper); omitted: the root chord",
-        default="none"))
+        default="none", range=(1e-3, 1e2)))
     chord: Callable[[np.ndarray], np.ndarray] | None = field(default=None, metadata=spec(
         None, "m", "chord as a function of y: not saved, use root_chord/tip_chord (linear taper)",
-        default="none", form="unsaved"))
+        default="none", form="unsaved", range=(1e-3, 1e2)))
     polar_inertia: Spanwise | None = field(default=None, metadata=spec(
         "polar_inertia_kg_m", "kg m", "polar inertia rho I_p about the elastic axis "
-        "(or radius_of_gyration)", default="none", form="spanwise"))
+        "(or radius_of_gyration)", default="none", form="spanwise", range=(1e-8, 1e7)))
     radius_of_gyration: Spanwise | None = field(default=None, metadata=spec(
         "radius_of_gyration_chord", "chord", "radius of gyration about the centre of gravity "
-        "(or polar_inertia)", default="none", form="spanwise"))
+        "(or polar_inertia)", default="none", form="spanwise", range=(1e-3, 1.0)))
     elastic_axis: Spanwise = field(default=0.5, metadata=spec(
         "elastic_axis_chord", "chord", "elastic-axis position", default="physical",
-        form="spanwise"))
+        form="spanwise", file_required=True, range=(0.0, 1.0)))
     centre_of_gravity: Spanwise = field(default=0.5, metadata=spec(
         "centre_of_gravity_chord", "chord", "centre-of-gravity position", default="physical",
-        form="spanwise"))
+        form="spanwise", file_required=True, range=(0.0, 1.0)))
     lift_slope: LiftSlope = field(default=TWO_PI, metadata=spec(
         "lift_slope_per_rad", "1/rad", "section lift-curve slope C_l_alpha, or \"elliptic\" "
-        "(eq. 7.81)", default="physical", form="number_or_string"))
+        "(eq. 7.81); omitted: 2 pi (thin aerofoil)", default="physical", form="number_or_string",
+        range=(0.0, 4.0 * np.pi), ends="(]"))
     aerodynamic_centre: Spanwise = field(default=0.25, metadata=spec(
-        "aerodynamic_centre_chord", "chord", "aerodynamic-centre position", default="physical",
-        form="spanwise"))
+        "aerodynamic_centre_chord", "chord", "aerodynamic-centre position; omitted: quarter "
+        "chord (thin aerofoil)", default="physical", form="spanwise", range=(0.0, 1.0)))
     n_elements: int = field(default=20, metadata=spec(
         "n_elements", "", "number of equal beam elements", default="setting"))
     aero_model: Literal["leishman-nguyen", "wagner"] = field(default="leishman-nguyen", metadata=spec(
@@ -107,29 +127,16 @@ class Wing:
         "states per node", default="setting"))
     rayleigh: tuple[float, float] = field(default=(0.0, 0.0), metadata=spec(
         ("rayleigh_mu_per_s", "rayleigh_lambda_s"), ("1/s", "s"),
-        "Rayleigh damping C = mu M + lambda K (eq. 7.22)", default="physical", form="split"))
+        "Rayleigh damping C = mu M + lambda K (eq. 7.22); omitted: undamped (conservative)",
+        default="physical", form="split", range=((0.0, 1e3), (0.0, 1.0))))
     name: str = field(default="wing", metadata=spec("name", "", "label", default="setting"))
 
     def __post_init__(self) -> None:
-        v.positive("semi_span", self.semi_span, "m")
+        check_fields(self)  # types and the declared ranges of every field
         v.integer_at_least("n_elements", self.n_elements, 1)
         limits.check_elements(self.n_elements)
-        v.positive("root_chord", self.root_chord, "m")
-        if self.tip_chord is not None:
-            v.positive("tip_chord", self.tip_chord, "m")
         if (self.polar_inertia is None) == (self.radius_of_gyration is None):
             raise v.InputError("give exactly one of polar_inertia [kg m] or radius_of_gyration")
-        if self.aero_model not in ("leishman-nguyen", "wagner"):
-            raise v.InputError(
-                f"aero_model = {self.aero_model!r} is invalid: must be 'leishman-nguyen' or 'wagner'"
-            )
-        mu, lam = self.rayleigh
-        v.non_negative("rayleigh mu", mu, "1/s")
-        v.non_negative("rayleigh lambda", lam, "s")
-        if isinstance(self.lift_slope, str) and self.lift_slope != "elliptic":
-            raise v.InputError(
-                f"lift_slope = {self.lift_slope!r} is invalid: a number, 'elliptic' or a function of y"
-            )
         # Evaluate everything once so bad input fails at construction, naming the parameter.
         self.element_properties()
         self.node_properties()
@@ -158,10 +165,10 @@ class Wing:
         """Local chord [m] at spanwise positions y [m]."""
         y = np.asarray(y, dtype=float)
         if self.chord is not None:
-            c = np.asarray(self.chord(y), dtype=float)
+            c = _call("chord", self.chord, y)
             if c.shape != y.shape:
                 raise v.InputError(f"chord(y) must return one value per position, got {c.shape}")
-            return v.positive("chord", c, "m")
+            return check_values(Wing, "chord", c, y)
         tip = self.root_chord if self.tip_chord is None else self.tip_chord
         return self.root_chord + (tip - self.root_chord) * y / self.semi_span
 
@@ -174,22 +181,25 @@ class Wing:
         """
         y, n = self.element_y, self.n_elements
         c = self.chord_at(y)
-        m = v.positive("mass_per_length", _spanwise("mass_per_length", self.mass_per_length, y, n, "kg/m"), "kg/m")
-        ea = v.in_range("elastic_axis", _spanwise("elastic_axis", self.elastic_axis, y, n, ""), 0.0, 1.0)
-        cg = v.in_range("centre_of_gravity", _spanwise("centre_of_gravity", self.centre_of_gravity, y, n, ""), 0.0, 1.0)
+        def prop(name: str, unit: str) -> np.ndarray:  # every value within the declared range
+            return check_values(Wing, name, _spanwise(name, getattr(self, name), y, n, unit), y)
+
+        m = prop("mass_per_length", "kg/m")
+        ea = prop("elastic_axis", "")
+        cg = prop("centre_of_gravity", "")
         xab = (cg - ea) * c
         if self.polar_inertia is not None:
-            Ip = v.positive("polar_inertia", _spanwise("polar_inertia", self.polar_inertia, y, n, "kg m"), "kg m")
+            Ip = prop("polar_inertia", "kg m")
         else:
-            rg = v.positive("radius_of_gyration", _spanwise("radius_of_gyration", self.radius_of_gyration, y, n, ""))
+            rg = prop("radius_of_gyration", "")
             Ip = m * ((rg * c) ** 2 + xab**2)  # parallel-axis theorem: about the elastic axis
         return {
             "length": self.element_length,
             "m": m,
             "rho_Ip": Ip,
             "x_alpha_b": xab,
-            "EI": v.positive("EI", _spanwise("EI", self.EI, y, n, "N m^2"), "N m^2"),
-            "GJ": v.positive("GJ", _spanwise("GJ", self.GJ, y, n, "N m^2"), "N m^2"),
+            "EI": prop("EI", "N m^2"),
+            "GJ": prop("GJ", "N m^2"),
         }
 
     def node_properties(self) -> dict[str, np.ndarray]:
@@ -206,10 +216,10 @@ class Wing:
         width = np.zeros(n)
         width[:-1] += 0.5 * le
         width[1:] += 0.5 * le
-        ea = v.in_range("elastic_axis", _node_value("elastic_axis", self.elastic_axis, y, self.element_y), 0.0, 1.0)
-        xac = v.in_range(
-            "aerodynamic_centre", _node_value("aerodynamic_centre", self.aerodynamic_centre, y, self.element_y), 0.0, 1.0
-        )
+        ea = check_values(Wing, "elastic_axis",
+                          _node_value("elastic_axis", self.elastic_axis, y, self.element_y), y)
+        xac = check_values(Wing, "aerodynamic_centre", _node_value(
+            "aerodynamic_centre", self.aerodynamic_centre, y, self.element_y), y)
         return {
             "y": y,
             "width": width,
@@ -226,18 +236,18 @@ class Wing:
             x = np.clip(y / self.semi_span, 0.0, 1.0)
             return TWO_PI * np.sqrt(1.0 - x**2)
         if callable(self.lift_slope):
-            out = np.asarray(self.lift_slope(y), dtype=float)
+            out = _call("lift_slope", self.lift_slope, y)
             if out.shape != y.shape:
                 raise v.InputError(f"lift_slope(y) must return one value per position, got {out.shape}")
-            return v.non_negative("lift_slope", out, "1/rad")
-        return np.full(y.shape, v.non_negative("lift_slope", self.lift_slope, "1/rad"))
+            return check_values(Wing, "lift_slope", out, y)
+        return np.full(y.shape, float(self.lift_slope))
 
 
 def _node_value(name: str, value: Spanwise, y_nodes: np.ndarray, y_elem: np.ndarray) -> np.ndarray:
     """A spanwise property at the nodes: callables are evaluated there; per-element arrays are
     interpolated linearly between element mid-points (held constant beyond them)."""
     if callable(value):
-        out = np.asarray(value(y_nodes), dtype=float)
+        out = _call(name, value, y_nodes)
         if out.shape != y_nodes.shape:
             raise v.InputError(f"{name}(y) must return one value per position, got {out.shape}")
         return v.finite(name, out)
