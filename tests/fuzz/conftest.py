@@ -22,7 +22,7 @@ from hypothesis import HealthCheck, settings
 from propwhirl.validate import InputError
 
 ROOT = Path(__file__).resolve().parents[2]
-FUZZ = settings(max_examples=60, deadline=timedelta(seconds=20), derandomize=True,
+FUZZ = settings(max_examples=150, deadline=timedelta(seconds=20), derandomize=True,
                 suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
 
 

@@ -47,6 +47,17 @@ def _check_model(model) -> None:
     json.dumps(a.to_dict(), allow_nan=False)
 
 
+def _scaled(value, data):
+    """A plausible neighbour of a numeric value: scaled by 10^u, u in [-2, 2], maybe negated."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return data.draw(VALUES, label="value")
+    f = 10.0 ** data.draw(st.floats(-2.0, 2.0), label="log10 factor")
+    out = value * f if value != 0 else f - 1.0
+    if data.draw(st.integers(0, 9), label="negate") == 0:
+        out = -out
+    return int(round(out)) if isinstance(value, int) else out
+
+
 @FUZZ
 @given(data=st.data())
 def test_mutated_values(base_text, data):
@@ -54,8 +65,11 @@ def test_mutated_values(base_text, data):
     leaves = _leaves(doc)
     for _ in range(data.draw(st.integers(1, 3), label="mutations")):
         container, key = data.draw(st.sampled_from(leaves), label="leaf")
-        kind = data.draw(st.sampled_from(["value", "delete", "unknown"]), label="kind")
-        if kind == "value":
+        kind = data.draw(st.sampled_from(["scaled", "scaled", "scaled", "value", "delete",
+                                          "unknown"]), label="kind")
+        if kind == "scaled":
+            container[key] = _scaled(container[key], data)
+        elif kind == "value":
             container[key] = data.draw(VALUES, label="value")
         elif kind == "delete" and isinstance(container, dict):
             container.pop(key, None)

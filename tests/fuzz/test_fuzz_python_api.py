@@ -46,7 +46,11 @@ def test_constructors(name, data):
     obj = TARGETS[name]
     fields = [f.name for f in dataclasses.fields(obj) if f.init and not f.name.startswith("_")]
     field = data.draw(st.sampled_from(fields), label="field")
-    value = data.draw(ANY, label="value")
+    old = getattr(obj, field)
+    if isinstance(old, (int, float)) and not isinstance(old, bool) and data.draw(st.booleans()):
+        value = type(old)(old * 10.0 ** data.draw(st.floats(-2.0, 2.0), label="log10 factor"))
+    else:
+        value = data.draw(ANY, label="value")
     with held_to_the_rule(f"python: {name}(...)"):
         new = dataclasses.replace(obj, **{field: value})
         if name in ("PropellerWing", "IsolatedPropeller"):
@@ -55,6 +59,10 @@ def test_constructors(name, data):
 
 
 SPEEDS = st.one_of(
+    st.lists(st.floats(min_value=1.0, max_value=600.0), min_size=2, max_size=6, unique=True)
+    .map(sorted),
+    st.lists(st.floats(min_value=1.0, max_value=600.0), min_size=2, max_size=6, unique=True)
+    .map(sorted),
     st.lists(st.floats(allow_nan=True, allow_infinity=True), max_size=6),
     st.lists(st.floats(min_value=-10.0, max_value=400.0), max_size=6),
     st.floats(allow_nan=True, allow_infinity=True), st.text(max_size=4), st.none(),
