@@ -64,7 +64,7 @@ def test_a_file_without_format_keys_is_read_as_version_1(doc, tmp_path):
 @pytest.mark.parametrize("text, match", [
     ("", "empty"),
     ("   \n", "empty"),
-    ("hello", "not valid JSON: Expecting value at line 1, column 1"),
+    ("hello", r"not valid JSON: Expecting value \(line 1, column 1\)"),
     ("{'model_name': 1}", "not valid JSON"),
     ("[1, 2, 3]", "must be an object, got a list"),
     ('"analysis"', "must be an object, got a string"),

@@ -400,8 +400,9 @@ def load(path: str | Path) -> ModelAnalysis:
         doc = json.loads(text, parse_constant=_refuse_constant)
     except json.JSONDecodeError as exc:
         end = " (the file ends early: truncated?)" if exc.pos >= len(text.rstrip()) else ""
-        raise v.InputError(f"{path}: not valid JSON: {exc.msg} at line {exc.lineno}, column "
-                           f"{exc.colno}{end}") from None
+        what = exc.msg[:-3] if exc.msg.endswith(" at") else exc.msg   # "... starting at"
+        raise v.InputError(f"{path}: not valid JSON: {what} (line {exc.lineno}, column "
+                           f"{exc.colno}){end}") from None
     except RecursionError:
         raise v.InputError(f"{path}: not an analysis file: nested too deeply") from None
     except ValueError as exc:  # InputError from _refuse_constant, too-long integers
