@@ -22,7 +22,7 @@ import numpy as np
 
 from propwhirl import fileio, io
 from propwhirl.limits import printable
-from propwhirl.analysis.stability import Instability, ModelAnalysis, analyse
+from propwhirl.analysis.stability import Instability, ModelAnalysis, analyse, describe_critical
 from propwhirl.cases.registry import case_model
 from propwhirl.model.systems import PropellerWing
 from propwhirl.reproduce.harness import load_references
@@ -114,12 +114,13 @@ def event_lines(a: ModelAnalysis, thesis: dict[str, float]) -> list[str]:
     lines.append("  content: dominant kinetic-energy share at the first speed; whirl: sense of the "
                  "propeller's theta-psi orbit\n  at the event; benignity [m/s] = (d zeta/dV)^-1 at "
                  "flutter onsets (eq. 5.13)")
+    for note in a.warnings:      # the aerodynamics' validity (propwhirl.model.validity)
+        lines.append(f"Warning: {printable(note)}")
     c = a.critical
     if c is None:
         lines.append("Critical: no instability in the speed range")
         return lines
-    f = f", {c.frequency_hz:.3f} Hz" if c.kind == "flutter" else ""
-    lines.append(f"Critical: {c.kind} of {a.describe(c.label)} at {c.V:.2f} m/s{f}")
+    lines.append("Critical: " + describe_critical(c, a.describe))
     fw = a.first("forward 1", "flutter")
     if c.kind == "divergence" and fw is not None and fw.V > c.V:
         thesis_fw = thesis[THESIS_EVENTS[("forward 1", "flutter", "onset")][0]]
