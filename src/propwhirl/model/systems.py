@@ -155,7 +155,9 @@ class StateSpaceModel:
 class PropellerWing(StateSpaceModel):
     """A cantilever wing with flexibly (or rigidly) mounted propellers (chapter 8, appendix D).
 
-    With no propellers it is the wing model of chapter 7.
+    With no propellers it is the wing model of chapter 7.  ``model.wing`` is the given wing, or,
+    when a propeller is off its nodes, that wing with every installation's y added to its
+    stations (so the mesh holds every propeller; rule in :mod:`propwhirl.model.mesh`).
     """
 
     wing: Wing = field(metadata=spec("wing", "", "the wing"))
