@@ -96,6 +96,12 @@ def test_a_per_element_array_has_one_value_per_element_of_the_mesh():
         replace(w, EI=np.full(20, 7e5))
 
 
+def test_an_empty_station_list_is_no_stations():
+    w = replace(baseline_wing(25), stations=[])
+    assert w.stations is None and w.uniform
+    assert np.array_equal(w.node_y, baseline_wing(25).node_y)
+
+
 # ----------------------------------------------------------------------------- errors
 @pytest.mark.parametrize("changes, words", [
     (dict(stations=(6.0,)), "stations[0] = 6.0 m is outside the wing: must be in (0, 5.7] m"),

@@ -49,7 +49,7 @@ def _call(name: str, fn: Callable, y: np.ndarray) -> np.ndarray:
 
 def _count_text(n: int, uniform: bool) -> str:
     """How an error states the element count: "n_elements = 25" or "25 elements (its mesh)"."""
-    return f"n_elements = {n}" if uniform else f"{n} elements (its mesh from the stations)"
+    return f"n_elements = {n}" if uniform else f"{n} elements (its mesh)"
 
 
 def _spanwise(name: str, value: Spanwise, y: np.ndarray, n_elements: int, unit: str,
@@ -165,6 +165,8 @@ class Wing:
         check_fields(self)  # types and the declared ranges of every field
         v.integer_at_least("n_elements", self.n_elements, 1)
         limits.check_elements(self.n_elements)
+        if self.stations is not None and len(self.stations) == 0:
+            object.__setattr__(self, "stations", None)  # no stations (saved as an omitted key)
         object.__setattr__(self, "_mesh", meshing.build(
             self.semi_span, self.n_elements, self.stations or (), self.max_element_length))
         if (self.polar_inertia is None) == (self.radius_of_gyration is None):
