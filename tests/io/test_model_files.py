@@ -168,7 +168,8 @@ def test_every_model_field_is_known_to_the_writer():
     known = {
         "Wing": {"semi_span", "mass_per_length", "EI", "GJ", "root_chord", "tip_chord", "chord",
                  "polar_inertia", "radius_of_gyration", "elastic_axis", "centre_of_gravity",
-                 "lift_slope", "aerodynamic_centre", "n_elements", "aero_model", "rayleigh", "name"},
+                 "lift_slope", "aerodynamic_centre", "n_elements", "stations", "max_element_length",
+                 "aero_model", "rayleigh", "name", "_mesh"},
         "Propeller": {"radius", "rotor", "masses", "pivot_pitch", "pivot_yaw", "f_theta", "f_psi",
                       "K_theta", "K_psi", "damping_theta", "damping_psi", "damping",
                       "spin_inertia", "n_blades", "hub_radius", "blade_chord", "operation",
@@ -252,7 +253,7 @@ zero_lift_angle_deg = -3.0
     m = io.loads(text)
     given = {"semi_span", "root_chord", "mass_per_length", "EI", "GJ", "radius_of_gyration",
              "n_elements", "density", "radius", "rotor", "f_theta", "f_psi", "propeller", "y",
-             "wing", "flight", "propellers", "_nodes", "elastic_axis", "centre_of_gravity",
+             "wing", "flight", "propellers", "_nodes", "_mesh", "elastic_axis", "centre_of_gravity",
              "speed_of_sound", "pivot_pitch", "pivot_yaw", "rotation", "n_blades", "hub_radius",
              "blade_chord", "beta_075_deg", "zero_lift_angle_deg"}
     objects = [m, m.wing, m.flight, m.propellers[0], m.propellers[0].propeller]

@@ -140,8 +140,8 @@ def test_an_installation_error_names_the_installation():
     tip = text.split("installations = [")[1].split("]")[0]
     assert tip.count("y_m =") == 2
     second_y = tip.split("y_m = ")[2].split(",")[0]
-    msg = _error(text.replace(f"y_m = {second_y}", "y_m = 2.0", 1))
-    assert "model.toml: [installations[1]] y_m = 2.0 is not a node of the 25-element mesh" in msg
+    msg = _error(text.replace(f"y_m = {second_y}", "y_m = 6.0", 1))
+    assert "model.toml: [installations[1]] y_m = 6.0 is outside the wing" in msg
     first_y = tip.split("y_m = ")[1].split(",")[0]
     msg = _error(text.replace(f"y_m = {second_y}", f"y_m = {first_y}", 1))
     assert f"[installations[1]] y_m = {first_y} is invalid: two propellers at node" in msg

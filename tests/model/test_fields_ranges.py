@@ -129,7 +129,7 @@ def _ranged():
             if isinstance(s.range, tuple):
                 out += [(cls, f.name, i, r) for i, r in enumerate(s.range)]
             elif s.form == "numbers":
-                out += [(cls, f.name, i, s.range) for i in range(s.length)]
+                out += [(cls, f.name, i, s.range) for i in range(s.length or 1)]
             elif s.range is not None:
                 out.append((cls, f.name, None, s.range))
             out += [(cls, f.name, e.name, e.range) for e in s.entries if e.range is not None]
@@ -154,7 +154,7 @@ def test_every_physical_field_has_a_range():
 def _build(cls, name, sub, value):
     obj = _base(cls)
     if sub is not None and isinstance(sub, int):  # a "split" or "numbers" entry
-        seq = list(getattr(obj, name))
+        seq = list(getattr(obj, name) or (None,))  # a list of any length: one entry
         seq[sub] = value
         value = tuple(seq)
     elif sub is not None:  # a mapping entry

@@ -61,7 +61,7 @@ def describe(model: PropellerWing) -> list[str]:
     return [
         f"{printable(model.name)}",
         f"  wing: {printable(w.name)}; semi-span {w.semi_span:g} m, chord {w.root_chord:g}-{w.tip_chord:g} m, "
-        f"{w.n_elements} elements, {w.aero_model} strip aerodynamics",
+        f"{w.element_count} elements, {w.aero_model} strip aerodynamics",
         f"  propeller: {printable(p.name)} at y = {inst.y:g} m ({inst.mount} mount), R = {p.radius:g} m, "
         f"f_theta = {p.f_theta:g} Hz, f_psi = {p.f_psi:g} Hz, {p.damping} = {p.damping_theta:g}",
         f"  operation: {p.operation}, beta_0.75 = {p.beta_075_deg:g} deg, "

@@ -288,7 +288,7 @@ def _value_type(f: Field) -> str:
         "string": strings or "string",
         "spanwise": "number, or one per element",
         "number_or_string": f"number or {strings}",
-        "numbers": f"{f.spec.length} numbers",
+        "numbers": f"{f.spec.length} numbers" if f.spec.length else "list of numbers",
         "table": "table", "tables": "list of tables", "mapping": "table",
         "derivatives": "table", "reference": "string",
         "installations": "list of tables",

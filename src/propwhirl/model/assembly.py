@@ -37,14 +37,15 @@ def scatter(blocks: np.ndarray, dofs: np.ndarray, size: int) -> np.ndarray:
 def wing_structure(wing: Wing) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Global structural mass, damping and stiffness of the free wing (root included).
 
-    Mass and stiffness from the generated beam element (7.9–7.15, assembled as in (C.18));
+    Mass and stiffness from the generated beam element (7.9–7.15, assembled as in (C.18)),
+    each element with its own length (non-uniform meshes, :mod:`propwhirl.model.mesh`);
     damping by the Rayleigh model C = μM + λK (7.22).  Shapes (3 n_nodes, 3 n_nodes).
     """
     p = wing.element_properties()
-    blocks = call_blocks(beam_element, "blocks", (wing.n_elements,), **p)
+    blocks = call_blocks(beam_element, "blocks", (wing.element_count,), **p)
     Me, Ke = blocks["mass"], blocks["stiffness"]
     size = 3 * wing.n_nodes
-    dofs = element_dofs(wing.n_elements)
+    dofs = element_dofs(wing.element_count)
     M = scatter(Me, dofs, size)
     K = scatter(Ke, dofs, size)
     mu, lam = wing.rayleigh

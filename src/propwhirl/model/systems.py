@@ -28,6 +28,7 @@ import numpy as np
 from propwhirl import limits
 from propwhirl import validate as v
 from propwhirl.model.fields import check_fields, spec
+from propwhirl.model.mesh import check_station
 from propwhirl.model.assembly import (
     LAG_STATES,
     blame_entry,
@@ -59,7 +60,9 @@ ELEMENT_UNITS = dict(length="m", m="kg/m", rho_Ip="kg m", x_alpha_b="m", EI="N m
 
 @dataclass(frozen=True)
 class Installation:
-    """A propeller attached to the wing at spanwise position y [m] (must be a node).
+    """A propeller attached to the wing at spanwise position y [m], anywhere in (0, semi_span].
+
+    :class:`PropellerWing` makes y a node of the mesh (it adds y to the wing's stations).
 
     `aero=False` switches this propeller's aerodynamic loads off (e.g. folded blades, as the
     X-57's inboard high-lift propellers in cruise); the model-wide `propeller_aero` switch
@@ -68,7 +71,7 @@ class Installation:
 
     propeller: Propeller = field(metadata=spec(
         "propeller", "", "key of a [propellers.KEY] table", form="reference"))
-    y: float = field(metadata=spec("y_m", "m", "spanwise position (must be a node)",
+    y: float = field(metadata=spec("y_m", "m", "spanwise position, in (0, semi_span] (made a node of the mesh)",
                                    range=(0.0, 1e3)))
     mount: Literal["flexible", "rigid"] = field(default="flexible", metadata=spec(
         "mount", "", "flexible (pitch and yaw DOFs) or rigid", default="setting"))
@@ -83,9 +86,8 @@ def node_at(wing: Wing, y: float, tol: float = 1e-6, name: str = "propeller posi
             path: tuple = ("y",)) -> int:
     """Index of the node at spanwise position y; an error names the nearest nodes otherwise.
 
-    Propellers must sit on a node (§8.3.3).  A position off the mesh is not moved silently:
-    choose `n_elements` so that a node falls there.  Errors name the position `name` and
-    carry `path` (see :class:`propwhirl.validate.InputError`).
+    Propellers sit on a node (§8.3.3); :class:`PropellerWing` makes its wing's mesh hold them.
+    Errors name the position `name` and carry `path` (see :class:`propwhirl.validate.InputError`).
     """
     ys = wing.node_y
     if y < -tol or y > wing.semi_span + tol:
@@ -94,9 +96,9 @@ def node_at(wing: Wing, y: float, tol: float = 1e-6, name: str = "propeller posi
     if abs(ys[i] - y) > tol * max(1.0, wing.semi_span):
         lo = int(np.searchsorted(ys, y)) - 1
         raise v.fail(
-            name, y, f"not a node of the {wing.n_elements}-element mesh: nearest nodes are "
-            f"{lo} (y = {ys[lo]:.6g} m) and {lo + 1} (y = {ys[lo + 1]:.6g} m); change "
-            "n_elements or the position", "m", path)
+            name, y, f"not a node of the {wing.element_count}-element mesh: nearest nodes are "
+            f"{lo} (y = {ys[lo]:.6g} m) and {lo + 1} (y = {ys[lo + 1]:.6g} m); add the "
+            "position to the wing's stations", "m", path)
     if i == 0:
         raise v.fail(name, y, "the clamped root: must be > 0", "m", path)
     return i
@@ -153,7 +155,9 @@ class StateSpaceModel:
 class PropellerWing(StateSpaceModel):
     """A cantilever wing with flexibly (or rigidly) mounted propellers (chapter 8, appendix D).
 
-    With no propellers it is the wing model of chapter 7.
+    With no propellers it is the wing model of chapter 7.  ``model.wing`` is the given wing, or,
+    when a propeller is off its nodes, that wing with every installation's y added to its
+    stations (so the mesh holds every propeller; rule in :mod:`propwhirl.model.mesh`).
     """
 
     wing: Wing = field(metadata=spec("wing", "", "the wing"))
@@ -176,6 +180,7 @@ class PropellerWing(StateSpaceModel):
     def __post_init__(self) -> None:
         check_fields(self)  # a Wing, a FlightCondition, Installations, bool switches
         limits.check_propellers(len(self.propellers))
+        object.__setattr__(self, "wing", self._meshed_wing())
         nodes = tuple(node_at(self.wing, inst.y, name=f"propellers[{j}].y",
                               path=("propellers", j, "y"))
                       for j, inst in enumerate(self.propellers))
@@ -187,6 +192,21 @@ class PropellerWing(StateSpaceModel):
                 f"node {dup} (y = {self.wing.node_y[dup]:.6g} m): at most one per node", "m",
                 ("propellers", j, "y"))
         object.__setattr__(self, "_nodes", nodes)
+
+    def _meshed_wing(self) -> Wing:
+        """The wing whose mesh holds every installation: the wing as given when each propeller
+        sits on one of its nodes (the thesis's uniform meshes, unchanged), else the wing with
+        every installation's y added to its stations (:meth:`Wing.with_stations`), so that a
+        propeller at any y in (0, semi_span] needs no choice of `n_elements`.  A position
+        outside the wing, at the root, or too close to a station is an error naming it."""
+        wing, ys = self.wing, [inst.y for inst in self.propellers]
+        names = [f"propellers[{j}].y" for j in range(len(ys))]
+        paths = [("propellers", j, "y") for j in range(len(ys))]
+        for y, name, path in zip(ys, names, paths):
+            check_station(name, y, wing.semi_span, path)
+        if all(wing.mesh.has_node(y) for y in ys):
+            return wing
+        return wing.with_stations(ys, names, paths)
 
     def with_(self, **changes) -> "PropellerWing":
         """A copy with fields replaced (switches, flight condition, ...)."""
@@ -287,7 +307,7 @@ class PropellerWing(StateSpaceModel):
             Mb, Kb = b["mass"], b["stiffness"]
             return Mb, vals["rayleigh_mu"] * Mb + vals["rayleigh_lambda"] * Kb, Kb
 
-        for e in range(self.wing.n_elements):
+        for e in range(self.wing.element_count):
             vals = {k: x[e:e + 1] for k, x in p.items()}
             vals.update(rayleigh_mu=mu, rayleigh_lambda=lam)
             dofs = tuple(f"node {i} {d}" for i in (e, e + 1) for d in WING_DOF_NAMES)

@@ -1,10 +1,14 @@
 """The flexible cantilever wing (thesis chapter 7): geometry, properties, discretisation.
 
 A :class:`Wing` is an unswept, possibly tapered beam clamped at the root (y = 0) and free at the
-tip (y = semi_span), discretised into `n_elements` equal Euler–Bernoulli elements (§7.1).
-Per-element properties (mass, inertia, stiffness, centre of gravity) are evaluated at element
-mid-span; strip-aerodynamic properties (chord, elastic axis, aerodynamic centre, lift-curve
-slope) at the nodes, where the thesis applies the aerodynamic loads (§7.2).
+tip (y = semi_span), discretised into Euler–Bernoulli elements (§7.1): `n_elements` equal ones
+by default, or a mesh whose nodes include given `stations` with elements no longer than
+`max_element_length` (the rule: :mod:`propwhirl.model.mesh`; the mesh is built once, on
+construction, and :attr:`Wing.mesh` holds it).  Per-element properties (mass, inertia,
+stiffness, centre of gravity) are evaluated at element mid-span, so a property that changes at a
+station is constant over each element; strip-aerodynamic properties (chord, elastic axis,
+aerodynamic centre, lift-curve slope) at the nodes, where the thesis applies the aerodynamic
+loads (§7.2), each node's strip reaching half-way to its neighbours.
 
 Every spanwise property accepts a scalar (uniform), an array with one value per element, or a
 callable of the spanwise position y [m].  Chordwise positions are fractions of the local chord
@@ -12,14 +16,16 @@ from the leading edge.  SI units.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Callable, Literal, Union
 
 import numpy as np
 
 from propwhirl import limits
 from propwhirl import validate as v
+from propwhirl.model import mesh as meshing
 from propwhirl.model.fields import check_fields, check_values, spec
+from propwhirl.model.mesh import Mesh
 
 Spanwise = Union[float, np.ndarray, Callable[[np.ndarray], np.ndarray]]
 LiftSlope = Union[float, Literal["elliptic"], Callable[[np.ndarray], np.ndarray]]
@@ -41,7 +47,13 @@ def _call(name: str, fn: Callable, y: np.ndarray) -> np.ndarray:
     return v.real(f"{name}(y)", out)
 
 
-def _spanwise(name: str, value: Spanwise, y: np.ndarray, n_elements: int, unit: str) -> np.ndarray:
+def _count_text(n: int, uniform: bool) -> str:
+    """How an error states the element count: "n_elements = 25" or "25 elements (its mesh)"."""
+    return f"n_elements = {n}" if uniform else f"{n} elements (its mesh)"
+
+
+def _spanwise(name: str, value: Spanwise, y: np.ndarray, n_elements: int, unit: str,
+              uniform: bool = True) -> np.ndarray:
     """Evaluate a spanwise property at element mid-points `y` (scalar, per element, callable)."""
     if callable(value):
         out = _call(name, value, y)
@@ -55,7 +67,7 @@ def _spanwise(name: str, value: Spanwise, y: np.ndarray, n_elements: int, unit: 
         return np.full(y.shape, v.finite(name, arr, unit))
     if arr.shape != (n_elements,):
         raise v.InputError(
-            f"{name} has {arr.size} values but the wing has n_elements = {n_elements}: "
+            f"{name} has {arr.size} values but the wing has {_count_text(n_elements, uniform)}: "
             f"give a scalar, one value per element, or a function of y"
         )
     return v.finite(name, arr, unit)
@@ -78,7 +90,13 @@ class Wing:
     EI, GJ : bending and torsional rigidity [N m²]
     lift_slope : C_lα [1/rad]: a number, "elliptic" (2π√(1−(y/L)²), eq. 7.81) or a function of y
     aerodynamic_centre : fraction of chord from LE (0.25 = quarter chord, a_c = −1/2)
-    n_elements : number of beam elements
+    n_elements : number of equal beam elements; with `stations`, the target count (each
+        interval between stations gets ⌈length n_elements / semi_span⌉ equal elements);
+        not used when `max_element_length` is given
+    stations : spanwise positions [m] in (0, semi_span] that must be nodes (where properties
+        change, where output is wanted); a PropellerWing adds its propellers' positions
+    max_element_length : longest element [m]; each interval between stations is divided
+        evenly into the fewest elements not longer than it
     aero_model : "leishman-nguyen" (2 lag states per node) or "wagner" (4 per node)
     rayleigh : (μ [1/s], λ [s]) of Rayleigh damping C = μM + λK (eq. 7.22)
     """
@@ -121,7 +139,17 @@ class Wing:
         "aerodynamic_centre_chord", "chord", "aerodynamic-centre position; omitted: quarter "
         "chord (thin aerofoil)", default="physical", form="spanwise", range=(0.0, 1.0)))
     n_elements: int = field(default=20, metadata=spec(
-        "n_elements", "", "number of equal beam elements", default="setting"))
+        "n_elements", "", "number of equal beam elements; with stations_m, the target count "
+        "(element length semi_span / n_elements); not used with max_element_length_m",
+        default="setting"))
+    stations: tuple[float, ...] | None = field(default=None, metadata=spec(
+        "stations_m", "m", "spanwise positions that must be nodes (where properties change, "
+        "where output is wanted; the propellers' positions are added); omitted: none",
+        default="none", form="numbers", range=(0.0, 1e3), ends="(]"))
+    max_element_length: float | None = field(default=None, metadata=spec(
+        "max_element_length_m", "m", "longest beam element: each interval between stations "
+        "divided evenly; omitted: semi_span / n_elements", default="none",
+        range=(1e-4, 1e3)))
     aero_model: Literal["leishman-nguyen", "wagner"] = field(default="leishman-nguyen", metadata=spec(
         "aero_model", "", "unsteady strip aerodynamics: 2 (Leishman-Nguyen) or 4 (Wagner) lag "
         "states per node", default="setting"))
@@ -130,11 +158,17 @@ class Wing:
         "Rayleigh damping C = mu M + lambda K (eq. 7.22); omitted: undamped (conservative)",
         default="physical", form="split", range=((0.0, 1e3), (0.0, 1.0))))
     name: str = field(default="wing", metadata=spec("name", "", "label", default="setting"))
+    _mesh: Mesh | None = field(default=None, init=False, repr=False, compare=False, metadata=spec(
+        None, "", "the mesh (derived from the fields above)", default="none", form="derived"))
 
     def __post_init__(self) -> None:
         check_fields(self)  # types and the declared ranges of every field
         v.integer_at_least("n_elements", self.n_elements, 1)
         limits.check_elements(self.n_elements)
+        if self.stations is not None and len(self.stations) == 0:
+            object.__setattr__(self, "stations", None)  # no stations (saved as an omitted key)
+        object.__setattr__(self, "_mesh", meshing.build(
+            self.semi_span, self.n_elements, self.stations or (), self.max_element_length))
         if (self.polar_inertia is None) == (self.radius_of_gyration is None):
             raise v.InputError("give exactly one of polar_inertia [kg m] or radius_of_gyration")
         # Evaluate everything once so bad input fails at construction, naming the parameter.
@@ -143,23 +177,61 @@ class Wing:
 
     # ------------------------------------------------------------------ discretisation
     @property
+    def mesh(self) -> Mesh:
+        """The mesh (:func:`propwhirl.model.mesh.build`), built once on construction."""
+        return self._mesh
+
+    @property
+    def uniform(self) -> bool:
+        """True for the `n_elements` equal elements (no stations, no maximum length)."""
+        return not self.stations and self.max_element_length is None
+
+    @property
+    def element_count(self) -> int:
+        """Number of elements of the mesh (= `n_elements` without stations and maximum length)."""
+        return self._mesh.n_elements
+
+    @property
     def n_nodes(self) -> int:
-        return self.n_elements + 1
+        return self._mesh.n_elements + 1
 
     @property
     def node_y(self) -> np.ndarray:
-        """Spanwise node positions [m], root (node 0) to tip."""
-        return np.linspace(0.0, self.semi_span, self.n_nodes)
+        """Spanwise node positions [m], root (node 0) to tip (a copy)."""
+        return self._mesh.node_y.copy()
 
     @property
     def element_length(self) -> np.ndarray:
-        return np.diff(self.node_y)
+        """Element lengths [m] (non-uniform with stations)."""
+        return self._mesh.element_length
 
     @property
     def element_y(self) -> np.ndarray:
         """Element mid-span positions [m]."""
-        y = self.node_y
-        return 0.5 * (y[:-1] + y[1:])
+        return self._mesh.element_y
+
+    def with_stations(self, stations, names=None, paths=None) -> "Wing":
+        """This wing with the positions `stations` [m] added to its own stations (one already
+        a station, or given twice, is added once); the mesh is rebuilt by the rule of
+        :mod:`propwhirl.model.mesh`.  Errors (outside (0, semi_span], an element too short)
+        name a position by `names` (default ``stations[i]``) and carry `paths`."""
+        own = tuple(self.stations or ())
+        names = list(names) if names is not None else [
+            f"stations[{len(own) + i}]" for i in range(len(stations))]
+        paths = list(paths) if paths is not None else [(n,) for n in names]
+        tol = meshing.tolerance(self.semi_span)
+        extra: list[int] = []
+        for i, y in enumerate(stations):
+            meshing.check_station(names[i], y, self.semi_span, paths[i])
+            if all(abs(y - s) > tol for s in own + tuple(stations[k] for k in extra)):
+                extra.append(i)
+        if not extra:
+            return self
+        new = tuple(float(stations[i]) for i in extra)
+        meshing.build(self.semi_span, self.n_elements, own + new, self.max_element_length,
+                      [f"stations[{i}]" for i in range(len(own))] + [names[i] for i in extra],
+                      [("stations", i) for i in range(len(own))] + [paths[i] for i in extra])
+        return replace(self, stations=own + new)
 
     def chord_at(self, y: np.ndarray) -> np.ndarray:
         """Local chord [m] at spanwise positions y [m]."""
@@ -179,10 +251,11 @@ class Wing:
         Returns length [m], m [kg/m], rho_Ip [kg m] (about the elastic axis), x_alpha_b [m]
         (centre of gravity aft of the elastic axis), EI, GJ [N m²].
         """
-        y, n = self.element_y, self.n_elements
+        y, n = self.element_y, self.element_count
         c = self.chord_at(y)
         def prop(name: str, unit: str) -> np.ndarray:  # every value within the declared range
-            return check_values(Wing, name, _spanwise(name, getattr(self, name), y, n, unit), y)
+            return check_values(Wing, name, _spanwise(name, getattr(self, name), y, n, unit,
+                                                      self.uniform), y)
 
         m = prop("mass_per_length", "kg/m")
         ea = prop("elastic_axis", "")
@@ -216,10 +289,10 @@ class Wing:
         width = np.zeros(n)
         width[:-1] += 0.5 * le
         width[1:] += 0.5 * le
-        ea = check_values(Wing, "elastic_axis",
-                          _node_value("elastic_axis", self.elastic_axis, y, self.element_y), y)
+        ea = check_values(Wing, "elastic_axis", _node_value(
+            "elastic_axis", self.elastic_axis, y, self.element_y, self.uniform), y)
         xac = check_values(Wing, "aerodynamic_centre", _node_value(
-            "aerodynamic_centre", self.aerodynamic_centre, y, self.element_y), y)
+            "aerodynamic_centre", self.aerodynamic_centre, y, self.element_y, self.uniform), y)
         return {
             "y": y,
             "width": width,
@@ -243,7 +316,8 @@ class Wing:
         return np.full(y.shape, float(self.lift_slope))
 
 
-def _node_value(name: str, value: Spanwise, y_nodes: np.ndarray, y_elem: np.ndarray) -> np.ndarray:
+def _node_value(name: str, value: Spanwise, y_nodes: np.ndarray, y_elem: np.ndarray,
+                uniform: bool = True) -> np.ndarray:
     """A spanwise property at the nodes: callables are evaluated there; per-element arrays are
     interpolated linearly between element mid-points (held constant beyond them)."""
     if callable(value):
@@ -256,7 +330,7 @@ def _node_value(name: str, value: Spanwise, y_nodes: np.ndarray, y_elem: np.ndar
         return np.full(y_nodes.shape, v.finite(name, arr))
     if arr.shape != y_elem.shape:
         raise v.InputError(
-            f"{name} has {arr.size} values but the wing has n_elements = {y_elem.size}: "
+            f"{name} has {arr.size} values but the wing has {_count_text(y_elem.size, uniform)}: "
             f"give a scalar, one value per element, or a function of y"
         )
     return np.interp(y_nodes, y_elem, v.finite(name, arr))
