@@ -41,6 +41,33 @@ def _name(path: Path, what: str) -> str:
     return f"{what} {str(path)!r}" if what else repr(str(path))
 
 
+def read_text(path: str | Path, what: str, *, empty_ok: bool = False) -> str:
+    """The UTF-8 text of the file `path` (a `what`, e.g. "analysis file"), with one-line
+    errors naming it: not found, unreadable (the OS's reason), not UTF-8 (the byte), empty
+    (unless `empty_ok`: the caller's parser then says what is missing).
+
+    >>> read_text("/nonexistent/a.json", "analysis file")
+    Traceback (most recent call last):
+    ...
+    propwhirl.validate.InputError: analysis file '/nonexistent/a.json' not found
+    """
+    path = Path(path)
+    article = "an" if what[:1].lower() in "aeiou" else "a"
+    try:
+        data = path.read_bytes()
+    except FileNotFoundError:
+        raise InputError(f"{_name(path, what)} not found") from None
+    except OSError as exc:
+        raise InputError(f"cannot read {_name(path, what)}: {reason(exc)}") from exc
+    if not empty_ok and not data.strip():
+        raise InputError(f"{path}: the file is empty, not {article} {what}")
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise InputError(f"{path}: not {article} {what}: not UTF-8 text (byte {exc.start})"
+                         ) from None
+
+
 def _create_temporary(path: Path) -> tuple[int, Path]:
     """A new temporary file beside `path`: (file descriptor, its path)."""
     flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0)

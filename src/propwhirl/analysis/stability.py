@@ -382,20 +382,7 @@ def load(path: str | Path) -> ModelAnalysis:
     True
     """
     path = Path(path)
-    try:
-        data = path.read_bytes()
-    except FileNotFoundError:
-        raise v.InputError(f"analysis file {str(path)!r} not found") from None
-    except OSError as exc:
-        raise v.InputError(f"cannot read analysis file {str(path)!r}: "
-                           f"{fileio.reason(exc)}") from exc
-    if not data.strip():
-        raise v.InputError(f"{path}: the file is empty, not an analysis file")
-    try:
-        text = data.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise v.InputError(f"{path}: not an analysis file: not UTF-8 text (byte {exc.start})"
-                           ) from None
+    text = fileio.read_text(path, "analysis file")
     try:
         doc = json.loads(text, parse_constant=_refuse_constant)
     except json.JSONDecodeError as exc:

@@ -411,13 +411,7 @@ def load_model(path: str | Path) -> Any:
     """Read a TOML model file written by :func:`save_model` (or by hand); errors as
     :func:`loads`, starting with the path."""
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise v.InputError(f"model file {str(path)!r} not found") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise v.InputError(f"cannot read model file {str(path)!r}: {exc}") from exc
-    return loads(text, str(path))
+    return loads(fileio.read_text(path, "model file", empty_ok=True), str(path))
 
 
 # =============================================================================== writing

@@ -70,19 +70,7 @@ def read_vgf_csv(path: str | Path) -> dict[str, np.ndarray]:
     Anything else is an :class:`~propwhirl.validate.InputError` naming the file and the line.
     """
     path = Path(path)
-    try:
-        data = path.read_bytes()
-    except FileNotFoundError:
-        raise v.InputError(f"V-g-f table {str(path)!r} not found") from None
-    except OSError as exc:
-        raise v.InputError(f"cannot read {str(path)!r}: {fileio.reason(exc)}") from exc
-    try:
-        text = data.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise v.InputError(f"{path}: not a V-g-f table: not UTF-8 text (byte {exc.start})"
-                           ) from None
-    if not text.strip():
-        raise v.InputError(f"{path}: the file is empty, not a V-g-f table")
+    text = fileio.read_text(path, "V-g-f table")
     try:
         rows = list(csv.reader(io.StringIO(text, newline="")))
     except csv.Error as exc:
