@@ -12,6 +12,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from helpers.files import unwritable_folder
+
 from propwhirl import fileio, io
 from propwhirl.analysis.stability import analyse, load
 from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
@@ -200,25 +202,6 @@ def test_a_folder_or_a_missing_folder_is_an_error_naming_the_path(tmp_path):
         fileio.write_text(tmp_path, "x")
     with pytest.raises(InputError, match=r"cannot write '.*missing/a\.txt': No such file"):
         fileio.write_text(tmp_path / "missing" / "a.txt", "x")
-
-
-def unwritable_folder(tmp_path: Path) -> Path:
-    """A folder no file can be created in: read-only permissions, or /sys for root (which
-    permissions do not stop)."""
-    folder = tmp_path / "ro"
-    folder.mkdir()
-    folder.chmod(0o555)
-    try:
-        (folder / "probe").write_text("x")
-    except OSError:
-        return folder
-    (folder / "probe").unlink()
-    if Path("/sys").is_dir():
-        try:
-            (Path("/sys") / "propwhirl-probe").write_text("x")
-        except OSError:
-            return Path("/sys")
-    pytest.skip("no unwritable folder on this machine")
 
 
 def test_check_writable(tmp_path):

@@ -12,6 +12,8 @@ from pathlib import Path
 
 import pytest
 
+from helpers.files import unwritable_folder
+
 from propwhirl import io
 from propwhirl.app import cli
 
@@ -32,25 +34,6 @@ def small_file(tmp_path_factory):
     path = tmp_path_factory.mktemp("models") / "small.toml"
     io.save_model(small_tip_model(), path)
     return path
-
-
-def unwritable_folder(tmp_path: Path) -> Path:
-    """A folder no file can be created in: read-only permissions, or /sys for root (which
-    permissions do not stop)."""
-    folder = tmp_path / "ro"
-    folder.mkdir()
-    folder.chmod(0o555)
-    try:
-        (folder / "probe").write_text("x")
-    except OSError:
-        return folder
-    (folder / "probe").unlink()
-    if Path("/sys").is_dir():
-        try:
-            (Path("/sys") / "propwhirl-probe").write_text("x")
-        except OSError:
-            return Path("/sys")
-    pytest.skip("no unwritable folder on this machine")
 
 
 # ----------------------------------------------------------------------------- Ctrl-C
