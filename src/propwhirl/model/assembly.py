@@ -72,17 +72,9 @@ def place(blocks: np.ndarray, rows: np.ndarray, cols: np.ndarray, shape: tuple[i
 LAG_STATES = {"leishman-nguyen": 2, "wagner": 4}
 
 
-def call(module, name: str, shape: tuple[int, ...], **values) -> np.ndarray:
-    """Call generated function `name` with the arguments it takes (picked from `values` by
-    name, per the module's OUTPUTS table), broadcast to `shape` + the matrix shape."""
-    argnames = module.OUTPUTS[name][0]
-    out = getattr(module, name)(**{a: values[a] for a in argnames})
-    return np.broadcast_to(out, shape + out.shape[-2:])
-
-
 def call_blocks(module, name: str, shape: tuple[int, ...], **values) -> dict[str, np.ndarray]:
-    """Call generated block function `name` — several matrices from one shared common-
-    subexpression elimination — with the arguments it takes (picked from `values` by name,
+    """Call generated block function `name` — the matrices of one group in one call, common
+    subexpressions computed once — with the arguments it takes (picked from `values` by name,
     per the module's BLOCKS table); each matrix broadcast to `shape` + its matrix shape."""
     argnames = module.BLOCKS[name][0]
     out = getattr(module, name)(**{a: values[a] for a in argnames})
