@@ -203,7 +203,8 @@ def _check_solved(sys: SecondOrder, X: np.ndarray, V) -> None:
             "damping or mass far outside the others", name, t, rows[r], cols[c])
 
 
-def state_matrix(sys: SecondOrder, V: np.ndarray | None = None) -> np.ndarray:
+def state_matrix(sys: SecondOrder, V: np.ndarray | None = None, *,
+                 finite_checked: bool = False) -> np.ndarray:
     """The state matrix A(V) (nV, 2n+m, 2n+m) of x = [q, q̇, w] (eq. 5.4, 7.59, D.27).
 
     The one builder of every model's A: ``A = [[0, I, 0], [−S1⁻¹S3, −S1⁻¹S2, S1⁻¹S4],
@@ -211,10 +212,13 @@ def state_matrix(sys: SecondOrder, V: np.ndarray | None = None) -> np.ndarray:
     condition number above :data:`SINGULAR_CONDITION` (badly scaled or singular) and solved
     blocks beyond :data:`RATE_LIMIT` raise :class:`StateMatrixError` (an InputError) naming
     the speed ``V`` [m/s] (optional; only used in the messages) and the entry's states.
+    ``finite_checked``: the caller has already passed `sys` through :func:`check_system`
+    (a model's ``second_order`` does), so it is not checked twice.
     """
     n, m = sys.n_dof, sys.n_lag
     nV = sys.S1.shape[0]
-    check_system(sys, V)
+    if not finite_checked:
+        check_system(sys, V)
     rhs = np.concatenate([sys.S3, sys.S2, sys.S4], axis=-1)
     _check_mass(sys, V)
     with np.errstate(all="ignore"):

@@ -116,9 +116,9 @@ class StateSpaceModel:
         D.27), by :func:`propwhirl.model.statespace.state_matrix`.  V [m/s], array; `options`
         go to ``second_order`` (e.g. ``omega`` of a PropellerWing)."""
         V = np.atleast_1d(np.asarray(V, dtype=float))
-        sys = self.second_order(V, **options)
+        sys = self.second_order(V, **options)          # finiteness checked there (_checked)
         try:
-            return state_matrix(sys, V)
+            return state_matrix(sys, V, finite_checked=True)
         except StateMatrixError as err:
             raise self._explained(err, V, options) from None
 
@@ -133,7 +133,7 @@ class StateSpaceModel:
 
     def _explained(self, err: StateMatrixError, V: np.ndarray, options: dict) -> v.InputError:
         """The error prefixed with the model parameter behind the offending entry, if found
-        (:meth:`_contributions` and :func:`propwhirl.model.blame.blame_entry`)."""
+        (:meth:`_contributions` and :func:`propwhirl.model.assembly.blame_entry`)."""
         t = min(err.index, V.size - 1)
         omega = options.get("omega")
         om = None if omega is None else np.broadcast_to(np.asarray(omega, float), V.shape)[t:t + 1]
