@@ -81,27 +81,26 @@ def call_blocks(module, name: str, shape: tuple[int, ...], **values) -> dict[str
     return {k: np.broadcast_to(x, shape + x.shape[-2:]) for k, x in out.items()}
 
 
-def wing_aero(wing: Wing, rho: float, V: np.ndarray) -> dict[str, np.ndarray | tuple[str, ...]]:
-    """Global strip-aerodynamic matrices of the wing over all nodes (root included).
+def wing_aero_blocks(wing: Wing, rho: float, V: np.ndarray) -> dict[str, np.ndarray | tuple[str, ...]]:
+    """Strip-aerodynamic blocks of every node (root included), before placement.
 
     The section loads of the generated strip-aerodynamics module (per unit span, §7.2, §7.5)
     act at the nodes, each multiplied by the node's tributary strip width (C.38–C.52, D.1–D.16);
     each node carries its own lag states (2 Leishman–Nguyen or 4 Wagner).  Returns, for the
-    speeds V (nV,): Ma, Ca, Ka (nV, 3N, 3N) with Q_W = Ma q̈ + Ca q̇ + Ka q + W0 w, the state
-    equation ẇ = Ww w + Wv q̇ + Wq q, and the lag-state labels.
+    speeds V (nV,): "Ma", "Ca", "Ka" (nV, nn, 2, 2) on each node's [h, α] with
+    Q_W = Ma q̈ + Ca q̇ + Ka q + W0 w; "W0" (nV, nn, 2, k); "Ww" (nV, nn, k, k); "Wv", "Wq"
+    (nV, nn, k, 2) of ẇ = Ww w + Wv q̇ + Wq q; "qrows" (nn, 2) and "wrows" (nn, k), the global
+    indices of each node's [h, α] and lag states; "m" the number of lag states; "labels".
     """
     from propwhirl.generated import strip_aero
 
     node = wing.node_properties()
     nn = wing.n_nodes
-    nq = 3 * nn
     k = LAG_STATES[wing.aero_model]
     Vc = np.asarray(V, dtype=float)[:, None]
     values = dict(rho=rho, V=Vc, b=node["b"], a=node["a"], Cla=node["Cla"], ac=node["ac"])
     shape = (Vc.shape[0], nn)
     width = node["width"][None, :, None, None]
-    qrows = 3 * np.arange(nn)[:, None] + np.array([0, 2])[None, :]  # h_i, α_i
-    wrows = k * np.arange(nn)[:, None] + np.arange(k)[None, :]
     group, names = {  # generated block function, role -> generated matrix
         "leishman-nguyen": ("ln_blocks", dict(M="ln_M", C="ln_C", K="ln_K", W0="ln_W0", Ww="ln_W1", Wv="ln_W2", Wq="ln_W3")),
         "wagner": ("wagner_blocks", dict(M="wagner_M", C="wagner_C", K="wagner_K", W0="wagner_W0", Ww="wagner_W2", Wq="wagner_W1")),
@@ -110,16 +109,34 @@ def wing_aero(wing: Wing, rho: float, V: np.ndarray) -> dict[str, np.ndarray | t
     mats = {role: blocks[fn] for role, fn in names.items()}
     M, C, K, W0, Ww, Wq = (mats[r] for r in ("M", "C", "K", "W0", "Ww", "Wq"))
     Wv = mats.get("Wv", np.zeros_like(Wq))
-    m = k * nn
     return {
-        "Ma": place(width * M, qrows, qrows, (nq, nq)),
-        "Ca": place(width * C, qrows, qrows, (nq, nq)),
-        "Ka": place(width * K, qrows, qrows, (nq, nq)),
-        "W0": place(width * W0, qrows, wrows, (nq, m)),
-        "Ww": place(Ww, wrows, wrows, (m, m)),
-        "Wv": place(Wv, wrows, qrows, (m, nq)),
-        "Wq": place(Wq, wrows, qrows, (m, nq)),
+        "Ma": width * M, "Ca": width * C, "Ka": width * K, "W0": width * W0,
+        "Ww": Ww, "Wv": Wv, "Wq": Wq,
+        "qrows": 3 * np.arange(nn)[:, None] + np.array([0, 2])[None, :],  # h_i, α_i
+        "wrows": k * np.arange(nn)[:, None] + np.arange(k)[None, :],
+        "m": k * nn,
         "labels": tuple(f"node {i} w{j + 1}" for i in range(nn) for j in range(k)),
+    }
+
+
+def wing_aero(wing: Wing, rho: float, V: np.ndarray) -> dict[str, np.ndarray | tuple[str, ...]]:
+    """Global strip-aerodynamic matrices of the wing over all nodes (root included).
+
+    :func:`wing_aero_blocks` placed: Ma, Ca, Ka (nV, 3N, 3N) with
+    Q_W = Ma q̈ + Ca q̇ + Ka q + W0 w, the state equation ẇ = Ww w + Wv q̇ + Wq q, and the
+    lag-state labels.
+    """
+    b = wing_aero_blocks(wing, rho, V)
+    nq, m, qrows, wrows = 3 * wing.n_nodes, b["m"], b["qrows"], b["wrows"]
+    return {
+        "Ma": place(b["Ma"], qrows, qrows, (nq, nq)),
+        "Ca": place(b["Ca"], qrows, qrows, (nq, nq)),
+        "Ka": place(b["Ka"], qrows, qrows, (nq, nq)),
+        "W0": place(b["W0"], qrows, wrows, (nq, m)),
+        "Ww": place(b["Ww"], wrows, wrows, (m, m)),
+        "Wv": place(b["Wv"], wrows, qrows, (m, nq)),
+        "Wq": place(b["Wq"], wrows, qrows, (m, nq)),
+        "labels": b["labels"],
     }
 
 

@@ -35,13 +35,14 @@ from propwhirl.model.assembly import (
     WING_DOF_NAMES,
     call_blocks,
     free_dofs,
-    wing_aero,
+    wing_aero_blocks,
     wing_dof_labels,
     wing_structure,
 )
 from propwhirl.generated import beam_element, prop_flexwing, prop_rigid
 from propwhirl.model.flight import SPEED_OF_SOUND_8000FT, FlightCondition  # noqa: F401 (re-export)
 from propwhirl.model.propeller import Propeller
+from propwhirl.model.blocks import BlockSystem, LagBlocks, LocalBlocks
 from propwhirl.model.protocol import DofMap, PropellerDofs
 from propwhirl.model import validity
 from propwhirl.model.statespace import SecondOrder, StateMatrixError, check_system, state_matrix
@@ -80,6 +81,12 @@ class Installation:
 
     def __post_init__(self) -> None:
         check_fields(self)  # a Propeller, y in range, mount one of the two, aero a bool
+
+
+def _design_key(p: Propeller) -> int:
+    """Key of a propeller in a derivatives memo: its identity (installations sharing one
+    Propeller object share its derivatives; equality would ignore fields compared loosely)."""
+    return id(p)
 
 
 def node_at(wing: Wing, y: float, tol: float = 1e-6, name: str = "propeller position y",
@@ -228,13 +235,17 @@ class PropellerWing(StateSpaceModel):
         return wing + prop
 
     # ------------------------------------------------------------------ propeller blocks
-    def _propeller_blocks(self, j: int, V: np.ndarray, omega: np.ndarray | None = None):
+    def _propeller_blocks(self, j: int, V: np.ndarray, omega: np.ndarray | None = None,
+                          derivatives: dict | None = None):
         """Local (M, C, K) over [θ, ψ, h_P, α_P] (flexible) or [h_P, α_P] (rigid), (nV, k, k).
 
-        `omega` [rad/s] (shape of V) overrides the propeller's own rotational speed."""
-        return self._propeller_matrices(j, self._propeller_values(j, V, omega))
+        `omega` [rad/s] (shape of V) overrides the propeller's own rotational speed;
+        `derivatives`: a memo {propeller: its aerodynamic derivatives at V}, shared by the
+        installations of one propeller design in one assembly."""
+        return self._propeller_matrices(j, self._propeller_values(j, V, omega, derivatives))
 
-    def _propeller_values(self, j: int, V: np.ndarray, omega: np.ndarray | None = None) -> dict:
+    def _propeller_values(self, j: int, V: np.ndarray, omega: np.ndarray | None = None,
+                          derivatives: dict | None = None) -> dict:
         """The arguments of the generated propeller blocks (inertia, mounts, spin, derivatives)."""
         inst = self.propellers[j]
         p = inst.propeller
@@ -261,7 +272,11 @@ class PropellerWing(StateSpaceModel):
             e_alpha=e_alpha,
         )
         if self.propeller_aero and inst.aero:
-            values.update(p.aerodynamic_derivatives(V, self.flight.speed_of_sound))
+            memo = {} if derivatives is None else derivatives
+            key = _design_key(p)
+            if key not in memo:
+                memo[key] = p.aerodynamic_derivatives(V, self.flight.speed_of_sound)
+            values.update(memo[key])
         return values
 
     def _propeller_matrices(self, j: int, values: dict):
@@ -333,38 +348,39 @@ class PropellerWing(StateSpaceModel):
         return self._checked(sys, V, {"omega": omega})
 
     def _assemble(self, V: np.ndarray, omega) -> SecondOrder:
-        nV = V.shape[0]
+        return self._blocks(V, omega).dense()
+
+    def second_order_blocks(self, V, omega=None) -> BlockSystem:
+        """:meth:`second_order` as constant matrices plus local blocks
+        (:class:`~propwhirl.model.blocks.BlockSystem`: dense, sparse-pencil and projected
+        forms, the last two linear in the number of elements).  Same checks of V."""
+        V = np.atleast_1d(v.positive("airspeed V", V, "m/s"))
+        if validity.has_aerodynamics(self):
+            validity.check_mach(V, self.flight.speed_of_sound)
+        with np.errstate(all="ignore"):
+            return self._blocks(V, omega)
+
+    def _blocks(self, V: np.ndarray, omega) -> BlockSystem:
+        """The blocks of the system: the wing structure (7.9–7.22), the strip aerodynamics of
+        each node (signs applied: S1 = M − M_a, ...), each propeller's block at its node."""
         wing = self.wing
         nqw = 3 * wing.n_nodes
         flex = self.flexible
         n = nqw + 2 * len(flex)
-        Ms, Cs, Ks = wing_structure(wing)
-        S1 = np.zeros((nV, n, n))
-        S2 = np.zeros((nV, n, n))
-        S3 = np.zeros((nV, n, n))
-        S1[:, :nqw, :nqw] = Ms
-        S2[:, :nqw, :nqw] = Cs
-        S3[:, :nqw, :nqw] = Ks
+        Ms, Cs, Ks = (np.zeros((n, n)) for _ in range(3))
+        for X, Xw in zip((Ms, Cs, Ks), wing_structure(wing)):
+            X[:nqw, :nqw] = Xw
+        groups = []
+        lag, m, w_labels, keep_w = None, 0, (), np.arange(0)
         if self.wing_aero:
-            aero = wing_aero(wing, self.flight.density, V)
-            S1[:, :nqw, :nqw] -= aero["Ma"]
-            S2[:, :nqw, :nqw] -= aero["Ca"]
-            S3[:, :nqw, :nqw] -= aero["Ka"]
-            m = aero["Ww"].shape[-1]
-            S4 = np.zeros((nV, n, m))
-            S4[:, :nqw, :] = aero["W0"]
-            Ww = aero["Ww"]
-            Wv = np.zeros((nV, m, n))
-            Wq = np.zeros((nV, m, n))
-            Wv[:, :, :nqw] = aero["Wv"]
-            Wq[:, :, :nqw] = aero["Wq"]
-            w_labels = aero["labels"]
-            k = LAG_STATES[wing.aero_model]
-            keep_w = np.arange(k, m)
-        else:
-            S4 = np.zeros((nV, n, 0))
-            Ww, Wv, Wq = np.zeros((nV, 0, 0)), np.zeros((nV, 0, n)), np.zeros((nV, 0, n))
-            w_labels, keep_w = (), np.arange(0)
+            aero = wing_aero_blocks(wing, self.flight.density, V)
+            groups.append(LocalBlocks("wing strips", aero["qrows"], -aero["Ma"], -aero["Ca"],
+                                      -aero["Ka"]))
+            m, w_labels = aero["m"], aero["labels"]
+            lag = LagBlocks(aero["qrows"], aero["wrows"], aero["W0"], aero["Ww"], aero["Wv"],
+                            aero["Wq"])
+            keep_w = np.arange(LAG_STATES[wing.aero_model], m)
+        derivatives: dict = {}
         for j, inst in enumerate(self.propellers):
             node = self.nodes[j]
             wing_idx = [3 * node, 3 * node + 2]
@@ -373,14 +389,12 @@ class PropellerWing(StateSpaceModel):
                 idx = np.array([pj, pj + 1] + wing_idx)
             else:
                 idx = np.array(wing_idx)
-            M, C, K = self._propeller_blocks(j, V, omega)
-            ix = np.ix_(idx, idx)
-            S1[(slice(None),) + ix] += M
-            S2[(slice(None),) + ix] += C
-            S3[(slice(None),) + ix] += K
-        full = SecondOrder(S1, S2, S3, S4, Ww, Wv, Wq, self.q_labels(), w_labels)
+            M, C, K = self._propeller_blocks(j, V, omega, derivatives)
+            groups.append(LocalBlocks(f"propeller {j}", idx[None, :], M[:, None], C[:, None],
+                                      K[:, None]))
         keep_q = np.concatenate([free_dofs(wing.n_nodes), np.arange(nqw, n)])
-        return full.reduced(keep_q, keep_w)
+        return BlockSystem(V, Ms, Cs, Ks, tuple(groups), lag, m, self.q_labels(), w_labels,
+                           keep_q, keep_w)
 
     def without_aerodynamics(self) -> "PropellerWing":
         """The same wing and propellers with wing and propeller aerodynamics off."""

@@ -1,0 +1,195 @@
+"""The second-order system as a sum of local blocks: dense, sparse and projected forms.
+
+A wing model's matrices (eq. 7.59, D.18–D.29) are a constant structural part plus local,
+speed-dependent blocks: the strip aerodynamics of each node on its [h, α] (7.24–7.80), each
+propeller's 4×4 (or 2×2) block on [θ, ψ, h_P, α_P] (8.1–8.42), and each node's lag states.
+:class:`BlockSystem` keeps them as blocks, so that
+
+* :meth:`BlockSystem.dense` is the dense :class:`~propwhirl.model.statespace.SecondOrder`
+  (the one assembly of :class:`~propwhirl.model.systems.PropellerWing`; blocks added in a fixed
+  order, so the dense matrices do not depend on which form was asked for first);
+* :meth:`BlockSystem.pencil` is the sparse first-order pencil E ẋ = F x of one speed
+  (E = diag(I, S1, I), F = [[0, I, 0], [−S3, −S2, S4], [Wq, Wv, Ww]]: the full-order model
+  for sparse shift-invert solves, memory and time linear in the number of elements);
+* :meth:`BlockSystem.project` is the Galerkin projection Φᵀ S Φ (and the lag states on a
+  basis Q) evaluated block by block — linear in the number of elements, never forming a dense
+  full-size matrix (:mod:`propwhirl.model.reduction`).
+
+All indices are *full* (clamped root included); ``keep_q`` and ``keep_w`` say which degrees of
+freedom and lag states remain (root removed, 7.59).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+
+from propwhirl.model.statespace import SecondOrder
+
+
+@dataclass(frozen=True)
+class LocalBlocks:
+    """Blocks added to S1, S2, S3 at global DOFs ``dofs`` (nb, k); values (nV, nb, k, k).
+
+    The DOFs of different blocks of one group do not overlap (one block per node or per
+    propeller), so a group is added with one fancy-indexed ``+=``."""
+
+    name: str
+    dofs: np.ndarray
+    S1: np.ndarray
+    S2: np.ndarray
+    S3: np.ndarray
+
+
+@dataclass(frozen=True)
+class LagBlocks:
+    """The lag states of each node: S4 (nV, nb, kq, kw) at (qrows, wrows), Ww (nV, nb, kw, kw),
+    Wv and Wq (nV, nb, kw, kq); qrows (nb, kq) and wrows (nb, kw) are full indices."""
+
+    qrows: np.ndarray
+    wrows: np.ndarray
+    S4: np.ndarray
+    Ww: np.ndarray
+    Wv: np.ndarray
+    Wq: np.ndarray
+
+
+@dataclass(frozen=True)
+class BlockSystem:
+    """S1 q̈ + S2 q̇ + S3 q = S4 w, ẇ = Ww w + Wv q̇ + Wq q as constant matrices plus blocks.
+
+    M, C, K: constant (n_q, n_q) structural parts (dense, V-independent); blocks: groups of
+    :class:`LocalBlocks` added in order (aerodynamic blocks carry their sign, S1 = M − M_a + …);
+    lag: the :class:`LagBlocks` or None; n_w: number of lag states (full); labels and
+    keep_q/keep_w: full labels and the kept indices.
+    """
+
+    V: np.ndarray
+    M: np.ndarray
+    C: np.ndarray
+    K: np.ndarray
+    blocks: tuple[LocalBlocks, ...]
+    lag: LagBlocks | None
+    n_w: int
+    q_labels: tuple[str, ...]
+    w_labels: tuple[str, ...]
+    keep_q: np.ndarray
+    keep_w: np.ndarray
+
+    @property
+    def n_q(self) -> int:
+        return self.M.shape[0]
+
+    # ------------------------------------------------------------------ dense
+    def dense(self) -> SecondOrder:
+        """The dense second-order system over the kept DOFs and lag states (all speeds)."""
+        nV, n, m = self.V.shape[0], self.n_q, self.n_w
+        S = [np.empty((nV, n, n)) for _ in range(3)]
+        for Si, X in zip(S, (self.M, self.C, self.K)):
+            Si[:] = X
+        for b in self.blocks:
+            r, c = b.dofs[:, :, None], b.dofs[:, None, :]
+            for Si, Bi in zip(S, (b.S1, b.S2, b.S3)):
+                Si[:, r, c] += Bi
+        S4 = np.zeros((nV, n, m))
+        Ww, Wv, Wq = np.zeros((nV, m, m)), np.zeros((nV, m, n)), np.zeros((nV, m, n))
+        lg = self.lag
+        if lg is not None:
+            qr, wr = lg.qrows, lg.wrows
+            S4[:, qr[:, :, None], wr[:, None, :]] = lg.S4
+            Ww[:, wr[:, :, None], wr[:, None, :]] = lg.Ww
+            Wv[:, wr[:, :, None], qr[:, None, :]] = lg.Wv
+            Wq[:, wr[:, :, None], qr[:, None, :]] = lg.Wq
+        full = SecondOrder(S[0], S[1], S[2], S4, Ww, Wv, Wq, self.q_labels, self.w_labels)
+        return full.reduced(self.keep_q, self.keep_w)
+
+    # ------------------------------------------------------------------ sparse pencil
+    def _sparse(self, t: int):
+        """Sparse S1, S2, S3 (n_q, n_q) and S4, Ww, Wv, Wq at speed index t (full size)."""
+        n, m = self.n_q, self.n_w
+        out = []
+        for k, X in enumerate((self.M, self.C, self.K)):
+            rows, cols, vals = [], [], []
+            for b in self.blocks:
+                Bi = (b.S1, b.S2, b.S3)[k][t]
+                rows.append(np.broadcast_to(b.dofs[:, :, None], Bi.shape).ravel())
+                cols.append(np.broadcast_to(b.dofs[:, None, :], Bi.shape).ravel())
+                vals.append(Bi.ravel())
+            local = sp.coo_matrix((np.concatenate(vals) if vals else np.zeros(0),
+                                   (np.concatenate(rows) if rows else np.zeros(0, int),
+                                    np.concatenate(cols) if cols else np.zeros(0, int))),
+                                  shape=(n, n))
+            out.append(sp.csr_matrix(X) + local.tocsr())
+        lg = self.lag
+        if lg is None:
+            return out + [sp.csr_matrix((n, m)), sp.csr_matrix((m, m)), sp.csr_matrix((m, n)),
+                          sp.csr_matrix((m, n))]
+
+        def put(B, r, c, shape):
+            rr = np.broadcast_to(r[:, :, None], B.shape).ravel()
+            cc = np.broadcast_to(c[:, None, :], B.shape).ravel()
+            return sp.csr_matrix((B.ravel(), (rr, cc)), shape=shape)
+
+        return out + [put(lg.S4[t], lg.qrows, lg.wrows, (n, m)),
+                      put(lg.Ww[t], lg.wrows, lg.wrows, (m, m)),
+                      put(lg.Wv[t], lg.wrows, lg.qrows, (m, n)),
+                      put(lg.Wq[t], lg.wrows, lg.qrows, (m, n))]
+
+    def pencil(self, t: int = 0) -> tuple[sp.csc_matrix, sp.csc_matrix]:
+        """(F, E) of the first-order form E ẋ = F x, x = [q, q̇, w], at speed index ``t``.
+
+        E = diag(I, S1, I), F = [[0, I, 0], [−S3, −S2, S4], [Wq, Wv, Ww]] over the kept states:
+        the eigenvalues of the pencil are those of A = E⁻¹F (eq. 5.4, 7.59), without forming the
+        dense S1⁻¹.  Sparse (CSC), memory and assembly linear in the number of elements."""
+        S1, S2, S3, S4, Ww, Wv, Wq = self._sparse(t)
+        kq, kw = self.keep_q, self.keep_w
+        S1, S2, S3 = (X[kq][:, kq] for X in (S1, S2, S3))
+        S4 = S4[kq][:, kw]
+        Ww, Wv, Wq = Ww[kw][:, kw], Wv[kw][:, kq], Wq[kw][:, kq]
+        n, m = kq.size, kw.size
+        eye = sp.identity(n, format="csr")
+        F = sp.bmat([[None, eye, None], [-S3, -S2, S4], [Wq, Wv, Ww]], format="csc")
+        E = sp.block_diag([eye, S1, sp.identity(m, format="csr")], format="csc")
+        if m == 0:
+            F = F[: 2 * n][:, : 2 * n]
+        return F, E
+
+    # ------------------------------------------------------------------ projection
+    def project(self, Phi: np.ndarray, Q: np.ndarray | None,
+                const: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
+                ) -> tuple[np.ndarray, ...]:
+        """Galerkin projection on q = Φ η, w = Q z, block by block (all speeds).
+
+        Phi: (n_q, r) over the full DOFs (zero rows at removed ones); Q: (n_w, L) over the full
+        lag states (zero rows at removed ones), orthonormal columns, or None without lag states.
+        const: Φᵀ M Φ, Φᵀ C Φ, Φᵀ K Φ if already known (they do not depend on V).
+        Returns (S1, S2, S3, S4, Ww, Wv, Wq) of the reduced system, leading speed axis.
+        """
+        nV, r = self.V.shape[0], Phi.shape[1]
+        if const is None:
+            const = tuple(Phi.T @ X @ Phi for X in (self.M, self.C, self.K))
+        S = [np.broadcast_to(c, (nV, r, r)).copy() for c in const]
+        for b in self.blocks:
+            P = Phi[b.dofs]                                   # (nb, k, r)
+            for Si, Bi in zip(S, (b.S1, b.S2, b.S3)):
+                Si += _sandwich(P, Bi, P)
+        lg = self.lag
+        if lg is None or Q is None:
+            L = 0 if Q is None else Q.shape[1]
+            z = np.zeros((nV, L, r))
+            return (*S, np.zeros((nV, r, L)), np.zeros((nV, L, L)), z, z.copy())
+        P, G = Phi[lg.qrows], Q[lg.wrows]                      # (nb, kq, r), (nb, kw, L)
+        S4 = _sandwich(P, lg.S4, G)
+        Ww = _sandwich(G, lg.Ww, G)
+        Wv = _sandwich(G, lg.Wv, P)
+        Wq = _sandwich(G, lg.Wq, P)
+        return (*S, S4, Ww, Wv, Wq)
+
+
+def _sandwich(P: np.ndarray, B: np.ndarray, R: np.ndarray) -> np.ndarray:
+    """Σ_b P_bᵀ B[v, b] R_b for blocks P (nb, k, r), B (nV, nb, k, l), R (nb, l, s):
+    (nV, r, s), by two batched matrix products (BLAS; linear in nb)."""
+    T = B @ R                                                  # (nV, nb, k, s)
+    nV, nb, k, s = T.shape
+    return P.reshape(nb * k, -1).T @ T.reshape(nV, nb * k, s)
