@@ -29,6 +29,8 @@ Units: SI (m, s, rad).  Angles in radians unless a name says ``_deg``.
 """
 from __future__ import annotations
 
+import functools
+
 import math
 from dataclasses import dataclass, field, fields
 from typing import Callable, Literal
@@ -322,9 +324,17 @@ def _panels(geometry: PropellerGeometry, cut_eta: np.ndarray) -> np.ndarray:
     return np.sort(edges, axis=1)
 
 
+@functools.lru_cache(maxsize=32)
+def _gauss_legendre(order: int) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss–Legendre nodes and weights on [−1, 1] (read-only; computed once per order)."""
+    x, w = np.polynomial.legendre.leggauss(order)
+    x.flags.writeable = w.flags.writeable = False
+    return x, w
+
+
 def _nodes(edges: np.ndarray, order: int) -> tuple[np.ndarray, np.ndarray]:
     """Composite Gauss–Legendre nodes and weights on each row's panels, (n_points, m)."""
-    x, w = np.polynomial.legendre.leggauss(order)
+    x, w = _gauss_legendre(order)
     a, b = edges[:, :-1, None], edges[:, 1:, None]
     eta = 0.5 * (a + b) + 0.5 * (b - a) * x
     wt = 0.5 * (b - a) * w
