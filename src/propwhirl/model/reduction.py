@@ -1,0 +1,245 @@
+"""Reduced-order models of large wings: in-vacuo modes, static correction, lag-state basis.
+
+A distributed-propeller wing of 100–200 elements has 800–1650 states; a dense
+eigendecomposition at each speed costs O(n³).  The analysis needs only the roots that can reach
+the imaginary axis, and those live in a low-frequency band.  :func:`modal_basis` builds a
+Galerkin basis for that band and :class:`ReducedModel` projects the model on it, block by block
+(:meth:`propwhirl.model.blocks.BlockSystem.project`: cost linear in the number of elements):
+
+1. **In-vacuo modes** of the non-rotating structure (K φ = ω² M φ, M-orthonormal).  The
+   *reference frequency* f_ref is the highest of: every propeller-dominated mode (pitch/yaw
+   kinetic energy > ½), the second bending-dominated and the first torsion-dominated wing mode —
+   the modes of classical bending–torsion flutter and of whirl flutter.  Every mode with
+   f ≤ f_c = ``factor`` · f_ref (default :data:`CUTOFF_FACTOR` = 3) is kept.
+2. **Static correction** (modal acceleration): the static responses K⁻¹ ΔK(V) Φ to the
+   aerodynamic stiffness ΔK = S3(V) − K of the kept modes at the middle and the top of the speed
+   range are added, and the whole set is made M-orthonormal (Rayleigh–Ritz, dependent vectors
+   dropped).  It restores the quasi-static deformation the truncated modes would carry (what
+   divergence needs).
+3. **Lag states**: the aerodynamic lag states of all nodes (eq. 7.54–7.56) are projected on a
+   spanwise basis: per lag state of a node, the span of the lag inputs (Wv Φ, Wq Φ), the lag
+   loads (S4ᵀ Φ) and one Krylov step (Ww applied to them) at the ends of the speed range,
+   compressed by an SVD (singular values below :data:`LAG_SVD_TOL` of the largest dropped).  For a
+   wing of constant chord the span of the inputs is invariant under Ww and the projection is
+   exact; for a tapered wing it is a Galerkin approximation.
+
+The reduced model's roots are approximations: :mod:`propwhirl.engine.correction` converges every
+crossing it finds on the full-order sparse pencil, and the shift it makes is reported as the
+truncation error (``docs/validation.md`` shows the cut-off's convergence and the comparison
+with the dense full-order analysis).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.linalg as sla
+
+from propwhirl import validate as v
+from propwhirl.model.blocks import BlockSystem
+from propwhirl.model.statespace import SecondOrder, rate_label, state_matrix
+
+#: f_c = CUTOFF_FACTOR × the reference frequency (module docstring, step 1)
+CUTOFF_FACTOR = 3.0
+#: relative singular-value threshold of the lag-state basis (step 3)
+LAG_SVD_TOL = 1e-8
+#: relative eigenvalue threshold of the M-Gram matrix below which a basis vector is dependent
+GRAM_TOL = 1e-12
+
+
+@dataclass(frozen=True)
+class ModalBasis:
+    """The Galerkin basis of a reduced model (module docstring).
+
+    Phi:          (n_q, r) M-orthonormal Ritz vectors over the model's full DOFs (zero rows at
+                  the clamped root), sorted by frequency.
+    frequencies_hz: (r,) their Ritz frequencies [Hz].
+    Q:            (n_w, L) orthonormal lag-state basis over the full lag states, or None.
+    cutoff_hz:    f_c [Hz]; reference_hz: f_ref [Hz]; n_modes: in-vacuo modes kept (the rest
+                  of the r vectors come from the static correction).
+    in_vacuo_hz:  the frequencies of every in-vacuo mode [Hz] (what the cut-off was chosen from).
+    """
+
+    Phi: np.ndarray
+    frequencies_hz: np.ndarray
+    Q: np.ndarray | None
+    cutoff_hz: float
+    reference_hz: float
+    n_modes: int
+    in_vacuo_hz: np.ndarray = field(repr=False)
+
+    @property
+    def r(self) -> int:
+        return self.Phi.shape[1]
+
+    @property
+    def L(self) -> int:
+        return 0 if self.Q is None else self.Q.shape[1]
+
+
+def _full_rows(n_full: int, keep: np.ndarray, X: np.ndarray) -> np.ndarray:
+    out = np.zeros((n_full,) + X.shape[1:])
+    out[keep] = X
+    return out
+
+
+def _reference_frequency(model, f: np.ndarray, shapes: np.ndarray, M: np.ndarray) -> float:
+    """f_ref [Hz] (module docstring, step 1) from the in-vacuo modes (shapes over kept DOFs)."""
+    groups = model.dof_map().groups()
+    e = np.real(shapes * (M @ shapes))
+    e = e / np.sum(e, axis=0)
+    share = {g: e[np.asarray(ix, dtype=int)].sum(axis=0) for g, ix in groups.items()}
+    zero = np.zeros(f.size)
+    prop = share.get("pitch", zero) + share.get("yaw", zero)
+    bend, tors = share.get("bending", zero), share.get("torsion", zero)
+    cands = list(f[prop > 0.5])
+    wing = prop <= 0.5
+    b = f[wing & (bend >= tors)]
+    t = f[wing & (tors > bend)]
+    cands += list(b[:2]) + list(t[:1])
+    return float(max(cands)) if cands else float(f[min(5, f.size - 1)])
+
+
+def modal_basis(model, speeds, *, cutoff_hz: float | None = None,
+                factor: float = CUTOFF_FACTOR) -> ModalBasis:
+    """The reduced basis of ``model`` (a PropellerWing) for the airspeeds ``speeds`` [m/s].
+
+    ``cutoff_hz`` overrides f_c; ``factor`` scales the reference frequency (module docstring).
+    """
+    V = np.asarray(speeds, dtype=float)
+    v.positive("factor", factor)
+    quiet = model.with_(rotating=False).without_aerodynamics()
+    qb = quiet.second_order_blocks(V[:1])
+    kq = qb.keep_q
+    S = qb.dense()
+    M, K = S.S1[0], S.S3[0]
+    w2, shapes = sla.eigh(K, M)
+    f_all = np.sqrt(np.abs(w2)) / (2 * np.pi)
+    ref = _reference_frequency(model, f_all, shapes, M)
+    fc = factor * ref if cutoff_hz is None else v.positive("cutoff_hz", cutoff_hz, "Hz")
+    n_keep = max(int(np.sum(f_all <= fc)), min(6, f_all.size))
+    Phi_c = shapes[:, :n_keep]
+    # static correction at the middle and the top of the range
+    Vs = np.unique([0.5 * (V[0] + V[-1]), V[-1]])
+    full = model.second_order_blocks(Vs).dense()
+    cho = sla.cho_factor(K)
+    X = [sla.cho_solve(cho, (full.S3[t] - K) @ Phi_c) for t in range(Vs.size)]
+    B = np.hstack([Phi_c] + X)
+    B = B / np.sqrt(np.einsum("ij,ij->j", B, M @ B))
+    g, U = sla.eigh(B.T @ M @ B)
+    ok = g > GRAM_TOL * g.max()
+    B = B @ (U[:, ok] / np.sqrt(g[ok]))
+    k2, U2 = sla.eigh(B.T @ K @ B)
+    Phi = B @ U2
+    freq = np.sqrt(np.abs(k2)) / (2 * np.pi)
+    Phi_full = _full_rows(qb.n_q, kq, Phi)
+    Q = _lag_basis(model.second_order_blocks(V[[0, -1]]), Phi_full)
+    return ModalBasis(Phi_full, freq, Q, float(fc), ref, n_keep, f_all)
+
+
+def _lag_basis(b: BlockSystem, Phi: np.ndarray) -> np.ndarray | None:
+    """Orthonormal spanwise basis of the lag states (module docstring, step 3)."""
+    lg = b.lag
+    if lg is None or b.keep_w.size == 0:
+        return None
+    P = Phi[lg.qrows]                                            # (nb, kq, r)
+    U_in = [np.einsum("vbkl,blr->vbkr", W, P) for W in (lg.Wv, lg.Wq)]
+    U_out = [np.einsum("vbkl,bkr->vblr", lg.S4, P)]
+    U = np.concatenate(U_in + U_out, axis=-1)                    # (nV, nb, kw, c)
+    U = np.concatenate([U, np.einsum("vbkl,vblc->vbkc", lg.Ww, U)], axis=-1)
+    keep_node = np.isin(lg.wrows[:, 0], b.keep_w)
+    U = U[:, keep_node]                                          # (nV, nb', kw, c)
+    cols = np.moveaxis(U, 1, 0).reshape(U.shape[1], -1)         # nodes × (speeds, kw, c)
+    norm = np.linalg.norm(cols, axis=0)
+    cols = cols[:, norm > 0] / norm[norm > 0]
+    u, s, _ = np.linalg.svd(cols, full_matrices=False)
+    Psi = u[:, s > LAG_SVD_TOL * s[0]]                            # (nb', d)
+    kw, d = lg.wrows.shape[1], Psi.shape[1]
+    Q = np.zeros((b.n_w, kw * d))
+    rows = lg.wrows[keep_node]
+    for j in range(kw):
+        Q[rows[:, j], j * d:(j + 1) * d] = Psi
+    return Q
+
+
+@dataclass(frozen=True)
+class ReducedModel:
+    """A PropellerWing projected on a :class:`ModalBasis`: state z = [η, η̇, ζ] (r, r, L).
+
+    ``state_matrix(V)`` is the reduced A(V) (the one builder,
+    :func:`propwhirl.model.statespace.state_matrix`); :attr:`lift` maps reduced state vectors to
+    the full state [q, q̇, w] of ``model`` (q = Φη, q̇ = Φη̇, w = Qζ); :meth:`pencil` is the
+    full-order sparse pencil of one speed, for the correction of crossings.
+    """
+
+    model: object
+    basis: ModalBasis
+    _const: tuple[np.ndarray, np.ndarray, np.ndarray] = field(repr=False, compare=False,
+                                                              default=None)
+
+    def __post_init__(self) -> None:
+        b = self.model.second_order_blocks(np.array([1.0]))
+        P = self.basis.Phi
+        object.__setattr__(self, "_const", tuple(P.T @ X @ P for X in (b.M, b.C, b.K)))
+        object.__setattr__(self, "_keep", (b.keep_q, b.keep_w))
+
+    @property
+    def name(self) -> str:
+        return self.model.name
+
+    @property
+    def n_states(self) -> int:
+        return 2 * self.basis.r + self.basis.L
+
+    def labels(self) -> tuple[str, ...]:
+        q = tuple(f"Ritz vector {i + 1}" for i in range(self.basis.r))
+        return q + tuple(rate_label(s) for s in q) + tuple(
+            f"lag basis {i + 1}" for i in range(self.basis.L))
+
+    @property
+    def displacement(self) -> np.ndarray:
+        mask = np.zeros(self.n_states, dtype=bool)
+        mask[: self.basis.r] = True
+        return mask
+
+    def second_order(self, V, omega=None) -> SecondOrder:
+        """The projected second-order system at airspeeds V [m/s] (array)."""
+        b = self.model.second_order_blocks(V, omega)
+        S1, S2, S3, S4, Ww, Wv, Wq = b.project(self.basis.Phi, self.basis.Q, self._const)
+        q = self.labels()[: self.basis.r]
+        return SecondOrder(S1, S2, S3, S4, Ww, Wv, Wq, q, self.labels()[2 * self.basis.r:])
+
+    def state_matrix(self, V, **options) -> np.ndarray:
+        """The reduced A(V), shape (nV, 2r + L, 2r + L)."""
+        V = np.atleast_1d(np.asarray(V, dtype=float))
+        return state_matrix(self.second_order(V, **options), V)
+
+    @property
+    def dof_basis(self) -> np.ndarray:
+        """Φ over the model's kept DOFs (n, r): q = Φ η."""
+        return self.basis.Phi[self._keep[0]]
+
+    @property
+    def lift(self) -> np.ndarray:
+        """(n_full_states, 2r + L): full state [q, q̇, w] of a reduced state [η, η̇, ζ]."""
+        kq, kw = self._keep
+        P = self.basis.Phi[kq]
+        Q = None if self.basis.Q is None else self.basis.Q[kw]
+        n, r, L = kq.size, self.basis.r, self.basis.L
+        out = np.zeros((2 * n + kw.size, 2 * r + L))
+        out[:n, :r] = P
+        out[n:2 * n, r:2 * r] = P
+        if Q is not None:
+            out[2 * n:, 2 * r:] = Q
+        return out
+
+    def pencil(self, V: float):
+        """The full-order sparse pencil (F, E) at one airspeed V [m/s]
+        (:meth:`propwhirl.model.blocks.BlockSystem.pencil`)."""
+        return self.model.second_order_blocks(np.array([float(V)])).pencil(0)
+
+
+def reduce(model, speeds, *, cutoff_hz: float | None = None,
+           factor: float = CUTOFF_FACTOR) -> ReducedModel:
+    """The :class:`ReducedModel` of ``model`` for ``speeds`` [m/s] (:func:`modal_basis`)."""
+    return ReducedModel(model, modal_basis(model, speeds, cutoff_hz=cutoff_hz, factor=factor))
