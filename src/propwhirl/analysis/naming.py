@@ -60,9 +60,10 @@ def _oscillatory(sw: Sweep, t: int = 0) -> list[int]:
             if sw.physical[t, k] and abs(lam[k].imag) > 1e-9 * max(1.0, abs(lam[k]))]
 
 
-def mode_names(model: Model, sw: Sweep) -> list[str]:
+def mode_names(model: Model, sw: Sweep, basis: np.ndarray | None = None) -> list[str]:
     """Names of the tracked modes of ``sw`` = a sweep of ``model``, decided at its first speed
-    (rules in the module docstring)."""
+    (rules in the module docstring).  ``basis``: a reduced model's basis over the DOFs (the
+    reference modes are then its Rayleigh–Ritz modes, :func:`~propwhirl.analysis.vibration.model_modes`)."""
     dm = model.dof_map()
     n = sw.n_modes
     lam0 = sw.eigenvalues[0]
@@ -79,8 +80,8 @@ def mode_names(model: Model, sw: Sweep) -> list[str]:
     if dm.has_wing:
         from propwhirl.analysis.vibration import label_modes, model_modes
 
-        modes, _ = model_modes(model)
-        ref = [lab for lab, _ in label_modes(model)]
+        modes, _ = model_modes(model, basis)
+        ref = [lab for lab, _ in label_modes(model, basis)]
         shapes = modes.shapes.astype(complex)
         M = mac(X0[sw.displacement][:, osc][:, :, None], shapes[:, None, :])
         rows, cols = linear_sum_assignment(-M)

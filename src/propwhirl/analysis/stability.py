@@ -31,6 +31,7 @@ from propwhirl.engine.results import SavedDict
 from propwhirl import fileio
 from propwhirl import validate as v
 from propwhirl.analysis.naming import mode_content, mode_names, whirl
+from propwhirl.analysis.reduced import choose_method, reduced_engine_analysis
 from propwhirl.model import validity
 from propwhirl.model.protocol import DofMap, Model, PropellerDofs
 
@@ -404,7 +405,7 @@ def load(path: str | Path) -> ModelAnalysis:
 
 # ----------------------------------------------------------------------------- analyse
 def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
-            options: TrackingOptions | None = None) -> ModelAnalysis:
+            options: TrackingOptions | None = None, method: str = "auto") -> ModelAnalysis:
     """Every instability of `model` over `speeds` [m/s], with tracked, named modes.
 
     Parameters
@@ -423,6 +424,12 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         crossing asks for them, so ``.sweep`` is coarse.
     options : TrackingOptions, optional
         Tuning of the mode tracker.
+    method : {"auto", "dense", "reduced"}, optional
+        "dense": every root of the full-order A(V) at each speed (the reference); "reduced":
+        the modes below a frequency cut-off on a reduced-order model, every crossing then
+        converged on the full-order model (:mod:`propwhirl.analysis.reduced`); "auto"
+        (default): reduced for wing models of more than
+        :data:`~propwhirl.analysis.reduced.REDUCED_ABOVE` states, else dense.
 
     Returns
     -------
@@ -453,11 +460,18 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
     if options is not None and not isinstance(options, TrackingOptions):
         raise v.InputError(f"options = {options!r} is invalid: must be a TrackingOptions")
     dm = model.dof_map()
-    an = engine_analyse(model.state_matrix, grid, displacement=dm.displacement,
-                        state_labels=dm.state_labels, options=options, xtol=xtol,
-                        **({"initial_step": None} if vgf else {}))
+    if choose_method(model, method) == "reduced":
+        run = reduced_engine_analysis(model, grid, displacement=dm.displacement,
+                                      state_labels=dm.state_labels, options=options, xtol=xtol,
+                                      vgf=bool(vgf))
+        an, matrix_fn, basis = run.analysis, run.model.state_matrix, run.model.dof_basis
+    else:
+        an = engine_analyse(model.state_matrix, grid, displacement=dm.displacement,
+                            state_labels=dm.state_labels, options=options, xtol=xtol,
+                            **({"initial_step": None} if vgf else {}))
+        matrix_fn, basis = model.state_matrix, None
     sw = an.sweep
-    names = mode_names(model, sw)
+    names = mode_names(model, sw, basis)
     sw = sw.relabel(names)
     events = []
     for p in an.criticals.points:
@@ -471,7 +485,7 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         events.append(Instability(kind, "unstable-at-start", int(k), names[k], float(sw.V[0]),
                                   float(abs(lam0.imag) / (2 * np.pi))))
     events += [Instability("divergence", "frequency-zero", p.mode, names[p.mode], p.V, 0.0)
-               for p in frequency_zero_points(sw, model.state_matrix, xtol=xtol)]
+               for p in frequency_zero_points(sw, matrix_fn, xtol=xtol)]
     events.sort(key=lambda e: (e.V, e.mode))
     notes = validity.analysis_warnings(
         model, (float(sw.V[0]), float(sw.V[-1])),

@@ -106,18 +106,24 @@ def classify_wing_modes(wing: Wing, count: int) -> list[tuple[str, float]]:
     return out
 
 
-def model_modes(model) -> tuple[Modes, np.ndarray]:
+def model_modes(model, basis: np.ndarray | None = None) -> tuple[Modes, np.ndarray]:
     """Undamped in-vacuo modes of any model (no aerodynamics; the gyroscopic and dissipative
     terms, which live in the damping matrix, play no part): K x = ω² M x with the structural
     M and K of ``model.without_aerodynamics()``.
 
+    ``basis`` (n, r): Rayleigh–Ritz on its columns instead (a reduced model's basis,
+    :mod:`propwhirl.model.reduction`): r modes, shapes lifted to the n DOFs.
     Returns the modes and the (reduced) structural mass matrix they are normalised with.
     """
     s = model.without_aerodynamics().second_order(np.array([1.0]))
-    return undamped_modes(s.S1[0], s.S3[0], s.q_labels), s.S1[0]
+    if basis is None:
+        return undamped_modes(s.S1[0], s.S3[0], s.q_labels), s.S1[0]
+    P = np.asarray(basis)
+    m = undamped_modes(P.T @ s.S1[0] @ P, P.T @ s.S3[0] @ P, s.q_labels)
+    return Modes(m.omega, P @ m.shapes, s.q_labels), s.S1[0]
 
 
-def label_modes(model) -> list[tuple[str, float]]:
+def label_modes(model, basis: np.ndarray | None = None) -> list[tuple[str, float]]:
     """All non-rotating modes of a PropellerWing as (label, frequency [Hz]), ascending.
 
     The thesis names one backward and one forward whirl mode per flexibly mounted propeller
@@ -128,8 +134,9 @@ def label_modes(model) -> list[tuple[str, float]]:
     so the shifts stay far below the gaps between modes), each mode followed by the Campbell
     tracker (module docstring); with N flexible propellers the N modes that fall most are
     'backward k', the N that rise most 'forward k' (k by frequency), the rest 'wing n'.
+    ``basis``: the modes of the Rayleigh–Ritz problem on its columns (:func:`model_modes`).
     """
-    modes, _ = model_modes(model)
+    modes, _ = model_modes(model, basis)
     f0 = modes.frequency_hz
     kinds = ["wing"] * f0.size
     flex = [model.propellers[p.number].propeller for p in model.dof_map().propellers]
@@ -137,7 +144,8 @@ def label_modes(model) -> list[tuple[str, float]]:
         f_mount = min(min(p.stiffness()[0] / p.pivot_inertia()["I_theta_P"],
                           p.stiffness()[1] / p.pivot_inertia()["I_psi_P"]) for p in flex) ** 0.5
         rpm = 0.1 * f_mount * 60.0 / (2.0 * np.pi)
-        tracks = _track(_GyroscopicSystem.of(model), np.array([0.0, rpm]) * 2.0 * np.pi / 60.0)
+        tracks = _track(_GyroscopicSystem.of(model, basis),
+                        np.array([0.0, rpm]) * 2.0 * np.pi / 60.0)
         delta = tracks.omega[-1] - tracks.omega[0]
         n = len(flex)
         order = np.argsort(delta)
@@ -229,7 +237,8 @@ class _GyroscopicSystem:
     dG: np.ndarray
 
     @classmethod
-    def of(cls, model) -> "_GyroscopicSystem":
+    def of(cls, model, basis: np.ndarray | None = None) -> "_GyroscopicSystem":
+        """The system of ``model``; with ``basis`` (n, r), projected on its columns."""
         quiet = model.with_(wing_aero=False, propeller_aero=False, rotating=True)
 
         def matrices(omega: np.ndarray):
@@ -238,7 +247,19 @@ class _GyroscopicSystem:
             return s.S1, _skew_part(s.S2), s.S3
 
         _, G, _ = matrices(np.array([0.0, 1.0]))
-        return cls(matrices, G[1] - G[0])
+        if basis is None:
+            return cls(matrices, G[1] - G[0])
+        # projected: M and K do not depend on Ω and G is linear in it (the rotor's I_Ω Ω)
+        P = np.asarray(basis)
+        M0, G0, K0 = (P.T @ X[0] @ P for X in matrices(np.array([0.0])))
+        dG = P.T @ (G[1] - G[0]) @ P
+
+        def projected(omega: np.ndarray):
+            om = np.asarray(omega, dtype=float)[:, None, None]
+            shape = (om.shape[0],) + M0.shape
+            return np.broadcast_to(M0, shape), G0 + om * dG, np.broadcast_to(K0, shape)
+
+        return cls(projected, dG)
 
 
 @dataclass(frozen=True)
@@ -307,7 +328,7 @@ def _continue_repeated(a: _Node, b: _Node) -> _Node:
         cols = np.sort(np.argsort(-np.sum(np.abs(C) ** 2, axis=0))[: g.size])
         U, _, Vh = np.linalg.svd(C[:, cols])
         Z[:, g] = Z[:, g] @ (U @ Vh)
-    slope = np.real(np.einsum("ik,ij,jk->k", Z.conj(), a.dH, Z))
+    slope = np.real(np.sum(Z.conj() * (a.dH @ Z), axis=0))
     return replace(a, Z=Z, slope=slope)
 
 

@@ -1,0 +1,128 @@
+"""The analysis of large models: reduced-order tracking, full-order crossings.
+
+:func:`choose_method` decides between the dense full-order engine (``"dense"``: the reference,
+every root of A(V), cost O(n³) per speed) and the reduced one (``"reduced"``), by size: models
+of more than :data:`REDUCED_ABOVE` states that can be reduced (a
+:class:`~propwhirl.model.systems.PropellerWing`) are reduced.  Every thesis model is below it.
+
+:func:`reduced_engine_analysis` runs the engine's tracker and crossing refinement on the
+:class:`~propwhirl.model.reduction.ReducedModel` (states 2r + L instead of 2n + m), then
+corrects every crossing on the full-order sparse pencil
+(:func:`propwhirl.engine.correction.correct_crossing`) and lifts the tracked eigenvectors to the
+full state lazily (:class:`LiftedEigenvectors`: kept as reduced vectors, r + L entries each, and
+lifted only where a result is read — the mode names at the first speed, the mode shapes of the
+events, a saved file with eigenvectors).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from propwhirl import validate as v
+from propwhirl.engine import analyse as engine_analyse
+from propwhirl.engine.correction import correct_crossing
+from propwhirl.engine.results import Analysis, Criticals
+from propwhirl.model.reduction import CUTOFF_FACTOR, ReducedModel, reduce
+
+#: models with more states than this are analysed reduced by default (``method="auto"``)
+REDUCED_ABOVE = 400
+METHODS = ("auto", "dense", "reduced")
+
+
+def choose_method(model, method: str) -> str:
+    """"dense" or "reduced" for ``method`` ("auto", "dense" or "reduced") and ``model``."""
+    if method not in METHODS:
+        raise v.InputError(f"method = {method!r} is invalid: must be one of "
+                           f"{', '.join(repr(m) for m in METHODS)}")
+    reducible = hasattr(model, "second_order_blocks")
+    if method == "reduced" and not reducible:
+        raise v.InputError(f"method = 'reduced' is invalid for a {type(model).__name__}: "
+                           "only wing models (PropellerWing) are reduced; use 'dense'")
+    if method == "auto":
+        return "reduced" if reducible and model.dof_map().n_states > REDUCED_ABOVE else "dense"
+    return method
+
+
+class LiftedEigenvectors:
+    """Eigenvectors ``(T, n_full, n_modes)`` kept in reduced coordinates and lifted on access.
+
+    Indexing like the array (``X[t]``, ``X[t, :, k]``, ``X[0][mask]``) lifts only the speeds
+    asked for; ``np.asarray(X)`` lifts all (a saved file with eigenvectors).
+    """
+
+    def __init__(self, reduced: np.ndarray, lift: np.ndarray) -> None:
+        self.reduced = reduced
+        self.lift = lift
+
+    @property
+    def shape(self) -> tuple[int, int, int]:
+        T, _, k = self.reduced.shape
+        return (T, self.lift.shape[0], k)
+
+    ndim = 3
+    dtype = np.dtype(complex)
+
+    def __len__(self) -> int:
+        return self.reduced.shape[0]
+
+    def __getitem__(self, index):
+        if not isinstance(index, tuple):
+            index = (index,)
+        t, rest = index[0], index[1:]
+        Xr = self.reduced[t]                                  # (..., n_r, k)
+        full = np.matmul(self.lift, Xr)
+        if not rest:
+            return full
+        lead = (slice(None),) * (full.ndim - 2)
+        return full[lead + tuple(rest)]
+
+    def __array__(self, dtype=None, copy=None):
+        out = np.matmul(self.lift, self.reduced)
+        return out if dtype is None else out.astype(dtype)
+
+
+@dataclass(frozen=True)
+class ReducedRun:
+    """What :func:`reduced_engine_analysis` returns: the engine Analysis (lifted sweep,
+    corrected crossings), the reduced model, and per crossing the correction [m/s] (the
+    truncation error of the reduced model at that crossing; None where it failed)."""
+
+    analysis: Analysis
+    model: ReducedModel
+    corrections: tuple[float | None, ...]
+
+
+def reduced_engine_analysis(model, grid: np.ndarray, *, displacement, state_labels,
+                            options=None, xtol: float, vgf: bool = False,
+                            cutoff_hz: float | None = None,
+                            factor: float = CUTOFF_FACTOR) -> ReducedRun:
+    """The engine on the reduced model, crossings corrected on the full order (module doc)."""
+    R = reduce(model, grid, cutoff_hz=cutoff_hz, factor=factor)
+    an = engine_analyse(R.state_matrix, grid, displacement=R.displacement,
+                        state_labels=R.labels(), options=options, xtol=xtol,
+                        **({"initial_step": None} if vgf else {}))
+    lift = R.lift
+    points, shifts = [], []
+    for p in an.criticals.points:
+        x0 = lift @ p.eigenvector
+        c = correct_crossing(R.pencil, p.V, p.eigenvalue, x0, xtol=xtol)
+        if c is None:
+            points.append(replace(p, eigenvector=x0 / np.linalg.norm(x0)))
+            shifts.append(None)
+            continue
+        shifts.append(c.V - p.V)
+        half = 0.5 * (p.bracket[1] - p.bracket[0])
+        points.append(replace(p, V=c.V, bracket=(c.V - half, c.V + half),
+                              eigenvalue=c.eigenvalue, eigenvector=c.eigenvector,
+                              frequency_hz=abs(c.eigenvalue.imag) / (2 * np.pi)))
+    stats = dict(an.criticals.stats)
+    stats["corrected"] = sum(s is not None for s in shifts)
+    crit = Criticals(tuple(points), an.criticals.humps, an.criticals.unstable_at_start, stats)
+    sw = an.sweep
+    sw_stats = dict(sw.stats, reduced_states=R.n_states, reduced_r=R.basis.r,
+                    reduced_L=R.basis.L)
+    lifted = replace(sw, eigenvectors=LiftedEigenvectors(sw.eigenvectors, lift),
+                     state_labels=tuple(state_labels), displacement=np.asarray(displacement),
+                     stats=sw_stats)
+    return ReducedRun(Analysis(lifted, crit), R, tuple(shifts))
