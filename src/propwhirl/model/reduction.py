@@ -125,10 +125,11 @@ def modal_basis(model, speeds, *, cutoff_hz: float | None = None,
     cho = sla.cho_factor(K)
     X = [sla.cho_solve(cho, (full.S3[t] - K) @ Phi_c) for t in range(Vs.size)]
     B = np.hstack([Phi_c] + X)
-    B = B / np.sqrt(np.einsum("ij,ij->j", B, M @ B))
-    g, U = sla.eigh(B.T @ M @ B)
-    ok = g > GRAM_TOL * g.max()
-    B = B @ (U[:, ok] / np.sqrt(g[ok]))
+    for _ in range(2):                    # M-orthonormal, dependent vectors dropped; twice,
+        B = B / np.sqrt(np.einsum("ij,ij->j", B, M @ B))     # for the rounding of the first
+        g, U = sla.eigh(B.T @ M @ B)
+        ok = g > GRAM_TOL * g.max()
+        B = B @ (U[:, ok] / np.sqrt(g[ok]))
     k2, U2 = sla.eigh(B.T @ K @ B)
     Phi = B @ U2
     freq = np.sqrt(np.abs(k2)) / (2 * np.pi)

@@ -1,0 +1,41 @@
+"""engine.correction: crossings converged on a sparse pencil."""
+import numpy as np
+import scipy.sparse as sp
+
+from propwhirl.engine.correction import correct_crossing, full_order_root
+
+
+def oscillator(V):
+    """ẍ + (0.5 − 0.01 V) ẋ + 100 x = 0 with a stable spectator: flutter at V = 50 m/s."""
+    F = sp.csc_matrix(np.array([[0.0, 1.0, 0.0], [-100.0, -(0.5 - 0.01 * V), 0.0],
+                                [0.0, 0.0, -3.0]]))
+    E = sp.csc_matrix(np.diag([1.0, 2.0, 1.0])) @ sp.csc_matrix(np.diag([1.0, 0.5, 1.0]))
+    return F, E
+
+
+def test_flutter_crossing_is_converged_from_a_perturbed_start():
+    lam0 = 0.01 + 10j                      # a reduced model's estimate near V = 49 m/s
+    x0 = np.array([1.0, lam0, 0.0])
+    c = correct_crossing(oscillator, 49.0, lam0, x0, xtol=0.01)
+    assert c is not None
+    assert abs(c.V - 50.0) < 1e-3
+    assert abs(c.eigenvalue.real) < 1e-6 and abs(abs(c.eigenvalue.imag) - 10.0) < 1e-3
+
+
+def test_divergence_root_in_real_arithmetic():
+    pencil = lambda V: (sp.csc_matrix([[V - 30.0, 0.0], [0.0, -5.0]]), sp.identity(2, format="csc"))  # noqa: E731
+    c = correct_crossing(pencil, 29.5, -0.5 + 0j, np.array([1.0, 0.0]), xtol=0.01)
+    assert c is not None and abs(c.V - 30.0) < 1e-3 and c.eigenvalue.imag == 0
+
+
+def test_inverse_iteration_finds_the_root_nearest_the_shift():
+    F, E = oscillator(40.0)
+    lam, x = full_order_root(F, E, 0.0 + 9.9j, np.array([1.0, 10j, 0.0]))
+    # converged to the residual rule (1e-10 of the pencil norm): λ to ~1e-8
+    assert abs(lam - (-0.05 + 1j * np.sqrt(100 - 0.05 ** 2))) < 1e-7
+
+
+def test_a_branch_jump_or_no_crossing_returns_none():
+    """The spectator root (−3) never crosses: no secant root inside the bounds."""
+    assert correct_crossing(oscillator, 49.0, -3.0 + 0j, np.array([0.0, 0.0, 1.0]),
+                            xtol=0.01) is None
