@@ -97,3 +97,13 @@ def test_rendered_docstrings_show_no_sphinx_roles(site: Path) -> None:
     for package in API_PACKAGES:
         html = (site / "api" / package / "index.html").read_text(encoding="utf-8")
         assert not re.search(r":(func|class|mod|meth|data|attr):", html), package
+
+
+def test_getting_started_python_example_runs(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    text = (ROOT / "docs" / "getting-started.md").read_text(encoding="utf-8")
+    blocks = re.findall(r"```python\n(.*?)```", text, flags=re.S)
+    assert blocks, "no Python example in docs/getting-started.md"
+    monkeypatch.chdir(tmp_path)
+    for code in blocks:
+        exec(compile(code, "docs/getting-started.md", "exec"), {})
+    assert (tmp_path / "a.json").is_file()
