@@ -4,6 +4,7 @@
 #   make test-fast the suite without the `long` checks
 #   make generate  rebuild generated/ from the SymPy derivations
 #   make bench     engine vs the thesis's fixed-grid sweep; rewrites the tables of docs/performance.md
+#   make docs      the documentation site in site/ (mkdocs, strict: a warning fails; the test suite builds it too)
 PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
@@ -11,7 +12,7 @@ BIN    := $(VENV)/bin
 export OPENBLAS_NUM_THREADS ?= 1
 export OMP_NUM_THREADS ?= 1
 
-.PHONY: run test test-fast generate bench clean
+.PHONY: run test test-fast generate bench docs clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -26,19 +27,23 @@ comma := ,
 generate: $(VENV)/.stamp-codegen
 	$(BIN)/python -m derivations.generate --out generated
 
-test: $(VENV)/.stamp-codegen+test+plots+toml
+test: $(VENV)/.stamp-codegen+docs+test+plots+toml
 	$(BIN)/python -m pytest -q
 
-test-fast: $(VENV)/.stamp-codegen+test+plots+toml
+test-fast: $(VENV)/.stamp-codegen+docs+test+plots+toml
 	$(BIN)/python -m pytest -q -m "not long"
 
 # BENCH_MD=path writes the tables elsewhere; BENCH_ARGS e.g. "--repeats 1 --no-variants"
 BENCH_MD ?= docs/performance.md
-bench: $(VENV)/.stamp-codegen+test+plots+toml
+bench: $(VENV)/.stamp-codegen+docs+test+plots+toml
 	$(BIN)/python benchmarks/engine_vs_fixed_grid.py --markdown $(BENCH_MD) $(BENCH_ARGS)
+
+# Material for MkDocs prints an end-of-life banner on every build; NO_MKDOCS_2_WARNING silences it.
+docs: $(VENV)/.stamp-docs
+	NO_MKDOCS_2_WARNING=1 $(BIN)/mkdocs build --strict -d site
 
 run: $(VENV)/.stamp-plots+toml
 	$(BIN)/propwhirl run --out out
 
 clean:
-	rm -rf $(VENV) out build src/*.egg-info .pytest_cache .hypothesis
+	rm -rf $(VENV) out build site src/*.egg-info .pytest_cache .hypothesis
