@@ -76,3 +76,10 @@ def test_markdown_section_is_appended_when_absent(tmp_path):
     doc.write_text("# Top\n\ntext\n")
     d.write_markdown(doc, "table")
     assert doc.read_text() == f"# Top\n\ntext\n\n{d.TITLE}\n\n{d.BEGIN}\ntable\n{d.END}\n"
+
+
+def test_committed_docs_hold_the_section_once():
+    d = load()
+    text = (ROOT / "docs" / "performance.md").read_text()
+    assert text.count(d.BEGIN) == text.count(d.END) == text.count(d.TITLE) == 1
+    assert text.index(d.TITLE) < text.index(d.BEGIN) < text.index(d.END)
