@@ -4,6 +4,8 @@
 #   make test-fast the suite without the `long` checks
 #   make generate  rebuild generated/ from the SymPy derivations
 #   make bench     engine vs the thesis's fixed-grid sweep; rewrites the tables of docs/performance.md
+#   make bench-design  design-size models (reduced vs dense, size scaling, memory); rewrites its
+#                  table of docs/performance.md (a few minutes)
 #   make docs      the documentation site in site/ (mkdocs, strict: a warning fails; the test suite builds it too)
 PYTHON ?= python3
 VENV   := .venv
@@ -12,7 +14,7 @@ BIN    := $(VENV)/bin
 export OPENBLAS_NUM_THREADS ?= 1
 export OMP_NUM_THREADS ?= 1
 
-.PHONY: run test test-fast generate bench docs clean
+.PHONY: run test test-fast generate bench bench-design docs clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -37,6 +39,10 @@ test-fast: $(VENV)/.stamp-codegen+docs+test+plots+toml
 BENCH_MD ?= docs/performance.md
 bench: $(VENV)/.stamp-codegen+docs+test+plots+toml
 	$(BIN)/python benchmarks/engine_vs_fixed_grid.py --markdown $(BENCH_MD) $(BENCH_ARGS)
+
+# BENCH_MD as above; BENCH_DESIGN_ARGS e.g. "--quick" (no dense 100-element / 12-propeller run)
+bench-design: $(VENV)/.stamp-codegen+docs+test+plots+toml
+	$(BIN)/python benchmarks/design_size.py --markdown $(BENCH_MD) $(BENCH_DESIGN_ARGS)
 
 # Material for MkDocs prints an end-of-life banner on every build; NO_MKDOCS_2_WARNING silences it.
 docs: $(VENV)/.stamp-docs
