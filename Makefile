@@ -26,18 +26,18 @@ comma := ,
 generate: $(VENV)/.stamp-codegen
 	$(BIN)/python -m derivations.generate --out generated
 
-test: $(VENV)/.stamp-codegen+test+plots+toml
+test: $(VENV)/.stamp-codegen+test+plots+toml+data+tables
 	$(BIN)/python -m pytest -q
 
-test-fast: $(VENV)/.stamp-codegen+test+plots+toml
+test-fast: $(VENV)/.stamp-codegen+test+plots+toml+data+tables
 	$(BIN)/python -m pytest -q -m "not long"
 
 # BENCH_MD=path writes the tables elsewhere; BENCH_ARGS e.g. "--repeats 1 --no-variants"
 BENCH_MD ?= docs/performance.md
-bench: $(VENV)/.stamp-codegen+test+plots+toml
+bench: $(VENV)/.stamp-codegen+test+plots+toml+data+tables
 	$(BIN)/python benchmarks/engine_vs_fixed_grid.py --markdown $(BENCH_MD) $(BENCH_ARGS)
 
-run: $(VENV)/.stamp-plots+toml
+run: $(VENV)/.stamp-plots+toml+tables
 	$(BIN)/propwhirl run --out out
 
 clean:
