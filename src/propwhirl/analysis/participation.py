@@ -135,14 +135,16 @@ class ModeParticipation:
 
     def describe(self, count: int | None = None, sep: str = "; ") -> str:
         """'propeller 3 (y = 3.00 m): 61 %, backward whirl; ...; wing 14 %' — the propellers by
-        decreasing share (the first ``count``), then the wing (and other DOFs) when present."""
+        decreasing share (with ``count``: the first ``count`` of those above 0 %), then the
+        wing (and other DOFs) when present."""
         parts = [(p.share, p) for p in self.propellers]
         rest = [("wing", self.wing)] if self.wing != 0 else []
         rest += [("other DOFs", self.other)] if self.other != 0 else []
         pct = _percentages(np.array([s for s, _ in parts] + [s for _, s in rest]))
         ranked = sorted(range(len(parts)), key=lambda i: -parts[i][0])
-        ranked = ranked if count is None else ranked[:count]
-        out = []
+        if count is not None:                  # the leading ones, those that show at all
+            ranked = [i for i in ranked[:count] if pct[i] > 0]
+        out = [] if ranked or not parts else ["propeller share 0 %"]
         for i in ranked:
             p = parts[i][1]
             w = f", {p.whirl} whirl" if p.whirl else ""
