@@ -308,7 +308,12 @@ class ModelAnalysis:
                 data = eigenvectors_npz(self.sweep)
             except v.InputError as exc:
                 raise v.InputError(f"cannot save the analysis to {str(path)!r}: {exc}") from None
-            fileio.write_bytes(npz, data, what="eigenvector file")
+            try:
+                fileio.write_bytes(npz, data, what="eigenvector file")
+            except v.InputError as exc:     # name the file asked for (the JSON is untouched)
+                why = str(exc).removeprefix(f"cannot write eigenvector file {str(npz)!r}: ")
+                raise v.InputError(f"cannot write analysis file {str(path)!r}: {why} (writing "
+                                   f"its eigenvectors to {npz.name})") from None
         fileio.write_text(path, text, what="analysis file")
 
 

@@ -191,5 +191,5 @@ def _write(path: Path, writer) -> Path:
 
 
 def _save_json(a: ModelAnalysis, path: Path) -> Path:
-    a.save(path)  # the V-g-f table, labels and instabilities (no eigenvectors: ~60 MB)
+    a.save(path)  # the V-g-f table, labels, instabilities (eigenvectors: include_eigenvectors=True, ~25 MB .npz)
     return path
