@@ -48,7 +48,7 @@ def test_the_file_names_its_format_and_version(analysis, tmp_path):
     path = tmp_path / "a.json"
     analysis.save(path)
     d = json.loads(path.read_text())
-    assert (d["format"], d["format_version"]) == (FORMAT, FORMAT_VERSION) == ("propwhirl-analysis", 1)
+    assert (d["format"], d["format_version"]) == (FORMAT, FORMAT_VERSION) == ("propwhirl-analysis", 2)
     back = load(path)
     assert back.events == analysis.events and back.content == analysis.content
     assert back.dof_map == analysis.dof_map
@@ -189,7 +189,7 @@ def test_nan_and_infinite_speeds(doc, tmp_path):
     ("dof_map.propellers", [{"number": 0}], r"dof_map\.propellers\[0\]: missing keys"),
     ("dof_map.propellers.0.theta", 7, r"dof_map\.propellers\[0\]\.theta: = 7 is outside"),
     ("format", "propwhirl-model", r"format = 'propwhirl-model' is invalid"),
-    ("format_version", 2, r"format_version = 2 is not supported: this propwhirl reads version 1"),
+    ("format_version", 3, r"format_version = 3 is not supported: this propwhirl reads versions 1, 2"),
     ("format_version", "1", r"format_version = '1' is not supported"),
     ("format_version", True, r"format_version = True is not supported"),
 ])

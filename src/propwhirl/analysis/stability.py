@@ -17,7 +17,7 @@ of the critical instability.  Results are saved and re-read with :meth:`ModelAna
 from __future__ import annotations
 
 import json
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 from collections.abc import Callable, Sequence
 from typing import Any
@@ -27,11 +27,17 @@ import numpy as np
 from propwhirl.engine import XTOL, Criticals, Sweep, TrackingOptions, frequency_zero_points
 from propwhirl.engine import analyse as engine_analyse
 from propwhirl.engine.options import check_speeds
-from propwhirl.engine.results import SavedDict
+from propwhirl.engine.results import (SavedDict, eigenvectors_path, read_eigenvectors,
+                                      eigenvectors_npz)
 from propwhirl import fileio
 from propwhirl import validate as v
 from propwhirl.analysis.naming import mode_content, mode_names, whirl
+from propwhirl.analysis.participation import (ModeParticipation, branch_point_shape, events_csv,
+                                              events_table, participation_lines,
+                                              with_participation)
 from propwhirl.analysis.reduced import choose_method, reduced_engine_analysis
+from propwhirl.analysis.summary import (FlutterSummary, Reference, flutter_summary, reference,
+                                        text_table)
 from propwhirl.model import validity
 from propwhirl.model.protocol import DofMap, Model, PropellerDofs
 
@@ -49,8 +55,11 @@ class Instability:
             "unstable-at-start" (Re λ > 0 already at the first analysed speed, V = that speed)
     mode, label: tracked mode id and its name (e.g. "forward 1", "wing 2", "lag 1")
     V [m/s], frequency_hz [Hz] at the event; whirl: "forward"/"backward"/"planar" sense of the
-    propeller θ–ψ orbit (None without flexible propellers); benignity [m/s] (eq. 5.13) at
-    flutter onsets.
+    θ–ψ orbit of the propeller with the largest θ–ψ motion (None without flexible propellers);
+    benignity [m/s] (eq. 5.13) at flutter onsets; participation: every flexibly mounted
+    propeller's share of the mode's kinetic energy, whirl sense, relative amplitude and
+    position at the event (:mod:`propwhirl.analysis.participation`; None without the mode
+    shape).
     """
 
     kind: str
@@ -61,6 +70,13 @@ class Instability:
     frequency_hz: float
     whirl: str | None = None
     benignity: float | None = None
+    participation: ModeParticipation | None = None
+
+    def propeller_text(self, count: int | None = None) -> str:
+        """Which propellers take part: 'propeller 3 (y = 3 m): 61 %, backward whirl, ...'
+        ("" without flexibly mounted propellers or without the mode shape)."""
+        p = self.participation
+        return "" if p is None or not p.propellers else p.describe(count)
 
 
 #: Events that make the system (more) unstable, candidates for the critical instability.
@@ -124,9 +140,12 @@ def describe_critical(c: Instability | None, describe: Callable[[str], str] = st
     what = f"{c.kind} of {describe(c.label)}"
     if c.event == "unstable-at-start":
         f = f" ({c.frequency_hz:.3f} Hz)" if c.kind == "flutter" else ""
-        return f"unstable from V = {c.V:g} m/s, the start of the range: {what}{f}"
+        who = c.propeller_text(count=3)
+        return (f"unstable from V = {c.V:g} m/s, the start of the range: {what}{f}"
+                + (f"; {who}" if who else ""))
     f = f", {c.frequency_hz:.3f} Hz" if c.kind == "flutter" else ""
-    return f"{what} at {c.V:.2f} m/s{f}"
+    who = c.propeller_text(count=3)
+    return f"{what} at {c.V:.2f} m/s{f}" + (f"; {who}" if who else "")
 
 
 @dataclass
@@ -145,6 +164,8 @@ class ModelAnalysis:
     #: results outside the methods' validity, one line each (:mod:`propwhirl.model.validity`:
     #: Mach above 0.7 or supersonic, supersonic propeller tips); saved and re-read
     warnings: tuple[str, ...] = ()
+    #: reference length, density and speed of sound of the flutter summary (saved and re-read)
+    reference: Reference | None = None
 
     def describe(self, label: str) -> str:
         """'label (dominant content)', e.g. 'wing 2 (torsion)'."""
@@ -177,14 +198,62 @@ class ModelAnalysis:
         return min(hits, key=lambda e: e.V) if hits else None
 
     def summary(self) -> str:
+        """The instabilities as a text table (the propeller column names the propeller whose
+        whirl is given: the one with the largest θ–ψ amplitude, numbered from 1), each event's
+        propeller participation, and the critical instability (last line)."""
         lines = [f"{self.model_name}: instabilities between {self.sweep.V[0]:g} and {self.sweep.V[-1]:g} m/s"]
-        lines.append(f"  {'type':10s} {'event':15s} {'mode (content at V0)':24s} {'whirl':9s} {'V [m/s]':>9s} {'f [Hz]':>8s}")
-        for e in self.events:
-            lines.append(
-                f"  {e.kind:10s} {e.event:15s} {self.describe(e.label):24s} {e.whirl or '-':9s} {e.V:9.2f} {e.frequency_hz:8.3f}"
-            )
+        rows = [[e.kind, e.event, self.describe(e.label), _leading(e), e.whirl or "-",
+                 f"{e.V:.2f}", f"{e.frequency_hz:.3f}"] for e in self.events]
+        table = text_table(rows, ["type", "event", "mode (content at V0)", "propeller", "whirl",
+                                  "V [m/s]", "f [Hz]"], "lllllrr")
+        lines += ["  " + line for line in table.splitlines()]
+        lines += participation_lines(self.events, "  ")
         lines.append("  critical: " + describe_critical(self.critical, self.describe))
         return "\n".join(lines)
+
+    @property
+    def reference_or_error(self) -> Reference:
+        if self.reference is None:
+            raise v.InputError("this analysis has no reference (b_ref, density, speed of sound):"
+                               " give one, e.g. flutter_summary(Reference(...))")
+        return self.reference
+
+    def flutter_summary(self, reference: Reference | None = None) -> FlutterSummary:
+        """Every physical mode at every analysed speed: V, k = ω b_ref/V, ζ, g = 2ζ, f, density,
+        Mach (:mod:`propwhirl.analysis.summary`; `reference` defaults to the model's)."""
+        return flutter_summary(self.sweep, reference or self.reference_or_error, self.model_name)
+
+    def modes_of_interest(self, lowest: int = 8) -> list[int]:
+        """Ids of the modes with an event and of the ``lowest`` oscillatory physical modes of
+        lowest frequency at the first speed, by increasing frequency at the first speed."""
+        sw = self.sweep
+        f0 = sw.frequency_hz[0]
+        osc = [k for k in range(sw.n_modes) if sw.physical[0, k] and f0[k] > 0]
+        ids = set(sorted(osc, key=lambda k: f0[k])[:lowest]) | {e.mode for e in self.events}
+        return sorted(ids, key=lambda k: (f0[k], k))
+
+    def to_dataframe(self):
+        """The V-g-f table (:meth:`Sweep.to_dataframe`) as a pandas DataFrame (``data`` extra)."""
+        df = self.sweep.to_dataframe()
+        df.attrs["model_name"] = self.model_name
+        return df
+
+    def to_xarray(self):
+        """The sweep as an xarray Dataset, dims speed × mode (:meth:`Sweep.to_xarray`)."""
+        ds = self.sweep.to_xarray()
+        ds.attrs["model_name"] = self.model_name
+        return ds
+
+    def events_table(self) -> dict[str, np.ndarray]:
+        """Tidy columns of the events' propeller participation: one row per event and flexibly
+        mounted propeller (one row with an empty propeller for a model without them).
+        Propellers numbered from 1; shares of the mode's kinetic energy (module
+        :mod:`propwhirl.analysis.participation`)."""
+        return events_table(self.events)
+
+    def events_csv(self, path: str | Path | None = None) -> str:
+        """:meth:`events_table` as CSV (also written to ``path``, atomically)."""
+        return events_csv(self.events, path)
 
     def to_dict(self, include_eigenvectors: bool = False) -> dict[str, Any]:
         """The analysis as a JSON-able dict (the document :meth:`save` writes, format
@@ -199,6 +268,7 @@ class ModelAnalysis:
             "content": self.content,
             "sweep": self.sweep.to_dict(include_eigenvectors=include_eigenvectors),
             "warnings": list(self.warnings),
+            "reference": None if self.reference is None else self.reference.to_dict(),
         }
 
     @classmethod
@@ -213,24 +283,47 @@ class ModelAnalysis:
         return _analysis_from_dict(d)
 
     def save(self, path: str | Path, include_eigenvectors: bool = False) -> None:
-        """Write the analysis as JSON (V-g-f table, labels, instabilities).
+        """Write the analysis as JSON (V-g-f table, labels, instabilities and their propeller
+        participation); with ``include_eigenvectors`` also the eigenvectors of every speed, in
+        a NumPy ``.npz`` file beside it (:func:`eigenvectors_path`: ``a.json`` →
+        ``a.eigenvectors.npz``), which the JSON names.  The JSON stays readable on its own:
+        :func:`load` without the npz gives the analysis without eigenvectors.
 
-        The file is replaced atomically (:func:`propwhirl.fileio.write_text`: a full disk or a
-        Ctrl-C leaves the old file or none, never a partial one).  JSON without NaN or
-        infinity: a non-finite number is an :class:`~propwhirl.validate.InputError` naming
-        the key, and nothing is written."""
-        d = self.to_dict(include_eigenvectors)
+        Each file is replaced atomically (:func:`propwhirl.fileio.write_text`: a full disk or a
+        Ctrl-C leaves the old file or none, never a partial one; the npz is written first).
+        JSON without NaN or infinity: a non-finite number is an
+        :class:`~propwhirl.validate.InputError` naming the key, and nothing is written."""
+        path = Path(path)
+        d = self.to_dict(include_eigenvectors=False)
+        npz = None
+        if include_eigenvectors:
+            npz = eigenvectors_path(path)
+            d["eigenvectors_file"] = npz.name
         try:
             text = json.dumps(d, allow_nan=False)
         except ValueError:
             raise v.InputError(f"cannot save the analysis to {str(path)!r}: "
                                f"{_non_finite_key(d)} is not a finite number") from None
+        if npz is not None:
+            try:
+                data = eigenvectors_npz(self.sweep)
+            except v.InputError as exc:
+                raise v.InputError(f"cannot save the analysis to {str(path)!r}: {exc}") from None
+            try:
+                fileio.write_bytes(npz, data, what="eigenvector file")
+            except v.InputError as exc:     # name the file asked for (the JSON is untouched)
+                why = str(exc).removeprefix(f"cannot write eigenvector file {str(npz)!r}: ")
+                raise v.InputError(f"cannot write analysis file {str(path)!r}: {why} (writing "
+                                   f"its eigenvectors to {npz.name})") from None
         fileio.write_text(path, text, what="analysis file")
 
 
 #: The "format" of an analysis file and the version this propwhirl writes and reads.
 FORMAT = "propwhirl-analysis"
-FORMAT_VERSION = 1
+FORMAT_VERSION = 2
+#: Versions :func:`load` reads (2 added the propellers' participation at each event, the
+#: summary's reference and the eigenvector file).
+READABLE_VERSIONS = (1, 2)
 
 _EVENT_KINDS = ("flutter", "divergence")
 _EVENTS = ("onset", "recovery", "frequency-zero", "unstable-at-start")
@@ -242,8 +335,9 @@ def _finite_or_none(x: float | None) -> float | None:
 
 
 def _event_dict(e: Instability) -> dict[str, Any]:
-    d = asdict(e)
+    d = {f.name: getattr(e, f.name) for f in fields(e)}
     d["benignity"] = _finite_or_none(e.benignity)
+    d["participation"] = None if e.participation is None else e.participation.to_dict()
     return d
 
 
@@ -266,7 +360,7 @@ def _non_finite_key(obj: Any, where: str = "") -> str:
 
 def _event_from_dict(d: Any, where: str, sweep: Sweep) -> Instability:
     r = SavedDict(d, where, ("kind", "event", "mode", "label", "V", "frequency_hz"),
-                  ("whirl", "benignity"))
+                  ("whirl", "benignity", "participation"))
     mode = r.integer("mode", 0, sweep.n_modes - 1)
     label = r.string("label")
     if label != sweep.mode_labels[mode]:
@@ -275,7 +369,10 @@ def _event_from_dict(d: Any, where: str, sweep: Sweep) -> Instability:
     return Instability(r.string("kind", _EVENT_KINDS), r.string("event", _EVENTS), mode, label,
                        r.number("V"), r.number("frequency_hz"),
                        r.string("whirl", _WHIRL, optional=True) if r.has("whirl") else None,
-                       r.number("benignity", optional=True) if r.has("benignity") else None)
+                       r.number("benignity", optional=True) if r.has("benignity") else None,
+                       None if not r.has("participation") or r.raw("participation") is None
+                       else ModeParticipation.from_dict(r.raw("participation"),
+                                                        f"{where}.participation"))
 
 
 def _dof_map_from_dict(d: Any, sweep: Sweep) -> DofMap:
@@ -329,7 +426,8 @@ def _content_from_dict(d: Any, sweep: Sweep) -> dict[str, dict[str, float]]:
 
 def _analysis_from_dict(d: Any) -> ModelAnalysis:
     keys = ("model_name", "events", "critical", "dof_map", "content", "sweep")
-    r = SavedDict(d, "", keys, ("format", "format_version", "warnings"))
+    r = SavedDict(d, "", keys, ("format", "format_version", "warnings", "reference",
+                                "eigenvectors_file"))
     if r.has("format") or r.has("format_version"):
         got = r.raw("format") if r.has("format") else None
         if got != FORMAT:
@@ -338,9 +436,9 @@ def _analysis_from_dict(d: Any) -> ModelAnalysis:
         if not r.has("format_version"):
             raise v.InputError("missing key 'format_version'")
         version = r.raw("format_version")
-        if version != FORMAT_VERSION or isinstance(version, bool):
+        if version not in READABLE_VERSIONS or isinstance(version, bool):
             raise v.InputError(f"format_version = {version!r} is not supported: this propwhirl "
-                               f"reads version {FORMAT_VERSION}")
+                               f"reads versions {', '.join(map(str, READABLE_VERSIONS))}")
     sweep = Sweep.from_dict(r.raw("sweep"))
     if not isinstance(r.raw("events"), list):
         raise v.InputError("events: must be a list")
@@ -350,9 +448,16 @@ def _analysis_from_dict(d: Any) -> ModelAnalysis:
     notes = r.raw("warnings") if r.has("warnings") else []
     if not isinstance(notes, list) or not all(isinstance(w, str) for w in notes):
         raise v.InputError("warnings: must be a list of strings")
+    ref = r.raw("reference") if r.has("reference") else None
+    if r.has("eigenvectors_file"):
+        name = r.raw("eigenvectors_file")
+        if not isinstance(name, str) or not name or Path(name).name != name or name in (".", ".."):
+            raise v.InputError(f"eigenvectors_file = {name!r} is invalid: must be the name of a "
+                               "file beside the analysis file")
     a = ModelAnalysis(r.string("model_name"), sweep, events,
                       content=_content_from_dict(r.raw("content"), sweep), dof_map=dm,
-                      warnings=tuple(notes))
+                      warnings=tuple(notes),
+                      reference=None if ref is None else Reference.from_dict(ref))
     c = a.critical
     if r.raw("critical") != (None if c is None else _event_dict(c)):
         raise v.InputError("critical: does not match the critical instability of the events")
@@ -364,7 +469,8 @@ def _refuse_constant(name: str) -> Any:
 
 
 def load(path: str | Path) -> ModelAnalysis:
-    """Re-read an analysis written by :meth:`ModelAnalysis.save`.
+    """Re-read an analysis written by :meth:`ModelAnalysis.save` (with its eigenvectors when
+    the file names an eigenvector file and that file is beside it; without them otherwise).
 
     The file is checked throughout (:meth:`ModelAnalysis.from_dict`): an empty, truncated or
     non-JSON file, another format or version, a missing key, a wrong type, NaN or infinity,
@@ -396,11 +502,16 @@ def load(path: str | Path) -> ModelAnalysis:
     except ValueError as exc:  # InputError from _refuse_constant, too-long integers
         raise v.InputError(f"{path}: not an analysis file: {exc}") from None
     try:
-        return ModelAnalysis.from_dict(doc)
+        a = ModelAnalysis.from_dict(doc)
     except v.InputError as exc:
         raise v.InputError(f"{path}: {exc}") from None
     except RecursionError:
         raise v.InputError(f"{path}: not an analysis file: nested too deeply") from None
+    name = doc.get("eigenvectors_file")
+    if name is not None and a.sweep.eigenvectors is None and (path.parent / name).is_file():
+        X = read_eigenvectors(path.parent / name, a.sweep)
+        a = replace(a, sweep=replace(a.sweep, eigenvectors=X))
+    return a
 
 
 # ----------------------------------------------------------------------------- analyse
@@ -448,7 +559,7 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
     >>> e.kind, e.event, e.label, round(e.V, 2), round(e.frequency_hz, 3)
     ('flutter', 'onset', 'backward', 221.5, 5.011)
     >>> print(a.summary().splitlines()[-1])
-      critical: flutter of backward (pitch) at 221.50 m/s, 5.011 Hz
+      critical: flutter of backward (pitch) at 221.50 m/s, 5.011 Hz; propeller 1: 100 %, backward whirl
     """
     if not isinstance(model, Model):
         raise v.InputError(f"model = {model!r:.60} is invalid: must be a model of "
@@ -465,34 +576,49 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
                                       state_labels=dm.state_labels, options=options, xtol=xtol,
                                       vgf=bool(vgf))
         an, matrix_fn, basis = run.analysis, run.model.state_matrix, run.model.dof_basis
+        lift = run.model.lift
     else:
         an = engine_analyse(model.state_matrix, grid, displacement=dm.displacement,
                             state_labels=dm.state_labels, options=options, xtol=xtol,
                             **({"initial_step": None} if vgf else {}))
-        matrix_fn, basis = model.state_matrix, None
+        matrix_fn, basis, lift = model.state_matrix, None, None
     sw = an.sweep
     names = mode_names(model, sw, basis)
     sw = sw.relabel(names)
-    events = []
+    events, shapes = [], []
     for p in an.criticals.points:
         sense = whirl(dm, p.eigenvector, p.eigenvalue) if p.kind == "flutter" else None
         events.append(Instability(p.kind, p.direction, p.mode, names[p.mode], float(p.V),
                                   float(p.frequency_hz), sense,
                                   None if p.benignity is None else float(p.benignity)))
+        shapes.append((p.eigenvector, p.eigenvalue, float(p.V)))
     for k in an.criticals.unstable_at_start:
         lam0 = sw.eigenvalues[0, k]
         kind = "flutter" if abs(lam0.imag) > 0 else "divergence"
         events.append(Instability(kind, "unstable-at-start", int(k), names[k], float(sw.V[0]),
                                   float(abs(lam0.imag) / (2 * np.pi))))
-    events += [Instability("divergence", "frequency-zero", p.mode, names[p.mode], p.V, 0.0)
-               for p in frequency_zero_points(sw, matrix_fn, xtol=xtol)]
+        shapes.append((sw.eigenvectors[0, :, k], lam0, float(sw.V[0])))
+    for p in frequency_zero_points(sw, matrix_fn, xtol=xtol):
+        events.append(Instability("divergence", "frequency-zero", p.mode, names[p.mode], p.V, 0.0))
+        shapes.append(branch_point_shape(model, sw, p.mode, p.bracket[0], matrix_fn, lift))
+    events = with_participation(model, events, shapes)
     events.sort(key=lambda e: (e.V, e.mode))
     notes = validity.analysis_warnings(
         model, (float(sw.V[0]), float(sw.V[-1])),
         [(e.V, f"{e.kind} {e.event} of {e.label}") for e in events],
         any(e.event in UNSTABLE_EVENTS for e in events))
+    try:
+        ref = reference(model)
+    except v.InputError:                     # a model of another kind: no summary reference
+        ref = None
     return ModelAnalysis(model.name, sw, tuple(events), an.criticals,
-                         mode_content(model, sw, names), dm, notes)
+                         mode_content(model, sw, names), dm, notes, ref)
+
+
+def _leading(e: Instability) -> str:
+    """'3 (y = 3.00 m)': the propeller with the largest θ–ψ amplitude at the event, or '-'."""
+    p = None if e.participation is None else e.participation.leading
+    return "-" if p is None else p.name().removeprefix("propeller ")
 
 
 def speed_and_frequency(event: Instability | None) -> tuple[float, float]:

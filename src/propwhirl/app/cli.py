@@ -226,7 +226,8 @@ def _analyse(args: argparse.Namespace) -> int:
     from propwhirl import io
     from propwhirl.analysis.stability import analyse
 
-    _check_outputs(json=args.json, csv=args.csv, plot=args.plot)
+    _check_outputs(json=args.json, csv=args.csv, plot=args.plot, summary_csv=args.summary_csv,
+                   events_csv=args.events_csv)
     model = _load(args.model)
     speeds = speed_grid(*args.speeds) if args.speeds else None
     a = analyse(model, speeds, vgf=True)
@@ -239,6 +240,13 @@ def _analyse(args: argparse.Namespace) -> int:
     if args.csv:
         io.write_vgf_csv(a, args.csv)
         print(f"wrote {args.csv}")
+    if args.summary:
+        _echo("\n" + a.flutter_summary().format(a.modes_of_interest(args.plot_modes)))
+    for path, write in ((args.summary_csv, a.flutter_summary().to_csv),
+                        (args.events_csv, a.events_csv)):
+        if path:
+            write(path)
+            print(f"wrote {path}")
     if args.plot:
         from propwhirl.app import plots
 
@@ -255,9 +263,14 @@ def _add_analyse(sub) -> None:
                    "flight.speed_range_m_per_s; refined automatically)")
     p.add_argument("--json", metavar="OUT", help="write the analysis as JSON")
     p.add_argument("--csv", metavar="OUT", help="write the V-g-f table as CSV")
+    p.add_argument("--summary", action="store_true", help="print the flutter summary (V, k, "
+                   "zeta, g, f, density, Mach) of the modes with an event and the lowest N")
+    p.add_argument("--summary-csv", metavar="OUT", help="write the flutter summary of every mode")
+    p.add_argument("--events-csv", metavar="OUT", help="write the events with each propeller's "
+                   "participation as CSV")
     p.add_argument("--plot", metavar="PNG", help="write the V-g-f plot")
     p.add_argument("--plot-modes", type=int, default=8, metavar="N",
-                   help="lowest N modes in the plot (default 8)")
+                   help="lowest N modes in the plot and the summary (default 8)")
     p.set_defaults(func=_analyse)
 
 

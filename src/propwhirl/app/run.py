@@ -8,9 +8,12 @@ derivatives, 8000 ft, airspeeds 1–350 m/s (the engine refines the grid and eve
 
 Printed (and written to ``report.txt``): the in-vacuo modes with their thesis names and the
 Table 10.3 values, every instability (type, event, mode, whirl sense, speed, frequency,
-benignity, the thesis's value where it reports one) and the critical one.  Written to the
+benignity, the thesis's value where it reports one), the propellers' participation at each
+event (:mod:`propwhirl.analysis.participation`) and the critical one.  Written to the
 output folder: the V-g-f plot, the mode shapes of the critical instability and of the forward
-whirl flutter, the analysis as JSON, the V-g-f table as CSV and the model as a TOML model file.
+whirl flutter, the analysis as JSON, the V-g-f table, the events with each propeller's
+participation and the flutter summary (V, k, ζ, g, f, density, Mach per mode and speed) as CSV,
+and the model as a TOML model file.
 """
 from __future__ import annotations
 
@@ -22,7 +25,9 @@ import numpy as np
 
 from propwhirl import fileio, io
 from propwhirl.limits import printable
+from propwhirl.analysis.participation import participation_lines
 from propwhirl.analysis.stability import Instability, ModelAnalysis, analyse, describe_critical
+from propwhirl.analysis.summary import text_table
 from propwhirl.cases.registry import case_model
 from propwhirl.model.systems import PropellerWing
 from propwhirl.reproduce.harness import load_references
@@ -80,12 +85,12 @@ def _thesis_values() -> dict[str, float]:
 
 def mode_lines(model: PropellerWing, thesis: dict[str, float], count: int = 10) -> list[str]:
     """In-vacuo modes (V = 0, Ω = 0) with their names and Table 10.3's values."""
-    lines = ["", "In-vacuo modes (V = 0, not rotating):",
-             f"  {'mode':12s} {'f [Hz]':>9s} {'thesis (Table 10.3)':>21s}"]
+    rows = []
     for label, f in label_modes(model)[:count]:
         ref = thesis.get(THESIS_MODES.get(label, ""), None)
-        lines.append(f"  {label:12s} {f:9.3f} {'' if ref is None else f'{ref:21.2f}'}")
-    return lines
+        rows.append([label, f"{f:.3f}", "" if ref is None else f"{ref:.2f}"])
+    table = text_table(rows, ["mode", "f [Hz]", "thesis (Table 10.3)"], "lrr")
+    return ["", "In-vacuo modes (V = 0, not rotating):"] + ["  " + t for t in table.splitlines()]
 
 
 def _fmt_thesis(e: Instability, thesis: dict[str, float], seen: set) -> str:
@@ -103,17 +108,18 @@ def _fmt_thesis(e: Instability, thesis: dict[str, float], seen: set) -> str:
 def event_lines(a: ModelAnalysis, thesis: dict[str, float]) -> list[str]:
     """Every instability, the critical one, and the note on the thesis's critical speed."""
     lines = ["", f"Instabilities between {a.sweep.V[0]:g} and {a.sweep.V[-1]:g} m/s "
-             "(crossings refined to 0.01 m/s):",
-             f"  {'type':10s} {'event':14s} {'mode (content)':22s} {'whirl':9s} {'V [m/s]':>8s} "
-             f"{'f [Hz]':>7s} {'benignity':>10s}  thesis"]
+             "(crossings refined to 0.01 m/s):"]
     seen: set = set()
-    for e in a.events:
-        ben = "" if e.benignity is None else f"{e.benignity:10.1f}"
-        lines.append(f"  {e.kind:10s} {e.event:14s} {a.describe(e.label):22s} {e.whirl or '-':9s} "
-                     f"{e.V:8.2f} {e.frequency_hz:7.3f} {ben:>10s}  {_fmt_thesis(e, thesis, seen)}")
+    rows = [[e.kind, e.event, a.describe(e.label), e.whirl or "-", f"{e.V:.2f}",
+             f"{e.frequency_hz:.3f}", "" if e.benignity is None else f"{e.benignity:.1f}",
+             _fmt_thesis(e, thesis, seen)] for e in a.events]
+    table = text_table(rows, ["type", "event", "mode (content)", "whirl", "V [m/s]", "f [Hz]",
+                              "benignity", "thesis"], "llllrrrl")
+    lines += ["  " + t for t in table.splitlines()]
     lines.append("  content: dominant kinetic-energy share at the first speed; whirl: sense of the "
                  "propeller's theta-psi orbit\n  at the event; benignity [m/s] = (d zeta/dV)^-1 at "
                  "flutter onsets (eq. 5.13)")
+    lines += participation_lines(a.events, "  ")
     for note in a.warnings:      # the aerodynamics' validity (propwhirl.model.validity)
         lines.append(f"Warning: {printable(note)}")
     c = a.critical
@@ -168,6 +174,8 @@ def main(out: Path) -> int:
         io.save_model(model, out / "wingtip_model.toml"),
         _save_json(a, out / "wingtip_analysis.json"),
         io.write_vgf_csv(a, out / "wingtip_vgf.csv"),
+        _write(out / "wingtip_events.csv", a.events_csv),
+        _write(out / "wingtip_flutter_summary.csv", a.flutter_summary().to_csv),
     ]
     written += write_plots(a, model, out)
     written.append(fileio.write_text(out / "report.txt", "\n".join(lines) + "\n",
@@ -177,6 +185,11 @@ def main(out: Path) -> int:
     return 0
 
 
+def _write(path: Path, writer) -> Path:
+    writer(path)
+    return path
+
+
 def _save_json(a: ModelAnalysis, path: Path) -> Path:
-    a.save(path)  # the V-g-f table, labels and instabilities (no eigenvectors: ~60 MB)
+    a.save(path)  # the V-g-f table, labels, instabilities (eigenvectors: include_eigenvectors=True, ~25 MB .npz)
     return path

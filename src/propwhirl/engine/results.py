@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, fields, replace
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -255,6 +256,54 @@ class Sweep:
             "real": lam.real, "imag": lam.imag,
         }
 
+    #: Units of the :meth:`table` columns (and of :meth:`to_dataframe`, :meth:`to_xarray`).
+    UNITS = {"V": "m/s", "frequency_hz": "Hz", "damping_ratio": "1", "real": "1/s",
+             "imag": "1/s"}
+
+    def to_dataframe(self):
+        """:meth:`table` as a pandas DataFrame, one row per speed and physical mode; units in
+        ``df.attrs["units"]`` (needs pandas: the ``data`` extra)."""
+        try:
+            import pandas as pd
+        except ImportError:
+            raise ImportError("DataFrames need pandas: pip install propwhirl[data]") from None
+        df = pd.DataFrame(self.table())
+        df.attrs["units"] = dict(self.UNITS)
+        df.attrs["damping_convention"] = "damping_ratio = -Re(lambda)/|lambda| (eq. 5.5): < 0 unstable"
+        return df
+
+    def to_xarray(self):
+        """The sweep as an xarray Dataset with dims ``V`` (speed) × ``mode``: eigenvalue
+        (complex), real, imag [1/s], frequency_hz [Hz], damping_ratio, physical; coordinates
+        V [m/s], mode (id) and label (per mode).  Non-physical entries (the hidden conjugate
+        partners) are NaN in real, imag, frequency_hz, damping_ratio.  Units in each
+        variable's ``attrs["units"]`` (needs xarray: the ``data`` extra)."""
+        try:
+            import xarray as xr
+        except ImportError:
+            raise ImportError("xarray Datasets need xarray: pip install propwhirl[data]") from None
+        dims = ("V", "mode")
+        keep = self.physical
+
+        def masked(x):
+            return np.where(keep, x, np.nan)
+
+        lam = self.eigenvalues
+        data = {
+            "eigenvalue": (dims, np.where(keep, lam, np.nan + 0j), {"units": "1/s"}),
+            "real": (dims, masked(lam.real), {"units": "1/s"}),
+            "imag": (dims, masked(lam.imag), {"units": "1/s"}),
+            "frequency_hz": (dims, masked(self.frequency_hz), {"units": "Hz"}),
+            "damping_ratio": (dims, masked(self.damping_ratio),
+                              {"units": "1", "convention": "-Re(lambda)/|lambda| (eq. 5.5): "
+                               "< 0 unstable"}),
+            "physical": (dims, self.physical),
+        }
+        coords = {"V": ("V", self.V, {"units": "m/s", "long_name": "airspeed"}),
+                  "mode": ("mode", np.arange(self.n_modes)),
+                  "label": ("mode", np.asarray(self.mode_labels, dtype=object))}
+        return xr.Dataset(data, coords=coords)
+
     def to_dict(self, include_eigenvectors: bool = True) -> dict[str, Any]:
         """JSON-able dict (complex arrays as {"re", "im"})."""
         d: dict[str, Any] = {
@@ -470,3 +519,52 @@ class Analysis:
                 raise InputError(f"criticals.{key}: mode id {k} is outside the sweep's "
                                  f"{sweep.n_modes} modes")
         return cls(sweep, crit)
+
+
+# ----------------------------------------------------------------------------- eigenvector files
+def eigenvectors_path(path: str | Path) -> Path:
+    """The eigenvector file beside an analysis file: ``a.json`` → ``a.eigenvectors.npz``."""
+    path = Path(path)
+    stem = path.name[: -len(path.suffix)] if path.suffix else path.name
+    return path.with_name(stem + ".eigenvectors.npz")
+
+
+def eigenvectors_npz(sweep: "Sweep") -> bytes:
+    """The eigenvectors of ``sweep`` as the bytes of a NumPy ``.npz`` (arrays V, eigenvalues,
+    eigenvectors; uncompressed: complex numbers barely compress), read back by
+    :func:`read_eigenvectors`."""
+    import io
+
+    if sweep.eigenvectors is None:
+        raise InputError("the sweep has no eigenvectors to write")
+    if not np.isfinite(sweep.eigenvectors).all():
+        raise InputError("the eigenvectors hold non-finite numbers")
+    buf = io.BytesIO()
+    np.savez(buf, V=sweep.V, eigenvalues=sweep.eigenvalues, eigenvectors=sweep.eigenvectors)
+    return buf.getvalue()
+
+
+def read_eigenvectors(path: str | Path, sweep: "Sweep") -> np.ndarray:
+    """The eigenvectors of ``sweep`` read from the ``.npz`` written by
+    :func:`eigenvectors_npz`, checked against it: the same speeds and eigenvalues (bit for
+    bit), shape (T, n, n), finite; else an :class:`InputError` naming the file."""
+    import zipfile
+
+    path = Path(path)
+    try:
+        with np.load(path, allow_pickle=False) as z:
+            if set(z.files) != {"V", "eigenvalues", "eigenvectors"}:
+                raise InputError(f"{path}: not an eigenvector file of propwhirl (arrays "
+                                 f"{sorted(z.files)}, need V, eigenvalues, eigenvectors)")
+            V, lam, X = z["V"], z["eigenvalues"], z["eigenvectors"]
+    except (OSError, ValueError, zipfile.BadZipFile, EOFError) as exc:
+        raise InputError(f"{path}: cannot read the eigenvector file: "
+                         f"{exc.strerror or exc if isinstance(exc, OSError) else exc}") from None
+    T, n = sweep.eigenvalues.shape
+    if not (np.array_equal(V, sweep.V) and np.array_equal(lam, sweep.eigenvalues)):
+        raise InputError(f"{path}: does not belong to this analysis file (its speeds or "
+                         "eigenvalues differ: written by another analysis?)")
+    if X.shape != (T, n, n) or X.dtype.kind != "c" or not np.isfinite(X).all():
+        raise InputError(f"{path}: eigenvectors of shape {X.shape} ({X.dtype}), need "
+                         f"({T}, {n}, {n}) finite complex numbers")
+    return X

@@ -12,6 +12,7 @@ import numpy as np
 
 from propwhirl import fileio
 from propwhirl import validate as v
+from propwhirl.analysis.summary import text_table
 
 #: Units of the result columns.
 RESULT_UNITS: dict[str, str] = {
@@ -96,16 +97,18 @@ class StudyTable:
         return text
 
     def format(self) -> str:
-        """A fixed-width text table for the terminal."""
+        """A text table for the terminal (:func:`propwhirl.analysis.summary.text_table`)."""
         keys = ["model", self.parameter, "critical_speed", "critical_frequency", "critical_mode",
                 "content", "kind", "static_divergence_speed"]
-        head = (f"{'model':9s} {self.parameter:>16s} {'V_crit [m/s]':>12s} {'f [Hz]':>8s} "
-                f"{'mode (content)':22s} {'kind':10s} {'V_div [m/s]':>11s}")
-        lines = [self.name, f"critical instability: {self.convention}", head, "-" * len(head)]
+        heads = ["model", self.parameter, "V_crit [m/s]", "f [Hz]", "mode (content)", "kind",
+                 "V_div [m/s]"]
+        rows = []
         for i in range(len(self)):
             m, x, V, f, lab, c, kind, Vd = (np.asarray(self.columns[k])[i] for k in keys)
             name = f"{lab} ({c})" if c else lab
-            lines.append(f"{m:9s} {x:16.6g} {V:12.2f} {f:8.3f} {name:22s} {kind:10s} {Vd:11.2f}")
+            rows.append([m, f"{x:.6g}", f"{V:.2f}", f"{f:.3f}", name, kind, f"{Vd:.2f}"])
+        lines = [self.name, f"critical instability: {self.convention}",
+                 text_table(rows, heads, "lrrrllr")]
         return "\n".join(lines)
 
 
