@@ -55,7 +55,8 @@ def test_cli_reproduce_json(tmp_path, capsys):
     assert cli.main(["reproduce", "--only", "t7.2", "--json", str(out)]) == 0
     data = json.loads(out.read_text())
     assert {tuple(sorted(rec)) for rec in data["records"]} == {
-        ("computed", "id", "quantity", "rel_error", "table", "thesis", "unit", "within_tol")
+        ("computed", "id", "literature_checked", "quantity", "reference", "reference_value",
+         "rel_error", "table", "thesis", "unit", "within_tol")
     }
     assert len(data["records"]) == 4 and all(r["within_tol"] for r in data["records"])
     assert "t7.2/first_torsion" in capsys.readouterr().out

@@ -8,16 +8,21 @@ Commands
   modes        in-vacuo modes of a model file, with the thesis's names
   campbell     frequencies against propeller RPM (Campbell diagram) of a model file
   case         export a model of the thesis's case library as a TOML model file
+  docs         the installed documentation (validation, errata, model-file reference, ...)
 
 Bad input (a missing or unreadable file, bad TOML, an unknown field, an invalid value) is
-reported as one line ``propwhirl: error: ...`` on stderr with exit code 2.
+reported as one line ``propwhirl: error: ...`` on stderr with exit code 2.  Output piped into
+a reader that stops early (``| head``) ends quietly with exit code 141 (128 + SIGPIPE).
+``propwhirl --version`` prints the version.
 """
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from pathlib import Path
 
+from propwhirl import documents
 from propwhirl import limits
 from propwhirl import fileio
 from propwhirl.cases import registry
@@ -94,7 +99,7 @@ def _derivatives(args: argparse.Namespace) -> int:
         wake=not args.no_wake, compressibility=not args.no_compressibility,
         aspect_ratio_correction=not args.no_aspect_ratio_correction,
         cnq_sign=args.cnq_sign, method=args.method, quadrature_order=args.quadrature_order)
-    sound = None if args.mach is not None else args.speed_of_sound
+    sound = None if args.mach is not None else _speed_of_sound(args)
     if args.blade_angle is not None:
         d = aero.windmilling(geo, args.speed, math.radians(args.blade_angle), sound, args.mach,
                              math.radians(args.zero_lift_angle), args.advance_rule, settings)
@@ -126,7 +131,26 @@ def _derivatives(args: argparse.Namespace) -> int:
     return 0
 
 
+def _speed_of_sound(args: argparse.Namespace) -> float:
+    """--speed-of-sound, or the ISA value at --altitude-m / --altitude-ft, or the one default."""
+    from propwhirl import validate as v
+    from propwhirl.model import atmosphere
+    from propwhirl.model.flight import DEFAULT_SPEED_OF_SOUND
+
+    if args.altitude_m is not None:
+        v.in_range("--altitude-m", args.altitude_m, atmosphere.MIN_ALTITUDE,
+                   atmosphere.MAX_ALTITUDE, "m")
+        return atmosphere.speed_of_sound(args.altitude_m)
+    if args.altitude_ft is not None:
+        v.in_range("--altitude-ft", args.altitude_ft, atmosphere.MIN_ALTITUDE_FT,
+                   atmosphere.MAX_ALTITUDE_FT, "ft")
+        return atmosphere.isa(altitude_ft=args.altitude_ft).speed_of_sound
+    return DEFAULT_SPEED_OF_SOUND if args.speed_of_sound is None else args.speed_of_sound
+
+
 def _add_derivatives(sub) -> None:
+    from propwhirl.model.flight import DEFAULT_SPEED_OF_SOUND
+
     p = sub.add_parser("derivatives", help="Houbolt-Reed propeller aerodynamic derivatives "
                        "(chapter 4) for one propeller and operating point (SI units)")
     g = p.add_argument_group("propeller")
@@ -153,9 +177,13 @@ def _add_derivatives(sub) -> None:
     o.add_argument("--advance-rule", choices=("thesis_eq_9_1", "blade_element"),
                    default="thesis_eq_9_1", help="beta -> advance ratio relation (default: eq. 9.1 "
                    "mu = tan(beta + alpha_0L); blade_element: mu = 0.75 tan(beta - alpha_0L))")
-    o.add_argument("--speed-of-sound", type=float, default=340.294,
-                   help="[m/s] (default 340.294, ISA sea level)")
-    o.add_argument("--mach", type=float, help="flight Mach number instead of --speed-of-sound")
+    air = o.add_mutually_exclusive_group()
+    air.add_argument("--speed-of-sound", type=float, help=f"[m/s] (default "
+                     f"{DEFAULT_SPEED_OF_SOUND:.2f}, ISA at 8000 ft: propwhirl's one default)")
+    air.add_argument("--altitude-m", type=float, metavar="M",
+                     help="ISA altitude [m]: the standard atmosphere's speed of sound")
+    air.add_argument("--altitude-ft", type=float, metavar="FT", help="ISA altitude [ft]")
+    air.add_argument("--mach", type=float, help="flight Mach number instead of a speed of sound")
     s = p.add_argument_group("model")
     s.add_argument("--no-wake", action="store_true", help="F = 1, G = 0")
     s.add_argument("--no-compressibility", action="store_true", help="M_r = 0")
@@ -383,6 +411,45 @@ def _add_case(sub) -> None:
     p.set_defaults(func=_case)
 
 
+def _docs(args: argparse.Namespace) -> int:
+    if args.name is None:
+        print(f"propwhirl documentation, installed in {documents.folder()}:")
+        for name in documents.names():
+            print(f"  {name:14s} {documents.path(name)}")
+        print("`propwhirl docs NAME` prints a page (Markdown); --path prints its file name")
+    elif args.path:
+        print(documents.path(args.name))
+    else:
+        sys.stdout.write(documents.text(args.name))
+    return 0
+
+
+def _add_docs(sub) -> None:
+    p = sub.add_parser("docs", help="the installed documentation: list the pages, print one")
+    p.add_argument("name", nargs="?", metavar="NAME", help="page, e.g. validation, errata, "
+                   "model-file (default: list the pages and where they are installed)")
+    p.add_argument("--path", action="store_true", help="print the page's file name only")
+    p.set_defaults(func=_docs)
+
+
+def version() -> str:
+    """The version of propwhirl: the installed distribution's, else that of the source
+    checkout's pyproject.toml, else "unknown"."""
+    from importlib import metadata
+
+    try:
+        return metadata.version("propwhirl")
+    except metadata.PackageNotFoundError:
+        pass
+    import tomllib
+
+    try:
+        pyproject = Path(__file__).resolve().parents[3] / "pyproject.toml"
+        return str(tomllib.loads(pyproject.read_text())["project"]["version"]) + " (source)"
+    except (OSError, KeyError, tomllib.TOMLDecodeError):
+        return "unknown"
+
+
 class _Parser(argparse.ArgumentParser):
     """argparse with the project's error style: a usage error is one line naming the command
     and pointing to its --help (exit code 2, through :func:`main`), not the usage text."""
@@ -397,6 +464,7 @@ def build_parser() -> argparse.ArgumentParser:
         description="Wing flutter, propeller whirl flutter and divergence of flexible wings "
         "with flexibly mounted propellers (SI units).",
     )
+    parser.add_argument("--version", action="version", version=f"propwhirl {version()}")
     sub = parser.add_subparsers(dest="command", required=True)
     _add_run(sub)
     _add_reproduce(sub)
@@ -405,21 +473,30 @@ def build_parser() -> argparse.ArgumentParser:
     _add_modes(sub)
     _add_campbell(sub)
     _add_case(sub)
+    _add_docs(sub)
     return parser
 
 
 #: Exit code after Ctrl-C (128 + SIGINT, the shell's convention).
 EXIT_INTERRUPTED = 130
+#: Exit code when the reader of the output went away (128 + SIGPIPE, the shell's convention).
+EXIT_BROKEN_PIPE = 141
 
 
 def main(argv: list[str] | None = None) -> int:
     """Run one command; returns the exit code: 0, 2 for bad input or a file that cannot be
     read or written (one line on stderr naming it), 130 after Ctrl-C (one line, and no partial
-    output file: every file is written atomically, :mod:`propwhirl.fileio`)."""
+    output file: every file is written atomically, :mod:`propwhirl.fileio`), 141 when the
+    reader of the output stops early (``propwhirl reproduce | head -1``: quietly)."""
     try:
         parser = build_parser()
         args = parser.parse_args(argv)
-        return args.func(args)
+        code = args.func(args)
+        sys.stdout.flush()  # a closed pipe shows here, not at the interpreter's exit
+        return code
+    except BrokenPipeError:
+        _silence_stdout()
+        return EXIT_BROKEN_PIPE
     except KeyboardInterrupt:
         print("propwhirl: interrupted", file=sys.stderr, flush=True)
         return EXIT_INTERRUPTED
@@ -432,6 +509,17 @@ def main(argv: list[str] | None = None) -> int:
         print(f"propwhirl: error: {limits.printable(where + _one_line(fileio.reason(exc)))}",
               file=sys.stderr)
         return 2
+
+
+def _silence_stdout() -> None:
+    """Point stdout at /dev/null: the interpreter's final flush must not meet the closed pipe
+    again (Python's documented remedy, see the `signal` module's notes on SIGPIPE)."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, ValueError, AttributeError):  # stdout without a file descriptor
+        pass
 
 
 def _one_line(text: str) -> str:

@@ -39,7 +39,7 @@ import numpy as np
 from propwhirl import limits
 from propwhirl import fileio
 from propwhirl import validate as v
-from propwhirl.io import schema
+from propwhirl.io import alternatives, schema
 from propwhirl.io.schema import DERIVATIVE_SOURCES, FORMAT, FORMAT_VERSION, MODEL_TYPES, Field
 from propwhirl.model.propeller import Propeller
 from propwhirl.model.propeller_aero import Distribution
@@ -262,8 +262,13 @@ def _build(cls: type, t: _Table, ctx: dict[str, Propeller]) -> Any:
     """An instance of schema class `cls` from table `t` (whose keys were checked)."""
     kw: dict[str, Any] = {}
     sections: dict[str, _Table | None] = {}
+    try:  # keys standing for other fields (the ISA altitude of [flight]): io/alternatives.py
+        given, replaced = alternatives.read(cls, t, {f.name: f.key for f in schema.fields_of(cls)})
+    except v.InputError as exc:
+        raise _in_file(exc) from None
+    kw.update(given)
     for f in schema.fields_of(cls):
-        if f.spec.key is None:
+        if f.spec.key is None or f.name in replaced:
             continue
         table: _Table | None = t
         if f.spec.section is not None:

@@ -17,6 +17,7 @@ import typing
 from dataclasses import dataclass
 from typing import Any
 
+from propwhirl.io import alternatives
 from propwhirl.model.fields import META_KEY, REQUIRED_WHEN, FieldSpec, infer_form, literals
 from propwhirl.model.propeller import MeasuredDerivatives, PointMass, Propeller
 from propwhirl.model.propeller_aero import AeroSettings, HouboltReedSource, PropellerGeometry
@@ -195,7 +196,7 @@ def table_keys(cls: type) -> tuple[str, ...]:
                 keys.append(f.spec.section)
         else:
             keys.extend(f.keys())
-    return tuple(keys)
+    return tuple(keys) + alternatives.keys(cls)
 
 
 def section_fields(cls: type, section: str) -> tuple[Field, ...]:
@@ -400,6 +401,13 @@ def _rows(cls: type, path: str, out: list[Section], section: str | None = None) 
             _section(title, text, out, item, title)
         else:
             rows.append((s.key, _value_type(f), s.unit, _default(f), f.range_text(), doc))
+    alt = alternatives.ALTERNATIVES.get(cls)
+    if alt is not None and section is None:  # e.g. altitude_m for density and speed of sound
+        replaced = {f.key for f in fields_of(cls) if f.name in alt.replaces}
+        unless = f" unless {' or '.join(alt.key_names())}"
+        rows = [r[:3] + (r[3] + unless,) + r[4:] if r[0] in replaced else r for r in rows]
+        rows += [(k.key, "number", k.unit, "omitted", f"{k.range} {k.unit}", k.doc)
+                 for k in alt.keys]
     return rows
 
 
