@@ -226,7 +226,7 @@ def _analyse(args: argparse.Namespace) -> int:
     from propwhirl import io
     from propwhirl.analysis.stability import analyse
 
-    _check_outputs(json=args.json, csv=args.csv, plot=args.plot)
+    _check_outputs(json=args.json, csv=args.csv, plot=args.plot, animate=args.animate)
     model = _load(args.model)
     speeds = speed_grid(*args.speeds) if args.speeds else None
     a = analyse(model, speeds, vgf=True)
@@ -242,8 +242,12 @@ def _analyse(args: argparse.Namespace) -> int:
     if args.plot:
         from propwhirl.app import plots
 
-        plots.vgf(a, n_modes=args.plot_modes, path=args.plot)
+        plots.vgf(a, model, n_modes=args.plot_modes, path=args.plot)
         print(f"wrote {args.plot}")
+    if args.animate and a.critical is not None:
+        from propwhirl.app import plots
+
+        print(f"wrote {plots.animate_event(a, a.critical, args.animate)}")
     return 0
 
 
@@ -256,8 +260,9 @@ def _add_analyse(sub) -> None:
     p.add_argument("--json", metavar="OUT", help="write the analysis as JSON")
     p.add_argument("--csv", metavar="OUT", help="write the V-g-f table as CSV")
     p.add_argument("--plot", metavar="PNG", help="write the V-g-f plot")
-    p.add_argument("--plot-modes", type=int, default=8, metavar="N",
-                   help="lowest N modes in the plot (default 8)")
+    p.add_argument("--plot-modes", type=int, default=None, metavar="N",
+                   help="at most N modes in the plot (default: the modes that matter)")
+    p.add_argument("--animate", metavar="GIF", help="write a GIF of the critical mode")
     p.set_defaults(func=_analyse)
 
 
