@@ -192,9 +192,10 @@ def event_eigenvector(analysis: "ModelAnalysis", event: "Instability") -> tuple[
 
 
 def event_title(analysis: "ModelAnalysis", event: "Instability", lam: complex, V: float) -> str:
-    """'model: flutter (onset) of forward 1 at V = 170.04 m/s, f = 6.763 Hz, backward whirl'."""
+    """'model: flutter (onset) of forward 1' and, on a second line, 'V = 170.04 m/s,
+    f = 6.763 Hz, backward whirl'."""
     whirl = f", {event.whirl} whirl" if event.whirl else ""
-    return (f"{analysis.model_name}: {event.kind} ({event.event}) of {event.label} at "
+    return (f"{analysis.model_name}: {event.kind} ({event.event}) of {event.label}\n"
             f"V = {V:.2f} m/s, f = {abs(lam.imag) / (2 * np.pi):.3f} Hz{whirl}")
 
 

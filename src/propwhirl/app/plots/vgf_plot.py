@@ -228,7 +228,8 @@ def vgf(analysis: "ModelAnalysis", model: "Model | None" = None, *, speeds=None,
     names += ["flutter onset", "divergence onset"]
     fig.legend(handles, names, loc="outside right upper", fontsize=9)
     grid = f"{V.size} speeds" + ("" if model is None else ", fine grid")
-    fig.suptitle(title or f"{analysis.model_name}: V-g-f ({grid})")
+    ax_z.set_title(title or f"{analysis.model_name}: V-g-f ({grid})")   # over the axes: clear
+    #                                                                      of the legend
     return finish(fig, path)
 
 
