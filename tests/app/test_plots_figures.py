@@ -231,7 +231,6 @@ def test_mode_shape_grid_scales_with_the_propellers(n_props):
     assert [t.get_text() for t in wing[0].texts] == [f"P{j + 1}" for j in range(n_props)]
     if n_props > 1:
         amps = [float(ax.get_title().rsplit("amplitude ", 1)[1]) for ax in orbits]
-        xn = x / x[np.argmax(np.abs(x[[i for i, k in enumerate(dm.q_kinds) if k != "phi"]]))]
         assert max(amps) == 1.0 and min(amps) > 0
 
 
