@@ -139,12 +139,12 @@ def label_modes(model, basis: np.ndarray | None = None) -> list[tuple[str, float
     modes, _ = model_modes(model, basis)
     f0 = modes.frequency_hz
     kinds = ["wing"] * f0.size
-    flex = [model.propellers[p.number].propeller for p in model.dof_map().propellers]
+    flex = _flexible_propellers(model)
     if flex:
         f_mount = min(min(p.stiffness()[0] / p.pivot_inertia()["I_theta_P"],
                           p.stiffness()[1] / p.pivot_inertia()["I_psi_P"]) for p in flex) ** 0.5
         rpm = 0.1 * f_mount * 60.0 / (2.0 * np.pi)
-        tracks = _track(_GyroscopicSystem.of(model, basis),
+        tracks = _track(_GyroscopicSystem.of(model, basis=basis),
                         np.array([0.0, rpm]) * 2.0 * np.pi / 60.0)
         delta = tracks.omega[-1] - tracks.omega[0]
         n = len(flex)
@@ -169,15 +169,77 @@ def label_modes(model, basis: np.ndarray | None = None) -> list[tuple[str, float
 CAMPBELL_RPM = np.arange(0.0, 6001.0, 250.0)
 
 
+def _flexible_propellers(model) -> list:
+    """The Propeller of each flexibly mounted propeller (DOF-map order) of a PropellerWing or
+    an IsolatedPropeller."""
+    dm = model.dof_map()
+    if not dm.has_wing:
+        return [model.propeller] if dm.propellers else []
+    return [model.propellers[p.number].propeller for p in dm.propellers]
+
+
+#: mode families of a Campbell diagram
+FAMILIES = ("wing bending", "wing torsion", "backward whirl", "forward whirl")
+
+
+def mode_families(model, labels: tuple[str, ...] | None = None) -> tuple[str, ...]:
+    """Family of each in-vacuo mode (ascending frequency, as :func:`label_modes`): "backward
+    whirl" / "forward whirl" for the modes :func:`label_modes` names so, and for the others
+    "wing torsion" where the wing twist α holds more of the mode's kinetic energy than the
+    bending DOFs (h, φ), else "wing bending" (shares as
+    :func:`propwhirl.analysis.naming.kinetic_energy_shares`)."""
+    from propwhirl.analysis.naming import kinetic_energy_shares
+
+    labels = labels if labels is not None else tuple(lab for lab, _ in label_modes(model))
+    modes, M = model_modes(model)
+    groups = model.without_aerodynamics().dof_map().groups()
+    shares = kinetic_energy_shares(modes.shapes, M, groups)
+    zero = np.zeros(modes.shapes.shape[1])
+    out = []
+    for k, lab in enumerate(labels):
+        kind = lab.split(" ")[0]
+        if kind in ("backward", "forward"):
+            out.append(f"{kind} whirl")
+        else:
+            tors = float(shares.get("torsion", zero)[k])
+            bend = float(shares.get("bending", zero)[k])
+            out.append("wing torsion" if tors > bend else "wing bending")
+    return tuple(out)
+
+
+def operating_rpm_ratio(model) -> tuple[float, ...]:
+    """Each propeller's rotational speed relative to the first's, from their operation
+    (:meth:`propwhirl.model.propeller.Propeller.rotational_speed`): constant-speed rpm, or
+    fixed-pitch windmilling Ω = V/(μR) — a ratio that holds at every airspeed when the
+    propellers run in the same operation.  Where it depends on the airspeed (fixed-pitch and
+    constant-speed propellers mixed) every ratio is 1 (pass ``rpm_ratio`` to
+    :func:`campbell`).  An isolated propeller: (1.0,)."""
+    props = ([model.propeller] if not model.dof_map().has_wing
+             else [inst.propeller for inst in model.propellers])
+    if not props:
+        return ()
+    Vs = np.array([100.0, 200.0])
+    speeds = np.array([p.rotational_speed(Vs) for p in props])     # (n, 2) [rad/s]
+    ratio = speeds / speeds[0]
+    if not np.allclose(ratio[:, 0], ratio[:, 1], rtol=1e-12, atol=0.0):
+        return (1.0,) * len(props)
+    return tuple(float(r) for r in ratio[:, 0])
+
+
 @dataclass(frozen=True)
 class CampbellResult:
     """A tracked Campbell diagram: natural frequencies against propeller rotational speed.
 
-    rpm:           (T,) propeller speeds [rev/min], increasing (every propeller spins at it).
+    rpm:           (T,) rotational speeds [rev/min] of the first propeller, increasing;
+                   propeller j spins at ``rpm_ratio[j]`` × rpm (all at rpm when the ratios are 1).
     frequency_hz:  (T, K) natural frequencies [Hz]; column k is one mode followed along rpm
                    (columns ordered by frequency at rpm = 0).
     labels:        K mode names at rpm = 0 (:func:`label_modes`: "wing n", "backward k",
                    "forward k").
+    families:      K mode families (:func:`mode_families`: "wing bending", "wing torsion",
+                   "backward whirl", "forward whirl").
+    rpm_ratio:     each propeller's speed relative to the first's (one per propeller of the
+                   model, numbered from 0 in ``model.propellers``).
     slope_hz_per_rpm: (T, K) exact df/d(rpm) [Hz per rev/min] of each curve.
     resolved:      (T,) bool, False where a step of the tracking between the previous speed
                    (or rpm = 0) and this one was left ambiguous at the smallest step.
@@ -192,10 +254,16 @@ class CampbellResult:
     resolved: np.ndarray
     unresolved: tuple[tuple[float, float], ...] = ()
     nodes: int = 0
+    families: tuple[str, ...] = ()
+    rpm_ratio: tuple[float, ...] = ()
 
     @property
     def n_modes(self) -> int:
         return self.frequency_hz.shape[1]
+
+    def propeller_rpm(self) -> np.ndarray:
+        """(T, P) rotational speed [rev/min] of each propeller along the diagram."""
+        return np.outer(self.rpm, np.asarray(self.rpm_ratio or (1.0,), dtype=float))
 
     def curve(self, label: str) -> np.ndarray:
         """Frequencies [Hz] of the mode named ``label`` along rpm."""
@@ -221,7 +289,8 @@ class CampbellResult:
             "rpm": self.rpm.tolist(), "frequency_hz": self.frequency_hz.tolist(),
             "labels": list(self.labels), "slope_hz_per_rpm": self.slope_hz_per_rpm.tolist(),
             "resolved": self.resolved.tolist(), "unresolved": [list(u) for u in self.unresolved],
-            "nodes": self.nodes,
+            "nodes": self.nodes, "families": list(self.families),
+            "rpm_ratio": list(self.rpm_ratio),
         }
 
 
@@ -237,29 +306,69 @@ class _GyroscopicSystem:
     dG: np.ndarray
 
     @classmethod
-    def of(cls, model, basis: np.ndarray | None = None) -> "_GyroscopicSystem":
-        """The system of ``model``; with ``basis`` (n, r), projected on its columns."""
-        quiet = model.with_(wing_aero=False, propeller_aero=False, rotating=True)
+    def of(cls, model, rpm_ratio: tuple[float, ...] | None = None,
+           basis: np.ndarray | None = None) -> "_GyroscopicSystem":
+        """The system of `model`, Ω the first propeller's speed; propeller j spins at
+        ``rpm_ratio[j]`` × Ω (default: all at Ω).  ``basis`` (n, r): projected on its columns
+        (a reduced model's basis, :mod:`propwhirl.model.reduction`)."""
+        if basis is not None:
+            return cls.of(model, rpm_ratio)._projected(np.asarray(basis))
+        if model.dof_map().has_wing and (rpm_ratio is None or all(r == 1.0 for r in rpm_ratio)):
+            quiet = model.with_(wing_aero=False, propeller_aero=False, rotating=True)
+
+            def matrices(omega: np.ndarray):
+                omega = np.asarray(omega, dtype=float)
+                s = quiet.second_order(np.ones_like(omega), omega)   # V plays no part here
+                return s.S1, _skew_part(s.S2), s.S3
+
+            _, G, _ = matrices(np.array([0.0, 1.0]))
+            return cls(matrices, G[1] - G[0])
+        return cls._per_propeller(model, rpm_ratio)
+
+    @classmethod
+    def _per_propeller(cls, model, rpm_ratio) -> "_GyroscopicSystem":
+        """Each propeller at its own speed: the model with every propeller turned into a
+        constant-speed one at ratio_j × 1 rad/s gives ∂G/∂Ω (the gyroscopic moment I_Ω Ω_j of
+        each rotor is linear in its speed), and G(Ω) = G(0) + Ω ∂G/∂Ω."""
+        unit_rpm = 60.0 / (2.0 * np.pi)                  # 1 rad/s [rev/min]
+
+        def spinning(p, ratio):
+            return replace(p, operation="constant-speed", rpm=ratio * unit_rpm)
+
+        if not model.dof_map().has_wing:
+            ratio = (1.0,) if rpm_ratio is None else rpm_ratio
+            still = model.with_(propeller_aero=False, rotating=False)
+            spun = model.with_(propeller_aero=False, rotating=True,
+                               propeller=spinning(model.propeller, ratio[0]))
+        else:
+            still = model.with_(wing_aero=False, propeller_aero=False, rotating=False)
+            spun = still.with_(rotating=True, propellers=tuple(
+                replace(inst, propeller=spinning(inst.propeller, r))
+                for inst, r in zip(model.propellers, rpm_ratio)))
+        V = np.array([1.0])                              # V plays no part here
+        s0, s1 = still.second_order(V), spun.second_order(V)
+        G0, dG = _skew_part(s0.S2)[0], _skew_part(s1.S2)[0] - _skew_part(s0.S2)[0]
+        M, K = s0.S1[0], s0.S3[0]
 
         def matrices(omega: np.ndarray):
             omega = np.asarray(omega, dtype=float)
-            s = quiet.second_order(np.ones_like(omega), omega)   # V plays no part here
-            return s.S1, _skew_part(s.S2), s.S3
+            n = omega.size
+            return (np.broadcast_to(M, (n,) + M.shape), G0 + omega[:, None, None] * dG,
+                    np.broadcast_to(K, (n,) + K.shape))
 
-        _, G, _ = matrices(np.array([0.0, 1.0]))
-        if basis is None:
-            return cls(matrices, G[1] - G[0])
-        # projected: M and K do not depend on Ω and G is linear in it (the rotor's I_Ω Ω)
-        P = np.asarray(basis)
-        M0, G0, K0 = (P.T @ X[0] @ P for X in matrices(np.array([0.0])))
-        dG = P.T @ (G[1] - G[0]) @ P
+        return cls(matrices, dG)
+
+    def _projected(self, P: np.ndarray) -> "_GyroscopicSystem":
+        """Pᵀ(M, G, K)P: M and K do not depend on Ω and G is linear in it (I_Ω Ω)."""
+        M0, G0, K0 = (P.T @ X[0] @ P for X in self.matrices(np.array([0.0])))
+        dG = P.T @ self.dG @ P
 
         def projected(omega: np.ndarray):
             om = np.asarray(omega, dtype=float)[:, None, None]
             shape = (om.shape[0],) + M0.shape
             return np.broadcast_to(M0, shape), G0 + om * dG, np.broadcast_to(K0, shape)
 
-        return cls(projected, dG)
+        return _GyroscopicSystem(projected, dG)
 
 
 @dataclass(frozen=True)
@@ -407,19 +516,23 @@ def _track_nodes(system, grid, mac_min, min_step, degenerate_tol, max_nodes) -> 
                    tuple(unresolved), len(nodes))
 
 
-def campbell(model, rpm=None, *, max_frequency_hz: float | None = None, mac_min: float = 0.8,
-             min_step: float = 0.01) -> CampbellResult:
+def campbell(model, rpm=None, *, rpm_ratio=None, max_frequency_hz: float | None = None,
+             mac_min: float = 0.8, min_step: float = 0.01) -> CampbellResult:
     """Tracked Campbell diagram of a propeller–wing model (Figures 8.6, 9.16, 10.3, 10.11).
 
     Parameters
     ----------
-    model : PropellerWing
+    model : PropellerWing or IsolatedPropeller
         With at least one flexibly mounted propeller; aerodynamics and dissipative damping are
         switched off (the undamped gyroscopic system; the airspeed plays no part).
     rpm : array_like, optional
-        Propeller rotational speeds [rev/min], ≥ 0, increasing; every propeller spins at each
-        (default :data:`CAMPBELL_RPM`, 0–6000 every 250).  The modes are followed from
-        rpm = 0 whether or not it is asked for.
+        Rotational speeds [rev/min] of the first propeller, ≥ 0, increasing (default
+        :data:`CAMPBELL_RPM`, 0–6000 every 250).  The modes are followed from rpm = 0
+        whether or not it is asked for.
+    rpm_ratio : sequence of float, optional
+        Each propeller's speed relative to the first's (one per propeller, > 0; the first
+        1).  Default :func:`operating_rpm_ratio`: as the propellers operate (all 1 for equal
+        propellers: every propeller spins at rpm).
     max_frequency_hz : float, optional
         Keep only the modes below this frequency [Hz] at rpm = 0.
     mac_min : float
@@ -443,25 +556,29 @@ def campbell(model, rpm=None, *, max_frequency_hz: float | None = None, mac_min:
     True
     """
     dm = model.dof_map()
-    if not (dm.has_wing and dm.propellers):
-        raise v.InputError("campbell needs a propeller-wing model with a flexibly mounted "
-                           "propeller (the rotational speed acts through the pitch/yaw mounts)")
+    if not dm.propellers or not (dm.has_wing or hasattr(model, "propeller")):
+        raise v.InputError("campbell needs a propeller-wing model or an isolated propeller with a "
+                           "flexibly mounted propeller (the rotational speed acts through the "
+                           "pitch/yaw mounts)")
     r = CAMPBELL_RPM.copy() if rpm is None else _check_rpm(rpm)
+    ratio = operating_rpm_ratio(model) if rpm_ratio is None else _check_ratio(model, rpm_ratio)
     if max_frequency_hz is not None:
         v.positive("max_frequency_hz", max_frequency_hz, "Hz")
     v.in_range("mac_min", mac_min, 0.0, 1.0)
     v.positive("min_step", min_step, "rev/min")
     per_rpm = 2.0 * np.pi / 60.0                      # [rad/s per rev/min]
-    tr = _track(_GyroscopicSystem.of(model), r * per_rpm, mac_min=mac_min,
+    tr = _track(_GyroscopicSystem.of(model, ratio), r * per_rpm, mac_min=mac_min,
                 min_step=min_step * per_rpm)
     names = tuple(lab for lab, _ in label_modes(model))
+    families = mode_families(model, names)
     keep = np.arange(tr.omega0.size)
     if max_frequency_hz is not None:
         keep = keep[tr.omega0 / (2.0 * np.pi) <= max_frequency_hz]
     return CampbellResult(
         rpm=r, frequency_hz=tr.omega[:, keep] / (2.0 * np.pi),
         labels=tuple(names[k] for k in keep), slope_hz_per_rpm=tr.slope[:, keep] / 60.0,
-        resolved=tr.resolved, nodes=tr.nodes,
+        resolved=tr.resolved, nodes=tr.nodes, families=tuple(families[k] for k in keep),
+        rpm_ratio=ratio,
         unresolved=tuple((a / per_rpm, b / per_rpm) for a, b in tr.unresolved))
 
 
@@ -488,6 +605,17 @@ def _check_rpm(rpm) -> np.ndarray:
     limits.check_speed_count("rpm", raw.size, "fewer rotational speeds")
     r = v.in_range("rpm", raw.astype(float), 0.0, limits.MAX_RPM, "rev/min")
     return v.increasing("rpm", r, "rev/min") if r.size > 1 else r
+
+
+def _check_ratio(model, rpm_ratio) -> tuple[float, ...]:
+    """rpm_ratio: one positive finite number per propeller of `model`."""
+    n = len(operating_rpm_ratio(model))
+    r = np.atleast_1d(np.asarray(rpm_ratio, dtype=float))
+    if r.ndim != 1 or r.size != n:
+        raise v.InputError(f"rpm_ratio = {rpm_ratio!r:.60} is invalid: must give one ratio per "
+                           f"propeller ({n})")
+    v.positive("rpm_ratio", r)
+    return tuple(float(x) for x in r)
 
 
 def _skew_part(C: np.ndarray) -> np.ndarray:

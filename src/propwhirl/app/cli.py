@@ -255,7 +255,7 @@ def _analyse(args: argparse.Namespace) -> int:
     from propwhirl.analysis.stability import analyse
 
     _check_outputs(json=args.json, csv=args.csv, plot=args.plot, summary_csv=args.summary_csv,
-                   events_csv=args.events_csv)
+                   events_csv=args.events_csv, animate=args.animate)
     model = _load(args.model)
     speeds = speed_grid(*args.speeds) if args.speeds else None
     a = analyse(model, speeds, vgf=True)
@@ -269,7 +269,7 @@ def _analyse(args: argparse.Namespace) -> int:
         io.write_vgf_csv(a, args.csv)
         print(f"wrote {args.csv}")
     if args.summary:
-        _echo("\n" + a.flutter_summary().format(a.modes_of_interest(args.plot_modes)))
+        _echo("\n" + a.flutter_summary().format(a.modes_of_interest(8 if args.plot_modes is None else args.plot_modes)))
     for path, write in ((args.summary_csv, a.flutter_summary().to_csv),
                         (args.events_csv, a.events_csv)):
         if path:
@@ -278,8 +278,12 @@ def _analyse(args: argparse.Namespace) -> int:
     if args.plot:
         from propwhirl.app import plots
 
-        plots.vgf(a, n_modes=args.plot_modes, path=args.plot)
+        plots.vgf(a, model, n_modes=args.plot_modes, path=args.plot)
         print(f"wrote {args.plot}")
+    if args.animate and a.critical is not None:
+        from propwhirl.app import plots
+
+        print(f"wrote {plots.animate_event(a, a.critical, args.animate)}")
     return 0
 
 
@@ -297,8 +301,10 @@ def _add_analyse(sub) -> None:
     p.add_argument("--events-csv", metavar="OUT", help="write the events with each propeller's "
                    "participation as CSV")
     p.add_argument("--plot", metavar="PNG", help="write the V-g-f plot")
-    p.add_argument("--plot-modes", type=int, default=8, metavar="N",
-                   help="lowest N modes in the plot and the summary (default 8)")
+    p.add_argument("--plot-modes", type=int, default=None, metavar="N",
+                   help="at most N modes in the plot (default: the modes that matter) and the "
+                        "lowest N in --summary (default 8)")
+    p.add_argument("--animate", metavar="GIF", help="write a GIF of the critical mode")
     p.set_defaults(func=_analyse)
 
 
