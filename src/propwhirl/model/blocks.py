@@ -105,55 +105,46 @@ class BlockSystem:
         return full.reduced(self.keep_q, self.keep_w)
 
     # ------------------------------------------------------------------ sparse pencil
-    def _sparse(self, t: int):
-        """Sparse S1, S2, S3 (n_q, n_q) and S4, Ww, Wv, Wq at speed index t (full size)."""
-        n, m = self.n_q, self.n_w
-        out = []
-        for k, X in enumerate((self.M, self.C, self.K)):
-            rows, cols, vals = [], [], []
-            for b in self.blocks:
-                Bi = (b.S1, b.S2, b.S3)[k][t]
-                rows.append(np.broadcast_to(b.dofs[:, :, None], Bi.shape).ravel())
-                cols.append(np.broadcast_to(b.dofs[:, None, :], Bi.shape).ravel())
-                vals.append(Bi.ravel())
-            local = sp.coo_matrix((np.concatenate(vals) if vals else np.zeros(0),
-                                   (np.concatenate(rows) if rows else np.zeros(0, int),
-                                    np.concatenate(cols) if cols else np.zeros(0, int))),
-                                  shape=(n, n))
-            out.append(sp.csr_matrix(X) + local.tocsr())
-        lg = self.lag
-        if lg is None:
-            return out + [sp.csr_matrix((n, m)), sp.csr_matrix((m, m)), sp.csr_matrix((m, n)),
-                          sp.csr_matrix((m, n))]
-
-        def put(B, r, c, shape):
-            rr = np.broadcast_to(r[:, :, None], B.shape).ravel()
-            cc = np.broadcast_to(c[:, None, :], B.shape).ravel()
-            return sp.csr_matrix((B.ravel(), (rr, cc)), shape=shape)
-
-        return out + [put(lg.S4[t], lg.qrows, lg.wrows, (n, m)),
-                      put(lg.Ww[t], lg.wrows, lg.wrows, (m, m)),
-                      put(lg.Wv[t], lg.wrows, lg.qrows, (m, n)),
-                      put(lg.Wq[t], lg.wrows, lg.qrows, (m, n))]
-
     def pencil(self, t: int = 0) -> tuple[sp.csc_matrix, sp.csc_matrix]:
         """(F, E) of the first-order form E ẋ = F x, x = [q, q̇, w], at speed index ``t``.
 
         E = diag(I, S1, I), F = [[0, I, 0], [−S3, −S2, S4], [Wq, Wv, Ww]] over the kept states:
         the eigenvalues of the pencil are those of A = E⁻¹F (eq. 5.4, 7.59), without forming the
-        dense S1⁻¹.  Sparse (CSC), memory and assembly linear in the number of elements."""
-        S1, S2, S3, S4, Ww, Wv, Wq = self._sparse(t)
-        kq, kw = self.keep_q, self.keep_w
-        S1, S2, S3 = (X[kq][:, kq] for X in (S1, S2, S3))
-        S4 = S4[kq][:, kw]
-        Ww, Wv, Wq = Ww[kw][:, kw], Wv[kw][:, kq], Wq[kw][:, kq]
-        n, m = kq.size, kw.size
-        eye = sp.identity(n, format="csr")
-        F = sp.bmat([[None, eye, None], [-S3, -S2, S4], [Wq, Wv, Ww]], format="csc")
-        E = sp.block_diag([eye, S1, sp.identity(m, format="csr")], format="csc")
-        if m == 0:
-            F = F[: 2 * n][:, : 2 * n]
-        return F, E
+        dense S1⁻¹.  Sparse (CSC), assembled from one list of (row, column, value) triplets per
+        matrix: memory and assembly linear in the number of elements."""
+        n, m = self.keep_q.size, self.keep_w.size
+        gone = -(1 << 40)                    # removed states stay negative after any offset
+        qpos = np.full(self.n_q, gone)
+        qpos[self.keep_q] = np.arange(n)
+        wpos = np.full(self.n_w, gone)
+        wpos[self.keep_w] = 2 * n + np.arange(m)
+        F, E = _Triplets(), _Triplets()
+        k = np.arange(n)
+        E.add(k, k, np.ones(n))
+        E.add(2 * n + np.arange(m), 2 * n + np.arange(m), np.ones(m))
+        F.add(k, n + k, np.ones(n))
+        for X, dst, sign, off in ((self.M, E, 1.0, n), (self.C, F, -1.0, n),
+                                  (self.K, F, -1.0, 0)):
+            r, c = np.nonzero(X)
+            dst.add(n + qpos[r], off + qpos[c], sign * X[r, c])
+        for b in self.blocks:
+            rr = np.broadcast_to(b.dofs[:, :, None], b.S1.shape[1:])
+            cc = np.broadcast_to(b.dofs[:, None, :], b.S1.shape[1:])
+            E.add(n + qpos[rr], n + qpos[cc], b.S1[t])
+            F.add(n + qpos[rr], n + qpos[cc], -b.S2[t])
+            F.add(n + qpos[rr], qpos[cc], -b.S3[t])
+        lg = self.lag
+        if lg is not None:
+            qr, wr = lg.qrows, lg.wrows
+            F.add(n + qpos[np.broadcast_to(qr[:, :, None], lg.S4.shape[1:])],
+                  wpos[np.broadcast_to(wr[:, None, :], lg.S4.shape[1:])], lg.S4[t])
+            F.add(wpos[np.broadcast_to(wr[:, :, None], lg.Ww.shape[1:])],
+                  wpos[np.broadcast_to(wr[:, None, :], lg.Ww.shape[1:])], lg.Ww[t])
+            for W, off in ((lg.Wv, n), (lg.Wq, 0)):
+                F.add(wpos[np.broadcast_to(wr[:, :, None], W.shape[1:])],
+                      off + qpos[np.broadcast_to(qr[:, None, :], W.shape[1:])], W[t])
+        size = 2 * n + m
+        return F.matrix(size), E.matrix(size)
 
     # ------------------------------------------------------------------ projection
     def project(self, Phi: np.ndarray, Q: np.ndarray | None,
@@ -193,3 +184,24 @@ def _sandwich(P: np.ndarray, B: np.ndarray, R: np.ndarray) -> np.ndarray:
     T = B @ R                                                  # (nV, nb, k, s)
     nV, nb, k, s = T.shape
     return P.reshape(nb * k, -1).T @ T.reshape(nV, nb * k, s)
+
+
+class _Triplets:
+    """(row, column, value) lists of a sparse matrix; entries with a negative index (a removed
+    state) are left out; duplicates add up (COO → CSC)."""
+
+    def __init__(self) -> None:
+        self.r: list[np.ndarray] = []
+        self.c: list[np.ndarray] = []
+        self.v: list[np.ndarray] = []
+
+    def add(self, r, c, v) -> None:
+        r, c, v = (np.asarray(x).ravel() for x in (r, c, v))
+        self.r.append(r)
+        self.c.append(c)
+        self.v.append(v)
+
+    def matrix(self, size: int) -> sp.csc_matrix:
+        r, c, v = (np.concatenate(x) for x in (self.r, self.c, self.v))
+        ok = (r >= 0) & (c >= 0) & (v != 0)
+        return sp.csc_matrix((v[ok], (r[ok], c[ok])), shape=(size, size))
