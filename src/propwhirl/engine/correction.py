@@ -9,8 +9,9 @@ At each speed the root continuing the reduced one is found by shifted inverse it
 sparse LU factorisation of F − σE (σ: the current estimate; Rayleigh quotient λ = xᴴFx / xᴴEx;
 converged when the residual ‖Fx − λEx‖ is below ``RESIDUAL_TOL`` · (‖F‖ + |λ|‖E‖) ‖x‖, the
 factorisation renewed at the new estimate when it is slow).  The crossing speed is then found by
-the secant method on Re λ(V) from the reduced crossing and a speed ``step`` beyond it, until the
-step is below xtol/10.  The root must stay the same branch (MAC with the previous vector ≥
+the secant method on Re λ(V) — its first step Newton's with the reduced root's slope — until the
+next step is below xtol/10 (the crossing is then that step's speed; λ and the vector are those of
+the last evaluation, less than xtol/10 away).  The root must stay the same branch (MAC with the previous vector ≥
 ``BRANCH_MAC``); a failure returns None, and the caller keeps the reduced result.  Cost: a few
 sparse factorisations of the full pencil per crossing — linear in the number of elements for
 the banded wing.
@@ -78,14 +79,17 @@ def full_order_root(F, E, sigma: complex, x0: np.ndarray, max_iter: int = 40
 
 
 def correct_crossing(pencil: Pencil, V0: float, lam0: complex, x0: np.ndarray, *,
-                     xtol: float, step: float | None = None,
+                     xtol: float, slope: float | None = None, step: float | None = None,
                      bounds: tuple[float, float] | None = None) -> Corrected | None:
     """The crossing Re λ(V) = 0 of the full-order branch through (V0, λ0, x0) (module docstring).
 
     pencil(V) -> (F, E) sparse; lam0, x0: the reduced model's root at V0 and its vector lifted to
-    the full state; xtol [m/s]: final secant step; step [m/s]: the second secant speed's distance
-    (default max(20 xtol, 1e-4 V0)); bounds: the speeds the crossing may not leave.  For a real
-    root (divergence) the iteration is real.  Returns None when a root or the secant fails.
+    the full state; xtol [m/s]: the crossing is accepted when the next secant step is below
+    xtol/10; slope: d Re λ/dV [1/m] of the reduced root (the first step is then Newton's, and a
+    reduced crossing close to the full one converges in two evaluations); step [m/s]: without a
+    slope, the second speed's distance (default max(20 xtol, 1e-4 V0)); bounds: the speeds the
+    crossing may not leave.  For a real root (divergence) the iteration is real.  Returns None
+    when a root or the secant fails.
     """
     real = np.imag(lam0) == 0
     x = np.real(x0) if real else np.asarray(x0, dtype=complex)
@@ -110,10 +114,15 @@ def correct_crossing(pencil: Pencil, V0: float, lam0: complex, x0: np.ndarray, *
     if a is None:
         return None
     Va, (la, xa) = V0, a
-    b = root(V0 + h, la, xa)
+    Vb = V0 + h
+    if slope is not None and np.isfinite(slope) and slope != 0:
+        Vb = V0 - np.real(la) / slope
+        if not (lo <= Vb <= hi) or Vb == V0:
+            Vb = V0 + h
+    b = root(Vb, la, xa)
     if b is None:
         return None
-    Vb, (lb, xb) = V0 + h, b
+    lb, xb = b
     for it in range(MAX_SECANT):
         ga, gb = np.real(la), np.real(lb)
         if gb == ga:
@@ -121,11 +130,12 @@ def correct_crossing(pencil: Pencil, V0: float, lam0: complex, x0: np.ndarray, *
         Vn = Vb - gb * (Vb - Va) / (gb - ga)
         if not (lo <= Vn <= hi):
             return None
+        if abs(Vn - Vb) <= 0.1 * xtol:        # the next step is below xtol/10: converged
+            return Corrected(float(Vn), complex(lb), np.asarray(xb, dtype=complex), it + 1,
+                             evals)
         c = root(Vn, lb, xb)
         if c is None:
             return None
         Va, la, xa = Vb, lb, xb
         Vb, (lb, xb) = Vn, c
-        if abs(Vb - Va) <= 0.1 * xtol:
-            return Corrected(float(Vb), complex(lb), np.asarray(xb, dtype=complex), it + 1, evals)
     return None
