@@ -183,6 +183,10 @@ class PropellerWing(StateSpaceModel):
         "name", "", "label", default="setting"))
     _nodes: tuple[int, ...] = field(default=(), repr=False, compare=False, metadata=spec(
         None, "", "node of each propeller (derived)", default="none", form="derived"))
+    #: what does not change with speed, computed once per model: the wing structure (M, C, K)
+    _memo: dict = field(init=False, default_factory=dict, repr=False, compare=False,
+                        metadata=spec(None, "", "speed-independent matrices (derived)",
+                                      default="none", form="derived"))
 
     def __post_init__(self) -> None:
         check_fields(self)  # a Wing, a FlightCondition, Installations, bool switches
@@ -367,9 +371,13 @@ class PropellerWing(StateSpaceModel):
         nqw = 3 * wing.n_nodes
         flex = self.flexible
         n = nqw + 2 * len(flex)
-        Ms, Cs, Ks = (np.zeros((n, n)) for _ in range(3))
-        for X, Xw in zip((Ms, Cs, Ks), wing_structure(wing)):
-            X[:nqw, :nqw] = Xw
+        if "structure" not in self._memo:
+            mats = tuple(np.zeros((n, n)) for _ in range(3))
+            for X, Xw in zip(mats, wing_structure(wing)):
+                X[:nqw, :nqw] = Xw
+                X.flags.writeable = False
+            self._memo["structure"] = mats
+        Ms, Cs, Ks = self._memo["structure"]
         groups = []
         lag, m, w_labels, keep_w = None, 0, (), np.arange(0)
         if self.wing_aero:
