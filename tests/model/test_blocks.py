@@ -61,3 +61,8 @@ def test_projection_is_linear_in_the_basis(model):
     np.testing.assert_allclose(S4[0], P.T @ d.S4[0] @ G, rtol=1e-10, atol=1e-12)
     np.testing.assert_allclose(Wv[0], G.T @ d.Wv[0] @ P, rtol=1e-10, atol=1e-12)
     np.testing.assert_allclose(Ww[0], G.T @ d.Ww[0] @ G, rtol=1e-10, atol=1e-12)
+
+
+def test_mass_alone_is_the_dense_S1(model):
+    b = model.second_order_blocks(V)
+    np.testing.assert_array_equal(b.mass(), b.dense().S1)

@@ -280,8 +280,14 @@ def participation(dm: DofMap, X, M, eigenvalues, V) -> Participation:
 
 def mass_matrices(model: Model, V) -> np.ndarray:
     """Structural mass matrices S1 of ``model`` at speeds ``V`` [m/s], (len(V), n_dof, n_dof):
-    the model without aerodynamics (module docstring)."""
-    return model.without_aerodynamics().second_order(np.atleast_1d(np.asarray(V, dtype=float))).S1
+    the model without aerodynamics (module docstring).  A wing model's S1 alone, from its blocks
+    (:meth:`~propwhirl.model.blocks.BlockSystem.mass`): not the six other matrices of each speed,
+    which for a large wing are hundreds of MB."""
+    quiet = model.without_aerodynamics()
+    V = np.atleast_1d(np.asarray(V, dtype=float))
+    if hasattr(quiet, "second_order_blocks"):
+        return quiet.second_order_blocks(V).mass()
+    return quiet.second_order(V).S1
 
 
 def mode_participation(model: Model, X, eigenvalues, V) -> Participation:

@@ -104,6 +104,15 @@ class BlockSystem:
         full = SecondOrder(S[0], S[1], S[2], S4, Ww, Wv, Wq, self.q_labels, self.w_labels)
         return full.reduced(self.keep_q, self.keep_w)
 
+    def mass(self) -> np.ndarray:
+        """S1 alone over the kept DOFs (nV, n, n): :meth:`dense`'s S1 without the others."""
+        S1 = np.empty((self.V.shape[0], self.n_q, self.n_q))
+        S1[:] = self.M
+        for b in self.blocks:
+            S1[:, b.dofs[:, :, None], b.dofs[:, None, :]] += b.S1
+        k = self.keep_q
+        return S1[:, k[:, None], k[None, :]]
+
     # ------------------------------------------------------------------ sparse pencil
     def pencil(self, t: int = 0) -> tuple[sp.csc_matrix, sp.csc_matrix]:
         """(F, E) of the first-order form E ẋ = F x, x = [q, q̇, w], at speed index ``t``.
