@@ -113,7 +113,7 @@ def _reduced_engine_analysis(model, grid, displacement, state_labels, options, x
                         **({"initial_step": None} if vgf else {}))
     lift = R.lift
     points, shifts = [], []
-    slopes = _reduced_slopes(R, an.criticals.points, xtol)
+    slopes = _reduced_slopes(an.sweep, an.criticals.points)
     for p, slope in zip(an.criticals.points, slopes):
         x0 = lift @ p.eigenvector
         c = correct_crossing(R.pencil, p.V, p.eigenvalue, x0, xtol=xtol, slope=slope)
@@ -138,17 +138,15 @@ def _reduced_engine_analysis(model, grid, displacement, state_labels, options, x
     return ReducedRun(Analysis(lifted, crit), R, tuple(shifts))
 
 
-def _reduced_slopes(R: ReducedModel, points, xtol: float) -> list[float | None]:
-    """d Re λ/dV [1/m] of each crossing's reduced root, by a central difference (±5 xtol) on
-    the reduced model: all points in one batched evaluation; None where no root is near."""
-    if not points:
-        return []
-    d = 5 * xtol
-    V = np.array([[p.V - d, p.V + d] for p in points]).ravel()
-    lam = np.linalg.eigvals(R.state_matrix(V)).reshape(len(points), 2, -1)
+def _reduced_slopes(sweep, points) -> list[float | None]:
+    """d Re λ/dV [1/m] of each crossing's reduced root: the tracked dλ/dV of its mode at the
+    two sweep speeds around the crossing, interpolated linearly in V (no new evaluation)."""
     out: list[float | None] = []
-    for p, (lo, hi) in zip(points, lam):
-        a, b = lo[np.argmin(np.abs(lo - p.eigenvalue))], hi[np.argmin(np.abs(hi - p.eigenvalue))]
-        near = max(abs(a - p.eigenvalue), abs(b - p.eigenvalue)) < 0.1 * max(abs(p.eigenvalue), 1)
-        out.append(float((b.real - a.real) / (2 * d)) if near else None)
+    V = sweep.V
+    for p in points:
+        t = int(np.clip(np.searchsorted(V, p.V) - 1, 0, V.size - 2))
+        g = sweep.dlam_dV[t:t + 2, p.mode].real
+        w = (p.V - V[t]) / (V[t + 1] - V[t]) if V[t + 1] > V[t] else 0.5
+        s = float((1 - w) * g[0] + w * g[1])
+        out.append(s if np.isfinite(s) and s != 0 else None)
     return out

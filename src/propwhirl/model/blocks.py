@@ -104,14 +104,20 @@ class BlockSystem:
         full = SecondOrder(S[0], S[1], S[2], S4, Ww, Wv, Wq, self.q_labels, self.w_labels)
         return full.reduced(self.keep_q, self.keep_w)
 
-    def mass(self) -> np.ndarray:
-        """S1 alone over the kept DOFs (nV, n, n): :meth:`dense`'s S1 without the others."""
-        S1 = np.empty((self.V.shape[0], self.n_q, self.n_q))
-        S1[:] = self.M
+    def matrix(self, name: str = "S1") -> np.ndarray:
+        """One of S1, S2, S3 alone over the kept DOFs (nV, n, n): :meth:`dense`'s, without the
+        other six (for a large wing each is n² · 8 bytes per speed)."""
+        k = ("S1", "S2", "S3").index(name)
+        S = np.empty((self.V.shape[0], self.n_q, self.n_q))
+        S[:] = (self.M, self.C, self.K)[k]
         for b in self.blocks:
-            S1[:, b.dofs[:, :, None], b.dofs[:, None, :]] += b.S1
-        k = self.keep_q
-        return S1[:, k[:, None], k[None, :]]
+            S[:, b.dofs[:, :, None], b.dofs[:, None, :]] += (b.S1, b.S2, b.S3)[k]
+        kq = self.keep_q
+        return S[:, kq[:, None], kq[None, :]]
+
+    def mass(self) -> np.ndarray:
+        """S1 alone (:meth:`matrix`)."""
+        return self.matrix("S1")
 
     # ------------------------------------------------------------------ sparse pencil
     def pencil(self, t: int = 0) -> tuple[sp.csc_matrix, sp.csc_matrix]:

@@ -121,9 +121,9 @@ def modal_basis(model, speeds, *, cutoff_hz: float | None = None,
     Phi_c = shapes[:, :n_keep]
     # static correction at the middle and the top of the range
     Vs = np.unique([0.5 * (V[0] + V[-1]), V[-1]])
-    full = model.second_order_blocks(Vs).dense()
+    S3 = model.second_order_blocks(Vs).matrix("S3")
     cho = sla.cho_factor(K)
-    X = [sla.cho_solve(cho, (full.S3[t] - K) @ Phi_c) for t in range(Vs.size)]
+    X = [sla.cho_solve(cho, (S3[t] - K) @ Phi_c) for t in range(Vs.size)]
     B = np.hstack([Phi_c] + X)
     for _ in range(2):                    # M-orthonormal, dependent vectors dropped; twice,
         B = B / np.sqrt(np.einsum("ij,ij->j", B, M @ B))     # for the rounding of the first
