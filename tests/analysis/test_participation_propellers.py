@@ -39,7 +39,7 @@ def modes_at(model, V):
 def test_hand_example():
     """Two wing DOFs and one propeller: the shares are the block energies q_Jᴴ M_JJ q_J over
     their sum; the whirl sense and amplitude those of the θ–ψ orbit."""
-    dm = DofMap(q_labels=("node 1 h", "node 1 alpha", "propeller 0 theta", "propeller 0 psi"),
+    dm = DofMap(q_labels=("node 1 h", "node 1 alpha", "propeller 1 theta", "propeller 1 psi"),
                 q_kinds=("h", "alpha", "theta", "psi"), q_node=(1, 1, -1, -1),
                 q_propeller=(-1, -1, 0, 0),
                 propellers=(PropellerDofs(0, 2, 3, rotation=1, spinning=True, y=2.0, node=1),),

@@ -31,7 +31,7 @@ from propwhirl.validate import InputError
 from propwhirl.analysis.vibration import campbell, label_modes, model_modes
 from propwhirl.model.statespace import SecondOrder, state_matrix
 
-TH, PS = "propeller 0 theta", "propeller 0 psi"
+TH, PS = "propeller 1 theta", "propeller 1 psi"
 T_SETTLED = 2.0        # [s] the forward whirl mode (Re λ ≈ −2.4 … −2.9 1/s at 222–250 m/s) is gone
 
 
@@ -166,7 +166,7 @@ def test_wing_model_response_is_labelled_and_consistent():
     (SI) and the modal coordinates follow e^{λt}."""
     m = wingtip_propeller_wing()
     r = simulate(m, 100.0, {"node 25 h": 0.01}, duration=0.5, dt=0.001)
-    assert r["node 25 h"][0] == 0.01 and "propeller 0 theta" in r.dofs
+    assert r["node 25 h"][0] == 0.01 and "propeller 1 theta" in r.dofs
     assert "d/dt node 25 h" in r.labels and any(lab.endswith("w1") for lab in r.labels)
     eta = r.modal()
     expect = eta[0][None, :] * np.exp(np.outer(r.t, r.eigenvalues))

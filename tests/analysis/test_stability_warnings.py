@@ -23,7 +23,7 @@ def isolated():
 def test_supersonic_tips_at_an_instability_are_flagged_once(isolated):
     assert len(isolated.warnings) == 1
     w = isolated.warnings[0]
-    assert w.startswith("propeller 0: helical tip Mach number 1.26 at V = 221.50 m/s "
+    assert w.startswith("propeller 1: helical tip Mach number 1.26 at V = 221.50 m/s "
                         "(flutter onset of backward)")
 
 

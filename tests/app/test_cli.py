@@ -185,11 +185,18 @@ def test_other_commands_bad_input(argv, message, capsys):
     assert message in err
 
 
-def test_campbell_needs_a_propeller_wing(tmp_path, capsys):
-    path = tmp_path / "iso.toml"
-    cli.main(["case", "isolated-propeller", "--save", str(path)])
+def test_campbell_needs_a_flexibly_mounted_propeller(tmp_path, capsys):
+    """A wing whose propellers are all rigidly mounted has no whirl modes to follow (an
+    isolated propeller is accepted: tests/app/test_cli_campbell_isolated.py)."""
+    from dataclasses import replace
+
+    from propwhirl.cases.registry import case_model
+
+    m = case_model("wingtip")
+    path = io.save_model(m.with_(propellers=tuple(replace(i, mount="rigid")
+                                                  for i in m.propellers)), tmp_path / "r.toml")
     assert cli.main(["campbell", str(path), "--rpm", "0", "100", "2"]) == 2
-    assert "needs a propeller-wing model" in capsys.readouterr().err
+    assert "needs a flexibly mounted propeller" in capsys.readouterr().err
 
 
 def test_unknown_case_is_one_line_listing_the_names(capsys):

@@ -139,7 +139,7 @@ def _two_node_map(rotation=1):
     from propwhirl.model.protocol import DofMap, PropellerDofs
 
     labels = ("node 1 h", "node 1 phi", "node 1 alpha", "node 2 h", "node 2 phi", "node 2 alpha",
-              "propeller 0 theta", "propeller 0 psi")
+              "propeller 1 theta", "propeller 1 psi")
     return DofMap(labels, ("h", "phi", "alpha", "h", "phi", "alpha", "theta", "psi"),
                   (1, 1, 1, 2, 2, 2, -1, -1), (-1,) * 6 + (0, 0),
                   propellers=(PropellerDofs(0, 6, 7, rotation, True, 2.0, 2),),
@@ -245,13 +245,13 @@ def test_time_history_plots_theta_psi_in_degrees(tmp_path):
     ax_t, ax_p, ax_o = fig.axes[:3]
     for ln, (label, r) in zip(ax_t.get_lines(), rs.items()):
         assert ln.get_label() == label
-        np.testing.assert_allclose(ln.get_ydata(), np.degrees(r["propeller 0 theta"]))
+        np.testing.assert_allclose(ln.get_ydata(), np.degrees(r["propeller 1 theta"]))
     np.testing.assert_allclose(ax_p.get_lines()[0].get_ydata(),
-                               np.degrees(rs["V = 77 m/s"]["propeller 0 psi"]))
+                               np.degrees(rs["V = 77 m/s"]["propeller 1 psi"]))
     path = ax_o.get_lines()[0]
-    np.testing.assert_allclose(path.get_xdata(), np.degrees(rs["V = 77 m/s"]["propeller 0 theta"]))
+    np.testing.assert_allclose(path.get_xdata(), np.degrees(rs["V = 77 m/s"]["propeller 1 theta"]))
     assert ax_t.get_lines()[0].get_ydata()[0] == pytest.approx(1.0)  # initial pitch 1°
-    with pytest.raises(InputError, match="no state labelled 'propeller 1 theta'"):
+    with pytest.raises(InputError, match="no state labelled 'propeller 2 theta'"):
         plots.time_history(rs["V = 77 m/s"], propeller=1)
 
 

@@ -206,7 +206,7 @@ def _map(n_props: int) -> DofMap:
     props = []
     for j in range(n_props):
         props.append(PropellerDofs(j, len(labels), len(labels) + 1, 1, True, 0.5 + 0.25 * j, 2))
-        labels += [f"propeller {j} theta", f"propeller {j} psi"]
+        labels += [f"propeller {j + 1} theta", f"propeller {j + 1} psi"]
         kinds += ["theta", "psi"]
     return DofMap(tuple(labels), tuple(kinds), (1, 1, 1, 2, 2, 2) + (-1,) * (2 * n_props),
                   (-1,) * 6 + tuple(j for j in range(n_props) for _ in range(2)),

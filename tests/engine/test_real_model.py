@@ -92,8 +92,8 @@ def test_names_at_first_speed_are_the_thesis_modes(engine, model):
         ref = refs[f"t10.3/{ids[sw.mode_labels[k]]}"]
         assert abs(lam0[k]) / (2 * np.pi) == pytest.approx(ref.thesis, rel=ref.tol)
     # the whirl modes whirl in their named sense (θ–ψ orbit against the rotor's spin)
-    th = sw.state_labels.index("propeller 0 theta")
-    ps = sw.state_labels.index("propeller 0 psi")
+    th = sw.state_labels.index("propeller 1 theta")
+    ps = sw.state_labels.index("propeller 1 psi")
     rot = rotation_sign(model)
     for name in ("backward 1", "forward 1"):
         k = sw.mode_labels.index(name)

@@ -48,7 +48,7 @@ def _message(model) -> str:
 
 def test_a_huge_mount_stiffness_is_named_with_its_value():
     msg = _message(_prop_model(f_theta=None, K_theta=3.2e305))
-    assert msg.startswith("propeller 0: K_theta = 3.2e+305 N m/rad makes its stiffness block")
+    assert msg.startswith("propeller 1: K_theta = 3.2e+305 N m/rad makes its stiffness block")
     assert "V = 1.0 m/s" in msg and "check the model parameters" not in msg
 
 
@@ -64,22 +64,22 @@ def test_a_huge_wing_property_is_named_with_its_station(field, unit):
 
 def test_huge_mount_damping_is_named():
     msg = _message(_prop_model(damping_theta=1e300))
-    assert msg.startswith("propeller 0: zeta_theta = 5e+299 makes its damping block")
+    assert msg.startswith("propeller 1: zeta_theta = 5e+299 makes its damping block")
 
 
 def test_a_huge_mass_is_badly_scaled_not_zero_mass():
     p = wingtip_propeller_wing().propellers[0].propeller
     msg = _message(_prop_model(rotor=_forced(PointMass(1.0, p.rotor.x), mass=1e300)))
     assert "badly scaled" in msg and "zero mass" not in msg
-    assert "propeller 0:" in msg and "node 25" in msg
+    assert "propeller 1:" in msg and "node 25" in msg
 
 
 def test_a_dof_without_inertia_is_singular_and_named():
     z = np.zeros((1, 2, 0))
     sys = SecondOrder(np.array([[[1.0, 0.0], [0.0, 0.0]]]), np.zeros((1, 2, 2)),
                       np.eye(2)[None], z, np.zeros((1, 0, 0)), np.zeros((1, 0, 2)),
-                      np.zeros((1, 0, 2)), ("node 1 h", "propeller 0 theta"), ())
-    with pytest.raises(StateMatrixError, match=r"singular .*: propeller 0 theta has no independent "
+                      np.zeros((1, 0, 2)), ("node 1 h", "propeller 1 theta"), ())
+    with pytest.raises(StateMatrixError, match=r"singular .*: propeller 1 theta has no independent "
                                                r"inertia \(a zero mass or inertia\?\)"):
         state_matrix(sys, V)
 
@@ -98,12 +98,12 @@ def test_a_non_finite_entry_names_matrix_role_and_states():
 def test_the_isolated_propeller_names_its_parameter_too():
     m = isolated_baseline_propeller()
     m = m.with_(propeller=_forced(m.propeller, f_psi=None, K_psi=1e305))
-    assert _message(m).startswith("propeller 0: K_psi = 1e+305 N m/rad")
+    assert _message(m).startswith("propeller 1: K_psi = 1e+305 N m/rad")
 
 
 def test_second_order_alone_reports_a_non_finite_entry():
     m = _prop_model(f_theta=None, K_theta=np.inf)
     # the mount damping c = 2 zeta sqrt(K I) is the first matrix it spoils
-    with pytest.raises(InputError, match=r"propeller 0: K_theta = inf N m/rad makes its damping "
+    with pytest.raises(InputError, match=r"propeller 1: K_theta = inf N m/rad makes its damping "
                                          r"block non-finite \(the damping matrix S2"):
         m.second_order(V)

@@ -56,7 +56,7 @@ def test_dof_counts_and_labels():
     s = model.second_order(np.array([50.0]))
     assert s.n_dof == 3 * 25 + 4 and s.n_lag == 2 * 25
     assert s.q_labels[:3] == ("node 1 h", "node 1 phi", "node 1 alpha")
-    assert s.q_labels[-4:] == ("propeller 0 theta", "propeller 0 psi", "propeller 1 theta", "propeller 1 psi")
+    assert s.q_labels[-4:] == ("propeller 1 theta", "propeller 1 psi", "propeller 2 theta", "propeller 2 psi")
     rigid = two_propeller_wing("rigid").second_order(np.array([50.0]))
     assert rigid.n_dof == 3 * 25
 
@@ -73,7 +73,7 @@ def test_gyroscopic_terms_skew_symmetric_and_vanish_at_rest():
 def test_omega_zero_removes_pitch_yaw_coupling():
     model = quiet(wingtip_propeller_wing()).with_(rotating=False)
     s = model.second_order(np.array([100.0]))
-    th, ps = s.q_labels.index("propeller 0 theta"), s.q_labels.index("propeller 0 psi")
+    th, ps = s.q_labels.index("propeller 1 theta"), s.q_labels.index("propeller 1 psi")
     for Mx in (s.S1[0], s.S2[0], s.S3[0]):
         assert Mx[th, ps] == 0.0 and Mx[ps, th] == 0.0
         # yaw couples to nothing at rest: no lateral wing motion

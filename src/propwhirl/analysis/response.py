@@ -7,7 +7,7 @@ structure, 6.18 for the isolated propeller, D.27 for propellers on a wing) at on
 given initial conditions with the exact transition matrix e^{AΔt}
 (:func:`propwhirl.engine.time_response`; the thesis used MATLAB's ode45, available here as
 ``method="ivp"``).  It returns a :class:`Response` whose histories are labelled like the
-model's states, in SI: displacements ("propeller 0 theta" [rad], "node 3 h" [m, positive
+model's states, in SI: displacements ("propeller 1 theta" [rad], "node 3 h" [m, positive
 down], "node 3 alpha" [rad, nose up] ...), their rates ("d/dt ..." [rad/s, m/s]) and the
 aerodynamic lag states.  :func:`propwhirl.reproduce.ch09.baseline_propeller_responses` reproduces the setting of
 Figures 9.11–9.12: the isolated baseline propeller (symmetric, or f_ψ = 4 Hz) released from an
@@ -100,7 +100,7 @@ class Response:
                                f"the response (t = {self.t[0]}..{self.t[-1]} s)")
         return sel
 
-    def orbit_area(self, theta: str = "propeller 0 theta", psi: str = "propeller 0 psi",
+    def orbit_area(self, theta: str = "propeller 1 theta", psi: str = "propeller 1 psi",
                    t_from: float = 0.0, t_to: float | None = None) -> float:
         """Signed area swept by the (θ on X, ψ on Y) path, ½∫(θ dψ − ψ dθ) [rad²].
 
@@ -111,7 +111,7 @@ class Response:
         th, ps = self[theta][sel], self[psi][sel]
         return float(0.5 * np.sum(th[:-1] * ps[1:] - ps[:-1] * th[1:]))
 
-    def growth_rate(self, label: str = "propeller 0 theta", t_from: float = 0.0,
+    def growth_rate(self, label: str = "propeller 1 theta", t_from: float = 0.0,
                     t_to: float | None = None) -> float:
         """Exponential rate σ [1/s] of the envelope of one history: least-squares line through
         log|x| at its local extrema (one per half cycle) in [t_from, t_to] [s].
@@ -147,7 +147,7 @@ def simulate(model, V: float, initial: Mapping[str, float], *, duration: float =
              dt: float = 0.002, method: str = "expm") -> Response:
     """Linear free response of ``model`` at airspeed ``V`` [m/s] (§9.2, Figures 9.11–9.12).
 
-    ``initial``: initial values of states by label, SI — e.g. ``{"propeller 0 theta":
+    ``initial``: initial values of states by label, SI — e.g. ``{"propeller 1 theta":
     np.radians(1.0)}`` (rad), ``{"node 25 h": 0.01}`` (m, down), ``{"d/dt node 25 alpha": 0.1}``
     (rad/s); every other state starts at zero (aerodynamic lag states included).  Sampled every
     ``dt`` [s] for ``duration`` [s]; ``method`` "expm" (exact transition matrix) or "ivp"

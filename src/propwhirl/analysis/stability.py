@@ -12,12 +12,12 @@ real root through zero), modes already unstable at the first speed, and *frequen
 an already unstable oscillatory mode whose frequency falls to zero (the pair splits into real
 roots) — the thesis's "whirl divergence" (Table 10.4).  :func:`critical` is the one definition
 of the critical instability.  Results are saved and re-read with :meth:`ModelAnalysis.save` /
-:func:`load`.
+:func:`load` (the file format: :mod:`propwhirl.analysis.files`, re-exported here: ``load``,
+``FORMAT``, ``FORMAT_VERSION``, ``READABLE_VERSIONS``, ``eigenvectors_path``).
 """
 from __future__ import annotations
 
-import json
-from dataclasses import dataclass, field, fields, replace
+from dataclasses import dataclass, field
 from pathlib import Path
 from collections.abc import Callable, Sequence
 from typing import Any
@@ -27,10 +27,11 @@ import numpy as np
 from propwhirl.engine import XTOL, Criticals, Sweep, TrackingOptions, frequency_zero_points
 from propwhirl.engine import analyse as engine_analyse
 from propwhirl.engine.options import check_speeds
-from propwhirl.engine.results import (SavedDict, eigenvectors_path, read_eigenvectors,
-                                      eigenvectors_npz)
-from propwhirl import fileio
 from propwhirl import validate as v
+# the analysis file; load, READABLE_VERSIONS and eigenvectors_path re-exported (public here)
+from propwhirl.analysis.files import (FORMAT, FORMAT_VERSION, READABLE_VERSIONS,  # noqa: F401
+                                      _event_dict, analysis_from_dict, eigenvectors_path, load,
+                                      save_analysis)
 from propwhirl.analysis.naming import mode_content, mode_names, whirl
 from propwhirl.analysis.participation import (ModeParticipation, branch_point_shape, events_csv,
                                               events_table, participation_lines,
@@ -39,7 +40,7 @@ from propwhirl.analysis.reduced import choose_method, reduced_engine_analysis
 from propwhirl.analysis.summary import (FlutterSummary, Reference, flutter_summary, reference,
                                         text_table)
 from propwhirl.model import validity
-from propwhirl.model.protocol import DofMap, Model, PropellerDofs
+from propwhirl.model.protocol import DofMap, Model
 
 #: Default airspeed grid of the thesis's analyses (0–350 m/s; the engine refines it) [m/s]
 DEFAULT_SPEEDS = np.arange(1.0, 351.0, 10.0)
@@ -280,7 +281,7 @@ class ModelAnalysis:
 
         A dict without "format" and "format_version" (written before they were introduced,
         otherwise the same layout) is read as version 1."""
-        return _analysis_from_dict(d)
+        return analysis_from_dict(d)
 
     def save(self, path: str | Path, include_eigenvectors: bool = False) -> None:
         """Write the analysis as JSON (V-g-f table, labels, instabilities and their propeller
@@ -293,225 +294,7 @@ class ModelAnalysis:
         Ctrl-C leaves the old file or none, never a partial one; the npz is written first).
         JSON without NaN or infinity: a non-finite number is an
         :class:`~propwhirl.validate.InputError` naming the key, and nothing is written."""
-        path = Path(path)
-        d = self.to_dict(include_eigenvectors=False)
-        npz = None
-        if include_eigenvectors:
-            npz = eigenvectors_path(path)
-            d["eigenvectors_file"] = npz.name
-        try:
-            text = json.dumps(d, allow_nan=False)
-        except ValueError:
-            raise v.InputError(f"cannot save the analysis to {str(path)!r}: "
-                               f"{_non_finite_key(d)} is not a finite number") from None
-        if npz is not None:
-            try:
-                data = eigenvectors_npz(self.sweep)
-            except v.InputError as exc:
-                raise v.InputError(f"cannot save the analysis to {str(path)!r}: {exc}") from None
-            try:
-                fileio.write_bytes(npz, data, what="eigenvector file")
-            except v.InputError as exc:     # name the file asked for (the JSON is untouched)
-                why = str(exc).removeprefix(f"cannot write eigenvector file {str(npz)!r}: ")
-                raise v.InputError(f"cannot write analysis file {str(path)!r}: {why} (writing "
-                                   f"its eigenvectors to {npz.name})") from None
-        fileio.write_text(path, text, what="analysis file")
-
-
-#: The "format" of an analysis file and the version this propwhirl writes and reads.
-FORMAT = "propwhirl-analysis"
-FORMAT_VERSION = 2
-#: Versions :func:`load` reads (2 added the propellers' participation at each event, the
-#: summary's reference and the eigenvector file).
-READABLE_VERSIONS = (1, 2)
-
-_EVENT_KINDS = ("flutter", "divergence")
-_EVENTS = ("onset", "recovery", "frequency-zero", "unstable-at-start")
-_WHIRL = ("forward", "backward", "planar")
-
-
-def _finite_or_none(x: float | None) -> float | None:
-    return None if x is None or not np.isfinite(x) else float(x)
-
-
-def _event_dict(e: Instability) -> dict[str, Any]:
-    d = {f.name: getattr(e, f.name) for f in fields(e)}
-    d["benignity"] = _finite_or_none(e.benignity)
-    d["participation"] = None if e.participation is None else e.participation.to_dict()
-    return d
-
-
-def _non_finite_key(obj: Any, where: str = "") -> str:
-    """The dotted key of the first non-finite number in a JSON-able document."""
-    if isinstance(obj, dict):
-        for k, x in obj.items():
-            found = _non_finite_key(x, f"{where}.{k}" if where else str(k))
-            if found:
-                return found
-    elif isinstance(obj, (list, tuple)):
-        for i, x in enumerate(obj):
-            found = _non_finite_key(x, f"{where}[{i}]")
-            if found:
-                return found
-    elif isinstance(obj, float) and not np.isfinite(obj):
-        return where or "the value"
-    return ""
-
-
-def _event_from_dict(d: Any, where: str, sweep: Sweep) -> Instability:
-    r = SavedDict(d, where, ("kind", "event", "mode", "label", "V", "frequency_hz"),
-                  ("whirl", "benignity", "participation"))
-    mode = r.integer("mode", 0, sweep.n_modes - 1)
-    label = r.string("label")
-    if label != sweep.mode_labels[mode]:
-        raise v.InputError(f"{where}.label = {label!r} is not the name of mode {mode} in the "
-                           f"sweep ({sweep.mode_labels[mode]!r})")
-    return Instability(r.string("kind", _EVENT_KINDS), r.string("event", _EVENTS), mode, label,
-                       r.number("V"), r.number("frequency_hz"),
-                       r.string("whirl", _WHIRL, optional=True) if r.has("whirl") else None,
-                       r.number("benignity", optional=True) if r.has("benignity") else None,
-                       None if not r.has("participation") or r.raw("participation") is None
-                       else ModeParticipation.from_dict(r.raw("participation"),
-                                                        f"{where}.participation"))
-
-
-def _dof_map_from_dict(d: Any, sweep: Sweep) -> DofMap:
-    keys = ("q_labels", "q_kinds", "q_node", "q_propeller", "w_labels", "w_node", "node_y",
-            "propellers")
-    r = SavedDict(d, "dof_map", keys)
-    n_dof = len(r.strings("q_labels"))
-    props = r.raw("propellers")
-    if not isinstance(props, list):
-        raise v.InputError("dof_map.propellers: must be a list")
-    dofs = []
-    for i, p in enumerate(props):
-        pr = SavedDict(p, f"dof_map.propellers[{i}]",
-                       ("number", "theta", "psi", "rotation", "spinning", "y", "node"))
-        spinning = pr.raw("spinning")
-        if not isinstance(spinning, bool):
-            raise v.InputError(f"{pr.name('spinning')}: must be true or false")
-        node = pr.raw("node")
-        dofs.append(PropellerDofs(
-            pr.integer("number", 0), pr.integer("theta", 0, n_dof - 1),
-            pr.integer("psi", 0, n_dof - 1), pr.integer("rotation", -1, 1), spinning,
-            pr.number("y", optional=True), None if node is None else pr.integer("node", 0)))
-    kw = dict(q_labels=r.strings("q_labels"), q_kinds=r.strings("q_kinds"),
-              q_node=tuple(int(k) for k in r.array("q_node", int)),
-              q_propeller=tuple(int(k) for k in r.array("q_propeller", int)),
-              w_labels=r.strings("w_labels"),
-              w_node=tuple(int(k) for k in r.array("w_node", int)),
-              propellers=tuple(dofs), node_y=tuple(float(y) for y in r.array("node_y")))
-    try:
-        dm = DofMap(**kw)
-    except v.InputError as exc:
-        raise v.InputError(f"dof_map: {exc}") from None
-    if dm.state_labels != sweep.state_labels:
-        raise v.InputError(f"dof_map: its {dm.n_states} states do not match the sweep's "
-                           f"{len(sweep.state_labels)} state labels")
-    return dm
-
-
-def _content_from_dict(d: Any, sweep: Sweep) -> dict[str, dict[str, float]]:
-    if not isinstance(d, dict):
-        raise v.InputError("content: must be an object {mode name: {group: share}}")
-    out = {}
-    for label, shares in d.items():
-        if label not in sweep.mode_labels:
-            raise v.InputError(f"content: {label!r} is not a mode of the sweep")
-        r = SavedDict(shares, f"content.{label}", (), tuple(shares) if isinstance(shares, dict)
-                      else ())
-        out[label] = {g: r.number(g) for g in shares}
-    return out
-
-
-def _analysis_from_dict(d: Any) -> ModelAnalysis:
-    keys = ("model_name", "events", "critical", "dof_map", "content", "sweep")
-    r = SavedDict(d, "", keys, ("format", "format_version", "warnings", "reference",
-                                "eigenvectors_file"))
-    if r.has("format") or r.has("format_version"):
-        got = r.raw("format") if r.has("format") else None
-        if got != FORMAT:
-            raise v.InputError(f"format = {got!r} is invalid: not a propwhirl analysis file "
-                               f"(format {FORMAT!r})")
-        if not r.has("format_version"):
-            raise v.InputError("missing key 'format_version'")
-        version = r.raw("format_version")
-        if version not in READABLE_VERSIONS or isinstance(version, bool):
-            raise v.InputError(f"format_version = {version!r} is not supported: this propwhirl "
-                               f"reads versions {', '.join(map(str, READABLE_VERSIONS))}")
-    sweep = Sweep.from_dict(r.raw("sweep"))
-    if not isinstance(r.raw("events"), list):
-        raise v.InputError("events: must be a list")
-    events = tuple(_event_from_dict(e, f"events[{i}]", sweep)
-                   for i, e in enumerate(r.raw("events")))
-    dm = None if r.raw("dof_map") is None else _dof_map_from_dict(r.raw("dof_map"), sweep)
-    notes = r.raw("warnings") if r.has("warnings") else []
-    if not isinstance(notes, list) or not all(isinstance(w, str) for w in notes):
-        raise v.InputError("warnings: must be a list of strings")
-    ref = r.raw("reference") if r.has("reference") else None
-    if r.has("eigenvectors_file"):
-        name = r.raw("eigenvectors_file")
-        if not isinstance(name, str) or not name or Path(name).name != name or name in (".", ".."):
-            raise v.InputError(f"eigenvectors_file = {name!r} is invalid: must be the name of a "
-                               "file beside the analysis file")
-    a = ModelAnalysis(r.string("model_name"), sweep, events,
-                      content=_content_from_dict(r.raw("content"), sweep), dof_map=dm,
-                      warnings=tuple(notes),
-                      reference=None if ref is None else Reference.from_dict(ref))
-    c = a.critical
-    if r.raw("critical") != (None if c is None else _event_dict(c)):
-        raise v.InputError("critical: does not match the critical instability of the events")
-    return a
-
-
-def _refuse_constant(name: str) -> Any:
-    raise v.InputError(f"holds {name}, which an analysis file must not (numbers are finite)")
-
-
-def load(path: str | Path) -> ModelAnalysis:
-    """Re-read an analysis written by :meth:`ModelAnalysis.save` (with its eigenvectors when
-    the file names an eigenvector file and that file is beside it; without them otherwise).
-
-    The file is checked throughout (:meth:`ModelAnalysis.from_dict`): an empty, truncated or
-    non-JSON file, another format or version, a missing key, a wrong type, NaN or infinity,
-    inconsistent shapes is an :class:`~propwhirl.validate.InputError` of one line starting
-    with the path.
-
-    Examples
-    --------
-    >>> import tempfile, pathlib
-    >>> from propwhirl.analysis import analyse, load
-    >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
-    >>> a = analyse(isolated_baseline_propeller(), speeds=[100.0, 200.0, 250.0])
-    >>> path = pathlib.Path(tempfile.mkdtemp()) / "a.json"
-    >>> a.save(path)
-    >>> load(path).critical == a.critical
-    True
-    """
-    path = Path(path)
-    text = fileio.read_text(path, "analysis file")
-    try:
-        doc = json.loads(text, parse_constant=_refuse_constant)
-    except json.JSONDecodeError as exc:
-        end = " (the file ends early: truncated?)" if exc.pos >= len(text.rstrip()) else ""
-        what = exc.msg[:-3] if exc.msg.endswith(" at") else exc.msg   # "... starting at"
-        raise v.InputError(f"{path}: not valid JSON: {what} (line {exc.lineno}, column "
-                           f"{exc.colno}){end}") from None
-    except RecursionError:
-        raise v.InputError(f"{path}: not an analysis file: nested too deeply") from None
-    except ValueError as exc:  # InputError from _refuse_constant, too-long integers
-        raise v.InputError(f"{path}: not an analysis file: {exc}") from None
-    try:
-        a = ModelAnalysis.from_dict(doc)
-    except v.InputError as exc:
-        raise v.InputError(f"{path}: {exc}") from None
-    except RecursionError:
-        raise v.InputError(f"{path}: not an analysis file: nested too deeply") from None
-    name = doc.get("eigenvectors_file")
-    if name is not None and a.sweep.eigenvectors is None and (path.parent / name).is_file():
-        X = read_eigenvectors(path.parent / name, a.sweep)
-        a = replace(a, sweep=replace(a.sweep, eigenvectors=X))
-    return a
+        save_analysis(self, path, include_eigenvectors)
 
 
 # ----------------------------------------------------------------------------- analyse

@@ -350,10 +350,10 @@ def _campbell(args: argparse.Namespace) -> int:
 
     _check_outputs(plot=args.plot)
     model = _load(args.model)
-    dm = model.dof_map()
-    if not (dm.has_wing and dm.propellers):
-        raise InputError(f"{args.model}: a Campbell diagram needs a propeller-wing model with a "
-                         "flexibly mounted propeller")
+    if not model.dof_map().propellers:       # a propeller wing or an isolated propeller
+        raise InputError(f"{args.model}: a Campbell diagram needs a flexibly mounted propeller "
+                         "(a propeller-wing model or an isolated propeller): this model has "
+                         "no propeller pitch/yaw degrees of freedom")
     lo, hi, n = args.rpm
     v.in_range("--rpm START", lo, 0.0, limits.MAX_RPM, "rev/min")
     v.in_range("--rpm STOP", hi, 0.0, limits.MAX_RPM, "rev/min")
@@ -368,6 +368,10 @@ def _campbell(args: argparse.Namespace) -> int:
     count = min(count, result.n_modes)
     _echo(f"{model.name}: natural frequencies [Hz] against propeller speed (no aerodynamics), "
           "each mode followed from RPM 0")
+    if len(set(result.rpm_ratio)) > 1:        # the propellers turn at different speeds
+        _echo("  RPM of propeller 1; " + ", ".join(
+            f"propeller {j + 1} at {r:.4g} x RPM" for j, r in enumerate(result.rpm_ratio)
+            if j > 0))
     _echo(f"  {'RPM':>8s} " + " ".join(f"{lab:>11s}" for lab in result.labels[:count]))
     for r, row in zip(result.rpm, result.frequency_hz):
         print(f"  {r:8.1f} " + " ".join(f"{x:11.3f}" for x in row[:count]))
@@ -376,8 +380,8 @@ def _campbell(args: argparse.Namespace) -> int:
     if args.plot:
         from propwhirl.app import plots
 
-        plots.campbell_diagram(result.rpm, result.frequency_hz, n_modes=count,
-                               names=result.labels,
+        # the result itself: its families (colours) and each propeller's speed (1P/2P lines)
+        plots.campbell_diagram(result, n_modes=count,
                                title=f"{limits.printable(model.name)}: Campbell diagram",
                                path=args.plot)
         print(f"wrote {args.plot}")
@@ -385,7 +389,8 @@ def _campbell(args: argparse.Namespace) -> int:
 
 
 def _add_campbell(sub) -> None:
-    p = sub.add_parser("campbell", help="Campbell diagram of a propeller-wing model file")
+    p = sub.add_parser("campbell", help="Campbell diagram of a model file (a propeller wing or "
+                       "an isolated propeller)")
     p.add_argument("model", metavar="MODEL.toml")
     p.add_argument("--rpm", nargs=3, type=float, required=True, metavar=("START", "STOP", "N"),
                    help="N propeller speeds from START to STOP [rev/min]")

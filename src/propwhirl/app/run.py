@@ -23,12 +23,14 @@ from pathlib import Path
 
 import numpy as np
 
-from propwhirl import fileio, io
+from propwhirl import documents, fileio, io
 from propwhirl.limits import printable
 from propwhirl.analysis.participation import participation_lines
 from propwhirl.analysis.stability import Instability, ModelAnalysis, analyse, describe_critical
 from propwhirl.analysis.summary import text_table
 from propwhirl.cases.registry import case_model
+from propwhirl.model import atmosphere
+from propwhirl.model.flight import FlightCondition
 from propwhirl.model.systems import PropellerWing
 from propwhirl.reproduce.harness import load_references
 from propwhirl.analysis.vibration import label_modes
@@ -73,10 +75,35 @@ def describe(model: PropellerWing) -> list[str]:
         f"J = pi mu = {np.pi * p.advance_ratio:.3f} (Omega proportional to V), Houbolt-Reed "
         "derivatives",
         f"  flight: density {model.flight.density:g} kg/m^3, speed of sound "
-        f"{model.flight.speed_of_sound:.2f} m/s (8000 ft)",
+        f"{model.flight.speed_of_sound:.2f} m/s{altitude_text(model.flight)}",
         f"  airspeeds {first:g}-{last:g} m/s (initial step {step:g} m/s, refined automatically; "
         "V = 0 is excluded: the strip aerodynamics carry 1/V)",
     ]
+
+
+def isa_altitude(flight: FlightCondition, rtol: float = 1e-6) -> float | None:
+    """The ISA altitude [m] of a flight condition, or None when it is not an ISA condition.
+
+    The troposphere's speed of sound falls strictly with altitude (−5 to 11 km), so the speed
+    of sound gives the one candidate altitude; it is the flight's altitude when the ISA
+    density there is the flight's density too (both within `rtol`).  Above 11 km (constant
+    temperature) the altitude is not determined by the speed of sound: None.
+    """
+    # a = sqrt(gamma R T), T = T0 + L h with the troposphere's lapse rate L = -6.5 K/km
+    T = flight.speed_of_sound ** 2 / (atmosphere.GAMMA * atmosphere.R_AIR)
+    h = (T - atmosphere.SEA_LEVEL_TEMPERATURE) / -0.0065
+    if not atmosphere.MIN_ALTITUDE <= h <= 11000.0:
+        return None
+    air = atmosphere.isa(h)
+    same = (abs(air.speed_of_sound - flight.speed_of_sound) <= rtol * flight.speed_of_sound
+            and abs(air.density - flight.density) <= rtol * flight.density)
+    return float(h) if same else None
+
+
+def altitude_text(flight: FlightCondition) -> str:
+    """' (ISA, 8000 ft = 2438 m)' when the flight is the ISA at some altitude, else ''."""
+    h = isa_altitude(flight)
+    return "" if h is None else f" (ISA, {round(h / atmosphere.FT):d} ft = {round(h):d} m)"
 
 
 def _thesis_values() -> dict[str, float]:
@@ -133,8 +160,9 @@ def event_lines(a: ModelAnalysis, thesis: dict[str, float]) -> list[str]:
         lines.append(
             f"Note: the thesis reports the forward whirl flutter ({thesis_fw:g} m/s; here "
             f"{fw.V:.2f} m/s) as critical; it does not report this static divergence (a real root "
-            "through zero) - see docs/validation.md, 'The wingtip models have a static divergence "
-            "the thesis does not report'.")
+            "through zero) - see "
+            + documents.cite("validation", "'The wingtip models have a static divergence the "
+                             "thesis does not report'") + ".")
     return lines
 
 
@@ -146,7 +174,8 @@ def write_plots(a: ModelAnalysis, model: PropellerWing, out: Path) -> list[Path]
         return []
     from propwhirl.app import plots
 
-    paths = [plots.save(plots.vgf(a, n_modes=VGF_MODES), out / "wingtip_vgf.png")]
+    # the model: the curves on a fine speed grid (the analysis's sweep holds the engine's nodes)
+    paths = [plots.save(plots.vgf(a, model, n_modes=VGF_MODES), out / "wingtip_vgf.png")]
     if a.critical is not None:
         paths.append(plots.save(plots.event_mode_shape(a, a.critical),
                                 out / "wingtip_mode_critical.png"))

@@ -164,7 +164,7 @@ def blame_entry(contributions, err) -> str | None:
     containing the entry whose value there is furthest from 1 (in orders of magnitude, a
     non-finite one first) is the culprit; within it, the argument whose replacement by 1 (sign
     kept) brings the entry back by the most — at least three orders of magnitude, or to a
-    finite value — is named with its value.  Returns e.g. "propeller 0: K_theta =
+    finite value — is named with its value.  Returns e.g. "propeller 1: K_theta =
     3.2e+305 N m/rad makes its stiffness block far too large (…)", or None.
     """
     matrix = err.matrix.split()[-1]

@@ -18,17 +18,17 @@ Every model — :class:`~propwhirl.model.systems.PropellerWing`,
 * ``name`` and ``flight`` (the :class:`~propwhirl.model.flight.FlightCondition`).
 
 The analyses read the states' meaning from the map only — never from a model's class name,
-its attributes or its state labels.  Labels are for people: ``"node 3 h"``, ``"propeller 0
+its attributes or its state labels.  Labels are for people: ``"node 3 h"``, ``"propeller 1
 psi"``, ``"d/dt node 3 h"`` (the one rule for rates, :func:`~propwhirl.model.statespace.rate_label`), ``"node 3 w1"``.
 
 Examples
 --------
 >>> from propwhirl.model.protocol import DofMap, PropellerDofs
->>> dm = DofMap(q_labels=("propeller 0 theta", "propeller 0 psi"), q_kinds=("theta", "psi"),
+>>> dm = DofMap(q_labels=("propeller 1 theta", "propeller 1 psi"), q_kinds=("theta", "psi"),
 ...             q_node=(-1, -1), q_propeller=(0, 0),
 ...             propellers=(PropellerDofs(0, 0, 1, rotation=1, spinning=True, y=None),))
 >>> dm.state_labels
-('propeller 0 theta', 'propeller 0 psi', 'd/dt propeller 0 theta', 'd/dt propeller 0 psi')
+('propeller 1 theta', 'propeller 1 psi', 'd/dt propeller 1 theta', 'd/dt propeller 1 psi')
 >>> dm.displacement.tolist()
 [True, True, False, False]
 >>> dm.groups()
@@ -64,7 +64,9 @@ class PropellerDofs:
     """The pitch and yaw degrees of freedom of one flexibly mounted propeller.
 
     number:   the propeller's index in its model (``PropellerWing.propellers``; 0 for the
-              isolated propeller).
+              isolated propeller): internal, 0-based.  What people read numbers propellers
+              from 1 (``number + 1``): the state labels "propeller 1 theta", the
+              participation, warnings and figures.
     theta:    index of θ (pitch) in the displacement vector q (and in the state x = [q, q̇, w]).
     psi:      index of ψ (yaw) in q.
     rotation: +1 for a propeller spinning counter-clockwise seen from the front (the thesis's,

@@ -234,8 +234,11 @@ class PropellerWing(StateSpaceModel):
         return [j for j, inst in enumerate(self.propellers) if inst.mount == "flexible"]
 
     def q_labels(self) -> tuple[str, ...]:
+        """Labels of the DOFs q: the wing's ("node i h", ...), then "propeller k theta",
+        "propeller k psi" of each flexibly mounted propeller, numbered from 1 for people
+        (k = index in `propellers` + 1; :class:`PropellerDofs.number` keeps the index)."""
         wing = wing_dof_labels(self.wing.n_nodes)
-        prop = tuple(f"propeller {j} {d}" for j in self.flexible for d in ("theta", "psi"))
+        prop = tuple(f"propeller {j + 1} {d}" for j in self.flexible for d in ("theta", "psi"))
         return wing + prop
 
     # ------------------------------------------------------------------ propeller blocks
@@ -310,12 +313,12 @@ class PropellerWing(StateSpaceModel):
         wing = (f"node {node} h", f"node {node} alpha")
         if self.propellers[j].mount == "rigid":
             return wing
-        return (f"propeller {j} theta", f"propeller {j} psi") + wing
+        return (f"propeller {j + 1} theta", f"propeller {j + 1} psi") + wing
 
     def _contributions(self, V: np.ndarray, omega):
         out = []
         for j in range(len(self.propellers)):
-            out.append((f"propeller {j}", self._propeller_dofs(j),
+            out.append((f"propeller {j + 1}", self._propeller_dofs(j),
                         lambda vals, j=j: self._propeller_matrices(j, vals),
                         self._propeller_values(j, V, omega), PROPELLER_UNITS))
         p = self.wing.element_properties()
@@ -423,7 +426,7 @@ class PropellerWing(StateSpaceModel):
             inst = self.propellers[j]
             props.append(PropellerDofs(j, len(labels), len(labels) + 1, inst.propeller.rotation,
                                        self.rotating, float(ys[self.nodes[j]]), self.nodes[j]))
-            labels += [f"propeller {j} theta", f"propeller {j} psi"]
+            labels += [f"propeller {j + 1} theta", f"propeller {j + 1} psi"]
             kinds += ["theta", "psi"]
             node += [-1, -1]
             prop += [j, j]
@@ -496,7 +499,7 @@ class IsolatedPropeller(StateSpaceModel):
         return S1, S2, S3
 
     def _contributions(self, V: np.ndarray, omega):
-        return [("propeller 0", ("propeller 0 theta", "propeller 0 psi"), self._matrices,
+        return [("propeller 1", ("propeller 1 theta", "propeller 1 psi"), self._matrices,
                  self._values(V), PROPELLER_UNITS)]
 
     def _assemble(self, V: np.ndarray) -> SecondOrder:
@@ -504,7 +507,7 @@ class IsolatedPropeller(StateSpaceModel):
         S1, S2, S3 = self._matrices(self._values(V))
         z = np.zeros((nV, 0, 2))
         return SecondOrder(S1, S2, S3, np.zeros((nV, 2, 0)), np.zeros((nV, 0, 0)), z, z,
-                           ("propeller 0 theta", "propeller 0 psi"), ())
+                           ("propeller 1 theta", "propeller 1 psi"), ())
 
     def without_aerodynamics(self) -> "IsolatedPropeller":
         """The same propeller with its aerodynamic derivatives off."""
@@ -512,7 +515,7 @@ class IsolatedPropeller(StateSpaceModel):
 
     def dof_map(self) -> DofMap:
         """Two states θ, ψ of the propeller (6.18) and their rates; no lag states."""
-        return DofMap(("propeller 0 theta", "propeller 0 psi"), ("theta", "psi"), (-1, -1), (0, 0),
+        return DofMap(("propeller 1 theta", "propeller 1 psi"), ("theta", "psi"), (-1, -1), (0, 0),
                       propellers=(PropellerDofs(0, 0, 1, self.propeller.rotation, self.rotating,
                                                 None, None),))
 

@@ -197,7 +197,7 @@ def analysis_warnings(model, speed_range: tuple[float, float],
             n = len(hits) - 1
             more = f" ({n} more event{'s' if n > 1 else ''} above it)" if n else ""
             out.append(
-                f"propeller {j}: helical tip Mach number {mt:.2f} at V = {V0:.2f} m/s "
+                f"propeller {j + 1}: helical tip Mach number {mt:.2f} at V = {V0:.2f} m/s "
                 f"({d0}){more}: above {TIP_MACH:g} the blade tips are supersonic and the "
                 "Houbolt-Reed derivatives rest on the Rodden-Rose cut-off, not on the "
                 "subsonic theory")

@@ -143,6 +143,6 @@ def baseline_propeller_responses(speeds: Sequence[float] = THESIS_RESPONSE_SPEED
     at each airspeed [m/s], for ``duration`` [s].  Returns {V: Response}."""
     model = isolated_baseline_propeller(f_psi=f_psi)
     th0 = float(np.radians(v.finite("theta0_deg", theta0_deg, "deg")))
-    return {float(V): simulate(model, V, {"propeller 0 theta": th0}, duration=duration, dt=dt,
+    return {float(V): simulate(model, V, {"propeller 1 theta": th0}, duration=duration, dt=dt,
                                method=method)
             for V in speeds}

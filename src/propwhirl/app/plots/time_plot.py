@@ -21,13 +21,14 @@ def time_history(responses: TimeResponse | Mapping[str, TimeResponse], *,
     """θ(t), ψ(t) [deg] and the θ–ψ path of one propeller (Figures 9.11–9.12).
 
     `responses`: one TimeResponse or {legend label: TimeResponse} (e.g. one per airspeed);
-    the states 'propeller j theta' / 'propeller j psi' of ``propeller`` = j (the index in the
-    model, from 0) are plotted; the figure numbers propellers from 1 (index 0: "propeller 1")."""
+    the states 'propeller k theta' / 'propeller k psi' of ``propeller`` = k − 1 (the index in
+    the model, from 0; labels and the figure number propellers from 1: index 0 is
+    "propeller 1")."""
     if isinstance(responses, TimeResponse):
         responses = {"": responses}
     if not responses:
         raise v.InputError("responses is empty: give at least one TimeResponse")
-    names = (f"propeller {propeller} theta", f"propeller {propeller} psi")
+    names = (f"propeller {propeller + 1} theta", f"propeller {propeller + 1} psi")
     fig = new_figure(figsize=(12.0, 4.5), layout="constrained")
     ax_t, ax_p, ax_o = fig.subplots(1, 3)
     for i, (label, r) in enumerate(responses.items()):
