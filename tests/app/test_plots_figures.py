@@ -238,8 +238,12 @@ def test_event_mode_shape_of_the_two_propeller_wing(analysis):
     e = next(e for e in analysis.events if e.kind == "flutter")
     fig = plots.event_mode_shape(analysis, e)
     titles = [ax.get_title() for ax in fig.axes if ax.get_title().startswith("propeller")]
-    assert [t.splitlines()[0] for t in titles] == ["propeller 1 (y = 2.28 m)",
-                                                   "propeller 2 (y = 5.7 m)"]
+    # each propeller's kinetic-energy share of the event's mode (issue 11.1), as in the summary
+    want = [f"propeller {q.propeller} (y = {q.y:.3g} m): {100 * q.share:.0f} %"
+            for q in e.participation.propellers]
+    assert [t.splitlines()[0] for t in titles] == want
+    assert [w.split(":")[0] for w in want] == ["propeller 1 (y = 2.28 m)",
+                                               "propeller 2 (y = 5.7 m)"]
     assert all(("forward whirl" in t) or ("backward whirl" in t) for t in titles)
 
 

@@ -68,13 +68,17 @@ def propeller_amplitudes(x: np.ndarray, dof_map: "DofMap") -> dict[int, float]:
     return {j: (a / top if top > 0 else 0.0) for j, a in amp.items()}
 
 
-def propeller_title(p, x: np.ndarray, lam: complex, amplitude: float | None = None) -> str:
-    """'propeller 3 (y = 3 m)' and, on a second line, the whirl sense and amplitude."""
+def propeller_title(p, x: np.ndarray, lam: complex, amplitude: float | None = None,
+                    share: float | None = None) -> str:
+    """'propeller 3 (y = 3 m): 61 %' and, on a second line, the whirl sense and amplitude;
+    ``share``: the propeller's share of the mode's kinetic energy
+    (:mod:`propwhirl.analysis.participation`), shown when given."""
     where = f" (y = {p.y:.3g} m)" if p.y is not None else ""
+    part = "" if share is None else f": {100 * share:.0f} %"
     sense = (f"{whirl_sense(x[p.theta], x[p.psi], p.rotation, lam)} whirl"
              if complex(lam).imag != 0 else "planar (real root)")
     amp = "" if amplitude is None else f", amplitude {amplitude:.2f}"
-    return f"propeller {p.number + 1}{where}\n{sense}{amp}"
+    return f"propeller {p.number + 1}{where}{part}\n{sense}{amp}"
 
 
 def orbit(x: np.ndarray, p, lam: complex, n: int = 181) -> tuple[np.ndarray, np.ndarray]:
@@ -85,14 +89,16 @@ def orbit(x: np.ndarray, p, lam: complex, n: int = 181) -> tuple[np.ndarray, np.
 
 
 def mode_shape(eigenvector, eigenvalue: complex, dof_map: "DofMap", *,
-               title: str | None = None, path: str | Path | None = None) -> "Figure":
+               title: str | None = None, path: str | Path | None = None,
+               shares: "dict[int, float] | None" = None) -> "Figure":
     """Plot a complex mode shape (full-state or displacement eigenvector) of a model.
 
     ``dof_map`` (``model.dof_map()``, or ``ModelAnalysis.dof_map``) says which entries are
     which wing node's h and α and which propeller's θ and ψ.  Layout in the module docstring:
     the wing panel (h and α [per unit of the largest entry] against the node positions y [m])
     above a grid of θ–ψ orbit panels, one per propeller.  The vector is normalised by
-    :func:`normalised`.
+    :func:`normalised`.  ``shares``: {propeller number from 1: its share of the mode's kinetic
+    energy}, written in the orbit panels' titles (:func:`event_mode_shape` passes the event's).
     """
     dm = dof_map
     x = normalised(eigenvector, dm)
@@ -122,7 +128,8 @@ def mode_shape(eigenvector, eigenvalue: complex, dof_map: "DofMap", *,
         k = 12
         ax.annotate("", xy=(t_path[k + 3], p_path[k + 3]), xytext=(t_path[k], p_path[k]),
                     arrowprops=dict(arrowstyle="->", color=ORBIT_COLOUR, lw=1.6))
-        ax.set_title(propeller_title(p, x, lam, amps[p.number] if len(props) > 1 else None),
+        ax.set_title(propeller_title(p, x, lam, amps[p.number] if len(props) > 1 else None,
+                                     None if shares is None else shares.get(p.number + 1)),
                      fontsize=9)
         ax.axhline(0.0, color="0.3", lw=0.8)
         ax.axvline(0.0, color="0.3", lw=0.8)
@@ -212,5 +219,7 @@ def event_mode_shape(analysis: "ModelAnalysis", event: "Instability", *,
     """:func:`mode_shape` of an instability of `analysis` (e.g. ``analysis.critical``)."""
     _checked_event(analysis, event)
     x, lam, V = event_eigenvector(analysis, event)
+    part = getattr(event, "participation", None)
+    shares = None if part is None else {q.propeller: q.share for q in part.propellers}
     return mode_shape(x, lam, analysis.dof_map, title=event_title(analysis, event, lam, V),
-                      path=path)
+                      path=path, shares=shares)
