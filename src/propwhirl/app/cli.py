@@ -260,8 +260,14 @@ def _analyse(args: argparse.Namespace) -> int:
                    events_csv=args.events_csv, animate=args.animate)
     model = _load(args.model)
     speeds = speed_grid(*args.speeds) if args.speeds else None
-    a = analyse(model, speeds, vgf=True)
+    a = analyse(model, speeds, vgf=True, method=args.method)
     _echo(a.summary())
+    st = a.sweep.stats
+    if "reduced_states" in st:
+        _echo(f"  method: reduced ({st['reduced_states']} of {model.dof_map().n_states} states:"
+              f" {st['reduced_r']} Ritz vectors, {st['reduced_L']} lag states); "
+              f"{a.criticals.stats.get('corrected', 0)} of {len(a.criticals.points)} crossings "
+              "converged on the full-order model")
     for note in a.warnings:
         print(f"propwhirl: warning: {limits.printable(note)}", file=sys.stderr)
     if args.json:
@@ -307,6 +313,10 @@ def _add_analyse(sub) -> None:
                    help="at most N modes in the plot (default: the modes that matter) and the "
                         "lowest N in --summary (default 8)")
     p.add_argument("--animate", metavar="GIF", help="write a GIF of the critical mode")
+    p.add_argument("--method", choices=("auto", "dense", "reduced"), default="auto",
+                   help="dense: every root of the full-order model (the reference); reduced: "
+                        "a reduced-order model, crossings converged on the full order; auto "
+                        "(default): reduced above 400 states")
     p.set_defaults(func=_analyse)
 
 
