@@ -104,3 +104,16 @@ def test_event_vectors_are_full_state():
     for p in red.criticals.points:
         assert p.eigenvector.shape == (n,)
     assert red.sweep.eigenvectors[0].shape[0] == n
+
+
+def test_a_reduced_analysis_is_saved_and_read_back_with_its_eigenvectors(tmp_path):
+    from propwhirl.analysis.stability import load
+
+    m = wingtip_propeller_wing()
+    red = analyse(m, method="reduced")
+    red.save(tmp_path / "r.json", include_eigenvectors=True)
+    back = load(tmp_path / "r.json")
+    assert back.sweep.eigenvectors.shape == (red.sweep.V.size, m.dof_map().n_states,
+                                             red.sweep.n_modes)
+    np.testing.assert_array_equal(back.sweep.eigenvectors, np.asarray(red.sweep.eigenvectors))
+    assert [e.V for e in back.events] == [e.V for e in red.events]

@@ -182,13 +182,15 @@ class Sweep:
     V:            (T,) speeds [m/s], increasing: the grid plus refinement points (from
                   :func:`analyse`: a subset of the grid plus refinement points).
     eigenvalues:  (T, n) complex λ [1/s].
-    eigenvectors: (T, n, n) complex, ``[t, :, k]`` the unit right eigenvector of mode k, phase
+    eigenvectors: (T, n_states, n) complex (n_states = n for a dense analysis; a reduced one,
+                  :mod:`propwhirl.analysis.reduced`, has fewer modes than states and lifts its
+                  vectors to the full state where read), ``[t, :, k]`` the right eigenvector of mode k, phase
                   aligned along V (first speed: largest displacement entry real positive);
                   None when re-read from a dict saved without them.  Memory: T·n²·16 bytes
                   (100 speeds × 300 states ≈ 144 MB).
     dlam_dV:      (T, n) complex dλ/dV [1/m].
     physical:     (T, n) bool.
-    state_labels: n state labels; displacement: (n,) bool mask of displacement states.
+    state_labels: the n_states state labels; displacement: (n_states,) bool mask of the displacement states.
     mode_labels:  n mode labels; partner: (n,) id of the conjugate partner branch (−1 if none).
     grid:         the speeds asked for [m/s].
     floor:        (T,) scale floor of |λ| used for relative tolerances [1/s].
@@ -340,7 +342,11 @@ class Sweep:
         n = lam.shape[1]
         if n == 0:
             raise InputError(f"{r.name('eigenvalues')}: no modes")
-        X = r.complex_array("eigenvectors", 3, (T, n, n)) if r.has("eigenvectors") else None
+        labels = r.strings("state_labels")
+        ns = len(labels)                 # states: n for a dense analysis, more for a reduced one
+        if ns == 0:
+            raise InputError(f"{r.name('state_labels')}: no states")
+        X = r.complex_array("eigenvectors", 3, (T, ns, n)) if r.has("eigenvectors") else None
         partner = r.array("partner", int, shape=(n,))
         if ((partner < -1) | (partner >= n)).any():
             bad = int(partner[(partner < -1) | (partner >= n)][0])
@@ -350,8 +356,8 @@ class Sweep:
             V=V, eigenvalues=lam, eigenvectors=X,
             dlam_dV=r.complex_array("dlam_dV", 2, (T, n)),
             physical=r.array("physical", bool, 2, (T, n)),
-            state_labels=r.strings("state_labels", n),
-            displacement=r.array("displacement", bool, shape=(n,)),
+            state_labels=labels,
+            displacement=r.array("displacement", bool, shape=(ns,)),
             mode_labels=r.strings("mode_labels", n), partner=partner,
             grid=r.array("grid"), floor=r.array("floor", shape=(T,)),
             unresolved=tuple((float(lo), float(hi)) for lo, hi in unresolved),
@@ -561,10 +567,11 @@ def read_eigenvectors(path: str | Path, sweep: "Sweep") -> np.ndarray:
         raise InputError(f"{path}: cannot read the eigenvector file: "
                          f"{exc.strerror or exc if isinstance(exc, OSError) else exc}") from None
     T, n = sweep.eigenvalues.shape
+    ns = len(sweep.state_labels)
     if not (np.array_equal(V, sweep.V) and np.array_equal(lam, sweep.eigenvalues)):
         raise InputError(f"{path}: does not belong to this analysis file (its speeds or "
                          "eigenvalues differ: written by another analysis?)")
-    if X.shape != (T, n, n) or X.dtype.kind != "c" or not np.isfinite(X).all():
+    if X.shape != (T, ns, n) or X.dtype.kind != "c" or not np.isfinite(X).all():
         raise InputError(f"{path}: eigenvectors of shape {X.shape} ({X.dtype}), need "
-                         f"({T}, {n}, {n}) finite complex numbers")
+                         f"({T}, {ns}, {n}) finite complex numbers")
     return X
