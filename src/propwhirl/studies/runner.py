@@ -1,8 +1,8 @@
-"""Running a parametric study: the study models, the process pool, one row per analysis."""
+"""Running a parametric study: the study models, one row per analysis (run by
+:mod:`propwhirl.studies.execution`: serial, local processes or Dask; failing points recorded)."""
 from __future__ import annotations
 
-import os
-from concurrent.futures import ProcessPoolExecutor
+from dataclasses import replace
 from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
@@ -13,6 +13,9 @@ from propwhirl.cases.ch09_baseline import baseline_flight
 from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
 from propwhirl.model.propeller import Propeller
 from propwhirl.model.systems import IsolatedPropeller
+from propwhirl.progress import ProgressCallback
+from propwhirl.studies import execution
+from propwhirl.studies.execution import TaskError, _init_worker  # noqa: F401 (re-exported)
 from propwhirl.studies.critical import (convention, critical_instability, static_divergence_speed,
                                         wing_divergence_predicate)
 from propwhirl.studies.table import RESULT_UNITS, StudyTable
@@ -70,18 +73,11 @@ def _grid(name: str, values, unit: str = "", check: Callable[..., np.ndarray] = 
 
 
 # ----------------------------------------------------------------------------- runner
-def _init_worker() -> None:
-    """Pin BLAS to one thread in a pool worker (2 cores: processes × 1 thread)."""
-    for var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
-        os.environ[var] = "1"
-    from threadpoolctl import threadpool_limits
-
-    threadpool_limits(limits=1)
-
-
 def _evaluate(task: tuple) -> dict[str, Any]:
-    """Analyse one model and return its result row (small: no sweep is sent back)."""
-    model, speeds, xtol, static_div, low_speed = task
+    """Build and analyse one model and return its result row (small: no sweep is sent back).
+    Built in the worker, so a model invalid at this parameter value fails this point only."""
+    name, propeller, speeds, xtol, static_div, low_speed = task
+    model = build_model(name, propeller)
     a = analyse(model, speeds, xtol=xtol)
     is_wing = wing_divergence_predicate(model, a)
     e = critical_instability(a, static_divergence=static_div, low_speed=low_speed, is_wing_divergence=is_wing)
@@ -104,32 +100,44 @@ def _dominant(a: ModelAnalysis, label: str) -> str:
     return max(c, key=lambda g: c[g]) if c else ""
 
 
-def map_analyses(func: Callable[[Any], Any], tasks: Sequence[Any], processes: int = 1) -> list[Any]:
+def map_analyses(func: Callable[[Any], Any], tasks: Sequence[Any], processes: int = 1,
+                 **options: Any) -> list[Any]:
     """``[func(t) for t in tasks]``, in a process pool of `processes` single-BLAS-thread workers
     (at most one per CPU) when ``processes > 1``; order preserved; `func` and the tasks must be
-    picklable."""
-    v.integer_at_least("processes", processes, 1)
-    tasks = list(tasks)
-    if processes == 1 or len(tasks) <= 1:
-        return [func(t) for t in tasks]
-    workers = min(processes, len(tasks), os.cpu_count() or 1)
-    if workers == 1:
-        return [func(t) for t in tasks]
-    with ProcessPoolExecutor(max_workers=workers, initializer=_init_worker) as pool:
-        return list(pool.map(func, tasks, chunksize=1))
+    picklable.  `options` (client, progress, errors, checkpoint, keys, desc): see
+    :func:`propwhirl.studies.execution.map_analyses`, which runs it (Dask, progress,
+    partial results, failing points)."""
+    return execution.map_analyses(func, tasks, processes, **options)
+
+
+def _error_row(error: TaskError) -> dict[str, Any]:
+    """The result row of a point whose analysis failed: no instability, kind "error"."""
+    return {"critical_speed": float("nan"), "critical_frequency": float("nan"), "critical_mode": "",
+            "content": "", "kind": "error", "event": "", "whirl": "",
+            "static_divergence_speed": float("nan")}
 
 
 def propeller_study(name: str, parameter: str, unit: str, parameters: Mapping[str, np.ndarray],
                     propellers: Sequence[Propeller], *, models: Sequence[str] = ("wingtip", "isolated"),
                     parameter_units: Mapping[str, str] | None = None,
                     static_divergence: bool = True, low_speed: bool = True,
-                    speeds=None, xtol: float = 0.01, processes: int = 1) -> StudyTable:
+                    speeds=None, xtol: float = 0.01, processes: int = 1, client=None,
+                    progress: bool | ProgressCallback | None = None,
+                    checkpoint: execution.Checkpoint | None = None) -> StudyTable:
     """The generic study: analyse each model with each propeller; one row per (model, propeller).
 
     parameters: columns describing each propeller (equal length to `propellers`), the x-axis
         column `parameter` [unit] among them;
     speeds: initial speed grid [m/s] for all models, or a mapping model → grid (default: the
-        module docstring's ranges); xtol [m/s]: crossing accuracy; processes: pool size.
+        module docstring's ranges); xtol [m/s]: crossing accuracy; processes: pool size;
+    client: a ``dask.distributed.Client`` or scheduler address (run on that cluster instead);
+    progress: a bar (True) or a callable ``report(done, total)``; checkpoint: keep the finished
+        points in a partial-results file and resume from it
+        (:class:`propwhirl.studies.execution.Checkpoint`; its fingerprint defaults to the study's
+        name, parameter and models).
+
+    A point whose model is invalid or whose analysis fails is recorded, the others go on: its
+    row has kind "error", NaN speeds and the message in the column ``error`` ("" elsewhere).
     """
     models = _check_models(models)
     n = len(propellers)
@@ -143,15 +151,22 @@ def propeller_study(name: str, parameter: str, unit: str, parameters: Mapping[st
     v.positive("xtol", xtol, "m/s")
     v.integer_at_least("processes", processes, 1)
     grids = {m: _speeds_for(m, speeds) for m in models}
-    tasks = [(build_model(m, p), grids[m], xtol, static_divergence, low_speed)
-             for m in models for p in propellers]
-    rows = map_analyses(_evaluate, tasks, processes)
+    tasks = [(m, p, grids[m], xtol, static_divergence, low_speed) for m in models for p in propellers]
+    keys = [f"{m} " + " ".join(f"{k}={float(np.asarray(col)[j])!r}" for k, col in parameters.items())
+            + f" #{j}" for m in models for j in range(n)]
+    if checkpoint is not None and not checkpoint.fingerprint:
+        checkpoint = replace(checkpoint, fingerprint=f"{name}; {parameter}; models {list(models)}; "
+                             f"xtol {xtol!r}; {convention(static_divergence, low_speed)}")
+    results = map_analyses(_evaluate, tasks, processes, client=client, progress=progress,
+                           errors="record", checkpoint=checkpoint, keys=keys, desc=name)
+    rows = [_error_row(r) if isinstance(r, TaskError) else r for r in results]
     columns: dict[str, np.ndarray] = {"model": np.array([m for m in models for _ in propellers], dtype=object)}
     for k, col in parameters.items():
         columns[k] = np.tile(np.asarray(col, dtype=float), len(models))
     for k in RESULT_UNITS:
         vals = [r[k] for r in rows]
         columns[k] = np.array(vals, dtype=float if isinstance(vals[0], float) else object)
+    columns["error"] = np.array([str(r) if isinstance(r, TaskError) else "" for r in results], dtype=object)
     units = {"model": "", **{k: (parameter_units or {}).get(k, unit if k == parameter else "")
-                             for k in parameters}, **RESULT_UNITS}
+                             for k in parameters}, **RESULT_UNITS, "error": ""}
     return StudyTable(name, parameter, columns, units, convention(static_divergence, low_speed))
