@@ -171,11 +171,12 @@ def run(only: Iterable[str] | None = None, processes: int = 1, *, client=None,
     return records
 
 
-def _call(item: tuple[str, str]) -> tuple[str, dict[str, float]]:
+def _call(item: tuple[str, str]) -> list:
+    """[prefix, values] of one case (a list of plain data: kept as JSON in a partial file)."""
     prefix, qualname = item
     module, name = qualname.rsplit(":", 1)
     func = getattr(importlib.import_module(module), name)
-    return prefix, func()
+    return [prefix, func()]
 
 
 def _run_cases(cases: dict[str, CaseFunction], processes: int, *, client=None,
