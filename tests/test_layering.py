@@ -18,16 +18,17 @@ ALLOWED = {
     "limits": {"validate"},                       # memory estimates and size limits
     "fileio": {"validate"},                       # atomic file writes, writability checks
     "documents": {"validate"},                    # the installed docs/*.md pages
+    "progress": {"validate"},                     # progress bars and spinners on a terminal
     "model": {"generated", "limits", "validate"},
     "engine": {"limits", "validate"},             # model-agnostic: A(V) in, eigen-data out
     "analysis": {"engine", "fileio", "limits", "model", "validate"},
     "cases": {"model", "validate"},               # model factories only
-    "studies": {"analysis", "cases", "engine", "fileio", "model", "validate"},
-    "reproduce": {"analysis", "cases", "documents", "engine", "generated", "model", "studies",
-                  "validate"},
+    "studies": {"analysis", "cases", "engine", "fileio", "model", "progress", "validate"},
+    "reproduce": {"analysis", "cases", "documents", "engine", "generated", "model", "progress",
+                  "studies", "validate"},
     "io": {"fileio", "limits", "model", "validate"},
-    "app": {"analysis", "cases", "documents", "engine", "fileio", "io", "limits", "model", "reproduce",
-            "studies", "validate"},
+    "app": {"analysis", "cases", "documents", "engine", "fileio", "io", "limits", "model", "progress",
+            "reproduce", "studies", "validate"},
     # entry point and compatibility re-exports
     "__main__": {"app"}, "__init__": set(), "wing": {"model"}, "propeller": {"model"},
     "plots": {"app"},

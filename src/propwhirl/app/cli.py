@@ -27,6 +27,7 @@ from pathlib import Path
 from propwhirl import documents
 from propwhirl import limits
 from propwhirl import fileio
+from propwhirl import progress
 from propwhirl.cases import registry
 from propwhirl.validate import InputError
 
@@ -38,22 +39,28 @@ def _echo(text: str) -> None:
 
 
 def _reproduce(args: argparse.Namespace) -> int:
+    from propwhirl.app import execution_options
     from propwhirl.reproduce import harness as reproduce
 
     _check_outputs(json=args.json)
-    records = reproduce.run(args.only, processes=args.processes)
+    cp = execution_options.checkpoint(args, args.json)
+    records = reproduce.run(args.only, **execution_options.run_options(args), checkpoint=cp)
     print(reproduce.format_table(records))
     if args.json:
         fileio.write_text(args.json, reproduce.to_json(records), what="records file")
         print(f"wrote {args.json}")
+    execution_options.finish(cp)
     return 0
 
 
 def _add_reproduce(sub) -> None:
+    from propwhirl.app import execution_options
+
     p = sub.add_parser("reproduce", help="recompute the thesis's numbers and compare")
     p.add_argument("--only", nargs="*", metavar="PREFIX", help="id prefixes, e.g. t7.2 t9")
-    p.add_argument("--json", metavar="FILE", help="also write the records as JSON")
-    p.add_argument("--processes", type=int, default=1, help="worker processes (default 1)")
+    p.add_argument("--json", metavar="FILE", help="also write the records as JSON (the finished "
+                   f"cases are kept in FILE{execution_options.PARTIAL_SUFFIX} while it runs)")
+    execution_options.add(p)
     p.set_defaults(func=_reproduce)
 
 
@@ -260,7 +267,8 @@ def _analyse(args: argparse.Namespace) -> int:
                    events_csv=args.events_csv, animate=args.animate)
     model = _load(args.model)
     speeds = speed_grid(*args.speeds) if args.speeds else None
-    a = analyse(model, speeds, vgf=True, method=args.method)
+    with progress.spinner(f"analysing {limits.printable(model.name)}", quiet=args.quiet):
+        a = analyse(model, speeds, vgf=True, method=args.method)
     _echo(a.summary())
     st = a.sweep.stats
     if "reduced_states" in st:
@@ -317,6 +325,8 @@ def _add_analyse(sub) -> None:
                    help="dense: every root of the full-order model (the reference); reduced: "
                         "a reduced-order model, crossings converged on the full order; auto "
                         "(default): reduced above 400 states")
+    p.add_argument("--quiet", action="store_true", help="no progress spinner (there is none "
+                   "either when stderr is not a terminal)")
     p.set_defaults(func=_analyse)
 
 
@@ -678,8 +688,9 @@ def main(argv: list[str] | None = None) -> int:
     except BrokenPipeError:
         _silence_stdout()
         return EXIT_BROKEN_PIPE
-    except KeyboardInterrupt:
-        print("propwhirl: interrupted", file=sys.stderr, flush=True)
+    except KeyboardInterrupt as exc:  # a study's Interrupted says what was kept, and where
+        detail = f": {limits.printable(_one_line(str(exc)))}" if str(exc) else ""
+        print(f"propwhirl: interrupted{detail}", file=sys.stderr, flush=True)
         return EXIT_INTERRUPTED
     except InputError as exc:
         print(f"propwhirl: error: {limits.printable(_one_line(str(exc)))}", file=sys.stderr)

@@ -26,12 +26,15 @@ import importlib
 import json
 import math
 import tomllib
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 from importlib import resources
 from pathlib import Path
 from typing import Callable, Iterable
 
 from propwhirl import documents
+from propwhirl.progress import ProgressCallback
+from propwhirl.studies import execution
+from propwhirl.studies.execution import Checkpoint
 
 #: The chapter modules whose import registers the reproduction functions (one per chapter).
 CHAPTER_MODULES: tuple[str, ...] = tuple(
@@ -139,13 +142,22 @@ def compare(ref: Reference, computed: float | None, note: str = "") -> Record:
                   float(rel), abs(rel) <= ref.tol, ref.tol, ref.target, note, ref.check, ref.note)
 
 
-def run(only: Iterable[str] | None = None, processes: int = 1) -> list[Record]:
-    """Run the registered cases (those matching `only` prefixes) and compare every id."""
+def run(only: Iterable[str] | None = None, processes: int = 1, *, client=None,
+        progress: bool | ProgressCallback | None = None,
+        checkpoint: Checkpoint | None = None) -> list[Record]:
+    """Run the registered cases (those matching `only` prefixes) and compare every id.
+
+    processes: local worker processes; client: a ``dask.distributed.Client`` or a scheduler
+    address (the cases run on that cluster); progress: a bar on stderr (True) or a callable
+    ``report(cases done, cases)``; checkpoint: keep the finished cases in a partial-results
+    file, and resume from it (:mod:`propwhirl.studies.execution`; the fingerprint defaults to
+    the cases selected).  The records do not depend on how the cases were run.
+    """
     only = list(only) if only else None
     refs = load_references()
     cases = {p: f for p, f in registered_cases().items() if _selected(p, only)}
     computed: dict[str, float] = {}
-    results = _run_cases(cases, processes)
+    results = _run_cases(cases, processes, client=client, progress=progress, checkpoint=checkpoint)
     for prefix, values in results.items():
         for key in values:
             if not key.startswith(prefix):
@@ -159,21 +171,26 @@ def run(only: Iterable[str] | None = None, processes: int = 1) -> list[Record]:
     return records
 
 
-def _call(item: tuple[str, str]) -> tuple[str, dict[str, float]]:
+def _call(item: tuple[str, str]) -> list:
+    """[prefix, values] of one case (a list of plain data: kept as JSON in a partial file)."""
     prefix, qualname = item
     module, name = qualname.rsplit(":", 1)
     func = getattr(importlib.import_module(module), name)
-    return prefix, func()
+    return [prefix, func()]
 
 
-def _run_cases(cases: dict[str, CaseFunction], processes: int) -> dict[str, dict[str, float]]:
+def _run_cases(cases: dict[str, CaseFunction], processes: int, *, client=None,
+               progress: bool | ProgressCallback | None = None,
+               checkpoint: Checkpoint | None = None) -> dict[str, dict[str, float]]:
+    """{prefix: values} of the cases, run by :func:`propwhirl.studies.execution.map_analyses`
+    (serial, local processes or Dask; a failing case stops the run)."""
     items = sorted((p, f"{f.__module__}:{f.__name__}") for p, f in cases.items())
-    if processes <= 1 or len(items) <= 1:
-        return dict(_call(i) for i in items)
-    from concurrent.futures import ProcessPoolExecutor
-
-    with ProcessPoolExecutor(max_workers=processes) as pool:
-        return dict(pool.map(_call, items))
+    if checkpoint is not None and not checkpoint.fingerprint:
+        checkpoint = replace(checkpoint, fingerprint="reproduce " + " ".join(p for p, _ in items))
+    pairs = execution.map_analyses(_call, items, processes, client=client, progress=progress,
+                                   checkpoint=checkpoint, keys=[p for p, _ in items],
+                                   desc="reproduce")
+    return {prefix: values for prefix, values in pairs}
 
 
 def format_table(records: list[Record]) -> str:

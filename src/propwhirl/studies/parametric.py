@@ -66,7 +66,7 @@ from propwhirl.studies import paths as P
 from propwhirl.studies.critical import (convention, critical_instability, mount_strain_share,  # noqa: F401
                                         static_divergence_speed, wing_divergence_predicate)
 from propwhirl.studies.runner import (ISOLATED_SPEEDS, MODELS, _check_models, _grid,  # noqa: F401
-                                      _speeds_for, build_model, map_analyses)
+                                      _speeds_for, build_model, map_analyses, study_points, study_table)
 from propwhirl.studies.sweeps import run_points
 from propwhirl.studies.table import RESULT_UNITS, StudyTable  # noqa: F401
 
@@ -89,7 +89,8 @@ def propeller_study(name: str, parameter: str, unit: str, parameters: Mapping[st
                     models: Sequence[str] = ("wingtip", "isolated"),
                     parameter_units: Mapping[str, str] | None = None,
                     static_divergence: bool = True, low_speed: bool = True,
-                    speeds=None, xtol: float = 0.01, processes: int = 1) -> StudyTable:
+                    speeds=None, xtol: float = 0.01, processes: int = 1, client=None,
+                    progress=None, checkpoint=None) -> StudyTable:
     """The generic study: each model of `models` (built with `propeller`, default the
     baseline) at each point of `settings`; one row per (model, point).
 
@@ -100,20 +101,18 @@ def propeller_study(name: str, parameter: str, unit: str, parameters: Mapping[st
     parameters: columns describing each point (equal length to `settings`), the x-axis column
         `parameter` [unit] among them;
     speeds: initial speed grid [m/s] for all models, or a mapping model → grid (default: the
-        module docstring's ranges); xtol [m/s]: crossing accuracy; processes: pool size.
-    The points are analysed by :func:`propwhirl.studies.sweeps.run_points`.
+        module docstring's ranges); xtol [m/s]: crossing accuracy; processes: pool size;
+    client: a ``dask.distributed.Client`` or scheduler address; progress: a bar (True) or a
+        callable ``report(done, total)``; checkpoint: keep the finished points in a
+        partial-results file and resume from it (:class:`propwhirl.studies.execution.Checkpoint`;
+        its fingerprint defaults to the study's name, parameter, models, xtol and convention).
+    The points are analysed by :func:`propwhirl.studies.sweeps.run_points`.  A point whose
+    variant is invalid or whose analysis fails is recorded, the others go on: its row has kind
+    "error", NaN speeds and the message in the column ``error`` ("" elsewhere).
     """
     models = _check_models(models)
-    n = len(settings)
-    if n == 0:
-        raise v.InputError(f"{parameter}: the parameter grid is empty (give at least one value)")
-    for k, col in parameters.items():
-        if len(col) != n:
-            raise v.InputError(f"parameter column {k!r} has {len(col)} values, expected {n}")
-    if parameter not in parameters:
-        raise v.InputError(f"parameter {parameter!r} is not among the columns {list(parameters)}")
-    v.positive("xtol", xtol, "m/s")
-    v.integer_at_least("processes", processes, 1)
+    keys, checkpoint = study_points(name, parameter, parameters, len(settings), models, xtol,
+                                    static_divergence, low_speed, checkpoint)
     base = _base(propeller)
     variants, grids = [], []
     for m in models:
@@ -121,19 +120,16 @@ def propeller_study(name: str, parameter: str, unit: str, parameters: Mapping[st
         prefix = PROPELLER_PATHS[m]
         paths = {k: P.resolve(model, prefix + k) for k in settings[0]}
         for point in settings:
-            variants.append(P.set_values(model, {paths[k]: x for k, x in point.items()}))
+            try:
+                variants.append(P.set_values(model, {paths[k]: x for k, x in point.items()}))
+            except v.InputError as exc:          # recorded in its row, the others go on
+                variants.append(exc)
             grids.append(grid)
     rows = run_points(variants, speeds_each=grids, xtol=xtol, static_divergence=static_divergence,
-                      low_speed=low_speed, processes=processes)
-    columns: dict[str, np.ndarray] = {"model": np.array([m for m in models for _ in settings], dtype=object)}
-    for k, col in parameters.items():
-        columns[k] = np.tile(np.asarray(col, dtype=float), len(models))
-    for k in RESULT_UNITS:
-        vals = [r[k] for r in rows]
-        columns[k] = np.array(vals, dtype=float if isinstance(vals[0], float) else object)
-    units = {"model": "", **{k: (parameter_units or {}).get(k, unit if k == parameter else "")
-                             for k in parameters}, **RESULT_UNITS}
-    return StudyTable(name, parameter, columns, units, convention(static_divergence, low_speed))
+                      low_speed=low_speed, processes=processes, client=client, progress=progress,
+                      checkpoint=checkpoint, keys=keys, desc=name)
+    return study_table(name, parameter, unit, parameters, models, rows, parameter_units,
+                       static_divergence, low_speed)
 
 
 def _variant_propellers(base: Propeller, settings: Sequence[Mapping[str, float]]) -> list[Propeller]:

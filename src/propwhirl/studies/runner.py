@@ -1,20 +1,21 @@
-"""Running a parametric study: the study models, the process pool, one row per analysis."""
+"""Running a parametric study: the study models, one row per analysis (run by
+:mod:`propwhirl.studies.execution`: serial, local processes or Dask; failing points recorded)."""
 from __future__ import annotations
 
-import os
-from concurrent.futures import ProcessPoolExecutor
+from dataclasses import replace
 from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.analysis.stability import ModelAnalysis, analyse
 from propwhirl.cases.ch09_baseline import baseline_flight
 from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
 from propwhirl.model.propeller import Propeller
 from propwhirl.model.systems import IsolatedPropeller
-from propwhirl.studies.critical import (convention, critical_instability, static_divergence_speed,
-                                        wing_divergence_predicate)
+from propwhirl.progress import ProgressCallback
+from propwhirl.studies import execution
+from propwhirl.studies.execution import TaskError, _init_worker  # noqa: F401 (re-exported)
+from propwhirl.studies.critical import convention
 from propwhirl.studies.table import RESULT_UNITS, StudyTable
 
 #: Model names a study can analyse (see :mod:`propwhirl.studies.parametric`).
@@ -70,69 +71,22 @@ def _grid(name: str, values, unit: str = "", check: Callable[..., np.ndarray] = 
 
 
 # ----------------------------------------------------------------------------- runner
-def _init_worker() -> None:
-    """Pin BLAS to one thread in a pool worker (2 cores: processes × 1 thread)."""
-    for var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
-        os.environ[var] = "1"
-    from threadpoolctl import threadpool_limits
-
-    threadpool_limits(limits=1)
-
-
-def _evaluate(task: tuple) -> dict[str, Any]:
-    """Analyse one model and return its result row (small: no sweep is sent back)."""
-    model, speeds, xtol, static_div, low_speed = task
-    a = analyse(model, speeds, xtol=xtol)
-    is_wing = wing_divergence_predicate(model, a)
-    e = critical_instability(a, static_divergence=static_div, low_speed=low_speed, is_wing_divergence=is_wing)
-    return {
-        "critical_speed": float("nan") if e is None else float(e.V),
-        "critical_frequency": float("nan") if e is None else float(e.frequency_hz),
-        "critical_mode": "" if e is None else e.label,
-        "content": "" if e is None else _dominant(a, e.label),
-        "kind": "none" if e is None else e.kind,
-        "event": "" if e is None else e.event,
-        "whirl": "" if e is None or e.whirl is None else e.whirl,
-        "static_divergence_speed": static_divergence_speed(a, is_wing),
-    }
-
-
-def _dominant(a: ModelAnalysis, label: str) -> str:
-    """Dominant degree-of-freedom group of mode `label` at the first speed ("bending", "torsion",
-    "pitch", "yaw"; "" when not recorded, e.g. real roots)."""
-    c = a.content.get(label.rstrip("'"))
-    return max(c, key=lambda g: c[g]) if c else ""
-
-
-def map_analyses(func: Callable[[Any], Any], tasks: Sequence[Any], processes: int = 1) -> list[Any]:
+def map_analyses(func: Callable[[Any], Any], tasks: Sequence[Any], processes: int = 1,
+                 **options: Any) -> list[Any]:
     """``[func(t) for t in tasks]``, in a process pool of `processes` single-BLAS-thread workers
     (at most one per CPU) when ``processes > 1``; order preserved; `func` and the tasks must be
-    picklable."""
-    v.integer_at_least("processes", processes, 1)
-    tasks = list(tasks)
-    if processes == 1 or len(tasks) <= 1:
-        return [func(t) for t in tasks]
-    workers = min(processes, len(tasks), os.cpu_count() or 1)
-    if workers == 1:
-        return [func(t) for t in tasks]
-    with ProcessPoolExecutor(max_workers=workers, initializer=_init_worker) as pool:
-        return list(pool.map(func, tasks, chunksize=1))
+    picklable.  `options` (client, progress, errors, checkpoint, keys, desc): see
+    :func:`propwhirl.studies.execution.map_analyses`, which runs it (Dask, progress,
+    partial results, failing points)."""
+    return execution.map_analyses(func, tasks, processes, **options)
 
 
-def propeller_study(name: str, parameter: str, unit: str, parameters: Mapping[str, np.ndarray],
-                    propellers: Sequence[Propeller], *, models: Sequence[str] = ("wingtip", "isolated"),
-                    parameter_units: Mapping[str, str] | None = None,
-                    static_divergence: bool = True, low_speed: bool = True,
-                    speeds=None, xtol: float = 0.01, processes: int = 1) -> StudyTable:
-    """The generic study: analyse each model with each propeller; one row per (model, propeller).
-
-    parameters: columns describing each propeller (equal length to `propellers`), the x-axis
-        column `parameter` [unit] among them;
-    speeds: initial speed grid [m/s] for all models, or a mapping model → grid (default: the
-        module docstring's ranges); xtol [m/s]: crossing accuracy; processes: pool size.
-    """
-    models = _check_models(models)
-    n = len(propellers)
+def study_points(name: str, parameter: str, parameters: Mapping[str, np.ndarray], n: int,
+                 models: Sequence[str], xtol: float, static_divergence: bool, low_speed: bool,
+                 checkpoint: execution.Checkpoint | None):
+    """The checks of a study's columns, one key per (model, point) for the partial-results
+    file, and the checkpoint with its default fingerprint (the study's name, parameter, models,
+    xtol and convention): the one rule of both study forms."""
     if n == 0:
         raise v.InputError(f"{parameter}: the parameter grid is empty (give at least one value)")
     for k, col in parameters.items():
@@ -141,17 +95,66 @@ def propeller_study(name: str, parameter: str, unit: str, parameters: Mapping[st
     if parameter not in parameters:
         raise v.InputError(f"parameter {parameter!r} is not among the columns {list(parameters)}")
     v.positive("xtol", xtol, "m/s")
-    v.integer_at_least("processes", processes, 1)
-    grids = {m: _speeds_for(m, speeds) for m in models}
-    tasks = [(build_model(m, p), grids[m], xtol, static_divergence, low_speed)
-             for m in models for p in propellers]
-    rows = map_analyses(_evaluate, tasks, processes)
-    columns: dict[str, np.ndarray] = {"model": np.array([m for m in models for _ in propellers], dtype=object)}
+    keys = [f"{m} " + " ".join(f"{k}={float(np.asarray(col)[j])!r}" for k, col in parameters.items())
+            + f" #{j}" for m in models for j in range(n)]
+    if checkpoint is not None and not checkpoint.fingerprint:
+        checkpoint = replace(checkpoint, fingerprint=f"{name}; {parameter}; models {list(models)}; "
+                             f"xtol {xtol!r}; {convention(static_divergence, low_speed)}")
+    return keys, checkpoint
+
+
+def study_table(name: str, parameter: str, unit: str, parameters: Mapping[str, np.ndarray],
+                models: Sequence[str], rows: Sequence[Mapping[str, Any]],
+                parameter_units: Mapping[str, str] | None, static_divergence: bool,
+                low_speed: bool) -> StudyTable:
+    """The :class:`StudyTable` of a study's rows (one per (model, point), model-major): the
+    model column, the parameter columns, the results and the ``error`` column."""
+    n = len(rows) // max(len(models), 1)
+    columns: dict[str, np.ndarray] = {"model": np.array([m for m in models for _ in range(n)], dtype=object)}
     for k, col in parameters.items():
         columns[k] = np.tile(np.asarray(col, dtype=float), len(models))
     for k in RESULT_UNITS:
         vals = [r[k] for r in rows]
         columns[k] = np.array(vals, dtype=float if isinstance(vals[0], float) else object)
+    columns["error"] = np.array([r["error"] for r in rows], dtype=object)
     units = {"model": "", **{k: (parameter_units or {}).get(k, unit if k == parameter else "")
-                             for k in parameters}, **RESULT_UNITS}
+                             for k in parameters}, **RESULT_UNITS, "error": ""}
     return StudyTable(name, parameter, columns, units, convention(static_divergence, low_speed))
+
+
+def propeller_study(name: str, parameter: str, unit: str, parameters: Mapping[str, np.ndarray],
+                    propellers: Sequence[Propeller], *, models: Sequence[str] = ("wingtip", "isolated"),
+                    parameter_units: Mapping[str, str] | None = None,
+                    static_divergence: bool = True, low_speed: bool = True,
+                    speeds=None, xtol: float = 0.01, processes: int = 1, client=None,
+                    progress: bool | ProgressCallback | None = None,
+                    checkpoint: execution.Checkpoint | None = None) -> StudyTable:
+    """A study over given propellers: each model of `models` with each propeller; one row per
+    (model, propeller).  (The chapter-11 studies set parameter paths instead:
+    :func:`propwhirl.studies.parametric.propeller_study`.)
+
+    parameters: columns describing each propeller (equal length to `propellers`), the x-axis
+        column `parameter` [unit] among them; speeds, xtol, processes, client, progress,
+        checkpoint: as :func:`propwhirl.studies.parametric.propeller_study`.
+
+    A point whose model is invalid or whose analysis fails is recorded, the others go on: its
+    row has kind "error", NaN speeds and the message in the column ``error`` ("" elsewhere).
+    """
+    from propwhirl.studies.sweeps import run_points
+
+    models = _check_models(models)
+    keys, checkpoint = study_points(name, parameter, parameters, len(propellers), models, xtol,
+                                    static_divergence, low_speed, checkpoint)
+    variants, grids = [], []
+    for m in models:
+        for p in propellers:
+            try:
+                variants.append(build_model(m, p))
+            except v.InputError as exc:              # recorded in its row, the others go on
+                variants.append(exc)
+            grids.append(_speeds_for(m, speeds))
+    rows = run_points(variants, speeds_each=grids, xtol=xtol, static_divergence=static_divergence,
+                      low_speed=low_speed, processes=processes, client=client, progress=progress,
+                      checkpoint=checkpoint, keys=keys, desc=name)
+    return study_table(name, parameter, unit, parameters, models, rows, parameter_units,
+                       static_divergence, low_speed)

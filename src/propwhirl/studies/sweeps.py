@@ -88,16 +88,31 @@ def evaluate(task: tuple) -> dict[str, Any]:
     }
 
 
+def error_row(message: str) -> dict[str, Any]:
+    """The result row of a point that could not be analysed (an invalid variant, or an analysis
+    that failed): no instability, kind "error", the one-line message in ``error``."""
+    return {"critical_speed": float("nan"), "critical_frequency": float("nan"),
+            "critical_mode": "", "content": "", "kind": "error", "event": "", "whirl": "",
+            "propeller": 0, "propeller_share": float("nan"),
+            "static_divergence_speed": float("nan"), "error": str(message)}
+
+
 def run_points(models: Sequence[Any], speeds: Any = None, *, speeds_each: Sequence[Any] | None = None,
                xtol: float = STUDY_XTOL, static_divergence: bool = True, low_speed: bool = True,
-               processes: int = 1) -> list[dict[str, Any]]:
-    """One result row (:func:`evaluate`) per model, in order.
+               processes: int = 1, client=None, progress=None, checkpoint=None,
+               keys: Sequence[str] | None = None, desc: str = "points") -> list[dict[str, Any]]:
+    """One result row (:func:`evaluate`) per model, in order, each with an ``error`` entry
+    ("" for an analysed point).
 
     speeds: one initial grid [m/s] for all (None: each model's own speed range); speeds_each:
-    instead, one grid (or None) per model.  This is the one place where a study's analyses go
-    to the pool (:func:`propwhirl.studies.runner.map_analyses`).
+    instead, one grid (or None) per model.  An entry of ``models`` that is an exception (the
+    variant could not be built) and a point whose analysis fails give :func:`error_row`: the
+    others go on.  client, progress, checkpoint, keys, desc: as
+    :func:`propwhirl.studies.execution.map_analyses` (a Dask cluster, a progress bar, a
+    partial-results file to resume from).  This is the one place where a study's analyses go
+    to the pool.
     """
-    from propwhirl.studies.runner import map_analyses
+    from propwhirl.studies.execution import TaskError, map_analyses
 
     v.positive("xtol", xtol, "m/s")
     v.integer_at_least("processes", processes, 1)
@@ -109,8 +124,17 @@ def run_points(models: Sequence[Any], speeds: Any = None, *, speeds_each: Sequen
     else:
         grid = None if speeds is None else v.increasing("speeds", speeds, "m/s")
         grids = [grid] * len(models)
-    tasks = [(m, g, xtol, bool(static_divergence), bool(low_speed)) for m, g in zip(models, grids)]
-    return map_analyses(evaluate, tasks, processes)
+    names = list(keys) if keys is not None else [str(i) for i in range(len(models))]
+    run = [i for i, m in enumerate(models) if not isinstance(m, Exception)]
+    tasks = [(models[i], grids[i], xtol, bool(static_divergence), bool(low_speed)) for i in run]
+    results = map_analyses(evaluate, tasks, processes, client=client, progress=progress,
+                           errors="record", checkpoint=checkpoint, keys=[names[i] for i in run],
+                           desc=desc)
+    rows: list[dict[str, Any]] = [error_row(f"{type(m).__name__}: {m}")
+                                  if isinstance(m, Exception) else {} for m in models]
+    for i, r in zip(run, results):
+        rows[i] = error_row(str(r)) if isinstance(r, TaskError) else {**r, "error": ""}
+    return rows
 
 
 # ============================================================================ result
