@@ -54,18 +54,20 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from typing import Literal, Sequence
+from typing import Literal, Mapping, Sequence
 
 import numpy as np
 
 from propwhirl import validate as v
 from propwhirl.analysis.stability import analyse
 from propwhirl.cases.ch09_baseline import baseline_propeller
-from propwhirl.model.propeller import PointMass, Propeller
+from propwhirl.model.propeller import Propeller
+from propwhirl.studies import paths as P
 from propwhirl.studies.critical import (convention, critical_instability, mount_strain_share,  # noqa: F401
                                         static_divergence_speed, wing_divergence_predicate)
-from propwhirl.studies.runner import (ISOLATED_SPEEDS, MODELS, _grid, build_model,  # noqa: F401
-                                      map_analyses, propeller_study)
+from propwhirl.studies.runner import (ISOLATED_SPEEDS, MODELS, _check_models, _grid,  # noqa: F401
+                                      _speeds_for, build_model, map_analyses)
+from propwhirl.studies.sweeps import run_points
 from propwhirl.studies.table import RESULT_UNITS, StudyTable  # noqa: F401
 
 __all__ = [  # the chapter-11 studies, and the machinery they are built on (re-exported)
@@ -73,8 +75,71 @@ __all__ = [  # the chapter-11 studies, and the machinery they are built on (re-e
     "blade_angle", "whirl_flutter_speeds", "blade_angle_mode_switch", "ModeSwitch",
     "StudyTable", "RESULT_UNITS", "MODELS", "ISOLATED_SPEEDS", "build_model", "map_analyses",
     "propeller_study", "critical_instability", "convention", "static_divergence_speed",
-    "mount_strain_share", "wing_divergence_predicate",
+    "mount_strain_share", "wing_divergence_predicate", "PROPELLER_PATHS",
 ]
+
+#: Where each study model holds its propeller: the prefix of the propeller's parameter paths
+#: (:mod:`propwhirl.studies.paths`).
+PROPELLER_PATHS: dict[str, str] = {"wingtip": "propellers[0].propeller.",
+                                   "rigid": "propellers[0].propeller.", "isolated": "propeller."}
+
+
+def propeller_study(name: str, parameter: str, unit: str, parameters: Mapping[str, np.ndarray],
+                    settings: Sequence[Mapping[str, float]], *, propeller: Propeller | None = None,
+                    models: Sequence[str] = ("wingtip", "isolated"),
+                    parameter_units: Mapping[str, str] | None = None,
+                    static_divergence: bool = True, low_speed: bool = True,
+                    speeds=None, xtol: float = 0.01, processes: int = 1) -> StudyTable:
+    """The generic study: each model of `models` (built with `propeller`, default the
+    baseline) at each point of `settings`; one row per (model, point).
+
+    settings: per point, the propeller's parameters to set, as parameter paths relative to
+        the propeller (``{"f_theta": 3.0, "f_psi": 3.0}``, ``{"masses[0].mass": 10.0}``),
+        applied to each model at its :data:`PROPELLER_PATHS` prefix
+        (:func:`propwhirl.studies.paths.set_values`: the model's own validation runs);
+    parameters: columns describing each point (equal length to `settings`), the x-axis column
+        `parameter` [unit] among them;
+    speeds: initial speed grid [m/s] for all models, or a mapping model → grid (default: the
+        module docstring's ranges); xtol [m/s]: crossing accuracy; processes: pool size.
+    The points are analysed by :func:`propwhirl.studies.sweeps.run_points`.
+    """
+    models = _check_models(models)
+    n = len(settings)
+    if n == 0:
+        raise v.InputError(f"{parameter}: the parameter grid is empty (give at least one value)")
+    for k, col in parameters.items():
+        if len(col) != n:
+            raise v.InputError(f"parameter column {k!r} has {len(col)} values, expected {n}")
+    if parameter not in parameters:
+        raise v.InputError(f"parameter {parameter!r} is not among the columns {list(parameters)}")
+    v.positive("xtol", xtol, "m/s")
+    v.integer_at_least("processes", processes, 1)
+    base = _base(propeller)
+    variants, grids = [], []
+    for m in models:
+        model, grid = build_model(m, base), _speeds_for(m, speeds)
+        prefix = PROPELLER_PATHS[m]
+        paths = {k: P.resolve(model, prefix + k) for k in settings[0]}
+        for point in settings:
+            variants.append(P.set_values(model, {paths[k]: x for k, x in point.items()}))
+            grids.append(grid)
+    rows = run_points(variants, speeds_each=grids, xtol=xtol, static_divergence=static_divergence,
+                      low_speed=low_speed, processes=processes)
+    columns: dict[str, np.ndarray] = {"model": np.array([m for m in models for _ in settings], dtype=object)}
+    for k, col in parameters.items():
+        columns[k] = np.tile(np.asarray(col, dtype=float), len(models))
+    for k in RESULT_UNITS:
+        vals = [r[k] for r in rows]
+        columns[k] = np.array(vals, dtype=float if isinstance(vals[0], float) else object)
+    units = {"model": "", **{k: (parameter_units or {}).get(k, unit if k == parameter else "")
+                             for k in parameters}, **RESULT_UNITS}
+    return StudyTable(name, parameter, columns, units, convention(static_divergence, low_speed))
+
+
+def _variant_propellers(base: Propeller, settings: Sequence[Mapping[str, float]]) -> list[Propeller]:
+    """The propeller of each point (for the columns derived from it: inertia, I_Omega, ...)."""
+    return [P.set_values(base, point) for point in settings]
+
 
 def _base(propeller: Propeller | None) -> Propeller:
     if propeller is None:
@@ -115,10 +180,11 @@ def nacelle_stiffness(vary: _Vary = "both", frequencies=STIFFNESS_FREQUENCIES, *
     base = _base(propeller)
     ft = f if vary in ("pitch", "both") else np.full_like(f, fixed_frequency)
     fp = f if vary in ("yaw", "both") else np.full_like(f, fixed_frequency)
-    props = [replace(base, f_theta=float(a), f_psi=float(b), K_theta=None, K_psi=None) for a, b in zip(ft, fp)]
+    points = [{"f_theta": a, "f_psi": b} for a, b in zip(ft, fp)]  # K_theta, K_psi cleared
     return propeller_study(f"nacelle stiffness, {vary} varied", "mean_frequency", "Hz",
-                           {"f_theta": ft, "f_psi": fp, "mean_frequency": 0.5 * (ft + fp)}, props,
-                           models=models, parameter_units={"f_theta": "Hz", "f_psi": "Hz"}, **options)
+                           {"f_theta": ft, "f_psi": fp, "mean_frequency": 0.5 * (ft + fp)}, points,
+                           propeller=base, models=models,
+                           parameter_units={"f_theta": "Hz", "f_psi": "Hz"}, **options)
 
 
 # ----------------------------------------------------------------------------- §11.2 damping
@@ -147,10 +213,10 @@ def nacelle_damping(vary: _Vary = "both", values=DAMPING_VALUES, *, fixed_value:
         raise v.InputError(f"damping = {reading!r} is invalid: must be 'g' or 'zeta'")
     dt = d if vary in ("pitch", "both") else np.full_like(d, fixed_value)
     dp = d if vary in ("yaw", "both") else np.full_like(d, fixed_value)
-    props = [replace(base, damping_theta=float(a), damping_psi=float(b), damping=reading) for a, b in zip(dt, dp)]
+    points = [{"damping_theta": a, "damping_psi": b} for a, b in zip(dt, dp)]
     return propeller_study(f"nacelle damping ({reading}), {vary} varied", "mean_damping", "",
-                           {"damping_theta": dt, "damping_psi": dp, "mean_damping": 0.5 * (dt + dp)}, props,
-                           models=models, **options)
+                           {"damping_theta": dt, "damping_psi": dp, "mean_damping": 0.5 * (dt + dp)}, points,
+                           propeller=replace(base, damping=reading), models=models, **options)
 
 
 # ----------------------------------------------------------------------------- §11.3 motor mass
@@ -171,10 +237,9 @@ def motor_mass(masses=MOTOR_MASSES, *, propeller: Propeller | None = None,
     base = _base(propeller)
     if not base.masses:
         raise v.InputError("propeller has no motor-nacelle mass (its `masses` is empty)")
-    motor = base.masses[0]
-    props = [replace(base, masses=(PointMass(float(x), motor.x),) + tuple(base.masses[1:])) for x in m]
-    return propeller_study("motor-nacelle mass", "motor_mass", "kg", {"motor_mass": m}, props,
-                           models=models, **options)
+    return propeller_study("motor-nacelle mass", "motor_mass", "kg", {"motor_mass": m},
+                           [{"masses[0].mass": x} for x in m], propeller=base, models=models,
+                           **options)
 
 
 # ----------------------------------------------------------------------------- §11.4 pivot / CG
@@ -200,21 +265,23 @@ def pivot_length(variant: Literal["cg", "pivot", "cg+pivot"] = "pivot", shifts=P
         raise v.InputError(f"variant = {variant!r} is invalid: must be 'cg', 'pivot' or 'cg+pivot'")
     s = _grid("shifts", shifts, "m")
     base = _base(propeller)
-    props = []
+    points: list[dict[str, float]] = []
     for x in s:
         x = float(x)
-        p = base
-        if variant in ("cg", "cg+pivot"):
-            p = replace(p, rotor=PointMass(p.rotor.mass, p.rotor.x + x),
-                        masses=tuple(PointMass(q.mass, q.x + x) for q in p.masses))
+        point = {}
+        if variant in ("cg", "cg+pivot"):   # every point mass moves by x
+            point["rotor.x"] = base.rotor.x + x
+            point.update({f"masses[{i}].x": q.x + x for i, q in enumerate(base.masses)})
         if variant in ("pivot", "cg+pivot"):
-            p = replace(p, pivot_pitch=p.pivot_pitch + x, pivot_yaw=p.pivot_yaw + x)
-        props.append(p)
+            point.update({"pivot_pitch": base.pivot_pitch + x, "pivot_yaw": base.pivot_yaw + x})
+        points.append(point)
+    props = _variant_propellers(base, points)
     inertia = [p.pivot_inertia() for p in props]
     cols = {"shift": s, "pivot_length": np.array([p.e_theta for p in props]),
             "I_theta_P": np.array([i["I_theta_P"] for i in inertia]),
             "S_theta_P": np.array([i["S_theta_P"] for i in inertia])}
-    return propeller_study(f"pivot length ({variant} moved)", "shift", "m", cols, props, models=models,
+    return propeller_study(f"pivot length ({variant} moved)", "shift", "m", cols, points,
+                           propeller=base, models=models,
                            parameter_units={"pivot_length": "m", "I_theta_P": "kg m^2", "S_theta_P": "kg m"},
                            **options)
 
@@ -234,10 +301,13 @@ def spin_inertia(rotor_masses=ROTOR_MASSES, *, propeller: Propeller | None = Non
     """
     m = _grid("rotor masses", rotor_masses, "kg", v.positive)
     base = _base(propeller)
-    props = [replace(base, rotor=PointMass(float(x), base.rotor.x), spin_inertia=None) for x in m]
+    base = replace(base, spin_inertia=None)   # I_Omega from eq. 9.2
+    points = [{"rotor.mass": x} for x in m]
+    props = _variant_propellers(base, points)
     return propeller_study("spin inertia (rotor mass)", "I_Omega", "kg m^2",
-                           {"rotor_mass": m, "I_Omega": np.array([p.I_Omega for p in props])}, props,
-                           models=models, parameter_units={"rotor_mass": "kg"}, **options)
+                           {"rotor_mass": m, "I_Omega": np.array([p.I_Omega for p in props])}, points,
+                           propeller=base, models=models, parameter_units={"rotor_mass": "kg"},
+                           **options)
 
 
 # ----------------------------------------------------------------------------- §11.6 blade angle
@@ -257,10 +327,11 @@ def blade_angle(betas=BLADE_ANGLES, *, propeller: Propeller | None = None,
     base = _base(propeller)
     if base.operation != "fixed-pitch":
         raise v.InputError("the blade-angle study needs a fixed-pitch propeller (operation='fixed-pitch')")
-    props = [replace(base, beta_075_deg=float(x)) for x in b]  # validates each angle
+    points = [{"beta_075_deg": x} for x in b]
+    props = _variant_propellers(base, points)  # validates each angle
     J = np.array([np.pi * p.advance_ratio for p in props])
     return propeller_study("blade angle", "beta_075_deg", "deg", {"beta_075_deg": b, "advance_ratio": J},
-                           props, models=models, **options)
+                           points, propeller=base, models=models, **options)
 
 
 @dataclass(frozen=True)
@@ -287,7 +358,8 @@ def whirl_flutter_speeds(beta: float, propeller: Propeller | None = None, speeds
     """Flutter onset speeds [m/s] of "forward 1" and "backward 1" of the wingtip model at blade
     angle `beta` [deg] (NaN where that mode does not flutter in the speed range)."""
     base = _base(propeller)
-    a = analyse(build_model("wingtip", replace(base, beta_075_deg=float(beta))), speeds, xtol=xtol)
+    model = P.set_value(build_model("wingtip", base), PROPELLER_PATHS["wingtip"] + "beta_075_deg", beta)
+    a = analyse(model, speeds, xtol=xtol)
     fw, bw = a.first("forward 1", "flutter"), a.first("backward 1", "flutter")
     return (float("nan") if fw is None else fw.V), (float("nan") if bw is None else bw.V)
 

@@ -1,0 +1,496 @@
+"""Parameter paths: any numeric field of any model, addressed by a string.
+
+A path names a field the way Python reaches it from the model, with the field names of the
+model dataclasses (:mod:`propwhirl.model`) joined by dots and tuple entries by their index
+(Python's, from 0 — the index of the model's own error messages, ``propellers[0].y``, while
+figures and reports number propellers from 1)::
+
+    flight.density                       # a number of a nested table
+    wing.GJ                              # a spanwise property, set uniform along the span
+    wing.EI*                             # the scale form: a factor on the whole distribution
+    wing.EI[3]                           # one element's value of a per-element property
+    wing.rayleigh[0]                     # one entry of a list of numbers
+    propellers[1].propeller.f_theta      # a field of the second installation's propeller
+    propellers[*].propeller.f_psi        # the same field of every installation
+    propellers[0].propeller.masses[0].mass
+    propellers[0].propeller.inertia.I_theta_P    # an entry of a mapping
+    propeller.beta_075_deg               # an IsolatedPropeller's propeller
+
+The field metadata (``model/fields.py``'s :func:`~propwhirl.model.fields.spec`: unit, range,
+description) gives every path its unit and valid range, and the list of valid paths of a
+model (:func:`parameters`).  An unknown path is an InputError listing the nearest valid paths
+(:mod:`difflib`); a field that is not a number (a string, a switch, a function) is refused.
+
+Setting a value rebuilds the model with :func:`dataclasses.replace`, innermost object first,
+so every object's own validation runs (a wing's mesh, a propeller's checks, the model's
+installation nodes).  A value outside the declared range is an error naming the path and the
+range before anything is built; any other error of the model is restated with the path.  A
+field with an alternative (f_theta or K_theta, f_psi or K_psi, polar_inertia or
+radius_of_gyration) is set with its alternative cleared.
+
+The scale form ``PATH*`` (listed for the distributed properties, accepted for any number
+given) multiplies the current value of a distributed property — a spanwise
+wing property (a number, one value per element, or a function of y), a radial
+:class:`~propwhirl.model.propeller_aero.Distribution` — or of a number by a factor (1 = the
+model as given).  A scaled function stays picklable (:class:`Scaled`) so that variants can go
+to worker processes.
+"""
+from __future__ import annotations
+
+import dataclasses
+import difflib
+import re
+from dataclasses import dataclass
+from typing import Any, Callable, Iterable, Mapping, Sequence
+
+import numpy as np
+
+from propwhirl import validate as v
+from propwhirl.model.fields import META_KEY, FieldSpec, Range, _checks
+from propwhirl.model.propeller_aero import Distribution
+
+#: Fields that exclude each other (class name, field) → the field cleared when it is set.
+ALTERNATIVES: dict[tuple[str, str], str] = {
+    ("Propeller", "f_theta"): "K_theta", ("Propeller", "K_theta"): "f_theta",
+    ("Propeller", "f_psi"): "K_psi", ("Propeller", "K_psi"): "f_psi",
+    ("Wing", "polar_inertia"): "radius_of_gyration",
+    ("Wing", "radius_of_gyration"): "polar_inertia",
+}
+
+#: Forms of a field holding one number (possibly None: not given).
+_NUMBER_FORMS = ("number", "integer")
+#: Forms that can be scaled as a whole (a distribution along the span or the radius).
+_DISTRIBUTED_FORMS = ("spanwise", "distribution", "number_or_string")
+#: Forms holding a nested dataclass (or a tuple of them).
+_TABLE_FORMS = ("table", "flat", "reference", "derivatives")
+_TUPLE_FORMS = ("tables", "installations")
+#: Forms never addressable (not a model quantity).
+_HIDDEN_FORMS = ("derived",)
+
+_SEGMENT = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)((?:\[(?:\d+|\*)\])*)$")
+_INDEX = re.compile(r"\[(\d+|\*)\]")
+
+
+@dataclass(frozen=True)
+class Scaled:
+    """A function of position multiplied by a factor: ``Scaled(fn, 2.0)(y) == 2 fn(y)``
+    (picklable when `fn` is)."""
+
+    function: Callable[[np.ndarray], np.ndarray]
+    factor: float
+
+    def __call__(self, x):
+        return self.factor * np.asarray(self.function(x), dtype=float)
+
+
+@dataclass(frozen=True)
+class _Step:
+    name: str
+    indices: tuple[int | str, ...] = ()   # int, or "*" for every entry
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """A resolved parameter path of one model.
+
+    path:  the path as text (normalised: no spaces), ``*`` last for the scale form
+    scale: True for the scale form (the value is a factor, 1 = the model as given)
+    unit:  SI unit of the value ("" for a factor or a dimensionless field)
+    doc:   the field's description (its metadata)
+    range: the declared valid range of the value (None for a factor or an undeclared one)
+    integer: the field holds an integer (values must be whole numbers)
+    """
+
+    path: str
+    steps: tuple[_Step, ...]
+    scale: bool
+    unit: str
+    doc: str
+    range: Range | None
+    integer: bool = False
+
+    @property
+    def label(self) -> str:
+        """Axis label: ``'wing.GJ [N m^2]'``, ``'wing.EI* (factor)'``."""
+        if self.scale:
+            return f"{self.path} (factor)"
+        return f"{self.path} [{self.unit}]" if self.unit else self.path
+
+    def describe(self) -> str:
+        """One line: path, unit, range, description."""
+        rng = "" if self.range is None else f" in {self.range}"
+        unit = f" [{self.unit}]" if self.unit and not self.scale else ""
+        return f"{self.path}{unit}{rng}: {self.doc}"
+
+    def value(self, model: Any) -> float | None:
+        """The model's current value (1.0 for the scale form; None where the field is not
+        given, e.g. f_theta of a propeller given K_theta, or not one number)."""
+        if self.scale:
+            return 1.0
+        vals = [x for x in _leaves(model, self.steps)]
+        if not vals or any(not _is_number(x) for x in vals):
+            return None
+        first = float(np.asarray(vals[0]))
+        return first if all(float(np.asarray(x)) == first for x in vals) else None
+
+    def set(self, model: Any, value: float) -> Any:
+        """`model` with this parameter set to `value` (a factor for the scale form), rebuilt
+        through :func:`dataclasses.replace` so that its own validation runs."""
+        x = self._checked(value)
+        try:
+            return _set(model, self.steps, lambda old: self._leaf(old, x))
+        except v.InputError as exc:
+            unit = "" if self.scale or not self.unit else f" {self.unit}"
+            raise v.InputError(f"{self.path} = {x:g}{unit}: {exc}") from None
+
+    # ------------------------------------------------------------------ helpers
+    def _checked(self, value: Any) -> float | int:
+        name = self.path
+        if np.ndim(value):
+            raise v.InputError(f"{name} = {v.short_repr(value)} is invalid: must be one number")
+        x = float(v.finite(name, value, "" if self.scale else self.unit))
+        if self.scale:
+            v.positive(name, x)
+            return x
+        if self.integer:
+            if x != round(x):
+                raise v.fail(name, value, "invalid: must be a whole number (an integer field)")
+            x = int(round(x))
+        if self.range is not None:
+            self.range.check(name, x, self.unit)
+        return x
+
+    def _leaf(self, old: Any, x: float | int) -> Any:
+        if not self.scale:
+            return x
+        if old is None or isinstance(old, str):
+            raise v.InputError(f"{self.path}: the field is {v.short_repr(old)}: there is no "
+                               "value to scale (give a number, or set it without '*')")
+        if isinstance(old, Distribution):
+            return dataclasses.replace(old, values=tuple(x * np.asarray(old.values)))
+        if isinstance(old, Scaled):
+            return Scaled(old.function, x * old.factor)
+        if callable(old):
+            return Scaled(old, x)
+        arr = np.asarray(old, dtype=float) * x
+        return float(arr) if arr.ndim == 0 and not isinstance(old, np.ndarray) else arr
+
+
+def _is_number(x: Any) -> bool:
+    return isinstance(x, (int, float, np.integer, np.floating)) and not isinstance(x, (bool, np.bool_))
+
+
+def _leaves(obj: Any, steps: Sequence[_Step]) -> Iterable[Any]:
+    """The values a path reaches (several with a ``[*]`` index)."""
+    if not steps:
+        yield obj
+        return
+    step, rest = steps[0], steps[1:]
+    if obj is None:
+        yield None
+        return
+    cur = obj.get(step.name) if isinstance(obj, Mapping) else getattr(obj, step.name)
+    items = [cur]
+    for i in step.indices:
+        items = [y for c in items for y in (list(c) if i == "*" else [c[i]])]
+    for c in items:
+        yield from _leaves(c, rest)
+
+
+def _replace_index(container: Any, indices: Sequence[int | str], fn: Callable[[Any], Any]) -> Any:
+    if not indices:
+        return fn(container)
+    i, rest = indices[0], indices[1:]
+    if isinstance(container, np.ndarray):
+        out = container.astype(float, copy=True)
+        for k in (range(out.size) if i == "*" else [i]):
+            out[k] = _replace_index(out[k], rest, fn)
+        return out
+    items = list(container)
+    for k in (range(len(items)) if i == "*" else [i]):
+        items[k] = _replace_index(items[k], rest, fn)
+    return tuple(items)
+
+
+def _set(obj: Any, steps: Sequence[_Step], leaf: Callable[[Any], Any]) -> Any:
+    step, rest = steps[0], steps[1:]
+
+    def inner(old: Any) -> Any:
+        return leaf(old) if not rest else _set(old, rest, leaf)
+
+    if isinstance(obj, Mapping) or obj is None:           # an entry of a mapping field
+        new = dict(obj or {})
+        new[step.name] = _replace_index(new.get(step.name), step.indices, inner)
+        return new
+    new_value = _replace_index(getattr(obj, step.name), step.indices, inner)
+    changes = {step.name: new_value}
+    other = ALTERNATIVES.get((type(obj).__name__, step.name))
+    if other is not None and not rest:
+        changes[other] = None
+    return dataclasses.replace(obj, **changes)
+
+
+# ============================================================================ resolution
+@dataclass(frozen=True)
+class _Node:
+    """What a prefix of a path reaches: a field's declaration and its value."""
+
+    spec: FieldSpec | None
+    form: str | None
+    value: Any
+    cls_name: str
+
+
+def _fields_of(obj: Any) -> dict[str, _Node]:
+    """The declared fields of a dataclass instance (derived fields hidden)."""
+    out = {}
+    for c in _checks(type(obj)):
+        if c.form in _HIDDEN_FORMS or c.name.startswith("_"):
+            continue
+        out[c.name] = _Node(c.spec, c.form, getattr(obj, c.name), type(obj).__name__)
+    return out
+
+
+def _entries_of(node: _Node) -> dict[str, _Node]:
+    """The entries of a mapping field (declared in its metadata)."""
+    value = node.value or {}
+    return {e.name: _Node(FieldSpec(e.key, e.unit, e.doc, range=e.range), "number",
+                          value.get(e.name), node.cls_name) for e in node.spec.entries}
+
+
+def _children(node: _Node) -> dict[str, _Node] | None:
+    """The named children of a node (None for a leaf)."""
+    if node.form == "mapping":
+        return _entries_of(node)
+    if dataclasses.is_dataclass(node.value) and not isinstance(node.value, type):
+        return _fields_of(node.value)
+    return None
+
+
+def _enumerate(obj: Any, prefix: str = "") -> list[str]:
+    """Every valid path below dataclass instance `obj`."""
+    out = []
+    for name, node in _fields_of(obj).items():
+        out += _enumerate_node(node, f"{prefix}{name}")
+    return out
+
+
+def _enumerate_node(node: _Node, text: str) -> list[str]:
+    form, value = node.form, node.value
+    if form in _NUMBER_FORMS:
+        if value is None or _is_number(value):
+            return [text]
+        return []
+    if form in _DISTRIBUTED_FORMS:
+        if isinstance(value, str):
+            return [text]
+        return [text, f"{text}*"]
+    if form in ("numbers", "split"):
+        if value is None:
+            return []
+        return [f"{text}[{i}]" for i in range(len(value))]
+    if form in _TUPLE_FORMS:
+        out = []
+        for i, item in enumerate(value or ()):
+            out += _enumerate(item, f"{text}[{i}].")
+        if len(value or ()) > 1:
+            out += _enumerate(value[0], f"{text}[*].")
+        return out
+    kids = _children(node)
+    if kids is None:
+        return []
+    return [p for name, k in kids.items() for p in _enumerate_node(k, f"{text}.{name}")]
+
+
+def valid_paths(model: Any) -> list[str]:
+    """Every parameter path of `model` (scale forms included), in field order."""
+    _check_model(model)
+    return _enumerate(model)
+
+
+def parameters(model: Any) -> list[Parameter]:
+    """Every parameter of `model`, resolved (units, ranges, descriptions)."""
+    return [resolve(model, p) for p in valid_paths(model)]
+
+
+def _check_model(model: Any) -> None:
+    if not dataclasses.is_dataclass(model) or isinstance(model, type):
+        raise v.InputError(f"model = {v.short_repr(model)} is invalid: parameter paths address the "
+                           "fields of a model dataclass (PropellerWing, IsolatedPropeller, ...)")
+
+
+def _unknown(model: Any, text: str, why: str) -> v.InputError:
+    paths = valid_paths(model)
+    near = difflib.get_close_matches(text, paths, n=5, cutoff=0.5)
+    if not near:  # match on the last name alone ("GJ" → "wing.GJ")
+        last = re.split(r"[.\[]", text.rstrip("*"))[-1]
+        near = [p for p in paths if re.split(r"[.\[]", p.rstrip("*"))[-1] == last][:5]
+    if not near:
+        near = difflib.get_close_matches(text, paths, n=5, cutoff=0.0)
+    return v.InputError(f"parameter path {text!r} is invalid: {why}; nearest valid paths: "
+                        + ", ".join(near))
+
+
+def _not_numeric(text: str, node: _Node, what: str) -> v.InputError:
+    return v.InputError(f"parameter path {text!r} is invalid: {what} "
+                        f"({node.cls_name} field, value {v.short_repr(node.value, 40)}), "
+                        "not a number: only numeric fields can be varied")
+
+
+def resolve(model: Any, path: str) -> Parameter:
+    """The :class:`Parameter` of `path` in `model` (see the module docstring for the syntax).
+
+    Raises
+    ------
+    InputError
+        The path is malformed or unknown (the message lists the nearest valid paths), or it
+        names a field that is not a number (a string, a switch, a table, a function).
+    """
+    _check_model(model)
+    if not isinstance(path, str) or not path.strip():
+        raise v.InputError(f"parameter path = {v.short_repr(path)} is invalid: must be a "
+                           "non-empty string such as 'wing.GJ'")
+    text = "".join(path.split())
+    scale = text.endswith("*")
+    body = text[:-1] if scale else text
+    steps = []
+    for seg in body.split("."):
+        m = _SEGMENT.match(seg)
+        if m is None:
+            raise _unknown(model, text, f"{seg!r} is not a field name with optional [index]")
+        steps.append(_Step(m.group(1), tuple(i if i == "*" else int(i)
+                                             for i in _INDEX.findall(m.group(2)))))
+    node = _Node(None, "table", model, type(model).__name__)
+    done = ""
+    for k, step in enumerate(steps):
+        kids = _children(node)
+        if kids is None:
+            raise _unknown(model, text, f"{done or type(model).__name__} has no fields")
+        if step.name not in kids:
+            where = done or type(model).__name__
+            raise _unknown(model, text, f"{where} has no field {step.name!r}")
+        node = kids[step.name]
+        done = f"{done}.{step.name}" if done else step.name
+        for i in step.indices:
+            node, done = _index(model, text, node, done, i)
+        if k < len(steps) - 1 and node.form in _TUPLE_FORMS:
+            raise _unknown(model, text, f"{done} is a list of tables: give an index, e.g. {done}[0]")
+    return _leaf_parameter(model, text, steps, node, scale)
+
+
+def _index(model: Any, text: str, node: _Node, done: str, i: int | str) -> tuple[_Node, str]:
+    value, form = node.value, node.form
+    if form in _TUPLE_FORMS:
+        n = len(value or ())
+        if i != "*" and not i < n:
+            raise _unknown(model, text, f"{done} has {n} entr{'y' if n == 1 else 'ies'} "
+                           f"(indices 0 to {n - 1})")
+        item = value[0 if i == "*" else i] if n else None
+        sub = _Node(node.spec, "table", item, node.cls_name)
+        return sub, f"{done}[{i}]"
+    if form in ("numbers", "split") or (form == "spanwise" and isinstance(value, np.ndarray)):
+        n = 0 if value is None else len(value)
+        if i == "*" or not i < n:
+            raise _unknown(model, text, f"{done} has {n} values: give an index from 0 to {n - 1}")
+        spec = node.spec
+        if form == "split":
+            spec = dataclasses.replace(spec, unit=spec.unit_of(i), range=spec.range_of(i),
+                                       doc=f"{spec.doc} (entry {i})")
+        return _Node(spec, "number", value[i], node.cls_name), f"{done}[{i}]"
+    raise _unknown(model, text, f"{done} is not a list: it takes no index")
+
+
+def _leaf_parameter(model: Any, text: str, steps: list[_Step], node: _Node, scale: bool) -> Parameter:
+    form, value, s = node.form, node.value, node.spec
+    if form in _NUMBER_FORMS:
+        if value is not None and not _is_number(value):
+            raise _not_numeric(text, node, "a function")
+        integer = form == "integer"
+        if scale and (integer or value is None):
+            raise v.InputError(f"parameter path {text!r} is invalid: the scale form needs a "
+                               f"number to scale, the field is {v.short_repr(value)}; use "
+                               f"{text[:-1]!r}")
+    elif form in _DISTRIBUTED_FORMS:
+        integer = False
+        if scale and isinstance(value, str):
+            raise _not_numeric(text, node, f"a named rule {value!r}: set a number without '*'")
+    elif form == "string":
+        raise _not_numeric(text, node, "a string")
+    elif form == "boolean":
+        raise _not_numeric(text, node, "a switch (True/False)")
+    elif form in ("numbers", "split"):
+        raise _unknown(model, text, f"{text.rstrip('*')} is a list of numbers: address one entry")
+    elif form in _TUPLE_FORMS or _children(node) is not None:
+        raise _unknown(model, text, f"{text.rstrip('*')} is a table, not a number: address one "
+                       "of its fields")
+    else:
+        raise _not_numeric(text, node, "a function or an object")
+    unit = s.unit_of() if s is not None else ""
+    rng = s.range_of() if s is not None else None
+    doc = s.doc if s is not None else ""
+    return Parameter(text, tuple(steps), scale, "" if scale else unit, doc,
+                     None if scale else rng, integer)
+
+
+# ============================================================================ variants
+def set_value(model: Any, path: str | Parameter, value: float) -> Any:
+    """`model` with the parameter `path` set to `value` [its unit] (see :class:`Parameter`)."""
+    p = path if isinstance(path, Parameter) else resolve(model, path)
+    return p.set(model, value)
+
+
+def set_values(model: Any, values: Mapping[str | Parameter, float]) -> Any:
+    """`model` with several parameters set at once (in the order given)."""
+    out = model
+    for path, x in values.items():
+        p = path if isinstance(path, Parameter) else resolve(model, path)
+        out = p.set(out, x)
+    return out
+
+
+def _column(name: str, values: Any) -> np.ndarray:
+    arr = np.atleast_1d(np.asarray(v.finite(name, values), dtype=float))
+    if arr.ndim != 1 or arr.size == 0:
+        raise v.InputError(f"{name}: the values must be a non-empty 1-D sequence, got shape "
+                           f"{arr.shape}")
+    return arr
+
+
+def variants(model: Any, columns: Mapping[str, Sequence[float]]) -> list[Any]:
+    """One model per row of `columns` (path → equal-length values, set together): e.g.
+    ``variants(m, {"propellers[0].propeller.f_theta": f, "propellers[0].propeller.f_psi": f})``.
+    Each path is resolved once."""
+    params = [resolve(model, p) for p in columns]
+    cols = [_column(p.path, columns[k]) for p, k in zip(params, columns)]
+    n = len(cols[0]) if cols else 0
+    for p, c in zip(params, cols):
+        if len(c) != n:
+            raise v.InputError(f"{p.path}: {len(c)} values, expected {n} (one per variant)")
+    out = []
+    for i in range(n):
+        m = model
+        for p, c in zip(params, cols):
+            m = p.set(m, c[i])
+        out.append(m)
+    return out
+
+
+def grid_variants(model: Any, axes: Sequence[tuple[str, Sequence[float]]]) -> list[Any]:
+    """One model per point of the outer product of `axes` ((path, values) pairs), the last
+    axis fastest (C order, as ``numpy.meshgrid(..., indexing="ij")`` flattened)."""
+    params = [resolve(model, p) for p, _ in axes]
+    cols = [_column(p.path, vals) for p, (_, vals) in zip(params, axes)]
+    if len({p.path.rstrip("*") for p in params}) != len(params):
+        raise v.InputError(f"parameter paths {[p.path for p in params]} are invalid: a path "
+                           "appears twice")
+    out = []
+    for idx in np.ndindex(*(len(c) for c in cols)):
+        m = model
+        for p, c, i in zip(params, cols, idx):
+            m = p.set(m, c[i])
+        out.append(m)
+    return out
+
+
+__all__ = ["Parameter", "Scaled", "ALTERNATIVES", "resolve", "valid_paths", "parameters",
+           "set_value", "set_values", "variants", "grid_variants"]

@@ -1,0 +1,416 @@
+"""Sweeps and maps of the critical speed of any model over one or two parameters.
+
+:func:`sweep` varies one parameter path (:mod:`propwhirl.studies.paths`), :func:`map2d` two
+(their outer product); each point is one analysis (:func:`propwhirl.analysis.stability.analyse`)
+of the model's variant, and its critical instability is the one definition
+(:func:`propwhirl.analysis.stability.critical`) — or, with ``static_divergence=False`` and/or
+``low_speed=False``, the thesis's exclusions (:func:`propwhirl.studies.critical.critical_instability`,
+the chapter-11 convention).  Per point the result holds the critical speed [m/s] and frequency
+[Hz], its kind ("flutter", "divergence", "none"), event, mode (name and dominant content), the
+whirl sense, the propeller that dominates it (the largest share of the mode's kinetic energy
+among the flexibly mounted propellers, numbered from 1; 0 when none takes part) with its share,
+and the wing's static divergence speed.
+
+The analyses are independent: ``processes > 1`` runs them in the study pool
+(:func:`propwhirl.studies.runner.map_analyses`, called in one place: :func:`run_points`).
+Results are :class:`CriticalMap` objects, saved and loaded as JSON (everything) or CSV (one
+tidy row per point), and a pandas DataFrame with :meth:`CriticalMap.to_dataframe`.
+"""
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+
+from propwhirl import fileio
+from propwhirl import validate as v
+from propwhirl.analysis.stability import ModelAnalysis, analyse
+from propwhirl.analysis.summary import text_table
+from propwhirl.studies import paths as P
+from propwhirl.studies.critical import (convention, critical_instability, static_divergence_speed,
+                                        wing_divergence_predicate)
+
+#: Default accuracy of every critical speed of a study [m/s]
+STUDY_XTOL = 0.01
+
+#: The result of one point and its units ("" for text and dimensionless columns).
+RESULT_UNITS: dict[str, str] = {
+    "critical_speed": "m/s", "critical_frequency": "Hz", "critical_mode": "", "content": "",
+    "kind": "", "event": "", "whirl": "", "propeller": "", "propeller_share": "",
+    "static_divergence_speed": "m/s",
+}
+_FLOAT_COLUMNS = ("critical_speed", "critical_frequency", "propeller_share", "static_divergence_speed")
+_INT_COLUMNS = ("propeller",)
+
+#: Format version of the saved maps.
+FORMAT = "propwhirl.critical-map/1"
+
+
+# ============================================================================ one point
+def _dominant_content(a: ModelAnalysis, label: str) -> str:
+    """Dominant degree-of-freedom group of mode `label` at the first speed ("bending",
+    "torsion", "pitch", "yaw"; "" when not recorded, e.g. real roots)."""
+    c = a.content.get(label.rstrip("'"))
+    return max(c, key=lambda g: c[g]) if c else ""
+
+
+def evaluate(task: tuple) -> dict[str, Any]:
+    """Analyse one model and return its result row (small: no sweep is sent back).
+
+    task: (model, speeds [m/s] or None, xtol [m/s], static_divergence, low_speed) — see
+    :func:`propwhirl.studies.critical.critical_instability` for the two flags.
+    """
+    model, speeds, xtol, static_div, low_speed = task
+    a = analyse(model, speeds, xtol=xtol)
+    is_wing = wing_divergence_predicate(model, a)
+    e = critical_instability(a, static_divergence=static_div, low_speed=low_speed,
+                             is_wing_divergence=is_wing)
+    lead = None
+    if e is not None and e.participation is not None and e.participation.propellers:
+        lead = max(e.participation.propellers, key=lambda p: p.share)
+    return {
+        "critical_speed": float("nan") if e is None else float(e.V),
+        "critical_frequency": float("nan") if e is None else float(e.frequency_hz),
+        "critical_mode": "" if e is None else e.label,
+        "content": "" if e is None else _dominant_content(a, e.label),
+        "kind": "none" if e is None else e.kind,
+        "event": "" if e is None else e.event,
+        "whirl": "" if e is None or e.whirl is None else e.whirl,
+        "propeller": 0 if lead is None else int(lead.propeller),
+        "propeller_share": float("nan") if lead is None else float(lead.share),
+        "static_divergence_speed": static_divergence_speed(a, is_wing),
+    }
+
+
+def run_points(models: Sequence[Any], speeds: Any = None, *, speeds_each: Sequence[Any] | None = None,
+               xtol: float = STUDY_XTOL, static_divergence: bool = True, low_speed: bool = True,
+               processes: int = 1) -> list[dict[str, Any]]:
+    """One result row (:func:`evaluate`) per model, in order.
+
+    speeds: one initial grid [m/s] for all (None: each model's own speed range); speeds_each:
+    instead, one grid (or None) per model.  This is the one place where a study's analyses go
+    to the pool (:func:`propwhirl.studies.runner.map_analyses`).
+    """
+    from propwhirl.studies.runner import map_analyses
+
+    v.positive("xtol", xtol, "m/s")
+    v.integer_at_least("processes", processes, 1)
+    models = list(models)
+    if speeds_each is not None:
+        grids = list(speeds_each)
+        if len(grids) != len(models):
+            raise v.InputError(f"speeds_each has {len(grids)} grids, expected {len(models)} (one per model)")
+    else:
+        grid = None if speeds is None else v.increasing("speeds", speeds, "m/s")
+        grids = [grid] * len(models)
+    tasks = [(m, g, xtol, bool(static_divergence), bool(low_speed)) for m, g in zip(models, grids)]
+    return map_analyses(evaluate, tasks, processes)
+
+
+# ============================================================================ result
+@dataclass(frozen=True)
+class Axis:
+    """One varied parameter: its path, values, unit, description and the model's own value.
+
+    design: the value of the model as given (1 for a scale form; None when the field is not
+    given as one number, e.g. f_theta of a propeller given K_theta).
+    """
+
+    path: str
+    values: np.ndarray
+    unit: str = ""
+    design: float | None = None
+    doc: str = ""
+
+    @property
+    def label(self) -> str:
+        """Axis label: ``'wing.GJ [N m^2]'``, ``'wing.EI* (factor)'``."""
+        if self.path.endswith("*"):
+            return f"{self.path} (factor)"
+        return f"{self.path} [{self.unit}]" if self.unit else self.path
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"path": self.path, "values": [float(x) for x in self.values], "unit": self.unit,
+                "design": self.design, "doc": self.doc}
+
+
+@dataclass(frozen=True)
+class CriticalMap:
+    """The critical speed of a model over one (a sweep) or two (a map) parameters.
+
+    axes:    the varied parameters (:class:`Axis`), in order
+    columns: the result columns of :data:`RESULT_UNITS`, each an array of shape
+             ``(len(axes[0].values), len(axes[1].values))`` (one axis: a vector)
+    convention: which events count as critical (:func:`propwhirl.studies.critical.convention`)
+    """
+
+    model_name: str
+    axes: tuple[Axis, ...]
+    columns: Mapping[str, np.ndarray]
+    convention: str = "every instability counts (propwhirl.analysis.critical)"
+    xtol: float = STUDY_XTOL
+    units: Mapping[str, str] = field(default_factory=lambda: dict(RESULT_UNITS))
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        return tuple(len(a.values) for a in self.axes)
+
+    def __len__(self) -> int:
+        return int(np.prod(self.shape))
+
+    @property
+    def critical_speed(self) -> np.ndarray:
+        """Critical speed [m/s] at each point (NaN: nothing unstable in the speed range)."""
+        return np.asarray(self.columns["critical_speed"], dtype=float)
+
+    @property
+    def kind(self) -> np.ndarray:
+        """"flutter", "divergence" or "none" at each point."""
+        return np.asarray(self.columns["kind"], dtype=object)
+
+    def grids(self) -> tuple[np.ndarray, ...]:
+        """The parameter values at each point (``numpy.meshgrid(..., indexing="ij")``)."""
+        return tuple(np.meshgrid(*(a.values for a in self.axes), indexing="ij"))
+
+    def table(self) -> dict[str, np.ndarray]:
+        """Tidy columns, one row per point (last axis fastest): the parameter paths, then
+        the results."""
+        out = {a.path: g.ravel() for a, g in zip(self.axes, self.grids())}
+        out.update({k: np.asarray(c).ravel() for k, c in self.columns.items()})
+        return out
+
+    def to_dataframe(self):
+        """:meth:`table` as a pandas DataFrame; units in ``df.attrs["units"]`` (needs pandas:
+        the ``data`` extra)."""
+        try:
+            import pandas as pd
+        except ImportError:
+            raise ImportError("DataFrames need pandas: pip install propwhirl[data]") from None
+        df = pd.DataFrame(self.table())
+        df.attrs["units"] = {**{a.path: a.unit for a in self.axes}, **dict(self.units)}
+        df.attrs["convention"] = self.convention
+        return df
+
+    # ------------------------------------------------------------------ files
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict (NaN → None)."""
+        def clean(x):
+            if isinstance(x, (float, np.floating)):
+                return None if not math.isfinite(x) else float(x)
+            if isinstance(x, (np.integer,)):
+                return int(x)
+            return x
+
+        return {"format": FORMAT, "model": self.model_name, "convention": self.convention,
+                "xtol": self.xtol, "axes": [a.to_dict() for a in self.axes],
+                "units": dict(self.units),
+                "columns": {k: [clean(x) for x in np.asarray(c).ravel().tolist()]
+                            for k, c in self.columns.items()}}
+
+    @classmethod
+    def from_dict(cls, d: Any, where: str = "critical map") -> "CriticalMap":
+        """The map written by :meth:`to_dict`, checked (InputError naming what is wrong)."""
+        if not isinstance(d, dict) or d.get("format") != FORMAT:
+            raise v.InputError(f"{where}: not a critical map (format must be {FORMAT!r})")
+        try:
+            axes = tuple(Axis(str(a["path"]), np.asarray(a["values"], dtype=float),
+                              str(a.get("unit", "")),
+                              None if a.get("design") is None else float(a["design"]),
+                              str(a.get("doc", ""))) for a in d["axes"])
+            shape = tuple(len(a.values) for a in axes)
+            cols = {k: _column_array(k, d["columns"][k], shape) for k in RESULT_UNITS}
+            return cls(str(d["model"]), axes, cols, str(d["convention"]), float(d["xtol"]))
+        except (KeyError, TypeError, ValueError) as exc:
+            raise v.InputError(f"{where}: malformed ({type(exc).__name__}: {exc})") from None
+
+    def to_json(self) -> str:
+        return json.dumps(self.to_dict(), indent=1) + "\n"
+
+    def to_csv(self, path: str | Path | None = None) -> str:
+        """One row per point (header "column [unit]"); also written to `path` if given
+        (atomically).  NaN is an empty cell."""
+        buf = io.StringIO()
+        w = csv.writer(buf, lineterminator="\n")
+        t = self.table()
+        units = {**{a.path: a.unit for a in self.axes}, **dict(self.units)}
+        w.writerow([f"{k} [{units[k]}]" if units.get(k) else k for k in t])
+        for i in range(len(self)):
+            row = []
+            for k in t:
+                x = t[k][i]
+                if isinstance(x, (float, np.floating)):  # shortest text that reads back exactly
+                    row.append("" if not math.isfinite(x) else repr(float(x)))
+                else:
+                    row.append(str(x))
+            w.writerow(row)
+        text = buf.getvalue()
+        if path is not None:
+            fileio.write_text(path, text, what="critical-map CSV")
+        return text
+
+    @classmethod
+    def from_csv(cls, text: str, where: str = "critical-map CSV") -> "CriticalMap":
+        """The map of a CSV written by :meth:`to_csv` (the design point and the model name
+        are only in the JSON form)."""
+        rows = list(csv.reader(io.StringIO(text)))
+        if len(rows) < 2:
+            raise v.InputError(f"{where}: no rows")
+        heads = [h.split(" [")[0] for h in rows[0]]
+        units = {h.split(" [")[0]: (h.split(" [", 1)[1].rstrip("]") if " [" in h else "")
+                 for h in rows[0]}
+        missing = [k for k in RESULT_UNITS if k not in heads]
+        axes_names = [h for h in heads if h not in RESULT_UNITS]
+        if missing or not axes_names:
+            raise v.InputError(f"{where}: not a critical-map table (missing columns "
+                               f"{missing or 'of parameters'})")
+        data = {h: [r[i] for r in rows[1:]] for i, h in enumerate(heads)}
+        try:
+            axes = tuple(Axis(h, np.array(list(dict.fromkeys(float(x) for x in data[h]))),
+                              units[h]) for h in axes_names)
+            shape = tuple(len(a.values) for a in axes)
+            cols = {k: _column_array(k, [None if x == "" else x for x in data[k]], shape)
+                    for k in RESULT_UNITS}
+        except ValueError as exc:
+            raise v.InputError(f"{where}: malformed ({exc})") from None
+        return cls("", axes, cols, "")
+
+    def save(self, path: str | Path) -> Path:
+        """Write the map: CSV for a ``.csv`` suffix, else JSON (atomically)."""
+        path = Path(path)
+        if path.suffix.lower() == ".csv":
+            self.to_csv(path)
+            return path
+        return fileio.write_text(path, self.to_json(), what="critical map")
+
+    @classmethod
+    def load(cls, path: str | Path) -> "CriticalMap":
+        """Read a map written by :meth:`save` (JSON, or CSV by its suffix)."""
+        text = fileio.read_text(path, "critical map")
+        if Path(path).suffix.lower() == ".csv":
+            return cls.from_csv(text, str(path))
+        try:
+            d = json.loads(text)
+        except json.JSONDecodeError as exc:
+            raise v.InputError(f"{path}: not JSON ({exc})") from None
+        return cls.from_dict(d, str(path))
+
+    # ------------------------------------------------------------------ text
+    def lowest(self) -> dict[str, Any] | None:
+        """The point with the lowest critical speed (its row of :meth:`table`), None if
+        nothing is unstable anywhere."""
+        V = self.critical_speed.ravel()
+        if not np.isfinite(V).any():
+            return None
+        i = int(np.nanargmin(V))
+        return {k: c[i] for k, c in self.table().items()}
+
+    def format(self, max_rows: int = 200) -> str:
+        """A text table of the points (at most `max_rows`; a map of more points: a summary)."""
+        t = self.table()
+        lines = [f"{self.model_name}: critical speed over "
+                 + " x ".join(f"{a.path} ({len(a.values)} values)" for a in self.axes),
+                 f"critical instability: {self.convention}"]
+        for a in self.axes:
+            if a.design is not None:
+                lines.append(f"design point: {a.path} = {a.design:.6g}{' ' + a.unit if a.unit else ''}")
+        if len(self) <= max_rows:
+            heads = [a.label for a in self.axes] + ["V_crit [m/s]", "f [Hz]", "kind",
+                                                      "mode (content)", "propeller", "V_div [m/s]"]
+            rows = []
+            for i in range(len(self)):
+                lab, c = t["critical_mode"][i], t["content"][i]
+                prop = t["propeller"][i]
+                share = t["propeller_share"][i]
+                rows.append([f"{t[a.path][i]:.6g}" for a in self.axes]
+                            + [f"{t['critical_speed'][i]:.2f}", f"{t['critical_frequency'][i]:.3f}",
+                               t["kind"][i], f"{lab} ({c})" if c else lab,
+                               f"{prop} ({100 * share:.0f} %)" if prop else "-",
+                               f"{t['static_divergence_speed'][i]:.2f}"])
+            lines.append(text_table(rows, heads, "r" * len(self.axes) + "rrlllr"))
+        low = self.lowest()
+        if low is None:
+            lines.append("no instability in the speed range at any point")
+        else:
+            at = ", ".join(f"{a.path} = {low[a.path]:.6g}" for a in self.axes)
+            lines.append(f"lowest critical speed: {low['critical_speed']:.2f} m/s "
+                         f"({low['kind']} of {low['critical_mode']}) at {at}")
+            n_none = int(np.sum(self.kind.ravel() == "none"))
+            if n_none:
+                lines.append(f"{n_none} of {len(self)} points: no instability in the speed range")
+        return "\n".join(lines)
+
+
+def _column_array(name: str, values: Sequence[Any], shape: tuple[int, ...]) -> np.ndarray:
+    n = int(np.prod(shape))
+    if len(values) != n:
+        raise ValueError(f"column {name!r} has {len(values)} values, expected {n}")
+    if name in _FLOAT_COLUMNS:
+        arr = np.array([np.nan if x is None else float(x) for x in values], dtype=float)
+    elif name in _INT_COLUMNS:
+        arr = np.array([0 if x is None else int(x) for x in values], dtype=int)
+    else:
+        arr = np.array(["" if x is None else str(x) for x in values], dtype=object)
+    return arr.reshape(shape)
+
+
+# ============================================================================ studies
+def _axis(model: Any, path: str, values: Any) -> tuple[P.Parameter, Axis]:
+    p = P.resolve(model, path)
+    arr = np.atleast_1d(np.asarray(v.finite(f"values of {p.path}", values), dtype=float))
+    if arr.ndim != 1 or arr.size == 0:
+        raise v.InputError(f"values of {p.path}: must be a non-empty 1-D sequence, got shape "
+                           f"{arr.shape}")
+    return p, Axis(p.path, arr, p.unit, p.value(model), p.doc)
+
+
+def critical_map(model: Any, axes: Sequence[tuple[str, Any]], *, speeds=None,
+                 xtol: float = STUDY_XTOL, static_divergence: bool = True, low_speed: bool = True,
+                 processes: int = 1) -> CriticalMap:
+    """The critical speed of `model` over the outer product of `axes` ((path, values) pairs;
+    one or more).  Every variant is built first (an invalid value stops the study before any
+    analysis, naming the path and the valid range)."""
+    if not 1 <= len(axes) <= 3:
+        raise v.InputError(f"axes: {len(axes)} given, a study varies 1 to 3 parameters")
+    resolved = [_axis(model, p, vals) for p, vals in axes]
+    variants = P.grid_variants(model, [(p.path, ax.values) for p, ax in resolved])
+    rows = run_points(variants, speeds, xtol=xtol, static_divergence=static_divergence,
+                      low_speed=low_speed, processes=processes)
+    shape = tuple(len(ax.values) for _, ax in resolved)
+    cols = {k: _column_array(k, [r[k] for r in rows], shape) for k in RESULT_UNITS}
+    return CriticalMap(getattr(model, "name", type(model).__name__), tuple(ax for _, ax in resolved),
+                       cols, convention(static_divergence, low_speed), float(xtol))
+
+
+def sweep(model: Any, path: str, values: Any, **options) -> CriticalMap:
+    """The critical speed of `model` against one parameter `path` (:mod:`.paths`) at
+    `values` [its unit; a factor for ``PATH*``].
+
+    options: speeds (initial grid [m/s]; default the model's speed range), xtol [m/s],
+    static_divergence and low_speed (False: the thesis's exclusions, see
+    :func:`propwhirl.studies.critical.critical_instability`), processes.
+
+    Examples
+    --------
+    >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+    >>> r = sweep(isolated_baseline_propeller(), "propeller.f_psi", [6.0, 8.0],
+    ...           speeds=[100.0, 200.0, 300.0])
+    >>> r.shape, list(r.kind)
+    ((2,), ['flutter', 'flutter'])
+    """
+    return critical_map(model, [(path, values)], **options)
+
+
+def map2d(model: Any, first: tuple[str, Any], second: tuple[str, Any], **options) -> CriticalMap:
+    """The critical speed of `model` over two parameters: ``first = (path, values)`` (rows)
+    and ``second = (path, values)`` (columns); options as :func:`sweep`."""
+    return critical_map(model, [first, second], **options)
+
+
+__all__ = ["sweep", "map2d", "critical_map", "CriticalMap", "Axis", "evaluate", "run_points",
+           "RESULT_UNITS", "STUDY_XTOL"]
