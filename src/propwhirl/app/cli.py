@@ -8,6 +8,8 @@ Commands
   modes        in-vacuo modes of a model file, with the thesis's names
   campbell     frequencies against propeller RPM (Campbell diagram) of a model file
   case         export a model of the thesis's case library as a TOML model file
+  boundary     stability boundary in a plane of two parameters (continuation)
+  clearance    clearance to factor x V_D (exit code 0 cleared, 1 not cleared)
   docs         the installed documentation (validation, errata, model-file reference, ...)
 
 Bad input (a missing or unreadable file, bad TOML, an unknown field, an invalid value) is
@@ -394,6 +396,7 @@ def _add_campbell(sub) -> None:
     p.set_defaults(func=_campbell)
 
 
+
 def _case(args: argparse.Namespace) -> int:
     from propwhirl import io
 
@@ -479,6 +482,9 @@ def build_parser() -> argparse.ArgumentParser:
     _add_modes(sub)
     _add_campbell(sub)
     _add_case(sub)
+    from propwhirl.app import cli_design
+
+    cli_design.add_commands(sub)
     _add_docs(sub)
     return parser
 
