@@ -10,22 +10,9 @@ MODEL is a TOML model file or the name of a case (``propwhirl case``).
 from __future__ import annotations
 
 import argparse
-from pathlib import Path
 
-from propwhirl.app.cli import _check_outputs, _echo, _load
-from propwhirl.cases import registry
+from propwhirl.app.cli import _check_outputs, _echo, _model_or_case
 from propwhirl.validate import InputError
-
-def _model_or_case(text: str):
-    """MODEL on the command line: a TOML model file, or the name of a case
-    (:mod:`propwhirl.cases.registry`)."""
-    if Path(text).exists() or text.endswith(".toml"):
-        return _load(text)
-    if text in registry.CASES:
-        return registry.case_model(text)
-    raise InputError(f"MODEL = {text!r} is invalid: neither a model file nor a case name "
-                     f"({', '.join(registry.CASES)})")
-
 
 def _boundary(args: argparse.Namespace) -> int:
     from propwhirl.studies import boundary as B
