@@ -55,9 +55,11 @@ def boundary_plot(boundaries: "Boundary | Sequence[Boundary]", grid: "GridMap | 
             from matplotlib.colors import TwoSlopeNorm
 
             z = grid.values
-            lim = float(np.max(np.abs(z))) or 1.0
-            cf = ax.contourf(X, Y, z, levels=21, cmap="RdBu_r",
-                             norm=TwoSlopeNorm(0.0, -lim, lim))
+            lo_z, hi_z = float(np.min(z)), float(np.max(z))
+            norm = TwoSlopeNorm(0.0, min(lo_z, -1e-9), max(hi_z, 1e-9))
+            cf = ax.contourf(X, Y, z, levels=np.unique(np.concatenate(
+                [np.linspace(min(lo_z, 0.0), 0.0, 9), np.linspace(0.0, max(hi_z, 0.0), 12)])),
+                cmap="RdBu_r", norm=norm)
             label = f"max Re λ at V = {first.speed:g} m/s [1/s] (grid {len(grid.x)} x {len(grid.y)})"
         else:
             z = grid.values + first.speed
@@ -65,13 +67,15 @@ def boundary_plot(boundaries: "Boundary | Sequence[Boundary]", grid: "GridMap | 
             label = f"V_crit [m/s] (grid {len(grid.x)} x {len(grid.y)})"
         fig.colorbar(cf, ax=ax, label=label)
         if np.nanmin(grid.values) < 0 < np.nanmax(grid.values):
-            ax.contour(X, Y, grid.values, levels=[0.0], colors="white", linestyles="--",
+            ax.contour(X, Y, grid.values, levels=[0.0], colors="dimgrey", linestyles="--",
                        linewidths=1.5)
-            ax.plot([], [], "--", color="grey", lw=1.5, label="boundary read off the grid")
+            ax.plot([], [], "--", color="dimgrey", lw=1.5, label="boundary read off the grid "
+                    "(linear interpolation)")
     for i, b in enumerate(bs):
         c = _CURVE_COLOURS[i % len(_CURVE_COLOURS)]
+        style = dict(lw=4.0, ms=6) if i == 0 else dict(lw=1.5, ms=3.0)  # coinciding curves stay visible
         for k, pts in enumerate(b.curves):
-            ax.plot(pts[:, 0], pts[:, 1], "-o", color=c, lw=2.2, ms=3.5,
+            ax.plot(pts[:, 0], pts[:, 1], "-o", color=c, **style,
                     label=f"{_curve_label(b)} ({b.evaluations} {b.evaluation_name})" if k == 0 else None)
         if len(b.starts):
             ax.plot(b.starts[:, 0], b.starts[:, 1], "s", color=c, mfc="none", ms=9,
@@ -84,12 +88,16 @@ def boundary_plot(boundaries: "Boundary | Sequence[Boundary]", grid: "GridMap | 
     ax.set_xlabel(f"{first.parameters[0]} [{first.units[0]}]" if first.units[0] else first.parameters[0])
     ax.set_ylabel(f"{first.parameters[1]} [{first.units[1]}]" if first.units[1] else first.parameters[1])
     if grid is not None and first.kind == "neutral-stability":
-        i, j = np.unravel_index(int(np.argmax(grid.values)), grid.values.shape)
-        if grid.values[i, j] > 0:
-            ax.annotate("unstable", (grid.x[i], grid.y[j]), ha="center", va="center",
-                        fontsize=11, color="darkred", xytext=(0.5 * (grid.x[i] + np.mean(grid.x)),
-                                                               0.5 * (grid.y[j] + np.mean(grid.y))))
-    ax.legend(fontsize=8, loc="best", framealpha=0.85)
+        X, Y = np.meshgrid(grid.x, grid.y, indexing="ij")
+        for side, colour, name in ((grid.values > 0, "darkred", "unstable"),
+                                   (grid.values < 0, "navy", "stable")):
+            if side.any():
+                # the grid point of that side closest to the side's centroid
+                cx, cy = X[side].mean(), Y[side].mean()
+                k = int(np.argmin(np.hypot(X[side] - cx, Y[side] - cy)))
+                ax.text(X[side][k], Y[side][k], name, ha="center", va="center", fontsize=12,
+                        color=colour, weight="bold")
+    ax.legend(fontsize=8, loc="lower right", framealpha=0.9)
     ax.grid(True, alpha=0.3)
     ax.set_title(title or f"{first.model_name}: stability boundary", fontsize=10)
     return finish(fig, path)
