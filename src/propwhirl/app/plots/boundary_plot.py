@@ -124,7 +124,7 @@ def clearance_plot(result: "Clearance", *, title: str | None = None,
     ax.axvline(0.0, color="black", lw=1.5)
     ax.set_xlabel(f"margin V / ({result.factor:g} V_D) - 1 [%]   (V_D = {result.V_D:g} m/s)")
     verdict = "cleared" if result.cleared else "NOT cleared"
-    ax.set_title(title or f"{result.model_name}: {verdict} to {result.factor:g} V_D = "
+    ax.set_title(title or f"{result.model_name}\n{verdict} to {result.factor:g} V_D = "
                  f"{result.V_required:.1f} m/s", fontsize=10)
     ax.grid(True, axis="x", alpha=0.3)
     if not result.margins:
