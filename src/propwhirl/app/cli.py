@@ -10,6 +10,8 @@ Commands
   sweep        critical speed of a model (file or case) against one parameter path
   map          critical speed of a model over two parameter paths (contour map)
   case         export a model of the thesis's case library as a TOML model file
+  boundary     stability boundary in a plane of two parameters (continuation)
+  clearance    clearance to factor x V_D (exit code 0 cleared, 1 not cleared)
   docs         the installed documentation (validation, errata, model-file reference, ...)
 
 Bad input (a missing or unreadable file, bad TOML, an unknown field, an invalid value) is
@@ -664,6 +666,9 @@ def build_parser() -> argparse.ArgumentParser:
     _add_sweep(sub)
     _add_map(sub)
     _add_case(sub)
+    from propwhirl.app import cli_design
+
+    cli_design.add_commands(sub)
     _add_docs(sub)
     return parser
 

@@ -18,9 +18,12 @@ from 1 in every figure.
 * :func:`time_history` — θ(t), ψ(t) and the θ–ψ path (:mod:`~propwhirl.app.plots.time_plot`);
 * :func:`critical_map` / :func:`critical_sweep` — the critical speed over two parameters
   (filled contours, the critical kind, the design point) or one
-  (:mod:`~propwhirl.app.plots.map_plot`).
+  (:mod:`~propwhirl.app.plots.map_plot`);
+* :func:`boundary_plot` / :func:`clearance_plot` — traced stability boundaries over a grid
+  map, clearance margins (:mod:`~propwhirl.app.plots.boundary_plot`).
 """
 from propwhirl.app.plots.animation import animate_event, animate_mode
+from propwhirl.app.plots.boundary_plot import boundary_plot, clearance_plot
 from propwhirl.app.plots.campbell_plot import campbell, campbell_diagram
 from propwhirl.app.plots.canvas import (DIVERGENCE_COLOUR, FLUTTER_COLOUR, INSTALL_HINT, save)
 from propwhirl.app.plots.map_plot import critical_map, critical_sweep
@@ -31,5 +34,6 @@ from propwhirl.app.plots.vgf_plot import DAMPING_MARGIN, fine_sweep, select_mode
 __all__ = [
     "vgf", "select_modes", "fine_sweep", "campbell", "campbell_diagram", "mode_shape",
     "event_mode_shape", "event_eigenvector", "animate_mode", "animate_event", "time_history",
-    "critical_map", "critical_sweep", "save", "FLUTTER_COLOUR", "DIVERGENCE_COLOUR", "INSTALL_HINT", "DAMPING_MARGIN",
+    "critical_map", "critical_sweep", "boundary_plot", "clearance_plot", "save",
+    "FLUTTER_COLOUR", "DIVERGENCE_COLOUR", "INSTALL_HINT", "DAMPING_MARGIN",
 ]

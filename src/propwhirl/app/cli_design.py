@@ -1,0 +1,136 @@
+"""The design-study commands of the command line (:mod:`propwhirl.app.cli`):
+
+  boundary     a stability boundary in a plane of two parameters, traced by continuation
+               (:mod:`propwhirl.studies.boundary`)
+  clearance    clearance to factor x V_D (:mod:`propwhirl.studies.clearance`); exit code 0
+               when cleared, 1 when not
+
+MODEL is a TOML model file or the name of a case (``propwhirl case``).
+"""
+from __future__ import annotations
+
+import argparse
+
+from propwhirl.app.cli import _check_outputs, _echo, _model_or_case
+from propwhirl.validate import InputError
+
+def _boundary(args: argparse.Namespace) -> int:
+    from propwhirl.studies import boundary as B
+    from propwhirl.studies import paths as P
+
+    _check_outputs(json=args.json, csv=args.csv, plot=args.plot)
+    model = _model_or_case(args.model)
+    params = [P.resolve(model, p) for p in args.params]
+    current = [p.value(model) for p in params]
+    if args.bounds is not None:
+        lower, upper = [args.bounds[0], args.bounds[2]], [args.bounds[1], args.bounds[3]]
+    else:
+        if any(x is None or x <= 0 for x in current):
+            raise InputError("--bounds is needed: the model has no positive value at "
+                             + ", ".join(p.path for p, x in zip(params, current) if x is None or x <= 0))
+        lower, upper = [0.5 * x for x in current], [2.0 * x for x in current]
+    if args.contour:
+        b = B.speed_contour(model, args.params, lower, upper, args.speed,
+                            static_divergence=not args.thesis, low_speed=not args.thesis)
+    else:
+        b = B.neutral_curve(model, args.params, lower, upper, args.speed,
+                            oscillatory=args.oscillatory)
+    _echo(b.format())
+    if args.json:
+        b.save_json(args.json)
+        print(f"wrote {args.json}")
+    if args.csv:
+        b.to_csv(args.csv)
+        print(f"wrote {args.csv}")
+    if args.plot:
+        from propwhirl.app import plots
+
+        grid = None
+        if args.grid:
+            v_n = args.grid
+            if v_n < 2 or v_n > 60:
+                raise InputError(f"--grid = {v_n} is invalid: must be 0 (none) or in [2, 60]")
+            grid = B.grid_map(B.level_of(b, model), lower, upper, v_n)
+            d1, d2 = B.grid_agreement(b, grid)
+            print(f"grid map {v_n} x {v_n} ({grid.evaluations} {b.evaluation_name}): traced points "
+                  f"within {d1:.2f} cells of the grid's boundary, grid's boundary within "
+                  f"{d2:.2f} cells of the traced curve")
+        design = current if all(x is not None for x in current) else None
+        plots.boundary_plot(b, grid, design=design, path=args.plot)
+        print(f"wrote {args.plot}")
+    return 0
+
+
+def _add_boundary(sub) -> None:
+    p = sub.add_parser("boundary", help="stability boundary in a plane of two parameters, "
+                       "traced by continuation")
+    p.add_argument("model", metavar="MODEL", help="model file (TOML) or case name")
+    p.add_argument("--params", nargs=2, required=True, metavar=("PATH", "PATH"),
+                   help="two parameter paths, e.g. propellers[0].propeller.f_theta "
+                   "propellers[0].propeller.f_psi")
+    p.add_argument("--speed", type=float, required=True, metavar="V",
+                   help="airspeed of the neutral-stability curve, or the target critical "
+                   "speed with --contour [m/s]")
+    p.add_argument("--bounds", nargs=4, type=float, metavar=("LO1", "HI1", "LO2", "HI2"),
+                   help="the plane (default: half to twice the model's values)")
+    p.add_argument("--contour", action="store_true", help="trace V_crit = V (one analysis per "
+                   "point) instead of the neutral-stability curve at V (one eigen-solution)")
+    p.add_argument("--oscillatory", action="store_true", help="neutral curve of the flutter "
+                   "modes only (complex eigenvalues; divergence roots left out)")
+    p.add_argument("--thesis", action="store_true", help="with --contour: the thesis's "
+                   "convention (wing static divergence and recovering low-speed instabilities "
+                   "left out)")
+    p.add_argument("--grid", type=int, default=12, metavar="N",
+                   help="with --plot: an N x N grid map under the curve (0: none; default 12)")
+    p.add_argument("--json", metavar="OUT", help="write the boundary as JSON")
+    p.add_argument("--csv", metavar="OUT", help="write the boundary's points as CSV")
+    p.add_argument("--plot", metavar="PNG", help="plot the boundary over the grid map")
+    p.set_defaults(func=_boundary)
+
+
+def _clearance(args: argparse.Namespace) -> int:
+    from propwhirl.studies.clearance import clearance
+
+    _check_outputs(json=args.json, csv=args.csv, plot=args.plot)
+    model = _model_or_case(args.model)
+    r = clearance(model, args.vd, args.factor, static_divergence=not args.thesis,
+                  low_speed=not args.thesis, minimum=not args.no_minimum,
+                  frequency_range=tuple(args.frequency_range))
+    _echo(r.format())
+    if args.json:
+        r.save_json(args.json)
+        print(f"wrote {args.json}")
+    if args.csv:
+        r.to_csv(args.csv)
+        print(f"wrote {args.csv}")
+    if args.plot:
+        from propwhirl.app import plots
+
+        plots.clearance_plot(r, path=args.plot)
+        print(f"wrote {args.plot}")
+    return 0 if r.cleared else 1
+
+
+def _add_clearance(sub) -> None:
+    p = sub.add_parser("clearance", help="clearance to factor x V_D (exit code 0 cleared, 1 not)")
+    p.add_argument("model", metavar="MODEL", help="model file (TOML) or case name")
+    p.add_argument("--vd", type=float, required=True, metavar="V", help="design dive speed V_D [m/s]")
+    p.add_argument("--factor", type=float, default=1.15, help="1.15 (CS/FAR 25.629, default) "
+                   "or 1.2 (14 CFR 23.629)")
+    p.add_argument("--frequency-range", nargs=2, type=float, default=(1.0, 30.0),
+                   metavar=("LO", "HI"), help="range of the minimum mount frequencies [Hz] "
+                   "(default 1 30)")
+    p.add_argument("--no-minimum", action="store_true", help="skip the minimum mount frequencies")
+    p.add_argument("--thesis", action="store_true", help="the thesis's convention: the wing's "
+                   "static divergence and recovering low-speed instabilities left out")
+    p.add_argument("--json", metavar="OUT", help="write the result as JSON")
+    p.add_argument("--csv", metavar="OUT", help="write the result as CSV")
+    p.add_argument("--plot", metavar="PNG", help="plot the margins")
+    p.set_defaults(func=_clearance)
+
+
+
+def add_commands(sub) -> None:
+    """Register ``boundary`` and ``clearance`` on the CLI's subparsers."""
+    _add_boundary(sub)
+    _add_clearance(sub)

@@ -1,0 +1,386 @@
+"""Stability boundaries in a parameter plane, traced by continuation (the whirl-flutter
+stability diagram).
+
+Two curves of a plane of two parameters p = (p₁, p₂) of a model (any numeric fields, by
+their paths, :mod:`propwhirl.studies.paths`; e.g. f_θ–f_ψ or K_θ–K_ψ of a propeller):
+
+* the **neutral-stability curve** at one airspeed V — where the least stable mode of the
+  state matrix A(V) (eq. 5.4, 6.18, 7.59) is neutrally stable: g(p) = max Re λ(A(V; p)) = 0.
+  One evaluation is one eigen-solution of A (:func:`propwhirl.engine.eigenvalues`, the
+  engine's).  Every eigenvalue counts (the physical modes, Im λ ≥ 0, carry every real part);
+  with ``oscillatory=True`` only complex ones (flutter, not divergence: e.g. the classical
+  whirl-flutter diagram of a wing whose static divergence lies below V);
+* the **critical-speed contour** V_crit(p) = V_target — g(p) = V_crit(p) − V_target, one
+  evaluation one analysis (:func:`propwhirl.studies.sweeps.evaluate`, the studies' one
+  definition of the critical speed, with the thesis's exclusions as options).  A point without
+  an instability in the analysed range counts as V_crit = the top of that range.
+
+Both are traced by the predictor–corrector (pseudo-arclength) continuation of
+:mod:`propwhirl.studies.continuation` from a start point found by a bracketing search along a
+line, to the plane's bounds or until the curve closes — not read off a grid.  :func:`grid_map`
+samples the same g on a grid and :func:`grid_agreement` compares the two (the check of the
+tests, and the coarse map under the plotted curve).
+
+Examples
+--------
+>>> from propwhirl.cases.registry import case_model
+>>> from propwhirl.studies.boundary import neutral_curve
+>>> b = neutral_curve(case_model("isolated-propeller"), ("propeller.f_theta", "propeller.f_psi"),
+...                   (3.0, 3.0), (12.0, 12.0), V=220.0)
+>>> len(b.curves), b.stops[0]
+(1, ('bounds', 'bounds'))
+>>> b.evaluations < 250      # eigen-solutions (a 50 x 50 map: 2500)
+True
+"""
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Callable, Sequence
+
+import numpy as np
+
+from propwhirl import fileio
+from propwhirl import validate as v
+from propwhirl.engine import eigenvalues
+from propwhirl.studies import paths as P
+from propwhirl.studies.continuation import ContinuationOptions, Counted, trace
+
+#: A variant of the model at a point of the plane: ``variant(p) -> Model``.
+Variant = Callable[[np.ndarray], Any]
+
+#: Format of the saved boundaries.
+FORMAT = "propwhirl.boundary/1"
+
+
+def path_variant(model: Any, parameters: Sequence[str]) -> tuple[Variant, tuple[P.Parameter, ...]]:
+    """``variant(p)``: `model` with the two parameter paths set to p (and the resolved paths)."""
+    if len(parameters) != 2:
+        raise v.InputError(f"parameters = {list(parameters)!r} is invalid: give two paths")
+    params = tuple(P.resolve(model, p) for p in parameters)
+    if params[0].path.rstrip("*") == params[1].path.rstrip("*"):
+        raise v.InputError(f"parameters = {list(parameters)!r} are invalid: the same path twice")
+
+    def variant(p: np.ndarray) -> Any:
+        m = model
+        for par, x in zip(params, p):
+            m = par.set(m, float(x))
+        return m
+
+    return variant, params
+
+
+# ============================================================================ level functions
+@dataclass
+class DampingLevel:
+    """g(p) = max Re λ [1/s] of A(V) of ``variant(p)``; the least stable eigenvalue of every
+    evaluated point is kept (``eigenvalue``), so the curve's mode frequency is known."""
+
+    variant: Variant
+    V: float
+    oscillatory: bool = False
+    eigenvalue: dict = field(default_factory=dict, repr=False)
+
+    def __call__(self, p: np.ndarray) -> float:
+        A = self.variant(p).state_matrix(np.array([self.V]))
+        lam = eigenvalues(A)[0]
+        if self.oscillatory:
+            lam = lam[np.abs(lam.imag) > 1e-9 * np.maximum(1.0, np.abs(lam))]
+            if lam.size == 0:
+                raise v.InputError("oscillatory = True but the model has no complex eigenvalue")
+        k = int(np.argmax(lam.real))
+        self.eigenvalue[tuple(np.round(p, 12))] = complex(lam[k])
+        return float(lam[k].real)
+
+    def info(self, p: np.ndarray) -> dict[str, Any]:
+        lam = self.eigenvalue.get(tuple(np.round(p, 12)))
+        if lam is None:
+            self(p)
+            lam = self.eigenvalue[tuple(np.round(p, 12))]
+        return {"frequency_hz": abs(lam.imag) / (2 * math.pi), "real": lam.real}
+
+
+@dataclass
+class CriticalSpeedLevel:
+    """g(p) = V_crit(p) − V_target [m/s], V_crit of one analysis of ``variant(p)``
+    (:func:`propwhirl.studies.sweeps.evaluate`); no instability: V_crit = the range's top."""
+
+    variant: Variant
+    V_target: float
+    speeds: np.ndarray | None = None
+    xtol: float = 0.01
+    static_divergence: bool = True
+    low_speed: bool = True
+    rows: dict = field(default_factory=dict, repr=False)
+
+    def __call__(self, p: np.ndarray) -> float:
+        from propwhirl.studies.sweeps import evaluate
+
+        model = self.variant(p)
+        row = evaluate((model, self.speeds, self.xtol, self.static_divergence, self.low_speed))
+        self.rows[tuple(np.round(p, 12))] = row
+        Vc = row["critical_speed"]
+        if not math.isfinite(Vc):
+            top = self.speeds[-1] if self.speeds is not None else model.flight.speed_range[1]
+            Vc = float(top)
+        return Vc - self.V_target
+
+    def info(self, p: np.ndarray) -> dict[str, Any]:
+        row = self.rows.get(tuple(np.round(p, 12)))
+        if row is None:
+            self(p)
+            row = self.rows[tuple(np.round(p, 12))]
+        return {"critical_speed": row["critical_speed"], "kind": row["kind"],
+                "mode": row["critical_mode"], "frequency_hz": row["critical_frequency"]}
+
+
+# ============================================================================ result
+@dataclass(frozen=True)
+class Boundary:
+    """A traced boundary in a parameter plane.
+
+    kind: "neutral-stability" (max Re λ = 0 at `speed`) or "critical-speed" (V_crit = `speed`);
+    parameters, units: the two paths and their units; lower, upper: the plane's bounds;
+    curves: one (N, 2) array per curve; closed: per curve; stops: per curve, why each end
+    stopped ("bounds", "closed", "max_points", "corrector failed"); info: per curve, per point
+    the critical mode's data (frequency [Hz]; for the contour also kind and mode);
+    evaluations: number of eigen-solutions (neutral curve) or analyses (contour), start search
+    included; starts: the start points; model_name; settings: the options used.
+    """
+
+    kind: str
+    parameters: tuple[str, str]
+    units: tuple[str, str]
+    speed: float
+    lower: tuple[float, float]
+    upper: tuple[float, float]
+    curves: tuple[np.ndarray, ...]
+    closed: tuple[bool, ...]
+    stops: tuple[tuple[str, ...], ...]
+    info: tuple[tuple[dict[str, Any], ...], ...]
+    evaluations: int
+    starts: np.ndarray
+    model_name: str = ""
+    settings: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def evaluation_name(self) -> str:
+        return "eigen-solutions" if self.kind == "neutral-stability" else "analyses"
+
+    def format(self) -> str:
+        """A text summary: the curves, where they stop, the evaluations, the points."""
+        what = (f"neutral-stability curve at V = {self.speed:g} m/s" if self.kind == "neutral-stability"
+                else f"critical-speed contour V_crit = {self.speed:g} m/s")
+        lines = [f"{self.model_name}: {what} in ({self.parameters[0]}, {self.parameters[1]})",
+                 f"  plane: {self.parameters[0]} in [{self.lower[0]:g}, {self.upper[0]:g}] {self.units[0]}, "
+                 f"{self.parameters[1]} in [{self.lower[1]:g}, {self.upper[1]:g}] {self.units[1]}",
+                 f"  {self.evaluations} {self.evaluation_name} (a 50 x 50 grid map: 2500)"]
+        if not self.curves:
+            lines.append("  no boundary: no sign change on the start search lines "
+                         "(the plane is stable or unstable throughout them)")
+        for i, (c, closed, stops) in enumerate(zip(self.curves, self.closed, self.stops)):
+            end = "closed" if closed else "ends: " + ", ".join(stops)
+            lines.append(f"  curve {i + 1}: {len(c)} points, {end}")
+            for p, inf in zip(c[:: max(1, len(c) // 12)], self.info[i][:: max(1, len(c) // 12)]):
+                extra = f"  f = {inf['frequency_hz']:.3f} Hz" if "frequency_hz" in inf else ""
+                if "mode" in inf:
+                    extra += f"  {inf['kind']} of {inf['mode']}"
+                lines.append(f"    {p[0]:10.4f} {p[1]:10.4f}{extra}")
+        return "\n".join(lines)
+
+    def to_dict(self) -> dict[str, Any]:
+        def clean(x: Any) -> Any:
+            if isinstance(x, float) and not math.isfinite(x):
+                return None
+            return x
+
+        return {"format": FORMAT, "kind": self.kind, "model_name": self.model_name,
+                "parameters": list(self.parameters), "units": list(self.units),
+                "speed": self.speed, "lower": list(self.lower), "upper": list(self.upper),
+                "evaluations": self.evaluations, "evaluation": self.evaluation_name,
+                "starts": self.starts.tolist(), "settings": dict(self.settings),
+                "curves": [{"points": c.tolist(), "closed": cl, "stops": list(st),
+                            "info": [{k: clean(x) for k, x in d.items()} for d in inf]}
+                           for c, cl, st, inf in zip(self.curves, self.closed, self.stops, self.info)]}
+
+    def save_json(self, path: str | Path) -> None:
+        """The boundary as JSON (atomically)."""
+        fileio.write_text(path, json.dumps(self.to_dict(), indent=1, allow_nan=False),
+                          what="boundary file")
+
+    def to_csv(self, path: str | Path | None = None) -> str:
+        """One row per point: curve (from 1), point, the two parameters, the mode's data."""
+        buf = io.StringIO()
+        w = csv.writer(buf, lineterminator="\n")
+        keys = sorted({k for inf in self.info for d in inf for k in d})
+        heads = ["curve", "point"] + [f"{p} [{u}]" if u else p for p, u in zip(self.parameters, self.units)]
+        w.writerow(heads + keys)
+        for i, (c, inf) in enumerate(zip(self.curves, self.info)):
+            for j, (p, d) in enumerate(zip(c, inf)):
+                w.writerow([i + 1, j, f"{p[0]:.10g}", f"{p[1]:.10g}"]
+                           + [f"{d[k]:.10g}" if isinstance(d.get(k), float) else d.get(k, "") for k in keys])
+        text = buf.getvalue()
+        if path is not None:
+            fileio.write_text(path, text, what="boundary table")
+        return text
+
+
+def _check_plane(lower: Sequence[float], upper: Sequence[float]) -> tuple[np.ndarray, np.ndarray]:
+    lo = np.asarray(v.finite("lower", lower), dtype=float).reshape(-1)
+    hi = np.asarray(v.finite("upper", upper), dtype=float).reshape(-1)
+    if lo.shape != (2,) or hi.shape != (2,) or not np.all(hi > lo):
+        raise v.InputError(f"plane bounds lower = {lo.tolist()}, upper = {hi.tolist()} are "
+                           "invalid: two values each, upper > lower")
+    return lo, hi
+
+
+def _traced(kind: str, level: DampingLevel | CriticalSpeedLevel, speed: float, names, units,
+            lo, hi, line, options, model_name: str, settings: dict) -> Boundary:
+    counted = Counted(level)
+    tr = trace(counted, lo, hi, line=line, options=options)
+    info = tuple(tuple(level.info(p) for p in b.points) for b in tr.branches)
+    return Boundary(kind, tuple(names), tuple(units), float(speed), tuple(map(float, lo)),
+                    tuple(map(float, hi)), tuple(b.points for b in tr.branches),
+                    tuple(b.closed for b in tr.branches), tuple(b.stops for b in tr.branches),
+                    info, counted.calls, tr.starts, model_name, settings)
+
+
+def neutral_curve(model: Any, parameters: Sequence[str], lower: Sequence[float],
+                  upper: Sequence[float], V: float, *, oscillatory: bool = False,
+                  line: tuple[Sequence[float], Sequence[float]] | None = None,
+                  options: ContinuationOptions = ContinuationOptions(),
+                  variant: Variant | None = None) -> Boundary:
+    """The neutral-stability curve max Re λ(A(V)) = 0 in the plane of two parameter paths.
+
+    Parameters
+    ----------
+    model : Model
+        The model (any, :mod:`propwhirl.model.protocol`).
+    parameters : two paths
+        E.g. ``("propellers[0].propeller.f_theta", "propellers[0].propeller.f_psi")``.
+    lower, upper : (2,)
+        The plane's bounds, in the parameters' units.
+    V : float
+        Airspeed [m/s].
+    oscillatory : bool
+        Only complex eigenvalues count (flutter; leaves out divergence roots).
+    line : pair of points, optional
+        The start search line (default: the diagonals, then the mid-lines).
+    variant : callable, optional
+        ``variant(p) -> model`` instead of the paths (the paths then only name the axes).
+    """
+    lo, hi = _check_plane(lower, upper)
+    v.positive("V", V, "m/s")
+    if variant is None:
+        variant, params = path_variant(model, parameters)
+        names, units = [p.path for p in params], [p.unit for p in params]
+    else:
+        names, units = list(parameters), ["", ""]
+    level = DampingLevel(variant, float(V), bool(oscillatory))
+    return _traced("neutral-stability", level, V, names, units, lo, hi, line, options,
+                   getattr(model, "name", ""), {"oscillatory": bool(oscillatory)})
+
+
+def speed_contour(model: Any, parameters: Sequence[str], lower: Sequence[float],
+                  upper: Sequence[float], V_target: float, *, speeds=None, xtol: float = 0.01,
+                  static_divergence: bool = True, low_speed: bool = True,
+                  line: tuple[Sequence[float], Sequence[float]] | None = None,
+                  options: ContinuationOptions = ContinuationOptions(tol=2e-4),
+                  variant: Variant | None = None) -> Boundary:
+    """The contour V_crit(p) = `V_target` [m/s] in the plane of two parameter paths (one
+    analysis per evaluation; see :func:`neutral_curve` for the other arguments).
+
+    speeds: the analyses' initial speed grid [m/s] (default: the model's range); xtol [m/s]:
+    accuracy of each critical speed; static_divergence, low_speed: the thesis's exclusions
+    (:func:`propwhirl.studies.critical.critical_instability`).
+    """
+    lo, hi = _check_plane(lower, upper)
+    v.positive("V_target", V_target, "m/s")
+    grid = None if speeds is None else v.increasing("speeds", speeds, "m/s")
+    if variant is None:
+        variant, params = path_variant(model, parameters)
+        names, units = [p.path for p in params], [p.unit for p in params]
+    else:
+        names, units = list(parameters), ["", ""]
+    level = CriticalSpeedLevel(variant, float(V_target), grid, xtol, bool(static_divergence),
+                               bool(low_speed))
+    return _traced("critical-speed", level, V_target, names, units, lo, hi, line, options,
+                   getattr(model, "name", ""),
+                   {"static_divergence": bool(static_divergence), "low_speed": bool(low_speed),
+                    "xtol": xtol})
+
+
+# ============================================================================ grid check
+@dataclass(frozen=True)
+class GridMap:
+    """g sampled on an n₁ × n₂ grid: ``values[i, j] = g(x[i], y[j])``."""
+
+    x: np.ndarray
+    y: np.ndarray
+    values: np.ndarray
+
+    @property
+    def evaluations(self) -> int:
+        return int(self.values.size)
+
+
+def grid_map(g: Callable[[np.ndarray], float], lower: Sequence[float], upper: Sequence[float],
+             n: int | tuple[int, int] = 21) -> GridMap:
+    """g on a regular grid of the plane (n points per axis, or (n₁, n₂))."""
+    lo, hi = _check_plane(lower, upper)
+    n1, n2 = (n, n) if isinstance(n, int) else n
+    v.integer_at_least("n", n1, 2)
+    v.integer_at_least("n", n2, 2)
+    x, y = np.linspace(lo[0], hi[0], n1), np.linspace(lo[1], hi[1], n2)
+    vals = np.array([[g(np.array([a, b])) for b in y] for a in x])
+    return GridMap(x, y, vals)
+
+
+def level_of(boundary: Boundary, model: Any, variant: Variant | None = None) -> Callable[[np.ndarray], float]:
+    """The level function g of a traced boundary (for :func:`grid_map` of the same plane)."""
+    if variant is None:
+        variant, _ = path_variant(model, boundary.parameters)
+    if boundary.kind == "neutral-stability":
+        return DampingLevel(variant, boundary.speed, bool(boundary.settings.get("oscillatory")))
+    s = boundary.settings
+    return CriticalSpeedLevel(variant, boundary.speed, None, s.get("xtol", 0.01),
+                              s.get("static_divergence", True), s.get("low_speed", True))
+
+
+def _sign_cells(grid: GridMap) -> np.ndarray:
+    """Centres (K, 2) of the grid cells whose four corners do not all have one sign."""
+    s = np.sign(grid.values)
+    c = np.stack([s[:-1, :-1], s[1:, :-1], s[:-1, 1:], s[1:, 1:]])
+    mixed = (c.max(axis=0) > 0) & (c.min(axis=0) <= 0)
+    i, j = np.nonzero(mixed)
+    return np.column_stack([0.5 * (grid.x[i] + grid.x[i + 1]), 0.5 * (grid.y[j] + grid.y[j + 1])])
+
+
+def grid_agreement(boundary: Boundary, grid: GridMap) -> tuple[float, float]:
+    """How far the traced curves and the grid's boundary are apart, in grid cells (the cell
+    size of each axis as the unit): (largest distance of a traced point to the centre of a grid
+    cell with a sign change, largest distance of such a cell centre to the traced curves).
+    Agreement within the grid's resolution: both ≤ about 1 (a cell's half-diagonal is 0.71)."""
+    cells = _sign_cells(grid)
+    dx = np.array([grid.x[1] - grid.x[0], grid.y[1] - grid.y[0]])
+    pts = np.vstack(boundary.curves) / dx if boundary.curves else np.zeros((0, 2))
+    cen = cells / dx
+    if len(pts) == 0 or len(cen) == 0:
+        return (math.inf, math.inf) if len(pts) or len(cen) else (0.0, 0.0)
+    d1 = max(float(np.min(np.hypot(*(cen - p).T))) for p in pts)
+    segs = [(a / dx, b / dx) for c in boundary.curves for a, b in zip(c[:-1], c[1:])]
+
+    def to_curve(q: np.ndarray) -> float:
+        best = math.inf
+        for a, b in segs:
+            ab = b - a
+            x = float(np.clip(np.dot(q - a, ab) / max(np.dot(ab, ab), 1e-30), 0.0, 1.0))
+            best = min(best, float(np.hypot(*(a + x * ab - q))))
+        return best
+
+    d2 = max(to_curve(q) for q in cen)
+    return d1, d2
