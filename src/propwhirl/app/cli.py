@@ -423,162 +423,6 @@ def _add_campbell(sub) -> None:
     p.set_defaults(func=_campbell)
 
 
-# ----------------------------------------------------------------------------- sweeps and maps
-#: Most values of one --param axis (a map of two: their product is analysed).
-MAX_PARAM_VALUES = 1000
-#: Most points of a map (each one analysis).
-MAX_MAP_POINTS = 250_000
-
-
-def _model_or_case(text: str):
-    """MODEL of `sweep`/`map`: a TOML model file, or the name of a case of the library."""
-    if text in registry.CASES and not Path(text).exists():
-        return registry.case_model(text)
-    if Path(text).suffix.lower() == ".toml" or Path(text).exists():
-        return _load(text)
-    raise InputError(f"MODEL = {text!r} is invalid: neither a model file (.toml) nor a case "
-                     f"name (one of {', '.join(registry.CASES)})")
-
-
-def _param_axis(values: list[str]) -> tuple[str, "object"]:
-    """--param PATH START STOP N: the path and N values from START to STOP."""
-    import numpy as np
-
-    from propwhirl import validate as v
-
-    path, start, stop, n = values
-    try:
-        lo, hi = float(start), float(stop)
-        count = float(n)
-    except ValueError:
-        raise InputError(f"--param {' '.join(values)} is invalid: START, STOP and N must be "
-                         "numbers") from None
-    v.finite(f"--param {path} START", lo)
-    v.finite(f"--param {path} STOP", hi)
-    if not count.is_integer() or not 1 <= count <= MAX_PARAM_VALUES:
-        raise InputError(f"--param {path} N = {n} is invalid: must be an integer in "
-                         f"[1, {MAX_PARAM_VALUES}]")
-    if count > 1 and not hi != lo:
-        raise InputError(f"--param {path} STOP = {stop} is invalid: must differ from START "
-                         "(or N = 1)")
-    return path, np.linspace(lo, hi, int(count))
-
-
-def _study_options(args: argparse.Namespace) -> dict:
-    opts = {"processes": args.processes,
-            "static_divergence": not args.thesis_convention,
-            "low_speed": not args.thesis_convention}
-    if args.speeds:
-        opts["speeds"] = speed_grid(*args.speeds)
-    return opts
-
-
-def _write_study(result, args: argparse.Namespace, plot) -> None:
-    _echo(result.format())
-    if args.json:
-        fileio.write_text(args.json, result.to_json(), what="critical map")
-        print(f"wrote {args.json}")
-    if args.csv:
-        result.to_csv(args.csv)
-        print(f"wrote {args.csv}")
-    if args.plot:
-        plot(result, path=args.plot)
-        print(f"wrote {args.plot}")
-
-
-def _list_parameters(model) -> int:
-    from propwhirl.studies import paths
-
-    _echo(f"{model.name}: parameter paths (PATH* scales a distribution by a factor)")
-    for p in paths.parameters(model):
-        _echo(f"  {p.describe()}")
-    return 0
-
-
-def _sweep(args: argparse.Namespace) -> int:
-    from propwhirl.studies import sweeps
-
-    model = _model_or_case(args.model)
-    if args.list_params:
-        return _list_parameters(model)
-    if args.param is None:
-        raise InputError("sweep: give --param PATH START STOP N (see --list-params)")
-    _check_outputs(json=args.json, csv=args.csv, plot=args.plot)
-    path, values = _param_axis(args.param)
-    result = sweeps.sweep(model, path, values, **_study_options(args))
-
-    def plot(r, path):
-        from propwhirl.app import plots
-
-        plots.critical_sweep(r, path=path)
-
-    _write_study(result, args, plot)
-    return 0
-
-
-def _map(args: argparse.Namespace) -> int:
-    from propwhirl.studies import sweeps
-
-    model = _model_or_case(args.model)
-    if not args.param or len(args.param) != 2:
-        raise InputError(f"map: give --param PATH START STOP N twice (got "
-                         f"{len(args.param or [])})")
-    _check_outputs(json=args.json, csv=args.csv, plot=args.plot)
-    first, second = (_param_axis(p) for p in args.param)
-    n = len(first[1]) * len(second[1])
-    if n > MAX_MAP_POINTS:
-        raise InputError(f"map: N1 x N2 = {n} points is invalid: must be <= {MAX_MAP_POINTS}")
-    result = sweeps.map2d(model, first, second, **_study_options(args))
-
-    def plot(r, path):
-        from propwhirl.app import plots
-
-        if min(r.shape) >= 2:
-            plots.critical_map(r, path=path)
-        else:
-            raise InputError("map --plot needs at least 2 values of each parameter")
-
-    _write_study(result, args, plot)
-    return 0
-
-
-def _add_study_options(p) -> None:
-    p.add_argument("model", metavar="MODEL", help="a model file (.toml) or a case name ("
-                   + ", ".join(registry.CASES) + ")")
-    p.add_argument("--speeds", nargs=3, type=float, metavar=("START", "STOP", "STEP"),
-                   help="initial airspeed grid [m/s] (default: the model's speed range)")
-    p.add_argument("--thesis-convention", action="store_true", help="leave out the wing's "
-                   "static divergence and low-speed instabilities that recover (chapter 11)")
-    p.add_argument("--processes", type=int, default=1, help="worker processes (default 1)")
-    p.add_argument("--json", metavar="OUT", help="write the result as JSON")
-    p.add_argument("--csv", metavar="OUT", help="write one row per point as CSV")
-    p.add_argument("--plot", metavar="PNG", help="write the plot")
-
-
-def _add_sweep(sub) -> None:
-    p = sub.add_parser("sweep", help="critical speed of a model against one parameter path",
-                       description="Critical speed (kind, mode, dominant propeller) of MODEL "
-                       "at N values of one parameter, e.g. --param "
-                       "propellers[0].propeller.f_psi 3 12 10, or --param wing.EI* 0.5 2 7 "
-                       "(a factor on the distribution).  --list-params lists the paths.")
-    _add_study_options(p)
-    p.add_argument("--param", nargs=4, metavar=("PATH", "START", "STOP", "N"),
-                   help="the parameter path and N values from START to STOP")
-    p.add_argument("--list-params", action="store_true", help="list the model's parameter paths")
-    p.set_defaults(func=_sweep)
-
-
-def _add_map(sub) -> None:
-    p = sub.add_parser("map", help="critical speed of a model over two parameter paths",
-                       description="Critical speed of MODEL over the N1 x N2 grid of two "
-                       "parameters: --param PATH START STOP N twice (`propwhirl sweep MODEL "
-                       "--list-params` lists the paths).")
-    _add_study_options(p)
-    p.add_argument("--param", nargs=4, action="append", metavar=("PATH", "START", "STOP", "N"),
-                   help="a parameter path and N values from START to STOP (give it twice)")
-    p.set_defaults(func=_map)
-
-
 def _case(args: argparse.Namespace) -> int:
     from propwhirl import io
 
@@ -663,11 +507,10 @@ def build_parser() -> argparse.ArgumentParser:
     _add_analyse(sub)
     _add_modes(sub)
     _add_campbell(sub)
-    _add_sweep(sub)
-    _add_map(sub)
-    _add_case(sub)
-    from propwhirl.app import cli_design
+    from propwhirl.app import cli_design, cli_studies
 
+    cli_studies.add_commands(sub)
+    _add_case(sub)
     cli_design.add_commands(sub)
     _add_docs(sub)
     return parser

@@ -11,7 +11,8 @@ from __future__ import annotations
 
 import argparse
 
-from propwhirl.app.cli import _check_outputs, _echo, _model_or_case
+from propwhirl.app.cli import _check_outputs, _echo
+from propwhirl.app.cli_studies import _model_or_case
 from propwhirl.validate import InputError
 
 def _boundary(args: argparse.Namespace) -> int:
