@@ -130,8 +130,15 @@ def test_bad_input():
     iso = isolated_baseline_propeller()
     with pytest.raises(InputError, match="nearest valid paths: propeller.f_psi"):
         sweep(iso, "propeller.f_ps", [1.0])
-    with pytest.raises(InputError, match=r"propeller.f_psi = -1.0 Hz is outside the valid range"):
-        sweep(iso, "propeller.f_psi", [3.0, -1.0])      # before any analysis
+    # an invalid value is a failing point (issue 12.5): recorded with its message, the others
+    # are analysed — never silently dropped
+    r = sweep(iso, "propeller.f_psi", [3.0, -1.0], speeds=[100.0, 200.0, 300.0])
+    assert r.kind[0] in ("flutter", "divergence") and r.kind[1] == "error"
+    assert r.columns["error"][0] == ""
+    assert "propeller.f_psi = -1.0 Hz is outside the valid range" in r.columns["error"][1]
+    assert np.isnan(r.critical_speed[1]) and np.isfinite(r.critical_speed[0])
+    back = type(r).from_dict(r.to_dict())
+    assert list(back.columns["error"]) == list(r.columns["error"])
     with pytest.raises(InputError, match="non-empty"):
         sweep(iso, "propeller.f_psi", [])
     with pytest.raises(InputError, match="xtol"):

@@ -6,7 +6,10 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+import numpy as np
+
 from propwhirl import fileio
+from propwhirl.app import execution_options
 from propwhirl.app.cli import _check_outputs, _echo, _load, speed_grid
 from propwhirl.cases import registry
 from propwhirl.validate import InputError
@@ -53,7 +56,11 @@ def _param_axis(values: list[str]) -> tuple[str, "object"]:
 
 
 def _study_options(args: argparse.Namespace) -> dict:
-    opts = {"processes": args.processes,
+    """The study function's options: the convention, the speeds and the execution options
+    (processes, a Dask scheduler, a progress bar unless --quiet, the partial-results file
+    beside --json, resumed with --resume)."""
+    opts = {**execution_options.run_options(args),
+            "checkpoint": execution_options.checkpoint(args, args.json),
             "static_divergence": not args.thesis_convention,
             "low_speed": not args.thesis_convention}
     if args.speeds:
@@ -61,11 +68,15 @@ def _study_options(args: argparse.Namespace) -> dict:
     return opts
 
 
-def _write_study(result, args: argparse.Namespace, plot) -> None:
+def _write_study(result, args: argparse.Namespace, plot, checkpoint=None) -> None:
+    """Print the result, report the failing points on stderr, write the outputs (then the
+    partial-results file is removed)."""
     _echo(result.format())
+    execution_options.report_failures(np.ravel(result.columns["error"]))
     if args.json:
         fileio.write_text(args.json, result.to_json(), what="critical map")
         print(f"wrote {args.json}")
+        execution_options.finish(checkpoint)
     if args.csv:
         result.to_csv(args.csv)
         print(f"wrote {args.csv}")
@@ -93,14 +104,15 @@ def _sweep(args: argparse.Namespace) -> int:
         raise InputError("sweep: give --param PATH START STOP N (see --list-params)")
     _check_outputs(json=args.json, csv=args.csv, plot=args.plot)
     path, values = _param_axis(args.param)
-    result = sweeps.sweep(model, path, values, **_study_options(args))
+    opts = _study_options(args)
+    result = sweeps.sweep(model, path, values, **opts)
 
     def plot(r, path):
         from propwhirl.app import plots
 
         plots.critical_sweep(r, path=path)
 
-    _write_study(result, args, plot)
+    _write_study(result, args, plot, opts["checkpoint"])
     return 0
 
 
@@ -116,7 +128,8 @@ def _map(args: argparse.Namespace) -> int:
     n = len(first[1]) * len(second[1])
     if n > MAX_MAP_POINTS:
         raise InputError(f"map: N1 x N2 = {n} points is invalid: must be <= {MAX_MAP_POINTS}")
-    result = sweeps.map2d(model, first, second, **_study_options(args))
+    opts = _study_options(args)
+    result = sweeps.map2d(model, first, second, **opts)
 
     def plot(r, path):
         from propwhirl.app import plots
@@ -126,7 +139,7 @@ def _map(args: argparse.Namespace) -> int:
         else:
             raise InputError("map --plot needs at least 2 values of each parameter")
 
-    _write_study(result, args, plot)
+    _write_study(result, args, plot, opts["checkpoint"])
     return 0
 
 
@@ -137,10 +150,10 @@ def _add_study_options(p) -> None:
                    help="initial airspeed grid [m/s] (default: the model's speed range)")
     p.add_argument("--thesis-convention", action="store_true", help="leave out the wing's "
                    "static divergence and low-speed instabilities that recover (chapter 11)")
-    p.add_argument("--processes", type=int, default=1, help="worker processes (default 1)")
     p.add_argument("--json", metavar="OUT", help="write the result as JSON")
     p.add_argument("--csv", metavar="OUT", help="write one row per point as CSV")
     p.add_argument("--plot", metavar="PNG", help="write the plot")
+    execution_options.add(p)
 
 
 def _add_sweep(sub) -> None:

@@ -43,7 +43,7 @@ STUDY_XTOL = 0.01
 RESULT_UNITS: dict[str, str] = {
     "critical_speed": "m/s", "critical_frequency": "Hz", "critical_mode": "", "content": "",
     "kind": "", "event": "", "whirl": "", "propeller": "", "propeller_share": "",
-    "static_divergence_speed": "m/s",
+    "static_divergence_speed": "m/s", "error": "",
 }
 _FLOAT_COLUMNS = ("critical_speed", "critical_frequency", "propeller_share", "static_divergence_speed")
 _INT_COLUMNS = ("propeller",)
@@ -395,16 +395,31 @@ def _axis(model: Any, path: str, values: Any) -> tuple[P.Parameter, Axis]:
 
 def critical_map(model: Any, axes: Sequence[tuple[str, Any]], *, speeds=None,
                  xtol: float = STUDY_XTOL, static_divergence: bool = True, low_speed: bool = True,
-                 processes: int = 1) -> CriticalMap:
+                 processes: int = 1, client=None, progress=None, checkpoint=None) -> CriticalMap:
     """The critical speed of `model` over the outer product of `axes` ((path, values) pairs;
-    one or more).  Every variant is built first (an invalid value stops the study before any
-    analysis, naming the path and the valid range)."""
+    one or more).  An unknown or non-numeric path stops the study before any analysis; a point
+    whose variant is invalid (a value outside the field's range, a model that refuses it) or
+    whose analysis fails is recorded — kind "error", its one-line message in the column
+    ``error`` — and the others go on.  client, progress, checkpoint: as
+    :func:`propwhirl.studies.execution.map_analyses`."""
     if not 1 <= len(axes) <= 3:
         raise v.InputError(f"axes: {len(axes)} given, a study varies 1 to 3 parameters")
     resolved = [_axis(model, p, vals) for p, vals in axes]
-    variants = P.grid_variants(model, [(p.path, ax.values) for p, ax in resolved])
+    if len({p.path.rstrip("*") for p, _ in resolved}) != len(resolved):
+        raise v.InputError(f"parameter paths {[p.path for p, _ in resolved]} are invalid: a path "
+                           "appears twice")
+    variants: list[Any] = []
+    keys = []
+    for idx in np.ndindex(*(len(ax.values) for _, ax in resolved)):
+        point = {p.path: float(ax.values[i]) for (p, ax), i in zip(resolved, idx)}
+        keys.append(" ".join(f"{k}={x!r}" for k, x in point.items()))
+        try:
+            variants.append(P.set_values(model, point))
+        except v.InputError as exc:             # recorded in its row, the others go on
+            variants.append(exc)
     rows = run_points(variants, speeds, xtol=xtol, static_divergence=static_divergence,
-                      low_speed=low_speed, processes=processes)
+                      low_speed=low_speed, processes=processes, client=client,
+                      progress=progress, checkpoint=checkpoint, keys=keys)
     shape = tuple(len(ax.values) for _, ax in resolved)
     cols = {k: _column_array(k, [r[k] for r in rows], shape) for k in RESULT_UNITS}
     return CriticalMap(getattr(model, "name", type(model).__name__), tuple(ax for _, ax in resolved),
