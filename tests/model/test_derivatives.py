@@ -61,13 +61,13 @@ def random_model(data) -> PropellerWing:
 
 def assert_matches_central_differences(model, par, exact):
     """∂S/∂p against (S(p + h) − S(p − h))/2h of ``second_order`` of the model with the
-    field changed (:func:`with_value`), h = 1e-5 |p| (1e-6 at p = 0).  The matrices are at
+    field changed (:func:`with_value`), h = max(1e-5 |p|, 1e-6) (p may be ~0).  The matrices are at
     most quadratic in EI, GJ, m, K, ζ, I_Ω, C_lα and the aerodynamic derivatives (central
     differences exact but for rounding) and smooth in f (K ∝ f², the viscous damping ∝ √K):
     truncation ≤ (h/p)² ~ 1e-10 relative; rounding ~ 1e-16 max|S| / h ~ 1e-11 max|S|/|p|.
     Tolerance: 1e-6 of the derivative's largest entry plus 1e-9 max|S|/|p|."""
     p = par.value
-    h = 1e-5 * abs(p) if p != 0 else 1e-6
+    h = max(1e-5 * abs(p), 1e-6)
     up = D.with_value(model, par.path, p + h).second_order(V)
     down = D.with_value(model, par.path, p - h).second_order(V)
     base = model.second_order(V)
