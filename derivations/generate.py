@@ -15,6 +15,12 @@ NumPy printer, through the jinja2 template `templates/module.py.j2`.  Two forms 
   one ``sympy.cse`` over all the matrices (PyDy's way; last-bit differences).  The
   measurement behind the choice: benchmarks/generator_cse.py, docs/performance.md.
 
+- one *derivative function* ``<name>_d`` per block function (and per matrix in no block):
+  ``{matrix name: {parameter: ∂matrix/∂parameter}}`` for every argument, identically-zero
+  derivatives left out, one ``sympy.cse`` over all of them.  The derivatives are SymPy's
+  ``diff`` of the very matrices the other forms print; the runtime builds ∂A/∂p from them by
+  the same assembly as A (`src/propwhirl/model/derivatives.py`).
+
 The output is
 deterministic (sorted discovery, fixed entry order, pinned SymPy), so running the generator
 twice gives byte-identical files; tests/generated/test_freshness.py holds `generated/` to that.
@@ -194,8 +200,86 @@ CSE_NOTES = {
 }
 
 
-#: the two forms of generated code: one function per matrix, and shared-CSE block functions
-FORMS = ("matrices", "blocks")
+#: the forms of generated code: one function per matrix, shared-CSE block functions, and the
+#: parameter derivatives of the block functions (and of the matrices in no block)
+FORMS = ("matrices", "blocks", "derivatives")
+
+#: suffix of a derivative function's name: ``ln_blocks`` -> ``ln_blocks_d``
+DERIVATIVE_SUFFIX = "_d"
+
+
+def derivative_groups(d: Derivation) -> list[tuple[str, tuple[str, ...], list[sp.Symbol]]]:
+    """(function name, matrices, arguments) of each derivative function of `d`: one per block
+    function (its members; its arguments, in parameter order), then one per output in no
+    block (its own arguments, in its own order), in the derivation's order."""
+    by_name = {o.name: o for o in d.outputs}
+    groups = []
+    for name, members in d.blocks.items():
+        used = set().union(*(set(by_name[m].args) for m in members))
+        groups.append((name + DERIVATIVE_SUFFIX, tuple(members),
+                       [p.symbol for p in d.params if p.symbol in used]))
+    in_block = {m for members in d.blocks.values() for m in members}
+    for o in d.outputs:
+        if o.name not in in_block:
+            groups.append((o.name + DERIVATIVE_SUFFIX, (o.name,), list(o.args)))
+    return groups
+
+
+def derivative_matrices(d: Derivation, members: Sequence[str], args: Sequence[sp.Symbol]):
+    """[(matrix name, [(parameter, ∂matrix/∂parameter), ...]), ...]: SymPy's ``diff`` of each
+    member with respect to each argument, identically-zero derivatives left out."""
+    by_name = {o.name: o for o in d.outputs}
+    out = []
+    for m in members:
+        matrix = sp.Matrix(by_name[m].matrix)
+        free = matrix.free_symbols
+        parts = []
+        for a in args:
+            if a in free:
+                dm = matrix.diff(a)
+                if any(e != 0 for e in dm):
+                    parts.append((a, dm))
+        out.append((m, parts))
+    return out
+
+
+def _render_derivatives(name: str, members: Sequence[str], args: Sequence[sp.Symbol],
+                        d: Derivation, printer: _Printer) -> dict:
+    """One derivative function, ``{matrix: {parameter: ∂matrix/∂parameter}}``: one
+    ``sympy.cse`` over all nonzero entries of all its derivatives (the "shared" form of the
+    block functions; no other function computes these, so there is nothing to be
+    bit-identical to)."""
+    by_name = {o.name: o for o in d.outputs}
+    tables = []
+    for m, parts in derivative_matrices(d, members, args):
+        for a, dm in parts:
+            _check_args(f"{m}_d/{a.name}", list(dm), args, d)
+            tables.append((m, a, dm.shape, _nonzero_entries(dm)))
+    replacements, reduced = _cse([e for *_, entries in tables for _, _, e in entries])
+    texts = iter(printer.doprint(e) for e in reduced)
+    partials = [
+        {"matrix": m, "param": a.name, "var": f"_d{k}", "nrows": nr, "ncols": nc,
+         "entries": [(i, j, next(texts)) for i, j, _ in entries]}
+        for k, (m, a, (nr, nc), entries) in enumerate(tables)
+    ]
+    returned = []
+    for m in members:
+        nr, nc = sp.Matrix(by_name[m].matrix).shape
+        returned.append({"name": m, "nrows": nr, "ncols": nc,
+                         "partials": [p for p in partials if p["matrix"] == m]})
+    nonzero = {r["name"]: tuple(p["param"] for p in r["partials"]) for r in returned}
+    return {
+        "name": name,
+        "of": name[: -len(DERIVATIVE_SUFFIX)],
+        "is_block": name[: -len(DERIVATIVE_SUFFIX)] in d.blocks,
+        "signature": ", ".join(a.name for a in args),
+        "argnames": repr(tuple(a.name for a in args)),
+        "nonzero": repr(nonzero),
+        "arginfo": _arginfo(args, d),
+        "cse": [(str(s), printer.doprint(e)) for s, e in replacements],
+        "partials": partials,
+        "returned": returned,
+    }
 
 
 def render(
@@ -213,8 +297,13 @@ def render(
         [_render_blocks(n, m, d, printer, block_cse) for n, m in d.blocks.items()] if "blocks" in forms else []
     )
     doc = (d.doc or "").strip().replace('"""', "'''")
+    derivatives = (
+        [_render_derivatives(n, m, a, d, printer) for n, m, a in derivative_groups(d)]
+        if "derivatives" in forms else []
+    )
     text = env.get_template("module.py.j2").render(
-        d=d, functions=functions, blocks=blocks, doc=doc, cse_note=CSE_NOTES[block_cse]
+        d=d, functions=functions, blocks=blocks, derivatives=derivatives, doc=doc,
+        cse_note=CSE_NOTES[block_cse]
     )
     return text.rstrip() + "\n"
 

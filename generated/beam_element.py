@@ -12,6 +12,12 @@ at once (a dict), broadcasting their arguments once.  Their code is each matrix'
 subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
 functions.
 
+The derivative functions (`blocks_d`) return the
+exact parameter derivatives of those matrices: ``{matrix name: {parameter name: array}}`` with
+each array ∂matrix/∂parameter of the full broadcast shape ``... + (rows, cols)``; a parameter
+missing from a matrix's dict is one the matrix does not depend on (the derivative is
+identically zero).  `PARTIALS` lists the nonzero ones.
+
 Euler–Bernoulli bending–torsion beam element of the cantilever wing (thesis §7.1).
 
 Element degrees of freedom (7.16):  q_e = [h1, φ1, α1, h2, φ2, α2]
@@ -52,6 +58,11 @@ OUTPUTS = {
 #: block function name -> (argument names, names of the returned matrices)
 BLOCKS = {
     "blocks": (('length', 'm', 'rho_Ip', 'x_alpha_b', 'EI', 'GJ'), ('mass', 'stiffness')),
+}
+
+#: derivative function name -> (argument names, {matrix name: parameters it depends on})
+PARTIALS = {
+    "blocks_d": (('length', 'm', 'rho_Ip', 'x_alpha_b', 'EI', 'GJ'), {'mass': ('length', 'm', 'rho_Ip', 'x_alpha_b'), 'stiffness': ('length', 'EI', 'GJ')}),
 }
 
 
@@ -324,4 +335,249 @@ def blocks(length, m, rho_Ip, x_alpha_b, EI, GJ):
     return {
         "mass": _o0,
         "stiffness": _o1,
+    }
+
+
+def blocks_d(length, m, rho_Ip, x_alpha_b, EI, GJ):
+    """Parameter derivatives of mass, stiffness (of `blocks`).
+
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the derivatives.
+
+    Parameters
+    ----------
+    length : array_like
+        element length [m]
+    m : array_like
+        mass per unit span [kg/m]
+    rho_Ip : array_like
+        polar mass moment of inertia per unit span about the elastic axis [kg m]
+    x_alpha_b : array_like
+        centre of gravity aft of the elastic axis (x_α b) [m]
+    EI : array_like
+        bending rigidity [N m^2]
+    GJ : array_like
+        torsional rigidity [N m^2]
+
+    Returns
+    -------
+    dict of dict of numpy.ndarray
+        ``result[matrix][parameter]`` = ∂matrix/∂parameter, shape (..., rows, cols) with
+        ``...`` the broadcast shape of all the arguments (units: the matrix's over the
+        parameter's); parameters not listed have an identically-zero derivative:
+        "mass" (6 x 6): length, m, rho_Ip, x_alpha_b
+        "stiffness" (6 x 6): length, EI, GJ
+    """
+    shape, (length, m, rho_Ip, x_alpha_b, EI, GJ,) = _broadcast(length, m, rho_Ip, x_alpha_b, EI, GJ)
+    _c0 = (13/35)*m
+    _c1 = length*m
+    _c2 = (11/105)*_c1
+    _c3 = m*x_alpha_b
+    _c4 = (7/20)*_c3
+    _c5 = (9/70)*m
+    _c6 = (13/210)*_c1
+    _c7 = -_c6
+    _c8 = (3/20)*_c3
+    _c9 = length**2
+    _c10 = _c9*m
+    _c11 = (1/35)*_c10
+    _c12 = _c1*x_alpha_b
+    _c13 = (1/10)*_c12
+    _c14 = -3/140*_c10
+    _c15 = (1/15)*_c12
+    _c16 = (1/3)*rho_Ip
+    _c17 = -_c15
+    _c18 = (1/6)*rho_Ip
+    _c19 = -_c2
+    _c20 = -_c13
+    _c21 = (13/35)*length
+    _c22 = (11/210)*_c9
+    _c23 = length*x_alpha_b
+    _c24 = (7/20)*_c23
+    _c25 = (9/70)*length
+    _c26 = (13/420)*_c9
+    _c27 = -_c26
+    _c28 = (3/20)*_c23
+    _c29 = length**3
+    _c30 = (1/105)*_c29
+    _c31 = _c9*x_alpha_b
+    _c32 = (1/20)*_c31
+    _c33 = -1/140*_c29
+    _c34 = (1/30)*_c31
+    _c35 = -_c34
+    _c36 = -_c22
+    _c37 = -_c32
+    _c38 = (1/3)*length
+    _c39 = (1/6)*length
+    _c40 = (7/20)*_c1
+    _c41 = (3/20)*_c1
+    _c42 = (1/20)*_c10
+    _c43 = (1/30)*_c10
+    _c44 = -_c43
+    _c45 = -_c42
+    _c46 = 36*EI/length**4
+    _c47 = -_c46
+    _c48 = 12/_c29
+    _c49 = EI*_c48
+    _c50 = -_c49
+    _c51 = _c9**(-1.0)
+    _c52 = EI*_c51
+    _c53 = -4*_c52
+    _c54 = -2*_c52
+    _c55 = GJ*_c51
+    _c56 = -_c55
+    _c57 = 6*_c51
+    _c58 = -_c48
+    _c59 = length**(-1.0)
+    _c60 = 4*_c59
+    _c61 = -_c57
+    _c62 = 2*_c59
+    _c63 = -_c59
+    _d0 = numpy.zeros(shape + (6, 6))
+    _d0[..., 0, 0] = _c0
+    _d0[..., 0, 1] = _c2
+    _d0[..., 0, 2] = _c4
+    _d0[..., 0, 3] = _c5
+    _d0[..., 0, 4] = _c7
+    _d0[..., 0, 5] = _c8
+    _d0[..., 1, 0] = _c2
+    _d0[..., 1, 1] = _c11
+    _d0[..., 1, 2] = _c13
+    _d0[..., 1, 3] = _c6
+    _d0[..., 1, 4] = _c14
+    _d0[..., 1, 5] = _c15
+    _d0[..., 2, 0] = _c4
+    _d0[..., 2, 1] = _c13
+    _d0[..., 2, 2] = _c16
+    _d0[..., 2, 3] = _c8
+    _d0[..., 2, 4] = _c17
+    _d0[..., 2, 5] = _c18
+    _d0[..., 3, 0] = _c5
+    _d0[..., 3, 1] = _c6
+    _d0[..., 3, 2] = _c8
+    _d0[..., 3, 3] = _c0
+    _d0[..., 3, 4] = _c19
+    _d0[..., 3, 5] = _c4
+    _d0[..., 4, 0] = _c7
+    _d0[..., 4, 1] = _c14
+    _d0[..., 4, 2] = _c17
+    _d0[..., 4, 3] = _c19
+    _d0[..., 4, 4] = _c11
+    _d0[..., 4, 5] = _c20
+    _d0[..., 5, 0] = _c8
+    _d0[..., 5, 1] = _c15
+    _d0[..., 5, 2] = _c18
+    _d0[..., 5, 3] = _c4
+    _d0[..., 5, 4] = _c20
+    _d0[..., 5, 5] = _c16
+    _d1 = numpy.zeros(shape + (6, 6))
+    _d1[..., 0, 0] = _c21
+    _d1[..., 0, 1] = _c22
+    _d1[..., 0, 2] = _c24
+    _d1[..., 0, 3] = _c25
+    _d1[..., 0, 4] = _c27
+    _d1[..., 0, 5] = _c28
+    _d1[..., 1, 0] = _c22
+    _d1[..., 1, 1] = _c30
+    _d1[..., 1, 2] = _c32
+    _d1[..., 1, 3] = _c26
+    _d1[..., 1, 4] = _c33
+    _d1[..., 1, 5] = _c34
+    _d1[..., 2, 0] = _c24
+    _d1[..., 2, 1] = _c32
+    _d1[..., 2, 3] = _c28
+    _d1[..., 2, 4] = _c35
+    _d1[..., 3, 0] = _c25
+    _d1[..., 3, 1] = _c26
+    _d1[..., 3, 2] = _c28
+    _d1[..., 3, 3] = _c21
+    _d1[..., 3, 4] = _c36
+    _d1[..., 3, 5] = _c24
+    _d1[..., 4, 0] = _c27
+    _d1[..., 4, 1] = _c33
+    _d1[..., 4, 2] = _c35
+    _d1[..., 4, 3] = _c36
+    _d1[..., 4, 4] = _c30
+    _d1[..., 4, 5] = _c37
+    _d1[..., 5, 0] = _c28
+    _d1[..., 5, 1] = _c34
+    _d1[..., 5, 3] = _c24
+    _d1[..., 5, 4] = _c37
+    _d2 = numpy.zeros(shape + (6, 6))
+    _d2[..., 2, 2] = _c38
+    _d2[..., 2, 5] = _c39
+    _d2[..., 5, 2] = _c39
+    _d2[..., 5, 5] = _c38
+    _d3 = numpy.zeros(shape + (6, 6))
+    _d3[..., 0, 2] = _c40
+    _d3[..., 0, 5] = _c41
+    _d3[..., 1, 2] = _c42
+    _d3[..., 1, 5] = _c43
+    _d3[..., 2, 0] = _c40
+    _d3[..., 2, 1] = _c42
+    _d3[..., 2, 3] = _c41
+    _d3[..., 2, 4] = _c44
+    _d3[..., 3, 2] = _c41
+    _d3[..., 3, 5] = _c40
+    _d3[..., 4, 2] = _c44
+    _d3[..., 4, 5] = _c45
+    _d3[..., 5, 0] = _c41
+    _d3[..., 5, 1] = _c43
+    _d3[..., 5, 3] = _c40
+    _d3[..., 5, 4] = _c45
+    _d4 = numpy.zeros(shape + (6, 6))
+    _d4[..., 0, 0] = _c47
+    _d4[..., 0, 1] = _c50
+    _d4[..., 0, 3] = _c46
+    _d4[..., 0, 4] = _c50
+    _d4[..., 1, 0] = _c50
+    _d4[..., 1, 1] = _c53
+    _d4[..., 1, 3] = _c49
+    _d4[..., 1, 4] = _c54
+    _d4[..., 2, 2] = _c56
+    _d4[..., 2, 5] = _c55
+    _d4[..., 3, 0] = _c46
+    _d4[..., 3, 1] = _c49
+    _d4[..., 3, 3] = _c47
+    _d4[..., 3, 4] = _c49
+    _d4[..., 4, 0] = _c50
+    _d4[..., 4, 1] = _c54
+    _d4[..., 4, 3] = _c49
+    _d4[..., 4, 4] = _c53
+    _d4[..., 5, 2] = _c55
+    _d4[..., 5, 5] = _c56
+    _d5 = numpy.zeros(shape + (6, 6))
+    _d5[..., 0, 0] = _c48
+    _d5[..., 0, 1] = _c57
+    _d5[..., 0, 3] = _c58
+    _d5[..., 0, 4] = _c57
+    _d5[..., 1, 0] = _c57
+    _d5[..., 1, 1] = _c60
+    _d5[..., 1, 3] = _c61
+    _d5[..., 1, 4] = _c62
+    _d5[..., 3, 0] = _c58
+    _d5[..., 3, 1] = _c61
+    _d5[..., 3, 3] = _c48
+    _d5[..., 3, 4] = _c61
+    _d5[..., 4, 0] = _c57
+    _d5[..., 4, 1] = _c62
+    _d5[..., 4, 3] = _c61
+    _d5[..., 4, 4] = _c60
+    _d6 = numpy.zeros(shape + (6, 6))
+    _d6[..., 2, 2] = _c59
+    _d6[..., 2, 5] = _c63
+    _d6[..., 5, 2] = _c63
+    _d6[..., 5, 5] = _c59
+    return {
+        "mass": {
+            "length": _d0,
+            "m": _d1,
+            "rho_Ip": _d2,
+            "x_alpha_b": _d3,
+        },
+        "stiffness": {
+            "length": _d4,
+            "EI": _d5,
+            "GJ": _d6,
+        },
     }

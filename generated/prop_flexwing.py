@@ -12,6 +12,12 @@ at once (a dict), broadcasting their arguments once.  Their code is each matrix'
 subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
 functions.
 
+The derivative functions (`structure_blocks_d`, `aero_blocks_d`, `Cs_hysteretic_d`, `e_alpha_geometry_d`, `inertia_d`) return the
+exact parameter derivatives of those matrices: ``{matrix name: {parameter name: array}}`` with
+each array ∂matrix/∂parameter of the full broadcast shape ``... + (rows, cols)``; a parameter
+missing from a matrix's dict is one the matrix does not depend on (the derivative is
+identically zero).  `PARTIALS` lists the nonzero ones.
+
 Propeller on a flexible cantilever wing: propeller and wing-node coupling (thesis §8.1–8.2).
 
 Degrees of freedom:  q_P = [θ, ψ] (propeller pitch and yaw about their pivots)  and
@@ -128,6 +134,15 @@ OUTPUTS = {
 BLOCKS = {
     "structure_blocks": (('I_Omega', 'M_P', 'S_theta_P', 'I_theta_P', 'I_psi_P', 'S_alpha_P', 'I_alpha_P', 'I_theta_alpha_P', 'Omega', 'K_theta', 'K_psi', 'zeta_theta', 'zeta_psi'), ('As', 'Bs', 'Cs_viscous', 'Ds', 'Es', 'Fs', 'Gs', 'Hs')),
     "aero_blocks": (('e_theta', 'e_psi', 'e_alpha', 'rho', 'V', 'R', 'CZ_theta', 'CZ_psi', 'CZ_q', 'CZ_r', 'Cm_theta', 'Cm_psi', 'Cm_q', 'Cm_r', 'CY_theta', 'CY_psi', 'CY_q', 'CY_r', 'Cn_theta', 'Cn_psi', 'Cn_q', 'Cn_r'), ('Aa', 'Ba', 'Ca', 'Da', 'Ea', 'Fa', 'P1', 'P2', 'P3', 'P4', 'P5', 'P6')),
+}
+
+#: derivative function name -> (argument names, {matrix name: parameters it depends on})
+PARTIALS = {
+    "structure_blocks_d": (('I_Omega', 'M_P', 'S_theta_P', 'I_theta_P', 'I_psi_P', 'S_alpha_P', 'I_alpha_P', 'I_theta_alpha_P', 'Omega', 'K_theta', 'K_psi', 'zeta_theta', 'zeta_psi'), {'As': ('I_theta_P', 'I_psi_P'), 'Bs': ('S_theta_P', 'I_theta_alpha_P'), 'Cs_viscous': ('I_Omega', 'I_theta_P', 'I_psi_P', 'Omega', 'K_theta', 'K_psi', 'zeta_theta', 'zeta_psi'), 'Ds': ('I_Omega', 'Omega'), 'Es': ('K_theta', 'K_psi'), 'Fs': ('S_theta_P', 'I_theta_alpha_P'), 'Gs': ('M_P', 'S_alpha_P', 'I_alpha_P'), 'Hs': ('I_Omega', 'Omega')}),
+    "aero_blocks_d": (('e_theta', 'e_psi', 'e_alpha', 'rho', 'V', 'R', 'CZ_theta', 'CZ_psi', 'CZ_q', 'CZ_r', 'Cm_theta', 'Cm_psi', 'Cm_q', 'Cm_r', 'CY_theta', 'CY_psi', 'CY_q', 'CY_r', 'Cn_theta', 'Cn_psi', 'Cn_q', 'Cn_r'), {'Aa': ('e_theta', 'e_psi', 'rho', 'R', 'CZ_q', 'CZ_r', 'Cm_q', 'Cm_r', 'CY_q', 'CY_r', 'Cn_q', 'Cn_r'), 'Ba': ('e_theta', 'e_psi', 'e_alpha', 'rho', 'R', 'CZ_q', 'Cm_q', 'CY_q', 'Cn_q'), 'Ca': ('e_theta', 'e_psi', 'rho', 'V', 'R', 'CZ_theta', 'CZ_psi', 'CZ_q', 'CZ_r', 'Cm_theta', 'Cm_psi', 'Cm_q', 'Cm_r', 'CY_theta', 'CY_psi', 'CY_q', 'CY_r', 'Cn_theta', 'Cn_psi', 'Cn_q', 'Cn_r'), 'Da': ('e_theta', 'e_psi', 'e_alpha', 'rho', 'V', 'R', 'CZ_theta', 'CZ_q', 'Cm_theta', 'Cm_q', 'CY_theta', 'CY_q', 'Cn_theta', 'Cn_q'), 'Ea': ('e_theta', 'e_psi', 'rho', 'V', 'R', 'CZ_theta', 'CZ_psi', 'Cm_theta', 'Cm_psi', 'CY_theta', 'CY_psi', 'Cn_theta', 'Cn_psi'), 'Fa': ('e_theta', 'e_psi', 'rho', 'V', 'R', 'CZ_theta', 'Cm_theta', 'CY_theta', 'Cn_theta'), 'P1': ('e_theta', 'e_psi', 'e_alpha', 'rho', 'R', 'CZ_q', 'CZ_r', 'Cm_q', 'Cm_r'), 'P2': ('e_alpha', 'rho', 'R', 'CZ_q', 'Cm_q'), 'P3': ('e_theta', 'e_psi', 'e_alpha', 'rho', 'V', 'R', 'CZ_theta', 'CZ_psi', 'CZ_q', 'CZ_r', 'Cm_theta', 'Cm_psi', 'Cm_q', 'Cm_r'), 'P4': ('e_alpha', 'rho', 'V', 'R', 'CZ_theta', 'CZ_q', 'Cm_theta', 'Cm_q'), 'P5': ('e_alpha', 'rho', 'V', 'R', 'CZ_theta', 'CZ_psi', 'Cm_theta', 'Cm_psi'), 'P6': ('e_alpha', 'rho', 'V', 'R', 'CZ_theta', 'Cm_theta')}),
+    "Cs_hysteretic_d": (('I_Omega', 'Omega', 'K_theta', 'K_psi', 'g_theta', 'g_psi', 'omega'), {'Cs_hysteretic': ('I_Omega', 'Omega', 'K_theta', 'K_psi', 'g_theta', 'g_psi', 'omega')}),
+    "e_alpha_geometry_d": (('e_theta', 'l_theta', 'a_P_b_P'), {'e_alpha_geometry': ('e_theta', 'l_theta', 'a_P_b_P')}),
+    "inertia_d": (('M_P', 'S_theta_P', 'I_theta_P', 'l_theta', 'a_P_b_P'), {'inertia': ('M_P', 'S_theta_P', 'I_theta_P', 'l_theta', 'a_P_b_P')}),
 }
 
 
@@ -1609,4 +1624,1130 @@ def aero_blocks(e_theta, e_psi, e_alpha, rho, V, R, CZ_theta, CZ_psi, CZ_q, CZ_r
         "P4": _o9,
         "P5": _o10,
         "P6": _o11,
+    }
+
+
+def structure_blocks_d(I_Omega, M_P, S_theta_P, I_theta_P, I_psi_P, S_alpha_P, I_alpha_P, I_theta_alpha_P, Omega, K_theta, K_psi, zeta_theta, zeta_psi):
+    """Parameter derivatives of As, Bs, Cs_viscous, Ds, Es, Fs, Gs, Hs (of `structure_blocks`).
+
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the derivatives.
+
+    Parameters
+    ----------
+    I_Omega : array_like
+        rotor mass moment of inertia about its rotation axis [kg m^2]
+    M_P : array_like
+        pivoting propeller–engine mass [kg]
+    S_theta_P : array_like
+        static moment of the pivoting mass about the pitch pivot, Σ m (x − l_θ) [kg m]
+    I_theta_P : array_like
+        moment of inertia of the pivoting mass about the pitch pivot [kg m^2]
+    I_psi_P : array_like
+        moment of inertia of the pivoting mass about the yaw pivot [kg m^2]
+    S_alpha_P : array_like
+        static moment of the pivoting mass about the wing elastic axis [kg m]
+    I_alpha_P : array_like
+        moment of inertia of the pivoting mass about the wing elastic axis [kg m^2]
+    I_theta_alpha_P : array_like
+        product of inertia Σ m (x − a_P b_P)(x − l_θ) [kg m^2]
+    Omega : array_like
+        propeller rotational speed [rad/s]
+    K_theta : array_like
+        pitch stiffness of the propeller attachment [N m/rad]
+    K_psi : array_like
+        yaw stiffness of the propeller attachment [N m/rad]
+    zeta_theta : array_like
+        viscous damping ratio in pitch (fraction of critical) [-]
+    zeta_psi : array_like
+        viscous damping ratio in yaw (fraction of critical) [-]
+
+    Returns
+    -------
+    dict of dict of numpy.ndarray
+        ``result[matrix][parameter]`` = ∂matrix/∂parameter, shape (..., rows, cols) with
+        ``...`` the broadcast shape of all the arguments (units: the matrix's over the
+        parameter's); parameters not listed have an identically-zero derivative:
+        "As" (2 x 2): I_theta_P, I_psi_P
+        "Bs" (2 x 2): S_theta_P, I_theta_alpha_P
+        "Cs_viscous" (2 x 2): I_Omega, I_theta_P, I_psi_P, Omega, K_theta, K_psi, zeta_theta, zeta_psi
+        "Ds" (2 x 2): I_Omega, Omega
+        "Es" (2 x 2): K_theta, K_psi
+        "Fs" (2 x 2): S_theta_P, I_theta_alpha_P
+        "Gs" (2 x 2): M_P, S_alpha_P, I_alpha_P
+        "Hs" (2 x 2): I_Omega, Omega
+    """
+    shape, (I_Omega, M_P, S_theta_P, I_theta_P, I_psi_P, S_alpha_P, I_alpha_P, I_theta_alpha_P, Omega, K_theta, K_psi, zeta_theta, zeta_psi,) = _broadcast(I_Omega, M_P, S_theta_P, I_theta_P, I_psi_P, S_alpha_P, I_alpha_P, I_theta_alpha_P, Omega, K_theta, K_psi, zeta_theta, zeta_psi)
+    _c0 = -Omega
+    _c1 = numpy.sqrt(I_theta_P)
+    _c2 = numpy.sqrt(K_theta)
+    _c3 = numpy.sqrt(I_psi_P)
+    _c4 = numpy.sqrt(K_psi)
+    _c5 = -I_Omega
+    _d0 = numpy.zeros(shape + (2, 2))
+    _d0[..., 0, 0] = 1
+    _d1 = numpy.zeros(shape + (2, 2))
+    _d1[..., 1, 1] = 1
+    _d2 = numpy.zeros(shape + (2, 2))
+    _d2[..., 0, 0] = 1
+    _d3 = numpy.zeros(shape + (2, 2))
+    _d3[..., 0, 1] = 1
+    _d4 = numpy.zeros(shape + (2, 2))
+    _d4[..., 0, 1] = Omega
+    _d4[..., 1, 0] = _c0
+    _d5 = numpy.zeros(shape + (2, 2))
+    _d5[..., 0, 0] = _c2*zeta_theta/_c1
+    _d6 = numpy.zeros(shape + (2, 2))
+    _d6[..., 1, 1] = _c4*zeta_psi/_c3
+    _d7 = numpy.zeros(shape + (2, 2))
+    _d7[..., 0, 1] = I_Omega
+    _d7[..., 1, 0] = _c5
+    _d8 = numpy.zeros(shape + (2, 2))
+    _d8[..., 0, 0] = _c1*zeta_theta/_c2
+    _d9 = numpy.zeros(shape + (2, 2))
+    _d9[..., 1, 1] = _c3*zeta_psi/_c4
+    _d10 = numpy.zeros(shape + (2, 2))
+    _d10[..., 0, 0] = 2*_c1*_c2
+    _d11 = numpy.zeros(shape + (2, 2))
+    _d11[..., 1, 1] = 2*_c3*_c4
+    _d12 = numpy.zeros(shape + (2, 2))
+    _d12[..., 1, 1] = _c0
+    _d13 = numpy.zeros(shape + (2, 2))
+    _d13[..., 1, 1] = _c5
+    _d14 = numpy.zeros(shape + (2, 2))
+    _d14[..., 0, 0] = 1
+    _d15 = numpy.zeros(shape + (2, 2))
+    _d15[..., 1, 1] = 1
+    _d16 = numpy.zeros(shape + (2, 2))
+    _d16[..., 0, 0] = 1
+    _d17 = numpy.zeros(shape + (2, 2))
+    _d17[..., 1, 0] = 1
+    _d18 = numpy.zeros(shape + (2, 2))
+    _d18[..., 0, 0] = 1
+    _d19 = numpy.zeros(shape + (2, 2))
+    _d19[..., 0, 1] = 1
+    _d19[..., 1, 0] = 1
+    _d20 = numpy.zeros(shape + (2, 2))
+    _d20[..., 1, 1] = 1
+    _d21 = numpy.zeros(shape + (2, 2))
+    _d21[..., 1, 1] = Omega
+    _d22 = numpy.zeros(shape + (2, 2))
+    _d22[..., 1, 1] = I_Omega
+    return {
+        "As": {
+            "I_theta_P": _d0,
+            "I_psi_P": _d1,
+        },
+        "Bs": {
+            "S_theta_P": _d2,
+            "I_theta_alpha_P": _d3,
+        },
+        "Cs_viscous": {
+            "I_Omega": _d4,
+            "I_theta_P": _d5,
+            "I_psi_P": _d6,
+            "Omega": _d7,
+            "K_theta": _d8,
+            "K_psi": _d9,
+            "zeta_theta": _d10,
+            "zeta_psi": _d11,
+        },
+        "Ds": {
+            "I_Omega": _d12,
+            "Omega": _d13,
+        },
+        "Es": {
+            "K_theta": _d14,
+            "K_psi": _d15,
+        },
+        "Fs": {
+            "S_theta_P": _d16,
+            "I_theta_alpha_P": _d17,
+        },
+        "Gs": {
+            "M_P": _d18,
+            "S_alpha_P": _d19,
+            "I_alpha_P": _d20,
+        },
+        "Hs": {
+            "I_Omega": _d21,
+            "Omega": _d22,
+        },
+    }
+
+
+def aero_blocks_d(e_theta, e_psi, e_alpha, rho, V, R, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
+    """Parameter derivatives of Aa, Ba, Ca, Da, Ea, Fa, P1, P2, P3, P4, P5, P6 (of `aero_blocks`).
+
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the derivatives.
+
+    Parameters
+    ----------
+    e_theta : array_like
+        propeller plane aft of the pitch pivot (signed; < 0 for a tractor) [m]
+    e_psi : array_like
+        propeller plane aft of the yaw pivot (signed; < 0 for a tractor) [m]
+    e_alpha : array_like
+        propeller plane aft of the wing elastic axis, e_θ + l_θ − a_P b_P (8.35) [m]
+    rho : array_like
+        air density [kg/m^3]
+    V : array_like
+        free-stream (inflow) velocity [m/s]
+    R : array_like
+        propeller radius [m]
+    CZ_theta : array_like
+        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
+    CZ_psi : array_like
+        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
+    CZ_q : array_like
+        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
+    CZ_r : array_like
+        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    Cm_theta : array_like
+        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
+    Cm_psi : array_like
+        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
+    Cm_q : array_like
+        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
+    Cm_r : array_like
+        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    CY_theta : array_like
+        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
+    CY_psi : array_like
+        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
+    CY_q : array_like
+        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
+    CY_r : array_like
+        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    Cn_theta : array_like
+        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
+    Cn_psi : array_like
+        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
+    Cn_q : array_like
+        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
+    Cn_r : array_like
+        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+
+    Returns
+    -------
+    dict of dict of numpy.ndarray
+        ``result[matrix][parameter]`` = ∂matrix/∂parameter, shape (..., rows, cols) with
+        ``...`` the broadcast shape of all the arguments (units: the matrix's over the
+        parameter's); parameters not listed have an identically-zero derivative:
+        "Aa" (2 x 2): e_theta, e_psi, rho, R, CZ_q, CZ_r, Cm_q, Cm_r, CY_q, CY_r, Cn_q, Cn_r
+        "Ba" (2 x 2): e_theta, e_psi, e_alpha, rho, R, CZ_q, Cm_q, CY_q, Cn_q
+        "Ca" (2 x 2): e_theta, e_psi, rho, V, R, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r
+        "Da" (2 x 2): e_theta, e_psi, e_alpha, rho, V, R, CZ_theta, CZ_q, Cm_theta, Cm_q, CY_theta, CY_q, Cn_theta, Cn_q
+        "Ea" (2 x 2): e_theta, e_psi, rho, V, R, CZ_theta, CZ_psi, Cm_theta, Cm_psi, CY_theta, CY_psi, Cn_theta, Cn_psi
+        "Fa" (2 x 2): e_theta, e_psi, rho, V, R, CZ_theta, Cm_theta, CY_theta, Cn_theta
+        "P1" (2 x 2): e_theta, e_psi, e_alpha, rho, R, CZ_q, CZ_r, Cm_q, Cm_r
+        "P2" (2 x 2): e_alpha, rho, R, CZ_q, Cm_q
+        "P3" (2 x 2): e_theta, e_psi, e_alpha, rho, V, R, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r
+        "P4" (2 x 2): e_alpha, rho, V, R, CZ_theta, CZ_q, Cm_theta, Cm_q
+        "P5" (2 x 2): e_alpha, rho, V, R, CZ_theta, CZ_psi, Cm_theta, Cm_psi
+        "P6" (2 x 2): e_alpha, rho, V, R, CZ_theta, Cm_theta
+    """
+    shape, (e_theta, e_psi, e_alpha, rho, V, R, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(e_theta, e_psi, e_alpha, rho, V, R, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
+    _c0 = R**4
+    _c1 = numpy.pi*_c0
+    _c2 = Cm_q*_c1
+    _c3 = _c2*rho
+    _c4 = R**3
+    _c5 = numpy.pi*_c4
+    _c6 = _c5*rho
+    _c7 = CZ_q*_c6
+    _c8 = (1/2)*_c6
+    _c9 = _c8*e_psi
+    _c10 = CZ_r*_c9
+    _c11 = CY_q*_c8
+    _c12 = -numpy.pi*Cn_q*_c0*rho + _c11*e_psi
+    _c13 = -_c12
+    _c14 = _c1*rho
+    _c15 = Cm_r*_c14
+    _c16 = _c8*e_theta
+    _c17 = CZ_r*_c16 + _c15
+    _c18 = -numpy.pi*Cn_r*_c0*rho
+    _c19 = _c6*e_psi
+    _c20 = _c2*e_theta
+    _c21 = e_theta**2
+    _c22 = (1/2)*_c5
+    _c23 = CZ_q*_c22
+    _c24 = Cm_r*_c1*e_psi
+    _c25 = _c22*e_psi
+    _c26 = CZ_r*_c25
+    _c27 = CY_q*_c25
+    _c28 = e_psi**2
+    _c29 = CY_r*_c28
+    _c30 = 4*Cm_q*_c6
+    _c31 = _c30*e_theta
+    _c32 = R**2
+    _c33 = numpy.pi*_c32
+    _c34 = _c33*rho
+    _c35 = (3/2)*_c34
+    _c36 = CZ_q*_c35
+    _c37 = 4*Cm_r*_c19
+    _c38 = _c35*e_psi
+    _c39 = CZ_r*_c38
+    _c40 = CY_q*_c38
+    _c41 = _c16*e_psi
+    _c42 = _c14*e_theta
+    _c43 = _c14*e_psi
+    _c44 = CZ_q*_c8
+    _c45 = _c44*e_alpha
+    _c46 = _c44*e_theta
+    _c47 = _c3 + _c46
+    _c48 = _c23*e_theta
+    _c49 = _c2*e_alpha
+    _c50 = _c48*e_alpha
+    _c51 = _c36*e_theta
+    _c52 = _c30*e_alpha
+    _c53 = _c51*e_alpha
+    _c54 = _c16*e_alpha
+    _c55 = _c14*e_alpha
+    _c56 = _c9*e_alpha
+    _c57 = CZ_theta*V
+    _c58 = _c34*_c57
+    _c59 = _c58*e_theta
+    _c60 = V*_c5
+    _c61 = _c60*rho
+    _c62 = (1/2)*_c61
+    _c63 = CZ_q*_c62
+    _c64 = Cm_theta*_c60
+    _c65 = _c64*rho
+    _c66 = _c63 + _c65
+    _c67 = V*_c34
+    _c68 = (1/2)*_c67
+    _c69 = _c68*e_psi
+    _c70 = CZ_psi*_c69 + CZ_r*_c62
+    _c71 = CY_theta*_c68
+    _c72 = numpy.pi*Cn_theta*V*_c4*rho - _c71*e_psi
+    _c73 = Cm_psi*_c61
+    _c74 = _c68*e_theta
+    _c75 = CY_q*_c62
+    _c76 = CY_psi*e_psi
+    _c77 = _c67*_c76
+    _c78 = _c64*e_theta
+    _c79 = (1/2)*CZ_theta
+    _c80 = _c33*_c79
+    _c81 = V*_c80
+    _c82 = V*_c2
+    _c83 = (1/2)*_c60
+    _c84 = CZ_q*_c83
+    _c85 = _c82 + _c84*e_theta
+    _c86 = CZ_r*_c83
+    _c87 = (1/2)*_c33
+    _c88 = V*_c87
+    _c89 = CZ_psi*e_psi
+    _c90 = _c88*_c89
+    _c91 = _c60*e_psi
+    _c92 = Cm_psi*_c91 + Cm_r*V*_c1
+    _c93 = CY_theta*e_psi
+    _c94 = _c88*_c93
+    _c95 = (1/2)*_c91
+    _c96 = CY_q*_c95 - numpy.pi*Cn_q*V*_c0
+    _c97 = CY_psi*_c28
+    _c98 = Cm_theta*_c6
+    _c99 = _c98*e_theta
+    _c100 = _c34*_c79
+    _c101 = Cm_psi*_c19
+    _c102 = (1/2)*_c34
+    _c103 = _c102*_c89
+    _c104 = _c102*_c93
+    _c105 = numpy.pi*R*rho
+    _c106 = _c105*_c57
+    _c107 = 3*_c67
+    _c108 = Cm_theta*_c107
+    _c109 = _c108*e_theta
+    _c110 = 4*_c61
+    _c111 = Cm_q*_c110
+    _c112 = V*_c51 + _c111
+    _c113 = CZ_r*V*_c35
+    _c114 = V*_c105
+    _c115 = _c114*_c89
+    _c116 = Cm_psi*_c107*e_psi + Cm_r*_c110
+    _c117 = _c114*_c93
+    _c118 = -4*numpy.pi*Cn_q*V*_c4*rho + V*_c40
+    _c119 = _c74*e_psi
+    _c120 = _c61*e_theta
+    _c121 = (1/2)*_c120
+    _c122 = _c61*e_psi
+    _c123 = V*_c14
+    _c124 = -1/2*_c122
+    _c125 = V*_c100
+    _c126 = _c125*e_alpha
+    _c127 = _c125*e_theta
+    _c128 = _c81*e_theta
+    _c129 = _c64*e_alpha
+    _c130 = _c128*e_alpha
+    _c131 = _c100*e_theta
+    _c132 = _c98*e_alpha
+    _c133 = _c131*e_alpha
+    _c134 = _c106*e_theta
+    _c135 = _c108*e_alpha
+    _c136 = _c134*e_alpha
+    _c137 = _c74*e_alpha
+    _c138 = _c61*e_alpha
+    _c139 = _c69*e_alpha
+    _c140 = V**2
+    _c141 = _c100*_c140
+    _c142 = CZ_psi*_c140
+    _c143 = _c102*_c142
+    _c144 = _c102*_c140
+    _c145 = -CY_theta*_c144
+    _c146 = _c140*_c5
+    _c147 = Cm_theta*_c146
+    _c148 = _c140*_c80
+    _c149 = _c147 + _c148*e_theta
+    _c150 = Cm_psi*_c146
+    _c151 = _c142*_c87
+    _c152 = _c140*_c87
+    _c153 = numpy.pi*Cn_theta*_c140*_c4 - _c152*_c93
+    _c154 = 2*_c65
+    _c155 = _c154 + _c59
+    _c156 = 2*_c73
+    _c157 = CZ_psi*_c67
+    _c158 = 2*numpy.pi*Cn_theta*V*_c4*rho - _c67*_c93
+    _c159 = _c105*_c140
+    _c160 = CZ_theta*_c159
+    _c161 = 3*_c140*_c34
+    _c162 = Cm_theta*_c161
+    _c163 = _c160*e_theta + _c162
+    _c164 = _c105*_c142
+    _c165 = Cm_psi*_c161
+    _c166 = 3*numpy.pi*Cn_theta*_c140*_c32*rho - _c159*_c93
+    _c167 = _c144*e_theta
+    _c168 = _c140*_c6
+    _c169 = -_c144*e_psi
+    _c170 = _c3 + _c45
+    _c171 = CZ_r*_c8
+    _c172 = _c15 + _c171*e_alpha
+    _c173 = _c23*e_alpha
+    _c174 = e_alpha**2
+    _c175 = _c36*e_alpha
+    _c176 = _c8*e_alpha
+    _c177 = CZ_psi*_c68
+    _c178 = _c82 + _c84*e_alpha
+    _c179 = V*_c36
+    _c180 = V*_c175 + _c111
+    _c181 = (1/2)*_c138
+    _c182 = _c58*e_alpha
+    _c183 = _c81*e_alpha
+    _c184 = _c100*e_alpha
+    _c185 = _c106*e_alpha
+    _c186 = _c68*e_alpha
+    _c187 = _c147 + _c148*e_alpha
+    _c188 = _c154 + _c182
+    _c189 = _c160*e_alpha + _c162
+    _c190 = _c144*e_alpha
+    _d0 = numpy.zeros(shape + (2, 2))
+    _d0[..., 0, 0] = _c3 + _c7*e_theta
+    _d0[..., 0, 1] = _c10
+    _d0[..., 1, 0] = _c13
+    _d1 = numpy.zeros(shape + (2, 2))
+    _d1[..., 0, 1] = _c17
+    _d1[..., 1, 0] = -_c11*e_theta
+    _d1[..., 1, 1] = -CY_r*_c19 - _c18
+    _d2 = numpy.zeros(shape + (2, 2))
+    _d2[..., 0, 0] = _c20 + _c21*_c23
+    _d2[..., 0, 1] = _c24 + _c26*e_theta
+    _d2[..., 1, 0] = numpy.pi*Cn_q*_c0*e_theta - _c27*e_theta
+    _d2[..., 1, 1] = numpy.pi*Cn_r*_c0*e_psi - _c22*_c29
+    _d3 = numpy.zeros(shape + (2, 2))
+    _d3[..., 0, 0] = _c21*_c36 + _c31
+    _d3[..., 0, 1] = _c37 + _c39*e_theta
+    _d3[..., 1, 0] = 4*numpy.pi*Cn_q*_c4*e_theta*rho - _c40*e_theta
+    _d3[..., 1, 1] = 4*numpy.pi*Cn_r*_c4*e_psi*rho - _c29*_c35
+    _d4 = numpy.zeros(shape + (2, 2))
+    _d4[..., 0, 0] = _c21*_c8
+    _d5 = numpy.zeros(shape + (2, 2))
+    _d5[..., 0, 1] = _c41
+    _d6 = numpy.zeros(shape + (2, 2))
+    _d6[..., 0, 0] = _c42
+    _d7 = numpy.zeros(shape + (2, 2))
+    _d7[..., 0, 1] = _c43
+    _d8 = numpy.zeros(shape + (2, 2))
+    _d8[..., 1, 0] = -_c41
+    _d9 = numpy.zeros(shape + (2, 2))
+    _d9[..., 1, 1] = -_c28*_c8
+    _d10 = numpy.zeros(shape + (2, 2))
+    _d10[..., 1, 0] = _c42
+    _d11 = numpy.zeros(shape + (2, 2))
+    _d11[..., 1, 1] = _c43
+    _d12 = numpy.zeros(shape + (2, 2))
+    _d12[..., 0, 0] = _c44
+    _d12[..., 0, 1] = _c45
+    _d13 = numpy.zeros(shape + (2, 2))
+    _d13[..., 1, 0] = -_c11
+    _d13[..., 1, 1] = -_c11*e_alpha
+    _d14 = numpy.zeros(shape + (2, 2))
+    _d14[..., 0, 1] = _c47
+    _d14[..., 1, 1] = _c13
+    _d15 = numpy.zeros(shape + (2, 2))
+    _d15[..., 0, 0] = _c2 + _c48
+    _d15[..., 0, 1] = _c49 + _c50
+    _d15[..., 1, 0] = numpy.pi*Cn_q*_c0 - _c27
+    _d15[..., 1, 1] = numpy.pi*Cn_q*_c0*e_alpha - _c27*e_alpha
+    _d16 = numpy.zeros(shape + (2, 2))
+    _d16[..., 0, 0] = _c30 + _c51
+    _d16[..., 0, 1] = _c52 + _c53
+    _d16[..., 1, 0] = 4*numpy.pi*Cn_q*_c4*rho - _c40
+    _d16[..., 1, 1] = 4*numpy.pi*Cn_q*_c4*e_alpha*rho - _c40*e_alpha
+    _d17 = numpy.zeros(shape + (2, 2))
+    _d17[..., 0, 0] = _c16
+    _d17[..., 0, 1] = _c54
+    _d18 = numpy.zeros(shape + (2, 2))
+    _d18[..., 0, 0] = _c14
+    _d18[..., 0, 1] = _c55
+    _d19 = numpy.zeros(shape + (2, 2))
+    _d19[..., 1, 0] = -_c9
+    _d19[..., 1, 1] = -_c56
+    _d20 = numpy.zeros(shape + (2, 2))
+    _d20[..., 1, 0] = _c14
+    _d20[..., 1, 1] = _c55
+    _d21 = numpy.zeros(shape + (2, 2))
+    _d21[..., 0, 0] = _c59 + _c66
+    _d21[..., 0, 1] = _c70
+    _d21[..., 1, 0] = _c72
+    _d22 = numpy.zeros(shape + (2, 2))
+    _d22[..., 0, 1] = CZ_psi*_c74 + _c73
+    _d22[..., 1, 0] = -_c71*e_theta - _c75
+    _d22[..., 1, 1] = -CY_r*_c62 + numpy.pi*Cn_psi*V*_c4*rho - _c77
+    _d23 = numpy.zeros(shape + (2, 2))
+    _d23[..., 0, 0] = _c21*_c81 + _c78 + _c85
+    _d23[..., 0, 1] = _c86*e_theta + _c90*e_theta + _c92
+    _d23[..., 1, 0] = numpy.pi*Cn_theta*V*_c4*e_theta - _c94*e_theta - _c96
+    _d23[..., 1, 1] = -CY_r*_c95 + numpy.pi*Cn_psi*V*_c4*e_psi + numpy.pi*Cn_r*V*_c0 - _c88*_c97
+    _d24 = numpy.zeros(shape + (2, 2))
+    _d24[..., 0, 0] = _c100*_c21 + _c47 + _c99
+    _d24[..., 0, 1] = _c101 + _c103*e_theta + _c17
+    _d24[..., 1, 0] = numpy.pi*Cn_theta*_c4*e_theta*rho - _c104*e_theta - _c12
+    _d24[..., 1, 1] = -CY_r*_c9 + numpy.pi*Cn_psi*_c4*e_psi*rho - _c102*_c97 - _c18
+    _d25 = numpy.zeros(shape + (2, 2))
+    _d25[..., 0, 0] = _c106*_c21 + _c109 + _c112
+    _d25[..., 0, 1] = _c113*e_theta + _c115*e_theta + _c116
+    _d25[..., 1, 0] = 3*numpy.pi*Cn_theta*V*_c32*e_theta*rho - _c117*e_theta - _c118
+    _d25[..., 1, 1] = -CY_r*V*_c38 + 3*numpy.pi*Cn_psi*V*_c32*e_psi*rho + 4*numpy.pi*Cn_r*V*_c4*rho - _c114*_c97
+    _d26 = numpy.zeros(shape + (2, 2))
+    _d26[..., 0, 0] = _c21*_c68
+    _d27 = numpy.zeros(shape + (2, 2))
+    _d27[..., 0, 1] = _c119
+    _d28 = numpy.zeros(shape + (2, 2))
+    _d28[..., 0, 0] = _c121
+    _d29 = numpy.zeros(shape + (2, 2))
+    _d29[..., 0, 1] = _c121
+    _d30 = numpy.zeros(shape + (2, 2))
+    _d30[..., 0, 0] = _c120
+    _d31 = numpy.zeros(shape + (2, 2))
+    _d31[..., 0, 1] = _c122
+    _d32 = numpy.zeros(shape + (2, 2))
+    _d32[..., 0, 0] = _c123
+    _d33 = numpy.zeros(shape + (2, 2))
+    _d33[..., 0, 1] = _c123
+    _d34 = numpy.zeros(shape + (2, 2))
+    _d34[..., 1, 0] = -_c119
+    _d35 = numpy.zeros(shape + (2, 2))
+    _d35[..., 1, 1] = -_c28*_c68
+    _d36 = numpy.zeros(shape + (2, 2))
+    _d36[..., 1, 0] = _c124
+    _d37 = numpy.zeros(shape + (2, 2))
+    _d37[..., 1, 1] = _c124
+    _d38 = numpy.zeros(shape + (2, 2))
+    _d38[..., 1, 0] = _c120
+    _d39 = numpy.zeros(shape + (2, 2))
+    _d39[..., 1, 1] = _c122
+    _d40 = numpy.zeros(shape + (2, 2))
+    _d40[..., 1, 0] = _c123
+    _d41 = numpy.zeros(shape + (2, 2))
+    _d41[..., 1, 1] = _c123
+    _d42 = numpy.zeros(shape + (2, 2))
+    _d42[..., 0, 0] = _c125
+    _d42[..., 0, 1] = _c126 + _c63
+    _d43 = numpy.zeros(shape + (2, 2))
+    _d43[..., 1, 0] = -_c71
+    _d43[..., 1, 1] = -_c71*e_alpha - _c75
+    _d44 = numpy.zeros(shape + (2, 2))
+    _d44[..., 0, 1] = _c127 + _c65
+    _d44[..., 1, 1] = _c72
+    _d45 = numpy.zeros(shape + (2, 2))
+    _d45[..., 0, 0] = _c128 + _c64
+    _d45[..., 0, 1] = _c129 + _c130 + _c85
+    _d45[..., 1, 0] = numpy.pi*Cn_theta*V*_c4 - _c94
+    _d45[..., 1, 1] = numpy.pi*Cn_theta*V*_c4*e_alpha - _c94*e_alpha - _c96
+    _d46 = numpy.zeros(shape + (2, 2))
+    _d46[..., 0, 0] = _c131 + _c98
+    _d46[..., 0, 1] = _c132 + _c133 + _c47
+    _d46[..., 1, 0] = numpy.pi*Cn_theta*_c4*rho - _c104
+    _d46[..., 1, 1] = numpy.pi*Cn_theta*_c4*e_alpha*rho - _c104*e_alpha - _c12
+    _d47 = numpy.zeros(shape + (2, 2))
+    _d47[..., 0, 0] = _c108 + _c134
+    _d47[..., 0, 1] = _c112 + _c135 + _c136
+    _d47[..., 1, 0] = 3*numpy.pi*Cn_theta*V*_c32*rho - _c117
+    _d47[..., 1, 1] = 3*numpy.pi*Cn_theta*V*_c32*e_alpha*rho - _c117*e_alpha - _c118
+    _d48 = numpy.zeros(shape + (2, 2))
+    _d48[..., 0, 0] = _c74
+    _d48[..., 0, 1] = _c137
+    _d49 = numpy.zeros(shape + (2, 2))
+    _d49[..., 0, 1] = _c121
+    _d50 = numpy.zeros(shape + (2, 2))
+    _d50[..., 0, 0] = _c61
+    _d50[..., 0, 1] = _c138
+    _d51 = numpy.zeros(shape + (2, 2))
+    _d51[..., 0, 1] = _c123
+    _d52 = numpy.zeros(shape + (2, 2))
+    _d52[..., 1, 0] = -_c69
+    _d52[..., 1, 1] = -_c139
+    _d53 = numpy.zeros(shape + (2, 2))
+    _d53[..., 1, 1] = _c124
+    _d54 = numpy.zeros(shape + (2, 2))
+    _d54[..., 1, 0] = _c61
+    _d54[..., 1, 1] = _c138
+    _d55 = numpy.zeros(shape + (2, 2))
+    _d55[..., 1, 1] = _c123
+    _d56 = numpy.zeros(shape + (2, 2))
+    _d56[..., 0, 0] = _c141
+    _d56[..., 0, 1] = _c143
+    _d57 = numpy.zeros(shape + (2, 2))
+    _d57[..., 1, 0] = _c145
+    _d57[..., 1, 1] = -CY_psi*_c144
+    _d58 = numpy.zeros(shape + (2, 2))
+    _d58[..., 0, 0] = _c149
+    _d58[..., 0, 1] = _c150 + _c151*e_theta
+    _d58[..., 1, 0] = _c153
+    _d58[..., 1, 1] = numpy.pi*Cn_psi*_c140*_c4 - _c152*_c76
+    _d59 = numpy.zeros(shape + (2, 2))
+    _d59[..., 0, 0] = _c155
+    _d59[..., 0, 1] = _c156 + _c157*e_theta
+    _d59[..., 1, 0] = _c158
+    _d59[..., 1, 1] = 2*numpy.pi*Cn_psi*V*_c4*rho - _c77
+    _d60 = numpy.zeros(shape + (2, 2))
+    _d60[..., 0, 0] = _c163
+    _d60[..., 0, 1] = _c164*e_theta + _c165
+    _d60[..., 1, 0] = _c166
+    _d60[..., 1, 1] = 3*numpy.pi*Cn_psi*_c140*_c32*rho - _c159*_c76
+    _d61 = numpy.zeros(shape + (2, 2))
+    _d61[..., 0, 0] = _c167
+    _d62 = numpy.zeros(shape + (2, 2))
+    _d62[..., 0, 1] = _c167
+    _d63 = numpy.zeros(shape + (2, 2))
+    _d63[..., 0, 0] = _c168
+    _d64 = numpy.zeros(shape + (2, 2))
+    _d64[..., 0, 1] = _c168
+    _d65 = numpy.zeros(shape + (2, 2))
+    _d65[..., 1, 0] = _c169
+    _d66 = numpy.zeros(shape + (2, 2))
+    _d66[..., 1, 1] = _c169
+    _d67 = numpy.zeros(shape + (2, 2))
+    _d67[..., 1, 0] = _c168
+    _d68 = numpy.zeros(shape + (2, 2))
+    _d68[..., 1, 1] = _c168
+    _d69 = numpy.zeros(shape + (2, 2))
+    _d69[..., 0, 1] = _c141
+    _d70 = numpy.zeros(shape + (2, 2))
+    _d70[..., 1, 1] = _c145
+    _d71 = numpy.zeros(shape + (2, 2))
+    _d71[..., 0, 1] = _c149
+    _d71[..., 1, 1] = _c153
+    _d72 = numpy.zeros(shape + (2, 2))
+    _d72[..., 0, 1] = _c155
+    _d72[..., 1, 1] = _c158
+    _d73 = numpy.zeros(shape + (2, 2))
+    _d73[..., 0, 1] = _c163
+    _d73[..., 1, 1] = _c166
+    _d74 = numpy.zeros(shape + (2, 2))
+    _d74[..., 0, 1] = _c167
+    _d75 = numpy.zeros(shape + (2, 2))
+    _d75[..., 0, 1] = _c168
+    _d76 = numpy.zeros(shape + (2, 2))
+    _d76[..., 1, 1] = _c169
+    _d77 = numpy.zeros(shape + (2, 2))
+    _d77[..., 1, 1] = _c168
+    _d78 = numpy.zeros(shape + (2, 2))
+    _d78[..., 0, 0] = _c44
+    _d78[..., 1, 0] = _c170
+    _d79 = numpy.zeros(shape + (2, 2))
+    _d79[..., 0, 1] = _c171
+    _d79[..., 1, 1] = _c172
+    _d80 = numpy.zeros(shape + (2, 2))
+    _d80[..., 1, 0] = _c46
+    _d80[..., 1, 1] = _c10
+    _d81 = numpy.zeros(shape + (2, 2))
+    _d81[..., 0, 0] = _c48
+    _d81[..., 0, 1] = _c26
+    _d81[..., 1, 0] = _c20 + _c50
+    _d81[..., 1, 1] = _c24 + _c26*e_alpha
+    _d82 = numpy.zeros(shape + (2, 2))
+    _d82[..., 0, 0] = _c51
+    _d82[..., 0, 1] = _c39
+    _d82[..., 1, 0] = _c31 + _c53
+    _d82[..., 1, 1] = _c37 + _c39*e_alpha
+    _d83 = numpy.zeros(shape + (2, 2))
+    _d83[..., 0, 0] = _c16
+    _d83[..., 1, 0] = _c54
+    _d84 = numpy.zeros(shape + (2, 2))
+    _d84[..., 0, 1] = _c9
+    _d84[..., 1, 1] = _c56
+    _d85 = numpy.zeros(shape + (2, 2))
+    _d85[..., 1, 0] = _c42
+    _d86 = numpy.zeros(shape + (2, 2))
+    _d86[..., 1, 1] = _c43
+    _d87 = numpy.zeros(shape + (2, 2))
+    _d87[..., 0, 1] = _c44
+    _d87[..., 1, 0] = _c44
+    _d87[..., 1, 1] = _c3 + _c7*e_alpha
+    _d88 = numpy.zeros(shape + (2, 2))
+    _d88[..., 0, 0] = _c23
+    _d88[..., 0, 1] = _c173
+    _d88[..., 1, 0] = _c173 + _c2
+    _d88[..., 1, 1] = _c174*_c23 + _c49
+    _d89 = numpy.zeros(shape + (2, 2))
+    _d89[..., 0, 0] = _c36
+    _d89[..., 0, 1] = _c175
+    _d89[..., 1, 0] = _c175 + _c30
+    _d89[..., 1, 1] = _c174*_c36 + _c52
+    _d90 = numpy.zeros(shape + (2, 2))
+    _d90[..., 0, 0] = _c8
+    _d90[..., 0, 1] = _c176
+    _d90[..., 1, 0] = _c176
+    _d90[..., 1, 1] = _c174*_c8
+    _d91 = numpy.zeros(shape + (2, 2))
+    _d91[..., 1, 0] = _c14
+    _d91[..., 1, 1] = _c55
+    _d92 = numpy.zeros(shape + (2, 2))
+    _d92[..., 0, 0] = _c125
+    _d92[..., 1, 0] = _c126 + _c65
+    _d93 = numpy.zeros(shape + (2, 2))
+    _d93[..., 0, 1] = _c177
+    _d93[..., 1, 1] = _c177*e_alpha + _c73
+    _d94 = numpy.zeros(shape + (2, 2))
+    _d94[..., 1, 0] = _c127 + _c63
+    _d94[..., 1, 1] = _c70
+    _d95 = numpy.zeros(shape + (2, 2))
+    _d95[..., 0, 0] = _c128 + _c84
+    _d95[..., 0, 1] = _c86 + _c90
+    _d95[..., 1, 0] = _c130 + _c178 + _c78
+    _d95[..., 1, 1] = _c86*e_alpha + _c90*e_alpha + _c92
+    _d96 = numpy.zeros(shape + (2, 2))
+    _d96[..., 0, 0] = _c131 + _c44
+    _d96[..., 0, 1] = _c103 + _c171
+    _d96[..., 1, 0] = _c133 + _c170 + _c99
+    _d96[..., 1, 1] = _c101 + _c103*e_alpha + _c172
+    _d97 = numpy.zeros(shape + (2, 2))
+    _d97[..., 0, 0] = _c134 + _c179
+    _d97[..., 0, 1] = _c113 + _c115
+    _d97[..., 1, 0] = _c109 + _c136 + _c180
+    _d97[..., 1, 1] = _c113*e_alpha + _c115*e_alpha + _c116
+    _d98 = numpy.zeros(shape + (2, 2))
+    _d98[..., 0, 0] = _c74
+    _d98[..., 1, 0] = _c137
+    _d99 = numpy.zeros(shape + (2, 2))
+    _d99[..., 0, 1] = _c69
+    _d99[..., 1, 1] = _c139
+    _d100 = numpy.zeros(shape + (2, 2))
+    _d100[..., 0, 0] = _c62
+    _d100[..., 1, 0] = _c181
+    _d101 = numpy.zeros(shape + (2, 2))
+    _d101[..., 0, 1] = _c62
+    _d101[..., 1, 1] = _c181
+    _d102 = numpy.zeros(shape + (2, 2))
+    _d102[..., 1, 0] = _c120
+    _d103 = numpy.zeros(shape + (2, 2))
+    _d103[..., 1, 1] = _c122
+    _d104 = numpy.zeros(shape + (2, 2))
+    _d104[..., 1, 0] = _c123
+    _d105 = numpy.zeros(shape + (2, 2))
+    _d105[..., 1, 1] = _c123
+    _d106 = numpy.zeros(shape + (2, 2))
+    _d106[..., 0, 1] = _c125
+    _d106[..., 1, 0] = _c125
+    _d106[..., 1, 1] = _c182 + _c66
+    _d107 = numpy.zeros(shape + (2, 2))
+    _d107[..., 0, 0] = _c81
+    _d107[..., 0, 1] = _c183 + _c84
+    _d107[..., 1, 0] = _c183 + _c64
+    _d107[..., 1, 1] = _c129 + _c174*_c81 + _c178
+    _d108 = numpy.zeros(shape + (2, 2))
+    _d108[..., 0, 0] = _c100
+    _d108[..., 0, 1] = _c184 + _c44
+    _d108[..., 1, 0] = _c184 + _c98
+    _d108[..., 1, 1] = _c100*_c174 + _c132 + _c170
+    _d109 = numpy.zeros(shape + (2, 2))
+    _d109[..., 0, 0] = _c106
+    _d109[..., 0, 1] = _c179 + _c185
+    _d109[..., 1, 0] = _c108 + _c185
+    _d109[..., 1, 1] = _c106*_c174 + _c135 + _c180
+    _d110 = numpy.zeros(shape + (2, 2))
+    _d110[..., 0, 0] = _c68
+    _d110[..., 0, 1] = _c186
+    _d110[..., 1, 0] = _c186
+    _d110[..., 1, 1] = _c174*_c68
+    _d111 = numpy.zeros(shape + (2, 2))
+    _d111[..., 0, 1] = _c62
+    _d111[..., 1, 1] = _c181
+    _d112 = numpy.zeros(shape + (2, 2))
+    _d112[..., 1, 0] = _c61
+    _d112[..., 1, 1] = _c138
+    _d113 = numpy.zeros(shape + (2, 2))
+    _d113[..., 1, 1] = _c123
+    _d114 = numpy.zeros(shape + (2, 2))
+    _d114[..., 1, 0] = _c141
+    _d114[..., 1, 1] = _c143
+    _d115 = numpy.zeros(shape + (2, 2))
+    _d115[..., 0, 0] = _c148
+    _d115[..., 0, 1] = _c151
+    _d115[..., 1, 0] = _c187
+    _d115[..., 1, 1] = _c150 + _c151*e_alpha
+    _d116 = numpy.zeros(shape + (2, 2))
+    _d116[..., 0, 0] = _c58
+    _d116[..., 0, 1] = _c157
+    _d116[..., 1, 0] = _c188
+    _d116[..., 1, 1] = _c156 + _c157*e_alpha
+    _d117 = numpy.zeros(shape + (2, 2))
+    _d117[..., 0, 0] = _c160
+    _d117[..., 0, 1] = _c164
+    _d117[..., 1, 0] = _c189
+    _d117[..., 1, 1] = _c164*e_alpha + _c165
+    _d118 = numpy.zeros(shape + (2, 2))
+    _d118[..., 0, 0] = _c144
+    _d118[..., 1, 0] = _c190
+    _d119 = numpy.zeros(shape + (2, 2))
+    _d119[..., 0, 1] = _c144
+    _d119[..., 1, 1] = _c190
+    _d120 = numpy.zeros(shape + (2, 2))
+    _d120[..., 1, 0] = _c168
+    _d121 = numpy.zeros(shape + (2, 2))
+    _d121[..., 1, 1] = _c168
+    _d122 = numpy.zeros(shape + (2, 2))
+    _d122[..., 1, 1] = _c141
+    _d123 = numpy.zeros(shape + (2, 2))
+    _d123[..., 0, 1] = _c148
+    _d123[..., 1, 1] = _c187
+    _d124 = numpy.zeros(shape + (2, 2))
+    _d124[..., 0, 1] = _c58
+    _d124[..., 1, 1] = _c188
+    _d125 = numpy.zeros(shape + (2, 2))
+    _d125[..., 0, 1] = _c160
+    _d125[..., 1, 1] = _c189
+    _d126 = numpy.zeros(shape + (2, 2))
+    _d126[..., 0, 1] = _c144
+    _d126[..., 1, 1] = _c190
+    _d127 = numpy.zeros(shape + (2, 2))
+    _d127[..., 1, 1] = _c168
+    return {
+        "Aa": {
+            "e_theta": _d0,
+            "e_psi": _d1,
+            "rho": _d2,
+            "R": _d3,
+            "CZ_q": _d4,
+            "CZ_r": _d5,
+            "Cm_q": _d6,
+            "Cm_r": _d7,
+            "CY_q": _d8,
+            "CY_r": _d9,
+            "Cn_q": _d10,
+            "Cn_r": _d11,
+        },
+        "Ba": {
+            "e_theta": _d12,
+            "e_psi": _d13,
+            "e_alpha": _d14,
+            "rho": _d15,
+            "R": _d16,
+            "CZ_q": _d17,
+            "Cm_q": _d18,
+            "CY_q": _d19,
+            "Cn_q": _d20,
+        },
+        "Ca": {
+            "e_theta": _d21,
+            "e_psi": _d22,
+            "rho": _d23,
+            "V": _d24,
+            "R": _d25,
+            "CZ_theta": _d26,
+            "CZ_psi": _d27,
+            "CZ_q": _d28,
+            "CZ_r": _d29,
+            "Cm_theta": _d30,
+            "Cm_psi": _d31,
+            "Cm_q": _d32,
+            "Cm_r": _d33,
+            "CY_theta": _d34,
+            "CY_psi": _d35,
+            "CY_q": _d36,
+            "CY_r": _d37,
+            "Cn_theta": _d38,
+            "Cn_psi": _d39,
+            "Cn_q": _d40,
+            "Cn_r": _d41,
+        },
+        "Da": {
+            "e_theta": _d42,
+            "e_psi": _d43,
+            "e_alpha": _d44,
+            "rho": _d45,
+            "V": _d46,
+            "R": _d47,
+            "CZ_theta": _d48,
+            "CZ_q": _d49,
+            "Cm_theta": _d50,
+            "Cm_q": _d51,
+            "CY_theta": _d52,
+            "CY_q": _d53,
+            "Cn_theta": _d54,
+            "Cn_q": _d55,
+        },
+        "Ea": {
+            "e_theta": _d56,
+            "e_psi": _d57,
+            "rho": _d58,
+            "V": _d59,
+            "R": _d60,
+            "CZ_theta": _d61,
+            "CZ_psi": _d62,
+            "Cm_theta": _d63,
+            "Cm_psi": _d64,
+            "CY_theta": _d65,
+            "CY_psi": _d66,
+            "Cn_theta": _d67,
+            "Cn_psi": _d68,
+        },
+        "Fa": {
+            "e_theta": _d69,
+            "e_psi": _d70,
+            "rho": _d71,
+            "V": _d72,
+            "R": _d73,
+            "CZ_theta": _d74,
+            "Cm_theta": _d75,
+            "CY_theta": _d76,
+            "Cn_theta": _d77,
+        },
+        "P1": {
+            "e_theta": _d78,
+            "e_psi": _d79,
+            "e_alpha": _d80,
+            "rho": _d81,
+            "R": _d82,
+            "CZ_q": _d83,
+            "CZ_r": _d84,
+            "Cm_q": _d85,
+            "Cm_r": _d86,
+        },
+        "P2": {
+            "e_alpha": _d87,
+            "rho": _d88,
+            "R": _d89,
+            "CZ_q": _d90,
+            "Cm_q": _d91,
+        },
+        "P3": {
+            "e_theta": _d92,
+            "e_psi": _d93,
+            "e_alpha": _d94,
+            "rho": _d95,
+            "V": _d96,
+            "R": _d97,
+            "CZ_theta": _d98,
+            "CZ_psi": _d99,
+            "CZ_q": _d100,
+            "CZ_r": _d101,
+            "Cm_theta": _d102,
+            "Cm_psi": _d103,
+            "Cm_q": _d104,
+            "Cm_r": _d105,
+        },
+        "P4": {
+            "e_alpha": _d106,
+            "rho": _d107,
+            "V": _d108,
+            "R": _d109,
+            "CZ_theta": _d110,
+            "CZ_q": _d111,
+            "Cm_theta": _d112,
+            "Cm_q": _d113,
+        },
+        "P5": {
+            "e_alpha": _d114,
+            "rho": _d115,
+            "V": _d116,
+            "R": _d117,
+            "CZ_theta": _d118,
+            "CZ_psi": _d119,
+            "Cm_theta": _d120,
+            "Cm_psi": _d121,
+        },
+        "P6": {
+            "e_alpha": _d122,
+            "rho": _d123,
+            "V": _d124,
+            "R": _d125,
+            "CZ_theta": _d126,
+            "Cm_theta": _d127,
+        },
+    }
+
+
+def Cs_hysteretic_d(I_Omega, Omega, K_theta, K_psi, g_theta, g_psi, omega):
+    """Parameter derivatives of Cs_hysteretic (of `Cs_hysteretic`).
+
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the derivatives.
+
+    Parameters
+    ----------
+    I_Omega : array_like
+        rotor mass moment of inertia about its rotation axis [kg m^2]
+    Omega : array_like
+        propeller rotational speed [rad/s]
+    K_theta : array_like
+        pitch stiffness of the propeller attachment [N m/rad]
+    K_psi : array_like
+        yaw stiffness of the propeller attachment [N m/rad]
+    g_theta : array_like
+        hysteretic (structural) damping coefficient in pitch [-]
+    g_psi : array_like
+        hysteretic (structural) damping coefficient in yaw [-]
+    omega : array_like
+        oscillation frequency at which hysteretic damping is evaluated [rad/s]
+
+    Returns
+    -------
+    dict of dict of numpy.ndarray
+        ``result[matrix][parameter]`` = ∂matrix/∂parameter, shape (..., rows, cols) with
+        ``...`` the broadcast shape of all the arguments (units: the matrix's over the
+        parameter's); parameters not listed have an identically-zero derivative:
+        "Cs_hysteretic" (2 x 2): I_Omega, Omega, K_theta, K_psi, g_theta, g_psi, omega
+    """
+    shape, (I_Omega, Omega, K_theta, K_psi, g_theta, g_psi, omega,) = _broadcast(I_Omega, Omega, K_theta, K_psi, g_theta, g_psi, omega)
+    _c0 = omega**(-1.0)
+    _c1 = omega**(-2.0)
+    _d0 = numpy.zeros(shape + (2, 2))
+    _d0[..., 0, 1] = Omega
+    _d0[..., 1, 0] = -Omega
+    _d1 = numpy.zeros(shape + (2, 2))
+    _d1[..., 0, 1] = I_Omega
+    _d1[..., 1, 0] = -I_Omega
+    _d2 = numpy.zeros(shape + (2, 2))
+    _d2[..., 0, 0] = _c0*g_theta
+    _d3 = numpy.zeros(shape + (2, 2))
+    _d3[..., 1, 1] = _c0*g_psi
+    _d4 = numpy.zeros(shape + (2, 2))
+    _d4[..., 0, 0] = K_theta*_c0
+    _d5 = numpy.zeros(shape + (2, 2))
+    _d5[..., 1, 1] = K_psi*_c0
+    _d6 = numpy.zeros(shape + (2, 2))
+    _d6[..., 0, 0] = -K_theta*_c1*g_theta
+    _d6[..., 1, 1] = -K_psi*_c1*g_psi
+    return {
+        "Cs_hysteretic": {
+            "I_Omega": _d0,
+            "Omega": _d1,
+            "K_theta": _d2,
+            "K_psi": _d3,
+            "g_theta": _d4,
+            "g_psi": _d5,
+            "omega": _d6,
+        },
+    }
+
+
+def e_alpha_geometry_d(e_theta, l_theta, a_P_b_P):
+    """Parameter derivatives of e_alpha_geometry (of `e_alpha_geometry`).
+
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the derivatives.
+
+    Parameters
+    ----------
+    e_theta : array_like
+        propeller plane aft of the pitch pivot (signed; < 0 for a tractor) [m]
+    l_theta : array_like
+        pitch pivot position aft of the wing mid-chord (signed) [m]
+    a_P_b_P : array_like
+        wing elastic-axis position aft of mid-chord at the propeller node (signed) [m]
+
+    Returns
+    -------
+    dict of dict of numpy.ndarray
+        ``result[matrix][parameter]`` = ∂matrix/∂parameter, shape (..., rows, cols) with
+        ``...`` the broadcast shape of all the arguments (units: the matrix's over the
+        parameter's); parameters not listed have an identically-zero derivative:
+        "e_alpha_geometry" (1 x 1): e_theta, l_theta, a_P_b_P
+    """
+    shape, (e_theta, l_theta, a_P_b_P,) = _broadcast(e_theta, l_theta, a_P_b_P)
+    _d0 = numpy.zeros(shape + (1, 1))
+    _d0[..., 0, 0] = 1
+    _d1 = numpy.zeros(shape + (1, 1))
+    _d1[..., 0, 0] = 1
+    _d2 = numpy.zeros(shape + (1, 1))
+    _d2[..., 0, 0] = -1
+    return {
+        "e_alpha_geometry": {
+            "e_theta": _d0,
+            "l_theta": _d1,
+            "a_P_b_P": _d2,
+        },
+    }
+
+
+def inertia_d(M_P, S_theta_P, I_theta_P, l_theta, a_P_b_P):
+    """Parameter derivatives of inertia (of `inertia`).
+
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the derivatives.
+
+    Parameters
+    ----------
+    M_P : array_like
+        pivoting propeller–engine mass [kg]
+    S_theta_P : array_like
+        static moment of the pivoting mass about the pitch pivot, Σ m (x − l_θ) [kg m]
+    I_theta_P : array_like
+        moment of inertia of the pivoting mass about the pitch pivot [kg m^2]
+    l_theta : array_like
+        pitch pivot position aft of the wing mid-chord (signed) [m]
+    a_P_b_P : array_like
+        wing elastic-axis position aft of mid-chord at the propeller node (signed) [m]
+
+    Returns
+    -------
+    dict of dict of numpy.ndarray
+        ``result[matrix][parameter]`` = ∂matrix/∂parameter, shape (..., rows, cols) with
+        ``...`` the broadcast shape of all the arguments (units: the matrix's over the
+        parameter's); parameters not listed have an identically-zero derivative:
+        "inertia" (3 x 1): M_P, S_theta_P, I_theta_P, l_theta, a_P_b_P
+    """
+    shape, (M_P, S_theta_P, I_theta_P, l_theta, a_P_b_P,) = _broadcast(M_P, S_theta_P, I_theta_P, l_theta, a_P_b_P)
+    _c0 = -a_P_b_P + l_theta
+    _c1 = 2*a_P_b_P - 2*l_theta
+    _c2 = -_c1
+    _c3 = 2*S_theta_P
+    _d0 = numpy.zeros(shape + (3, 1))
+    _d0[..., 0, 0] = _c0
+    _d0[..., 1, 0] = _c0**2
+    _d1 = numpy.zeros(shape + (3, 1))
+    _d1[..., 0, 0] = 1
+    _d1[..., 1, 0] = _c2
+    _d1[..., 2, 0] = _c0
+    _d2 = numpy.zeros(shape + (3, 1))
+    _d2[..., 1, 0] = 1
+    _d2[..., 2, 0] = 1
+    _d3 = numpy.zeros(shape + (3, 1))
+    _d3[..., 0, 0] = M_P
+    _d3[..., 1, 0] = M_P*_c2 + _c3
+    _d3[..., 2, 0] = S_theta_P
+    _d4 = numpy.zeros(shape + (3, 1))
+    _d4[..., 0, 0] = -M_P
+    _d4[..., 1, 0] = M_P*_c1 - _c3
+    _d4[..., 2, 0] = -S_theta_P
+    return {
+        "inertia": {
+            "M_P": _d0,
+            "S_theta_P": _d1,
+            "I_theta_P": _d2,
+            "l_theta": _d3,
+            "a_P_b_P": _d4,
+        },
     }

@@ -12,6 +12,12 @@ at once (a dict), broadcasting their arguments once.  Their code is each matrix'
 subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
 functions.
 
+The derivative functions (`structure_blocks_d`, `aero_blocks_d`, `Cs_hysteretic_d`, `G_d`) return the
+exact parameter derivatives of those matrices: ``{matrix name: {parameter name: array}}`` with
+each array ∂matrix/∂parameter of the full broadcast shape ``... + (rows, cols)``; a parameter
+missing from a matrix's dict is one the matrix does not depend on (the derivative is
+identically zero).  `PARTIALS` lists the nonzero ones.
+
 Propeller flexibly mounted on a rigid wing: pitch–yaw whirl model (thesis chapter 6, §6.1).
 
 Degrees of freedom (6.11):  q = [θ, ψ]
@@ -101,6 +107,14 @@ OUTPUTS = {
 BLOCKS = {
     "structure_blocks": (('I_X', 'I_Y', 'I_Z', 'Omega', 'K_theta', 'K_psi', 'zeta_theta', 'zeta_psi'), ('Ms', 'Cs_viscous', 'Ks')),
     "aero_blocks": (('rho', 'V', 'R', 'e_theta', 'e_psi', 'CZ_theta', 'CZ_psi', 'CZ_q', 'CZ_r', 'Cm_theta', 'Cm_psi', 'Cm_q', 'Cm_r', 'CY_theta', 'CY_psi', 'CY_q', 'CY_r', 'Cn_theta', 'Cn_psi', 'Cn_q', 'Cn_r'), ('Ma', 'Ca', 'Ka')),
+}
+
+#: derivative function name -> (argument names, {matrix name: parameters it depends on})
+PARTIALS = {
+    "structure_blocks_d": (('I_X', 'I_Y', 'I_Z', 'Omega', 'K_theta', 'K_psi', 'zeta_theta', 'zeta_psi'), {'Ms': ('I_Y', 'I_Z'), 'Cs_viscous': ('I_X', 'I_Y', 'I_Z', 'Omega', 'K_theta', 'K_psi', 'zeta_theta', 'zeta_psi'), 'Ks': ('K_theta', 'K_psi')}),
+    "aero_blocks_d": (('rho', 'V', 'R', 'e_theta', 'e_psi', 'CZ_theta', 'CZ_psi', 'CZ_q', 'CZ_r', 'Cm_theta', 'Cm_psi', 'Cm_q', 'Cm_r', 'CY_theta', 'CY_psi', 'CY_q', 'CY_r', 'Cn_theta', 'Cn_psi', 'Cn_q', 'Cn_r'), {'Ma': ('rho', 'R', 'e_theta', 'e_psi', 'CZ_q', 'CZ_r', 'Cm_q', 'Cm_r', 'CY_q', 'CY_r', 'Cn_q', 'Cn_r'), 'Ca': ('rho', 'V', 'R', 'e_theta', 'e_psi', 'CZ_theta', 'CZ_psi', 'CZ_q', 'CZ_r', 'Cm_theta', 'Cm_psi', 'Cm_q', 'Cm_r', 'CY_theta', 'CY_psi', 'CY_q', 'CY_r', 'Cn_theta', 'Cn_psi', 'Cn_q', 'Cn_r'), 'Ka': ('rho', 'V', 'R', 'e_theta', 'e_psi', 'CZ_theta', 'CZ_psi', 'Cm_theta', 'Cm_psi', 'CY_theta', 'CY_psi', 'Cn_theta', 'Cn_psi')}),
+    "Cs_hysteretic_d": (('I_X', 'Omega', 'K_theta', 'K_psi', 'g_theta', 'g_psi', 'omega'), {'Cs_hysteretic': ('I_X', 'Omega', 'K_theta', 'K_psi', 'g_theta', 'g_psi', 'omega')}),
+    "G_d": (('I_X', 'Omega'), {'G': ('I_X', 'Omega')}),
 }
 
 
@@ -641,4 +655,521 @@ def aero_blocks(rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
         "Ma": _o0,
         "Ca": _o1,
         "Ka": _o2,
+    }
+
+
+def structure_blocks_d(I_X, I_Y, I_Z, Omega, K_theta, K_psi, zeta_theta, zeta_psi):
+    """Parameter derivatives of Ms, Cs_viscous, Ks (of `structure_blocks`).
+
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the derivatives.
+
+    Parameters
+    ----------
+    I_X : array_like
+        propeller mass moment of inertia about its rotation axis [kg m^2]
+    I_Y : array_like
+        mass moment of inertia of the pivoting system about the pitch axis [kg m^2]
+    I_Z : array_like
+        mass moment of inertia of the pivoting system about the yaw axis [kg m^2]
+    Omega : array_like
+        propeller rotational speed [rad/s]
+    K_theta : array_like
+        pitch stiffness of the propeller attachment [N m/rad]
+    K_psi : array_like
+        yaw stiffness of the propeller attachment [N m/rad]
+    zeta_theta : array_like
+        viscous damping ratio in pitch (fraction of critical) [-]
+    zeta_psi : array_like
+        viscous damping ratio in yaw (fraction of critical) [-]
+
+    Returns
+    -------
+    dict of dict of numpy.ndarray
+        ``result[matrix][parameter]`` = ∂matrix/∂parameter, shape (..., rows, cols) with
+        ``...`` the broadcast shape of all the arguments (units: the matrix's over the
+        parameter's); parameters not listed have an identically-zero derivative:
+        "Ms" (2 x 2): I_Y, I_Z
+        "Cs_viscous" (2 x 2): I_X, I_Y, I_Z, Omega, K_theta, K_psi, zeta_theta, zeta_psi
+        "Ks" (2 x 2): K_theta, K_psi
+    """
+    shape, (I_X, I_Y, I_Z, Omega, K_theta, K_psi, zeta_theta, zeta_psi,) = _broadcast(I_X, I_Y, I_Z, Omega, K_theta, K_psi, zeta_theta, zeta_psi)
+    _c0 = numpy.sqrt(I_Y)
+    _c1 = numpy.sqrt(K_theta)
+    _c2 = numpy.sqrt(I_Z)
+    _c3 = numpy.sqrt(K_psi)
+    _d0 = numpy.zeros(shape + (2, 2))
+    _d0[..., 0, 0] = 1
+    _d1 = numpy.zeros(shape + (2, 2))
+    _d1[..., 1, 1] = 1
+    _d2 = numpy.zeros(shape + (2, 2))
+    _d2[..., 0, 1] = Omega
+    _d2[..., 1, 0] = -Omega
+    _d3 = numpy.zeros(shape + (2, 2))
+    _d3[..., 0, 0] = _c1*zeta_theta/_c0
+    _d4 = numpy.zeros(shape + (2, 2))
+    _d4[..., 1, 1] = _c3*zeta_psi/_c2
+    _d5 = numpy.zeros(shape + (2, 2))
+    _d5[..., 0, 1] = I_X
+    _d5[..., 1, 0] = -I_X
+    _d6 = numpy.zeros(shape + (2, 2))
+    _d6[..., 0, 0] = _c0*zeta_theta/_c1
+    _d7 = numpy.zeros(shape + (2, 2))
+    _d7[..., 1, 1] = _c2*zeta_psi/_c3
+    _d8 = numpy.zeros(shape + (2, 2))
+    _d8[..., 0, 0] = 2*_c0*_c1
+    _d9 = numpy.zeros(shape + (2, 2))
+    _d9[..., 1, 1] = 2*_c2*_c3
+    _d10 = numpy.zeros(shape + (2, 2))
+    _d10[..., 0, 0] = 1
+    _d11 = numpy.zeros(shape + (2, 2))
+    _d11[..., 1, 1] = 1
+    return {
+        "Ms": {
+            "I_Y": _d0,
+            "I_Z": _d1,
+        },
+        "Cs_viscous": {
+            "I_X": _d2,
+            "I_Y": _d3,
+            "I_Z": _d4,
+            "Omega": _d5,
+            "K_theta": _d6,
+            "K_psi": _d7,
+            "zeta_theta": _d8,
+            "zeta_psi": _d9,
+        },
+        "Ks": {
+            "K_theta": _d10,
+            "K_psi": _d11,
+        },
+    }
+
+
+def aero_blocks_d(rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
+    """Parameter derivatives of Ma, Ca, Ka (of `aero_blocks`).
+
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the derivatives.
+
+    Parameters
+    ----------
+    rho : array_like
+        air density [kg/m^3]
+    V : array_like
+        free-stream (inflow) velocity [m/s]
+    R : array_like
+        propeller radius [m]
+    e_theta : array_like
+        distance from the pitch pivot forward to the propeller plane (> 0) [m]
+    e_psi : array_like
+        distance from the yaw pivot forward to the propeller plane (> 0) [m]
+    CZ_theta : array_like
+        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
+    CZ_psi : array_like
+        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
+    CZ_q : array_like
+        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
+    CZ_r : array_like
+        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    Cm_theta : array_like
+        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
+    Cm_psi : array_like
+        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
+    Cm_q : array_like
+        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
+    Cm_r : array_like
+        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    CY_theta : array_like
+        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
+    CY_psi : array_like
+        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
+    CY_q : array_like
+        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
+    CY_r : array_like
+        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    Cn_theta : array_like
+        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
+    Cn_psi : array_like
+        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
+    Cn_q : array_like
+        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
+    Cn_r : array_like
+        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+
+    Returns
+    -------
+    dict of dict of numpy.ndarray
+        ``result[matrix][parameter]`` = ∂matrix/∂parameter, shape (..., rows, cols) with
+        ``...`` the broadcast shape of all the arguments (units: the matrix's over the
+        parameter's); parameters not listed have an identically-zero derivative:
+        "Ma" (2 x 2): rho, R, e_theta, e_psi, CZ_q, CZ_r, Cm_q, Cm_r, CY_q, CY_r, Cn_q, Cn_r
+        "Ca" (2 x 2): rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r
+        "Ka" (2 x 2): rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, Cm_theta, Cm_psi, CY_theta, CY_psi, Cn_theta, Cn_psi
+    """
+    shape, (rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
+    _c0 = R**4
+    _c1 = numpy.pi*_c0
+    _c2 = _c1*e_theta
+    _c3 = R**3
+    _c4 = numpy.pi*_c3
+    _c5 = (1/2)*_c4
+    _c6 = e_theta**2
+    _c7 = CZ_q*_c6
+    _c8 = _c1*e_psi
+    _c9 = CZ_r*e_psi
+    _c10 = _c5*e_theta
+    _c11 = CY_q*e_psi
+    _c12 = e_psi**2
+    _c13 = _c12*_c5
+    _c14 = _c4*rho
+    _c15 = _c14*e_theta
+    _c16 = R**2
+    _c17 = numpy.pi*_c16
+    _c18 = _c17*rho
+    _c19 = (3/2)*_c18
+    _c20 = _c14*e_psi
+    _c21 = 4*_c20
+    _c22 = _c19*e_theta
+    _c23 = 4*Cn_q
+    _c24 = _c1*rho
+    _c25 = -Cm_q*_c24
+    _c26 = CZ_q*e_theta
+    _c27 = _c5*rho
+    _c28 = Cn_q*_c24 + _c11*_c27
+    _c29 = Cm_r*_c24
+    _c30 = _c27*e_theta
+    _c31 = CZ_r*_c30
+    _c32 = Cn_r*_c24
+    _c33 = _c30*e_psi
+    _c34 = -_c2*rho
+    _c35 = -_c8*rho
+    _c36 = V*_c4
+    _c37 = Cm_theta*e_theta
+    _c38 = V*_c5
+    _c39 = V*_c1
+    _c40 = CZ_r*V
+    _c41 = _c36*e_psi
+    _c42 = (1/2)*_c17
+    _c43 = V*_c42
+    _c44 = _c43*e_theta
+    _c45 = CZ_psi*e_psi
+    _c46 = Cn_theta*e_theta
+    _c47 = CY_theta*e_psi
+    _c48 = CY_psi*_c12
+    _c49 = (1/2)*_c18
+    _c50 = _c49*e_theta
+    _c51 = V*_c19
+    _c52 = V*_c18
+    _c53 = 3*_c52
+    _c54 = numpy.pi*R*rho
+    _c55 = V*_c54
+    _c56 = _c55*e_theta
+    _c57 = V*_c14
+    _c58 = _c53*e_psi
+    _c59 = V*_c27
+    _c60 = _c18*e_theta
+    _c61 = CZ_theta*V*_c60
+    _c62 = V*_c49
+    _c63 = Cn_theta*_c57
+    _c64 = _c62*e_theta
+    _c65 = Cn_psi*_c57
+    _c66 = CY_psi*e_psi
+    _c67 = _c52*_c66
+    _c68 = _c64*e_psi
+    _c69 = -V*_c30
+    _c70 = -_c57*e_theta
+    _c71 = -V*_c20
+    _c72 = V*_c24
+    _c73 = _c59*e_psi
+    _c74 = V**2
+    _c75 = _c42*_c74
+    _c76 = _c75*e_theta
+    _c77 = _c4*_c74
+    _c78 = _c54*_c74
+    _c79 = _c78*e_theta
+    _c80 = 3*_c18*_c74
+    _c81 = _c49*_c74
+    _c82 = -_c81*e_theta
+    _c83 = _c77*rho
+    _c84 = _c81*e_psi
+    _d0 = numpy.zeros(shape + (2, 2))
+    _d0[..., 0, 0] = -Cm_q*_c2 + _c5*_c7
+    _d0[..., 0, 1] = -Cm_r*_c8 + _c10*_c9
+    _d0[..., 1, 0] = -Cn_q*_c2 - _c10*_c11
+    _d0[..., 1, 1] = -CY_r*_c13 - Cn_r*_c8
+    _d1 = numpy.zeros(shape + (2, 2))
+    _d1[..., 0, 0] = -4*Cm_q*_c15 + _c19*_c7
+    _d1[..., 0, 1] = -Cm_r*_c21 + _c22*_c9
+    _d1[..., 1, 0] = -_c11*_c22 - _c15*_c23
+    _d1[..., 1, 1] = -CY_r*_c12*_c19 - Cn_r*_c21
+    _d2 = numpy.zeros(shape + (2, 2))
+    _d2[..., 0, 0] = _c14*_c26 + _c25
+    _d2[..., 0, 1] = _c27*_c9
+    _d2[..., 1, 0] = -_c28
+    _d3 = numpy.zeros(shape + (2, 2))
+    _d3[..., 0, 1] = -_c29 + _c31
+    _d3[..., 1, 0] = -CY_q*_c30
+    _d3[..., 1, 1] = -CY_r*_c20 - _c32
+    _d4 = numpy.zeros(shape + (2, 2))
+    _d4[..., 0, 0] = _c27*_c6
+    _d5 = numpy.zeros(shape + (2, 2))
+    _d5[..., 0, 1] = _c33
+    _d6 = numpy.zeros(shape + (2, 2))
+    _d6[..., 0, 0] = _c34
+    _d7 = numpy.zeros(shape + (2, 2))
+    _d7[..., 0, 1] = _c35
+    _d8 = numpy.zeros(shape + (2, 2))
+    _d8[..., 1, 0] = -_c33
+    _d9 = numpy.zeros(shape + (2, 2))
+    _d9[..., 1, 1] = -_c13*rho
+    _d10 = numpy.zeros(shape + (2, 2))
+    _d10[..., 1, 0] = _c34
+    _d11 = numpy.zeros(shape + (2, 2))
+    _d11[..., 1, 1] = _c35
+    _d12 = numpy.zeros(shape + (2, 2))
+    _d12[..., 0, 0] = (1/2)*numpy.pi*CZ_theta*V*_c16*_c6 + numpy.pi*Cm_q*V*_c0 - _c26*_c38 - _c36*_c37
+    _d12[..., 0, 1] = -Cm_psi*_c41 + Cm_r*_c39 - _c10*_c40 + _c44*_c45
+    _d12[..., 1, 0] = Cn_q*_c39 + _c11*_c38 - _c36*_c46 - _c44*_c47
+    _d12[..., 1, 1] = (1/2)*numpy.pi*CY_r*V*_c3*e_psi - Cn_psi*_c41 + numpy.pi*Cn_r*V*_c0 - _c43*_c48
+    _d13 = numpy.zeros(shape + (2, 2))
+    _d13[..., 0, 0] = (1/2)*numpy.pi*CZ_theta*_c16*_c6*rho - _c14*_c37 - _c25 - _c26*_c27
+    _d13[..., 0, 1] = -Cm_psi*_c20 + _c29 - _c31 + _c45*_c50
+    _d13[..., 1, 0] = -_c14*_c46 + _c28 - _c47*_c50
+    _d13[..., 1, 1] = (1/2)*numpy.pi*CY_r*_c3*e_psi*rho - Cn_psi*_c20 + _c32 - _c48*_c49
+    _d14 = numpy.zeros(shape + (2, 2))
+    _d14[..., 0, 0] = numpy.pi*CZ_theta*R*V*_c6*rho + 4*numpy.pi*Cm_q*V*_c3*rho - _c26*_c51 - _c37*_c53
+    _d14[..., 0, 1] = -Cm_psi*_c58 + 4*Cm_r*_c57 - _c22*_c40 + _c45*_c56
+    _d14[..., 1, 0] = _c11*_c51 + _c23*_c57 - _c46*_c53 - _c47*_c56
+    _d14[..., 1, 1] = (3/2)*numpy.pi*CY_r*V*_c16*e_psi*rho - Cn_psi*_c58 + 4*numpy.pi*Cn_r*V*_c3*rho - _c48*_c55
+    _d15 = numpy.zeros(shape + (2, 2))
+    _d15[..., 0, 0] = -CZ_q*_c59 - Cm_theta*_c57 + _c61
+    _d15[..., 0, 1] = -_c27*_c40 + _c45*_c62
+    _d15[..., 1, 0] = -_c47*_c62 - _c63
+    _d16 = numpy.zeros(shape + (2, 2))
+    _d16[..., 0, 1] = CZ_psi*_c64 - Cm_psi*_c57
+    _d16[..., 1, 0] = CY_q*_c59 - CY_theta*_c64
+    _d16[..., 1, 1] = (1/2)*numpy.pi*CY_r*V*_c3*rho - _c65 - _c67
+    _d17 = numpy.zeros(shape + (2, 2))
+    _d17[..., 0, 0] = V*_c49*_c6
+    _d18 = numpy.zeros(shape + (2, 2))
+    _d18[..., 0, 1] = _c68
+    _d19 = numpy.zeros(shape + (2, 2))
+    _d19[..., 0, 0] = _c69
+    _d20 = numpy.zeros(shape + (2, 2))
+    _d20[..., 0, 1] = _c69
+    _d21 = numpy.zeros(shape + (2, 2))
+    _d21[..., 0, 0] = _c70
+    _d22 = numpy.zeros(shape + (2, 2))
+    _d22[..., 0, 1] = _c71
+    _d23 = numpy.zeros(shape + (2, 2))
+    _d23[..., 0, 0] = _c72
+    _d24 = numpy.zeros(shape + (2, 2))
+    _d24[..., 0, 1] = _c72
+    _d25 = numpy.zeros(shape + (2, 2))
+    _d25[..., 1, 0] = -_c68
+    _d26 = numpy.zeros(shape + (2, 2))
+    _d26[..., 1, 1] = -_c12*_c62
+    _d27 = numpy.zeros(shape + (2, 2))
+    _d27[..., 1, 0] = _c73
+    _d28 = numpy.zeros(shape + (2, 2))
+    _d28[..., 1, 1] = _c73
+    _d29 = numpy.zeros(shape + (2, 2))
+    _d29[..., 1, 0] = _c70
+    _d30 = numpy.zeros(shape + (2, 2))
+    _d30[..., 1, 1] = _c71
+    _d31 = numpy.zeros(shape + (2, 2))
+    _d31[..., 1, 0] = _c72
+    _d32 = numpy.zeros(shape + (2, 2))
+    _d32[..., 1, 1] = _c72
+    _d33 = numpy.zeros(shape + (2, 2))
+    _d33[..., 0, 0] = -CZ_theta*_c76 + numpy.pi*Cm_theta*_c3*_c74
+    _d33[..., 0, 1] = -CZ_psi*_c76 + numpy.pi*Cm_psi*_c3*_c74
+    _d33[..., 1, 0] = Cn_theta*_c77 + _c47*_c75
+    _d33[..., 1, 1] = Cn_psi*_c77 + _c66*_c75
+    _d34 = numpy.zeros(shape + (2, 2))
+    _d34[..., 0, 0] = 2*numpy.pi*Cm_theta*V*_c3*rho - _c61
+    _d34[..., 0, 1] = -CZ_psi*V*_c60 + 2*numpy.pi*Cm_psi*V*_c3*rho
+    _d34[..., 1, 0] = _c47*_c52 + 2*_c63
+    _d34[..., 1, 1] = 2*_c65 + _c67
+    _d35 = numpy.zeros(shape + (2, 2))
+    _d35[..., 0, 0] = -CZ_theta*_c79 + 3*numpy.pi*Cm_theta*_c16*_c74*rho
+    _d35[..., 0, 1] = -CZ_psi*_c79 + 3*numpy.pi*Cm_psi*_c16*_c74*rho
+    _d35[..., 1, 0] = Cn_theta*_c80 + _c47*_c78
+    _d35[..., 1, 1] = Cn_psi*_c80 + _c66*_c78
+    _d36 = numpy.zeros(shape + (2, 2))
+    _d36[..., 0, 0] = -CZ_theta*_c81
+    _d36[..., 0, 1] = -CZ_psi*_c81
+    _d37 = numpy.zeros(shape + (2, 2))
+    _d37[..., 1, 0] = CY_theta*_c81
+    _d37[..., 1, 1] = CY_psi*_c81
+    _d38 = numpy.zeros(shape + (2, 2))
+    _d38[..., 0, 0] = _c82
+    _d39 = numpy.zeros(shape + (2, 2))
+    _d39[..., 0, 1] = _c82
+    _d40 = numpy.zeros(shape + (2, 2))
+    _d40[..., 0, 0] = _c83
+    _d41 = numpy.zeros(shape + (2, 2))
+    _d41[..., 0, 1] = _c83
+    _d42 = numpy.zeros(shape + (2, 2))
+    _d42[..., 1, 0] = _c84
+    _d43 = numpy.zeros(shape + (2, 2))
+    _d43[..., 1, 1] = _c84
+    _d44 = numpy.zeros(shape + (2, 2))
+    _d44[..., 1, 0] = _c83
+    _d45 = numpy.zeros(shape + (2, 2))
+    _d45[..., 1, 1] = _c83
+    return {
+        "Ma": {
+            "rho": _d0,
+            "R": _d1,
+            "e_theta": _d2,
+            "e_psi": _d3,
+            "CZ_q": _d4,
+            "CZ_r": _d5,
+            "Cm_q": _d6,
+            "Cm_r": _d7,
+            "CY_q": _d8,
+            "CY_r": _d9,
+            "Cn_q": _d10,
+            "Cn_r": _d11,
+        },
+        "Ca": {
+            "rho": _d12,
+            "V": _d13,
+            "R": _d14,
+            "e_theta": _d15,
+            "e_psi": _d16,
+            "CZ_theta": _d17,
+            "CZ_psi": _d18,
+            "CZ_q": _d19,
+            "CZ_r": _d20,
+            "Cm_theta": _d21,
+            "Cm_psi": _d22,
+            "Cm_q": _d23,
+            "Cm_r": _d24,
+            "CY_theta": _d25,
+            "CY_psi": _d26,
+            "CY_q": _d27,
+            "CY_r": _d28,
+            "Cn_theta": _d29,
+            "Cn_psi": _d30,
+            "Cn_q": _d31,
+            "Cn_r": _d32,
+        },
+        "Ka": {
+            "rho": _d33,
+            "V": _d34,
+            "R": _d35,
+            "e_theta": _d36,
+            "e_psi": _d37,
+            "CZ_theta": _d38,
+            "CZ_psi": _d39,
+            "Cm_theta": _d40,
+            "Cm_psi": _d41,
+            "CY_theta": _d42,
+            "CY_psi": _d43,
+            "Cn_theta": _d44,
+            "Cn_psi": _d45,
+        },
+    }
+
+
+def Cs_hysteretic_d(I_X, Omega, K_theta, K_psi, g_theta, g_psi, omega):
+    """Parameter derivatives of Cs_hysteretic (of `Cs_hysteretic`).
+
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the derivatives.
+
+    Parameters
+    ----------
+    I_X : array_like
+        propeller mass moment of inertia about its rotation axis [kg m^2]
+    Omega : array_like
+        propeller rotational speed [rad/s]
+    K_theta : array_like
+        pitch stiffness of the propeller attachment [N m/rad]
+    K_psi : array_like
+        yaw stiffness of the propeller attachment [N m/rad]
+    g_theta : array_like
+        hysteretic (structural) damping coefficient in pitch [-]
+    g_psi : array_like
+        hysteretic (structural) damping coefficient in yaw [-]
+    omega : array_like
+        oscillation frequency at which hysteretic damping is evaluated [rad/s]
+
+    Returns
+    -------
+    dict of dict of numpy.ndarray
+        ``result[matrix][parameter]`` = ∂matrix/∂parameter, shape (..., rows, cols) with
+        ``...`` the broadcast shape of all the arguments (units: the matrix's over the
+        parameter's); parameters not listed have an identically-zero derivative:
+        "Cs_hysteretic" (2 x 2): I_X, Omega, K_theta, K_psi, g_theta, g_psi, omega
+    """
+    shape, (I_X, Omega, K_theta, K_psi, g_theta, g_psi, omega,) = _broadcast(I_X, Omega, K_theta, K_psi, g_theta, g_psi, omega)
+    _c0 = omega**(-1.0)
+    _c1 = omega**(-2.0)
+    _d0 = numpy.zeros(shape + (2, 2))
+    _d0[..., 0, 1] = Omega
+    _d0[..., 1, 0] = -Omega
+    _d1 = numpy.zeros(shape + (2, 2))
+    _d1[..., 0, 1] = I_X
+    _d1[..., 1, 0] = -I_X
+    _d2 = numpy.zeros(shape + (2, 2))
+    _d2[..., 0, 0] = _c0*g_theta
+    _d3 = numpy.zeros(shape + (2, 2))
+    _d3[..., 1, 1] = _c0*g_psi
+    _d4 = numpy.zeros(shape + (2, 2))
+    _d4[..., 0, 0] = K_theta*_c0
+    _d5 = numpy.zeros(shape + (2, 2))
+    _d5[..., 1, 1] = K_psi*_c0
+    _d6 = numpy.zeros(shape + (2, 2))
+    _d6[..., 0, 0] = -K_theta*_c1*g_theta
+    _d6[..., 1, 1] = -K_psi*_c1*g_psi
+    return {
+        "Cs_hysteretic": {
+            "I_X": _d0,
+            "Omega": _d1,
+            "K_theta": _d2,
+            "K_psi": _d3,
+            "g_theta": _d4,
+            "g_psi": _d5,
+            "omega": _d6,
+        },
+    }
+
+
+def G_d(I_X, Omega):
+    """Parameter derivatives of G (of `G`).
+
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the derivatives.
+
+    Parameters
+    ----------
+    I_X : array_like
+        propeller mass moment of inertia about its rotation axis [kg m^2]
+    Omega : array_like
+        propeller rotational speed [rad/s]
+
+    Returns
+    -------
+    dict of dict of numpy.ndarray
+        ``result[matrix][parameter]`` = ∂matrix/∂parameter, shape (..., rows, cols) with
+        ``...`` the broadcast shape of all the arguments (units: the matrix's over the
+        parameter's); parameters not listed have an identically-zero derivative:
+        "G" (2 x 2): I_X, Omega
+    """
+    shape, (I_X, Omega,) = _broadcast(I_X, Omega)
+    _d0 = numpy.zeros(shape + (2, 2))
+    _d0[..., 0, 1] = Omega
+    _d0[..., 1, 0] = -Omega
+    _d1 = numpy.zeros(shape + (2, 2))
+    _d1[..., 0, 1] = I_X
+    _d1[..., 1, 0] = -I_X
+    return {
+        "G": {
+            "I_X": _d0,
+            "Omega": _d1,
+        },
     }

@@ -12,6 +12,12 @@ at once (a dict), broadcasting their arguments once.  Their code is each matrix'
 subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
 functions.
 
+The derivative functions (`ln_blocks_d`, `wagner_blocks_d`, `wagner_g_d`, `wagner_g_ic_d`, `wagner_phidot_d`) return the
+exact parameter derivatives of those matrices: ``{matrix name: {parameter name: array}}`` with
+each array ∂matrix/∂parameter of the full broadcast shape ``... + (rows, cols)``; a parameter
+missing from a matrix's dict is one the matrix does not depend on (the derivative is
+identically zero).  `PARTIALS` lists the nonzero ones.
+
 Strip aerodynamics of a wing section: Theodorsen loads in the time domain (thesis §7.2, §7.5).
 
 Section loads per unit span of a thin aerofoil, semichord b, elastic axis at a semichords aft of
@@ -94,6 +100,15 @@ OUTPUTS = {
 BLOCKS = {
     "ln_blocks": (('rho', 'V', 'b', 'a', 'Cla', 'ac'), ('ln_M', 'ln_C', 'ln_K', 'ln_W0', 'ln_W1', 'ln_W2', 'ln_W3')),
     "wagner_blocks": (('rho', 'V', 'b', 'a', 'Cla', 'ac'), ('wagner_M', 'wagner_C', 'wagner_K', 'wagner_W0', 'wagner_W1', 'wagner_W2')),
+}
+
+#: derivative function name -> (argument names, {matrix name: parameters it depends on})
+PARTIALS = {
+    "ln_blocks_d": (('rho', 'V', 'b', 'a', 'Cla', 'ac'), {'ln_M': ('rho', 'b', 'a'), 'ln_C': ('rho', 'V', 'b', 'a', 'Cla', 'ac'), 'ln_K': ('rho', 'V', 'b', 'a', 'Cla', 'ac'), 'ln_W0': ('rho', 'V', 'b', 'a', 'Cla', 'ac'), 'ln_W1': ('V', 'b'), 'ln_W2': ('V', 'b', 'a', 'Cla', 'ac'), 'ln_W3': ()}),
+    "wagner_blocks_d": (('rho', 'V', 'b', 'a', 'Cla', 'ac'), {'wagner_M': ('rho', 'b', 'a'), 'wagner_C': ('rho', 'V', 'b', 'a', 'Cla', 'ac'), 'wagner_K': ('rho', 'V', 'b', 'a', 'Cla', 'ac'), 'wagner_W0': ('rho', 'V', 'b', 'a', 'Cla', 'ac'), 'wagner_W1': (), 'wagner_W2': ('V', 'b')}),
+    "wagner_g_d": (('rho', 'V', 'b', 'a', 'Cla', 'ac'), {'wagner_g': ('rho', 'V', 'b', 'a', 'Cla', 'ac')}),
+    "wagner_g_ic_d": (('rho', 'V', 'b', 'a', 'Cla', 'ac'), {'wagner_g_ic': ('rho', 'V', 'b', 'a', 'Cla', 'ac')}),
+    "wagner_phidot_d": (('V', 'b', 't'), {'wagner_phidot': ('V', 'b', 't')}),
 }
 
 
@@ -902,4 +917,832 @@ def wagner_blocks(rho, V, b, a, Cla, ac):
         "wagner_W0": _o3,
         "wagner_W1": _o4,
         "wagner_W2": _o5,
+    }
+
+
+def ln_blocks_d(rho, V, b, a, Cla, ac):
+    """Parameter derivatives of ln_M, ln_C, ln_K, ln_W0, ln_W1, ln_W2, ln_W3 (of `ln_blocks`).
+
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the derivatives.
+
+    Parameters
+    ----------
+    rho : array_like
+        air density [kg/m^3]
+    V : array_like
+        airspeed [m/s]
+    b : array_like
+        semichord [m]
+    a : array_like
+        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+    Cla : array_like
+        section lift-curve slope (2π for Theodorsen's flat plate) [1/rad]
+    ac : array_like
+        aerodynamic centre aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+
+    Returns
+    -------
+    dict of dict of numpy.ndarray
+        ``result[matrix][parameter]`` = ∂matrix/∂parameter, shape (..., rows, cols) with
+        ``...`` the broadcast shape of all the arguments (units: the matrix's over the
+        parameter's); parameters not listed have an identically-zero derivative:
+        "ln_M" (2 x 2): rho, b, a
+        "ln_C" (2 x 2): rho, V, b, a, Cla, ac
+        "ln_K" (2 x 2): rho, V, b, a, Cla, ac
+        "ln_W0" (2 x 2): rho, V, b, a, Cla, ac
+        "ln_W1" (2 x 2): V, b
+        "ln_W2" (2 x 2): V, b, a, Cla, ac
+        "ln_W3" (2 x 2): none (constant)
+    """
+    shape, (rho, V, b, a, Cla, ac,) = _broadcast(rho, V, b, a, Cla, ac)
+    _c0 = b**2
+    _c1 = numpy.pi*_c0
+    _c2 = b**3
+    _c3 = numpy.pi*_c2
+    _c4 = _c3*a
+    _c5 = numpy.pi*b**4
+    _c6 = a**2
+    _c7 = b*rho
+    _c8 = 2*numpy.pi*_c7
+    _c9 = _c1*rho
+    _c10 = 3*_c9*a
+    _c11 = _c3*rho
+    _c12 = a*rho
+    _c13 = (1/2)*Cla
+    _c14 = V*_c13
+    _c15 = V*_c1
+    _c16 = _c0*_c14
+    _c17 = _c16*ac
+    _c18 = V*_c0
+    _c19 = numpy.pi**(-1.0)
+    _c20 = Cla**2
+    _c21 = _c19*_c20
+    _c22 = (1/4)*_c21
+    _c23 = _c14*_c2
+    _c24 = V*ac
+    _c25 = ac**2
+    _c26 = _c0*_c13
+    _c27 = ac*rho
+    _c28 = _c26*_c27
+    _c29 = _c0*rho
+    _c30 = _c2*rho
+    _c31 = _c13*_c30
+    _c32 = _c22*_c30
+    _c33 = _c14*rho
+    _c34 = Cla*_c7
+    _c35 = _c24*_c34
+    _c36 = (1/2)*V
+    _c37 = _c36*_c7
+    _c38 = V*_c34
+    _c39 = Cla*rho
+    _c40 = _c18*_c39
+    _c41 = (3/2)*_c40
+    _c42 = _c24*_c29
+    _c43 = _c0*_c33
+    _c44 = -Cla*V*_c30*a + Cla*_c24*_c30 + V*_c11 + V*_c32
+    _c45 = (1/2)*_c42
+    _c46 = _c0*_c12
+    _c47 = _c30*_c36
+    _c48 = -_c43
+    _c49 = V**2
+    _c50 = _c13*_c49
+    _c51 = _c0*_c50
+    _c52 = _c50*rho
+    _c53 = _c34*_c49
+    _c54 = _c0*_c52
+    _c55 = (1/2)*_c49
+    _c56 = (273/40000)*V**4
+    _c57 = b**(-1.0)
+    _c58 = Cla*_c57
+    _c59 = V**3
+    _c60 = (43203/400000)*_c59
+    _c61 = Cla*_c60
+    _c62 = Cla*_c56
+    _c63 = _c61*b
+    _c64 = (273/10000)*_c59
+    _c65 = (129609/400000)*_c49
+    _c66 = _c39*_c64
+    _c67 = _c34*_c65
+    _c68 = _c0**(-1.0)
+    _c69 = _c62*rho
+    _c70 = _c61*_c7
+    _c71 = _c56*rho
+    _c72 = _c60*rho
+    _c73 = _c72*b
+    _c74 = V*_c68
+    _c75 = _c49**(-1.0)
+    _c76 = _c75*b
+    _c77 = _c13*_c19
+    _c78 = V**(-1.0)
+    _c79 = _c78*b
+    _d0 = numpy.zeros(shape + (2, 2))
+    _d0[..., 0, 0] = -_c1
+    _d0[..., 0, 1] = _c4
+    _d0[..., 1, 0] = _c4
+    _d0[..., 1, 1] = -_c5*_c6 - 1/8*_c5
+    _d1 = numpy.zeros(shape + (2, 2))
+    _d1[..., 0, 0] = -_c8
+    _d1[..., 0, 1] = _c10
+    _d1[..., 1, 0] = _c10
+    _d1[..., 1, 1] = -4*_c11*_c6 - 1/2*_c11
+    _d2 = numpy.zeros(shape + (2, 2))
+    _d2[..., 0, 1] = _c11
+    _d2[..., 1, 0] = _c11
+    _d2[..., 1, 1] = -2*_c12*_c5
+    _d3 = numpy.zeros(shape + (2, 2))
+    _d3[..., 0, 0] = -_c14*b
+    _d3[..., 0, 1] = (1/2)*Cla*V*_c0*a - _c15 - _c17 - _c18*_c22
+    _d3[..., 1, 0] = _c16*a - _c17
+    _d3[..., 1, 1] = Cla*V*_c2*a*ac + (1/4)*V*_c19*_c2*_c20*a + numpy.pi*V*_c2*a - _c2*_c22*_c24 - _c23*_c25 - _c23*_c6 - _c23 - _c24*_c3
+    _d4 = numpy.zeros(shape + (2, 2))
+    _d4[..., 0, 0] = -_c13*_c7
+    _d4[..., 0, 1] = (1/2)*Cla*_c0*a*rho - _c22*_c29 - _c28 - _c9
+    _d4[..., 1, 0] = _c12*_c26 - _c28
+    _d4[..., 1, 1] = Cla*_c2*a*ac*rho - _c11*ac + (1/4)*_c19*_c2*_c20*a*rho + numpy.pi*_c2*a*rho - _c25*_c31 - _c31*_c6 - _c31 - _c32*ac
+    _d5 = numpy.zeros(shape + (2, 2))
+    _d5[..., 0, 0] = -_c33
+    _d5[..., 0, 1] = Cla*V*a*b*rho - V*_c8 - _c21*_c37 - _c35
+    _d5[..., 1, 0] = -_c35 + _c38*a
+    _d5[..., 1, 1] = 3*Cla*V*_c0*a*ac*rho + (3/4)*V*_c0*_c19*_c20*a*rho + 3*numpy.pi*V*_c0*a*rho - 3*_c15*_c27 - 3/4*_c21*_c42 - _c25*_c41 - _c41*_c6 - _c41
+    _d6 = numpy.zeros(shape + (2, 2))
+    _d6[..., 0, 1] = _c43
+    _d6[..., 1, 0] = _c43
+    _d6[..., 1, 1] = _c44
+    _d7 = numpy.zeros(shape + (2, 2))
+    _d7[..., 0, 0] = -_c37
+    _d7[..., 0, 1] = (1/2)*V*_c0*a*rho - _c19*_c43 - _c45
+    _d7[..., 1, 0] = _c36*_c46 - _c45
+    _d7[..., 1, 1] = (1/2)*Cla*V*_c19*_c2*a*rho + V*_c2*a*ac*rho - _c19*_c23*_c27 - _c25*_c47 - _c47*_c6 - _c47
+    _d8 = numpy.zeros(shape + (2, 2))
+    _d8[..., 0, 1] = _c48
+    _d8[..., 1, 0] = _c48
+    _d8[..., 1, 1] = -_c44
+    _d9 = numpy.zeros(shape + (2, 2))
+    _d9[..., 0, 1] = -_c50*b
+    _d9[..., 1, 1] = _c51*a - _c51*ac
+    _d10 = numpy.zeros(shape + (2, 2))
+    _d10[..., 0, 1] = -_c38
+    _d10[..., 1, 1] = -_c0*_c24*_c39 + _c40*a
+    _d11 = numpy.zeros(shape + (2, 2))
+    _d11[..., 0, 1] = -_c52
+    _d11[..., 1, 1] = _c53*a - _c53*ac
+    _d12 = numpy.zeros(shape + (2, 2))
+    _d12[..., 1, 1] = _c54
+    _d13 = numpy.zeros(shape + (2, 2))
+    _d13[..., 0, 1] = -_c55*_c7
+    _d13[..., 1, 1] = -_c0*_c27*_c55 + _c46*_c55
+    _d14 = numpy.zeros(shape + (2, 2))
+    _d14[..., 1, 1] = -_c54
+    _d15 = numpy.zeros(shape + (2, 2))
+    _d15[..., 0, 0] = -_c56*_c58
+    _d15[..., 0, 1] = -_c61
+    _d15[..., 1, 0] = _c62*a - _c62*ac
+    _d15[..., 1, 1] = _c63*a - _c63*ac
+    _d16 = numpy.zeros(shape + (2, 2))
+    _d16[..., 0, 0] = -_c58*_c64*rho
+    _d16[..., 0, 1] = -_c39*_c65
+    _d16[..., 1, 0] = _c66*a - _c66*ac
+    _d16[..., 1, 1] = _c67*a - _c67*ac
+    _d17 = numpy.zeros(shape + (2, 2))
+    _d17[..., 0, 0] = _c68*_c69
+    _d17[..., 1, 1] = _c12*_c61 - _c27*_c61
+    _d18 = numpy.zeros(shape + (2, 2))
+    _d18[..., 1, 0] = _c69
+    _d18[..., 1, 1] = _c70
+    _d19 = numpy.zeros(shape + (2, 2))
+    _d19[..., 0, 0] = -_c57*_c71
+    _d19[..., 0, 1] = -_c72
+    _d19[..., 1, 0] = _c71*a - _c71*ac
+    _d19[..., 1, 1] = _c73*a - _c73*ac
+    _d20 = numpy.zeros(shape + (2, 2))
+    _d20[..., 1, 0] = -_c69
+    _d20[..., 1, 1] = -_c70
+    _d21 = numpy.zeros(shape + (2, 2))
+    _d21[..., 1, 0] = -273/10000*_c74
+    _d21[..., 1, 1] = -691/2000*_c57
+    _d22 = numpy.zeros(shape + (2, 2))
+    _d22[..., 1, 0] = (273/10000)*_c49/_c2
+    _d22[..., 1, 1] = (691/2000)*_c74
+    _d23 = numpy.zeros(shape + (2, 2))
+    _d23[..., 1, 0] = -_c75
+    _d23[..., 1, 1] = _c75*a*b - _c76*_c77 - _c76*ac
+    _d24 = numpy.zeros(shape + (2, 2))
+    _d24[..., 1, 1] = _c77*_c78 - _c78*a + _c78*ac
+    _d25 = numpy.zeros(shape + (2, 2))
+    _d25[..., 1, 1] = -_c79
+    _d26 = numpy.zeros(shape + (2, 2))
+    _d26[..., 1, 1] = (1/2)*_c19*_c79
+    _d27 = numpy.zeros(shape + (2, 2))
+    _d27[..., 1, 1] = _c79
+    return {
+        "ln_M": {
+            "rho": _d0,
+            "b": _d1,
+            "a": _d2,
+        },
+        "ln_C": {
+            "rho": _d3,
+            "V": _d4,
+            "b": _d5,
+            "a": _d6,
+            "Cla": _d7,
+            "ac": _d8,
+        },
+        "ln_K": {
+            "rho": _d9,
+            "V": _d10,
+            "b": _d11,
+            "a": _d12,
+            "Cla": _d13,
+            "ac": _d14,
+        },
+        "ln_W0": {
+            "rho": _d15,
+            "V": _d16,
+            "b": _d17,
+            "a": _d18,
+            "Cla": _d19,
+            "ac": _d20,
+        },
+        "ln_W1": {
+            "V": _d21,
+            "b": _d22,
+        },
+        "ln_W2": {
+            "V": _d23,
+            "b": _d24,
+            "a": _d25,
+            "Cla": _d26,
+            "ac": _d27,
+        },
+        "ln_W3": {},
+    }
+
+
+def wagner_blocks_d(rho, V, b, a, Cla, ac):
+    """Parameter derivatives of wagner_M, wagner_C, wagner_K, wagner_W0, wagner_W1, wagner_W2 (of `wagner_blocks`).
+
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the derivatives.
+
+    Parameters
+    ----------
+    rho : array_like
+        air density [kg/m^3]
+    V : array_like
+        airspeed [m/s]
+    b : array_like
+        semichord [m]
+    a : array_like
+        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+    Cla : array_like
+        section lift-curve slope (2π for Theodorsen's flat plate) [1/rad]
+    ac : array_like
+        aerodynamic centre aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+
+    Returns
+    -------
+    dict of dict of numpy.ndarray
+        ``result[matrix][parameter]`` = ∂matrix/∂parameter, shape (..., rows, cols) with
+        ``...`` the broadcast shape of all the arguments (units: the matrix's over the
+        parameter's); parameters not listed have an identically-zero derivative:
+        "wagner_M" (2 x 2): rho, b, a
+        "wagner_C" (2 x 2): rho, V, b, a, Cla, ac
+        "wagner_K" (2 x 2): rho, V, b, a, Cla, ac
+        "wagner_W0" (2 x 4): rho, V, b, a, Cla, ac
+        "wagner_W1" (4 x 2): none (constant)
+        "wagner_W2" (4 x 4): V, b
+    """
+    shape, (rho, V, b, a, Cla, ac,) = _broadcast(rho, V, b, a, Cla, ac)
+    _c0 = b**2
+    _c1 = numpy.pi*_c0
+    _c2 = b**3
+    _c3 = numpy.pi*_c2
+    _c4 = _c3*a
+    _c5 = numpy.pi*b**4
+    _c6 = a**2
+    _c7 = b*rho
+    _c8 = 2*numpy.pi*_c7
+    _c9 = _c1*rho
+    _c10 = 3*_c9*a
+    _c11 = _c3*rho
+    _c12 = a*rho
+    _c13 = (1/2)*Cla
+    _c14 = V*_c13
+    _c15 = V*_c1
+    _c16 = _c0*_c14
+    _c17 = _c16*ac
+    _c18 = numpy.pi**(-1.0)
+    _c19 = Cla**2
+    _c20 = _c18*_c19
+    _c21 = (1/4)*_c20
+    _c22 = _c0*_c21
+    _c23 = _c14*_c2
+    _c24 = V*ac
+    _c25 = ac**2
+    _c26 = _c0*_c13
+    _c27 = ac*rho
+    _c28 = _c26*_c27
+    _c29 = _c2*rho
+    _c30 = _c13*_c29
+    _c31 = _c14*rho
+    _c32 = Cla*_c24
+    _c33 = _c32*_c7
+    _c34 = (1/2)*V
+    _c35 = _c34*_c7
+    _c36 = Cla*V
+    _c37 = _c36*_c7
+    _c38 = _c37*a
+    _c39 = _c0*rho
+    _c40 = (3/2)*_c36*_c39
+    _c41 = _c24*_c39
+    _c42 = _c20*_c41
+    _c43 = _c0*_c31
+    _c44 = V*_c11 + V*_c21*_c29 + _c29*_c32 - _c29*_c36*a
+    _c45 = (1/2)*_c41
+    _c46 = _c29*_c34
+    _c47 = -_c43
+    _c48 = V**2
+    _c49 = (43203/400000)*_c48
+    _c50 = Cla*_c49
+    _c51 = _c13*_c48
+    _c52 = _c50*b
+    _c53 = _c52*ac
+    _c54 = _c20*_c48
+    _c55 = (43203/800000)*_c54
+    _c56 = _c0*_c50
+    _c57 = _c0*ac
+    _c58 = (43203/200000)*rho
+    _c59 = _c36*_c58
+    _c60 = (43203/200000)*_c33
+    _c61 = Cla*rho
+    _c62 = _c0*_c59
+    _c63 = _c51*rho
+    _c64 = _c27*_c50
+    _c65 = _c48*_c7
+    _c66 = Cla*_c65
+    _c67 = _c66*ac
+    _c68 = (43203/200000)*_c66
+    _c69 = _c49*rho
+    _c70 = _c69*b
+    _c71 = _c70*ac
+    _c72 = _c50*_c7
+    _c73 = Cla*a
+    _c74 = Cla*_c48*_c57*_c58 - _c0*_c48*_c58*_c73 + _c0*_c63 + _c39*_c55
+    _c75 = _c0*_c69
+    _c76 = -_c72
+    _c77 = b**(-1.0)
+    _c78 = V**3
+    _c79 = Cla*_c78
+    _c80 = _c77*_c79
+    _c81 = (3003/400000)*_c79
+    _c82 = (273273/800000000)*_c79
+    _c83 = _c82*a
+    _c84 = _c82*ac
+    _c85 = _c20*_c78
+    _c86 = (273273/1600000000)*_c85
+    _c87 = (201/2000)*_c79
+    _c88 = (603/20000)*_c79
+    _c89 = _c88*a
+    _c90 = _c88*ac
+    _c91 = (603/40000)*_c85
+    _c92 = _c81*b
+    _c93 = a*b
+    _c94 = _c79*ac
+    _c95 = (273273/400000000)*_c94
+    _c96 = _c82*b
+    _c97 = ac*b
+    _c98 = _c87*b
+    _c99 = (603/10000)*_c94
+    _c100 = _c88*b
+    _c101 = _c48*_c61
+    _c102 = _c101*_c77
+    _c103 = (819819/800000000)*_c101
+    _c104 = _c103*a
+    _c105 = _c54*rho
+    _c106 = (1809/20000)*_c101
+    _c107 = _c106*a
+    _c108 = _c65*_c73
+    _c109 = _c108*ac
+    _c110 = (819819/800000000)*_c66
+    _c111 = _c20*_c65
+    _c112 = (819819/1600000000)*_c111
+    _c113 = (1809/20000)*_c66
+    _c114 = (1809/40000)*_c111
+    _c115 = _c0**(-1.0)
+    _c116 = _c82*rho
+    _c117 = _c88*rho
+    _c118 = _c78*rho
+    _c119 = _c118*_c20
+    _c120 = (273273/1600000000)*_c119
+    _c121 = (603/40000)*_c119
+    _c122 = -_c116
+    _c123 = -_c117
+    _c124 = -273273/400000000*Cla*_c78*a*b*rho - 3003/400000*Cla*_c78*b*rho + _c120*b + _c7*_c95
+    _c125 = -603/10000*Cla*_c78*a*b*rho - 201/2000*Cla*_c78*b*rho + _c121*b + _c7*_c99
+    _c126 = _c118*_c77
+    _c127 = (3003/400000)*_c118
+    _c128 = (273273/800000000)*_c118
+    _c129 = _c128*a
+    _c130 = (201/2000)*_c118
+    _c131 = (603/20000)*_c118
+    _c132 = _c131*a
+    _c133 = _c127*b
+    _c134 = _c118*_c93*ac
+    _c135 = _c128*b
+    _c136 = _c18*_c7
+    _c137 = _c130*b
+    _c138 = _c131*b
+    _c139 = -91/2000*_c77
+    _c140 = -3/10*_c77
+    _c141 = V*_c115
+    _c142 = (91/2000)*_c141
+    _c143 = (3/10)*_c141
+    _d0 = numpy.zeros(shape + (2, 2))
+    _d0[..., 0, 0] = -_c1
+    _d0[..., 0, 1] = _c4
+    _d0[..., 1, 0] = _c4
+    _d0[..., 1, 1] = -_c5*_c6 - 1/8*_c5
+    _d1 = numpy.zeros(shape + (2, 2))
+    _d1[..., 0, 0] = -_c8
+    _d1[..., 0, 1] = _c10
+    _d1[..., 1, 0] = _c10
+    _d1[..., 1, 1] = -4*_c11*_c6 - 1/2*_c11
+    _d2 = numpy.zeros(shape + (2, 2))
+    _d2[..., 0, 1] = _c11
+    _d2[..., 1, 0] = _c11
+    _d2[..., 1, 1] = -2*_c12*_c5
+    _d3 = numpy.zeros(shape + (2, 2))
+    _d3[..., 0, 0] = -_c14*b
+    _d3[..., 0, 1] = (1/2)*Cla*V*_c0*a - V*_c22 - _c15 - _c17
+    _d3[..., 1, 0] = _c16*a - _c17
+    _d3[..., 1, 1] = Cla*V*_c2*a*ac + (1/4)*V*_c18*_c19*_c2*a + numpy.pi*V*_c2*a - _c2*_c21*_c24 - _c23*_c25 - _c23*_c6 - _c23 - _c24*_c3
+    _d4 = numpy.zeros(shape + (2, 2))
+    _d4[..., 0, 0] = -_c13*_c7
+    _d4[..., 0, 1] = (1/2)*Cla*_c0*a*rho - _c22*rho - _c28 - _c9
+    _d4[..., 1, 0] = _c12*_c26 - _c28
+    _d4[..., 1, 1] = Cla*_c2*a*ac*rho - _c11*ac + (1/4)*_c18*_c19*_c2*a*rho + numpy.pi*_c2*a*rho - _c21*_c29*ac - _c25*_c30 - _c30*_c6 - _c30
+    _d5 = numpy.zeros(shape + (2, 2))
+    _d5[..., 0, 0] = -_c31
+    _d5[..., 0, 1] = Cla*V*a*b*rho - V*_c8 - _c20*_c35 - _c33
+    _d5[..., 1, 0] = -_c33 + _c38
+    _d5[..., 1, 1] = 3*Cla*V*_c0*a*ac*rho + (3/4)*V*_c0*_c18*_c19*a*rho + 3*numpy.pi*V*_c0*a*rho - 3*_c15*_c27 - _c25*_c40 - _c40*_c6 - _c40 - 3/4*_c42
+    _d6 = numpy.zeros(shape + (2, 2))
+    _d6[..., 0, 1] = _c43
+    _d6[..., 1, 0] = _c43
+    _d6[..., 1, 1] = _c44
+    _d7 = numpy.zeros(shape + (2, 2))
+    _d7[..., 0, 0] = -_c35
+    _d7[..., 0, 1] = (1/2)*V*_c0*a*rho - _c18*_c43 - _c45
+    _d7[..., 1, 0] = _c0*_c12*_c34 - _c45
+    _d7[..., 1, 1] = (1/2)*Cla*V*_c18*_c2*a*rho + V*_c2*a*ac*rho - _c18*_c23*_c27 - _c25*_c46 - _c46*_c6 - _c46
+    _d8 = numpy.zeros(shape + (2, 2))
+    _d8[..., 0, 1] = _c47
+    _d8[..., 1, 0] = _c47
+    _d8[..., 1, 1] = -_c44
+    _d9 = numpy.zeros(shape + (2, 2))
+    _d9[..., 0, 0] = -_c50
+    _d9[..., 0, 1] = (43203/400000)*Cla*_c48*a*b - _c51*b - _c53 - _c55*b
+    _d9[..., 1, 0] = _c52*a - _c53
+    _d9[..., 1, 1] = (43203/200000)*Cla*_c0*_c48*a*ac + (1/2)*Cla*_c0*_c48*a + (43203/800000)*_c0*_c18*_c19*_c48*a - _c0*_c51*ac - _c25*_c56 - _c55*_c57 - _c56*_c6
+    _d10 = numpy.zeros(shape + (2, 2))
+    _d10[..., 0, 0] = -_c59
+    _d10[..., 0, 1] = (43203/200000)*Cla*V*a*b*rho - 43203/400000*V*_c20*_c7 - _c37 - _c60
+    _d10[..., 1, 0] = (43203/200000)*_c38 - _c60
+    _d10[..., 1, 1] = (43203/100000)*Cla*V*_c0*a*ac*rho + Cla*V*_c0*a*rho + (43203/400000)*V*_c0*_c18*_c19*a*rho - _c0*_c24*_c61 - _c25*_c62 - 43203/400000*_c42 - _c6*_c62
+    _d11 = numpy.zeros(shape + (2, 2))
+    _d11[..., 0, 1] = (43203/400000)*Cla*_c48*a*rho - _c55*rho - _c63 - _c64
+    _d11[..., 1, 0] = _c12*_c50 - _c64
+    _d11[..., 1, 1] = (43203/100000)*Cla*_c48*a*ac*b*rho + Cla*_c48*a*b*rho + (43203/400000)*_c18*_c19*_c48*a*b*rho - _c20*_c71 - _c25*_c68 - _c6*_c68 - _c67
+    _d12 = numpy.zeros(shape + (2, 2))
+    _d12[..., 0, 1] = _c72
+    _d12[..., 1, 0] = _c72
+    _d12[..., 1, 1] = _c74
+    _d13 = numpy.zeros(shape + (2, 2))
+    _d13[..., 0, 0] = -_c69
+    _d13[..., 0, 1] = -_c18*_c72 + (43203/400000)*_c48*a*b*rho - 1/2*_c65 - _c71
+    _d13[..., 1, 0] = _c70*a - _c71
+    _d13[..., 1, 1] = (43203/400000)*Cla*_c0*_c18*_c48*a*rho - 1/2*_c0*_c27*_c48 + (43203/200000)*_c0*_c48*a*ac*rho + (1/2)*_c0*_c48*a*rho - _c18*_c27*_c56 - _c25*_c75 - _c6*_c75
+    _d14 = numpy.zeros(shape + (2, 2))
+    _d14[..., 0, 1] = _c76
+    _d14[..., 1, 0] = _c76
+    _d14[..., 1, 1] = -_c74
+    _d15 = numpy.zeros(shape + (2, 4))
+    _d15[..., 0, 0] = (273273/800000000)*_c80
+    _d15[..., 0, 1] = (603/20000)*_c80
+    _d15[..., 0, 2] = -_c81 - _c83 + _c84 + _c86
+    _d15[..., 0, 3] = -_c87 - _c89 + _c90 + _c91
+    _d15[..., 1, 0] = (273273/800000000)*Cla*_c78*ac - _c83
+    _d15[..., 1, 1] = (603/20000)*Cla*_c78*ac - _c89
+    _d15[..., 1, 2] = _c25*_c96 + _c6*_c96 - _c86*_c93 + _c86*_c97 + _c92*a - _c92*ac - _c93*_c95
+    _d15[..., 1, 3] = _c100*_c25 + _c100*_c6 - _c91*_c93 + _c91*_c97 - _c93*_c99 + _c98*a - _c98*ac
+    _d16 = numpy.zeros(shape + (2, 4))
+    _d16[..., 0, 0] = (819819/800000000)*_c102
+    _d16[..., 0, 1] = (1809/20000)*_c102
+    _d16[..., 0, 2] = -9009/400000*_c101 + _c103*ac - _c104 + (819819/1600000000)*_c105
+    _d16[..., 0, 3] = -603/2000*_c101 + (1809/40000)*_c105 + _c106*ac - _c107
+    _d16[..., 1, 0] = (819819/800000000)*Cla*_c48*ac*rho - _c104
+    _d16[..., 1, 1] = (1809/20000)*Cla*_c48*ac*rho - _c107
+    _d16[..., 1, 2] = (9009/400000)*_c108 - 819819/400000000*_c109 + _c110*_c25 + _c110*_c6 - _c112*a + _c112*ac - 9009/400000*_c67
+    _d16[..., 1, 3] = (603/2000)*_c108 - 1809/10000*_c109 + _c113*_c25 + _c113*_c6 - _c114*a + _c114*ac - 603/2000*_c67
+    _d17 = numpy.zeros(shape + (2, 4))
+    _d17[..., 0, 0] = -_c115*_c116
+    _d17[..., 0, 1] = -_c115*_c117
+    _d17[..., 1, 2] = _c116*_c25 + _c116*_c6 + _c12*_c81 - _c12*_c95 - _c120*a + _c120*ac - _c27*_c81
+    _d17[..., 1, 3] = _c117*_c25 + _c117*_c6 + _c12*_c87 - _c12*_c99 - _c121*a + _c121*ac - _c27*_c87
+    _d18 = numpy.zeros(shape + (2, 4))
+    _d18[..., 0, 2] = _c122
+    _d18[..., 0, 3] = _c123
+    _d18[..., 1, 0] = _c122
+    _d18[..., 1, 1] = _c123
+    _d18[..., 1, 2] = -_c124
+    _d18[..., 1, 3] = -_c125
+    _d19 = numpy.zeros(shape + (2, 4))
+    _d19[..., 0, 0] = (273273/800000000)*_c126
+    _d19[..., 0, 1] = (603/20000)*_c126
+    _d19[..., 0, 2] = _c116*_c18 - _c127 + _c128*ac - _c129
+    _d19[..., 0, 3] = _c117*_c18 - _c130 + _c131*ac - _c132
+    _d19[..., 1, 0] = -_c129 + (273273/800000000)*_c78*ac*rho
+    _d19[..., 1, 1] = -_c132 + (603/20000)*_c78*ac*rho
+    _d19[..., 1, 2] = _c133*a - _c133*ac - 273273/400000000*_c134 + _c135*_c25 + _c135*_c6 - _c136*_c83 + _c136*_c84
+    _d19[..., 1, 3] = -603/10000*_c134 - _c136*_c89 + _c136*_c90 + _c137*a - _c137*ac + _c138*_c25 + _c138*_c6
+    _d20 = numpy.zeros(shape + (2, 4))
+    _d20[..., 0, 2] = _c116
+    _d20[..., 0, 3] = _c117
+    _d20[..., 1, 0] = _c116
+    _d20[..., 1, 1] = _c117
+    _d20[..., 1, 2] = _c124
+    _d20[..., 1, 3] = _c125
+    _d21 = numpy.zeros(shape + (4, 4))
+    _d21[..., 0, 0] = _c139
+    _d21[..., 1, 1] = _c140
+    _d21[..., 2, 2] = _c139
+    _d21[..., 3, 3] = _c140
+    _d22 = numpy.zeros(shape + (4, 4))
+    _d22[..., 0, 0] = _c142
+    _d22[..., 1, 1] = _c143
+    _d22[..., 2, 2] = _c142
+    _d22[..., 3, 3] = _c143
+    return {
+        "wagner_M": {
+            "rho": _d0,
+            "b": _d1,
+            "a": _d2,
+        },
+        "wagner_C": {
+            "rho": _d3,
+            "V": _d4,
+            "b": _d5,
+            "a": _d6,
+            "Cla": _d7,
+            "ac": _d8,
+        },
+        "wagner_K": {
+            "rho": _d9,
+            "V": _d10,
+            "b": _d11,
+            "a": _d12,
+            "Cla": _d13,
+            "ac": _d14,
+        },
+        "wagner_W0": {
+            "rho": _d15,
+            "V": _d16,
+            "b": _d17,
+            "a": _d18,
+            "Cla": _d19,
+            "ac": _d20,
+        },
+        "wagner_W1": {},
+        "wagner_W2": {
+            "V": _d21,
+            "b": _d22,
+        },
+    }
+
+
+def wagner_g_d(rho, V, b, a, Cla, ac):
+    """Parameter derivatives of wagner_g (of `wagner_g`).
+
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the derivatives.
+
+    Parameters
+    ----------
+    rho : array_like
+        air density [kg/m^3]
+    V : array_like
+        airspeed [m/s]
+    b : array_like
+        semichord [m]
+    a : array_like
+        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+    Cla : array_like
+        section lift-curve slope (2π for Theodorsen's flat plate) [1/rad]
+    ac : array_like
+        aerodynamic centre aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+
+    Returns
+    -------
+    dict of dict of numpy.ndarray
+        ``result[matrix][parameter]`` = ∂matrix/∂parameter, shape (..., rows, cols) with
+        ``...`` the broadcast shape of all the arguments (units: the matrix's over the
+        parameter's); parameters not listed have an identically-zero derivative:
+        "wagner_g" (2 x 1): rho, V, b, a, Cla, ac
+    """
+    shape, (rho, V, b, a, Cla, ac,) = _broadcast(rho, V, b, a, Cla, ac)
+    _c0 = Cla*b
+    _c1 = V*_c0
+    _c2 = b**2
+    _c3 = Cla*_c2
+    _c4 = V*rho
+    _c5 = Cla*_c4
+    _c6 = _c2*_c5
+    _d0 = numpy.zeros(shape + (2, 1))
+    _d0[..., 0, 0] = _c1
+    _d0[..., 1, 0] = Cla*V*_c2*ac - V*_c3*a
+    _d1 = numpy.zeros(shape + (2, 1))
+    _d1[..., 0, 0] = _c0*rho
+    _d1[..., 1, 0] = Cla*_c2*ac*rho - _c3*a*rho
+    _d2 = numpy.zeros(shape + (2, 1))
+    _d2[..., 0, 0] = _c5
+    _d2[..., 1, 0] = 2*Cla*V*ac*b*rho - 2*_c1*a*rho
+    _d3 = numpy.zeros(shape + (2, 1))
+    _d3[..., 1, 0] = -_c6
+    _d4 = numpy.zeros(shape + (2, 1))
+    _d4[..., 0, 0] = _c4*b
+    _d4[..., 1, 0] = V*_c2*ac*rho - _c2*_c4*a
+    _d5 = numpy.zeros(shape + (2, 1))
+    _d5[..., 1, 0] = _c6
+    return {
+        "wagner_g": {
+            "rho": _d0,
+            "V": _d1,
+            "b": _d2,
+            "a": _d3,
+            "Cla": _d4,
+            "ac": _d5,
+        },
+    }
+
+
+def wagner_g_ic_d(rho, V, b, a, Cla, ac):
+    """Parameter derivatives of wagner_g_ic (of `wagner_g_ic`).
+
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the derivatives.
+
+    Parameters
+    ----------
+    rho : array_like
+        air density [kg/m^3]
+    V : array_like
+        airspeed [m/s]
+    b : array_like
+        semichord [m]
+    a : array_like
+        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+    Cla : array_like
+        section lift-curve slope (2π for Theodorsen's flat plate) [1/rad]
+    ac : array_like
+        aerodynamic centre aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+
+    Returns
+    -------
+    dict of dict of numpy.ndarray
+        ``result[matrix][parameter]`` = ∂matrix/∂parameter, shape (..., rows, cols) with
+        ``...`` the broadcast shape of all the arguments (units: the matrix's over the
+        parameter's); parameters not listed have an identically-zero derivative:
+        "wagner_g_ic" (2 x 2): rho, V, b, a, Cla, ac
+    """
+    shape, (rho, V, b, a, Cla, ac,) = _broadcast(rho, V, b, a, Cla, ac)
+    _c0 = Cla*b
+    _c1 = V*_c0
+    _c2 = Cla*V
+    _c3 = b**2
+    _c4 = _c3*ac
+    _c5 = _c3*a
+    _c6 = _c2*_c5
+    _c7 = numpy.pi**(-1.0)
+    _c8 = Cla**2*_c7
+    _c9 = (1/2)*_c8
+    _c10 = _c3*_c9
+    _c11 = a**2
+    _c12 = b**3
+    _c13 = _c12*_c2
+    _c14 = ac**2
+    _c15 = 2*a
+    _c16 = _c15*ac
+    _c17 = _c12*_c9
+    _c18 = V*_c17
+    _c19 = Cla*rho
+    _c20 = _c19*_c5
+    _c21 = _c12*_c19
+    _c22 = _c17*rho
+    _c23 = V*rho
+    _c24 = Cla*_c23
+    _c25 = _c1*rho
+    _c26 = _c15*_c25
+    _c27 = 2*ac
+    _c28 = _c23*b
+    _c29 = _c24*_c3
+    _c30 = 3*_c29
+    _c31 = _c23*_c5
+    _c32 = (3/2)*_c8
+    _c33 = _c23*_c4
+    _c34 = -_c29
+    _c35 = _c12*_c24
+    _c36 = _c12*_c23
+    _c37 = -2*Cla*V*_c12*a*rho + _c27*_c35 + _c36*_c9
+    _c38 = _c35*_c7
+    _d0 = numpy.zeros(shape + (2, 2))
+    _d0[..., 0, 0] = _c1
+    _d0[..., 0, 1] = V*_c10 + _c2*_c4 - _c6
+    _d0[..., 1, 0] = Cla*V*_c3*ac - _c6
+    _d0[..., 1, 1] = _c11*_c13 + _c13*_c14 - _c13*_c16 - _c18*a + _c18*ac
+    _d1 = numpy.zeros(shape + (2, 2))
+    _d1[..., 0, 0] = _c0*rho
+    _d1[..., 0, 1] = _c10*rho + _c19*_c4 - _c20
+    _d1[..., 1, 0] = Cla*_c3*ac*rho - _c20
+    _d1[..., 1, 1] = _c11*_c21 + _c14*_c21 - _c16*_c21 - _c22*a + _c22*ac
+    _d2 = numpy.zeros(shape + (2, 2))
+    _d2[..., 0, 0] = _c24
+    _d2[..., 0, 1] = _c25*_c27 - _c26 + _c28*_c8
+    _d2[..., 1, 0] = 2*Cla*V*ac*b*rho - _c26
+    _d2[..., 1, 1] = _c11*_c30 + _c14*_c30 - 6*_c24*_c4*a - _c31*_c32 + _c32*_c33
+    _d3 = numpy.zeros(shape + (2, 2))
+    _d3[..., 0, 1] = _c34
+    _d3[..., 1, 0] = _c34
+    _d3[..., 1, 1] = -_c37
+    _d4 = numpy.zeros(shape + (2, 2))
+    _d4[..., 0, 0] = _c28
+    _d4[..., 0, 1] = _c29*_c7 - _c31 + _c33
+    _d4[..., 1, 0] = V*_c3*ac*rho - _c31
+    _d4[..., 1, 1] = _c11*_c36 + _c14*_c36 - _c16*_c36 - _c38*a + _c38*ac
+    _d5 = numpy.zeros(shape + (2, 2))
+    _d5[..., 0, 1] = _c29
+    _d5[..., 1, 0] = _c29
+    _d5[..., 1, 1] = _c37
+    return {
+        "wagner_g_ic": {
+            "rho": _d0,
+            "V": _d1,
+            "b": _d2,
+            "a": _d3,
+            "Cla": _d4,
+            "ac": _d5,
+        },
+    }
+
+
+def wagner_phidot_d(V, b, t):
+    """Parameter derivatives of wagner_phidot (of `wagner_phidot`).
+
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the derivatives.
+
+    Parameters
+    ----------
+    V : array_like
+        airspeed [m/s]
+    b : array_like
+        semichord [m]
+    t : array_like
+        time since the start of the motion [s]
+
+    Returns
+    -------
+    dict of dict of numpy.ndarray
+        ``result[matrix][parameter]`` = ∂matrix/∂parameter, shape (..., rows, cols) with
+        ``...`` the broadcast shape of all the arguments (units: the matrix's over the
+        parameter's); parameters not listed have an identically-zero derivative:
+        "wagner_phidot" (1 x 1): V, b, t
+    """
+    shape, (V, b, t,) = _broadcast(V, b, t)
+    _c0 = b**(-1.0)
+    _c1 = V*t
+    _c2 = _c0*_c1
+    _c3 = numpy.exp(-3/10*_c2)
+    _c4 = numpy.exp(-91/2000*_c2)
+    _c5 = (603/20000)*_c3
+    _c6 = b**(-2.0)
+    _c7 = _c1*_c6
+    _c8 = (273273/800000000)*_c4
+    _c9 = V*_c6
+    _c10 = V**2
+    _c11 = _c10*t/b**3
+    _c12 = _c10*_c6
+    _d0 = numpy.zeros(shape + (1, 1))
+    _d0[..., 0, 0] = (201/2000)*_c0*_c3 + (3003/400000)*_c0*_c4 - _c5*_c7 - _c7*_c8
+    _d1 = numpy.zeros(shape + (1, 1))
+    _d1[..., 0, 0] = _c11*_c5 + _c11*_c8 - 201/2000*_c3*_c9 - 3003/400000*_c4*_c9
+    _d2 = numpy.zeros(shape + (1, 1))
+    _d2[..., 0, 0] = -_c12*_c5 - _c12*_c8
+    return {
+        "wagner_phidot": {
+            "V": _d0,
+            "b": _d1,
+            "t": _d2,
+        },
     }

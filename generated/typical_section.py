@@ -12,6 +12,12 @@ at once (a dict), broadcasting their arguments once.  Their code is each matrix'
 subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
 functions.
 
+The derivative functions (`blocks_d`) return the
+exact parameter derivatives of those matrices: ``{matrix name: {parameter name: array}}`` with
+each array ∂matrix/∂parameter of the full broadcast shape ``... + (rows, cols)``; a parameter
+missing from a matrix's dict is one the matrix does not depend on (the derivative is
+identically zero).  `PARTIALS` lists the nonzero ones.
+
 Typical section: a rigid aerofoil on plunge and pitch springs (the classic 2-DOF flutter model).
 
 Coordinates q = [h, α]: plunge of the elastic axis (positive DOWN) and pitch about it (nose UP),
@@ -49,6 +55,11 @@ OUTPUTS = {
 #: block function name -> (argument names, names of the returned matrices)
 BLOCKS = {
     "blocks": (('m', 'S', 'I_alpha', 'K_h', 'K_alpha'), ('mass', 'stiffness')),
+}
+
+#: derivative function name -> (argument names, {matrix name: parameters it depends on})
+PARTIALS = {
+    "blocks_d": (('m', 'S', 'I_alpha', 'K_h', 'K_alpha'), {'mass': ('m', 'S', 'I_alpha'), 'stiffness': ('K_h', 'K_alpha')}),
 }
 
 
@@ -151,4 +162,57 @@ def blocks(m, S, I_alpha, K_h, K_alpha):
     return {
         "mass": _o0,
         "stiffness": _o1,
+    }
+
+
+def blocks_d(m, S, I_alpha, K_h, K_alpha):
+    """Parameter derivatives of mass, stiffness (of `blocks`).
+
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the derivatives.
+
+    Parameters
+    ----------
+    m : array_like
+        mass per unit span [kg/m]
+    S : array_like
+        static unbalance per unit span, m x_α b (centre of gravity aft positive) [kg]
+    I_alpha : array_like
+        pitch inertia per unit span about the elastic axis [kg m]
+    K_h : array_like
+        plunge spring per unit span [N/m^2]
+    K_alpha : array_like
+        pitch spring per unit span [N]
+
+    Returns
+    -------
+    dict of dict of numpy.ndarray
+        ``result[matrix][parameter]`` = ∂matrix/∂parameter, shape (..., rows, cols) with
+        ``...`` the broadcast shape of all the arguments (units: the matrix's over the
+        parameter's); parameters not listed have an identically-zero derivative:
+        "mass" (2 x 2): m, S, I_alpha
+        "stiffness" (2 x 2): K_h, K_alpha
+    """
+    shape, (m, S, I_alpha, K_h, K_alpha,) = _broadcast(m, S, I_alpha, K_h, K_alpha)
+    _d0 = numpy.zeros(shape + (2, 2))
+    _d0[..., 0, 0] = 1
+    _d1 = numpy.zeros(shape + (2, 2))
+    _d1[..., 0, 1] = 1
+    _d1[..., 1, 0] = 1
+    _d2 = numpy.zeros(shape + (2, 2))
+    _d2[..., 1, 1] = 1
+    _d3 = numpy.zeros(shape + (2, 2))
+    _d3[..., 0, 0] = 1
+    _d4 = numpy.zeros(shape + (2, 2))
+    _d4[..., 1, 1] = 1
+    return {
+        "mass": {
+            "m": _d0,
+            "S": _d1,
+            "I_alpha": _d2,
+        },
+        "stiffness": {
+            "K_h": _d3,
+            "K_alpha": _d4,
+        },
     }

@@ -1,0 +1,387 @@
+"""Exact parameter derivatives of a wing-with-propellers model's second-order system.
+
+For a :class:`~propwhirl.model.systems.PropellerWing` the matrices of
+
+    S1 q̈ + S2 q̇ + S3 q = S4 w,        ẇ = Ww w + Wv q̇ + Wq q           (7.59, D.18–D.29)
+
+are sums of local blocks (:mod:`propwhirl.model.blocks`), each a generated function of a few
+physical parameters.  The generated derivative functions (``<block function>_d`` of
+`propwhirl.generated`: SymPy's exact ∂/∂p of every generated matrix) give ∂(block)/∂p, and the
+chain rule to a model field is applied here where it is simple and exact.  A parameter of one
+element, node or propeller touches only that one's block, so :func:`derivative_blocks`
+returns, per parameter, a :class:`~propwhirl.model.blocks.BlockSystem` of the *derivatives*
+(constant parts zero, the touched block(s) only, same DOF and lag-state layout as
+``model.second_order_blocks(V)``): its ``dense()`` is ∂(S1, …, Wq)/∂p over the kept states,
+:func:`pencil_derivative` the derivative of the sparse pencil (∂F, ∂E) and its
+``project(Φ, Q)`` the projected derivative — the same three assemblies as the system itself.
+
+Parameters covered (paths as :attr:`Parameter.path`; `wing` is ``model.wing``, the meshed wing):
+
+=====================================================  ==========================================
+``wing.EI[e]``, ``wing.GJ[e]``                         rigidities of element e [N m²]; the
+                                                       Rayleigh damping λK follows (7.22)
+``wing.mass_per_length[e]``                            m of element e [kg/m]; with a radius of
+                                                       gyration ρI_p = m((r c)² + (x_α b)²)
+                                                       follows, and the Rayleigh μM
+``wing.lift_slope[i]``                                 C_lα at node i ≥ 1 [1/rad] (wing_aero)
+``propellers[j].propeller.K_theta`` / ``K_psi``        mount stiffness [N m/rad] (with f given:
+                                                       the stiffness at fixed inertia)
+``propellers[j].propeller.f_theta`` / ``f_psi``        mount frequency [Hz], when the propeller
+                                                       is given by it: K = I (2π f)², so
+                                                       ∂K/∂f = 2K/f (model/propeller.py)
+``propellers[j].propeller.damping_theta`` / ``_psi``   mount damping (ζ, or g with ζ = g/2)
+``propellers[j].propeller.spin_inertia``               I_Ω [kg m²] (rotor mass held fixed)
+``propellers[j].propeller.derivatives.values[NAME]``   each of the 16 aerodynamic derivatives of
+                                                       a MeasuredDerivatives source (propeller
+                                                       aerodynamics on)
+=====================================================  ==========================================
+
+Not covered here (their chain rule is not a single factor): chords and taper (they move b, x_α b
+and ρI_p together), positions and point masses of the propellers (the pivot inertia and the
+offsets e_θ, e_ψ, e_α), and Houbolt–Reed derivatives through blade angle and advance ratio;
+the generated functions have the matrices' derivatives for all their arguments.
+:func:`with_value` is the model with one parameter set to a value (for finite differences).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import Iterable
+
+import numpy as np
+
+from propwhirl.generated import beam_element, prop_flexwing
+from propwhirl.model.assembly import LAG_STATES, element_dofs, free_dofs
+from propwhirl.model.blocks import BlockSystem, LagBlocks, LocalBlocks
+from propwhirl.model.propeller import MeasuredDerivatives
+from propwhirl.model.propeller_aero import DERIVATIVE_NAMES
+from propwhirl.model.statespace import SecondOrder
+from propwhirl.model.systems import PropellerWing
+from propwhirl import validate as v
+
+#: generated strip-aerodynamics block function and role -> matrix (as model/assembly.py)
+_STRIP = {
+    "leishman-nguyen": ("ln_blocks_d", dict(M="ln_M", C="ln_C", K="ln_K", W0="ln_W0",
+                                            Ww="ln_W1", Wv="ln_W2", Wq="ln_W3")),
+    "wagner": ("wagner_blocks_d", dict(M="wagner_M", C="wagner_C", K="wagner_K",
+                                       W0="wagner_W0", Ww="wagner_W2", Wq="wagner_W1")),
+}
+_PROP_AERO = ("Aa", "Ba", "Ca", "Da", "Ea", "Fa", "P1", "P2", "P3", "P4", "P5", "P6")
+_AXES = ("theta", "psi")
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One model parameter with exact derivatives: its path, current value, unit, meaning.
+
+    kind: "element", "node" or "propeller"; index: the element, node or installation."""
+
+    path: str
+    kind: str
+    index: int
+    name: str
+    value: float
+    unit: str
+    doc: str
+
+
+def parameters(model: PropellerWing) -> tuple[Parameter, ...]:
+    """Every parameter of `model` whose derivatives :func:`derivative_blocks` gives (table in
+    the module docstring), in a fixed order: elements, nodes, propellers."""
+    _check_model(model)
+    wing = model.wing
+    p = wing.element_properties()
+    out = []
+    for name, key, unit, doc in (("EI", "EI", "N m^2", "bending rigidity"),
+                                 ("GJ", "GJ", "N m^2", "torsional rigidity"),
+                                 ("mass_per_length", "m", "kg/m", "mass per unit span")):
+        for e in range(wing.element_count):
+            out.append(Parameter(f"wing.{name}[{e}]", "element", e, name, float(p[key][e]),
+                                 unit, f"{doc} of element {e}"))
+    if model.wing_aero:
+        cla = wing.node_properties()["Cla"]
+        for i in range(1, wing.n_nodes):
+            out.append(Parameter(f"wing.lift_slope[{i}]", "node", i, "lift_slope",
+                                 float(cla[i]), "1/rad", f"lift-curve slope at node {i}"))
+    for j, inst in enumerate(model.propellers):
+        prop = inst.propeller
+        pre = f"propellers[{j}].propeller."
+        K = prop.stiffness()
+        zeta = prop.viscous_damping_ratios()
+        for k, ax in enumerate(_AXES):
+            out.append(Parameter(pre + f"K_{ax}", "propeller", j, f"K_{ax}", K[k], "N m/rad",
+                                 f"{ax} mount stiffness"))
+            f = getattr(prop, f"f_{ax}")
+            if f is not None:
+                out.append(Parameter(pre + f"f_{ax}", "propeller", j, f"f_{ax}", float(f), "Hz",
+                                     f"uncoupled {ax} mount frequency"))
+            out.append(Parameter(pre + f"damping_{ax}", "propeller", j, f"damping_{ax}",
+                                 float(getattr(prop, f"damping_{ax}")), "",
+                                 f"{ax} mount damping ({prop.damping}; zeta = {zeta[k]:.6g})"))
+        out.append(Parameter(pre + "spin_inertia", "propeller", j, "spin_inertia",
+                             prop.I_Omega, "kg m^2", "spin inertia I_Omega"))
+        if (model.propeller_aero and inst.aero
+                and isinstance(prop.derivatives, MeasuredDerivatives)):
+            for name in DERIVATIVE_NAMES:
+                out.append(Parameter(pre + f"derivatives.values[{name}]", "propeller", j, name,
+                                     float(prop.derivatives.values.get(name, 0.0)), "",
+                                     f"aerodynamic derivative {name} (eq. 4.25)"))
+    return tuple(out)
+
+
+def _check_model(model) -> None:
+    if not isinstance(model, PropellerWing):
+        raise v.InputError(f"model = {type(model).__name__} is invalid: parameter derivatives "
+                           "are available for a PropellerWing")
+
+
+def _lookup(model: PropellerWing, params: Iterable[str | Parameter] | None) -> list[Parameter]:
+    known = {p.path: p for p in parameters(model)}
+    if params is None:
+        return list(known.values())
+    out = []
+    for p in params:
+        path = p.path if isinstance(p, Parameter) else p
+        if path not in known:
+            raise v.InputError(f"parameter = {path!r} is invalid: not a parameter with "
+                               f"derivatives of this model (see propwhirl.model.derivatives."
+                               f"parameters(model); e.g. {next(iter(known), 'none')!r})")
+        out.append(known[path])
+    return out
+
+
+class _Context:
+    """What the derivatives of one model at speeds V share: the layout of its BlockSystem
+    and the generated derivatives of every element, node and propeller (computed once)."""
+
+    def __init__(self, model: PropellerWing, V: np.ndarray, omega) -> None:
+        self.model, self.V, self.omega = model, V, omega
+        wing = model.wing
+        self.nV = V.shape[0]
+        self.nqw = 3 * wing.n_nodes
+        self.flex = model.flexible
+        self.n = self.nqw + 2 * len(self.flex)
+        self.zero = np.zeros((self.n, self.n))
+        self.zero.flags.writeable = False
+        self.props = wing.element_properties()
+        self.beam = None
+        self.strip = None
+        self.m = LAG_STATES[wing.aero_model] * wing.n_nodes if model.wing_aero else 0
+        self.keep_q = np.concatenate([free_dofs(wing.n_nodes), np.arange(self.nqw, self.n)])
+        if model.wing_aero:
+            self.keep_w = np.arange(LAG_STATES[wing.aero_model], self.m)
+            k = LAG_STATES[wing.aero_model]
+            self.w_labels = tuple(f"node {i} w{r + 1}" for i in range(wing.n_nodes)
+                                  for r in range(k))
+        else:
+            self.keep_w, self.w_labels = np.arange(0), ()
+        self.q_labels = model.q_labels()
+        self.prop: dict[int, tuple] = {}
+        self.memo: dict = {}
+
+    def system(self, blocks: tuple[LocalBlocks, ...], lag: LagBlocks | None) -> BlockSystem:
+        return BlockSystem(self.V, self.zero, self.zero, self.zero, blocks, lag, self.m,
+                           self.q_labels, self.w_labels, self.keep_q, self.keep_w)
+
+    def const(self, x: np.ndarray) -> np.ndarray:
+        """A V-independent block (nb, k, l) as (nV, nb, k, l), without copying."""
+        return np.broadcast_to(x, (self.nV,) + x.shape)
+
+    # ---------------------------------------------------------------- wing elements
+    def element(self, par: Parameter) -> BlockSystem:
+        if self.beam is None:
+            self.beam = beam_element.blocks_d(**{a: self.props[a]
+                                                 for a in beam_element.PARTIALS["blocks_d"][0]})
+        e, wing = par.index, self.model.wing
+        zero = np.zeros((1, 6, 6))
+        dM, dK = zero, zero
+        if par.name in ("EI", "GJ"):
+            dK = self.beam["stiffness"][par.name][e:e + 1]
+        else:  # mass per length: m, and ρI_p = m((r c)² + (x_α b)²) with a radius of gyration
+            d = self.beam["mass"]
+            dM = d["m"][e:e + 1]
+            if wing.polar_inertia is None:
+                dM = dM + d["rho_Ip"][e:e + 1] * (self.props["rho_Ip"][e] / self.props["m"][e])
+        mu, lam = wing.rayleigh
+        dofs = element_dofs(wing.element_count)[e:e + 1]
+        block = LocalBlocks(f"wing element {e}", dofs, self.const(dM),
+                            self.const(mu * dM + lam * dK), self.const(dK))
+        return self.system((block,), None)
+
+    # ---------------------------------------------------------------- strip aerodynamics
+    def node(self, par: Parameter) -> BlockSystem:
+        wing = self.model.wing
+        group, roles = _STRIP[wing.aero_model]
+        if self.strip is None:
+            from propwhirl.generated import strip_aero
+
+            node = wing.node_properties()
+            values = dict(rho=self.model.flight.density, V=self.V[:, None], b=node["b"],
+                          a=node["a"], Cla=node["Cla"], ac=node["ac"])
+            self.strip = (getattr(strip_aero, group)(**values), node["width"])
+        d, width = self.strip
+        i, k = par.index, LAG_STATES[wing.aero_model]
+        shape = {"M": (2, 2), "C": (2, 2), "K": (2, 2), "W0": (2, k), "Ww": (k, k),
+                 "Wv": (k, 2), "Wq": (k, 2)}
+
+        def get(role: str) -> np.ndarray:  # (nV, 1, r, c) at node i
+            x = d[roles[role]].get("Cla") if role in roles else None
+            if x is None:
+                return np.zeros((self.nV, 1) + shape[role])
+            return np.broadcast_to(x, (self.nV, wing.n_nodes) + shape[role])[:, i:i + 1]
+
+        w = width[i]
+        qrows = np.array([[3 * i, 3 * i + 2]])
+        wrows = k * i + np.arange(k)[None, :]
+        block = LocalBlocks(f"wing strip {i}", qrows, -w * get("M"), -w * get("C"),
+                            -w * get("K"))
+        lag = LagBlocks(qrows, wrows, w * get("W0"), get("Ww"), get("Wv"), get("Wq"))
+        return self.system((block,), lag)
+
+    # ---------------------------------------------------------------- propellers
+    def propeller(self, par: Parameter) -> BlockSystem:
+        j, model = par.index, self.model
+        inst = model.propellers[j]
+        if j not in self.prop:
+            values = model._propeller_values(j, self.V, self.omega, self.memo)
+            struct = prop_flexwing.structure_blocks_d(
+                **{a: values[a] for a in prop_flexwing.PARTIALS["structure_blocks_d"][0]})
+            aero = {}
+            if model.propeller_aero and inst.aero:
+                aero = prop_flexwing.aero_blocks_d(
+                    **{a: values[a] for a in prop_flexwing.PARTIALS["aero_blocks_d"][0]})
+            self.prop[j] = (values, struct, aero)
+        values, struct, aero = self.prop[j]
+        M, C, K = (np.zeros((self.nV, k, k)) for k in [2 if inst.mount == "rigid" else 4] * 3)
+        for arg, factor in _chain(inst.propeller, par, values):
+            dM, dC, dK = self._local(inst.mount, struct, aero, arg)
+            M, C, K = M + factor * dM, C + factor * dC, K + factor * dK
+        node = model.nodes[j]
+        wing_idx = [3 * node, 3 * node + 2]
+        if inst.mount == "flexible":
+            pj = self.nqw + 2 * self.flex.index(j)
+            idx = np.array([pj, pj + 1] + wing_idx)
+        else:
+            idx = np.array(wing_idx)
+        block = LocalBlocks(f"propeller {j}", idx[None, :], M[:, None], C[:, None], K[:, None])
+        return self.system((block,), None)
+
+    def _local(self, mount: str, struct: dict, aero: dict, arg: str):
+        """∂(M, C, K)/∂arg of a propeller's local block, assembled as
+        PropellerWing._propeller_matrices assembles (M, C, K)."""
+        z = np.zeros((self.nV, 2, 2))
+
+        def g(d: dict, name: str) -> np.ndarray:
+            x = d.get(name, {}).get(arg)
+            return z if x is None else np.broadcast_to(x, z.shape)
+
+        s = lambda name: g(struct, name)  # noqa: E731
+        a = lambda name: g(aero, name)  # noqa: E731
+        if mount == "rigid":
+            return s("Gs") - a("P2"), -a("P4"), -a("P6")
+        M = np.block([[s("As") - a("Aa"), s("Bs") - a("Ba")], [s("Fs") - a("P1"), s("Gs") - a("P2")]])
+        C = np.block([[s("Cs_viscous") - a("Ca"), s("Ds") - a("Da")], [s("Hs") - a("P3"), -a("P4")]])
+        K = np.block([[s("Es") - a("Ea"), -a("Fa")], [-a("P5"), -a("P6")]])
+        return M, C, K
+
+
+def _chain(prop, par: Parameter, values: dict) -> list[tuple[str, float]]:
+    """[(generated argument, ∂argument/∂parameter)] of a propeller parameter (exact)."""
+    name = par.name
+    if name in ("K_theta", "K_psi"):
+        return [(name, 1.0)]
+    if name in ("f_theta", "f_psi"):        # K = I (2π f)²  (Propeller.stiffness)
+        K = "K_" + name[2:]
+        return [(K, 2.0 * float(values[K]) / par.value)]
+    if name in ("damping_theta", "damping_psi"):  # ζ = g/2 or ζ (viscous_damping_ratios)
+        return [("zeta_" + name[8:], 1.0 if prop.damping == "zeta" else 0.5)]
+    if name == "spin_inertia":
+        return [("I_Omega", 1.0)]
+    return [(name, 1.0)]                      # an aerodynamic derivative
+
+
+def derivative_blocks(model: PropellerWing, V, params: Iterable[str | Parameter] | None = None,
+                      omega=None) -> dict[str, BlockSystem]:
+    """{path: ∂(blocks)/∂p}: for each parameter (default all of :func:`parameters`), the
+    derivative of ``model.second_order_blocks(V, omega)`` as a
+    :class:`~propwhirl.model.blocks.BlockSystem` (same layout; zero constant parts, the
+    touched block only): ``.dense()`` is ∂(S1, S2, S3, S4, Ww, Wv, Wq)/∂p over the kept
+    states, :func:`pencil_derivative` of it ∂(F, E) (``.pencil(t)`` itself holds the pencil's
+    constant identity blocks), ``.project(Φ, Q)`` the projected derivatives.
+    V [m/s] (array); `omega` [rad/s] as in ``second_order``."""
+    _check_model(model)
+    V = np.atleast_1d(v.positive("airspeed V", V, "m/s"))
+    pars = _lookup(model, params)
+    ctx = _Context(model, V, omega)
+    with np.errstate(all="ignore"):
+        return {p.path: getattr(ctx, p.kind)(p) for p in pars}
+
+
+def second_order_derivatives(model: PropellerWing, V,
+                             params: Iterable[str | Parameter] | None = None,
+                             omega=None) -> dict[str, SecondOrder]:
+    """{path: ∂(second_order(V))/∂p} as dense :class:`SecondOrder` matrices (leading speed
+    axis, root removed: the shapes of ``model.second_order(V, omega)``)."""
+    return {k: b.dense() for k, b in derivative_blocks(model, V, params, omega).items()}
+
+
+def pencil_derivative(blocks: BlockSystem, t: int = 0):
+    """(∂F, ∂E) of the sparse pencil E ẋ = F x at speed index `t` from a derivative
+    BlockSystem of :func:`derivative_blocks`: its ``pencil(t)`` less the constant identity
+    blocks every pencil holds (E = diag(I, S1, I), F = [[0, I, 0], …]), CSC matrices."""
+    import scipy.sparse as sparse
+
+    F, E = blocks.pencil(t)
+    n, m = blocks.keep_q.size, blocks.keep_w.size
+    size = 2 * n + m
+    k = np.arange(n)
+    eye_E = sparse.csc_matrix((np.ones(n + m), (np.r_[k, 2 * n + np.arange(m)],
+                                                np.r_[k, 2 * n + np.arange(m)])),
+                              shape=(size, size))
+    eye_F = sparse.csc_matrix((np.ones(n), (k, n + k)), shape=(size, size))
+    return (F - eye_F).tocsc(), (E - eye_E).tocsc()
+
+
+def with_value(model: PropellerWing, path: str, value: float) -> PropellerWing:
+    """`model` with the parameter `path` (of :func:`parameters`) set to `value`, everything
+    else unchanged (``dataclasses.replace`` of the wing or of installation j's propeller; a
+    per-element value becomes a per-element array of the property, a nodal lift slope a
+    function of y equal to the old one at every other node)."""
+    (par,) = _lookup(model, [path])
+    wing = model.wing
+    value = float(value)
+    if par.kind == "element":
+        key = {"EI": "EI", "GJ": "GJ", "mass_per_length": "m"}[par.name]
+        arr = wing.element_properties()[key].copy()
+        arr[par.index] = value
+        return model.with_(wing=replace(wing, **{par.name: arr}))
+    if par.kind == "node":
+        ys = wing.node_y
+        base = wing.lift_slope_at(ys)
+        base[par.index] = value
+        return model.with_(wing=replace(wing, lift_slope=_NodeValues(ys, base)))
+    j = par.index
+    inst = model.propellers[j]
+    prop = inst.propeller
+    if par.name in ("K_theta", "K_psi"):
+        changes = {par.name: value, "f_" + par.name[2:]: None}
+    elif par.name in DERIVATIVE_NAMES:
+        vals = dict(prop.derivatives.values)
+        vals[par.name] = value
+        changes = {"derivatives": MeasuredDerivatives(vals)}
+    else:
+        changes = {par.name: value}
+    installs = list(model.propellers)
+    installs[j] = replace(inst, propeller=replace(prop, **changes))
+    return model.with_(propellers=tuple(installs))
+
+
+@dataclass(frozen=True)
+class _NodeValues:
+    """A spanwise function of y equal to `values` at the nodes `ys` (and interpolated
+    linearly between them): a lift slope given node by node."""
+
+    ys: np.ndarray
+    values: np.ndarray
+
+    def __call__(self, y):
+        return np.interp(np.asarray(y, dtype=float), self.ys, self.values)
