@@ -71,6 +71,17 @@ def place(blocks: np.ndarray, rows: np.ndarray, cols: np.ndarray, shape: tuple[i
 
 LAG_STATES = {"leishman-nguyen": 2, "wagner": 4}
 
+#: Strip aerodynamics of each model: the generated block function and, per role of
+#: Q_W = M q̈ + C q̇ + K q + W0 w, ẇ = Ww w + Wv q̇ + Wq q, the generated matrix (Wagner has no Wv).
+#: Its parameter derivatives are the block function with the suffix ``_d``
+#: (:mod:`propwhirl.model.derivatives`).
+STRIP_AERO: dict[str, tuple[str, dict[str, str]]] = {
+    "leishman-nguyen": ("ln_blocks", dict(M="ln_M", C="ln_C", K="ln_K", W0="ln_W0", Ww="ln_W1",
+                                          Wv="ln_W2", Wq="ln_W3")),
+    "wagner": ("wagner_blocks", dict(M="wagner_M", C="wagner_C", K="wagner_K", W0="wagner_W0",
+                                     Ww="wagner_W2", Wq="wagner_W1")),
+}
+
 
 def call_blocks(module, name: str, shape: tuple[int, ...], **values) -> dict[str, np.ndarray]:
     """Call generated block function `name` — the matrices of one group in one call, common
@@ -101,10 +112,7 @@ def wing_aero_blocks(wing: Wing, rho: float, V: np.ndarray) -> dict[str, np.ndar
     values = dict(rho=rho, V=Vc, b=node["b"], a=node["a"], Cla=node["Cla"], ac=node["ac"])
     shape = (Vc.shape[0], nn)
     width = node["width"][None, :, None, None]
-    group, names = {  # generated block function, role -> generated matrix
-        "leishman-nguyen": ("ln_blocks", dict(M="ln_M", C="ln_C", K="ln_K", W0="ln_W0", Ww="ln_W1", Wv="ln_W2", Wq="ln_W3")),
-        "wagner": ("wagner_blocks", dict(M="wagner_M", C="wagner_C", K="wagner_K", W0="wagner_W0", Ww="wagner_W2", Wq="wagner_W1")),
-    }[wing.aero_model]
+    group, names = STRIP_AERO[wing.aero_model]
     blocks = call_blocks(strip_aero, group, shape, **values)
     mats = {role: blocks[fn] for role, fn in names.items()}
     M, C, K, W0, Ww, Wq = (mats[r] for r in ("M", "C", "K", "W0", "Ww", "Wq"))

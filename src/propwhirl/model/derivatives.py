@@ -50,7 +50,7 @@ from typing import Iterable
 import numpy as np
 
 from propwhirl.generated import beam_element, prop_flexwing
-from propwhirl.model.assembly import LAG_STATES, element_dofs, free_dofs
+from propwhirl.model.assembly import LAG_STATES, STRIP_AERO, element_dofs, free_dofs
 from propwhirl.model.blocks import BlockSystem, LagBlocks, LocalBlocks
 from propwhirl.model.propeller import MeasuredDerivatives
 from propwhirl.model.propeller_aero import DERIVATIVE_NAMES
@@ -58,13 +58,6 @@ from propwhirl.model.statespace import SecondOrder
 from propwhirl.model.systems import PropellerWing
 from propwhirl import validate as v
 
-#: generated strip-aerodynamics block function and role -> matrix (as model/assembly.py)
-_STRIP = {
-    "leishman-nguyen": ("ln_blocks_d", dict(M="ln_M", C="ln_C", K="ln_K", W0="ln_W0",
-                                            Ww="ln_W1", Wv="ln_W2", Wq="ln_W3")),
-    "wagner": ("wagner_blocks_d", dict(M="wagner_M", C="wagner_C", K="wagner_K",
-                                       W0="wagner_W0", Ww="wagner_W2", Wq="wagner_W1")),
-}
 _PROP_AERO = ("Aa", "Ba", "Ca", "Da", "Ea", "Fa", "P1", "P2", "P3", "P4", "P5", "P6")
 _AXES = ("theta", "psi")
 
@@ -210,7 +203,8 @@ class _Context:
     # ---------------------------------------------------------------- strip aerodynamics
     def node(self, par: Parameter) -> BlockSystem:
         wing = self.model.wing
-        group, roles = _STRIP[wing.aero_model]
+        group, roles = STRIP_AERO[wing.aero_model]
+        group += "_d"
         if self.strip is None:
             from propwhirl.generated import strip_aero
 
