@@ -12,6 +12,7 @@ Commands
   case         export a model of the thesis's case library as a TOML model file
   boundary     stability boundary in a plane of two parameters (continuation)
   clearance    clearance to factor x V_D (exit code 0 cleared, 1 not cleared)
+  sensitivity  sensitivities of the critical speed to the model's parameters, ranked
   docs         the installed documentation (validation, errata, model-file reference, ...)
 
 Bad input (a missing or unreadable file, bad TOML, an unknown field, an invalid value) is

@@ -4,6 +4,8 @@
                (:mod:`propwhirl.studies.boundary`)
   clearance    clearance to factor x V_D (:mod:`propwhirl.studies.clearance`); exit code 0
                when cleared, 1 when not
+  sensitivity  the critical point, then the parameters ranked by normalised sensitivity
+               (p/V) dV/dp (:mod:`propwhirl.analysis.sensitivity`)
 
 MODEL is a TOML model file or the name of a case (``propwhirl case``).
 """
@@ -131,7 +133,57 @@ def _add_clearance(sub) -> None:
 
 
 
+def _sensitivity(args: argparse.Namespace) -> int:
+    import json
+
+    from propwhirl import fileio
+    from propwhirl.analysis.sensitivity import critical_sensitivities
+    from propwhirl.analysis.stability import analyse
+
+    _check_outputs(json=args.json, plot=args.plot)
+    if args.top < 1:
+        raise InputError(f"--top {args.top} is invalid: must be >= 1")
+    model = _model_or_case(args.model)
+    if not hasattr(model, "second_order_blocks"):
+        raise InputError(f"{type(model).__name__}: sensitivities are available for wing models "
+                         "(PropellerWing) only")
+    a = analyse(model)
+    event = a.critical
+    if args.kind is not None:
+        cands = [e for e in a.events if e.kind == args.kind and e.event == "onset"]
+        if not cands:
+            raise InputError(f"no {args.kind} onset in the analysed range")
+        event = min(cands, key=lambda e: e.V)
+    cs = critical_sensitivities(model, a, event)
+    _echo(cs.format(args.top))
+    if args.json:
+        fileio.write_text(args.json, json.dumps(cs.to_dict(args.top), indent=1) + "\n",
+                          what="sensitivities")
+        print(f"wrote {args.json}")
+    if args.plot:
+        from propwhirl.app import plots
+
+        plots.spanwise_sensitivity(cs, model, path=args.plot)
+        print(f"wrote {args.plot}")
+    return 0
+
+
+def _add_sensitivity(sub) -> None:
+    p = sub.add_parser("sensitivity", help="sensitivities of the critical speed to the model's "
+                       "parameters (exact derivatives, ranked)")
+    p.add_argument("model", metavar="MODEL", help="a model file (.toml) or a case name")
+    p.add_argument("--top", type=int, default=10, metavar="N",
+                   help="the N parameters of largest normalised sensitivity (default 10)")
+    p.add_argument("--kind", choices=("flutter", "divergence"),
+                   help="the first onset of this kind instead of the critical instability")
+    p.add_argument("--json", metavar="FILE", help="write the critical point and the ranked "
+                   "sensitivities as JSON")
+    p.add_argument("--plot", metavar="PNG", help="write the spanwise sensitivities of EI, GJ, m")
+    p.set_defaults(func=_sensitivity)
+
+
 def add_commands(sub) -> None:
-    """Register ``boundary`` and ``clearance`` on the CLI's subparsers."""
+    """Register ``boundary``, ``clearance`` and ``sensitivity`` on the CLI's subparsers."""
     _add_boundary(sub)
     _add_clearance(sub)
+    _add_sensitivity(sub)

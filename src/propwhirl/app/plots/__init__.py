@@ -20,7 +20,9 @@ from 1 in every figure.
   (filled contours, the critical kind, the design point) or one
   (:mod:`~propwhirl.app.plots.map_plot`);
 * :func:`boundary_plot` / :func:`clearance_plot` — traced stability boundaries over a grid
-  map, clearance margins (:mod:`~propwhirl.app.plots.boundary_plot`).
+  map, clearance margins (:mod:`~propwhirl.app.plots.boundary_plot`);
+* :func:`spanwise_sensitivity` — where along the span EI, GJ or mass raise the critical speed
+  (:mod:`~propwhirl.app.plots.sensitivity_plot`).
 """
 from propwhirl.app.plots.animation import animate_event, animate_mode
 from propwhirl.app.plots.boundary_plot import boundary_plot, clearance_plot
@@ -28,12 +30,14 @@ from propwhirl.app.plots.campbell_plot import campbell, campbell_diagram
 from propwhirl.app.plots.canvas import (DIVERGENCE_COLOUR, FLUTTER_COLOUR, INSTALL_HINT, save)
 from propwhirl.app.plots.map_plot import critical_map, critical_sweep
 from propwhirl.app.plots.mode_plot import event_eigenvector, event_mode_shape, mode_shape
+from propwhirl.app.plots.sensitivity_plot import spanwise_sensitivity
 from propwhirl.app.plots.time_plot import time_history
 from propwhirl.app.plots.vgf_plot import DAMPING_MARGIN, fine_sweep, select_modes, vgf
 
 __all__ = [
     "vgf", "select_modes", "fine_sweep", "campbell", "campbell_diagram", "mode_shape",
     "event_mode_shape", "event_eigenvector", "animate_mode", "animate_event", "time_history",
-    "critical_map", "critical_sweep", "boundary_plot", "clearance_plot", "save",
+    "critical_map", "critical_sweep", "boundary_plot", "clearance_plot", "spanwise_sensitivity",
+    "save",
     "FLUTTER_COLOUR", "DIVERGENCE_COLOUR", "INSTALL_HINT", "DAMPING_MARGIN",
 ]
