@@ -29,19 +29,19 @@ comma := ,
 generate: $(VENV)/.stamp-codegen
 	$(BIN)/python -m derivations.generate --out generated
 
-test: $(VENV)/.stamp-codegen+data+docs+tables+test+plots+toml+notebooks+distributed+progress
+test: $(VENV)/.stamp-codegen+data+docs+tables+test+plots+toml+notebooks+distributed+progress+mdo
 	$(BIN)/python -m pytest -q
 
-test-fast: $(VENV)/.stamp-codegen+data+docs+tables+test+plots+toml+notebooks+distributed+progress
+test-fast: $(VENV)/.stamp-codegen+data+docs+tables+test+plots+toml+notebooks+distributed+progress+mdo
 	$(BIN)/python -m pytest -q -m "not long"
 
 # BENCH_MD=path writes the tables elsewhere; BENCH_ARGS e.g. "--repeats 1 --no-variants"
 BENCH_MD ?= docs/performance.md
-bench: $(VENV)/.stamp-codegen+data+docs+tables+test+plots+toml+notebooks+distributed+progress
+bench: $(VENV)/.stamp-codegen+data+docs+tables+test+plots+toml+notebooks+distributed+progress+mdo
 	$(BIN)/python benchmarks/engine_vs_fixed_grid.py --markdown $(BENCH_MD) $(BENCH_ARGS)
 
 # BENCH_MD as above; BENCH_DESIGN_ARGS e.g. "--quick" (no dense 100-element / 12-propeller run)
-bench-design: $(VENV)/.stamp-codegen+data+docs+tables+test+plots+toml+notebooks+distributed+progress
+bench-design: $(VENV)/.stamp-codegen+data+docs+tables+test+plots+toml+notebooks+distributed+progress+mdo
 	$(BIN)/python benchmarks/design_size.py --markdown $(BENCH_MD) $(BENCH_DESIGN_ARGS)
 
 # Material for MkDocs prints an end-of-life banner on every build; NO_MKDOCS_2_WARNING silences it.

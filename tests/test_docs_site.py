@@ -107,3 +107,17 @@ def test_getting_started_python_example_runs(tmp_path: Path, monkeypatch: pytest
     for code in blocks:
         exec(compile(code, "docs/getting-started.md", "exec"), {})
     assert (tmp_path / "a.json").is_file()
+
+
+def test_gradients_page_examples_run(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The Python examples of docs/gradients.md run in order (the OpenMDAO one needs the mdo
+    extra, installed by `make test`)."""
+    pytest.importorskip("openmdao.api")
+    text = (ROOT / "docs" / "gradients.md").read_text(encoding="utf-8")
+    blocks = re.findall(r"```python\n(.*?)```", text, flags=re.S)
+    assert len(blocks) == 2
+    monkeypatch.chdir(tmp_path)
+    ns: dict = {}
+    for code in blocks:
+        exec(compile(code, "docs/gradients.md", "exec"), ns)
+    assert ns["cs"].kind == "divergence" and abs(float(ns["prob"].get_val("V_crit")[0]) - 159.39) < 0.01
