@@ -45,7 +45,7 @@ def test_minimum_stiffness_clears_with_fewer_analyses_than_finite_differences(mo
 
 def test_openmdao_component_partials(model):
     om = pytest.importorskip("openmdao.api")
-    prob = om.Problem()
+    prob = om.Problem(reports=False)      # no n2/report files written
     comp = openmdao_component(model, PATHS, vd=130.0, static_divergence=False, low_speed=False)
     prob.model.add_subsystem("whirl", comp, promotes=["*"])
     prob.setup(force_alloc_complex=False)
