@@ -117,3 +117,15 @@ def test_a_reduced_analysis_is_saved_and_read_back_with_its_eigenvectors(tmp_pat
                                              red.sweep.n_modes)
     np.testing.assert_array_equal(back.sweep.eigenvectors, np.asarray(red.sweep.eigenvectors))
     assert [e.V for e in back.events] == [e.V for e in red.events]
+
+
+def test_a_crossing_not_converged_on_the_full_order_is_a_warning(monkeypatch):
+    """If the full-order correction fails, the reduced crossing is kept and the analysis says
+    so (never a silent reduced value)."""
+    import propwhirl.analysis.reduced as R
+
+    monkeypatch.setattr(R, "correct_crossing", lambda *a, **k: None)
+    red = analyse(wingtip_propeller_wing(), method="reduced")
+    assert red.criticals.stats["corrected"] == 0
+    notes = [w for w in red.warnings if "not converged on the full-order model" in w]
+    assert len(notes) == len(red.criticals.points) > 0

@@ -39,3 +39,15 @@ def test_a_branch_jump_or_no_crossing_returns_none():
     """The spectator root (−3) never crosses: no secant root inside the bounds."""
     assert correct_crossing(oscillator, 49.0, -3.0 + 0j, np.array([0.0, 0.0, 1.0]),
                             xtol=0.01) is None
+
+
+def test_a_real_root_given_with_a_quarter_turn_phase_is_still_found():
+    """The eigenvector of a real root may come with any complex phase (sweep alignment): its
+    direction, not its (vanishing) real part, starts the real iteration."""
+    from propwhirl.engine.correction import real_direction
+
+    pencil = lambda V: (sp.csc_matrix([[V - 30.0, 0.0], [0.0, -5.0]]), sp.identity(2, format="csc"))  # noqa: E731
+    x0 = 1j * np.array([1.0, 1e-3])                      # phase π/2: Re x0 = 0
+    np.testing.assert_allclose(real_direction(x0), [1.0, 1e-3])
+    c = correct_crossing(pencil, 29.5, -0.5 + 0j, x0, xtol=0.01)
+    assert c is not None and abs(c.V - 30.0) < 1e-3

@@ -31,7 +31,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from propwhirl import validate as v
-from propwhirl.engine.correction import full_order_root
+from propwhirl.engine.correction import full_order_root, real_direction
 from propwhirl.model import derivatives as D
 
 #: relative step of the central difference ∂/∂V of the pencil
@@ -128,7 +128,7 @@ def critical_sensitivities(model, analysis, event=None, *, params=None) -> Criti
     V = float(point.V)
     F, E = model.second_order_blocks(np.array([V])).pencil(0)
     real = e.kind == "divergence"
-    x0 = np.real(point.eigenvector) if real else np.asarray(point.eigenvector, dtype=complex)
+    x0 = real_direction(point.eigenvector) if real else np.asarray(point.eigenvector, dtype=complex)
     got = full_order_root(F, E, point.eigenvalue.real if real else point.eigenvalue, x0)
     if got is None:
         raise v.InputError(f"the root of {e.label} at {V:.2f} m/s could not be converged on the "

@@ -360,11 +360,13 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
                                       vgf=bool(vgf))
         an, matrix_fn, basis = run.analysis, run.model.state_matrix, run.model.dof_basis
         lift = run.model.lift
+        unconverged = [p for p, s in zip(an.criticals.points, run.corrections) if s is None]
     else:
         an = engine_analyse(model.state_matrix, grid, displacement=dm.displacement,
                             state_labels=dm.state_labels, options=options, xtol=xtol,
                             **({"initial_step": None} if vgf else {}))
         matrix_fn, basis, lift = model.state_matrix, None, None
+        unconverged = []
     sw = an.sweep
     names = mode_names(model, sw, basis)
     sw = sw.relabel(names)
@@ -390,6 +392,10 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         model, (float(sw.V[0]), float(sw.V[-1])),
         [(e.V, f"{e.kind} {e.event} of {e.label}") for e in events],
         any(e.event in UNSTABLE_EVENTS for e in events))
+    notes = tuple(notes) + tuple(
+        f"V = {p.V:.2f} m/s ({p.kind} {p.direction} of {names[p.mode]}): not converged on the "
+        "full-order model; the speed is the reduced model's (run method='dense' to check)"
+        for p in unconverged)
     try:
         ref = reference(model)
     except v.InputError:                     # a model of another kind: no summary reference

@@ -49,6 +49,17 @@ class Corrected:
     evaluations: int
 
 
+def real_direction(x: np.ndarray) -> np.ndarray:
+    """The real vector of a real root's eigenvector given with any complex phase e^{iφ}
+    (rotated so that its largest entry is real, then the real part: never the vanishing real
+    part of a vector whose phase is near ±π/2)."""
+    x = np.asarray(x)
+    if not np.iscomplexobj(x):
+        return x.astype(float)
+    k = int(np.argmax(np.abs(x)))
+    return np.real(x * (np.conj(x[k]) / abs(x[k]))) if abs(x[k]) > 0 else np.real(x)
+
+
 def full_order_root(F, E, sigma: complex, x0: np.ndarray, max_iter: int = 40
                     ) -> tuple[complex, np.ndarray] | None:
     """The eigenpair of F x = λ E x nearest the shift ``sigma`` reached from ``x0``, by shifted
@@ -92,7 +103,7 @@ def correct_crossing(pencil: Pencil, V0: float, lam0: complex, x0: np.ndarray, *
     when a root or the secant fails.
     """
     real = np.imag(lam0) == 0
-    x = np.real(x0) if real else np.asarray(x0, dtype=complex)
+    x = real_direction(x0) if real else np.asarray(x0, dtype=complex)
     lam = float(np.real(lam0)) if real else complex(lam0)
     h = max(20 * xtol, 1e-4 * abs(V0)) if step is None else step
     lo, hi = bounds if bounds is not None else (V0 - 50 * h, V0 + 50 * h)
