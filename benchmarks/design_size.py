@@ -50,6 +50,7 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from markdown_section import replace_section  # noqa: E402
 import engine_vs_fixed_grid as evfg  # noqa: E402  (also puts tests/ on sys.path)
 
 Timing = evfg.Timing
@@ -390,16 +391,9 @@ def report(res: DesignResult) -> str:
 
 
 def write_markdown(path: Path, body: str) -> None:
-    """Replace the text between the markers in ``path`` (append the section if absent)."""
-    text = path.read_text() if path.exists() else ""
-    block = f"{BEGIN}\n{body}\n{END}"
-    if BEGIN in text and END in text:
-        head, rest = text.split(BEGIN, 1)
-        _, tail = rest.split(END, 1)
-        text = head + block + tail
-    else:
-        text = text.rstrip("\n") + f"\n\n{TITLE}\n\n{block}\n"
-    path.write_text(text)
+    """Replace the text between this benchmark's markers in ``path`` (append the section if
+    absent): :func:`markdown_section.replace_section`."""
+    replace_section(path, body, BEGIN, END, TITLE)
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -380,13 +380,9 @@ _BEGIN, _END = "<!-- benchmark:begin -->", "<!-- benchmark:end -->"
 
 def _write_markdown(path: Path, text: str) -> None:
     """Replace the text between the benchmark markers of ``path`` (appended if absent)."""
-    block = f"{_BEGIN}\n```text\n{text}\n```\n{_END}"
-    old = path.read_text() if path.exists() else ""
-    if _BEGIN in old and _END in old:
-        new = old[: old.index(_BEGIN)] + block + old[old.index(_END) + len(_END):]
-    else:
-        new = old + ("\n" if old and not old.endswith("\n") else "") + block + "\n"
-    path.write_text(new)
+    from markdown_section import replace_section
+
+    replace_section(path, f"```text\n{text}\n```", _BEGIN, _END)
 
 
 if __name__ == "__main__":

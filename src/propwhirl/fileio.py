@@ -225,3 +225,32 @@ def check_writable(path: str | Path, *, folder: bool = False, create: bool = Fal
     except OSError:
         pass
     return target
+
+
+def csv_table(columns, units, path: str | Path | None = None, what: str = "table") -> str:
+    """A tidy table as CSV: header ``"column [unit]"`` (just ``column`` without a unit), one row
+    per entry of the equal-length ``columns`` (a mapping name → sequence, in order); floats as
+    the shortest text that reads back exactly, NaN and inf as an empty cell.  Also written to
+    ``path`` if given (atomically, :func:`write_text`).  ``units``: name → unit ("" for none)."""
+    import csv
+    import io
+    import math
+
+    names = list(columns)
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow([f"{k} [{units[k]}]" if units.get(k) else k for k in names])
+    n = len(columns[names[0]]) if names else 0
+    for i in range(n):
+        row = []
+        for k in names:
+            x = columns[k][i]
+            if isinstance(x, float) or type(x).__name__ in ("float64", "float32", "float16"):
+                row.append("" if not math.isfinite(float(x)) else repr(float(x)))
+            else:
+                row.append(str(x))
+        w.writerow(row)
+    text = buf.getvalue()
+    if path is not None:
+        write_text(path, text, what=what)
+    return text

@@ -385,25 +385,8 @@ def events_table(events) -> dict[str, np.ndarray]:
 def events_csv(events, path=None) -> str:
     """:func:`events_table` as CSV, header "column [unit]"; NaN as an empty cell; written to
     ``path`` too if given (atomically, :func:`propwhirl.fileio.write_text`)."""
-    import csv
-    import io
-
     from propwhirl import fileio
 
     t = events_table(events)
-    buf = io.StringIO()
-    w = csv.writer(buf, lineterminator="\n")
-    w.writerow([f"{k} [{u}]" if u else k for k, u in EVENT_COLUMNS])
-    for i in range(len(t["kind"])):
-        row = []
-        for key, _ in EVENT_COLUMNS:
-            x = t[key][i]
-            if isinstance(x, (float, np.floating)):
-                row.append("" if not np.isfinite(x) else repr(float(x)))
-            else:
-                row.append(str(x))
-        w.writerow(row)
-    text = buf.getvalue()
-    if path is not None:
-        fileio.write_text(path, text, what="events table")
-    return text
+    return fileio.csv_table({k: t[k] for k, _ in EVENT_COLUMNS}, dict(EVENT_COLUMNS), path,
+                            what="events table")

@@ -259,24 +259,9 @@ class CriticalMap:
     def to_csv(self, path: str | Path | None = None) -> str:
         """One row per point (header "column [unit]"); also written to `path` if given
         (atomically).  NaN is an empty cell."""
-        buf = io.StringIO()
-        w = csv.writer(buf, lineterminator="\n")
         t = self.table()
         units = {**{a.path: a.unit for a in self.axes}, **dict(self.units)}
-        w.writerow([f"{k} [{units[k]}]" if units.get(k) else k for k in t])
-        for i in range(len(self)):
-            row = []
-            for k in t:
-                x = t[k][i]
-                if isinstance(x, (float, np.floating)):  # shortest text that reads back exactly
-                    row.append("" if not math.isfinite(x) else repr(float(x)))
-                else:
-                    row.append(str(x))
-            w.writerow(row)
-        text = buf.getvalue()
-        if path is not None:
-            fileio.write_text(path, text, what="critical-map CSV")
-        return text
+        return fileio.csv_table(t, units, path, what="critical-map CSV")
 
     @classmethod
     def from_csv(cls, text: str, where: str = "critical-map CSV") -> "CriticalMap":
