@@ -129,3 +129,29 @@ def test_a_crossing_not_converged_on_the_full_order_is_a_warning(monkeypatch):
     assert red.criticals.stats["corrected"] == 0
     notes = [w for w in red.warnings if "not converged on the full-order model" in w]
     assert len(notes) == len(red.criticals.points) > 0
+
+
+def _variant(name):
+    p = baseline_propeller()
+    w = baseline_wing(24)
+    return {
+        "wing alone": PropellerWing(w, baseline_flight(), ()),
+        "wagner": PropellerWing(baseline_wing(24, "wagner"), baseline_flight(),
+                                (Installation(p, 5.7, "flexible"),)),
+        "rigid and flexible": PropellerWing(w, baseline_flight(), (
+            Installation(p, 2.85, "rigid"), Installation(p, 5.7, "flexible"))),
+        "no wing aerodynamics": PropellerWing(w, baseline_flight(),
+                                              (Installation(p, 5.7, "flexible"),),
+                                              wing_aero=False),
+        "not rotating": PropellerWing(w, baseline_flight(), (Installation(p, 5.7, "flexible"),),
+                                      rotating=False),
+    }[name]
+
+
+@pytest.mark.long
+@pytest.mark.parametrize("name", ["wing alone", "wagner", "rigid and flexible",
+                                  "no wing aerodynamics", "not rotating"])
+def test_model_variants_reduced_equal_dense(name):
+    """Every switch and aerodynamic model of the wing reduces: the same events as dense."""
+    m = _variant(name)
+    assert_same_events(analyse(m, method="reduced"), analyse(m, method="dense"))
