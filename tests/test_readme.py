@@ -59,7 +59,8 @@ def test_command_line_examples_run(tmp_path):
     assert len(cmds) >= 7
     for argv in cmds:
         _run(argv, tmp_path)
-    for f in ("out/report.txt", "wingtip.toml", "vgf.png", "a.json", "vgf.csv", "campbell.png"):
+    for f in ("out/report.txt", "wingtip.toml", "vgf.png", "a.json", "vgf.csv", "campbell.png",
+              "sweep.png", "map.png", "boundary.png"):
         assert (tmp_path / f).stat().st_size > 0, f
 
 
