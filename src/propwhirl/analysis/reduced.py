@@ -32,7 +32,16 @@ METHODS = ("auto", "dense", "reduced")
 
 
 def choose_method(model, method: str) -> str:
-    """"dense" or "reduced" for ``method`` ("auto", "dense" or "reduced") and ``model``."""
+    """"dense" or "reduced" for ``method`` ("auto", "dense" or "reduced") and ``model``.
+
+    Examples
+    --------
+    >>> from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
+    >>> choose_method(wingtip_propeller_wing(), "auto")      # 204 states: the thesis's models
+    'dense'
+    >>> choose_method(wingtip_propeller_wing(), "reduced")
+    'reduced'
+    """
     if method not in METHODS:
         raise v.InputError(f"method = {method!r} is invalid: must be one of "
                            f"{', '.join(repr(m) for m in METHODS)}")

@@ -242,5 +242,19 @@ class ReducedModel:
 
 def reduce(model, speeds, *, cutoff_hz: float | None = None,
            factor: float = CUTOFF_FACTOR) -> ReducedModel:
-    """The :class:`ReducedModel` of ``model`` for ``speeds`` [m/s] (:func:`modal_basis`)."""
+    """The :class:`ReducedModel` of ``model`` for ``speeds`` [m/s] (:func:`modal_basis`).
+
+    Examples
+    --------
+    The wingtip propeller-wing of §10.1 (204 states): f_ref is wing 2 (17.74 Hz), so every
+    in-vacuo mode up to 53.2 Hz is kept (7), plus 4 static-correction vectors, and 28 lag states.
+
+    >>> import numpy as np
+    >>> from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
+    >>> R = reduce(wingtip_propeller_wing(), np.arange(1.0, 351.0, 10.0))
+    >>> round(R.basis.reference_hz, 2), round(R.basis.cutoff_hz, 2), R.basis.n_modes
+    (17.74, 53.23, 7)
+    >>> R.basis.r, R.basis.L, R.n_states
+    (11, 28, 50)
+    """
     return ReducedModel(model, modal_basis(model, speeds, cutoff_hz=cutoff_hz, factor=factor))
