@@ -31,14 +31,20 @@ Parameters covered (paths as :attr:`Parameter.path`; `wing` is ``model.wing``, t
                                                        ∂K/∂f = 2K/f (model/propeller.py)
 ``propellers[j].propeller.damping_theta`` / ``_psi``   mount damping (ζ, or g with ζ = g/2)
 ``propellers[j].propeller.spin_inertia``               I_Ω [kg m²] (rotor mass held fixed)
+``propellers[j].propeller.rotor.mass`` / ``.x``,       each point mass [kg] and its position [m]:
+``propellers[j].propeller.masses[k].mass`` / ``.x``    M_P, S_θ,P, I_θ,P, I_ψ,P (8.5–8.6), the
+                                                       elastic-axis inertias through
+                                                       ``inertia``, K = I (2πf)² of a mount
+                                                       given by its frequency, I_Ω = M_r R²/3,
+                                                       and the rotor's x moves the propeller
+                                                       plane (e_θ, e_ψ, e_α)
 ``propellers[j].propeller.derivatives.values[NAME]``   each of the 16 aerodynamic derivatives of
                                                        a MeasuredDerivatives source (propeller
                                                        aerodynamics on)
 =====================================================  ==========================================
 
-Not covered here (their chain rule is not a single factor): chords and taper (they move b, x_α b
-and ρI_p together), positions and point masses of the propellers (the pivot inertia and the
-offsets e_θ, e_ψ, e_α), and Houbolt–Reed derivatives through blade angle and advance ratio;
+Not covered here: chords and taper (they move b, x_α b and ρI_p together), the pivot positions,
+and Houbolt–Reed derivatives through blade angle and advance ratio (numerical integrals);
 the generated functions have the matrices' derivatives for all their arguments.
 :func:`with_value` is the model with one parameter set to a value (for finite differences).
 """
@@ -112,6 +118,11 @@ def parameters(model: PropellerWing) -> tuple[Parameter, ...]:
                                  f"{ax} mount damping ({prop.damping}; zeta = {zeta[k]:.6g})"))
         out.append(Parameter(pre + "spin_inertia", "propeller", j, "spin_inertia",
                              prop.I_Omega, "kg m^2", "spin inertia I_Omega"))
+        for k, (where, pm) in enumerate(_point_masses(prop)):
+            out.append(Parameter(pre + f"{where}.mass", "propeller", j, f"mass:{k}",
+                                 float(pm.mass), "kg", f"point mass {where}"))
+            out.append(Parameter(pre + f"{where}.x", "propeller", j, f"x:{k}", float(pm.x),
+                                 "m", f"position of point mass {where} aft of the mid-chord"))
         if (model.propeller_aero and inst.aero
                 and isinstance(prop.derivatives, MeasuredDerivatives)):
             for name in DERIVATIVE_NAMES:
@@ -246,7 +257,9 @@ class _Context:
             self.prop[j] = (values, struct, aero)
         values, struct, aero = self.prop[j]
         M, C, K = (np.zeros((self.nV, k, k)) for k in [2 if inst.mount == "rigid" else 4] * 3)
-        for arg, factor in _chain(inst.propeller, par, values):
+        node_ab = model.wing.node_properties()
+        ea = float(node_ab["a"][model.nodes[j]] * node_ab["b"][model.nodes[j]])  # a_P b_P [m]
+        for arg, factor in _chain(inst.propeller, par, {**values, "ea": ea}):
             dM, dC, dK = self._local(inst.mount, struct, aero, arg)
             M, C, K = M + factor * dM, C + factor * dC, K + factor * dK
         node = model.nodes[j]
@@ -278,9 +291,55 @@ class _Context:
         return M, C, K
 
 
+def _point_masses(prop) -> list[tuple[str, object]]:
+    """("rotor" | "masses[k]", PointMass) of a propeller, in the order of ``all_masses``."""
+    return [("rotor", prop.rotor)] + [(f"masses[{k}]", m) for k, m in enumerate(prop.masses)]
+
+
+def _mass_chain(prop, par: Parameter, values: dict) -> list[tuple[str, float]]:
+    """The chain of a point mass's mass or position (8.5–8.6): M_P = Σm, S_θ,P = Σm(x − l_θ),
+    I_θ,P = Σm(x − l_θ)², I_ψ,P = Σm(x − l_ψ)² (those not given in ``inertia``), then S_α,P,
+    I_α,P, I_θα,P through the generated ``inertia`` (its ``inertia_d``), K = I (2πf)² where
+    the mount is given by its frequency, I_Ω = M_r R²/3 for the rotor without a given spin
+    inertia, and for the rotor's position the propeller plane's arms e_θ, e_ψ, e_α."""
+    what, k = par.name.split(":")
+    pm = prop.all_masses[int(k)]
+    m, x, pp, py = float(pm.mass), float(pm.x), prop.pivot_pitch, prop.pivot_yaw
+    if what == "mass":
+        d = {"M_P": 1.0, "S_theta_P": x - pp, "I_theta_P": (x - pp) ** 2,
+             "I_psi_P": (x - py) ** 2}
+    else:
+        d = {"M_P": 0.0, "S_theta_P": m, "I_theta_P": 2 * m * (x - pp),
+             "I_psi_P": 2 * m * (x - py)}
+    for key in (prop.inertia or {}):          # given inertias do not follow the masses
+        d[key] = 0.0
+    args = prop_flexwing.PARTIALS["inertia_d"][0]
+    ea = float(values["ea"])                  # elastic axis aft of mid-chord at the node [m]
+    dinert = prop_flexwing.inertia_d(**{a: ({"M_P": values["M_P"], "S_theta_P": values["S_theta_P"],
+                                             "I_theta_P": values["I_theta_P"], "l_theta": pp,
+                                             "a_P_b_P": ea}[a]) for a in args})["inertia"]
+    out = [(a, f) for a, f in d.items()]
+    for row, name in enumerate(("S_alpha_P", "I_alpha_P", "I_theta_alpha_P")):
+        total = sum(float(np.asarray(dinert[a])[..., row, 0].ravel()[0]) * d[a]
+                    for a in ("M_P", "S_theta_P", "I_theta_P") if a in dinert)
+        out.append((name, total))
+    for ax, inert in (("theta", "I_theta_P"), ("psi", "I_psi_P")):
+        f = getattr(prop, f"f_{ax}")
+        if getattr(prop, f"K_{ax}") is None and f is not None:
+            out.append((f"K_{ax}", d[inert] * (2 * np.pi * f) ** 2))
+    if int(k) == 0 and what == "mass" and prop.spin_inertia is None:
+        out.append(("I_Omega", prop.radius ** 2 / 3.0))
+    if int(k) == 0 and what == "x":           # the rotor is the propeller plane: the load arms
+        # e_θ = x_hub − l_θ, e_ψ = x_hub − l_ψ, e_α = e_θ + l_θ − a_P b_P (e_alpha_geometry)
+        out += [("e_theta", 1.0), ("e_psi", 1.0), ("e_alpha", 1.0)]
+    return out
+
+
 def _chain(prop, par: Parameter, values: dict) -> list[tuple[str, float]]:
     """[(generated argument, ∂argument/∂parameter)] of a propeller parameter (exact)."""
     name = par.name
+    if name.startswith(("mass:", "x:")):
+        return _mass_chain(prop, par, values)
     if name in ("K_theta", "K_psi"):
         return [(name, 1.0)]
     if name in ("f_theta", "f_psi"):        # K = I (2π f)²  (Propeller.stiffness)
@@ -356,7 +415,13 @@ def with_value(model: PropellerWing, path: str, value: float) -> PropellerWing:
     j = par.index
     inst = model.propellers[j]
     prop = inst.propeller
-    if par.name in ("K_theta", "K_psi"):
+    if par.name.startswith(("mass:", "x:")):
+        what, k = par.name.split(":")
+        k = int(k)
+        pm = replace(prop.all_masses[k], **{what: value})
+        changes = ({"rotor": pm} if k == 0 else
+                   {"masses": tuple(pm if i == k - 1 else q for i, q in enumerate(prop.masses))})
+    elif par.name in ("K_theta", "K_psi"):
         changes = {par.name: value, "f_" + par.name[2:]: None}
     elif par.name in DERIVATIVE_NAMES:
         vals = dict(prop.derivatives.values)
