@@ -38,13 +38,15 @@ Parameters covered (paths as :attr:`Parameter.path`; `wing` is ``model.wing``, t
                                                        given by its frequency, I_Ω = M_r R²/3,
                                                        and the rotor's x moves the propeller
                                                        plane (e_θ, e_ψ, e_α)
+``propellers[j].propeller.pivot_pitch`` / ``_yaw``     pivot positions l_θ, l_ψ [m]: the pivot
+                                                       inertias, ``inertia`` (l_θ), the arms
 ``propellers[j].propeller.derivatives.values[NAME]``   each of the 16 aerodynamic derivatives of
                                                        a MeasuredDerivatives source (propeller
                                                        aerodynamics on)
 =====================================================  ==========================================
 
-Not covered here: chords and taper (they move b, x_α b and ρI_p together), the pivot positions,
-and Houbolt–Reed derivatives through blade angle and advance ratio (numerical integrals);
+Not covered here: chords and taper (they move b, x_α b and ρI_p together) and Houbolt–Reed
+derivatives through blade angle and advance ratio (numerical integrals);
 the generated functions have the matrices' derivatives for all their arguments.
 :func:`with_value` is the model with one parameter set to a value (for finite differences).
 """
@@ -118,6 +120,10 @@ def parameters(model: PropellerWing) -> tuple[Parameter, ...]:
                                  f"{ax} mount damping ({prop.damping}; zeta = {zeta[k]:.6g})"))
         out.append(Parameter(pre + "spin_inertia", "propeller", j, "spin_inertia",
                              prop.I_Omega, "kg m^2", "spin inertia I_Omega"))
+        for ax, doc in (("pitch", "pitch pivot"), ("yaw", "yaw pivot")):
+            out.append(Parameter(pre + f"pivot_{ax}", "propeller", j, f"pivot_{ax}",
+                                 float(getattr(prop, f"pivot_{ax}")), "m",
+                                 f"{doc} position aft of the mid-chord"))
         for k, (where, pm) in enumerate(_point_masses(prop)):
             out.append(Parameter(pre + f"{where}.mass", "propeller", j, f"mass:{k}",
                                  float(pm.mass), "kg", f"point mass {where}"))
@@ -335,11 +341,46 @@ def _mass_chain(prop, par: Parameter, values: dict) -> list[tuple[str, float]]:
     return out
 
 
+def _pivot_chain(prop, par: Parameter, values: dict) -> list[tuple[str, float]]:
+    """The chain of a pivot position l_θ (``pivot_pitch``) or l_ψ (``pivot_yaw``): S_θ,P and
+    I_θ,P (resp. I_ψ,P) about the moved pivot, the elastic-axis inertias through ``inertia``
+    (which also takes l_θ itself), K = I (2πf)², and the arms e_θ = x_hub − l_θ,
+    e_ψ = x_hub − l_ψ (e_α = e_θ + l_θ − a_P b_P does not move with l_θ)."""
+    inert = prop.pivot_inertia()
+    given = set(prop.inertia or {})
+    if par.name == "pivot_pitch":
+        d = {"S_theta_P": -inert["M_P"], "I_theta_P": -2.0 * inert["S_theta_P"]}
+        d = {k: (0.0 if k in given else x) for k, x in d.items()}
+        args = prop_flexwing.PARTIALS["inertia_d"][0]
+        dinert = prop_flexwing.inertia_d(**{a: {"M_P": values["M_P"],
+                                                "S_theta_P": values["S_theta_P"],
+                                                "I_theta_P": values["I_theta_P"],
+                                                "l_theta": prop.pivot_pitch,
+                                                "a_P_b_P": float(values["ea"])}[a]
+                                            for a in args})["inertia"]
+        local = {"S_theta_P": d["S_theta_P"], "I_theta_P": d["I_theta_P"], "l_theta": 1.0}
+        out = list(d.items()) + [("e_theta", -1.0)]
+        for row, name in enumerate(("S_alpha_P", "I_alpha_P", "I_theta_alpha_P")):
+            out.append((name, sum(float(np.asarray(dinert[a])[..., row, 0].ravel()[0]) * f
+                                  for a, f in local.items() if a in dinert)))
+        if prop.K_theta is None and prop.f_theta is not None:
+            out.append(("K_theta", d["I_theta_P"] * (2 * np.pi * prop.f_theta) ** 2))
+        return out
+    dI = 0.0 if "I_psi_P" in given else -2.0 * float(np.sum(
+        [q.mass * (q.x - prop.pivot_yaw) for q in prop.all_masses]))
+    out = [("I_psi_P", dI), ("e_psi", -1.0)]
+    if prop.K_psi is None and prop.f_psi is not None:
+        out.append(("K_psi", dI * (2 * np.pi * prop.f_psi) ** 2))
+    return out
+
+
 def _chain(prop, par: Parameter, values: dict) -> list[tuple[str, float]]:
     """[(generated argument, ∂argument/∂parameter)] of a propeller parameter (exact)."""
     name = par.name
     if name.startswith(("mass:", "x:")):
         return _mass_chain(prop, par, values)
+    if name in ("pivot_pitch", "pivot_yaw"):
+        return _pivot_chain(prop, par, values)
     if name in ("K_theta", "K_psi"):
         return [(name, 1.0)]
     if name in ("f_theta", "f_psi"):        # K = I (2π f)²  (Propeller.stiffness)
