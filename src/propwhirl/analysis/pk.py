@@ -1,0 +1,183 @@
+"""The p-k method with the exact Theodorsen function (issue 14 item 2), for the typical section.
+
+For each aeroelastic mode and airspeed V the p-k equation (NASTRAN's PK method)
+
+    [ (M_s − M_a) p² − C_a(k) p + (K_s − K_a(k)) ] q̂ = 0,        k = ω b / V,  ω = Im p
+
+is solved by fixed-point iteration on the reduced frequency: the aerodynamic matrices are
+evaluated at the mode's current k with the exact C(k) = F(k) + iG(k) (thesis eq. 4.31,
+:func:`propwhirl.model.theodorsen.theodorsen`), the root of the quadratic eigenproblem nearest
+the mode's current root is taken, and k is updated to that root's own frequency until it no
+longer changes.  The matrices M_a, C_a(k), K_a(k) are the harmonic-motion form of Theodorsen's
+loads (7.24–7.27, 7.64–7.66) generated from ``derivations/strip_aero.py``
+(``strip_aero.theodorsen_blocks``); the structure is ``typical_section.blocks``.
+
+The modes to follow start from the finite-state eigenvalues of the model's own state matrix
+(Leishman–Nguyen or Wagner lag states) at the first speed, and are continued speed by speed.
+The flutter speed of a mode is where its p-k decay rate Re p crosses zero from below, refined by
+Brent's method to ``xtol`` (0.01 m/s by default).  The p-k root is exact (Theodorsen's C at the
+mode's frequency) only at Re p = 0, i.e. at the flutter point; elsewhere its damping is the
+usual p-k approximation.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+from propwhirl import validate as v
+from propwhirl.model.frequency_domain import K_MIN, check_section, section_pk_matrices
+
+#: accuracy of every flutter speed [m/s]
+XTOL = 0.01
+#: relative convergence of the reduced frequency in the p-k iteration
+KTOL = 1e-10
+#: a root with Im p below this fraction of its in-vacuo frequency is non-oscillatory
+#: (a crossing of such a root is divergence, not flutter)
+STATIC = 1e-6
+
+
+@dataclass(frozen=True)
+class PKFlutter:
+    """A p-k flutter crossing of one mode.
+
+    Attributes: mode index (in the order of the in-vacuo frequencies), its in-vacuo label,
+    flutter speed V [m/s], frequency [rad/s] and frequency_hz [Hz], reduced frequency k [-],
+    the direction ("onset": Re p becomes positive with increasing V; "end") and the kind
+    ("flutter"; "divergence" for a non-oscillatory root, frequency 0).
+    """
+
+    mode: int
+    label: str
+    V: float
+    frequency: float
+    k: float
+    event: str = "onset"
+    kind: str = "flutter"
+
+    @property
+    def frequency_hz(self) -> float:
+        return self.frequency / (2 * np.pi)
+
+
+@dataclass(frozen=True)
+class PKSweep:
+    """The p-k roots of every mode over a speed grid.
+
+    speeds [m/s] (nV,); roots (nV, nmodes) complex p [1/s]; k (nV, nmodes) reduced frequencies;
+    labels of the modes; flutter: the crossings, sorted by speed.
+    """
+
+    speeds: np.ndarray
+    roots: np.ndarray
+    k: np.ndarray
+    labels: tuple[str, ...]
+    flutter: tuple[PKFlutter, ...]
+
+    @property
+    def damping(self) -> np.ndarray:
+        """NASTRAN's damping g = 2 Re p / Im p of every root [-]."""
+        return 2 * self.roots.real / np.abs(self.roots.imag)
+
+    @property
+    def critical(self) -> PKFlutter | None:
+        """The lowest-speed onset (flutter or divergence), or None."""
+        onsets = [f for f in self.flutter if f.event == "onset"]
+        return onsets[0] if onsets else None
+
+
+def pk_matrix(model, V: float, k: float) -> np.ndarray:
+    """First-order matrix of the p-k equation at airspeed V [m/s] and reduced frequency k [-].
+
+    Its eigenvalues p [1/s] solve (M_s − M_a) p² − C_a(k) p + (K_s − K_a(k)) = 0 with the
+    exact Theodorsen C(k) (eq. 4.31): :func:`propwhirl.model.frequency_domain.section_pk_matrices`.
+    """
+    M, Cd, K = section_pk_matrices(model, V, k)
+    n = M.shape[0]
+    A = np.zeros((2 * n, 2 * n))
+    A[:n, n:] = np.eye(n)
+    A[n:, :n] = -np.linalg.solve(M, K)
+    A[n:, n:] = -np.linalg.solve(M, Cd)
+    return A
+
+
+def pk_root(model, V: float, p0: complex, *, ktol: float = KTOL,
+            maxiter: int = 200) -> tuple[complex, float]:
+    """The p-k root [1/s] of the mode nearest ``p0`` at airspeed V [m/s], and its k [-].
+
+    Fixed-point iteration k ← Im p · b / V with the root of :func:`pk_matrix` nearest the
+    previous one; raises RuntimeError when k does not converge in ``maxiter`` iterations.
+    """
+    p = complex(p0)
+    k = abs(p.imag) * model.b / V
+    for _ in range(maxiter):
+        lam = np.linalg.eigvals(pk_matrix(model, V, k))
+        lam = lam[lam.imag >= 0] if np.any(lam.imag > 0) else lam
+        p = complex(lam[np.argmin(np.abs(lam - p))])
+        k_new = abs(p.imag) * model.b / V
+        if abs(k_new - k) <= ktol * max(k_new, K_MIN):
+            return p, k_new
+        k = k_new
+    raise RuntimeError(f"p-k iteration did not converge at V = {V} m/s (k = {k})")
+
+
+def _start_roots(model, V: float) -> tuple[np.ndarray, tuple[str, ...]]:
+    """The finite-state eigenvalues at V [m/s] of the model's oscillatory modes (one per
+    in-vacuo mode, nearest its in-vacuo root), and the modes' labels."""
+    vac = np.linalg.eigvals(model.without_aerodynamics().state_matrix(np.array([V]))[0])
+    vac = np.sort_complex(vac[vac.imag > 0])
+    fs = np.linalg.eigvals(model.state_matrix(np.array([V]))[0])
+    fs = fs[fs.imag > 0]
+    start = np.array([fs[np.argmin(np.abs(fs - w))] for w in vac])
+    labels = tuple(f"mode {j + 1} ({w.imag / (2 * np.pi):.4g} Hz in vacuo)"
+                   for j, w in enumerate(vac))
+    return start, labels
+
+
+def pk_sweep(model, speeds, *, xtol: float = XTOL) -> PKSweep:
+    """p-k roots of every mode of a typical section over ``speeds`` [m/s] and the flutter
+    crossings (Re p = 0, refined by Brent's method to ``xtol`` [m/s])."""
+    check_section(model)
+    V = np.asarray(speeds, dtype=float)
+    if V.ndim != 1 or V.size < 2 or np.any(~np.isfinite(V)) or np.any(V <= 0) \
+            or np.any(np.diff(V) <= 0):
+        raise v.InputError(f"speeds = {speeds!r:.60} is invalid: must be at least two "
+                           "increasing airspeeds > 0 [m/s]")
+    v.positive("xtol", xtol, "m/s")
+    start, labels = _start_roots(model, V[0])
+    vacuum = np.abs(start)
+    roots = np.empty((V.size, start.size), complex)
+    ks = np.empty((V.size, start.size))
+    for j, p in enumerate(start):
+        for i, Vi in enumerate(V):
+            p, ks[i, j] = pk_root(model, Vi, p)
+            roots[i, j] = p
+    events = []
+    for j in range(start.size):
+        sigma = roots[:, j].real
+        for i in np.flatnonzero(np.sign(sigma[:-1]) != np.sign(sigma[1:])):
+            if sigma[i] == 0.0:
+                continue
+            guess = [roots[i, j]]
+
+            def decay(x: float) -> float:
+                # continue from the bracket's left root (a near root keeps the same mode)
+                p, _ = pk_root(model, x, guess[0])
+                return p.real
+
+            Vf = brentq(decay, V[i], V[i + 1], xtol=xtol)
+            p, k = pk_root(model, Vf, roots[i, j])
+            static = abs(p.imag) <= STATIC * vacuum[j]
+            events.append(PKFlutter(j, labels[j], float(Vf), 0.0 if static else float(abs(p.imag)),
+                                    0.0 if static else float(k),
+                                    "onset" if sigma[i] < 0 else "end",
+                                    "divergence" if static else "flutter"))
+    events.sort(key=lambda e: e.V)
+    return PKSweep(V, roots, ks, labels, tuple(events))
+
+
+def pk_flutter(model, speeds, *, xtol: float = XTOL) -> tuple[PKFlutter, ...]:
+    """The p-k flutter crossings of a typical section over ``speeds`` [m/s], sorted by speed
+    (exact Theodorsen aerodynamics; see :func:`pk_sweep`)."""
+    return pk_sweep(model, speeds, xtol=xtol).flutter
