@@ -117,3 +117,26 @@ def test_bad_input():
         pk_flutter(section().without_aerodynamics(), SPEEDS)
     with pytest.raises(InputError, match="speeds"):
         pk_flutter(section(), [10.0, 5.0])
+
+
+def test_analyse_method_pk_gives_the_pk_events_on_the_tracked_modes():
+    sec = section()
+    fs = analyse(sec, speeds=SPEEDS)
+    pk = analyse(sec, speeds=SPEEDS, method="pk")
+    exact = pk_sweep(sec, SPEEDS)
+    assert [(e.kind, e.event) for e in pk.events] == [("flutter", "onset"), ("divergence", "onset")]
+    assert pk.critical.V == exact.critical.V
+    assert pk.critical.frequency_hz == exact.critical.frequency_hz
+    # the same mode (name) flutters in both, the p-k speed 0.6 % above the finite-state one
+    assert pk.critical.label == fs.critical.label
+    assert pk.critical.V != fs.critical.V
+    assert pk.events[1].V == pytest.approx(np.sqrt(8.0) * sec.b * sec.omega_alpha, abs=0.02)
+
+
+def test_method_pk_only_for_typical_sections():
+    from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+
+    with pytest.raises(InputError, match="p-k"):
+        analyse(isolated_baseline_propeller(), speeds=[100.0, 200.0], method="pk")
+    with pytest.raises(InputError, match="'pk'"):
+        analyse(section(), speeds=SPEEDS, method="p-k")

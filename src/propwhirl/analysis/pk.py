@@ -66,7 +66,8 @@ class PKSweep:
     """The p-k roots of every mode over a speed grid.
 
     speeds [m/s] (nV,); roots (nV, nmodes) complex p [1/s]; k (nV, nmodes) reduced frequencies;
-    labels of the modes; flutter: the crossings, sorted by speed.
+    labels of the modes; flutter: the crossings, sorted by speed; start: the finite-state
+    eigenvalues [1/s] at the first speed the modes started from.
     """
 
     speeds: np.ndarray
@@ -74,6 +75,7 @@ class PKSweep:
     k: np.ndarray
     labels: tuple[str, ...]
     flutter: tuple[PKFlutter, ...]
+    start: np.ndarray | None = None
 
     @property
     def damping(self) -> np.ndarray:
@@ -174,10 +176,36 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL) -> PKSweep:
                                     "onset" if sigma[i] < 0 else "end",
                                     "divergence" if static else "flutter"))
     events.sort(key=lambda e: e.V)
-    return PKSweep(V, roots, ks, labels, tuple(events))
+    return PKSweep(V, roots, ks, labels, tuple(events), start)
 
 
 def pk_flutter(model, speeds, *, xtol: float = XTOL) -> tuple[PKFlutter, ...]:
     """The p-k flutter crossings of a typical section over ``speeds`` [m/s], sorted by speed
     (exact Theodorsen aerodynamics; see :func:`pk_sweep`)."""
     return pk_sweep(model, speeds, xtol=xtol).flutter
+
+
+def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: float = XTOL):
+    """The p-k crossings as :class:`~propwhirl.analysis.stability.Instability` events of the
+    finite-state analysis's tracked modes (``analyse(model, method="pk")``).
+
+    ``start_roots`` are the tracked modes' finite-state eigenvalues [1/s] at ``speeds[0]``
+    and ``names`` their labels; each p-k mode is the tracked mode whose root there is nearest
+    the root it started from.  Events: "onset" / "recovery" of flutter or divergence, and
+    "unstable-at-start" when Re p > 0 at the first speed; no participation, no benignity.
+    """
+    from propwhirl.analysis.stability import Instability
+
+    r = pk_sweep(model, speeds, xtol=xtol)
+    tracked = [int(np.argmin(np.abs(np.asarray(start_roots) - p))) for p in r.start]
+    events = []
+    for j, p0 in enumerate(r.roots[0]):
+        if p0.real > 0:
+            kind = "flutter" if abs(p0.imag) > STATIC * abs(r.start[j]) else "divergence"
+            events.append(Instability(kind, "unstable-at-start", tracked[j], names[tracked[j]],
+                                      float(r.speeds[0]), float(abs(p0.imag) / (2 * np.pi))))
+    for f in r.flutter:
+        events.append(Instability(f.kind, "onset" if f.event == "onset" else "recovery",
+                                  tracked[f.mode], names[tracked[f.mode]], f.V, f.frequency_hz))
+    events.sort(key=lambda e: (e.V, e.mode))
+    return events
