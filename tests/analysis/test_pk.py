@@ -17,7 +17,8 @@ SPEEDS = np.linspace(5.0, 200.0, 40)
 
 def section(**kw):
     """Hodges & Pierce's typical section (Introduction to Structural Dynamics and
-    Aeroelasticity, the p-k example of its flutter chapter): μ = 20, a = −1/5, x_α = 1/10, r² = 6/25, σ = ω_h/ω_α = 2/5."""
+    Aeroelasticity, the example of its flutter chapter): μ = 20, a = −1/5, x_α = 1/10,
+    r² = 6/25, σ = ω_h/ω_α = 2/5."""
     b = kw.pop("b", 1.0)
     mu = kw.pop("mu", 20.0)
     base = dict(b=b, a=-0.2, x_alpha=0.1, r_alpha=np.sqrt(6 / 25), m=mu * np.pi * RHO * b**2,
