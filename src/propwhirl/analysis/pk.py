@@ -27,15 +27,29 @@ import numpy as np
 from scipy.optimize import brentq
 
 from propwhirl import validate as v
-from propwhirl.model.frequency_domain import K_MIN, check_section, section_pk_matrices
+from propwhirl.model.frequency_domain import (
+    K_MIN,
+    check_pk_model,
+    pk_system,
+    reference_semichord,
+)
 
 #: accuracy of every flutter speed [m/s]
 XTOL = 0.01
-#: relative convergence of the reduced frequency in the p-k iteration
-KTOL = 1e-10
+#: relative convergence of the reduced frequency in the p-k iteration (a wing's eigenvalues carry
+#: ~1e-8 of rounding noise, so tighter stalls; the flutter speed moves by far less than XTOL)
+KTOL = 1e-7
 #: a root with Im p below this fraction of its in-vacuo frequency is non-oscillatory
 #: (a crossing of such a root is divergence, not flutter)
 STATIC = 1e-6
+#: in-vacuo modes a wing's p-k sweep follows by default (lowest frequencies first)
+WING_MODES = 6
+
+
+def _is_section(model) -> bool:
+    from propwhirl.model.systems import TypicalSection
+
+    return isinstance(model, TypicalSection)
 
 
 @dataclass(frozen=True)
@@ -90,12 +104,17 @@ class PKSweep:
 
 
 def pk_matrix(model, V: float, k: float) -> np.ndarray:
-    """First-order matrix of the p-k equation at airspeed V [m/s] and reduced frequency k [-].
+    """First-order matrix of the p-k equation at airspeed V [m/s] and reduced frequency k [-]
+    (on the reference semichord, :func:`~propwhirl.model.frequency_domain.reference_semichord`).
 
     Its eigenvalues p [1/s] solve (M_s − M_a) p² − C_a(k) p + (K_s − K_a(k)) = 0 with the
-    exact Theodorsen C(k) (eq. 4.31): :func:`propwhirl.model.frequency_domain.section_pk_matrices`.
+    exact Theodorsen C(k) (eq. 4.31): :func:`propwhirl.model.frequency_domain.pk_matrices`.
     """
-    M, Cd, K = section_pk_matrices(model, V, k)
+    return _first_order(pk_system(model, V), max(k, K_MIN) * V / reference_semichord(model))
+
+
+def _first_order(system, omega: float) -> np.ndarray:
+    M, Cd, K = system(omega)
     n = M.shape[0]
     A = np.zeros((2 * n, 2 * n))
     A[:n, n:] = np.eye(n)
@@ -104,31 +123,43 @@ def pk_matrix(model, V: float, k: float) -> np.ndarray:
     return A
 
 
-def pk_root(model, V: float, p0: complex, *, ktol: float = KTOL,
-            maxiter: int = 200) -> tuple[complex, float]:
+def pk_root(model, V: float, p0: complex, *, ktol: float = KTOL, maxiter: int = 200,
+            system=None) -> tuple[complex, float]:
     """The p-k root [1/s] of the mode nearest ``p0`` at airspeed V [m/s], and its k [-].
 
-    Fixed-point iteration k ← Im p · b / V with the root of :func:`pk_matrix` nearest the
-    previous one; raises RuntimeError when k does not converge in ``maxiter`` iterations.
+    Fixed-point iteration k ← Im p · b / V (b: the reference semichord) with the root of
+    :func:`pk_matrix` nearest the previous one, under-relaxed (halving the step, down to
+    1/64) while the steps oscillate without shrinking; raises RuntimeError when k does not converge
+    in ``maxiter`` iterations.  ``system``: :func:`pk_system` of (model, V) if already built.
     """
+    b = reference_semichord(model)
+    system = pk_system(model, V) if system is None else system
     p = complex(p0)
-    k = abs(p.imag) * model.b / V
+    k = abs(p.imag) * b / V
+    relax, last = 1.0, 0.0
     for _ in range(maxiter):
-        lam = np.linalg.eigvals(pk_matrix(model, V, k))
+        lam = np.linalg.eigvals(_first_order(system, max(k, K_MIN) * V / b))
         lam = lam[lam.imag >= 0] if np.any(lam.imag > 0) else lam
         p = complex(lam[np.argmin(np.abs(lam - p))])
-        k_new = abs(p.imag) * model.b / V
-        if abs(k_new - k) <= ktol * max(k_new, K_MIN):
+        k_new = abs(p.imag) * b / V
+        step = k_new - k
+        if abs(step) <= ktol * max(k_new, K_MIN):
             return p, k_new
-        k = k_new
+        if step * last < 0 and abs(step) >= 0.5 * abs(last):  # oscillating, not shrinking
+            relax = max(relax / 2, 1 / 64)
+        elif step * last > 0:                                  # monotone again
+            relax = min(2 * relax, 1.0)
+        last = step
+        k = k + relax * step
     raise RuntimeError(f"p-k iteration did not converge at V = {V} m/s (k = {k})")
 
 
-def _start_roots(model, V: float) -> tuple[np.ndarray, tuple[str, ...]]:
+def _start_roots(model, V: float, n_modes: int | None) -> tuple[np.ndarray, tuple[str, ...]]:
     """The finite-state eigenvalues at V [m/s] of the model's oscillatory modes (one per
-    in-vacuo mode, nearest its in-vacuo root), and the modes' labels."""
+    in-vacuo mode, the lowest `n_modes`, nearest its in-vacuo root), and the modes' labels."""
     vac = np.linalg.eigvals(model.without_aerodynamics().state_matrix(np.array([V]))[0])
-    vac = np.sort_complex(vac[vac.imag > 0])
+    vac = vac[vac.imag > 0]
+    vac = vac[np.argsort(vac.imag)][:n_modes]
     fs = np.linalg.eigvals(model.state_matrix(np.array([V]))[0])
     fs = fs[fs.imag > 0]
     start = np.array([fs[np.argmin(np.abs(fs - w))] for w in vac])
@@ -137,24 +168,34 @@ def _start_roots(model, V: float) -> tuple[np.ndarray, tuple[str, ...]]:
     return start, labels
 
 
-def pk_sweep(model, speeds, *, xtol: float = XTOL) -> PKSweep:
-    """p-k roots of every mode of a typical section over ``speeds`` [m/s] and the flutter
-    crossings (Re p = 0, refined by Brent's method to ``xtol`` [m/s])."""
-    check_section(model)
+def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None) -> PKSweep:
+    """p-k roots of the modes of a typical section or a wing over ``speeds`` [m/s] and their
+    flutter and divergence crossings (Re p = 0, refined by Brent's method to ``xtol`` [m/s]).
+
+    ``n_modes``: how many in-vacuo modes (lowest frequencies first) to follow; default every
+    mode of a typical section, the lowest :data:`WING_MODES` of a wing.
+    """
+    check_pk_model(model)
     V = np.asarray(speeds, dtype=float)
     if V.ndim != 1 or V.size < 2 or np.any(~np.isfinite(V)) or np.any(V <= 0) \
             or np.any(np.diff(V) <= 0):
         raise v.InputError(f"speeds = {speeds!r:.60} is invalid: must be at least two "
                            "increasing airspeeds > 0 [m/s]")
     v.positive("xtol", xtol, "m/s")
-    start, labels = _start_roots(model, V[0])
+    if n_modes is None:
+        n_modes = None if _is_section(model) else WING_MODES
+    elif not isinstance(n_modes, (int, np.integer)) or n_modes < 1:
+        raise v.InputError(f"n_modes = {n_modes!r} is invalid: must be an integer >= 1")
+    start, labels = _start_roots(model, V[0], n_modes)
     vacuum = np.abs(start)
     roots = np.empty((V.size, start.size), complex)
     ks = np.empty((V.size, start.size))
-    for j, p in enumerate(start):
-        for i, Vi in enumerate(V):
-            p, ks[i, j] = pk_root(model, Vi, p)
-            roots[i, j] = p
+    p = start.copy()
+    for i, Vi in enumerate(V):
+        system = pk_system(model, Vi)  # the structure and propellers once per speed
+        for j in range(start.size):
+            p[j], ks[i, j] = pk_root(model, Vi, p[j], system=system)
+        roots[i] = p
     events = []
     for j in range(start.size):
         sigma = roots[:, j].real
@@ -175,14 +216,22 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL) -> PKSweep:
                                     0.0 if static else float(k),
                                     "onset" if sigma[i] < 0 else "end",
                                     "divergence" if static else "flutter"))
-    events.sort(key=lambda e: e.V)
+    events.sort(key=lambda e: (e.V, e.mode))
+    unique: list[PKFlutter] = []
+    for e in events:  # two followed modes that hopped onto the same root: report it once
+        if not any(u.kind == e.kind and u.event == e.event and abs(u.V - e.V) <= 2 * xtol
+                   and abs(u.frequency - e.frequency) <= 1e-4 * max(e.frequency, 1.0)
+                   for u in unique):
+            unique.append(e)
+    events = unique
     return PKSweep(V, roots, ks, labels, tuple(events), start)
 
 
-def pk_flutter(model, speeds, *, xtol: float = XTOL) -> tuple[PKFlutter, ...]:
-    """The p-k flutter crossings of a typical section over ``speeds`` [m/s], sorted by speed
-    (exact Theodorsen aerodynamics; see :func:`pk_sweep`)."""
-    return pk_sweep(model, speeds, xtol=xtol).flutter
+def pk_flutter(model, speeds, *, xtol: float = XTOL,
+               n_modes: int | None = None) -> tuple[PKFlutter, ...]:
+    """The p-k flutter and divergence crossings of a typical section or a wing over ``speeds``
+    [m/s], sorted by speed (exact Theodorsen aerodynamics; see :func:`pk_sweep`)."""
+    return pk_sweep(model, speeds, xtol=xtol, n_modes=n_modes).flutter
 
 
 def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: float = XTOL):
