@@ -36,7 +36,7 @@ def test_patil_wing_finite_state_close_to_exact(patil_pk):
     exact = [e for e in patil_pk if e.kind == "flutter"][0]
     fs = analyse(patil_model(), speeds=SPEEDS)
     flutter = [e for e in fs.events if e.kind == "flutter"][0]
-    # measured: speed +0.44 %, frequency −1.36 % (Jones' approximation of C(k))
+    # measured: speed +0.44 %, frequency −1.35 % (Jones' approximation of C(k))
     assert abs(flutter.V / exact.V - 1) < 0.01
     assert abs(2 * np.pi * flutter.frequency_hz / exact.frequency - 1) < 0.015
     pk = analyse(patil_model(), speeds=SPEEDS, method="pk")

@@ -1,4 +1,4 @@
-"""The p-k method with the exact Theodorsen function (issue 14 item 2), for the typical section.
+"""The p-k method with the exact Theodorsen function (issue 14 item 2): typical section, wings.
 
 For each aeroelastic mode and airspeed V the p-k equation (NASTRAN's PK method)
 
@@ -10,7 +10,9 @@ evaluated at the mode's current k with the exact C(k) = F(k) + iG(k) (thesis eq.
 the mode's current root is taken, and k is updated to that root's own frequency until it no
 longer changes.  The matrices M_a, C_a(k), K_a(k) are the harmonic-motion form of Theodorsen's
 loads (7.24–7.27, 7.64–7.66) generated from ``derivations/strip_aero.py``
-(``strip_aero.theodorsen_blocks``); the structure is ``typical_section.blocks``.
+(``strip_aero.theodorsen_blocks``); the structure is ``typical_section.blocks``, or a wing's
+own structure and propellers with every strip at its own k = ω b_i / V
+(:func:`propwhirl.model.frequency_domain.pk_system`; k reported on the root semichord).
 
 The modes to follow start from the finite-state eigenvalues of the model's own state matrix
 (Leishman–Nguyen or Wagner lag states) at the first speed, and are continued speed by speed.

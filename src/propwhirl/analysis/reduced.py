@@ -34,7 +34,7 @@ METHODS = ("auto", "dense", "reduced", "pk")
 
 def choose_method(model, method: str) -> str:
     """"dense", "reduced" or "pk" for ``method`` ("auto", "dense", "reduced" or "pk": the
-    p-k method with the exact Theodorsen function, typical sections only) and ``model``."""
+    p-k method with the exact Theodorsen function, typical sections and wings) and ``model``."""
     if method not in METHODS:
         raise v.InputError(f"method = {method!r} is invalid: must be one of "
                            f"{', '.join(repr(m) for m in METHODS)}")

@@ -319,8 +319,8 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
     options : TrackingOptions, optional
         Tuning of the mode tracker.
     method : {"auto", "dense", "reduced", "pk"}, optional
-        "pk" (typical sections): the modes tracked as "dense", their flutter and divergence
-        crossings by the p-k method with the exact Theodorsen function
+        "pk" (typical sections and wings): the modes tracked as "dense", their flutter and
+        divergence crossings by the p-k method with the exact Theodorsen function
         (:mod:`propwhirl.analysis.pk`; no participation or benignity).
         "dense": every root of the full-order A(V) at each speed (the reference); "reduced":
         the modes below a frequency cut-off on a reduced-order model, every crossing then
