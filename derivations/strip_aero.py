@@ -39,6 +39,17 @@ form: C(s) = Φ(0) + (β0 + β1 s)/((s + ε1V/b)(s + ε2V/b)), β0 = (Ψ1+Ψ2) �
     Q = M q̈ + C q̇ + K q + W0 w,             ẇ = W1 w + W2 q̇ + W3 q
 
 Φ(0) = 1 − Ψ1 − Ψ2 equals the printed 1/2 of (7.45) exactly because Ψ1 + Ψ2 = 1/2.
+
+Exact Theodorsen, frequency domain (p-k method, issue 14).  For harmonic motion
+q = q̂ e^{iωt} at the reduced frequency k = ωb/V, C(k) w = (F + iG)(ẏ + Vα) exactly, with
+C(k) = F(k) + iG(k) (4.31) given as two real arguments.  Since i x = ẋ/ω and i ẏ = −ω y,
+
+    C(k) w = F (ẏ + Vα) + G ((b/k) α̇ − (kV/b) y),        y = h + b d α
+
+a real load Q = M_a q̈ + C_a(k) q̇ + K_a(k) q: the noncirculatory mass M_a unchanged, the
+circulatory damping and stiffness functions of k, F and G (`theodorsen_*`; the derivation checks
+the identity for harmonic motion).  Exact at the mode's own frequency, which the p-k iteration
+enforces (runtime: src/propwhirl/analysis/pk.py).
 """
 from __future__ import annotations
 
@@ -69,7 +80,12 @@ PARAMS = (
     Param(Cla, "section lift-curve slope (2π for Theodorsen's flat plate)", "1/rad"),
     Param(ac, "aerodynamic centre aft of mid-chord, in semichords (-1/2 = quarter chord)", "-"),
     Param(t, "time since the start of the motion", "s"),
+    Param(sp.Symbol("k", positive=True), "reduced frequency ω b / V of harmonic motion", "-"),
+    Param(sp.Symbol("F", real=True), "real part of Theodorsen's function C(k) = F + iG", "-"),
+    Param(sp.Symbol("G", real=True), "imaginary part of Theodorsen's function C(k) = F + iG",
+          "-"),
 )
+kred, F_th, G_th = (p.symbol for p in PARAMS[-3:])
 
 DOFS = ("h", "alpha")
 WAGNER_STATES = ("w1", "w2", "w3", "w4")
@@ -211,6 +227,21 @@ def leishman_nguyen(hq, alq):
     return generalised_loads(hq, alq, circ), ws, W1, W2, W3
 
 
+def theodorsen_harmonic(hq, alq):
+    """Exact Theodorsen loads for harmonic motion at reduced frequency k, C(k) = F + iG given."""
+    y = hq + b * d * alq
+    circ = F_th * (sp.diff(y, t) + V * alq) + G_th * (b / kred * sp.diff(alq, t) - kred * V / b * y)
+    # Check: for q = q̂ e^{iωt}, ω = kV/b, circ equals (F + iG)(iω ŷ + V α̂) e^{iωt}.
+    hh, ah = sp.symbols("hhat alphahat")
+    omega = kred * V / b
+    ph = sp.exp(sp.I * omega * t)
+    harmonic = {hq: hh * ph, alq: ah * ph}
+    got = circ.subs(harmonic).doit()
+    want = (F_th + sp.I * G_th) * (sp.I * omega * (hh + b * d * ah) + V * ah) * ph
+    assert sp.simplify(sp.expand(got - want)) == 0
+    return generalised_loads(hq, alq, circ)
+
+
 def _split(Q: sp.Matrix, q, extra: dict) -> tuple:
     """(M, C, K) of Q with the non-coordinate symbols in `extra` set to zero."""
     return second_order_matrices([sp.expand(x.subs(extra)) for x in Q], q)
@@ -234,6 +265,11 @@ def derive() -> Derivation:
     Ml, Cl, Kl = _split(Ql, q, {x: 0 for x in ls})
     W0l = Ql.jacobian(ls).applyfunc(sp.expand)
     assert (Ml - Mw).applyfunc(sp.expand) == sp.zeros(2, 2)
+
+    Qt = theodorsen_harmonic(hq, alq)
+    Mt, Ct, Kt = _split(Qt, q, {})
+    assert (Mt - Mw).applyfunc(sp.expand) == sp.zeros(2, 2)
+    exact = (*base, kred, F_th, G_th)
 
     def out(name, mat, args, doc, eqs, rows=DOFS, cols=DOFS):
         return Output(name, sp.Matrix(mat), args, doc, eqs, rows, cols)
@@ -297,6 +333,15 @@ def derive() -> Derivation:
             "V only sets the broadcast shape).",
             "7.56, 7.80", LN_STATES, DOFS,
         ),
+        out("theodorsen_M", Mt, (rho, b, a),
+            "Exact-Theodorsen aerodynamic mass matrix (noncirculatory, the same as Wagner's).",
+            "7.24–7.27"),
+        out("theodorsen_C", Ct, exact,
+            "Exact-Theodorsen aerodynamic damping matrix C_a(k) for harmonic motion at the "
+            "reduced frequency k, C(k) = F + iG [kg/(m s), kg/s, kg m/s].", "4.31, 7.24–7.27, 7.64–7.66"),
+        out("theodorsen_K", Kt, exact,
+            "Exact-Theodorsen aerodynamic stiffness matrix K_a(k) for harmonic motion at the "
+            "reduced frequency k, C(k) = F + iG [N/m^2, N/m, N].", "4.31, 7.24–7.27, 7.64–7.66"),
     ]
     return Derivation(
         module="strip_aero",
@@ -308,6 +353,7 @@ def derive() -> Derivation:
         outputs=outputs,
         blocks={
             "ln_blocks": ("ln_M", "ln_C", "ln_K", "ln_W0", "ln_W1", "ln_W2", "ln_W3"),
+            "theodorsen_blocks": ("theodorsen_M", "theodorsen_C", "theodorsen_K"),
             "wagner_blocks": ("wagner_M", "wagner_C", "wagner_K", "wagner_W0", "wagner_W1", "wagner_W2"),
         },
     )

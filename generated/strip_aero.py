@@ -7,12 +7,12 @@ Generated from `derivations/strip_aero.py`; plain NumPy, vectorised over leading
 may be an array and all arguments broadcast together; each function returns an array of
 shape ``broadcast_shape + (rows, cols)``.
 
-The block functions (`ln_blocks`, `wagner_blocks`) return several of these matrices
+The block functions (`ln_blocks`, `theodorsen_blocks`, `wagner_blocks`) return several of these matrices
 at once (a dict), broadcasting their arguments once.  Their code is each matrix's own common
 subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
 functions.
 
-The derivative functions (`ln_blocks_d`, `wagner_blocks_d`, `wagner_g_d`, `wagner_g_ic_d`, `wagner_phidot_d`) return the
+The derivative functions (`ln_blocks_d`, `theodorsen_blocks_d`, `wagner_blocks_d`, `wagner_g_d`, `wagner_g_ic_d`, `wagner_phidot_d`) return the
 exact parameter derivatives of those matrices: ``{matrix name: {parameter name: array}}`` with
 each array ∂matrix/∂parameter of the full broadcast shape ``... + (rows, cols)``; a parameter
 missing from a matrix's dict is one the matrix does not depend on (the derivative is
@@ -59,6 +59,17 @@ form: C(s) = Φ(0) + (β0 + β1 s)/((s + ε1V/b)(s + ε2V/b)), β0 = (Ψ1+Ψ2) �
     Q = M q̈ + C q̇ + K q + W0 w,             ẇ = W1 w + W2 q̇ + W3 q
 
 Φ(0) = 1 − Ψ1 − Ψ2 equals the printed 1/2 of (7.45) exactly because Ψ1 + Ψ2 = 1/2.
+
+Exact Theodorsen, frequency domain (p-k method, issue 14).  For harmonic motion
+q = q̂ e^{iωt} at the reduced frequency k = ωb/V, C(k) w = (F + iG)(ẏ + Vα) exactly, with
+C(k) = F(k) + iG(k) (4.31) given as two real arguments.  Since i x = ẋ/ω and i ẏ = −ω y,
+
+    C(k) w = F (ẏ + Vα) + G ((b/k) α̇ − (kV/b) y),        y = h + b d α
+
+a real load Q = M_a q̈ + C_a(k) q̇ + K_a(k) q: the noncirculatory mass M_a unchanged, the
+circulatory damping and stiffness functions of k, F and G (`theodorsen_*`; the derivation checks
+the identity for harmonic motion).  Exact at the mode's own frequency, which the p-k iteration
+enforces (runtime: src/propwhirl/analysis/pk.py).
 """
 import numpy
 
@@ -74,6 +85,9 @@ PARAMETERS = {
     "Cla": ("section lift-curve slope (2π for Theodorsen's flat plate)", "1/rad"),
     "ac": ("aerodynamic centre aft of mid-chord, in semichords (-1/2 = quarter chord)", "-"),
     "t": ("time since the start of the motion", "s"),
+    "k": ("reduced frequency ω b / V of harmonic motion", "-"),
+    "F": ("real part of Theodorsen's function C(k) = F + iG", "-"),
+    "G": ("imaginary part of Theodorsen's function C(k) = F + iG", "-"),
 }
 
 #: function name -> (argument names, row labels, column labels, thesis equations)
@@ -94,17 +108,22 @@ OUTPUTS = {
     "ln_W1": (('V', 'b'), ('w1', 'w2'), ('w1', 'w2'), "7.54, 7.78"),
     "ln_W2": (('V', 'b', 'a', 'Cla', 'ac'), ('w1', 'w2'), ('h', 'alpha'), "7.55, 7.79"),
     "ln_W3": (('V',), ('w1', 'w2'), ('h', 'alpha'), "7.56, 7.80"),
+    "theodorsen_M": (('rho', 'b', 'a'), ('h', 'alpha'), ('h', 'alpha'), "7.24–7.27"),
+    "theodorsen_C": (('rho', 'V', 'b', 'a', 'Cla', 'ac', 'k', 'F', 'G'), ('h', 'alpha'), ('h', 'alpha'), "4.31, 7.24–7.27, 7.64–7.66"),
+    "theodorsen_K": (('rho', 'V', 'b', 'a', 'Cla', 'ac', 'k', 'F', 'G'), ('h', 'alpha'), ('h', 'alpha'), "4.31, 7.24–7.27, 7.64–7.66"),
 }
 
 #: block function name -> (argument names, names of the returned matrices)
 BLOCKS = {
     "ln_blocks": (('rho', 'V', 'b', 'a', 'Cla', 'ac'), ('ln_M', 'ln_C', 'ln_K', 'ln_W0', 'ln_W1', 'ln_W2', 'ln_W3')),
+    "theodorsen_blocks": (('rho', 'V', 'b', 'a', 'Cla', 'ac', 'k', 'F', 'G'), ('theodorsen_M', 'theodorsen_C', 'theodorsen_K')),
     "wagner_blocks": (('rho', 'V', 'b', 'a', 'Cla', 'ac'), ('wagner_M', 'wagner_C', 'wagner_K', 'wagner_W0', 'wagner_W1', 'wagner_W2')),
 }
 
 #: derivative function name -> (argument names, {matrix name: parameters it depends on})
 PARTIALS = {
     "ln_blocks_d": (('rho', 'V', 'b', 'a', 'Cla', 'ac'), {'ln_M': ('rho', 'b', 'a'), 'ln_C': ('rho', 'V', 'b', 'a', 'Cla', 'ac'), 'ln_K': ('rho', 'V', 'b', 'a', 'Cla', 'ac'), 'ln_W0': ('rho', 'V', 'b', 'a', 'Cla', 'ac'), 'ln_W1': ('V', 'b'), 'ln_W2': ('V', 'b', 'a', 'Cla', 'ac'), 'ln_W3': ()}),
+    "theodorsen_blocks_d": (('rho', 'V', 'b', 'a', 'Cla', 'ac', 'k', 'F', 'G'), {'theodorsen_M': ('rho', 'b', 'a'), 'theodorsen_C': ('rho', 'V', 'b', 'a', 'Cla', 'ac', 'k', 'F', 'G'), 'theodorsen_K': ('rho', 'V', 'b', 'a', 'Cla', 'ac', 'k', 'F', 'G')}),
     "wagner_blocks_d": (('rho', 'V', 'b', 'a', 'Cla', 'ac'), {'wagner_M': ('rho', 'b', 'a'), 'wagner_C': ('rho', 'V', 'b', 'a', 'Cla', 'ac'), 'wagner_K': ('rho', 'V', 'b', 'a', 'Cla', 'ac'), 'wagner_W0': ('rho', 'V', 'b', 'a', 'Cla', 'ac'), 'wagner_W1': (), 'wagner_W2': ('V', 'b')}),
     "wagner_g_d": (('rho', 'V', 'b', 'a', 'Cla', 'ac'), {'wagner_g': ('rho', 'V', 'b', 'a', 'Cla', 'ac')}),
     "wagner_g_ic_d": (('rho', 'V', 'b', 'a', 'Cla', 'ac'), {'wagner_g_ic': ('rho', 'V', 'b', 'a', 'Cla', 'ac')}),
@@ -699,6 +718,147 @@ def ln_W3(V):
     return out
 
 
+def theodorsen_M(rho, b, a):
+    """Exact-Theodorsen aerodynamic mass matrix (noncirculatory, the same as Wagner's).
+
+    Thesis equations 7.24–7.27.
+
+    Parameters
+    ----------
+    rho : array_like
+        air density [kg/m^3]
+    b : array_like
+        semichord [m]
+    a : array_like
+        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 2, 2)
+        rows: h, alpha
+        columns: h, alpha
+    """
+    shape, (rho, b, a,) = _broadcast(rho, b, a)
+    _c0 = numpy.pi*rho
+    _c1 = _c0*a*b**3
+    _c2 = _c0*b**4
+    out = numpy.zeros(shape + (2, 2))
+    out[..., 0, 0] = -_c0*b**2
+    out[..., 0, 1] = _c1
+    out[..., 1, 0] = _c1
+    out[..., 1, 1] = -_c2*a**2 - 1/8*_c2
+    return out
+
+
+def theodorsen_C(rho, V, b, a, Cla, ac, k, F, G):
+    """Exact-Theodorsen aerodynamic damping matrix C_a(k) for harmonic motion at the reduced frequency k, C(k) = F + iG [kg/(m s), kg/s, kg m/s].
+
+    Thesis equations 4.31, 7.24–7.27, 7.64–7.66.
+
+    Parameters
+    ----------
+    rho : array_like
+        air density [kg/m^3]
+    V : array_like
+        airspeed [m/s]
+    b : array_like
+        semichord [m]
+    a : array_like
+        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+    Cla : array_like
+        section lift-curve slope (2π for Theodorsen's flat plate) [1/rad]
+    ac : array_like
+        aerodynamic centre aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+    k : array_like
+        reduced frequency ω b / V of harmonic motion [-]
+    F : array_like
+        real part of Theodorsen's function C(k) = F + iG [-]
+    G : array_like
+        imaginary part of Theodorsen's function C(k) = F + iG [-]
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 2, 2)
+        rows: h, alpha
+        columns: h, alpha
+    """
+    shape, (rho, V, b, a, Cla, ac, k, F, G,) = _broadcast(rho, V, b, a, Cla, ac, k, F, G)
+    _c0 = V*rho
+    _c1 = Cla*_c0
+    _c2 = F*_c1
+    _c3 = b**2
+    _c4 = numpy.pi*_c0
+    _c5 = _c2*_c3
+    _c6 = _c5*ac
+    _c7 = k**(-1.0)
+    _c8 = G*_c7
+    _c9 = numpy.pi**(-1.0)
+    _c10 = Cla**2
+    _c11 = (1/2)*F*_c0*_c10*_c9
+    _c12 = b**3
+    _c13 = _c1*_c12
+    _c14 = _c12*_c2
+    out = numpy.zeros(shape + (2, 2))
+    out[..., 0, 0] = -_c2*b
+    out[..., 0, 1] = Cla*F*V*_c3*a*rho - _c1*_c3*_c8 - _c11*_c3 - _c3*_c4 - _c6
+    out[..., 1, 0] = _c5*a - _c6
+    out[..., 1, 1] = 2*Cla*F*V*_c12*a*ac*rho + Cla*G*V*_c12*_c7*a*rho + (1/2)*F*V*_c10*_c12*_c9*a*rho + numpy.pi*V*_c12*a*rho - _c11*_c12*ac - _c12*_c4*ac - _c13*_c8*ac - 1/2*_c13 - _c14*a**2 - _c14*ac**2
+    return out
+
+
+def theodorsen_K(rho, V, b, a, Cla, ac, k, F, G):
+    """Exact-Theodorsen aerodynamic stiffness matrix K_a(k) for harmonic motion at the reduced frequency k, C(k) = F + iG [N/m^2, N/m, N].
+
+    Thesis equations 4.31, 7.24–7.27, 7.64–7.66.
+
+    Parameters
+    ----------
+    rho : array_like
+        air density [kg/m^3]
+    V : array_like
+        airspeed [m/s]
+    b : array_like
+        semichord [m]
+    a : array_like
+        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+    Cla : array_like
+        section lift-curve slope (2π for Theodorsen's flat plate) [1/rad]
+    ac : array_like
+        aerodynamic centre aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+    k : array_like
+        reduced frequency ω b / V of harmonic motion [-]
+    F : array_like
+        real part of Theodorsen's function C(k) = F + iG [-]
+    G : array_like
+        imaginary part of Theodorsen's function C(k) = F + iG [-]
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 2, 2)
+        rows: h, alpha
+        columns: h, alpha
+    """
+    shape, (rho, V, b, a, Cla, ac, k, F, G,) = _broadcast(rho, V, b, a, Cla, ac, k, F, G)
+    _c0 = V**2
+    _c1 = Cla*_c0*rho
+    _c2 = G*k
+    _c3 = _c1*_c2
+    _c4 = F*_c1
+    _c5 = _c3*b
+    _c6 = _c5*a
+    _c7 = (1/2)*Cla**2*_c0*_c2*rho/numpy.pi
+    _c8 = b**2
+    _c9 = _c4*_c8
+    _c10 = _c3*_c8
+    _c11 = _c7*_c8
+    out = numpy.zeros(shape + (2, 2))
+    out[..., 0, 0] = _c3
+    out[..., 0, 1] = -_c4*b + _c5*ac - _c6 + _c7*b
+    out[..., 1, 0] = Cla*G*_c0*ac*b*k*rho - _c6
+    out[..., 1, 1] = _c10*a**2 - 2*_c10*a*ac + _c10*ac**2 - _c11*a + _c11*ac + _c9*a - _c9*ac
+    return out
+
+
 def ln_blocks(rho, V, b, a, Cla, ac):
     """ln_M, ln_C, ln_K, ln_W0, ln_W1, ln_W2, ln_W3 at once.
 
@@ -791,6 +951,94 @@ def ln_blocks(rho, V, b, a, Cla, ac):
         "ln_W1": _o4,
         "ln_W2": _o5,
         "ln_W3": _o6,
+    }
+
+
+def theodorsen_blocks(rho, V, b, a, Cla, ac, k, F, G):
+    """theodorsen_M, theodorsen_C, theodorsen_K at once.
+
+    The arguments are broadcast together once.  Their code is each matrix's own common
+    subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
+    functions.
+
+    Parameters
+    ----------
+    rho : array_like
+        air density [kg/m^3]
+    V : array_like
+        airspeed [m/s]
+    b : array_like
+        semichord [m]
+    a : array_like
+        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+    Cla : array_like
+        section lift-curve slope (2π for Theodorsen's flat plate) [1/rad]
+    ac : array_like
+        aerodynamic centre aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+    k : array_like
+        reduced frequency ω b / V of harmonic motion [-]
+    F : array_like
+        real part of Theodorsen's function C(k) = F + iG [-]
+    G : array_like
+        imaginary part of Theodorsen's function C(k) = F + iG [-]
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        "theodorsen_M", shape (..., 2, 2): as `theodorsen_M`
+        "theodorsen_C", shape (..., 2, 2): as `theodorsen_C`
+        "theodorsen_K", shape (..., 2, 2): as `theodorsen_K`
+        (``...`` is the broadcast shape of all the arguments).
+    """
+    shape, (rho, V, b, a, Cla, ac, k, F, G,) = _broadcast(rho, V, b, a, Cla, ac, k, F, G)
+    _c0 = numpy.pi*rho
+    _c1 = _c0*a*b**3
+    _c2 = _c0*b**4
+    _c3 = V*rho
+    _c4 = Cla*_c3
+    _c5 = F*_c4
+    _c6 = b**2
+    _c7 = numpy.pi*_c3
+    _c8 = _c5*_c6
+    _c9 = _c8*ac
+    _c10 = k**(-1.0)
+    _c11 = G*_c10
+    _c12 = numpy.pi**(-1.0)
+    _c13 = Cla**2
+    _c14 = (1/2)*F*_c3*_c13*_c12
+    _c15 = b**3
+    _c16 = _c4*_c15
+    _c17 = _c15*_c5
+    _c18 = V**2
+    _c19 = Cla*_c18*rho
+    _c20 = G*k
+    _c21 = _c19*_c20
+    _c22 = F*_c19
+    _c23 = _c21*b
+    _c24 = _c23*a
+    _c25 = (1/2)*Cla**2*_c18*_c20*rho/numpy.pi
+    _c26 = _c22*_c6
+    _c27 = _c21*_c6
+    _c28 = _c25*_c6
+    _o0 = numpy.zeros(shape + (2, 2))
+    _o0[..., 0, 0] = -_c0*b**2
+    _o0[..., 0, 1] = _c1
+    _o0[..., 1, 0] = _c1
+    _o0[..., 1, 1] = -_c2*a**2 - 1/8*_c2
+    _o1 = numpy.zeros(shape + (2, 2))
+    _o1[..., 0, 0] = -_c5*b
+    _o1[..., 0, 1] = Cla*F*V*_c6*a*rho - _c4*_c6*_c11 - _c14*_c6 - _c6*_c7 - _c9
+    _o1[..., 1, 0] = _c8*a - _c9
+    _o1[..., 1, 1] = 2*Cla*F*V*_c15*a*ac*rho + Cla*G*V*_c15*_c10*a*rho + (1/2)*F*V*_c13*_c15*_c12*a*rho + numpy.pi*V*_c15*a*rho - _c14*_c15*ac - _c15*_c7*ac - _c16*_c11*ac - 1/2*_c16 - _c17*a**2 - _c17*ac**2
+    _o2 = numpy.zeros(shape + (2, 2))
+    _o2[..., 0, 0] = _c21
+    _o2[..., 0, 1] = -_c22*b + _c23*ac - _c24 + _c25*b
+    _o2[..., 1, 0] = Cla*G*_c18*ac*b*k*rho - _c24
+    _o2[..., 1, 1] = _c27*a**2 - 2*_c27*a*ac + _c27*ac**2 - _c28*a + _c28*ac + _c26*a - _c26*ac
+    return {
+        "theodorsen_M": _o0,
+        "theodorsen_C": _o1,
+        "theodorsen_K": _o2,
     }
 
 
@@ -1177,6 +1425,289 @@ def ln_blocks_d(rho, V, b, a, Cla, ac):
             "ac": _d27,
         },
         "ln_W3": {},
+    }
+
+
+def theodorsen_blocks_d(rho, V, b, a, Cla, ac, k, F, G):
+    """Parameter derivatives of theodorsen_M, theodorsen_C, theodorsen_K (of `theodorsen_blocks`).
+
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the derivatives.
+
+    Parameters
+    ----------
+    rho : array_like
+        air density [kg/m^3]
+    V : array_like
+        airspeed [m/s]
+    b : array_like
+        semichord [m]
+    a : array_like
+        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+    Cla : array_like
+        section lift-curve slope (2π for Theodorsen's flat plate) [1/rad]
+    ac : array_like
+        aerodynamic centre aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+    k : array_like
+        reduced frequency ω b / V of harmonic motion [-]
+    F : array_like
+        real part of Theodorsen's function C(k) = F + iG [-]
+    G : array_like
+        imaginary part of Theodorsen's function C(k) = F + iG [-]
+
+    Returns
+    -------
+    dict of dict of numpy.ndarray
+        ``result[matrix][parameter]`` = ∂matrix/∂parameter, shape (..., rows, cols) with
+        ``...`` the broadcast shape of all the arguments (units: the matrix's over the
+        parameter's); parameters not listed have an identically-zero derivative:
+        "theodorsen_M" (2 x 2): rho, b, a
+        "theodorsen_C" (2 x 2): rho, V, b, a, Cla, ac, k, F, G
+        "theodorsen_K" (2 x 2): rho, V, b, a, Cla, ac, k, F, G
+    """
+    shape, (rho, V, b, a, Cla, ac, k, F, G,) = _broadcast(rho, V, b, a, Cla, ac, k, F, G)
+    _c0 = b**2
+    _c1 = numpy.pi*_c0
+    _c2 = b**3
+    _c3 = numpy.pi*_c2
+    _c4 = _c3*a
+    _c5 = numpy.pi*b**4
+    _c6 = a**2
+    _c7 = b*rho
+    _c8 = 2*_c7
+    _c9 = numpy.pi*_c8
+    _c10 = _c1*rho
+    _c11 = 3*_c10*a
+    _c12 = _c3*rho
+    _c13 = a*rho
+    _c14 = Cla*V
+    _c15 = F*_c14
+    _c16 = V*_c1
+    _c17 = _c0*_c15
+    _c18 = _c17*ac
+    _c19 = _c0*_c14
+    _c20 = k**(-1.0)
+    _c21 = G*_c20
+    _c22 = _c19*_c21
+    _c23 = V*_c0
+    _c24 = F*_c23
+    _c25 = numpy.pi**(-1.0)
+    _c26 = Cla**2
+    _c27 = _c25*_c26
+    _c28 = (1/2)*_c27
+    _c29 = (1/2)*_c2
+    _c30 = V*ac
+    _c31 = _c15*_c2
+    _c32 = ac**2
+    _c33 = _c14*_c2
+    _c34 = F*_c27
+    _c35 = F*_c7
+    _c36 = Cla*_c0
+    _c37 = F*_c36
+    _c38 = ac*rho
+    _c39 = _c37*_c38
+    _c40 = _c21*rho
+    _c41 = F*rho
+    _c42 = _c0*_c41
+    _c43 = _c29*rho
+    _c44 = Cla*_c2
+    _c45 = _c41*_c44
+    _c46 = _c15*rho
+    _c47 = _c15*_c8
+    _c48 = _c47*ac
+    _c49 = _c14*_c8
+    _c50 = V*_c35
+    _c51 = _c19*rho
+    _c52 = 3*_c38
+    _c53 = _c0*_c46
+    _c54 = 3*_c53
+    _c55 = _c30*_c42
+    _c56 = 2*a
+    _c57 = _c2*_c46
+    _c58 = _c57*ac
+    _c59 = V*_c43
+    _c60 = V*_c12 + _c33*_c40 + _c34*_c59 - _c56*_c57 + 2*_c58
+    _c61 = _c2*_c6
+    _c62 = V*_c41
+    _c63 = _c2*_c32
+    _c64 = -_c53
+    _c65 = k**(-2.0)
+    _c66 = G*_c65
+    _c67 = _c19*_c38
+    _c68 = _c13*_c19
+    _c69 = _c14*rho
+    _c70 = _c27*_c30
+    _c71 = _c20*_c33
+    _c72 = V**2
+    _c73 = Cla*_c72
+    _c74 = G*k
+    _c75 = _c73*_c74
+    _c76 = F*_c73
+    _c77 = _c75*b
+    _c78 = _c77*a
+    _c79 = _c72*_c74
+    _c80 = _c28*_c79
+    _c81 = _c0*_c76
+    _c82 = _c0*_c75
+    _c83 = _c0*a
+    _c84 = 2*_c83*ac
+    _c85 = _c0*ac
+    _c86 = 2*_c74
+    _c87 = _c49*_c74
+    _c88 = _c87*a
+    _c89 = _c27*_c74
+    _c90 = 4*ac
+    _c91 = _c51*_c86
+    _c92 = _c13*_c75
+    _c93 = _c72*rho
+    _c94 = _c74*_c93
+    _c95 = _c76*_c8
+    _c96 = _c7*_c75
+    _c97 = _c75*_c8
+    _c98 = _c7*_c79
+    _c99 = _c98*ac
+    _c100 = _c98*a
+    _c101 = -_c96
+    _c102 = _c38*_c82
+    _c103 = _c0*_c94
+    _c104 = -Cla*F*_c0*_c72*rho - 2*Cla*G*_c0*_c72*a*k*rho + 2*_c102 + _c103*_c28
+    _c105 = F*_c93
+    _c106 = _c73*rho
+    _c107 = G*_c106
+    _c108 = _c7*_c73
+    _c109 = G*_c108
+    _c110 = _c109*a
+    _c111 = G*_c28
+    _c112 = _c7*_c72
+    _c113 = _c0*_c107
+    _c114 = _c111*_c93
+    _c115 = _c106*k
+    _c116 = _c108*k
+    _c117 = _c116*a
+    _c118 = _c28*k
+    _c119 = _c0*_c115
+    _c120 = _c118*_c93
+    _d0 = numpy.zeros(shape + (2, 2))
+    _d0[..., 0, 0] = -_c1
+    _d0[..., 0, 1] = _c4
+    _d0[..., 1, 0] = _c4
+    _d0[..., 1, 1] = -_c5*_c6 - 1/8*_c5
+    _d1 = numpy.zeros(shape + (2, 2))
+    _d1[..., 0, 0] = -_c9
+    _d1[..., 0, 1] = _c11
+    _d1[..., 1, 0] = _c11
+    _d1[..., 1, 1] = -4*_c12*_c6 - 1/2*_c12
+    _d2 = numpy.zeros(shape + (2, 2))
+    _d2[..., 0, 1] = _c12
+    _d2[..., 1, 0] = _c12
+    _d2[..., 1, 1] = -2*_c13*_c5
+    _d3 = numpy.zeros(shape + (2, 2))
+    _d3[..., 0, 0] = -_c15*b
+    _d3[..., 0, 1] = Cla*F*V*_c0*a - _c16 - _c18 - _c22 - _c24*_c28
+    _d3[..., 1, 0] = _c17*a - _c18
+    _d3[..., 1, 1] = 2*Cla*F*V*_c2*a*ac + Cla*G*V*_c2*_c20*a + (1/2)*F*V*_c2*_c25*_c26*a + numpy.pi*V*_c2*a - _c14*_c29 - _c21*_c33*ac - _c29*_c30*_c34 - _c3*_c30 - _c31*_c32 - _c31*_c6
+    _d4 = numpy.zeros(shape + (2, 2))
+    _d4[..., 0, 0] = -Cla*_c35
+    _d4[..., 0, 1] = Cla*F*_c0*a*rho - _c10 - _c28*_c42 - _c36*_c40 - _c39
+    _d4[..., 1, 0] = _c13*_c37 - _c39
+    _d4[..., 1, 1] = 2*Cla*F*_c2*a*ac*rho + Cla*G*_c2*_c20*a*rho - Cla*_c43 + (1/2)*F*_c2*_c25*_c26*a*rho - _c12*ac + numpy.pi*_c2*a*rho - _c21*_c38*_c44 - _c32*_c45 - _c34*_c43*ac - _c45*_c6
+    _d5 = numpy.zeros(shape + (2, 2))
+    _d5[..., 0, 0] = -_c46
+    _d5[..., 0, 1] = 2*Cla*F*V*a*b*rho - V*_c9 - _c21*_c49 - _c27*_c50 - _c48
+    _d5[..., 1, 0] = _c47*a - _c48
+    _d5[..., 1, 1] = 6*Cla*F*V*_c0*a*ac*rho + 3*Cla*G*V*_c0*_c20*a*rho + (3/2)*F*V*_c0*_c25*_c26*a*rho + 3*numpy.pi*V*_c0*a*rho - _c16*_c52 - _c22*_c52 - 3/2*_c27*_c55 - _c32*_c54 - 3/2*_c51 - _c54*_c6
+    _d6 = numpy.zeros(shape + (2, 2))
+    _d6[..., 0, 1] = _c53
+    _d6[..., 1, 0] = _c53
+    _d6[..., 1, 1] = _c60
+    _d7 = numpy.zeros(shape + (2, 2))
+    _d7[..., 0, 0] = -_c50
+    _d7[..., 0, 1] = F*V*_c0*a*rho - _c23*_c40 - _c25*_c53 - _c55
+    _d7[..., 1, 0] = _c13*_c24 - _c55
+    _d7[..., 1, 1] = Cla*F*V*_c2*_c25*a*rho + 2*F*V*_c2*a*ac*rho + G*V*_c2*_c20*a*rho - _c2*_c30*_c40 - _c25*_c58 - _c59 - _c61*_c62 - _c62*_c63
+    _d8 = numpy.zeros(shape + (2, 2))
+    _d8[..., 0, 1] = _c64
+    _d8[..., 1, 0] = _c64
+    _d8[..., 1, 1] = -_c60
+    _d9 = numpy.zeros(shape + (2, 2))
+    _d9[..., 0, 1] = _c51*_c66
+    _d9[..., 1, 1] = Cla*G*V*_c2*_c65*ac*rho - _c13*_c33*_c66
+    _d10 = numpy.zeros(shape + (2, 2))
+    _d10[..., 0, 0] = -_c14*_c7
+    _d10[..., 0, 1] = Cla*V*_c0*a*rho - _c23*_c28*rho - _c67
+    _d10[..., 1, 0] = -_c67 + _c68
+    _d10[..., 1, 1] = 2*Cla*V*_c2*a*ac*rho + (1/2)*V*_c2*_c25*_c26*a*rho - _c43*_c70 - _c61*_c69 - _c63*_c69
+    _d11 = numpy.zeros(shape + (2, 2))
+    _d11[..., 0, 1] = -_c20*_c51
+    _d11[..., 1, 1] = _c13*_c71 - _c38*_c71
+    _d12 = numpy.zeros(shape + (2, 2))
+    _d12[..., 0, 0] = _c75
+    _d12[..., 0, 1] = -_c76*b + _c77*ac - _c78 + _c80*b
+    _d12[..., 1, 0] = Cla*G*_c72*ac*b*k - _c78
+    _d12[..., 1, 1] = _c32*_c82 + _c6*_c82 - _c75*_c84 - _c80*_c83 + _c80*_c85 + _c81*a - _c81*ac
+    _d13 = numpy.zeros(shape + (2, 2))
+    _d13[..., 0, 0] = _c69*_c86
+    _d13[..., 0, 1] = V*_c7*_c89 - _c47 + _c87*ac - _c88
+    _d13[..., 1, 0] = 2*Cla*G*V*ac*b*k*rho - _c88
+    _d13[..., 1, 1] = _c0*_c70*_c74*rho - _c13*_c23*_c89 + _c32*_c91 + _c53*_c56 - 2*_c53*ac + _c6*_c91 - _c68*_c74*_c90
+    _d14 = numpy.zeros(shape + (2, 2))
+    _d14[..., 0, 1] = _c28*_c94 + _c38*_c75 - _c76*rho - _c92
+    _d14[..., 1, 0] = Cla*G*_c72*ac*k*rho - _c92
+    _d14[..., 1, 1] = -_c100*_c27 + _c27*_c99 + _c32*_c97 + _c6*_c97 - _c90*_c96*a + _c95*a - _c95*ac
+    _d15 = numpy.zeros(shape + (2, 2))
+    _d15[..., 0, 1] = _c101
+    _d15[..., 1, 0] = _c101
+    _d15[..., 1, 1] = -_c104
+    _d16 = numpy.zeros(shape + (2, 2))
+    _d16[..., 0, 0] = _c94
+    _d16[..., 0, 1] = -_c100 + _c25*_c96 - _c35*_c72 + _c99
+    _d16[..., 1, 0] = G*_c72*ac*b*k*rho - _c100
+    _d16[..., 1, 1] = _c102*_c25 + _c103*_c32 + _c103*_c6 + _c105*_c83 - _c105*_c85 - _c13*_c25*_c82 - _c84*_c94
+    _d17 = numpy.zeros(shape + (2, 2))
+    _d17[..., 0, 1] = _c96
+    _d17[..., 1, 0] = _c96
+    _d17[..., 1, 1] = _c104
+    _d18 = numpy.zeros(shape + (2, 2))
+    _d18[..., 0, 0] = _c107
+    _d18[..., 0, 1] = _c109*ac - _c110 + _c111*_c112
+    _d18[..., 1, 0] = Cla*G*_c72*ac*b*rho - _c110
+    _d18[..., 1, 1] = -_c107*_c84 + _c113*_c32 + _c113*_c6 - _c114*_c83 + _c114*_c85
+    _d19 = numpy.zeros(shape + (2, 2))
+    _d19[..., 0, 1] = -_c108
+    _d19[..., 1, 1] = _c106*_c83 - _c106*_c85
+    _d20 = numpy.zeros(shape + (2, 2))
+    _d20[..., 0, 0] = _c115
+    _d20[..., 0, 1] = _c112*_c118 + _c116*ac - _c117
+    _d20[..., 1, 0] = Cla*_c72*ac*b*k*rho - _c117
+    _d20[..., 1, 1] = -_c115*_c84 + _c119*_c32 + _c119*_c6 - _c120*_c83 + _c120*_c85
+    return {
+        "theodorsen_M": {
+            "rho": _d0,
+            "b": _d1,
+            "a": _d2,
+        },
+        "theodorsen_C": {
+            "rho": _d3,
+            "V": _d4,
+            "b": _d5,
+            "a": _d6,
+            "Cla": _d7,
+            "ac": _d8,
+            "k": _d9,
+            "F": _d10,
+            "G": _d11,
+        },
+        "theodorsen_K": {
+            "rho": _d12,
+            "V": _d13,
+            "b": _d14,
+            "a": _d15,
+            "Cla": _d16,
+            "ac": _d17,
+            "k": _d18,
+            "F": _d19,
+            "G": _d20,
+        },
     }
 
 

@@ -595,5 +595,6 @@ def test_generated_functions_broadcast():
 def test_output_metadata_labels(name):
     argnames, rows, cols, _ = sa.OUTPUTS[name]
     f = getattr(sa, name)
-    vals = {"rho": 1.0, "V": 50.0, "b": 0.5, "a": -0.1, "Cla": 6.0, "ac": -0.5, "t": 0.1}
+    vals = {"rho": 1.0, "V": 50.0, "b": 0.5, "a": -0.1, "Cla": 6.0, "ac": -0.5, "t": 0.1,
+            "k": 0.3, "F": 0.7, "G": -0.2}
     assert f(*(vals[n] for n in argnames)).shape == (len(rows), len(cols))

@@ -24,15 +24,17 @@ from propwhirl.engine import analyse as engine_analyse
 from propwhirl.engine import single_thread_blas
 from propwhirl.engine.correction import correct_crossing
 from propwhirl.engine.results import Analysis, Criticals
+from propwhirl.model.frequency_domain import check_section
 from propwhirl.model.reduction import CUTOFF_FACTOR, ReducedModel, reduce
 
 #: models with more states than this are analysed reduced by default (``method="auto"``)
 REDUCED_ABOVE = 400
-METHODS = ("auto", "dense", "reduced")
+METHODS = ("auto", "dense", "reduced", "pk")
 
 
 def choose_method(model, method: str) -> str:
-    """"dense" or "reduced" for ``method`` ("auto", "dense" or "reduced") and ``model``.
+    """"dense", "reduced" or "pk" for ``method`` ("auto", "dense", "reduced" or "pk": the
+    p-k method with the exact Theodorsen function, typical sections and wings) and ``model``.
 
     Examples
     --------
@@ -45,6 +47,9 @@ def choose_method(model, method: str) -> str:
     if method not in METHODS:
         raise v.InputError(f"method = {method!r} is invalid: must be one of "
                            f"{', '.join(repr(m) for m in METHODS)}")
+    if method == "pk":
+        check_section(model)
+        return "pk"
     reducible = hasattr(model, "second_order_blocks")
     if method == "reduced" and not reducible:
         raise v.InputError(f"method = 'reduced' is invalid for a {type(model).__name__}: "

@@ -318,7 +318,10 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         crossing asks for them, so ``.sweep`` is coarse.
     options : TrackingOptions, optional
         Tuning of the mode tracker.
-    method : {"auto", "dense", "reduced"}, optional
+    method : {"auto", "dense", "reduced", "pk"}, optional
+        "pk" (typical sections and wings): the modes tracked as "dense", their flutter and
+        divergence crossings by the p-k method with the exact Theodorsen function
+        (:mod:`propwhirl.analysis.pk`; no participation or benignity).
         "dense": every root of the full-order A(V) at each speed (the reference); "reduced":
         the modes below a frequency cut-off on a reduced-order model, every crossing then
         converged on the full-order model (:mod:`propwhirl.analysis.reduced`); "auto"
@@ -354,7 +357,8 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
     if options is not None and not isinstance(options, TrackingOptions):
         raise v.InputError(f"options = {options!r} is invalid: must be a TrackingOptions")
     dm = model.dof_map()
-    if choose_method(model, method) == "reduced":
+    chosen = choose_method(model, method)
+    if chosen == "reduced":
         run = reduced_engine_analysis(model, grid, displacement=dm.displacement,
                                       state_labels=dm.state_labels, options=options, xtol=xtol,
                                       vgf=bool(vgf))
@@ -387,6 +391,10 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         events.append(Instability("divergence", "frequency-zero", p.mode, names[p.mode], p.V, 0.0))
         shapes.append(branch_point_shape(model, sw, p.mode, p.bracket[0], matrix_fn, lift))
     events = with_participation(model, events, shapes)
+    if chosen == "pk":  # the tracked finite-state modes, their crossings by the exact p-k method
+        from propwhirl.analysis.pk import pk_instabilities
+
+        events = pk_instabilities(model, sw.eigenvalues[0], names, grid, xtol=xtol)
     events.sort(key=lambda e: (e.V, e.mode))
     notes = validity.analysis_warnings(
         model, (float(sw.V[0]), float(sw.V[-1])),

@@ -1,0 +1,262 @@
+"""The p-k method with the exact Theodorsen function (issue 14 item 2): typical section, wings.
+
+For each aeroelastic mode and airspeed V the p-k equation (NASTRAN's PK method)
+
+    [ (M_s − M_a) p² − C_a(k) p + (K_s − K_a(k)) ] q̂ = 0,        k = ω b / V,  ω = Im p
+
+is solved by fixed-point iteration on the reduced frequency: the aerodynamic matrices are
+evaluated at the mode's current k with the exact C(k) = F(k) + iG(k) (thesis eq. 4.31,
+:func:`propwhirl.model.theodorsen.theodorsen`), the root of the quadratic eigenproblem nearest
+the mode's current root is taken, and k is updated to that root's own frequency until it no
+longer changes.  The matrices M_a, C_a(k), K_a(k) are the harmonic-motion form of Theodorsen's
+loads (7.24–7.27, 7.64–7.66) generated from ``derivations/strip_aero.py``
+(``strip_aero.theodorsen_blocks``); the structure is ``typical_section.blocks``, or a wing's
+own structure and propellers with every strip at its own k = ω b_i / V
+(:func:`propwhirl.model.frequency_domain.pk_system`; k reported on the root semichord).
+
+The modes to follow start from the finite-state eigenvalues of the model's own state matrix
+(Leishman–Nguyen or Wagner lag states) at the first speed, and are continued speed by speed.
+The flutter speed of a mode is where its p-k decay rate Re p crosses zero from below, refined by
+Brent's method to ``xtol`` (0.01 m/s by default).  The p-k root is exact (Theodorsen's C at the
+mode's frequency) only at Re p = 0, i.e. at the flutter point; elsewhere its damping is the
+usual p-k approximation.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+from propwhirl import validate as v
+from propwhirl.model.frequency_domain import (
+    K_MIN,
+    check_pk_model,
+    pk_system,
+    reference_semichord,
+)
+
+#: accuracy of every flutter speed [m/s]
+XTOL = 0.01
+#: relative convergence of the reduced frequency in the p-k iteration (a wing's eigenvalues carry
+#: ~1e-8 of rounding noise, so tighter stalls; the flutter speed moves by far less than XTOL)
+KTOL = 1e-7
+#: a root with Im p below this fraction of its in-vacuo frequency is non-oscillatory
+#: (a crossing of such a root is divergence, not flutter)
+STATIC = 1e-6
+#: in-vacuo modes a wing's p-k sweep follows by default (lowest frequencies first)
+WING_MODES = 6
+
+
+def _is_section(model) -> bool:
+    from propwhirl.model.systems import TypicalSection
+
+    return isinstance(model, TypicalSection)
+
+
+@dataclass(frozen=True)
+class PKFlutter:
+    """A p-k flutter crossing of one mode.
+
+    Attributes: mode index (in the order of the in-vacuo frequencies), its in-vacuo label,
+    flutter speed V [m/s], frequency [rad/s] and frequency_hz [Hz], reduced frequency k [-],
+    the direction ("onset": Re p becomes positive with increasing V; "end") and the kind
+    ("flutter"; "divergence" for a non-oscillatory root, frequency 0).
+    """
+
+    mode: int
+    label: str
+    V: float
+    frequency: float
+    k: float
+    event: str = "onset"
+    kind: str = "flutter"
+
+    @property
+    def frequency_hz(self) -> float:
+        return self.frequency / (2 * np.pi)
+
+
+@dataclass(frozen=True)
+class PKSweep:
+    """The p-k roots of every mode over a speed grid.
+
+    speeds [m/s] (nV,); roots (nV, nmodes) complex p [1/s]; k (nV, nmodes) reduced frequencies;
+    labels of the modes; flutter: the crossings, sorted by speed; start: the finite-state
+    eigenvalues [1/s] at the first speed the modes started from.
+    """
+
+    speeds: np.ndarray
+    roots: np.ndarray
+    k: np.ndarray
+    labels: tuple[str, ...]
+    flutter: tuple[PKFlutter, ...]
+    start: np.ndarray | None = None
+
+    @property
+    def damping(self) -> np.ndarray:
+        """NASTRAN's damping g = 2 Re p / Im p of every root [-]."""
+        return 2 * self.roots.real / np.abs(self.roots.imag)
+
+    @property
+    def critical(self) -> PKFlutter | None:
+        """The lowest-speed onset (flutter or divergence), or None."""
+        onsets = [f for f in self.flutter if f.event == "onset"]
+        return onsets[0] if onsets else None
+
+
+def pk_matrix(model, V: float, k: float) -> np.ndarray:
+    """First-order matrix of the p-k equation at airspeed V [m/s] and reduced frequency k [-]
+    (on the reference semichord, :func:`~propwhirl.model.frequency_domain.reference_semichord`).
+
+    Its eigenvalues p [1/s] solve (M_s − M_a) p² − C_a(k) p + (K_s − K_a(k)) = 0 with the
+    exact Theodorsen C(k) (eq. 4.31): :func:`propwhirl.model.frequency_domain.pk_matrices`.
+    """
+    return _first_order(pk_system(model, V), max(k, K_MIN) * V / reference_semichord(model))
+
+
+def _first_order(system, omega: float) -> np.ndarray:
+    M, Cd, K = system(omega)
+    n = M.shape[0]
+    A = np.zeros((2 * n, 2 * n))
+    A[:n, n:] = np.eye(n)
+    A[n:, :n] = -np.linalg.solve(M, K)
+    A[n:, n:] = -np.linalg.solve(M, Cd)
+    return A
+
+
+def pk_root(model, V: float, p0: complex, *, ktol: float = KTOL, maxiter: int = 200,
+            system=None) -> tuple[complex, float]:
+    """The p-k root [1/s] of the mode nearest ``p0`` at airspeed V [m/s], and its k [-].
+
+    Fixed-point iteration k ← Im p · b / V (b: the reference semichord) with the root of
+    :func:`pk_matrix` nearest the previous one, under-relaxed (halving the step, down to
+    1/64) while the steps oscillate without shrinking; raises RuntimeError when k does not converge
+    in ``maxiter`` iterations.  ``system``: :func:`pk_system` of (model, V) if already built.
+    """
+    b = reference_semichord(model)
+    system = pk_system(model, V) if system is None else system
+    p = complex(p0)
+    k = abs(p.imag) * b / V
+    relax, last = 1.0, 0.0
+    for _ in range(maxiter):
+        lam = np.linalg.eigvals(_first_order(system, max(k, K_MIN) * V / b))
+        lam = lam[lam.imag >= 0] if np.any(lam.imag > 0) else lam
+        p = complex(lam[np.argmin(np.abs(lam - p))])
+        k_new = abs(p.imag) * b / V
+        step = k_new - k
+        if abs(step) <= ktol * max(k_new, K_MIN):
+            return p, k_new
+        if step * last < 0 and abs(step) >= 0.5 * abs(last):  # oscillating, not shrinking
+            relax = max(relax / 2, 1 / 64)
+        elif step * last > 0:                                  # monotone again
+            relax = min(2 * relax, 1.0)
+        last = step
+        k = k + relax * step
+    raise RuntimeError(f"p-k iteration did not converge at V = {V} m/s (k = {k})")
+
+
+def _start_roots(model, V: float, n_modes: int | None) -> tuple[np.ndarray, tuple[str, ...]]:
+    """The finite-state eigenvalues at V [m/s] of the model's oscillatory modes (one per
+    in-vacuo mode, the lowest `n_modes`, nearest its in-vacuo root), and the modes' labels."""
+    vac = np.linalg.eigvals(model.without_aerodynamics().state_matrix(np.array([V]))[0])
+    vac = vac[vac.imag > 0]
+    vac = vac[np.argsort(vac.imag)][:n_modes]
+    fs = np.linalg.eigvals(model.state_matrix(np.array([V]))[0])
+    fs = fs[fs.imag > 0]
+    start = np.array([fs[np.argmin(np.abs(fs - w))] for w in vac])
+    labels = tuple(f"mode {j + 1} ({w.imag / (2 * np.pi):.4g} Hz in vacuo)"
+                   for j, w in enumerate(vac))
+    return start, labels
+
+
+def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None) -> PKSweep:
+    """p-k roots of the modes of a typical section or a wing over ``speeds`` [m/s] and their
+    flutter and divergence crossings (Re p = 0, refined by Brent's method to ``xtol`` [m/s]).
+
+    ``n_modes``: how many in-vacuo modes (lowest frequencies first) to follow; default every
+    mode of a typical section, the lowest :data:`WING_MODES` of a wing.
+    """
+    check_pk_model(model)
+    V = np.asarray(speeds, dtype=float)
+    if V.ndim != 1 or V.size < 2 or np.any(~np.isfinite(V)) or np.any(V <= 0) \
+            or np.any(np.diff(V) <= 0):
+        raise v.InputError(f"speeds = {speeds!r:.60} is invalid: must be at least two "
+                           "increasing airspeeds > 0 [m/s]")
+    v.positive("xtol", xtol, "m/s")
+    if n_modes is None:
+        n_modes = None if _is_section(model) else WING_MODES
+    elif not isinstance(n_modes, (int, np.integer)) or n_modes < 1:
+        raise v.InputError(f"n_modes = {n_modes!r} is invalid: must be an integer >= 1")
+    start, labels = _start_roots(model, V[0], n_modes)
+    vacuum = np.abs(start)
+    roots = np.empty((V.size, start.size), complex)
+    ks = np.empty((V.size, start.size))
+    p = start.copy()
+    for i, Vi in enumerate(V):
+        system = pk_system(model, Vi)  # the structure and propellers once per speed
+        for j in range(start.size):
+            p[j], ks[i, j] = pk_root(model, Vi, p[j], system=system)
+        roots[i] = p
+    events = []
+    for j in range(start.size):
+        sigma = roots[:, j].real
+        for i in np.flatnonzero(np.sign(sigma[:-1]) != np.sign(sigma[1:])):
+            if sigma[i] == 0.0:
+                continue
+            guess = [roots[i, j]]
+
+            def decay(x: float) -> float:
+                # continue from the bracket's left root (a near root keeps the same mode)
+                p, _ = pk_root(model, x, guess[0])
+                return p.real
+
+            Vf = brentq(decay, V[i], V[i + 1], xtol=xtol)
+            p, k = pk_root(model, Vf, roots[i, j])
+            static = abs(p.imag) <= STATIC * vacuum[j]
+            events.append(PKFlutter(j, labels[j], float(Vf), 0.0 if static else float(abs(p.imag)),
+                                    0.0 if static else float(k),
+                                    "onset" if sigma[i] < 0 else "end",
+                                    "divergence" if static else "flutter"))
+    events.sort(key=lambda e: (e.V, e.mode))
+    unique: list[PKFlutter] = []
+    for e in events:  # two followed modes that hopped onto the same root: report it once
+        if not any(u.kind == e.kind and u.event == e.event and abs(u.V - e.V) <= 2 * xtol
+                   and abs(u.frequency - e.frequency) <= 1e-4 * max(e.frequency, 1.0)
+                   for u in unique):
+            unique.append(e)
+    events = unique
+    return PKSweep(V, roots, ks, labels, tuple(events), start)
+
+
+def pk_flutter(model, speeds, *, xtol: float = XTOL,
+               n_modes: int | None = None) -> tuple[PKFlutter, ...]:
+    """The p-k flutter and divergence crossings of a typical section or a wing over ``speeds``
+    [m/s], sorted by speed (exact Theodorsen aerodynamics; see :func:`pk_sweep`)."""
+    return pk_sweep(model, speeds, xtol=xtol, n_modes=n_modes).flutter
+
+
+def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: float = XTOL):
+    """The p-k crossings as :class:`~propwhirl.analysis.stability.Instability` events of the
+    finite-state analysis's tracked modes (``analyse(model, method="pk")``).
+
+    ``start_roots`` are the tracked modes' finite-state eigenvalues [1/s] at ``speeds[0]``
+    and ``names`` their labels; each p-k mode is the tracked mode whose root there is nearest
+    the root it started from.  Events: "onset" / "recovery" of flutter or divergence, and
+    "unstable-at-start" when Re p > 0 at the first speed; no participation, no benignity.
+    """
+    from propwhirl.analysis.stability import Instability
+
+    r = pk_sweep(model, speeds, xtol=xtol)
+    tracked = [int(np.argmin(np.abs(np.asarray(start_roots) - p))) for p in r.start]
+    events = []
+    for j, p0 in enumerate(r.roots[0]):
+        if p0.real > 0:
+            kind = "flutter" if abs(p0.imag) > STATIC * abs(r.start[j]) else "divergence"
+            events.append(Instability(kind, "unstable-at-start", tracked[j], names[tracked[j]],
+                                      float(r.speeds[0]), float(abs(p0.imag) / (2 * np.pi))))
+    for f in r.flutter:
+        events.append(Instability(f.kind, "onset" if f.event == "onset" else "recovery",
+                                  tracked[f.mode], names[tracked[f.mode]], f.V, f.frequency_hz))
+    events.sort(key=lambda e: (e.V, e.mode))
+    return events

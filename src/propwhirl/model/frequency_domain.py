@@ -1,0 +1,123 @@
+"""Frequency-domain (exact Theodorsen) matrices for the p-k method: the typical section and the
+wing's strip theory.
+
+For harmonic motion at the reduced frequency k = ω b / V, Theodorsen's loads (thesis eq.
+7.24–7.27, 7.64–7.66) with the exact C(k) = F(k) + iG(k) (eq. 4.31) are
+Q = M_a q̈ + C_a(k) q̇ + K_a(k) q; the matrices are generated from ``derivations/strip_aero.py``
+(``strip_aero.theodorsen_blocks``), the section's structure from
+``derivations/typical_section.py``.  On a wing every node's strip has its own
+k_i = ω b_i / V and acts with its tributary width, as the finite-state strips
+(:func:`propwhirl.model.assembly.wing_aero_blocks`); the structure and the propellers
+(Houbolt–Reed loads as they are) are the model's own second-order system with the wing
+aerodynamics off.  The p-k solution itself is :mod:`propwhirl.analysis.pk`.
+"""
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from propwhirl import validate as v
+from propwhirl.model.theodorsen import theodorsen
+
+#: reduced frequency used for a (numerically) non-oscillatory root: G(k)/k is singular at 0
+K_MIN = 1e-6
+
+
+def check_pk_model(model) -> None:
+    """InputError unless `model` is a TypicalSection with its aerodynamics on, or a
+    PropellerWing with its wing aerodynamics on."""
+    from propwhirl.model.systems import PropellerWing, TypicalSection
+
+    if isinstance(model, TypicalSection) and model.aero:
+        return
+    if isinstance(model, PropellerWing) and model.wing_aero:
+        return
+    raise v.InputError(f"model = {model!r:.60} is invalid for the p-k method: must be a "
+                       "TypicalSection with aero = True or a PropellerWing with wing_aero = True")
+
+
+#: kept for the typical-section-only callers
+check_section = check_pk_model
+
+
+def reference_semichord(model) -> float:
+    """Semichord [m] of the reduced frequency k = ω b / V reported: the section's b, the
+    wing's root semichord."""
+    from propwhirl.model.systems import TypicalSection
+
+    if isinstance(model, TypicalSection):
+        return float(model.b)
+    return float(model.wing.node_properties()["b"][0])
+
+
+def section_structure(model) -> tuple[np.ndarray, np.ndarray]:
+    """Structural mass [kg/m, kg, kg m] and stiffness [h, α] of a typical section."""
+    from propwhirl.generated import typical_section
+
+    S = model.m * model.x_alpha * model.b
+    I = model.m * (model.r_alpha * model.b) ** 2
+    blk = typical_section.blocks(m=model.m, S=S, I_alpha=I, K_h=model.m * model.omega_h**2,
+                                 K_alpha=I * model.omega_alpha**2)
+    return np.asarray(blk["mass"], float), np.asarray(blk["stiffness"], float)
+
+
+def _strip(rho, V, b, a, Cla, ac, omega):
+    """Exact-Theodorsen strip matrices (M_a, C_a, K_a) per unit span at frequency ω [rad/s];
+    b, a, Cla, ac scalars or arrays (one per strip)."""
+    from propwhirl.generated import strip_aero
+
+    k = np.maximum(np.asarray(omega * np.asarray(b, float) / V, float), K_MIN)
+    C = theodorsen(k)
+    aero = strip_aero.theodorsen_blocks(rho=rho, V=V, b=b, a=a, Cla=Cla, ac=ac, k=k,
+                                        F=C.real, G=C.imag)
+    return aero["theodorsen_M"], aero["theodorsen_C"], aero["theodorsen_K"]
+
+
+def section_pk_matrices(model, V: float, k: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(M, C, K) of M q̈ + C q̇ + K q = 0 for the section at airspeed V [m/s] with the exact
+    Theodorsen loads at the reduced frequency k [-] (k below :data:`K_MIN` is raised to it)."""
+    Ma, Ca, Ka = _strip(model.flight.density, V, model.b, model.a, model.Cla, model.ac,
+                        max(float(k), K_MIN) * V / model.b)
+    Ms, Ks = section_structure(model)
+    return Ms - Ma, -Ca, Ks - Ka
+
+
+def pk_system(model, V: float):
+    """ω ↦ (M, C, K) of the p-k equation of `model` at airspeed V [m/s] and frequency ω [rad/s]:
+    the typical section (:func:`section_pk_matrices`) or a PropellerWing (its structure and
+    propellers, computed once, every wing strip with the exact Theodorsen loads at its own
+    k = ω b_i / V), on the model's degrees of freedom (its ``dof_map``, without lag states)."""
+    from propwhirl.model.assembly import free_dofs, place
+    from propwhirl.model.systems import TypicalSection
+
+    if isinstance(model, TypicalSection):
+        return lambda omega: section_pk_matrices(model, V, omega * model.b / V)
+    dry = replace(model, wing_aero=False).second_order(np.array([V]))
+    if dry.n_lag:
+        raise v.InputError(f"model = {model.name!r} is invalid for the p-k method: its "
+                           "propeller aerodynamics has lag states")
+    node = model.wing.node_properties()
+    nn = model.wing.n_nodes
+    width = node["width"][:, None, None]
+    qrows = 3 * np.arange(nn)[:, None] + np.array([0, 2])[None, :]   # h_i, α_i
+    keep = free_dofs(nn)
+    structure = (dry.S1[0], dry.S2[0], dry.S3[0])
+
+    def matrices(omega: float):
+        strips = _strip(model.flight.density, V, node["b"], node["a"], node["Cla"],
+                        node["ac"], omega)
+        out = []
+        for S, A in zip(structure, strips):
+            X = np.array(S, dtype=float)
+            X[:keep.size, :keep.size] -= place(width * A, qrows, qrows,
+                                               (3 * nn, 3 * nn))[np.ix_(keep, keep)]
+            out.append(X)
+        return tuple(out)
+
+    return matrices
+
+
+def pk_matrices(model, V: float, omega: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(M, C, K) of the p-k equation of `model` at V [m/s] and ω [rad/s] (:func:`pk_system`)."""
+    return pk_system(model, V)(omega)

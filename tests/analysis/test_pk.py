@@ -1,0 +1,143 @@
+"""The p-k method with the exact Theodorsen function (propwhirl.analysis.pk) against an
+independent solution of the classical flutter determinant, the analytic divergence speed, and
+the finite-state (Jones) eigenvalue analysis."""
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+from scipy.special import hankel1, hankel2
+
+from propwhirl.analysis import analyse
+from propwhirl.analysis.pk import pk_flutter, pk_sweep
+from propwhirl.model.systems import FlightCondition, TypicalSection
+from propwhirl.validate import InputError
+
+RHO = 1.225
+SPEEDS = np.linspace(5.0, 200.0, 40)
+
+
+def section(**kw):
+    """Hodges & Pierce's typical section (Introduction to Structural Dynamics and
+    Aeroelasticity, the example of its flutter chapter): μ = 20, a = −1/5, x_α = 1/10,
+    r² = 6/25, σ = ω_h/ω_α = 2/5."""
+    b = kw.pop("b", 1.0)
+    mu = kw.pop("mu", 20.0)
+    base = dict(b=b, a=-0.2, x_alpha=0.1, r_alpha=np.sqrt(6 / 25), m=mu * np.pi * RHO * b**2,
+                omega_h=0.4 * 50.0, omega_alpha=50.0, flight=FlightCondition(RHO))
+    base.update(kw)
+    return TypicalSection(**base)
+
+
+def C_exact(k):
+    """Theodorsen's C(k) = H1⁽²⁾/(H1⁽²⁾ + i H0⁽²⁾), from scipy's Hankel functions (not the
+    package's theodorsen())."""
+    h1, h0 = hankel2(1, k), hankel2(0, k)
+    return h1 / (h1 + 1j * h0)
+
+
+def determinant_flutter(sec):
+    """Theodorsen's classical solution: per unit (πρb³ω², πρb⁴ω²) the harmonic equations of
+    motion are D(k) + X diag(μσ², μr²) with X = (ω_α/ω)²(1 + ig); det = 0 is a quadratic in X
+    for each k, and flutter is where a root X is real (g = 0).  Returns (V [m/s], ω [rad/s])
+    of the lowest flutter speed.  Flat plate (C_lα = 2π, a_c = −1/2) only."""
+    mu = sec.m / (np.pi * RHO * sec.b**2)
+    a, xa, r2 = sec.a, sec.x_alpha, sec.r_alpha**2
+    s2 = (sec.omega_h / sec.omega_alpha) ** 2
+
+    def X_roots(k):
+        C = C_exact(k)
+        # L/(πρb³ω²) and M/(πρb⁴ω²) per [h/b, α] (L up, h down, M nose-up, ω² factored
+        # out); the circulatory moment is b(a + 1/2) times the circulatory lift
+        w = 2 * C / k * np.array([1j, 1 / k + 1j * (0.5 - a)])
+        L = np.array([-1.0, 1j / k + a]) + w
+        M = np.array([-a, -1j * (0.5 - a) / k + (1 / 8 + a**2)]) + (a + 0.5) * w
+        D = np.array([[-mu, -mu * xa], [-mu * xa, -mu * r2]]) + np.array([L, -M])
+        # det(D + X diag(p1, p2)) = p1 p2 X² + (p1 D22 + p2 D11) X + det D
+        p1, p2 = mu * s2, mu * r2
+        return np.roots([p1 * p2, p1 * D[1, 1] + p2 * D[0, 0], np.linalg.det(D)])
+
+    found = []
+    ks = np.geomspace(3.0, 0.02, 600)
+    for branch in range(2):
+        def im(k):
+            X = X_roots(k)
+            return X[np.argsort(X.real)][branch].imag
+        vals = np.array([im(k) for k in ks])
+        for i in np.flatnonzero(np.sign(vals[:-1]) != np.sign(vals[1:])):
+            kf = brentq(im, ks[i + 1], ks[i], xtol=1e-14)
+            X = X_roots(kf)[np.argsort(X_roots(kf).real)][branch].real
+            if X > 0:
+                omega = sec.omega_alpha / np.sqrt(X)
+                found.append((omega * sec.b / kf, omega))
+    return min(found)
+
+
+@pytest.mark.parametrize("kw", [{}, {"mu": 10.0}, {"a": -0.4, "x_alpha": 0.2}, {"b": 0.3}])
+def test_pk_flutter_equals_the_exact_flutter_determinant(kw):
+    sec = section(**kw)
+    Vd, wd = determinant_flutter(sec)
+    f = [e for e in pk_flutter(sec, SPEEDS * 1.5) if e.kind == "flutter"][0]
+    assert f.event == "onset"
+    # the p-k root is exact at Re p = 0; the flutter speed is converged to 0.01 m/s
+    assert f.V == pytest.approx(Vd, abs=0.02)
+    # ω and k are evaluated at that speed: |dω/dV| · 0.01 m/s ≈ 2e-5 ω
+    assert f.frequency == pytest.approx(wd, rel=1e-4)
+    assert f.k == pytest.approx(wd * sec.b / Vd, rel=3e-4)
+
+
+def test_hodges_pierce_example_flutter_speed():
+    """Independent determinant and p-k: U_F/(bω_α) = 2.18, ω_F/ω_α = 0.65 for this section."""
+    sec = section()
+    f = pk_sweep(sec, SPEEDS).critical
+    assert f.kind == "flutter"
+    assert f.V / (sec.b * sec.omega_alpha) == pytest.approx(2.184, abs=0.002)
+    assert f.frequency / sec.omega_alpha == pytest.approx(0.649, abs=0.002)
+
+
+def test_divergence_is_the_analytic_divergence_speed():
+    """A root turns real and crosses zero at q_D = K_α/(2π b² (a + 1/2)) (C(0) = 1):
+    U_D = b ω_α sqrt(μ r² / (2 (a + 1/2)))."""
+    sec = section()
+    div = [e for e in pk_flutter(sec, SPEEDS) if e.kind == "divergence"]
+    assert len(div) == 1 and div[0].frequency == 0.0
+    UD = sec.b * sec.omega_alpha * np.sqrt(20.0 * 0.24 / (2 * (sec.a + 0.5)))
+    assert div[0].V == pytest.approx(UD, abs=0.02)
+
+
+@pytest.mark.parametrize("aero_model", ["leishman-nguyen", "wagner"])
+def test_finite_state_within_one_percent_of_exact(aero_model):
+    sec = section(aero_model=aero_model)
+    exact = [e for e in pk_flutter(sec, SPEEDS) if e.kind == "flutter"][0]
+    fs = analyse(sec, speeds=SPEEDS).critical
+    assert fs.kind == "flutter"
+    assert abs(fs.V / exact.V - 1) < 0.01
+    assert abs(2 * np.pi * fs.frequency_hz / exact.frequency - 1) < 0.01
+
+
+def test_bad_input():
+    with pytest.raises(InputError, match="model"):
+        pk_flutter(section().without_aerodynamics(), SPEEDS)
+    with pytest.raises(InputError, match="speeds"):
+        pk_flutter(section(), [10.0, 5.0])
+
+
+def test_analyse_method_pk_gives_the_pk_events_on_the_tracked_modes():
+    sec = section()
+    fs = analyse(sec, speeds=SPEEDS)
+    pk = analyse(sec, speeds=SPEEDS, method="pk")
+    exact = pk_sweep(sec, SPEEDS)
+    assert [(e.kind, e.event) for e in pk.events] == [("flutter", "onset"), ("divergence", "onset")]
+    assert pk.critical.V == exact.critical.V
+    assert pk.critical.frequency_hz == exact.critical.frequency_hz
+    # the same mode (name) flutters in both, the p-k speed 0.6 % above the finite-state one
+    assert pk.critical.label == fs.critical.label
+    assert pk.critical.V != fs.critical.V
+    assert pk.events[1].V == pytest.approx(np.sqrt(8.0) * sec.b * sec.omega_alpha, abs=0.02)
+
+
+def test_method_pk_only_for_typical_sections():
+    from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+
+    with pytest.raises(InputError, match="p-k"):
+        analyse(isolated_baseline_propeller(), speeds=[100.0, 200.0], method="pk")
+    with pytest.raises(InputError, match="'pk'"):
+        analyse(section(), speeds=SPEEDS, method="p-k")
