@@ -141,3 +141,27 @@ def test_method_pk_only_for_typical_sections():
         analyse(isolated_baseline_propeller(), speeds=[100.0, 200.0], method="pk")
     with pytest.raises(InputError, match="'pk'"):
         analyse(section(), speeds=SPEEDS, method="p-k")
+
+
+def test_a_mode_whose_k_iteration_fails_is_said_not_dropped(monkeypatch):
+    """If the k iteration does not converge at some speed, the sweep stops following the mode
+    there, reports no crossing from its NaN roots, and the analysis says so in its warnings."""
+    import propwhirl.analysis.pk as PK
+
+    sec = section()
+    real = PK.pk_root
+    stop = SPEEDS[3]
+
+    def failing(model, V, p0, **kw):
+        if V >= stop:
+            raise RuntimeError("no convergence (test)")
+        return real(model, V, p0, **kw)
+
+    monkeypatch.setattr(PK, "pk_root", failing)
+    r = PK.pk_sweep(sec, SPEEDS)
+    assert len(r.lost) == len(r.labels) and all(V == stop for _, V in r.lost)
+    assert np.all(np.isnan(r.roots[3:])) and np.all(np.isfinite(r.roots[:3]))
+    assert all(e.V < stop for e in r.flutter)
+    a = analyse(sec, speeds=SPEEDS, method="pk")
+    notes = [w for w in a.warnings if "did not converge" in w]
+    assert len(notes) == len(r.labels)

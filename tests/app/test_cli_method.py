@@ -33,3 +33,16 @@ def test_an_unknown_method_is_a_one_line_error(tmp_path, capsys):
         assert exc.code == 2
     err = capsys.readouterr().err
     assert "invalid choice: 'sparse'" in err
+
+
+def test_the_pk_method_from_the_command_line(tmp_path, capsys):
+    """--method pk: the exact-Theodorsen p-k flutter speeds, within 1 % of the finite-state ones
+    on the wingtip model (docs/validation.md)."""
+    path = tmp_path / "wingtip.toml"
+    pio.save_model(wingtip_propeller_wing(), path)
+    assert main(["analyse", str(path), "--method", "pk", "--speeds", "100", "350", "10",
+                 "--json", str(tmp_path / "pk.json")]) == 0
+    from propwhirl.analysis.stability import load
+    pk = load(tmp_path / "pk.json")
+    flutter = [e.V for e in pk.events if e.kind == "flutter" and e.event == "onset"]
+    assert flutter and abs(min(flutter) - 159.39) / 159.39 < 0.01

@@ -92,6 +92,9 @@ class PKSweep:
     labels: tuple[str, ...]
     flutter: tuple[PKFlutter, ...]
     start: np.ndarray | None = None
+    #: (mode label, V [m/s]) where the k iteration of a mode did not converge: the mode is not
+    #: followed beyond that speed (its roots NaN there) — said, never silently dropped
+    lost: tuple[tuple[str, float], ...] = ()
 
     @property
     def damping(self) -> np.ndarray:
@@ -193,15 +196,24 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None) -
     roots = np.empty((V.size, start.size), complex)
     ks = np.empty((V.size, start.size))
     p = start.copy()
+    lost: list[tuple[str, float]] = []
     for i, Vi in enumerate(V):
         system = pk_system(model, Vi)  # the structure and propellers once per speed
         for j in range(start.size):
-            p[j], ks[i, j] = pk_root(model, Vi, p[j], system=system)
+            if not np.isfinite(p[j]):
+                ks[i, j] = np.nan
+                continue
+            try:
+                p[j], ks[i, j] = pk_root(model, Vi, p[j], system=system)
+            except RuntimeError:           # k does not converge: stop following this mode
+                p[j], ks[i, j] = complex(np.nan, np.nan), np.nan
+                lost.append((labels[j], float(Vi)))
         roots[i] = p
     events = []
     for j in range(start.size):
         sigma = roots[:, j].real
-        for i in np.flatnonzero(np.sign(sigma[:-1]) != np.sign(sigma[1:])):
+        ok = np.isfinite(sigma[:-1]) & np.isfinite(sigma[1:])
+        for i in np.flatnonzero(ok & (np.sign(sigma[:-1]) != np.sign(sigma[1:]))):
             if sigma[i] == 0.0:
                 continue
             guess = [roots[i, j]]
@@ -211,8 +223,12 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None) -
                 p, _ = pk_root(model, x, guess[0])
                 return p.real
 
-            Vf = brentq(decay, V[i], V[i + 1], xtol=xtol)
-            p, k = pk_root(model, Vf, roots[i, j])
+            try:
+                Vf = brentq(decay, V[i], V[i + 1], xtol=xtol)
+                p, k = pk_root(model, Vf, roots[i, j])
+            except RuntimeError:
+                lost.append((labels[j], float(V[i])))
+                continue
             static = abs(p.imag) <= STATIC * vacuum[j]
             events.append(PKFlutter(j, labels[j], float(Vf), 0.0 if static else float(abs(p.imag)),
                                     0.0 if static else float(k),
@@ -226,7 +242,7 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None) -
                    for u in unique):
             unique.append(e)
     events = unique
-    return PKSweep(V, roots, ks, labels, tuple(events), start)
+    return PKSweep(V, roots, ks, labels, tuple(events), start, tuple(lost))
 
 
 def pk_flutter(model, speeds, *, xtol: float = XTOL,
@@ -236,7 +252,8 @@ def pk_flutter(model, speeds, *, xtol: float = XTOL,
     return pk_sweep(model, speeds, xtol=xtol, n_modes=n_modes).flutter
 
 
-def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: float = XTOL):
+def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: float = XTOL,
+                     notes: list | None = None):
     """The p-k crossings as :class:`~propwhirl.analysis.stability.Instability` events of the
     finite-state analysis's tracked modes (``analyse(model, method="pk")``).
 
@@ -249,6 +266,12 @@ def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: flo
 
     r = pk_sweep(model, speeds, xtol=xtol)
     tracked = [int(np.argmin(np.abs(np.asarray(start_roots) - p))) for p in r.start]
+    if notes is not None:                     # modes the p-k iteration lost: said, not dropped
+        for j, (label, V) in enumerate(r.lost):
+            mode = names[tracked[r.labels.index(label)]]
+            notes.append(f"p-k: the k iteration of {mode} did not converge at V = {V:.2f} m/s; "
+                         "that mode is not followed beyond it (no crossing of it is reported "
+                         "there: check it with method='dense')")
     events = []
     for j, p0 in enumerate(r.roots[0]):
         if p0.real > 0:

@@ -394,7 +394,12 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
     if chosen == "pk":  # the tracked finite-state modes, their crossings by the exact p-k method
         from propwhirl.analysis.pk import pk_instabilities
 
-        events = pk_instabilities(model, sw.eigenvalues[0], names, grid, xtol=xtol)
+        pk_notes: list[str] = []
+        events = pk_instabilities(model, sw.eigenvalues[0], names, grid, xtol=xtol,
+                                  notes=pk_notes)
+        unconverged_pk = tuple(pk_notes)
+    else:
+        unconverged_pk = ()
     events.sort(key=lambda e: (e.V, e.mode))
     notes = validity.analysis_warnings(
         model, (float(sw.V[0]), float(sw.V[-1])),
@@ -403,7 +408,7 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
     notes = tuple(notes) + tuple(
         f"V = {p.V:.2f} m/s ({p.kind} {p.direction} of {names[p.mode]}): not converged on the "
         "full-order model; the speed is the reduced model's (run method='dense' to check)"
-        for p in unconverged)
+        for p in unconverged) + unconverged_pk
     try:
         ref = reference(model)
     except v.InputError:                     # a model of another kind: no summary reference

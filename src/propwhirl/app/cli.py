@@ -324,10 +324,11 @@ def _add_analyse(sub) -> None:
                    help="at most N modes in the plot (default: the modes that matter) and the "
                         "lowest N in --summary (default 8)")
     p.add_argument("--animate", metavar="GIF", help="write a GIF of the critical mode")
-    p.add_argument("--method", choices=("auto", "dense", "reduced"), default="auto",
+    p.add_argument("--method", choices=("auto", "dense", "reduced", "pk"), default="auto",
                    help="dense: every root of the full-order model (the reference); reduced: "
-                        "a reduced-order model, crossings converged on the full order; auto "
-                        "(default): reduced above 400 states")
+                        "a reduced-order model, crossings converged on the full order; pk: the "
+                        "p-k method with the exact Theodorsen function (frequency domain); "
+                        "auto (default): reduced above 400 states, else dense")
     p.add_argument("--quiet", action="store_true", help="no progress spinner (there is none "
                    "either when stderr is not a terminal)")
     p.set_defaults(func=_analyse)
