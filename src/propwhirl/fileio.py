@@ -245,7 +245,7 @@ def csv_table(columns, units, path: str | Path | None = None, what: str = "table
         row = []
         for k in names:
             x = columns[k][i]
-            if isinstance(x, float) or type(x).__name__ in ("float64", "float32", "float16"):
+            if isinstance(x, float) or getattr(getattr(x, "dtype", None), "kind", "") == "f":
                 row.append("" if not math.isfinite(float(x)) else repr(float(x)))
             else:
                 row.append(str(x))

@@ -281,12 +281,12 @@ def participation(dm: DofMap, X, M, eigenvalues, V) -> Participation:
 def mass_matrices(model: Model, V) -> np.ndarray:
     """Structural mass matrices S1 of ``model`` at speeds ``V`` [m/s], (len(V), n_dof, n_dof):
     the model without aerodynamics (module docstring).  A wing model's S1 alone, from its blocks
-    (:meth:`~propwhirl.model.blocks.BlockSystem.mass`): not the six other matrices of each speed,
+    (:meth:`~propwhirl.model.blocks.BlockSystem.matrix`): not the six other matrices of each speed,
     which for a large wing are hundreds of MB."""
     quiet = model.without_aerodynamics()
     V = np.atleast_1d(np.asarray(V, dtype=float))
     if hasattr(quiet, "second_order_blocks"):
-        return quiet.second_order_blocks(V).mass()
+        return quiet.second_order_blocks(V).matrix("S1")
     return quiet.second_order(V).S1
 
 

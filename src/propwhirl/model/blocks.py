@@ -115,10 +115,6 @@ class BlockSystem:
         kq = self.keep_q
         return S[:, kq[:, None], kq[None, :]]
 
-    def mass(self) -> np.ndarray:
-        """S1 alone (:meth:`matrix`)."""
-        return self.matrix("S1")
-
     # ------------------------------------------------------------------ sparse pencil
     def pencil(self, t: int = 0) -> tuple[sp.csc_matrix, sp.csc_matrix]:
         """(F, E) of the first-order form E ẋ = F x, x = [q, q̇, w], at speed index ``t``.

@@ -302,6 +302,30 @@ def _point_masses(prop) -> list[tuple[str, object]]:
     return [("rotor", prop.rotor)] + [(f"masses[{k}]", m) for k, m in enumerate(prop.masses)]
 
 
+def _through_inertia(prop, values: dict, d: dict) -> list[tuple[str, float]]:
+    """∂(S_α,P, I_α,P, I_θα,P) from the generated ``inertia`` (its ``inertia_d``, 8.5–8.6) for
+    the derivatives ``d`` of its arguments (M_P, S_θ,P, I_θ,P, l_θ; missing ones zero)."""
+    at = {"M_P": values["M_P"], "S_theta_P": values["S_theta_P"],
+          "I_theta_P": values["I_theta_P"], "l_theta": prop.pivot_pitch,
+          "a_P_b_P": float(values["ea"])}      # a_P b_P: elastic axis at the node [m]
+    dinert = prop_flexwing.inertia_d(**{a: at[a] for a in prop_flexwing.PARTIALS["inertia_d"][0]})
+    dinert = dinert["inertia"]
+    return [(name, sum(float(np.asarray(dinert[a])[..., row, 0].ravel()[0]) * f
+                       for a, f in d.items() if a in dinert))
+            for row, name in enumerate(("S_alpha_P", "I_alpha_P", "I_theta_alpha_P"))]
+
+
+def _mount_stiffness(prop, dI: dict) -> list[tuple[str, float]]:
+    """∂K of each mount given by its frequency (K = I (2πf)², Propeller.stiffness) for the
+    derivatives ``dI`` of I_θ,P and I_ψ,P."""
+    out = []
+    for ax, inert in (("theta", "I_theta_P"), ("psi", "I_psi_P")):
+        f = getattr(prop, f"f_{ax}")
+        if getattr(prop, f"K_{ax}") is None and f is not None and inert in dI:
+            out.append((f"K_{ax}", dI[inert] * (2 * np.pi * f) ** 2))
+    return out
+
+
 def _mass_chain(prop, par: Parameter, values: dict) -> list[tuple[str, float]]:
     """The chain of a point mass's mass or position (8.5–8.6): M_P = Σm, S_θ,P = Σm(x − l_θ),
     I_θ,P = Σm(x − l_θ)², I_ψ,P = Σm(x − l_ψ)² (those not given in ``inertia``), then S_α,P,
@@ -319,20 +343,7 @@ def _mass_chain(prop, par: Parameter, values: dict) -> list[tuple[str, float]]:
              "I_psi_P": 2 * m * (x - py)}
     for key in (prop.inertia or {}):          # given inertias do not follow the masses
         d[key] = 0.0
-    args = prop_flexwing.PARTIALS["inertia_d"][0]
-    ea = float(values["ea"])                  # elastic axis aft of mid-chord at the node [m]
-    dinert = prop_flexwing.inertia_d(**{a: ({"M_P": values["M_P"], "S_theta_P": values["S_theta_P"],
-                                             "I_theta_P": values["I_theta_P"], "l_theta": pp,
-                                             "a_P_b_P": ea}[a]) for a in args})["inertia"]
-    out = [(a, f) for a, f in d.items()]
-    for row, name in enumerate(("S_alpha_P", "I_alpha_P", "I_theta_alpha_P")):
-        total = sum(float(np.asarray(dinert[a])[..., row, 0].ravel()[0]) * d[a]
-                    for a in ("M_P", "S_theta_P", "I_theta_P") if a in dinert)
-        out.append((name, total))
-    for ax, inert in (("theta", "I_theta_P"), ("psi", "I_psi_P")):
-        f = getattr(prop, f"f_{ax}")
-        if getattr(prop, f"K_{ax}") is None and f is not None:
-            out.append((f"K_{ax}", d[inert] * (2 * np.pi * f) ** 2))
+    out = list(d.items()) + _through_inertia(prop, values, d) + _mount_stiffness(prop, d)
     if int(k) == 0 and what == "mass" and prop.spin_inertia is None:
         out.append(("I_Omega", prop.radius ** 2 / 3.0))
     if int(k) == 0 and what == "x":           # the rotor is the propeller plane: the load arms
@@ -351,27 +362,12 @@ def _pivot_chain(prop, par: Parameter, values: dict) -> list[tuple[str, float]]:
     if par.name == "pivot_pitch":
         d = {"S_theta_P": -inert["M_P"], "I_theta_P": -2.0 * inert["S_theta_P"]}
         d = {k: (0.0 if k in given else x) for k, x in d.items()}
-        args = prop_flexwing.PARTIALS["inertia_d"][0]
-        dinert = prop_flexwing.inertia_d(**{a: {"M_P": values["M_P"],
-                                                "S_theta_P": values["S_theta_P"],
-                                                "I_theta_P": values["I_theta_P"],
-                                                "l_theta": prop.pivot_pitch,
-                                                "a_P_b_P": float(values["ea"])}[a]
-                                            for a in args})["inertia"]
-        local = {"S_theta_P": d["S_theta_P"], "I_theta_P": d["I_theta_P"], "l_theta": 1.0}
-        out = list(d.items()) + [("e_theta", -1.0)]
-        for row, name in enumerate(("S_alpha_P", "I_alpha_P", "I_theta_alpha_P")):
-            out.append((name, sum(float(np.asarray(dinert[a])[..., row, 0].ravel()[0]) * f
-                                  for a, f in local.items() if a in dinert)))
-        if prop.K_theta is None and prop.f_theta is not None:
-            out.append(("K_theta", d["I_theta_P"] * (2 * np.pi * prop.f_theta) ** 2))
-        return out
+        return (list(d.items()) + [("e_theta", -1.0)]
+                + _through_inertia(prop, values, {**d, "l_theta": 1.0})
+                + _mount_stiffness(prop, d))
     dI = 0.0 if "I_psi_P" in given else -2.0 * float(np.sum(
         [q.mass * (q.x - prop.pivot_yaw) for q in prop.all_masses]))
-    out = [("I_psi_P", dI), ("e_psi", -1.0)]
-    if prop.K_psi is None and prop.f_psi is not None:
-        out.append(("K_psi", dI * (2 * np.pi * prop.f_psi) ** 2))
-    return out
+    return [("I_psi_P", dI), ("e_psi", -1.0)] + _mount_stiffness(prop, {"I_psi_P": dI})
 
 
 def _chain(prop, par: Parameter, values: dict) -> list[tuple[str, float]]:

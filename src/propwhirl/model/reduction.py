@@ -175,8 +175,9 @@ class ReducedModel:
 
     model: object
     basis: ModalBasis
-    _const: tuple[np.ndarray, np.ndarray, np.ndarray] = field(repr=False, compare=False,
-                                                              default=None)
+    #: Φᵀ(M, C, K)Φ of the speed-independent parts, and the kept DOFs and lag states
+    _const: tuple = field(init=False, repr=False, compare=False)
+    _keep: tuple = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         b = self.model.second_order_blocks(np.array([1.0]))

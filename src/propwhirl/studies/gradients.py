@@ -52,6 +52,9 @@ class CriticalSpeed:
     static_divergence: bool = True
     low_speed: bool = True
     analyses: int = 0
+    #: the design point (the paths' values in the model) and their units, from the model
+    x0: np.ndarray = field(init=False, repr=False)
+    units: tuple[str, ...] = field(init=False, repr=False)
     _cache: dict = field(default_factory=dict, repr=False)
 
     def __post_init__(self) -> None:

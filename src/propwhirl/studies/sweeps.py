@@ -91,10 +91,9 @@ def evaluate(task: tuple) -> dict[str, Any]:
 def error_row(message: str) -> dict[str, Any]:
     """The result row of a point that could not be analysed (an invalid variant, or an analysis
     that failed): no instability, kind "error", the one-line message in ``error``."""
-    return {"critical_speed": float("nan"), "critical_frequency": float("nan"),
-            "critical_mode": "", "content": "", "kind": "error", "event": "", "whirl": "",
-            "propeller": 0, "propeller_share": float("nan"),
-            "static_divergence_speed": float("nan"), "error": str(message)}
+    row = {k: float("nan") if k in _FLOAT_COLUMNS else 0 if k in _INT_COLUMNS else ""
+           for k in RESULT_UNITS}
+    return {**row, "kind": "error", "error": str(message)}
 
 
 def run_points(models: Sequence[Any], speeds: Any = None, *, speeds_each: Sequence[Any] | None = None,
