@@ -132,6 +132,61 @@ def _follow_substep(cur, r, s0, s1, coeffs, perms, depth):
     return _follow_substep(mid, r, sm, s1, coeffs, perms, depth + 1)
 
 
+def _plain_steps(roots: np.ndarray, perms: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Per sub-step m − 1 → m: the nearest assignment of the roots at m − 1 (LAPACK order) to
+    those at m (index into ``perms``), and whether the step is *plain* — its nearest
+    assignment is unambiguous (the best sum of distances below the second best by far more
+    than rounding) and no root changes type (real stays real, Im keeps its sign, at most one
+    pair).  For a plain step :func:`_follow_substep` from the roots at m − 1 in *any* order σ
+    returns the roots at m in the order σ composed with that assignment, so a run of plain
+    steps is followed by composing permutations (vectorised over the sub-steps)."""
+    k = roots.shape[1]
+    D = np.abs(roots[:-1, :, None] - roots[1:, None, :])                 # (m, k, k)
+    cost = D[:, np.arange(k)[None, :], perms].sum(axis=2)               # (m, n_perm)
+    order = np.argsort(cost, axis=1)
+    best = order[:, 0]
+    c0 = np.take_along_axis(cost, order[:, :1], axis=1)[:, 0]
+    c1 = (np.take_along_axis(cost, order[:, 1:2], axis=1)[:, 0] if perms.shape[0] > 1
+          else np.full(c0.shape, np.inf))
+    clear = c1 - c0 > 1e-9 * (c0 + c1 + np.abs(roots).max(axis=1)[1:])
+    nxt = np.take_along_axis(roots[1:], perms[best], axis=1)            # (m, k)
+    real_c, real_n = roots[:-1].imag == 0, nxt.imag == 0
+    same = np.all(real_c == real_n, axis=1) & (
+        np.all(real_c, axis=1) | np.all(np.sign(roots[:-1].imag) == np.sign(nxt.imag), axis=1))
+    return best, clear & same & (real_c.sum(axis=1) >= k - 2)
+
+
+def _order_of(x: np.ndarray, r: np.ndarray) -> np.ndarray | None:
+    """σ with x = r[σ] (x a reordering of the exact values r), or None."""
+    eq = x[:, None] == r[None, :]
+    if not (np.all(eq.sum(axis=0) == 1) and np.all(eq.sum(axis=1) == 1)):
+        return None
+    return np.argmax(eq, axis=1)
+
+
+def _follow_substeps(track: np.ndarray, roots: np.ndarray, S: np.ndarray, coeffs,
+                     perms: np.ndarray) -> None:
+    """Fill ``track[1:]`` (track[0]: the exact roots at the start) by :func:`_follow_substep`
+    on every sub-step — runs of plain sub-steps (:func:`_plain_steps`) by composing their
+    assignments, which gives the same roots in the same order without a call per sub-step."""
+    best, plain = _plain_steps(roots, perms)
+    sigma = None
+    m = 1
+    while m < S.size:
+        if sigma is not None and plain[m - 1]:
+            end = m
+            while end + 1 < S.size and plain[end]:
+                end += 1
+            for t in range(m, end + 1):          # compose the plain assignments
+                sigma = perms[best[t - 1]][sigma]
+                track[t] = roots[t][sigma]
+            m = end + 1
+            continue
+        track[m] = _follow_substep(track[m - 1], roots[m], S[m - 1], S[m], coeffs, perms, 0)
+        sigma = _order_of(track[m], roots[m])
+        m += 1
+
+
 def _follow_cluster(ca, dca, cb, dcb, la, lb, h, margin):
     """Follow the roots of a cluster's characteristic polynomial, interpolated in V.
 
@@ -168,8 +223,8 @@ def _follow_cluster(ca, dca, cb, dcb, la, lb, h, margin):
     track[0] = la
     cur = la.astype(complex).copy()
     perms = np.array(list(itertools.permutations(range(k))))
-    for m in range(1, S.size):
-        cur = track[m] = _follow_substep(cur, roots[m], S[m - 1], S[m], coeffs, perms, 0)
+    _follow_substeps(track, roots, S, coeffs, perms)
+    cur = track[-1]
     # real parts: sign kept, with margin over the uncertainty of the roots: first order
     # |δp(λ)|/|p'(λ)|, or √(2|δp(λ)|/|p''(λ)|) near a double root (where p' → 0)
     full = np.concatenate([np.ones((S.size, 1)), C], axis=1)             # (m, k+1)
