@@ -11,7 +11,8 @@ converged when the residual ‖Fx − λEx‖ is below ``RESIDUAL_TOL`` · (‖F
 factorisation renewed at the new estimate when it is slow).  The crossing speed is then found by
 the secant method on Re λ(V) — its first step Newton's with the reduced root's slope — until the
 next step is below xtol/10 (the crossing is then that step's speed; λ and the vector are those of
-the last evaluation, less than xtol/10 away).  The root must stay the same branch (MAC with the previous vector ≥
+the last evaluation, less than xtol/10 away).  A reduced crossing within xtol/10 of the full one
+therefore costs one evaluation: the full-order root at the reduced crossing and Newton's step.  The root must stay the same branch (MAC with the previous vector ≥
 ``BRANCH_MAC``); a failure returns None, and the caller keeps the reduced result.  Cost: a few
 sparse factorisations of the full pencil per crossing — linear in the number of elements for
 the banded wing.
@@ -97,7 +98,7 @@ def correct_crossing(pencil: Pencil, V0: float, lam0: complex, x0: np.ndarray, *
     pencil(V) -> (F, E) sparse; lam0, x0: the reduced model's root at V0 and its vector lifted to
     the full state; xtol [m/s]: the crossing is accepted when the next secant step is below
     xtol/10; slope: d Re λ/dV [1/m] of the reduced root (the first step is then Newton's, and a
-    reduced crossing close to the full one converges in two evaluations); step [m/s]: without a
+    reduced crossing within xtol/10 of the full one converges in one evaluation); step [m/s]: without a
     slope, the second speed's distance (default max(20 xtol, 1e-4 V0)); bounds: the speeds the
     crossing may not leave.  For a real root (divergence) the iteration is real.  Returns None
     when a root or the secant fails.
@@ -128,6 +129,8 @@ def correct_crossing(pencil: Pencil, V0: float, lam0: complex, x0: np.ndarray, *
     Vb = V0 + h
     if slope is not None and np.isfinite(slope) and slope != 0:
         Vb = V0 - np.real(la) / slope
+        if abs(Vb - V0) <= 0.1 * xtol:       # Newton's step is below xtol/10: converged
+            return Corrected(float(Vb), complex(la), np.asarray(xa, dtype=complex), 0, evals)
         if not (lo <= Vb <= hi) or Vb == V0:
             Vb = V0 + h
     b = root(Vb, la, xa)
