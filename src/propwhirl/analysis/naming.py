@@ -81,7 +81,7 @@ def mode_names(model: Model, sw: Sweep, basis: np.ndarray | None = None) -> list
         from propwhirl.analysis.vibration import label_modes, model_modes
 
         modes, _ = model_modes(model, basis)
-        ref = [lab for lab, _ in label_modes(model, basis)]
+        ref = [lab for lab, _ in label_modes(model, basis, modes)]
         shapes = modes.shapes.astype(complex)
         M = mac(X0[sw.displacement][:, osc][:, :, None], shapes[:, None, :])
         rows, cols = linear_sum_assignment(-M)

@@ -104,7 +104,8 @@ def model_modes(model, basis: np.ndarray | None = None) -> tuple[Modes, np.ndarr
     return Modes(m.omega, P @ m.shapes, s.q_labels), s.S1[0]
 
 
-def label_modes(model, basis: np.ndarray | None = None) -> list[tuple[str, float]]:
+def label_modes(model, basis: np.ndarray | None = None,
+                modes: Modes | None = None) -> list[tuple[str, float]]:
     """All non-rotating modes of a PropellerWing as (label, frequency [Hz]), ascending.
 
     The thesis names one backward and one forward whirl mode per flexibly mounted propeller
@@ -116,9 +117,11 @@ def label_modes(model, basis: np.ndarray | None = None) -> list[tuple[str, float
     tracker (:mod:`propwhirl.analysis.campbell`); with N flexible propellers the N modes that
     fall most are 'backward k', the N that rise most 'forward k' (k by frequency), the rest
     'wing n'.
-    ``basis``: the modes of the Rayleigh–Ritz problem on its columns (:func:`model_modes`).
+    ``basis``: the modes of the Rayleigh–Ritz problem on its columns (:func:`model_modes`);
+    ``modes``: those modes if already computed (``model_modes(model, basis)[0]``).
     """
-    modes, _ = model_modes(model, basis)
+    if modes is None:
+        modes, _ = model_modes(model, basis)
     f0 = modes.frequency_hz
     kinds = ["wing"] * f0.size
     flex = _flexible_propellers(model)

@@ -179,17 +179,25 @@ class PropellerGeometry:
             return self.reference_chord
         return float(self.chord(0.75))
 
-    @property
+    @functools.cached_property
     def knots(self) -> np.ndarray:
-        """Breaks of the piecewise-linear distributions strictly inside (η0, 1)."""
+        """Breaks of the piecewise-linear distributions strictly inside (η0, 1) (read-only;
+        computed once per geometry, which is immutable)."""
         pts = [self.chord.knots] if isinstance(self.chord, Distribution) else []
         if self.lift_slope is not None:
             pts.append(self.lift_slope.knots)
         k = np.unique(np.concatenate(pts)) if pts else np.empty(0)
-        return k[(k > self.hub_ratio) & (k < 1.0)]
+        k = k[(k > self.hub_ratio) & (k < 1.0)]
+        k.flags.writeable = False
+        return k
 
     def blade_area(self) -> float:
         """∫_{r0}^{R} c dr [m²] (exact for a piecewise-linear chord; 64-point Gauss else)."""
+        return self._blade_area
+
+    @functools.cached_property
+    def _blade_area(self) -> float:
+        """:meth:`blade_area`, computed once per geometry (every analysis speed asks for it)."""
         edges = np.concatenate(([self.hub_ratio], self.knots, [1.0]))
         if isinstance(self.chord, Distribution):
             c = self.chord(edges)

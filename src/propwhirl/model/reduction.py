@@ -30,7 +30,7 @@ with the dense full-order analysis).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import InitVar, dataclass, field
 
 import numpy as np
 import scipy.linalg as sla
@@ -106,6 +106,13 @@ def modal_basis(model, speeds, *, cutoff_hz: float | None = None,
 
     ``cutoff_hz`` overrides f_c; ``factor`` scales the reference frequency (module docstring).
     """
+    return _modal_basis(model, speeds, cutoff_hz, factor)[0]
+
+
+def _modal_basis(model, speeds, cutoff_hz: float | None,
+                 factor: float) -> tuple[ModalBasis, BlockSystem]:
+    """:func:`modal_basis` and the model's blocks at three speeds of the range (their constant
+    parts are those of every speed)."""
     V = np.asarray(speeds, dtype=float)
     v.positive("factor", factor)
     quiet = model.with_(rotating=False).without_aerodynamics()
@@ -119,11 +126,13 @@ def modal_basis(model, speeds, *, cutoff_hz: float | None = None,
     fc = factor * ref if cutoff_hz is None else v.positive("cutoff_hz", cutoff_hz, "Hz")
     n_keep = max(int(np.sum(f_all <= fc)), min(6, f_all.size))
     Phi_c = shapes[:, :n_keep]
-    # static correction at the middle and the top of the range
-    Vs = np.unique([0.5 * (V[0] + V[-1]), V[-1]])
-    S3 = model.second_order_blocks(Vs).matrix("S3")
+    # static correction at the middle and the top of the range; the lag basis from the first
+    # and the last speed: one evaluation of the blocks at the three speeds
+    Vs = np.array([V[0], 0.5 * (V[0] + V[-1]), V[-1]])
+    blocks = model.second_order_blocks(Vs)
+    S3 = blocks.matrix("S3")
     cho = sla.cho_factor(K)
-    X = [sla.cho_solve(cho, (S3[t] - K) @ Phi_c) for t in range(Vs.size)]
+    X = [sla.cho_solve(cho, (S3[t] - K) @ Phi_c) for t in ([1, 2] if V[-1] > V[0] else [2])]
     B = np.hstack([Phi_c] + X)
     for _ in range(2):                    # M-orthonormal, dependent vectors dropped; twice,
         B = B / np.sqrt(np.einsum("ij,ij->j", B, M @ B))     # for the rounding of the first
@@ -134,20 +143,21 @@ def modal_basis(model, speeds, *, cutoff_hz: float | None = None,
     Phi = B @ U2
     freq = np.sqrt(np.abs(k2)) / (2 * np.pi)
     Phi_full = _full_rows(qb.n_q, kq, Phi)
-    Q = _lag_basis(model.second_order_blocks(V[[0, -1]]), Phi_full)
-    return ModalBasis(Phi_full, freq, Q, float(fc), ref, n_keep, f_all)
+    Q = _lag_basis(blocks, Phi_full, [0, 2])
+    return ModalBasis(Phi_full, freq, Q, float(fc), ref, n_keep, f_all), blocks
 
 
-def _lag_basis(b: BlockSystem, Phi: np.ndarray) -> np.ndarray | None:
-    """Orthonormal spanwise basis of the lag states (module docstring, step 3)."""
+def _lag_basis(b: BlockSystem, Phi: np.ndarray, at: list[int]) -> np.ndarray | None:
+    """Orthonormal spanwise basis of the lag states (module docstring, step 3) from the
+    blocks at the speeds ``at`` (indices into ``b.V``)."""
     lg = b.lag
     if lg is None or b.keep_w.size == 0:
         return None
     P = Phi[lg.qrows]                                            # (nb, kq, r)
-    U_in = [np.einsum("vbkl,blr->vbkr", W, P) for W in (lg.Wv, lg.Wq)]
-    U_out = [np.einsum("vbkl,bkr->vblr", lg.S4, P)]
+    U_in = [np.einsum("vbkl,blr->vbkr", W[at], P) for W in (lg.Wv, lg.Wq)]
+    U_out = [np.einsum("vbkl,bkr->vblr", lg.S4[at], P)]
     U = np.concatenate(U_in + U_out, axis=-1)                    # (nV, nb, kw, c)
-    U = np.concatenate([U, np.einsum("vbkl,vblc->vbkc", lg.Ww, U)], axis=-1)
+    U = np.concatenate([U, np.einsum("vbkl,vblc->vbkc", lg.Ww[at], U)], axis=-1)
     keep_node = np.isin(lg.wrows[:, 0], b.keep_w)
     U = U[:, keep_node]                                          # (nV, nb', kw, c)
     cols = np.moveaxis(U, 1, 0).reshape(U.shape[1], -1)         # nodes × (speeds, kw, c)
@@ -175,12 +185,14 @@ class ReducedModel:
 
     model: object
     basis: ModalBasis
+    #: the model's blocks at any speed, for the constant parts (default: evaluated at 1 m/s)
+    blocks: InitVar[BlockSystem | None] = None
     #: Φᵀ(M, C, K)Φ of the speed-independent parts, and the kept DOFs and lag states
     _const: tuple = field(init=False, repr=False, compare=False)
     _keep: tuple = field(init=False, repr=False, compare=False)
 
-    def __post_init__(self) -> None:
-        b = self.model.second_order_blocks(np.array([1.0]))
+    def __post_init__(self, blocks: BlockSystem | None) -> None:
+        b = self.model.second_order_blocks(np.array([1.0])) if blocks is None else blocks
         P = self.basis.Phi
         object.__setattr__(self, "_const", tuple(P.T @ X @ P for X in (b.M, b.C, b.K)))
         object.__setattr__(self, "_keep", (b.keep_q, b.keep_w))
@@ -258,4 +270,5 @@ def reduce(model, speeds, *, cutoff_hz: float | None = None,
     >>> R.basis.r, R.basis.L, R.n_states
     (11, 28, 50)
     """
-    return ReducedModel(model, modal_basis(model, speeds, cutoff_hz=cutoff_hz, factor=factor))
+    basis, blocks = _modal_basis(model, speeds, cutoff_hz, factor)
+    return ReducedModel(model, basis, blocks)
