@@ -62,7 +62,8 @@ def _study_options(args: argparse.Namespace) -> dict:
     opts = {**execution_options.run_options(args),
             "checkpoint": execution_options.checkpoint(args, args.json),
             "static_divergence": not args.thesis_convention,
-            "low_speed": not args.thesis_convention}
+            "low_speed": not args.thesis_convention,
+            "method": args.method, "warm_start": bool(args.warm_start)}
     if args.speeds:
         opts["speeds"] = speed_grid(*args.speeds)
     return opts
@@ -150,6 +151,15 @@ def _add_study_options(p) -> None:
                    help="initial airspeed grid [m/s] (default: the model's speed range)")
     p.add_argument("--thesis-convention", action="store_true", help="leave out the wing's "
                    "static divergence and low-speed instabilities that recover (chapter 11)")
+    p.add_argument("--method", choices=("auto", "dense", "reduced"), default="auto",
+                   help="each point's analysis (default auto: dense below 400 states; "
+                   "reduced: a reduced-order model, crossings converged on the full order — "
+                   "the fast choice for wings)")
+    p.add_argument("--warm-start", action="store_true", help="analyse most points only up to "
+                   "the speeds found at their coarse neighbours (every 5th point of each axis, "
+                   "analysed first); a point that finds nothing there is analysed over the "
+                   "whole range: the same results to the crossing accuracy (not with "
+                   "--thesis-convention)")
     p.add_argument("--json", metavar="OUT", help="write the result as JSON")
     p.add_argument("--csv", metavar="OUT", help="write one row per point as CSV")
     p.add_argument("--plot", metavar="PNG", help="write the plot")

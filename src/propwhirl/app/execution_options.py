@@ -64,9 +64,13 @@ def checkpoint(args: argparse.Namespace, output: str | Path | None) -> Checkpoin
 
 
 def finish(cp: Checkpoint | None) -> None:
-    """Remove the partial-results file once the final output is written."""
+    """Remove the partial-results file (and those of a warm-started study's passes) once the
+    final output is written."""
+    from propwhirl.studies.warmstart import pass_checkpoints
+
     if cp is not None:
-        cp.discard()
+        for c in [cp, *pass_checkpoints(cp)]:
+            c.discard()
 
 
 def report_failures(errors: Iterable[str], what: str = "points") -> int:

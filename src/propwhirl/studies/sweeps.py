@@ -63,11 +63,12 @@ def _dominant_content(a: ModelAnalysis, label: str) -> str:
 def evaluate(task: tuple) -> dict[str, Any]:
     """Analyse one model and return its result row (small: no sweep is sent back).
 
-    task: (model, speeds [m/s] or None, xtol [m/s], static_divergence, low_speed) — see
-    :func:`propwhirl.studies.critical.critical_instability` for the two flags.
+    task: (model, speeds [m/s] or None, xtol [m/s], static_divergence, low_speed[, method]) —
+    see :func:`propwhirl.studies.critical.critical_instability` for the two flags; method: that
+    of :func:`propwhirl.analysis.stability.analyse` (default "auto").
     """
-    model, speeds, xtol, static_div, low_speed = task
-    a = analyse(model, speeds, xtol=xtol)
+    model, speeds, xtol, static_div, low_speed, *rest = task
+    a = analyse(model, speeds, xtol=xtol, method=rest[0] if rest else "auto")
     is_wing = wing_divergence_predicate(model, a)
     e = critical_instability(a, static_divergence=static_div, low_speed=low_speed,
                              is_wing_divergence=is_wing)
@@ -99,7 +100,8 @@ def error_row(message: str) -> dict[str, Any]:
 def run_points(models: Sequence[Any], speeds: Any = None, *, speeds_each: Sequence[Any] | None = None,
                xtol: float = STUDY_XTOL, static_divergence: bool = True, low_speed: bool = True,
                processes: int = 1, client=None, progress=None, checkpoint=None,
-               keys: Sequence[str] | None = None, desc: str = "points") -> list[dict[str, Any]]:
+               keys: Sequence[str] | None = None, desc: str = "points",
+               method: str = "auto") -> list[dict[str, Any]]:
     """One result row (:func:`evaluate`) per model, in order, each with an ``error`` entry
     ("" for an analysed point).
 
@@ -108,12 +110,17 @@ def run_points(models: Sequence[Any], speeds: Any = None, *, speeds_each: Sequen
     variant could not be built) and a point whose analysis fails give :func:`error_row`: the
     others go on.  client, progress, checkpoint, keys, desc: as
     :func:`propwhirl.studies.execution.map_analyses` (a Dask cluster, a progress bar, a
-    partial-results file to resume from).  This is the one place where a study's analyses go
-    to the pool.
+    partial-results file to resume from); method: each analysis's
+    (:func:`propwhirl.analysis.stability.analyse`).  This is the one place where a study's
+    analyses go to the pool.
     """
+    from propwhirl.analysis.reduced import METHODS
     from propwhirl.studies.execution import TaskError, map_analyses
 
     v.positive("xtol", xtol, "m/s")
+    if method not in METHODS:
+        raise v.InputError(f"method = {method!r} is invalid: must be one of "
+                           f"{', '.join(map(repr, METHODS))}")
     v.integer_at_least("processes", processes, 1)
     models = list(models)
     if speeds_each is not None:
@@ -125,7 +132,8 @@ def run_points(models: Sequence[Any], speeds: Any = None, *, speeds_each: Sequen
         grids = [grid] * len(models)
     names = list(keys) if keys is not None else [str(i) for i in range(len(models))]
     run = [i for i, m in enumerate(models) if not isinstance(m, Exception)]
-    tasks = [(models[i], grids[i], xtol, bool(static_divergence), bool(low_speed)) for i in run]
+    tasks = [(models[i], grids[i], xtol, bool(static_divergence), bool(low_speed), method)
+             for i in run]
     results = map_analyses(evaluate, tasks, processes, client=client, progress=progress,
                            errors="record", checkpoint=checkpoint, keys=[names[i] for i in run],
                            desc=desc)
@@ -379,13 +387,19 @@ def _axis(model: Any, path: str, values: Any) -> tuple[P.Parameter, Axis]:
 
 def critical_map(model: Any, axes: Sequence[tuple[str, Any]], *, speeds=None,
                  xtol: float = STUDY_XTOL, static_divergence: bool = True, low_speed: bool = True,
-                 processes: int = 1, client=None, progress=None, checkpoint=None) -> CriticalMap:
+                 processes: int = 1, client=None, progress=None, checkpoint=None,
+                 method: str = "auto", warm_start: bool = False,
+                 stats: dict | None = None) -> CriticalMap:
     """The critical speed of `model` over the outer product of `axes` ((path, values) pairs;
     one or more).  An unknown or non-numeric path stops the study before any analysis; a point
     whose variant is invalid (a value outside the field's range, a model that refuses it) or
     whose analysis fails is recorded — kind "error", its one-line message in the column
     ``error`` — and the others go on.  client, progress, checkpoint: as
-    :func:`propwhirl.studies.execution.map_analyses`."""
+    :func:`propwhirl.studies.execution.map_analyses`; method: each analysis's
+    (:func:`propwhirl.analysis.stability.analyse`: "reduced" is the fast one for wings);
+    warm_start: analyse most points only up to the speeds their neighbours found
+    (:mod:`propwhirl.studies.warmstart`: the same rows to the accuracy xtol; not with
+    ``low_speed=False``); stats: a dict that receives the number of analyses of each pass."""
     if not 1 <= len(axes) <= 3:
         raise v.InputError(f"axes: {len(axes)} given, a study varies 1 to 3 parameters")
     resolved = [_axis(model, p, vals) for p, vals in axes]
@@ -401,10 +415,24 @@ def critical_map(model: Any, axes: Sequence[tuple[str, Any]], *, speeds=None,
             variants.append(P.set_values(model, point))
         except v.InputError as exc:             # recorded in its row, the others go on
             variants.append(exc)
-    rows = run_points(variants, speeds, xtol=xtol, static_divergence=static_divergence,
-                      low_speed=low_speed, processes=processes, client=client,
-                      progress=progress, checkpoint=checkpoint, keys=keys)
     shape = tuple(len(ax.values) for _, ax in resolved)
+    options = dict(xtol=xtol, static_divergence=static_divergence, low_speed=low_speed,
+                   processes=processes, client=client, progress=progress, method=method)
+    if not isinstance(warm_start, (bool, np.bool_)):
+        raise v.InputError(f"warm_start = {warm_start!r} is invalid: must be True or False")
+    if warm_start and low_speed and len(variants) > 1:
+        from propwhirl.studies.warmstart import warm_started_rows
+
+        grid = None if speeds is None else v.increasing("speeds", speeds, "m/s")
+        grids = [None if isinstance(m, Exception) else grid if grid is not None
+                 else m.flight.speeds() for m in variants]
+        rows = warm_started_rows(variants, keys, shape, grids,
+                                 lambda ms, **kw: run_points(ms, **options, **kw),
+                                 checkpoint=checkpoint, stats=stats)
+    else:
+        rows = run_points(variants, speeds, checkpoint=checkpoint, keys=keys, **options)
+        if stats is not None:
+            stats.update(analyses=len(variants))
     cols = {k: _column_array(k, [r[k] for r in rows], shape) for k in RESULT_UNITS}
     return CriticalMap(getattr(model, "name", type(model).__name__), tuple(ax for _, ax in resolved),
                        cols, convention(static_divergence, low_speed), float(xtol))

@@ -1,0 +1,165 @@
+"""Warm-started maps: the speed range of each point clipped to what its neighbours found.
+
+A map of the critical speed over a fine grid of two parameters spends most of its analyses
+above the speeds that matter: every point is tracked over the model's whole speed range,
+although its critical speed lies close to its neighbours'.  :func:`warm_started_rows` analyses
+the points of a map in two passes (three when a point needs it):
+
+1. **Coarse pass**: every ``stride``-th point along each axis (and the last), over the whole
+   speed range — an ordinary analysis.
+2. **Fine pass**: every other point over its speed grid *clipped* at
+   V_top = ``margin`` × the largest critical speed and wing static-divergence speed of the
+   coarse points at the corners of its cell (the grid's speeds below V_top, then V_top).
+3. **Check**: a fine point is accepted when it found its critical instability *and* — on a
+   model with wing DOFs — the wing's static divergence below V_top.  Both are then the lowest
+   events of their kind over the whole range (the events below V_top do not depend on the
+   range's top), so the row is the one a full-range analysis gives, to the crossing
+   accuracy ``xtol``.  Any other fine point (nothing found below V_top, an error, a corner
+   without an instability) is analysed again over the whole range.
+
+Nothing is estimated: a point's result always comes from its own analysis, and a neighbour
+only decides where that analysis may stop.  The passes are fixed by the grid alone, so the
+result does not depend on the back end (serial, local processes, Dask) or on the order in
+which the points finish.  With the thesis's ``low_speed=False`` convention a low-speed
+instability counts only if it does not recover, which a clipped range cannot tell: such studies
+are not warm-started.
+"""
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import replace
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from propwhirl import validate as v
+
+#: default: every STRIDE-th point of each axis is in the coarse pass
+STRIDE = 5
+#: default: the fine points' speed range ends MARGIN × their coarse corners' highest speed
+MARGIN = 1.15
+
+Runner = Callable[..., list[dict[str, Any]]]
+
+
+def coarse_indices(n: int, stride: int) -> np.ndarray:
+    """The coarse points of an axis of ``n`` values: 0, stride, 2 stride, …, and n − 1."""
+    return np.union1d(np.arange(0, n, stride), [n - 1])
+
+
+def _corners(idx: tuple[int, ...], coarse: Sequence[np.ndarray]) -> list[tuple[int, ...]]:
+    """The coarse points at the corners of the cell holding ``idx`` (one or two per axis)."""
+    per_axis = []
+    for i, c in zip(idx, coarse):
+        k = int(np.searchsorted(c, i))
+        per_axis.append([int(c[k])] if c[k] == i else [int(c[k - 1]), int(c[k])])
+    return [tuple(x) for x in np.array(np.meshgrid(*per_axis, indexing="ij")).reshape(
+        len(idx), -1).T]
+
+
+def clipped_grid(grid: np.ndarray, top: float) -> np.ndarray | None:
+    """``grid`` [m/s] cut at ``top`` (the speeds below it, then top); None when top is not
+    inside the grid's range (the whole grid is then used)."""
+    if not (grid[0] < top < grid[-1]):
+        return None
+    g = grid[grid < top]
+    return np.append(g, top) if g.size >= 1 else None
+
+
+def _highest(row: dict[str, Any]) -> float:
+    """The highest speed a corner's row says matters: its critical speed and the wing's static
+    divergence speed (NaN when it has no critical instability or failed)."""
+    if row.get("error") or row.get("kind") in ("none", "error"):
+        return math.nan
+    return float(np.nanmax([row["critical_speed"], row["static_divergence_speed"]]))
+
+
+def _accepted(row: dict[str, Any], has_wing: bool) -> bool:
+    """A fine point's clipped analysis is its final result (module docstring, step 3)."""
+    if row.get("error") or row.get("kind") in ("none", "error"):
+        return False
+    return (not has_wing) or math.isfinite(row["static_divergence_speed"])
+
+
+#: the passes, each with its own partial-results file (module docstring)
+PASSES = ("coarse", "fine", "full-range")
+
+
+def _pass_checkpoint(checkpoint, name: str):
+    """The partial-results file of one pass: beside the study's, suffixed with the pass."""
+    if checkpoint is None:
+        return None
+    path = Path(checkpoint.path)
+    return replace(checkpoint, path=path.with_name(f"{path.name}.{name}"),
+                   fingerprint=f"{checkpoint.fingerprint} [{name} pass]")
+
+
+def pass_checkpoints(checkpoint) -> list:
+    """The partial-results files of the passes of a warm-started study whose own file is
+    ``checkpoint`` (to remove them with it once the result is written)."""
+    return [] if checkpoint is None else [_pass_checkpoint(checkpoint, n) for n in PASSES]
+
+
+def warm_started_rows(variants: Sequence[Any], keys: Sequence[str], shape: tuple[int, ...],
+                      grids: Sequence[np.ndarray | None], run: Runner, *,
+                      stride: int = STRIDE, margin: float = MARGIN, checkpoint=None,
+                      stats: dict[str, int] | None = None) -> list[dict[str, Any]]:
+    """The result rows of the map's points (row-major over ``shape``), warm-started.
+
+    variants: the model of each point (or the exception that stopped its building); keys: the
+    points' names; grids: each point's full initial speed grid [m/s] (its model's own range
+    when the study gives none); run(models, speeds_each=…, keys=…, desc=…, checkpoint=…): the
+    study's :func:`propwhirl.studies.sweeps.run_points` with its options bound.  ``stats``
+    (a dict) receives the number of analyses of each pass.  Module docstring: the passes.
+    """
+    v.integer_at_least("stride", stride, 2)
+    v.in_range("margin", margin, 1.0, 10.0, low_open=True)
+    n = len(variants)
+    coarse = [coarse_indices(m, stride) for m in shape]
+    flat = np.arange(n).reshape(shape)
+    is_coarse = np.zeros(shape, dtype=bool)
+    is_coarse[np.ix_(*coarse)] = True
+    first = [int(i) for i in flat[is_coarse]]
+    rows: list[dict[str, Any] | None] = [None] * n
+
+    def go(points: list[int], speeds: list[np.ndarray | None], name: str):
+        if not points:
+            return
+        got = run([variants[i] for i in points], speeds_each=speeds,
+                  keys=[keys[i] for i in points], desc=f"points ({name} pass)",
+                  checkpoint=_pass_checkpoint(checkpoint, name))
+        for i, r in zip(points, got):
+            rows[i] = r
+
+    go(first, [grids[i] for i in first], PASSES[0])
+    fine, fine_grids, tops = [], [], {}
+    for i in (int(j) for j in flat[~is_coarse]):
+        idx = np.unravel_index(i, shape)
+        corner = [_highest(rows[int(flat[c])]) for c in _corners(idx, coarse)]
+        full = grids[i]
+        clip = None
+        if full is not None and corner and all(math.isfinite(x) for x in corner):
+            clip = clipped_grid(full, margin * max(corner))
+        fine.append(i)
+        fine_grids.append(full if clip is None else clip)
+        if clip is not None:
+            tops[i] = float(clip[-1])
+    go(fine, fine_grids, PASSES[1])
+    again = []
+    for i in fine:
+        if i not in tops:
+            continue                         # analysed over its whole range already
+        model = variants[i]
+        has_wing = not isinstance(model, Exception) and model.dof_map().has_wing
+        if not _accepted(rows[i], has_wing):
+            again.append(i)
+    go(again, [grids[i] for i in again], PASSES[2])
+    if stats is not None:
+        stats.update(coarse=len(first), fine=len(fine), clipped=len(tops), again=len(again))
+    return [r for r in rows]  # every point filled by one of the passes
+
+
+__all__ = ["warm_started_rows", "clipped_grid", "coarse_indices", "pass_checkpoints", "PASSES",
+           "STRIDE", "MARGIN"]

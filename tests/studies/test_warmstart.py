@@ -1,0 +1,158 @@
+"""Warm-started maps (propwhirl.studies.warmstart): the same rows as a full-range map to the
+crossing accuracy, fewer speeds analysed, the full-range fallback, conventions, back ends."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from propwhirl.cases.ch09_baseline import (baseline_flight, baseline_propeller, baseline_wing,
+                                           isolated_baseline_propeller)
+from propwhirl.model.systems import Installation, PropellerWing
+from propwhirl.studies import paths as P
+from propwhirl.studies.sweeps import critical_map, run_points
+from propwhirl.studies.warmstart import (_corners, clipped_grid, coarse_indices,
+                                        warm_started_rows)
+from propwhirl.validate import InputError
+
+SPEEDS = np.arange(10.0, 351.0, 20.0)
+XTOL = 0.01
+
+
+def small_wing():
+    """5-element baseline wing, the baseline propeller flexibly mounted at the tip (fast)."""
+    return PropellerWing(baseline_wing(5), baseline_flight(),
+                         (Installation(baseline_propeller(), 5.7),), name="small wingtip")
+
+
+AXES = [("propellers[0].propeller.f_theta", np.linspace(4.0, 12.0, 5)),
+        ("propellers[0].propeller.f_psi", np.linspace(4.0, 12.0, 5))]
+
+
+def assert_same_rows(a, b, xtol=XTOL):
+    for col in ("kind", "event", "critical_mode", "content", "whirl", "propeller", "error"):
+        assert np.array_equal(a.columns[col], b.columns[col]), col
+    for col in ("critical_speed", "static_divergence_speed"):
+        x, y = a.columns[col], b.columns[col]
+        assert np.array_equal(np.isnan(x), np.isnan(y)), col
+        assert np.nanmax(np.abs(x - y)) <= xtol, col
+    f, g = a.columns["critical_frequency"], b.columns["critical_frequency"]
+    assert np.nanmax(np.abs(f - g) / np.maximum(np.abs(g), 1.0)) <= 1e-3
+
+
+def test_coarse_indices_and_corners():
+    assert coarse_indices(11, 5).tolist() == [0, 5, 10]
+    assert coarse_indices(12, 5).tolist() == [0, 5, 10, 11]
+    assert coarse_indices(1, 5).tolist() == [0]
+    c = [coarse_indices(11, 5), coarse_indices(12, 5)]
+    assert sorted(_corners((2, 7), c)) == [(0, 5), (0, 10), (5, 5), (5, 10)]
+    assert sorted(_corners((5, 11), c)) == [(5, 11)]
+    assert sorted(_corners((5, 3), c)) == [(5, 0), (5, 5)]
+
+
+def test_clipped_grid():
+    g = np.arange(10.0, 351.0, 20.0)
+    assert clipped_grid(g, 100.0).tolist() == [10.0, 30.0, 50.0, 70.0, 90.0, 100.0]
+    assert clipped_grid(g, 90.0).tolist() == [10.0, 30.0, 50.0, 70.0, 90.0]
+    assert clipped_grid(g, 400.0) is None and clipped_grid(g, 5.0) is None
+
+
+@pytest.fixture(scope="module")
+def cold_and_warm():
+    model = small_wing()
+    stats = {}
+    cold = critical_map(model, AXES, speeds=SPEEDS, method="reduced")
+    warm_map = critical_map(model, AXES, speeds=SPEEDS, method="reduced", warm_start=True,
+                            stats=stats)
+    return cold, warm_map, stats
+
+
+def test_warm_start_gives_the_full_range_rows(cold_and_warm):
+    cold, warm, stats = cold_and_warm
+    assert_same_rows(warm, cold)
+    assert set(warm.columns["kind"].ravel()) <= {"flutter", "divergence"}
+
+
+def test_warm_start_clips_the_fine_points(cold_and_warm):
+    _, _, stats = cold_and_warm
+    # 5 × 5 with stride 5: the coarse points are rows/columns 0 and 4
+    assert stats["coarse"] == 4 and stats["fine"] == 21
+    assert stats["clipped"] == 21 and stats["again"] == 0
+
+
+def test_a_point_above_its_clipped_range_is_analysed_again():
+    """The isolated propeller's flutter speed is 243 and 229 m/s at f_psi = 4 and 5 Hz, 257
+    and 298 m/s at 8 and 9 Hz: with the coarse points at 4 and 5 Hz (the ends) and the range
+    of the others cut right at their speed, the interior points find nothing below it and are
+    analysed again over the whole range — and still equal the full-range sweep."""
+    model = isolated_baseline_propeller()
+    values = np.array([4.0, 9.0, 8.0, 5.0])
+    cold = critical_map(model, [("propeller.f_psi", values)], speeds=SPEEDS)
+    variants = [P.set_values(model, {"propeller.f_psi": x}) for x in values]
+    stats = {}
+    rows = warm_started_rows(variants, [str(x) for x in values], (4,), [SPEEDS] * 4,
+                             lambda ms, **kw: run_points(ms, **kw), margin=1.0 + 1e-9,
+                             stats=stats)
+    v = cold.columns["critical_speed"]
+    assert min(v[1], v[2]) > max(v[0], v[3])
+    assert stats == {"coarse": 2, "fine": 2, "clipped": 2, "again": 2}
+    speeds = np.array([r["critical_speed"] for r in rows])
+    assert np.max(np.abs(speeds - cold.columns["critical_speed"])) <= XTOL
+    assert [r["kind"] for r in rows] == list(cold.columns["kind"])
+
+
+def test_thesis_low_speed_convention_is_not_warm_started():
+    stats = {}
+    critical_map(small_wing(), [AXES[0]], speeds=SPEEDS, warm_start=True, low_speed=False,
+                 static_divergence=False, stats=stats)
+    assert stats == {"analyses": 5}
+
+
+def test_serial_and_processes_give_identical_warm_maps(cold_and_warm):
+    _, warm, _ = cold_and_warm
+    par = critical_map(small_wing(), AXES, speeds=SPEEDS, method="reduced", warm_start=True,
+                       processes=2)
+    for col, x in warm.columns.items():
+        y = par.columns[col]
+        if x.dtype.kind == "f":
+            assert np.array_equal(x, y, equal_nan=True), col
+        else:
+            assert np.array_equal(x, y), col
+
+
+def test_bad_options_are_refused():
+    with pytest.raises(InputError, match="warm_start"):
+        critical_map(small_wing(), [AXES[0]], warm_start="yes")
+    with pytest.raises(InputError, match="method"):
+        critical_map(small_wing(), [AXES[0]], method="fast")
+
+
+def test_an_interrupted_warm_map_resumes_to_the_same_result(tmp_path, cold_and_warm):
+    """Interrupted in its fine pass, a warm-started map keeps the coarse pass and the fine
+    points done (one partial-results file per pass) and resumes to the same result."""
+    from propwhirl.studies.execution import Checkpoint, Interrupted
+    from propwhirl.studies.warmstart import pass_checkpoints
+
+    _, warm, _ = cold_and_warm
+    cp = Checkpoint(tmp_path / "map.json.partial", interval=0.0)
+    calls = []
+
+    def stop_in_fine_pass(done, total):
+        calls.append((done, total))
+        if total == 21 and done == 5:
+            raise KeyboardInterrupt
+
+    with pytest.raises(Interrupted):
+        critical_map(small_wing(), AXES, speeds=SPEEDS, method="reduced", warm_start=True,
+                     checkpoint=cp, progress=stop_in_fine_pass)
+    coarse, fine, again = (c.path for c in pass_checkpoints(cp))
+    assert coarse.exists() and fine.exists() and not again.exists()
+    first = {}
+
+    def record(done, total):
+        first.setdefault(total, done)
+
+    resumed = critical_map(small_wing(), AXES, speeds=SPEEDS, method="reduced", warm_start=True,
+                           checkpoint=Checkpoint(cp.path, resume=True), progress=record)
+    assert first == {4: 4, 21: 5}       # the coarse pass and 5 fine points were not redone
+    for col, x in warm.columns.items():
+        assert np.array_equal(x, resumed.columns[col], equal_nan=x.dtype.kind == "f"), col
