@@ -122,8 +122,11 @@ def reduced_engine_analysis(model, grid: np.ndarray, *, displacement, state_labe
 def _reduced_engine_analysis(model, grid, displacement, state_labels, options, xtol, vgf,
                              cutoff_hz, factor) -> ReducedRun:
     R = reduce(model, grid, cutoff_hz=cutoff_hz, factor=factor)
+    # the reduced crossings to xtol/10 (cheap: inverse iterations on the small model), so that
+    # the full-order correction of a crossing is one evaluation where the truncation error is
+    # below xtol/10 (engine/correction.py) — on the wingtip model every crossing
     an = engine_analyse(R.state_matrix, grid, displacement=R.displacement,
-                        state_labels=R.labels(), options=options, xtol=xtol,
+                        state_labels=R.labels(), options=options, xtol=0.1 * xtol,
                         **({"initial_step": None} if vgf else {}))
     lift = R.lift
     points, shifts = [], []
