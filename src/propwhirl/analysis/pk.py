@@ -20,6 +20,11 @@ The flutter speed of a mode is where its p-k decay rate Re p crosses zero from b
 Brent's method to ``xtol`` (0.01 m/s by default).  The p-k root is exact (Theodorsen's C at the
 mode's frequency) only at Re p = 0, i.e. at the flutter point; elsewhere its damping is the
 usual p-k approximation.
+
+In ``analyse(model, method="pk")`` (:func:`pk_instabilities`) each crossing's p-k eigenvector
+(:func:`pk_mode`; its displacements on the model's own DOFs) names the tracked finite-state
+mode it is (:func:`tracked_mode`, by MAC) and gives the event's whirl sense and propeller
+participation; the benignity is the slope of the p-k damping ratio at the crossing.
 """
 from __future__ import annotations
 
