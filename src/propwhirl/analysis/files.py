@@ -21,7 +21,7 @@ import numpy as np
 from propwhirl import fileio
 from propwhirl import validate as v
 from propwhirl.analysis.participation import ModeParticipation
-from propwhirl.analysis.summary import Reference
+from propwhirl.analysis.summary import FiniteState, Reference
 from propwhirl.engine import Sweep
 from propwhirl.engine.results import (SavedDict, eigenvectors_npz, eigenvectors_path,
                                       read_eigenvectors)
@@ -177,7 +177,7 @@ def analysis_from_dict(d: Any) -> "ModelAnalysis":
 
     keys = ("model_name", "events", "critical", "dof_map", "content", "sweep")
     r = SavedDict(d, "", keys, ("format", "format_version", "warnings", "reference",
-                                "eigenvectors_file"))
+                                "eigenvectors_file", "finite_state", "method_comparison"))
     if r.has("format") or r.has("format_version"):
         got = r.raw("format") if r.has("format") else None
         if got != FORMAT:
@@ -207,11 +207,33 @@ def analysis_from_dict(d: Any) -> "ModelAnalysis":
     a = ModelAnalysis(r.string("model_name"), sweep, events,
                       content=_content_from_dict(r.raw("content"), sweep), dof_map=dm,
                       warnings=tuple(notes),
-                      reference=None if ref is None else Reference.from_dict(ref))
+                      reference=None if ref is None else Reference.from_dict(ref),
+                      finite_state=_finite_state_from_dict(r, sweep))
     c = a.critical
     if r.raw("critical") != (None if c is None else _event_dict(c)):
         raise v.InputError("critical: does not match the critical instability of the events")
+    if r.has("method_comparison") != (a.finite_state is not None) or (
+            r.has("method_comparison")
+            and r.raw("method_comparison") != a.method_comparison().to_dict()):
+        raise v.InputError("method_comparison: does not match the events and finite_state "
+                           "(both or neither must be given)")
     return a
+
+
+def _finite_state_from_dict(r: SavedDict, sweep: Sweep) -> FiniteState | None:
+    """The finite-state events of a p-k analysis (key "finite_state", absent otherwise and in
+    files written before it)."""
+    if not r.has("finite_state"):
+        return None
+    f = r.sub("finite_state", ("aero_model", "events"))
+    if not isinstance(f.raw("events"), list):
+        raise v.InputError("finite_state.events: must be a list")
+    events = tuple(_event_from_dict(e, f"finite_state.events[{i}]", sweep)
+                   for i, e in enumerate(f.raw("events")))
+    try:
+        return FiniteState(f.string("aero_model"), events)
+    except v.InputError as exc:
+        raise v.InputError(f"finite_state: {exc}") from None
 
 
 def _refuse_constant(name: str) -> Any:

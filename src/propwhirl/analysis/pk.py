@@ -20,6 +20,11 @@ The flutter speed of a mode is where its p-k decay rate Re p crosses zero from b
 Brent's method to ``xtol`` (0.01 m/s by default).  The p-k root is exact (Theodorsen's C at the
 mode's frequency) only at Re p = 0, i.e. at the flutter point; elsewhere its damping is the
 usual p-k approximation.
+
+In ``analyse(model, method="pk")`` (:func:`pk_instabilities`) each crossing's p-k eigenvector
+(:func:`pk_mode`; its displacements on the model's own DOFs) names the tracked finite-state
+mode it is (:func:`tracked_mode`, by MAC) and gives the event's whirl sense and propeller
+participation; the benignity is the slope of the p-k damping ratio at the crossing.
 """
 from __future__ import annotations
 
@@ -159,6 +164,20 @@ def pk_root(model, V: float, p0: complex, *, ktol: float = KTOL, maxiter: int = 
     raise RuntimeError(f"p-k iteration did not converge at V = {V} m/s (k = {k})")
 
 
+def pk_mode(model, V: float, p0: complex, *, system=None) -> tuple[complex, float, np.ndarray]:
+    """The p-k root [1/s] nearest ``p0`` at V [m/s] (:func:`pk_root`), its k [-] and its
+    eigenvector: the first-order state (q̂, p q̂) on the model's degrees of freedom (the
+    first ``dof_map().n_dof`` entries are the displacement shape q̂, the same DOFs as the
+    finite-state model's, which adds only its lag states after them), scaled to unit norm."""
+    b = reference_semichord(model)
+    system = pk_system(model, V) if system is None else system
+    p, k = pk_root(model, V, p0, system=system)
+    lam, X = np.linalg.eig(_first_order(system, max(k, K_MIN) * V / b))
+    i = int(np.argmin(np.abs(lam - p)))
+    x = X[:, i] if lam[i].imag >= 0 else X[:, i].conj()
+    return p, k, x / np.linalg.norm(x)
+
+
 def _start_roots(model, V: float, n_modes: int | None) -> tuple[np.ndarray, tuple[str, ...]]:
     """The finite-state eigenvalues at V [m/s] of the model's oscillatory modes (one per
     in-vacuo mode, the lowest `n_modes`, nearest its in-vacuo root), and the modes' labels."""
@@ -252,34 +271,101 @@ def pk_flutter(model, speeds, *, xtol: float = XTOL,
     return pk_sweep(model, speeds, xtol=xtol, n_modes=n_modes).flutter
 
 
+def tracked_mode(sweep, x: np.ndarray, p: complex, V: float) -> int:
+    """The finite-state tracked mode (a column of ``sweep``) a p-k mode shape is, at V [m/s].
+
+    At the swept speed nearest V, of the physical modes whose displacement shape has a MAC
+    (eq. 5.14) with the p-k shape ``x`` (its first ``n_dof`` entries) within
+    :data:`MAC_BAND` of the best, the one whose eigenvalue is nearest the p-k root ``p``
+    [1/s].  (The band matters for real roots: near divergence the static shapes of several
+    real roots are almost collinear, and the diverging one is the root nearest p ≈ 0.)
+    The p-k continuation may pass through a veering onto another finite-state branch than
+    the one it started from (the wingtip model's forward-whirl flutter is reached from the
+    in-vacuo "wing 2" mode), so the shape at the event, not the start, names the mode.
+    """
+    from propwhirl.engine import mac
+
+    n = int(np.count_nonzero(sweep.displacement))      # the states q first, then q̇, lags
+    t = int(np.argmin(np.abs(sweep.V - V)))
+    q = np.asarray(x)[:n]
+    ids = np.flatnonzero(sweep.physical[t])
+    macs = np.array([mac(q, sweep.eigenvectors[t, sweep.displacement, k]) for k in ids])
+    near = ids[macs >= MAC_BAND * macs.max()]
+    lam = sweep.eigenvalues[t, near]
+    lam = np.where(lam.imag < 0, lam.conj(), lam)
+    return int(near[np.argmin(np.abs(lam - p))])
+
+
+#: the modes whose MAC is within this fraction of the best are candidates (:func:`tracked_mode`)
+MAC_BAND = 0.9
+#: central-difference step [m/s] of the p-k damping ratio for the benignity (eq. 5.13)
+BENIGNITY_STEP = 0.1
+
+
+def _benignity(model, V: float, p: complex) -> float | None:
+    """(dζ/dV)⁻¹ [m/s] (eq. 5.13) of the p-k root through ``p`` at V, ζ = −Re p/|p| (eq. 5.5),
+    by a central difference of :data:`BENIGNITY_STEP`; None if dζ/dV is 0 or a root is lost."""
+    h = BENIGNITY_STEP
+    try:
+        lo, _ = pk_root(model, V - h, p)
+        hi, _ = pk_root(model, V + h, p)
+    except RuntimeError:
+        return None
+    dz = (-hi.real / abs(hi) + lo.real / abs(lo)) / (2 * h)
+    return 1.0 / dz if dz != 0 else None
+
+
 def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: float = XTOL,
-                     notes: list | None = None):
+                     notes: list | None = None, sweep=None):
     """The p-k crossings as :class:`~propwhirl.analysis.stability.Instability` events of the
     finite-state analysis's tracked modes (``analyse(model, method="pk")``).
 
     ``start_roots`` are the tracked modes' finite-state eigenvalues [1/s] at ``speeds[0]``
-    and ``names`` their labels; each p-k mode is the tracked mode whose root there is nearest
-    the root it started from.  Events: "onset" / "recovery" of flutter or divergence, and
-    "unstable-at-start" when Re p > 0 at the first speed; no participation, no benignity.
+    and ``names`` their labels.  With the finite-state ``sweep`` (its eigenvectors), each
+    event's mode is the tracked mode of its p-k mode shape at the event
+    (:func:`tracked_mode`); without it, the tracked mode whose root at the first speed is
+    nearest the root the p-k mode started from.  Events: "onset" / "recovery" of flutter or
+    divergence, and "unstable-at-start" when Re p > 0 at the first speed, each with the
+    whirl sense and the propellers' participation of its p-k mode shape
+    (:mod:`propwhirl.analysis.participation`: the p-k eigenvector's displacements are on
+    the model's own DOFs) and, for flutter crossings, the benignity (dζ/dV)⁻¹ of the p-k
+    root [m/s] (:func:`_benignity`).
     """
+    from propwhirl.analysis.naming import whirl
+    from propwhirl.analysis.participation import with_participation
     from propwhirl.analysis.stability import Instability
 
     r = pk_sweep(model, speeds, xtol=xtol)
+    dm = model.dof_map()
+    n = dm.n_dof
     tracked = [int(np.argmin(np.abs(np.asarray(start_roots) - p))) for p in r.start]
+    use_shape = sweep is not None and sweep.eigenvectors is not None
     if notes is not None:                     # modes the p-k iteration lost: said, not dropped
-        for j, (label, V) in enumerate(r.lost):
+        for label, V in r.lost:
             mode = names[tracked[r.labels.index(label)]]
             notes.append(f"p-k: the k iteration of {mode} did not converge at V = {V:.2f} m/s; "
                          "that mode is not followed beyond it (no crossing of it is reported "
                          "there: check it with method='dense')")
-    events = []
+    events, shapes = [], []
+
+    def add(kind: str, event: str, j: int, V: float, p0: complex, benign: bool) -> None:
+        p, _, x = pk_mode(model, V, p0)
+        mode = tracked_mode(sweep, x, p, V) if use_shape else tracked[j]
+        f_hz = 0.0 if kind == "divergence" else float(abs(p.imag) / (2 * np.pi))
+        events.append(Instability(
+            kind, event, mode, names[mode], float(V), f_hz,
+            whirl(dm, x[:n], p) if kind == "flutter" else None,
+            _benignity(model, V, p) if benign else None))
+        shapes.append((x[:n], p, float(V)))
+
     for j, p0 in enumerate(r.roots[0]):
         if p0.real > 0:
             kind = "flutter" if abs(p0.imag) > STATIC * abs(r.start[j]) else "divergence"
-            events.append(Instability(kind, "unstable-at-start", tracked[j], names[tracked[j]],
-                                      float(r.speeds[0]), float(abs(p0.imag) / (2 * np.pi))))
+            add(kind, "unstable-at-start", j, float(r.speeds[0]), p0, False)
     for f in r.flutter:
-        events.append(Instability(f.kind, "onset" if f.event == "onset" else "recovery",
-                                  tracked[f.mode], names[tracked[f.mode]], f.V, f.frequency_hz))
-    events.sort(key=lambda e: (e.V, e.mode))
-    return events
+        i = int(np.flatnonzero(r.speeds <= f.V)[-1])
+        add(f.kind, "onset" if f.event == "onset" else "recovery", f.mode, f.V,
+            complex(r.roots[i, f.mode]), f.kind == "flutter")
+    events = with_participation(model, events, shapes)
+    order = sorted(range(len(events)), key=lambda i: (events[i].V, events[i].mode))
+    return [events[i] for i in order]

@@ -37,8 +37,9 @@ from propwhirl.analysis.participation import (ModeParticipation, branch_point_sh
                                               events_table, participation_lines,
                                               with_participation)
 from propwhirl.analysis.reduced import choose_method, reduced_engine_analysis
-from propwhirl.analysis.summary import (FlutterSummary, Reference, flutter_summary, reference,
-                                        text_table)
+from propwhirl.analysis.summary import (FiniteState, FlutterSummary, MethodComparison,
+                                        Reference, aero_model_of, compare_methods,
+                                        flutter_summary, reference, text_table)
 from propwhirl.model import validity
 from propwhirl.model.protocol import DofMap, Model
 
@@ -167,6 +168,15 @@ class ModelAnalysis:
     warnings: tuple[str, ...] = ()
     #: reference length, density and speed of sound of the flutter summary (saved and re-read)
     reference: Reference | None = None
+    #: with method="pk" (the events are then the p-k method's): the finite-state events of the
+    #: same tracked modes and their aerodynamics (saved and re-read); None otherwise
+    finite_state: FiniteState | None = None
+
+    def method_comparison(self) -> MethodComparison | None:
+        """The p-k events beside the finite-state ones (:func:`compare_methods`: V and f by
+        each, their differences), or None unless analysed with method="pk"."""
+        return None if self.finite_state is None else compare_methods(self.events,
+                                                                      self.finite_state)
 
     def describe(self, label: str) -> str:
         """'label (dominant content)', e.g. 'wing 2 (torsion)'."""
@@ -202,13 +212,16 @@ class ModelAnalysis:
         """The instabilities as a text table (the propeller column names the propeller whose
         whirl is given: the one with the largest θ–ψ amplitude, numbered from 1), each event's
         propeller participation, and the critical instability (last line)."""
-        lines = [f"{self.model_name}: instabilities between {self.sweep.V[0]:g} and {self.sweep.V[-1]:g} m/s"]
+        how = "" if self.finite_state is None else " (p-k method, exact Theodorsen function)"
+        lines = [f"{self.model_name}: instabilities{how} between {self.sweep.V[0]:g} and {self.sweep.V[-1]:g} m/s"]
         rows = [[e.kind, e.event, self.describe(e.label), _leading(e), e.whirl or "-",
                  f"{e.V:.2f}", f"{e.frequency_hz:.3f}"] for e in self.events]
         table = text_table(rows, ["type", "event", "mode (content at V0)", "propeller", "whirl",
                                   "V [m/s]", "f [Hz]"], "lllllrr")
         lines += ["  " + line for line in table.splitlines()]
         lines += participation_lines(self.events, "  ")
+        if self.finite_state is not None:
+            lines += self.method_comparison().format().splitlines()
         lines.append("  critical: " + describe_critical(self.critical, self.describe))
         return "\n".join(lines)
 
@@ -260,6 +273,10 @@ class ModelAnalysis:
         """The analysis as a JSON-able dict (the document :meth:`save` writes, format
         :data:`FORMAT` version :data:`FORMAT_VERSION`); a non-finite benignity becomes None."""
         c = self.critical
+        pk = {} if self.finite_state is None else {
+            "finite_state": {"aero_model": self.finite_state.aero_model,
+                             "events": [_event_dict(e) for e in self.finite_state.events]},
+            "method_comparison": self.method_comparison().to_dict()}
         return {
             "format": FORMAT, "format_version": FORMAT_VERSION,
             "model_name": self.model_name,
@@ -270,6 +287,7 @@ class ModelAnalysis:
             "sweep": self.sweep.to_dict(include_eigenvectors=include_eigenvectors),
             "warnings": list(self.warnings),
             "reference": None if self.reference is None else self.reference.to_dict(),
+            **pk,
         }
 
     @classmethod
@@ -321,7 +339,10 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
     method : {"auto", "dense", "reduced", "pk"}, optional
         "pk" (typical sections and wings): the modes tracked as "dense", their flutter and
         divergence crossings by the p-k method with the exact Theodorsen function
-        (:mod:`propwhirl.analysis.pk`; no participation or benignity).
+        (:mod:`propwhirl.analysis.pk`; each event's mode, whirl sense and participation from
+        its p-k mode shape, the benignity from the p-k damping), and the finite-state events
+        kept beside them (:attr:`ModelAnalysis.finite_state`, the side-by-side table of
+        :meth:`ModelAnalysis.method_comparison` in the summary).
         "dense": every root of the full-order A(V) at each speed (the reference); "reduced":
         the modes below a frequency cut-off on a reduced-order model, every crossing then
         converged on the full-order model (:mod:`propwhirl.analysis.reduced`); "auto"
@@ -395,11 +416,12 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         from propwhirl.analysis.pk import pk_instabilities
 
         pk_notes: list[str] = []
+        finite_state = tuple(sorted(events, key=lambda e: (e.V, e.mode)))
         events = pk_instabilities(model, sw.eigenvalues[0], names, grid, xtol=xtol,
-                                  notes=pk_notes)
+                                  notes=pk_notes, sweep=sw)
         unconverged_pk = tuple(pk_notes)
     else:
-        unconverged_pk = ()
+        unconverged_pk, finite_state = (), None
     events.sort(key=lambda e: (e.V, e.mode))
     notes = validity.analysis_warnings(
         model, (float(sw.V[0]), float(sw.V[-1])),
@@ -414,7 +436,9 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
     except v.InputError:                     # a model of another kind: no summary reference
         ref = None
     return ModelAnalysis(model.name, sw, tuple(events), an.criticals,
-                         mode_content(model, sw, names), dm, notes, ref)
+                         mode_content(model, sw, names), dm, notes, ref,
+                         None if finite_state is None
+                         else FiniteState(aero_model_of(model), finite_state))
 
 
 def _leading(e: Instability) -> str:

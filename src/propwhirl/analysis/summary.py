@@ -280,3 +280,157 @@ def flutter_summary(sweep: Sweep, ref: Reference, model_name: str = "") -> Flutt
             "frequency_hz": t["frequency_hz"], "density": np.full(k.shape, ref.density),
             "mach": t["V"] / ref.speed_of_sound, "real": t["real"], "imag": t["imag"]}
     return FlutterSummary(cols, ref, model_name)
+
+
+# ----------------------------------------------------------------------------- p-k vs finite state
+#: the names of the finite-state forms of the strip aerodynamics (``aero_model``)
+AERO_NAMES = {"leishman-nguyen": "Leishman-Nguyen", "wagner": "Wagner"}
+
+
+def aero_model_of(model) -> str:
+    """The finite-state aerodynamics of a typical section or a wing (``aero_model``:
+    "leishman-nguyen" or "wagner")."""
+    owner = getattr(model, "wing", model)
+    return str(getattr(owner, "aero_model"))
+
+
+@dataclass(frozen=True)
+class FiniteState:
+    """The finite-state instabilities of an analysis whose events are the p-k method's
+    (``analyse(model, method="pk")``): the events of the tracked finite-state modes
+    (:class:`~propwhirl.analysis.stability.Instability`, with participation and benignity)
+    and the finite-state form of the strip aerodynamics they come from ("leishman-nguyen"
+    or "wagner", thesis §7.3)."""
+
+    aero_model: str
+    events: tuple
+
+    def __post_init__(self) -> None:
+        if self.aero_model not in AERO_NAMES:
+            raise v.InputError(f"aero_model = {self.aero_model!r} is invalid: must be one of "
+                               f"{', '.join(AERO_NAMES)}")
+
+    @property
+    def name(self) -> str:
+        """'Leishman-Nguyen' or 'Wagner'."""
+        return AERO_NAMES[self.aero_model]
+
+
+@dataclass(frozen=True)
+class ComparedEvent:
+    """One instability by the exact p-k method and by the finite-state analysis.
+
+    kind, event, mode, label: as :class:`~propwhirl.analysis.stability.Instability`;
+    V_pk, f_pk: speed [m/s] and frequency [Hz] by the p-k method (None: not found by it);
+    V_fs, f_fs: by the finite-state analysis (None: not found by it).
+    """
+
+    kind: str
+    event: str
+    mode: int
+    label: str
+    V_pk: float | None
+    f_pk: float | None
+    V_fs: float | None
+    f_fs: float | None
+
+    @property
+    def found_by(self) -> str:
+        """"both", "p-k only" or "finite state only"."""
+        return ("both" if self.V_pk is not None and self.V_fs is not None
+                else "p-k only" if self.V_pk is not None else "finite state only")
+
+    @property
+    def dV(self) -> float | None:
+        """V_pk − V_fs [m/s] (None unless found by both)."""
+        return None if self.found_by != "both" else self.V_pk - self.V_fs
+
+    @property
+    def dV_percent(self) -> float | None:
+        """100 (V_pk − V_fs) / V_fs [%]."""
+        return None if self.dV is None else 100.0 * self.dV / self.V_fs
+
+    @property
+    def df(self) -> float | None:
+        """f_pk − f_fs [Hz] (None unless found by both)."""
+        return None if self.found_by != "both" else self.f_pk - self.f_fs
+
+    @property
+    def df_percent(self) -> float | None:
+        """100 (f_pk − f_fs) / f_fs [%] (None at zero frequency: divergence)."""
+        return None if self.df is None or self.f_fs == 0 else 100.0 * self.df / self.f_fs
+
+    def to_dict(self) -> dict[str, Any]:
+        d = {k: getattr(self, k) for k in ("kind", "event", "mode", "label", "V_pk", "f_pk",
+                                          "V_fs", "f_fs")}
+        d.update(found_by=self.found_by, dV=self.dV, dV_percent=self.dV_percent, df=self.df,
+                 df_percent=self.df_percent)
+        return d
+
+
+@dataclass(frozen=True)
+class MethodComparison:
+    """Every instability of a p-k analysis beside the finite-state one (:func:`compare_methods`):
+    the rows sorted by speed, and the name of the finite-state aerodynamics."""
+
+    aerodynamics: str
+    rows: tuple[ComparedEvent, ...]
+
+    def format(self, indent: str = "  ") -> str:
+        """The side-by-side table as text, with its legend."""
+        def num(x: float | None, fmt: str) -> str:
+            return "-" if x is None else format(x, fmt)
+
+        def pct(x: float | None) -> str:
+            return "-" if x is None else f"{x:+.2f}"
+
+        heads = ["type", "event", "mode", "V p-k [m/s]", "V fs [m/s]", "dV [m/s]", "dV [%]",
+                 "f p-k [Hz]", "f fs [Hz]", "df [Hz]", "df [%]"]
+        rows = [[r.kind, r.event, r.label, num(r.V_pk, ".2f"), num(r.V_fs, ".2f"),
+                 num(r.dV, "+.2f"), pct(r.dV_percent), num(r.f_pk, ".3f"), num(r.f_fs, ".3f"),
+                 num(r.df, "+.3f"), pct(r.df_percent)] for r in self.rows]
+        lines = [f"exact (p-k, Theodorsen's C(k)) vs finite-state ({self.aerodynamics}) "
+                 "aerodynamics, per instability:"]
+        lines += text_table(rows, heads, "lll" + "r" * 8).splitlines()
+        lines.append(f"dV = V p-k - V finite state, df = f p-k - f finite state (%: of the "
+                     "finite-state value); '-': not found by that method")
+        lines += [f"  {r.kind} {r.event} of {r.label}: found by the "
+                  f"{'p-k method' if r.found_by == 'p-k only' else 'finite-state analysis'} only"
+                  + (" (the p-k continuation follows oscillatory roots, not a pair turning "
+                     "real)" if r.event == "frequency-zero" else "")
+                  for r in self.rows if r.found_by != "both"]
+        return "\n".join(indent + line for line in lines)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"aerodynamics": self.aerodynamics, "rows": [r.to_dict() for r in self.rows]}
+
+
+def compare_methods(exact: Sequence, finite_state: FiniteState) -> MethodComparison:
+    """The p-k events ``exact`` beside the finite-state events of ``finite_state``.
+
+    Events are matched by mode (the tracked mode id, which the p-k events take from their
+    mode shape, :func:`propwhirl.analysis.pk.tracked_mode`), kind and event: the n-th such
+    event by speed of one method with the n-th of the other.  An event without a partner is
+    a row with the other side None ("found by ... only").
+    """
+    def groups(events):
+        out: dict[tuple, list] = {}
+        for e in sorted(events, key=lambda e: (e.V, e.mode)):
+            out.setdefault((e.mode, e.kind, e.event), []).append(e)
+        return out
+
+    a, b = groups(exact), groups(finite_state.events)
+    rows = []
+    for key in dict.fromkeys(list(a) + list(b)):
+        pk, fs = a.get(key, []), b.get(key, [])
+        for i in range(max(len(pk), len(fs))):
+            e = pk[i] if i < len(pk) else None
+            g = fs[i] if i < len(fs) else None
+            ref = e or g
+            rows.append(ComparedEvent(ref.kind, ref.event, ref.mode, ref.label,
+                                      None if e is None else float(e.V),
+                                      None if e is None else float(e.frequency_hz),
+                                      None if g is None else float(g.V),
+                                      None if g is None else float(g.frequency_hz)))
+    rows.sort(key=lambda r: (min(x for x in (r.V_pk, r.V_fs) if x is not None), r.mode))
+    return MethodComparison(finite_state.name, tuple(rows))
