@@ -89,7 +89,8 @@ def call_blocks(module, name: str, shape: tuple[int, ...], **values) -> dict[str
     per the module's BLOCKS table); each matrix broadcast to `shape` + its matrix shape."""
     argnames = module.BLOCKS[name][0]
     out = getattr(module, name)(**{a: values[a] for a in argnames})
-    return {k: np.broadcast_to(x, shape + x.shape[-2:]) for k, x in out.items()}
+    return {k: x if x.shape[:-2] == shape else np.broadcast_to(x, shape + x.shape[-2:])
+            for k, x in out.items()}
 
 
 def wing_aero_blocks(wing: Wing, rho: float, V: np.ndarray) -> dict[str, np.ndarray | tuple[str, ...]]:

@@ -22,6 +22,7 @@ eq. 9.1, so Ω rises with V) or "constant-speed" (Ω fixed, μ varies with V).
 """
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 from typing import Callable, Literal, Mapping, Protocol
 
@@ -313,4 +314,10 @@ class Propeller:
 
     def default_derivatives(self) -> DerivativeSource:
         """Houbolt–Reed for this propeller's blades with `aero_settings` (chapter 4)."""
+        return self._houbolt_reed
+
+    @functools.cached_property
+    def _houbolt_reed(self) -> DerivativeSource:
+        """:meth:`default_derivatives`, built once per propeller (it is immutable; every
+        evaluation of the model's matrices asks for it)."""
         return houbolt_reed_source(self, self.aero_settings)

@@ -16,6 +16,7 @@ from the leading edge.  SI units.
 """
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field, replace
 from typing import Callable, Literal, Union
 
@@ -280,8 +281,19 @@ class Wing:
 
         Returns y [m], strip width [m] (tributary length: half of each adjacent element),
         b (semichord) [m], a (elastic axis, semichords aft of mid-chord), ac (aerodynamic
-        centre, semichords aft of mid-chord) and Cla [1/rad].
+        centre, semichords aft of mid-chord) and Cla [1/rad] — read-only arrays, computed once
+        per wing (every evaluation of a model's matrices asks for them).
         """
+        return dict(self._node_properties)
+
+    @functools.cached_property
+    def _node_properties(self) -> dict[str, np.ndarray]:
+        out = {k: np.array(x, dtype=float) for k, x in self._compute_node_properties().items()}
+        for x in out.values():
+            x.flags.writeable = False
+        return out
+
+    def _compute_node_properties(self) -> dict[str, np.ndarray]:
         y = self.node_y
         n = self.n_nodes
         c = self.chord_at(y)
