@@ -116,19 +116,21 @@ class BlockSystem:
         return S[:, kq[:, None], kq[None, :]]
 
     # ------------------------------------------------------------------ sparse pencil
-    def pencil(self, t: int = 0) -> tuple[sp.csc_matrix, sp.csc_matrix]:
-        """(F, E) of the first-order form E ẋ = F x, x = [q, q̇, w], at speed index ``t``.
-
-        E = diag(I, S1, I), F = [[0, I, 0], [−S3, −S2, S4], [Wq, Wv, Ww]] over the kept states:
-        the eigenvalues of the pencil are those of A = E⁻¹F (eq. 5.4, 7.59), without forming the
-        dense S1⁻¹.  Sparse (CSC), assembled from one list of (row, column, value) triplets per
-        matrix: memory and assembly linear in the number of elements."""
+    def _positions(self) -> tuple[int, int, np.ndarray, np.ndarray]:
+        """n, m and the pencil position of every full DOF and lag state (removed: negative)."""
         n, m = self.keep_q.size, self.keep_w.size
         gone = -(1 << 40)                    # removed states stay negative after any offset
         qpos = np.full(self.n_q, gone)
         qpos[self.keep_q] = np.arange(n)
         wpos = np.full(self.n_w, gone)
         wpos[self.keep_w] = 2 * n + np.arange(m)
+        return n, m, qpos, wpos
+
+    def pencil_constant(self) -> tuple["_Triplets", "_Triplets"]:
+        """The speed-independent part of :meth:`pencil` (the identities and the constant
+        M, C, K) as (F, E) triplet lists: computed once, reused for every speed of a model with
+        the same constant parts (``pencil(t, constant=...)``)."""
+        n, m, qpos, _ = self._positions()
         F, E = _Triplets(), _Triplets()
         k = np.arange(n)
         E.add(k, k, np.ones(n))
@@ -138,6 +140,19 @@ class BlockSystem:
                                   (self.K, F, -1.0, 0)):
             r, c = np.nonzero(X)
             dst.add(n + qpos[r], off + qpos[c], sign * X[r, c])
+        return F, E
+
+    def pencil(self, t: int = 0, constant: tuple["_Triplets", "_Triplets"] | None = None
+               ) -> tuple[sp.csc_matrix, sp.csc_matrix]:
+        """(F, E) of the first-order form E ẋ = F x, x = [q, q̇, w], at speed index ``t``.
+
+        E = diag(I, S1, I), F = [[0, I, 0], [−S3, −S2, S4], [Wq, Wv, Ww]] over the kept states:
+        the eigenvalues of the pencil are those of A = E⁻¹F (eq. 5.4, 7.59), without forming the
+        dense S1⁻¹.  Sparse (CSC), assembled from one list of (row, column, value) triplets per
+        matrix: memory and assembly linear in the number of elements.  ``constant``: the
+        :meth:`pencil_constant` of a system with the same constant parts, if already known."""
+        n, m, qpos, wpos = self._positions()
+        F, E = (x.copy() for x in (constant or self.pencil_constant()))
         for b in self.blocks:
             rr = np.broadcast_to(b.dofs[:, :, None], b.S1.shape[1:])
             cc = np.broadcast_to(b.dofs[:, None, :], b.S1.shape[1:])
@@ -211,6 +226,13 @@ class _Triplets:
         self.r.append(r)
         self.c.append(c)
         self.v.append(v)
+
+    def copy(self) -> "_Triplets":
+        """A new list holding the same entries (the arrays themselves are shared, not
+        modified by either)."""
+        out = _Triplets()
+        out.r, out.c, out.v = list(self.r), list(self.c), list(self.v)
+        return out
 
     def matrix(self, size: int) -> sp.csc_matrix:
         r, c, v = (np.concatenate(x) for x in (self.r, self.c, self.v))

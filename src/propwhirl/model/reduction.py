@@ -190,12 +190,14 @@ class ReducedModel:
     #: Φᵀ(M, C, K)Φ of the speed-independent parts, and the kept DOFs and lag states
     _const: tuple = field(init=False, repr=False, compare=False)
     _keep: tuple = field(init=False, repr=False, compare=False)
+    _pencil_const: tuple = field(init=False, repr=False, compare=False)
 
     def __post_init__(self, blocks: BlockSystem | None) -> None:
         b = self.model.second_order_blocks(np.array([1.0])) if blocks is None else blocks
         P = self.basis.Phi
         object.__setattr__(self, "_const", tuple(P.T @ X @ P for X in (b.M, b.C, b.K)))
         object.__setattr__(self, "_keep", (b.keep_q, b.keep_w))
+        object.__setattr__(self, "_pencil_const", b.pencil_constant())
 
     @property
     def name(self) -> str:
@@ -250,7 +252,8 @@ class ReducedModel:
     def pencil(self, V: float):
         """The full-order sparse pencil (F, E) at one airspeed V [m/s]
         (:meth:`propwhirl.model.blocks.BlockSystem.pencil`)."""
-        return self.model.second_order_blocks(np.array([float(V)])).pencil(0)
+        return self.model.second_order_blocks(np.array([float(V)])).pencil(
+            0, self._pencil_const)
 
 
 def reduce(model, speeds, *, cutoff_hz: float | None = None,
