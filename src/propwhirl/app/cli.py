@@ -347,10 +347,11 @@ def _modes(args: argparse.Namespace) -> int:
     dm = model.dof_map()
     names = label_modes(model) if dm.has_wing else None
     found = dm.groups()
-    groups = ("bending", "torsion", "pitch", "yaw")
+    groups = ("bending", "torsion") + (("chordwise",) if "chordwise" in found else ()) + (
+        "pitch", "yaw")                  # chordwise: in-plane bending (wing.EI_chordwise)
     share = kinetic_energy_shares(modes.shapes, M, {g: found.get(g, []) for g in groups})
     _echo(f"{model.name}: in-vacuo modes (V = 0, not rotating; kinetic-energy shares)")
-    print(f"  {'mode':12s} {'f [Hz]':>10s} {'bending':>8s} {'torsion':>8s} {'pitch':>8s} {'yaw':>8s}")
+    print(f"  {'mode':12s} {'f [Hz]':>10s} " + " ".join(f"{g:>8s}" for g in groups))
     order = np.argsort(modes.omega, kind="stable")
     for r, i in enumerate(order[:count]):
         if names is not None:

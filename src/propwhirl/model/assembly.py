@@ -3,6 +3,10 @@
 Global wing degrees of freedom (7.20): node i contributes [h_i, φ_i, α_i] at indices 3i..3i+2,
 node 0 is the clamped root.  Element e couples nodes e and e+1, i.e. global indices 3e..3e+5,
 the order of the generated element matrices ([h1, φ1, α1, h2, φ2, α2]).
+
+With in-plane bending (``wing.EI_chordwise`` given) the in-plane DOFs [v_i, χ_i] of every node
+follow all of these, at 3N + 2i, 3N + 2i + 1 (N nodes): the bending–torsion indices, the strip
+aerodynamics and everything built on them are those of the model without in-plane bending.
 """
 from __future__ import annotations
 
@@ -12,6 +16,8 @@ from propwhirl.generated import beam_element
 from propwhirl.model.wing import Wing
 
 WING_DOF_NAMES = ("h", "phi", "alpha")
+#: in-plane DOFs of a node (derivations/beam_inplane.py): displacement v, slope χ = ∂v/∂y
+INPLANE_DOF_NAMES = ("v", "chi")
 
 
 def element_dofs(n_elements: int) -> np.ndarray:
@@ -50,6 +56,30 @@ def wing_structure(wing: Wing) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     K = scatter(Ke, dofs, size)
     mu, lam = wing.rayleigh
     return M, mu * M + lam * K, K
+
+
+def inplane_structure(wing: Wing) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Global in-plane mass, damping and stiffness of the free wing over [v_i, χ_i] of every
+    node (root included), shapes (2 n_nodes, 2 n_nodes); the generated in-plane element
+    (derivations/beam_inplane.py) assembled as the bending one, Rayleigh damping μM + λK with
+    the wing's (μ, λ).  The wing must have ``EI_chordwise``."""
+    from propwhirl.generated import beam_inplane
+
+    p = wing.inplane_properties()
+    if p is None:
+        raise ValueError("inplane_structure: the wing has no EI_chordwise")
+    blocks = call_blocks(beam_inplane, "inplane_blocks", (wing.element_count,), **p)
+    dofs = 2 * np.arange(wing.element_count)[:, None] + np.arange(4)[None, :]
+    size = 2 * wing.n_nodes
+    M = scatter(blocks["inplane_mass"], dofs, size)
+    K = scatter(blocks["inplane_stiffness"], dofs, size)
+    mu, lam = wing.rayleigh
+    return M, mu * M + lam * K, K
+
+
+def inplane_dof_labels(n_nodes: int) -> tuple[str, ...]:
+    """Labels 'node i v' / 'node i chi' of the in-plane DOFs of all nodes (root = node 0)."""
+    return tuple(f"node {i} {d}" for i in range(n_nodes) for d in INPLANE_DOF_NAMES)
 
 
 def free_dofs(n_nodes: int) -> np.ndarray:

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
+from propwhirl import validate as v
 from propwhirl.model.statespace import SecondOrder
 
 
@@ -76,6 +77,15 @@ class BlockSystem:
     w_labels: tuple[str, ...]
     keep_q: np.ndarray
     keep_w: np.ndarray
+
+    def __post_init__(self) -> None:
+        if len(self.q_labels) != self.M.shape[0]:
+            # an assembly that does not know the model's DOF layout (e.g. one written before
+            # in-plane bending, wing.EI_chordwise) must not give matrices on the wrong DOFs
+            raise v.InputError(
+                f"q_labels has {len(self.q_labels)} labels but the matrices have "
+                f"{self.M.shape[0]} DOFs: this assembly does not cover the model's degrees of "
+                "freedom (in-plane bending, wing.EI_chordwise, is not supported here)")
 
     @property
     def n_q(self) -> int:

@@ -52,6 +52,8 @@ DOF_KINDS: dict[str, tuple[str, str]] = {
     "h": ("m", "bending"),            # wing bending displacement, positive down (7.20)
     "phi": ("rad", "bending"),        # wing bending slope
     "alpha": ("rad", "torsion"),      # wing twist, nose up
+    "v": ("m", "chordwise"),          # wing in-plane displacement, rearward (EI_chordwise)
+    "chi": ("rad", "chordwise"),      # wing in-plane slope ∂v/∂y
     "theta": ("rad", "pitch"),        # propeller pitch about its pivot (6.1, 8.1)
     "psi": ("rad", "yaw"),            # propeller yaw about its pivot
     "plunge": ("m", "plunge"),        # typical-section plunge h, positive down

@@ -17,6 +17,14 @@ Each propeller contributes a 4×4 block on its local coordinates [θ_j, ψ_j, h_
 degrees of freedom and the root node's lag states are removed (7.59, D.27).  Switches: wing
 aerodynamics, propeller aerodynamics, rotation, and per propeller flexible or rigid mounts (a
 rigid mount keeps only the inert mass block G_s, §9.3.1).
+
+In-plane bending (beyond the thesis): with ``wing.EI_chordwise`` given, every node also has its
+in-plane displacement and slope [v_i, χ_i] (after all bending–torsion DOFs, before the
+propellers' θ, ψ), the wing's in-plane element matrices (derivations/beam_inplane.py) join the
+structure, and each propeller's block is 6×6 on [θ_j, ψ_j, h_P, α_P, v_P, χ_P]
+(derivations/prop_flexwing_inplane.py: the nacelle yaws with χ_P; side force, yaw moment and
+gyroscopic moment load the node in its plane).  A rigid mount then keeps G_s and the rotor's
+gyroscopic coupling J_s of the node's twist and in-plane slope.
 """
 from __future__ import annotations
 
@@ -30,15 +38,19 @@ from propwhirl import validate as v
 from propwhirl.model.fields import check_fields, spec
 from propwhirl.model.mesh import check_station
 from propwhirl.model.assembly import (
+    INPLANE_DOF_NAMES,
     LAG_STATES,
     WING_DOF_NAMES,
     call_blocks,
     free_dofs,
+    inplane_dof_labels,
+    inplane_structure,
     wing_aero_blocks,
     wing_dof_labels,
     wing_structure,
 )
-from propwhirl.generated import beam_element, prop_flexwing, prop_rigid
+from propwhirl.generated import (beam_element, beam_inplane, prop_flexwing,
+                                 prop_flexwing_inplane, prop_rigid)
 from propwhirl.model.flight import SPEED_OF_SOUND_8000FT, FlightCondition  # noqa: F401 (re-export)
 from propwhirl.model.propeller import Propeller
 from propwhirl.model.blocks import BlockSystem, LagBlocks, LocalBlocks
@@ -54,10 +66,12 @@ PROPELLER_UNITS = dict(
     M_P="kg", S_theta_P="kg m", I_theta_P="kg m^2", I_psi_P="kg m^2", S_alpha_P="kg m",
     I_alpha_P="kg m^2", I_theta_alpha_P="kg m^2", I_Omega="kg m^2", I_X="kg m^2",
     I_Y="kg m^2", I_Z="kg m^2", Omega="rad/s", K_theta="N m/rad", K_psi="N m/rad",
-    rho="kg/m^3", V="m/s", R="m", e_theta="m", e_psi="m", e_alpha="m")
+    rho="kg/m^3", V="m/s", R="m", e_theta="m", e_psi="m", e_alpha="m", S_psi_P="kg m",
+    I_chi_P="kg m^2", I_psi_chi_P="kg m^2", l_psi="m", a_P_b_P="m")
 #: Units of the wing element properties (:meth:`Wing.element_properties`) and Rayleigh terms.
 ELEMENT_UNITS = dict(length="m", m="kg/m", rho_Ip="kg m", x_alpha_b="m", EI="N m^2",
-                     GJ="N m^2", rayleigh_mu="1/s", rayleigh_lambda="s")
+                     GJ="N m^2", rayleigh_mu="1/s", rayleigh_lambda="s", rho_Iz="kg m",
+                     EI_chordwise="N m^2")
 
 
 @dataclass(frozen=True)
@@ -192,6 +206,8 @@ class PropellerWing(StateSpaceModel):
         "propeller k psi" of each flexibly mounted propeller, numbered from 1 for people
         (k = index in `propellers` + 1; :class:`PropellerDofs.number` keeps the index)."""
         wing = wing_dof_labels(self.wing.n_nodes)
+        if self.wing.in_plane:
+            wing = wing + inplane_dof_labels(self.wing.n_nodes)
         prop = tuple(f"propeller {j + 1} {d}" for j in self.flexible for d in ("theta", "psi"))
         return wing + prop
 
@@ -238,6 +254,14 @@ class PropellerWing(StateSpaceModel):
             if key not in memo:
                 memo[key] = p.aerodynamic_derivatives(V, self.flight.speed_of_sound)
             values.update(memo[key])
+        if self.wing.in_plane:
+            m = np.array([pm.mass for pm in p.all_masses])
+            x = np.array([pm.x for pm in p.all_masses])
+            S_psi = float(np.sum(m * (x - p.pivot_yaw)))
+            I_chi, I_psi_chi = prop_flexwing_inplane.inplane_inertia(
+                inertia["M_P"], S_psi, inertia["I_psi_P"], p.pivot_yaw, ea)[..., 0]
+            values.update(S_psi_P=S_psi, l_psi=p.pivot_yaw, a_P_b_P=ea, I_chi_P=I_chi,
+                          I_psi_chi_P=I_psi_chi)
         return values
 
     def _propeller_matrices(self, j: int, values: dict):
@@ -245,6 +269,8 @@ class PropellerWing(StateSpaceModel):
         inst = self.propellers[j]
         nV = np.shape(values["V"])[0]
         shape = (nV,)
+        if self.wing.in_plane:
+            return self._propeller_matrices_inplane(j, values)
         get = call_blocks(prop_flexwing, "structure_blocks", shape, **values).__getitem__
         if self.propeller_aero and inst.aero:
             aero = call_blocks(prop_flexwing, "aero_blocks", shape, **values)
@@ -261,10 +287,40 @@ class PropellerWing(StateSpaceModel):
                       [-aero["P5"], -aero["P6"]]])
         return M, C, K
 
+    def _propeller_matrices_inplane(self, j: int, values: dict):
+        """(M, C, K) of propeller j with in-plane bending: 6×6 over [θ, ψ, h_P, α_P, v_P, χ_P]
+        (flexible) or 4×4 over [h_P, α_P, v_P, χ_P] (rigid).  The θ–ψ blocks A, C, E are
+        chapter 8's (prop_flexwing), the others prop_flexwing_inplane's."""
+        inst = self.propellers[j]
+        nV = np.shape(values["V"])[0]
+        shape = (nV,)
+        s8 = call_blocks(prop_flexwing, "structure_blocks", shape, **values)
+        s = call_blocks(prop_flexwing_inplane, "structure_blocks", shape, **values)
+        if self.propeller_aero and inst.aero:
+            a8 = call_blocks(prop_flexwing, "aero_blocks", shape, **values)
+            a = call_blocks(prop_flexwing_inplane, "aero_blocks", shape, **values)
+        else:
+            z2, z24, z4 = np.zeros((nV, 2, 2)), np.zeros((nV, 2, 4)), np.zeros((nV, 4, 4))
+            a8 = {n: z2 for n in ("Aa", "Ca", "Ea")}
+            a = {n: z24 for n in ("Ba", "Da", "Fa")}
+            a.update({n: z24.transpose(0, 2, 1) for n in ("P1", "P3", "P5")})
+            a.update({n: z4 for n in ("P2", "P4", "P6")})
+        if inst.mount == "rigid":
+            return s["Gs"] - a["P2"], s["Js"] - a["P4"], -a["P6"]
+        M = np.block([[s8["As"] - a8["Aa"], s["Bs"] - a["Ba"]],
+                      [s["Fs"] - a["P1"], s["Gs"] - a["P2"]]])
+        C = np.block([[s8["Cs_viscous"] - a8["Ca"], s["Ds"] - a["Da"]],
+                      [s["Hs"] - a["P3"], s["Js"] - a["P4"]]])
+        K = np.block([[s8["Es"] - a8["Ea"], -a["Fa"]],
+                      [-a["P5"], -a["P6"]]])
+        return M, C, K
+
     def _propeller_dofs(self, j: int) -> tuple[str, ...]:
-        """Global DOF labels of propeller j's local block ([θ, ψ,] h, α at its node)."""
+        """Global DOF labels of propeller j's local block ([θ, ψ,] h, α [, v, χ] at its node)."""
         node = self.nodes[j]
         wing = (f"node {node} h", f"node {node} alpha")
+        if self.wing.in_plane:
+            wing = wing + (f"node {node} v", f"node {node} chi")
         if self.propellers[j].mount == "rigid":
             return wing
         return (f"propeller {j + 1} theta", f"propeller {j + 1} psi") + wing
@@ -288,6 +344,18 @@ class PropellerWing(StateSpaceModel):
             vals.update(rayleigh_mu=mu, rayleigh_lambda=lam)
             dofs = tuple(f"node {i} {d}" for i in (e, e + 1) for d in WING_DOF_NAMES)
             out.append((f"wing element {e}", dofs, element, vals, ELEMENT_UNITS))
+        pi = self.wing.inplane_properties()
+        if pi is not None:
+            def inplane(vals):
+                b = call_blocks(beam_inplane, "inplane_blocks", (1,), **{k: vals[k] for k in pi})
+                Mb, Kb = b["inplane_mass"], b["inplane_stiffness"]
+                return Mb, vals["rayleigh_mu"] * Mb + vals["rayleigh_lambda"] * Kb, Kb
+
+            for e in range(self.wing.element_count):
+                vals = {k: x[e:e + 1] for k, x in pi.items()}
+                vals.update(rayleigh_mu=mu, rayleigh_lambda=lam)
+                dofs = tuple(f"node {i} {d}" for i in (e, e + 1) for d in INPLANE_DOF_NAMES)
+                out.append((f"wing element {e} (in-plane)", dofs, inplane, vals, ELEMENT_UNITS))
         return out
 
     # ------------------------------------------------------------------ system
@@ -326,12 +394,17 @@ class PropellerWing(StateSpaceModel):
         each node (signs applied: S1 = M − M_a, ...), each propeller's block at its node."""
         wing = self.wing
         nqw = 3 * wing.n_nodes
+        nqi = 2 * wing.n_nodes if wing.in_plane else 0     # in-plane [v_i, χ_i] after them
         flex = self.flexible
-        n = nqw + 2 * len(flex)
+        n = nqw + nqi + 2 * len(flex)
         if "structure" not in self._memo:
             mats = tuple(np.zeros((n, n)) for _ in range(3))
             for X, Xw in zip(mats, wing_structure(wing)):
                 X[:nqw, :nqw] = Xw
+            if nqi:
+                for X, Xi in zip(mats, inplane_structure(wing)):
+                    X[nqw:nqw + nqi, nqw:nqw + nqi] = Xi
+            for X in mats:
                 X.flags.writeable = False
             self._memo["structure"] = mats
         Ms, Cs, Ks = self._memo["structure"]
@@ -349,15 +422,17 @@ class PropellerWing(StateSpaceModel):
         for j, inst in enumerate(self.propellers):
             node = self.nodes[j]
             wing_idx = [3 * node, 3 * node + 2]
+            if nqi:
+                wing_idx += [nqw + 2 * node, nqw + 2 * node + 1]
             if inst.mount == "flexible":
-                pj = nqw + 2 * flex.index(j)
+                pj = nqw + nqi + 2 * flex.index(j)
                 idx = np.array([pj, pj + 1] + wing_idx)
             else:
                 idx = np.array(wing_idx)
             M, C, K = self._propeller_blocks(j, V, omega, derivatives)
             groups.append(LocalBlocks(f"propeller {j}", idx[None, :], M[:, None], C[:, None],
                                       K[:, None]))
-        keep_q = np.concatenate([free_dofs(wing.n_nodes), np.arange(nqw, n)])
+        keep_q = np.concatenate([free_dofs(wing.n_nodes), np.arange(nqw + 2 if nqi else nqw, n)])
         return BlockSystem(V, Ms, Cs, Ks, tuple(groups), lag, m, self.q_labels(), w_labels,
                            keep_q, keep_w)
 
@@ -367,13 +442,18 @@ class PropellerWing(StateSpaceModel):
 
     def dof_map(self) -> DofMap:
         """The states of :meth:`second_order`: the free wing DOFs (node ≥ 1: h, φ, α, eq. 7.20),
-        then θ, ψ of each flexibly mounted propeller, then the lag states of nodes ≥ 1."""
+        with in-plane bending the in-plane v, χ of nodes ≥ 1, then θ, ψ of each flexibly
+        mounted propeller, then the lag states of nodes ≥ 1."""
         nn = self.wing.n_nodes
         keep = free_dofs(nn)
         labels = list(np.asarray(wing_dof_labels(nn), dtype=object)[keep])
         kinds = [WING_DOF_NAMES[i % 3] for i in keep]
         node = [int(i // 3) for i in keep]
-        prop = [-1] * keep.size
+        if self.wing.in_plane:
+            labels += list(inplane_dof_labels(nn)[2:])
+            kinds += [INPLANE_DOF_NAMES[i % 2] for i in range(2, 2 * nn)]
+            node += [i // 2 for i in range(2, 2 * nn)]
+        prop = [-1] * len(labels)
         props = []
         ys = self.wing.node_y
         for j in self.flexible:

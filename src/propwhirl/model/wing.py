@@ -100,6 +100,10 @@ class Wing:
         evenly into the fewest elements not longer than it
     aero_model : "leishman-nguyen" (2 lag states per node) or "wagner" (4 per node)
     rayleigh : (μ [1/s], λ [s]) of Rayleigh damping C = μM + λK (eq. 7.22)
+    EI_chordwise : in-plane (chordwise) bending rigidity [N m²]; given, the wing bends in its
+        plane too (in-plane displacement v and slope χ per node, derivations/beam_inplane.py)
+        and the propellers' side force, yaw and gyroscopic moments load it there; None (the
+        default): rigid in its plane, the thesis's model
     """
 
     semi_span: float = field(metadata=spec("semi_span_m", "m", "root-to-tip length",
@@ -158,6 +162,10 @@ class Wing:
         ("rayleigh_mu_per_s", "rayleigh_lambda_s"), ("1/s", "s"),
         "Rayleigh damping C = mu M + lambda K (eq. 7.22); omitted: undamped (conservative)",
         default="physical", form="split", range=((0.0, 1e3), (0.0, 1.0))))
+    EI_chordwise: Spanwise | None = field(default=None, metadata=spec(
+        "EI_chordwise_N_m2", "N m^2", "in-plane (chordwise) bending rigidity: the wing bends "
+        "in its plane too (in-plane displacement and slope per node); omitted: rigid in its "
+        "plane (the thesis's model)", default="none", form="spanwise", range=(1e-3, 1e14)))
     name: str = field(default="wing", metadata=spec("name", "", "label", default="setting"))
     _mesh: Mesh | None = field(default=None, init=False, repr=False, compare=False, metadata=spec(
         None, "", "the mesh (derived from the fields above)", default="none", form="derived"))
@@ -175,6 +183,7 @@ class Wing:
         # Evaluate everything once so bad input fails at construction, naming the parameter.
         self.element_properties()
         self.node_properties()
+        self.inplane_properties()
 
     # ------------------------------------------------------------------ discretisation
     @property
@@ -275,6 +284,27 @@ class Wing:
             "EI": prop("EI", "N m^2"),
             "GJ": prop("GJ", "N m^2"),
         }
+
+    @property
+    def in_plane(self) -> bool:
+        """True when the wing bends in its plane (`EI_chordwise` given)."""
+        return self.EI_chordwise is not None
+
+    def inplane_properties(self) -> dict[str, np.ndarray] | None:
+        """Per-element in-plane beam properties (arguments of the generated in-plane element,
+        derivations/beam_inplane.py), None when the wing is rigid in its plane.
+
+        Returns length [m], m [kg/m], rho_Iz [kg m] (the in-plane rotary inertia about the
+        vertical axis through the elastic axis: the polar inertia ρI_p, the thin-section value
+        the derivation states) and EI_chordwise [N m²].
+        """
+        if self.EI_chordwise is None:
+            return None
+        p = self.element_properties()
+        y, n = self.element_y, self.element_count
+        EIc = check_values(Wing, "EI_chordwise", _spanwise(
+            "EI_chordwise", self.EI_chordwise, y, n, "N m^2", self.uniform), y)
+        return {"length": p["length"], "m": p["m"], "rho_Iz": p["rho_Ip"], "EI_chordwise": EIc}
 
     def node_properties(self) -> dict[str, np.ndarray]:
         """Per-node strip-aerodynamic properties (thesis §7.2, §7.5).
