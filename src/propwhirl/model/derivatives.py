@@ -60,6 +60,7 @@ import numpy as np
 from propwhirl.generated import beam_element, prop_flexwing
 from propwhirl.model.assembly import LAG_STATES, STRIP_AERO, element_dofs, free_dofs
 from propwhirl.model.blocks import BlockSystem, LagBlocks, LocalBlocks
+from propwhirl.model import derivatives_section as _section
 from propwhirl.model.propeller import MeasuredDerivatives
 from propwhirl.model.propeller_aero import DERIVATIVE_NAMES
 from propwhirl.model.statespace import SecondOrder
@@ -74,7 +75,9 @@ _AXES = ("theta", "psi")
 class Parameter:
     """One model parameter with exact derivatives: its path, current value, unit, meaning.
 
-    kind: "element", "node" or "propeller"; index: the element, node or installation."""
+    kind: "element", "node", "section" (:mod:`propwhirl.model.derivatives_section`) or
+    "propeller"; index: the element,
+    node (−1 for the root and tip chords) or installation."""
 
     path: str
     kind: str
@@ -87,7 +90,7 @@ class Parameter:
 
 def parameters(model: PropellerWing) -> tuple[Parameter, ...]:
     """Every parameter of `model` whose derivatives :func:`derivative_blocks` gives (table in
-    the module docstring), in a fixed order: elements, nodes, propellers."""
+    the module docstring), in a fixed order: elements, nodes, section fields, propellers."""
     _check_model(model)
     wing = model.wing
     p = wing.element_properties()
@@ -103,6 +106,8 @@ def parameters(model: PropellerWing) -> tuple[Parameter, ...]:
         for i in range(1, wing.n_nodes):
             out.append(Parameter(f"wing.lift_slope[{i}]", "node", i, "lift_slope",
                                  float(cla[i]), "1/rad", f"lift-curve slope at node {i}"))
+    for path, name, index, value, unit, doc in _section.parameters(wing):
+        out.append(Parameter(path, "section", index, name, value, unit, doc))
     for j, inst in enumerate(model.propellers):
         prop = inst.propeller
         pre = f"propellers[{j}].propeller."
@@ -248,10 +253,104 @@ class _Context:
         lag = LagBlocks(qrows, wrows, w * get("W0"), get("Ww"), get("Wv"), get("Wq"))
         return self.system((block,), lag)
 
+    # ---------------------------------------------------------------- section fields
+    def section(self, par: Parameter) -> BlockSystem:
+        """A section field (:mod:`propwhirl.model.derivatives_section`): the touched
+        elements' mass blocks (x_α b, ρI_p; even and odd elements in two groups, so no two
+        blocks of a group share a node), the nodes' strip blocks (b, a, a_c) and the blocks
+        of the propellers whose node's a_P b_P = a b moves."""
+        model, wing = self.model, self.model.wing
+        ch = _section.chain(wing, par.name, par.index)
+        groups: list[LocalBlocks] = []
+        if self.beam is None:
+            self.beam = beam_element.blocks_d(**{a: self.props[a]
+                                                 for a in beam_element.PARTIALS["blocks_d"][0]})
+        dM = sum(ch.element[a][:, None, None] * self.beam["mass"][a] for a in ch.element)
+        mu, lam = wing.rayleigh
+        touched = np.flatnonzero(np.any(dM != 0.0, axis=(1, 2)))
+        dofs = element_dofs(wing.element_count)
+        for parity in (0, 1):
+            es = touched[touched % 2 == parity]
+            if es.size:
+                M = self.const(dM[es])
+                groups.append(LocalBlocks(f"wing elements {parity}::2", dofs[es], M,
+                                          mu * M, np.zeros_like(M)))
+        lag = None
+        if model.wing_aero and any(np.any(x) for x in ch.node.values()):
+            block, lag = self._strip(ch.node)
+            groups.append(block)
+        if model.propellers:
+            node = wing.node_properties()
+            dea = ch.node["a"] * node["b"] + node["a"] * ch.node["b"]    # ∂(a b) at the nodes
+            for j, n in enumerate(model.nodes):
+                if dea[n] != 0.0:
+                    groups.append(self._elastic_axis_block(j, float(dea[n]),
+                                                           float(node["a"][n] * node["b"][n])))
+        return self.system(tuple(groups), lag)
+
+    def _strip(self, factors: dict[str, np.ndarray]) -> tuple[LocalBlocks, LagBlocks]:
+        """Σ_arg factors[arg][i] ∂(strip blocks of node i)/∂arg over the nodes i ≥ 1 touched."""
+        wing = self.model.wing
+        group, roles = STRIP_AERO[wing.aero_model]
+        if self.strip is None:
+            from propwhirl.generated import strip_aero
+
+            node = wing.node_properties()
+            values = dict(rho=self.model.flight.density, V=self.V[:, None], b=node["b"],
+                          a=node["a"], Cla=node["Cla"], ac=node["ac"])
+            self.strip = (getattr(strip_aero, group + "_d")(**values), node["width"])
+        d, width = self.strip
+        k, nn = LAG_STATES[wing.aero_model], wing.n_nodes
+        nodes = np.flatnonzero(np.any([np.asarray(f) != 0.0 for f in factors.values()], axis=0))
+        nodes = nodes[nodes >= 1]
+        shape = {"M": (2, 2), "C": (2, 2), "K": (2, 2), "W0": (2, k), "Ww": (k, k),
+                 "Wv": (k, 2), "Wq": (k, 2)}
+
+        def get(role: str) -> np.ndarray:  # (nV, nb, r, c) at the touched nodes
+            out = np.zeros((self.nV, nodes.size) + shape[role])
+            if role in roles:
+                for arg, f in factors.items():
+                    x = d[roles[role]].get(arg)
+                    if x is not None:
+                        x = np.broadcast_to(x, (self.nV, nn) + shape[role])[:, nodes]
+                        out = out + f[nodes][None, :, None, None] * x
+            return out
+
+        w = width[nodes][None, :, None, None]
+        qrows = 3 * nodes[:, None] + np.array([0, 2])[None, :]
+        wrows = k * nodes[:, None] + np.arange(k)[None, :]
+        block = LocalBlocks("wing strips", qrows, -w * get("M"), -w * get("C"), -w * get("K"))
+        return block, LagBlocks(qrows, wrows, w * get("W0"), get("Ww"), get("Wv"), get("Wq"))
+
+    def _elastic_axis_block(self, j: int, dea: float, ea: float) -> LocalBlocks:
+        """Propeller j's block for a change dea of the elastic axis a_P b_P at its node [m]:
+        S_α,P, I_α,P, I_θα,P through ``inertia_d`` and e_α through ``e_alpha_geometry_d``."""
+        prop = self.model.propellers[j].propeller
+        values = self.prop_values(j)
+        chain = [(name, f * dea) for name, f in
+                 _through_inertia(prop, {**values, "ea": ea}, {"a_P_b_P": 1.0})]
+        de = prop_flexwing.e_alpha_geometry_d(prop.e_theta, prop.pivot_pitch, ea)
+        chain.append(("e_alpha", float(np.ravel(de["e_alpha_geometry"]["a_P_b_P"])[0]) * dea))
+        return self.propeller_block(j, chain)
+
     # ---------------------------------------------------------------- propellers
     def propeller(self, par: Parameter) -> BlockSystem:
-        j, model = par.index, self.model
-        inst = model.propellers[j]
+        j = par.index
+        values = self.prop_values(j)
+        node_ab = self.model.wing.node_properties()
+        node = self.model.nodes[j]
+        ea = float(node_ab["a"][node] * node_ab["b"][node])  # a_P b_P [m]
+        return self.system((self.propeller_block(
+            j, _chain(self.model.propellers[j].propeller, par, {**values, "ea": ea})),), None)
+
+    def prop_values(self, j: int) -> dict:
+        """The arguments of propeller j's generated blocks at the speeds V (computed once,
+        with the generated derivatives of its structure and aerodynamic blocks)."""
+        self._prop_derivatives(j)
+        return self.prop[j][0]
+
+    def _prop_derivatives(self, j: int) -> tuple:
+        model, inst = self.model, self.model.propellers[j]
         if j not in self.prop:
             values = model._propeller_values(j, self.V, self.omega, self.memo)
             struct = prop_flexwing.structure_blocks_d(
@@ -261,22 +360,26 @@ class _Context:
                 aero = prop_flexwing.aero_blocks_d(
                     **{a: values[a] for a in prop_flexwing.PARTIALS["aero_blocks_d"][0]})
             self.prop[j] = (values, struct, aero)
-        values, struct, aero = self.prop[j]
+        return self.prop[j]
+
+    def propeller_block(self, j: int, chain) -> LocalBlocks:
+        """Propeller j's local block of Σ factor · ∂(M, C, K)/∂argument over `chain`
+        [(generated argument, factor)], a factor a number or an array over the speeds."""
+        inst = self.model.propellers[j]
+        _, struct, aero = self._prop_derivatives(j)
         M, C, K = (np.zeros((self.nV, k, k)) for k in [2 if inst.mount == "rigid" else 4] * 3)
-        node_ab = model.wing.node_properties()
-        ea = float(node_ab["a"][model.nodes[j]] * node_ab["b"][model.nodes[j]])  # a_P b_P [m]
-        for arg, factor in _chain(inst.propeller, par, {**values, "ea": ea}):
+        for arg, factor in chain:
+            f = np.reshape(np.asarray(factor, dtype=float), (-1, 1, 1))
             dM, dC, dK = self._local(inst.mount, struct, aero, arg)
-            M, C, K = M + factor * dM, C + factor * dC, K + factor * dK
-        node = model.nodes[j]
+            M, C, K = M + f * dM, C + f * dC, K + f * dK
+        node = self.model.nodes[j]
         wing_idx = [3 * node, 3 * node + 2]
         if inst.mount == "flexible":
             pj = self.nqw + 2 * self.flex.index(j)
             idx = np.array([pj, pj + 1] + wing_idx)
         else:
             idx = np.array(wing_idx)
-        block = LocalBlocks(f"propeller {j}", idx[None, :], M[:, None], C[:, None], K[:, None])
-        return self.system((block,), None)
+        return LocalBlocks(f"propeller {j}", idx[None, :], M[:, None], C[:, None], K[:, None])
 
     def _local(self, mount: str, struct: dict, aero: dict, arg: str):
         """∂(M, C, K)/∂arg of a propeller's local block, assembled as
@@ -444,6 +547,8 @@ def with_value(model: PropellerWing, path: str, value: float) -> PropellerWing:
         arr = wing.element_properties()[key].copy()
         arr[par.index] = value
         return model.with_(wing=replace(wing, **{par.name: arr}))
+    if par.kind == "section":
+        return model.with_(wing=_section.with_value(wing, par.name, par.index, value))
     if par.kind == "node":
         ys = wing.node_y
         base = wing.lift_slope_at(ys)
