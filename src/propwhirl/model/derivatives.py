@@ -60,6 +60,7 @@ import numpy as np
 from propwhirl.generated import beam_element, prop_flexwing
 from propwhirl.model.assembly import LAG_STATES, STRIP_AERO, element_dofs, free_dofs
 from propwhirl.model.blocks import BlockSystem, LagBlocks, LocalBlocks
+from propwhirl.model import derivatives_blade as _blade
 from propwhirl.model import derivatives_section as _section
 from propwhirl.model.propeller import MeasuredDerivatives
 from propwhirl.model.propeller_aero import DERIVATIVE_NAMES
@@ -75,8 +76,8 @@ _AXES = ("theta", "psi")
 class Parameter:
     """One model parameter with exact derivatives: its path, current value, unit, meaning.
 
-    kind: "element", "node", "section" (:mod:`propwhirl.model.derivatives_section`) or
-    "propeller"; index: the element,
+    kind: "element", "node", "section" (:mod:`propwhirl.model.derivatives_section`),
+    "propeller" or "rotation" (:mod:`propwhirl.model.derivatives_blade`); index: the element,
     node (−1 for the root and tip chords) or installation."""
 
     path: str
@@ -111,6 +112,8 @@ def parameters(model: PropellerWing) -> tuple[Parameter, ...]:
     for j, inst in enumerate(model.propellers):
         prop = inst.propeller
         pre = f"propellers[{j}].propeller."
+        for name, value, unit, doc in _blade.parameters(prop, model.propeller_aero and inst.aero):
+            out.append(Parameter(pre + name, "rotation", j, name, value, unit, doc))
         K = prop.stiffness()
         zeta = prop.viscous_damping_ratios()
         for k, ax in enumerate(_AXES):
@@ -332,6 +335,11 @@ class _Context:
         de = prop_flexwing.e_alpha_geometry_d(prop.e_theta, prop.pivot_pitch, ea)
         chain.append(("e_alpha", float(np.ravel(de["e_alpha_geometry"]["a_P_b_P"])[0]) * dea))
         return self.propeller_block(j, chain)
+
+    # ---------------------------------------------------------------- rotation
+    def rotation(self, par: Parameter) -> BlockSystem:
+        """Blade angle, zero-lift angle or rpm of a propeller (:mod:`propwhirl.model.derivatives_blade`)."""
+        return self.system((self.propeller_block(par.index, _blade.chain(self, par)),), None)
 
     # ---------------------------------------------------------------- propellers
     def propeller(self, par: Parameter) -> BlockSystem:
