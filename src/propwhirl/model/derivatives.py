@@ -258,30 +258,11 @@ class _Context:
 
     # ---------------------------------------------------------------- section fields
     def section(self, par: Parameter) -> BlockSystem:
-        """A section field (:mod:`propwhirl.model.derivatives_section`): the touched
-        elements' mass blocks (x_α b, ρI_p; even and odd elements in two groups, so no two
-        blocks of a group share a node), the nodes' strip blocks (b, a, a_c) and the blocks
-        of the propellers whose node's a_P b_P = a b moves."""
+        """A section field: the wing's blocks (:func:`propwhirl.model.derivatives_section.
+        wing_blocks`) and those of the propellers whose node's a_P b_P = a b moves."""
         model, wing = self.model, self.model.wing
         ch = _section.chain(wing, par.name, par.index)
-        groups: list[LocalBlocks] = []
-        if self.beam is None:
-            self.beam = beam_element.blocks_d(**{a: self.props[a]
-                                                 for a in beam_element.PARTIALS["blocks_d"][0]})
-        dM = sum(ch.element[a][:, None, None] * self.beam["mass"][a] for a in ch.element)
-        mu, lam = wing.rayleigh
-        touched = np.flatnonzero(np.any(dM != 0.0, axis=(1, 2)))
-        dofs = element_dofs(wing.element_count)
-        for parity in (0, 1):
-            es = touched[touched % 2 == parity]
-            if es.size:
-                M = self.const(dM[es])
-                groups.append(LocalBlocks(f"wing elements {parity}::2", dofs[es], M,
-                                          mu * M, np.zeros_like(M)))
-        lag = None
-        if model.wing_aero and any(np.any(x) for x in ch.node.values()):
-            block, lag = self._strip(ch.node)
-            groups.append(block)
+        groups, lag = _section.wing_blocks(self, ch)
         if model.propellers:
             node = wing.node_properties()
             dea = ch.node["a"] * node["b"] + node["a"] * ch.node["b"]    # ∂(a b) at the nodes
@@ -290,40 +271,6 @@ class _Context:
                     groups.append(self._elastic_axis_block(j, float(dea[n]),
                                                            float(node["a"][n] * node["b"][n])))
         return self.system(tuple(groups), lag)
-
-    def _strip(self, factors: dict[str, np.ndarray]) -> tuple[LocalBlocks, LagBlocks]:
-        """Σ_arg factors[arg][i] ∂(strip blocks of node i)/∂arg over the nodes i ≥ 1 touched."""
-        wing = self.model.wing
-        group, roles = STRIP_AERO[wing.aero_model]
-        if self.strip is None:
-            from propwhirl.generated import strip_aero
-
-            node = wing.node_properties()
-            values = dict(rho=self.model.flight.density, V=self.V[:, None], b=node["b"],
-                          a=node["a"], Cla=node["Cla"], ac=node["ac"])
-            self.strip = (getattr(strip_aero, group + "_d")(**values), node["width"])
-        d, width = self.strip
-        k, nn = LAG_STATES[wing.aero_model], wing.n_nodes
-        nodes = np.flatnonzero(np.any([np.asarray(f) != 0.0 for f in factors.values()], axis=0))
-        nodes = nodes[nodes >= 1]
-        shape = {"M": (2, 2), "C": (2, 2), "K": (2, 2), "W0": (2, k), "Ww": (k, k),
-                 "Wv": (k, 2), "Wq": (k, 2)}
-
-        def get(role: str) -> np.ndarray:  # (nV, nb, r, c) at the touched nodes
-            out = np.zeros((self.nV, nodes.size) + shape[role])
-            if role in roles:
-                for arg, f in factors.items():
-                    x = d[roles[role]].get(arg)
-                    if x is not None:
-                        x = np.broadcast_to(x, (self.nV, nn) + shape[role])[:, nodes]
-                        out = out + f[nodes][None, :, None, None] * x
-            return out
-
-        w = width[nodes][None, :, None, None]
-        qrows = 3 * nodes[:, None] + np.array([0, 2])[None, :]
-        wrows = k * nodes[:, None] + np.arange(k)[None, :]
-        block = LocalBlocks("wing strips", qrows, -w * get("M"), -w * get("C"), -w * get("K"))
-        return block, LagBlocks(qrows, wrows, w * get("W0"), get("Ww"), get("Wv"), get("Wq"))
 
     def _elastic_axis_block(self, j: int, dea: float, ea: float) -> LocalBlocks:
         """Propeller j's block for a change dea of the elastic axis a_P b_P at its node [m]:

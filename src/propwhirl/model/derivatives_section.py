@@ -48,6 +48,9 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from propwhirl.generated import beam_element
+from propwhirl.model.assembly import LAG_STATES, STRIP_AERO, element_dofs
+from propwhirl.model.blocks import LagBlocks, LocalBlocks
 from propwhirl.model.wing import Wing
 
 #: the per-element fields: (field, unit, meaning)
@@ -189,3 +192,67 @@ class NodeChord:
 
     def __call__(self, y):
         return np.interp(np.asarray(y, dtype=float), self.ys, self.values)
+
+
+def wing_blocks(ctx, ch: SectionChain) -> tuple[list[LocalBlocks], LagBlocks | None]:
+    """The derivative blocks of the wing for the chain `ch`: the touched elements' mass blocks
+    Σ ∂M/∂(x_α b, ρI_p) (generated ``beam_element.blocks_d``) with the Rayleigh μ ∂M (even
+    and odd elements in two groups, so that no two blocks of a group share a node) and the
+    touched nodes' (i ≥ 1) strip blocks Σ ∂/∂(b, a, a_c) (generated ``strip_aero.*_blocks_d``).
+    `ctx`: the derivatives' context of the model at its speeds
+    (:mod:`propwhirl.model.derivatives`), whose caches of the generated derivatives it uses."""
+    wing = ctx.model.wing
+    if ctx.beam is None:
+        ctx.beam = beam_element.blocks_d(**{a: ctx.props[a]
+                                            for a in beam_element.PARTIALS["blocks_d"][0]})
+    dM = sum(ch.element[a][:, None, None] * ctx.beam["mass"][a] for a in ch.element)
+    mu = wing.rayleigh[0]
+    touched = np.flatnonzero(np.any(dM != 0.0, axis=(1, 2)))
+    dofs = element_dofs(wing.element_count)
+    groups = []
+    for parity in (0, 1):
+        es = touched[touched % 2 == parity]
+        if es.size:
+            M = ctx.const(dM[es])
+            groups.append(LocalBlocks(f"wing elements {parity}::2", dofs[es], M, mu * M,
+                                      np.zeros_like(M)))
+    lag = None
+    if ctx.model.wing_aero and any(np.any(x) for x in ch.node.values()):
+        block, lag = _strip_blocks(ctx, ch.node)
+        groups.append(block)
+    return groups, lag
+
+
+def _strip_blocks(ctx, factors: dict[str, np.ndarray]) -> tuple[LocalBlocks, LagBlocks]:
+    """Σ_arg factors[arg][i] ∂(strip blocks of node i)/∂arg over the touched nodes i ≥ 1."""
+    wing = ctx.model.wing
+    group, roles = STRIP_AERO[wing.aero_model]
+    if ctx.strip is None:
+        from propwhirl.generated import strip_aero
+
+        node = wing.node_properties()
+        values = dict(rho=ctx.model.flight.density, V=ctx.V[:, None], b=node["b"],
+                      a=node["a"], Cla=node["Cla"], ac=node["ac"])
+        ctx.strip = (getattr(strip_aero, group + "_d")(**values), node["width"])
+    d, width = ctx.strip
+    k, nn = LAG_STATES[wing.aero_model], wing.n_nodes
+    nodes = np.flatnonzero(np.any([np.asarray(f) != 0.0 for f in factors.values()], axis=0))
+    nodes = nodes[nodes >= 1]
+    shape = {"M": (2, 2), "C": (2, 2), "K": (2, 2), "W0": (2, k), "Ww": (k, k),
+             "Wv": (k, 2), "Wq": (k, 2)}
+
+    def get(role: str) -> np.ndarray:  # (nV, nb, r, c) at the touched nodes
+        out = np.zeros((ctx.nV, nodes.size) + shape[role])
+        if role in roles:
+            for arg, f in factors.items():
+                x = d[roles[role]].get(arg)
+                if x is not None:
+                    x = np.broadcast_to(x, (ctx.nV, nn) + shape[role])[:, nodes]
+                    out = out + f[nodes][None, :, None, None] * x
+        return out
+
+    w = width[nodes][None, :, None, None]
+    qrows = 3 * nodes[:, None] + np.array([0, 2])[None, :]
+    wrows = k * nodes[:, None] + np.arange(k)[None, :]
+    block = LocalBlocks("wing strips", qrows, -w * get("M"), -w * get("C"), -w * get("K"))
+    return block, LagBlocks(qrows, wrows, w * get("W0"), get("Ww"), get("Wv"), get("Wq"))
