@@ -43,11 +43,24 @@ Parameters covered (paths as :attr:`Parameter.path`; `wing` is ``model.wing``, t
 ``propellers[j].propeller.derivatives.values[NAME]``   each of the 16 aerodynamic derivatives of
                                                        a MeasuredDerivatives source (propeller
                                                        aerodynamics on)
+``wing.root_chord``, ``wing.tip_chord``,               the taper and the chord at node i [m]
+``wing.chord[i]``                                      (linear taper): b at the nodes, x_α b and
+                                                       ρI_p (with r_g) at the elements, a_P b_P
+``wing.centre_of_gravity[e]``, ``elastic_axis[e]``,    section fields of element e [chord] and
+``aerodynamic_centre[e]``, ``polar_inertia[e]`` /      ρI_p [kg m]: x_α b, ρI_p, and a, a_c at
+``radius_of_gyration[e]``                              the nodes (interpolated), a_P b_P
+                                                       (:mod:`~propwhirl.model.derivatives_section`)
+``propellers[j].propeller.beta_075_deg``,              blade angle, zero-lift angle [deg] (fixed
+``zero_lift_angle_deg``; ``rpm``                       pitch) or rpm (constant speed): Ω of the
+                                                       gyroscopic terms and the Houbolt–Reed
+                                                       derivatives through μ
+                                                       (:mod:`~propwhirl.model.derivatives_blade`)
 =====================================================  ==========================================
 
-Not covered here: chords and taper (they move b, x_α b and ρI_p together) and Houbolt–Reed
-derivatives through blade angle and advance ratio (numerical integrals);
-the generated functions have the matrices' derivatives for all their arguments.
+Not covered: a chord given as a function of y (no chord paths), an elastic axis or
+aerodynamic centre given as a function of y (no per-element paths), the blade geometry of the
+Houbolt–Reed derivatives (blade chord, radius, hub ratio), derivative sources other than
+Houbolt–Reed and measured values (no rotation paths when their loads are on).
 :func:`with_value` is the model with one parameter set to a value (for finite differences).
 """
 from __future__ import annotations
