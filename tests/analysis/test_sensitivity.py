@@ -102,12 +102,12 @@ def test_cli_json_and_plot(tmp_path, capsys):
     from propwhirl.app.cli import main
 
     out, png = tmp_path / "s.json", tmp_path / "s.png"
-    assert main(["sensitivity", "wingtip", "--kind", "flutter", "--top", "3", "--json",
+    assert main(["sensitivity", "wingtip", "--kind", "flutter", "--top", "4", "--json",
                  str(out), "--plot", str(png)]) == 0
     text = capsys.readouterr().out
     assert "flutter onset of forward 1" in text and "propellers[0].propeller.f_theta" in text
     d = json.loads(out.read_text())
-    assert d["critical"]["kind"] == "flutter" and len(d["sensitivities"]) == 3
+    assert d["critical"]["kind"] == "flutter" and len(d["sensitivities"]) == 4
     assert png.stat().st_size > 10_000
     assert main(["sensitivity", "isolated-propeller"]) == 2
     assert "wing models" in capsys.readouterr().err

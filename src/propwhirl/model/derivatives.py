@@ -43,11 +43,24 @@ Parameters covered (paths as :attr:`Parameter.path`; `wing` is ``model.wing``, t
 ``propellers[j].propeller.derivatives.values[NAME]``   each of the 16 aerodynamic derivatives of
                                                        a MeasuredDerivatives source (propeller
                                                        aerodynamics on)
+``wing.root_chord``, ``wing.tip_chord``,               the taper and the chord at node i [m]
+``wing.chord[i]``                                      (linear taper): b at the nodes, x_α b and
+                                                       ρI_p (with r_g) at the elements, a_P b_P
+``wing.centre_of_gravity[e]``, ``elastic_axis[e]``,    section fields of element e [chord] and
+``aerodynamic_centre[e]``, ``polar_inertia[e]`` /      ρI_p [kg m]: x_α b, ρI_p, and a, a_c at
+``radius_of_gyration[e]``                              the nodes (interpolated), a_P b_P
+                                                       (:mod:`~propwhirl.model.derivatives_section`)
+``propellers[j].propeller.beta_075_deg``,              blade angle, zero-lift angle [deg] (fixed
+``zero_lift_angle_deg``; ``rpm``                       pitch) or rpm (constant speed): Ω of the
+                                                       gyroscopic terms and the Houbolt–Reed
+                                                       derivatives through μ
+                                                       (:mod:`~propwhirl.model.derivatives_blade`)
 =====================================================  ==========================================
 
-Not covered here: chords and taper (they move b, x_α b and ρI_p together) and Houbolt–Reed
-derivatives through blade angle and advance ratio (numerical integrals);
-the generated functions have the matrices' derivatives for all their arguments.
+Not covered: a chord given as a function of y (no chord paths), an elastic axis or
+aerodynamic centre given as a function of y (no per-element paths), the blade geometry of the
+Houbolt–Reed derivatives (blade chord, radius, hub ratio), derivative sources other than
+Houbolt–Reed and measured values (no rotation paths when their loads are on).
 :func:`with_value` is the model with one parameter set to a value (for finite differences).
 """
 from __future__ import annotations
@@ -60,6 +73,8 @@ import numpy as np
 from propwhirl.generated import beam_element, prop_flexwing
 from propwhirl.model.assembly import LAG_STATES, STRIP_AERO, element_dofs, free_dofs
 from propwhirl.model.blocks import BlockSystem, LagBlocks, LocalBlocks
+from propwhirl.model import derivatives_blade as _blade
+from propwhirl.model import derivatives_section as _section
 from propwhirl.model.propeller import MeasuredDerivatives
 from propwhirl.model.propeller_aero import DERIVATIVE_NAMES
 from propwhirl.model.statespace import SecondOrder
@@ -74,7 +89,9 @@ _AXES = ("theta", "psi")
 class Parameter:
     """One model parameter with exact derivatives: its path, current value, unit, meaning.
 
-    kind: "element", "node" or "propeller"; index: the element, node or installation."""
+    kind: "element", "node", "section" (:mod:`propwhirl.model.derivatives_section`),
+    "propeller" or "rotation" (:mod:`propwhirl.model.derivatives_blade`); index: the element,
+    node (−1 for the root and tip chords) or installation."""
 
     path: str
     kind: str
@@ -87,7 +104,7 @@ class Parameter:
 
 def parameters(model: PropellerWing) -> tuple[Parameter, ...]:
     """Every parameter of `model` whose derivatives :func:`derivative_blocks` gives (table in
-    the module docstring), in a fixed order: elements, nodes, propellers."""
+    the module docstring), in a fixed order: elements, nodes, section fields, propellers."""
     _check_model(model)
     wing = model.wing
     p = wing.element_properties()
@@ -103,9 +120,13 @@ def parameters(model: PropellerWing) -> tuple[Parameter, ...]:
         for i in range(1, wing.n_nodes):
             out.append(Parameter(f"wing.lift_slope[{i}]", "node", i, "lift_slope",
                                  float(cla[i]), "1/rad", f"lift-curve slope at node {i}"))
+    for path, name, index, value, unit, doc in _section.parameters(wing):
+        out.append(Parameter(path, "section", index, name, value, unit, doc))
     for j, inst in enumerate(model.propellers):
         prop = inst.propeller
         pre = f"propellers[{j}].propeller."
+        for name, value, unit, doc in _blade.parameters(prop, model.propeller_aero and inst.aero):
+            out.append(Parameter(pre + name, "rotation", j, name, value, unit, doc))
         K = prop.stiffness()
         zeta = prop.viscous_damping_ratios()
         for k, ax in enumerate(_AXES):
@@ -248,10 +269,56 @@ class _Context:
         lag = LagBlocks(qrows, wrows, w * get("W0"), get("Ww"), get("Wv"), get("Wq"))
         return self.system((block,), lag)
 
+    # ---------------------------------------------------------------- section fields
+    def section(self, par: Parameter) -> BlockSystem:
+        """A section field: the wing's blocks (:func:`propwhirl.model.derivatives_section.
+        wing_blocks`) and those of the propellers whose node's a_P b_P = a b moves."""
+        model, wing = self.model, self.model.wing
+        ch = _section.chain(wing, par.name, par.index)
+        groups, lag = _section.wing_blocks(self, ch)
+        if model.propellers:
+            node = wing.node_properties()
+            dea = ch.node["a"] * node["b"] + node["a"] * ch.node["b"]    # ∂(a b) at the nodes
+            for j, n in enumerate(model.nodes):
+                if dea[n] != 0.0:
+                    groups.append(self._elastic_axis_block(j, float(dea[n]),
+                                                           float(node["a"][n] * node["b"][n])))
+        return self.system(tuple(groups), lag)
+
+    def _elastic_axis_block(self, j: int, dea: float, ea: float) -> LocalBlocks:
+        """Propeller j's block for a change dea of the elastic axis a_P b_P at its node [m]:
+        S_α,P, I_α,P, I_θα,P through ``inertia_d`` and e_α through ``e_alpha_geometry_d``."""
+        prop = self.model.propellers[j].propeller
+        values = self.prop_values(j)
+        chain = [(name, f * dea) for name, f in
+                 _through_inertia(prop, {**values, "ea": ea}, {"a_P_b_P": 1.0})]
+        de = prop_flexwing.e_alpha_geometry_d(prop.e_theta, prop.pivot_pitch, ea)
+        chain.append(("e_alpha", float(np.ravel(de["e_alpha_geometry"]["a_P_b_P"])[0]) * dea))
+        return self.propeller_block(j, chain)
+
+    # ---------------------------------------------------------------- rotation
+    def rotation(self, par: Parameter) -> BlockSystem:
+        """Blade angle, zero-lift angle or rpm of a propeller (:mod:`propwhirl.model.derivatives_blade`)."""
+        return self.system((self.propeller_block(par.index, _blade.chain(self, par)),), None)
+
     # ---------------------------------------------------------------- propellers
     def propeller(self, par: Parameter) -> BlockSystem:
-        j, model = par.index, self.model
-        inst = model.propellers[j]
+        j = par.index
+        values = self.prop_values(j)
+        node_ab = self.model.wing.node_properties()
+        node = self.model.nodes[j]
+        ea = float(node_ab["a"][node] * node_ab["b"][node])  # a_P b_P [m]
+        return self.system((self.propeller_block(
+            j, _chain(self.model.propellers[j].propeller, par, {**values, "ea": ea})),), None)
+
+    def prop_values(self, j: int) -> dict:
+        """The arguments of propeller j's generated blocks at the speeds V (computed once,
+        with the generated derivatives of its structure and aerodynamic blocks)."""
+        self._prop_derivatives(j)
+        return self.prop[j][0]
+
+    def _prop_derivatives(self, j: int) -> tuple:
+        model, inst = self.model, self.model.propellers[j]
         if j not in self.prop:
             values = model._propeller_values(j, self.V, self.omega, self.memo)
             struct = prop_flexwing.structure_blocks_d(
@@ -261,22 +328,26 @@ class _Context:
                 aero = prop_flexwing.aero_blocks_d(
                     **{a: values[a] for a in prop_flexwing.PARTIALS["aero_blocks_d"][0]})
             self.prop[j] = (values, struct, aero)
-        values, struct, aero = self.prop[j]
+        return self.prop[j]
+
+    def propeller_block(self, j: int, chain) -> LocalBlocks:
+        """Propeller j's local block of Σ factor · ∂(M, C, K)/∂argument over `chain`
+        [(generated argument, factor)], a factor a number or an array over the speeds."""
+        inst = self.model.propellers[j]
+        _, struct, aero = self._prop_derivatives(j)
         M, C, K = (np.zeros((self.nV, k, k)) for k in [2 if inst.mount == "rigid" else 4] * 3)
-        node_ab = model.wing.node_properties()
-        ea = float(node_ab["a"][model.nodes[j]] * node_ab["b"][model.nodes[j]])  # a_P b_P [m]
-        for arg, factor in _chain(inst.propeller, par, {**values, "ea": ea}):
+        for arg, factor in chain:
+            f = np.reshape(np.asarray(factor, dtype=float), (-1, 1, 1))
             dM, dC, dK = self._local(inst.mount, struct, aero, arg)
-            M, C, K = M + factor * dM, C + factor * dC, K + factor * dK
-        node = model.nodes[j]
+            M, C, K = M + f * dM, C + f * dC, K + f * dK
+        node = self.model.nodes[j]
         wing_idx = [3 * node, 3 * node + 2]
         if inst.mount == "flexible":
             pj = self.nqw + 2 * self.flex.index(j)
             idx = np.array([pj, pj + 1] + wing_idx)
         else:
             idx = np.array(wing_idx)
-        block = LocalBlocks(f"propeller {j}", idx[None, :], M[:, None], C[:, None], K[:, None])
-        return self.system((block,), None)
+        return LocalBlocks(f"propeller {j}", idx[None, :], M[:, None], C[:, None], K[:, None])
 
     def _local(self, mount: str, struct: dict, aero: dict, arg: str):
         """∂(M, C, K)/∂arg of a propeller's local block, assembled as
@@ -444,6 +515,8 @@ def with_value(model: PropellerWing, path: str, value: float) -> PropellerWing:
         arr = wing.element_properties()[key].copy()
         arr[par.index] = value
         return model.with_(wing=replace(wing, **{par.name: arr}))
+    if par.kind == "section":
+        return model.with_(wing=_section.with_value(wing, par.name, par.index, value))
     if par.kind == "node":
         ys = wing.node_y
         base = wing.lift_slope_at(ys)

@@ -1,0 +1,64 @@
+"""analysis.sensitivity for the section fields (taper, chords, elastic axis, aerodynamic
+centre, centre of gravity, radius of gyration) and the blade angle: dV_crit/dp from the
+eigenvectors against central differences of the engine's own critical speed on the wingtip
+model (issue 13.3: within 1 %)."""
+import pytest
+
+from propwhirl.analysis import analyse
+from propwhirl.analysis.sensitivity import critical_sensitivities
+from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
+from propwhirl.model import derivatives as D
+
+PRE = "propellers[0].propeller."
+
+
+def fd_critical_speed(model, path, value, event, rel=1e-3):
+    """Central difference of the engine's speed of the same event (kind, mode) [m/s per unit]."""
+    h = rel * abs(value)
+    V = []
+    for s in (1.0, -1.0):
+        a = analyse(D.with_value(model, path, value + s * h))
+        e = min((x for x in a.events if (x.kind, x.event, x.label) ==
+                 (event.kind, event.event, event.label)), key=lambda x: abs(x.V - event.V))
+        V.append(e.V)
+    return (V[0] - V[1]) / (2 * h)
+
+
+@pytest.fixture(scope="module")
+def wingtip():
+    m = wingtip_propeller_wing()
+    return m, analyse(m)
+
+
+#: per kind, the parameters checked: those that move that critical speed (the wing's static
+#: divergence does not depend on the wing's mass distribution: cg and r_g are ≈ 0 there,
+#: below the engine's resolution of a difference quotient)
+CASES = {
+    "flutter": ["wing.root_chord", "wing.tip_chord", "wing.chord[12]", "wing.elastic_axis[24]",
+                "wing.centre_of_gravity[24]", "wing.radius_of_gyration[24]",
+                "wing.aerodynamic_centre[24]", PRE + "beta_075_deg"],
+    "divergence": ["wing.root_chord", "wing.tip_chord", "wing.chord[25]",
+                   "wing.elastic_axis[24]", "wing.aerodynamic_centre[24]", PRE + "beta_075_deg"],
+}
+
+
+@pytest.mark.long
+@pytest.mark.parametrize("kind", ["flutter", "divergence"])
+def test_wingtip_section_and_blade_angle_match_finite_differences(wingtip, kind):
+    m, a = wingtip
+    event = min((e for e in a.events if e.kind == kind and e.event == "onset"), key=lambda e: e.V)
+    cs = critical_sensitivities(m, a, event, params=CASES[kind])
+    assert [s.path for s in cs.sensitivities] == CASES[kind]
+    for s in cs.sensitivities:
+        fd = fd_critical_speed(m, s.path, s.value, event)
+        assert abs(s.dV_dp - fd) <= 0.01 * abs(fd), (s.path, s.dV_dp, fd)
+
+
+def test_taper_ranks_first_for_the_wingtip_divergence(wingtip):
+    """The critical point of the wingtip model is the wing's divergence (143.15 m/s); a
+    narrower chord raises it, the tip chord most."""
+    m, a = wingtip
+    cs = critical_sensitivities(m, a)
+    top = [s.path for s in cs.ranked(2)]
+    assert top == ["wing.tip_chord", "wing.root_chord"]
+    assert all(s.dV_dp < 0 for s in cs.ranked(2))
