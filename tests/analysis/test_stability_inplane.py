@@ -34,3 +34,11 @@ def test_reduced_equals_dense(model):
 def test_derivatives_refuse_inplane_models(model):
     with pytest.raises(InputError, match="EI_chordwise"):
         derivatives.derivative_blocks(model, np.array([100.0]))
+
+
+def test_sensitivities_of_an_inplane_model_are_refused_by_name(model):
+    from propwhirl.analysis.sensitivity import critical_sensitivities
+
+    a = analyse(model, speeds=np.arange(10.0, 351.0, 20.0), method="dense")
+    with pytest.raises(InputError, match=r"wing.EI_chordwise = .* N m\^2 \(in-plane bending\)"):
+        critical_sensitivities(model, a)

@@ -80,12 +80,12 @@ class BlockSystem:
 
     def __post_init__(self) -> None:
         if len(self.q_labels) != self.M.shape[0]:
-            # an assembly that does not know the model's DOF layout (e.g. one written before
-            # in-plane bending, wing.EI_chordwise) must not give matrices on the wrong DOFs
+            # an assembly that does not know the model's DOF layout must not give matrices on
+            # the wrong DOFs
             raise v.InputError(
                 f"q_labels has {len(self.q_labels)} labels but the matrices have "
                 f"{self.M.shape[0]} DOFs: this assembly does not cover the model's degrees of "
-                "freedom (in-plane bending, wing.EI_chordwise, is not supported here)")
+                "freedom")
 
     @property
     def n_q(self) -> int:

@@ -163,6 +163,11 @@ def _check_model(model) -> None:
     if not isinstance(model, PropellerWing):
         raise v.InputError(f"model = {type(model).__name__} is invalid: parameter derivatives "
                            "are available for a PropellerWing")
+    if model.wing.in_plane:
+        raise v.InputError(
+            f"wing.EI_chordwise = {model.wing.EI_chordwise!r} N m^2 (in-plane bending): parameter "
+            "derivatives are available for wings without in-plane bending (leave out "
+            "wing.EI_chordwise, or use finite differences)")
 
 
 def _lookup(model: PropellerWing, params: Iterable[str | Parameter] | None) -> list[Parameter]:
