@@ -4,6 +4,8 @@
 #   make test-fast the suite without the `long` checks
 #   make generate  rebuild generated/ from the SymPy derivations
 #   make bench     engine vs the thesis's fixed-grid sweep; rewrites the tables of docs/performance.md
+#   make bench-map     the 50 x 50 wingtip map, warm-started reduced vs the default; rewrites its
+#                      table of docs/performance.md
 #   make bench-design  design-size models (reduced vs dense, size scaling, memory); rewrites its
 #                  table of docs/performance.md (a few minutes)
 #   make docs      the documentation site in site/ (mkdocs, strict: a warning fails; the test suite builds it too)
@@ -14,7 +16,7 @@ BIN    := $(VENV)/bin
 export OPENBLAS_NUM_THREADS ?= 1
 export OMP_NUM_THREADS ?= 1
 
-.PHONY: run test test-fast generate bench bench-design docs clean
+.PHONY: run test test-fast generate bench bench-design bench-map docs clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -43,6 +45,10 @@ bench: $(VENV)/.stamp-codegen+data+docs+tables+test+plots+toml+notebooks+distrib
 # BENCH_MD as above; BENCH_DESIGN_ARGS e.g. "--quick" (no dense 100-element / 12-propeller run)
 bench-design: $(VENV)/.stamp-codegen+data+docs+tables+test+plots+toml+notebooks+distributed+progress+mdo
 	$(BIN)/python benchmarks/design_size.py --markdown $(BENCH_MD) $(BENCH_DESIGN_ARGS)
+
+# BENCH_MD as above; BENCH_MAP_ARGS e.g. "--n 10" or "--reference sample" (100 reference points)
+bench-map: $(VENV)/.stamp-codegen+data+docs+tables+test+plots+toml+notebooks+distributed+progress+mdo
+	$(BIN)/python benchmarks/map_speed.py --markdown $(BENCH_MD) $(BENCH_MAP_ARGS)
 
 # Material for MkDocs prints an end-of-life banner on every build; NO_MKDOCS_2_WARNING silences it.
 docs: $(VENV)/.stamp-docs
