@@ -331,31 +331,33 @@ class PropellerWing(StateSpaceModel):
             out.append((f"propeller {j + 1}", self._propeller_dofs(j),
                         lambda vals, j=j: self._propeller_matrices(j, vals),
                         self._propeller_values(j, V, omega), PROPELLER_UNITS))
-        p = self.wing.element_properties()
+        out += self._element_contributions(
+            self.wing.element_properties(), (beam_element, "blocks", "mass", "stiffness"),
+            WING_DOF_NAMES, "")
+        pi = self.wing.inplane_properties()
+        if pi is not None:
+            out += self._element_contributions(
+                pi, (beam_inplane, "inplane_blocks", "inplane_mass", "inplane_stiffness"),
+                INPLANE_DOF_NAMES, " (in-plane)")
+        return out
+
+    def _element_contributions(self, props: dict, generated: tuple, dof_names, suffix: str):
+        """One contribution per wing element: its (mass, Rayleigh damping, stiffness) from the
+        generated block function ``generated`` = (module, function, mass, stiffness names)."""
+        module, fn, mass, stiffness = generated
         mu, lam = self.wing.rayleigh
 
         def element(vals):
-            b = call_blocks(beam_element, "blocks", (1,), **{k: vals[k] for k in p})
-            Mb, Kb = b["mass"], b["stiffness"]
+            b = call_blocks(module, fn, (1,), **{k: vals[k] for k in props})
+            Mb, Kb = b[mass], b[stiffness]
             return Mb, vals["rayleigh_mu"] * Mb + vals["rayleigh_lambda"] * Kb, Kb
 
+        out = []
         for e in range(self.wing.element_count):
-            vals = {k: x[e:e + 1] for k, x in p.items()}
+            vals = {k: x[e:e + 1] for k, x in props.items()}
             vals.update(rayleigh_mu=mu, rayleigh_lambda=lam)
-            dofs = tuple(f"node {i} {d}" for i in (e, e + 1) for d in WING_DOF_NAMES)
-            out.append((f"wing element {e}", dofs, element, vals, ELEMENT_UNITS))
-        pi = self.wing.inplane_properties()
-        if pi is not None:
-            def inplane(vals):
-                b = call_blocks(beam_inplane, "inplane_blocks", (1,), **{k: vals[k] for k in pi})
-                Mb, Kb = b["inplane_mass"], b["inplane_stiffness"]
-                return Mb, vals["rayleigh_mu"] * Mb + vals["rayleigh_lambda"] * Kb, Kb
-
-            for e in range(self.wing.element_count):
-                vals = {k: x[e:e + 1] for k, x in pi.items()}
-                vals.update(rayleigh_mu=mu, rayleigh_lambda=lam)
-                dofs = tuple(f"node {i} {d}" for i in (e, e + 1) for d in INPLANE_DOF_NAMES)
-                out.append((f"wing element {e} (in-plane)", dofs, inplane, vals, ELEMENT_UNITS))
+            dofs = tuple(f"node {i} {d}" for i in (e, e + 1) for d in dof_names)
+            out.append((f"wing element {e}{suffix}", dofs, element, vals, ELEMENT_UNITS))
         return out
 
     # ------------------------------------------------------------------ system
