@@ -51,6 +51,15 @@ class StateSpaceModel:
         block of the model (none by default: the error keeps naming the entry's states)."""
         return []
 
+    def release_caches(self) -> None:
+        """Free what the model memoised while it was analysed (its speed-independent matrices:
+        the wing structure of a PropellerWing, ≈ 150 kB for the wingtip model).  A study that
+        analyses thousands of variants in one process calls it after each, so that its memory
+        does not grow with the number of points; the next analysis recomputes them."""
+        memo = getattr(self, "_memo", None)
+        if memo is not None:
+            memo.clear()
+
     def state_labels(self) -> tuple[str, ...]:
         """Labels of the first-order state [q, q̇, w] (:attr:`DofMap.state_labels`)."""
         return self.dof_map().state_labels

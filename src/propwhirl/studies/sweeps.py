@@ -67,6 +67,15 @@ def evaluate(task: tuple) -> dict[str, Any]:
     see :func:`propwhirl.studies.critical.critical_instability` for the two flags; method: that
     of :func:`propwhirl.analysis.stability.analyse` (default "auto").
     """
+    model = task[0]
+    try:
+        return _evaluate(task)
+    finally:       # a serial study keeps every variant: its memory must not grow per point
+        if hasattr(model, "release_caches"):
+            model.release_caches()
+
+
+def _evaluate(task: tuple) -> dict[str, Any]:
     model, speeds, xtol, static_div, low_speed, *rest = task
     a = analyse(model, speeds, xtol=xtol, method=rest[0] if rest else "auto")
     is_wing = wing_divergence_predicate(model, a)
