@@ -212,6 +212,42 @@ class Boundary:
         fileio.write_text(path, json.dumps(self.to_dict(), indent=1, allow_nan=False),
                           what="boundary file")
 
+    @classmethod
+    def from_dict(cls, d: Any, where: str = "boundary") -> "Boundary":
+        """The boundary written by :meth:`to_dict`, checked (InputError naming what is wrong;
+        a frequency written as null — not finite — is read back as NaN)."""
+        if not isinstance(d, dict) or d.get("format") != FORMAT:
+            raise v.InputError(f"{where}: not a boundary file (format must be {FORMAT!r})")
+
+        def number(x: Any) -> Any:
+            return math.nan if x is None else x
+
+        try:
+            curves = d["curves"]
+            return cls(
+                str(d["kind"]), tuple(str(p) for p in d["parameters"]),
+                tuple(str(u) for u in d["units"]), float(d["speed"]),
+                tuple(float(x) for x in d["lower"]), tuple(float(x) for x in d["upper"]),
+                tuple(np.asarray(c["points"], dtype=float).reshape(-1, 2) for c in curves),
+                tuple(bool(c["closed"]) for c in curves),
+                tuple(tuple(str(x) for x in c["stops"]) for c in curves),
+                tuple(tuple({k: number(x) for k, x in inf.items()} for inf in c["info"])
+                      for c in curves),
+                int(d["evaluations"]), np.asarray(d["starts"], dtype=float),
+                str(d.get("model_name", "")), dict(d.get("settings", {})))
+        except (KeyError, TypeError, ValueError, AttributeError) as exc:
+            raise v.InputError(f"{where}: malformed ({type(exc).__name__}: {exc})") from None
+
+    @classmethod
+    def load(cls, path: str | Path) -> "Boundary":
+        """Read a boundary written by :meth:`save_json`."""
+        text = fileio.read_text(path, "boundary file")
+        try:
+            d = json.loads(text)
+        except json.JSONDecodeError as exc:
+            raise v.InputError(f"{path}: not JSON ({exc})") from None
+        return cls.from_dict(d, str(path))
+
     def to_csv(self, path: str | Path | None = None) -> str:
         """One row per point: curve (from 1), point, the two parameters, the mode's data."""
         buf = io.StringIO()

@@ -48,6 +48,10 @@ FACTOR_CFR23 = 1.2
 FORMAT = "propwhirl.clearance/1"
 
 
+#: the fields written as null when not finite (read back as NaN)
+_NAN_FIELDS = ("V", "frequency_hz", "margin", "critical_speed")
+
+
 @dataclass(frozen=True)
 class Margin:
     """One instability in the analysed range: kind, event, mode (label), V [m/s], frequency
@@ -155,6 +159,42 @@ class Clearance:
         """The result as JSON (atomically)."""
         fileio.write_text(path, json.dumps(self.to_dict(), indent=1, allow_nan=False),
                           what="clearance file")
+
+    @classmethod
+    def from_dict(cls, d: Any, where: str = "clearance") -> "Clearance":
+        """The result written by :meth:`to_dict`, checked (InputError naming what is wrong;
+        a speed written as null — not finite — is read back as NaN)."""
+        if not isinstance(d, dict) or d.get("format") != FORMAT:
+            raise v.InputError(f"{where}: not a clearance file (format must be {FORMAT!r})")
+
+        def fields_of(kind, x: dict) -> dict:
+            out = {k: (math.nan if x[k] is None and k in _NAN_FIELDS else x[k])
+                   for k in kind.__dataclass_fields__}
+            return {k: tuple(y) if isinstance(y, list) else y for k, y in out.items()}
+
+        try:
+            crit = d["critical"]
+            return cls(
+                str(d["model_name"]), float(d["V_D"]), float(d["factor"]),
+                float(d["V_required"]), bool(d["cleared"]),
+                None if crit is None else Margin(**fields_of(Margin, crit)),
+                tuple(Margin(**fields_of(Margin, m)) for m in d["margins"]),
+                tuple(MinimumFrequency(**fields_of(MinimumFrequency, q))
+                      for q in d["minimum_frequencies"]),
+                str(d["convention"]), tuple(float(x) for x in d["speed_range"]),
+                int(d["analyses"]))
+        except (KeyError, TypeError, ValueError, AttributeError) as exc:
+            raise v.InputError(f"{where}: malformed ({type(exc).__name__}: {exc})") from None
+
+    @classmethod
+    def load(cls, path: str | Path) -> "Clearance":
+        """Read a result written by :meth:`save_json`."""
+        text = fileio.read_text(path, "clearance file")
+        try:
+            d = json.loads(text)
+        except json.JSONDecodeError as exc:
+            raise v.InputError(f"{path}: not JSON ({exc})") from None
+        return cls.from_dict(d, str(path))
 
     def to_csv(self, path: str | Path | None = None) -> str:
         """Two tables in one CSV: the instabilities (section "instability") and the minimum
