@@ -31,21 +31,16 @@ from propwhirl import documents
 from propwhirl import limits
 from propwhirl import fileio
 from propwhirl import progress
+from propwhirl.app.cli_common import check_outputs, echo, load_model, speed_grid
 from propwhirl.cases import registry
 from propwhirl.validate import InputError
-
-
-def _echo(text: str) -> None:
-    """Print text that carries user strings (model names): control characters escaped
-    (:func:`propwhirl.limits.printable`), line by line."""
-    print("\n".join(limits.printable(line) for line in str(text).split("\n")))
 
 
 def _reproduce(args: argparse.Namespace) -> int:
     from propwhirl.app import execution_options
     from propwhirl.reproduce import harness as reproduce
 
-    _check_outputs(json=args.json)
+    check_outputs(json=args.json)
     cp = execution_options.checkpoint(args, args.json)
     records = reproduce.run(args.only, **execution_options.run_options(args), checkpoint=cp)
     print(reproduce.format_table(records))
@@ -208,74 +203,20 @@ def _add_derivatives(sub) -> None:
 
 
 # ----------------------------------------------------------------------------- model files
-def _load(path: str):
-    from propwhirl import io
-    from propwhirl.model.protocol import Model
-
-    model = io.load_model(path)
-    if not isinstance(model, Model):
-        raise InputError(f"{path} holds a {type(model).__name__}, not a model to analyse: "
-                         "type must be \"propeller-wing\" or \"isolated-propeller\"")
-    return model
-
-
-def speed_grid(start: float, stop: float, step: float):
-    """Airspeeds START, START+STEP, ... and STOP [m/s] (STOP always included)."""
-    import numpy as np
-
-    from propwhirl import validate as v
-
-    v.positive("--speeds START", start, "m/s")
-    v.positive("--speeds STOP", stop, "m/s")
-    v.positive("--speeds STEP", step, "m/s")
-    if not stop > start:
-        raise InputError(f"--speeds STOP = {stop!r} m/s is invalid: must be > START = {start!r} m/s")
-    limits.check_speed_count(f"--speeds {start:g} {stop:g} {step:g}",
-                             limits.grid_count(start, stop, step), "a larger STEP")
-    n = (stop - start) / step
-    grid = start + step * np.arange(int(np.floor(n + 1e-9)) + 1)
-    return grid if grid[-1] >= stop - 1e-9 * step else np.append(grid, stop)
-
-
-def _check_outputs(**paths: str | None) -> None:
-    """Fail before a long computation if an output file cannot be written: its folder does
-    not exist or is not writable, the path is a folder, a plot's suffix is not a format."""
-    for option, path in paths.items():
-        if path is None:
-            continue
-        fileio.check_writable(path, what=f"--{option}")
-        if option == "plot":
-            _check_plot_format(path)
-
-
-def _check_plot_format(path: str) -> None:
-    """A plot's suffix names a format matplotlib writes (checked before computing)."""
-    try:
-        from matplotlib.backend_bases import FigureCanvasBase
-    except ImportError:
-        raise InputError("--plot needs matplotlib, which is not installed: "
-                         "pip install propwhirl[plots]") from None
-    fmt = Path(path).suffix[1:].lower() or "png"
-    supported = FigureCanvasBase.get_supported_filetypes()
-    if fmt not in supported:
-        raise InputError(f"--plot {path}: format {fmt!r} is not supported "
-                         f"(suffixes: {', '.join(sorted(supported))})")
-
-
 def _analyse(args: argparse.Namespace) -> int:
     from propwhirl import io
     from propwhirl.analysis.stability import analyse
 
-    _check_outputs(json=args.json, csv=args.csv, plot=args.plot, summary_csv=args.summary_csv,
+    check_outputs(json=args.json, csv=args.csv, plot=args.plot, summary_csv=args.summary_csv,
                    events_csv=args.events_csv, animate=args.animate)
-    model = _load(args.model)
+    model = load_model(args.model)
     speeds = speed_grid(*args.speeds) if args.speeds else None
     with progress.spinner(f"analysing {limits.printable(model.name)}", quiet=args.quiet):
         a = analyse(model, speeds, vgf=True, method=args.method)
-    _echo(a.summary())
+    echo(a.summary())
     st = a.sweep.stats
     if "reduced_states" in st:
-        _echo(f"  method: reduced ({st['reduced_states']} of {model.dof_map().n_states} states:"
+        echo(f"  method: reduced ({st['reduced_states']} of {model.dof_map().n_states} states:"
               f" {st['reduced_r']} Ritz vectors, {st['reduced_L']} lag states); "
               f"{a.criticals.stats.get('corrected', 0)} of {len(a.criticals.points)} crossings "
               "converged on the full-order model")
@@ -288,7 +229,7 @@ def _analyse(args: argparse.Namespace) -> int:
         io.write_vgf_csv(a, args.csv)
         print(f"wrote {args.csv}")
     if args.summary:
-        _echo("\n" + a.flutter_summary().format(a.modes_of_interest(8 if args.plot_modes is None else args.plot_modes)))
+        echo("\n" + a.flutter_summary().format(a.modes_of_interest(8 if args.plot_modes is None else args.plot_modes)))
     for path, write in ((args.summary_csv, a.flutter_summary().to_csv),
                         (args.events_csv, a.events_csv)):
         if path:
@@ -341,7 +282,7 @@ def _modes(args: argparse.Namespace) -> int:
     from propwhirl.analysis.naming import kinetic_energy_shares
     from propwhirl.analysis.vibration import label_modes, model_modes
 
-    model = _load(args.model)
+    model = load_model(args.model)
     count = v.integer_at_least("--count", args.count, 1)
     modes, M = model_modes(model)
     dm = model.dof_map()
@@ -350,7 +291,7 @@ def _modes(args: argparse.Namespace) -> int:
     groups = ("bending", "torsion") + (("chordwise",) if "chordwise" in found else ()) + (
         "pitch", "yaw")                  # chordwise: in-plane bending (wing.EI_chordwise)
     share = kinetic_energy_shares(modes.shapes, M, {g: found.get(g, []) for g in groups})
-    _echo(f"{model.name}: in-vacuo modes (V = 0, not rotating; kinetic-energy shares)")
+    echo(f"{model.name}: in-vacuo modes (V = 0, not rotating; kinetic-energy shares)")
     print(f"  {'mode':12s} {'f [Hz]':>10s} " + " ".join(f"{g:>8s}" for g in groups))
     order = np.argsort(modes.omega, kind="stable")
     for r, i in enumerate(order[:count]):
@@ -358,7 +299,7 @@ def _modes(args: argparse.Namespace) -> int:
             label, f = names[r]
         else:  # no wing (isolated propeller): named by its dominant motion
             label, f = max(groups, key=lambda g: share[g][i]), float(modes.frequency_hz[i])
-        _echo(f"  {label:12s} {f:10.4f} " + " ".join(f"{share[g][i]:8.3f}" for g in groups))
+        echo(f"  {label:12s} {f:10.4f} " + " ".join(f"{share[g][i]:8.3f}" for g in groups))
     return 0
 
 
@@ -375,8 +316,8 @@ def _campbell(args: argparse.Namespace) -> int:
     from propwhirl import validate as v
     from propwhirl.analysis.vibration import campbell
 
-    _check_outputs(plot=args.plot)
-    model = _load(args.model)
+    check_outputs(plot=args.plot)
+    model = load_model(args.model)
     if not model.dof_map().propellers:       # a propeller wing or an isolated propeller
         raise InputError(f"{args.model}: a Campbell diagram needs a flexibly mounted propeller "
                          "(a propeller-wing model or an isolated propeller): this model has "
@@ -393,13 +334,13 @@ def _campbell(args: argparse.Namespace) -> int:
     count = v.integer_at_least("--count", args.count, 1)
     result = campbell(model, np.linspace(lo, hi, n_pts))
     count = min(count, result.n_modes)
-    _echo(f"{model.name}: natural frequencies [Hz] against propeller speed (no aerodynamics), "
+    echo(f"{model.name}: natural frequencies [Hz] against propeller speed (no aerodynamics), "
           "each mode followed from RPM 0")
     if len(set(result.rpm_ratio)) > 1:        # the propellers turn at different speeds
-        _echo("  RPM of propeller 1; " + ", ".join(
+        echo("  RPM of propeller 1; " + ", ".join(
             f"propeller {j + 1} at {r:.4g} x RPM" for j, r in enumerate(result.rpm_ratio)
             if j > 0))
-    _echo(f"  {'RPM':>8s} " + " ".join(f"{lab:>11s}" for lab in result.labels[:count]))
+    echo(f"  {'RPM':>8s} " + " ".join(f"{lab:>11s}" for lab in result.labels[:count]))
     for r, row in zip(result.rpm, result.frequency_hz):
         print(f"  {r:8.1f} " + " ".join(f"{x:11.3f}" for x in row[:count]))
     if not result.resolved.all():
@@ -430,7 +371,7 @@ def _case(args: argparse.Namespace) -> int:
     from propwhirl import io
 
     case = registry.get(args.name)  # an unknown name: one line listing the valid names
-    _check_outputs(save=args.save)
+    check_outputs(save=args.save)
     model = case.model()
     if args.save:
         io.save_model(model, args.save)

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import argparse
 
-from propwhirl.app.cli import _check_outputs, _echo
+from propwhirl.app.cli_common import check_outputs, echo
 from propwhirl.app.cli_studies import _model_or_case
 from propwhirl.validate import InputError
 
@@ -21,7 +21,7 @@ def _boundary(args: argparse.Namespace) -> int:
     from propwhirl.studies import boundary as B
     from propwhirl.studies import paths as P
 
-    _check_outputs(json=args.json, csv=args.csv, plot=args.plot)
+    check_outputs(json=args.json, csv=args.csv, plot=args.plot)
     model = _model_or_case(args.model)
     params = [P.resolve(model, p) for p in args.params]
     current = [p.value(model) for p in params]
@@ -38,7 +38,7 @@ def _boundary(args: argparse.Namespace) -> int:
     else:
         b = B.neutral_curve(model, args.params, lower, upper, args.speed,
                             oscillatory=args.oscillatory)
-    _echo(b.format())
+    echo(b.format())
     if args.json:
         b.save_json(args.json)
         print(f"wrote {args.json}")
@@ -94,12 +94,12 @@ def _add_boundary(sub) -> None:
 def _clearance(args: argparse.Namespace) -> int:
     from propwhirl.studies.clearance import clearance
 
-    _check_outputs(json=args.json, csv=args.csv, plot=args.plot)
+    check_outputs(json=args.json, csv=args.csv, plot=args.plot)
     model = _model_or_case(args.model)
     r = clearance(model, args.vd, args.factor, static_divergence=not args.thesis,
                   low_speed=not args.thesis, minimum=not args.no_minimum,
                   frequency_range=tuple(args.frequency_range))
-    _echo(r.format())
+    echo(r.format())
     if args.json:
         r.save_json(args.json)
         print(f"wrote {args.json}")
@@ -140,7 +140,7 @@ def _sensitivity(args: argparse.Namespace) -> int:
     from propwhirl.analysis.sensitivity import critical_sensitivities
     from propwhirl.analysis.stability import analyse
 
-    _check_outputs(json=args.json, plot=args.plot)
+    check_outputs(json=args.json, plot=args.plot)
     if args.top < 1:
         raise InputError(f"--top {args.top} is invalid: must be >= 1")
     model = _model_or_case(args.model)
@@ -155,7 +155,7 @@ def _sensitivity(args: argparse.Namespace) -> int:
             raise InputError(f"no {args.kind} onset in the analysed range")
         event = min(cands, key=lambda e: e.V)
     cs = critical_sensitivities(model, a, event)
-    _echo(cs.format(args.top))
+    echo(cs.format(args.top))
     if args.json:
         fileio.write_text(args.json, json.dumps(cs.to_dict(args.top), indent=1) + "\n",
                           what="sensitivities")

@@ -10,7 +10,7 @@ import numpy as np
 
 from propwhirl import fileio
 from propwhirl.app import execution_options
-from propwhirl.app.cli import _check_outputs, _echo, _load, speed_grid
+from propwhirl.app.cli_common import check_outputs, echo, load_model, speed_grid
 from propwhirl.cases import registry
 from propwhirl.validate import InputError
 
@@ -26,7 +26,7 @@ def _model_or_case(text: str):
     if text in registry.CASES and not Path(text).exists():
         return registry.case_model(text)
     if Path(text).suffix.lower() == ".toml" or Path(text).exists():
-        return _load(text)
+        return load_model(text)
     raise InputError(f"MODEL = {text!r} is invalid: neither a model file (.toml) nor a case "
                      f"name (one of {', '.join(registry.CASES)})")
 
@@ -72,7 +72,7 @@ def _study_options(args: argparse.Namespace) -> dict:
 def _write_study(result, args: argparse.Namespace, plot, checkpoint=None) -> None:
     """Print the result, report the failing points on stderr, write the outputs (then the
     partial-results file is removed)."""
-    _echo(result.format())
+    echo(result.format())
     execution_options.report_failures(np.ravel(result.columns["error"]))
     if args.json:
         fileio.write_text(args.json, result.to_json(), what="critical map")
@@ -89,9 +89,9 @@ def _write_study(result, args: argparse.Namespace, plot, checkpoint=None) -> Non
 def _list_parameters(model) -> int:
     from propwhirl.studies import paths
 
-    _echo(f"{model.name}: parameter paths (PATH* scales a distribution by a factor)")
+    echo(f"{model.name}: parameter paths (PATH* scales a distribution by a factor)")
     for p in paths.parameters(model):
-        _echo(f"  {p.describe()}")
+        echo(f"  {p.describe()}")
     return 0
 
 
@@ -103,7 +103,7 @@ def _sweep(args: argparse.Namespace) -> int:
         return _list_parameters(model)
     if args.param is None:
         raise InputError("sweep: give --param PATH START STOP N (see --list-params)")
-    _check_outputs(json=args.json, csv=args.csv, plot=args.plot)
+    check_outputs(json=args.json, csv=args.csv, plot=args.plot)
     path, values = _param_axis(args.param)
     opts = _study_options(args)
     result = sweeps.sweep(model, path, values, **opts)
@@ -124,7 +124,7 @@ def _map(args: argparse.Namespace) -> int:
     if not args.param or len(args.param) != 2:
         raise InputError(f"map: give --param PATH START STOP N twice (got "
                          f"{len(args.param or [])})")
-    _check_outputs(json=args.json, csv=args.csv, plot=args.plot)
+    check_outputs(json=args.json, csv=args.csv, plot=args.plot)
     first, second = (_param_axis(p) for p in args.param)
     n = len(first[1]) * len(second[1])
     if n > MAX_MAP_POINTS:
