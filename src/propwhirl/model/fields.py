@@ -247,6 +247,12 @@ def _checks(cls: type) -> tuple[_Check, ...]:
     return tuple(out)
 
 
+def declared_fields(cls: type) -> tuple[tuple[str, FieldSpec, str | None], ...]:
+    """Each field of a model dataclass that carries a :class:`FieldSpec`, in declaration
+    order: (name, spec, form — the spec's own or the one inferred from the type hint)."""
+    return tuple((c.name, c.spec, c.form) for c in _checks(cls))
+
+
 def _type_error(name: str, value: Any, expected: str) -> v.InputError:
     return v.fail(name, value, f"invalid: must be {expected}, got {type(value).__name__}")
 

@@ -46,7 +46,7 @@ from typing import Any, Callable, Iterable, Mapping, Sequence
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.model.fields import META_KEY, FieldSpec, Range, _checks
+from propwhirl.model.fields import FieldSpec, Range, declared_fields
 from propwhirl.model.propeller_aero import Distribution
 
 #: Fields that exclude each other (class name, field) → the field cleared when it is set.
@@ -244,10 +244,10 @@ class _Node:
 def _fields_of(obj: Any) -> dict[str, _Node]:
     """The declared fields of a dataclass instance (derived fields hidden)."""
     out = {}
-    for c in _checks(type(obj)):
-        if c.form in _HIDDEN_FORMS or c.name.startswith("_"):
+    for name, spec, form in declared_fields(type(obj)):
+        if form in _HIDDEN_FORMS or name.startswith("_"):
             continue
-        out[c.name] = _Node(c.spec, c.form, getattr(obj, c.name), type(obj).__name__)
+        out[name] = _Node(spec, form, getattr(obj, name), type(obj).__name__)
     return out
 
 
