@@ -9,7 +9,9 @@ Galerkin basis for that band and :class:`ReducedModel` projects the model on it,
 1. **In-vacuo modes** of the non-rotating structure (K φ = ω² M φ, M-orthonormal).  The
    *reference frequency* f_ref is the highest of: every propeller-dominated mode (pitch/yaw
    kinetic energy > ½), the second bending-dominated and the first torsion-dominated wing mode —
-   the modes of classical bending–torsion flutter and of whirl flutter.  Every mode with
+   the modes of classical bending–torsion flutter and of whirl flutter — and, on a wing that
+   bends in its plane, the first chordwise-dominated mode (the "chord" mode of the whirl-flutter
+   literature).  Every mode with
    f ≤ f_c = ``factor`` · f_ref (default :data:`CUTOFF_FACTOR` = 3) is kept.
 2. **Static correction** (modal acceleration): the static responses K⁻¹ ΔK(V) Φ to the
    aerodynamic stiffness ΔK = S3(V) − K of the kept modes at the middle and the top of the speed
@@ -92,11 +94,13 @@ def _reference_frequency(model, f: np.ndarray, shapes: np.ndarray, M: np.ndarray
     zero = np.zeros(f.size)
     prop = share.get("pitch", zero) + share.get("yaw", zero)
     bend, tors = share.get("bending", zero), share.get("torsion", zero)
+    chord = share.get("chordwise", zero)        # in-plane bending (wing.EI_chordwise)
     cands = list(f[prop > 0.5])
     wing = prop <= 0.5
-    b = f[wing & (bend >= tors)]
-    t = f[wing & (tors > bend)]
-    cands += list(b[:2]) + list(t[:1])
+    b = f[wing & (bend >= tors) & (bend >= chord)]
+    t = f[wing & (tors > bend) & (tors >= chord)]
+    c = f[wing & (chord > bend) & (chord > tors)]
+    cands += list(b[:2]) + list(t[:1]) + list(c[:1])
     return float(max(cands)) if cands else float(f[min(5, f.size - 1)])
 
 
