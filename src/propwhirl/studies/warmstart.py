@@ -17,8 +17,11 @@ the points of a map in two passes (three when a point needs it):
    model with wing DOFs — the wing's static divergence below V_top.  Both are then the lowest
    events of their kind over the whole range (the events below V_top do not depend on the
    range's top), so the row is the one a full-range analysis gives, to the crossing
-   accuracy ``xtol``.  Any other fine point (nothing found below V_top, an error, a corner
-   without an instability) is analysed again over the whole range.
+   accuracy ``xtol``.  Any other fine point (nothing found below V_top, an error) is
+   analysed again over the whole range.  A fine point is not clipped (analysed once, over the
+   whole range) when a corner of its cell failed, has no critical instability, or — on a
+   wing — has no wing divergence in the range: it would most likely not find one below its
+   top either, and be analysed twice.
 
 Nothing is estimated: a point's result always comes from its own analysis, and a neighbour
 only decides where that analysis may stop.  The passes are fixed by the grid alone, so the
@@ -71,12 +74,17 @@ def clipped_grid(grid: np.ndarray, top: float) -> np.ndarray | None:
     return np.append(g, top) if g.size >= 1 else None
 
 
-def _highest(row: dict[str, Any]) -> float:
+def _highest(row: dict[str, Any], has_wing: bool) -> float:
     """The highest speed a corner's row says matters: its critical speed and the wing's static
-    divergence speed (NaN when it has no critical instability or failed)."""
+    divergence speed.  NaN — the fine point is not clipped — when the corner has no critical
+    instability or failed, or (on a wing) has no divergence in the range: the fine point would
+    then most likely find none below its top either and be analysed twice."""
     if row.get("error") or row.get("kind") in ("none", "error"):
         return math.nan
-    return float(np.nanmax([row["critical_speed"], row["static_divergence_speed"]]))
+    sdiv = float(row["static_divergence_speed"])
+    if has_wing and not math.isfinite(sdiv):
+        return math.nan
+    return float(np.nanmax([row["critical_speed"], sdiv]))
 
 
 def _accepted(row: dict[str, Any], has_wing: bool) -> bool:
@@ -138,9 +146,11 @@ def warm_started_rows(variants: Sequence[Any], keys: Sequence[str], shape: tuple
 
     go(first, [grids[i] for i in first], PASSES[0])
     fine, fine_grids, tops = [], [], {}
+    wing = {i: not isinstance(variants[i], Exception) and variants[i].dof_map().has_wing
+            for i in range(n)}
     for i in (int(j) for j in flat[~is_coarse]):
         idx = np.unravel_index(i, shape)
-        corner = [_highest(rows[int(flat[c])]) for c in _corners(idx, coarse)]
+        corner = [_highest(rows[int(flat[c])], wing[i]) for c in _corners(idx, coarse)]
         full = grids[i]
         clip = None
         if full is not None and corner and all(math.isfinite(x) for x in corner):
@@ -150,14 +160,8 @@ def warm_started_rows(variants: Sequence[Any], keys: Sequence[str], shape: tuple
         if clip is not None:
             tops[i] = float(clip[-1])
     go(fine, fine_grids, PASSES[1])
-    again = []
-    for i in fine:
-        if i not in tops:
-            continue                         # analysed over its whole range already
-        model = variants[i]
-        has_wing = not isinstance(model, Exception) and model.dof_map().has_wing
-        if not _accepted(rows[i], has_wing):
-            again.append(i)
+    # a point not clipped was analysed over its whole range already
+    again = [i for i in fine if i in tops and not _accepted(rows[i], wing[i])]
     go(again, [grids[i] for i in again], PASSES[2])
     if stats is not None:
         stats.update(coarse=len(first), fine=len(fine), clipped=len(tops), again=len(again))
