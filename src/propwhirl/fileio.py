@@ -41,6 +41,18 @@ def _name(path: Path, what: str) -> str:
     return f"{what} {str(path)!r}" if what else repr(str(path))
 
 
+def read_json(path: str | Path, what: str):
+    """The parsed JSON of the file `path` (a `what`, e.g. "boundary file"): :func:`read_text`'s
+    errors, and one line naming the file when it is not JSON."""
+    import json
+
+    text = read_text(path, what)
+    try:
+        return json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise InputError(f"{path}: not JSON ({exc})") from None
+
+
 def read_text(path: str | Path, what: str, *, empty_ok: bool = False) -> str:
     """The UTF-8 text of the file `path` (a `what`, e.g. "analysis file"), with one-line
     errors naming it: not found, unreadable (the OS's reason), not UTF-8 (the byte), empty

@@ -241,12 +241,7 @@ class Boundary:
     @classmethod
     def load(cls, path: str | Path) -> "Boundary":
         """Read a boundary written by :meth:`save_json`."""
-        text = fileio.read_text(path, "boundary file")
-        try:
-            d = json.loads(text)
-        except json.JSONDecodeError as exc:
-            raise v.InputError(f"{path}: not JSON ({exc})") from None
-        return cls.from_dict(d, str(path))
+        return cls.from_dict(fileio.read_json(path, "boundary file"), str(path))
 
     def to_csv(self, path: str | Path | None = None) -> str:
         """One row per point: curve (from 1), point, the two parameters, the mode's data."""

@@ -28,9 +28,9 @@ import csv
 import io
 import json
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Any, Sequence
+from typing import Any
 
 import numpy as np
 from scipy.optimize import brentq
@@ -189,12 +189,7 @@ class Clearance:
     @classmethod
     def load(cls, path: str | Path) -> "Clearance":
         """Read a result written by :meth:`save_json`."""
-        text = fileio.read_text(path, "clearance file")
-        try:
-            d = json.loads(text)
-        except json.JSONDecodeError as exc:
-            raise v.InputError(f"{path}: not JSON ({exc})") from None
-        return cls.from_dict(d, str(path))
+        return cls.from_dict(fileio.read_json(path, "clearance file"), str(path))
 
     def to_csv(self, path: str | Path | None = None) -> str:
         """Two tables in one CSV: the instabilities (section "instability") and the minimum

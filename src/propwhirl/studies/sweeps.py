@@ -316,14 +316,9 @@ class CriticalMap:
     @classmethod
     def load(cls, path: str | Path) -> "CriticalMap":
         """Read a map written by :meth:`save` (JSON, or CSV by its suffix)."""
-        text = fileio.read_text(path, "critical map")
         if Path(path).suffix.lower() == ".csv":
-            return cls.from_csv(text, str(path))
-        try:
-            d = json.loads(text)
-        except json.JSONDecodeError as exc:
-            raise v.InputError(f"{path}: not JSON ({exc})") from None
-        return cls.from_dict(d, str(path))
+            return cls.from_csv(fileio.read_text(path, "critical map"), str(path))
+        return cls.from_dict(fileio.read_json(path, "critical map"), str(path))
 
     # ------------------------------------------------------------------ text
     def lowest(self) -> dict[str, Any] | None:
