@@ -139,7 +139,8 @@ def _plain_steps(roots: np.ndarray, perms: np.ndarray) -> tuple[np.ndarray, np.n
     than rounding) and no root changes type (real stays real, Im keeps its sign, at most one
     pair).  For a plain step :func:`_follow_substep` from the roots at m − 1 in *any* order σ
     returns the roots at m in the order σ composed with that assignment, so a run of plain
-    steps is followed by composing permutations (vectorised over the sub-steps)."""
+    steps is followed by composing permutations (the assignments found for all sub-steps in
+    one vectorised pass)."""
     k = roots.shape[1]
     D = np.abs(roots[:-1, :, None] - roots[1:, None, :])                 # (m, k, k)
     cost = D[:, np.arange(k)[None, :], perms].sum(axis=2)               # (m, n_perm)
@@ -170,21 +171,14 @@ def _follow_substeps(track: np.ndarray, roots: np.ndarray, S: np.ndarray, coeffs
     on every sub-step — runs of plain sub-steps (:func:`_plain_steps`) by composing their
     assignments, which gives the same roots in the same order without a call per sub-step."""
     best, plain = _plain_steps(roots, perms)
-    sigma = None
-    m = 1
-    while m < S.size:
+    sigma = None                       # track[m - 1] = roots[m - 1][sigma], when known
+    for m in range(1, S.size):
         if sigma is not None and plain[m - 1]:
-            end = m
-            while end + 1 < S.size and plain[end]:
-                end += 1
-            for t in range(m, end + 1):          # compose the plain assignments
-                sigma = perms[best[t - 1]][sigma]
-                track[t] = roots[t][sigma]
-            m = end + 1
-            continue
-        track[m] = _follow_substep(track[m - 1], roots[m], S[m - 1], S[m], coeffs, perms, 0)
-        sigma = _order_of(track[m], roots[m])
-        m += 1
+            sigma = perms[best[m - 1]][sigma]
+            track[m] = roots[m][sigma]
+        else:
+            track[m] = _follow_substep(track[m - 1], roots[m], S[m - 1], S[m], coeffs, perms, 0)
+            sigma = _order_of(track[m], roots[m])
 
 
 def _follow_cluster(ca, dca, cb, dcb, la, lb, h, margin):
@@ -221,7 +215,6 @@ def _follow_cluster(ca, dca, cb, dcb, la, lb, h, margin):
     scale = max(float(np.max(np.abs(la))), float(np.max(np.abs(lb))), 1e-300)
     track = np.empty((S.size, k), dtype=complex)
     track[0] = la
-    cur = la.astype(complex).copy()
     perms = np.array(list(itertools.permutations(range(k))))
     _follow_substeps(track, roots, S, coeffs, perms)
     cur = track[-1]

@@ -165,7 +165,7 @@ def warm_started_rows(variants: Sequence[Any], keys: Sequence[str], shape: tuple
     go(again, [grids[i] for i in again], PASSES[2])
     if stats is not None:
         stats.update(coarse=len(first), fine=len(fine), clipped=len(tops), again=len(again))
-    return [r for r in rows]  # every point filled by one of the passes
+    return rows  # every point filled by one of the passes
 
 
 __all__ = ["warm_started_rows", "clipped_grid", "coarse_indices", "pass_checkpoints", "PASSES",
