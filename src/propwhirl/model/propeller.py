@@ -288,6 +288,12 @@ class Propeller:
         (J = π tan(β − 3°) = 1.96 at 35°, Table 9.3; 221 m/s at 4433 RPM, Table 9.5);
         "blade_element": 0.75 tan(β_0.75 − α_0L), zero lift at 0.75 R (Table 4.1).
         """
+        return self._advance_ratio
+
+    @functools.cached_property
+    def _advance_ratio(self) -> float:
+        """:attr:`advance_ratio`, computed once per propeller (it is immutable; every
+        evaluation of a windmilling propeller's blocks asks for it)."""
         return float(advance_ratio_from_blade_angle(
             np.radians(self.beta_075_deg), np.radians(self.zero_lift_angle_deg), self.advance_rule))
 

@@ -74,6 +74,20 @@ ELEMENT_UNITS = dict(length="m", m="kg/m", rho_Ip="kg m", x_alpha_b="m", EI="N m
                      EI_chordwise="N m^2")
 
 
+
+def _stack_blocks(rows: list[list[np.ndarray]]) -> np.ndarray:
+    """``np.block(rows)`` of a 2 × 2 block matrix of stacks (nV, r_i, c_j) — the same
+    values, without np.block's generality (it is called for every propeller at every
+    evaluation of the blocks)."""
+    (a, b), (c, d) = rows
+    r1, c1 = a.shape[-2:]
+    out = np.empty(a.shape[:-2] + (r1 + c.shape[-2], c1 + b.shape[-1]))
+    out[..., :r1, :c1] = a
+    out[..., :r1, c1:] = b
+    out[..., r1:, :c1] = c
+    out[..., r1:, c1:] = d
+    return out
+
 @dataclass(frozen=True)
 class Installation:
     """A propeller attached to the wing at spanwise position y [m], anywhere in (0, semi_span].
@@ -188,8 +202,22 @@ class PropellerWing(StateSpaceModel):
         return wing.with_stations(ys, names, paths)
 
     def with_(self, **changes) -> "PropellerWing":
-        """A copy with fields replaced (switches, flight condition, ...)."""
-        return replace(self, **changes)
+        """A copy with fields replaced (switches, flight condition, ...); it shares the
+        speed-independent matrices that the change leaves as they are (:meth:`_shared`)."""
+        return self._shared(replace(self, **changes))
+
+    def _shared(self, other: "PropellerWing") -> "PropellerWing":
+        """``other`` (a copy of this model with fields replaced) given this model's memo of
+        what it leaves unchanged: the wing structure if it has the same wing, the propeller
+        constants if it also has the same propellers and flight condition (same objects)."""
+        if other.wing is self.wing and "structure" in self._memo:
+            other._memo.setdefault("structure", self._memo["structure"])
+        if (other.wing is self.wing and other.propellers is self.propellers
+                and other.flight is self.flight):
+            for key, value in self._memo.items():
+                if isinstance(key, tuple) and key[0] == "propeller constants":
+                    other._memo.setdefault(key, value)
+        return other
 
     # ------------------------------------------------------------------ layout
     @property
@@ -226,6 +254,29 @@ class PropellerWing(StateSpaceModel):
         """The arguments of the generated propeller blocks (inertia, mounts, spin, derivatives)."""
         inst = self.propellers[j]
         p = inst.propeller
+        if not self.rotating:
+            Omega = np.zeros_like(V)
+        elif omega is not None:
+            Omega = p.rotation * np.broadcast_to(np.asarray(omega, dtype=float), V.shape)
+        else:
+            Omega = p.spin_rate(V)
+        values = dict(self._propeller_constants(j), Omega=Omega, V=V)
+        if self.propeller_aero and inst.aero:
+            memo = {} if derivatives is None else derivatives
+            key = _design_key(p)
+            if key not in memo:
+                memo[key] = p.aerodynamic_derivatives(V, self.flight.speed_of_sound)
+            values.update(memo[key])
+        return values
+
+    def _propeller_constants(self, j: int) -> dict:
+        """The speed-independent arguments of propeller j's generated blocks (inertia about the
+        pivots and the elastic axis, 8.5–8.6, 8.35; mount stiffness and damping; geometry),
+        computed once per model."""
+        key = ("propeller constants", j)
+        if key in self._memo:
+            return self._memo[key]
+        p = self.propellers[j].propeller
         node = self.nodes[j]
         a_b = self.wing.node_properties()
         ea = a_b["a"][node] * a_b["b"][node]  # elastic axis aft of mid-chord [m] (a_P b_P)
@@ -234,26 +285,14 @@ class PropellerWing(StateSpaceModel):
             inertia["M_P"], inertia["S_theta_P"], inertia["I_theta_P"], p.pivot_pitch, ea
         )[..., 0]
         e_alpha = float(prop_flexwing.e_alpha_geometry(p.e_theta, p.pivot_pitch, ea)[..., 0, 0])
-        if not self.rotating:
-            Omega = np.zeros_like(V)
-        elif omega is not None:
-            Omega = p.rotation * np.broadcast_to(np.asarray(omega, dtype=float), V.shape)
-        else:
-            Omega = p.spin_rate(V)
         Kt, Kp = p.stiffness()
         zt, zp = p.viscous_damping_ratios()
         values = dict(
             inertia, S_alpha_P=S_alpha, I_alpha_P=I_alpha, I_theta_alpha_P=I_theta_alpha,
-            I_Omega=p.I_Omega, Omega=Omega, K_theta=Kt, K_psi=Kp, zeta_theta=zt, zeta_psi=zp,
-            rho=self.flight.density, V=V, R=p.radius, e_theta=p.e_theta, e_psi=p.e_psi,
+            I_Omega=p.I_Omega, K_theta=Kt, K_psi=Kp, zeta_theta=zt, zeta_psi=zp,
+            rho=self.flight.density, R=p.radius, e_theta=p.e_theta, e_psi=p.e_psi,
             e_alpha=e_alpha,
         )
-        if self.propeller_aero and inst.aero:
-            memo = {} if derivatives is None else derivatives
-            key = _design_key(p)
-            if key not in memo:
-                memo[key] = p.aerodynamic_derivatives(V, self.flight.speed_of_sound)
-            values.update(memo[key])
         if self.wing.in_plane:
             m = np.array([pm.mass for pm in p.all_masses])
             x = np.array([pm.x for pm in p.all_masses])
@@ -262,6 +301,7 @@ class PropellerWing(StateSpaceModel):
                 inertia["M_P"], S_psi, inertia["I_psi_P"], p.pivot_yaw, ea)[..., 0]
             values.update(S_psi_P=S_psi, l_psi=p.pivot_yaw, a_P_b_P=ea, I_chi_P=I_chi,
                           I_psi_chi_P=I_psi_chi)
+        self._memo[key] = values
         return values
 
     def _propeller_matrices(self, j: int, values: dict):
@@ -279,11 +319,11 @@ class PropellerWing(StateSpaceModel):
             aero = {n: z for n in ("Aa", "Ba", "Ca", "Da", "Ea", "Fa", "P1", "P2", "P3", "P4", "P5", "P6")}
         if inst.mount == "rigid":
             return get("Gs") - aero["P2"], -aero["P4"], -aero["P6"]
-        M = np.block([[get("As") - aero["Aa"], get("Bs") - aero["Ba"]],
+        M = _stack_blocks([[get("As") - aero["Aa"], get("Bs") - aero["Ba"]],
                       [get("Fs") - aero["P1"], get("Gs") - aero["P2"]]])
-        C = np.block([[get("Cs_viscous") - aero["Ca"], get("Ds") - aero["Da"]],
+        C = _stack_blocks([[get("Cs_viscous") - aero["Ca"], get("Ds") - aero["Da"]],
                       [get("Hs") - aero["P3"], -aero["P4"]]])
-        K = np.block([[get("Es") - aero["Ea"], -aero["Fa"]],
+        K = _stack_blocks([[get("Es") - aero["Ea"], -aero["Fa"]],
                       [-aero["P5"], -aero["P6"]]])
         return M, C, K
 
@@ -307,11 +347,11 @@ class PropellerWing(StateSpaceModel):
             a.update({n: z4 for n in ("P2", "P4", "P6")})
         if inst.mount == "rigid":
             return s["Gs"] - a["P2"], s["Js"] - a["P4"], -a["P6"]
-        M = np.block([[s8["As"] - a8["Aa"], s["Bs"] - a["Ba"]],
+        M = _stack_blocks([[s8["As"] - a8["Aa"], s["Bs"] - a["Ba"]],
                       [s["Fs"] - a["P1"], s["Gs"] - a["P2"]]])
-        C = np.block([[s8["Cs_viscous"] - a8["Ca"], s["Ds"] - a["Da"]],
+        C = _stack_blocks([[s8["Cs_viscous"] - a8["Ca"], s["Ds"] - a["Da"]],
                       [s["Hs"] - a["P3"], s["Js"] - a["P4"]]])
-        K = np.block([[s8["Es"] - a8["Ea"], -a["Fa"]],
+        K = _stack_blocks([[s8["Es"] - a8["Ea"], -a["Fa"]],
                       [-a["P5"], -a["P6"]]])
         return M, C, K
 
@@ -439,8 +479,11 @@ class PropellerWing(StateSpaceModel):
                            keep_q, keep_w)
 
     def without_aerodynamics(self) -> "PropellerWing":
-        """The same wing and propellers with wing and propeller aerodynamics off."""
-        return replace(self, wing_aero=False, propeller_aero=False)
+        """The same wing and propellers with wing and propeller aerodynamics off (made once
+        per model: the analyses of one model ask for it several times)."""
+        if "quiet" not in self._memo:
+            self._memo["quiet"] = self.with_(wing_aero=False, propeller_aero=False)
+        return self._memo["quiet"]
 
     def dof_map(self) -> DofMap:
         """The states of :meth:`second_order`: the free wing DOFs (node ≥ 1: h, φ, α, eq. 7.20),
