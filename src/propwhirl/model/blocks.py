@@ -20,7 +20,7 @@ freedom and lag states remain (root removed, 7.59).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.sparse as sp
@@ -125,6 +125,21 @@ class BlockSystem:
         kq = self.keep_q
         return S[:, kq[:, None], kq[None, :]]
 
+    def take(self, t: np.ndarray) -> "BlockSystem":
+        """The system at the speed indices ``t`` (an integer array into :attr:`V`)."""
+        t = np.asarray(t, dtype=int)
+        blocks = tuple(replace(b, S1=b.S1[t], S2=b.S2[t], S3=b.S3[t]) for b in self.blocks)
+        lg = self.lag
+        lag = None if lg is None else replace(lg, S4=lg.S4[t], Ww=lg.Ww[t], Wv=lg.Wv[t],
+                                               Wq=lg.Wq[t])
+        return replace(self, V=self.V[t], blocks=blocks, lag=lag)
+
+    def speed_arrays(self) -> list[np.ndarray]:
+        """Every array of the system with a leading speed axis."""
+        out = [self.V] + [x for b in self.blocks for x in (b.S1, b.S2, b.S3)]
+        lg = self.lag
+        return out if lg is None else out + [lg.S4, lg.Ww, lg.Wv, lg.Wq]
+
     # ------------------------------------------------------------------ sparse pencil
     def _positions(self) -> tuple[int, int, np.ndarray, np.ndarray]:
         """n, m and the pencil position of every full DOF and lag state (removed: negative)."""
@@ -212,6 +227,47 @@ class BlockSystem:
         Wv = _sandwich(G, lg.Wv, P)
         Wq = _sandwich(G, lg.Wq, P)
         return (*S, S4, Ww, Wv, Wq)
+
+
+class RecentBlocks:
+    """The last few :class:`BlockSystem` evaluations of one model, for speeds asked for again.
+
+    An analysis evaluates some speeds twice: the full-order correction of a crossing at the
+    speed its reduced refinement evaluated, the shape of a branch point at a speed of its
+    bracket, the in-vacuo matrices at 1 m/s for the names, content and participation of the
+    modes.  A request whose speeds all lie in one kept evaluation is answered from it
+    (:meth:`BlockSystem.take`: the same values — the blocks are elementwise in V); others
+    are evaluated and kept.  At most ``max_batches`` evaluations of at most ``max_speeds``
+    speeds in all are kept (the oldest dropped first), their arrays read-only.
+    """
+
+    def __init__(self, max_batches: int = 8, max_speeds: int = 64) -> None:
+        self.max_batches, self.max_speeds = max_batches, max_speeds
+        self._kept: list[tuple[dict[float, int], BlockSystem]] = []
+
+    def get(self, V: np.ndarray) -> BlockSystem | None:
+        """The blocks at the speeds V [m/s] from one kept evaluation, or None."""
+        speeds = V.tolist()
+        for index, b in self._kept:
+            t = [index.get(x) for x in speeds]
+            if None not in t:
+                return b if t == list(range(b.V.size)) else b.take(np.array(t))
+        return None
+
+    def add(self, b: BlockSystem) -> BlockSystem:
+        """Keep ``b`` (if small enough) and return it."""
+        if b.V.size > self.max_speeds:
+            return b
+        for x in b.speed_arrays():
+            x.flags.writeable = False
+        self._kept.insert(0, ({x: i for i, x in enumerate(b.V.tolist())}, b))
+        total = 0
+        for k, (_, kept) in enumerate(self._kept):
+            total += kept.V.size
+            if k >= self.max_batches or total > self.max_speeds:
+                del self._kept[k:]
+                break
+        return b
 
 
 def _sandwich(P: np.ndarray, B: np.ndarray, R: np.ndarray) -> np.ndarray:

@@ -53,7 +53,7 @@ from propwhirl.generated import (beam_element, beam_inplane, prop_flexwing,
                                  prop_flexwing_inplane, prop_rigid)
 from propwhirl.model.flight import SPEED_OF_SOUND_8000FT, FlightCondition  # noqa: F401 (re-export)
 from propwhirl.model.propeller import Propeller
-from propwhirl.model.blocks import BlockSystem, LagBlocks, LocalBlocks
+from propwhirl.model.blocks import BlockSystem, LagBlocks, LocalBlocks, RecentBlocks
 from propwhirl.model.protocol import DofMap, PropellerDofs
 from propwhirl.model import validity
 from propwhirl.model.base import StateSpaceModel
@@ -432,6 +432,15 @@ class PropellerWing(StateSpaceModel):
             return self._blocks(V, omega)
 
     def _blocks(self, V: np.ndarray, omega) -> BlockSystem:
+        """The blocks of the system at the airspeeds V [m/s] (:meth:`_evaluate_blocks`); at
+        speeds evaluated a moment ago (own rotational speeds), the kept evaluation's
+        (:class:`~propwhirl.model.blocks.RecentBlocks`)."""
+        if omega is not None:
+            return self._evaluate_blocks(V, omega)
+        recent = self._memo.setdefault("recent blocks", RecentBlocks())
+        return recent.get(V) or recent.add(self._evaluate_blocks(V, None))
+
+    def _evaluate_blocks(self, V: np.ndarray, omega) -> BlockSystem:
         """The blocks of the system: the wing structure (7.9–7.22), the strip aerodynamics of
         each node (signs applied: S1 = M − M_a, ...), each propeller's block at its node."""
         wing = self.wing
