@@ -49,10 +49,11 @@ from propwhirl.model.assembly import (
     wing_dof_labels,
     wing_structure,
 )
-from propwhirl.generated import (beam_element, beam_inplane, prop_flexwing,
-                                 prop_flexwing_inplane, prop_rigid)
+from propwhirl.generated import beam_element, beam_inplane, prop_rigid
 from propwhirl.model.flight import SPEED_OF_SOUND_8000FT, FlightCondition  # noqa: F401 (re-export)
 from propwhirl.model.propeller import Propeller
+from propwhirl.model.propeller_blocks import (propeller_constants, propeller_matrices,
+                                             propeller_values)
 from propwhirl.model.blocks import BlockSystem, LagBlocks, LocalBlocks, RecentBlocks
 from propwhirl.model.protocol import DofMap, PropellerDofs
 from propwhirl.model import validity
@@ -75,18 +76,6 @@ ELEMENT_UNITS = dict(length="m", m="kg/m", rho_Ip="kg m", x_alpha_b="m", EI="N m
 
 
 
-def _stack_blocks(rows: list[list[np.ndarray]]) -> np.ndarray:
-    """``np.block(rows)`` of a 2 × 2 block matrix of stacks (nV, r_i, c_j) — the same
-    values, without np.block's generality (it is called for every propeller at every
-    evaluation of the blocks)."""
-    (a, b), (c, d) = rows
-    r1, c1 = a.shape[-2:]
-    out = np.empty(a.shape[:-2] + (r1 + c.shape[-2], c1 + b.shape[-1]))
-    out[..., :r1, :c1] = a
-    out[..., :r1, c1:] = b
-    out[..., r1:, :c1] = c
-    out[..., r1:, c1:] = d
-    return out
 
 @dataclass(frozen=True)
 class Installation:
@@ -110,12 +99,6 @@ class Installation:
 
     def __post_init__(self) -> None:
         check_fields(self)  # a Propeller, y in range, mount one of the two, aero a bool
-
-
-def _design_key(p: Propeller) -> int:
-    """Key of a propeller in a derivatives memo: its identity (installations sharing one
-    Propeller object share its derivatives; equality would ignore fields compared loosely)."""
-    return id(p)
 
 
 def node_at(wing: Wing, y: float, tol: float = 1e-6, name: str = "propeller position y",
@@ -251,109 +234,16 @@ class PropellerWing(StateSpaceModel):
 
     def _propeller_values(self, j: int, V: np.ndarray, omega: np.ndarray | None = None,
                           derivatives: dict | None = None) -> dict:
-        """The arguments of the generated propeller blocks (inertia, mounts, spin, derivatives)."""
-        inst = self.propellers[j]
-        p = inst.propeller
-        if not self.rotating:
-            Omega = np.zeros_like(V)
-        elif omega is not None:
-            Omega = p.rotation * np.broadcast_to(np.asarray(omega, dtype=float), V.shape)
-        else:
-            Omega = p.spin_rate(V)
-        values = dict(self._propeller_constants(j), Omega=Omega, V=V)
-        if self.propeller_aero and inst.aero:
-            memo = {} if derivatives is None else derivatives
-            key = _design_key(p)
-            if key not in memo:
-                memo[key] = p.aerodynamic_derivatives(V, self.flight.speed_of_sound)
-            values.update(memo[key])
-        return values
+        """:func:`propwhirl.model.propeller_blocks.propeller_values` of propeller j."""
+        return propeller_values(self, j, V, omega, derivatives)
 
     def _propeller_constants(self, j: int) -> dict:
-        """The speed-independent arguments of propeller j's generated blocks (inertia about the
-        pivots and the elastic axis, 8.5–8.6, 8.35; mount stiffness and damping; geometry),
-        computed once per model."""
-        key = ("propeller constants", j)
-        if key in self._memo:
-            return self._memo[key]
-        p = self.propellers[j].propeller
-        node = self.nodes[j]
-        a_b = self.wing.node_properties()
-        ea = a_b["a"][node] * a_b["b"][node]  # elastic axis aft of mid-chord [m] (a_P b_P)
-        inertia = p.pivot_inertia()
-        S_alpha, I_alpha, I_theta_alpha = prop_flexwing.inertia(
-            inertia["M_P"], inertia["S_theta_P"], inertia["I_theta_P"], p.pivot_pitch, ea
-        )[..., 0]
-        e_alpha = float(prop_flexwing.e_alpha_geometry(p.e_theta, p.pivot_pitch, ea)[..., 0, 0])
-        Kt, Kp = p.stiffness()
-        zt, zp = p.viscous_damping_ratios()
-        values = dict(
-            inertia, S_alpha_P=S_alpha, I_alpha_P=I_alpha, I_theta_alpha_P=I_theta_alpha,
-            I_Omega=p.I_Omega, K_theta=Kt, K_psi=Kp, zeta_theta=zt, zeta_psi=zp,
-            rho=self.flight.density, R=p.radius, e_theta=p.e_theta, e_psi=p.e_psi,
-            e_alpha=e_alpha,
-        )
-        if self.wing.in_plane:
-            m = np.array([pm.mass for pm in p.all_masses])
-            x = np.array([pm.x for pm in p.all_masses])
-            S_psi = float(np.sum(m * (x - p.pivot_yaw)))
-            I_chi, I_psi_chi = prop_flexwing_inplane.inplane_inertia(
-                inertia["M_P"], S_psi, inertia["I_psi_P"], p.pivot_yaw, ea)[..., 0]
-            values.update(S_psi_P=S_psi, l_psi=p.pivot_yaw, a_P_b_P=ea, I_chi_P=I_chi,
-                          I_psi_chi_P=I_psi_chi)
-        self._memo[key] = values
-        return values
+        """:func:`propwhirl.model.propeller_blocks.propeller_constants` of propeller j."""
+        return propeller_constants(self, j)
 
     def _propeller_matrices(self, j: int, values: dict):
-        """(M, C, K) of propeller j from :meth:`_propeller_values`."""
-        inst = self.propellers[j]
-        nV = np.shape(values["V"])[0]
-        shape = (nV,)
-        if self.wing.in_plane:
-            return self._propeller_matrices_inplane(j, values)
-        get = call_blocks(prop_flexwing, "structure_blocks", shape, **values).__getitem__
-        if self.propeller_aero and inst.aero:
-            aero = call_blocks(prop_flexwing, "aero_blocks", shape, **values)
-        else:
-            z = np.zeros((nV, 2, 2))
-            aero = {n: z for n in ("Aa", "Ba", "Ca", "Da", "Ea", "Fa", "P1", "P2", "P3", "P4", "P5", "P6")}
-        if inst.mount == "rigid":
-            return get("Gs") - aero["P2"], -aero["P4"], -aero["P6"]
-        M = _stack_blocks([[get("As") - aero["Aa"], get("Bs") - aero["Ba"]],
-                      [get("Fs") - aero["P1"], get("Gs") - aero["P2"]]])
-        C = _stack_blocks([[get("Cs_viscous") - aero["Ca"], get("Ds") - aero["Da"]],
-                      [get("Hs") - aero["P3"], -aero["P4"]]])
-        K = _stack_blocks([[get("Es") - aero["Ea"], -aero["Fa"]],
-                      [-aero["P5"], -aero["P6"]]])
-        return M, C, K
-
-    def _propeller_matrices_inplane(self, j: int, values: dict):
-        """(M, C, K) of propeller j with in-plane bending: 6×6 over [θ, ψ, h_P, α_P, v_P, χ_P]
-        (flexible) or 4×4 over [h_P, α_P, v_P, χ_P] (rigid).  The θ–ψ blocks A, C, E are
-        chapter 8's (prop_flexwing), the others prop_flexwing_inplane's."""
-        inst = self.propellers[j]
-        nV = np.shape(values["V"])[0]
-        shape = (nV,)
-        s8 = call_blocks(prop_flexwing, "structure_blocks", shape, **values)
-        s = call_blocks(prop_flexwing_inplane, "structure_blocks", shape, **values)
-        if self.propeller_aero and inst.aero:
-            a8 = call_blocks(prop_flexwing, "aero_blocks", shape, **values)
-            a = call_blocks(prop_flexwing_inplane, "aero_blocks", shape, **values)
-        else:
-            z2, z24, z4 = np.zeros((nV, 2, 2)), np.zeros((nV, 2, 4)), np.zeros((nV, 4, 4))
-            a8 = {n: z2 for n in ("Aa", "Ca", "Ea")}
-            a = {n: z24 for n in ("Ba", "Da", "Fa")}
-            a.update({n: z24.transpose(0, 2, 1) for n in ("P1", "P3", "P5")})
-            a.update({n: z4 for n in ("P2", "P4", "P6")})
-        if inst.mount == "rigid":
-            return s["Gs"] - a["P2"], s["Js"] - a["P4"], -a["P6"]
-        M = _stack_blocks([[s8["As"] - a8["Aa"], s["Bs"] - a["Ba"]],
-                      [s["Fs"] - a["P1"], s["Gs"] - a["P2"]]])
-        C = _stack_blocks([[s8["Cs_viscous"] - a8["Ca"], s["Ds"] - a["Da"]],
-                      [s["Hs"] - a["P3"], s["Js"] - a["P4"]]])
-        K = _stack_blocks([[s8["Es"] - a8["Ea"], -a["Fa"]],
-                      [-a["P5"], -a["P6"]]])
-        return M, C, K
+        """(M, C, K) of propeller j (:func:`propwhirl.model.propeller_blocks.propeller_matrices`)."""
+        return propeller_matrices(self, j, values)
 
     def _propeller_dofs(self, j: int) -> tuple[str, ...]:
         """Global DOF labels of propeller j's local block ([θ, ψ,] h, α [, v, χ] at its node)."""
@@ -497,7 +387,12 @@ class PropellerWing(StateSpaceModel):
     def dof_map(self) -> DofMap:
         """The states of :meth:`second_order`: the free wing DOFs (node ≥ 1: h, φ, α, eq. 7.20),
         with in-plane bending the in-plane v, χ of nodes ≥ 1, then θ, ψ of each flexibly
-        mounted propeller, then the lag states of nodes ≥ 1."""
+        mounted propeller, then the lag states of nodes ≥ 1 (made once per model)."""
+        if "dof map" not in self._memo:
+            self._memo["dof map"] = self._new_dof_map()
+        return self._memo["dof map"]
+
+    def _new_dof_map(self) -> DofMap:
         nn = self.wing.n_nodes
         keep = free_dofs(nn)
         labels = list(np.asarray(wing_dof_labels(nn), dtype=object)[keep])
