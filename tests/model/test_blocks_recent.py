@@ -67,12 +67,22 @@ def test_variants_share_the_structure_and_the_quiet_model_is_made_once():
     m.second_order_blocks(np.array([10.0]))
     q = m.without_aerodynamics()
     assert q is m.without_aerodynamics()
-    assert q._memo["structure"] is m._memo["structure"]
+    assert q._memo["wing"]["structure"] is m._memo["wing"]["structure"]
     assert not q.wing_aero and not q.propeller_aero
     stiff = m.with_(wing=replace(m.wing, rayleigh=(0.1, 1e-4)))      # a new wing
     stiff.second_order_blocks(np.array([10.0]))
-    assert stiff._memo["structure"] is not m._memo["structure"]
-    assert not np.array_equal(stiff._memo["structure"][1], m._memo["structure"][1])
+    assert stiff._memo["wing"]["structure"] is not m._memo["wing"]["structure"]
+    assert not np.array_equal(stiff._memo["wing"]["structure"][1], m._memo["wing"]["structure"][1])
     thin = m.with_(flight=replace(m.flight, density=0.5))             # the same wing
-    assert thin._memo["structure"] is m._memo["structure"]
-    assert ("propeller constants", 0) not in thin._memo               # ρ is one of them
+    assert thin._memo["wing"]["structure"] is m._memo["wing"]["structure"]
+    thin.second_order_blocks(np.array([10.0]))
+    assert thin._memo["installations"] is not m._memo["installations"]   # ρ is one of them
+
+
+def test_a_variant_made_before_any_evaluation_shares_what_it_computes():
+    m = wingtip_propeller_wing()
+    q = m.with_(rotating=False).without_aerodynamics()       # as the reduced basis makes it
+    q.second_order_blocks(np.array([1.0]))
+    m.second_order_blocks(np.array([1.0]))
+    assert m._memo["wing"]["structure"] is q._memo["wing"]["structure"]
+    assert m._memo["installations"][0] is q._memo["installations"][0]

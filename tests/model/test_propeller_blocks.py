@@ -20,7 +20,7 @@ def test_propeller_constants_are_computed_once_and_do_not_leak_into_values():
     m = wingtip_propeller_wing()
     V = np.array([100.0, 200.0])
     v1 = m._propeller_values(0, V)
-    const = m._memo[("propeller constants", 0)]
+    const = m._memo["installations"][0]
     assert "V" not in const and "Omega" not in const and "CZ_theta" not in const
     v1["K_theta"] = -1.0                                 # the caller's dict, not the memo
     v2 = m._propeller_values(0, V)

@@ -193,7 +193,8 @@ class _GyroscopicSystem:
         if basis is not None:
             return cls.of(model, rpm_ratio)._projected(np.asarray(basis))
         if model.dof_map().has_wing and (rpm_ratio is None or all(r == 1.0 for r in rpm_ratio)):
-            quiet = model.with_(wing_aero=False, propeller_aero=False, rotating=True)
+            quiet = (model.without_aerodynamics() if model.rotating
+                     else model.with_(wing_aero=False, propeller_aero=False, rotating=True))
 
             def matrices(omega: np.ndarray):
                 omega = np.asarray(omega, dtype=float)

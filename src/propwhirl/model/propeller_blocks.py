@@ -60,10 +60,11 @@ def propeller_values(model, j: int, V: np.ndarray, omega: np.ndarray | None = No
 def propeller_constants(model, j: int) -> dict:
     """The speed-independent arguments of propeller j's generated blocks (inertia about the
     pivots and the elastic axis, 8.5–8.6, 8.35; mount stiffness and damping; geometry),
-    computed once per model."""
-    key = ("propeller constants", j)
-    if key in model._memo:
-        return model._memo[key]
+    computed once per model (and shared by its variants with the same wing, propellers
+    and flight condition, :meth:`PropellerWing._shared`)."""
+    memo = model._memo.setdefault("installations", {})
+    if j in memo:
+        return memo[j]
     p = model.propellers[j].propeller
     node = model.nodes[j]
     a_b = model.wing.node_properties()
@@ -89,7 +90,7 @@ def propeller_constants(model, j: int) -> dict:
             inertia["M_P"], S_psi, inertia["I_psi_P"], p.pivot_yaw, ea)[..., 0]
         values.update(S_psi_P=S_psi, l_psi=p.pivot_yaw, a_P_b_P=ea, I_chi_P=I_chi,
                       I_psi_chi_P=I_psi_chi)
-    model._memo[key] = values
+    memo[j] = values
     return values
 
 

@@ -190,16 +190,15 @@ class PropellerWing(StateSpaceModel):
         return self._shared(replace(self, **changes))
 
     def _shared(self, other: "PropellerWing") -> "PropellerWing":
-        """``other`` (a copy of this model with fields replaced) given this model's memo of
-        what it leaves unchanged: the wing structure if it has the same wing, the propeller
-        constants if it also has the same propellers and flight condition (same objects)."""
-        if other.wing is self.wing and "structure" in self._memo:
-            other._memo.setdefault("structure", self._memo["structure"])
-        if (other.wing is self.wing and other.propellers is self.propellers
-                and other.flight is self.flight):
-            for key, value in self._memo.items():
-                if isinstance(key, tuple) and key[0] == "propeller constants":
-                    other._memo.setdefault(key, value)
+        """``other`` (a copy of this model with fields replaced) sharing this model's memos of
+        what the change leaves as it is: the wing's (its structure) if it has the same wing,
+        the installations' (the propeller constants) if it also has the same propellers and
+        flight condition (same objects).  Shared, not copied: whichever of them computes an
+        entry first computes it for both."""
+        if other.wing is self.wing:
+            other._memo["wing"] = self._memo.setdefault("wing", {})
+            if other.propellers is self.propellers and other.flight is self.flight:
+                other._memo["installations"] = self._memo.setdefault("installations", {})
         return other
 
     # ------------------------------------------------------------------ layout
@@ -338,7 +337,8 @@ class PropellerWing(StateSpaceModel):
         nqi = 2 * wing.n_nodes if wing.in_plane else 0     # in-plane [v_i, χ_i] after them
         flex = self.flexible
         n = nqw + nqi + 2 * len(flex)
-        if "structure" not in self._memo:
+        memo = self._memo.setdefault("wing", {})
+        if "structure" not in memo:
             mats = tuple(np.zeros((n, n)) for _ in range(3))
             for X, Xw in zip(mats, wing_structure(wing)):
                 X[:nqw, :nqw] = Xw
@@ -347,8 +347,8 @@ class PropellerWing(StateSpaceModel):
                     X[nqw:nqw + nqi, nqw:nqw + nqi] = Xi
             for X in mats:
                 X.flags.writeable = False
-            self._memo["structure"] = mats
-        Ms, Cs, Ks = self._memo["structure"]
+            memo["structure"] = mats
+        Ms, Cs, Ks = memo["structure"]
         groups = []
         lag, m, w_labels, keep_w = None, 0, (), np.arange(0)
         if self.wing_aero:
