@@ -183,6 +183,8 @@ class _GyroscopicSystem:
 
     matrices: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray, np.ndarray]]
     dG: np.ndarray
+    #: (M, G, K) at Ω = 0 when already evaluated (for :meth:`_projected`)
+    at_rest: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
 
     @classmethod
     def of(cls, model, rpm_ratio: tuple[float, ...] | None = None,
@@ -201,8 +203,8 @@ class _GyroscopicSystem:
                 s = quiet.second_order(np.ones_like(omega), omega)   # V plays no part here
                 return s.S1, _skew_part(s.S2), s.S3
 
-            _, G, _ = matrices(np.array([0.0, 1.0]))
-            return cls(matrices, G[1] - G[0])
+            M, G, K = matrices(np.array([0.0, 1.0]))
+            return cls(matrices, G[1] - G[0], (M[0], G[0], K[0]))
         return cls._per_propeller(model, rpm_ratio)
 
     @classmethod
@@ -240,7 +242,8 @@ class _GyroscopicSystem:
 
     def _projected(self, P: np.ndarray) -> "_GyroscopicSystem":
         """Pᵀ(M, G, K)P: M and K do not depend on Ω and G is linear in it (I_Ω Ω)."""
-        M0, G0, K0 = (P.T @ X[0] @ P for X in self.matrices(np.array([0.0])))
+        rest = self.at_rest or tuple(X[0] for X in self.matrices(np.array([0.0])))
+        M0, G0, K0 = (P.T @ X @ P for X in rest)
         dG = P.T @ self.dG @ P
 
         def projected(omega: np.ndarray):
