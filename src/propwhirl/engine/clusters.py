@@ -16,6 +16,7 @@ points, :func:`propwhirl.engine.crossings._branch_point_speeds`).
 from __future__ import annotations
 
 import itertools
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import linear_sum_assignment
@@ -31,40 +32,105 @@ def _poly_and_derivative(lam: np.ndarray, dlam: np.ndarray) -> tuple[np.ndarray,
     The coefficients of a cluster's characteristic polynomial are analytic in V through the
     branch points where its roots split or merge (single roots have square-root
     singularities there); their derivatives follow from the λ'_i by the product rule.
+    ``lam``, ``dlam``: (..., k), a batch of clusters along the leading axes (each one gets
+    the same elementwise operations as alone, so the same coefficients bit for bit).
     """
-    k = lam.size
-    c = np.zeros(k + 1, dtype=complex)
-    dc = np.zeros(k + 1, dtype=complex)
-    c[0] = 1.0
-    for r, d in zip(lam, dlam):
-        dc[1:] = dc[1:] - r * dc[:-1] - d * c[:-1]
-        c[1:] = c[1:] - r * c[:-1]
-    return c[1:], dc[1:]
+    k = lam.shape[-1]
+    z = np.zeros((2,) + lam.shape[:-1] + (k + 1,), dtype=complex)   # z[0]: c, z[1]: dc
+    c, dc = z[0], z[1]
+    c[..., 0] = 1.0
+    for j in range(k):
+        # dc ← dc − r·dc⁻ − d·c⁻ and c ← c − r·c⁻ (⁻: shifted by one), as three operations
+        r, d = lam[..., j, None], dlam[..., j, None]
+        u = d * c[..., :-1]
+        z[..., 1:] -= r * z[..., :-1]
+        dc[..., 1:] -= u
+    return c[..., 1:], dc[..., 1:]
 
 
 def _cluster_mismatch(ca, dca, cb, dcb, h, scale):
     """Relative mismatch of the trapezoidal prediction of polynomial coefficients (last axis:
     the coefficients; each relative to scale^order and not larger than the change itself)."""
-    k = ca.shape[-1]
-    sc = scale ** np.arange(1, k + 1)
+    sc = scale ** _tables(ca.shape[-1]).orders
     mis = np.abs(cb - ca - 0.5 * (dca + dcb) * h)
-    return np.max(np.minimum(mis, np.abs(cb - ca)) / sc, axis=-1), mis
+    return (np.minimum(mis, np.abs(cb - ca)) / sc).max(axis=-1), mis
 
 
-def _alternative_mismatch(lam_o, dl_o, cand, dcand, c_fix, dc_fix, other_at_a, h, scale):
-    """Mismatch with one member replaced by each candidate (vectorised over candidates)."""
-    p, dp = _poly_and_derivative(lam_o, dl_o)
-    p1 = np.concatenate([[1.0], p])
-    dp1 = np.concatenate([[0.0], dp])
-    # (z − x) Π_others: coefficients [1, p1 − x·…]
-    c = (np.concatenate([p1, [0.0]])[None, :]
-         - cand[:, None] * np.concatenate([[0.0], p1])[None, :])[:, 1:]
-    dc = (np.concatenate([dp1, [0.0]])[None, :]
-          - cand[:, None] * np.concatenate([[0.0], dp1])[None, :]
-          - dcand[:, None] * np.concatenate([[0.0], p1])[None, :])[:, 1:]
-    if other_at_a:
-        return _cluster_mismatch(c, dc, c_fix[None, :], dc_fix[None, :], h, scale)[0]
-    return _cluster_mismatch(c_fix[None, :], dc_fix[None, :], c, dc, h, scale)[0]
+@dataclass(frozen=True)
+class _Tables:
+    """Index tables of a cluster of k roots, built once per k (read-only arrays).
+
+    perms: (k!, k) the permutations of range(k) (in ``itertools.permutations`` order);
+    index: the row of each permutation (as a tuple) in ``perms``; compose[i][j]: the row of
+    perms[i][perms[j]]; others: (k, k − 1), row m the members other than m; sub: rows and
+    columns of the companion matrix's subdiagonal; orders: 1 … k, the orders of the
+    coefficients; w1, e1 / w2, e2: factors and exponents of the first / second derivative of
+    a monic polynomial of degree k in the powers of z (coefficient order: highest power first).
+    """
+
+    perms: np.ndarray
+    index: dict[tuple[int, ...], int]
+    compose: tuple[tuple[int, ...], ...]
+    others: np.ndarray
+    sub: tuple[np.ndarray, np.ndarray]
+    orders: np.ndarray
+    w1: np.ndarray
+    e1: np.ndarray
+    w2: np.ndarray
+    e2: np.ndarray
+
+    @classmethod
+    def build(cls, k: int) -> _Tables:
+        pw = np.arange(k, -1, -1)
+        perms = list(itertools.permutations(range(k)))
+        index = {p: i for i, p in enumerate(perms)}
+        compose = tuple(tuple(index[tuple(p[j] for j in r)] for r in perms) for p in perms)
+        arrays = dict(
+            perms=np.array(perms), orders=np.arange(1, k + 1),
+            others=np.array([[j for j in range(k) if j != m] for m in range(k)],
+                            dtype=int).reshape(k, k - 1),
+            w1=pw[:-1, None], e1=np.maximum(pw[:-1, None] - 1, 0),
+            w2=(pw[:-2] * (pw[:-2] - 1))[:, None], e2=np.maximum(pw[:-2, None] - 2, 0))
+        sub = (np.arange(1, k), np.arange(k - 1))
+        for x in (*arrays.values(), *sub):
+            x.flags.writeable = False
+        return cls(sub=sub, index=index, compose=compose, **arrays)
+
+
+#: the tables of the cluster sizes that occur (2–4 roots; 1 for completeness)
+_TABLES = {k: _Tables.build(k) for k in range(1, 5)}
+
+
+def _tables(k: int) -> _Tables:
+    """The index tables of a cluster of k roots (built anew only for k > 4)."""
+    t = _TABLES.get(k)
+    return t if t is not None else _Tables.build(k)
+
+
+def _alternative_mismatches(lam, dlam, cand, dcand, ca, dca, cb, dcb, h, scale):
+    """Mismatch of the cluster with one member replaced by another eigenvalue, for every
+    member and candidate at both ends at once (:func:`_cluster_mismatch`).
+
+    ``lam``, ``dlam``: (2, k), the cluster's roots at a and at b; ``cand``, ``dcand``:
+    (2, n_cand), the other eigenvalues at a and at b; ``ca`` … ``dcb``: the cluster's
+    coefficients at both ends.  Returns (2, k, n_cand): at end e, the mismatch with member m
+    replaced by candidate j (the other end kept).
+    """
+    k = lam.shape[-1]
+    others = _tables(k).others
+    p, dp = _poly_and_derivative(lam[:, others], dlam[:, others])          # (2, k, k − 1)
+    # (z − x) Π_others: coefficients [p, 0] − x·[1, p] (leading 1 dropped)
+    pe, ps, dpe, dps = np.zeros((4, 2, k, 1, k), dtype=complex)
+    pe[..., 0, :-1] = p
+    ps[..., 0, 0] = 1.0
+    ps[..., 0, 1:] = p
+    dpe[..., 0, :-1] = dp
+    dps[..., 0, 1:] = dp
+    x, dx = cand[:, None, :, None], dcand[:, None, :, None]                 # (2, 1, n, 1)
+    c = pe - x * ps
+    dc = dpe - x * dps - dx * ps                                            # (2, k, n, k)
+    return np.stack([_cluster_mismatch(c[0], dc[0], cb, dcb, h, scale)[0],
+                     _cluster_mismatch(ca, dca, c[1], dc[1], h, scale)[0]])
 
 
 def _subspace_mac(Xa: np.ndarray, Xb: np.ndarray, disp: np.ndarray) -> float:
@@ -80,6 +146,10 @@ def _subspace_mac(Xa: np.ndarray, Xb: np.ndarray, disp: np.ndarray) -> float:
 
 #: sub-steps on which the interpolated characteristic polynomial of a cluster is followed
 _CLUSTER_SUBSTEPS = 32
+#: their ends s ∈ [0, 1], and the envelope 16 s²(1 − s)² of the coefficients' uncertainty
+_S = np.linspace(0.0, 1.0, _CLUSTER_SUBSTEPS + 1)
+_ENV = 16 * _S ** 2 * (1 - _S) ** 2
+_S.flags.writeable = _ENV.flags.writeable = False
 
 
 def _interpolated_roots(coeffs, s: float) -> np.ndarray:
@@ -89,7 +159,7 @@ def _interpolated_roots(coeffs, s: float) -> np.ndarray:
     comp = np.zeros((k, k))
     comp[0, :] = -c
     if k > 1:
-        comp[np.arange(1, k), np.arange(k - 1)] = 1.0
+        comp[_tables(k).sub] = 1.0
     return np.linalg.eigvals(comp).astype(complex)
 
 
@@ -115,10 +185,9 @@ def _follow_substep(cur, r, s0, s1, coeffs, perms, depth):
                 np.arange(k) == i, np.inf, 0.0)))
             if nxt[j].imag == 0 and nxt[j].real > nxt[i].real:
                 nxt[i], nxt[j] = nxt[j], nxt[i]
-    real_c, real_n = cur.imag == 0, nxt.imag == 0
-    if np.array_equal(real_c, real_n) and (real_c.all() or np.array_equal(
-            np.sign(cur.imag), np.sign(nxt.imag))) and real_c.sum() >= k - 2:
-        return nxt                  # no root changed type: at most one pair, kept
+    # no root changed type (Im keeps its sign: real stays real), at most one pair: kept
+    if (np.sign(cur.imag) == np.sign(nxt.imag)).all() and (cur.imag == 0).sum() >= k - 2:
+        return nxt
     pc, pn = _partners(cur), _partners(nxt)
     changed = np.nonzero(pc != pn)[0]
     clean = changed.size == 0 or (changed.size == 2 and (
@@ -141,44 +210,60 @@ def _plain_steps(roots: np.ndarray, perms: np.ndarray) -> tuple[np.ndarray, np.n
     returns the roots at m in the order σ composed with that assignment, so a run of plain
     steps is followed by composing permutations (the assignments found for all sub-steps in
     one vectorised pass)."""
-    k = roots.shape[1]
+    m, k = roots.shape[0] - 1, roots.shape[1]
     D = np.abs(roots[:-1, :, None] - roots[1:, None, :])                 # (m, k, k)
     cost = D[:, np.arange(k)[None, :], perms].sum(axis=2)               # (m, n_perm)
     order = np.argsort(cost, axis=1)
     best = order[:, 0]
-    c0 = np.take_along_axis(cost, order[:, :1], axis=1)[:, 0]
-    c1 = (np.take_along_axis(cost, order[:, 1:2], axis=1)[:, 0] if perms.shape[0] > 1
-          else np.full(c0.shape, np.inf))
-    clear = c1 - c0 > 1e-9 * (c0 + c1 + np.abs(roots).max(axis=1)[1:])
-    nxt = np.take_along_axis(roots[1:], perms[best], axis=1)            # (m, k)
-    real_c, real_n = roots[:-1].imag == 0, nxt.imag == 0
-    same = np.all(real_c == real_n, axis=1) & (
-        np.all(real_c, axis=1) | np.all(np.sign(roots[:-1].imag) == np.sign(nxt.imag), axis=1))
-    return best, clear & same & (real_c.sum(axis=1) >= k - 2)
+    steps = np.arange(m)
+    c0 = cost[steps, best]
+    c1 = cost[steps, order[:, 1]] if perms.shape[0] > 1 else np.full(c0.shape, np.inf)
+    clear = c1 - c0 > 1e-9 * (c0 + c1 + np.abs(roots[1:]).max(axis=1))
+    nxt = roots[1:][steps[:, None], perms[best]]                         # (m, k)
+    # no root changes type: Im keeps its sign (so real stays real), at most one pair
+    same = (np.sign(roots[:-1].imag) == np.sign(nxt.imag)).all(axis=1)
+    return best, clear & same & ((roots[:-1].imag == 0).sum(axis=1) >= k - 2)
 
 
 def _order_of(x: np.ndarray, r: np.ndarray) -> np.ndarray | None:
     """σ with x = r[σ] (x a reordering of the exact values r), or None."""
     eq = x[:, None] == r[None, :]
-    if not (np.all(eq.sum(axis=0) == 1) and np.all(eq.sum(axis=1) == 1)):
+    if not ((eq.sum(axis=0) == 1).all() and (eq.sum(axis=1) == 1).all()):
         return None
-    return np.argmax(eq, axis=1)
+    return eq.argmax(axis=1)
 
 
 def _follow_substeps(track: np.ndarray, roots: np.ndarray, S: np.ndarray, coeffs,
-                     perms: np.ndarray) -> None:
+                     tab: _Tables) -> None:
     """Fill ``track[1:]`` (track[0]: the exact roots at the start) by :func:`_follow_substep`
     on every sub-step — runs of plain sub-steps (:func:`_plain_steps`) by composing their
-    assignments, which gives the same roots in the same order without a call per sub-step."""
+    assignments, which gives the same roots in the same order without a call per sub-step
+    (σ kept as its row in ``tab.perms``, composed by table, the plain rows of track written
+    in one indexing before the next call and at the end)."""
+    perms, compose = tab.perms, tab.compose
     best, plain = _plain_steps(roots, perms)
-    sigma = None                       # track[m - 1] = roots[m - 1][sigma], when known
+    best, plain = best.tolist(), plain.tolist()
+    sigma = None                # track[m - 1] = roots[m - 1][perms[sigma]], when known
+    ms: list[int] = []          # plain sub-steps not yet written into track, and their σ
+    sigmas: list[int] = []
+
+    def flush() -> None:
+        if ms:
+            track[ms] = roots[np.array(ms)[:, None], perms[sigmas]]
+            ms.clear()
+            sigmas.clear()
+
     for m in range(1, S.size):
         if sigma is not None and plain[m - 1]:
-            sigma = perms[best[m - 1]][sigma]
-            track[m] = roots[m][sigma]
+            sigma = compose[best[m - 1]][sigma]
+            ms.append(m)
+            sigmas.append(sigma)
         else:
+            flush()
             track[m] = _follow_substep(track[m - 1], roots[m], S[m - 1], S[m], coeffs, perms, 0)
-            sigma = _order_of(track[m], roots[m])
+            order = _order_of(track[m], roots[m])
+            sigma = None if order is None else tab.index[tuple(order.tolist())]
+    flush()
 
 
 def _follow_cluster(ca, dca, cb, dcb, la, lb, h, margin):
@@ -201,34 +286,30 @@ def _follow_cluster(ca, dca, cb, dcb, la, lb, h, margin):
     k = la.size
     ca, dca, cb, dcb = (np.real(x) for x in (ca, dca, cb, dcb))   # conjugation-closed: real
     coeffs = _hermite_coeffs(ca, cb, dca, dcb, h)
-    _, mis = _cluster_mismatch(ca, dca, cb, dcb, h, 1.0)
-    S = np.linspace(0.0, 1.0, _CLUSTER_SUBSTEPS + 1)
+    tab = _tables(k)
+    mis = np.abs(cb - ca - 0.5 * (dca + dcb) * h)     # trapezoidal mismatch of each coefficient
+    S = _S
     C = _hermite_eval(tuple(c[None, :] for c in coeffs), S[:, None])      # (m, k)
     comp = np.zeros((S.size, k, k))
     comp[:, 0, :] = -C
     if k > 1:
-        comp[:, np.arange(1, k), np.arange(k - 1)] = 1.0
+        comp[(slice(None),) + tab.sub] = 1.0
     roots = np.linalg.eigvals(comp).astype(complex)   # real roots exactly real (LAPACK)
     sign0 = np.sign(la.real)
     if np.any(sign0 == 0) or np.any(np.sign(lb.real) == 0):
         return None, None
-    scale = max(float(np.max(np.abs(la))), float(np.max(np.abs(lb))), 1e-300)
     track = np.empty((S.size, k), dtype=complex)
     track[0] = la
-    perms = np.array(list(itertools.permutations(range(k))))
-    _follow_substeps(track, roots, S, coeffs, perms)
+    _follow_substeps(track, roots, S, coeffs, tab)
     cur = track[-1]
     # real parts: sign kept, with margin over the uncertainty of the roots: first order
     # |δp(λ)|/|p'(λ)|, or √(2|δp(λ)|/|p''(λ)|) near a double root (where p' → 0)
     full = np.concatenate([np.ones((S.size, 1)), C], axis=1)             # (m, k+1)
-    pw = np.arange(k, -1, -1)
-    d1 = np.sum(full[:, :-1, None] * (pw[:-1, None] * track[:, None, :] ** np.maximum(
-        pw[:-1, None] - 1, 0)), axis=1)
-    d2 = np.sum(full[:, :-2, None] * ((pw[:-2] * (pw[:-2] - 1))[:, None] * track[:, None, :]
-                                      ** np.maximum(pw[:-2, None] - 2, 0)), axis=1) \
+    d1 = np.sum(full[:, :-1, None] * (tab.w1 * track[:, None, :] ** tab.e1), axis=1)
+    d2 = np.sum(full[:, :-2, None] * (tab.w2 * track[:, None, :] ** tab.e2), axis=1) \
         if k >= 2 else np.zeros_like(track)
     err = np.abs(sum(mis[q] * track ** (k - 1 - q) for q in range(k)))
-    env = 16 * S ** 2 * (1 - S) ** 2
+    env = _ENV
     with np.errstate(all="ignore"):
         lin = err / np.abs(d1)
         quad = np.sqrt(2 * err / np.abs(d2))
@@ -249,6 +330,7 @@ def _follow_cluster(ca, dca, cb, dcb, la, lb, h, margin):
             return None, None
         e = ev[np.argmin(np.abs(ev - mc))]
         return None, float(np.clip(0.5 * (e + mc) / _CLUSTER_SUBSTEPS, 0.05, 0.95))
+    scale = max(float(np.max(np.abs(la))), float(np.max(np.abs(lb))), 1e-300)
     cost = np.abs(cur[:, None] - lb[None, :])
     rows, cols = linear_sum_assignment(cost)
     q = cols[np.argsort(rows)]
@@ -397,8 +479,10 @@ def _try_cluster(a: _Node, b: _Node, rows: np.ndarray, cols: np.ndarray, rel_err
     if not (np.any(la.imag == 0) or np.any(lb.imag == 0) or np.any(near_axis)):
         return None, None     # complex pairs only: a veering, resolved by refinement
     scale = max(float(np.max(np.abs(la))), a.floor)
-    ca, dca = _poly_and_derivative(la, da)
-    cb, dcb = _poly_and_derivative(lb, db)
+    k = rows.size
+    lam, dlam = np.stack([la, lb]), np.stack([da, db])                     # (2, k): a, b
+    cc, dcc = _poly_and_derivative(lam, dlam)
+    ca, cb, dca, dcb = cc[0], cc[1], dcc[0], dcc[1]
     e = float(_cluster_mismatch(ca, dca, cb, dcb, h, scale)[0])
     if not e <= opts.dist_max:
         return None, None
@@ -408,24 +492,22 @@ def _try_cluster(a: _Node, b: _Node, rows: np.ndarray, cols: np.ndarray, rel_err
     if _subspace_mac(a.X[:, rows], b.X[:, cols], disp) < opts.mac_min:
         return None, None
     n = a.lam.size
-    oa = np.setdiff1d(np.arange(n), rows)
-    ob = np.setdiff1d(np.arange(n), cols)
     alt = np.inf
-    for m in range(rows.size if oa.size else 0):
-        keep = np.delete(np.arange(rows.size), m)
+    if n > k:
+        keep_a, keep_b = np.ones(n, dtype=bool), np.ones(n, dtype=bool)
+        keep_a[rows] = keep_b[cols] = False
+        cand = np.stack([a.lam[keep_a], b.lam[keep_b]])
+        dcand = np.stack([a.dlam[keep_a], b.dlam[keep_b]])
+        mis = _alternative_mismatches(lam, dlam, cand, dcand, ca, dca, cb, dcb, h,
+                                      scale)                                 # (2, k, n − k)
         # a real member is interchangeable with the other real roots of its sign (no shape
         # identity is kept between them): they are no competitors
-        for lam_o, dl_o, other, fix, dfix, at_a, x in (
-                (la, da, oa, cb, dcb, True, la[m]), (lb, db, ob, ca, dca, False, lb[m])):
-            node = a if at_a else b
-            cand = other
-            if x.imag == 0:
-                cand = other[~((node.lam[other].imag == 0)
-                               & (np.sign(node.lam[other].real) == np.sign(x.real)))]
-            if cand.size:
-                alt = min(alt, float(np.min(_alternative_mismatch(
-                    lam_o[keep], dl_o[keep], node.lam[cand], node.dlam[cand], fix, dfix, at_a,
-                    h, scale))))
+        same_kind = ((lam.imag == 0)[:, :, None] & (cand.imag == 0)[:, None, :]
+                     & (np.sign(lam.real)[:, :, None] == np.sign(cand.real)[:, None, :]))
+        at_a, at_b = np.where(same_kind, np.inf, mis).min(axis=-1).tolist()
+        for ma, mb in zip(at_a, at_b):    # as a loop over the members, a before b, would
+            alt = min(alt, ma)
+            alt = min(alt, mb)
     if e > opts.cost_ratio * alt:
         return None, None
     return q, events
