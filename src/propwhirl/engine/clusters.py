@@ -129,7 +129,7 @@ def _alternative_mismatches(lam, dlam, cand, dcand, ca, dca, cb, dcb, h, scale):
     x, dx = cand[:, None, :, None], dcand[:, None, :, None]                 # (2, 1, n, 1)
     c = pe - x * ps
     dc = dpe - x * dps - dx * ps                                            # (2, k, n, k)
-    return np.stack([_cluster_mismatch(c[0], dc[0], cb, dcb, h, scale)[0],
+    return np.array([_cluster_mismatch(c[0], dc[0], cb, dcb, h, scale)[0],
                      _cluster_mismatch(ca, dca, c[1], dc[1], h, scale)[0]])
 
 
@@ -141,7 +141,7 @@ def _subspace_mac(Xa: np.ndarray, Xb: np.ndarray, disp: np.ndarray) -> float:
     Qa, _ = np.linalg.qr(Pa)
     Qb, _ = np.linalg.qr(Pb)
     s = np.linalg.svd(Qa.conj().T @ Qb, compute_uv=False)
-    return float(np.min(s) ** 2)
+    return float(s.min() ** 2)
 
 
 #: sub-steps on which the interpolated characteristic polynomial of a cluster is followed
@@ -154,7 +154,7 @@ _S.flags.writeable = _ENV.flags.writeable = False
 
 def _interpolated_roots(coeffs, s: float) -> np.ndarray:
     """Roots of the cluster polynomial with Hermite-interpolated (real) coefficients at s."""
-    c = np.real(_hermite_eval(coeffs, s))
+    c = _hermite_eval(coeffs, s).real
     k = c.size
     comp = np.zeros((k, k))
     comp[0, :] = -c
@@ -163,13 +163,29 @@ def _interpolated_roots(coeffs, s: float) -> np.ndarray:
     return np.linalg.eigvals(comp).astype(complex)
 
 
+def _n_real_roots(c: np.ndarray) -> int:
+    """The number of roots with imaginary part 0 that ``np.roots([1, *c])`` returns (c: real
+    coefficients below the leading 1), from the same companion matrix and eigenvalues —
+    np.roots drops trailing zero coefficients as zero roots — without its overhead."""
+    p = np.concatenate([[1.0], c])
+    nz = p.nonzero()[0]
+    trailing = p.size - 1 - int(nz[-1])
+    p = p[:int(nz[-1]) + 1]
+    if p.size == 1:
+        return trailing
+    A = np.zeros((p.size - 1, p.size - 1))
+    A[0, :] = -p[1:] / p[0]
+    A[_tables(p.size - 1).sub] = 1.0
+    return int(np.count_nonzero(np.linalg.eigvals(A).imag == 0)) + trailing
+
+
 def _partners(r: np.ndarray) -> np.ndarray:
     """Index of each root's conjugate partner (−1 for a real root)."""
     out = np.full(r.size, -1)
-    for i in np.nonzero(r.imag != 0)[0]:
+    for i in (r.imag != 0).nonzero()[0]:
         d = np.abs(r - r[i].conjugate())
         d[i] = np.inf
-        out[i] = int(np.argmin(d))
+        out[i] = int(d.argmin())
     return out
 
 
@@ -178,7 +194,7 @@ def _follow_substep(cur, r, s0, s1, coeffs, perms, depth):
     Im > 0 member of a pair turning real taking the larger root; a sub-step in which the
     pairing changes by more than one split or one merge is halved (up to 2⁵ times)."""
     k = cur.size
-    nxt = r[perms[int(np.argmin(np.abs(cur[None, :] - r[perms]).sum(axis=1)))]]
+    nxt = r[perms[int(np.abs(cur[None, :] - r[perms]).sum(axis=1).argmin())]]
     for i in range(k):              # a pair turning real: Im > 0 takes the larger root
         if cur[i].imag > 0 and nxt[i].imag == 0:
             j = int(np.argmin(np.abs(cur - cur[i].conjugate()) + np.where(
@@ -189,10 +205,10 @@ def _follow_substep(cur, r, s0, s1, coeffs, perms, depth):
     if (np.sign(cur.imag) == np.sign(nxt.imag)).all() and (cur.imag == 0).sum() >= k - 2:
         return nxt
     pc, pn = _partners(cur), _partners(nxt)
-    changed = np.nonzero(pc != pn)[0]
+    changed = (pc != pn).nonzero()[0]
     clean = changed.size == 0 or (changed.size == 2 and (
-        (pc[changed[0]] == changed[1] and np.all(pn[changed] == -1))        # one split
-        or (pn[changed[0]] == changed[1] and np.all(pc[changed] == -1))))   # one merge
+        (pc[changed[0]] == changed[1] and (pn[changed] == -1).all())        # one split
+        or (pn[changed[0]] == changed[1] and (pc[changed] == -1).all())))   # one merge
     if clean or depth >= 5:
         return nxt
     sm = 0.5 * (s0 + s1)
@@ -213,7 +229,7 @@ def _plain_steps(roots: np.ndarray, perms: np.ndarray) -> tuple[np.ndarray, np.n
     m, k = roots.shape[0] - 1, roots.shape[1]
     D = np.abs(roots[:-1, :, None] - roots[1:, None, :])                 # (m, k, k)
     cost = D[:, np.arange(k)[None, :], perms].sum(axis=2)               # (m, n_perm)
-    order = np.argsort(cost, axis=1)
+    order = cost.argsort(axis=1)
     best = order[:, 0]
     steps = np.arange(m)
     c0 = cost[steps, best]
@@ -284,7 +300,7 @@ def _follow_cluster(ca, dca, cb, dcb, la, lb, h, margin):
     None for the middle.
     """
     k = la.size
-    ca, dca, cb, dcb = (np.real(x) for x in (ca, dca, cb, dcb))   # conjugation-closed: real
+    ca, dca, cb, dcb = ca.real, dca.real, cb.real, dcb.real       # conjugation-closed: real
     coeffs = _hermite_coeffs(ca, cb, dca, dcb, h)
     tab = _tables(k)
     mis = np.abs(cb - ca - 0.5 * (dca + dcb) * h)     # trapezoidal mismatch of each coefficient
@@ -296,17 +312,26 @@ def _follow_cluster(ca, dca, cb, dcb, la, lb, h, margin):
         comp[(slice(None),) + tab.sub] = 1.0
     roots = np.linalg.eigvals(comp).astype(complex)   # real roots exactly real (LAPACK)
     sign0 = np.sign(la.real)
-    if np.any(sign0 == 0) or np.any(np.sign(lb.real) == 0):
+    if (sign0 == 0).any() or (np.sign(lb.real) == 0).any():
         return None, None
     track = np.empty((S.size, k), dtype=complex)
     track[0] = la
     _follow_substeps(track, roots, S, coeffs, tab)
     cur = track[-1]
+    flip = (np.sign(track.real) != sign0).any(axis=1)
+    if flip.any():     # a real part changes sign: split between it and the nearest branch point
+        mc = int(flip.argmax())
+        nreal = (track.imag == 0).sum(axis=1)
+        ev = (np.diff(nreal) != 0).nonzero()[0] + 0.5          # branch points, in sub-steps
+        if ev.size == 0:
+            return None, None
+        e = ev[np.abs(ev - mc).argmin()]
+        return None, float(np.clip(0.5 * (e + mc) / _CLUSTER_SUBSTEPS, 0.05, 0.95))
     # real parts: sign kept, with margin over the uncertainty of the roots: first order
     # |δp(λ)|/|p'(λ)|, or √(2|δp(λ)|/|p''(λ)|) near a double root (where p' → 0)
     full = np.concatenate([np.ones((S.size, 1)), C], axis=1)             # (m, k+1)
-    d1 = np.sum(full[:, :-1, None] * (tab.w1 * track[:, None, :] ** tab.e1), axis=1)
-    d2 = np.sum(full[:, :-2, None] * (tab.w2 * track[:, None, :] ** tab.e2), axis=1) \
+    d1 = (full[:, :-1, None] * (tab.w1 * track[:, None, :] ** tab.e1)).sum(axis=1)
+    d2 = (full[:, :-2, None] * (tab.w2 * track[:, None, :] ** tab.e2)).sum(axis=1) \
         if k >= 2 else np.zeros_like(track)
     err = np.abs(sum(mis[q] * track ** (k - 1 - q) for q in range(k)))
     env = _ENV
@@ -316,39 +341,31 @@ def _follow_cluster(ca, dca, cb, dcb, la, lb, h, margin):
     # p' = p'' = 0 at a root of multiplicity ≥ 3 (e.g. lag roots shared by several nodes):
     # the estimates are unbounded (inf, or 0/0); but the envelope is 0 at the ends, where the
     # roots are the exact ones, so the uncertainty there is 0 — not 0·inf
-    est = np.nan_to_num(np.minimum(lin, quad), nan=np.inf, posinf=np.inf)
-    unc = np.multiply(env[:, None], est, out=np.zeros_like(est), where=env[:, None] > 0)
-    flip = np.any(np.sign(track.real) != sign0, axis=1)
-    thin = np.any(np.abs(track.real) < margin * unc, axis=1)
-    if flip.any() or thin.any():
-        if not flip.any():
-            return None, None
-        mc = int(np.argmax(flip))
-        nreal = np.sum(track.imag == 0, axis=1)
-        ev = np.nonzero(np.diff(nreal) != 0)[0] + 0.5          # branch points, in sub-steps
-        if ev.size == 0:
-            return None, None
-        e = ev[np.argmin(np.abs(ev - mc))]
-        return None, float(np.clip(0.5 * (e + mc) / _CLUSTER_SUBSTEPS, 0.05, 0.95))
-    scale = max(float(np.max(np.abs(la))), float(np.max(np.abs(lb))), 1e-300)
+    # (lin and quad are ≥ 0, +inf or NaN: NaN → inf, as np.nan_to_num(…, nan=inf) would)
+    est = np.minimum(lin, quad)
+    est = np.where(np.isnan(est), np.inf, est)
+    unc = np.multiply(env[:, None], est, out=np.zeros(est.shape), where=env[:, None] > 0)
+    if (np.abs(track.real) < margin * unc).any():
+        return None, None
+    scale = max(float(np.abs(la).max()), float(np.abs(lb).max()), 1e-300)
     cost = np.abs(cur[:, None] - lb[None, :])
     rows, cols = linear_sum_assignment(cost)
-    q = cols[np.argsort(rows)]
-    if np.max(cost[np.arange(k), q]) > 1e-6 * scale:
+    q = cols[rows.argsort()]
+    if cost[np.arange(k), q].max() > 1e-6 * scale:
         return None, None
     # unstable pairs of the first sample turning real: (s, member, partner, double root)
     events = []
-    for i in np.nonzero((la.imag > 0) & (la.real > 0))[0]:
-        real = np.nonzero(track[:, i].imag == 0)[0]
+    for i in ((la.imag > 0) & (la.real > 0)).nonzero()[0]:
+        real = (track[:, i].imag == 0).nonzero()[0]
         if real.size:
             m = int(real[0])
-            ic = int(np.argmin(np.abs(la - np.conj(la[i]))))
+            ic = int(np.abs(la - np.conj(la[i])).argmin())
             n_real = int(np.count_nonzero(roots[m - 1].imag == 0))
             lo, hi = S[m - 1], S[m]
             for _ in range(12):        # the interpolated branch point, inside the sub-step
                 mid = 0.5 * (lo + hi)
                 cm = np.real(_hermite_eval(coeffs, mid))
-                if np.count_nonzero(np.roots(np.concatenate([[1.0], cm])).imag == 0) == n_real:
+                if _n_real_roots(cm) == n_real:
                     lo = mid
                 else:
                     hi = mid
@@ -357,14 +374,16 @@ def _follow_cluster(ca, dca, cb, dcb, la, lb, h, margin):
     return q, events
 
 
-def _closure(seed: set[int], perm: np.ndarray, inv: np.ndarray, a: _Node, b: _Node) -> set[int]:
-    """Smallest row set containing ``seed`` closed under conjugation at both ends and perm."""
+def _closure(seed: set[int], perm: list[int], inv: list[int], conj_a: list[int],
+             conj_b: list[int]) -> set[int]:
+    """Smallest row set containing ``seed`` closed under conjugation at both ends and perm
+    (the index arrays as lists of ints: the assignment, its inverse, the conjugates at a, b)."""
     S = set(seed)
     while True:
-        S2 = S | {int(a.conj[i]) for i in S}
-        T = {int(perm[i]) for i in S2}
-        T |= {int(b.conj[j]) for j in T}
-        S2 |= {int(inv[j]) for j in T}
+        S2 = S | {conj_a[i] for i in S}
+        T = {perm[i] for i in S2}
+        T |= {conj_b[j] for j in T}
+        S2 |= {inv[j] for j in T}
         if S2 == S:
             return S
         S = S2
@@ -414,34 +433,35 @@ def _cluster_continuations(a: _Node, b: _Node, perm: np.ndarray, amb: np.ndarray
     near_zero = np.minimum(np.abs(a.lam.real), np.abs(b.lam[perm].real)) <= 4 * max(
         opts.margin, 1.0) * mis
     bad = ra & rb[perm] & (rel_err > opts.dist_max) & near_zero & ~amb
-    seeds = list(np.nonzero(amb)[0]) + list(np.nonzero(bad)[0])
+    seeds = list(amb.nonzero()[0]) + list(bad.nonzero()[0])
     done: set[int] = set()
+    lists = [perm.tolist(), inv.tolist(), a.conj.tolist(), b.conj.tolist()]   # for _closure
     out = []
     splits: list[float] = []
     events: list[tuple[float, int, int, float]] = []
     for seed in seeds:
         if int(seed) in done:
             continue
-        base = _closure({int(seed)}, perm, inv, a, b)
+        base = _closure({int(seed)}, *lists)
         done.update(base)
         bl = np.array(sorted(base))
-        if not (np.any(ra[bl]) or np.any(rb[perm[bl]])
-                or np.any(np.abs(a.lam[bl].imag) <= mis[bl])):
+        if not (ra[bl].any() or rb[perm[bl]].any()
+                or (np.abs(a.lam[bl].imag) <= mis[bl]).any()):
             # complex pairs away from the real axis: a veering, unless their prediction
             # fails — then a real root may have joined them through branch points
-            if not np.any(rel_err[bl] > opts.dist_max):
+            if not (rel_err[bl] > opts.dist_max).any():
                 continue
             d = np.abs(a.lam[:, None] - a.lam[bl][None, :]).min(axis=1)
             d[~ra] = np.inf
             d[bl] = np.inf
-            near = [int(x) for x in np.argsort(d)[:3] if np.isfinite(d[x])]
-            trials = [_closure(base | {x}, perm, inv, a, b) for x in near]
+            near = [int(x) for x in d.argsort()[:3] if np.isfinite(d[x])]
+            trials = [_closure(base | {x}, *lists) for x in near]
         elif len(base) > 1:
             trials = [base]
         else:                                   # a lone root: with one of its nearest others
             d = np.abs(a.lam - a.lam[seed])
             d[seed] = np.inf
-            trials = [_closure(base | {int(x)}, perm, inv, a, b) for x in np.argsort(d)[:3]]
+            trials = [_closure(base | {int(x)}, *lists) for x in d.argsort()[:3]]
         tried: set[frozenset[int]] = set()
         while trials:
             S = trials.pop(0)
@@ -453,6 +473,7 @@ def _cluster_continuations(a: _Node, b: _Node, perm: np.ndarray, amb: np.ndarray
             if q is not None:
                 perm[rows] = perm[rows][q]
                 inv[perm] = np.arange(n)
+                lists[:2] = perm.tolist(), inv.tolist()
                 amb[rows] = False
                 done.update(S)
                 out.append(tuple(int(i) for i in rows))
@@ -464,8 +485,8 @@ def _cluster_continuations(a: _Node, b: _Node, perm: np.ndarray, amb: np.ndarray
             if len(tried) < 4:       # grow by one of the nearest other roots (at a)
                 d = np.abs(a.lam[:, None] - a.lam[rows][None, :]).min(axis=1)
                 d[rows] = np.inf
-                for x in np.argsort(d)[:3]:
-                    trials.append(_closure(S | {int(x)}, perm, inv, a, b))
+                for x in d.argsort()[:3]:
+                    trials.append(_closure(S | {int(x)}, *lists))
     return tuple(out), (min(splits) if splits else None), tuple(events)
 
 
@@ -476,11 +497,11 @@ def _try_cluster(a: _Node, b: _Node, rows: np.ndarray, cols: np.ndarray, rel_err
     (None, where to split the step or None) if not acceptable."""
     la, da, lb, db = a.lam[rows], a.dlam[rows], b.lam[cols], b.dlam[cols]
     near_axis = np.abs(la.imag) <= rel_err * np.abs(la)
-    if not (np.any(la.imag == 0) or np.any(lb.imag == 0) or np.any(near_axis)):
+    if not ((la.imag == 0).any() or (lb.imag == 0).any() or near_axis.any()):
         return None, None     # complex pairs only: a veering, resolved by refinement
-    scale = max(float(np.max(np.abs(la))), a.floor)
+    scale = max(float(np.abs(la).max()), a.floor)
     k = rows.size
-    lam, dlam = np.stack([la, lb]), np.stack([da, db])                     # (2, k): a, b
+    lam, dlam = np.array([la, lb]), np.array([da, db])                     # (2, k): a, b
     cc, dcc = _poly_and_derivative(lam, dlam)
     ca, cb, dca, dcb = cc[0], cc[1], dcc[0], dcc[1]
     e = float(_cluster_mismatch(ca, dca, cb, dcb, h, scale)[0])
@@ -496,8 +517,8 @@ def _try_cluster(a: _Node, b: _Node, rows: np.ndarray, cols: np.ndarray, rel_err
     if n > k:
         keep_a, keep_b = np.ones(n, dtype=bool), np.ones(n, dtype=bool)
         keep_a[rows] = keep_b[cols] = False
-        cand = np.stack([a.lam[keep_a], b.lam[keep_b]])
-        dcand = np.stack([a.dlam[keep_a], b.dlam[keep_b]])
+        cand = np.array([a.lam[keep_a], b.lam[keep_b]])
+        dcand = np.array([a.dlam[keep_a], b.dlam[keep_b]])
         mis = _alternative_mismatches(lam, dlam, cand, dcand, ca, dca, cb, dcb, h,
                                       scale)                                 # (2, k, n − k)
         # a real member is interchangeable with the other real roots of its sign (no shape
