@@ -56,6 +56,12 @@ def _cluster_mismatch(ca, dca, cb, dcb, h, scale):
     return (np.minimum(mis, np.abs(cb - ca)) / sc).max(axis=-1), mis
 
 
+def _frozen(x: np.ndarray) -> np.ndarray:
+    """``x``, made read-only (the module's constant tables)."""
+    x.flags.writeable = False
+    return x
+
+
 @dataclass(frozen=True)
 class _Tables:
     """Index tables of a cluster of k roots, built once per k (read-only arrays).
@@ -91,10 +97,9 @@ class _Tables:
                             dtype=int).reshape(k, k - 1),
             w1=pw[:-1, None], e1=np.maximum(pw[:-1, None] - 1, 0),
             w2=(pw[:-2] * (pw[:-2] - 1))[:, None], e2=np.maximum(pw[:-2, None] - 2, 0))
-        sub = (np.arange(1, k), np.arange(k - 1))
-        for x in (*arrays.values(), *sub):
-            x.flags.writeable = False
-        return cls(sub=sub, index=index, compose=compose, **arrays)
+        sub = (_frozen(np.arange(1, k)), _frozen(np.arange(k - 1)))
+        return cls(sub=sub, index=index, compose=compose,
+                   **{name: _frozen(x) for name, x in arrays.items()})
 
 
 #: the tables of the cluster sizes that occur (2–4 roots; 1 for completeness)
@@ -138,8 +143,7 @@ def _subspace_mac(Xa: np.ndarray, Xb: np.ndarray, disp: np.ndarray) -> float:
     Pa, Pb = Xa[disp], Xb[disp]
     if Pa.shape[0] < Pa.shape[1] or np.linalg.norm(Pa) < 1e-5 or np.linalg.norm(Pb) < 1e-5:
         Pa, Pb = Xa, Xb
-    Qa, _ = np.linalg.qr(Pa)
-    Qb, _ = np.linalg.qr(Pb)
+    Qa, Qb = np.linalg.qr(np.array([Pa, Pb]))[0]      # both in one call (each as alone)
     s = np.linalg.svd(Qa.conj().T @ Qb, compute_uv=False)
     return float(s.min() ** 2)
 
@@ -147,9 +151,9 @@ def _subspace_mac(Xa: np.ndarray, Xb: np.ndarray, disp: np.ndarray) -> float:
 #: sub-steps on which the interpolated characteristic polynomial of a cluster is followed
 _CLUSTER_SUBSTEPS = 32
 #: their ends s ∈ [0, 1], and the envelope 16 s²(1 − s)² of the coefficients' uncertainty
-_S = np.linspace(0.0, 1.0, _CLUSTER_SUBSTEPS + 1)
-_ENV = 16 * _S ** 2 * (1 - _S) ** 2
-_S.flags.writeable = _ENV.flags.writeable = False
+_S = _frozen(np.linspace(0.0, 1.0, _CLUSTER_SUBSTEPS + 1))
+_S_COL = _frozen(_S[:, None])
+_ENV = _frozen(16 * _S ** 2 * (1 - _S) ** 2)
 
 
 def _interpolated_roots(coeffs, s: float) -> np.ndarray:
@@ -260,26 +264,21 @@ def _follow_substeps(track: np.ndarray, roots: np.ndarray, S: np.ndarray, coeffs
     best, plain = _plain_steps(roots, perms)
     best, plain = best.tolist(), plain.tolist()
     sigma = None                # track[m - 1] = roots[m - 1][perms[sigma]], when known
-    ms: list[int] = []          # plain sub-steps not yet written into track, and their σ
+    ms: list[int] = []          # plain sub-steps (written into track at the end), their σ
     sigmas: list[int] = []
-
-    def flush() -> None:
-        if ms:
-            track[ms] = roots[np.array(ms)[:, None], perms[sigmas]]
-            ms.clear()
-            sigmas.clear()
-
     for m in range(1, S.size):
         if sigma is not None and plain[m - 1]:
             sigma = compose[best[m - 1]][sigma]
             ms.append(m)
             sigmas.append(sigma)
-        else:
-            flush()
-            track[m] = _follow_substep(track[m - 1], roots[m], S[m - 1], S[m], coeffs, perms, 0)
-            order = _order_of(track[m], roots[m])
-            sigma = None if order is None else tab.index[tuple(order.tolist())]
-    flush()
+            continue
+        if ms and ms[-1] == m - 1:          # the start of this sub-step, from a plain one
+            track[m - 1] = roots[m - 1][perms[sigma]]
+        track[m] = _follow_substep(track[m - 1], roots[m], S[m - 1], S[m], coeffs, perms, 0)
+        order = _order_of(track[m], roots[m])
+        sigma = None if order is None else tab.index[tuple(order.tolist())]
+    if ms:
+        track[ms] = roots[np.array(ms)[:, None], perms[sigmas]]
 
 
 def _follow_cluster(ca, dca, cb, dcb, la, lb, h, margin):
@@ -305,7 +304,7 @@ def _follow_cluster(ca, dca, cb, dcb, la, lb, h, margin):
     tab = _tables(k)
     mis = np.abs(cb - ca - 0.5 * (dca + dcb) * h)     # trapezoidal mismatch of each coefficient
     S = _S
-    C = _hermite_eval(tuple(c[None, :] for c in coeffs), S[:, None])      # (m, k)
+    C = _hermite_eval(tuple(c[None, :] for c in coeffs), _S_COL)         # (m, k)
     comp = np.zeros((S.size, k, k))
     comp[:, 0, :] = -C
     if k > 1:
