@@ -119,7 +119,24 @@ def test_tables(k):
     assert [sorted(set(range(k)) - set(row)) for row in tab.others.tolist()] == [
         [m] for m in range(k)]
     assert not tab.perms.flags.writeable and not tab.e1.flags.writeable
+    D = np.arange(k * k).reshape(k, k)
+    assert tab.gather.tolist() == [[D[i, p[i]] for i in range(k)] for p in perms]
     assert cl._tables(k) is cl._tables(k) or k > 4     # built once for the sizes that occur
+
+
+IMAG = st.sampled_from([0.0, -0.0, 1e-300, -1e-300, 2.5, -2.5, np.nan])
+
+
+@settings(max_examples=400, deadline=None, derandomize=True)
+@given(pairs=st.lists(st.tuples(IMAG, IMAG), min_size=1, max_size=5))
+def test_type_kept_is_the_former_test(pairs):
+    im0, im1 = (np.array(x) for x in zip(*pairs))
+    real0, real1 = im0 == 0, im1 == 0
+    former = bool(np.array_equal(real0, real1) and (real0.all() or np.array_equal(
+        np.sign(im0), np.sign(im1))))
+    assert bool(cl._type_kept(im0, im1)) is former
+    both = cl._type_kept(np.array([im0, im1]), np.array([im1, im1]))     # along the last axis
+    assert both.tolist() == [former, bool(cl._type_kept(im1, im1))]
 
 
 def plain_reference(roots, perms):
@@ -161,9 +178,9 @@ def interpolated(coeffs):
 @given(seed=st.integers(0, 2**32 - 1), k=st.integers(1, 4))
 def test_plain_steps_as_formulated_before(seed, k):
     roots = interpolated(random_coeffs(seed, k))
-    perms = cl._tables(k).perms
-    best, plain = cl._plain_steps(roots, perms)
-    best0, plain0 = plain_reference(roots, perms)
+    tab = cl._tables(k)
+    best, plain = cl._plain_steps(roots, tab)
+    best0, plain0 = plain_reference(roots, tab.perms)
     assert same_bits(plain, plain0)
     assert same_bits(best[plain], best0[plain0])
 

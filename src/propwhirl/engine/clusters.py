@@ -70,8 +70,10 @@ class _Tables:
     index: the row of each permutation (as a tuple) in ``perms``; compose[i][j]: the row of
     perms[i][perms[j]]; others: (k, k − 1), row m the members other than m; sub: rows and
     columns of the companion matrix's subdiagonal; orders: 1 … k, the orders of the
-    coefficients; w1, e1 / w2, e2: factors and exponents of the first / second derivative of
-    a monic polynomial of degree k in the powers of z (coefficient order: highest power first).
+    coefficients; w1, e1 / w2: factors and exponents of the first / second derivative of a
+    monic polynomial of degree k in the powers of z (coefficient order: highest power first;
+    the exponents of the second are e1[1:]); gather: (k!, k), the flat indices i·k + perm[i]
+    of a k × k matrix picked by each permutation.
     """
 
     perms: np.ndarray
@@ -83,7 +85,7 @@ class _Tables:
     w1: np.ndarray
     e1: np.ndarray
     w2: np.ndarray
-    e2: np.ndarray
+    gather: np.ndarray
 
     @classmethod
     def build(cls, k: int) -> _Tables:
@@ -96,7 +98,8 @@ class _Tables:
             others=np.array([[j for j in range(k) if j != m] for m in range(k)],
                             dtype=int).reshape(k, k - 1),
             w1=pw[:-1, None], e1=np.maximum(pw[:-1, None] - 1, 0),
-            w2=(pw[:-2] * (pw[:-2] - 1))[:, None], e2=np.maximum(pw[:-2, None] - 2, 0))
+            w2=(pw[:-2] * (pw[:-2] - 1))[:, None],
+            gather=np.arange(k) * k + np.array(perms, dtype=int).reshape(-1, k))
         sub = (_frozen(np.arange(1, k)), _frozen(np.arange(k - 1)))
         return cls(sub=sub, index=index, compose=compose,
                    **{name: _frozen(x) for name, x in arrays.items()})
@@ -193,6 +196,15 @@ def _partners(r: np.ndarray) -> np.ndarray:
     return out
 
 
+def _type_kept(im0: np.ndarray, im1: np.ndarray):
+    """Whether no root changes type between two orderings (last axis): real stays real and
+    complex stays complex with the sign of Im kept.  As one comparison of the signs of Im —
+    equal signs imply the same real/complex type, and roots all real at both ends have
+    equal (zero) signs — which is exactly (real₀ == real₁).all() and (real₀.all() or
+    (sign₀ == sign₁).all()), NaN included (never equal)."""
+    return (np.sign(im0) == np.sign(im1)).all(axis=-1)
+
+
 def _follow_substep(cur, r, s0, s1, coeffs, perms, depth):
     """Continue the roots ``cur`` (at s0) to the roots ``r`` (at s1) by nearest distance, the
     Im > 0 member of a pair turning real taking the larger root; a sub-step in which the
@@ -205,9 +217,8 @@ def _follow_substep(cur, r, s0, s1, coeffs, perms, depth):
                 np.arange(k) == i, np.inf, 0.0)))
             if nxt[j].imag == 0 and nxt[j].real > nxt[i].real:
                 nxt[i], nxt[j] = nxt[j], nxt[i]
-    # no root changed type (Im keeps its sign: real stays real), at most one pair: kept
-    if (np.sign(cur.imag) == np.sign(nxt.imag)).all() and (cur.imag == 0).sum() >= k - 2:
-        return nxt
+    if _type_kept(cur.imag, nxt.imag) and (cur.imag == 0).sum() >= k - 2:
+        return nxt                  # no root changed type: at most one pair, kept
     pc, pn = _partners(cur), _partners(nxt)
     changed = (pc != pn).nonzero()[0]
     clean = changed.size == 0 or (changed.size == 2 and (
@@ -221,18 +232,21 @@ def _follow_substep(cur, r, s0, s1, coeffs, perms, depth):
     return _follow_substep(mid, r, sm, s1, coeffs, perms, depth + 1)
 
 
-def _plain_steps(roots: np.ndarray, perms: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _plain_steps(roots: np.ndarray, tab: _Tables) -> tuple[np.ndarray, np.ndarray]:
     """Per sub-step m − 1 → m: the nearest assignment of the roots at m − 1 (LAPACK order) to
-    those at m (index into ``perms``), and whether the step is *plain* — its nearest
+    those at m (index into ``tab.perms``), and whether the step is *plain* — its nearest
     assignment is unambiguous (the best sum of distances below the second best by far more
     than rounding) and no root changes type (real stays real, Im keeps its sign, at most one
     pair).  For a plain step :func:`_follow_substep` from the roots at m − 1 in *any* order σ
-    returns the roots at m in the order σ composed with that assignment, so a run of plain
-    steps is followed by composing permutations (the assignments found for all sub-steps in
-    one vectorised pass)."""
+    returns the roots at m in the order σ composed with that assignment (the same sums of
+    the same distances, a unique minimum, no pair turning real, the same test of type), so a
+    run of plain steps is followed by composing permutations (the assignments found for all
+    sub-steps in one vectorised pass).  Row 0 may be the exact roots at the start (the first
+    sub-step is then judged from them)."""
     m, k = roots.shape[0] - 1, roots.shape[1]
+    perms = tab.perms
     D = np.abs(roots[:-1, :, None] - roots[1:, None, :])                 # (m, k, k)
-    cost = D[:, np.arange(k)[None, :], perms].sum(axis=2)               # (m, n_perm)
+    cost = D.reshape(m, k * k)[:, tab.gather].sum(axis=2)               # (m, n_perm)
     order = cost.argsort(axis=1)
     best = order[:, 0]
     steps = np.arange(m)
@@ -240,8 +254,7 @@ def _plain_steps(roots: np.ndarray, perms: np.ndarray) -> tuple[np.ndarray, np.n
     c1 = cost[steps, order[:, 1]] if perms.shape[0] > 1 else np.full(c0.shape, np.inf)
     clear = c1 - c0 > 1e-9 * (c0 + c1 + np.abs(roots[1:]).max(axis=1))
     nxt = roots[1:][steps[:, None], perms[best]]                         # (m, k)
-    # no root changes type: Im keeps its sign (so real stays real), at most one pair
-    same = (np.sign(roots[:-1].imag) == np.sign(nxt.imag)).all(axis=1)
+    same = _type_kept(roots[:-1].imag, nxt.imag)
     return best, clear & same & ((roots[:-1].imag == 0).sum(axis=1) >= k - 2)
 
 
@@ -258,12 +271,15 @@ def _follow_substeps(track: np.ndarray, roots: np.ndarray, S: np.ndarray, coeffs
     """Fill ``track[1:]`` (track[0]: the exact roots at the start) by :func:`_follow_substep`
     on every sub-step — runs of plain sub-steps (:func:`_plain_steps`) by composing their
     assignments, which gives the same roots in the same order without a call per sub-step
-    (σ kept as its row in ``tab.perms``, composed by table, the plain rows of track written
-    in one indexing before the next call and at the end)."""
+    (σ kept as its row in ``tab.perms``, composed by table; the plain rows of track written
+    at the end in one indexing, the one a call starts from before it).  The first sub-step
+    starts from the exact roots track[0] in their own order (σ = the identity, perms[0]):
+    plain from them, it is composed like the others."""
     perms, compose = tab.perms, tab.compose
-    best, plain = _plain_steps(roots, perms)
+    best, plain = _plain_steps(np.concatenate([track[:1], roots[1:]]), tab)
     best, plain = best.tolist(), plain.tolist()
-    sigma = None                # track[m - 1] = roots[m - 1][perms[sigma]], when known
+    sigma = 0                   # track[m - 1] = rows[m - 1][perms[sigma]], when known (rows:
+    #                             track[0], then the roots)
     ms: list[int] = []          # plain sub-steps (written into track at the end), their σ
     sigmas: list[int] = []
     for m in range(1, S.size):
@@ -304,7 +320,7 @@ def _follow_cluster(ca, dca, cb, dcb, la, lb, h, margin):
     tab = _tables(k)
     mis = np.abs(cb - ca - 0.5 * (dca + dcb) * h)     # trapezoidal mismatch of each coefficient
     S = _S
-    C = _hermite_eval(tuple(c[None, :] for c in coeffs), _S_COL)         # (m, k)
+    C = _hermite_eval(coeffs, _S_COL)                                    # (m, k)
     comp = np.zeros((S.size, k, k))
     comp[:, 0, :] = -C
     if k > 1:
@@ -329,8 +345,9 @@ def _follow_cluster(ca, dca, cb, dcb, la, lb, h, margin):
     # real parts: sign kept, with margin over the uncertainty of the roots: first order
     # |δp(λ)|/|p'(λ)|, or √(2|δp(λ)|/|p''(λ)|) near a double root (where p' → 0)
     full = np.concatenate([np.ones((S.size, 1)), C], axis=1)             # (m, k+1)
-    d1 = (full[:, :-1, None] * (tab.w1 * track[:, None, :] ** tab.e1)).sum(axis=1)
-    d2 = (full[:, :-2, None] * (tab.w2 * track[:, None, :] ** tab.e2)).sum(axis=1) \
+    powers = track[:, None, :] ** tab.e1          # λ^(k−1) … λ^0; those of p'' are its rows 1:
+    d1 = (full[:, :-1, None] * (tab.w1 * powers)).sum(axis=1)
+    d2 = (full[:, :-2, None] * (tab.w2 * powers[:, 1:])).sum(axis=1) \
         if k >= 2 else np.zeros_like(track)
     err = np.abs(sum(mis[q] * track ** (k - 1 - q) for q in range(k)))
     env = _ENV
@@ -454,16 +471,18 @@ def _cluster_continuations(a: _Node, b: _Node, perm: np.ndarray, amb: np.ndarray
             d[~ra] = np.inf
             d[bl] = np.inf
             near = [int(x) for x in d.argsort()[:3] if np.isfinite(d[x])]
-            trials = [_closure(base | {x}, *lists) for x in near]
+            trials = [base | {x} for x in near]
         elif len(base) > 1:
             trials = [base]
         else:                                   # a lone root: with one of its nearest others
             d = np.abs(a.lam - a.lam[seed])
             d[seed] = np.inf
-            trials = [_closure(base | {int(x)}, *lists) for x in d.argsort()[:3]]
+            trials = [base | {int(x)} for x in d.argsort()[:3]]
         tried: set[frozenset[int]] = set()
+        # trials: row sets closed when their turn comes (the lists change only when a
+        # cluster is accepted, and then the remaining trials are dropped)
         while trials:
-            S = trials.pop(0)
+            S = _closure(trials.pop(0), *lists)
             if len(S) > 4 or frozenset(S) in tried:
                 continue
             tried.add(frozenset(S))
@@ -485,7 +504,7 @@ def _cluster_continuations(a: _Node, b: _Node, perm: np.ndarray, amb: np.ndarray
                 d = np.abs(a.lam[:, None] - a.lam[rows][None, :]).min(axis=1)
                 d[rows] = np.inf
                 for x in d.argsort()[:3]:
-                    trials.append(_closure(S | {int(x)}, *lists))
+                    trials.append(S | {int(x)})
     return tuple(out), (min(splits) if splits else None), tuple(events)
 
 
