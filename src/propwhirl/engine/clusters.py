@@ -52,8 +52,9 @@ def _cluster_mismatch(ca, dca, cb, dcb, h, scale):
     """Relative mismatch of the trapezoidal prediction of polynomial coefficients (last axis:
     the coefficients; each relative to scale^order and not larger than the change itself)."""
     sc = scale ** _tables(ca.shape[-1]).orders
-    mis = np.abs(cb - ca - 0.5 * (dca + dcb) * h)
-    return (np.minimum(mis, np.abs(cb - ca)) / sc).max(axis=-1), mis
+    change = cb - ca
+    mis = np.abs(change - 0.5 * (dca + dcb) * h)
+    return (np.minimum(mis, np.abs(change)) / sc).max(axis=-1), mis
 
 
 def _frozen(x: np.ndarray) -> np.ndarray:
@@ -294,7 +295,8 @@ def _follow_substeps(track: np.ndarray, roots: np.ndarray, S: np.ndarray, coeffs
         order = _order_of(track[m], roots[m])
         sigma = None if order is None else tab.index[tuple(order.tolist())]
     if ms:
-        track[ms] = roots[np.array(ms)[:, None], perms[sigmas]]
+        at = np.array(ms)
+        track[at] = roots[at[:, None], perms[np.array(sigmas)]]
 
 
 def _follow_cluster(ca, dca, cb, dcb, la, lb, h, margin):
@@ -325,7 +327,7 @@ def _follow_cluster(ca, dca, cb, dcb, la, lb, h, margin):
     comp[:, 0, :] = -C
     if k > 1:
         comp[(slice(None),) + tab.sub] = 1.0
-    roots = np.linalg.eigvals(comp).astype(complex)   # real roots exactly real (LAPACK)
+    roots = np.linalg.eigvals(comp).astype(complex, copy=False)   # real roots exactly real
     sign0 = np.sign(la.real)
     if (sign0 == 0).any() or (np.sign(lb.real) == 0).any():
         return None, None
@@ -544,7 +546,7 @@ def _try_cluster(a: _Node, b: _Node, rows: np.ndarray, cols: np.ndarray, rel_err
         same_kind = ((lam.imag == 0)[:, :, None] & (cand.imag == 0)[:, None, :]
                      & (np.sign(lam.real)[:, :, None] == np.sign(cand.real)[:, None, :]))
         at_a, at_b = np.where(same_kind, np.inf, mis).min(axis=-1).tolist()
-        for ma, mb in zip(at_a, at_b):    # as a loop over the members, a before b, would
+        for ma, mb in zip(at_a, at_b):    # folded member by member, a before b (NaN as before)
             alt = min(alt, ma)
             alt = min(alt, mb)
     if e > opts.cost_ratio * alt:
