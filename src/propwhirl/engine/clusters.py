@@ -16,6 +16,7 @@ points, :func:`propwhirl.engine.crossings._branch_point_speeds`).
 from __future__ import annotations
 
 import itertools
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import linear_sum_assignment
@@ -31,40 +32,114 @@ def _poly_and_derivative(lam: np.ndarray, dlam: np.ndarray) -> tuple[np.ndarray,
     The coefficients of a cluster's characteristic polynomial are analytic in V through the
     branch points where its roots split or merge (single roots have square-root
     singularities there); their derivatives follow from the λ'_i by the product rule.
+    ``lam``, ``dlam``: (..., k), a batch of clusters along the leading axes (each one gets
+    the same elementwise operations as alone, so the same coefficients bit for bit).
     """
-    k = lam.size
-    c = np.zeros(k + 1, dtype=complex)
-    dc = np.zeros(k + 1, dtype=complex)
-    c[0] = 1.0
-    for r, d in zip(lam, dlam):
-        dc[1:] = dc[1:] - r * dc[:-1] - d * c[:-1]
-        c[1:] = c[1:] - r * c[:-1]
-    return c[1:], dc[1:]
+    k = lam.shape[-1]
+    z = np.zeros((2,) + lam.shape[:-1] + (k + 1,), dtype=complex)   # z[0]: c, z[1]: dc
+    c, dc = z[0], z[1]
+    c[..., 0] = 1.0
+    for j in range(k):
+        # dc ← dc − r·dc⁻ − d·c⁻ and c ← c − r·c⁻ (⁻: shifted by one), as three operations
+        r, d = lam[..., j, None], dlam[..., j, None]
+        u = d * c[..., :-1]
+        z[..., 1:] -= r * z[..., :-1]
+        dc[..., 1:] -= u
+    return c[..., 1:], dc[..., 1:]
 
 
 def _cluster_mismatch(ca, dca, cb, dcb, h, scale):
     """Relative mismatch of the trapezoidal prediction of polynomial coefficients (last axis:
     the coefficients; each relative to scale^order and not larger than the change itself)."""
-    k = ca.shape[-1]
-    sc = scale ** np.arange(1, k + 1)
-    mis = np.abs(cb - ca - 0.5 * (dca + dcb) * h)
-    return np.max(np.minimum(mis, np.abs(cb - ca)) / sc, axis=-1), mis
+    sc = scale ** _tables(ca.shape[-1]).orders
+    change = cb - ca
+    mis = np.abs(change - 0.5 * (dca + dcb) * h)
+    return (np.minimum(mis, np.abs(change)) / sc).max(axis=-1), mis
 
 
-def _alternative_mismatch(lam_o, dl_o, cand, dcand, c_fix, dc_fix, other_at_a, h, scale):
-    """Mismatch with one member replaced by each candidate (vectorised over candidates)."""
-    p, dp = _poly_and_derivative(lam_o, dl_o)
-    p1 = np.concatenate([[1.0], p])
-    dp1 = np.concatenate([[0.0], dp])
-    # (z − x) Π_others: coefficients [1, p1 − x·…]
-    c = (np.concatenate([p1, [0.0]])[None, :]
-         - cand[:, None] * np.concatenate([[0.0], p1])[None, :])[:, 1:]
-    dc = (np.concatenate([dp1, [0.0]])[None, :]
-          - cand[:, None] * np.concatenate([[0.0], dp1])[None, :]
-          - dcand[:, None] * np.concatenate([[0.0], p1])[None, :])[:, 1:]
-    if other_at_a:
-        return _cluster_mismatch(c, dc, c_fix[None, :], dc_fix[None, :], h, scale)[0]
-    return _cluster_mismatch(c_fix[None, :], dc_fix[None, :], c, dc, h, scale)[0]
+def _frozen(x: np.ndarray) -> np.ndarray:
+    """``x``, made read-only (the module's constant tables)."""
+    x.flags.writeable = False
+    return x
+
+
+@dataclass(frozen=True)
+class _Tables:
+    """Index tables of a cluster of k roots, built once per k (read-only arrays).
+
+    perms: (k!, k) the permutations of range(k) (in ``itertools.permutations`` order);
+    index: the row of each permutation (as a tuple) in ``perms``; compose[i][j]: the row of
+    perms[i][perms[j]]; others: (k, k − 1), row m the members other than m; sub: rows and
+    columns of the companion matrix's subdiagonal; orders: 1 … k, the orders of the
+    coefficients; w1, e1 / w2: factors and exponents of the first / second derivative of a
+    monic polynomial of degree k in the powers of z (coefficient order: highest power first;
+    the exponents of the second are e1[1:]); gather: (k!, k), the flat indices i·k + perm[i]
+    of a k × k matrix picked by each permutation.
+    """
+
+    perms: np.ndarray
+    index: dict[tuple[int, ...], int]
+    compose: tuple[tuple[int, ...], ...]
+    others: np.ndarray
+    sub: tuple[np.ndarray, np.ndarray]
+    orders: np.ndarray
+    w1: np.ndarray
+    e1: np.ndarray
+    w2: np.ndarray
+    gather: np.ndarray
+
+    @classmethod
+    def build(cls, k: int) -> _Tables:
+        pw = np.arange(k, -1, -1)
+        perms = list(itertools.permutations(range(k)))
+        index = {p: i for i, p in enumerate(perms)}
+        compose = tuple(tuple(index[tuple(p[j] for j in r)] for r in perms) for p in perms)
+        arrays = dict(
+            perms=np.array(perms), orders=np.arange(1, k + 1),
+            others=np.array([[j for j in range(k) if j != m] for m in range(k)],
+                            dtype=int).reshape(k, k - 1),
+            w1=pw[:-1, None], e1=np.maximum(pw[:-1, None] - 1, 0),
+            w2=(pw[:-2] * (pw[:-2] - 1))[:, None],
+            gather=np.arange(k) * k + np.array(perms, dtype=int).reshape(-1, k))
+        sub = (_frozen(np.arange(1, k)), _frozen(np.arange(k - 1)))
+        return cls(sub=sub, index=index, compose=compose,
+                   **{name: _frozen(x) for name, x in arrays.items()})
+
+
+#: the tables of the cluster sizes that occur (2–4 roots; 1 for completeness)
+_TABLES = {k: _Tables.build(k) for k in range(1, 5)}
+
+
+def _tables(k: int) -> _Tables:
+    """The index tables of a cluster of k roots (built anew only for k > 4)."""
+    t = _TABLES.get(k)
+    return t if t is not None else _Tables.build(k)
+
+
+def _alternative_mismatches(lam, dlam, cand, dcand, ca, dca, cb, dcb, h, scale):
+    """Mismatch of the cluster with one member replaced by another eigenvalue, for every
+    member and candidate at both ends at once (:func:`_cluster_mismatch`).
+
+    ``lam``, ``dlam``: (2, k), the cluster's roots at a and at b; ``cand``, ``dcand``:
+    (2, n_cand), the other eigenvalues at a and at b; ``ca`` … ``dcb``: the cluster's
+    coefficients at both ends.  Returns (2, k, n_cand): at end e, the mismatch with member m
+    replaced by candidate j (the other end kept).
+    """
+    k = lam.shape[-1]
+    others = _tables(k).others
+    p, dp = _poly_and_derivative(lam[:, others], dlam[:, others])          # (2, k, k − 1)
+    # (z − x) Π_others: coefficients [p, 0] − x·[1, p] (leading 1 dropped)
+    pe, ps, dpe, dps = np.zeros((4, 2, k, 1, k), dtype=complex)
+    pe[..., 0, :-1] = p
+    ps[..., 0, 0] = 1.0
+    ps[..., 0, 1:] = p
+    dpe[..., 0, :-1] = dp
+    dps[..., 0, 1:] = dp
+    x, dx = cand[:, None, :, None], dcand[:, None, :, None]                 # (2, 1, n, 1)
+    c = pe - x * ps
+    dc = dpe - x * dps - dx * ps                                            # (2, k, n, k)
+    return np.array([_cluster_mismatch(c[0], dc[0], cb, dcb, h, scale)[0],
+                     _cluster_mismatch(ca, dca, c[1], dc[1], h, scale)[0]])
 
 
 def _subspace_mac(Xa: np.ndarray, Xb: np.ndarray, disp: np.ndarray) -> float:
@@ -72,35 +147,63 @@ def _subspace_mac(Xa: np.ndarray, Xb: np.ndarray, disp: np.ndarray) -> float:
     Pa, Pb = Xa[disp], Xb[disp]
     if Pa.shape[0] < Pa.shape[1] or np.linalg.norm(Pa) < 1e-5 or np.linalg.norm(Pb) < 1e-5:
         Pa, Pb = Xa, Xb
-    Qa, _ = np.linalg.qr(Pa)
-    Qb, _ = np.linalg.qr(Pb)
+    Qa, Qb = np.linalg.qr(np.array([Pa, Pb]))[0]      # both in one call (each as alone)
     s = np.linalg.svd(Qa.conj().T @ Qb, compute_uv=False)
-    return float(np.min(s) ** 2)
+    return float(s.min() ** 2)
 
 
 #: sub-steps on which the interpolated characteristic polynomial of a cluster is followed
 _CLUSTER_SUBSTEPS = 32
+#: their ends s ∈ [0, 1], and the envelope 16 s²(1 − s)² of the coefficients' uncertainty
+_S = _frozen(np.linspace(0.0, 1.0, _CLUSTER_SUBSTEPS + 1))
+_S_COL = _frozen(_S[:, None])
+_ENV = _frozen(16 * _S ** 2 * (1 - _S) ** 2)
 
 
 def _interpolated_roots(coeffs, s: float) -> np.ndarray:
     """Roots of the cluster polynomial with Hermite-interpolated (real) coefficients at s."""
-    c = np.real(_hermite_eval(coeffs, s))
+    c = _hermite_eval(coeffs, s).real
     k = c.size
     comp = np.zeros((k, k))
     comp[0, :] = -c
     if k > 1:
-        comp[np.arange(1, k), np.arange(k - 1)] = 1.0
+        comp[_tables(k).sub] = 1.0
     return np.linalg.eigvals(comp).astype(complex)
+
+
+def _n_real_roots(c: np.ndarray) -> int:
+    """The number of roots with imaginary part 0 that ``np.roots([1, *c])`` returns (c: real
+    coefficients below the leading 1), from the same companion matrix and eigenvalues —
+    np.roots drops trailing zero coefficients as zero roots — without its overhead."""
+    p = np.concatenate([[1.0], c])
+    nz = p.nonzero()[0]
+    trailing = p.size - 1 - int(nz[-1])
+    p = p[:int(nz[-1]) + 1]
+    if p.size == 1:
+        return trailing
+    A = np.zeros((p.size - 1, p.size - 1))
+    A[0, :] = -p[1:] / p[0]
+    A[_tables(p.size - 1).sub] = 1.0
+    return int(np.count_nonzero(np.linalg.eigvals(A).imag == 0)) + trailing
 
 
 def _partners(r: np.ndarray) -> np.ndarray:
     """Index of each root's conjugate partner (−1 for a real root)."""
     out = np.full(r.size, -1)
-    for i in np.nonzero(r.imag != 0)[0]:
+    for i in (r.imag != 0).nonzero()[0]:
         d = np.abs(r - r[i].conjugate())
         d[i] = np.inf
-        out[i] = int(np.argmin(d))
+        out[i] = int(d.argmin())
     return out
+
+
+def _type_kept(im0: np.ndarray, im1: np.ndarray):
+    """Whether no root changes type between two orderings (last axis): real stays real and
+    complex stays complex with the sign of Im kept.  As one comparison of the signs of Im —
+    equal signs imply the same real/complex type, and roots all real at both ends have
+    equal (zero) signs — which is exactly (real₀ == real₁).all() and (real₀.all() or
+    (sign₀ == sign₁).all()), NaN included (never equal)."""
+    return (np.sign(im0) == np.sign(im1)).all(axis=-1)
 
 
 def _follow_substep(cur, r, s0, s1, coeffs, perms, depth):
@@ -108,22 +211,20 @@ def _follow_substep(cur, r, s0, s1, coeffs, perms, depth):
     Im > 0 member of a pair turning real taking the larger root; a sub-step in which the
     pairing changes by more than one split or one merge is halved (up to 2⁵ times)."""
     k = cur.size
-    nxt = r[perms[int(np.argmin(np.abs(cur[None, :] - r[perms]).sum(axis=1)))]]
+    nxt = r[perms[int(np.abs(cur[None, :] - r[perms]).sum(axis=1).argmin())]]
     for i in range(k):              # a pair turning real: Im > 0 takes the larger root
         if cur[i].imag > 0 and nxt[i].imag == 0:
             j = int(np.argmin(np.abs(cur - cur[i].conjugate()) + np.where(
                 np.arange(k) == i, np.inf, 0.0)))
             if nxt[j].imag == 0 and nxt[j].real > nxt[i].real:
                 nxt[i], nxt[j] = nxt[j], nxt[i]
-    real_c, real_n = cur.imag == 0, nxt.imag == 0
-    if np.array_equal(real_c, real_n) and (real_c.all() or np.array_equal(
-            np.sign(cur.imag), np.sign(nxt.imag))) and real_c.sum() >= k - 2:
+    if _type_kept(cur.imag, nxt.imag) and (cur.imag == 0).sum() >= k - 2:
         return nxt                  # no root changed type: at most one pair, kept
     pc, pn = _partners(cur), _partners(nxt)
-    changed = np.nonzero(pc != pn)[0]
+    changed = (pc != pn).nonzero()[0]
     clean = changed.size == 0 or (changed.size == 2 and (
-        (pc[changed[0]] == changed[1] and np.all(pn[changed] == -1))        # one split
-        or (pn[changed[0]] == changed[1] and np.all(pc[changed] == -1))))   # one merge
+        (pc[changed[0]] == changed[1] and (pn[changed] == -1).all())        # one split
+        or (pn[changed[0]] == changed[1] and (pc[changed] == -1).all())))   # one merge
     if clean or depth >= 5:
         return nxt
     sm = 0.5 * (s0 + s1)
@@ -132,53 +233,70 @@ def _follow_substep(cur, r, s0, s1, coeffs, perms, depth):
     return _follow_substep(mid, r, sm, s1, coeffs, perms, depth + 1)
 
 
-def _plain_steps(roots: np.ndarray, perms: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _plain_steps(roots: np.ndarray, tab: _Tables) -> tuple[np.ndarray, np.ndarray]:
     """Per sub-step m − 1 → m: the nearest assignment of the roots at m − 1 (LAPACK order) to
-    those at m (index into ``perms``), and whether the step is *plain* — its nearest
+    those at m (index into ``tab.perms``), and whether the step is *plain* — its nearest
     assignment is unambiguous (the best sum of distances below the second best by far more
     than rounding) and no root changes type (real stays real, Im keeps its sign, at most one
     pair).  For a plain step :func:`_follow_substep` from the roots at m − 1 in *any* order σ
-    returns the roots at m in the order σ composed with that assignment, so a run of plain
-    steps is followed by composing permutations (the assignments found for all sub-steps in
-    one vectorised pass)."""
-    k = roots.shape[1]
+    returns the roots at m in the order σ composed with that assignment (the same sums of
+    the same distances, a unique minimum, no pair turning real, the same test of type), so a
+    run of plain steps is followed by composing permutations (the assignments found for all
+    sub-steps in one vectorised pass).  Row 0 may be the exact roots at the start (the first
+    sub-step is then judged from them)."""
+    m, k = roots.shape[0] - 1, roots.shape[1]
+    perms = tab.perms
     D = np.abs(roots[:-1, :, None] - roots[1:, None, :])                 # (m, k, k)
-    cost = D[:, np.arange(k)[None, :], perms].sum(axis=2)               # (m, n_perm)
-    order = np.argsort(cost, axis=1)
+    cost = D.reshape(m, k * k)[:, tab.gather].sum(axis=2)               # (m, n_perm)
+    order = cost.argsort(axis=1)
     best = order[:, 0]
-    c0 = np.take_along_axis(cost, order[:, :1], axis=1)[:, 0]
-    c1 = (np.take_along_axis(cost, order[:, 1:2], axis=1)[:, 0] if perms.shape[0] > 1
-          else np.full(c0.shape, np.inf))
-    clear = c1 - c0 > 1e-9 * (c0 + c1 + np.abs(roots).max(axis=1)[1:])
-    nxt = np.take_along_axis(roots[1:], perms[best], axis=1)            # (m, k)
-    real_c, real_n = roots[:-1].imag == 0, nxt.imag == 0
-    same = np.all(real_c == real_n, axis=1) & (
-        np.all(real_c, axis=1) | np.all(np.sign(roots[:-1].imag) == np.sign(nxt.imag), axis=1))
-    return best, clear & same & (real_c.sum(axis=1) >= k - 2)
+    steps = np.arange(m)
+    c0 = cost[steps, best]
+    c1 = cost[steps, order[:, 1]] if perms.shape[0] > 1 else np.full(c0.shape, np.inf)
+    clear = c1 - c0 > 1e-9 * (c0 + c1 + np.abs(roots[1:]).max(axis=1))
+    nxt = roots[1:][steps[:, None], perms[best]]                         # (m, k)
+    same = _type_kept(roots[:-1].imag, nxt.imag)
+    return best, clear & same & ((roots[:-1].imag == 0).sum(axis=1) >= k - 2)
 
 
 def _order_of(x: np.ndarray, r: np.ndarray) -> np.ndarray | None:
     """σ with x = r[σ] (x a reordering of the exact values r), or None."""
     eq = x[:, None] == r[None, :]
-    if not (np.all(eq.sum(axis=0) == 1) and np.all(eq.sum(axis=1) == 1)):
+    if not ((eq.sum(axis=0) == 1).all() and (eq.sum(axis=1) == 1).all()):
         return None
-    return np.argmax(eq, axis=1)
+    return eq.argmax(axis=1)
 
 
 def _follow_substeps(track: np.ndarray, roots: np.ndarray, S: np.ndarray, coeffs,
-                     perms: np.ndarray) -> None:
+                     tab: _Tables) -> None:
     """Fill ``track[1:]`` (track[0]: the exact roots at the start) by :func:`_follow_substep`
     on every sub-step — runs of plain sub-steps (:func:`_plain_steps`) by composing their
-    assignments, which gives the same roots in the same order without a call per sub-step."""
-    best, plain = _plain_steps(roots, perms)
-    sigma = None                       # track[m - 1] = roots[m - 1][sigma], when known
+    assignments, which gives the same roots in the same order without a call per sub-step
+    (σ kept as its row in ``tab.perms``, composed by table; the plain rows of track written
+    at the end in one indexing, the one a call starts from before it).  The first sub-step
+    starts from the exact roots track[0] in their own order (σ = the identity, perms[0]):
+    plain from them, it is composed like the others."""
+    perms, compose = tab.perms, tab.compose
+    best, plain = _plain_steps(np.concatenate([track[:1], roots[1:]]), tab)
+    best, plain = best.tolist(), plain.tolist()
+    sigma = 0                   # track[m - 1] = rows[m - 1][perms[sigma]], when known (rows:
+    #                             track[0], then the roots)
+    ms: list[int] = []          # plain sub-steps (written into track at the end), their σ
+    sigmas: list[int] = []
     for m in range(1, S.size):
         if sigma is not None and plain[m - 1]:
-            sigma = perms[best[m - 1]][sigma]
-            track[m] = roots[m][sigma]
-        else:
-            track[m] = _follow_substep(track[m - 1], roots[m], S[m - 1], S[m], coeffs, perms, 0)
-            sigma = _order_of(track[m], roots[m])
+            sigma = compose[best[m - 1]][sigma]
+            ms.append(m)
+            sigmas.append(sigma)
+            continue
+        if ms and ms[-1] == m - 1:          # the start of this sub-step, from a plain one
+            track[m - 1] = roots[m - 1][perms[sigma]]
+        track[m] = _follow_substep(track[m - 1], roots[m], S[m - 1], S[m], coeffs, perms, 0)
+        order = _order_of(track[m], roots[m])
+        sigma = None if order is None else tab.index[tuple(order.tolist())]
+    if ms:
+        at = np.array(ms)
+        track[at] = roots[at[:, None], perms[np.array(sigmas)]]
 
 
 def _follow_cluster(ca, dca, cb, dcb, la, lb, h, margin):
@@ -199,74 +317,73 @@ def _follow_cluster(ca, dca, cb, dcb, la, lb, h, margin):
     None for the middle.
     """
     k = la.size
-    ca, dca, cb, dcb = (np.real(x) for x in (ca, dca, cb, dcb))   # conjugation-closed: real
+    ca, dca, cb, dcb = ca.real, dca.real, cb.real, dcb.real       # conjugation-closed: real
     coeffs = _hermite_coeffs(ca, cb, dca, dcb, h)
-    _, mis = _cluster_mismatch(ca, dca, cb, dcb, h, 1.0)
-    S = np.linspace(0.0, 1.0, _CLUSTER_SUBSTEPS + 1)
-    C = _hermite_eval(tuple(c[None, :] for c in coeffs), S[:, None])      # (m, k)
+    tab = _tables(k)
+    mis = np.abs(cb - ca - 0.5 * (dca + dcb) * h)     # trapezoidal mismatch of each coefficient
+    S = _S
+    C = _hermite_eval(coeffs, _S_COL)                                    # (m, k)
     comp = np.zeros((S.size, k, k))
     comp[:, 0, :] = -C
     if k > 1:
-        comp[:, np.arange(1, k), np.arange(k - 1)] = 1.0
-    roots = np.linalg.eigvals(comp).astype(complex)   # real roots exactly real (LAPACK)
+        comp[(slice(None),) + tab.sub] = 1.0
+    roots = np.linalg.eigvals(comp).astype(complex, copy=False)   # real roots exactly real
     sign0 = np.sign(la.real)
-    if np.any(sign0 == 0) or np.any(np.sign(lb.real) == 0):
+    if (sign0 == 0).any() or (np.sign(lb.real) == 0).any():
         return None, None
-    scale = max(float(np.max(np.abs(la))), float(np.max(np.abs(lb))), 1e-300)
     track = np.empty((S.size, k), dtype=complex)
     track[0] = la
-    perms = np.array(list(itertools.permutations(range(k))))
-    _follow_substeps(track, roots, S, coeffs, perms)
+    _follow_substeps(track, roots, S, coeffs, tab)
     cur = track[-1]
+    flip = (np.sign(track.real) != sign0).any(axis=1)
+    if flip.any():     # a real part changes sign: split between it and the nearest branch point
+        mc = int(flip.argmax())
+        nreal = (track.imag == 0).sum(axis=1)
+        ev = (np.diff(nreal) != 0).nonzero()[0] + 0.5          # branch points, in sub-steps
+        if ev.size == 0:
+            return None, None
+        e = ev[np.abs(ev - mc).argmin()]
+        return None, float(np.clip(0.5 * (e + mc) / _CLUSTER_SUBSTEPS, 0.05, 0.95))
     # real parts: sign kept, with margin over the uncertainty of the roots: first order
     # |δp(λ)|/|p'(λ)|, or √(2|δp(λ)|/|p''(λ)|) near a double root (where p' → 0)
     full = np.concatenate([np.ones((S.size, 1)), C], axis=1)             # (m, k+1)
-    pw = np.arange(k, -1, -1)
-    d1 = np.sum(full[:, :-1, None] * (pw[:-1, None] * track[:, None, :] ** np.maximum(
-        pw[:-1, None] - 1, 0)), axis=1)
-    d2 = np.sum(full[:, :-2, None] * ((pw[:-2] * (pw[:-2] - 1))[:, None] * track[:, None, :]
-                                      ** np.maximum(pw[:-2, None] - 2, 0)), axis=1) \
+    powers = track[:, None, :] ** tab.e1          # λ^(k−1) … λ^0; those of p'' are its rows 1:
+    d1 = (full[:, :-1, None] * (tab.w1 * powers)).sum(axis=1)
+    d2 = (full[:, :-2, None] * (tab.w2 * powers[:, 1:])).sum(axis=1) \
         if k >= 2 else np.zeros_like(track)
     err = np.abs(sum(mis[q] * track ** (k - 1 - q) for q in range(k)))
-    env = 16 * S ** 2 * (1 - S) ** 2
+    env = _ENV
     with np.errstate(all="ignore"):
         lin = err / np.abs(d1)
         quad = np.sqrt(2 * err / np.abs(d2))
     # p' = p'' = 0 at a root of multiplicity ≥ 3 (e.g. lag roots shared by several nodes):
     # the estimates are unbounded (inf, or 0/0); but the envelope is 0 at the ends, where the
     # roots are the exact ones, so the uncertainty there is 0 — not 0·inf
-    est = np.nan_to_num(np.minimum(lin, quad), nan=np.inf, posinf=np.inf)
-    unc = np.multiply(env[:, None], est, out=np.zeros_like(est), where=env[:, None] > 0)
-    flip = np.any(np.sign(track.real) != sign0, axis=1)
-    thin = np.any(np.abs(track.real) < margin * unc, axis=1)
-    if flip.any() or thin.any():
-        if not flip.any():
-            return None, None
-        mc = int(np.argmax(flip))
-        nreal = np.sum(track.imag == 0, axis=1)
-        ev = np.nonzero(np.diff(nreal) != 0)[0] + 0.5          # branch points, in sub-steps
-        if ev.size == 0:
-            return None, None
-        e = ev[np.argmin(np.abs(ev - mc))]
-        return None, float(np.clip(0.5 * (e + mc) / _CLUSTER_SUBSTEPS, 0.05, 0.95))
+    # (lin and quad are ≥ 0, +inf or NaN: NaN → inf, as np.nan_to_num(…, nan=inf) would)
+    est = np.minimum(lin, quad)
+    est = np.where(np.isnan(est), np.inf, est)
+    unc = np.multiply(env[:, None], est, out=np.zeros(est.shape), where=env[:, None] > 0)
+    if (np.abs(track.real) < margin * unc).any():
+        return None, None
+    scale = max(float(np.abs(la).max()), float(np.abs(lb).max()), 1e-300)
     cost = np.abs(cur[:, None] - lb[None, :])
     rows, cols = linear_sum_assignment(cost)
-    q = cols[np.argsort(rows)]
-    if np.max(cost[np.arange(k), q]) > 1e-6 * scale:
+    q = cols[rows.argsort()]
+    if cost[np.arange(k), q].max() > 1e-6 * scale:
         return None, None
     # unstable pairs of the first sample turning real: (s, member, partner, double root)
     events = []
-    for i in np.nonzero((la.imag > 0) & (la.real > 0))[0]:
-        real = np.nonzero(track[:, i].imag == 0)[0]
+    for i in ((la.imag > 0) & (la.real > 0)).nonzero()[0]:
+        real = (track[:, i].imag == 0).nonzero()[0]
         if real.size:
             m = int(real[0])
-            ic = int(np.argmin(np.abs(la - np.conj(la[i]))))
+            ic = int(np.abs(la - np.conj(la[i])).argmin())
             n_real = int(np.count_nonzero(roots[m - 1].imag == 0))
             lo, hi = S[m - 1], S[m]
             for _ in range(12):        # the interpolated branch point, inside the sub-step
                 mid = 0.5 * (lo + hi)
                 cm = np.real(_hermite_eval(coeffs, mid))
-                if np.count_nonzero(np.roots(np.concatenate([[1.0], cm])).imag == 0) == n_real:
+                if _n_real_roots(cm) == n_real:
                     lo = mid
                 else:
                     hi = mid
@@ -275,14 +392,16 @@ def _follow_cluster(ca, dca, cb, dcb, la, lb, h, margin):
     return q, events
 
 
-def _closure(seed: set[int], perm: np.ndarray, inv: np.ndarray, a: _Node, b: _Node) -> set[int]:
-    """Smallest row set containing ``seed`` closed under conjugation at both ends and perm."""
+def _closure(seed: set[int], perm: list[int], inv: list[int], conj_a: list[int],
+             conj_b: list[int]) -> set[int]:
+    """Smallest row set containing ``seed`` closed under conjugation at both ends and perm
+    (the index arrays as lists of ints: the assignment, its inverse, the conjugates at a, b)."""
     S = set(seed)
     while True:
-        S2 = S | {int(a.conj[i]) for i in S}
-        T = {int(perm[i]) for i in S2}
-        T |= {int(b.conj[j]) for j in T}
-        S2 |= {int(inv[j]) for j in T}
+        S2 = S | {conj_a[i] for i in S}
+        T = {perm[i] for i in S2}
+        T |= {conj_b[j] for j in T}
+        S2 |= {inv[j] for j in T}
         if S2 == S:
             return S
         S = S2
@@ -332,37 +451,40 @@ def _cluster_continuations(a: _Node, b: _Node, perm: np.ndarray, amb: np.ndarray
     near_zero = np.minimum(np.abs(a.lam.real), np.abs(b.lam[perm].real)) <= 4 * max(
         opts.margin, 1.0) * mis
     bad = ra & rb[perm] & (rel_err > opts.dist_max) & near_zero & ~amb
-    seeds = list(np.nonzero(amb)[0]) + list(np.nonzero(bad)[0])
+    seeds = list(amb.nonzero()[0]) + list(bad.nonzero()[0])
     done: set[int] = set()
+    lists = [perm.tolist(), inv.tolist(), a.conj.tolist(), b.conj.tolist()]   # for _closure
     out = []
     splits: list[float] = []
     events: list[tuple[float, int, int, float]] = []
     for seed in seeds:
         if int(seed) in done:
             continue
-        base = _closure({int(seed)}, perm, inv, a, b)
+        base = _closure({int(seed)}, *lists)
         done.update(base)
         bl = np.array(sorted(base))
-        if not (np.any(ra[bl]) or np.any(rb[perm[bl]])
-                or np.any(np.abs(a.lam[bl].imag) <= mis[bl])):
+        if not (ra[bl].any() or rb[perm[bl]].any()
+                or (np.abs(a.lam[bl].imag) <= mis[bl]).any()):
             # complex pairs away from the real axis: a veering, unless their prediction
             # fails — then a real root may have joined them through branch points
-            if not np.any(rel_err[bl] > opts.dist_max):
+            if not (rel_err[bl] > opts.dist_max).any():
                 continue
             d = np.abs(a.lam[:, None] - a.lam[bl][None, :]).min(axis=1)
             d[~ra] = np.inf
             d[bl] = np.inf
-            near = [int(x) for x in np.argsort(d)[:3] if np.isfinite(d[x])]
-            trials = [_closure(base | {x}, perm, inv, a, b) for x in near]
+            near = [int(x) for x in d.argsort()[:3] if np.isfinite(d[x])]
+            trials = [base | {x} for x in near]
         elif len(base) > 1:
             trials = [base]
         else:                                   # a lone root: with one of its nearest others
             d = np.abs(a.lam - a.lam[seed])
             d[seed] = np.inf
-            trials = [_closure(base | {int(x)}, perm, inv, a, b) for x in np.argsort(d)[:3]]
+            trials = [base | {int(x)} for x in d.argsort()[:3]]
         tried: set[frozenset[int]] = set()
+        # trials: row sets closed when their turn comes (the lists change only when a
+        # cluster is accepted, and then the remaining trials are dropped)
         while trials:
-            S = trials.pop(0)
+            S = _closure(trials.pop(0), *lists)
             if len(S) > 4 or frozenset(S) in tried:
                 continue
             tried.add(frozenset(S))
@@ -371,6 +493,7 @@ def _cluster_continuations(a: _Node, b: _Node, perm: np.ndarray, amb: np.ndarray
             if q is not None:
                 perm[rows] = perm[rows][q]
                 inv[perm] = np.arange(n)
+                lists[:2] = perm.tolist(), inv.tolist()
                 amb[rows] = False
                 done.update(S)
                 out.append(tuple(int(i) for i in rows))
@@ -382,8 +505,8 @@ def _cluster_continuations(a: _Node, b: _Node, perm: np.ndarray, amb: np.ndarray
             if len(tried) < 4:       # grow by one of the nearest other roots (at a)
                 d = np.abs(a.lam[:, None] - a.lam[rows][None, :]).min(axis=1)
                 d[rows] = np.inf
-                for x in np.argsort(d)[:3]:
-                    trials.append(_closure(S | {int(x)}, perm, inv, a, b))
+                for x in d.argsort()[:3]:
+                    trials.append(S | {int(x)})
     return tuple(out), (min(splits) if splits else None), tuple(events)
 
 
@@ -394,11 +517,13 @@ def _try_cluster(a: _Node, b: _Node, rows: np.ndarray, cols: np.ndarray, rel_err
     (None, where to split the step or None) if not acceptable."""
     la, da, lb, db = a.lam[rows], a.dlam[rows], b.lam[cols], b.dlam[cols]
     near_axis = np.abs(la.imag) <= rel_err * np.abs(la)
-    if not (np.any(la.imag == 0) or np.any(lb.imag == 0) or np.any(near_axis)):
+    if not ((la.imag == 0).any() or (lb.imag == 0).any() or near_axis.any()):
         return None, None     # complex pairs only: a veering, resolved by refinement
-    scale = max(float(np.max(np.abs(la))), a.floor)
-    ca, dca = _poly_and_derivative(la, da)
-    cb, dcb = _poly_and_derivative(lb, db)
+    scale = max(float(np.abs(la).max()), a.floor)
+    k = rows.size
+    lam, dlam = np.array([la, lb]), np.array([da, db])                     # (2, k): a, b
+    cc, dcc = _poly_and_derivative(lam, dlam)
+    ca, cb, dca, dcb = cc[0], cc[1], dcc[0], dcc[1]
     e = float(_cluster_mismatch(ca, dca, cb, dcb, h, scale)[0])
     if not e <= opts.dist_max:
         return None, None
@@ -408,24 +533,22 @@ def _try_cluster(a: _Node, b: _Node, rows: np.ndarray, cols: np.ndarray, rel_err
     if _subspace_mac(a.X[:, rows], b.X[:, cols], disp) < opts.mac_min:
         return None, None
     n = a.lam.size
-    oa = np.setdiff1d(np.arange(n), rows)
-    ob = np.setdiff1d(np.arange(n), cols)
     alt = np.inf
-    for m in range(rows.size if oa.size else 0):
-        keep = np.delete(np.arange(rows.size), m)
+    if n > k:
+        keep_a, keep_b = np.ones(n, dtype=bool), np.ones(n, dtype=bool)
+        keep_a[rows] = keep_b[cols] = False
+        cand = np.array([a.lam[keep_a], b.lam[keep_b]])
+        dcand = np.array([a.dlam[keep_a], b.dlam[keep_b]])
+        mis = _alternative_mismatches(lam, dlam, cand, dcand, ca, dca, cb, dcb, h,
+                                      scale)                                 # (2, k, n − k)
         # a real member is interchangeable with the other real roots of its sign (no shape
         # identity is kept between them): they are no competitors
-        for lam_o, dl_o, other, fix, dfix, at_a, x in (
-                (la, da, oa, cb, dcb, True, la[m]), (lb, db, ob, ca, dca, False, lb[m])):
-            node = a if at_a else b
-            cand = other
-            if x.imag == 0:
-                cand = other[~((node.lam[other].imag == 0)
-                               & (np.sign(node.lam[other].real) == np.sign(x.real)))]
-            if cand.size:
-                alt = min(alt, float(np.min(_alternative_mismatch(
-                    lam_o[keep], dl_o[keep], node.lam[cand], node.dlam[cand], fix, dfix, at_a,
-                    h, scale))))
+        same_kind = ((lam.imag == 0)[:, :, None] & (cand.imag == 0)[:, None, :]
+                     & (np.sign(lam.real)[:, :, None] == np.sign(cand.real)[:, None, :]))
+        at_a, at_b = np.where(same_kind, np.inf, mis).min(axis=-1).tolist()
+        for ma, mb in zip(at_a, at_b):    # folded member by member, a before b (NaN as before)
+            alt = min(alt, ma)
+            alt = min(alt, mb)
     if e > opts.cost_ratio * alt:
         return None, None
     return q, events
