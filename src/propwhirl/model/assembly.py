@@ -10,6 +10,8 @@ aerodynamics and everything built on them are those of the model without in-plan
 """
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from propwhirl.generated import beam_element
@@ -77,6 +79,7 @@ def inplane_structure(wing: Wing) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return M, mu * M + lam * K, K
 
 
+@functools.lru_cache(maxsize=64)
 def inplane_dof_labels(n_nodes: int) -> tuple[str, ...]:
     """Labels 'node i v' / 'node i chi' of the in-plane DOFs of all nodes (root = node 0)."""
     return tuple(f"node {i} {d}" for i in range(n_nodes) for d in INPLANE_DOF_NAMES)
@@ -87,6 +90,7 @@ def free_dofs(n_nodes: int) -> np.ndarray:
     return np.arange(3, 3 * n_nodes)
 
 
+@functools.lru_cache(maxsize=64)
 def wing_dof_labels(n_nodes: int) -> tuple[str, ...]:
     """Labels 'node i h' / 'node i phi' / 'node i alpha' for all wing DOFs (root = node 0)."""
     return tuple(f"node {i} {d}" for i in range(n_nodes) for d in WING_DOF_NAMES)
@@ -148,14 +152,23 @@ def wing_aero_blocks(wing: Wing, rho: float, V: np.ndarray) -> dict[str, np.ndar
     mats = {role: blocks[fn] for role, fn in names.items()}
     M, C, K, W0, Ww, Wq = (mats[r] for r in ("M", "C", "K", "W0", "Ww", "Wq"))
     Wv = mats.get("Wv", np.zeros_like(Wq))
+    qrows, wrows, labels = _strip_layout(nn, k)
     return {
         "Ma": width * M, "Ca": width * C, "Ka": width * K, "W0": width * W0,
-        "Ww": Ww, "Wv": Wv, "Wq": Wq,
-        "qrows": 3 * np.arange(nn)[:, None] + np.array([0, 2])[None, :],  # h_i, α_i
-        "wrows": k * np.arange(nn)[:, None] + np.arange(k)[None, :],
-        "m": k * nn,
-        "labels": tuple(f"node {i} w{j + 1}" for i in range(nn) for j in range(k)),
+        "Ww": Ww, "Wv": Wv, "Wq": Wq, "qrows": qrows, "wrows": wrows, "m": k * nn,
+        "labels": labels,
     }
+
+
+@functools.lru_cache(maxsize=64)
+def _strip_layout(nn: int, k: int) -> tuple[np.ndarray, np.ndarray, tuple[str, ...]]:
+    """Global indices of each node's [h, α] (nn, 2) and lag states (nn, k), and the lag-state
+    labels, of a wing of ``nn`` nodes with ``k`` lag states per node (read-only: shared by
+    every evaluation)."""
+    qrows = 3 * np.arange(nn)[:, None] + np.array([0, 2])[None, :]      # h_i, α_i
+    wrows = k * np.arange(nn)[:, None] + np.arange(k)[None, :]
+    qrows.flags.writeable = wrows.flags.writeable = False
+    return qrows, wrows, tuple(f"node {i} w{j + 1}" for i in range(nn) for j in range(k))
 
 
 def wing_aero(wing: Wing, rho: float, V: np.ndarray) -> dict[str, np.ndarray | tuple[str, ...]]:

@@ -214,7 +214,13 @@ class PropellerWing(StateSpaceModel):
     def q_labels(self) -> tuple[str, ...]:
         """Labels of the DOFs q: the wing's ("node i h", ...), then "propeller k theta",
         "propeller k psi" of each flexibly mounted propeller, numbered from 1 for people
-        (k = index in `propellers` + 1; :class:`PropellerDofs.number` keeps the index)."""
+        (k = index in `propellers` + 1; :class:`PropellerDofs.number` keeps the index).
+        Made once per model."""
+        if "q labels" not in self._memo:
+            self._memo["q labels"] = self._new_q_labels()
+        return self._memo["q labels"]
+
+    def _new_q_labels(self) -> tuple[str, ...]:
         wing = wing_dof_labels(self.wing.n_nodes)
         if self.wing.in_plane:
             wing = wing + inplane_dof_labels(self.wing.n_nodes)
