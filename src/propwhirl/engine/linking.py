@@ -88,7 +88,23 @@ def _near(lam: np.ndarray, conj: np.ndarray, scale: np.ndarray, tol: float,
     r = np.arange(rows.size)
     d[r, rows] = np.inf
     d[r, conj[rows]] = np.inf
-    return np.any(d <= tol * scale[rows, None], axis=1)
+    return (d <= tol * scale[rows, None]).any(axis=1)
+
+
+def _free_columns(n: int, taken: np.ndarray) -> np.ndarray:
+    """The columns 0..n-1 not in ``taken``, increasing (``np.setdiff1d(np.arange(n), taken)``
+    by a mask, without its sort)."""
+    used = np.zeros(n, dtype=bool)
+    used[taken] = True
+    return np.nonzero(~used)[0]
+
+
+def _upper_pairs(cand: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Indices (i, k), i < k, of the True entries of a square boolean matrix in row-major
+    order (``np.nonzero(np.triu(cand, 1))``, without forming the triangle)."""
+    i, k = np.nonzero(cand)
+    upper = i < k
+    return i[upper], k[upper]
 
 
 @dataclass
@@ -167,7 +183,7 @@ def _link(a: _Node, b: _Node, disp: np.ndarray, opts: TrackingOptions) -> _Link:
     amb = np.zeros(n, dtype=bool)
     hard = np.nonzero(~easy)[0]
     if hard.size:
-        free = np.setdiff1d(ar, j1[easy], assume_unique=False)
+        free = _free_columns(n, j1[easy])
         w = np.where(ra[hard][:, None] & rb[None, :], 0.0, 1.0)
         macH = _mac_matrix(a.X[:, hard], b.X, disp)
         costH = w * (1.0 - macH) + dist[hard]
@@ -246,8 +262,7 @@ def _approach(a: _Node, b: _Node, perm: np.ndarray, opts: TrackingOptions,
     path = _hermite_eval(c, _CHECK_S[None, :])                      # (p, 9)
     travel = np.max(np.abs(path - lam[:, None]), axis=1)
     cand = (travel[:, None] + travel[None, :]) > np.abs(r0) - ref
-    np.fill_diagonal(cand, False)
-    i, k = np.nonzero(np.triu(cand))
+    i, k = _upper_pairs(cand)
     if i.size:
         dmin = np.min(np.abs(path[i] - path[k]), axis=1)
         flag[i, k] |= dmin < ref[i, k]

@@ -40,7 +40,7 @@ def _evaluate_nodes(fn: StateMatrixFn, V: np.ndarray, n: int | None,
     A_all = _call_state_matrix(fn, np.concatenate([V, V + h]), n, labels)
     A, Ah = A_all[: V.size], A_all[V.size:]
     w, X = np.linalg.eig(A)
-    w, X = w.astype(complex), X.astype(complex)
+    w, X = w.astype(complex, copy=False), X.astype(complex, copy=False)
     conj = _conj_index(w)
     dlam = _eig_derivative(w, X, conj, (Ah - A) / h[:, None, None])
     mag = np.abs(w)
