@@ -410,36 +410,6 @@ def derivatives(geometry: PropellerGeometry, airspeed, omega, speed_of_sound=Non
                     when compressibility is on and the method is Houbolt–Reed
     Returns arrays of the broadcast shape of V and Ω (no loop over operating points).
     """
-    shape, Vf, omf, Mf = _operating_points(geometry, airspeed, omega, speed_of_sound, mach,
-                                           settings)
-    d, mu, cutoff, integrals = _checked_derivatives(geometry, settings, Vf, omf, Mf)
-    r = lambda x: np.asarray(x, dtype=float).reshape(shape)            # noqa: E731
-    bennett_bland = settings.method == "bennett_bland"
-    return PropellerDerivatives(
-        airspeed=r(Vf), omega=r(omf), advance_ratio=r(mu), mach=r(Mf),
-        cutoff_applied=np.asarray(cutoff & settings.compressibility & (not bennett_bland),
-                                  dtype=bool).reshape(shape),
-        **{n: r(x) for n, x in integrals.items()},
-        **{n: r(x) for n, x in d.items()},
-        reference_chord=geometry.c0, aspect_ratio=geometry.blade_aspect_ratio,
-    )
-
-
-def derivative_arrays(geometry: PropellerGeometry, airspeed, omega, speed_of_sound=None,
-                      settings: AeroSettings = AeroSettings()) -> dict[str, np.ndarray]:
-    """The sixteen derivatives by name, as ``derivatives(...).derivatives()`` gives them (the
-    same checks and numbers, without the other fields: what a model's blocks need at every
-    evaluation)."""
-    shape, Vf, omf, Mf = _operating_points(geometry, airspeed, omega, speed_of_sound, None,
-                                           settings)
-    d = _checked_derivatives(geometry, settings, Vf, omf, Mf)[0]
-    return {n: d[n].reshape(shape) for n in DERIVATIVE_NAMES}
-
-
-def _operating_points(geometry: PropellerGeometry, airspeed, omega, speed_of_sound, mach,
-                      settings: AeroSettings):
-    """The checked operating points of :func:`derivatives`: their shape and flat V [m/s],
-    Ω [rad/s] and M."""
     V = v.positive("airspeed", airspeed, "m/s")
     om = v.positive("omega", omega, "rad/s")
     try:
@@ -466,16 +436,19 @@ def _operating_points(geometry: PropellerGeometry, airspeed, omega, speed_of_sou
         M = np.zeros(shape)
     Vf, omf, Mf = (np.ascontiguousarray(x, dtype=float).ravel() for x in (V, om, M))
     validity.check_propeller(geometry.n_blades, geometry.radius, geometry.blade_area(), Vf, Mf)
-    return shape, Vf, omf, Mf
-
-
-def _checked_derivatives(geometry: PropellerGeometry, settings: AeroSettings, Vf: np.ndarray,
-                         omf: np.ndarray, Mf: np.ndarray):
-    """:func:`_derivatives`, every derivative checked finite (:func:`_check_finite`)."""
     with np.errstate(over="ignore", under="ignore", invalid="ignore", divide="ignore"):
         d, mu, cutoff, integrals = _derivatives(geometry, settings, Vf, omf, Mf)
     _check_finite(geometry, d, Vf, omf, mu)
-    return d, mu, cutoff, integrals
+    r = lambda x: np.asarray(x, dtype=float).reshape(shape)            # noqa: E731
+    bennett_bland = settings.method == "bennett_bland"
+    return PropellerDerivatives(
+        airspeed=r(Vf), omega=r(omf), advance_ratio=r(mu), mach=r(Mf),
+        cutoff_applied=np.asarray(cutoff & settings.compressibility & (not bennett_bland),
+                                  dtype=bool).reshape(shape),
+        **{n: r(x) for n, x in integrals.items()},
+        **{n: r(x) for n, x in d.items()},
+        reference_chord=geometry.c0, aspect_ratio=geometry.blade_aspect_ratio,
+    )
 
 
 def solidity(geometry: PropellerGeometry) -> float:
@@ -610,7 +583,8 @@ class HouboltReedSource:
         check_fields(self)
 
     def __call__(self, V, Omega, speed_of_sound=None) -> dict[str, np.ndarray]:
-        return derivative_arrays(self.geometry, V, Omega, speed_of_sound, self.settings)
+        return derivatives(self.geometry, V, Omega, speed_of_sound=speed_of_sound,
+                           settings=self.settings).derivatives()
 
 
 def houbolt_reed_source(propeller, settings: AeroSettings = AeroSettings(),
