@@ -53,7 +53,8 @@ class StateSpaceModel:
 
     def release_caches(self) -> None:
         """Free what the model memoised while it was analysed (its speed-independent matrices:
-        the wing structure of a PropellerWing, ≈ 150 kB for the wingtip model).  A study that
+        the wing structure of a PropellerWing, ≈ 150 kB for the wingtip model; its last few
+        evaluations of the blocks).  A study that
         analyses thousands of variants in one process calls it after each, so that its memory
         does not grow with the number of points; the next analysis recomputes them."""
         memo = getattr(self, "_memo", None)

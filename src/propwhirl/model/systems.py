@@ -75,8 +75,6 @@ ELEMENT_UNITS = dict(length="m", m="kg/m", rho_Ip="kg m", x_alpha_b="m", EI="N m
                      EI_chordwise="N m^2")
 
 
-
-
 @dataclass(frozen=True)
 class Installation:
     """A propeller attached to the wing at spanwise position y [m], anywhere in (0, semi_span].
@@ -148,7 +146,8 @@ class PropellerWing(StateSpaceModel):
         "name", "", "label", default="setting"))
     _nodes: tuple[int, ...] = field(default=(), repr=False, compare=False, metadata=spec(
         None, "", "node of each propeller (derived)", default="none", form="derived"))
-    #: what does not change with speed, computed once per model: the wing structure (M, C, K)
+    #: what is made once per model (shared with variants, :meth:`_shared`): the wing structure,
+    #: the propeller constants, labels, DOF map, the quiet variant; the recent evaluations
     _memo: dict = field(init=False, default_factory=dict, repr=False, compare=False,
                         metadata=spec(None, "", "speed-independent matrices (derived)",
                                       default="none", form="derived"))
