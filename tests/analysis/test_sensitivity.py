@@ -5,6 +5,7 @@ import json
 import numpy as np
 import pytest
 
+from helpers.derivative_checks import fd_critical_speed
 from propwhirl.analysis import analyse
 from propwhirl.analysis.sensitivity import critical_sensitivities
 from propwhirl.cases.ch09_baseline import baseline_flight, baseline_propeller, baseline_wing
@@ -12,18 +13,6 @@ from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
 from propwhirl.model import derivatives as D
 from propwhirl.model.systems import Installation, PropellerWing
 from propwhirl.validate import InputError
-
-
-def fd_critical_speed(model, path, value, event, rel=1e-3):
-    """Central difference of the engine's speed of the same event (kind, mode) [m/s per unit]."""
-    h = rel * abs(value)
-    V = []
-    for s in (1.0, -1.0):
-        a = analyse(D.with_value(model, path, value + s * h))
-        e = min((x for x in a.events if (x.kind, x.event, x.label) ==
-                 (event.kind, event.event, event.label)), key=lambda x: abs(x.V - event.V))
-        V.append(e.V)
-    return (V[0] - V[1]) / (2 * h)
 
 
 def check(model, event, sens, top=4):

@@ -4,24 +4,12 @@ eigenvectors against central differences of the engine's own critical speed on t
 model (issue 13.3: within 1 %)."""
 import pytest
 
+from helpers.derivative_checks import fd_critical_speed
 from propwhirl.analysis import analyse
 from propwhirl.analysis.sensitivity import critical_sensitivities
 from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
-from propwhirl.model import derivatives as D
 
 PRE = "propellers[0].propeller."
-
-
-def fd_critical_speed(model, path, value, event, rel=1e-3):
-    """Central difference of the engine's speed of the same event (kind, mode) [m/s per unit]."""
-    h = rel * abs(value)
-    V = []
-    for s in (1.0, -1.0):
-        a = analyse(D.with_value(model, path, value + s * h))
-        e = min((x for x in a.events if (x.kind, x.event, x.label) ==
-                 (event.kind, event.event, event.label)), key=lambda x: abs(x.V - event.V))
-        V.append(e.V)
-    return (V[0] - V[1]) / (2 * h)
 
 
 @pytest.fixture(scope="module")

@@ -3,22 +3,9 @@ crossing accuracy, and no partial-results file left behind."""
 from __future__ import annotations
 
 import numpy as np
-import pytest
 
-from propwhirl import io
 from propwhirl.app import cli
-from propwhirl.cases.ch09_baseline import baseline_flight, baseline_propeller, baseline_wing
-from propwhirl.model.systems import Installation, PropellerWing
 from propwhirl.studies.sweeps import CriticalMap
-
-
-@pytest.fixture(scope="module")
-def small_file(tmp_path_factory):
-    m = PropellerWing(baseline_wing(5), baseline_flight(), (Installation(baseline_propeller(), 5.7),),
-                      name="small tip model")
-    path = tmp_path_factory.mktemp("models") / "small.toml"
-    io.save_model(m, path)
-    return path
 
 
 def test_warm_started_reduced_map_equals_the_full_range_map(small_file, tmp_path, capsys):

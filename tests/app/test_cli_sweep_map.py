@@ -11,22 +11,10 @@ import pytest
 from propwhirl import io
 from propwhirl.analysis.stability import analyse
 from propwhirl.app import cli
-from propwhirl.cases.ch09_baseline import baseline_flight, baseline_propeller, baseline_wing
-from propwhirl.model.systems import Installation, PropellerWing
 from propwhirl.studies import paths as P
 from propwhirl.studies.sweeps import CriticalMap
 
 PNG = b"\x89PNG\r\n\x1a\n"
-
-
-@pytest.fixture(scope="module")
-def small_file(tmp_path_factory):
-    """A 5-element wingtip-propeller model file (fast to analyse)."""
-    m = PropellerWing(baseline_wing(5), baseline_flight(), (Installation(baseline_propeller(), 5.7),),
-                      name="small tip model")
-    path = tmp_path_factory.mktemp("models") / "small.toml"
-    io.save_model(m, path)
-    return path
 
 
 def test_sweep_of_a_model_file_writes_json_csv_plot(small_file, tmp_path, capsys):

@@ -1,7 +1,8 @@
 """Central-difference checks of the exact parameter derivatives of a wing model's
-second-order system (:mod:`propwhirl.model.derivatives`)."""
+second-order system (:mod:`propwhirl.model.derivatives`), and of the critical speeds they give."""
 import numpy as np
 
+from propwhirl.analysis import analyse
 from propwhirl.model import derivatives as D
 
 NAMES = ("S1", "S2", "S3", "S4", "Ww", "Wv", "Wq")
@@ -26,3 +27,15 @@ def assert_matches_central_differences(model, par, exact, V, rel_step=1e-5, rtol
         tol = rtol * float(np.max(np.abs(got), initial=0.0)) + 1e-9 * size / max(abs(p), h)
         err = np.max(np.abs(got - fd), initial=0.0)
         assert err <= tol, (par.path, name, err, tol)
+
+
+def fd_critical_speed(model, path, value, event, rel=1e-3):
+    """Central difference of the engine's speed of the same event (kind, mode) [m/s per unit]."""
+    h = rel * abs(value)
+    V = []
+    for s in (1.0, -1.0):
+        a = analyse(D.with_value(model, path, value + s * h))
+        e = min((x for x in a.events if (x.kind, x.event, x.label) ==
+                 (event.kind, event.event, event.label)), key=lambda x: abs(x.V - event.V))
+        V.append(e.V)
+    return (V[0] - V[1]) / (2 * h)

@@ -5,6 +5,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from helpers.derivative_checks import assert_matches_central_differences
 from propwhirl.cases.registry import case_model
 from propwhirl.model import derivatives as D
 from propwhirl.model.propeller import MeasuredDerivatives, PointMass, Propeller
@@ -13,7 +14,6 @@ from propwhirl.model.systems import FlightCondition, Installation, PropellerWing
 from propwhirl.model.wing import Wing
 from propwhirl.validate import InputError
 
-NAMES = ("S1", "S2", "S3", "S4", "Ww", "Wv", "Wq")
 V = np.array([40.0, 95.0])
 
 
@@ -59,27 +59,6 @@ def random_model(data) -> PropellerWing:
                          rotating=data.draw(st.booleans()))
 
 
-def assert_matches_central_differences(model, par, exact):
-    """∂S/∂p against (S(p + h) − S(p − h))/2h of ``second_order`` of the model with the
-    field changed (:func:`with_value`), h = max(1e-5 |p|, 1e-6) (p may be ~0).  The matrices are at
-    most quadratic in EI, GJ, m, K, ζ, I_Ω, C_lα and the aerodynamic derivatives (central
-    differences exact but for rounding) and smooth in f (K ∝ f², the viscous damping ∝ √K):
-    truncation ≤ (h/p)² ~ 1e-10 relative; rounding ~ 1e-16 max|S| / h ~ 1e-11 max|S|/|p|.
-    Tolerance: 1e-6 of the derivative's largest entry plus 1e-9 max|S|/|p|."""
-    p = par.value
-    h = max(1e-5 * abs(p), 1e-6)
-    up = D.with_value(model, par.path, p + h).second_order(V)
-    down = D.with_value(model, par.path, p - h).second_order(V)
-    base = model.second_order(V)
-    for name in NAMES:
-        fd = (getattr(up, name) - getattr(down, name)) / (2 * h)
-        got = getattr(exact, name)
-        assert got.shape == getattr(base, name).shape, (par.path, name)
-        size = max(float(np.max(np.abs(getattr(base, name)), initial=0.0)), 1e-300)
-        tol = 1e-6 * float(np.max(np.abs(got), initial=0.0)) + 1e-9 * size / max(abs(p), h)
-        assert np.max(np.abs(got - fd), initial=0.0) <= tol, (par.path, name)
-
-
 @settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(data=st.data())
 def test_derivatives_equal_central_differences_on_random_models(data):
@@ -95,7 +74,7 @@ def test_derivatives_equal_central_differences_on_random_models(data):
     derivs = D.second_order_derivatives(model, V, chosen)
     assert list(derivs) == [p.path for p in chosen]
     for par in chosen:
-        assert_matches_central_differences(model, par, derivs[par.path])
+        assert_matches_central_differences(model, par, derivs[par.path], V)
 
 
 def test_wingtip_model_every_parameter():
@@ -109,7 +88,7 @@ def test_wingtip_model_every_parameter():
     assert not any("derivatives.values" in s for s in paths)  # Houbolt–Reed: not a field
     derivs = D.second_order_derivatives(model, V)
     for par in pars:
-        assert_matches_central_differences(model, par, derivs[par.path])
+        assert_matches_central_differences(model, par, derivs[par.path], V)
 
 
 def test_frequency_chain_rule_is_two_k_over_f():
@@ -154,7 +133,7 @@ def test_pencil_and_projection_of_the_derivative_blocks():
     for path in paths:
         b = blocks[path]
         dense = b.dense()
-        n, m = dense.n_dof, dense.n_lag
+        n = dense.n_dof
         for t in range(V.size):
             dF, dE = D.pencil_derivative(b, t)
             dF, dE = dF.toarray(), dE.toarray()
