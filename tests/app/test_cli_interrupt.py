@@ -113,15 +113,13 @@ def test_sigint_exits_130_with_one_line_and_no_partial_output(small_file, tmp_pa
     env = dict(os.environ, PYTHONPATH=str(ROOT / "src"))
     proc = subprocess.Popen([sys.executable, str(script), where, str(marker), *argv], env=env,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    t0 = time.monotonic()
-    while not marker.exists():
+    while not marker.exists():        # the child ends (and fails the test) if it never gets there
         assert proc.poll() is None, proc.communicate()
-        assert time.monotonic() - t0 < 120, "the command never reached the point to interrupt"
         time.sleep(0.05)
     if where == "writing":
         assert [p.name for p in out.iterdir()] != []      # mid-write: a file is there
     proc.send_signal(signal.SIGINT)
-    stdout, stderr = proc.communicate(timeout=60)
+    stdout, stderr = proc.communicate(timeout=600)   # a hang guard, not a measure
     assert proc.returncode == 130
     # the interruption is one line (after the analysis's validity warnings, if any)
     lines = stderr.splitlines()
@@ -144,13 +142,11 @@ def test_sigint_to_the_real_command(tmp_path):
     proc = subprocess.Popen(argv, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                             text=True)
     maps = Path(f"/proc/{proc.pid}/maps")
-    t0 = time.monotonic()
-    while "/scipy/linalg/" not in maps.read_text():
+    while "/scipy/linalg/" not in maps.read_text():     # as above: no clock, the child's end
         assert proc.poll() is None, proc.communicate()
-        assert time.monotonic() - t0 < 60
         time.sleep(0.02)
     proc.send_signal(signal.SIGINT)
-    stdout, stderr = proc.communicate(timeout=60)
+    stdout, stderr = proc.communicate(timeout=600)   # a hang guard, not a measure
     assert (proc.returncode, stderr) == (130, "propwhirl: interrupted\n")
     assert list(out.iterdir()) == []
 
@@ -189,9 +185,7 @@ def test_analyse_output_in_a_read_only_folder_fails_before_computing(
     """Issue 9.5: a read-only folder was found only after the whole analysis."""
     ro = unwritable_folder(tmp_path)
     name = "a.png" if option == "--plot" else "a.out"
-    t0 = time.perf_counter()
-    assert cli.main(["analyse", str(small_file), option, str(ro / name)]) == 2
-    assert time.perf_counter() - t0 < 2.0
+    assert cli.main(["analyse", str(small_file), option, str(ro / name)]) == 2   # no_computing
     err = capsys.readouterr().err
     assert err.count("\n") == 1
     assert err.startswith(f"propwhirl: error: {option} {ro / name}: cannot write to the folder "
@@ -208,9 +202,7 @@ def test_analyse_output_in_a_read_only_folder_fails_before_computing(
 def test_other_outputs_fail_before_computing(small_file, tmp_path, capsys, no_computing, argv):
     ro = unwritable_folder(tmp_path)
     argv = [a.format(ro=ro, model=small_file) for a in argv]
-    t0 = time.perf_counter()
-    assert cli.main(argv) == 2
-    assert time.perf_counter() - t0 < 2.0
+    assert cli.main(argv) == 2          # no_computing: nothing was computed before the check
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and err.startswith("propwhirl: error: ")
     assert f"'{ro}" in err and ("cannot write to the folder" in err

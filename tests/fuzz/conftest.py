@@ -3,7 +3,8 @@ outcome log, and the rule every case is held to.
 
 Every generated input must give either a result whose every number is finite, or an
 ``InputError`` whose message is one line (naming the file where there is one) — never another
-exception, a warning (warnings are errors inside a case) or a hang (hypothesis deadline).
+exception or a warning (warnings are errors inside a case).  No case is timed (issue 20.12:
+the seconds depend on the machine's load): hypothesis runs without a deadline.
 ``PROPWHIRL_FUZZ_LOG=path`` appends one JSON line per case (category, outcome) for counting.
 """
 from __future__ import annotations
@@ -13,7 +14,6 @@ import os
 import tomllib
 import warnings
 from contextlib import contextmanager
-from datetime import timedelta
 from pathlib import Path
 
 import pytest
@@ -22,7 +22,7 @@ from hypothesis import HealthCheck, settings
 from propwhirl.validate import InputError
 
 ROOT = Path(__file__).resolve().parents[2]
-FUZZ = settings(max_examples=150, deadline=timedelta(seconds=20), derandomize=True,
+FUZZ = settings(max_examples=150, deadline=None, derandomize=True,
                 suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
 
 
