@@ -65,12 +65,27 @@ def test_command_line_examples_run(tmp_path):
 
 
 @pytest.mark.long
-def test_reproduction_examples_run(tmp_path):
+def test_reproduction_examples_run(tmp_path, monkeypatch, capsys, reproduction_records):
+    """The commands as written, through the CLI in this process; the reproduction itself is
+    the session's one run (tests/conftest.py), selected by ``--only`` as the harness does."""
+    from propwhirl.app import cli
+    from propwhirl.reproduce import harness
+
+    asked = []
+
+    def session_run(only=None, processes=1, **options):
+        asked.append((list(only) if only else None, processes))
+        return [r for r in reproduction_records
+                if not only or any(r.id.startswith(o) for o in only)]
+
+    monkeypatch.setattr(harness, "run", session_run)
+    monkeypatch.chdir(tmp_path)
     (block,) = _blocks(_section("Reproducing the thesis"), "sh")
     cmds = _commands(block)
     assert [c[:2] for c in cmds] == [["propwhirl", "reproduce"]] * 2
     (tmp_path / "out").mkdir()
     for argv in cmds:
-        res = _run(argv, tmp_path)
-        assert "t7.2/first_bending" in res.stdout
+        assert cli.main(argv[1:]) == 0, " ".join(argv)
+        assert "t7.2/first_bending" in capsys.readouterr().out
+    assert asked == [(None, 1), (["t7", "t9.5"], 2)]
     assert (tmp_path / "out" / "records.json").stat().st_size > 0

@@ -23,8 +23,10 @@ IDS = sorted(r.id for r in reproduce.load_references() if r.id.startswith(PREFIX
 
 
 @pytest.fixture(scope="module")
-def records():
-    return {r.id: r for r in reproduce.run(PREFIXES, processes=2)}
+def records(reproduction_records):
+    """This chapter's records of the session's one reproduction (tests/conftest.py): the same
+    as ``reproduce.run(PREFIXES)``, the cases being independent of each other."""
+    return {r.id: r for r in reproduction_records if r.id.startswith(PREFIXES)}
 
 
 def test_all_ids_are_produced(records):

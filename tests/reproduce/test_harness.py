@@ -8,8 +8,9 @@ from propwhirl.reproduce import harness as reproduce
 
 
 @pytest.fixture(scope="module")
-def records():
-    return reproduce.run(processes=2)
+def records(reproduction_records):
+    """The session's one reproduction (tests/conftest.py)."""
+    return list(reproduction_records)
 
 
 def test_every_reference_id_has_a_record(records):
