@@ -171,6 +171,7 @@ def test_load_model_passes_the_notes(tmp_path):
 def test_the_version_1_defaults_are_declared_on_fields_version_2_requires():
     """Each entry names a field of its class that a version-2 file must give (always or under
     its condition), and the values are those version 1's reader gave (git 874de5b^1)."""
+    schema.check()  # the same check, as the schema runs it
     for (cls, name), value in versions.VERSION_1_DEFAULTS.items():
         f = next(f for f in schema.fields_of(cls) if f.name == name)
         assert f.required or f.required_when, (cls.__name__, name)
@@ -192,3 +193,11 @@ def test_the_documentation_lists_the_versions_and_the_version_1_values():
     assert "propwhirl upgrade-model OLD.toml NEW.toml" in section
     for key, value in V1_KEYS.items():
         assert f"| `{key}` |" in section and f"`{value}`" in section
+
+
+def test_an_old_default_on_a_field_that_is_not_required_is_caught(monkeypatch):
+    from propwhirl.model.wing import Wing
+
+    monkeypatch.setattr(versions, "OLD_DEFAULTS", {1: {(Wing, "n_elements"): 20}})
+    with pytest.raises(TypeError, match=r"OLD_DEFAULTS\[1\]: Wing.n_elements is not a field"):
+        schema.check()
