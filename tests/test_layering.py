@@ -32,6 +32,10 @@ ALLOWED = {
     # entry point and compatibility re-exports
     "__main__": {"app"}, "__init__": set(), "wing": {"model"}, "propeller": {"model"},
     "plots": {"app"},
+    # the flat layout of the first release (issue 20, item 11: old import paths keep working)
+    "aero": {"model"}, "assembly": {"model"}, "statespace": {"model"}, "vibration": {"analysis"},
+    "response": {"analysis", "reproduce"}, "stability": {"analysis", "engine", "model"},
+    "cli": {"app", "cases"}, "mainjob": {"app"},
 }
 
 

@@ -303,7 +303,7 @@ def test_incomplete_declarations_are_caught():
 def test_file_starts_with_the_header():
     text = io.dumps(MODELS["bennett-bland"])
     assert text.startswith(schema.header())
-    assert "docs/model-file.md" in schema.header() and "format version 1" in schema.header()
+    assert "docs/model-file.md" in schema.header() and "format version 2" in schema.header()
 
 
 def test_saving_without_tomli_w_names_the_extra(monkeypatch, tmp_path):
@@ -359,7 +359,7 @@ EXAMPLE = (ROOT / "examples" / "wingtip.toml").read_text()
 
 @pytest.mark.parametrize("old, new, message", [
     ("semi_span_m = 5.7", "semispan_m = 5.7", "unknown key 'semispan_m' in [wing]"),
-    ("format_version = 1", "format_version = 1\ncolour = \"red\"", "unknown key 'colour' in the top level"),
+    ("format_version = 2", "format_version = 2\ncolour = \"red\"", "unknown key 'colour' in the top level"),
     ("rotation = 1", "rotation = 1\nspin = 2", "unknown key 'spin' in [propellers.p1]"),
     ("wake = true", "wake = true\nwakes = 1", "unknown key 'wakes' in [propellers.p1.aero_settings]"),
     ("[propellers.p1.rotor]\nmass_kg = 8.0", "[propellers.p1.rotor]\nmass = 8.0",
@@ -376,7 +376,7 @@ EXAMPLE = (ROOT / "examples" / "wingtip.toml").read_text()
     ("y_m = 5.7", "y_m = 7.0", "outside the wing"),
     ("propeller = \"p1\"", "propeller = \"p9\"", "[installations[0]] propeller = 'p9' is invalid"),
     ("type = \"propeller-wing\"", "type = \"glider\"", "type = 'glider' is invalid"),
-    ("format_version = 1", "format_version = 2", "format_version = 2 is invalid"),
+    ("format_version = 2", "format_version = 3", "format_version = 3 is newer than this propwhirl reads"),
     ("f_theta_hz = 7.0", "f_theta_hz = 7.0\nK_theta_N_m_per_rad = 1.0", "exactly one of f_theta"),
     ("aero_model = \"leishman-nguyen\"", "aero_model = \"doublet-lattice\"", "[wing] aero_model = 'doublet-lattice' is invalid"),
     ("cnq_sign = \"thesis\"", "cnq_sign = \"other\"", "cnq_sign = 'other' is invalid"),

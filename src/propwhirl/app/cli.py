@@ -10,6 +10,7 @@ Commands
   sweep        critical speed of a model (file or case) against one parameter path
   map          critical speed of a model over two parameter paths (contour map)
   case         export a model of the thesis's case library as a TOML model file
+  upgrade-model  rewrite a model file of an older format version in the current one
   boundary     stability boundary in a plane of two parameters (continuation)
   clearance    clearance to factor x V_D (exit code 0 cleared, 1 not cleared)
   sensitivity  sensitivities of the critical speed to the model's parameters, ranked
@@ -390,6 +391,37 @@ def _add_case(sub) -> None:
     p.set_defaults(func=_case)
 
 
+def _upgrade_model(args: argparse.Namespace) -> int:
+    from propwhirl import io
+    from propwhirl.app.cli_common import print_notes
+
+    old, new = Path(args.old), Path(args.new)
+    if not args.force and (old.resolve() == new.resolve()
+                           or (old.exists() and new.exists() and os.path.samefile(old, new))):
+        raise InputError(f"upgrade-model: NEW {args.new} is the file OLD: give another name "
+                         "(or --force to replace OLD)")
+    fileio.check_writable(new, what="upgrade-model NEW")
+    notes: list[str] = []
+    text = io.dumps(io.load_model(old, notes=notes))  # read and checked whole before writing
+    fileio.write_text(new, text, what="model file")
+    print_notes(notes)
+    echo(f"wrote {args.new} (format version {io.schema.FORMAT_VERSION}"
+         f"{'' if notes else '; no value assumed'})")
+    return 0
+
+
+def _add_upgrade_model(sub) -> None:
+    p = sub.add_parser("upgrade-model", help="rewrite a model file of an older format version "
+                       "in the current one, the values it assumed written out",
+                       description="Reads OLD (any format version this propwhirl reads) and "
+                       "writes the same model to NEW in the current version; the values assumed "
+                       "for keys OLD omits are printed (docs/model-file.md, Format versions).")
+    p.add_argument("old", metavar="OLD.toml", help="the model file to upgrade")
+    p.add_argument("new", metavar="NEW.toml", help="the file to write (atomically)")
+    p.add_argument("--force", action="store_true", help="allow NEW to be OLD (replaced)")
+    p.set_defaults(func=_upgrade_model)
+
+
 def _docs(args: argparse.Namespace) -> int:
     if args.name is None:
         print(f"propwhirl documentation, installed in {documents.folder()}:")
@@ -455,6 +487,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     cli_studies.add_commands(sub)
     _add_case(sub)
+    _add_upgrade_model(sub)
     cli_design.add_commands(sub)
     _add_docs(sub)
     return parser

@@ -3,6 +3,7 @@ the --speeds grid, and the check that every output file can be written before a 
 Used by :mod:`propwhirl.app.cli` and the study commands (:mod:`.cli_studies`, :mod:`.cli_design`)."""
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 from propwhirl import fileio
@@ -22,11 +23,19 @@ def load_model(path: str):
     from propwhirl import io
     from propwhirl.model.protocol import Model
 
-    model = io.load_model(path)
+    notes: list[str] = []  # the values assumed for a file of an older format version
+    model = io.load_model(path, notes=notes)
     if not isinstance(model, Model):
         raise InputError(f"{path} holds a {type(model).__name__}, not a model to analyse: "
                          "type must be \"propeller-wing\" or \"isolated-propeller\"")
+    print_notes(notes)
     return model
+
+
+def print_notes(notes: list[str]) -> None:
+    """Each note on stderr as one line ``propwhirl: note: ...``."""
+    for note in notes:
+        print(f"propwhirl: note: {limits.printable(note)}", file=sys.stderr)
 
 
 def speed_grid(start: float, stop: float, step: float):

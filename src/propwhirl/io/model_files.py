@@ -14,7 +14,7 @@ deterministic.
 Layout of a file (TOML tables in this order)::
 
     format = "propwhirl-model"
-    format_version = 1
+    format_version = 2               # older versions are read too (io/versions.py)
     type = "propeller-wing"          # or "isolated-propeller", "propeller"
     name = "..."
     installations = [...]            # propeller-wing: propeller key, y_m, mount, aero
@@ -39,7 +39,7 @@ import numpy as np
 from propwhirl import limits
 from propwhirl import fileio
 from propwhirl import validate as v
-from propwhirl.io import alternatives, schema
+from propwhirl.io import alternatives, schema, versions
 from propwhirl.io.schema import DERIVATIVE_SOURCES, FORMAT, FORMAT_VERSION, MODEL_TYPES, Field
 from propwhirl.model.propeller import Propeller
 from propwhirl.model.propeller_aero import Distribution
@@ -258,6 +258,15 @@ def _read_field(f: Field, t: _Table | None, ctx: dict[str, Propeller],
     return _read_scalar(f, t, s.key)
 
 
+def _old_default(cls: type, f: Field, t: _Table | None) -> Any:
+    """The value the file's older format version gives field `f` of `cls` where the file
+    omits it and this version requires it (:mod:`propwhirl.io.versions`); else _MISSING."""
+    if (t is not None and any(t.has(k) for k in f.keys())) or not _required(f, t):
+        return _MISSING
+    return versions.current().default(cls, f.name, t.where if t is not None else "",
+                                      f.keys()[0], _MISSING)
+
+
 def _build(cls: type, t: _Table, ctx: dict[str, Propeller]) -> Any:
     """An instance of schema class `cls` from table `t` (whose keys were checked)."""
     kw: dict[str, Any] = {}
@@ -277,7 +286,9 @@ def _build(cls: type, t: _Table, ctx: dict[str, Propeller]) -> Any:
                 allowed = [k for g in schema.section_fields(cls, sec) for k in g.keys()]
                 sections[sec] = t.sub(sec, allowed) if t.has(sec) else None
             table = sections[sec]
-        value = _read_field(f, table, ctx, t)
+        value = _old_default(cls, f, table)
+        if value is _MISSING:
+            value = _read_field(f, table, ctx, t)
         if value is not _MISSING:
             kw[f.name] = value
     with _Context(t.where, cls, t):
@@ -341,9 +352,7 @@ def _from_dict(data: dict[str, Any]) -> Any:
     top = _Table(data, "", file_keys + body + ("propellers",))
     if top.has("format") and top.string("format") != FORMAT:
         raise top.bad("format", repr(FORMAT))
-    if top.has("format_version") and top.integer("format_version") != FORMAT_VERSION:
-        raise top.bad("format_version", f"{FORMAT_VERSION}: this propwhirl reads version "
-                                        f"{FORMAT_VERSION}")
+    versions.current().read_version(top)
     props_raw = data.get("propellers", {})
     if not isinstance(props_raw, dict):
         raise top.bad("propellers", "tables [propellers.KEY]")
@@ -367,12 +376,16 @@ def _toml_error(exc: tomllib.TOMLDecodeError, text: str) -> str:
     return str(exc)
 
 
-def loads(text: str, source: str = "<string>") -> Any:
+def loads(text: str, source: str = "<string>", *, notes: list[str] | None = None) -> Any:
     """The model in TOML `text` (a PropellerWing, IsolatedPropeller or Propeller).
 
     Every problem — bad TOML, a key given twice, an unknown or missing key, a wrong type, an
-    invalid value — is a one-line InputError whose message starts with `source` and names the
-    key as written in the file.
+    invalid value, a format version newer than this propwhirl — is a one-line InputError whose
+    message starts with `source` and names the key as written in the file.
+
+    A file of an older format version (``format_version = 1``, or none) is read as that
+    version built its model (:mod:`propwhirl.io.versions`); one line starting with `source` and
+    naming the values assumed for omitted keys is appended to the list `notes`, if given.
 
     Examples
     --------
@@ -404,19 +417,27 @@ def loads(text: str, source: str = "<string>") -> Any:
     except RecursionError:          # tomllib recurses per level of nested arrays/tables
         raise limits.nesting_error(source) from None
     limits.check_nesting(data, source)
+    reading = versions.Reading()
+    token = versions.CURRENT.set(reading)
     try:
-        return _from_dict(data)
+        model = _from_dict(data)
     except v.InputError as exc:
         raise v.InputError(f"{source}: {exc}") from exc
     except (TypeError, ValueError) as exc:  # anything a constructor let through unchecked
         raise v.InputError(f"{source}: invalid model: {exc}") from exc
+    finally:
+        versions.CURRENT.reset(token)
+    note = reading.note(source)
+    if notes is not None and note is not None:
+        notes.append(note)
+    return model
 
 
-def load_model(path: str | Path) -> Any:
-    """Read a TOML model file written by :func:`save_model` (or by hand); errors as
-    :func:`loads`, starting with the path."""
+def load_model(path: str | Path, *, notes: list[str] | None = None) -> Any:
+    """Read a TOML model file written by :func:`save_model` (or by hand); errors and `notes`
+    (the values assumed for an older format version) as :func:`loads`, naming the path."""
     path = Path(path)
-    return loads(fileio.read_text(path, "model file", empty_ok=True), str(path))
+    return loads(fileio.read_text(path, "model file", empty_ok=True), str(path), notes=notes)
 
 
 # =============================================================================== writing

@@ -17,15 +17,15 @@ import typing
 from dataclasses import dataclass
 from typing import Any
 
-from propwhirl.io import alternatives
+from propwhirl.io import alternatives, versions
+from propwhirl.io.versions import FORMAT_VERSION, FORMAT_VERSIONS, UNSTATED_VERSION
 from propwhirl.model.fields import META_KEY, REQUIRED_WHEN, FieldSpec, infer_form, literals
 from propwhirl.model.propeller import MeasuredDerivatives, PointMass, Propeller
 from propwhirl.model.propeller_aero import AeroSettings, HouboltReedSource, PropellerGeometry
 from propwhirl.model.systems import FlightCondition, Installation, IsolatedPropeller, PropellerWing
 from propwhirl.model.wing import Wing
 
-FORMAT = "propwhirl-model"
-FORMAT_VERSION = 1
+FORMAT = "propwhirl-model"  # its versions (written, read, the old ones' defaults): io/versions.py
 
 #: The `type` key of a model file → the class it holds.
 MODEL_TYPES: dict[str, type] = {"propeller-wing": PropellerWing,
@@ -210,10 +210,17 @@ def model_fields() -> dict[str, tuple[str, ...]]:
 
 
 def check() -> None:
-    """Resolve every schema class (raises TypeError on an incomplete declaration)."""
+    """Resolve every schema class (raises TypeError on an incomplete declaration), and check
+    that each old default belongs to a field this version requires."""
     for cls in SCHEMA_CLASSES:
         fields_of(cls)
         table_keys(cls)
+    for version, table in versions.OLD_DEFAULTS.items():
+        for cls, name in table:
+            f = next((f for f in fields_of(cls) if f.name == name), None)
+            if f is None or not (f.required or f.required_when) or cls not in versions.TABLE_OF:
+                raise TypeError(f"OLD_DEFAULTS[{version}]: {cls.__name__}.{name} is not a field "
+                                "this format version requires")
 
 
 # =============================================================================== locating
@@ -416,8 +423,9 @@ def sections() -> list[Section]:
     out: list[Section] = []
     file_rows: list[Row] = [
         ("format", f'`"{FORMAT}"`', "", f'`"{FORMAT}"`', "", "file format"),
-        ("format_version", f"`{FORMAT_VERSION}`", "", f"`{FORMAT_VERSION}`", "",
-         f"this propwhirl reads version {FORMAT_VERSION}"),
+        ("format_version", f"`{FORMAT_VERSION}`", "", f"`{UNSTATED_VERSION}`", "",
+         f"this propwhirl writes version {FORMAT_VERSION} and reads versions "
+         f"{', '.join(map(str, FORMAT_VERSIONS))} (see Format versions)"),
     ]
     for kind, cls in MODEL_TYPES.items():
         top = _section(f'Top level of type = "{kind}"', _first_line(cls), out)
@@ -505,9 +513,44 @@ computation would overflow (an EI of 1e300 N m^2 gives infinite matrices).
 """ + "".join(f"| `{s}` | {u} |\n" for s, u in UNIT_SUFFIXES)
 
 
+def _versions_section() -> str:
+    """The "Format versions" section: what each version changed, the values of the old
+    defaults (from OLD_DEFAULTS), and the upgrade command."""
+    rows = "".join(f"| {versions.TABLE_OF[cls]} | `{_field(cls, name).keys()[0]}` | "
+                   f"`{_toml(value)}` |\n"
+                   for (cls, name), value in versions.VERSION_1_DEFAULTS.items())
+    return f"""
+## Format versions
+
+`format_version` says which rules a file follows: this propwhirl writes version {FORMAT_VERSION} and
+reads versions {', '.join(map(str, FORMAT_VERSIONS))}. A file without `format_version` is read as version {UNSTATED_VERSION} (the default that
+version documented); a file of a newer version is refused with one line naming its version
+(update propwhirl to read it).
+
+* **Version 2** (the valid ranges, issue 9): the values of the aircraft that version 1 let a
+  file omit are required (below; no silent default). The optional keys added since
+  (`stations_m`, `max_element_length_m`, `EI_chordwise_N_m2`, `altitude_m`, `altitude_ft`)
+  are read in files of either version.
+* **Version 1** (the first release): read by the same rules, except that a key of the table
+  below, when omitted where version 2 needs it (the blade geometry without `[derivatives]`,
+  the blade angles for fixed pitch), takes the value version 1 gave it. The model is the one
+  version 1 built, so every result is the same. Reading such a file gives one note naming
+  each value assumed: the commands print it (`propwhirl: note: ...` on stderr); from Python,
+  `propwhirl.io.load_model(path, notes=notes)` appends it to the list `notes`.
+
+`propwhirl upgrade-model OLD.toml NEW.toml` writes a file of an older version in version {FORMAT_VERSION}:
+every value written out (the assumed ones, printed in the note, included), the same model.
+Comments of the old file are not kept. NEW must not be OLD unless `--force` is given (the
+old file is then replaced atomically, after it was read whole).
+
+| table | key | version-1 value |
+|---|---|---|
+{rows}"""
+
+
 def markdown() -> str:
     """docs/model-file.md: every table, key, unit, default and meaning of a model file."""
-    parts = [_INTRO]
+    parts = [_INTRO, _versions_section()]
     for s in sections():
         parts.append(f"\n## {s.title}\n\n{s.text}\n\n"
                      "| key | value | unit | default | valid range | meaning |\n"
