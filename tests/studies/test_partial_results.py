@@ -356,7 +356,8 @@ def test_an_oversized_file_is_refused_before_reading(tmp_path, monkeypatch):
 # ----------------------------------------------------------------------------- items 5, 10
 @pytest.mark.parametrize("address, says", [
     ("ucx://host:1", "the scheme 'ucx' is not supported"),
-    ("inproc://x", "the scheme 'inproc' is not supported"),
+    ("ws://host:8786", "the scheme 'ws' is not supported"),
+    ("inproc://nowhere/1/2", "no scheduler of this process listens there"),
     ("tls://127.0.0.1:1", "tls:// needs the certificates"),
     ("garbage", "must be an address such as"),
     ("tcp://host:99999", "a port in [1, 65535]"),

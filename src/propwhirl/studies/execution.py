@@ -499,8 +499,8 @@ def _dask(func: Callable, items: list[tuple[int, Any]], client) -> Iterator[tupl
 
 
 #: Schemes of a scheduler address that :func:`connect` opens (tls: with the certificates of
-#: the Dask configuration, ``distributed.comm.tls``).
-SCHEMES = ("tcp", "tls")
+#: the Dask configuration, ``distributed.comm.tls``; inproc: a cluster of this process).
+SCHEMES = ("tcp", "tls", "inproc")
 #: Longest wait for the scheduler to accept a connection [s] (one attempt).
 CONNECT_TIMEOUT = 5.0
 
@@ -516,6 +516,8 @@ def _address(scheduler: Any) -> tuple[str, str, int]:
     if not sep:
         scheme, rest = "tcp", text
     scheme = scheme.lower()
+    if scheme == "inproc" and rest:
+        return scheme, rest, 0
     if scheme not in SCHEMES:
         raise v.InputError(f"scheduler = {v.short_repr(scheduler)} is invalid: the scheme "
                            f"{v.short_repr(scheme)} is not supported (one of "
@@ -552,13 +554,25 @@ def connect(scheduler: str, timeout: float = CONNECT_TIMEOUT):
     v.positive("timeout", timeout, "s")
     Client = _client_class("scheduler")
     scheme, host, port = _address(scheduler)
-    address = f"{scheme}://{host if ':' not in host else '[' + host + ']'}:{port}"
-    try:                                  # the probe: refused or unreachable fails here, once
-        socket.create_connection((host, port), timeout=timeout).close()
-    except (OSError, ValueError) as exc:
-        why = "timed out" if isinstance(exc, TimeoutError) else fileio.reason(exc)
-        raise v.InputError(f"scheduler = {scheduler!r}: cannot connect to {host}:{port} "
-                           f"({why})") from None
+    if scheme == "inproc":
+        from distributed.comm.inproc import global_manager
+
+        address = f"inproc://{host}"
+        try:
+            listener = global_manager.get_listener_for(host)
+        except ValueError:                # another host or process
+            listener = None
+        if listener is None:
+            raise v.InputError(f"scheduler = {scheduler!r}: cannot connect (no scheduler of "
+                               "this process listens there)")
+    else:
+        address = f"{scheme}://{host if ':' not in host else '[' + host + ']'}:{port}"
+        try:                              # the probe: refused or unreachable fails here, once
+            socket.create_connection((host, port), timeout=timeout).close()
+        except (OSError, ValueError) as exc:
+            why = "timed out" if isinstance(exc, TimeoutError) else fileio.reason(exc)
+            raise v.InputError(f"scheduler = {scheduler!r}: cannot connect to {host}:{port} "
+                               f"({why})") from None
     try:
         return Client(address, timeout=timeout)
     except (OSError, TimeoutError, ValueError, TypeError) as exc:
