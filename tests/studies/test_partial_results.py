@@ -401,3 +401,21 @@ def test_an_unreachable_scheduler_fails_after_one_attempt(monkeypatch):
         map_analyses(abs, [1.0], client=f"tcp://127.0.0.1:{port}")
     one_line(info.value, f"tcp://127.0.0.1:{port}", "cannot connect")
     assert len(attempts) == 1, attempts
+
+
+@pytest.mark.parametrize("address", ["ucx://host:1", "tls://host:8786", "tcp://host", "x://y:1"])
+def test_a_bad_scheduler_on_the_command_line_is_one_line_before_any_work(address, monkeypatch,
+                                                                          capsys):
+    """Item 5 through the CLI: `--scheduler ucx://host:1` gave a traceback; now exit 2, one
+    line, checked before a variant is built."""
+    pytest.importorskip("distributed")
+    from propwhirl.studies import paths
+
+    def fail(*args, **kwargs):
+        raise AssertionError("worked before checking the scheduler address")
+
+    monkeypatch.setattr(paths, "set_values", fail)
+    assert cli.main(["sweep", "isolated-propeller", "--param", "propeller.f_psi", "4", "8", "3",
+                     "--scheduler", address, "--quiet"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and f"scheduler = {address!r}" in err and "Traceback" not in err, err

@@ -20,7 +20,7 @@ from pathlib import Path
 from typing import Any, Iterable
 
 from propwhirl import limits
-from propwhirl.studies.execution import Checkpoint
+from propwhirl.studies.execution import Checkpoint, check_scheduler
 from propwhirl.validate import InputError
 
 #: Suffix of the partial-results file kept beside a study's output while it runs.
@@ -43,7 +43,9 @@ def add(parser: argparse.ArgumentParser, *, processes_default: int = 1) -> None:
 
 def run_options(args: argparse.Namespace) -> dict[str, Any]:
     """``processes``, ``client`` (the scheduler address or None) and ``progress`` (a bar unless
-    --quiet) for a study function."""
+    --quiet) for a study function; the address is checked here, before any work."""
+    if args.scheduler is not None:
+        check_scheduler(args.scheduler)
     return {"processes": args.processes, "client": args.scheduler, "progress": not args.quiet}
 
 
@@ -60,6 +62,8 @@ def checkpoint(args: argparse.Namespace, output: str | Path | None) -> Checkpoin
             raise InputError("--resume needs the output file of the interrupted run (e.g. --json "
                              "FILE): the finished points are kept beside it")
         return None
+    # the study functions add the fingerprint (model content, paths and values, speeds,
+    # method, convention, tolerance, version): a file of another study is refused
     return Checkpoint(partial_path(output), resume=bool(args.resume))
 
 

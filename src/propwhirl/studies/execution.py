@@ -541,6 +541,13 @@ def _address(scheduler: Any) -> tuple[str, str, int]:
     return scheme, host, int(port)
 
 
+def check_scheduler(scheduler: str) -> None:
+    """Check a scheduler address before any work (dask installed, a supported scheme, a host
+    and a port): the one-line errors of :func:`connect`, without connecting."""
+    _client_class("scheduler")
+    _address(scheduler)
+
+
 def connect(scheduler: str, timeout: float = CONNECT_TIMEOUT):
     """A ``dask.distributed.Client`` of the scheduler at address `scheduler`
     (``tcp://host:8786``; ``tls://`` with the Dask configuration's certificates).
