@@ -36,7 +36,8 @@ def add(parser: argparse.ArgumentParser, *, processes_default: int = 1) -> None:
                    "tcp://host:8786 (needs pip install propwhirl[distributed])")
     g.add_argument("--resume", action="store_true", help="continue an interrupted run: keep the "
                    "finished points of the partial-results file beside the output "
-                   f"(OUT{PARTIAL_SUFFIX}) and compute only the others")
+                   f"(OUT{PARTIAL_SUFFIX}) and compute only the others (a file written for "
+                   "another model, parameters, speeds, method or convention is refused)")
     g.add_argument("--quiet", action="store_true", help="no progress bar (there is none "
                    "either when stderr is not a terminal)")
 
