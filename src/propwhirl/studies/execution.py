@@ -357,8 +357,10 @@ class Checkpoint:
             kind = "error" if "error" in point else "value"
             allowed = {"index", "key", kind} | ({"error_type"} if kind == "error" else set())
             if set(point) != allowed:
-                bad = sorted(set(point) - allowed) or sorted(allowed - set(point))
-                raise v.InputError(f"{where}: keys {bad} are {'unknown' if set(point) - allowed else 'missing'}")
+                unknown = sorted(set(point) - allowed)
+                missing = sorted(allowed - set(point))
+                raise v.InputError(f"{where}: unknown keys {unknown}" if unknown
+                                   else f"{where}: missing keys {missing}")
             i, key = point["index"], point["key"]
             if type(i) is not int or not 0 <= i < len(keys):
                 raise v.InputError(f"{where}.index = {v.short_repr(i)} is invalid: must be an "

@@ -145,6 +145,12 @@ def _decode_row(d: Any, where: str, key: str | None = None) -> dict[str, Any]:
 STUDY_ROW = execution.PointFormat("study row", _encode_row, _decode_row)
 
 
+def _check_checkpoint(checkpoint: Any) -> None:
+    if not isinstance(checkpoint, execution.Checkpoint):
+        raise v.InputError(f"checkpoint = {v.short_repr(checkpoint)} is invalid: must be a "
+                           "propwhirl.studies.execution.Checkpoint")
+
+
 def row_checkpoint(checkpoint: execution.Checkpoint | None, models: Sequence[Any],
                    grids: Sequence[Any], *, xtol: float, static_divergence: bool,
                    low_speed: bool, method: str) -> execution.Checkpoint | None:
@@ -154,6 +160,7 @@ def row_checkpoint(checkpoint: execution.Checkpoint | None, models: Sequence[Any
     every variant analysed (:func:`propwhirl.studies.execution.content_digest`)."""
     if checkpoint is None:
         return None
+    _check_checkpoint(checkpoint)
     entries: dict[str, Any] = {
         "speeds": execution.content_digest(list(grids)), "xtol": float(xtol), "method": method,
         "static_divergence": bool(static_divergence), "low_speed": bool(low_speed)}
@@ -181,6 +188,7 @@ def study_points(name: str, parameter: str, parameters: Mapping[str, np.ndarray]
     keys = [f"{m} " + " ".join(f"{k}={float(np.asarray(col)[j])!r}" for k, col in parameters.items())
             + f" #{j}" for m in models for j in range(n)]
     if checkpoint is not None:
+        _check_checkpoint(checkpoint)
         checkpoint = checkpoint.with_entries(
             study=name, parameter=parameter, models=list(models),
             parameters={k: [float(x) for x in np.asarray(col, dtype=float)]
