@@ -522,8 +522,7 @@ def _address(scheduler: Any) -> tuple[str, str, int]:
         return scheme, rest, 0
     if scheme not in SCHEMES:
         raise v.InputError(f"scheduler = {v.short_repr(scheduler)} is invalid: the scheme "
-                           f"{v.short_repr(scheme)} is not supported (one of "
-                           f"{', '.join(s + '://' for s in SCHEMES)}; {example})")
+                           f"{v.short_repr(scheme)} is not supported (tcp:// or tls://; {example})")
     host, colon, port = rest.rpartition(":")
     if host.startswith("[") and host.endswith("]"):
         host = host[1:-1]                                   # [IPv6]:port
