@@ -80,7 +80,7 @@ def test_an_interrupted_run_keeps_its_points_and_resumes_to_the_same_result(tmp_
     assert (info.value.done, info.value.total, info.value.path) == (3, 7, path)
     assert "3 of 7 points finished" in str(info.value) and str(path) in str(info.value)
     data = json.loads(path.read_text())
-    assert data["done"] == 3 and len(data["points"]) == 3 and data["total"] == 7
+    assert data["done"] == 3 and len(data["points"]) == 3 and data["fingerprint"]["total"] == 7
     kept = {p["index"] for p in data["points"]}
 
     calls = []
@@ -136,31 +136,34 @@ def test_the_partial_file_is_complete_after_every_write(tmp_path):
     assert not list(tmp_path.glob(".*.tmp"))
 
 
-def test_results_that_are_not_plain_data_round_trip(tmp_path):
+def test_plain_results_round_trip_and_others_are_refused_at_their_first_point(tmp_path):
+    """Issue 20.1: results were pickled when not plain data (and unpickled from the file);
+    now the file holds plain JSON only: a result that is not is refused when it finishes."""
     path = tmp_path / "p.partial"
-
-    def odd(x):
-        return (x, np.arange(3) * x, np.float64(x) / 3, {1: "int key"})
-
-    full = map_analyses(odd, [1.0, 2.0], checkpoint=Checkpoint(path))
-    again = map_analyses(odd, [1.0, 2.0], checkpoint=Checkpoint(path, resume=True))
-    for a, b in zip(full, again):
-        assert a[0] == b[0] and np.array_equal(a[1], b[1]) and a[2] == b[2] and a[3] == b[3]
-    nan = map_analyses(lambda x: {"v": float("nan"), "w": -0.1 + 0.2}, [0],
+    nan = map_analyses(lambda x: {"v": float("nan"), "w": -0.1 + 0.2, "n": [1, None, "s"]}, [0],
                        checkpoint=Checkpoint(path, fingerprint="nan"))
     back = map_analyses(lambda x: pytest.fail("resumed points are not recomputed"), [0],
                         checkpoint=Checkpoint(path, resume=True, fingerprint="nan"))
-    assert math.isnan(back[0]["v"]) and back[0]["w"] == nan[0]["w"]
+    assert math.isnan(back[0]["v"]) and back[0]["w"] == nan[0]["w"] and back[0]["n"] == [1, None, "s"]
+    calls = []
+
+    def odd(x):
+        calls.append(x)
+        return (x, np.arange(3) * x)
+
+    with pytest.raises(InputError, match=r"point '0' cannot be kept .*tuple is not plain data"):
+        map_analyses(odd, [1.0, 2.0], checkpoint=Checkpoint(tmp_path / "q.partial"))
+    assert calls == [1.0]
 
 
 def test_a_file_of_another_study_is_refused(tmp_path):
     path = tmp_path / "p.partial"
     map_analyses(square_or_fail, TASKS, checkpoint=Checkpoint(path, fingerprint="A"),
                  keys=[f"x={x}" for x in TASKS])
-    with pytest.raises(InputError, match="belongs to another study"):
+    with pytest.raises(InputError, match="was written for another study"):
         map_analyses(square_or_fail, TASKS, checkpoint=Checkpoint(path, resume=True, fingerprint="B"),
                      keys=[f"x={x}" for x in TASKS])
-    with pytest.raises(InputError, match="belongs to another study"):
+    with pytest.raises(InputError, match="was written for another study"):
         map_analyses(square_or_fail, TASKS[:3], checkpoint=Checkpoint(path, resume=True, fingerprint="A"),
                      keys=[f"x={x}" for x in TASKS[:3]])
     with pytest.raises(InputError, match="is not point 0 of this study"):

@@ -68,7 +68,7 @@ def test_dask_resumes_a_partial_file(client, tmp_path):
     import json
 
     data = json.loads(path.read_text())
-    data.update(total=len(TASKS))
+    data["fingerprint"]["total"] = len(TASKS)
     path.write_text(json.dumps(data))
     out = map_analyses(cube, TASKS, client=client, errors="record",
                        checkpoint=Checkpoint(path, resume=True))

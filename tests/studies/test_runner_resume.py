@@ -55,7 +55,9 @@ def test_an_interrupted_study_resumes_to_the_same_table(tmp_path, processes):
         study(processes=processes, checkpoint=Checkpoint(path), progress=stop_after_two)
     assert info.value.done == 2
     data = json.loads(path.read_text())
-    assert data["fingerprint"].startswith("yaw stiffness; f_psi; models ['isolated']")
+    fp = data["fingerprint"]
+    assert (fp["study"], fp["parameter"], fp["models"]) == ("yaw stiffness", "f_psi", ["isolated"])
+    assert fp["variants"].startswith("sha256:") and fp["points"] == "study row"
     assert all(p["key"].startswith("isolated f_psi=") for p in data["points"])
 
     counts = []
@@ -70,6 +72,6 @@ def test_a_partial_file_of_another_study_is_refused(tmp_path):
 
     path = tmp_path / "p.partial"
     study(checkpoint=Checkpoint(path))
-    with pytest.raises(InputError, match="belongs to another study"):
+    with pytest.raises(InputError, match="was written for another study"):
         S.nacelle_stiffness("yaw", [3.0, 5.0, 7.0, 9.0], models=("isolated",),
                             checkpoint=Checkpoint(path, resume=True))

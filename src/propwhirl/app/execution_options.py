@@ -20,7 +20,7 @@ from pathlib import Path
 from typing import Any, Iterable
 
 from propwhirl import limits
-from propwhirl.studies.execution import Checkpoint
+from propwhirl.studies.execution import Checkpoint, check_scheduler
 from propwhirl.validate import InputError
 
 #: Suffix of the partial-results file kept beside a study's output while it runs.
@@ -36,14 +36,17 @@ def add(parser: argparse.ArgumentParser, *, processes_default: int = 1) -> None:
                    "tcp://host:8786 (needs pip install propwhirl[distributed])")
     g.add_argument("--resume", action="store_true", help="continue an interrupted run: keep the "
                    "finished points of the partial-results file beside the output "
-                   f"(OUT{PARTIAL_SUFFIX}) and compute only the others")
+                   f"(OUT{PARTIAL_SUFFIX}) and compute only the others (a file written for "
+                   "another model, parameters, speeds, method or convention is refused)")
     g.add_argument("--quiet", action="store_true", help="no progress bar (there is none "
                    "either when stderr is not a terminal)")
 
 
 def run_options(args: argparse.Namespace) -> dict[str, Any]:
     """``processes``, ``client`` (the scheduler address or None) and ``progress`` (a bar unless
-    --quiet) for a study function."""
+    --quiet) for a study function; the address is checked here, before any work."""
+    if args.scheduler is not None:
+        check_scheduler(args.scheduler)
     return {"processes": args.processes, "client": args.scheduler, "progress": not args.quiet}
 
 
@@ -60,6 +63,8 @@ def checkpoint(args: argparse.Namespace, output: str | Path | None) -> Checkpoin
             raise InputError("--resume needs the output file of the interrupted run (e.g. --json "
                              "FILE): the finished points are kept beside it")
         return None
+    # the study functions add the fingerprint (model content, paths and values, speeds,
+    # method, convention, tolerance, version): a file of another study is refused
     return Checkpoint(partial_path(output), resume=bool(args.resume))
 
 

@@ -25,16 +25,18 @@ from __future__ import annotations
 import importlib
 import json
 import math
+import numbers
 import tomllib
-from dataclasses import asdict, dataclass, replace
+from dataclasses import asdict, dataclass
 from importlib import resources
 from pathlib import Path
-from typing import Callable, Iterable
+from typing import Any, Callable, Iterable
 
 from propwhirl import documents
 from propwhirl.progress import ProgressCallback
 from propwhirl.studies import execution
 from propwhirl.studies.execution import Checkpoint
+from propwhirl.validate import InputError
 
 #: The chapter modules whose import registers the reproduction functions (one per chapter).
 CHAPTER_MODULES: tuple[str, ...] = tuple(
@@ -179,14 +181,52 @@ def _call(item: tuple[str, str]) -> list:
     return [prefix, func()]
 
 
+def _encode_case(result: Any) -> dict[str, Any]:
+    """A case's [prefix, {id: value}] as plain JSON (non-finite values as null)."""
+    prefix, values = result
+    out: dict[str, Any] = {"prefix": str(prefix), "values": {}}
+    for key, x in values.items():
+        if not isinstance(key, str) or isinstance(x, bool) or not (x is None or isinstance(x, numbers.Real)):
+            raise InputError(f"case {prefix!r}: value {key!r} = {x!r} is not a number")
+        out["values"][key] = None if x is None or not math.isfinite(float(x)) else float(x)
+    return _decode_case(out, "case") and out
+
+
+def _decode_case(d: Any, where: str, key: str | None = None) -> list:
+    """A case's result of a partial-results file, checked: {"prefix": the case (the point's
+    `key`), "values": {id starting with the prefix: a finite number or null (NaN)}}."""
+    from propwhirl.engine.results import SavedDict
+
+    r = SavedDict(d, where, ("prefix", "values"))
+    prefix = r.string("prefix")
+    if key is not None and prefix != key:
+        raise InputError(f"{where}.prefix = {prefix!r} is not the case of this point ({key!r})")
+    values = r.raw("values")
+    if not isinstance(values, dict):
+        raise InputError(f"{where}.values: must be an object {{id: number}}")
+    vr = SavedDict(values, f"{where}.values", (), tuple(values))
+    out = {}
+    for key in values:
+        if not key.startswith(prefix):
+            raise InputError(f"{where}.values: id {key!r} is outside the case {prefix!r}")
+        x = vr.number(key, optional=True)
+        out[key] = math.nan if x is None else x
+    return [prefix, out]
+
+
+#: The point format of a reproduction case in a partial-results file.
+CASE_VALUES = execution.PointFormat("reproduction case", _encode_case, _decode_case)
+
+
 def _run_cases(cases: dict[str, CaseFunction], processes: int, *, client=None,
                progress: bool | ProgressCallback | None = None,
                checkpoint: Checkpoint | None = None) -> dict[str, dict[str, float]]:
     """{prefix: values} of the cases, run by :func:`propwhirl.studies.execution.map_analyses`
     (serial, local processes or Dask; a failing case stops the run)."""
     items = sorted((p, f"{f.__module__}:{f.__name__}") for p, f in cases.items())
-    if checkpoint is not None and not checkpoint.fingerprint:
-        checkpoint = replace(checkpoint, fingerprint="reproduce " + " ".join(p for p, _ in items))
+    if checkpoint is not None:
+        checkpoint = checkpoint.with_entries(CASE_VALUES, study="reproduce",
+                                             cases=[p for p, _ in items])
     pairs = execution.map_analyses(_call, items, processes, client=client, progress=progress,
                                    checkpoint=checkpoint, keys=[p for p, _ in items],
                                    desc="reproduce")

@@ -125,6 +125,7 @@ def run_points(models: Sequence[Any], speeds: Any = None, *, speeds_each: Sequen
     """
     from propwhirl.analysis.reduced import METHODS
     from propwhirl.studies.execution import TaskError, map_analyses
+    from propwhirl.studies.runner import row_checkpoint
 
     v.positive("xtol", xtol, "m/s")
     if method not in METHODS:
@@ -143,6 +144,8 @@ def run_points(models: Sequence[Any], speeds: Any = None, *, speeds_each: Sequen
     run = [i for i, m in enumerate(models) if not isinstance(m, Exception)]
     tasks = [(models[i], grids[i], xtol, bool(static_divergence), bool(low_speed), method)
              for i in run]
+    checkpoint = row_checkpoint(checkpoint, models, grids, xtol=xtol, method=method,
+                                static_divergence=static_divergence, low_speed=low_speed)
     results = map_analyses(evaluate, tasks, processes, client=client, progress=progress,
                            errors="record", checkpoint=checkpoint, keys=[names[i] for i in run],
                            desc=desc)
@@ -420,6 +423,11 @@ def critical_map(model: Any, axes: Sequence[tuple[str, Any]], *, speeds=None,
         except v.InputError as exc:             # recorded in its row, the others go on
             variants.append(exc)
     shape = tuple(len(ax.values) for _, ax in resolved)
+    if checkpoint is not None and hasattr(checkpoint, "with_entries"):
+        from propwhirl.studies.execution import content_digest
+
+        checkpoint = checkpoint.with_entries(study="critical map", model=content_digest(model),
+                                             axes=[ax.to_dict() for _, ax in resolved])
     options = dict(xtol=xtol, static_divergence=static_divergence, low_speed=low_speed,
                    processes=processes, client=client, progress=progress, method=method)
     if not isinstance(warm_start, (bool, np.bool_)):

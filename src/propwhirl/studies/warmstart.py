@@ -103,8 +103,8 @@ def _pass_checkpoint(checkpoint, name: str):
     if checkpoint is None:
         return None
     path = Path(checkpoint.path)
-    return replace(checkpoint, path=path.with_name(f"{path.name}.{name}"),
-                   fingerprint=f"{checkpoint.fingerprint} [{name} pass]")
+    return replace(checkpoint, path=path.with_name(f"{path.name}.{name}")).with_entries(
+        **{"pass": name})
 
 
 def pass_checkpoints(checkpoint) -> list:
