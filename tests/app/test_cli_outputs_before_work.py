@@ -6,57 +6,18 @@ model file) are refused; a study whose every point failed exits 2, one with some
 """
 from __future__ import annotations
 
-import importlib
 import sys
 
 import pytest
 
+from helpers.before_work import count_work
 from propwhirl.app import cli
-
-#: (module, attribute): where each command's work starts.
-ENTRY_POINTS = [
-    ("propwhirl.analysis.stability", "analyse"),
-    ("propwhirl.app.run", "analyse"),
-    ("propwhirl.app.run", "label_modes"),
-    ("propwhirl.analysis.vibration", "campbell"),
-    ("propwhirl.analysis.vibration", "model_modes"),
-    ("propwhirl.studies.sweeps", "sweep"),
-    ("propwhirl.studies.sweeps", "map2d"),
-    ("propwhirl.studies.boundary", "neutral_curve"),
-    ("propwhirl.studies.boundary", "speed_contour"),
-    ("propwhirl.studies.clearance", "clearance"),
-    ("propwhirl.reproduce.harness", "run"),
-    ("propwhirl.model.propeller_aero", "windmilling"),
-    ("propwhirl.model.propeller_aero", "constant_speed"),
-]
-
-def _import_everything() -> None:
-    """Import every propwhirl module before the patching: a module that binds an entry point
-    by name on import (``from ... import analyse``) keeps the real one."""
-    import pkgutil
-
-    import propwhirl
-
-    for info in pkgutil.walk_packages(propwhirl.__path__, "propwhirl."):
-        if not info.name.endswith("__main__"):
-            importlib.import_module(info.name)
-
-
-class WorkStarted(AssertionError):
-    """An analysis entry point was called although an option was bad."""
 
 
 @pytest.fixture
 def work(monkeypatch):
-    """Replace every entry point by one that counts its calls and raises; yields the count."""
-    calls: list[str] = []
-    _import_everything()
-    for module, name in ENTRY_POINTS:
-        def started(*args, _name=f"{module}.{name}", **kwargs):
-            calls.append(_name)
-            raise WorkStarted(f"{_name} called: the work started before the bad option was refused")
-        monkeypatch.setattr(importlib.import_module(module), name, started)
-    return calls
+    """Every analysis entry point counts its calls and raises; yields the calls."""
+    return count_work(monkeypatch)
 
 
 @pytest.fixture
@@ -86,6 +47,29 @@ def _argv(small_file, command: str, tail: list[str]) -> list[str]:
              "boundary": [str(small_file), *BOUNDARY], "clearance": [str(small_file), "--vd", "100"],
              "sensitivity": [str(small_file)]}.get(command, [])
     return [command, *model, *tail]
+
+
+@pytest.mark.parametrize("argv", [
+    ["analyse", "M", "--json", "a.json", "--plot", "a.png", "--animate", "a.gif", "--summary",
+     "--plot-modes", "4"],
+    ["modes", "M"],
+    ["campbell", "M", "--rpm", "0", "100", "3", "--plot", "c.png"],
+    ["sweep", "M", *SWEEP, "--json", "s.json", "--csv", "s.csv", "--plot", "s.png"],
+    ["map", "M", *SWEEP, "--param", "wing.EI*", "1", "2", "2", "--plot", "m.png"],
+    ["boundary", "M", *BOUNDARY, "--grid", "60", "--plot", "b.png"],
+    ["boundary", "M", *BOUNDARY, "--contour", "--json", "b.json"],
+    ["clearance", "M", "--vd", "100", "--json", "c.json"],
+    ["sensitivity", "M", "--plot", "s.png"],
+    ["reproduce", "--only", "t7", "--json", "r.json"],
+    ["run", "--out", "out"],
+    ["derivatives", "--blades", "3", "--radius", "1", "--chord", "0.2", "--speed", "50",
+     "--rpm", "1000"],
+])
+def test_good_options_reach_the_work(small_file, here, capsys, work, argv):
+    """The counter sees each command's work (so its 0 above is not vacuous)."""
+    with pytest.raises(AssertionError, match="the work started"):
+        cli.main([str(small_file) if a == "M" else a for a in argv])
+    assert len(work) == 1
 
 
 # ---------------------------------------------------------------- item 7: outputs on one path
