@@ -1,7 +1,7 @@
 """Fuzz: the command line's outputs and option combinations (issue 20, items 6-8).  Each case
 draws a command, a path (or none) for each of its outputs from a small set of names that
 collide (``X``, ``./X``, ``sub/../X``, ``X.partial`` ...), and the options that can be refused
-(--plot-modes, --animate, --grid, --warm-start).  An independent oracle says whether the
+(--plot-modes, --animate, --grid, --warm-start, boundary's --contour/--thesis/--oscillatory).  An independent oracle says whether the
 options are acceptable; then either they are, and the command reaches its work (the analysis
 entry point, replaced by a counter that raises), or they are not, and the command exits 2 with
 one line on stderr without the entry point having been called."""
@@ -60,6 +60,10 @@ def _acceptable(command: str, outputs: dict[str, str], extra: dict) -> bool:
     n = extra.get("plot_modes")
     if n is not None and (n < 1 or not ("--plot" in outputs or extra.get("summary"))):
         return False
+    if extra.get("thesis") and not extra.get("contour"):
+        return False                                # --thesis has no effect without --contour
+    if extra.get("oscillatory") and extra.get("contour"):
+        return False                                # nor --oscillatory with it
     grid = extra.get("grid")
     if grid is not None and grid != 0 and not 2 <= grid <= 60:
         return False
@@ -82,6 +86,8 @@ def cases(draw):
         extra["warm_start"] = draw(st.booleans())
     if command == "boundary":
         extra["grid"] = draw(st.one_of(st.none(), st.integers(-5, 1_000_000)))
+        for flag in ("contour", "thesis", "oscillatory"):
+            extra[flag] = draw(st.booleans())
     return command, outputs, extra
 
 
@@ -95,6 +101,7 @@ def _argv(command: str, outputs: dict[str, str], extra: dict) -> list[str]:
         argv.append("--summary")
     if extra.get("warm_start"):
         argv.append("--warm-start")
+    argv += [f"--{flag}" for flag in ("contour", "thesis", "oscillatory") if extra.get(flag)]
     if extra.get("grid") is not None:
         argv += ["--grid", str(extra["grid"])]
     return argv

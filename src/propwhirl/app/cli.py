@@ -46,6 +46,14 @@ def _reproduce(args: argparse.Namespace) -> int:
     from propwhirl.reproduce import harness as reproduce
 
     check_outputs(json=args.json)
+    if args.only:                   # a prefix that selects nothing: refused, not an empty table
+        ids = [r.id for r in reproduce.load_references()]
+        unknown = [o for o in args.only if not any(i.startswith(o) for i in ids)]
+        if unknown:
+            tables = sorted({i.split("/")[0] for i in ids})
+            raise InputError(f"--only {' '.join(unknown)}: no id of the thesis's values starts "
+                             f"with {'it' if len(unknown) == 1 else 'them'} (the ids start with "
+                             f"{', '.join(tables)})")
     cp = execution_options.checkpoint(args, args.json)
     records = reproduce.run(args.only, **execution_options.run_options(args), checkpoint=cp)
     print(reproduce.format_table(records))

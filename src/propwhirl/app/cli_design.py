@@ -30,6 +30,12 @@ def _boundary(args: argparse.Namespace) -> int:
     if args.grid != 0 and not 2 <= args.grid <= MAX_GRID:       # before the tracing
         raise InputError(f"--grid = {args.grid} is invalid: must be 0 (none) or in "
                          f"[2, {MAX_GRID}]")
+    if args.thesis and not args.contour:      # options that would be ignored: refused
+        raise InputError("--thesis is for --contour, it has no effect on the "
+                         "neutral-stability curve: add --contour or leave it out")
+    if args.oscillatory and args.contour:
+        raise InputError("--oscillatory is for the neutral-stability curve, it has no effect "
+                         "with --contour: leave one out")
     model = _model_or_case(args.model)
     params = [P.resolve(model, p) for p in args.params]
     current = [p.value(model) for p in params]

@@ -123,6 +123,10 @@ def _sweep(args: argparse.Namespace) -> int:
 
     model = _model_or_case(args.model)
     if args.list_params:
+        given = [f"--{o}" for o in ("param", "json", "csv", "plot") if getattr(args, o)]
+        if given:
+            raise InputError(f"sweep --list-params only lists the parameter paths: "
+                             f"{', '.join(given)} would be ignored (leave out --list-params)")
         return _list_parameters(model)
     if args.param is None:
         raise InputError("sweep: give --param PATH START STOP N (see --list-params)")
