@@ -1,10 +1,11 @@
 """Fuzz: the command line's outputs and option combinations (issue 20, items 6-8).  Each case
 draws a command, a path (or none) for each of its outputs from a small set of names that
 collide (``X``, ``./X``, ``sub/../X``, ``X.partial`` ...), and the options that can be refused
-(--plot-modes, --animate, --grid, --warm-start, boundary's --contour/--thesis/--oscillatory).  An independent oracle says whether the
-options are acceptable; then either they are, and the command reaches its work (the analysis
-entry point, replaced by a counter that raises), or they are not, and the command exits 2 with
-one line on stderr without the entry point having been called."""
+(--plot-modes, --animate, --grid, --warm-start, boundary's --contour/--thesis/--oscillatory).
+An independent oracle says whether the options are acceptable; then either they are, and the
+command reaches its work (the analysis entry point, replaced by a counter that raises), or
+they are not, and the command exits 2 with one line on stderr without the entry point having
+been called."""
 from __future__ import annotations
 
 import os
