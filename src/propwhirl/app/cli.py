@@ -500,9 +500,10 @@ EXIT_BROKEN_PIPE = 141
 def main(argv: list[str] | None = None) -> int:
     """Run one command; returns the exit code: 0, 1 when `clearance` does not clear, 2 for bad
     input, a file that cannot be read or written (one line on stderr naming it) or a study
-    whose every point failed (some failed points: 0 and a warning), 130 after Ctrl-C (one line, and no partial
-    output file: every file is written atomically, :mod:`propwhirl.fileio`), 141 when the
-    reader of the output stops early (``propwhirl reproduce | head -1``: quietly)."""
+    whose every point failed (some failed points: 0 and a warning), 130 after Ctrl-C (one
+    line, and no partial output file: every file is written atomically,
+    :mod:`propwhirl.fileio`), 141 when the reader of the output stops early
+    (``propwhirl reproduce | head -1``: quietly)."""
     try:
         parser = build_parser()
         args = parser.parse_args(argv)
