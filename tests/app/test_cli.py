@@ -151,7 +151,7 @@ def _bad_files(tmp_path: Path) -> dict[str, Path]:
     ("speeds", ["--speeds", "0", "10", "1"], "--speeds START = 0.0 m/s is invalid"),
     ("speeds", ["--speeds", "10", "5", "1"], "--speeds STOP = 5.0 m/s is invalid"),
     ("output folder", ["--json", "/nonexistent-folder/a.json"], "does not exist"),
-    ("plot modes", ["--plot", "PNG", "--plot-modes", "0"], "n_modes = 0 is invalid"),
+    ("plot modes", ["--plot", "PNG", "--plot-modes", "0"], "--plot-modes = 0 is invalid"),
 ])
 def test_analyse_bad_input_is_one_line_and_exit_2(case, argv_tail, message, tmp_path, capsys):
     files = _bad_files(tmp_path)

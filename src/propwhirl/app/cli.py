@@ -16,9 +16,14 @@ Commands
   sensitivity  sensitivities of the critical speed to the model's parameters, ranked
   docs         the installed documentation (validation, errata, model-file reference, ...)
 
-Bad input (a missing or unreadable file, bad TOML, an unknown field, an invalid value) is
-reported as one line ``propwhirl: error: ...`` on stderr with exit code 2.  Output piped into
-a reader that stops early (``| head``) ends quietly with exit code 141 (128 + SIGPIPE).
+Bad input (a missing or unreadable file, bad TOML, an unknown field, an invalid value, an
+option that cannot be honoured, two outputs on one file) is reported as one line
+``propwhirl: error: ...`` on stderr with exit code 2, before any analysis starts.  A study
+(``sweep``, ``map``) whose every point failed exits with code 2 too (one line: the count and
+the first message; --json/--csv are still written with each point's error); one with some
+failed points exits with code 0 (a warning on stderr lists them, column error holds them).
+Output piped into a reader that stops early (``| head``) ends quietly with exit code 141
+(128 + SIGPIPE).
 ``propwhirl --version`` prints the version.
 """
 from __future__ import annotations
@@ -42,6 +47,14 @@ def _reproduce(args: argparse.Namespace) -> int:
     from propwhirl.reproduce import harness as reproduce
 
     check_outputs(json=args.json)
+    if args.only:                   # a prefix that selects nothing: refused, not an empty table
+        ids = [r.id for r in reproduce.load_references()]
+        unknown = [o for o in args.only if not any(i.startswith(o) for i in ids)]
+        if unknown:
+            tables = sorted({i.split("/")[0] for i in ids})
+            raise InputError(f"--only {' '.join(unknown)}: no id of the thesis's values starts "
+                             f"with {'it' if len(unknown) == 1 else 'them'} (the ids start with "
+                             f"{', '.join(tables)})")
     cp = execution_options.checkpoint(args, args.json)
     records = reproduce.run(args.only, **execution_options.run_options(args), checkpoint=cp)
     print(reproduce.format_table(records))
@@ -209,7 +222,14 @@ def _analyse(args: argparse.Namespace) -> int:
     from propwhirl.analysis.stability import analyse
 
     check_outputs(json=args.json, csv=args.csv, plot=args.plot, summary_csv=args.summary_csv,
-                   events_csv=args.events_csv, animate=args.animate)
+                  events_csv=args.events_csv, animate=args.animate, model=args.model)
+    if args.plot_modes is not None:          # before the analysis, not when plotting
+        from propwhirl import validate as v
+
+        v.integer_at_least("--plot-modes", args.plot_modes, 1)
+        if not (args.plot or args.summary):
+            raise InputError(f"--plot-modes {args.plot_modes} needs --plot or --summary (the "
+                             "number of modes they show)")
     model = load_model(args.model)
     speeds = speed_grid(*args.speeds) if args.speeds else None
     with progress.spinner(f"analysing {limits.printable(model.name)}", quiet=args.quiet):
@@ -245,6 +265,9 @@ def _analyse(args: argparse.Namespace) -> int:
         from propwhirl.app import plots
 
         print(f"wrote {plots.animate_event(a, a.critical, args.animate)}")
+    elif args.animate:
+        print(f"propwhirl: warning: no instability in the speed range: --animate {args.animate} "
+              "not written", file=sys.stderr)
     return 0
 
 
@@ -263,8 +286,8 @@ def _add_analyse(sub) -> None:
                    "participation as CSV")
     p.add_argument("--plot", metavar="PNG", help="write the V-g-f plot")
     p.add_argument("--plot-modes", type=int, default=None, metavar="N",
-                   help="at most N modes in the plot (default: the modes that matter) and the "
-                        "lowest N in --summary (default 8)")
+                   help="at most N >= 1 modes in the plot (default: the modes that matter) and "
+                        "the lowest N in --summary (default 8); only with --plot or --summary")
     p.add_argument("--animate", metavar="GIF", help="write a GIF of the critical mode")
     p.add_argument("--method", choices=("auto", "dense", "reduced", "pk"), default="auto",
                    help="dense: every root of the full-order model (the reference); reduced: "
@@ -317,7 +340,7 @@ def _campbell(args: argparse.Namespace) -> int:
     from propwhirl import validate as v
     from propwhirl.analysis.vibration import campbell
 
-    check_outputs(plot=args.plot)
+    check_outputs(plot=args.plot, model=args.model)
     model = load_model(args.model)
     if not model.dof_map().propellers:       # a propeller wing or an isolated propeller
         raise InputError(f"{args.model}: a Campbell diagram needs a flexibly mounted propeller "
@@ -469,11 +492,19 @@ class _Parser(argparse.ArgumentParser):
         raise InputError(f"{self.prog}: {message} (see `{self.prog} --help`)")
 
 
+#: The exit codes, as `propwhirl --help` lists them.
+EXIT_CODES = ("Exit codes: 0 done; 1 clearance not cleared; 2 bad input (one line on stderr, "
+              "before any analysis starts) or a sweep/map whose every point failed (some failed "
+              "points: 0 and a warning); 130 interrupted (Ctrl-C); 141 the output's reader "
+              "stopped early.")
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(
         prog="propwhirl",
         description="Wing flutter, propeller whirl flutter and divergence of flexible wings "
         "with flexibly mounted propellers (SI units).",
+        epilog=EXIT_CODES,
     )
     parser.add_argument("--version", action="version", version=f"propwhirl {version()}")
     sub = parser.add_subparsers(dest="command", required=True)
@@ -500,10 +531,12 @@ EXIT_BROKEN_PIPE = 141
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Run one command; returns the exit code: 0, 2 for bad input or a file that cannot be
-    read or written (one line on stderr naming it), 130 after Ctrl-C (one line, and no partial
-    output file: every file is written atomically, :mod:`propwhirl.fileio`), 141 when the
-    reader of the output stops early (``propwhirl reproduce | head -1``: quietly)."""
+    """Run one command; returns the exit code: 0, 1 when `clearance` does not clear, 2 for bad
+    input, a file that cannot be read or written (one line on stderr naming it) or a study
+    whose every point failed (some failed points: 0 and a warning), 130 after Ctrl-C (one
+    line, and no partial output file: every file is written atomically,
+    :mod:`propwhirl.fileio`), 141 when the reader of the output stops early
+    (``propwhirl reproduce | head -1``: quietly)."""
     try:
         parser = build_parser()
         args = parser.parse_args(argv)

@@ -3,6 +3,7 @@ the --speeds grid, and the check that every output file can be written before a 
 Used by :mod:`propwhirl.app.cli` and the study commands (:mod:`.cli_studies`, :mod:`.cli_design`)."""
 from __future__ import annotations
 
+import os
 import sys
 from pathlib import Path
 
@@ -56,26 +57,98 @@ def speed_grid(start: float, stop: float, step: float):
     return grid if grid[-1] >= stop - 1e-9 * step else np.append(grid, stop)
 
 
-def check_outputs(**paths: str | None) -> None:
-    """Fail before a long computation if an output file cannot be written: its folder does
-    not exist or is not writable, the path is a folder, a plot's suffix is not a format."""
-    for option, path in paths.items():
-        if path is None:
-            continue
-        fileio.check_writable(path, what=f"--{option}")
-        if option == "plot":
+def check_outputs(*, model: str | None = None, partial_of: str | None = None,
+                  warm_start: bool = False, **paths: str | None) -> None:
+    """Fail before any computation if the outputs cannot all be written, with one line naming
+    the option (``summary_csv`` is ``--summary-csv``) and the path.
+
+    Each output's folder must exist and be writable and the path must not be a folder
+    (:func:`propwhirl.fileio.check_writable`); ``plot``: the suffix names a format matplotlib
+    writes, ``animate``: a ``.gif``, and matplotlib must be installed for either.  No two
+    outputs may be one file (the paths are compared resolved: ``./X`` is ``X``, a symbolic
+    link is its target), nor an output the model file `model` (the MODEL argument, when it is
+    a file), nor the partial-results file kept beside the output of option `partial_of`
+    while a study runs (``X.partial``; with `warm_start` also those of its passes,
+    ``X.partial.coarse`` ...).
+    """
+    given = {_option(o): str(p) for o, p in paths.items() if p is not None}
+    for label, path in given.items():
+        fileio.check_writable(path, what=label)
+        if label == "--plot":
             _check_plot_format(path)
+        elif label == "--animate":
+            _check_animation(path)
+    taken: dict[str, tuple[str, str]] = {}          # resolved path -> (option, path as given)
+    for label, path in sorted(given.items()):
+        twin = taken.setdefault(_same_file_key(path), (label, path))
+        if twin != (label, path):
+            raise InputError(f"{twin[0]} {twin[1]} and {label} {path} are the same file: give "
+                             "each output its own path")
+    others = []                                      # (path, what it is)
+    if model is not None and Path(model).is_file():
+        others.append((model, f"the model file MODEL {model}"))
+    owner = given.get(_option(partial_of)) if partial_of is not None else None
+    if owner is not None:
+        for partial in _partial_files(owner, warm_start):
+            others.append((partial, f"the partial-results file of {_option(partial_of)} {owner} "
+                                    "(kept there while the study runs)"))
+    for other, what in others:
+        label, path = taken.get(_same_file_key(other), (None, None))
+        if label is not None:
+            raise InputError(f"{label} {path} is {what}: give another path")
+
+
+def _option(name: str) -> str:
+    """The command-line option of a keyword: ``summary_csv`` -> ``--summary-csv``."""
+    return "--" + name.replace("_", "-")
+
+
+def _same_file_key(path: str | Path) -> str:
+    """One string per file: absolute, ``.``/``..`` and symbolic links resolved."""
+    return os.path.normcase(os.path.realpath(os.path.abspath(path)))
+
+
+def _partial_files(output: str, warm_start: bool) -> list[Path]:
+    """The partial-results files a study keeps beside `output` while it runs: ``OUT.partial``
+    (:func:`propwhirl.app.execution_options.partial_path`) and, warm-started, one per pass
+    (:func:`propwhirl.studies.warmstart.pass_checkpoints`: the one place that names them)."""
+    from propwhirl.app.execution_options import partial_path
+    from propwhirl.studies.execution import Checkpoint
+    from propwhirl.studies.warmstart import pass_checkpoints
+
+    partial = partial_path(output)
+    passes = [Path(c.path) for c in pass_checkpoints(Checkpoint(partial))] if warm_start else []
+    return [partial, *passes]
 
 
 def _check_plot_format(path: str) -> None:
     """A plot's suffix names a format matplotlib writes (checked before computing)."""
-    try:
-        from matplotlib.backend_bases import FigureCanvasBase
-    except ImportError:
-        raise InputError("--plot needs matplotlib, which is not installed: "
-                         "pip install propwhirl[plots]") from None
+    _need_matplotlib("--plot")
+    from matplotlib.backend_bases import FigureCanvasBase
+
     fmt = Path(path).suffix[1:].lower() or "png"
     supported = FigureCanvasBase.get_supported_filetypes()
     if fmt not in supported:
         raise InputError(f"--plot {path}: format {fmt!r} is not supported "
                          f"(suffixes: {', '.join(sorted(supported))})")
+
+
+def _check_animation(path: str) -> None:
+    """An animation is a GIF (:func:`propwhirl.app.plots.animate_mode`), drawn by matplotlib
+    and written by Pillow (a dependency of matplotlib)."""
+    if Path(path).suffix.lower() != ".gif":
+        raise InputError(f"--animate {path}: must end in .gif (the animation is a GIF)")
+    _need_matplotlib("--animate")
+    try:
+        import PIL  # noqa: F401
+    except ImportError:
+        raise InputError("--animate needs Pillow, which is not installed: "
+                         "pip install propwhirl[plots]") from None
+
+
+def _need_matplotlib(option: str) -> None:
+    try:
+        import matplotlib.backend_bases  # noqa: F401
+    except ImportError:
+        raise InputError(f"{option} needs matplotlib, which is not installed: "
+                         "pip install propwhirl[plots]") from None

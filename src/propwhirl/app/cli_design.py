@@ -17,11 +17,25 @@ from propwhirl.app.cli_common import check_outputs, echo
 from propwhirl.app.cli_studies import _model_or_case
 from propwhirl.validate import InputError
 
+#: Largest N of the --grid N x N map under a boundary plot (each point an eigen-solution, or
+#: with --contour an analysis).
+MAX_GRID = 60
+
+
 def _boundary(args: argparse.Namespace) -> int:
     from propwhirl.studies import boundary as B
     from propwhirl.studies import paths as P
 
-    check_outputs(json=args.json, csv=args.csv, plot=args.plot)
+    check_outputs(json=args.json, csv=args.csv, plot=args.plot, model=args.model)
+    if args.grid != 0 and not 2 <= args.grid <= MAX_GRID:       # before the tracing
+        raise InputError(f"--grid = {args.grid} is invalid: must be 0 (none) or in "
+                         f"[2, {MAX_GRID}]")
+    if args.thesis and not args.contour:      # options that would be ignored: refused
+        raise InputError("--thesis is for --contour, it has no effect on the "
+                         "neutral-stability curve: add --contour or leave it out")
+    if args.oscillatory and args.contour:
+        raise InputError("--oscillatory is for the neutral-stability curve, it has no effect "
+                         "with --contour: leave one out")
     model = _model_or_case(args.model)
     params = [P.resolve(model, p) for p in args.params]
     current = [p.value(model) for p in params]
@@ -51,8 +65,6 @@ def _boundary(args: argparse.Namespace) -> int:
         grid = None
         if args.grid:
             v_n = args.grid
-            if v_n < 2 or v_n > 60:
-                raise InputError(f"--grid = {v_n} is invalid: must be 0 (none) or in [2, 60]")
             grid = B.grid_map(B.level_of(b, model), lower, upper, v_n)
             d1, d2 = B.grid_agreement(b, grid)
             print(f"grid map {v_n} x {v_n} ({grid.evaluations} {b.evaluation_name}): traced points "
@@ -84,7 +96,8 @@ def _add_boundary(sub) -> None:
                    "convention (wing static divergence and recovering low-speed instabilities "
                    "left out)")
     p.add_argument("--grid", type=int, default=12, metavar="N",
-                   help="with --plot: an N x N grid map under the curve (0: none; default 12)")
+                   help=f"with --plot: an N x N grid map under the curve (0: none, else "
+                   f"2 to {MAX_GRID}; default 12)")
     p.add_argument("--json", metavar="OUT", help="write the boundary as JSON")
     p.add_argument("--csv", metavar="OUT", help="write the boundary's points as CSV")
     p.add_argument("--plot", metavar="PNG", help="plot the boundary over the grid map")
@@ -94,7 +107,7 @@ def _add_boundary(sub) -> None:
 def _clearance(args: argparse.Namespace) -> int:
     from propwhirl.studies.clearance import clearance
 
-    check_outputs(json=args.json, csv=args.csv, plot=args.plot)
+    check_outputs(json=args.json, csv=args.csv, plot=args.plot, model=args.model)
     model = _model_or_case(args.model)
     r = clearance(model, args.vd, args.factor, static_divergence=not args.thesis,
                   low_speed=not args.thesis, minimum=not args.no_minimum,
@@ -140,7 +153,7 @@ def _sensitivity(args: argparse.Namespace) -> int:
     from propwhirl.analysis.sensitivity import critical_sensitivities
     from propwhirl.analysis.stability import analyse
 
-    check_outputs(json=args.json, plot=args.plot)
+    check_outputs(json=args.json, plot=args.plot, model=args.model)
     if args.top < 1:
         raise InputError(f"--top {args.top} is invalid: must be >= 1")
     model = _model_or_case(args.model)

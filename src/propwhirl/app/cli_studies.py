@@ -71,9 +71,17 @@ def _study_options(args: argparse.Namespace) -> dict:
 
 def _write_study(result, args: argparse.Namespace, plot, checkpoint=None) -> None:
     """Print the result, report the failing points on stderr, write the outputs (then the
-    partial-results file is removed)."""
+    partial-results file is removed).
+
+    A study whose every point failed has no result: its --json and --csv are still written
+    (each point's message in column error; no plot: nothing to draw), then an InputError
+    (exit code 2) names the count and the first message.  Some failed points: a warning on
+    stderr, exit code 0 (:data:`FAILED_POINTS_HELP`)."""
     echo(result.format())
-    execution_options.report_failures(np.ravel(result.columns["error"]))
+    errors = [str(e) for e in np.ravel(result.columns["error"])]
+    every_point_failed = bool(errors) and all(errors)
+    if not every_point_failed:
+        execution_options.report_failures(errors)
     if args.json:
         fileio.write_text(args.json, result.to_json(), what="critical map")
         print(f"wrote {args.json}")
@@ -81,9 +89,24 @@ def _write_study(result, args: argparse.Namespace, plot, checkpoint=None) -> Non
     if args.csv:
         result.to_csv(args.csv)
         print(f"wrote {args.csv}")
+    if every_point_failed:
+        kept = (": the outputs hold each point's error (column error)" if args.json or args.csv
+                else "")
+        raise InputError(f"{args.command}: every one of the {len(errors)} points failed (first: "
+                         f"{errors[0]}){kept}" + (f"; --plot {args.plot} not written" if args.plot
+                                                 else ""))
     if args.plot:
         plot(result, path=args.plot)
         print(f"wrote {args.plot}")
+
+
+#: What the help of `sweep` and `map` says of failing points (their exit codes).
+FAILED_POINTS_HELP = ("A point whose model cannot be built or whose analysis fails is "
+                      "recorded (kind error, its message in column error) and the others go on. "
+                      "Exit code 0 when every point was analysed, also 0 when some failed (a "
+                      "warning on stderr lists them); exit code 2 when every point failed (one "
+                      "line on stderr; --json and --csv are still written, with each point's "
+                      "error), as for bad input.")
 
 
 def _list_parameters(model) -> int:
@@ -100,10 +123,14 @@ def _sweep(args: argparse.Namespace) -> int:
 
     model = _model_or_case(args.model)
     if args.list_params:
+        given = [f"--{o}" for o in ("param", "json", "csv", "plot") if getattr(args, o)]
+        if given:
+            raise InputError(f"sweep --list-params only lists the parameter paths: "
+                             f"{', '.join(given)} would be ignored (leave out --list-params)")
         return _list_parameters(model)
     if args.param is None:
         raise InputError("sweep: give --param PATH START STOP N (see --list-params)")
-    check_outputs(json=args.json, csv=args.csv, plot=args.plot)
+    _check_study_outputs(args)
     path, values = _param_axis(args.param)
     opts = _study_options(args)
     result = sweeps.sweep(model, path, values, **opts)
@@ -124,24 +151,32 @@ def _map(args: argparse.Namespace) -> int:
     if not args.param or len(args.param) != 2:
         raise InputError(f"map: give --param PATH START STOP N twice (got "
                          f"{len(args.param or [])})")
-    check_outputs(json=args.json, csv=args.csv, plot=args.plot)
+    _check_study_outputs(args)
     first, second = (_param_axis(p) for p in args.param)
     n = len(first[1]) * len(second[1])
     if n > MAX_MAP_POINTS:
         raise InputError(f"map: N1 x N2 = {n} points is invalid: must be <= {MAX_MAP_POINTS}")
+    for path, values in (first, second):
+        if args.plot and len(values) < 2:      # a contour map needs a plane
+            raise InputError(f"map --plot needs at least 2 values of each parameter: --param "
+                             f"{path} has N = {len(values)}")
     opts = _study_options(args)
     result = sweeps.map2d(model, first, second, **opts)
 
     def plot(r, path):
         from propwhirl.app import plots
 
-        if min(r.shape) >= 2:
-            plots.critical_map(r, path=path)
-        else:
-            raise InputError("map --plot needs at least 2 values of each parameter")
+        plots.critical_map(r, path=path)       # both axes have 2 values or more (checked)
 
     _write_study(result, args, plot, opts["checkpoint"])
     return 0
+
+
+def _check_study_outputs(args: argparse.Namespace) -> None:
+    """The outputs of `sweep`/`map` (:func:`check_outputs`): none on another, on the model
+    file, or on the partial-results files kept beside --json while the study runs."""
+    check_outputs(json=args.json, csv=args.csv, plot=args.plot, model=args.model,
+                  partial_of="json", warm_start=bool(args.warm_start))
 
 
 def _add_study_options(p) -> None:
@@ -171,7 +206,8 @@ def _add_sweep(sub) -> None:
                        description="Critical speed (kind, mode, dominant propeller) of MODEL "
                        "at N values of one parameter, e.g. --param "
                        "propellers[0].propeller.f_psi 3 12 10, or --param wing.EI* 0.5 2 7 "
-                       "(a factor on the distribution).  --list-params lists the paths.")
+                       "(a factor on the distribution).  --list-params lists the paths.  "
+                       + FAILED_POINTS_HELP)
     _add_study_options(p)
     p.add_argument("--param", nargs=4, metavar=("PATH", "START", "STOP", "N"),
                    help="the parameter path and N values from START to STOP")
@@ -183,7 +219,7 @@ def _add_map(sub) -> None:
     p = sub.add_parser("map", help="critical speed of a model over two parameter paths",
                        description="Critical speed of MODEL over the N1 x N2 grid of two "
                        "parameters: --param PATH START STOP N twice (`propwhirl sweep MODEL "
-                       "--list-params` lists the paths).")
+                       "--list-params` lists the paths).  " + FAILED_POINTS_HELP)
     _add_study_options(p)
     p.add_argument("--param", nargs=4, action="append", metavar=("PATH", "START", "STOP", "N"),
                    help="a parameter path and N values from START to STOP (give it twice)")
