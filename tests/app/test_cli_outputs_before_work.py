@@ -173,6 +173,8 @@ def test_analyse_options_are_refused_before_the_analysis(small_file, here, capsy
     (["campbell", "M", "--rpm", "0", "100", "3", "--count", "0"], "--count = 0 is invalid"),
     (["campbell", "M", "--rpm", "0", "100", "3", "--plot", "c.nope"], "is not supported"),
     (["modes", "M", "--count", "0"], "--count = 0 is invalid"),
+    (["sweep", "M", *SWEEP, "--processes", "0"], "--processes = 0 is invalid"),
+    (["reproduce", "--only", "t7", "--processes", "-2"], "--processes = -2 is invalid"),
     (["run", "--out", "M"], "is not a folder"),
     (["case", "wingtip", "--save", "missing/w.toml"], "does not exist"),
 ])

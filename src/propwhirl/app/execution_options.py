@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import Any, Iterable
 
 from propwhirl import limits
+from propwhirl import validate as v
 from propwhirl.studies.execution import Checkpoint, check_scheduler
 from propwhirl.validate import InputError
 
@@ -45,6 +46,7 @@ def add(parser: argparse.ArgumentParser, *, processes_default: int = 1) -> None:
 def run_options(args: argparse.Namespace) -> dict[str, Any]:
     """``processes``, ``client`` (the scheduler address or None) and ``progress`` (a bar unless
     --quiet) for a study function; the address is checked here, before any work."""
+    v.integer_at_least("--processes", args.processes, 1)
     if args.scheduler is not None:
         check_scheduler(args.scheduler)
     return {"processes": args.processes, "client": args.scheduler, "progress": not args.quiet}
