@@ -23,7 +23,7 @@ ALLOWED = {
     "engine": {"limits", "validate"},             # model-agnostic: A(V) in, eigen-data out
     "analysis": {"engine", "fileio", "limits", "model", "validate"},
     "cases": {"model", "validate"},               # model factories only
-    "studies": {"analysis", "cases", "engine", "fileio", "model", "progress", "validate"},
+    "studies": {"analysis", "cases", "engine", "fileio", "limits", "model", "progress", "validate"},
     "reproduce": {"analysis", "cases", "documents", "engine", "generated", "model", "progress",
                   "studies", "validate"},
     "io": {"fileio", "limits", "model", "validate"},
@@ -43,8 +43,8 @@ def _imports(path: Path) -> set[str]:
     out = set()
     for node in ast.walk(ast.parse(path.read_text())):
         if isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
-            if node.module == "propwhirl":
-                out |= {a.name for a in node.names}
+            if node.module == "propwhirl":    # modules; the package's version is a constant
+                out |= {a.name for a in node.names if a.name != "__version__"}
             elif node.module.startswith("propwhirl."):
                 out.add(node.module.split(".")[1])
         elif isinstance(node, ast.Import):

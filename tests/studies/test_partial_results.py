@@ -24,9 +24,10 @@ import pytest
 from propwhirl import io
 from propwhirl.app import cli
 from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
-from propwhirl.studies import execution as X
+from propwhirl.studies import partial as X
 from propwhirl.studies import sweeps
-from propwhirl.studies.execution import Checkpoint, Interrupted, map_analyses
+from propwhirl.studies.execution import Interrupted, map_analyses
+from propwhirl.studies.partial import Checkpoint
 from propwhirl.validate import InputError
 
 SPEEDS = [100.0, 300.0, 500.0, 700.0]

@@ -113,7 +113,7 @@ def _partial_files(output: str, warm_start: bool) -> list[Path]:
     (:func:`propwhirl.app.execution_options.partial_path`) and, warm-started, one per pass
     (:func:`propwhirl.studies.warmstart.pass_checkpoints`: the one place that names them)."""
     from propwhirl.app.execution_options import partial_path
-    from propwhirl.studies.execution import Checkpoint
+    from propwhirl.studies.partial import Checkpoint
     from propwhirl.studies.warmstart import pass_checkpoints
 
     partial = partial_path(output)

@@ -21,7 +21,8 @@ from typing import Any, Iterable
 
 from propwhirl import limits
 from propwhirl import validate as v
-from propwhirl.studies.execution import Checkpoint, check_scheduler
+from propwhirl.studies.execution import check_scheduler
+from propwhirl.studies.partial import Checkpoint
 from propwhirl.validate import InputError
 
 #: Suffix of the partial-results file kept beside a study's output while it runs.

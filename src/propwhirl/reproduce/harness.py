@@ -35,7 +35,7 @@ from typing import Any, Callable, Iterable
 from propwhirl import documents
 from propwhirl.progress import ProgressCallback
 from propwhirl.studies import execution
-from propwhirl.studies.execution import Checkpoint
+from propwhirl.studies.partial import Checkpoint
 from propwhirl.validate import InputError
 
 #: The chapter modules whose import registers the reproduction functions (one per chapter).

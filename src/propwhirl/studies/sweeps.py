@@ -424,7 +424,7 @@ def critical_map(model: Any, axes: Sequence[tuple[str, Any]], *, speeds=None,
             variants.append(exc)
     shape = tuple(len(ax.values) for _, ax in resolved)
     if checkpoint is not None and hasattr(checkpoint, "with_entries"):
-        from propwhirl.studies.execution import content_digest
+        from propwhirl.studies.partial import content_digest
 
         checkpoint = checkpoint.with_entries(study="critical map", model=content_digest(model),
                                              axes=[ax.to_dict() for _, ax in resolved])
