@@ -26,7 +26,9 @@ so every object's own validation runs (a wing's mesh, a propeller's checks, the 
 installation nodes).  A value outside the declared range is an error naming the path and the
 range before anything is built; any other error of the model is restated with the path.  A
 field with an alternative (f_theta or K_theta, f_psi or K_psi, polar_inertia or
-radius_of_gyration) is set with its alternative cleared.
+radius_of_gyration) is set with its alternative cleared, so varying a field together with its
+alternative — or two paths reaching one value — is refused (:func:`check_independent`); the
+values of a study are checked all at once (:meth:`Parameter.check_values`).
 
 The scale form ``PATH*`` (listed for the distributed properties, accepted for any number
 given) multiplies the current value of a distributed property — a spanwise
