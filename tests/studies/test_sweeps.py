@@ -130,12 +130,16 @@ def test_bad_input():
     iso = isolated_baseline_propeller()
     with pytest.raises(InputError, match="nearest valid paths: propeller.f_psi"):
         sweep(iso, "propeller.f_ps", [1.0])
-    # an invalid value is a failing point (issue 12.5): recorded with its message, the others
-    # are analysed — never silently dropped
-    r = sweep(iso, "propeller.f_psi", [3.0, -1.0], speeds=[100.0, 200.0, 300.0])
+    # a value outside the path's declared range stops the study before any analysis (issue 20.6)
+    with pytest.raises(InputError, match=r"propeller.f_psi: values = -1 Hz is outside the valid "
+                                         r"range \[1e-3, 1000\] Hz"):
+        sweep(iso, "propeller.f_psi", [3.0, -1.0], speeds=[100.0, 200.0, 300.0])
+    # a value the model refuses is a failing point (issue 12.5): recorded with its message, the
+    # others are analysed — never silently dropped
+    r = sweep(iso, "propeller.hub_radius", [0.125, 5.0], speeds=[100.0, 200.0, 300.0])
     assert r.kind[0] in ("flutter", "divergence") and r.kind[1] == "error"
     assert r.columns["error"][0] == ""
-    assert "propeller.f_psi = -1.0 Hz is outside the valid range" in r.columns["error"][1]
+    assert "hub_radius = 5.0 m is invalid: must be < radius" in r.columns["error"][1]
     assert np.isnan(r.critical_speed[1]) and np.isfinite(r.critical_speed[0])
     back = type(r).from_dict(r.to_dict())
     assert list(back.columns["error"]) == list(r.columns["error"])

@@ -215,6 +215,11 @@ class Propeller:
             if self.rpm is None:
                 raise v.InputError("rpm is required for operation = 'constant-speed'")
         else:
+            if self.rpm is not None:  # windmilling: Ω = V/(μR) from the blade angle, rpm unused
+                raise v.fail("rpm", self.rpm, "invalid with operation = 'fixed-pitch', which "
+                             "ignores it (the windmilling rotor turns at Omega = V/(mu R), mu "
+                             "from the blade angle): remove rpm or give operation = "
+                             "'constant-speed'", "rev/min")
             try:
                 self.advance_ratio  # validates the blade angle (inflow angle in (0°, 90°))
             except v.InputError as exc:  # restated with the field's name

@@ -51,6 +51,12 @@ MACH_COMPRESSIBLE = 0.7
 TIP_MACH = 1.0
 
 
+def _mach(M: float) -> str:
+    """A Mach number for a message: two decimals ("7.00"), 3 significant digits when huge
+    (a speed of 1e300 m/s must not print a 300-digit number)."""
+    return f"{M:.2f}" if abs(M) < 1e4 else f"{M:.3g}"
+
+
 def check_mach(V, speed_of_sound: float) -> None:
     """Refuse airspeeds V [m/s] at a free-stream Mach number >= :data:`MACH_REFUSED`.
 
@@ -64,7 +70,7 @@ def check_mach(V, speed_of_sound: float) -> None:
     top = float(np.max(Va)) if Va.size else 0.0
     if top / a >= MACH_REFUSED:
         raise v.InputError(
-            f"V = {top:g} m/s is Mach {top / a:.2f} at a = {a:g} m/s: the strip and "
+            f"V = {top:g} m/s is Mach {_mach(top / a)} at a = {a:g} m/s: the strip and "
             f"Houbolt-Reed aerodynamics are subsonic; propwhirl refuses Mach >= "
             f"{MACH_REFUSED:g} (here V >= {MACH_REFUSED * a:g} m/s) and flags results above "
             f"Mach {MACH_COMPRESSIBLE:g}")
@@ -88,7 +94,7 @@ def check_propeller(n_blades: int, radius: float, blade_area: float, airspeed, m
         t = int(np.argmax(M))
         Va = np.broadcast_to(np.atleast_1d(np.asarray(airspeed, dtype=float)), M.shape)
         raise v.InputError(
-            f"Mach {M[t]:.2f} (V = {Va[t]:g} m/s) is invalid: the Houbolt-Reed derivatives are "
+            f"Mach {_mach(M[t])} (V = {Va[t]:g} m/s) is invalid: the Houbolt-Reed derivatives are "
             f"a subsonic method; propwhirl refuses Mach >= {MACH_REFUSED:g} and flags results "
             f"above Mach {MACH_COMPRESSIBLE:g}")
 

@@ -48,7 +48,8 @@ from propwhirl import fileio
 from propwhirl import validate as v
 from propwhirl.engine import eigenvalues
 from propwhirl.studies import paths as P
-from propwhirl.studies.continuation import ContinuationOptions, Counted, trace
+from propwhirl.model import validity
+from propwhirl.studies.continuation import ContinuationOptions, Counted, point_key, trace
 
 #: A variant of the model at a point of the plane: ``variant(p) -> Model``.
 Variant = Callable[[np.ndarray], Any]
@@ -62,8 +63,7 @@ def path_variant(model: Any, parameters: Sequence[str]) -> tuple[Variant, tuple[
     if len(parameters) != 2:
         raise v.InputError(f"parameters = {list(parameters)!r} is invalid: give two paths")
     params = tuple(P.resolve(model, p) for p in parameters)
-    if params[0].path.rstrip("*") == params[1].path.rstrip("*"):
-        raise v.InputError(f"parameters = {list(parameters)!r} are invalid: the same path twice")
+    P.check_independent(params)      # the same value twice, or f_theta with K_theta
 
     def variant(p: np.ndarray) -> Any:
         m = model
@@ -93,14 +93,14 @@ class DampingLevel:
             if lam.size == 0:
                 raise v.InputError("oscillatory = True but the model has no complex eigenvalue")
         k = int(np.argmax(lam.real))
-        self.eigenvalue[tuple(np.round(p, 12))] = complex(lam[k])
+        self.eigenvalue[point_key(p)] = complex(lam[k])
         return float(lam[k].real)
 
     def info(self, p: np.ndarray) -> dict[str, Any]:
-        lam = self.eigenvalue.get(tuple(np.round(p, 12)))
+        lam = self.eigenvalue.get(point_key(p))
         if lam is None:
             self(p)
-            lam = self.eigenvalue[tuple(np.round(p, 12))]
+            lam = self.eigenvalue[point_key(p)]
         return {"frequency_hz": abs(lam.imag) / (2 * math.pi), "real": lam.real}
 
 
@@ -122,7 +122,7 @@ class CriticalSpeedLevel:
 
         model = self.variant(p)
         row = evaluate((model, self.speeds, self.xtol, self.static_divergence, self.low_speed))
-        self.rows[tuple(np.round(p, 12))] = row
+        self.rows[point_key(p)] = row
         Vc = row["critical_speed"]
         if not math.isfinite(Vc):
             top = self.speeds[-1] if self.speeds is not None else model.flight.speed_range[1]
@@ -130,10 +130,10 @@ class CriticalSpeedLevel:
         return Vc - self.V_target
 
     def info(self, p: np.ndarray) -> dict[str, Any]:
-        row = self.rows.get(tuple(np.round(p, 12)))
+        row = self.rows.get(point_key(p))
         if row is None:
             self(p)
-            row = self.rows[tuple(np.round(p, 12))]
+            row = self.rows[point_key(p)]
         return {"critical_speed": row["critical_speed"], "kind": row["kind"],
                 "mode": row["critical_mode"], "frequency_hz": row["critical_frequency"]}
 
@@ -260,13 +260,39 @@ class Boundary:
         return text
 
 
-def _check_plane(lower: Sequence[float], upper: Sequence[float]) -> tuple[np.ndarray, np.ndarray]:
+def _check_plane(lower: Sequence[float], upper: Sequence[float],
+                 params: Sequence[P.Parameter] = ()) -> tuple[np.ndarray, np.ndarray]:
+    """The plane's bounds (lo, hi), checked: two finite values each, upper > lower, a finite
+    width, and — given the parameters — inside each path's declared range."""
     lo = np.asarray(v.finite("lower", lower), dtype=float).reshape(-1)
     hi = np.asarray(v.finite("upper", upper), dtype=float).reshape(-1)
     if lo.shape != (2,) or hi.shape != (2,) or not np.all(hi > lo):
         raise v.InputError(f"plane bounds lower = {lo.tolist()}, upper = {hi.tolist()} are "
                            "invalid: two values each, upper > lower")
+    with np.errstate(over="ignore"):
+        wide = ~np.isfinite(hi - lo)
+    if wide.any():
+        k = int(np.argmax(wide))
+        raise v.InputError(f"plane bounds lower = {lo.tolist()}, upper = {hi.tolist()} are "
+                           f"invalid: the width of axis {k + 1} overflows (not a finite number)")
+    for k, p in enumerate(params):
+        p.check_values([lo[k], hi[k]], "bounds")
     return lo, hi
+
+
+def _check_speed(model: Any, name: str, V: Any) -> float:
+    """`V` [m/s] (argument `name`): > 0 and below the Mach number the model's aerodynamics
+    refuse (:func:`propwhirl.model.validity.check_mach`), checked before any evaluation."""
+    V = float(v.positive(name, V, "m/s"))
+    flight = getattr(model, "flight", None)
+    if flight is not None and validity.has_aerodynamics(model):
+        a = float(flight.speed_of_sound)
+        if V / a >= validity.MACH_REFUSED:
+            raise v.InputError(
+                f"{name} = {V:g} m/s is invalid: Mach {V / a:.3g} at a = {a:g} m/s; the "
+                f"aerodynamics are subsonic and propwhirl refuses Mach >= "
+                f"{validity.MACH_REFUSED:g} (V >= {validity.MACH_REFUSED * a:.1f} m/s)")
+    return V
 
 
 def _traced(kind: str, level: DampingLevel | CriticalSpeedLevel, speed: float, names, units,
@@ -304,12 +330,13 @@ def neutral_curve(model: Any, parameters: Sequence[str], lower: Sequence[float],
     variant : callable, optional
         ``variant(p) -> model`` instead of the paths (the paths then only name the axes).
     """
-    lo, hi = _check_plane(lower, upper)
-    v.positive("V", V, "m/s")
+    V = _check_speed(model, "V", V)
     if variant is None:
         variant, params = path_variant(model, parameters)
+        lo, hi = _check_plane(lower, upper, params)
         names, units = [p.path for p in params], [p.unit for p in params]
     else:
+        lo, hi = _check_plane(lower, upper)
         names, units = list(parameters), ["", ""]
     level = DampingLevel(variant, float(V), bool(oscillatory))
     return _traced("neutral-stability", level, V, names, units, lo, hi, line, options,
@@ -329,13 +356,20 @@ def speed_contour(model: Any, parameters: Sequence[str], lower: Sequence[float],
     accuracy of each critical speed; static_divergence, low_speed: the thesis's exclusions
     (:func:`propwhirl.studies.critical.critical_instability`).
     """
-    lo, hi = _check_plane(lower, upper)
-    v.positive("V_target", V_target, "m/s")
+    V_target = float(v.positive("V_target", V_target, "m/s"))
     grid = None if speeds is None else v.increasing("speeds", speeds, "m/s")
+    first, last = ((float(grid[0]), float(grid[-1])) if grid is not None
+                   else (float(model.flight.speed_range[0]), float(model.flight.speed_range[1])))
+    if not first < V_target < last:       # V_crit never crosses it: no contour, only analyses
+        raise v.InputError(f"V_target = {V_target:g} m/s is outside the analysed speeds "
+                           f"({first:g}, {last:g}) m/s: no critical speed can equal it (give "
+                           "speeds that span it)")
     if variant is None:
         variant, params = path_variant(model, parameters)
+        lo, hi = _check_plane(lower, upper, params)
         names, units = [p.path for p in params], [p.unit for p in params]
     else:
+        lo, hi = _check_plane(lower, upper)
         names, units = list(parameters), ["", ""]
     level = CriticalSpeedLevel(variant, float(V_target), grid, xtol, bool(static_divergence),
                                bool(low_speed))

@@ -35,9 +35,10 @@ from typing import Any
 import numpy as np
 from scipy.optimize import brentq
 
-from propwhirl import fileio
+from propwhirl import fileio, limits
 from propwhirl import validate as v
 from propwhirl.analysis.stability import ModelAnalysis, analyse
+from propwhirl.model import validity
 from propwhirl.studies import paths as P
 from propwhirl.studies.critical import convention, critical_instability, wing_divergence_predicate
 
@@ -219,17 +220,44 @@ class Clearance:
 
 def clearance_speeds(model: Any, V_required: float, speeds=None) -> np.ndarray:
     """The analyses' speed grid [m/s]: `speeds`, or the model's speed range extended (same
-    step) to at least 1.05 · V_required."""
+    step) to at least 1.05 · V_required.
+
+    Checked before any analysis: the grid must reach beyond V_required, stay below the Mach
+    number the model's aerodynamics refuse (:data:`propwhirl.model.validity.MACH_REFUSED`)
+    and hold at most :data:`propwhirl.limits.MAX_SPEEDS` speeds (one-line InputErrors naming
+    V_D, factor x V_D and the largest valid value)."""
     if speeds is not None:
         grid = v.increasing("speeds", speeds, "m/s")
         if grid[-1] <= V_required:
             raise v.InputError(f"speeds end at {grid[-1]:g} m/s: must reach beyond factor V_D = "
                                f"{V_required:.2f} m/s")
+        _check_top_speed(model, float(grid[-1]), V_required, "the speeds' end")
         return grid
     lo, hi, step = (float(x) for x in model.flight.speed_range)
     hi = max(hi, 1.05 * V_required)
+    _check_top_speed(model, hi, V_required, "1.05 factor x V_D")
+    count = limits.grid_count(lo, hi, step)
+    if not count <= limits.MAX_SPEEDS:
+        raise v.InputError(
+            f"factor x V_D = {V_required:g} m/s is invalid: the analyses' speed grid from "
+            f"{lo:g} m/s in the model's steps of {step:g} m/s to {hi:g} m/s would hold "
+            f"{count:,.0f} speeds, at most {limits.MAX_SPEEDS:,}: give a smaller V_D or speeds")
     n = int(math.ceil((hi - lo) / step - 1e-9))
     return lo + step * np.arange(n + 1)
+
+
+def _check_top_speed(model: Any, top: float, V_required: float, what: str) -> None:
+    """Refuse analyses to `top` [m/s] (`what`) at a Mach number the model's aerodynamics
+    refuse."""
+    if not validity.has_aerodynamics(model):
+        return
+    a = float(model.flight.speed_of_sound)
+    if top / a >= validity.MACH_REFUSED:
+        raise v.InputError(
+            f"factor x V_D = {V_required:g} m/s is invalid: the analyses go to {what}, "
+            f"{top:g} m/s, Mach {top / a:.3g} at a = {a:g} m/s; the aerodynamics are subsonic "
+            f"and propwhirl refuses Mach >= {validity.MACH_REFUSED:g} (V >= "
+            f"{validity.MACH_REFUSED * a:.1f} m/s)")
 
 
 def _analysis_critical(model, speeds, xtol, static_div, low_speed):
@@ -255,6 +283,23 @@ def _frequency_path(model: Any, number: int, name: str) -> P.Parameter:
     raise v.InputError(f"propeller {number + 1}: no parameter path to its {name}")
 
 
+def _check_search(par: P.Parameter, frequency_range: Any, n_scan: Any,
+                  frequency_tol: Any) -> tuple[float, float]:
+    """(lo, hi) [Hz] of the minimum-frequency search, checked: an increasing pair inside the
+    frequency path's declared range, n_scan >= 2, frequency_tol > 0."""
+    rng = np.asarray(v.positive("frequency_range", frequency_range, "Hz"), dtype=float)
+    if rng.shape != (2,):
+        raise v.InputError(f"frequency_range = {v.short_repr(frequency_range)} Hz is invalid: "
+                           "give two frequencies (low, high)")
+    lo, hi = float(rng[0]), float(rng[1])
+    if not hi > lo:
+        raise v.InputError(f"frequency_range = ({lo:g}, {hi:g}) Hz is invalid: must be increasing")
+    par.check_values(rng, "frequency_range")
+    v.integer_at_least("n_scan", n_scan, 2)
+    v.positive("frequency_tol", frequency_tol, "Hz")
+    return lo, hi
+
+
 def minimum_frequency(model: Any, number: int, name: str, V_required: float, speeds: np.ndarray,
                       *, frequency_range: tuple[float, float] = (1.0, 30.0), n_scan: int = 8,
                       frequency_tol: float = 1e-3, xtol: float = 0.01,
@@ -265,11 +310,8 @@ def minimum_frequency(model: Any, number: int, name: str, V_required: float, spe
 
     if name not in ("f_theta", "f_psi"):
         raise v.InputError(f"parameter = {name!r} is invalid: must be 'f_theta' or 'f_psi'")
-    lo, hi = (float(x) for x in v.positive("frequency_range", frequency_range, "Hz"))
-    if not hi > lo:
-        raise v.InputError(f"frequency_range = ({lo:g}, {hi:g}) Hz is invalid: must be increasing")
-    v.integer_at_least("n_scan", n_scan, 2)
     par = _frequency_path(model, number, name)
+    lo, hi = _check_search(par, frequency_range, n_scan, frequency_tol)
     count = [0]
     vcrit: dict[float, float] = {}
 
@@ -335,6 +377,11 @@ def clearance(model: Any, V_D: float, factor: float = FACTOR_CS25, *, speeds=Non
     v.in_range("factor", factor, 1.0, 3.0)
     V_req = float(factor) * float(V_D)
     grid = clearance_speeds(model, V_req, speeds)
+    if minimum:              # the search's options, checked before the first analysis
+        for pd in model.dof_map().propellers:
+            for name in ("f_theta", "f_psi"):
+                _check_search(_frequency_path(model, pd.number, name), frequency_range,
+                              n_scan, frequency_tol)
     a, is_wing, crit = _analysis_critical(model, grid, xtol, static_divergence, low_speed)
 
     def margin(e) -> Margin:

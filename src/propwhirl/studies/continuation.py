@@ -39,6 +39,14 @@ from propwhirl import validate as v
 LevelFunction = Callable[[np.ndarray], float]
 
 
+def point_key(p: np.ndarray) -> tuple[float, ...]:
+    """A memo key of a point of the plane: its coordinates rounded to 12 decimals (huge ones,
+    beyond 1e200, as they are: rounding them would overflow)."""
+    x = np.asarray(p, dtype=float)
+    small = np.abs(x) < 1e200
+    return tuple(np.where(small, np.round(np.where(small, x, 0.0), 12), x).tolist())
+
+
 @dataclass
 class Counted:
     """``g`` with a count of its evaluations (``calls``) and a memo of the values by point."""
@@ -48,7 +56,7 @@ class Counted:
     _memo: dict = field(default_factory=dict, repr=False)
 
     def __call__(self, p: np.ndarray) -> float:
-        key = tuple(np.round(np.asarray(p, dtype=float), 12))
+        key = point_key(p)
         if key not in self._memo:
             self.calls += 1
             value = float(self.g(np.asarray(p, dtype=float)))
@@ -319,6 +327,11 @@ def trace(g: LevelFunction, lower: Sequence[float], upper: Sequence[float], *,
     """
     lo = np.asarray(v.finite("lower", lower), dtype=float)
     hi = np.asarray(v.finite("upper", upper), dtype=float)
+    with np.errstate(over="ignore", invalid="ignore"):
+        wide = lo.shape == hi.shape and not np.all(np.isfinite(hi - lo))
+    if wide:
+        raise v.InputError(f"bounds lower = {lo.tolist()}, upper = {hi.tolist()} are invalid: "
+                           "their difference overflows (not a finite number)")
     if lo.shape != (2,) or hi.shape != (2,) or not np.all(hi > lo):
         raise v.InputError(f"bounds lower = {lo.tolist()}, upper = {hi.tolist()} are invalid: "
                            "two values each, upper > lower")

@@ -28,6 +28,7 @@ from propwhirl.analysis.sensitivity import critical_sensitivities
 from propwhirl.analysis.stability import analyse
 from propwhirl.model import derivatives as D
 from propwhirl.studies.critical import critical_instability, wing_divergence_predicate
+from propwhirl.studies.paths import ALTERNATIVES
 
 #: relative step of the finite-difference gradients the comparison uses
 FD_STEP = 1e-4
@@ -37,6 +38,33 @@ FD_STEP = 1e-4
 #: optimum there sits on a discontinuity where no gradient exists (SLSQP stalled at 50
 #: iterations with the bound 0.05).
 LOWER_BOUND = (3.0 / 7.0) ** 2
+
+
+def _checked_paths(paths: Any) -> tuple[str, ...]:
+    """`paths` as a tuple of strings: at least one, none twice, no field together with its
+    alternative (f_theta and K_theta of one propeller: the same stiffness twice)."""
+    if isinstance(paths, (str, bytes)) or not isinstance(paths, Sequence):
+        raise v.InputError(f"paths = {v.short_repr(paths)} is invalid: give a list of "
+                           "parameter paths, e.g. ['propellers[0].propeller.K_theta']")
+    out = tuple(paths)
+    if not out:
+        raise v.InputError("paths = [] is invalid: give at least one parameter path")
+    bad = [p for p in out if not isinstance(p, str)]
+    if bad:
+        raise v.InputError(f"paths: {v.short_repr(bad[0])} is invalid: each path must be a "
+                           "string such as 'propellers[0].propeller.K_theta'")
+    seen: set[str] = set()
+    for p in out:
+        head, _, name = p.rpartition(".")
+        twin = ALTERNATIVES.get(("Propeller", name)) or ALTERNATIVES.get(("Wing", name))
+        if p in seen:
+            raise v.InputError(f"paths: {p!r} appears twice: give each parameter once")
+        if twin is not None and f"{head}.{twin}" in seen:
+            raise v.InputError(f"paths {f'{head}.{twin}'!r} and {p!r} are invalid together: "
+                               f"{name} is the alternative of {twin} (the same stiffness): "
+                               "give one of them")
+        seen.add(p)
+    return out
 
 
 @dataclass
@@ -58,7 +86,7 @@ class CriticalSpeed:
     _cache: dict = field(default_factory=dict, repr=False)
 
     def __post_init__(self) -> None:
-        self.paths = tuple(self.paths)
+        self.paths = _checked_paths(self.paths)
         known = {p.path: p for p in D.parameters(self.model)}
         bad = [p for p in self.paths if p not in known]
         if bad:
@@ -135,7 +163,7 @@ def minimum_mount_stiffness(model, vd: float, factor: float = 1.15, *, propeller
     from scipy.optimize import minimize
 
     v.positive("vd", vd, "m/s")
-    v.positive("factor", factor)
+    v.in_range("factor", factor, 1.0, 3.0)      # the regulations' 1.15, 1.2 (as clearance)
     pre = f"propellers[{propeller}].propeller."
     paths = (pre + "K_theta", pre + "K_psi")
     target = factor * vd
@@ -161,15 +189,24 @@ def openmdao_component(model, paths: Sequence[str], *, vd: float, factor: float 
     """An OpenMDAO ``ExplicitComponent``: inputs the parameter ``paths`` (names with "." and
     "[]" replaced by "_"; each path's value and unit), outputs ``V_crit`` [m/s] and ``margin``
     = V_crit / (factor · V_D) − 1 [-], analytic partials (:class:`CriticalSpeed`).  Needs
-    ``pip install propwhirl[mdo]``."""
+    ``pip install propwhirl[mdo]``.
+
+    Checked before OpenMDAO sees anything: at least one path, each once, no field with its
+    alternative, vd [m/s] > 0, factor in [1, 3] (as :func:`propwhirl.studies.clearance.clearance`).
+    """
     try:
         import openmdao.api as om
     except ImportError:
         raise ImportError("the OpenMDAO component needs openmdao: pip install "
                           "propwhirl[mdo]") from None
+    target = float(v.in_range("factor", factor, 1.0, 3.0)) * float(v.positive("vd", vd, "m/s"))
     f = CriticalSpeed(model, paths, static_divergence, low_speed)
     names = [p.replace(".", "_").replace("[", "_").replace("]", "") for p in f.paths]
-    target = factor * v.positive("vd", vd, "m/s")
+    clash = [(p, q) for i, (p, n) in enumerate(zip(f.paths, names))
+             for q, m in zip(f.paths[i + 1:], names[i + 1:]) if n == m]
+    if clash:
+        raise v.InputError(f"paths {clash[0][0]!r} and {clash[0][1]!r} are invalid together: "
+                           f"both become the OpenMDAO input {names[f.paths.index(clash[0][0])]!r}")
 
     class CriticalSpeedComponent(om.ExplicitComponent):
         """V_crit and the clearance margin of a propwhirl model over parameter paths."""

@@ -26,7 +26,9 @@ so every object's own validation runs (a wing's mesh, a propeller's checks, the 
 installation nodes).  A value outside the declared range is an error naming the path and the
 range before anything is built; any other error of the model is restated with the path.  A
 field with an alternative (f_theta or K_theta, f_psi or K_psi, polar_inertia or
-radius_of_gyration) is set with its alternative cleared.
+radius_of_gyration) is set with its alternative cleared, so varying a field together with its
+alternative — or two paths reaching one value — is refused (:func:`check_independent`); the
+values of a study are checked all at once (:meth:`Parameter.check_values`).
 
 The scale form ``PATH*`` (listed for the distributed properties, accepted for any number
 given) multiplies the current value of a distributed property — a spanwise
@@ -69,6 +71,12 @@ _HIDDEN_FORMS = ("derived",)
 
 _SEGMENT = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)((?:\[(?:\d+|\*)\])*)$")
 _INDEX = re.compile(r"\[(\d+|\*)\]")
+#: An index of more significant digits than this addresses no entry of any model (int() of a
+#: string of thousands of digits is refused by Python itself): it is taken as this large number,
+#: which every list's bounds check refuses.
+_MAX_INDEX_DIGITS = 9
+#: Paths longer than this are cut in the middle in messages (an error stays one short line).
+_SHOWN_PATH = 100
 
 
 @dataclass(frozen=True)
@@ -108,6 +116,8 @@ class Parameter:
     doc: str
     range: Range | None
     integer: bool = False
+    #: the class holding the field (for its alternative: f_theta of a Propeller clears K_theta)
+    owner: str = ""
 
     @property
     def label(self) -> str:
@@ -143,6 +153,35 @@ class Parameter:
             unit = "" if self.scale or not self.unit else f" {self.unit}"
             raise v.InputError(f"{self.path} = {x:g}{unit}: {exc}") from None
 
+    def check_values(self, values: Any, name: str | None = None) -> np.ndarray:
+        """`values` (one number or a 1-D sequence) as a float array, every one of them checked
+        at once against what the path accepts — finite, a whole number for an integer field,
+        > 0 for a factor, inside the declared range — before any variant is built or analysed.
+
+        One InputError names the path (or `name`, e.g. ``"upper"``), the offending values
+        (the first few) and the valid range.
+        """
+        label = self.path if name is None else f"{self.path}: {name}"
+        arr = np.atleast_1d(np.asarray(v.finite(label, values, "" if self.scale else self.unit),
+                                       dtype=float))
+        if arr.ndim != 1:
+            raise v.InputError(f"{label}: the values must be a 1-D sequence, got shape "
+                               f"{arr.shape}")
+        if self.scale:
+            bad, why = arr <= 0, "invalid: a factor must be > 0"
+        elif self.integer and np.any(arr != np.round(arr)):
+            bad, why = arr != np.round(arr), "invalid: must be whole numbers (an integer field)"
+        elif self.range is not None:
+            bad = ~np.asarray(self.range.contains(arr), dtype=bool)
+            unit = f" {self.unit}" if self.unit else ""
+            why = f"outside the valid range {self.range}{unit}"
+        else:
+            return arr
+        if bad.any():
+            raise v.InputError(f"{label} = {_some(arr[bad], self.unit)} "
+                               f"{'is' if bad.sum() == 1 else 'are'} {why}")
+        return arr
+
     # ------------------------------------------------------------------ helpers
     def _checked(self, value: Any) -> float | int:
         name = self.path
@@ -174,6 +213,31 @@ class Parameter:
             return Scaled(old, x)
         arr = np.asarray(old, dtype=float) * x
         return float(arr) if arr.ndim == 0 and not isinstance(old, np.ndarray) else arr
+
+
+def _some(values: np.ndarray, unit: str = "", most: int = 3) -> str:
+    """'2000 Hz' or '2000, 5000 and 3 more Hz': the first few of `values` for a message."""
+    shown = ", ".join(f"{x:g}" for x in values[:most])
+    more = f" and {len(values) - most} more" if len(values) > most else ""
+    return f"{shown}{more}{' ' + unit if unit else ''}"
+
+
+def _shown(text: str) -> str:
+    """`text` for a message: cut in the middle beyond :data:`_SHOWN_PATH` characters."""
+    if len(text) <= _SHOWN_PATH:
+        return text
+    half = (_SHOWN_PATH - 5) // 2
+    return f"{text[:half]}...({len(text)} characters)...{text[-half:]}"
+
+
+def _index_number(digits: str) -> int:
+    """The index written as `digits` (leading zeros allowed); an absurdly long one (more than
+    :data:`_MAX_INDEX_DIGITS` significant digits) as 10**_MAX_INDEX_DIGITS, out of any list's
+    range."""
+    significant = digits.lstrip("0") or "0"
+    if len(significant) > _MAX_INDEX_DIGITS:
+        return 10 ** _MAX_INDEX_DIGITS
+    return int(significant)
 
 
 def _is_number(x: Any) -> bool:
@@ -327,12 +391,12 @@ def _unknown(model: Any, text: str, why: str) -> v.InputError:
         near = [p for p in paths if re.split(r"[.\[]", p.rstrip("*"))[-1] == last][:5]
     if not near:
         near = difflib.get_close_matches(text, paths, n=5, cutoff=0.0)
-    return v.InputError(f"parameter path {text!r} is invalid: {why}; nearest valid paths: "
-                        + ", ".join(near))
+    return v.InputError(f"parameter path {_shown(text)!r} is invalid: {why}; nearest valid "
+                        "paths: " + ", ".join(near))
 
 
 def _not_numeric(text: str, node: _Node, what: str) -> v.InputError:
-    return v.InputError(f"parameter path {text!r} is invalid: {what} "
+    return v.InputError(f"parameter path {_shown(text)!r} is invalid: {what} "
                         f"({node.cls_name} field, value {v.short_repr(node.value, 40)}), "
                         "not a number: only numeric fields can be varied")
 
@@ -357,8 +421,9 @@ def resolve(model: Any, path: str) -> Parameter:
     for seg in body.split("."):
         m = _SEGMENT.match(seg)
         if m is None:
-            raise _unknown(model, text, f"{seg!r} is not a field name with optional [index]")
-        steps.append(_Step(m.group(1), tuple(i if i == "*" else int(i)
+            raise _unknown(model, text, f"{_shown(seg)!r} is not a field name with optional "
+                           "[index]")
+        steps.append(_Step(m.group(1), tuple(i if i == "*" else _index_number(i)
                                              for i in _INDEX.findall(m.group(2)))))
     node = _Node(None, "table", model, type(model).__name__)
     done = ""
@@ -375,7 +440,13 @@ def resolve(model: Any, path: str) -> Parameter:
             node, done = _index(model, text, node, done, i)
         if k < len(steps) - 1 and node.form in _TUPLE_FORMS:
             raise _unknown(model, text, f"{done} is a list of tables: give an index, e.g. {done}[0]")
-    return _leaf_parameter(model, text, steps, node, scale)
+    return _leaf_parameter(model, _canonical(steps, scale), steps, node, scale)
+
+
+def _canonical(steps: Sequence[_Step], scale: bool) -> str:
+    """The path text of `steps`: indices without leading zeros, ``*`` last for the scale form."""
+    return ".".join(s.name + "".join(f"[{i}]" for i in s.indices) for s in steps) \
+        + ("*" if scale else "")
 
 
 def _index(model: Any, text: str, node: _Node, done: str, i: int | str) -> tuple[_Node, str]:
@@ -429,10 +500,41 @@ def _leaf_parameter(model: Any, text: str, steps: list[_Step], node: _Node, scal
     rng = s.range_of() if s is not None else None
     doc = s.doc if s is not None else ""
     return Parameter(text, tuple(steps), scale, "" if scale else unit, doc,
-                     None if scale else rng, integer)
+                     None if scale else rng, integer, node.cls_name)
 
 
 # ============================================================================ variants
+def _conflict(a: Parameter, b: Parameter) -> str | None:
+    """Why `a` and `b` cannot be varied together (they reach the same value, or a field and
+    its alternative of the same object), or None when they are independent."""
+    for k, (x, y) in enumerate(zip(a.steps, b.steps)):
+        if any(i != j and "*" not in (i, j) for i, j in zip(x.indices, y.indices)):
+            return None                      # different entries of one list: independent
+        if x.name != y.name:
+            last = k == len(a.steps) - 1 and k == len(b.steps) - 1
+            if last and a.owner == b.owner and ALTERNATIVES.get((a.owner, x.name)) == y.name:
+                return (f"{y.name} is the alternative of {x.name} (setting one clears the "
+                        "other, so the first would be ignored): vary one of them")
+            return None
+    if a.path.rstrip("*") == b.path.rstrip("*"):
+        return "a path appears twice"
+    return "they set the same value: vary it once"
+
+
+def check_independent(params: Sequence[Parameter]) -> None:
+    """Refuse parameters that cannot be varied together: a path twice (``wing.EI`` and
+    ``wing.EI*``), paths reaching the same value (``propellers[*].propeller.f_psi`` and
+    ``propellers[0].propeller.f_psi``, ``wing.EI*`` and ``wing.EI[3]``), or a field and its
+    alternative on the same object (f_theta and K_theta of one propeller: setting one clears
+    the other, :data:`ALTERNATIVES`).  One InputError naming the two paths."""
+    for k, a in enumerate(params):
+        for b in params[k + 1:]:
+            why = _conflict(a, b)
+            if why is not None:
+                raise v.InputError(f"parameter paths {a.path!r} and {b.path!r} are invalid "
+                                   f"together: {why}")
+
+
 def set_value(model: Any, path: str | Parameter, value: float) -> Any:
     """`model` with the parameter `path` set to `value` [its unit] (see :class:`Parameter`)."""
     p = path if isinstance(path, Parameter) else resolve(model, path)
@@ -441,17 +543,19 @@ def set_value(model: Any, path: str | Parameter, value: float) -> Any:
 
 def set_values(model: Any, values: Mapping[str | Parameter, float]) -> Any:
     """`model` with several parameters set at once (in the order given)."""
+    params = [path if isinstance(path, Parameter) else resolve(model, path) for path in values]
+    check_independent(params)
     out = model
-    for path, x in values.items():
-        p = path if isinstance(path, Parameter) else resolve(model, path)
+    for p, x in zip(params, values.values()):
         out = p.set(out, x)
     return out
 
 
-def _column(name: str, values: Any) -> np.ndarray:
-    arr = np.atleast_1d(np.asarray(v.finite(name, values), dtype=float))
-    if arr.ndim != 1 or arr.size == 0:
-        raise v.InputError(f"{name}: the values must be a non-empty 1-D sequence, got shape "
+def _column(p: Parameter, values: Any) -> np.ndarray:
+    """The values of `p`, all checked before any variant is built (:meth:`Parameter.check_values`)."""
+    arr = p.check_values(values)
+    if arr.size == 0:
+        raise v.InputError(f"{p.path}: the values must be a non-empty 1-D sequence, got shape "
                            f"{arr.shape}")
     return arr
 
@@ -461,7 +565,8 @@ def variants(model: Any, columns: Mapping[str, Sequence[float]]) -> list[Any]:
     ``variants(m, {"propellers[0].propeller.f_theta": f, "propellers[0].propeller.f_psi": f})``.
     Each path is resolved once."""
     params = [resolve(model, p) for p in columns]
-    cols = [_column(p.path, columns[k]) for p, k in zip(params, columns)]
+    check_independent(params)
+    cols = [_column(p, columns[k]) for p, k in zip(params, columns)]
     n = len(cols[0]) if cols else 0
     for p, c in zip(params, cols):
         if len(c) != n:
@@ -479,10 +584,8 @@ def grid_variants(model: Any, axes: Sequence[tuple[str, Sequence[float]]]) -> li
     """One model per point of the outer product of `axes` ((path, values) pairs), the last
     axis fastest (C order, as ``numpy.meshgrid(..., indexing="ij")`` flattened)."""
     params = [resolve(model, p) for p, _ in axes]
-    cols = [_column(p.path, vals) for p, (_, vals) in zip(params, axes)]
-    if len({p.path.rstrip("*") for p in params}) != len(params):
-        raise v.InputError(f"parameter paths {[p.path for p in params]} are invalid: a path "
-                           "appears twice")
+    check_independent(params)
+    cols = [_column(p, vals) for p, (_, vals) in zip(params, axes)]
     out = []
     for idx in np.ndindex(*(len(c) for c in cols)):
         m = model
@@ -493,4 +596,4 @@ def grid_variants(model: Any, axes: Sequence[tuple[str, Sequence[float]]]) -> li
 
 
 __all__ = ["Parameter", "Scaled", "ALTERNATIVES", "resolve", "valid_paths", "parameters",
-           "set_value", "set_values", "variants", "grid_variants"]
+           "set_value", "set_values", "variants", "grid_variants", "check_independent"]

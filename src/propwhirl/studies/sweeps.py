@@ -384,9 +384,12 @@ def _column_array(name: str, values: Sequence[Any], shape: tuple[int, ...]) -> n
 
 # ============================================================================ studies
 def _axis(model: Any, path: str, values: Any) -> tuple[P.Parameter, Axis]:
+    """The resolved path and its axis; every value checked at once against the path's
+    declared range (:meth:`propwhirl.studies.paths.Parameter.check_values`): a value outside it
+    stops the study before any analysis."""
     p = P.resolve(model, path)
-    arr = np.atleast_1d(np.asarray(v.finite(f"values of {p.path}", values), dtype=float))
-    if arr.ndim != 1 or arr.size == 0:
+    arr = p.check_values(values, "values")
+    if arr.size == 0:
         raise v.InputError(f"values of {p.path}: must be a non-empty 1-D sequence, got shape "
                            f"{arr.shape}")
     return p, Axis(p.path, arr, p.unit, p.value(model), p.doc)
@@ -398,10 +401,11 @@ def critical_map(model: Any, axes: Sequence[tuple[str, Any]], *, speeds=None,
                  method: str = "auto", warm_start: bool = False,
                  stats: dict | None = None) -> CriticalMap:
     """The critical speed of `model` over the outer product of `axes` ((path, values) pairs;
-    one or more).  An unknown or non-numeric path stops the study before any analysis; a point
-    whose variant is invalid (a value outside the field's range, a model that refuses it) or
-    whose analysis fails is recorded — kind "error", its one-line message in the column
-    ``error`` — and the others go on.  client, progress, checkpoint: as
+    one or more).  An unknown or non-numeric path, two paths that cannot vary together (the
+    same value twice, a field and its alternative: f_theta and K_theta) and a value outside a
+    path's declared range stop the study before any analysis; a point whose variant the model
+    refuses (e.g. a hub radius beyond the radius) or whose analysis fails is recorded — kind
+    "error", its one-line message in the column ``error`` — and the others go on.  client, progress, checkpoint: as
     :func:`propwhirl.studies.execution.map_analyses`; method: each analysis's
     (:func:`propwhirl.analysis.stability.analyse`: "reduced" is the fast one for wings);
     warm_start: analyse most points only up to the speeds their neighbours found
@@ -410,9 +414,7 @@ def critical_map(model: Any, axes: Sequence[tuple[str, Any]], *, speeds=None,
     if not 1 <= len(axes) <= 3:
         raise v.InputError(f"axes: {len(axes)} given, a study varies 1 to 3 parameters")
     resolved = [_axis(model, p, vals) for p, vals in axes]
-    if len({p.path.rstrip("*") for p, _ in resolved}) != len(resolved):
-        raise v.InputError(f"parameter paths {[p.path for p, _ in resolved]} are invalid: a path "
-                           "appears twice")
+    P.check_independent([p for p, _ in resolved])     # f_theta x K_theta: one would be ignored
     variants: list[Any] = []
     keys = []
     for idx in np.ndindex(*(len(ax.values) for _, ax in resolved)):
@@ -422,6 +424,9 @@ def critical_map(model: Any, axes: Sequence[tuple[str, Any]], *, speeds=None,
             variants.append(P.set_values(model, point))
         except v.InputError as exc:             # recorded in its row, the others go on
             variants.append(exc)
+    if all(isinstance(m, Exception) for m in variants):    # nothing to analyse: say why
+        raise v.InputError(f"every point of the study is refused by the model, e.g. {keys[0]}: "
+                           f"{variants[0]}")
     shape = tuple(len(ax.values) for _, ax in resolved)
     if checkpoint is not None and hasattr(checkpoint, "with_entries"):
         from propwhirl.studies.partial import content_digest
