@@ -284,7 +284,7 @@ def load(path: str | Path) -> "ModelAnalysis":
         raise v.InputError(f"{where}: not an analysis file: nested too deeply") from None
     name = doc.get("eigenvectors_file")
     if name is not None and a.sweep.eigenvectors is None and _is_file(path.parent / name):
-        X = read_eigenvectors(path.parent / name, a.sweep)
+        X = read_eigenvectors(path.parent / name, a.sweep, fileio.shown(path.parent / name))
         a = replace(a, sweep=replace(a.sweep, eigenvectors=X))
     return a
 
