@@ -279,11 +279,64 @@ def _check_writable(path: Path, target: Path, label: str, folder: bool, create: 
     return target
 
 
-def csv_table(columns, units, path: str | Path | None = None, what: str = "table") -> str:
+# ----------------------------------------------------------------------------- counted tables
+#: The first line of a CSV table propwhirl reads back: how many rows follow its header, so a
+#: table cut at a line boundary is found (``# propwhirl V-g-f table: 56 rows``).  Other
+#: programs skip the line (``pandas.read_csv(path, skiprows=1)``,
+#: ``numpy.genfromtxt(path, delimiter=",", skip_header=1, names=True)``).
+COUNT_LINE = "# propwhirl {kind}: {rows} rows"
+
+
+def count_line(kind: str, rows: int) -> str:
+    """The first line of a counted table of `rows` rows (:data:`COUNT_LINE`)."""
+    return COUNT_LINE.format(kind=kind, rows=rows)
+
+
+def split_count(text: str, kind: str, where: str) -> tuple[int | None, str]:
+    """(rows its first line announces, the text after that line) of a table written with
+    :func:`count_line`; ``(None, text)`` for a table without the line (written by a propwhirl
+    before it).  A first line starting with ``#`` that is not the count of a `kind` is an
+    :class:`InputError` naming `where` and line 1."""
+    import re
+
+    if not text.startswith("#"):
+        return None, text
+    first, _, rest = text.partition("\n")
+    m = re.fullmatch(r"# propwhirl " + re.escape(kind) + r": ([0-9]{1,12}) rows?",
+                     first.rstrip("\r"))
+    if m is None:
+        raise InputError(f"{where}: line 1: {first.rstrip()[:60]!r} is not the row count of a "
+                         f"{kind} ({count_line(kind, 'N')!r})")
+    return int(m.group(1)), rest
+
+
+def check_count(count: int | None, rows: int, kind: str, where: str) -> None:
+    """A table read with :func:`split_count` has the `count` rows its first line announces,
+    else an :class:`InputError` (cut at a line boundary, or rows added).  A table without
+    the count (`count` None: written by an older propwhirl) passes: once it is read, say so
+    with :func:`warn_uncounted`."""
+    if count is not None and rows != count:
+        raise InputError(f"{where}: has {rows} rows, its first line says {count}"
+                         + (" (truncated?)" if rows < count else " (rows added?)"))
+
+
+def warn_uncounted(kind: str, where: str) -> None:
+    """A :class:`UserWarning` naming a table read without a row count (written by a propwhirl
+    before :func:`count_line`): a cut at a line boundary cannot be found in it."""
+    import warnings
+
+    warnings.warn(f"{where}: a {kind} with no row count (written by an older propwhirl): a "
+                  "table cut at a line boundary cannot be checked; write it again to add the "
+                  "count", UserWarning, stacklevel=3)
+
+
+def csv_table(columns, units, path: str | Path | None = None, what: str = "table",
+              count: bool = False) -> str:
     """A tidy table as CSV: header ``"column [unit]"`` (just ``column`` without a unit), one row
     per entry of the equal-length ``columns`` (a mapping name → sequence, in order); floats as
     the shortest text that reads back exactly, NaN and inf as an empty cell.  Also written to
-    ``path`` if given (atomically, :func:`write_text`).  ``units``: name → unit ("" for none)."""
+    ``path`` if given (atomically, :func:`write_text`).  ``units``: name → unit ("" for none).
+    With `count` (a table propwhirl reads back), a first line :func:`count_line` of `what`."""
     import csv
     import io
     import math
@@ -291,6 +344,8 @@ def csv_table(columns, units, path: str | Path | None = None, what: str = "table
     names = list(columns)
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
+    if count:
+        buf.write(count_line(what, len(columns[names[0]]) if names else 0) + "\n")
     w.writerow([f"{k} [{units[k]}]" if units.get(k) else k for k in names])
     n = len(columns[names[0]]) if names else 0
     for i in range(n):

@@ -28,6 +28,7 @@ from propwhirl import fileio
 from propwhirl import io as pio
 from propwhirl.analysis import analyse, load
 from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+from propwhirl.studies.sweeps import RESULT_UNITS, Axis, CriticalMap
 from propwhirl.studies.table import StudyTable
 from propwhirl.validate import InputError
 
@@ -338,3 +339,46 @@ def test_a_table_of_an_older_propwhirl_loads_with_a_warning(saved, vgf_text, tmp
     with pytest.warns(UserWarning, match=r"old\.csv: .*no row count.*cannot be checked"):
         t = pio.read_vgf_csv(path)
     assert np.array_equal(t["V"], saved[3].sweep.table()["V"])
+
+
+@pytest.fixture(scope="module")
+def map_text() -> str:
+    """The CSV of a critical map over 2 × 3 parameter values (made up, not analysed)."""
+    axes = (Axis("propeller.f_theta", np.array([4.0, 7.0]), "Hz"),
+            Axis("propeller.f_psi", np.array([4.0, 7.0, 10.0]), "Hz"))
+    V = np.arange(6.0).reshape(2, 3) * 10 + 100
+    cols = {k: np.full((2, 3), "", dtype=object) for k in RESULT_UNITS}
+    cols.update(critical_speed=V, critical_frequency=V / 20, propeller=np.zeros((2, 3), int),
+                propeller_share=np.full((2, 3), 0.5),
+                static_divergence_speed=np.full((2, 3), np.nan),
+                critical_mode=np.full((2, 3), "forward 1", dtype=object),
+                kind=np.full((2, 3), "flutter", dtype=object))
+    m = CriticalMap("made up", axes, cols, "every instability counts")
+    text = m.to_csv()
+    assert np.array_equal(CriticalMap.from_csv(text).critical_speed, V)
+    return text
+
+
+@pytest.mark.parametrize("keep", [3, 4, 5])
+def test_a_critical_map_cut_at_a_line_boundary(map_text, keep):
+    """Issue 20.6: a critical map's CSV cut after a whole block of its first parameter (a
+    smaller grid, nothing else wrong) or inside one loaded or failed deep inside; now the
+    row count of its first line refuses it."""
+    cut = "".join(map_text.splitlines(keepends=True)[:keep])
+    with pytest.raises(InputError, match=r"^m\.csv: has \d rows, its first line says 6 "
+                                         r"\(truncated\?\)$"):
+        CriticalMap.from_csv(cut, "m.csv")
+
+
+def test_a_critical_map_cut_inside_a_row(map_text):
+    """A row cut short gave a raw IndexError."""
+    cut = map_text[:map_text.rindex(",", 0, len(map_text) - 20)]
+    with pytest.raises(InputError, match=r"^m\.csv: line 8 has \d+ columns, need \d+ "
+                                         r"\(truncated\?\)$"):
+        CriticalMap.from_csv(cut, "m.csv")
+
+
+def test_a_critical_map_of_an_older_propwhirl_loads_with_a_warning(map_text):
+    with pytest.warns(UserWarning, match=r"m\.csv: a critical map with no row count"):
+        m = CriticalMap.from_csv(map_text.partition("\n")[2], "m.csv")
+    assert m.critical_speed.shape == (2, 3)

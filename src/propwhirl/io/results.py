@@ -17,8 +17,6 @@ from __future__ import annotations
 import csv
 import io
 import math
-import re
-import warnings
 from pathlib import Path
 
 import numpy as np
@@ -30,15 +28,15 @@ VGF_COLUMNS: tuple[tuple[str, str], ...] = (
     ("V_m_per_s", "V"), ("mode", "mode"), ("label", "label"), ("frequency_hz", "frequency_hz"),
     ("damping_ratio", "damping_ratio"), ("real_per_s", "real"), ("imag_per_s", "imag"),
 )
-#: the first line of a V-g-f table: how many rows follow the header
-COUNT_LINE = "# propwhirl V-g-f table: {} rows"
-_COUNT = re.compile(r"# propwhirl V-g-f table: ([0-9]{1,12}) rows?")
+#: what the first line of a V-g-f table names (:func:`propwhirl.fileio.count_line`)
+KIND = "V-g-f table"
 
 
 def write_vgf_csv(result, path: str | Path) -> Path:
     """Write the V-g-f table of a ModelAnalysis or Sweep as CSV (one row per speed and
     physical mode: V [m/s], mode id, label, f [Hz], ζ (eq. 5.5), Re λ, Im λ [1/s]), after a
-    first line with the number of rows (:data:`COUNT_LINE`, module docstring).
+    first line with the number of rows (:func:`propwhirl.fileio.count_line`, module
+    docstring).
 
     The file is replaced atomically (:func:`propwhirl.fileio.write_text`): a reader never
     sees a partial table, not after a full disk, a Ctrl-C or a second writer."""
@@ -50,7 +48,7 @@ def write_vgf_csv(result, path: str | Path) -> Path:
                                "non-finite values")
     buf = io.StringIO()
     out = csv.writer(buf)
-    buf.write(COUNT_LINE.format(len(table["V"])) + "\r\n")
+    buf.write(fileio.count_line(KIND, len(table["V"])) + "\r\n")
     out.writerow([c for c, _ in VGF_COLUMNS])
     cols = [table[k] for _, k in VGF_COLUMNS]
     for row in zip(*cols):
@@ -79,8 +77,8 @@ def _header_error(where: str, header: list[str], line: int) -> v.InputError:
 def read_vgf_csv(path: str | Path) -> dict[str, np.ndarray]:
     """Read a table written by :func:`write_vgf_csv` back into Sweep.table() columns.
 
-    The table is checked: the row count of its first line (:data:`COUNT_LINE`: a table cut
-    at a line boundary is refused), the exact header, at least one row, every row complete
+    The table is checked: the row count of its first line (:func:`propwhirl.fileio.count_line`:
+    a table cut at a line boundary is refused), the exact header, at least one row, every row complete
     (seven columns, the last line ended by a line break), numbers finite, mode ids >= 0, rows
     in the writer's order (by speed, then mode id), and each row's frequency and damping ratio
     those of its eigenvalue (f = |Im λ|/2π, ζ = −Re λ/|λ|, eq. 5.5: a number cut short is
@@ -91,14 +89,7 @@ def read_vgf_csv(path: str | Path) -> dict[str, np.ndarray]:
     path = Path(path)
     text = fileio.read_text(path, "V-g-f table")
     where = fileio.shown(path)
-    count = None
-    if text.startswith("#"):
-        first, _, text = text.partition("\n")
-        m = _COUNT.fullmatch(first.rstrip("\r"))
-        if m is None:
-            raise v.InputError(f"{where}: line 1: {first.rstrip()[:60]!r} is not the row count "
-                               f"of a V-g-f table ({COUNT_LINE.format('N')!r})")
-        count = int(m.group(1))
+    count, text = fileio.split_count(text, KIND, where)
     skip = count is not None                # lines before the header
     try:
         rows = list(csv.reader(io.StringIO(text, newline="")))
@@ -148,14 +139,9 @@ def read_vgf_csv(path: str | Path) -> dict[str, np.ndarray]:
     table = {key: np.asarray(col, dtype=object if key == "label" else int if key == "mode"
                              else float) for key, col in out.items()}
     _check_rows(where, table, skip)
-    if count is not None and len(body) != count:
-        raise v.InputError(f"{where}: has {len(body)} rows, its first line says {count}"
-                           + (" (truncated?)" if len(body) < count else " (rows added?)"))
+    fileio.check_count(count, len(body), KIND, where)
     if count is None:
-        warnings.warn(f"{where}: a V-g-f table with no row count (written by an older "
-                      "propwhirl): a table cut at a line boundary cannot be checked; write it "
-                      "again (propwhirl.io.write_vgf_csv) to add the count", UserWarning,
-                      stacklevel=2)
+        fileio.warn_uncounted(KIND, where)
     return table
 
 
