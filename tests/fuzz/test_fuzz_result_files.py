@@ -225,6 +225,29 @@ def test_malformed_npz(saved, tmp_path, change):
     refused_within_bound(folder, npz)
 
 
+def test_bzip2_members_are_refused(saved, tmp_path):
+    """numpy writes stored or deflated members only; zipfile inflates bzip2 and LZMA without a
+    bound per read, so they are refused (np.load read them)."""
+    folder = copy_json(saved, tmp_path)
+    buf = io.BytesIO()
+    with zipfile.ZipFile(buf, "w", zipfile.ZIP_BZIP2) as z:
+        for name, data in members(saved[2]).items():
+            z.writestr(name, data)
+    refused_within_bound(folder, buf.getvalue(), "zip method 12")
+
+
+def test_arrays_beyond_the_memory_limit(tmp_path, monkeypatch):
+    """The arrays the analysis file describes are held to the memory limit before the npz
+    is opened."""
+    from propwhirl.engine.results import read_npz
+
+    monkeypatch.setenv("PROPWHIRL_MEMORY_LIMIT", "64MiB")
+    with pytest.raises(InputError, match=r"^x\.npz: its arrays eigenvectors \(100, 300, 300\) "
+                                         r"complex128 needs ≈ 137 MiB to read \(limit 64\.0 "
+                                         r"MiB, set PROPWHIRL_MEMORY_LIMIT\)$"):
+        read_npz(tmp_path / "x.npz", {"eigenvectors": ((100, 300, 300), complex)}, "x.npz")
+
+
 # ----------------------------------------------------------------------------- long names
 LONG = "a" * 5000
 
