@@ -578,7 +578,7 @@ def _read_exact(fh, n: int, what: str) -> bytes:
 
 
 def _read_npy(fh, size: int, key: str, shape: tuple[int, ...], dtype: np.dtype,
-              where: str) -> np.ndarray:
+              where: str, mismatch: str) -> np.ndarray:
     """The array `key` of the open ``.npy`` member `fh` (declared uncompressed size `size`),
     which must be of `shape` and `dtype` (either byte order): its header is read and checked
     first, then exactly its data, in chunks (never more than the member declares)."""
@@ -602,7 +602,7 @@ def _read_npy(fh, size: int, key: str, shape: tuple[int, ...], dtype: np.dtype,
     if (tuple(got_shape) != tuple(shape) or got.hasobject or got.fields is not None
             or got.subdtype is not None or got.str[1:] != dtype.str[1:]):
         raise InputError(f"{where}: array {key} declares shape {_array_text(got_shape, got)}, "
-                         f"expected {_array_text(shape, dtype)} (from the analysis file)")
+                         f"expected {_array_text(shape, dtype)}{mismatch}")
     n_bytes = int(np.prod(shape, dtype=np.int64)) * dtype.itemsize
     total = npf.MAGIC_LEN + len(header) + n_bytes
     if size != total:
@@ -625,7 +625,8 @@ def _read_npy(fh, size: int, key: str, shape: tuple[int, ...], dtype: np.dtype,
 
 
 def read_npz(path: str | Path, expected: Mapping[str, tuple[tuple[int, ...], Any]],
-             where: str | None = None) -> dict[str, np.ndarray]:
+             where: str | None = None, what: str = "npz file",
+             mismatch: str = "") -> dict[str, np.ndarray]:
     """The arrays of the ``.npz`` file `path` (as :func:`numpy.savez` writes it), each checked
     against `expected` (name → (shape, dtype)) before it is read.
 
@@ -636,7 +637,8 @@ def read_npz(path: str | Path, expected: Mapping[str, tuple[tuple[int, ...], Any
     header's shape and dtype to the expected ones, and the data is inflated in chunks, never
     beyond the declared size.  No pickle (object arrays are refused).  Anything else is an
     :class:`InputError` of one line starting with `where` (default: the path), naming the
-    array, its declared shape and the expected one.
+    array, its declared shape and the expected one (followed by `mismatch`, e.g. where the
+    expected shapes come from); a file that is no zip or no ``.npz`` "cannot read the `what`".
     """
     import os
     import zipfile
@@ -679,18 +681,19 @@ def read_npz(path: str | Path, expected: Mapping[str, tuple[tuple[int, ...], Any
                                          f"expected {_array_text(shape, dt)} "
                                          f"({format_bytes(n_bytes[key])})")
                     with z.open(info) as member:
-                        out[key] = _read_npy(member, info.file_size, key, shape, dt, where)
+                        out[key] = _read_npy(member, info.file_size, key, shape, dt, where,
+                                             mismatch)
                 return out
     except InputError:
         raise
     except FileNotFoundError:
-        raise InputError(f"{where}: not found") from None
+        raise InputError(f"{where}: the {what} is not found") from None
     except OSError as exc:
-        raise InputError(f"{where}: cannot read it: {exc.strerror or exc}") from None
+        raise InputError(f"{where}: cannot read the {what}: {exc.strerror or exc}") from None
     except (ValueError, zipfile.BadZipFile, EOFError, zlib.error, RuntimeError,
             NotImplementedError, SyntaxError) as exc:
         why = " ".join(str(exc).split())[:200]
-        raise InputError(f"{where}: not a readable .npz file: {why}") from None
+        raise InputError(f"{where}: cannot read the {what}: {why}") from None
 
 
 def read_eigenvectors(path: str | Path, sweep: "Sweep", where: str | None = None) -> np.ndarray:
@@ -704,7 +707,9 @@ def read_eigenvectors(path: str | Path, sweep: "Sweep", where: str | None = None
     T, n = sweep.eigenvalues.shape
     ns = len(sweep.state_labels)
     arrays = read_npz(path, {"V": ((T,), np.float64), "eigenvalues": ((T, n), np.complex128),
-                             "eigenvectors": ((T, ns, n), np.complex128)}, where)
+                             "eigenvectors": ((T, ns, n), np.complex128)}, where,
+                      "eigenvector file", ": does not belong to this analysis file (written "
+                      "by another analysis?)")
     V, lam, X = arrays["V"], arrays["eigenvalues"], arrays["eigenvectors"]
     if not (np.array_equal(V, sweep.V) and np.array_equal(lam, sweep.eigenvalues)):
         raise InputError(f"{where}: does not belong to this analysis file (its speeds or "
