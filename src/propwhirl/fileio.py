@@ -62,16 +62,18 @@ def shown(path: str | Path) -> str:
     return f"{s[:60]}…{s[-20:]} ({len(s):,} characters)"
 
 
-def _name(path: str | Path, what: str) -> str:
-    """``what 'path'`` (the path quoted; shortened as :func:`shown` does)."""
-    s = str(path)
-    quoted = repr(s) if len(s) <= SHOWN_PATH else f"{s[:60] + '…' + s[-20:]!r} ({len(s):,} characters)"
-    return f"{what} {quoted}" if what else quoted
-
-
 def quoted(path: str | Path) -> str:
-    """``'path'`` for a message: quoted, shortened as :func:`shown` does."""
-    return _name(path, "")
+    """``'path'`` for a message: quoted, shortened past :data:`SHOWN_PATH` characters as
+    :func:`shown` does."""
+    s = str(path)
+    if len(s) <= SHOWN_PATH:
+        return repr(s)
+    return f"{s[:60] + '…' + s[-20:]!r} ({len(s):,} characters)"
+
+
+def _name(path: str | Path, what: str) -> str:
+    """``what 'path'`` (:func:`quoted`)."""
+    return f"{what} {quoted(path)}" if what else quoted(path)
 
 
 def read_json(path: str | Path, what: str):
@@ -258,18 +260,18 @@ def _check_writable(path: Path, target: Path, label: str, folder: bool, create: 
         raise InputError(f"{label}: is a folder, not a file")
     if not target.is_dir():
         if target.exists():
-            raise InputError(f"{label}: {_name(target, '')} is not a folder")
+            raise InputError(f"{label}: {quoted(target)} is not a folder")
         if not create:
-            raise InputError(f"{label}: the folder {_name(target, '')} does not exist")
+            raise InputError(f"{label}: the folder {quoted(target)} does not exist")
         try:
             target.mkdir(parents=True, exist_ok=True)
         except OSError as exc:
-            raise InputError(f"{label}: cannot create the folder {_name(target, '')}: "
+            raise InputError(f"{label}: cannot create the folder {quoted(target)}: "
                              f"{reason(exc)}") from exc
     try:
         fd, tmp = _create_temporary(target / "propwhirl-write-check")
     except OSError as exc:
-        raise InputError(f"{label}: cannot write to the folder {_name(target, '')}: "
+        raise InputError(f"{label}: cannot write to the folder {quoted(target)}: "
                          f"{reason(exc)}") from exc
     os.close(fd)
     try:

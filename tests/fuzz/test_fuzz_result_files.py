@@ -296,6 +296,14 @@ def test_a_5000_character_file_name(saved, tmp_path, call, where):
     assert "…" in msg, msg
 
 
+def test_a_255_character_file_name_is_written(tmp_path):
+    """The temporary file beside it took the whole name plus 14 characters: a name of 250
+    characters (the usual limit is 255) could not be written."""
+    path = tmp_path / ("a" * 251 + ".txt")
+    fileio.write_text(path, "complete\n")
+    assert path.read_text() == "complete\n" and len(list(tmp_path.iterdir())) == 1
+
+
 def test_short_paths_are_named_in_full(tmp_path):
     path = tmp_path / "missing" / "a.json"
     with pytest.raises(InputError, match=f"'{path}'"):

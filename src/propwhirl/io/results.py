@@ -77,14 +77,14 @@ def _header_error(where: str, header: list[str], line: int) -> v.InputError:
 def read_vgf_csv(path: str | Path) -> dict[str, np.ndarray]:
     """Read a table written by :func:`write_vgf_csv` back into Sweep.table() columns.
 
-    The table is checked: the row count of its first line (:func:`propwhirl.fileio.count_line`:
-    a table cut at a line boundary is refused), the exact header, at least one row, every row complete
-    (seven columns, the last line ended by a line break), numbers finite, mode ids >= 0, rows
-    in the writer's order (by speed, then mode id), and each row's frequency and damping ratio
-    those of its eigenvalue (f = |Im λ|/2π, ζ = −Re λ/|λ|, eq. 5.5: a number cut short is
-    found).  Anything else is an :class:`~propwhirl.validate.InputError` naming the file and
-    the line.  A table without the count line (written before it) is read with a
-    :class:`UserWarning` (module docstring).
+    The table is checked: the row count of its first line
+    (:func:`propwhirl.fileio.count_line`: a table cut at a line boundary is refused), the exact
+    header, at least one row, every row complete (seven columns, the last line ended by a line
+    break), numbers finite, mode ids >= 0, rows in the writer's order (by speed, then mode id),
+    and each row's frequency and damping ratio those of its eigenvalue (f = |Im λ|/2π,
+    ζ = −Re λ/|λ|, eq. 5.5: a number cut short is found).  Anything else is an
+    :class:`~propwhirl.validate.InputError` naming the file and the line.  A table without the
+    count line (written before it) is read with a :class:`UserWarning` (module docstring).
     """
     path = Path(path)
     text = fileio.read_text(path, "V-g-f table")
