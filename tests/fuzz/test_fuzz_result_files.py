@@ -413,3 +413,46 @@ def test_a_critical_map_of_an_older_propwhirl_loads_with_a_warning(map_text):
     with pytest.warns(UserWarning, match=r"m\.csv: a critical map with no row count"):
         m = CriticalMap.from_csv(map_text.partition("\n")[2], "m.csv")
     assert m.critical_speed.shape == (2, 3)
+
+
+def mutated(text: str, data) -> str:
+    """`text` with one line cut, dropped, doubled, replaced by any text or by a field over
+    csv's size limit.  The count line itself is kept (without it the file is an older
+    propwhirl's: a warning, tested above)."""
+    lines = text.splitlines(keepends=True)
+    how = data.draw(st.sampled_from(["cut", "drop", "double", "replace", "huge field"]))
+    i = data.draw(st.integers(0 if how in ("cut", "double") else 1, len(lines) - 1),
+                  label="line")
+    if how == "cut":
+        lines = lines[:i] + [lines[i][:data.draw(st.integers(0, len(lines[i])))]]
+    elif how == "drop":
+        del lines[i]
+    elif how == "double":
+        lines.insert(i, lines[i])
+    elif how == "replace":
+        lines[i] = data.draw(st.text(max_size=40), label="text") + "\n"
+    else:
+        lines[i] = '"' + "x" * 200_000 + '"\n'
+    return "".join(lines)
+
+
+@FUZZ
+@given(data=st.data())
+def test_any_critical_map_csv(map_text, data):
+    """A critical map's CSV mutated (:func:`mutated`): a map or one line naming the file (a
+    field over csv's limit gave a raw csv.Error, a short row an IndexError)."""
+    text = mutated(map_text, data)
+    with held_to_the_rule("result file: critical-map CSV", "m.csv"):
+        m = CriticalMap.from_csv(text, "m.csv")
+        assert np.isfinite(m.critical_speed[~np.isnan(m.critical_speed)]).all()
+
+
+@FUZZ
+@given(data=st.data())
+def test_any_vgf_csv(vgf_text, tmp_path_factory, data):
+    """A V-g-f table mutated (:func:`mutated`): a table or one line naming the file."""
+    path = tmp_path_factory.mktemp("any") / "vgf.csv"
+    path.write_text(mutated(vgf_text, data), newline="")
+    with held_to_the_rule("result file: V-g-f CSV", "vgf.csv"):
+        t = pio.read_vgf_csv(path)
+        assert all(np.isfinite(t[k]).all() for k in ("V", "frequency_hz", "real", "imag"))

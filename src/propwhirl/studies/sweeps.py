@@ -285,7 +285,10 @@ class CriticalMap:
         are only in the JSON form); its first line's row count is checked
         (:func:`propwhirl.fileio.check_count`: a table cut at a line boundary is refused)."""
         count, text = fileio.split_count(text, "critical map", where)
-        rows = list(csv.reader(io.StringIO(text)))
+        try:
+            rows = list(csv.reader(io.StringIO(text)))
+        except csv.Error as exc:
+            raise v.InputError(f"{where}: not a critical-map table: {exc}") from None
         if len(rows) < 2:
             raise v.InputError(f"{where}: no rows")
         short = [i for i, r in enumerate(rows) if len(r) != len(rows[0])]
