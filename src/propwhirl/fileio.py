@@ -15,6 +15,11 @@ On any failure the temporary file is removed and the target is left untouched; a
 becomes one :class:`~propwhirl.validate.InputError` naming the file and the operating system's
 reason, e.g. ``cannot write 'out/a.json': No space left on device``.
 
+The readers (:func:`read_text`, :func:`read_json`) and :func:`check_writable` turn every
+``OSError`` into such a line too.  A path longer than :data:`SHOWN_PATH` characters is named
+shortened (:func:`shown`: its first 60 and last 20 characters and its length), so a file name
+of thousands of characters ("File name too long") still gives one short line.
+
 :func:`check_writable` lets a command fail *before* a long computation when an output folder
 does not exist or cannot be written to.
 """
@@ -30,6 +35,11 @@ from propwhirl.validate import InputError
 
 #: Bytes handed to one ``os.write`` call.
 CHUNK = 1 << 16
+#: Paths longer than this [characters] are named shortened in messages (:func:`shown`).
+SHOWN_PATH = 120
+#: Characters of a temporary file's name taken from the target's name (a name of 255
+#: characters, the usual limit, must not give a temporary name beyond it).
+_TMP_STEM = 100
 
 
 def reason(exc: BaseException) -> str:
@@ -37,8 +47,33 @@ def reason(exc: BaseException) -> str:
     return (getattr(exc, "strerror", None) or str(exc) or type(exc).__name__).strip()
 
 
-def _name(path: Path, what: str) -> str:
-    return f"{what} {str(path)!r}" if what else repr(str(path))
+def shown(path: str | Path) -> str:
+    """`path` as messages name it: in full up to :data:`SHOWN_PATH` characters, else its
+    first 60 characters, "…", its last 20 and its length.
+
+    >>> shown("out/a.json")
+    'out/a.json'
+    >>> shown("/tmp/" + "a" * 5000 + ".json")
+    '/tmp/aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa…aaaaaaaaaaaaaaa.json (5,010 characters)'
+    """
+    s = str(path)
+    if len(s) <= SHOWN_PATH:
+        return s
+    return f"{s[:60]}…{s[-20:]} ({len(s):,} characters)"
+
+
+def quoted(path: str | Path) -> str:
+    """``'path'`` for a message: quoted, shortened past :data:`SHOWN_PATH` characters as
+    :func:`shown` does."""
+    s = str(path)
+    if len(s) <= SHOWN_PATH:
+        return repr(s)
+    return f"{s[:60] + '…' + s[-20:]!r} ({len(s):,} characters)"
+
+
+def _name(path: str | Path, what: str) -> str:
+    """``what 'path'`` (:func:`quoted`)."""
+    return f"{what} {quoted(path)}" if what else quoted(path)
 
 
 def read_json(path: str | Path, what: str):
@@ -50,7 +85,7 @@ def read_json(path: str | Path, what: str):
     try:
         return json.loads(text)
     except json.JSONDecodeError as exc:
-        raise InputError(f"{path}: not JSON ({exc})") from None
+        raise InputError(f"{shown(path)}: not JSON ({exc})") from None
 
 
 def read_text(path: str | Path, what: str, *, empty_ok: bool = False) -> str:
@@ -72,19 +107,19 @@ def read_text(path: str | Path, what: str, *, empty_ok: bool = False) -> str:
     except OSError as exc:
         raise InputError(f"cannot read {_name(path, what)}: {reason(exc)}") from exc
     if not empty_ok and not data.strip():
-        raise InputError(f"{path}: the file is empty, not {article} {what}")
+        raise InputError(f"{shown(path)}: the file is empty, not {article} {what}")
     try:
         return data.decode("utf-8")
     except UnicodeDecodeError as exc:
-        raise InputError(f"{path}: not {article} {what}: not UTF-8 text (byte {exc.start})"
-                         ) from None
+        raise InputError(f"{shown(path)}: not {article} {what}: not UTF-8 text (byte "
+                         f"{exc.start})") from None
 
 
 def _create_temporary(path: Path) -> tuple[int, Path]:
     """A new temporary file beside `path`: (file descriptor, its path)."""
     flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0)
     for _ in range(100):
-        tmp = path.with_name(f".{path.name}.{secrets.token_hex(4)}.tmp")
+        tmp = path.with_name(f".{path.name[:_TMP_STEM]}.{secrets.token_hex(4)}.tmp")
         try:
             return os.open(tmp, flags, 0o666), tmp
         except FileExistsError:
@@ -133,10 +168,10 @@ def write_with(path: str | Path, fill: Callable[[BinaryIO], None], *, what: str 
         old content (or still does not exist) and no temporary file is left.
     """
     path = Path(path)
-    if path.is_dir():
-        raise InputError(f"cannot write {_name(path, what)}: it is a folder")
     tmp: Path | None = None
     try:
+        if path.is_dir():       # may raise (e.g. "File name too long")
+            raise InputError(f"cannot write {_name(path, what)}: it is a folder")
         fd, tmp = _create_temporary(path)
         with os.fdopen(fd, "wb") as fh:
             fill(fh)
@@ -213,23 +248,30 @@ def check_writable(path: str | Path, *, folder: bool = False, create: bool = Fal
     """
     path = Path(path)
     target = path if folder else path.parent
-    label = f"{what} {path}" if what else str(path)
+    label = f"{what} {shown(path)}" if what else shown(path)
+    try:
+        return _check_writable(path, target, label, folder, create)
+    except OSError as exc:      # e.g. "File name too long" from is_dir() itself
+        raise InputError(f"{label}: {reason(exc)}") from exc
+
+
+def _check_writable(path: Path, target: Path, label: str, folder: bool, create: bool) -> Path:
     if not folder and path.is_dir():
         raise InputError(f"{label}: is a folder, not a file")
     if not target.is_dir():
         if target.exists():
-            raise InputError(f"{label}: {str(target)!r} is not a folder")
+            raise InputError(f"{label}: {quoted(target)} is not a folder")
         if not create:
-            raise InputError(f"{label}: the folder {str(target)!r} does not exist")
+            raise InputError(f"{label}: the folder {quoted(target)} does not exist")
         try:
             target.mkdir(parents=True, exist_ok=True)
         except OSError as exc:
-            raise InputError(f"{label}: cannot create the folder {str(target)!r}: "
+            raise InputError(f"{label}: cannot create the folder {quoted(target)}: "
                              f"{reason(exc)}") from exc
     try:
         fd, tmp = _create_temporary(target / "propwhirl-write-check")
     except OSError as exc:
-        raise InputError(f"{label}: cannot write to the folder {str(target)!r}: "
+        raise InputError(f"{label}: cannot write to the folder {quoted(target)}: "
                          f"{reason(exc)}") from exc
     os.close(fd)
     try:
@@ -239,11 +281,64 @@ def check_writable(path: str | Path, *, folder: bool = False, create: bool = Fal
     return target
 
 
-def csv_table(columns, units, path: str | Path | None = None, what: str = "table") -> str:
+# ----------------------------------------------------------------------------- counted tables
+#: The first line of a CSV table propwhirl reads back: how many rows follow its header, so a
+#: table cut at a line boundary is found (``# propwhirl V-g-f table: 56 rows``).  Other
+#: programs skip the line (``pandas.read_csv(path, skiprows=1)``,
+#: ``numpy.genfromtxt(path, delimiter=",", skip_header=1, names=True)``).
+COUNT_LINE = "# propwhirl {kind}: {rows} rows"
+
+
+def count_line(kind: str, rows: int) -> str:
+    """The first line of a counted table of `rows` rows (:data:`COUNT_LINE`)."""
+    return COUNT_LINE.format(kind=kind, rows=rows)
+
+
+def split_count(text: str, kind: str, where: str) -> tuple[int | None, str]:
+    """(rows its first line announces, the text after that line) of a table written with
+    :func:`count_line`; ``(None, text)`` for a table without the line (written by a propwhirl
+    before it).  A first line starting with ``#`` that is not the count of a `kind` is an
+    :class:`InputError` naming `where` and line 1."""
+    import re
+
+    if not text.startswith("#"):
+        return None, text
+    first, _, rest = text.partition("\n")
+    m = re.fullmatch(r"# propwhirl " + re.escape(kind) + r": ([0-9]{1,12}) rows?",
+                     first.rstrip("\r"))
+    if m is None:
+        raise InputError(f"{where}: line 1: {first.rstrip()[:60]!r} is not the row count of a "
+                         f"{kind} ({count_line(kind, 'N')!r})")
+    return int(m.group(1)), rest
+
+
+def check_count(count: int | None, rows: int, kind: str, where: str) -> None:
+    """A table read with :func:`split_count` has the `count` rows its first line announces,
+    else an :class:`InputError` (cut at a line boundary, or rows added).  A table without
+    the count (`count` None: written by an older propwhirl) passes: once it is read, say so
+    with :func:`warn_uncounted`."""
+    if count is not None and rows != count:
+        raise InputError(f"{where}: has {rows} rows, its first line says {count}"
+                         + (" (truncated?)" if rows < count else " (rows added?)"))
+
+
+def warn_uncounted(kind: str, where: str) -> None:
+    """A :class:`UserWarning` naming a table read without a row count (written by a propwhirl
+    before :func:`count_line`): a cut at a line boundary cannot be found in it."""
+    import warnings
+
+    warnings.warn(f"{where}: a {kind} with no row count (written by an older propwhirl): a "
+                  "table cut at a line boundary cannot be checked; write it again to add the "
+                  "count", UserWarning, stacklevel=3)
+
+
+def csv_table(columns, units, path: str | Path | None = None, what: str = "table",
+              count: bool = False) -> str:
     """A tidy table as CSV: header ``"column [unit]"`` (just ``column`` without a unit), one row
     per entry of the equal-length ``columns`` (a mapping name → sequence, in order); floats as
     the shortest text that reads back exactly, NaN and inf as an empty cell.  Also written to
-    ``path`` if given (atomically, :func:`write_text`).  ``units``: name → unit ("" for none)."""
+    ``path`` if given (atomically, :func:`write_text`).  ``units``: name → unit ("" for none).
+    With `count` (a table propwhirl reads back), a first line :func:`count_line` of `what`."""
     import csv
     import io
     import math
@@ -251,6 +346,8 @@ def csv_table(columns, units, path: str | Path | None = None, what: str = "table
     names = list(columns)
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
+    if count:
+        buf.write(count_line(what, len(columns[names[0]]) if names else 0) + "\n")
     w.writerow([f"{k} [{units[k]}]" if units.get(k) else k for k in names])
     n = len(columns[names[0]]) if names else 0
     for i in range(n):

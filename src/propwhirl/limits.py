@@ -24,6 +24,10 @@ The memory limit (:func:`memory_limit`)
     :data:`DEFAULT_LIMIT_CAP` (8 GiB: an analysis that needs more is refused unless asked for
     explicitly), at least 256 MiB; 2 GiB where the machine does not report its memory.
 
+Arrays read from a file (:func:`check_read`)
+    The bytes the file's description says its arrays hold (e.g. an eigenvector ``.npz``: the
+    speeds and states of its analysis file) against :func:`memory_limit`, before reading.
+
 Sizes bounded outright (the memory they imply is no question of the machine)
     :data:`MAX_SPEEDS` speeds in a grid, :data:`MAX_ELEMENTS` wing elements,
     :data:`MAX_PROPELLERS` propellers, :data:`MAX_QUADRATURE_ORDER` Gauss–Legendre points,
@@ -162,6 +166,16 @@ def check_sweep(n_speeds: int, n_states: int, what: str = "the analysis",
         raise InputError(
             f"{what} needs ≈ {format_bytes(need)} for {n_speeds:,} speeds × {n_states:,} states "
             f"(limit {format_bytes(limit)}, set {MEMORY_ENV} or {advice})")
+
+
+def check_read(n_bytes: int, what: str) -> None:
+    """Refuse reading arrays of ``n_bytes`` [bytes] from a file (their size as the file's
+    own description gives it, checked before anything is allocated) when they exceed
+    :func:`memory_limit`."""
+    limit = memory_limit()
+    if n_bytes > limit:
+        raise InputError(f"{what} needs ≈ {format_bytes(n_bytes)} to read (limit "
+                         f"{format_bytes(limit)}, set {MEMORY_ENV})")
 
 
 def node_budget(n_grid: int, n_first: int, n_states: int, requested: int | None = None) -> int:

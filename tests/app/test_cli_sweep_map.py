@@ -33,7 +33,7 @@ def test_sweep_of_a_model_file_writes_json_csv_plot(small_file, tmp_path, capsys
         c = analyse(P.set_value(model, "propellers[0].propeller.f_psi", f),
                     np.arange(10.0, 351.0, 20.0)).critical
         assert r.critical_speed[k] == c.V
-    rows = list(csv.DictReader(out["csv"].open()))
+    rows = list(csv.DictReader(out["csv"].read_text().splitlines()[1:]))   # after the count
     assert len(rows) == 3 and float(rows[1]["critical_speed [m/s]"]) == r.critical_speed[1]
     assert out["png"].read_bytes()[:8] == PNG
 
@@ -48,7 +48,7 @@ def test_map_of_a_case_writes_json_csv_plot(tmp_path, capsys):
     d = json.loads(out["json"].read_text())
     assert [a["path"] for a in d["axes"]] == ["propeller.f_theta", "propeller.f_psi"]
     assert len(d["columns"]["critical_speed"]) == 9
-    rows = list(csv.DictReader(out["csv"].open()))
+    rows = list(csv.DictReader(out["csv"].read_text().splitlines()[1:]))   # after the count
     assert len(rows) == 9 and rows[0]["propeller.f_theta [Hz]"] == "4.0"
     assert out["png"].read_bytes()[:8] == PNG
     assert "lowest critical speed" in capsys.readouterr().out

@@ -491,7 +491,8 @@ def test_vgf_csv_round_trip(tmp_path, small_analysis):
             assert list(back[key]) == list(col)
         else:
             assert np.array_equal(back[key], col)  # repr floats: exact
-    header = path.read_text().splitlines()[0]
+    count, header = path.read_text().splitlines()[:2]
+    assert count == f"# propwhirl V-g-f table: {len(table['V'])} rows"
     assert header == "V_m_per_s,mode,label,frequency_hz,damping_ratio,real_per_s,imag_per_s"
     from_sweep = io.read_vgf_csv(io.write_vgf_csv(small_analysis.sweep, tmp_path / "s.csv"))
     assert np.array_equal(from_sweep["V"], table["V"])

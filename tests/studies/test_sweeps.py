@@ -97,8 +97,9 @@ def test_files_round_trip(small_map, tmp_path):
     assert d["format"] == "propwhirl.critical-map/1" and len(d["columns"]["critical_speed"]) == 4
     r.save(tmp_path / "m.csv")
     lines = (tmp_path / "m.csv").read_text().splitlines()
-    assert lines[0].startswith("propellers[1].propeller.f_theta [Hz],wing.GJ*,critical_speed [m/s]")
-    assert len(lines) == 5
+    assert lines[0] == "# propwhirl critical map: 4 rows"
+    assert lines[1].startswith("propellers[1].propeller.f_theta [Hz],wing.GJ*,critical_speed [m/s]")
+    assert len(lines) == 6
     csv_back = CriticalMap.load(tmp_path / "m.csv")
     np.testing.assert_array_equal(csv_back.critical_speed, r.critical_speed)   # exact text
     np.testing.assert_array_equal(csv_back.axes[1].values, [0.7, 1.4])

@@ -86,19 +86,21 @@ def save_analysis(a: "ModelAnalysis", path: str | Path, include_eigenvectors: bo
     try:
         text = json.dumps(d, allow_nan=False)
     except ValueError:
-        raise v.InputError(f"cannot save the analysis to {str(path)!r}: "
+        raise v.InputError(f"cannot save the analysis to {fileio.quoted(path)}: "
                            f"{_non_finite_key(d)} is not a finite number") from None
     if npz is not None:
         try:
             data = eigenvectors_npz(a.sweep)
         except v.InputError as exc:
-            raise v.InputError(f"cannot save the analysis to {str(path)!r}: {exc}") from None
+            raise v.InputError(f"cannot save the analysis to {fileio.quoted(path)}: {exc}"
+                               ) from None
         try:
             fileio.write_bytes(npz, data, what="eigenvector file")
         except v.InputError as exc:     # name the file asked for (the JSON is untouched)
-            why = str(exc).removeprefix(f"cannot write eigenvector file {str(npz)!r}: ")
-            raise v.InputError(f"cannot write analysis file {str(path)!r}: {why} (writing "
-                               f"its eigenvectors to {npz.name})") from None
+            why = str(exc).removeprefix(f"cannot write eigenvector file {fileio.quoted(npz)}: ")
+            raise v.InputError(f"cannot write analysis file {fileio.quoted(path)}: {why} "
+                               f"(writing its eigenvectors to {fileio.shown(npz.name)})"
+                               ) from None
     fileio.write_text(path, text, what="analysis file")
 
 
@@ -262,27 +264,36 @@ def load(path: str | Path) -> "ModelAnalysis":
     """
     path = Path(path)
     text = fileio.read_text(path, "analysis file")
+    where = fileio.shown(path)
     try:
         doc = json.loads(text, parse_constant=_refuse_constant)
     except json.JSONDecodeError as exc:
         end = " (the file ends early: truncated?)" if exc.pos >= len(text.rstrip()) else ""
         what = exc.msg[:-3] if exc.msg.endswith(" at") else exc.msg   # "... starting at"
-        raise v.InputError(f"{path}: not valid JSON: {what} (line {exc.lineno}, column "
+        raise v.InputError(f"{where}: not valid JSON: {what} (line {exc.lineno}, column "
                            f"{exc.colno}){end}") from None
     except RecursionError:
-        raise v.InputError(f"{path}: not an analysis file: nested too deeply") from None
+        raise v.InputError(f"{where}: not an analysis file: nested too deeply") from None
     except ValueError as exc:  # InputError from _refuse_constant, too-long integers
-        raise v.InputError(f"{path}: not an analysis file: {exc}") from None
+        raise v.InputError(f"{where}: not an analysis file: {exc}") from None
     try:
         a = analysis_from_dict(doc)
     except v.InputError as exc:
-        raise v.InputError(f"{path}: {exc}") from None
+        raise v.InputError(f"{where}: {exc}") from None
     except RecursionError:
-        raise v.InputError(f"{path}: not an analysis file: nested too deeply") from None
+        raise v.InputError(f"{where}: not an analysis file: nested too deeply") from None
     name = doc.get("eigenvectors_file")
-    if name is not None and a.sweep.eigenvectors is None and (path.parent / name).is_file():
-        X = read_eigenvectors(path.parent / name, a.sweep)
+    if name is not None and a.sweep.eigenvectors is None and _is_file(path.parent / name):
+        X = read_eigenvectors(path.parent / name, a.sweep, fileio.shown(path.parent / name))
         a = replace(a, sweep=replace(a.sweep, eigenvectors=X))
     return a
 
 
+def _is_file(path: Path) -> bool:
+    """Whether `path` is a file; an error of the operating system (a name too long, no
+    permission for the folder) is one line naming it."""
+    try:
+        return path.is_file()
+    except OSError as exc:
+        raise v.InputError(f"cannot read eigenvector file {fileio.quoted(path)}: "
+                           f"{fileio.reason(exc)}") from None

@@ -550,28 +550,170 @@ def eigenvectors_npz(sweep: "Sweep") -> bytes:
     return buf.getvalue()
 
 
-def read_eigenvectors(path: str | Path, sweep: "Sweep") -> np.ndarray:
-    """The eigenvectors of ``sweep`` read from the ``.npz`` written by
-    :func:`eigenvectors_npz`, checked against it: the same speeds and eigenvalues (bit for
-    bit), shape (T, n, n), finite; else an :class:`InputError` naming the file."""
+#: bytes of a ``.npy`` header at most (numpy's own bound on the header it parses)
+NPY_HEADER_MAX = 10_000
+#: bytes of zip structure around the members of an ``.npz`` at most (local and central
+#: headers, end record; ≈ 100 bytes per member, the rest is slack for zip64 and comments)
+NPZ_OVERHEAD = 64 * 2 ** 10
+#: bytes inflated per read from a zip member
+_NPZ_CHUNK = 2 ** 20
+#: compression methods numpy writes (np.savez: stored, np.savez_compressed: deflated); others
+#: (bzip2, LZMA) are refused: their decompressors are not bounded per read
+_NPZ_METHODS = (0, 8)
+
+
+def _array_text(shape: Sequence[int], dtype: np.dtype) -> str:
+    return f"{_shape_text(shape)} {np.dtype(dtype).name}"
+
+
+def _read_exact(fh, n: int, what: str) -> bytes:
+    """`n` bytes of the zip member `fh` (a short read is continued); ValueError at its end."""
+    data = b""
+    while len(data) < n:
+        chunk = fh.read(n - len(data))
+        if not chunk:
+            raise ValueError(f"{what} ends after {len(data)} of {n} bytes (truncated?)")
+        data += chunk
+    return data
+
+
+def _read_npy(fh, size: int, key: str, shape: tuple[int, ...], dtype: np.dtype,
+              where: str, mismatch: str) -> np.ndarray:
+    """The array `key` of the open ``.npy`` member `fh` (declared uncompressed size `size`),
+    which must be of `shape` and `dtype` (either byte order): its header is read and checked
+    first, then exactly its data, in chunks (never more than the member declares)."""
+    import io
+
+    from numpy.lib import format as npf
+
+    major, minor = npf.read_magic(fh)
+    if (major, minor) not in ((1, 0), (2, 0)):
+        raise InputError(f"{where}: array {key}: .npy format version {major}.{minor}, "
+                         "need 1.0 or 2.0 (as numpy.savez writes)")
+    width = 2 if major == 1 else 4
+    raw = _read_exact(fh, width, f"array {key}'s header")
+    length = int.from_bytes(raw, "little")
+    if length > NPY_HEADER_MAX:
+        raise InputError(f"{where}: array {key}: a header of {length:,} bytes, at most "
+                         f"{NPY_HEADER_MAX:,}")
+    header = raw + _read_exact(fh, length, f"array {key}'s header")
+    read_header = npf.read_array_header_1_0 if major == 1 else npf.read_array_header_2_0
+    got_shape, fortran, got = read_header(io.BytesIO(header))
+    if (tuple(got_shape) != tuple(shape) or got.hasobject or got.fields is not None
+            or got.subdtype is not None or got.str[1:] != dtype.str[1:]):
+        raise InputError(f"{where}: array {key} declares shape {_array_text(got_shape, got)}, "
+                         f"expected {_array_text(shape, dtype)}{mismatch}")
+    n_bytes = int(np.prod(shape, dtype=np.int64)) * dtype.itemsize
+    total = npf.MAGIC_LEN + len(header) + n_bytes
+    if size != total:
+        raise InputError(f"{where}: array {key} declares {size:,} bytes uncompressed, its "
+                         f"header and shape {_shape_text(shape)} need {total:,}")
+    out = np.empty(int(np.prod(shape, dtype=np.int64)), dtype=got)
+    view = memoryview(out.view(np.uint8))
+    done = 0
+    while done < n_bytes:
+        chunk = fh.read(min(_NPZ_CHUNK, n_bytes - done))
+        if not chunk:
+            raise InputError(f"{where}: array {key} ends after {done:,} of {n_bytes:,} bytes "
+                             "(truncated?)")
+        view[done:done + len(chunk)] = chunk
+        done += len(chunk)
+    if fh.read(1):          # at the member's end: zipfile checks its CRC-32 here
+        raise InputError(f"{where}: array {key} has data after its {n_bytes:,} bytes")
+    out = out.reshape(shape, order="F" if fortran else "C")
+    return np.ascontiguousarray(out, dtype=dtype)
+
+
+def read_npz(path: str | Path, expected: Mapping[str, tuple[tuple[int, ...], Any]],
+             where: str | None = None, what: str = "npz file",
+             mismatch: str = "") -> dict[str, np.ndarray]:
+    """The arrays of the ``.npz`` file `path` (as :func:`numpy.savez` writes it), each checked
+    against `expected` (name → (shape, dtype)) before it is read.
+
+    Nothing is allocated or inflated on the file's word: the arrays' total size is held to
+    :func:`propwhirl.limits.memory_limit` (:func:`propwhirl.limits.check_read`), the file's
+    size to the arrays' (plus :data:`NPZ_OVERHEAD`), each zip member's declared uncompressed
+    size (``ZipInfo.file_size``) to its array's (plus :data:`NPY_HEADER_MAX`), each ``.npy``
+    header's shape and dtype to the expected ones, and the data is inflated in chunks, never
+    beyond the declared size.  No pickle (object arrays are refused).  Anything else is an
+    :class:`InputError` of one line starting with `where` (default: the path), naming the
+    array, its declared shape and the expected one (followed by `mismatch`, e.g. where the
+    expected shapes come from); a file that is no zip or no ``.npz`` "cannot read the `what`".
+    """
+    import os
     import zipfile
+    import zlib
+
+    from propwhirl.limits import check_read, format_bytes
 
     path = Path(path)
+    where = str(path) if where is None else where
+    want = {k: (tuple(int(x) for x in shape), np.dtype(dt)) for k, (shape, dt) in expected.items()}
+    n_bytes = {k: int(np.prod(shape, dtype=object)) * dt.itemsize
+               for k, (shape, dt) in want.items()}
+    check_read(sum(n_bytes.values()), f"{where}: its arrays "
+               + ", ".join(f"{k} {_array_text(*want[k])}" for k in want))
+    need = " and ".join(want)
     try:
-        with np.load(path, allow_pickle=False) as z:
-            if set(z.files) != {"V", "eigenvalues", "eigenvectors"}:
-                raise InputError(f"{path}: not an eigenvector file of propwhirl (arrays "
-                                 f"{sorted(z.files)}, need V, eigenvalues, eigenvectors)")
-            V, lam, X = z["V"], z["eigenvalues"], z["eigenvectors"]
-    except (OSError, ValueError, zipfile.BadZipFile, EOFError) as exc:
-        raise InputError(f"{path}: cannot read the eigenvector file: "
-                         f"{exc.strerror or exc if isinstance(exc, OSError) else exc}") from None
+        with open(path, "rb") as fh:
+            size = os.fstat(fh.fileno()).st_size
+            most = sum(n_bytes.values()) + len(want) * NPY_HEADER_MAX + NPZ_OVERHEAD
+            if size > most:
+                raise InputError(f"{where}: {format_bytes(size)} is more than its arrays "
+                                 f"{need} take ({format_bytes(most)} at most)")
+            with zipfile.ZipFile(fh) as z:
+                infos = z.infolist()
+                names = [i.filename for i in infos]
+                if sorted(names) != sorted(f"{k}.npy" for k in want):
+                    raise InputError(f"{where}: holds the arrays "
+                                     f"{[n.removesuffix('.npy') for n in names][:10]}, "
+                                     f"need {need}")
+                out = {}
+                for info in infos:
+                    key = info.filename.removesuffix(".npy")
+                    shape, dt = want[key]
+                    if info.compress_type not in _NPZ_METHODS:
+                        raise InputError(f"{where}: array {key} is compressed with zip method "
+                                         f"{info.compress_type}, not one numpy writes")
+                    if info.file_size > n_bytes[key] + NPY_HEADER_MAX:
+                        raise InputError(f"{where}: array {key} declares "
+                                         f"{format_bytes(info.file_size)} uncompressed, "
+                                         f"expected {_array_text(shape, dt)} "
+                                         f"({format_bytes(n_bytes[key])})")
+                    with z.open(info) as member:
+                        out[key] = _read_npy(member, info.file_size, key, shape, dt, where,
+                                             mismatch)
+                return out
+    except InputError:
+        raise
+    except FileNotFoundError:
+        raise InputError(f"{where}: the {what} is not found") from None
+    except OSError as exc:
+        raise InputError(f"{where}: cannot read the {what}: {exc.strerror or exc}") from None
+    except (ValueError, zipfile.BadZipFile, EOFError, zlib.error, RuntimeError,
+            NotImplementedError, SyntaxError) as exc:
+        why = " ".join(str(exc).split())[:200]
+        raise InputError(f"{where}: cannot read the {what}: {why}") from None
+
+
+def read_eigenvectors(path: str | Path, sweep: "Sweep", where: str | None = None) -> np.ndarray:
+    """The eigenvectors of ``sweep`` read from the ``.npz`` written by
+    :func:`eigenvectors_npz`, checked against it: the arrays' shapes and dtypes before
+    reading (:func:`read_npz`: V (T,), eigenvalues (T, n), eigenvectors (T, n_states, n),
+    within the memory limit), then the same speeds and eigenvalues (bit for bit), finite;
+    else an :class:`InputError` naming the file (as `where`, default the path)."""
+    path = Path(path)
+    where = str(path) if where is None else where
     T, n = sweep.eigenvalues.shape
     ns = len(sweep.state_labels)
+    arrays = read_npz(path, {"V": ((T,), np.float64), "eigenvalues": ((T, n), np.complex128),
+                             "eigenvectors": ((T, ns, n), np.complex128)}, where,
+                      "eigenvector file", ": does not belong to this analysis file (written "
+                      "by another analysis?)")
+    V, lam, X = arrays["V"], arrays["eigenvalues"], arrays["eigenvectors"]
     if not (np.array_equal(V, sweep.V) and np.array_equal(lam, sweep.eigenvalues)):
-        raise InputError(f"{path}: does not belong to this analysis file (its speeds or "
+        raise InputError(f"{where}: does not belong to this analysis file (its speeds or "
                          "eigenvalues differ: written by another analysis?)")
-    if X.shape != (T, ns, n) or X.dtype.kind != "c" or not np.isfinite(X).all():
-        raise InputError(f"{path}: eigenvectors of shape {X.shape} ({X.dtype}), need "
-                         f"({T}, {ns}, {n}) finite complex numbers")
+    if not np.isfinite(X).all():
+        raise InputError(f"{where}: eigenvectors hold non-finite numbers")
     return X

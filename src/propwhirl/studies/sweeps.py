@@ -280,15 +280,25 @@ class CriticalMap:
         (atomically).  NaN is an empty cell."""
         t = self.table()
         units = {**{a.path: a.unit for a in self.axes}, **dict(self.units)}
-        return fileio.csv_table(t, units, path, what="critical-map CSV")
+        return fileio.csv_table(t, units, path, what="critical map", count=True)
 
     @classmethod
     def from_csv(cls, text: str, where: str = "critical-map CSV") -> "CriticalMap":
         """The map of a CSV written by :meth:`to_csv` (the design point and the model name
-        are only in the JSON form)."""
-        rows = list(csv.reader(io.StringIO(text)))
+        are only in the JSON form); its first line's row count is checked
+        (:func:`propwhirl.fileio.check_count`: a table cut at a line boundary is refused)."""
+        count, text = fileio.split_count(text, "critical map", where)
+        try:
+            rows = list(csv.reader(io.StringIO(text)))
+        except csv.Error as exc:
+            raise v.InputError(f"{where}: not a critical-map table: {exc}") from None
         if len(rows) < 2:
             raise v.InputError(f"{where}: no rows")
+        short = [i for i, r in enumerate(rows) if len(r) != len(rows[0])]
+        if short:
+            raise v.InputError(f"{where}: line {short[0] + 1 + (count is not None)} has "
+                               f"{len(rows[short[0]])} columns, need {len(rows[0])} (truncated?)")
+        fileio.check_count(count, len(rows) - 1, "critical map", where)
         heads = [h.split(" [")[0] for h in rows[0]]
         units = {h.split(" [")[0]: (h.split(" [", 1)[1].rstrip("]") if " [" in h else "")
                  for h in rows[0]}
@@ -306,6 +316,8 @@ class CriticalMap:
                     for k in RESULT_UNITS}
         except ValueError as exc:
             raise v.InputError(f"{where}: malformed ({exc})") from None
+        if count is None:
+            fileio.warn_uncounted("critical map", where)
         return cls("", axes, cols, "")
 
     def save(self, path: str | Path) -> Path:
