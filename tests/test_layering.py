@@ -24,7 +24,7 @@ ALLOWED = {
     "analysis": {"engine", "fileio", "limits", "model", "validate"},
     "cases": {"model", "validate"},               # model factories only
     "studies": {"analysis", "cases", "engine", "fileio", "limits", "model", "progress", "validate"},
-    "reproduce": {"analysis", "cases", "documents", "engine", "generated", "model", "progress",
+    "reproduce": {"analysis", "cases", "documents", "engine", "fileio", "generated", "model", "progress",
                   "studies", "validate"},
     "io": {"fileio", "limits", "model", "validate"},
     "app": {"analysis", "cases", "documents", "engine", "fileio", "io", "limits", "model", "progress",

@@ -88,6 +88,29 @@ def read_json(path: str | Path, what: str):
         raise InputError(f"{shown(path)}: not JSON ({exc})") from None
 
 
+def exists(path: str | Path, what: str) -> bool:
+    """Whether `path` (a `what`, e.g. "partial results file") exists; an error of the operating
+    system other than "not found" (a name too long, a folder that cannot be searched) is one
+    line naming it, where :meth:`pathlib.Path.exists` raises it.
+
+    >>> exists("/nonexistent/a.json", "analysis file")
+    False
+    >>> exists("/tmp/" + "a" * 5000, "model file")
+    Traceback (most recent call last):
+    ...
+    propwhirl.validate.InputError: cannot read model file '/tmp/aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa…aaaaaaaaaaaaaaaaaaaa' (5,005 characters): File name too long
+    """
+    try:
+        os.stat(path)
+    except (FileNotFoundError, NotADirectoryError):
+        return False
+    except OSError as exc:
+        raise InputError(f"cannot read {_name(path, what)}: {reason(exc)}") from None
+    except ValueError as exc:                     # a NUL character in the name
+        raise InputError(f"{_name(path, what)} is not a valid file name: {exc}") from None
+    return True
+
+
 def read_text(path: str | Path, what: str, *, empty_ok: bool = False) -> str:
     """The UTF-8 text of the file `path` (a `what`, e.g. "analysis file"), with one-line
     errors naming it: not found, unreadable (the OS's reason), not UTF-8 (the byte), empty

@@ -420,7 +420,8 @@ def _upgrade_model(args: argparse.Namespace) -> int:
 
     old, new = Path(args.old), Path(args.new)
     if not args.force and (old.resolve() == new.resolve()
-                           or (old.exists() and new.exists() and os.path.samefile(old, new))):
+                           or (fileio.exists(old, "upgrade-model OLD") and fileio.exists(new, "upgrade-model NEW")
+                               and os.path.samefile(old, new))):
         raise InputError(f"upgrade-model: NEW {args.new} is the file OLD: give another name "
                          "(or --force to replace OLD)")
     fileio.check_writable(new, what="upgrade-model NEW")

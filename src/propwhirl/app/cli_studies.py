@@ -23,9 +23,9 @@ MAX_MAP_POINTS = 250_000
 
 def _model_or_case(text: str):
     """MODEL of `sweep`/`map`: a TOML model file, or the name of a case of the library."""
-    if text in registry.CASES and not Path(text).exists():
+    if text in registry.CASES and not fileio.exists(text, "model file"):
         return registry.case_model(text)
-    if Path(text).suffix.lower() == ".toml" or Path(text).exists():
+    if Path(text).suffix.lower() == ".toml" or fileio.exists(text, "model file"):
         return load_model(text)
     raise InputError(f"MODEL = {text!r} is invalid: neither a model file (.toml) nor a case "
                      f"name (one of {', '.join(registry.CASES)})")

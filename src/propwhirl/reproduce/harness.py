@@ -32,6 +32,7 @@ from importlib import resources
 from pathlib import Path
 from typing import Any, Callable, Iterable
 
+from propwhirl import fileio
 from propwhirl import documents
 from propwhirl.progress import ProgressCallback
 from propwhirl.studies import execution
@@ -116,7 +117,7 @@ def load_references(path: Path | None = None) -> list[Reference]:
     if path is None:
         text = resources.files("propwhirl").joinpath("data/thesis_values.toml").read_text()
     else:
-        text = Path(path).read_text()
+        text = fileio.read_text(path, "reference values file")
     data = tomllib.loads(text)
     fields = Reference.__dataclass_fields__
     return [Reference(**{k: v for k, v in item.items() if k in fields}) for item in data["value"]]

@@ -267,7 +267,7 @@ class Checkpoint:
         """The finished points {index: result} of the file ({} when it does not exist);
         every entry checked: a one-line InputError naming the file and the entry otherwise."""
         path = Path(self.path)
-        if not path.exists():
+        if not fileio.exists(path, "partial results file"):
             return {}
         name = self._name()
         try:
