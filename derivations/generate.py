@@ -25,8 +25,9 @@ Until issue 21 the per-matrix functions carried their own code too, and the bloc
 reused each matrix's own ``sympy.cse`` so as to stay bit-identical to them; the measurement
 of the one form against that: benchmarks/generated_form.py, docs/performance.md.
 
-The output is deterministic (sorted discovery, fixed entry order, pinned SymPy), so running the generator
-twice gives byte-identical files; tests/generated/test_freshness.py holds `generated/` to that.
+The output is deterministic (sorted discovery, fixed entry order, pinned SymPy), so running
+the generator twice gives byte-identical files; tests/generated/test_freshness.py holds
+`generated/` to that.
 """
 from __future__ import annotations
 
@@ -81,7 +82,9 @@ def _arginfo(args, d: Derivation) -> list[dict]:
     return [{"name": a.name, "doc": params[a].doc, "unit": params[a].unit} for a in args]
 
 
-def _render_function(out: Output, d: Derivation, printer: _Printer, block: str | None = None) -> dict:
+def _render_function(
+    out: Output, d: Derivation, printer: _Printer, block: str | None = None
+) -> dict:
     """The function of one matrix: with `block`, a view (the matrix as the block function
     `block` computes it: no code of its own); without, the matrix's code, its own
     ``sympy.cse`` (a matrix in no block)."""
