@@ -9,9 +9,10 @@ linearised about q = q̇ = q̈ = 0, so that the left side is M q̈ + C q̇ + K q
 (the loads, from δW = Σ Q_i δq_i) is M_a q̈ + C_a q̇ + K_a q.  The matrices are Jacobians of
 these expressions with respect to q̈, q̇ and q.
 
-The generator (`derivations/generate.py`) turns each :class:`Output` into a vectorised NumPy
-function in `generated/`, and each entry of :attr:`Derivation.blocks` into one function that
-returns several outputs computed with one shared common-subexpression elimination.
+The generator (`derivations/generate.py`) turns each entry of :attr:`Derivation.blocks` into
+one vectorised NumPy function in `generated/` that returns several outputs computed with one
+shared common-subexpression elimination, and each :class:`Output` into a function of its own
+name: a view of its block function, or its own code if it is in no block.
 """
 from __future__ import annotations
 
@@ -61,7 +62,8 @@ class Derivation:
     params: Sequence[Param]
     outputs: list[Output] = field(default_factory=list)
     #: shared-CSE block functions: function name -> names of the outputs it returns together
-    #: (one ``sympy.cse`` over all of them; the runtime assembles from these)
+    #: (one ``sympy.cse`` over all of them; the runtime assembles from these); an output is
+    #: in one block at most
     blocks: dict[str, Sequence[str]] = field(default_factory=dict)
 
     def param(self, name: str) -> Param:

@@ -4,33 +4,36 @@
 
 Each module in `derivations/` that defines ``derive()`` becomes `generated/<module>.py`:
 common subexpressions are eliminated (``sympy.cse``) and the expressions printed with SymPy's
-NumPy printer, through the jinja2 template `templates/module.py.j2`.  Two forms of code:
+NumPy printer, through the jinja2 template `templates/module.py.j2`.  Every matrix is computed
+by exactly one piece of generated code:
 
-- one function per matrix (``Derivation.outputs``), each with its own ``sympy.cse`` — the
-  documented API, checked by the oracle tests against the thesis's printed matrices;
 - one *block function* per entry of ``Derivation.blocks``, returning the matrices the assembly
-  uses together (a dict) after broadcasting the arguments once.  Its subexpressions are
-  ``--block-cse merged`` (default): each matrix's own ``sympy.cse``, identical subexpressions
-  computed once, so the results are bit-identical to the per-matrix functions; or ``shared``:
-  one ``sympy.cse`` over all the matrices (PyDy's way; last-bit differences).  The
-  measurement behind the choice: benchmarks/generator_cse.py, docs/performance.md.
-
+  uses together (a dict) after broadcasting the arguments once, with one ``sympy.cse`` over
+  all of them (PyDy's way): what the runtime calls;
+- one function per matrix (``Derivation.outputs``), the documented API that the oracle tests
+  check against the thesis's printed matrices: for a matrix in a block, a *view* — the
+  block function called with the matrix's arguments (the block's other arguments NaN: they
+  feed only the other matrices), its matrix returned; for a matrix in no block, the matrix's
+  own code with its own ``sympy.cse``;
 - one *derivative function* ``<name>_d`` per block function (and per matrix in no block):
   ``{matrix name: {parameter: ∂matrix/∂parameter}}`` for every argument, identically-zero
   derivatives left out, one ``sympy.cse`` over all of them.  The derivatives are SymPy's
   ``diff`` of the very matrices the other forms print; the runtime builds ∂A/∂p from them by
   the same assembly as A (`src/propwhirl/model/derivatives.py`).
 
-The output is
-deterministic (sorted discovery, fixed entry order, pinned SymPy), so running the generator
-twice gives byte-identical files; tests/generated/test_freshness.py holds `generated/` to that.
+Until issue 21 the per-matrix functions carried their own code too, and the block functions
+reused each matrix's own ``sympy.cse`` so as to stay bit-identical to them; the measurement
+of the one form against that: benchmarks/generated_form.py, docs/performance.md.
+
+The output is deterministic (sorted discovery, fixed entry order, pinned SymPy), so running
+the generator twice gives byte-identical files; tests/generated/test_freshness.py holds
+`generated/` to that.
 """
 from __future__ import annotations
 
 import argparse
 import importlib
 import pkgutil
-import re
 import sys
 import time
 from pathlib import Path
@@ -79,13 +82,22 @@ def _arginfo(args, d: Derivation) -> list[dict]:
     return [{"name": a.name, "doc": params[a].doc, "unit": params[a].unit} for a in args]
 
 
-def _render_function(out: Output, d: Derivation, printer: _Printer) -> dict:
-    """One function per matrix, with its own ``sympy.cse``."""
+def _render_function(
+    out: Output, d: Derivation, printer: _Printer, block: str | None = None
+) -> dict:
+    """The function of one matrix: with `block`, a view (the matrix as the block function
+    `block` computes it: no code of its own); without, the matrix's code, its own
+    ``sympy.cse`` (a matrix in no block)."""
     matrix = sp.Matrix(out.matrix)
     args = list(out.args)
     _check_args(out.name, list(matrix), args, d)
-    entries = _nonzero_entries(matrix)
-    replacements, reduced = _cse([e for _, _, e in entries])
+    if block is None:
+        entries = _nonzero_entries(matrix)
+        replacements, reduced = _cse([e for _, _, e in entries])
+        cse = [(str(s), printer.doprint(e)) for s, e in replacements]
+        texts = [(i, j, printer.doprint(e)) for (i, j, _), e in zip(entries, reduced)]
+    else:
+        cse, texts = [], []
     return {
         "name": out.name,
         "doc": out.doc,
@@ -99,28 +111,20 @@ def _render_function(out: Output, d: Derivation, printer: _Printer) -> dict:
         "cols_text": ", ".join(out.cols),
         "nrows": matrix.rows,
         "ncols": matrix.cols,
-        "cse": [(str(s), printer.doprint(e)) for s, e in replacements],
-        "entries": [(i, j, printer.doprint(e)) for (i, j, _), e in zip(entries, reduced)],
+        "block": block,
+        "cse": cse,
+        "entries": texts,
     }
 
 
-def _render_blocks(
-    name: str, members: Sequence[str], d: Derivation, printer: _Printer, cse: str = "shared"
-) -> dict:
+def _render_blocks(name: str, members: Sequence[str], d: Derivation, printer: _Printer) -> dict:
     """One function returning several outputs, broadcasting its arguments once.
 
     Its arguments are the union of the members' arguments, in the derivation's parameter
-    order; every returned array has the full broadcast shape.  `cse` chooses the common
-    subexpressions:
-
-    - ``"shared"``: one ``sympy.cse`` over all entries of all members (as PyDy's codegen);
-    - ``"merged"``: each member's own ``sympy.cse`` (exactly the per-matrix function's code),
-      the subexpressions renamed apart and identical ones computed once.  Every entry is then
-      evaluated by the same floating-point operations as in the per-matrix function, so the
-      results are bit-identical to it.
+    order; every returned array has the full broadcast shape.  One ``sympy.cse`` over all
+    nonzero entries of all members (as PyDy's code generator does): a subexpression that
+    several matrices share is computed once.
     """
-    if cse not in BLOCK_CSE:
-        raise ValueError(f"cse = {cse!r} is invalid: must be one of {BLOCK_CSE}")
     by_name = {o.name: o for o in d.outputs}
     unknown = [m for m in members if m not in by_name]
     if unknown or not members:
@@ -135,20 +139,15 @@ def _render_blocks(
         matrix = sp.Matrix(o.matrix)
         _check_args(o.name, list(matrix), o.args, d)
         tables.append((o, matrix, _nonzero_entries(matrix)))
-    if cse == "shared":
-        replacements, reduced = _cse([e for _, _, entries in tables for _, _, e in entries])
-        lines = [(str(sym), printer.doprint(e)) for sym, e in replacements]
-        texts = iter(printer.doprint(e) for e in reduced)
-        entry_texts = [[next(texts) for _ in entries] for _, _, entries in tables]
-    else:
-        lines, entry_texts = _merge_cse(tables, printer)
+    replacements, reduced = _cse([e for _, _, entries in tables for _, _, e in entries])
+    texts = iter(printer.doprint(e) for e in reduced)
     rendered = [
         {
             "name": o.name,
             "var": f"_o{k}",
             "nrows": matrix.rows,
             "ncols": matrix.cols,
-            "entries": [(i, j, text) for (i, j, _), text in zip(entries, entry_texts[k])],
+            "entries": [(i, j, next(texts)) for i, j, _ in entries],
         }
         for k, (o, matrix, entries) in enumerate(tables)
     ]
@@ -158,51 +157,22 @@ def _render_blocks(
         "argnames": repr(tuple(a.name for a in args)),
         "members": repr(tuple(members)),
         "arginfo": _arginfo(args, d),
-        "cse": lines,
+        "cse": [(str(sym), printer.doprint(e)) for sym, e in replacements],
         "outputs": rendered,
     }
 
 
-_CSE_NAME = re.compile(r"\b_c(\d+)\b")
+def block_of(d: Derivation) -> dict[str, str]:
+    """{output name: the block function that computes it} of the outputs in a block; an
+    output in two blocks is an error (its view would be ambiguous)."""
+    owner: dict[str, str] = {}
+    for name, members in d.blocks.items():
+        for m in members:
+            if m in owner:
+                raise ValueError(f"{d.module}: output {m!r} is in blocks {owner[m]!r} and {name!r}")
+            owner[m] = name
+    return owner
 
-
-def _merge_cse(tables, printer: _Printer) -> tuple[list[tuple[str, str]], list[list[str]]]:
-    """Each member's own ``sympy.cse``, printed as in its per-matrix function, with the
-    subexpression names renumbered apart; a subexpression whose text (after renaming) is
-    already defined reuses that definition."""
-    lines: list[tuple[str, str]] = []
-    defined: dict[str, str] = {}  # text -> merged name
-    entry_texts = []
-    for _, _, entries in tables:
-        replacements, reduced = _cse([e for _, _, e in entries])
-        local: dict[str, str] = {}  # this member's name -> merged name
-
-        def rename(text: str) -> str:
-            return _CSE_NAME.sub(lambda m: local[f"_c{m.group(1)}"], text)
-
-        for sym, e in replacements:
-            text = rename(printer.doprint(e))
-            if text not in defined:
-                defined[text] = f"_c{len(lines)}"
-                lines.append((defined[text], text))
-            local[str(sym)] = defined[text]
-        entry_texts.append([rename(printer.doprint(e)) for e in reduced])
-    return lines, entry_texts
-
-
-#: how a block function eliminates common subexpressions (see `_render_blocks`)
-BLOCK_CSE = ("shared", "merged")
-CSE_NOTES = {
-    "shared": "Their code is one common-subexpression\nelimination over all the matrices: "
-              "the results equal the per-matrix functions' to rounding.",
-    "merged": "Their code is each matrix's own common\nsubexpressions, identical ones computed "
-              "once: the results are bit-identical to the per-matrix\nfunctions.",
-}
-
-
-#: the forms of generated code: one function per matrix, shared-CSE block functions, and the
-#: parameter derivatives of the block functions (and of the matrices in no block)
-FORMS = ("matrices", "blocks", "derivatives")
 
 #: suffix of a derivative function's name: ``ln_blocks`` -> ``ln_blocks_d``
 DERIVATIVE_SUFFIX = "_d"
@@ -246,9 +216,8 @@ def derivative_matrices(d: Derivation, members: Sequence[str], args: Sequence[sp
 def _render_derivatives(name: str, members: Sequence[str], args: Sequence[sp.Symbol],
                         d: Derivation, printer: _Printer) -> dict:
     """One derivative function, ``{matrix: {parameter: ∂matrix/∂parameter}}``: one
-    ``sympy.cse`` over all nonzero entries of all its derivatives (the "shared" form of the
-    block functions; no other function computes these, so there is nothing to be
-    bit-identical to)."""
+    ``sympy.cse`` over all nonzero entries of all its derivatives (as in the block
+    functions)."""
     by_name = {o.name: o for o in d.outputs}
     tables = []
     for m, parts in derivative_matrices(d, members, args):
@@ -282,28 +251,19 @@ def _render_derivatives(name: str, members: Sequence[str], args: Sequence[sp.Sym
     }
 
 
-def render(
-    d: Derivation,
-    env: jinja2.Environment,
-    forms: Sequence[str] = FORMS,
-    block_cse: str = "merged",
-) -> str:
-    """The text of `generated/<d.module>.py` with the requested forms of generated code."""
-    if not set(forms) <= set(FORMS):
-        raise ValueError(f"forms = {forms!r} is invalid: must be a subset of {FORMS}")
+def render(d: Derivation, env: jinja2.Environment) -> str:
+    """The text of `generated/<d.module>.py`: the block functions, one function per matrix
+    (a view of its block function, or the matrix's own code if it is in no block), the
+    derivative functions."""
     printer = _Printer({"fully_qualified_modules": True})
-    functions = [_render_function(o, d, printer) for o in d.outputs] if "matrices" in forms else []
-    blocks = (
-        [_render_blocks(n, m, d, printer, block_cse) for n, m in d.blocks.items()] if "blocks" in forms else []
-    )
+    owner = block_of(d)
+    blocks = [_render_blocks(n, m, d, printer) for n, m in d.blocks.items()]
+    functions = [_render_function(o, d, printer, owner.get(o.name)) for o in d.outputs]
+    derivatives = [_render_derivatives(n, m, a, d, printer) for n, m, a in derivative_groups(d)]
     doc = (d.doc or "").strip().replace('"""', "'''")
-    derivatives = (
-        [_render_derivatives(n, m, a, d, printer) for n, m, a in derivative_groups(d)]
-        if "derivatives" in forms else []
-    )
     text = env.get_template("module.py.j2").render(
         d=d, functions=functions, blocks=blocks, derivatives=derivatives, doc=doc,
-        cse_note=CSE_NOTES[block_cse]
+        views=[f for f in functions if f["block"]],
     )
     return text.rstrip() + "\n"
 
@@ -318,18 +278,8 @@ def environment() -> jinja2.Environment:
     )
 
 
-def generate(
-    out_dir: Path,
-    only: list[str] | None = None,
-    verbose: bool = True,
-    forms: Sequence[str] = FORMS,
-    block_cse: str = "merged",
-) -> dict[str, str]:
-    """Write all generated modules to `out_dir`; return {file name: text}.
-
-    `forms` selects the generated code (default both; the benchmark
-    `benchmarks/generator_cse.py` renders each form alone to compare them).
-    """
+def generate(out_dir: Path, only: list[str] | None = None, verbose: bool = True) -> dict[str, str]:
+    """Write all generated modules to `out_dir`; return {file name: text}."""
     env = environment()
     out_dir.mkdir(parents=True, exist_ok=True)
     written: dict[str, str] = {}
@@ -339,7 +289,7 @@ def generate(
             continue
         start = time.perf_counter()
         d = importlib.import_module(f"derivations.{name}").derive()
-        text = render(d, env, forms, block_cse)
+        text = render(d, env)
         (out_dir / f"{d.module}.py").write_text(text)
         written[f"{d.module}.py"] = text
         derivs.append(d)
@@ -356,14 +306,9 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, default=ROOT / "generated")
     parser.add_argument("--only", nargs="*", help="derivation modules to regenerate")
-    parser.add_argument(
-        "--block-cse", choices=BLOCK_CSE, default="merged",
-        help="common subexpressions of the block functions (default merged: bit-identical to "
-        "the per-matrix functions; see docs/performance.md)",
-    )
     args = parser.parse_args(argv)
     start = time.perf_counter()
-    generate(args.out, args.only, block_cse=args.block_cse)
+    generate(args.out, args.only)
     print(f"total {time.perf_counter() - start:.2f} s")
     return 0
 

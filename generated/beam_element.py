@@ -8,9 +8,10 @@ may be an array and all arguments broadcast together; each function returns an a
 shape ``broadcast_shape + (rows, cols)``.
 
 The block functions (`blocks`) return several of these matrices
-at once (a dict), broadcasting their arguments once.  Their code is each matrix's own common
-subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
-functions.
+at once (a dict), broadcasting their arguments once, with one common-subexpression elimination
+over all their matrices; the runtime calls them.  The function of each of their matrices
+(`mass`, `stiffness`) is a view: it calls its block function
+(`VIEWS` names it) and returns that matrix.
 
 The derivative functions (`blocks_d`) return the
 exact parameter derivatives of those matrices: ``{matrix name: {parameter name: array}}`` with
@@ -60,6 +61,12 @@ BLOCKS = {
     "blocks": (('length', 'm', 'rho_Ip', 'x_alpha_b', 'EI', 'GJ'), ('mass', 'stiffness')),
 }
 
+#: matrix function name -> the block function it is a view of
+VIEWS = {
+    "mass": "blocks",
+    "stiffness": "blocks",
+}
+
 #: derivative function name -> (argument names, {matrix name: parameters it depends on})
 PARTIALS = {
     "blocks_d": (('length', 'm', 'rho_Ip', 'x_alpha_b', 'EI', 'GJ'), {'mass': ('length', 'm', 'rho_Ip', 'x_alpha_b'), 'stiffness': ('length', 'EI', 'GJ')}),
@@ -71,153 +78,17 @@ def _broadcast(*args):
     return arrays[0].shape, arrays
 
 
-
-def mass(length, m, rho_Ip, x_alpha_b):
-    """Element mass matrix [h1, φ1, α1, h2, φ2, α2] (M_b, M_t, M_tb of 7.11–7.13).
-
-    Thesis equations 7.9–7.13.
-
-    Parameters
-    ----------
-    length : array_like
-        element length [m]
-    m : array_like
-        mass per unit span [kg/m]
-    rho_Ip : array_like
-        polar mass moment of inertia per unit span about the elastic axis [kg m]
-    x_alpha_b : array_like
-        centre of gravity aft of the elastic axis (x_α b) [m]
-
-    Returns
-    -------
-    numpy.ndarray, shape (..., 6, 6)
-        rows: h1, phi1, alpha1, h2, phi2, alpha2
-        columns: h1, phi1, alpha1, h2, phi2, alpha2
-    """
-    shape, (length, m, rho_Ip, x_alpha_b,) = _broadcast(length, m, rho_Ip, x_alpha_b)
-    _c0 = length*m
-    _c1 = (13/35)*_c0
-    _c2 = length**2*m
-    _c3 = (11/210)*_c2
-    _c4 = _c0*x_alpha_b
-    _c5 = (7/20)*_c4
-    _c6 = (9/70)*_c0
-    _c7 = (13/420)*_c2
-    _c8 = -_c7
-    _c9 = (3/20)*_c4
-    _c10 = length**3*m
-    _c11 = (1/105)*_c10
-    _c12 = _c2*x_alpha_b
-    _c13 = (1/20)*_c12
-    _c14 = -1/140*_c10
-    _c15 = (1/30)*_c12
-    _c16 = length*rho_Ip
-    _c17 = (1/3)*_c16
-    _c18 = -_c15
-    _c19 = (1/6)*_c16
-    _c20 = -_c3
-    _c21 = -_c13
-    out = numpy.zeros(shape + (6, 6))
-    out[..., 0, 0] = _c1
-    out[..., 0, 1] = _c3
-    out[..., 0, 2] = _c5
-    out[..., 0, 3] = _c6
-    out[..., 0, 4] = _c8
-    out[..., 0, 5] = _c9
-    out[..., 1, 0] = _c3
-    out[..., 1, 1] = _c11
-    out[..., 1, 2] = _c13
-    out[..., 1, 3] = _c7
-    out[..., 1, 4] = _c14
-    out[..., 1, 5] = _c15
-    out[..., 2, 0] = _c5
-    out[..., 2, 1] = _c13
-    out[..., 2, 2] = _c17
-    out[..., 2, 3] = _c9
-    out[..., 2, 4] = _c18
-    out[..., 2, 5] = _c19
-    out[..., 3, 0] = _c6
-    out[..., 3, 1] = _c7
-    out[..., 3, 2] = _c9
-    out[..., 3, 3] = _c1
-    out[..., 3, 4] = _c20
-    out[..., 3, 5] = _c5
-    out[..., 4, 0] = _c8
-    out[..., 4, 1] = _c14
-    out[..., 4, 2] = _c18
-    out[..., 4, 3] = _c20
-    out[..., 4, 4] = _c11
-    out[..., 4, 5] = _c21
-    out[..., 5, 0] = _c9
-    out[..., 5, 1] = _c15
-    out[..., 5, 2] = _c19
-    out[..., 5, 3] = _c5
-    out[..., 5, 4] = _c21
-    out[..., 5, 5] = _c17
-    return out
-
-
-def stiffness(length, EI, GJ):
-    """Element stiffness matrix [h1, φ1, α1, h2, φ2, α2] (K_b, K_t of 7.14–7.15).
-
-    Thesis equations 7.9, 7.14–7.15.
-
-    Parameters
-    ----------
-    length : array_like
-        element length [m]
-    EI : array_like
-        bending rigidity [N m^2]
-    GJ : array_like
-        torsional rigidity [N m^2]
-
-    Returns
-    -------
-    numpy.ndarray, shape (..., 6, 6)
-        rows: h1, phi1, alpha1, h2, phi2, alpha2
-        columns: h1, phi1, alpha1, h2, phi2, alpha2
-    """
-    shape, (length, EI, GJ,) = _broadcast(length, EI, GJ)
-    _c0 = 12*EI/length**3
-    _c1 = 6*EI/length**2
-    _c2 = -_c0
-    _c3 = length**(-1.0)
-    _c4 = EI*_c3
-    _c5 = 4*_c4
-    _c6 = -_c1
-    _c7 = 2*_c4
-    _c8 = GJ*_c3
-    _c9 = -_c8
-    out = numpy.zeros(shape + (6, 6))
-    out[..., 0, 0] = _c0
-    out[..., 0, 1] = _c1
-    out[..., 0, 3] = _c2
-    out[..., 0, 4] = _c1
-    out[..., 1, 0] = _c1
-    out[..., 1, 1] = _c5
-    out[..., 1, 3] = _c6
-    out[..., 1, 4] = _c7
-    out[..., 2, 2] = _c8
-    out[..., 2, 5] = _c9
-    out[..., 3, 0] = _c2
-    out[..., 3, 1] = _c6
-    out[..., 3, 3] = _c0
-    out[..., 3, 4] = _c6
-    out[..., 4, 0] = _c1
-    out[..., 4, 1] = _c7
-    out[..., 4, 3] = _c6
-    out[..., 4, 4] = _c5
-    out[..., 5, 2] = _c9
-    out[..., 5, 5] = _c8
-    return out
+def _view(block, name, **values):
+    """Matrix `name` of block function `block` at `values`, the block's other arguments NaN
+    (only its other matrices depend on them: the result is that of `values` alone)."""
+    return block(**{a: values.get(a, numpy.nan) for a in BLOCKS[block.__name__][0]})[name]
 
 
 def blocks(length, m, rho_Ip, x_alpha_b, EI, GJ):
     """mass, stiffness at once.
 
-    The arguments are broadcast together once.  Their code is each matrix's own common
-    subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
-    functions.
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the matrices.
 
     Parameters
     ----------
@@ -237,105 +108,141 @@ def blocks(length, m, rho_Ip, x_alpha_b, EI, GJ):
     Returns
     -------
     dict of numpy.ndarray
-        "mass", shape (..., 6, 6): as `mass`
-        "stiffness", shape (..., 6, 6): as `stiffness`
+        "mass", shape (..., 6, 6): see `mass`
+        "stiffness", shape (..., 6, 6): see `stiffness`
         (``...`` is the broadcast shape of all the arguments).
     """
     shape, (length, m, rho_Ip, x_alpha_b, EI, GJ,) = _broadcast(length, m, rho_Ip, x_alpha_b, EI, GJ)
     _c0 = length*m
     _c1 = (13/35)*_c0
-    _c2 = length**2*m
-    _c3 = (11/210)*_c2
-    _c4 = _c0*x_alpha_b
-    _c5 = (7/20)*_c4
-    _c6 = (9/70)*_c0
-    _c7 = (13/420)*_c2
-    _c8 = -_c7
-    _c9 = (3/20)*_c4
-    _c10 = length**3*m
-    _c11 = (1/105)*_c10
-    _c12 = _c2*x_alpha_b
-    _c13 = (1/20)*_c12
-    _c14 = -1/140*_c10
-    _c15 = (1/30)*_c12
-    _c16 = length*rho_Ip
-    _c17 = (1/3)*_c16
-    _c18 = -_c15
-    _c19 = (1/6)*_c16
-    _c20 = -_c3
-    _c21 = -_c13
-    _c22 = 12*EI/length**3
-    _c23 = 6*EI/length**2
-    _c24 = -_c22
-    _c25 = length**(-1.0)
-    _c26 = EI*_c25
-    _c27 = 4*_c26
-    _c28 = -_c23
-    _c29 = 2*_c26
-    _c30 = GJ*_c25
-    _c31 = -_c30
+    _c2 = length**2
+    _c3 = _c2*m
+    _c4 = (11/210)*_c3
+    _c5 = _c0*x_alpha_b
+    _c6 = (7/20)*_c5
+    _c7 = (9/70)*_c0
+    _c8 = (13/420)*_c3
+    _c9 = -_c8
+    _c10 = (3/20)*_c5
+    _c11 = length**3
+    _c12 = _c11*m
+    _c13 = (1/105)*_c12
+    _c14 = _c3*x_alpha_b
+    _c15 = (1/20)*_c14
+    _c16 = -1/140*_c12
+    _c17 = (1/30)*_c14
+    _c18 = length*rho_Ip
+    _c19 = (1/3)*_c18
+    _c20 = -_c17
+    _c21 = (1/6)*_c18
+    _c22 = -_c4
+    _c23 = -_c15
+    _c24 = 12*EI/_c11
+    _c25 = 6*EI/_c2
+    _c26 = -_c24
+    _c27 = length**(-1.0)
+    _c28 = EI*_c27
+    _c29 = 4*_c28
+    _c30 = -_c25
+    _c31 = 2*_c28
+    _c32 = GJ*_c27
+    _c33 = -_c32
     _o0 = numpy.zeros(shape + (6, 6))
     _o0[..., 0, 0] = _c1
-    _o0[..., 0, 1] = _c3
-    _o0[..., 0, 2] = _c5
-    _o0[..., 0, 3] = _c6
-    _o0[..., 0, 4] = _c8
-    _o0[..., 0, 5] = _c9
-    _o0[..., 1, 0] = _c3
-    _o0[..., 1, 1] = _c11
-    _o0[..., 1, 2] = _c13
-    _o0[..., 1, 3] = _c7
-    _o0[..., 1, 4] = _c14
-    _o0[..., 1, 5] = _c15
-    _o0[..., 2, 0] = _c5
-    _o0[..., 2, 1] = _c13
-    _o0[..., 2, 2] = _c17
-    _o0[..., 2, 3] = _c9
-    _o0[..., 2, 4] = _c18
-    _o0[..., 2, 5] = _c19
-    _o0[..., 3, 0] = _c6
-    _o0[..., 3, 1] = _c7
-    _o0[..., 3, 2] = _c9
+    _o0[..., 0, 1] = _c4
+    _o0[..., 0, 2] = _c6
+    _o0[..., 0, 3] = _c7
+    _o0[..., 0, 4] = _c9
+    _o0[..., 0, 5] = _c10
+    _o0[..., 1, 0] = _c4
+    _o0[..., 1, 1] = _c13
+    _o0[..., 1, 2] = _c15
+    _o0[..., 1, 3] = _c8
+    _o0[..., 1, 4] = _c16
+    _o0[..., 1, 5] = _c17
+    _o0[..., 2, 0] = _c6
+    _o0[..., 2, 1] = _c15
+    _o0[..., 2, 2] = _c19
+    _o0[..., 2, 3] = _c10
+    _o0[..., 2, 4] = _c20
+    _o0[..., 2, 5] = _c21
+    _o0[..., 3, 0] = _c7
+    _o0[..., 3, 1] = _c8
+    _o0[..., 3, 2] = _c10
     _o0[..., 3, 3] = _c1
-    _o0[..., 3, 4] = _c20
-    _o0[..., 3, 5] = _c5
-    _o0[..., 4, 0] = _c8
-    _o0[..., 4, 1] = _c14
-    _o0[..., 4, 2] = _c18
-    _o0[..., 4, 3] = _c20
-    _o0[..., 4, 4] = _c11
-    _o0[..., 4, 5] = _c21
-    _o0[..., 5, 0] = _c9
-    _o0[..., 5, 1] = _c15
-    _o0[..., 5, 2] = _c19
-    _o0[..., 5, 3] = _c5
-    _o0[..., 5, 4] = _c21
-    _o0[..., 5, 5] = _c17
+    _o0[..., 3, 4] = _c22
+    _o0[..., 3, 5] = _c6
+    _o0[..., 4, 0] = _c9
+    _o0[..., 4, 1] = _c16
+    _o0[..., 4, 2] = _c20
+    _o0[..., 4, 3] = _c22
+    _o0[..., 4, 4] = _c13
+    _o0[..., 4, 5] = _c23
+    _o0[..., 5, 0] = _c10
+    _o0[..., 5, 1] = _c17
+    _o0[..., 5, 2] = _c21
+    _o0[..., 5, 3] = _c6
+    _o0[..., 5, 4] = _c23
+    _o0[..., 5, 5] = _c19
     _o1 = numpy.zeros(shape + (6, 6))
-    _o1[..., 0, 0] = _c22
-    _o1[..., 0, 1] = _c23
-    _o1[..., 0, 3] = _c24
-    _o1[..., 0, 4] = _c23
-    _o1[..., 1, 0] = _c23
-    _o1[..., 1, 1] = _c27
-    _o1[..., 1, 3] = _c28
-    _o1[..., 1, 4] = _c29
-    _o1[..., 2, 2] = _c30
-    _o1[..., 2, 5] = _c31
-    _o1[..., 3, 0] = _c24
-    _o1[..., 3, 1] = _c28
-    _o1[..., 3, 3] = _c22
-    _o1[..., 3, 4] = _c28
-    _o1[..., 4, 0] = _c23
-    _o1[..., 4, 1] = _c29
-    _o1[..., 4, 3] = _c28
-    _o1[..., 4, 4] = _c27
-    _o1[..., 5, 2] = _c31
-    _o1[..., 5, 5] = _c30
+    _o1[..., 0, 0] = _c24
+    _o1[..., 0, 1] = _c25
+    _o1[..., 0, 3] = _c26
+    _o1[..., 0, 4] = _c25
+    _o1[..., 1, 0] = _c25
+    _o1[..., 1, 1] = _c29
+    _o1[..., 1, 3] = _c30
+    _o1[..., 1, 4] = _c31
+    _o1[..., 2, 2] = _c32
+    _o1[..., 2, 5] = _c33
+    _o1[..., 3, 0] = _c26
+    _o1[..., 3, 1] = _c30
+    _o1[..., 3, 3] = _c24
+    _o1[..., 3, 4] = _c30
+    _o1[..., 4, 0] = _c25
+    _o1[..., 4, 1] = _c31
+    _o1[..., 4, 3] = _c30
+    _o1[..., 4, 4] = _c29
+    _o1[..., 5, 2] = _c33
+    _o1[..., 5, 5] = _c32
     return {
         "mass": _o0,
         "stiffness": _o1,
     }
+
+
+def mass(length, m, rho_Ip, x_alpha_b):
+    """Element mass matrix [h1, φ1, α1, h2, φ2, α2] (M_b, M_t, M_tb of 7.11–7.13).
+
+    Thesis equations 7.9–7.13.
+
+    A view: `blocks`'s "mass" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `blocks`).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 6, 6)
+        rows: h1, phi1, alpha1, h2, phi2, alpha2
+        columns: h1, phi1, alpha1, h2, phi2, alpha2
+    """
+    return _view(blocks, "mass", length=length, m=m, rho_Ip=rho_Ip, x_alpha_b=x_alpha_b)
+
+
+def stiffness(length, EI, GJ):
+    """Element stiffness matrix [h1, φ1, α1, h2, φ2, α2] (K_b, K_t of 7.14–7.15).
+
+    Thesis equations 7.9, 7.14–7.15.
+
+    A view: `blocks`'s "stiffness" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `blocks`).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 6, 6)
+        rows: h1, phi1, alpha1, h2, phi2, alpha2
+        columns: h1, phi1, alpha1, h2, phi2, alpha2
+    """
+    return _view(blocks, "stiffness", length=length, EI=EI, GJ=GJ)
 
 
 def blocks_d(length, m, rho_Ip, x_alpha_b, EI, GJ):

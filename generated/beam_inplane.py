@@ -8,9 +8,10 @@ may be an array and all arguments broadcast together; each function returns an a
 shape ``broadcast_shape + (rows, cols)``.
 
 The block functions (`inplane_blocks`) return several of these matrices
-at once (a dict), broadcasting their arguments once.  Their code is each matrix's own common
-subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
-functions.
+at once (a dict), broadcasting their arguments once, with one common-subexpression elimination
+over all their matrices; the runtime calls them.  The function of each of their matrices
+(`inplane_mass`, `inplane_stiffness`) is a view: it calls its block function
+(`VIEWS` names it) and returns that matrix.
 
 The derivative functions (`inplane_blocks_d`) return the
 exact parameter derivatives of those matrices: ``{matrix name: {parameter name: array}}`` with
@@ -72,6 +73,12 @@ BLOCKS = {
     "inplane_blocks": (('length', 'm', 'rho_Iz', 'EI_chordwise'), ('inplane_mass', 'inplane_stiffness')),
 }
 
+#: matrix function name -> the block function it is a view of
+VIEWS = {
+    "inplane_mass": "inplane_blocks",
+    "inplane_stiffness": "inplane_blocks",
+}
+
 #: derivative function name -> (argument names, {matrix name: parameters it depends on})
 PARTIALS = {
     "inplane_blocks_d": (('length', 'm', 'rho_Iz', 'EI_chordwise'), {'inplane_mass': ('length', 'm', 'rho_Iz'), 'inplane_stiffness': ('length', 'EI_chordwise')}),
@@ -83,114 +90,17 @@ def _broadcast(*args):
     return arrays[0].shape, arrays
 
 
-
-def inplane_mass(length, m, rho_Iz):
-    """In-plane element mass matrix [v1, χ1, v2, χ2]: translation m and rotary inertia rho_Iz (Rayleigh beam).
-
-    Thesis equations 7.11 with the rotary-inertia term.
-
-    Parameters
-    ----------
-    length : array_like
-        element length [m]
-    m : array_like
-        mass per unit span [kg/m]
-    rho_Iz : array_like
-        in-plane rotary inertia per unit span about the vertical axis through the elastic axis (thin section: the polar inertia rho I_p) [kg m]
-
-    Returns
-    -------
-    numpy.ndarray, shape (..., 4, 4)
-        rows: v1, chi1, v2, chi2
-        columns: v1, chi1, v2, chi2
-    """
-    shape, (length, m, rho_Iz,) = _broadcast(length, m, rho_Iz)
-    _c0 = length*m
-    _c1 = (6/5)*rho_Iz/length
-    _c2 = (13/35)*_c0 + _c1
-    _c3 = (1/10)*rho_Iz
-    _c4 = length**2*m
-    _c5 = _c3 + (11/210)*_c4
-    _c6 = (9/70)*_c0 - _c1
-    _c7 = -_c3 + (13/420)*_c4
-    _c8 = -_c7
-    _c9 = length*rho_Iz
-    _c10 = length**3*m
-    _c11 = (1/105)*_c10 + (2/15)*_c9
-    _c12 = -1/140*_c10 - 1/30*_c9
-    _c13 = -_c5
-    out = numpy.zeros(shape + (4, 4))
-    out[..., 0, 0] = _c2
-    out[..., 0, 1] = _c5
-    out[..., 0, 2] = _c6
-    out[..., 0, 3] = _c8
-    out[..., 1, 0] = _c5
-    out[..., 1, 1] = _c11
-    out[..., 1, 2] = _c7
-    out[..., 1, 3] = _c12
-    out[..., 2, 0] = _c6
-    out[..., 2, 1] = _c7
-    out[..., 2, 2] = _c2
-    out[..., 2, 3] = _c13
-    out[..., 3, 0] = _c8
-    out[..., 3, 1] = _c12
-    out[..., 3, 2] = _c13
-    out[..., 3, 3] = _c11
-    return out
-
-
-def inplane_stiffness(length, EI_chordwise):
-    """In-plane element stiffness matrix [v1, χ1, v2, χ2] (EI_c in place of EI in 7.14).
-
-    Thesis equations 7.14.
-
-    Parameters
-    ----------
-    length : array_like
-        element length [m]
-    EI_chordwise : array_like
-        in-plane (chordwise) bending rigidity [N m^2]
-
-    Returns
-    -------
-    numpy.ndarray, shape (..., 4, 4)
-        rows: v1, chi1, v2, chi2
-        columns: v1, chi1, v2, chi2
-    """
-    shape, (length, EI_chordwise,) = _broadcast(length, EI_chordwise)
-    _c0 = 12*EI_chordwise/length**3
-    _c1 = 6*EI_chordwise/length**2
-    _c2 = -_c0
-    _c3 = EI_chordwise/length
-    _c4 = 4*_c3
-    _c5 = -_c1
-    _c6 = 2*_c3
-    out = numpy.zeros(shape + (4, 4))
-    out[..., 0, 0] = _c0
-    out[..., 0, 1] = _c1
-    out[..., 0, 2] = _c2
-    out[..., 0, 3] = _c1
-    out[..., 1, 0] = _c1
-    out[..., 1, 1] = _c4
-    out[..., 1, 2] = _c5
-    out[..., 1, 3] = _c6
-    out[..., 2, 0] = _c2
-    out[..., 2, 1] = _c5
-    out[..., 2, 2] = _c0
-    out[..., 2, 3] = _c5
-    out[..., 3, 0] = _c1
-    out[..., 3, 1] = _c6
-    out[..., 3, 2] = _c5
-    out[..., 3, 3] = _c4
-    return out
+def _view(block, name, **values):
+    """Matrix `name` of block function `block` at `values`, the block's other arguments NaN
+    (only its other matrices depend on them: the result is that of `values` alone)."""
+    return block(**{a: values.get(a, numpy.nan) for a in BLOCKS[block.__name__][0]})[name]
 
 
 def inplane_blocks(length, m, rho_Iz, EI_chordwise):
     """inplane_mass, inplane_stiffness at once.
 
-    The arguments are broadcast together once.  Their code is each matrix's own common
-    subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
-    functions.
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the matrices.
 
     Parameters
     ----------
@@ -206,70 +116,107 @@ def inplane_blocks(length, m, rho_Iz, EI_chordwise):
     Returns
     -------
     dict of numpy.ndarray
-        "inplane_mass", shape (..., 4, 4): as `inplane_mass`
-        "inplane_stiffness", shape (..., 4, 4): as `inplane_stiffness`
+        "inplane_mass", shape (..., 4, 4): see `inplane_mass`
+        "inplane_stiffness", shape (..., 4, 4): see `inplane_stiffness`
         (``...`` is the broadcast shape of all the arguments).
     """
     shape, (length, m, rho_Iz, EI_chordwise,) = _broadcast(length, m, rho_Iz, EI_chordwise)
     _c0 = length*m
-    _c1 = (6/5)*rho_Iz/length
-    _c2 = (13/35)*_c0 + _c1
-    _c3 = (1/10)*rho_Iz
-    _c4 = length**2*m
-    _c5 = _c3 + (11/210)*_c4
-    _c6 = (9/70)*_c0 - _c1
-    _c7 = -_c3 + (13/420)*_c4
-    _c8 = -_c7
-    _c9 = length*rho_Iz
-    _c10 = length**3*m
-    _c11 = (1/105)*_c10 + (2/15)*_c9
-    _c12 = -1/140*_c10 - 1/30*_c9
-    _c13 = -_c5
-    _c14 = 12*EI_chordwise/length**3
-    _c15 = 6*EI_chordwise/length**2
-    _c16 = -_c14
-    _c17 = EI_chordwise/length
-    _c18 = 4*_c17
-    _c19 = -_c15
-    _c20 = 2*_c17
+    _c1 = length**(-1.0)
+    _c2 = (6/5)*_c1*rho_Iz
+    _c3 = (13/35)*_c0 + _c2
+    _c4 = (1/10)*rho_Iz
+    _c5 = length**2
+    _c6 = _c5*m
+    _c7 = _c4 + (11/210)*_c6
+    _c8 = (9/70)*_c0 - _c2
+    _c9 = -_c4 + (13/420)*_c6
+    _c10 = -_c9
+    _c11 = length*rho_Iz
+    _c12 = length**3
+    _c13 = _c12*m
+    _c14 = (2/15)*_c11 + (1/105)*_c13
+    _c15 = -1/30*_c11 - 1/140*_c13
+    _c16 = -_c7
+    _c17 = 12*EI_chordwise/_c12
+    _c18 = 6*EI_chordwise/_c5
+    _c19 = -_c17
+    _c20 = EI_chordwise*_c1
+    _c21 = 4*_c20
+    _c22 = -_c18
+    _c23 = 2*_c20
     _o0 = numpy.zeros(shape + (4, 4))
-    _o0[..., 0, 0] = _c2
-    _o0[..., 0, 1] = _c5
-    _o0[..., 0, 2] = _c6
-    _o0[..., 0, 3] = _c8
-    _o0[..., 1, 0] = _c5
-    _o0[..., 1, 1] = _c11
-    _o0[..., 1, 2] = _c7
-    _o0[..., 1, 3] = _c12
-    _o0[..., 2, 0] = _c6
-    _o0[..., 2, 1] = _c7
-    _o0[..., 2, 2] = _c2
-    _o0[..., 2, 3] = _c13
-    _o0[..., 3, 0] = _c8
-    _o0[..., 3, 1] = _c12
-    _o0[..., 3, 2] = _c13
-    _o0[..., 3, 3] = _c11
+    _o0[..., 0, 0] = _c3
+    _o0[..., 0, 1] = _c7
+    _o0[..., 0, 2] = _c8
+    _o0[..., 0, 3] = _c10
+    _o0[..., 1, 0] = _c7
+    _o0[..., 1, 1] = _c14
+    _o0[..., 1, 2] = _c9
+    _o0[..., 1, 3] = _c15
+    _o0[..., 2, 0] = _c8
+    _o0[..., 2, 1] = _c9
+    _o0[..., 2, 2] = _c3
+    _o0[..., 2, 3] = _c16
+    _o0[..., 3, 0] = _c10
+    _o0[..., 3, 1] = _c15
+    _o0[..., 3, 2] = _c16
+    _o0[..., 3, 3] = _c14
     _o1 = numpy.zeros(shape + (4, 4))
-    _o1[..., 0, 0] = _c14
-    _o1[..., 0, 1] = _c15
-    _o1[..., 0, 2] = _c16
-    _o1[..., 0, 3] = _c15
-    _o1[..., 1, 0] = _c15
-    _o1[..., 1, 1] = _c18
-    _o1[..., 1, 2] = _c19
-    _o1[..., 1, 3] = _c20
-    _o1[..., 2, 0] = _c16
-    _o1[..., 2, 1] = _c19
-    _o1[..., 2, 2] = _c14
-    _o1[..., 2, 3] = _c19
-    _o1[..., 3, 0] = _c15
-    _o1[..., 3, 1] = _c20
-    _o1[..., 3, 2] = _c19
-    _o1[..., 3, 3] = _c18
+    _o1[..., 0, 0] = _c17
+    _o1[..., 0, 1] = _c18
+    _o1[..., 0, 2] = _c19
+    _o1[..., 0, 3] = _c18
+    _o1[..., 1, 0] = _c18
+    _o1[..., 1, 1] = _c21
+    _o1[..., 1, 2] = _c22
+    _o1[..., 1, 3] = _c23
+    _o1[..., 2, 0] = _c19
+    _o1[..., 2, 1] = _c22
+    _o1[..., 2, 2] = _c17
+    _o1[..., 2, 3] = _c22
+    _o1[..., 3, 0] = _c18
+    _o1[..., 3, 1] = _c23
+    _o1[..., 3, 2] = _c22
+    _o1[..., 3, 3] = _c21
     return {
         "inplane_mass": _o0,
         "inplane_stiffness": _o1,
     }
+
+
+def inplane_mass(length, m, rho_Iz):
+    """In-plane element mass matrix [v1, χ1, v2, χ2]: translation m and rotary inertia rho_Iz (Rayleigh beam).
+
+    Thesis equations 7.11 with the rotary-inertia term.
+
+    A view: `inplane_blocks`'s "inplane_mass" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `inplane_blocks`).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 4, 4)
+        rows: v1, chi1, v2, chi2
+        columns: v1, chi1, v2, chi2
+    """
+    return _view(inplane_blocks, "inplane_mass", length=length, m=m, rho_Iz=rho_Iz)
+
+
+def inplane_stiffness(length, EI_chordwise):
+    """In-plane element stiffness matrix [v1, χ1, v2, χ2] (EI_c in place of EI in 7.14).
+
+    Thesis equations 7.14.
+
+    A view: `inplane_blocks`'s "inplane_stiffness" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `inplane_blocks`).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 4, 4)
+        rows: v1, chi1, v2, chi2
+        columns: v1, chi1, v2, chi2
+    """
+    return _view(inplane_blocks, "inplane_stiffness", length=length, EI_chordwise=EI_chordwise)
 
 
 def inplane_blocks_d(length, m, rho_Iz, EI_chordwise):

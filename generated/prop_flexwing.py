@@ -8,9 +8,10 @@ may be an array and all arguments broadcast together; each function returns an a
 shape ``broadcast_shape + (rows, cols)``.
 
 The block functions (`structure_blocks`, `aero_blocks`) return several of these matrices
-at once (a dict), broadcasting their arguments once.  Their code is each matrix's own common
-subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
-functions.
+at once (a dict), broadcasting their arguments once, with one common-subexpression elimination
+over all their matrices; the runtime calls them.  The function of each of their matrices
+(`As`, `Bs`, `Cs_viscous`, `Ds`, `Es`, `Fs`, `Gs`, `Hs`, `Aa`, `Ba`, `Ca`, `Da`, `Ea`, `Fa`, `P1`, `P2`, `P3`, `P4`, `P5`, `P6`) is a view: it calls its block function
+(`VIEWS` names it) and returns that matrix.
 
 The derivative functions (`structure_blocks_d`, `aero_blocks_d`, `Cs_hysteretic_d`, `e_alpha_geometry_d`, `inertia_d`) return the
 exact parameter derivatives of those matrices: ``{matrix name: {parameter name: array}}`` with
@@ -136,6 +137,30 @@ BLOCKS = {
     "aero_blocks": (('e_theta', 'e_psi', 'e_alpha', 'rho', 'V', 'R', 'CZ_theta', 'CZ_psi', 'CZ_q', 'CZ_r', 'Cm_theta', 'Cm_psi', 'Cm_q', 'Cm_r', 'CY_theta', 'CY_psi', 'CY_q', 'CY_r', 'Cn_theta', 'Cn_psi', 'Cn_q', 'Cn_r'), ('Aa', 'Ba', 'Ca', 'Da', 'Ea', 'Fa', 'P1', 'P2', 'P3', 'P4', 'P5', 'P6')),
 }
 
+#: matrix function name -> the block function it is a view of
+VIEWS = {
+    "As": "structure_blocks",
+    "Bs": "structure_blocks",
+    "Cs_viscous": "structure_blocks",
+    "Ds": "structure_blocks",
+    "Es": "structure_blocks",
+    "Fs": "structure_blocks",
+    "Gs": "structure_blocks",
+    "Hs": "structure_blocks",
+    "Aa": "aero_blocks",
+    "Ba": "aero_blocks",
+    "Ca": "aero_blocks",
+    "Da": "aero_blocks",
+    "Ea": "aero_blocks",
+    "Fa": "aero_blocks",
+    "P1": "aero_blocks",
+    "P2": "aero_blocks",
+    "P3": "aero_blocks",
+    "P4": "aero_blocks",
+    "P5": "aero_blocks",
+    "P6": "aero_blocks",
+}
+
 #: derivative function name -> (argument names, {matrix name: parameters it depends on})
 PARTIALS = {
     "structure_blocks_d": (('I_Omega', 'M_P', 'S_theta_P', 'I_theta_P', 'I_psi_P', 'S_alpha_P', 'I_alpha_P', 'I_theta_alpha_P', 'Omega', 'K_theta', 'K_psi', 'zeta_theta', 'zeta_psi'), {'As': ('I_theta_P', 'I_psi_P'), 'Bs': ('S_theta_P', 'I_theta_alpha_P'), 'Cs_viscous': ('I_Omega', 'I_theta_P', 'I_psi_P', 'Omega', 'K_theta', 'K_psi', 'zeta_theta', 'zeta_psi'), 'Ds': ('I_Omega', 'Omega'), 'Es': ('K_theta', 'K_psi'), 'Fs': ('S_theta_P', 'I_theta_alpha_P'), 'Gs': ('M_P', 'S_alpha_P', 'I_alpha_P'), 'Hs': ('I_Omega', 'Omega')}),
@@ -151,18 +176,305 @@ def _broadcast(*args):
     return arrays[0].shape, arrays
 
 
+def _view(block, name, **values):
+    """Matrix `name` of block function `block` at `values`, the block's other arguments NaN
+    (only its other matrices depend on them: the result is that of `values` alone)."""
+    return block(**{a: values.get(a, numpy.nan) for a in BLOCKS[block.__name__][0]})[name]
+
+
+def structure_blocks(I_Omega, M_P, S_theta_P, I_theta_P, I_psi_P, S_alpha_P, I_alpha_P, I_theta_alpha_P, Omega, K_theta, K_psi, zeta_theta, zeta_psi):
+    """As, Bs, Cs_viscous, Ds, Es, Fs, Gs, Hs at once.
+
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the matrices.
+
+    Parameters
+    ----------
+    I_Omega : array_like
+        rotor mass moment of inertia about its rotation axis [kg m^2]
+    M_P : array_like
+        pivoting propeller–engine mass [kg]
+    S_theta_P : array_like
+        static moment of the pivoting mass about the pitch pivot, Σ m (x − l_θ) [kg m]
+    I_theta_P : array_like
+        moment of inertia of the pivoting mass about the pitch pivot [kg m^2]
+    I_psi_P : array_like
+        moment of inertia of the pivoting mass about the yaw pivot [kg m^2]
+    S_alpha_P : array_like
+        static moment of the pivoting mass about the wing elastic axis [kg m]
+    I_alpha_P : array_like
+        moment of inertia of the pivoting mass about the wing elastic axis [kg m^2]
+    I_theta_alpha_P : array_like
+        product of inertia Σ m (x − a_P b_P)(x − l_θ) [kg m^2]
+    Omega : array_like
+        propeller rotational speed [rad/s]
+    K_theta : array_like
+        pitch stiffness of the propeller attachment [N m/rad]
+    K_psi : array_like
+        yaw stiffness of the propeller attachment [N m/rad]
+    zeta_theta : array_like
+        viscous damping ratio in pitch (fraction of critical) [-]
+    zeta_psi : array_like
+        viscous damping ratio in yaw (fraction of critical) [-]
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        "As", shape (..., 2, 2): see `As`
+        "Bs", shape (..., 2, 2): see `Bs`
+        "Cs_viscous", shape (..., 2, 2): see `Cs_viscous`
+        "Ds", shape (..., 2, 2): see `Ds`
+        "Es", shape (..., 2, 2): see `Es`
+        "Fs", shape (..., 2, 2): see `Fs`
+        "Gs", shape (..., 2, 2): see `Gs`
+        "Hs", shape (..., 2, 2): see `Hs`
+        (``...`` is the broadcast shape of all the arguments).
+    """
+    shape, (I_Omega, M_P, S_theta_P, I_theta_P, I_psi_P, S_alpha_P, I_alpha_P, I_theta_alpha_P, Omega, K_theta, K_psi, zeta_theta, zeta_psi,) = _broadcast(I_Omega, M_P, S_theta_P, I_theta_P, I_psi_P, S_alpha_P, I_alpha_P, I_theta_alpha_P, Omega, K_theta, K_psi, zeta_theta, zeta_psi)
+    _c0 = I_Omega*Omega
+    _c1 = -_c0
+    _o0 = numpy.zeros(shape + (2, 2))
+    _o0[..., 0, 0] = I_theta_P
+    _o0[..., 1, 1] = I_psi_P
+    _o1 = numpy.zeros(shape + (2, 2))
+    _o1[..., 0, 0] = S_theta_P
+    _o1[..., 0, 1] = I_theta_alpha_P
+    _o2 = numpy.zeros(shape + (2, 2))
+    _o2[..., 0, 0] = 2*numpy.sqrt(I_theta_P)*numpy.sqrt(K_theta)*zeta_theta
+    _o2[..., 0, 1] = _c0
+    _o2[..., 1, 0] = _c1
+    _o2[..., 1, 1] = 2*numpy.sqrt(I_psi_P)*numpy.sqrt(K_psi)*zeta_psi
+    _o3 = numpy.zeros(shape + (2, 2))
+    _o3[..., 1, 1] = _c1
+    _o4 = numpy.zeros(shape + (2, 2))
+    _o4[..., 0, 0] = K_theta
+    _o4[..., 1, 1] = K_psi
+    _o5 = numpy.zeros(shape + (2, 2))
+    _o5[..., 0, 0] = S_theta_P
+    _o5[..., 1, 0] = I_theta_alpha_P
+    _o6 = numpy.zeros(shape + (2, 2))
+    _o6[..., 0, 0] = M_P
+    _o6[..., 0, 1] = S_alpha_P
+    _o6[..., 1, 0] = S_alpha_P
+    _o6[..., 1, 1] = I_alpha_P
+    _o7 = numpy.zeros(shape + (2, 2))
+    _o7[..., 1, 1] = _c0
+    return {
+        "As": _o0,
+        "Bs": _o1,
+        "Cs_viscous": _o2,
+        "Ds": _o3,
+        "Es": _o4,
+        "Fs": _o5,
+        "Gs": _o6,
+        "Hs": _o7,
+    }
+
+
+def aero_blocks(e_theta, e_psi, e_alpha, rho, V, R, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
+    """Aa, Ba, Ca, Da, Ea, Fa, P1, P2, P3, P4, P5, P6 at once.
+
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the matrices.
+
+    Parameters
+    ----------
+    e_theta : array_like
+        propeller plane aft of the pitch pivot (signed; < 0 for a tractor) [m]
+    e_psi : array_like
+        propeller plane aft of the yaw pivot (signed; < 0 for a tractor) [m]
+    e_alpha : array_like
+        propeller plane aft of the wing elastic axis, e_θ + l_θ − a_P b_P (8.35) [m]
+    rho : array_like
+        air density [kg/m^3]
+    V : array_like
+        free-stream (inflow) velocity [m/s]
+    R : array_like
+        propeller radius [m]
+    CZ_theta : array_like
+        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
+    CZ_psi : array_like
+        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
+    CZ_q : array_like
+        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
+    CZ_r : array_like
+        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    Cm_theta : array_like
+        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
+    Cm_psi : array_like
+        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
+    Cm_q : array_like
+        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
+    Cm_r : array_like
+        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    CY_theta : array_like
+        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
+    CY_psi : array_like
+        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
+    CY_q : array_like
+        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
+    CY_r : array_like
+        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    Cn_theta : array_like
+        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
+    Cn_psi : array_like
+        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
+    Cn_q : array_like
+        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
+    Cn_r : array_like
+        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        "Aa", shape (..., 2, 2): see `Aa`
+        "Ba", shape (..., 2, 2): see `Ba`
+        "Ca", shape (..., 2, 2): see `Ca`
+        "Da", shape (..., 2, 2): see `Da`
+        "Ea", shape (..., 2, 2): see `Ea`
+        "Fa", shape (..., 2, 2): see `Fa`
+        "P1", shape (..., 2, 2): see `P1`
+        "P2", shape (..., 2, 2): see `P2`
+        "P3", shape (..., 2, 2): see `P3`
+        "P4", shape (..., 2, 2): see `P4`
+        "P5", shape (..., 2, 2): see `P5`
+        "P6", shape (..., 2, 2): see `P6`
+        (``...`` is the broadcast shape of all the arguments).
+    """
+    shape, (e_theta, e_psi, e_alpha, rho, V, R, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(e_theta, e_psi, e_alpha, rho, V, R, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
+    _c0 = R**4
+    _c1 = numpy.pi*rho
+    _c2 = _c0*_c1
+    _c3 = Cm_q*_c2
+    _c4 = _c3*e_theta
+    _c5 = e_theta**2
+    _c6 = R**3
+    _c7 = _c1*_c6
+    _c8 = (1/2)*_c7
+    _c9 = CZ_q*_c8
+    _c10 = Cm_r*_c2*e_psi
+    _c11 = _c8*e_psi
+    _c12 = CZ_r*_c11
+    _c13 = CY_q*_c11
+    _c14 = e_psi**2
+    _c15 = _c9*e_theta
+    _c16 = _c3*e_alpha
+    _c17 = _c15*e_alpha
+    _c18 = V*_c7
+    _c19 = Cm_theta*_c18
+    _c20 = _c19*e_theta
+    _c21 = (1/2)*R**2*_c1
+    _c22 = CZ_theta*_c21
+    _c23 = V*_c22
+    _c24 = V*_c3
+    _c25 = (1/2)*_c18
+    _c26 = CZ_q*_c25
+    _c27 = _c24 + _c26*e_theta
+    _c28 = CZ_r*_c25
+    _c29 = V*_c21
+    _c30 = CZ_psi*_c29*e_psi
+    _c31 = _c18*e_psi
+    _c32 = Cm_psi*_c31 + Cm_r*V*_c2
+    _c33 = CY_theta*e_psi
+    _c34 = _c29*_c33
+    _c35 = (1/2)*_c31
+    _c36 = CY_q*_c35 - numpy.pi*Cn_q*V*_c0*rho
+    _c37 = _c23*e_theta
+    _c38 = _c19*e_alpha
+    _c39 = _c37*e_alpha
+    _c40 = V**2
+    _c41 = _c40*_c7
+    _c42 = Cm_theta*_c41
+    _c43 = _c22*_c40
+    _c44 = _c42 + _c43*e_theta
+    _c45 = Cm_psi*_c41
+    _c46 = _c21*_c40
+    _c47 = CZ_psi*_c46
+    _c48 = numpy.pi*Cn_theta*_c40*_c6*rho - _c33*_c46
+    _c49 = _c9*e_alpha
+    _c50 = e_alpha**2
+    _c51 = _c24 + _c26*e_alpha
+    _c52 = _c23*e_alpha
+    _c53 = _c42 + _c43*e_alpha
+    _o0 = numpy.zeros(shape + (2, 2))
+    _o0[..., 0, 0] = _c4 + _c5*_c9
+    _o0[..., 0, 1] = _c10 + _c12*e_theta
+    _o0[..., 1, 0] = numpy.pi*Cn_q*_c0*e_theta*rho - _c13*e_theta
+    _o0[..., 1, 1] = -CY_r*_c14*_c8 + numpy.pi*Cn_r*_c0*e_psi*rho
+    _o1 = numpy.zeros(shape + (2, 2))
+    _o1[..., 0, 0] = _c15 + _c3
+    _o1[..., 0, 1] = _c16 + _c17
+    _o1[..., 1, 0] = numpy.pi*Cn_q*_c0*rho - _c13
+    _o1[..., 1, 1] = numpy.pi*Cn_q*_c0*e_alpha*rho - _c13*e_alpha
+    _o2 = numpy.zeros(shape + (2, 2))
+    _o2[..., 0, 0] = _c20 + _c23*_c5 + _c27
+    _o2[..., 0, 1] = _c28*e_theta + _c30*e_theta + _c32
+    _o2[..., 1, 0] = numpy.pi*Cn_theta*V*_c6*e_theta*rho - _c34*e_theta - _c36
+    _o2[..., 1, 1] = -CY_psi*_c14*_c29 - CY_r*_c35 + numpy.pi*Cn_psi*V*_c6*e_psi*rho + numpy.pi*Cn_r*V*_c0*rho
+    _o3 = numpy.zeros(shape + (2, 2))
+    _o3[..., 0, 0] = _c19 + _c37
+    _o3[..., 0, 1] = _c27 + _c38 + _c39
+    _o3[..., 1, 0] = numpy.pi*Cn_theta*V*_c6*rho - _c34
+    _o3[..., 1, 1] = numpy.pi*Cn_theta*V*_c6*e_alpha*rho - _c34*e_alpha - _c36
+    _o4 = numpy.zeros(shape + (2, 2))
+    _o4[..., 0, 0] = _c44
+    _o4[..., 0, 1] = _c45 + _c47*e_theta
+    _o4[..., 1, 0] = _c48
+    _o4[..., 1, 1] = -CY_psi*_c46*e_psi + numpy.pi*Cn_psi*_c40*_c6*rho
+    _o5 = numpy.zeros(shape + (2, 2))
+    _o5[..., 0, 1] = _c44
+    _o5[..., 1, 1] = _c48
+    _o6 = numpy.zeros(shape + (2, 2))
+    _o6[..., 0, 0] = _c15
+    _o6[..., 0, 1] = _c12
+    _o6[..., 1, 0] = _c17 + _c4
+    _o6[..., 1, 1] = _c10 + _c12*e_alpha
+    _o7 = numpy.zeros(shape + (2, 2))
+    _o7[..., 0, 0] = _c9
+    _o7[..., 0, 1] = _c49
+    _o7[..., 1, 0] = _c3 + _c49
+    _o7[..., 1, 1] = _c16 + _c50*_c9
+    _o8 = numpy.zeros(shape + (2, 2))
+    _o8[..., 0, 0] = _c26 + _c37
+    _o8[..., 0, 1] = _c28 + _c30
+    _o8[..., 1, 0] = _c20 + _c39 + _c51
+    _o8[..., 1, 1] = _c28*e_alpha + _c30*e_alpha + _c32
+    _o9 = numpy.zeros(shape + (2, 2))
+    _o9[..., 0, 0] = _c23
+    _o9[..., 0, 1] = _c26 + _c52
+    _o9[..., 1, 0] = _c19 + _c52
+    _o9[..., 1, 1] = _c23*_c50 + _c38 + _c51
+    _o10 = numpy.zeros(shape + (2, 2))
+    _o10[..., 0, 0] = _c43
+    _o10[..., 0, 1] = _c47
+    _o10[..., 1, 0] = _c53
+    _o10[..., 1, 1] = _c45 + _c47*e_alpha
+    _o11 = numpy.zeros(shape + (2, 2))
+    _o11[..., 0, 1] = _c43
+    _o11[..., 1, 1] = _c53
+    return {
+        "Aa": _o0,
+        "Ba": _o1,
+        "Ca": _o2,
+        "Da": _o3,
+        "Ea": _o4,
+        "Fa": _o5,
+        "P1": _o6,
+        "P2": _o7,
+        "P3": _o8,
+        "P4": _o9,
+        "P5": _o10,
+        "P6": _o11,
+    }
+
 
 def As(I_theta_P, I_psi_P):
     """Propeller structural mass A_s (rows θ, ψ; columns θ, ψ).
 
     Thesis equations 8.13, 8.15.
 
-    Parameters
-    ----------
-    I_theta_P : array_like
-        moment of inertia of the pivoting mass about the pitch pivot [kg m^2]
-    I_psi_P : array_like
-        moment of inertia of the pivoting mass about the yaw pivot [kg m^2]
+    A view: `structure_blocks`'s "As" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `structure_blocks`).
 
     Returns
     -------
@@ -170,11 +482,7 @@ def As(I_theta_P, I_psi_P):
         rows: theta, psi
         columns: theta, psi
     """
-    shape, (I_theta_P, I_psi_P,) = _broadcast(I_theta_P, I_psi_P)
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = I_theta_P
-    out[..., 1, 1] = I_psi_P
-    return out
+    return _view(structure_blocks, "As", I_theta_P=I_theta_P, I_psi_P=I_psi_P)
 
 
 def Bs(S_theta_P, I_theta_alpha_P):
@@ -182,12 +490,8 @@ def Bs(S_theta_P, I_theta_alpha_P):
 
     Thesis equations 8.13, 8.16.
 
-    Parameters
-    ----------
-    S_theta_P : array_like
-        static moment of the pivoting mass about the pitch pivot, Σ m (x − l_θ) [kg m]
-    I_theta_alpha_P : array_like
-        product of inertia Σ m (x − a_P b_P)(x − l_θ) [kg m^2]
+    A view: `structure_blocks`'s "Bs" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `structure_blocks`).
 
     Returns
     -------
@@ -195,11 +499,7 @@ def Bs(S_theta_P, I_theta_alpha_P):
         rows: theta, psi
         columns: h_P, alpha_P
     """
-    shape, (S_theta_P, I_theta_alpha_P,) = _broadcast(S_theta_P, I_theta_alpha_P)
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = S_theta_P
-    out[..., 0, 1] = I_theta_alpha_P
-    return out
+    return _view(structure_blocks, "Bs", S_theta_P=S_theta_P, I_theta_alpha_P=I_theta_alpha_P)
 
 
 def Cs_hysteretic(I_Omega, Omega, K_theta, K_psi, g_theta, g_psi, omega):
@@ -246,24 +546,8 @@ def Cs_viscous(I_Omega, Omega, I_theta_P, I_psi_P, K_theta, K_psi, zeta_theta, z
 
     Thesis equations 8.10, 8.13, 8.17.
 
-    Parameters
-    ----------
-    I_Omega : array_like
-        rotor mass moment of inertia about its rotation axis [kg m^2]
-    Omega : array_like
-        propeller rotational speed [rad/s]
-    I_theta_P : array_like
-        moment of inertia of the pivoting mass about the pitch pivot [kg m^2]
-    I_psi_P : array_like
-        moment of inertia of the pivoting mass about the yaw pivot [kg m^2]
-    K_theta : array_like
-        pitch stiffness of the propeller attachment [N m/rad]
-    K_psi : array_like
-        yaw stiffness of the propeller attachment [N m/rad]
-    zeta_theta : array_like
-        viscous damping ratio in pitch (fraction of critical) [-]
-    zeta_psi : array_like
-        viscous damping ratio in yaw (fraction of critical) [-]
+    A view: `structure_blocks`'s "Cs_viscous" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `structure_blocks`).
 
     Returns
     -------
@@ -271,14 +555,7 @@ def Cs_viscous(I_Omega, Omega, I_theta_P, I_psi_P, K_theta, K_psi, zeta_theta, z
         rows: theta, psi
         columns: theta, psi
     """
-    shape, (I_Omega, Omega, I_theta_P, I_psi_P, K_theta, K_psi, zeta_theta, zeta_psi,) = _broadcast(I_Omega, Omega, I_theta_P, I_psi_P, K_theta, K_psi, zeta_theta, zeta_psi)
-    _c0 = I_Omega*Omega
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = 2*numpy.sqrt(I_theta_P)*numpy.sqrt(K_theta)*zeta_theta
-    out[..., 0, 1] = _c0
-    out[..., 1, 0] = -_c0
-    out[..., 1, 1] = 2*numpy.sqrt(I_psi_P)*numpy.sqrt(K_psi)*zeta_psi
-    return out
+    return _view(structure_blocks, "Cs_viscous", I_Omega=I_Omega, Omega=Omega, I_theta_P=I_theta_P, I_psi_P=I_psi_P, K_theta=K_theta, K_psi=K_psi, zeta_theta=zeta_theta, zeta_psi=zeta_psi)
 
 
 def Ds(I_Omega, Omega):
@@ -286,12 +563,8 @@ def Ds(I_Omega, Omega):
 
     Thesis equations 8.13, 8.18.
 
-    Parameters
-    ----------
-    I_Omega : array_like
-        rotor mass moment of inertia about its rotation axis [kg m^2]
-    Omega : array_like
-        propeller rotational speed [rad/s]
+    A view: `structure_blocks`'s "Ds" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `structure_blocks`).
 
     Returns
     -------
@@ -299,10 +572,7 @@ def Ds(I_Omega, Omega):
         rows: theta, psi
         columns: h_P, alpha_P
     """
-    shape, (I_Omega, Omega,) = _broadcast(I_Omega, Omega)
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 1, 1] = -I_Omega*Omega
-    return out
+    return _view(structure_blocks, "Ds", I_Omega=I_Omega, Omega=Omega)
 
 
 def Es(K_theta, K_psi):
@@ -310,12 +580,8 @@ def Es(K_theta, K_psi):
 
     Thesis equations 8.13, 8.19.
 
-    Parameters
-    ----------
-    K_theta : array_like
-        pitch stiffness of the propeller attachment [N m/rad]
-    K_psi : array_like
-        yaw stiffness of the propeller attachment [N m/rad]
+    A view: `structure_blocks`'s "Es" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `structure_blocks`).
 
     Returns
     -------
@@ -323,11 +589,7 @@ def Es(K_theta, K_psi):
         rows: theta, psi
         columns: theta, psi
     """
-    shape, (K_theta, K_psi,) = _broadcast(K_theta, K_psi)
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = K_theta
-    out[..., 1, 1] = K_psi
-    return out
+    return _view(structure_blocks, "Es", K_theta=K_theta, K_psi=K_psi)
 
 
 def Fs(S_theta_P, I_theta_alpha_P):
@@ -335,12 +597,8 @@ def Fs(S_theta_P, I_theta_alpha_P):
 
     Thesis equations 8.13, 8.21.
 
-    Parameters
-    ----------
-    S_theta_P : array_like
-        static moment of the pivoting mass about the pitch pivot, Σ m (x − l_θ) [kg m]
-    I_theta_alpha_P : array_like
-        product of inertia Σ m (x − a_P b_P)(x − l_θ) [kg m^2]
+    A view: `structure_blocks`'s "Fs" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `structure_blocks`).
 
     Returns
     -------
@@ -348,11 +606,7 @@ def Fs(S_theta_P, I_theta_alpha_P):
         rows: h_P, alpha_P
         columns: theta, psi
     """
-    shape, (S_theta_P, I_theta_alpha_P,) = _broadcast(S_theta_P, I_theta_alpha_P)
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = S_theta_P
-    out[..., 1, 0] = I_theta_alpha_P
-    return out
+    return _view(structure_blocks, "Fs", S_theta_P=S_theta_P, I_theta_alpha_P=I_theta_alpha_P)
 
 
 def Gs(M_P, S_alpha_P, I_alpha_P):
@@ -360,14 +614,8 @@ def Gs(M_P, S_alpha_P, I_alpha_P):
 
     Thesis equations 8.13, 8.22.
 
-    Parameters
-    ----------
-    M_P : array_like
-        pivoting propeller–engine mass [kg]
-    S_alpha_P : array_like
-        static moment of the pivoting mass about the wing elastic axis [kg m]
-    I_alpha_P : array_like
-        moment of inertia of the pivoting mass about the wing elastic axis [kg m^2]
+    A view: `structure_blocks`'s "Gs" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `structure_blocks`).
 
     Returns
     -------
@@ -375,13 +623,7 @@ def Gs(M_P, S_alpha_P, I_alpha_P):
         rows: h_P, alpha_P
         columns: h_P, alpha_P
     """
-    shape, (M_P, S_alpha_P, I_alpha_P,) = _broadcast(M_P, S_alpha_P, I_alpha_P)
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = M_P
-    out[..., 0, 1] = S_alpha_P
-    out[..., 1, 0] = S_alpha_P
-    out[..., 1, 1] = I_alpha_P
-    return out
+    return _view(structure_blocks, "Gs", M_P=M_P, S_alpha_P=S_alpha_P, I_alpha_P=I_alpha_P)
 
 
 def Hs(I_Omega, Omega):
@@ -389,12 +631,8 @@ def Hs(I_Omega, Omega):
 
     Thesis equations 8.13, 8.23.
 
-    Parameters
-    ----------
-    I_Omega : array_like
-        rotor mass moment of inertia about its rotation axis [kg m^2]
-    Omega : array_like
-        propeller rotational speed [rad/s]
+    A view: `structure_blocks`'s "Hs" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `structure_blocks`).
 
     Returns
     -------
@@ -402,10 +640,7 @@ def Hs(I_Omega, Omega):
         rows: h_P, alpha_P
         columns: theta, psi
     """
-    shape, (I_Omega, Omega,) = _broadcast(I_Omega, Omega)
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 1, 1] = I_Omega*Omega
-    return out
+    return _view(structure_blocks, "Hs", I_Omega=I_Omega, Omega=Omega)
 
 
 def Aa(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
@@ -413,52 +648,8 @@ def Aa(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
 
     Thesis equations 4.25, 8.26, 8.25, 8.28.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        free-stream (inflow) velocity [m/s]
-    R : array_like
-        propeller radius [m]
-    e_theta : array_like
-        propeller plane aft of the pitch pivot (signed; < 0 for a tractor) [m]
-    e_psi : array_like
-        propeller plane aft of the yaw pivot (signed; < 0 for a tractor) [m]
-    e_alpha : array_like
-        propeller plane aft of the wing elastic axis, e_θ + l_θ − a_P b_P (8.35) [m]
-    CZ_theta : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
-    CZ_psi : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CZ_q : array_like
-        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CZ_r : array_like
-        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cm_theta : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cm_psi : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cm_q : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cm_r : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    CY_theta : array_like
-        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
-    CY_psi : array_like
-        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CY_q : array_like
-        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CY_r : array_like
-        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cn_theta : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cn_psi : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cn_q : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cn_r : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    A view: `aero_blocks`'s "Aa" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `aero_blocks`).
 
     Returns
     -------
@@ -466,18 +657,7 @@ def Aa(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
         rows: theta, psi
         columns: theta, psi
     """
-    shape, (rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
-    _c0 = R**4
-    _c1 = numpy.pi*rho
-    _c2 = _c0*_c1
-    _c3 = (1/2)*R**3*_c1
-    _c4 = _c3*e_psi*e_theta
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = CZ_q*_c3*e_theta**2 + Cm_q*_c2*e_theta
-    out[..., 0, 1] = CZ_r*_c4 + Cm_r*_c2*e_psi
-    out[..., 1, 0] = -CY_q*_c4 + numpy.pi*Cn_q*_c0*e_theta*rho
-    out[..., 1, 1] = -CY_r*_c3*e_psi**2 + numpy.pi*Cn_r*_c0*e_psi*rho
-    return out
+    return _view(aero_blocks, "Aa", rho=rho, V=V, R=R, e_theta=e_theta, e_psi=e_psi, e_alpha=e_alpha, CZ_theta=CZ_theta, CZ_psi=CZ_psi, CZ_q=CZ_q, CZ_r=CZ_r, Cm_theta=Cm_theta, Cm_psi=Cm_psi, Cm_q=Cm_q, Cm_r=Cm_r, CY_theta=CY_theta, CY_psi=CY_psi, CY_q=CY_q, CY_r=CY_r, Cn_theta=Cn_theta, Cn_psi=Cn_psi, Cn_q=Cn_q, Cn_r=Cn_r)
 
 
 def Ba(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
@@ -485,52 +665,8 @@ def Ba(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
 
     Thesis equations 4.25, 8.26, 8.25, 8.29.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        free-stream (inflow) velocity [m/s]
-    R : array_like
-        propeller radius [m]
-    e_theta : array_like
-        propeller plane aft of the pitch pivot (signed; < 0 for a tractor) [m]
-    e_psi : array_like
-        propeller plane aft of the yaw pivot (signed; < 0 for a tractor) [m]
-    e_alpha : array_like
-        propeller plane aft of the wing elastic axis, e_θ + l_θ − a_P b_P (8.35) [m]
-    CZ_theta : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
-    CZ_psi : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CZ_q : array_like
-        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CZ_r : array_like
-        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cm_theta : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cm_psi : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cm_q : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cm_r : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    CY_theta : array_like
-        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
-    CY_psi : array_like
-        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CY_q : array_like
-        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CY_r : array_like
-        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cn_theta : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cn_psi : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cn_q : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cn_r : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    A view: `aero_blocks`'s "Ba" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `aero_blocks`).
 
     Returns
     -------
@@ -538,19 +674,7 @@ def Ba(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
         rows: theta, psi
         columns: h_P, alpha_P
     """
-    shape, (rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
-    _c0 = R**4
-    _c1 = numpy.pi*rho
-    _c2 = Cm_q*_c0*_c1
-    _c3 = (1/2)*R**3*_c1
-    _c4 = CZ_q*_c3*e_theta
-    _c5 = CY_q*_c3*e_psi
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = _c2 + _c4
-    out[..., 0, 1] = _c2*e_alpha + _c4*e_alpha
-    out[..., 1, 0] = numpy.pi*Cn_q*_c0*rho - _c5
-    out[..., 1, 1] = numpy.pi*Cn_q*_c0*e_alpha*rho - _c5*e_alpha
-    return out
+    return _view(aero_blocks, "Ba", rho=rho, V=V, R=R, e_theta=e_theta, e_psi=e_psi, e_alpha=e_alpha, CZ_theta=CZ_theta, CZ_psi=CZ_psi, CZ_q=CZ_q, CZ_r=CZ_r, Cm_theta=Cm_theta, Cm_psi=Cm_psi, Cm_q=Cm_q, Cm_r=Cm_r, CY_theta=CY_theta, CY_psi=CY_psi, CY_q=CY_q, CY_r=CY_r, Cn_theta=Cn_theta, Cn_psi=Cn_psi, Cn_q=Cn_q, Cn_r=Cn_r)
 
 
 def Ca(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
@@ -558,52 +682,8 @@ def Ca(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
 
     Thesis equations 4.25, 8.26, 8.25, 8.30.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        free-stream (inflow) velocity [m/s]
-    R : array_like
-        propeller radius [m]
-    e_theta : array_like
-        propeller plane aft of the pitch pivot (signed; < 0 for a tractor) [m]
-    e_psi : array_like
-        propeller plane aft of the yaw pivot (signed; < 0 for a tractor) [m]
-    e_alpha : array_like
-        propeller plane aft of the wing elastic axis, e_θ + l_θ − a_P b_P (8.35) [m]
-    CZ_theta : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
-    CZ_psi : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CZ_q : array_like
-        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CZ_r : array_like
-        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cm_theta : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cm_psi : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cm_q : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cm_r : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    CY_theta : array_like
-        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
-    CY_psi : array_like
-        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CY_q : array_like
-        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CY_r : array_like
-        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cn_theta : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cn_psi : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cn_q : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cn_r : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    A view: `aero_blocks`'s "Ca" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `aero_blocks`).
 
     Returns
     -------
@@ -611,24 +691,7 @@ def Ca(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
         rows: theta, psi
         columns: theta, psi
     """
-    shape, (rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
-    _c0 = R**4
-    _c1 = numpy.pi*V*rho
-    _c2 = _c0*_c1
-    _c3 = R**3
-    _c4 = _c1*_c3
-    _c5 = _c4*e_theta
-    _c6 = (1/2)*_c5
-    _c7 = (1/2)*R**2*_c1
-    _c8 = _c4*e_psi
-    _c9 = _c7*e_psi*e_theta
-    _c10 = (1/2)*_c8
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = CZ_q*_c6 + CZ_theta*_c7*e_theta**2 + Cm_q*_c2 + Cm_theta*_c5
-    out[..., 0, 1] = CZ_psi*_c9 + CZ_r*_c6 + Cm_psi*_c8 + Cm_r*_c2
-    out[..., 1, 0] = -CY_q*_c10 - CY_theta*_c9 + numpy.pi*Cn_q*V*_c0*rho + numpy.pi*Cn_theta*V*_c3*e_theta*rho
-    out[..., 1, 1] = -CY_psi*_c7*e_psi**2 - CY_r*_c10 + numpy.pi*Cn_psi*V*_c3*e_psi*rho + numpy.pi*Cn_r*V*_c0*rho
-    return out
+    return _view(aero_blocks, "Ca", rho=rho, V=V, R=R, e_theta=e_theta, e_psi=e_psi, e_alpha=e_alpha, CZ_theta=CZ_theta, CZ_psi=CZ_psi, CZ_q=CZ_q, CZ_r=CZ_r, Cm_theta=Cm_theta, Cm_psi=Cm_psi, Cm_q=Cm_q, Cm_r=Cm_r, CY_theta=CY_theta, CY_psi=CY_psi, CY_q=CY_q, CY_r=CY_r, Cn_theta=Cn_theta, Cn_psi=Cn_psi, Cn_q=Cn_q, Cn_r=Cn_r)
 
 
 def Da(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
@@ -636,52 +699,8 @@ def Da(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
 
     Thesis equations 4.25, 8.26, 8.25, 8.31.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        free-stream (inflow) velocity [m/s]
-    R : array_like
-        propeller radius [m]
-    e_theta : array_like
-        propeller plane aft of the pitch pivot (signed; < 0 for a tractor) [m]
-    e_psi : array_like
-        propeller plane aft of the yaw pivot (signed; < 0 for a tractor) [m]
-    e_alpha : array_like
-        propeller plane aft of the wing elastic axis, e_θ + l_θ − a_P b_P (8.35) [m]
-    CZ_theta : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
-    CZ_psi : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CZ_q : array_like
-        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CZ_r : array_like
-        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cm_theta : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cm_psi : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cm_q : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cm_r : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    CY_theta : array_like
-        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
-    CY_psi : array_like
-        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CY_q : array_like
-        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CY_r : array_like
-        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cn_theta : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cn_psi : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cn_q : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cn_r : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    A view: `aero_blocks`'s "Da" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `aero_blocks`).
 
     Returns
     -------
@@ -689,23 +708,7 @@ def Da(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
         rows: theta, psi
         columns: h_P, alpha_P
     """
-    shape, (rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
-    _c0 = R**3
-    _c1 = numpy.pi*V*rho
-    _c2 = _c0*_c1
-    _c3 = Cm_theta*_c2
-    _c4 = (1/2)*e_theta
-    _c5 = R**2*_c1
-    _c6 = CZ_theta*_c4*_c5
-    _c7 = R**4
-    _c8 = (1/2)*e_psi
-    _c9 = CY_theta*_c5*_c8
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = _c3 + _c6
-    out[..., 0, 1] = CZ_q*_c2*_c4 + Cm_q*_c1*_c7 + _c3*e_alpha + _c6*e_alpha
-    out[..., 1, 0] = numpy.pi*Cn_theta*V*_c0*rho - _c9
-    out[..., 1, 1] = -CY_q*_c2*_c8 + numpy.pi*Cn_q*V*_c7*rho + numpy.pi*Cn_theta*V*_c0*e_alpha*rho - _c9*e_alpha
-    return out
+    return _view(aero_blocks, "Da", rho=rho, V=V, R=R, e_theta=e_theta, e_psi=e_psi, e_alpha=e_alpha, CZ_theta=CZ_theta, CZ_psi=CZ_psi, CZ_q=CZ_q, CZ_r=CZ_r, Cm_theta=Cm_theta, Cm_psi=Cm_psi, Cm_q=Cm_q, Cm_r=Cm_r, CY_theta=CY_theta, CY_psi=CY_psi, CY_q=CY_q, CY_r=CY_r, Cn_theta=Cn_theta, Cn_psi=Cn_psi, Cn_q=Cn_q, Cn_r=Cn_r)
 
 
 def Ea(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
@@ -713,52 +716,8 @@ def Ea(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
 
     Thesis equations 4.25, 8.26, 8.25, 8.32.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        free-stream (inflow) velocity [m/s]
-    R : array_like
-        propeller radius [m]
-    e_theta : array_like
-        propeller plane aft of the pitch pivot (signed; < 0 for a tractor) [m]
-    e_psi : array_like
-        propeller plane aft of the yaw pivot (signed; < 0 for a tractor) [m]
-    e_alpha : array_like
-        propeller plane aft of the wing elastic axis, e_θ + l_θ − a_P b_P (8.35) [m]
-    CZ_theta : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
-    CZ_psi : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CZ_q : array_like
-        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CZ_r : array_like
-        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cm_theta : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cm_psi : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cm_q : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cm_r : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    CY_theta : array_like
-        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
-    CY_psi : array_like
-        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CY_q : array_like
-        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CY_r : array_like
-        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cn_theta : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cn_psi : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cn_q : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cn_r : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    A view: `aero_blocks`'s "Ea" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `aero_blocks`).
 
     Returns
     -------
@@ -766,20 +725,7 @@ def Ea(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
         rows: theta, psi
         columns: theta, psi
     """
-    shape, (rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
-    _c0 = R**3
-    _c1 = V**2
-    _c2 = numpy.pi*_c1*rho
-    _c3 = _c0*_c2
-    _c4 = (1/2)*R**2*_c2
-    _c5 = _c4*e_theta
-    _c6 = _c4*e_psi
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = CZ_theta*_c5 + Cm_theta*_c3
-    out[..., 0, 1] = CZ_psi*_c5 + Cm_psi*_c3
-    out[..., 1, 0] = -CY_theta*_c6 + numpy.pi*Cn_theta*_c0*_c1*rho
-    out[..., 1, 1] = -CY_psi*_c6 + numpy.pi*Cn_psi*_c0*_c1*rho
-    return out
+    return _view(aero_blocks, "Ea", rho=rho, V=V, R=R, e_theta=e_theta, e_psi=e_psi, e_alpha=e_alpha, CZ_theta=CZ_theta, CZ_psi=CZ_psi, CZ_q=CZ_q, CZ_r=CZ_r, Cm_theta=Cm_theta, Cm_psi=Cm_psi, Cm_q=Cm_q, Cm_r=Cm_r, CY_theta=CY_theta, CY_psi=CY_psi, CY_q=CY_q, CY_r=CY_r, Cn_theta=Cn_theta, Cn_psi=Cn_psi, Cn_q=Cn_q, Cn_r=Cn_r)
 
 
 def Fa(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
@@ -787,52 +733,8 @@ def Fa(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
 
     Thesis equations 4.25, 8.26, 8.25, 8.33.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        free-stream (inflow) velocity [m/s]
-    R : array_like
-        propeller radius [m]
-    e_theta : array_like
-        propeller plane aft of the pitch pivot (signed; < 0 for a tractor) [m]
-    e_psi : array_like
-        propeller plane aft of the yaw pivot (signed; < 0 for a tractor) [m]
-    e_alpha : array_like
-        propeller plane aft of the wing elastic axis, e_θ + l_θ − a_P b_P (8.35) [m]
-    CZ_theta : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
-    CZ_psi : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CZ_q : array_like
-        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CZ_r : array_like
-        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cm_theta : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cm_psi : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cm_q : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cm_r : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    CY_theta : array_like
-        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
-    CY_psi : array_like
-        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CY_q : array_like
-        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CY_r : array_like
-        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cn_theta : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cn_psi : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cn_q : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cn_r : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    A view: `aero_blocks`'s "Fa" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `aero_blocks`).
 
     Returns
     -------
@@ -840,15 +742,7 @@ def Fa(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
         rows: theta, psi
         columns: h_P, alpha_P
     """
-    shape, (rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
-    _c0 = R**3
-    _c1 = V**2
-    _c2 = numpy.pi*_c1*rho
-    _c3 = (1/2)*R**2*_c2
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 1] = CZ_theta*_c3*e_theta + Cm_theta*_c0*_c2
-    out[..., 1, 1] = -CY_theta*_c3*e_psi + numpy.pi*Cn_theta*_c0*_c1*rho
-    return out
+    return _view(aero_blocks, "Fa", rho=rho, V=V, R=R, e_theta=e_theta, e_psi=e_psi, e_alpha=e_alpha, CZ_theta=CZ_theta, CZ_psi=CZ_psi, CZ_q=CZ_q, CZ_r=CZ_r, Cm_theta=Cm_theta, Cm_psi=Cm_psi, Cm_q=Cm_q, Cm_r=Cm_r, CY_theta=CY_theta, CY_psi=CY_psi, CY_q=CY_q, CY_r=CY_r, Cn_theta=Cn_theta, Cn_psi=Cn_psi, Cn_q=Cn_q, Cn_r=Cn_r)
 
 
 def P1(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
@@ -856,52 +750,8 @@ def P1(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
 
     Thesis equations 4.25, 8.26, 8.34, 8.37.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        free-stream (inflow) velocity [m/s]
-    R : array_like
-        propeller radius [m]
-    e_theta : array_like
-        propeller plane aft of the pitch pivot (signed; < 0 for a tractor) [m]
-    e_psi : array_like
-        propeller plane aft of the yaw pivot (signed; < 0 for a tractor) [m]
-    e_alpha : array_like
-        propeller plane aft of the wing elastic axis, e_θ + l_θ − a_P b_P (8.35) [m]
-    CZ_theta : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
-    CZ_psi : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CZ_q : array_like
-        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CZ_r : array_like
-        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cm_theta : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cm_psi : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cm_q : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cm_r : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    CY_theta : array_like
-        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
-    CY_psi : array_like
-        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CY_q : array_like
-        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CY_r : array_like
-        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cn_theta : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cn_psi : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cn_q : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cn_r : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    A view: `aero_blocks`'s "P1" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `aero_blocks`).
 
     Returns
     -------
@@ -909,18 +759,7 @@ def P1(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
         rows: h_P, alpha_P
         columns: theta, psi
     """
-    shape, (rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
-    _c0 = numpy.pi*rho
-    _c1 = (1/2)*R**3*_c0
-    _c2 = CZ_q*_c1*e_theta
-    _c3 = CZ_r*_c1*e_psi
-    _c4 = R**4*_c0
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = _c2
-    out[..., 0, 1] = _c3
-    out[..., 1, 0] = Cm_q*_c4*e_theta + _c2*e_alpha
-    out[..., 1, 1] = Cm_r*_c4*e_psi + _c3*e_alpha
-    return out
+    return _view(aero_blocks, "P1", rho=rho, V=V, R=R, e_theta=e_theta, e_psi=e_psi, e_alpha=e_alpha, CZ_theta=CZ_theta, CZ_psi=CZ_psi, CZ_q=CZ_q, CZ_r=CZ_r, Cm_theta=Cm_theta, Cm_psi=Cm_psi, Cm_q=Cm_q, Cm_r=Cm_r, CY_theta=CY_theta, CY_psi=CY_psi, CY_q=CY_q, CY_r=CY_r, Cn_theta=Cn_theta, Cn_psi=Cn_psi, Cn_q=Cn_q, Cn_r=Cn_r)
 
 
 def P2(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
@@ -928,52 +767,8 @@ def P2(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
 
     Thesis equations 4.25, 8.26, 8.34, 8.38.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        free-stream (inflow) velocity [m/s]
-    R : array_like
-        propeller radius [m]
-    e_theta : array_like
-        propeller plane aft of the pitch pivot (signed; < 0 for a tractor) [m]
-    e_psi : array_like
-        propeller plane aft of the yaw pivot (signed; < 0 for a tractor) [m]
-    e_alpha : array_like
-        propeller plane aft of the wing elastic axis, e_θ + l_θ − a_P b_P (8.35) [m]
-    CZ_theta : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
-    CZ_psi : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CZ_q : array_like
-        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CZ_r : array_like
-        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cm_theta : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cm_psi : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cm_q : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cm_r : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    CY_theta : array_like
-        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
-    CY_psi : array_like
-        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CY_q : array_like
-        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CY_r : array_like
-        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cn_theta : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cn_psi : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cn_q : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cn_r : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    A view: `aero_blocks`'s "P2" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `aero_blocks`).
 
     Returns
     -------
@@ -981,17 +776,7 @@ def P2(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
         rows: h_P, alpha_P
         columns: h_P, alpha_P
     """
-    shape, (rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
-    _c0 = numpy.pi*rho
-    _c1 = (1/2)*CZ_q*R**3*_c0
-    _c2 = _c1*e_alpha
-    _c3 = Cm_q*R**4*_c0
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = _c1
-    out[..., 0, 1] = _c2
-    out[..., 1, 0] = _c2 + _c3
-    out[..., 1, 1] = _c1*e_alpha**2 + _c3*e_alpha
-    return out
+    return _view(aero_blocks, "P2", rho=rho, V=V, R=R, e_theta=e_theta, e_psi=e_psi, e_alpha=e_alpha, CZ_theta=CZ_theta, CZ_psi=CZ_psi, CZ_q=CZ_q, CZ_r=CZ_r, Cm_theta=Cm_theta, Cm_psi=Cm_psi, Cm_q=Cm_q, Cm_r=Cm_r, CY_theta=CY_theta, CY_psi=CY_psi, CY_q=CY_q, CY_r=CY_r, Cn_theta=Cn_theta, Cn_psi=Cn_psi, Cn_q=Cn_q, Cn_r=Cn_r)
 
 
 def P3(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
@@ -999,52 +784,8 @@ def P3(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
 
     Thesis equations 4.25, 8.26, 8.34, 8.39.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        free-stream (inflow) velocity [m/s]
-    R : array_like
-        propeller radius [m]
-    e_theta : array_like
-        propeller plane aft of the pitch pivot (signed; < 0 for a tractor) [m]
-    e_psi : array_like
-        propeller plane aft of the yaw pivot (signed; < 0 for a tractor) [m]
-    e_alpha : array_like
-        propeller plane aft of the wing elastic axis, e_θ + l_θ − a_P b_P (8.35) [m]
-    CZ_theta : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
-    CZ_psi : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CZ_q : array_like
-        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CZ_r : array_like
-        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cm_theta : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cm_psi : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cm_q : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cm_r : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    CY_theta : array_like
-        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
-    CY_psi : array_like
-        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CY_q : array_like
-        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CY_r : array_like
-        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cn_theta : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cn_psi : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cn_q : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cn_r : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    A view: `aero_blocks`'s "P3" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `aero_blocks`).
 
     Returns
     -------
@@ -1052,22 +793,7 @@ def P3(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
         rows: h_P, alpha_P
         columns: theta, psi
     """
-    shape, (rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
-    _c0 = numpy.pi*V*rho
-    _c1 = R**3*_c0
-    _c2 = (1/2)*_c1
-    _c3 = CZ_q*_c2
-    _c4 = (1/2)*R**2*_c0
-    _c5 = CZ_theta*_c4*e_theta
-    _c6 = CZ_r*_c2
-    _c7 = CZ_psi*_c4*e_psi
-    _c8 = R**4*_c0
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = _c3 + _c5
-    out[..., 0, 1] = _c6 + _c7
-    out[..., 1, 0] = Cm_q*_c8 + Cm_theta*_c1*e_theta + _c3*e_alpha + _c5*e_alpha
-    out[..., 1, 1] = Cm_psi*_c1*e_psi + Cm_r*_c8 + _c6*e_alpha + _c7*e_alpha
-    return out
+    return _view(aero_blocks, "P3", rho=rho, V=V, R=R, e_theta=e_theta, e_psi=e_psi, e_alpha=e_alpha, CZ_theta=CZ_theta, CZ_psi=CZ_psi, CZ_q=CZ_q, CZ_r=CZ_r, Cm_theta=Cm_theta, Cm_psi=Cm_psi, Cm_q=Cm_q, Cm_r=Cm_r, CY_theta=CY_theta, CY_psi=CY_psi, CY_q=CY_q, CY_r=CY_r, Cn_theta=Cn_theta, Cn_psi=Cn_psi, Cn_q=Cn_q, Cn_r=Cn_r)
 
 
 def P4(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
@@ -1075,52 +801,8 @@ def P4(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
 
     Thesis equations 4.25, 8.26, 8.34, 8.40.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        free-stream (inflow) velocity [m/s]
-    R : array_like
-        propeller radius [m]
-    e_theta : array_like
-        propeller plane aft of the pitch pivot (signed; < 0 for a tractor) [m]
-    e_psi : array_like
-        propeller plane aft of the yaw pivot (signed; < 0 for a tractor) [m]
-    e_alpha : array_like
-        propeller plane aft of the wing elastic axis, e_θ + l_θ − a_P b_P (8.35) [m]
-    CZ_theta : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
-    CZ_psi : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CZ_q : array_like
-        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CZ_r : array_like
-        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cm_theta : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cm_psi : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cm_q : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cm_r : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    CY_theta : array_like
-        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
-    CY_psi : array_like
-        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CY_q : array_like
-        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CY_r : array_like
-        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cn_theta : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cn_psi : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cn_q : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cn_r : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    A view: `aero_blocks`'s "P4" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `aero_blocks`).
 
     Returns
     -------
@@ -1128,19 +810,7 @@ def P4(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
         rows: h_P, alpha_P
         columns: h_P, alpha_P
     """
-    shape, (rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
-    _c0 = numpy.pi*V*rho
-    _c1 = (1/2)*CZ_theta*R**2*_c0
-    _c2 = R**3*_c0
-    _c3 = (1/2)*CZ_q*_c2
-    _c4 = _c1*e_alpha
-    _c5 = Cm_theta*_c2
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = _c1
-    out[..., 0, 1] = _c3 + _c4
-    out[..., 1, 0] = _c4 + _c5
-    out[..., 1, 1] = Cm_q*R**4*_c0 + _c1*e_alpha**2 + _c3*e_alpha + _c5*e_alpha
-    return out
+    return _view(aero_blocks, "P4", rho=rho, V=V, R=R, e_theta=e_theta, e_psi=e_psi, e_alpha=e_alpha, CZ_theta=CZ_theta, CZ_psi=CZ_psi, CZ_q=CZ_q, CZ_r=CZ_r, Cm_theta=Cm_theta, Cm_psi=Cm_psi, Cm_q=Cm_q, Cm_r=Cm_r, CY_theta=CY_theta, CY_psi=CY_psi, CY_q=CY_q, CY_r=CY_r, Cn_theta=Cn_theta, Cn_psi=Cn_psi, Cn_q=Cn_q, Cn_r=Cn_r)
 
 
 def P5(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
@@ -1148,52 +818,8 @@ def P5(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
 
     Thesis equations 4.25, 8.26, 8.34, 8.41.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        free-stream (inflow) velocity [m/s]
-    R : array_like
-        propeller radius [m]
-    e_theta : array_like
-        propeller plane aft of the pitch pivot (signed; < 0 for a tractor) [m]
-    e_psi : array_like
-        propeller plane aft of the yaw pivot (signed; < 0 for a tractor) [m]
-    e_alpha : array_like
-        propeller plane aft of the wing elastic axis, e_θ + l_θ − a_P b_P (8.35) [m]
-    CZ_theta : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
-    CZ_psi : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CZ_q : array_like
-        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CZ_r : array_like
-        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cm_theta : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cm_psi : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cm_q : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cm_r : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    CY_theta : array_like
-        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
-    CY_psi : array_like
-        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CY_q : array_like
-        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CY_r : array_like
-        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cn_theta : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cn_psi : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cn_q : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cn_r : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    A view: `aero_blocks`'s "P5" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `aero_blocks`).
 
     Returns
     -------
@@ -1201,18 +827,7 @@ def P5(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
         rows: h_P, alpha_P
         columns: theta, psi
     """
-    shape, (rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
-    _c0 = numpy.pi*V**2*rho
-    _c1 = (1/2)*R**2*_c0
-    _c2 = CZ_theta*_c1
-    _c3 = CZ_psi*_c1
-    _c4 = R**3*_c0
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = _c2
-    out[..., 0, 1] = _c3
-    out[..., 1, 0] = Cm_theta*_c4 + _c2*e_alpha
-    out[..., 1, 1] = Cm_psi*_c4 + _c3*e_alpha
-    return out
+    return _view(aero_blocks, "P5", rho=rho, V=V, R=R, e_theta=e_theta, e_psi=e_psi, e_alpha=e_alpha, CZ_theta=CZ_theta, CZ_psi=CZ_psi, CZ_q=CZ_q, CZ_r=CZ_r, Cm_theta=Cm_theta, Cm_psi=Cm_psi, Cm_q=Cm_q, Cm_r=Cm_r, CY_theta=CY_theta, CY_psi=CY_psi, CY_q=CY_q, CY_r=CY_r, Cn_theta=Cn_theta, Cn_psi=Cn_psi, Cn_q=Cn_q, Cn_r=Cn_r)
 
 
 def P6(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
@@ -1220,52 +835,8 @@ def P6(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
 
     Thesis equations 4.25, 8.26, 8.34, 8.42.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        free-stream (inflow) velocity [m/s]
-    R : array_like
-        propeller radius [m]
-    e_theta : array_like
-        propeller plane aft of the pitch pivot (signed; < 0 for a tractor) [m]
-    e_psi : array_like
-        propeller plane aft of the yaw pivot (signed; < 0 for a tractor) [m]
-    e_alpha : array_like
-        propeller plane aft of the wing elastic axis, e_θ + l_θ − a_P b_P (8.35) [m]
-    CZ_theta : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
-    CZ_psi : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CZ_q : array_like
-        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CZ_r : array_like
-        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cm_theta : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cm_psi : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cm_q : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cm_r : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    CY_theta : array_like
-        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
-    CY_psi : array_like
-        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CY_q : array_like
-        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CY_r : array_like
-        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cn_theta : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cn_psi : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cn_q : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cn_r : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    A view: `aero_blocks`'s "P6" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `aero_blocks`).
 
     Returns
     -------
@@ -1273,13 +844,7 @@ def P6(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
         rows: h_P, alpha_P
         columns: h_P, alpha_P
     """
-    shape, (rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
-    _c0 = numpy.pi*V**2*rho
-    _c1 = (1/2)*CZ_theta*R**2*_c0
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 1] = _c1
-    out[..., 1, 1] = Cm_theta*R**3*_c0 + _c1*e_alpha
-    return out
+    return _view(aero_blocks, "P6", rho=rho, V=V, R=R, e_theta=e_theta, e_psi=e_psi, e_alpha=e_alpha, CZ_theta=CZ_theta, CZ_psi=CZ_psi, CZ_q=CZ_q, CZ_r=CZ_r, Cm_theta=Cm_theta, Cm_psi=Cm_psi, Cm_q=Cm_q, Cm_r=Cm_r, CY_theta=CY_theta, CY_psi=CY_psi, CY_q=CY_q, CY_r=CY_r, Cn_theta=Cn_theta, Cn_psi=Cn_psi, Cn_q=Cn_q, Cn_r=Cn_r)
 
 
 def e_alpha_geometry(e_theta, l_theta, a_P_b_P):
@@ -1339,292 +904,6 @@ def inertia(M_P, S_theta_P, I_theta_P, l_theta, a_P_b_P):
     out[..., 1, 0] = I_theta_P + M_P*_c0**2 + S_theta_P*(-2*a_P_b_P + 2*l_theta)
     out[..., 2, 0] = I_theta_P + S_theta_P*_c0
     return out
-
-
-def structure_blocks(I_Omega, M_P, S_theta_P, I_theta_P, I_psi_P, S_alpha_P, I_alpha_P, I_theta_alpha_P, Omega, K_theta, K_psi, zeta_theta, zeta_psi):
-    """As, Bs, Cs_viscous, Ds, Es, Fs, Gs, Hs at once.
-
-    The arguments are broadcast together once.  Their code is each matrix's own common
-    subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
-    functions.
-
-    Parameters
-    ----------
-    I_Omega : array_like
-        rotor mass moment of inertia about its rotation axis [kg m^2]
-    M_P : array_like
-        pivoting propeller–engine mass [kg]
-    S_theta_P : array_like
-        static moment of the pivoting mass about the pitch pivot, Σ m (x − l_θ) [kg m]
-    I_theta_P : array_like
-        moment of inertia of the pivoting mass about the pitch pivot [kg m^2]
-    I_psi_P : array_like
-        moment of inertia of the pivoting mass about the yaw pivot [kg m^2]
-    S_alpha_P : array_like
-        static moment of the pivoting mass about the wing elastic axis [kg m]
-    I_alpha_P : array_like
-        moment of inertia of the pivoting mass about the wing elastic axis [kg m^2]
-    I_theta_alpha_P : array_like
-        product of inertia Σ m (x − a_P b_P)(x − l_θ) [kg m^2]
-    Omega : array_like
-        propeller rotational speed [rad/s]
-    K_theta : array_like
-        pitch stiffness of the propeller attachment [N m/rad]
-    K_psi : array_like
-        yaw stiffness of the propeller attachment [N m/rad]
-    zeta_theta : array_like
-        viscous damping ratio in pitch (fraction of critical) [-]
-    zeta_psi : array_like
-        viscous damping ratio in yaw (fraction of critical) [-]
-
-    Returns
-    -------
-    dict of numpy.ndarray
-        "As", shape (..., 2, 2): as `As`
-        "Bs", shape (..., 2, 2): as `Bs`
-        "Cs_viscous", shape (..., 2, 2): as `Cs_viscous`
-        "Ds", shape (..., 2, 2): as `Ds`
-        "Es", shape (..., 2, 2): as `Es`
-        "Fs", shape (..., 2, 2): as `Fs`
-        "Gs", shape (..., 2, 2): as `Gs`
-        "Hs", shape (..., 2, 2): as `Hs`
-        (``...`` is the broadcast shape of all the arguments).
-    """
-    shape, (I_Omega, M_P, S_theta_P, I_theta_P, I_psi_P, S_alpha_P, I_alpha_P, I_theta_alpha_P, Omega, K_theta, K_psi, zeta_theta, zeta_psi,) = _broadcast(I_Omega, M_P, S_theta_P, I_theta_P, I_psi_P, S_alpha_P, I_alpha_P, I_theta_alpha_P, Omega, K_theta, K_psi, zeta_theta, zeta_psi)
-    _c0 = I_Omega*Omega
-    _o0 = numpy.zeros(shape + (2, 2))
-    _o0[..., 0, 0] = I_theta_P
-    _o0[..., 1, 1] = I_psi_P
-    _o1 = numpy.zeros(shape + (2, 2))
-    _o1[..., 0, 0] = S_theta_P
-    _o1[..., 0, 1] = I_theta_alpha_P
-    _o2 = numpy.zeros(shape + (2, 2))
-    _o2[..., 0, 0] = 2*numpy.sqrt(I_theta_P)*numpy.sqrt(K_theta)*zeta_theta
-    _o2[..., 0, 1] = _c0
-    _o2[..., 1, 0] = -_c0
-    _o2[..., 1, 1] = 2*numpy.sqrt(I_psi_P)*numpy.sqrt(K_psi)*zeta_psi
-    _o3 = numpy.zeros(shape + (2, 2))
-    _o3[..., 1, 1] = -I_Omega*Omega
-    _o4 = numpy.zeros(shape + (2, 2))
-    _o4[..., 0, 0] = K_theta
-    _o4[..., 1, 1] = K_psi
-    _o5 = numpy.zeros(shape + (2, 2))
-    _o5[..., 0, 0] = S_theta_P
-    _o5[..., 1, 0] = I_theta_alpha_P
-    _o6 = numpy.zeros(shape + (2, 2))
-    _o6[..., 0, 0] = M_P
-    _o6[..., 0, 1] = S_alpha_P
-    _o6[..., 1, 0] = S_alpha_P
-    _o6[..., 1, 1] = I_alpha_P
-    _o7 = numpy.zeros(shape + (2, 2))
-    _o7[..., 1, 1] = I_Omega*Omega
-    return {
-        "As": _o0,
-        "Bs": _o1,
-        "Cs_viscous": _o2,
-        "Ds": _o3,
-        "Es": _o4,
-        "Fs": _o5,
-        "Gs": _o6,
-        "Hs": _o7,
-    }
-
-
-def aero_blocks(e_theta, e_psi, e_alpha, rho, V, R, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
-    """Aa, Ba, Ca, Da, Ea, Fa, P1, P2, P3, P4, P5, P6 at once.
-
-    The arguments are broadcast together once.  Their code is each matrix's own common
-    subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
-    functions.
-
-    Parameters
-    ----------
-    e_theta : array_like
-        propeller plane aft of the pitch pivot (signed; < 0 for a tractor) [m]
-    e_psi : array_like
-        propeller plane aft of the yaw pivot (signed; < 0 for a tractor) [m]
-    e_alpha : array_like
-        propeller plane aft of the wing elastic axis, e_θ + l_θ − a_P b_P (8.35) [m]
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        free-stream (inflow) velocity [m/s]
-    R : array_like
-        propeller radius [m]
-    CZ_theta : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
-    CZ_psi : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CZ_q : array_like
-        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CZ_r : array_like
-        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cm_theta : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cm_psi : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cm_q : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cm_r : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    CY_theta : array_like
-        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
-    CY_psi : array_like
-        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CY_q : array_like
-        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CY_r : array_like
-        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cn_theta : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cn_psi : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cn_q : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cn_r : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-
-    Returns
-    -------
-    dict of numpy.ndarray
-        "Aa", shape (..., 2, 2): as `Aa`
-        "Ba", shape (..., 2, 2): as `Ba`
-        "Ca", shape (..., 2, 2): as `Ca`
-        "Da", shape (..., 2, 2): as `Da`
-        "Ea", shape (..., 2, 2): as `Ea`
-        "Fa", shape (..., 2, 2): as `Fa`
-        "P1", shape (..., 2, 2): as `P1`
-        "P2", shape (..., 2, 2): as `P2`
-        "P3", shape (..., 2, 2): as `P3`
-        "P4", shape (..., 2, 2): as `P4`
-        "P5", shape (..., 2, 2): as `P5`
-        "P6", shape (..., 2, 2): as `P6`
-        (``...`` is the broadcast shape of all the arguments).
-    """
-    shape, (e_theta, e_psi, e_alpha, rho, V, R, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(e_theta, e_psi, e_alpha, rho, V, R, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
-    _c0 = R**4
-    _c1 = numpy.pi*rho
-    _c2 = _c0*_c1
-    _c3 = (1/2)*R**3*_c1
-    _c4 = _c3*e_psi*e_theta
-    _c5 = Cm_q*_c0*_c1
-    _c6 = CZ_q*_c3*e_theta
-    _c7 = CY_q*_c3*e_psi
-    _c8 = numpy.pi*V*rho
-    _c9 = _c0*_c8
-    _c10 = R**3
-    _c11 = _c8*_c10
-    _c12 = _c11*e_theta
-    _c13 = (1/2)*_c12
-    _c14 = (1/2)*R**2*_c8
-    _c15 = _c11*e_psi
-    _c16 = _c14*e_psi*e_theta
-    _c17 = (1/2)*_c15
-    _c18 = _c10*_c8
-    _c19 = Cm_theta*_c18
-    _c20 = (1/2)*e_theta
-    _c21 = R**2*_c8
-    _c22 = CZ_theta*_c20*_c21
-    _c23 = (1/2)*e_psi
-    _c24 = CY_theta*_c21*_c23
-    _c25 = V**2
-    _c26 = numpy.pi*_c25*rho
-    _c27 = _c10*_c26
-    _c28 = (1/2)*R**2*_c26
-    _c29 = _c28*e_theta
-    _c30 = _c28*e_psi
-    _c31 = CZ_r*_c3*e_psi
-    _c32 = R**4*_c1
-    _c33 = (1/2)*CZ_q*R**3*_c1
-    _c34 = _c33*e_alpha
-    _c35 = Cm_q*R**4*_c1
-    _c36 = R**3*_c8
-    _c37 = (1/2)*_c36
-    _c38 = CZ_q*_c37
-    _c39 = CZ_theta*_c14*e_theta
-    _c40 = CZ_r*_c37
-    _c41 = CZ_psi*_c14*e_psi
-    _c42 = R**4*_c8
-    _c43 = (1/2)*CZ_theta*R**2*_c8
-    _c44 = (1/2)*CZ_q*_c36
-    _c45 = _c43*e_alpha
-    _c46 = Cm_theta*_c36
-    _c47 = numpy.pi*V**2*rho
-    _c48 = (1/2)*R**2*_c47
-    _c49 = CZ_theta*_c48
-    _c50 = CZ_psi*_c48
-    _c51 = R**3*_c47
-    _c52 = (1/2)*CZ_theta*R**2*_c47
-    _o0 = numpy.zeros(shape + (2, 2))
-    _o0[..., 0, 0] = CZ_q*_c3*e_theta**2 + Cm_q*_c2*e_theta
-    _o0[..., 0, 1] = CZ_r*_c4 + Cm_r*_c2*e_psi
-    _o0[..., 1, 0] = -CY_q*_c4 + numpy.pi*Cn_q*_c0*e_theta*rho
-    _o0[..., 1, 1] = -CY_r*_c3*e_psi**2 + numpy.pi*Cn_r*_c0*e_psi*rho
-    _o1 = numpy.zeros(shape + (2, 2))
-    _o1[..., 0, 0] = _c5 + _c6
-    _o1[..., 0, 1] = _c5*e_alpha + _c6*e_alpha
-    _o1[..., 1, 0] = numpy.pi*Cn_q*_c0*rho - _c7
-    _o1[..., 1, 1] = numpy.pi*Cn_q*_c0*e_alpha*rho - _c7*e_alpha
-    _o2 = numpy.zeros(shape + (2, 2))
-    _o2[..., 0, 0] = CZ_q*_c13 + CZ_theta*_c14*e_theta**2 + Cm_q*_c9 + Cm_theta*_c12
-    _o2[..., 0, 1] = CZ_psi*_c16 + CZ_r*_c13 + Cm_psi*_c15 + Cm_r*_c9
-    _o2[..., 1, 0] = -CY_q*_c17 - CY_theta*_c16 + numpy.pi*Cn_q*V*_c0*rho + numpy.pi*Cn_theta*V*_c10*e_theta*rho
-    _o2[..., 1, 1] = -CY_psi*_c14*e_psi**2 - CY_r*_c17 + numpy.pi*Cn_psi*V*_c10*e_psi*rho + numpy.pi*Cn_r*V*_c0*rho
-    _o3 = numpy.zeros(shape + (2, 2))
-    _o3[..., 0, 0] = _c19 + _c22
-    _o3[..., 0, 1] = CZ_q*_c18*_c20 + Cm_q*_c8*_c0 + _c19*e_alpha + _c22*e_alpha
-    _o3[..., 1, 0] = numpy.pi*Cn_theta*V*_c10*rho - _c24
-    _o3[..., 1, 1] = -CY_q*_c18*_c23 + numpy.pi*Cn_q*V*_c0*rho + numpy.pi*Cn_theta*V*_c10*e_alpha*rho - _c24*e_alpha
-    _o4 = numpy.zeros(shape + (2, 2))
-    _o4[..., 0, 0] = CZ_theta*_c29 + Cm_theta*_c27
-    _o4[..., 0, 1] = CZ_psi*_c29 + Cm_psi*_c27
-    _o4[..., 1, 0] = -CY_theta*_c30 + numpy.pi*Cn_theta*_c10*_c25*rho
-    _o4[..., 1, 1] = -CY_psi*_c30 + numpy.pi*Cn_psi*_c10*_c25*rho
-    _o5 = numpy.zeros(shape + (2, 2))
-    _o5[..., 0, 1] = CZ_theta*_c28*e_theta + Cm_theta*_c10*_c26
-    _o5[..., 1, 1] = -CY_theta*_c28*e_psi + numpy.pi*Cn_theta*_c10*_c25*rho
-    _o6 = numpy.zeros(shape + (2, 2))
-    _o6[..., 0, 0] = _c6
-    _o6[..., 0, 1] = _c31
-    _o6[..., 1, 0] = Cm_q*_c32*e_theta + _c6*e_alpha
-    _o6[..., 1, 1] = Cm_r*_c32*e_psi + _c31*e_alpha
-    _o7 = numpy.zeros(shape + (2, 2))
-    _o7[..., 0, 0] = _c33
-    _o7[..., 0, 1] = _c34
-    _o7[..., 1, 0] = _c34 + _c35
-    _o7[..., 1, 1] = _c33*e_alpha**2 + _c35*e_alpha
-    _o8 = numpy.zeros(shape + (2, 2))
-    _o8[..., 0, 0] = _c38 + _c39
-    _o8[..., 0, 1] = _c40 + _c41
-    _o8[..., 1, 0] = Cm_q*_c42 + Cm_theta*_c36*e_theta + _c38*e_alpha + _c39*e_alpha
-    _o8[..., 1, 1] = Cm_psi*_c36*e_psi + Cm_r*_c42 + _c40*e_alpha + _c41*e_alpha
-    _o9 = numpy.zeros(shape + (2, 2))
-    _o9[..., 0, 0] = _c43
-    _o9[..., 0, 1] = _c44 + _c45
-    _o9[..., 1, 0] = _c45 + _c46
-    _o9[..., 1, 1] = Cm_q*R**4*_c8 + _c43*e_alpha**2 + _c44*e_alpha + _c46*e_alpha
-    _o10 = numpy.zeros(shape + (2, 2))
-    _o10[..., 0, 0] = _c49
-    _o10[..., 0, 1] = _c50
-    _o10[..., 1, 0] = Cm_theta*_c51 + _c49*e_alpha
-    _o10[..., 1, 1] = Cm_psi*_c51 + _c50*e_alpha
-    _o11 = numpy.zeros(shape + (2, 2))
-    _o11[..., 0, 1] = _c52
-    _o11[..., 1, 1] = Cm_theta*R**3*_c47 + _c52*e_alpha
-    return {
-        "Aa": _o0,
-        "Ba": _o1,
-        "Ca": _o2,
-        "Da": _o3,
-        "Ea": _o4,
-        "Fa": _o5,
-        "P1": _o6,
-        "P2": _o7,
-        "P3": _o8,
-        "P4": _o9,
-        "P5": _o10,
-        "P6": _o11,
-    }
 
 
 def structure_blocks_d(I_Omega, M_P, S_theta_P, I_theta_P, I_psi_P, S_alpha_P, I_alpha_P, I_theta_alpha_P, Omega, K_theta, K_psi, zeta_theta, zeta_psi):

@@ -8,9 +8,10 @@ may be an array and all arguments broadcast together; each function returns an a
 shape ``broadcast_shape + (rows, cols)``.
 
 The block functions (`structure_blocks`, `aero_blocks`) return several of these matrices
-at once (a dict), broadcasting their arguments once.  Their code is each matrix's own common
-subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
-functions.
+at once (a dict), broadcasting their arguments once, with one common-subexpression elimination
+over all their matrices; the runtime calls them.  The function of each of their matrices
+(`Bs`, `Ds`, `Fs`, `Gs`, `Hs`, `Js`, `Ba`, `Da`, `Fa`, `P1`, `P2`, `P3`, `P4`, `P5`, `P6`) is a view: it calls its block function
+(`VIEWS` names it) and returns that matrix.
 
 The derivative functions (`structure_blocks_d`, `aero_blocks_d`, `inplane_inertia_d`) return the
 exact parameter derivatives of those matrices: ``{matrix name: {parameter name: array}}`` with
@@ -129,6 +130,25 @@ BLOCKS = {
     "aero_blocks": (('e_theta', 'e_psi', 'e_alpha', 'rho', 'V', 'R', 'CZ_theta', 'CZ_psi', 'CZ_q', 'CZ_r', 'Cm_theta', 'Cm_psi', 'Cm_q', 'Cm_r', 'CY_theta', 'CY_psi', 'CY_q', 'CY_r', 'Cn_theta', 'Cn_psi', 'Cn_q', 'Cn_r'), ('Ba', 'Da', 'Fa', 'P1', 'P2', 'P3', 'P4', 'P5', 'P6')),
 }
 
+#: matrix function name -> the block function it is a view of
+VIEWS = {
+    "Bs": "structure_blocks",
+    "Ds": "structure_blocks",
+    "Fs": "structure_blocks",
+    "Gs": "structure_blocks",
+    "Hs": "structure_blocks",
+    "Js": "structure_blocks",
+    "Ba": "aero_blocks",
+    "Da": "aero_blocks",
+    "Fa": "aero_blocks",
+    "P1": "aero_blocks",
+    "P2": "aero_blocks",
+    "P3": "aero_blocks",
+    "P4": "aero_blocks",
+    "P5": "aero_blocks",
+    "P6": "aero_blocks",
+}
+
 #: derivative function name -> (argument names, {matrix name: parameters it depends on})
 PARTIALS = {
     "structure_blocks_d": (('I_Omega', 'M_P', 'S_theta_P', 'S_alpha_P', 'I_alpha_P', 'I_theta_alpha_P', 'I_chi_P', 'I_psi_chi_P', 'Omega'), {'Bs': ('S_theta_P', 'I_theta_alpha_P', 'I_psi_chi_P'), 'Ds': ('I_Omega', 'Omega'), 'Fs': ('S_theta_P', 'I_theta_alpha_P', 'I_psi_chi_P'), 'Gs': ('M_P', 'S_alpha_P', 'I_alpha_P', 'I_chi_P'), 'Hs': ('I_Omega', 'Omega'), 'Js': ('I_Omega', 'Omega')}),
@@ -142,20 +162,318 @@ def _broadcast(*args):
     return arrays[0].shape, arrays
 
 
+def _view(block, name, **values):
+    """Matrix `name` of block function `block` at `values`, the block's other arguments NaN
+    (only its other matrices depend on them: the result is that of `values` alone)."""
+    return block(**{a: values.get(a, numpy.nan) for a in BLOCKS[block.__name__][0]})[name]
+
+
+def structure_blocks(I_Omega, M_P, S_theta_P, S_alpha_P, I_alpha_P, I_theta_alpha_P, I_chi_P, I_psi_chi_P, Omega):
+    """Bs, Ds, Fs, Gs, Hs, Js at once.
+
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the matrices.
+
+    Parameters
+    ----------
+    I_Omega : array_like
+        rotor mass moment of inertia about its rotation axis [kg m^2]
+    M_P : array_like
+        pivoting propeller–engine mass [kg]
+    S_theta_P : array_like
+        static moment of the pivoting mass about the pitch pivot, Σ m (x − l_θ) [kg m]
+    S_alpha_P : array_like
+        static moment of the pivoting mass about the wing elastic axis [kg m]
+    I_alpha_P : array_like
+        moment of inertia of the pivoting mass about the wing elastic axis [kg m^2]
+    I_theta_alpha_P : array_like
+        product of inertia Σ m (x − a_P b_P)(x − l_θ) [kg m^2]
+    I_chi_P : array_like
+        moment of inertia of the pivoting mass about the vertical axis through the wing elastic axis, Σ m (x − a_P b_P)^2 [kg m^2]
+    I_psi_chi_P : array_like
+        product of inertia Σ m (x − l_ψ)(x − a_P b_P) [kg m^2]
+    Omega : array_like
+        propeller rotational speed [rad/s]
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        "Bs", shape (..., 2, 4): see `Bs`
+        "Ds", shape (..., 2, 4): see `Ds`
+        "Fs", shape (..., 4, 2): see `Fs`
+        "Gs", shape (..., 4, 4): see `Gs`
+        "Hs", shape (..., 4, 2): see `Hs`
+        "Js", shape (..., 4, 4): see `Js`
+        (``...`` is the broadcast shape of all the arguments).
+    """
+    shape, (I_Omega, M_P, S_theta_P, S_alpha_P, I_alpha_P, I_theta_alpha_P, I_chi_P, I_psi_chi_P, Omega,) = _broadcast(I_Omega, M_P, S_theta_P, S_alpha_P, I_alpha_P, I_theta_alpha_P, I_chi_P, I_psi_chi_P, Omega)
+    _c0 = I_Omega*Omega
+    _c1 = -_c0
+    _o0 = numpy.zeros(shape + (2, 4))
+    _o0[..., 0, 0] = S_theta_P
+    _o0[..., 0, 1] = I_theta_alpha_P
+    _o0[..., 1, 3] = I_psi_chi_P
+    _o1 = numpy.zeros(shape + (2, 4))
+    _o1[..., 0, 3] = _c0
+    _o1[..., 1, 1] = _c1
+    _o2 = numpy.zeros(shape + (4, 2))
+    _o2[..., 0, 0] = S_theta_P
+    _o2[..., 1, 0] = I_theta_alpha_P
+    _o2[..., 3, 1] = I_psi_chi_P
+    _o3 = numpy.zeros(shape + (4, 4))
+    _o3[..., 0, 0] = M_P
+    _o3[..., 0, 1] = S_alpha_P
+    _o3[..., 1, 0] = S_alpha_P
+    _o3[..., 1, 1] = I_alpha_P
+    _o3[..., 2, 2] = M_P
+    _o3[..., 3, 3] = I_chi_P
+    _o4 = numpy.zeros(shape + (4, 2))
+    _o4[..., 1, 1] = _c0
+    _o4[..., 3, 0] = _c1
+    _o5 = numpy.zeros(shape + (4, 4))
+    _o5[..., 1, 3] = _c0
+    _o5[..., 3, 1] = _c1
+    return {
+        "Bs": _o0,
+        "Ds": _o1,
+        "Fs": _o2,
+        "Gs": _o3,
+        "Hs": _o4,
+        "Js": _o5,
+    }
+
+
+def aero_blocks(e_theta, e_psi, e_alpha, rho, V, R, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
+    """Ba, Da, Fa, P1, P2, P3, P4, P5, P6 at once.
+
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the matrices.
+
+    Parameters
+    ----------
+    e_theta : array_like
+        propeller plane aft of the pitch pivot (signed; < 0 for a tractor) [m]
+    e_psi : array_like
+        propeller plane aft of the yaw pivot (signed; < 0 for a tractor) [m]
+    e_alpha : array_like
+        propeller plane aft of the wing elastic axis, e_θ + l_θ − a_P b_P (8.35) [m]
+    rho : array_like
+        air density [kg/m^3]
+    V : array_like
+        free-stream (inflow) velocity [m/s]
+    R : array_like
+        propeller radius [m]
+    CZ_theta : array_like
+        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
+    CZ_psi : array_like
+        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
+    CZ_q : array_like
+        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
+    CZ_r : array_like
+        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    Cm_theta : array_like
+        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
+    Cm_psi : array_like
+        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
+    Cm_q : array_like
+        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
+    Cm_r : array_like
+        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    CY_theta : array_like
+        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
+    CY_psi : array_like
+        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
+    CY_q : array_like
+        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
+    CY_r : array_like
+        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    Cn_theta : array_like
+        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
+    Cn_psi : array_like
+        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
+    Cn_q : array_like
+        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
+    Cn_r : array_like
+        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        "Ba", shape (..., 2, 4): see `Ba`
+        "Da", shape (..., 2, 4): see `Da`
+        "Fa", shape (..., 2, 4): see `Fa`
+        "P1", shape (..., 4, 2): see `P1`
+        "P2", shape (..., 4, 4): see `P2`
+        "P3", shape (..., 4, 2): see `P3`
+        "P4", shape (..., 4, 4): see `P4`
+        "P5", shape (..., 4, 2): see `P5`
+        "P6", shape (..., 4, 4): see `P6`
+        (``...`` is the broadcast shape of all the arguments).
+    """
+    shape, (e_theta, e_psi, e_alpha, rho, V, R, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(e_theta, e_psi, e_alpha, rho, V, R, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
+    _c0 = R**4
+    _c1 = numpy.pi*rho
+    _c2 = _c0*_c1
+    _c3 = Cm_q*_c2
+    _c4 = R**3
+    _c5 = _c1*_c4
+    _c6 = (1/2)*_c5
+    _c7 = CZ_q*_c6
+    _c8 = _c7*e_theta
+    _c9 = _c3*e_alpha
+    _c10 = _c8*e_alpha
+    _c11 = Cm_r*_c2*e_alpha
+    _c12 = CZ_r*_c6
+    _c13 = _c12*e_alpha
+    _c14 = -numpy.pi*Cn_q*_c0*rho
+    _c15 = _c6*e_psi
+    _c16 = CY_q*_c15
+    _c17 = -numpy.pi*Cn_q*_c0*e_alpha*rho
+    _c18 = -numpy.pi*Cn_r*_c0*e_alpha*rho
+    _c19 = CY_r*_c15*e_alpha
+    _c20 = V*_c5
+    _c21 = Cm_theta*_c20
+    _c22 = (1/2)*R**2*_c1
+    _c23 = CZ_theta*_c22
+    _c24 = V*_c23
+    _c25 = _c24*e_theta
+    _c26 = _c21*e_alpha
+    _c27 = (1/2)*_c20
+    _c28 = CZ_q*_c27
+    _c29 = V*_c3
+    _c30 = _c25*e_alpha + _c29
+    _c31 = CZ_r*_c27
+    _c32 = V*_c22
+    _c33 = CZ_psi*_c32
+    _c34 = _c33*e_alpha
+    _c35 = Cm_r*V*_c2
+    _c36 = _c20*e_alpha
+    _c37 = Cm_psi*_c36 + _c35
+    _c38 = -numpy.pi*Cn_theta*V*_c4*rho
+    _c39 = CY_theta*e_psi
+    _c40 = _c32*_c39
+    _c41 = _c27*e_psi
+    _c42 = -numpy.pi*Cn_q*V*_c0*rho
+    _c43 = -numpy.pi*Cn_theta*V*_c4*e_alpha*rho + _c42
+    _c44 = -numpy.pi*Cn_psi*V*_c4*e_alpha*rho
+    _c45 = -numpy.pi*Cn_r*V*_c0*rho
+    _c46 = CY_psi*_c32
+    _c47 = _c45 + _c46*e_alpha*e_psi
+    _c48 = V**2
+    _c49 = _c48*_c5
+    _c50 = Cm_theta*_c49
+    _c51 = _c23*_c48
+    _c52 = Cm_psi*_c49
+    _c53 = _c22*_c48
+    _c54 = CZ_psi*_c53
+    _c55 = -numpy.pi*Cn_theta*_c4*_c48*rho
+    _c56 = -numpy.pi*Cn_psi*_c4*_c48*rho
+    _c57 = CY_psi*_c53
+    _c58 = CZ_r*_c15
+    _c59 = CY_q*_c6
+    _c60 = _c59*e_alpha
+    _c61 = _c7*e_alpha
+    _c62 = e_alpha**2
+    _c63 = _c33*e_psi
+    _c64 = (1/2)*_c36
+    _c65 = CZ_q*_c64
+    _c66 = CZ_r*_c64
+    _c67 = CY_q*_c64
+    _c68 = CY_theta*_c32
+    _c69 = _c68*e_alpha
+    _c70 = CY_r*_c64
+    _c71 = _c24*e_alpha
+    _c72 = _c50 + _c51*e_alpha
+    _c73 = _c52 + _c54*e_alpha
+    _c74 = -CY_theta*_c53*e_alpha - _c55
+    _c75 = -_c56 - _c57*e_alpha
+    _o0 = numpy.zeros(shape + (2, 4))
+    _o0[..., 0, 0] = _c3 + _c8
+    _o0[..., 0, 1] = _c10 + _c9
+    _o0[..., 0, 3] = _c11 + _c13*e_theta
+    _o0[..., 1, 0] = -_c14 - _c16
+    _o0[..., 1, 1] = -_c16*e_alpha - _c17
+    _o0[..., 1, 3] = -_c18 - _c19
+    _o1 = numpy.zeros(shape + (2, 4))
+    _o1[..., 0, 0] = _c21 + _c25
+    _o1[..., 0, 1] = _c26 + _c28*e_theta + _c30
+    _o1[..., 0, 3] = _c31*e_theta + _c34*e_theta + _c37
+    _o1[..., 1, 0] = -_c38 - _c40
+    _o1[..., 1, 1] = -CY_q*_c41 - _c40*e_alpha - _c43
+    _o1[..., 1, 3] = -CY_r*_c41 - _c44 - _c47
+    _o2 = numpy.zeros(shape + (2, 4))
+    _o2[..., 0, 1] = _c50 + _c51*e_theta
+    _o2[..., 0, 3] = _c52 + _c54*e_theta
+    _o2[..., 1, 1] = -_c39*_c53 - _c55
+    _o2[..., 1, 3] = -_c56 - _c57*e_psi
+    _o3 = numpy.zeros(shape + (4, 2))
+    _o3[..., 0, 0] = _c8
+    _o3[..., 0, 1] = _c58
+    _o3[..., 1, 0] = _c10 + _c3*e_theta
+    _o3[..., 1, 1] = Cm_r*_c2*e_psi + _c58*e_alpha
+    _o3[..., 3, 0] = numpy.pi*Cn_q*_c0*e_theta*rho - _c60*e_theta
+    _o3[..., 3, 1] = numpy.pi*Cn_r*_c0*e_psi*rho - _c19
+    _o4 = numpy.zeros(shape + (4, 4))
+    _o4[..., 0, 0] = _c7
+    _o4[..., 0, 1] = _c61
+    _o4[..., 0, 3] = _c13
+    _o4[..., 1, 0] = _c3 + _c61
+    _o4[..., 1, 1] = _c62*_c7 + _c9
+    _o4[..., 1, 3] = _c11 + _c12*_c62
+    _o4[..., 3, 0] = -_c14 - _c60
+    _o4[..., 3, 1] = -_c17 - _c59*_c62
+    _o4[..., 3, 3] = -CY_r*_c6*_c62 - _c18
+    _o5 = numpy.zeros(shape + (4, 2))
+    _o5[..., 0, 0] = _c25 + _c28
+    _o5[..., 0, 1] = _c31 + _c63
+    _o5[..., 1, 0] = _c21*e_theta + _c30 + _c65
+    _o5[..., 1, 1] = Cm_psi*_c20*e_psi + _c35 + _c63*e_alpha + _c66
+    _o5[..., 3, 0] = numpy.pi*Cn_theta*V*_c4*e_theta*rho - _c42 - _c67 - _c69*e_theta
+    _o5[..., 3, 1] = numpy.pi*Cn_psi*V*_c4*e_psi*rho - _c47 - _c70
+    _o6 = numpy.zeros(shape + (4, 4))
+    _o6[..., 0, 0] = _c24
+    _o6[..., 0, 1] = _c28 + _c71
+    _o6[..., 0, 3] = _c31 + _c34
+    _o6[..., 1, 0] = _c21 + _c71
+    _o6[..., 1, 1] = _c24*_c62 + _c26 + _c29 + _c65
+    _o6[..., 1, 3] = _c33*_c62 + _c37 + _c66
+    _o6[..., 3, 0] = -_c38 - _c69
+    _o6[..., 3, 1] = -_c43 - _c62*_c68 - _c67
+    _o6[..., 3, 3] = -_c44 - _c45 - _c46*_c62 - _c70
+    _o7 = numpy.zeros(shape + (4, 2))
+    _o7[..., 0, 0] = _c51
+    _o7[..., 0, 1] = _c54
+    _o7[..., 1, 0] = _c72
+    _o7[..., 1, 1] = _c73
+    _o7[..., 3, 0] = _c74
+    _o7[..., 3, 1] = _c75
+    _o8 = numpy.zeros(shape + (4, 4))
+    _o8[..., 0, 1] = _c51
+    _o8[..., 0, 3] = _c54
+    _o8[..., 1, 1] = _c72
+    _o8[..., 1, 3] = _c73
+    _o8[..., 3, 1] = _c74
+    _o8[..., 3, 3] = _c75
+    return {
+        "Ba": _o0,
+        "Da": _o1,
+        "Fa": _o2,
+        "P1": _o3,
+        "P2": _o4,
+        "P3": _o5,
+        "P4": _o6,
+        "P5": _o7,
+        "P6": _o8,
+    }
+
 
 def Bs(S_theta_P, I_theta_alpha_P, I_psi_chi_P):
     """Propeller structural mass coupling B_s (rows θ, ψ; columns h_P, α_P, v_P, χ_P).
 
     Thesis equations 8.13 with in-plane bending.
 
-    Parameters
-    ----------
-    S_theta_P : array_like
-        static moment of the pivoting mass about the pitch pivot, Σ m (x − l_θ) [kg m]
-    I_theta_alpha_P : array_like
-        product of inertia Σ m (x − a_P b_P)(x − l_θ) [kg m^2]
-    I_psi_chi_P : array_like
-        product of inertia Σ m (x − l_ψ)(x − a_P b_P) [kg m^2]
+    A view: `structure_blocks`'s "Bs" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `structure_blocks`).
 
     Returns
     -------
@@ -163,12 +481,7 @@ def Bs(S_theta_P, I_theta_alpha_P, I_psi_chi_P):
         rows: theta, psi
         columns: h_P, alpha_P, v_P, chi_P
     """
-    shape, (S_theta_P, I_theta_alpha_P, I_psi_chi_P,) = _broadcast(S_theta_P, I_theta_alpha_P, I_psi_chi_P)
-    out = numpy.zeros(shape + (2, 4))
-    out[..., 0, 0] = S_theta_P
-    out[..., 0, 1] = I_theta_alpha_P
-    out[..., 1, 3] = I_psi_chi_P
-    return out
+    return _view(structure_blocks, "Bs", S_theta_P=S_theta_P, I_theta_alpha_P=I_theta_alpha_P, I_psi_chi_P=I_psi_chi_P)
 
 
 def Ds(I_Omega, Omega):
@@ -176,12 +489,8 @@ def Ds(I_Omega, Omega):
 
     Thesis equations 8.13 with in-plane bending.
 
-    Parameters
-    ----------
-    I_Omega : array_like
-        rotor mass moment of inertia about its rotation axis [kg m^2]
-    Omega : array_like
-        propeller rotational speed [rad/s]
+    A view: `structure_blocks`'s "Ds" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `structure_blocks`).
 
     Returns
     -------
@@ -189,12 +498,7 @@ def Ds(I_Omega, Omega):
         rows: theta, psi
         columns: h_P, alpha_P, v_P, chi_P
     """
-    shape, (I_Omega, Omega,) = _broadcast(I_Omega, Omega)
-    _c0 = I_Omega*Omega
-    out = numpy.zeros(shape + (2, 4))
-    out[..., 0, 3] = _c0
-    out[..., 1, 1] = -_c0
-    return out
+    return _view(structure_blocks, "Ds", I_Omega=I_Omega, Omega=Omega)
 
 
 def Fs(S_theta_P, I_theta_alpha_P, I_psi_chi_P):
@@ -202,14 +506,8 @@ def Fs(S_theta_P, I_theta_alpha_P, I_psi_chi_P):
 
     Thesis equations 8.13 with in-plane bending.
 
-    Parameters
-    ----------
-    S_theta_P : array_like
-        static moment of the pivoting mass about the pitch pivot, Σ m (x − l_θ) [kg m]
-    I_theta_alpha_P : array_like
-        product of inertia Σ m (x − a_P b_P)(x − l_θ) [kg m^2]
-    I_psi_chi_P : array_like
-        product of inertia Σ m (x − l_ψ)(x − a_P b_P) [kg m^2]
+    A view: `structure_blocks`'s "Fs" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `structure_blocks`).
 
     Returns
     -------
@@ -217,12 +515,7 @@ def Fs(S_theta_P, I_theta_alpha_P, I_psi_chi_P):
         rows: h_P, alpha_P, v_P, chi_P
         columns: theta, psi
     """
-    shape, (S_theta_P, I_theta_alpha_P, I_psi_chi_P,) = _broadcast(S_theta_P, I_theta_alpha_P, I_psi_chi_P)
-    out = numpy.zeros(shape + (4, 2))
-    out[..., 0, 0] = S_theta_P
-    out[..., 1, 0] = I_theta_alpha_P
-    out[..., 3, 1] = I_psi_chi_P
-    return out
+    return _view(structure_blocks, "Fs", S_theta_P=S_theta_P, I_theta_alpha_P=I_theta_alpha_P, I_psi_chi_P=I_psi_chi_P)
 
 
 def Gs(M_P, S_alpha_P, I_alpha_P, I_chi_P):
@@ -230,16 +523,8 @@ def Gs(M_P, S_alpha_P, I_alpha_P, I_chi_P):
 
     Thesis equations 8.13 with in-plane bending.
 
-    Parameters
-    ----------
-    M_P : array_like
-        pivoting propeller–engine mass [kg]
-    S_alpha_P : array_like
-        static moment of the pivoting mass about the wing elastic axis [kg m]
-    I_alpha_P : array_like
-        moment of inertia of the pivoting mass about the wing elastic axis [kg m^2]
-    I_chi_P : array_like
-        moment of inertia of the pivoting mass about the vertical axis through the wing elastic axis, Σ m (x − a_P b_P)^2 [kg m^2]
+    A view: `structure_blocks`'s "Gs" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `structure_blocks`).
 
     Returns
     -------
@@ -247,15 +532,7 @@ def Gs(M_P, S_alpha_P, I_alpha_P, I_chi_P):
         rows: h_P, alpha_P, v_P, chi_P
         columns: h_P, alpha_P, v_P, chi_P
     """
-    shape, (M_P, S_alpha_P, I_alpha_P, I_chi_P,) = _broadcast(M_P, S_alpha_P, I_alpha_P, I_chi_P)
-    out = numpy.zeros(shape + (4, 4))
-    out[..., 0, 0] = M_P
-    out[..., 0, 1] = S_alpha_P
-    out[..., 1, 0] = S_alpha_P
-    out[..., 1, 1] = I_alpha_P
-    out[..., 2, 2] = M_P
-    out[..., 3, 3] = I_chi_P
-    return out
+    return _view(structure_blocks, "Gs", M_P=M_P, S_alpha_P=S_alpha_P, I_alpha_P=I_alpha_P, I_chi_P=I_chi_P)
 
 
 def Hs(I_Omega, Omega):
@@ -263,12 +540,8 @@ def Hs(I_Omega, Omega):
 
     Thesis equations 8.13 with in-plane bending.
 
-    Parameters
-    ----------
-    I_Omega : array_like
-        rotor mass moment of inertia about its rotation axis [kg m^2]
-    Omega : array_like
-        propeller rotational speed [rad/s]
+    A view: `structure_blocks`'s "Hs" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `structure_blocks`).
 
     Returns
     -------
@@ -276,12 +549,7 @@ def Hs(I_Omega, Omega):
         rows: h_P, alpha_P, v_P, chi_P
         columns: theta, psi
     """
-    shape, (I_Omega, Omega,) = _broadcast(I_Omega, Omega)
-    _c0 = I_Omega*Omega
-    out = numpy.zeros(shape + (4, 2))
-    out[..., 1, 1] = _c0
-    out[..., 3, 0] = -_c0
-    return out
+    return _view(structure_blocks, "Hs", I_Omega=I_Omega, Omega=Omega)
 
 
 def Js(I_Omega, Omega):
@@ -289,12 +557,8 @@ def Js(I_Omega, Omega):
 
     Thesis equations 8.13 with in-plane bending.
 
-    Parameters
-    ----------
-    I_Omega : array_like
-        rotor mass moment of inertia about its rotation axis [kg m^2]
-    Omega : array_like
-        propeller rotational speed [rad/s]
+    A view: `structure_blocks`'s "Js" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `structure_blocks`).
 
     Returns
     -------
@@ -302,12 +566,7 @@ def Js(I_Omega, Omega):
         rows: h_P, alpha_P, v_P, chi_P
         columns: h_P, alpha_P, v_P, chi_P
     """
-    shape, (I_Omega, Omega,) = _broadcast(I_Omega, Omega)
-    _c0 = I_Omega*Omega
-    out = numpy.zeros(shape + (4, 4))
-    out[..., 1, 3] = _c0
-    out[..., 3, 1] = -_c0
-    return out
+    return _view(structure_blocks, "Js", I_Omega=I_Omega, Omega=Omega)
 
 
 def Ba(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
@@ -315,52 +574,8 @@ def Ba(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
 
     Thesis equations 4.25, 8.26, 8.34 with in-plane bending.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        free-stream (inflow) velocity [m/s]
-    R : array_like
-        propeller radius [m]
-    e_theta : array_like
-        propeller plane aft of the pitch pivot (signed; < 0 for a tractor) [m]
-    e_psi : array_like
-        propeller plane aft of the yaw pivot (signed; < 0 for a tractor) [m]
-    e_alpha : array_like
-        propeller plane aft of the wing elastic axis, e_θ + l_θ − a_P b_P (8.35) [m]
-    CZ_theta : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
-    CZ_psi : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CZ_q : array_like
-        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CZ_r : array_like
-        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cm_theta : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cm_psi : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cm_q : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cm_r : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    CY_theta : array_like
-        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
-    CY_psi : array_like
-        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CY_q : array_like
-        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CY_r : array_like
-        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cn_theta : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cn_psi : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cn_q : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cn_r : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    A view: `aero_blocks`'s "Ba" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `aero_blocks`).
 
     Returns
     -------
@@ -368,24 +583,7 @@ def Ba(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
         rows: theta, psi
         columns: h_P, alpha_P, v_P, chi_P
     """
-    shape, (rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
-    _c0 = R**4
-    _c1 = numpy.pi*rho
-    _c2 = _c0*_c1
-    _c3 = Cm_q*_c2
-    _c4 = (1/2)*R**3*_c1
-    _c5 = _c4*e_theta
-    _c6 = CZ_q*_c5
-    _c7 = _c4*e_psi
-    _c8 = CY_q*_c7
-    out = numpy.zeros(shape + (2, 4))
-    out[..., 0, 0] = _c3 + _c6
-    out[..., 0, 1] = _c3*e_alpha + _c6*e_alpha
-    out[..., 0, 3] = CZ_r*_c5*e_alpha + Cm_r*_c2*e_alpha
-    out[..., 1, 0] = numpy.pi*Cn_q*_c0*rho - _c8
-    out[..., 1, 1] = numpy.pi*Cn_q*_c0*e_alpha*rho - _c8*e_alpha
-    out[..., 1, 3] = -CY_r*_c7*e_alpha + numpy.pi*Cn_r*_c0*e_alpha*rho
-    return out
+    return _view(aero_blocks, "Ba", rho=rho, V=V, R=R, e_theta=e_theta, e_psi=e_psi, e_alpha=e_alpha, CZ_theta=CZ_theta, CZ_psi=CZ_psi, CZ_q=CZ_q, CZ_r=CZ_r, Cm_theta=Cm_theta, Cm_psi=Cm_psi, Cm_q=Cm_q, Cm_r=Cm_r, CY_theta=CY_theta, CY_psi=CY_psi, CY_q=CY_q, CY_r=CY_r, Cn_theta=Cn_theta, Cn_psi=Cn_psi, Cn_q=Cn_q, Cn_r=Cn_r)
 
 
 def Da(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
@@ -393,52 +591,8 @@ def Da(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
 
     Thesis equations 4.25, 8.26, 8.34 with in-plane bending.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        free-stream (inflow) velocity [m/s]
-    R : array_like
-        propeller radius [m]
-    e_theta : array_like
-        propeller plane aft of the pitch pivot (signed; < 0 for a tractor) [m]
-    e_psi : array_like
-        propeller plane aft of the yaw pivot (signed; < 0 for a tractor) [m]
-    e_alpha : array_like
-        propeller plane aft of the wing elastic axis, e_θ + l_θ − a_P b_P (8.35) [m]
-    CZ_theta : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
-    CZ_psi : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CZ_q : array_like
-        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CZ_r : array_like
-        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cm_theta : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cm_psi : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cm_q : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cm_r : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    CY_theta : array_like
-        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
-    CY_psi : array_like
-        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CY_q : array_like
-        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CY_r : array_like
-        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cn_theta : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cn_psi : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cn_q : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cn_r : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    A view: `aero_blocks`'s "Da" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `aero_blocks`).
 
     Returns
     -------
@@ -446,30 +600,7 @@ def Da(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
         rows: theta, psi
         columns: h_P, alpha_P, v_P, chi_P
     """
-    shape, (rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
-    _c0 = R**3
-    _c1 = numpy.pi*V*rho
-    _c2 = _c0*_c1
-    _c3 = Cm_theta*_c2
-    _c4 = (1/2)*e_theta
-    _c5 = R**2*_c1
-    _c6 = _c4*_c5
-    _c7 = CZ_theta*_c6
-    _c8 = R**4
-    _c9 = _c1*_c8
-    _c10 = _c2*_c4
-    _c11 = (1/2)*e_psi
-    _c12 = _c11*_c5
-    _c13 = CY_theta*_c12
-    _c14 = _c11*_c2
-    out = numpy.zeros(shape + (2, 4))
-    out[..., 0, 0] = _c3 + _c7
-    out[..., 0, 1] = CZ_q*_c10 + Cm_q*_c9 + _c3*e_alpha + _c7*e_alpha
-    out[..., 0, 3] = CZ_psi*_c6*e_alpha + CZ_r*_c10 + Cm_psi*_c2*e_alpha + Cm_r*_c9
-    out[..., 1, 0] = numpy.pi*Cn_theta*V*_c0*rho - _c13
-    out[..., 1, 1] = -CY_q*_c14 + numpy.pi*Cn_q*V*_c8*rho + numpy.pi*Cn_theta*V*_c0*e_alpha*rho - _c13*e_alpha
-    out[..., 1, 3] = -CY_psi*_c12*e_alpha - CY_r*_c14 + numpy.pi*Cn_psi*V*_c0*e_alpha*rho + numpy.pi*Cn_r*V*_c8*rho
-    return out
+    return _view(aero_blocks, "Da", rho=rho, V=V, R=R, e_theta=e_theta, e_psi=e_psi, e_alpha=e_alpha, CZ_theta=CZ_theta, CZ_psi=CZ_psi, CZ_q=CZ_q, CZ_r=CZ_r, Cm_theta=Cm_theta, Cm_psi=Cm_psi, Cm_q=Cm_q, Cm_r=Cm_r, CY_theta=CY_theta, CY_psi=CY_psi, CY_q=CY_q, CY_r=CY_r, Cn_theta=Cn_theta, Cn_psi=Cn_psi, Cn_q=Cn_q, Cn_r=Cn_r)
 
 
 def Fa(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
@@ -477,52 +608,8 @@ def Fa(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
 
     Thesis equations 4.25, 8.26, 8.34 with in-plane bending.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        free-stream (inflow) velocity [m/s]
-    R : array_like
-        propeller radius [m]
-    e_theta : array_like
-        propeller plane aft of the pitch pivot (signed; < 0 for a tractor) [m]
-    e_psi : array_like
-        propeller plane aft of the yaw pivot (signed; < 0 for a tractor) [m]
-    e_alpha : array_like
-        propeller plane aft of the wing elastic axis, e_θ + l_θ − a_P b_P (8.35) [m]
-    CZ_theta : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
-    CZ_psi : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CZ_q : array_like
-        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CZ_r : array_like
-        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cm_theta : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cm_psi : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cm_q : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cm_r : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    CY_theta : array_like
-        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
-    CY_psi : array_like
-        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CY_q : array_like
-        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CY_r : array_like
-        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cn_theta : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cn_psi : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cn_q : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cn_r : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    A view: `aero_blocks`'s "Fa" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `aero_blocks`).
 
     Returns
     -------
@@ -530,20 +617,7 @@ def Fa(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
         rows: theta, psi
         columns: h_P, alpha_P, v_P, chi_P
     """
-    shape, (rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
-    _c0 = R**3
-    _c1 = V**2
-    _c2 = numpy.pi*_c1*rho
-    _c3 = _c0*_c2
-    _c4 = (1/2)*R**2*_c2
-    _c5 = _c4*e_theta
-    _c6 = _c4*e_psi
-    out = numpy.zeros(shape + (2, 4))
-    out[..., 0, 1] = CZ_theta*_c5 + Cm_theta*_c3
-    out[..., 0, 3] = CZ_psi*_c5 + Cm_psi*_c3
-    out[..., 1, 1] = -CY_theta*_c6 + numpy.pi*Cn_theta*_c0*_c1*rho
-    out[..., 1, 3] = -CY_psi*_c6 + numpy.pi*Cn_psi*_c0*_c1*rho
-    return out
+    return _view(aero_blocks, "Fa", rho=rho, V=V, R=R, e_theta=e_theta, e_psi=e_psi, e_alpha=e_alpha, CZ_theta=CZ_theta, CZ_psi=CZ_psi, CZ_q=CZ_q, CZ_r=CZ_r, Cm_theta=Cm_theta, Cm_psi=Cm_psi, Cm_q=Cm_q, Cm_r=Cm_r, CY_theta=CY_theta, CY_psi=CY_psi, CY_q=CY_q, CY_r=CY_r, Cn_theta=Cn_theta, Cn_psi=Cn_psi, Cn_q=Cn_q, Cn_r=Cn_r)
 
 
 def P1(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
@@ -551,52 +625,8 @@ def P1(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
 
     Thesis equations 4.25, 8.26, 8.34 with in-plane bending.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        free-stream (inflow) velocity [m/s]
-    R : array_like
-        propeller radius [m]
-    e_theta : array_like
-        propeller plane aft of the pitch pivot (signed; < 0 for a tractor) [m]
-    e_psi : array_like
-        propeller plane aft of the yaw pivot (signed; < 0 for a tractor) [m]
-    e_alpha : array_like
-        propeller plane aft of the wing elastic axis, e_θ + l_θ − a_P b_P (8.35) [m]
-    CZ_theta : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
-    CZ_psi : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CZ_q : array_like
-        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CZ_r : array_like
-        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cm_theta : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cm_psi : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cm_q : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cm_r : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    CY_theta : array_like
-        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
-    CY_psi : array_like
-        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CY_q : array_like
-        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CY_r : array_like
-        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cn_theta : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cn_psi : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cn_q : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cn_r : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    A view: `aero_blocks`'s "P1" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `aero_blocks`).
 
     Returns
     -------
@@ -604,23 +634,7 @@ def P1(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
         rows: h_P, alpha_P, v_P, chi_P
         columns: theta, psi
     """
-    shape, (rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
-    _c0 = numpy.pi*rho
-    _c1 = (1/2)*R**3*_c0
-    _c2 = _c1*e_theta
-    _c3 = CZ_q*_c2
-    _c4 = _c1*e_psi
-    _c5 = CZ_r*_c4
-    _c6 = R**4
-    _c7 = _c0*_c6
-    out = numpy.zeros(shape + (4, 2))
-    out[..., 0, 0] = _c3
-    out[..., 0, 1] = _c5
-    out[..., 1, 0] = Cm_q*_c7*e_theta + _c3*e_alpha
-    out[..., 1, 1] = Cm_r*_c7*e_psi + _c5*e_alpha
-    out[..., 3, 0] = -CY_q*_c2*e_alpha + numpy.pi*Cn_q*_c6*e_theta*rho
-    out[..., 3, 1] = -CY_r*_c4*e_alpha + numpy.pi*Cn_r*_c6*e_psi*rho
-    return out
+    return _view(aero_blocks, "P1", rho=rho, V=V, R=R, e_theta=e_theta, e_psi=e_psi, e_alpha=e_alpha, CZ_theta=CZ_theta, CZ_psi=CZ_psi, CZ_q=CZ_q, CZ_r=CZ_r, Cm_theta=Cm_theta, Cm_psi=Cm_psi, Cm_q=Cm_q, Cm_r=Cm_r, CY_theta=CY_theta, CY_psi=CY_psi, CY_q=CY_q, CY_r=CY_r, Cn_theta=Cn_theta, Cn_psi=Cn_psi, Cn_q=Cn_q, Cn_r=Cn_r)
 
 
 def P2(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
@@ -628,52 +642,8 @@ def P2(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
 
     Thesis equations 4.25, 8.26, 8.34 with in-plane bending.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        free-stream (inflow) velocity [m/s]
-    R : array_like
-        propeller radius [m]
-    e_theta : array_like
-        propeller plane aft of the pitch pivot (signed; < 0 for a tractor) [m]
-    e_psi : array_like
-        propeller plane aft of the yaw pivot (signed; < 0 for a tractor) [m]
-    e_alpha : array_like
-        propeller plane aft of the wing elastic axis, e_θ + l_θ − a_P b_P (8.35) [m]
-    CZ_theta : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
-    CZ_psi : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CZ_q : array_like
-        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CZ_r : array_like
-        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cm_theta : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cm_psi : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cm_q : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cm_r : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    CY_theta : array_like
-        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
-    CY_psi : array_like
-        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CY_q : array_like
-        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CY_r : array_like
-        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cn_theta : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cn_psi : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cn_q : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cn_r : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    A view: `aero_blocks`'s "P2" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `aero_blocks`).
 
     Returns
     -------
@@ -681,28 +651,7 @@ def P2(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
         rows: h_P, alpha_P, v_P, chi_P
         columns: h_P, alpha_P, v_P, chi_P
     """
-    shape, (rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
-    _c0 = numpy.pi*rho
-    _c1 = (1/2)*R**3*_c0
-    _c2 = CZ_q*_c1
-    _c3 = _c2*e_alpha
-    _c4 = CZ_r*_c1
-    _c5 = R**4
-    _c6 = _c0*_c5
-    _c7 = Cm_q*_c6
-    _c8 = e_alpha**2
-    _c9 = CY_q*_c1
-    out = numpy.zeros(shape + (4, 4))
-    out[..., 0, 0] = _c2
-    out[..., 0, 1] = _c3
-    out[..., 0, 3] = _c4*e_alpha
-    out[..., 1, 0] = _c3 + _c7
-    out[..., 1, 1] = _c2*_c8 + _c7*e_alpha
-    out[..., 1, 3] = Cm_r*_c6*e_alpha + _c4*_c8
-    out[..., 3, 0] = numpy.pi*Cn_q*_c5*rho - _c9*e_alpha
-    out[..., 3, 1] = numpy.pi*Cn_q*_c5*e_alpha*rho - _c8*_c9
-    out[..., 3, 3] = -CY_r*_c1*_c8 + numpy.pi*Cn_r*_c5*e_alpha*rho
-    return out
+    return _view(aero_blocks, "P2", rho=rho, V=V, R=R, e_theta=e_theta, e_psi=e_psi, e_alpha=e_alpha, CZ_theta=CZ_theta, CZ_psi=CZ_psi, CZ_q=CZ_q, CZ_r=CZ_r, Cm_theta=Cm_theta, Cm_psi=Cm_psi, Cm_q=Cm_q, Cm_r=Cm_r, CY_theta=CY_theta, CY_psi=CY_psi, CY_q=CY_q, CY_r=CY_r, Cn_theta=Cn_theta, Cn_psi=Cn_psi, Cn_q=Cn_q, Cn_r=Cn_r)
 
 
 def P3(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
@@ -710,52 +659,8 @@ def P3(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
 
     Thesis equations 4.25, 8.26, 8.34 with in-plane bending.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        free-stream (inflow) velocity [m/s]
-    R : array_like
-        propeller radius [m]
-    e_theta : array_like
-        propeller plane aft of the pitch pivot (signed; < 0 for a tractor) [m]
-    e_psi : array_like
-        propeller plane aft of the yaw pivot (signed; < 0 for a tractor) [m]
-    e_alpha : array_like
-        propeller plane aft of the wing elastic axis, e_θ + l_θ − a_P b_P (8.35) [m]
-    CZ_theta : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
-    CZ_psi : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CZ_q : array_like
-        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CZ_r : array_like
-        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cm_theta : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cm_psi : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cm_q : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cm_r : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    CY_theta : array_like
-        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
-    CY_psi : array_like
-        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CY_q : array_like
-        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CY_r : array_like
-        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cn_theta : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cn_psi : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cn_q : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cn_r : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    A view: `aero_blocks`'s "P3" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `aero_blocks`).
 
     Returns
     -------
@@ -763,29 +668,7 @@ def P3(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
         rows: h_P, alpha_P, v_P, chi_P
         columns: theta, psi
     """
-    shape, (rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
-    _c0 = R**3
-    _c1 = numpy.pi*V*rho
-    _c2 = _c0*_c1
-    _c3 = (1/2)*_c2
-    _c4 = CZ_q*_c3
-    _c5 = (1/2)*R**2*_c1
-    _c6 = _c5*e_theta
-    _c7 = CZ_theta*_c6
-    _c8 = CZ_r*_c3
-    _c9 = _c5*e_psi
-    _c10 = CZ_psi*_c9
-    _c11 = R**4
-    _c12 = _c1*_c11
-    _c13 = _c3*e_alpha
-    out = numpy.zeros(shape + (4, 2))
-    out[..., 0, 0] = _c4 + _c7
-    out[..., 0, 1] = _c10 + _c8
-    out[..., 1, 0] = Cm_q*_c12 + Cm_theta*_c2*e_theta + _c4*e_alpha + _c7*e_alpha
-    out[..., 1, 1] = Cm_psi*_c2*e_psi + Cm_r*_c12 + _c10*e_alpha + _c8*e_alpha
-    out[..., 3, 0] = -CY_q*_c13 - CY_theta*_c6*e_alpha + numpy.pi*Cn_q*V*_c11*rho + numpy.pi*Cn_theta*V*_c0*e_theta*rho
-    out[..., 3, 1] = -CY_psi*_c9*e_alpha - CY_r*_c13 + numpy.pi*Cn_psi*V*_c0*e_psi*rho + numpy.pi*Cn_r*V*_c11*rho
-    return out
+    return _view(aero_blocks, "P3", rho=rho, V=V, R=R, e_theta=e_theta, e_psi=e_psi, e_alpha=e_alpha, CZ_theta=CZ_theta, CZ_psi=CZ_psi, CZ_q=CZ_q, CZ_r=CZ_r, Cm_theta=Cm_theta, Cm_psi=Cm_psi, Cm_q=Cm_q, Cm_r=Cm_r, CY_theta=CY_theta, CY_psi=CY_psi, CY_q=CY_q, CY_r=CY_r, Cn_theta=Cn_theta, Cn_psi=Cn_psi, Cn_q=Cn_q, Cn_r=Cn_r)
 
 
 def P4(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
@@ -793,52 +676,8 @@ def P4(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
 
     Thesis equations 4.25, 8.26, 8.34 with in-plane bending.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        free-stream (inflow) velocity [m/s]
-    R : array_like
-        propeller radius [m]
-    e_theta : array_like
-        propeller plane aft of the pitch pivot (signed; < 0 for a tractor) [m]
-    e_psi : array_like
-        propeller plane aft of the yaw pivot (signed; < 0 for a tractor) [m]
-    e_alpha : array_like
-        propeller plane aft of the wing elastic axis, e_θ + l_θ − a_P b_P (8.35) [m]
-    CZ_theta : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
-    CZ_psi : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CZ_q : array_like
-        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CZ_r : array_like
-        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cm_theta : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cm_psi : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cm_q : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cm_r : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    CY_theta : array_like
-        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
-    CY_psi : array_like
-        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CY_q : array_like
-        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CY_r : array_like
-        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cn_theta : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cn_psi : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cn_q : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cn_r : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    A view: `aero_blocks`'s "P4" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `aero_blocks`).
 
     Returns
     -------
@@ -846,34 +685,7 @@ def P4(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
         rows: h_P, alpha_P, v_P, chi_P
         columns: h_P, alpha_P, v_P, chi_P
     """
-    shape, (rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
-    _c0 = numpy.pi*V*rho
-    _c1 = (1/2)*R**2*_c0
-    _c2 = CZ_theta*_c1
-    _c3 = R**3
-    _c4 = _c0*_c3
-    _c5 = (1/2)*_c4
-    _c6 = CZ_q*_c5
-    _c7 = _c2*e_alpha
-    _c8 = CZ_r*_c5
-    _c9 = CZ_psi*_c1
-    _c10 = Cm_theta*_c4
-    _c11 = R**4
-    _c12 = _c0*_c11
-    _c13 = e_alpha**2
-    _c14 = CY_theta*_c1
-    _c15 = _c5*e_alpha
-    out = numpy.zeros(shape + (4, 4))
-    out[..., 0, 0] = _c2
-    out[..., 0, 1] = _c6 + _c7
-    out[..., 0, 3] = _c8 + _c9*e_alpha
-    out[..., 1, 0] = _c10 + _c7
-    out[..., 1, 1] = Cm_q*_c12 + _c10*e_alpha + _c13*_c2 + _c6*e_alpha
-    out[..., 1, 3] = Cm_psi*_c4*e_alpha + Cm_r*_c12 + _c13*_c9 + _c8*e_alpha
-    out[..., 3, 0] = numpy.pi*Cn_theta*V*_c3*rho - _c14*e_alpha
-    out[..., 3, 1] = -CY_q*_c15 + numpy.pi*Cn_q*V*_c11*rho + numpy.pi*Cn_theta*V*_c3*e_alpha*rho - _c13*_c14
-    out[..., 3, 3] = -CY_psi*_c1*_c13 - CY_r*_c15 + numpy.pi*Cn_psi*V*_c3*e_alpha*rho + numpy.pi*Cn_r*V*_c11*rho
-    return out
+    return _view(aero_blocks, "P4", rho=rho, V=V, R=R, e_theta=e_theta, e_psi=e_psi, e_alpha=e_alpha, CZ_theta=CZ_theta, CZ_psi=CZ_psi, CZ_q=CZ_q, CZ_r=CZ_r, Cm_theta=Cm_theta, Cm_psi=Cm_psi, Cm_q=Cm_q, Cm_r=Cm_r, CY_theta=CY_theta, CY_psi=CY_psi, CY_q=CY_q, CY_r=CY_r, Cn_theta=Cn_theta, Cn_psi=Cn_psi, Cn_q=Cn_q, Cn_r=Cn_r)
 
 
 def P5(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
@@ -881,52 +693,8 @@ def P5(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
 
     Thesis equations 4.25, 8.26, 8.34 with in-plane bending.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        free-stream (inflow) velocity [m/s]
-    R : array_like
-        propeller radius [m]
-    e_theta : array_like
-        propeller plane aft of the pitch pivot (signed; < 0 for a tractor) [m]
-    e_psi : array_like
-        propeller plane aft of the yaw pivot (signed; < 0 for a tractor) [m]
-    e_alpha : array_like
-        propeller plane aft of the wing elastic axis, e_θ + l_θ − a_P b_P (8.35) [m]
-    CZ_theta : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
-    CZ_psi : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CZ_q : array_like
-        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CZ_r : array_like
-        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cm_theta : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cm_psi : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cm_q : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cm_r : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    CY_theta : array_like
-        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
-    CY_psi : array_like
-        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CY_q : array_like
-        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CY_r : array_like
-        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cn_theta : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cn_psi : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cn_q : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cn_r : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    A view: `aero_blocks`'s "P5" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `aero_blocks`).
 
     Returns
     -------
@@ -934,23 +702,7 @@ def P5(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
         rows: h_P, alpha_P, v_P, chi_P
         columns: theta, psi
     """
-    shape, (rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
-    _c0 = V**2
-    _c1 = numpy.pi*_c0*rho
-    _c2 = (1/2)*R**2*_c1
-    _c3 = CZ_theta*_c2
-    _c4 = CZ_psi*_c2
-    _c5 = R**3
-    _c6 = _c1*_c5
-    _c7 = _c2*e_alpha
-    out = numpy.zeros(shape + (4, 2))
-    out[..., 0, 0] = _c3
-    out[..., 0, 1] = _c4
-    out[..., 1, 0] = Cm_theta*_c6 + _c3*e_alpha
-    out[..., 1, 1] = Cm_psi*_c6 + _c4*e_alpha
-    out[..., 3, 0] = -CY_theta*_c7 + numpy.pi*Cn_theta*_c0*_c5*rho
-    out[..., 3, 1] = -CY_psi*_c7 + numpy.pi*Cn_psi*_c0*_c5*rho
-    return out
+    return _view(aero_blocks, "P5", rho=rho, V=V, R=R, e_theta=e_theta, e_psi=e_psi, e_alpha=e_alpha, CZ_theta=CZ_theta, CZ_psi=CZ_psi, CZ_q=CZ_q, CZ_r=CZ_r, Cm_theta=Cm_theta, Cm_psi=Cm_psi, Cm_q=Cm_q, Cm_r=Cm_r, CY_theta=CY_theta, CY_psi=CY_psi, CY_q=CY_q, CY_r=CY_r, Cn_theta=Cn_theta, Cn_psi=Cn_psi, Cn_q=Cn_q, Cn_r=Cn_r)
 
 
 def P6(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
@@ -958,52 +710,8 @@ def P6(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
 
     Thesis equations 4.25, 8.26, 8.34 with in-plane bending.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        free-stream (inflow) velocity [m/s]
-    R : array_like
-        propeller radius [m]
-    e_theta : array_like
-        propeller plane aft of the pitch pivot (signed; < 0 for a tractor) [m]
-    e_psi : array_like
-        propeller plane aft of the yaw pivot (signed; < 0 for a tractor) [m]
-    e_alpha : array_like
-        propeller plane aft of the wing elastic axis, e_θ + l_θ − a_P b_P (8.35) [m]
-    CZ_theta : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
-    CZ_psi : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CZ_q : array_like
-        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CZ_r : array_like
-        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cm_theta : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cm_psi : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cm_q : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cm_r : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    CY_theta : array_like
-        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
-    CY_psi : array_like
-        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CY_q : array_like
-        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CY_r : array_like
-        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cn_theta : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cn_psi : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cn_q : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cn_r : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    A view: `aero_blocks`'s "P6" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `aero_blocks`).
 
     Returns
     -------
@@ -1011,23 +719,7 @@ def P6(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_thet
         rows: h_P, alpha_P, v_P, chi_P
         columns: h_P, alpha_P, v_P, chi_P
     """
-    shape, (rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(rho, V, R, e_theta, e_psi, e_alpha, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
-    _c0 = V**2
-    _c1 = numpy.pi*_c0*rho
-    _c2 = (1/2)*R**2*_c1
-    _c3 = CZ_theta*_c2
-    _c4 = CZ_psi*_c2
-    _c5 = R**3
-    _c6 = _c1*_c5
-    _c7 = _c2*e_alpha
-    out = numpy.zeros(shape + (4, 4))
-    out[..., 0, 1] = _c3
-    out[..., 0, 3] = _c4
-    out[..., 1, 1] = Cm_theta*_c6 + _c3*e_alpha
-    out[..., 1, 3] = Cm_psi*_c6 + _c4*e_alpha
-    out[..., 3, 1] = -CY_theta*_c7 + numpy.pi*Cn_theta*_c0*_c5*rho
-    out[..., 3, 3] = -CY_psi*_c7 + numpy.pi*Cn_psi*_c0*_c5*rho
-    return out
+    return _view(aero_blocks, "P6", rho=rho, V=V, R=R, e_theta=e_theta, e_psi=e_psi, e_alpha=e_alpha, CZ_theta=CZ_theta, CZ_psi=CZ_psi, CZ_q=CZ_q, CZ_r=CZ_r, Cm_theta=Cm_theta, Cm_psi=Cm_psi, Cm_q=Cm_q, Cm_r=Cm_r, CY_theta=CY_theta, CY_psi=CY_psi, CY_q=CY_q, CY_r=CY_r, Cn_theta=Cn_theta, Cn_psi=Cn_psi, Cn_q=Cn_q, Cn_r=Cn_r)
 
 
 def inplane_inertia(M_P, S_psi_P, I_psi_P, l_psi, a_P_b_P):
@@ -1060,290 +752,6 @@ def inplane_inertia(M_P, S_psi_P, I_psi_P, l_psi, a_P_b_P):
     out[..., 0, 0] = I_psi_P + M_P*_c0**2 + S_psi_P*(-2*a_P_b_P + 2*l_psi)
     out[..., 1, 0] = I_psi_P + S_psi_P*_c0
     return out
-
-
-def structure_blocks(I_Omega, M_P, S_theta_P, S_alpha_P, I_alpha_P, I_theta_alpha_P, I_chi_P, I_psi_chi_P, Omega):
-    """Bs, Ds, Fs, Gs, Hs, Js at once.
-
-    The arguments are broadcast together once.  Their code is each matrix's own common
-    subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
-    functions.
-
-    Parameters
-    ----------
-    I_Omega : array_like
-        rotor mass moment of inertia about its rotation axis [kg m^2]
-    M_P : array_like
-        pivoting propeller–engine mass [kg]
-    S_theta_P : array_like
-        static moment of the pivoting mass about the pitch pivot, Σ m (x − l_θ) [kg m]
-    S_alpha_P : array_like
-        static moment of the pivoting mass about the wing elastic axis [kg m]
-    I_alpha_P : array_like
-        moment of inertia of the pivoting mass about the wing elastic axis [kg m^2]
-    I_theta_alpha_P : array_like
-        product of inertia Σ m (x − a_P b_P)(x − l_θ) [kg m^2]
-    I_chi_P : array_like
-        moment of inertia of the pivoting mass about the vertical axis through the wing elastic axis, Σ m (x − a_P b_P)^2 [kg m^2]
-    I_psi_chi_P : array_like
-        product of inertia Σ m (x − l_ψ)(x − a_P b_P) [kg m^2]
-    Omega : array_like
-        propeller rotational speed [rad/s]
-
-    Returns
-    -------
-    dict of numpy.ndarray
-        "Bs", shape (..., 2, 4): as `Bs`
-        "Ds", shape (..., 2, 4): as `Ds`
-        "Fs", shape (..., 4, 2): as `Fs`
-        "Gs", shape (..., 4, 4): as `Gs`
-        "Hs", shape (..., 4, 2): as `Hs`
-        "Js", shape (..., 4, 4): as `Js`
-        (``...`` is the broadcast shape of all the arguments).
-    """
-    shape, (I_Omega, M_P, S_theta_P, S_alpha_P, I_alpha_P, I_theta_alpha_P, I_chi_P, I_psi_chi_P, Omega,) = _broadcast(I_Omega, M_P, S_theta_P, S_alpha_P, I_alpha_P, I_theta_alpha_P, I_chi_P, I_psi_chi_P, Omega)
-    _c0 = I_Omega*Omega
-    _o0 = numpy.zeros(shape + (2, 4))
-    _o0[..., 0, 0] = S_theta_P
-    _o0[..., 0, 1] = I_theta_alpha_P
-    _o0[..., 1, 3] = I_psi_chi_P
-    _o1 = numpy.zeros(shape + (2, 4))
-    _o1[..., 0, 3] = _c0
-    _o1[..., 1, 1] = -_c0
-    _o2 = numpy.zeros(shape + (4, 2))
-    _o2[..., 0, 0] = S_theta_P
-    _o2[..., 1, 0] = I_theta_alpha_P
-    _o2[..., 3, 1] = I_psi_chi_P
-    _o3 = numpy.zeros(shape + (4, 4))
-    _o3[..., 0, 0] = M_P
-    _o3[..., 0, 1] = S_alpha_P
-    _o3[..., 1, 0] = S_alpha_P
-    _o3[..., 1, 1] = I_alpha_P
-    _o3[..., 2, 2] = M_P
-    _o3[..., 3, 3] = I_chi_P
-    _o4 = numpy.zeros(shape + (4, 2))
-    _o4[..., 1, 1] = _c0
-    _o4[..., 3, 0] = -_c0
-    _o5 = numpy.zeros(shape + (4, 4))
-    _o5[..., 1, 3] = _c0
-    _o5[..., 3, 1] = -_c0
-    return {
-        "Bs": _o0,
-        "Ds": _o1,
-        "Fs": _o2,
-        "Gs": _o3,
-        "Hs": _o4,
-        "Js": _o5,
-    }
-
-
-def aero_blocks(e_theta, e_psi, e_alpha, rho, V, R, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
-    """Ba, Da, Fa, P1, P2, P3, P4, P5, P6 at once.
-
-    The arguments are broadcast together once.  Their code is each matrix's own common
-    subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
-    functions.
-
-    Parameters
-    ----------
-    e_theta : array_like
-        propeller plane aft of the pitch pivot (signed; < 0 for a tractor) [m]
-    e_psi : array_like
-        propeller plane aft of the yaw pivot (signed; < 0 for a tractor) [m]
-    e_alpha : array_like
-        propeller plane aft of the wing elastic axis, e_θ + l_θ − a_P b_P (8.35) [m]
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        free-stream (inflow) velocity [m/s]
-    R : array_like
-        propeller radius [m]
-    CZ_theta : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
-    CZ_psi : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CZ_q : array_like
-        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CZ_r : array_like
-        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cm_theta : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cm_psi : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cm_q : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cm_r : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    CY_theta : array_like
-        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
-    CY_psi : array_like
-        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CY_q : array_like
-        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CY_r : array_like
-        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cn_theta : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cn_psi : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cn_q : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cn_r : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-
-    Returns
-    -------
-    dict of numpy.ndarray
-        "Ba", shape (..., 2, 4): as `Ba`
-        "Da", shape (..., 2, 4): as `Da`
-        "Fa", shape (..., 2, 4): as `Fa`
-        "P1", shape (..., 4, 2): as `P1`
-        "P2", shape (..., 4, 4): as `P2`
-        "P3", shape (..., 4, 2): as `P3`
-        "P4", shape (..., 4, 4): as `P4`
-        "P5", shape (..., 4, 2): as `P5`
-        "P6", shape (..., 4, 4): as `P6`
-        (``...`` is the broadcast shape of all the arguments).
-    """
-    shape, (e_theta, e_psi, e_alpha, rho, V, R, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(e_theta, e_psi, e_alpha, rho, V, R, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
-    _c0 = R**4
-    _c1 = numpy.pi*rho
-    _c2 = _c0*_c1
-    _c3 = Cm_q*_c2
-    _c4 = (1/2)*R**3*_c1
-    _c5 = _c4*e_theta
-    _c6 = CZ_q*_c5
-    _c7 = _c4*e_psi
-    _c8 = CY_q*_c7
-    _c9 = R**3
-    _c10 = numpy.pi*V*rho
-    _c11 = _c9*_c10
-    _c12 = Cm_theta*_c11
-    _c13 = (1/2)*e_theta
-    _c14 = R**2*_c10
-    _c15 = _c13*_c14
-    _c16 = CZ_theta*_c15
-    _c17 = _c10*_c0
-    _c18 = _c11*_c13
-    _c19 = (1/2)*e_psi
-    _c20 = _c19*_c14
-    _c21 = CY_theta*_c20
-    _c22 = _c19*_c11
-    _c23 = V**2
-    _c24 = numpy.pi*_c23*rho
-    _c25 = _c9*_c24
-    _c26 = (1/2)*R**2*_c24
-    _c27 = _c26*e_theta
-    _c28 = _c26*e_psi
-    _c29 = CZ_r*_c7
-    _c30 = _c1*_c0
-    _c31 = CZ_q*_c4
-    _c32 = _c31*e_alpha
-    _c33 = CZ_r*_c4
-    _c34 = Cm_q*_c30
-    _c35 = e_alpha**2
-    _c36 = CY_q*_c4
-    _c37 = (1/2)*_c11
-    _c38 = CZ_q*_c37
-    _c39 = (1/2)*R**2*_c10
-    _c40 = _c39*e_theta
-    _c41 = CZ_theta*_c40
-    _c42 = CZ_r*_c37
-    _c43 = _c39*e_psi
-    _c44 = CZ_psi*_c43
-    _c45 = _c37*e_alpha
-    _c46 = CZ_theta*_c39
-    _c47 = _c10*_c9
-    _c48 = (1/2)*_c47
-    _c49 = CZ_q*_c48
-    _c50 = _c46*e_alpha
-    _c51 = CZ_r*_c48
-    _c52 = CZ_psi*_c39
-    _c53 = Cm_theta*_c47
-    _c54 = CY_theta*_c39
-    _c55 = _c48*e_alpha
-    _c56 = CZ_theta*_c26
-    _c57 = CZ_psi*_c26
-    _c58 = _c24*_c9
-    _c59 = _c26*e_alpha
-    _o0 = numpy.zeros(shape + (2, 4))
-    _o0[..., 0, 0] = _c3 + _c6
-    _o0[..., 0, 1] = _c3*e_alpha + _c6*e_alpha
-    _o0[..., 0, 3] = CZ_r*_c5*e_alpha + Cm_r*_c2*e_alpha
-    _o0[..., 1, 0] = numpy.pi*Cn_q*_c0*rho - _c8
-    _o0[..., 1, 1] = numpy.pi*Cn_q*_c0*e_alpha*rho - _c8*e_alpha
-    _o0[..., 1, 3] = -CY_r*_c7*e_alpha + numpy.pi*Cn_r*_c0*e_alpha*rho
-    _o1 = numpy.zeros(shape + (2, 4))
-    _o1[..., 0, 0] = _c12 + _c16
-    _o1[..., 0, 1] = CZ_q*_c18 + Cm_q*_c17 + _c12*e_alpha + _c16*e_alpha
-    _o1[..., 0, 3] = CZ_psi*_c15*e_alpha + CZ_r*_c18 + Cm_psi*_c11*e_alpha + Cm_r*_c17
-    _o1[..., 1, 0] = numpy.pi*Cn_theta*V*_c9*rho - _c21
-    _o1[..., 1, 1] = -CY_q*_c22 + numpy.pi*Cn_q*V*_c0*rho + numpy.pi*Cn_theta*V*_c9*e_alpha*rho - _c21*e_alpha
-    _o1[..., 1, 3] = -CY_psi*_c20*e_alpha - CY_r*_c22 + numpy.pi*Cn_psi*V*_c9*e_alpha*rho + numpy.pi*Cn_r*V*_c0*rho
-    _o2 = numpy.zeros(shape + (2, 4))
-    _o2[..., 0, 1] = CZ_theta*_c27 + Cm_theta*_c25
-    _o2[..., 0, 3] = CZ_psi*_c27 + Cm_psi*_c25
-    _o2[..., 1, 1] = -CY_theta*_c28 + numpy.pi*Cn_theta*_c9*_c23*rho
-    _o2[..., 1, 3] = -CY_psi*_c28 + numpy.pi*Cn_psi*_c9*_c23*rho
-    _o3 = numpy.zeros(shape + (4, 2))
-    _o3[..., 0, 0] = _c6
-    _o3[..., 0, 1] = _c29
-    _o3[..., 1, 0] = Cm_q*_c30*e_theta + _c6*e_alpha
-    _o3[..., 1, 1] = Cm_r*_c30*e_psi + _c29*e_alpha
-    _o3[..., 3, 0] = -CY_q*_c5*e_alpha + numpy.pi*Cn_q*_c0*e_theta*rho
-    _o3[..., 3, 1] = -CY_r*_c7*e_alpha + numpy.pi*Cn_r*_c0*e_psi*rho
-    _o4 = numpy.zeros(shape + (4, 4))
-    _o4[..., 0, 0] = _c31
-    _o4[..., 0, 1] = _c32
-    _o4[..., 0, 3] = _c33*e_alpha
-    _o4[..., 1, 0] = _c32 + _c34
-    _o4[..., 1, 1] = _c31*_c35 + _c34*e_alpha
-    _o4[..., 1, 3] = Cm_r*_c30*e_alpha + _c33*_c35
-    _o4[..., 3, 0] = numpy.pi*Cn_q*_c0*rho - _c36*e_alpha
-    _o4[..., 3, 1] = numpy.pi*Cn_q*_c0*e_alpha*rho - _c35*_c36
-    _o4[..., 3, 3] = -CY_r*_c4*_c35 + numpy.pi*Cn_r*_c0*e_alpha*rho
-    _o5 = numpy.zeros(shape + (4, 2))
-    _o5[..., 0, 0] = _c38 + _c41
-    _o5[..., 0, 1] = _c44 + _c42
-    _o5[..., 1, 0] = Cm_q*_c17 + Cm_theta*_c11*e_theta + _c38*e_alpha + _c41*e_alpha
-    _o5[..., 1, 1] = Cm_psi*_c11*e_psi + Cm_r*_c17 + _c44*e_alpha + _c42*e_alpha
-    _o5[..., 3, 0] = -CY_q*_c45 - CY_theta*_c40*e_alpha + numpy.pi*Cn_q*V*_c0*rho + numpy.pi*Cn_theta*V*_c9*e_theta*rho
-    _o5[..., 3, 1] = -CY_psi*_c43*e_alpha - CY_r*_c45 + numpy.pi*Cn_psi*V*_c9*e_psi*rho + numpy.pi*Cn_r*V*_c0*rho
-    _o6 = numpy.zeros(shape + (4, 4))
-    _o6[..., 0, 0] = _c46
-    _o6[..., 0, 1] = _c49 + _c50
-    _o6[..., 0, 3] = _c51 + _c52*e_alpha
-    _o6[..., 1, 0] = _c53 + _c50
-    _o6[..., 1, 1] = Cm_q*_c17 + _c53*e_alpha + _c35*_c46 + _c49*e_alpha
-    _o6[..., 1, 3] = Cm_psi*_c47*e_alpha + Cm_r*_c17 + _c35*_c52 + _c51*e_alpha
-    _o6[..., 3, 0] = numpy.pi*Cn_theta*V*_c9*rho - _c54*e_alpha
-    _o6[..., 3, 1] = -CY_q*_c55 + numpy.pi*Cn_q*V*_c0*rho + numpy.pi*Cn_theta*V*_c9*e_alpha*rho - _c35*_c54
-    _o6[..., 3, 3] = -CY_psi*_c39*_c35 - CY_r*_c55 + numpy.pi*Cn_psi*V*_c9*e_alpha*rho + numpy.pi*Cn_r*V*_c0*rho
-    _o7 = numpy.zeros(shape + (4, 2))
-    _o7[..., 0, 0] = _c56
-    _o7[..., 0, 1] = _c57
-    _o7[..., 1, 0] = Cm_theta*_c58 + _c56*e_alpha
-    _o7[..., 1, 1] = Cm_psi*_c58 + _c57*e_alpha
-    _o7[..., 3, 0] = -CY_theta*_c59 + numpy.pi*Cn_theta*_c23*_c9*rho
-    _o7[..., 3, 1] = -CY_psi*_c59 + numpy.pi*Cn_psi*_c23*_c9*rho
-    _o8 = numpy.zeros(shape + (4, 4))
-    _o8[..., 0, 1] = _c56
-    _o8[..., 0, 3] = _c57
-    _o8[..., 1, 1] = Cm_theta*_c58 + _c56*e_alpha
-    _o8[..., 1, 3] = Cm_psi*_c58 + _c57*e_alpha
-    _o8[..., 3, 1] = -CY_theta*_c59 + numpy.pi*Cn_theta*_c23*_c9*rho
-    _o8[..., 3, 3] = -CY_psi*_c59 + numpy.pi*Cn_psi*_c23*_c9*rho
-    return {
-        "Ba": _o0,
-        "Da": _o1,
-        "Fa": _o2,
-        "P1": _o3,
-        "P2": _o4,
-        "P3": _o5,
-        "P4": _o6,
-        "P5": _o7,
-        "P6": _o8,
-    }
 
 
 def structure_blocks_d(I_Omega, M_P, S_theta_P, S_alpha_P, I_alpha_P, I_theta_alpha_P, I_chi_P, I_psi_chi_P, Omega):

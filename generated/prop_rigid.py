@@ -8,9 +8,10 @@ may be an array and all arguments broadcast together; each function returns an a
 shape ``broadcast_shape + (rows, cols)``.
 
 The block functions (`structure_blocks`, `aero_blocks`) return several of these matrices
-at once (a dict), broadcasting their arguments once.  Their code is each matrix's own common
-subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
-functions.
+at once (a dict), broadcasting their arguments once, with one common-subexpression elimination
+over all their matrices; the runtime calls them.  The function of each of their matrices
+(`Ms`, `Cs_viscous`, `Ks`, `Ma`, `Ca`, `Ka`) is a view: it calls its block function
+(`VIEWS` names it) and returns that matrix.
 
 The derivative functions (`structure_blocks_d`, `aero_blocks_d`, `Cs_hysteretic_d`, `G_d`) return the
 exact parameter derivatives of those matrices: ``{matrix name: {parameter name: array}}`` with
@@ -109,6 +110,16 @@ BLOCKS = {
     "aero_blocks": (('rho', 'V', 'R', 'e_theta', 'e_psi', 'CZ_theta', 'CZ_psi', 'CZ_q', 'CZ_r', 'Cm_theta', 'Cm_psi', 'Cm_q', 'Cm_r', 'CY_theta', 'CY_psi', 'CY_q', 'CY_r', 'Cn_theta', 'Cn_psi', 'Cn_q', 'Cn_r'), ('Ma', 'Ca', 'Ka')),
 }
 
+#: matrix function name -> the block function it is a view of
+VIEWS = {
+    "Ms": "structure_blocks",
+    "Cs_viscous": "structure_blocks",
+    "Ks": "structure_blocks",
+    "Ma": "aero_blocks",
+    "Ca": "aero_blocks",
+    "Ka": "aero_blocks",
+}
+
 #: derivative function name -> (argument names, {matrix name: parameters it depends on})
 PARTIALS = {
     "structure_blocks_d": (('I_X', 'I_Y', 'I_Z', 'Omega', 'K_theta', 'K_psi', 'zeta_theta', 'zeta_psi'), {'Ms': ('I_Y', 'I_Z'), 'Cs_viscous': ('I_X', 'I_Y', 'I_Z', 'Omega', 'K_theta', 'K_psi', 'zeta_theta', 'zeta_psi'), 'Ks': ('K_theta', 'K_psi')}),
@@ -123,18 +134,181 @@ def _broadcast(*args):
     return arrays[0].shape, arrays
 
 
+def _view(block, name, **values):
+    """Matrix `name` of block function `block` at `values`, the block's other arguments NaN
+    (only its other matrices depend on them: the result is that of `values` alone)."""
+    return block(**{a: values.get(a, numpy.nan) for a in BLOCKS[block.__name__][0]})[name]
+
+
+def structure_blocks(I_X, I_Y, I_Z, Omega, K_theta, K_psi, zeta_theta, zeta_psi):
+    """Ms, Cs_viscous, Ks at once.
+
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the matrices.
+
+    Parameters
+    ----------
+    I_X : array_like
+        propeller mass moment of inertia about its rotation axis [kg m^2]
+    I_Y : array_like
+        mass moment of inertia of the pivoting system about the pitch axis [kg m^2]
+    I_Z : array_like
+        mass moment of inertia of the pivoting system about the yaw axis [kg m^2]
+    Omega : array_like
+        propeller rotational speed [rad/s]
+    K_theta : array_like
+        pitch stiffness of the propeller attachment [N m/rad]
+    K_psi : array_like
+        yaw stiffness of the propeller attachment [N m/rad]
+    zeta_theta : array_like
+        viscous damping ratio in pitch (fraction of critical) [-]
+    zeta_psi : array_like
+        viscous damping ratio in yaw (fraction of critical) [-]
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        "Ms", shape (..., 2, 2): see `Ms`
+        "Cs_viscous", shape (..., 2, 2): see `Cs_viscous`
+        "Ks", shape (..., 2, 2): see `Ks`
+        (``...`` is the broadcast shape of all the arguments).
+    """
+    shape, (I_X, I_Y, I_Z, Omega, K_theta, K_psi, zeta_theta, zeta_psi,) = _broadcast(I_X, I_Y, I_Z, Omega, K_theta, K_psi, zeta_theta, zeta_psi)
+    _c0 = I_X*Omega
+    _o0 = numpy.zeros(shape + (2, 2))
+    _o0[..., 0, 0] = I_Y
+    _o0[..., 1, 1] = I_Z
+    _o1 = numpy.zeros(shape + (2, 2))
+    _o1[..., 0, 0] = 2*numpy.sqrt(I_Y)*numpy.sqrt(K_theta)*zeta_theta
+    _o1[..., 0, 1] = _c0
+    _o1[..., 1, 0] = -_c0
+    _o1[..., 1, 1] = 2*numpy.sqrt(I_Z)*numpy.sqrt(K_psi)*zeta_psi
+    _o2 = numpy.zeros(shape + (2, 2))
+    _o2[..., 0, 0] = K_theta
+    _o2[..., 1, 1] = K_psi
+    return {
+        "Ms": _o0,
+        "Cs_viscous": _o1,
+        "Ks": _o2,
+    }
+
+
+def aero_blocks(rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
+    """Ma, Ca, Ka at once.
+
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the matrices.
+
+    Parameters
+    ----------
+    rho : array_like
+        air density [kg/m^3]
+    V : array_like
+        free-stream (inflow) velocity [m/s]
+    R : array_like
+        propeller radius [m]
+    e_theta : array_like
+        distance from the pitch pivot forward to the propeller plane (> 0) [m]
+    e_psi : array_like
+        distance from the yaw pivot forward to the propeller plane (> 0) [m]
+    CZ_theta : array_like
+        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
+    CZ_psi : array_like
+        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
+    CZ_q : array_like
+        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
+    CZ_r : array_like
+        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    Cm_theta : array_like
+        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
+    Cm_psi : array_like
+        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
+    Cm_q : array_like
+        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
+    Cm_r : array_like
+        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    CY_theta : array_like
+        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
+    CY_psi : array_like
+        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
+    CY_q : array_like
+        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
+    CY_r : array_like
+        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    Cn_theta : array_like
+        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
+    Cn_psi : array_like
+        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
+    Cn_q : array_like
+        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
+    Cn_r : array_like
+        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        "Ma", shape (..., 2, 2): see `Ma`
+        "Ca", shape (..., 2, 2): see `Ca`
+        "Ka", shape (..., 2, 2): see `Ka`
+        (``...`` is the broadcast shape of all the arguments).
+    """
+    shape, (rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
+    _c0 = R**4
+    _c1 = numpy.pi*rho
+    _c2 = _c0*_c1
+    _c3 = _c2*e_theta
+    _c4 = e_theta**2
+    _c5 = R**3
+    _c6 = _c1*_c5
+    _c7 = (1/2)*_c6
+    _c8 = CZ_q*_c7
+    _c9 = _c2*e_psi
+    _c10 = _c7*e_psi
+    _c11 = _c10*e_theta
+    _c12 = e_psi**2
+    _c13 = V*_c6
+    _c14 = _c13*e_theta
+    _c15 = V*e_theta
+    _c16 = R**2
+    _c17 = V*_c2
+    _c18 = _c13*e_psi
+    _c19 = (1/2)*_c1*_c16
+    _c20 = V*_c19
+    _c21 = _c20*e_psi*e_theta
+    _c22 = V**2
+    _c23 = _c19*_c22
+    _c24 = _c23*e_theta
+    _c25 = _c22*_c6
+    _c26 = _c23*e_psi
+    _o0 = numpy.zeros(shape + (2, 2))
+    _o0[..., 0, 0] = -Cm_q*_c3 + _c4*_c8
+    _o0[..., 0, 1] = CZ_r*_c11 - Cm_r*_c9
+    _o0[..., 1, 0] = -CY_q*_c11 - Cn_q*_c3
+    _o0[..., 1, 1] = -CY_r*_c12*_c7 - Cn_r*_c9
+    _o1 = numpy.zeros(shape + (2, 2))
+    _o1[..., 0, 0] = (1/2)*numpy.pi*CZ_theta*V*_c16*_c4*rho + numpy.pi*Cm_q*V*_c0*rho - Cm_theta*_c14 - _c15*_c8
+    _o1[..., 0, 1] = CZ_psi*_c21 - CZ_r*_c15*_c7 - Cm_psi*_c18 + Cm_r*_c17
+    _o1[..., 1, 0] = CY_q*V*_c10 - CY_theta*_c21 + Cn_q*_c17 - Cn_theta*_c14
+    _o1[..., 1, 1] = -CY_psi*_c12*_c20 + (1/2)*numpy.pi*CY_r*V*_c5*e_psi*rho - Cn_psi*_c18 + numpy.pi*Cn_r*V*_c0*rho
+    _o2 = numpy.zeros(shape + (2, 2))
+    _o2[..., 0, 0] = -CZ_theta*_c24 + numpy.pi*Cm_theta*_c22*_c5*rho
+    _o2[..., 0, 1] = -CZ_psi*_c24 + numpy.pi*Cm_psi*_c22*_c5*rho
+    _o2[..., 1, 0] = CY_theta*_c26 + Cn_theta*_c25
+    _o2[..., 1, 1] = CY_psi*_c26 + Cn_psi*_c25
+    return {
+        "Ma": _o0,
+        "Ca": _o1,
+        "Ka": _o2,
+    }
+
 
 def Ms(I_Y, I_Z):
     """Structural mass matrix M_s [θ, ψ].
 
     Thesis equations 6.12.
 
-    Parameters
-    ----------
-    I_Y : array_like
-        mass moment of inertia of the pivoting system about the pitch axis [kg m^2]
-    I_Z : array_like
-        mass moment of inertia of the pivoting system about the yaw axis [kg m^2]
+    A view: `structure_blocks`'s "Ms" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `structure_blocks`).
 
     Returns
     -------
@@ -142,11 +316,7 @@ def Ms(I_Y, I_Z):
         rows: theta, psi
         columns: theta, psi
     """
-    shape, (I_Y, I_Z,) = _broadcast(I_Y, I_Z)
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = I_Y
-    out[..., 1, 1] = I_Z
-    return out
+    return _view(structure_blocks, "Ms", I_Y=I_Y, I_Z=I_Z)
 
 
 def Cs_hysteretic(I_X, Omega, K_theta, K_psi, g_theta, g_psi, omega):
@@ -193,24 +363,8 @@ def Cs_viscous(I_X, Omega, I_Y, I_Z, K_theta, K_psi, zeta_theta, zeta_psi):
 
     Thesis equations 6.6, 6.8, 6.13.
 
-    Parameters
-    ----------
-    I_X : array_like
-        propeller mass moment of inertia about its rotation axis [kg m^2]
-    Omega : array_like
-        propeller rotational speed [rad/s]
-    I_Y : array_like
-        mass moment of inertia of the pivoting system about the pitch axis [kg m^2]
-    I_Z : array_like
-        mass moment of inertia of the pivoting system about the yaw axis [kg m^2]
-    K_theta : array_like
-        pitch stiffness of the propeller attachment [N m/rad]
-    K_psi : array_like
-        yaw stiffness of the propeller attachment [N m/rad]
-    zeta_theta : array_like
-        viscous damping ratio in pitch (fraction of critical) [-]
-    zeta_psi : array_like
-        viscous damping ratio in yaw (fraction of critical) [-]
+    A view: `structure_blocks`'s "Cs_viscous" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `structure_blocks`).
 
     Returns
     -------
@@ -218,14 +372,7 @@ def Cs_viscous(I_X, Omega, I_Y, I_Z, K_theta, K_psi, zeta_theta, zeta_psi):
         rows: theta, psi
         columns: theta, psi
     """
-    shape, (I_X, Omega, I_Y, I_Z, K_theta, K_psi, zeta_theta, zeta_psi,) = _broadcast(I_X, Omega, I_Y, I_Z, K_theta, K_psi, zeta_theta, zeta_psi)
-    _c0 = I_X*Omega
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = 2*numpy.sqrt(I_Y)*numpy.sqrt(K_theta)*zeta_theta
-    out[..., 0, 1] = _c0
-    out[..., 1, 0] = -_c0
-    out[..., 1, 1] = 2*numpy.sqrt(I_Z)*numpy.sqrt(K_psi)*zeta_psi
-    return out
+    return _view(structure_blocks, "Cs_viscous", I_X=I_X, Omega=Omega, I_Y=I_Y, I_Z=I_Z, K_theta=K_theta, K_psi=K_psi, zeta_theta=zeta_theta, zeta_psi=zeta_psi)
 
 
 def Ks(K_theta, K_psi):
@@ -233,12 +380,8 @@ def Ks(K_theta, K_psi):
 
     Thesis equations 6.14.
 
-    Parameters
-    ----------
-    K_theta : array_like
-        pitch stiffness of the propeller attachment [N m/rad]
-    K_psi : array_like
-        yaw stiffness of the propeller attachment [N m/rad]
+    A view: `structure_blocks`'s "Ks" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `structure_blocks`).
 
     Returns
     -------
@@ -246,11 +389,7 @@ def Ks(K_theta, K_psi):
         rows: theta, psi
         columns: theta, psi
     """
-    shape, (K_theta, K_psi,) = _broadcast(K_theta, K_psi)
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = K_theta
-    out[..., 1, 1] = K_psi
-    return out
+    return _view(structure_blocks, "Ks", K_theta=K_theta, K_psi=K_psi)
 
 
 def G(I_X, Omega):
@@ -284,50 +423,8 @@ def Ma(rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi
 
     Thesis equations 4.25, 4.26, 6.9, 6.15.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        free-stream (inflow) velocity [m/s]
-    R : array_like
-        propeller radius [m]
-    e_theta : array_like
-        distance from the pitch pivot forward to the propeller plane (> 0) [m]
-    e_psi : array_like
-        distance from the yaw pivot forward to the propeller plane (> 0) [m]
-    CZ_theta : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
-    CZ_psi : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CZ_q : array_like
-        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CZ_r : array_like
-        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cm_theta : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cm_psi : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cm_q : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cm_r : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    CY_theta : array_like
-        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
-    CY_psi : array_like
-        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CY_q : array_like
-        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CY_r : array_like
-        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cn_theta : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cn_psi : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cn_q : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cn_r : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    A view: `aero_blocks`'s "Ma" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `aero_blocks`).
 
     Returns
     -------
@@ -335,19 +432,7 @@ def Ma(rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi
         rows: theta, psi
         columns: theta, psi
     """
-    shape, (rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
-    _c0 = numpy.pi*rho
-    _c1 = R**4*_c0
-    _c2 = _c1*e_theta
-    _c3 = (1/2)*R**3*_c0
-    _c4 = _c1*e_psi
-    _c5 = _c3*e_psi*e_theta
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = CZ_q*_c3*e_theta**2 - Cm_q*_c2
-    out[..., 0, 1] = CZ_r*_c5 - Cm_r*_c4
-    out[..., 1, 0] = -CY_q*_c5 - Cn_q*_c2
-    out[..., 1, 1] = -CY_r*_c3*e_psi**2 - Cn_r*_c4
-    return out
+    return _view(aero_blocks, "Ma", rho=rho, V=V, R=R, e_theta=e_theta, e_psi=e_psi, CZ_theta=CZ_theta, CZ_psi=CZ_psi, CZ_q=CZ_q, CZ_r=CZ_r, Cm_theta=Cm_theta, Cm_psi=Cm_psi, Cm_q=Cm_q, Cm_r=Cm_r, CY_theta=CY_theta, CY_psi=CY_psi, CY_q=CY_q, CY_r=CY_r, Cn_theta=Cn_theta, Cn_psi=Cn_psi, Cn_q=Cn_q, Cn_r=Cn_r)
 
 
 def Ca(rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
@@ -355,50 +440,8 @@ def Ca(rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi
 
     Thesis equations 4.25, 4.26, 6.9, 6.16.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        free-stream (inflow) velocity [m/s]
-    R : array_like
-        propeller radius [m]
-    e_theta : array_like
-        distance from the pitch pivot forward to the propeller plane (> 0) [m]
-    e_psi : array_like
-        distance from the yaw pivot forward to the propeller plane (> 0) [m]
-    CZ_theta : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
-    CZ_psi : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CZ_q : array_like
-        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CZ_r : array_like
-        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cm_theta : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cm_psi : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cm_q : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cm_r : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    CY_theta : array_like
-        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
-    CY_psi : array_like
-        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CY_q : array_like
-        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CY_r : array_like
-        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cn_theta : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cn_psi : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cn_q : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cn_r : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    A view: `aero_blocks`'s "Ca" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `aero_blocks`).
 
     Returns
     -------
@@ -406,24 +449,7 @@ def Ca(rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi
         rows: theta, psi
         columns: theta, psi
     """
-    shape, (rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
-    _c0 = R**4
-    _c1 = R**3
-    _c2 = numpy.pi*V*rho
-    _c3 = _c1*_c2
-    _c4 = _c3*e_theta
-    _c5 = (1/2)*_c4
-    _c6 = R**2
-    _c7 = _c0*_c2
-    _c8 = _c3*e_psi
-    _c9 = (1/2)*_c2*_c6
-    _c10 = _c9*e_psi*e_theta
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = -CZ_q*_c5 + (1/2)*numpy.pi*CZ_theta*V*_c6*e_theta**2*rho + numpy.pi*Cm_q*V*_c0*rho - Cm_theta*_c4
-    out[..., 0, 1] = CZ_psi*_c10 - CZ_r*_c5 - Cm_psi*_c8 + Cm_r*_c7
-    out[..., 1, 0] = (1/2)*CY_q*_c8 - CY_theta*_c10 + Cn_q*_c7 - Cn_theta*_c4
-    out[..., 1, 1] = -CY_psi*_c9*e_psi**2 + (1/2)*numpy.pi*CY_r*V*_c1*e_psi*rho - Cn_psi*_c8 + numpy.pi*Cn_r*V*_c0*rho
-    return out
+    return _view(aero_blocks, "Ca", rho=rho, V=V, R=R, e_theta=e_theta, e_psi=e_psi, CZ_theta=CZ_theta, CZ_psi=CZ_psi, CZ_q=CZ_q, CZ_r=CZ_r, Cm_theta=Cm_theta, Cm_psi=Cm_psi, Cm_q=Cm_q, Cm_r=Cm_r, CY_theta=CY_theta, CY_psi=CY_psi, CY_q=CY_q, CY_r=CY_r, Cn_theta=Cn_theta, Cn_psi=Cn_psi, Cn_q=Cn_q, Cn_r=Cn_r)
 
 
 def Ka(rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
@@ -431,50 +457,8 @@ def Ka(rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi
 
     Thesis equations 4.25, 4.26, 6.9, 6.17.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        free-stream (inflow) velocity [m/s]
-    R : array_like
-        propeller radius [m]
-    e_theta : array_like
-        distance from the pitch pivot forward to the propeller plane (> 0) [m]
-    e_psi : array_like
-        distance from the yaw pivot forward to the propeller plane (> 0) [m]
-    CZ_theta : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
-    CZ_psi : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CZ_q : array_like
-        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CZ_r : array_like
-        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cm_theta : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cm_psi : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cm_q : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cm_r : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    CY_theta : array_like
-        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
-    CY_psi : array_like
-        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CY_q : array_like
-        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CY_r : array_like
-        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cn_theta : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cn_psi : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cn_q : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cn_r : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
+    A view: `aero_blocks`'s "Ka" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `aero_blocks`).
 
     Returns
     -------
@@ -482,180 +466,7 @@ def Ka(rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi
         rows: theta, psi
         columns: theta, psi
     """
-    shape, (rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
-    _c0 = R**3
-    _c1 = V**2
-    _c2 = numpy.pi*_c1*rho
-    _c3 = (1/2)*R**2*_c2
-    _c4 = _c3*e_theta
-    _c5 = _c0*_c2
-    _c6 = _c3*e_psi
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = -CZ_theta*_c4 + numpy.pi*Cm_theta*_c0*_c1*rho
-    out[..., 0, 1] = -CZ_psi*_c4 + numpy.pi*Cm_psi*_c0*_c1*rho
-    out[..., 1, 0] = CY_theta*_c6 + Cn_theta*_c5
-    out[..., 1, 1] = CY_psi*_c6 + Cn_psi*_c5
-    return out
-
-
-def structure_blocks(I_X, I_Y, I_Z, Omega, K_theta, K_psi, zeta_theta, zeta_psi):
-    """Ms, Cs_viscous, Ks at once.
-
-    The arguments are broadcast together once.  Their code is each matrix's own common
-    subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
-    functions.
-
-    Parameters
-    ----------
-    I_X : array_like
-        propeller mass moment of inertia about its rotation axis [kg m^2]
-    I_Y : array_like
-        mass moment of inertia of the pivoting system about the pitch axis [kg m^2]
-    I_Z : array_like
-        mass moment of inertia of the pivoting system about the yaw axis [kg m^2]
-    Omega : array_like
-        propeller rotational speed [rad/s]
-    K_theta : array_like
-        pitch stiffness of the propeller attachment [N m/rad]
-    K_psi : array_like
-        yaw stiffness of the propeller attachment [N m/rad]
-    zeta_theta : array_like
-        viscous damping ratio in pitch (fraction of critical) [-]
-    zeta_psi : array_like
-        viscous damping ratio in yaw (fraction of critical) [-]
-
-    Returns
-    -------
-    dict of numpy.ndarray
-        "Ms", shape (..., 2, 2): as `Ms`
-        "Cs_viscous", shape (..., 2, 2): as `Cs_viscous`
-        "Ks", shape (..., 2, 2): as `Ks`
-        (``...`` is the broadcast shape of all the arguments).
-    """
-    shape, (I_X, I_Y, I_Z, Omega, K_theta, K_psi, zeta_theta, zeta_psi,) = _broadcast(I_X, I_Y, I_Z, Omega, K_theta, K_psi, zeta_theta, zeta_psi)
-    _c0 = I_X*Omega
-    _o0 = numpy.zeros(shape + (2, 2))
-    _o0[..., 0, 0] = I_Y
-    _o0[..., 1, 1] = I_Z
-    _o1 = numpy.zeros(shape + (2, 2))
-    _o1[..., 0, 0] = 2*numpy.sqrt(I_Y)*numpy.sqrt(K_theta)*zeta_theta
-    _o1[..., 0, 1] = _c0
-    _o1[..., 1, 0] = -_c0
-    _o1[..., 1, 1] = 2*numpy.sqrt(I_Z)*numpy.sqrt(K_psi)*zeta_psi
-    _o2 = numpy.zeros(shape + (2, 2))
-    _o2[..., 0, 0] = K_theta
-    _o2[..., 1, 1] = K_psi
-    return {
-        "Ms": _o0,
-        "Cs_viscous": _o1,
-        "Ks": _o2,
-    }
-
-
-def aero_blocks(rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r):
-    """Ma, Ca, Ka at once.
-
-    The arguments are broadcast together once.  Their code is each matrix's own common
-    subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
-    functions.
-
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        free-stream (inflow) velocity [m/s]
-    R : array_like
-        propeller radius [m]
-    e_theta : array_like
-        distance from the pitch pivot forward to the propeller plane (> 0) [m]
-    e_psi : array_like
-        distance from the yaw pivot forward to the propeller plane (> 0) [m]
-    CZ_theta : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective pitch angle θ̄ [1/rad]
-    CZ_psi : array_like
-        propeller derivative of vertical force F_Z w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CZ_q : array_like
-        propeller derivative of vertical force F_Z w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CZ_r : array_like
-        propeller derivative of vertical force F_Z w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cm_theta : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cm_psi : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cm_q : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cm_r : array_like
-        propeller derivative of pitching moment M_Y,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    CY_theta : array_like
-        propeller derivative of side force F_Y w.r.t. the effective pitch angle θ̄ [1/rad]
-    CY_psi : array_like
-        propeller derivative of side force F_Y w.r.t. the effective yaw angle ψ̄ [1/rad]
-    CY_q : array_like
-        propeller derivative of side force F_Y w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    CY_r : array_like
-        propeller derivative of side force F_Y w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-    Cn_theta : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective pitch angle θ̄ [1/rad]
-    Cn_psi : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the effective yaw angle ψ̄ [1/rad]
-    Cn_q : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the pitch rate θ̄̇R/V [1/rad]
-    Cn_r : array_like
-        propeller derivative of yawing moment M_Z,P w.r.t. the yaw rate ψ̄̇R/V [1/rad]
-
-    Returns
-    -------
-    dict of numpy.ndarray
-        "Ma", shape (..., 2, 2): as `Ma`
-        "Ca", shape (..., 2, 2): as `Ca`
-        "Ka", shape (..., 2, 2): as `Ka`
-        (``...`` is the broadcast shape of all the arguments).
-    """
-    shape, (rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r,) = _broadcast(rho, V, R, e_theta, e_psi, CZ_theta, CZ_psi, CZ_q, CZ_r, Cm_theta, Cm_psi, Cm_q, Cm_r, CY_theta, CY_psi, CY_q, CY_r, Cn_theta, Cn_psi, Cn_q, Cn_r)
-    _c0 = numpy.pi*rho
-    _c1 = R**4*_c0
-    _c2 = _c1*e_theta
-    _c3 = (1/2)*R**3*_c0
-    _c4 = _c1*e_psi
-    _c5 = _c3*e_psi*e_theta
-    _c6 = R**4
-    _c7 = R**3
-    _c8 = numpy.pi*V*rho
-    _c9 = _c7*_c8
-    _c10 = _c9*e_theta
-    _c11 = (1/2)*_c10
-    _c12 = R**2
-    _c13 = _c6*_c8
-    _c14 = _c9*e_psi
-    _c15 = (1/2)*_c8*_c12
-    _c16 = _c15*e_psi*e_theta
-    _c17 = V**2
-    _c18 = numpy.pi*_c17*rho
-    _c19 = (1/2)*R**2*_c18
-    _c20 = _c19*e_theta
-    _c21 = _c7*_c18
-    _c22 = _c19*e_psi
-    _o0 = numpy.zeros(shape + (2, 2))
-    _o0[..., 0, 0] = CZ_q*_c3*e_theta**2 - Cm_q*_c2
-    _o0[..., 0, 1] = CZ_r*_c5 - Cm_r*_c4
-    _o0[..., 1, 0] = -CY_q*_c5 - Cn_q*_c2
-    _o0[..., 1, 1] = -CY_r*_c3*e_psi**2 - Cn_r*_c4
-    _o1 = numpy.zeros(shape + (2, 2))
-    _o1[..., 0, 0] = -CZ_q*_c11 + (1/2)*numpy.pi*CZ_theta*V*_c12*e_theta**2*rho + numpy.pi*Cm_q*V*_c6*rho - Cm_theta*_c10
-    _o1[..., 0, 1] = CZ_psi*_c16 - CZ_r*_c11 - Cm_psi*_c14 + Cm_r*_c13
-    _o1[..., 1, 0] = (1/2)*CY_q*_c14 - CY_theta*_c16 + Cn_q*_c13 - Cn_theta*_c10
-    _o1[..., 1, 1] = -CY_psi*_c15*e_psi**2 + (1/2)*numpy.pi*CY_r*V*_c7*e_psi*rho - Cn_psi*_c14 + numpy.pi*Cn_r*V*_c6*rho
-    _o2 = numpy.zeros(shape + (2, 2))
-    _o2[..., 0, 0] = -CZ_theta*_c20 + numpy.pi*Cm_theta*_c7*_c17*rho
-    _o2[..., 0, 1] = -CZ_psi*_c20 + numpy.pi*Cm_psi*_c7*_c17*rho
-    _o2[..., 1, 0] = CY_theta*_c22 + Cn_theta*_c21
-    _o2[..., 1, 1] = CY_psi*_c22 + Cn_psi*_c21
-    return {
-        "Ma": _o0,
-        "Ca": _o1,
-        "Ka": _o2,
-    }
+    return _view(aero_blocks, "Ka", rho=rho, V=V, R=R, e_theta=e_theta, e_psi=e_psi, CZ_theta=CZ_theta, CZ_psi=CZ_psi, CZ_q=CZ_q, CZ_r=CZ_r, Cm_theta=Cm_theta, Cm_psi=Cm_psi, Cm_q=Cm_q, Cm_r=Cm_r, CY_theta=CY_theta, CY_psi=CY_psi, CY_q=CY_q, CY_r=CY_r, Cn_theta=Cn_theta, Cn_psi=Cn_psi, Cn_q=Cn_q, Cn_r=Cn_r)
 
 
 def structure_blocks_d(I_X, I_Y, I_Z, Omega, K_theta, K_psi, zeta_theta, zeta_psi):

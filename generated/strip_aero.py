@@ -8,9 +8,10 @@ may be an array and all arguments broadcast together; each function returns an a
 shape ``broadcast_shape + (rows, cols)``.
 
 The block functions (`ln_blocks`, `theodorsen_blocks`, `wagner_blocks`) return several of these matrices
-at once (a dict), broadcasting their arguments once.  Their code is each matrix's own common
-subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
-functions.
+at once (a dict), broadcasting their arguments once, with one common-subexpression elimination
+over all their matrices; the runtime calls them.  The function of each of their matrices
+(`wagner_M`, `wagner_C`, `wagner_K`, `wagner_W0`, `wagner_W1`, `wagner_W2`, `ln_M`, `ln_C`, `ln_K`, `ln_W0`, `ln_W1`, `ln_W2`, `ln_W3`, `theodorsen_M`, `theodorsen_C`, `theodorsen_K`) is a view: it calls its block function
+(`VIEWS` names it) and returns that matrix.
 
 The derivative functions (`ln_blocks_d`, `theodorsen_blocks_d`, `wagner_blocks_d`, `wagner_g_d`, `wagner_g_ic_d`, `wagner_phidot_d`) return the
 exact parameter derivatives of those matrices: ``{matrix name: {parameter name: array}}`` with
@@ -120,6 +121,26 @@ BLOCKS = {
     "wagner_blocks": (('rho', 'V', 'b', 'a', 'Cla', 'ac'), ('wagner_M', 'wagner_C', 'wagner_K', 'wagner_W0', 'wagner_W1', 'wagner_W2')),
 }
 
+#: matrix function name -> the block function it is a view of
+VIEWS = {
+    "wagner_M": "wagner_blocks",
+    "wagner_C": "wagner_blocks",
+    "wagner_K": "wagner_blocks",
+    "wagner_W0": "wagner_blocks",
+    "wagner_W1": "wagner_blocks",
+    "wagner_W2": "wagner_blocks",
+    "ln_M": "ln_blocks",
+    "ln_C": "ln_blocks",
+    "ln_K": "ln_blocks",
+    "ln_W0": "ln_blocks",
+    "ln_W1": "ln_blocks",
+    "ln_W2": "ln_blocks",
+    "ln_W3": "ln_blocks",
+    "theodorsen_M": "theodorsen_blocks",
+    "theodorsen_C": "theodorsen_blocks",
+    "theodorsen_K": "theodorsen_blocks",
+}
+
 #: derivative function name -> (argument names, {matrix name: parameters it depends on})
 PARTIALS = {
     "ln_blocks_d": (('rho', 'V', 'b', 'a', 'Cla', 'ac'), {'ln_M': ('rho', 'b', 'a'), 'ln_C': ('rho', 'V', 'b', 'a', 'Cla', 'ac'), 'ln_K': ('rho', 'V', 'b', 'a', 'Cla', 'ac'), 'ln_W0': ('rho', 'V', 'b', 'a', 'Cla', 'ac'), 'ln_W1': ('V', 'b'), 'ln_W2': ('V', 'b', 'a', 'Cla', 'ac'), 'ln_W3': ()}),
@@ -136,20 +157,338 @@ def _broadcast(*args):
     return arrays[0].shape, arrays
 
 
+def _view(block, name, **values):
+    """Matrix `name` of block function `block` at `values`, the block's other arguments NaN
+    (only its other matrices depend on them: the result is that of `values` alone)."""
+    return block(**{a: values.get(a, numpy.nan) for a in BLOCKS[block.__name__][0]})[name]
+
+
+def ln_blocks(rho, V, b, a, Cla, ac):
+    """ln_M, ln_C, ln_K, ln_W0, ln_W1, ln_W2, ln_W3 at once.
+
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the matrices.
+
+    Parameters
+    ----------
+    rho : array_like
+        air density [kg/m^3]
+    V : array_like
+        airspeed [m/s]
+    b : array_like
+        semichord [m]
+    a : array_like
+        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+    Cla : array_like
+        section lift-curve slope (2π for Theodorsen's flat plate) [1/rad]
+    ac : array_like
+        aerodynamic centre aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        "ln_M", shape (..., 2, 2): see `ln_M`
+        "ln_C", shape (..., 2, 2): see `ln_C`
+        "ln_K", shape (..., 2, 2): see `ln_K`
+        "ln_W0", shape (..., 2, 2): see `ln_W0`
+        "ln_W1", shape (..., 2, 2): see `ln_W1`
+        "ln_W2", shape (..., 2, 2): see `ln_W2`
+        "ln_W3", shape (..., 2, 2): see `ln_W3`
+        (``...`` is the broadcast shape of all the arguments).
+    """
+    shape, (rho, V, b, a, Cla, ac,) = _broadcast(rho, V, b, a, Cla, ac)
+    _c0 = b**2
+    _c1 = numpy.pi*rho
+    _c2 = _c0*_c1
+    _c3 = b**3
+    _c4 = _c1*_c3
+    _c5 = _c4*a
+    _c6 = _c1*b**4
+    _c7 = a**2
+    _c8 = Cla*rho
+    _c9 = (1/2)*V*_c8
+    _c10 = _c0*_c9
+    _c11 = _c10*ac
+    _c12 = numpy.pi**(-1.0)
+    _c13 = Cla**2
+    _c14 = (1/4)*_c12*_c13*rho
+    _c15 = _c3*_c9
+    _c16 = V*ac
+    _c17 = V**2
+    _c18 = (1/2)*_c17*_c8
+    _c19 = _c0*_c18
+    _c20 = b**(-1.0)
+    _c21 = (273/40000)*V**4*_c8
+    _c22 = (43203/400000)*V**3*_c8
+    _c23 = _c22*b
+    _c24 = V**(-1.0)
+    _c25 = _c24*b
+    _o0 = numpy.zeros(shape + (2, 2))
+    _o0[..., 0, 0] = -_c2
+    _o0[..., 0, 1] = _c5
+    _o0[..., 1, 0] = _c5
+    _o0[..., 1, 1] = -_c6*_c7 - 1/8*_c6
+    _o1 = numpy.zeros(shape + (2, 2))
+    _o1[..., 0, 0] = -_c9*b
+    _o1[..., 0, 1] = (1/2)*Cla*V*_c0*a*rho - V*_c0*_c14 - V*_c2 - _c11
+    _o1[..., 1, 0] = _c10*a - _c11
+    _o1[..., 1, 1] = Cla*V*_c3*a*ac*rho + (1/4)*V*_c12*_c13*_c3*a*rho + numpy.pi*V*_c3*a*rho - _c14*_c16*_c3 - _c15*_c7 - _c15*ac**2 - _c15 - _c16*_c4
+    _o2 = numpy.zeros(shape + (2, 2))
+    _o2[..., 0, 1] = -_c18*b
+    _o2[..., 1, 1] = _c19*a - _c19*ac
+    _o3 = numpy.zeros(shape + (2, 2))
+    _o3[..., 0, 0] = -_c20*_c21
+    _o3[..., 0, 1] = -_c22
+    _o3[..., 1, 0] = _c21*a - _c21*ac
+    _o3[..., 1, 1] = _c23*a - _c23*ac
+    _o4 = numpy.zeros(shape + (2, 2))
+    _o4[..., 0, 1] = 1
+    _o4[..., 1, 0] = -273/20000*_c17/_c0
+    _o4[..., 1, 1] = -691/2000*V*_c20
+    _o5 = numpy.zeros(shape + (2, 2))
+    _o5[..., 1, 0] = _c24
+    _o5[..., 1, 1] = (1/2)*Cla*_c12*_c25 - _c25*a + _c25*ac
+    _o6 = numpy.zeros(shape + (2, 2))
+    _o6[..., 1, 1] = 1
+    return {
+        "ln_M": _o0,
+        "ln_C": _o1,
+        "ln_K": _o2,
+        "ln_W0": _o3,
+        "ln_W1": _o4,
+        "ln_W2": _o5,
+        "ln_W3": _o6,
+    }
+
+
+def theodorsen_blocks(rho, V, b, a, Cla, ac, k, F, G):
+    """theodorsen_M, theodorsen_C, theodorsen_K at once.
+
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the matrices.
+
+    Parameters
+    ----------
+    rho : array_like
+        air density [kg/m^3]
+    V : array_like
+        airspeed [m/s]
+    b : array_like
+        semichord [m]
+    a : array_like
+        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+    Cla : array_like
+        section lift-curve slope (2π for Theodorsen's flat plate) [1/rad]
+    ac : array_like
+        aerodynamic centre aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+    k : array_like
+        reduced frequency ω b / V of harmonic motion [-]
+    F : array_like
+        real part of Theodorsen's function C(k) = F + iG [-]
+    G : array_like
+        imaginary part of Theodorsen's function C(k) = F + iG [-]
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        "theodorsen_M", shape (..., 2, 2): see `theodorsen_M`
+        "theodorsen_C", shape (..., 2, 2): see `theodorsen_C`
+        "theodorsen_K", shape (..., 2, 2): see `theodorsen_K`
+        (``...`` is the broadcast shape of all the arguments).
+    """
+    shape, (rho, V, b, a, Cla, ac, k, F, G,) = _broadcast(rho, V, b, a, Cla, ac, k, F, G)
+    _c0 = b**2
+    _c1 = numpy.pi*rho
+    _c2 = _c0*_c1
+    _c3 = b**3
+    _c4 = _c1*_c3
+    _c5 = _c4*a
+    _c6 = _c1*b**4
+    _c7 = a**2
+    _c8 = Cla*rho
+    _c9 = V*_c8
+    _c10 = F*b
+    _c11 = _c0*_c9
+    _c12 = F*ac
+    _c13 = _c11*_c12
+    _c14 = k**(-1.0)
+    _c15 = G*_c14
+    _c16 = numpy.pi**(-1.0)
+    _c17 = Cla**2
+    _c18 = (1/2)*_c16*_c17*rho
+    _c19 = F*a
+    _c20 = _c3*_c9
+    _c21 = V*ac
+    _c22 = F*_c20
+    _c23 = ac**2
+    _c24 = V**2
+    _c25 = _c24*_c8
+    _c26 = G*k
+    _c27 = _c25*_c26
+    _c28 = _c27*b
+    _c29 = _c28*a
+    _c30 = _c18*_c24*_c26
+    _c31 = _c0*_c25
+    _c32 = _c0*_c27
+    _c33 = _c0*_c30
+    _o0 = numpy.zeros(shape + (2, 2))
+    _o0[..., 0, 0] = -_c2
+    _o0[..., 0, 1] = _c5
+    _o0[..., 1, 0] = _c5
+    _o0[..., 1, 1] = -_c6*_c7 - 1/8*_c6
+    _o1 = numpy.zeros(shape + (2, 2))
+    _o1[..., 0, 0] = -_c10*_c9
+    _o1[..., 0, 1] = Cla*F*V*_c0*a*rho - F*V*_c0*_c18 - V*_c2 - _c11*_c15 - _c13
+    _o1[..., 1, 0] = _c11*_c19 - _c13
+    _o1[..., 1, 1] = 2*Cla*F*V*_c3*a*ac*rho + Cla*G*V*_c14*_c3*a*rho + (1/2)*F*V*_c16*_c17*_c3*a*rho - F*_c18*_c21*_c3 + numpy.pi*V*_c3*a*rho - _c15*_c20*ac - 1/2*_c20 - _c21*_c4 - _c22*_c23 - _c22*_c7
+    _o2 = numpy.zeros(shape + (2, 2))
+    _o2[..., 0, 0] = _c27
+    _o2[..., 0, 1] = -_c10*_c25 + _c28*ac - _c29 + _c30*b
+    _o2[..., 1, 0] = Cla*G*_c24*ac*b*k*rho - _c29
+    _o2[..., 1, 1] = -_c12*_c31 + _c19*_c31 + _c23*_c32 + _c32*_c7 - 2*_c32*a*ac - _c33*a + _c33*ac
+    return {
+        "theodorsen_M": _o0,
+        "theodorsen_C": _o1,
+        "theodorsen_K": _o2,
+    }
+
+
+def wagner_blocks(rho, V, b, a, Cla, ac):
+    """wagner_M, wagner_C, wagner_K, wagner_W0, wagner_W1, wagner_W2 at once.
+
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the matrices.
+
+    Parameters
+    ----------
+    rho : array_like
+        air density [kg/m^3]
+    V : array_like
+        airspeed [m/s]
+    b : array_like
+        semichord [m]
+    a : array_like
+        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+    Cla : array_like
+        section lift-curve slope (2π for Theodorsen's flat plate) [1/rad]
+    ac : array_like
+        aerodynamic centre aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        "wagner_M", shape (..., 2, 2): see `wagner_M`
+        "wagner_C", shape (..., 2, 2): see `wagner_C`
+        "wagner_K", shape (..., 2, 2): see `wagner_K`
+        "wagner_W0", shape (..., 2, 4): see `wagner_W0`
+        "wagner_W1", shape (..., 4, 2): see `wagner_W1`
+        "wagner_W2", shape (..., 4, 4): see `wagner_W2`
+        (``...`` is the broadcast shape of all the arguments).
+    """
+    shape, (rho, V, b, a, Cla, ac,) = _broadcast(rho, V, b, a, Cla, ac)
+    _c0 = b**2
+    _c1 = numpy.pi*rho
+    _c2 = _c0*_c1
+    _c3 = b**3
+    _c4 = _c1*_c3
+    _c5 = _c4*a
+    _c6 = _c1*b**4
+    _c7 = a**2
+    _c8 = (1/2)*b
+    _c9 = Cla*rho
+    _c10 = V*_c9
+    _c11 = (1/2)*_c10
+    _c12 = _c0*_c11
+    _c13 = _c12*ac
+    _c14 = numpy.pi**(-1.0)
+    _c15 = Cla**2
+    _c16 = _c14*_c15*rho
+    _c17 = (1/4)*_c16
+    _c18 = _c11*_c3
+    _c19 = V*ac
+    _c20 = ac**2
+    _c21 = V**2
+    _c22 = _c21*_c9
+    _c23 = (43203/400000)*_c22
+    _c24 = _c23*b
+    _c25 = _c24*ac
+    _c26 = (43203/800000)*_c16*_c21
+    _c27 = _c0*ac
+    _c28 = _c0*_c23
+    _c29 = b**(-1.0)
+    _c30 = V**3
+    _c31 = _c30*_c9
+    _c32 = _c29*_c31
+    _c33 = (3003/400000)*_c31
+    _c34 = (273273/800000000)*_c31
+    _c35 = _c34*a
+    _c36 = _c16*_c30
+    _c37 = (273273/1600000000)*_c36
+    _c38 = (201/2000)*_c31
+    _c39 = (603/20000)*_c31
+    _c40 = _c39*a
+    _c41 = (603/40000)*_c36
+    _c42 = _c33*b
+    _c43 = a*b
+    _c44 = _c31*_c43*ac
+    _c45 = _c34*b
+    _c46 = ac*b
+    _c47 = _c38*b
+    _c48 = _c39*b
+    _c49 = V*_c29
+    _c50 = -91/2000*_c49
+    _c51 = -3/10*_c49
+    _o0 = numpy.zeros(shape + (2, 2))
+    _o0[..., 0, 0] = -_c2
+    _o0[..., 0, 1] = _c5
+    _o0[..., 1, 0] = _c5
+    _o0[..., 1, 1] = -_c6*_c7 - 1/8*_c6
+    _o1 = numpy.zeros(shape + (2, 2))
+    _o1[..., 0, 0] = -_c10*_c8
+    _o1[..., 0, 1] = (1/2)*Cla*V*_c0*a*rho - V*_c0*_c17 - V*_c2 - _c13
+    _o1[..., 1, 0] = _c12*a - _c13
+    _o1[..., 1, 1] = Cla*V*_c3*a*ac*rho + (1/4)*V*_c14*_c15*_c3*a*rho + numpy.pi*V*_c3*a*rho - _c17*_c19*_c3 - _c18*_c20 - _c18*_c7 - _c18 - _c19*_c4
+    _o2 = numpy.zeros(shape + (2, 2))
+    _o2[..., 0, 0] = -_c23
+    _o2[..., 0, 1] = (43203/400000)*Cla*_c21*a*b*rho - _c22*_c8 - _c25 - _c26*b
+    _o2[..., 1, 0] = _c24*a - _c25
+    _o2[..., 1, 1] = (43203/200000)*Cla*_c0*_c21*a*ac*rho + (1/2)*Cla*_c0*_c21*a*rho + (43203/800000)*_c0*_c14*_c15*_c21*a*rho - _c20*_c28 - 1/2*_c22*_c27 - _c26*_c27 - _c28*_c7
+    _o3 = numpy.zeros(shape + (2, 4))
+    _o3[..., 0, 0] = (273273/800000000)*_c32
+    _o3[..., 0, 1] = (603/20000)*_c32
+    _o3[..., 0, 2] = -_c33 + _c34*ac - _c35 + _c37
+    _o3[..., 0, 3] = -_c38 + _c39*ac - _c40 + _c41
+    _o3[..., 1, 0] = (273273/800000000)*Cla*_c30*ac*rho - _c35
+    _o3[..., 1, 1] = (603/20000)*Cla*_c30*ac*rho - _c40
+    _o3[..., 1, 2] = _c20*_c45 - _c37*_c43 + _c37*_c46 + _c42*a - _c42*ac - 273273/400000000*_c44 + _c45*_c7
+    _o3[..., 1, 3] = _c20*_c48 - _c41*_c43 + _c41*_c46 - 603/10000*_c44 + _c47*a - _c47*ac + _c48*_c7
+    _o4 = numpy.zeros(shape + (4, 2))
+    _o4[..., 0, 0] = 1
+    _o4[..., 1, 0] = 1
+    _o4[..., 2, 1] = 1
+    _o4[..., 3, 1] = 1
+    _o5 = numpy.zeros(shape + (4, 4))
+    _o5[..., 0, 0] = _c50
+    _o5[..., 1, 1] = _c51
+    _o5[..., 2, 2] = _c50
+    _o5[..., 3, 3] = _c51
+    return {
+        "wagner_M": _o0,
+        "wagner_C": _o1,
+        "wagner_K": _o2,
+        "wagner_W0": _o3,
+        "wagner_W1": _o4,
+        "wagner_W2": _o5,
+    }
+
 
 def wagner_M(rho, b, a):
     """Aerodynamic mass matrix M_aW (Q = M q̈ + ...) [kg/m, kg, kg m].
 
     Thesis equations 7.37, 7.67.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    b : array_like
-        semichord [m]
-    a : array_like
-        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+    A view: `wagner_blocks`'s "wagner_M" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `wagner_blocks`).
 
     Returns
     -------
@@ -157,16 +496,7 @@ def wagner_M(rho, b, a):
         rows: h, alpha
         columns: h, alpha
     """
-    shape, (rho, b, a,) = _broadcast(rho, b, a)
-    _c0 = numpy.pi*rho
-    _c1 = _c0*a*b**3
-    _c2 = _c0*b**4
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = -_c0*b**2
-    out[..., 0, 1] = _c1
-    out[..., 1, 0] = _c1
-    out[..., 1, 1] = -_c2*a**2 - 1/8*_c2
-    return out
+    return _view(wagner_blocks, "wagner_M", rho=rho, b=b, a=a)
 
 
 def wagner_C(rho, V, b, a, Cla, ac):
@@ -174,20 +504,8 @@ def wagner_C(rho, V, b, a, Cla, ac):
 
     Thesis equations 7.38, 7.68.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        airspeed [m/s]
-    b : array_like
-        semichord [m]
-    a : array_like
-        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
-    Cla : array_like
-        section lift-curve slope (2π for Theodorsen's flat plate) [1/rad]
-    ac : array_like
-        aerodynamic centre aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+    A view: `wagner_blocks`'s "wagner_C" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `wagner_blocks`).
 
     Returns
     -------
@@ -195,24 +513,7 @@ def wagner_C(rho, V, b, a, Cla, ac):
         rows: h, alpha
         columns: h, alpha
     """
-    shape, (rho, V, b, a, Cla, ac,) = _broadcast(rho, V, b, a, Cla, ac)
-    _c0 = V*rho
-    _c1 = (1/2)*Cla*_c0
-    _c2 = b**2
-    _c3 = numpy.pi*_c0
-    _c4 = _c1*_c2
-    _c5 = _c4*ac
-    _c6 = numpy.pi**(-1.0)
-    _c7 = Cla**2
-    _c8 = (1/4)*_c0*_c6*_c7
-    _c9 = b**3
-    _c10 = _c1*_c9
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = -_c1*b
-    out[..., 0, 1] = (1/2)*Cla*V*_c2*a*rho - _c2*_c3 - _c2*_c8 - _c5
-    out[..., 1, 0] = _c4*a - _c5
-    out[..., 1, 1] = Cla*V*_c9*a*ac*rho + (1/4)*V*_c6*_c7*_c9*a*rho + numpy.pi*V*_c9*a*rho - _c10*a**2 - _c10*ac**2 - _c10 - _c3*_c9*ac - _c8*_c9*ac
-    return out
+    return _view(wagner_blocks, "wagner_C", rho=rho, V=V, b=b, a=a, Cla=Cla, ac=ac)
 
 
 def wagner_K(rho, V, b, a, Cla, ac):
@@ -220,20 +521,8 @@ def wagner_K(rho, V, b, a, Cla, ac):
 
     Thesis equations 7.39, 7.69.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        airspeed [m/s]
-    b : array_like
-        semichord [m]
-    a : array_like
-        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
-    Cla : array_like
-        section lift-curve slope (2π for Theodorsen's flat plate) [1/rad]
-    ac : array_like
-        aerodynamic centre aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+    A view: `wagner_blocks`'s "wagner_K" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `wagner_blocks`).
 
     Returns
     -------
@@ -241,25 +530,7 @@ def wagner_K(rho, V, b, a, Cla, ac):
         rows: h, alpha
         columns: h, alpha
     """
-    shape, (rho, V, b, a, Cla, ac,) = _broadcast(rho, V, b, a, Cla, ac)
-    _c0 = V**2
-    _c1 = _c0*rho
-    _c2 = Cla*_c1
-    _c3 = (43203/400000)*_c2
-    _c4 = (1/2)*_c2
-    _c5 = _c3*b
-    _c6 = _c5*ac
-    _c7 = numpy.pi**(-1.0)
-    _c8 = Cla**2
-    _c9 = (43203/800000)*_c1*_c7*_c8
-    _c10 = b**2
-    _c11 = _c10*_c3
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = -_c3
-    out[..., 0, 1] = (43203/400000)*Cla*_c0*a*b*rho - _c4*b - _c6 - _c9*b
-    out[..., 1, 0] = _c5*a - _c6
-    out[..., 1, 1] = (43203/200000)*Cla*_c0*_c10*a*ac*rho + (1/2)*Cla*_c0*_c10*a*rho + (43203/800000)*_c0*_c10*_c7*_c8*a*rho - _c10*_c4*ac - _c10*_c9*ac - _c11*a**2 - _c11*ac**2
-    return out
+    return _view(wagner_blocks, "wagner_K", rho=rho, V=V, b=b, a=a, Cla=Cla, ac=ac)
 
 
 def wagner_W0(rho, V, b, a, Cla, ac):
@@ -267,20 +538,8 @@ def wagner_W0(rho, V, b, a, Cla, ac):
 
     Thesis equations 7.40, 7.70.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        airspeed [m/s]
-    b : array_like
-        semichord [m]
-    a : array_like
-        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
-    Cla : array_like
-        section lift-curve slope (2π for Theodorsen's flat plate) [1/rad]
-    ac : array_like
-        aerodynamic centre aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+    A view: `wagner_blocks`'s "wagner_W0" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `wagner_blocks`).
 
     Returns
     -------
@@ -288,39 +547,7 @@ def wagner_W0(rho, V, b, a, Cla, ac):
         rows: h, alpha
         columns: w1, w2, w3, w4
     """
-    shape, (rho, V, b, a, Cla, ac,) = _broadcast(rho, V, b, a, Cla, ac)
-    _c0 = V**3
-    _c1 = _c0*rho
-    _c2 = Cla*_c1
-    _c3 = _c2/b
-    _c4 = (3003/400000)*_c2
-    _c5 = (273273/800000000)*_c2
-    _c6 = _c5*a
-    _c7 = Cla**2*_c1/numpy.pi
-    _c8 = (273273/1600000000)*_c7
-    _c9 = (201/2000)*_c2
-    _c10 = (603/20000)*_c2
-    _c11 = _c10*a
-    _c12 = (603/40000)*_c7
-    _c13 = _c4*b
-    _c14 = a*b
-    _c15 = _c14*_c2*ac
-    _c16 = a**2
-    _c17 = _c5*b
-    _c18 = ac**2
-    _c19 = ac*b
-    _c20 = _c9*b
-    _c21 = _c10*b
-    out = numpy.zeros(shape + (2, 4))
-    out[..., 0, 0] = (273273/800000000)*_c3
-    out[..., 0, 1] = (603/20000)*_c3
-    out[..., 0, 2] = -_c4 + _c5*ac - _c6 + _c8
-    out[..., 0, 3] = _c10*ac - _c11 + _c12 - _c9
-    out[..., 1, 0] = (273273/800000000)*Cla*_c0*ac*rho - _c6
-    out[..., 1, 1] = (603/20000)*Cla*_c0*ac*rho - _c11
-    out[..., 1, 2] = _c13*a - _c13*ac - _c14*_c8 - 273273/400000000*_c15 + _c16*_c17 + _c17*_c18 + _c19*_c8
-    out[..., 1, 3] = -_c12*_c14 + _c12*_c19 - 603/10000*_c15 + _c16*_c21 + _c18*_c21 + _c20*a - _c20*ac
-    return out
+    return _view(wagner_blocks, "wagner_W0", rho=rho, V=V, b=b, a=a, Cla=Cla, ac=ac)
 
 
 def wagner_g(rho, V, b, a, Cla, ac):
@@ -435,10 +662,8 @@ def wagner_W1(V):
 
     Thesis equations 7.34, 7.42, 7.72.
 
-    Parameters
-    ----------
-    V : array_like
-        airspeed [m/s]
+    A view: `wagner_blocks`'s "wagner_W1" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `wagner_blocks`).
 
     Returns
     -------
@@ -446,13 +671,7 @@ def wagner_W1(V):
         rows: w1, w2, w3, w4
         columns: h, alpha
     """
-    shape, (V,) = _broadcast(V)
-    out = numpy.zeros(shape + (4, 2))
-    out[..., 0, 0] = 1
-    out[..., 1, 0] = 1
-    out[..., 2, 1] = 1
-    out[..., 3, 1] = 1
-    return out
+    return _view(wagner_blocks, "wagner_W1", V=V)
 
 
 def wagner_W2(V, b):
@@ -460,12 +679,8 @@ def wagner_W2(V, b):
 
     Thesis equations 7.34, 7.43, 7.73.
 
-    Parameters
-    ----------
-    V : array_like
-        airspeed [m/s]
-    b : array_like
-        semichord [m]
+    A view: `wagner_blocks`'s "wagner_W2" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `wagner_blocks`).
 
     Returns
     -------
@@ -473,16 +688,7 @@ def wagner_W2(V, b):
         rows: w1, w2, w3, w4
         columns: w1, w2, w3, w4
     """
-    shape, (V, b,) = _broadcast(V, b)
-    _c0 = V/b
-    _c1 = -91/2000*_c0
-    _c2 = -3/10*_c0
-    out = numpy.zeros(shape + (4, 4))
-    out[..., 0, 0] = _c1
-    out[..., 1, 1] = _c2
-    out[..., 2, 2] = _c1
-    out[..., 3, 3] = _c2
-    return out
+    return _view(wagner_blocks, "wagner_W2", V=V, b=b)
 
 
 def ln_M(rho, b, a):
@@ -490,14 +696,8 @@ def ln_M(rho, b, a):
 
     Thesis equations 7.50, 7.74.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    b : array_like
-        semichord [m]
-    a : array_like
-        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+    A view: `ln_blocks`'s "ln_M" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `ln_blocks`).
 
     Returns
     -------
@@ -505,16 +705,7 @@ def ln_M(rho, b, a):
         rows: h, alpha
         columns: h, alpha
     """
-    shape, (rho, b, a,) = _broadcast(rho, b, a)
-    _c0 = numpy.pi*rho
-    _c1 = _c0*a*b**3
-    _c2 = _c0*b**4
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = -_c0*b**2
-    out[..., 0, 1] = _c1
-    out[..., 1, 0] = _c1
-    out[..., 1, 1] = -_c2*a**2 - 1/8*_c2
-    return out
+    return _view(ln_blocks, "ln_M", rho=rho, b=b, a=a)
 
 
 def ln_C(rho, V, b, a, Cla, ac):
@@ -522,20 +713,8 @@ def ln_C(rho, V, b, a, Cla, ac):
 
     Thesis equations 7.51, 7.75.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        airspeed [m/s]
-    b : array_like
-        semichord [m]
-    a : array_like
-        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
-    Cla : array_like
-        section lift-curve slope (2π for Theodorsen's flat plate) [1/rad]
-    ac : array_like
-        aerodynamic centre aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+    A view: `ln_blocks`'s "ln_C" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `ln_blocks`).
 
     Returns
     -------
@@ -543,24 +722,7 @@ def ln_C(rho, V, b, a, Cla, ac):
         rows: h, alpha
         columns: h, alpha
     """
-    shape, (rho, V, b, a, Cla, ac,) = _broadcast(rho, V, b, a, Cla, ac)
-    _c0 = V*rho
-    _c1 = (1/2)*Cla*_c0
-    _c2 = b**2
-    _c3 = numpy.pi*_c0
-    _c4 = _c1*_c2
-    _c5 = _c4*ac
-    _c6 = numpy.pi**(-1.0)
-    _c7 = Cla**2
-    _c8 = (1/4)*_c0*_c6*_c7
-    _c9 = b**3
-    _c10 = _c1*_c9
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = -_c1*b
-    out[..., 0, 1] = (1/2)*Cla*V*_c2*a*rho - _c2*_c3 - _c2*_c8 - _c5
-    out[..., 1, 0] = _c4*a - _c5
-    out[..., 1, 1] = Cla*V*_c9*a*ac*rho + (1/4)*V*_c6*_c7*_c9*a*rho + numpy.pi*V*_c9*a*rho - _c10*a**2 - _c10*ac**2 - _c10 - _c3*_c9*ac - _c8*_c9*ac
-    return out
+    return _view(ln_blocks, "ln_C", rho=rho, V=V, b=b, a=a, Cla=Cla, ac=ac)
 
 
 def ln_K(rho, V, b, a, Cla, ac):
@@ -568,20 +730,8 @@ def ln_K(rho, V, b, a, Cla, ac):
 
     Thesis equations 7.52, 7.76.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        airspeed [m/s]
-    b : array_like
-        semichord [m]
-    a : array_like
-        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
-    Cla : array_like
-        section lift-curve slope (2π for Theodorsen's flat plate) [1/rad]
-    ac : array_like
-        aerodynamic centre aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+    A view: `ln_blocks`'s "ln_K" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `ln_blocks`).
 
     Returns
     -------
@@ -589,13 +739,7 @@ def ln_K(rho, V, b, a, Cla, ac):
         rows: h, alpha
         columns: h, alpha
     """
-    shape, (rho, V, b, a, Cla, ac,) = _broadcast(rho, V, b, a, Cla, ac)
-    _c0 = (1/2)*Cla*V**2*rho
-    _c1 = _c0*b**2
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 1] = -_c0*b
-    out[..., 1, 1] = _c1*a - _c1*ac
-    return out
+    return _view(ln_blocks, "ln_K", rho=rho, V=V, b=b, a=a, Cla=Cla, ac=ac)
 
 
 def ln_W0(rho, V, b, a, Cla, ac):
@@ -603,20 +747,8 @@ def ln_W0(rho, V, b, a, Cla, ac):
 
     Thesis equations 7.53, 7.77.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        airspeed [m/s]
-    b : array_like
-        semichord [m]
-    a : array_like
-        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
-    Cla : array_like
-        section lift-curve slope (2π for Theodorsen's flat plate) [1/rad]
-    ac : array_like
-        aerodynamic centre aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+    A view: `ln_blocks`'s "ln_W0" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `ln_blocks`).
 
     Returns
     -------
@@ -624,17 +756,7 @@ def ln_W0(rho, V, b, a, Cla, ac):
         rows: h, alpha
         columns: w1, w2
     """
-    shape, (rho, V, b, a, Cla, ac,) = _broadcast(rho, V, b, a, Cla, ac)
-    _c0 = Cla*rho
-    _c1 = (273/40000)*V**4*_c0
-    _c2 = (43203/400000)*V**3*_c0
-    _c3 = _c2*b
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = -_c1/b
-    out[..., 0, 1] = -_c2
-    out[..., 1, 0] = _c1*a - _c1*ac
-    out[..., 1, 1] = _c3*a - _c3*ac
-    return out
+    return _view(ln_blocks, "ln_W0", rho=rho, V=V, b=b, a=a, Cla=Cla, ac=ac)
 
 
 def ln_W1(V, b):
@@ -642,12 +764,8 @@ def ln_W1(V, b):
 
     Thesis equations 7.54, 7.78.
 
-    Parameters
-    ----------
-    V : array_like
-        airspeed [m/s]
-    b : array_like
-        semichord [m]
+    A view: `ln_blocks`'s "ln_W1" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `ln_blocks`).
 
     Returns
     -------
@@ -655,12 +773,7 @@ def ln_W1(V, b):
         rows: w1, w2
         columns: w1, w2
     """
-    shape, (V, b,) = _broadcast(V, b)
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 1] = 1
-    out[..., 1, 0] = -273/20000*V**2/b**2
-    out[..., 1, 1] = -691/2000*V/b
-    return out
+    return _view(ln_blocks, "ln_W1", V=V, b=b)
 
 
 def ln_W2(V, b, a, Cla, ac):
@@ -668,18 +781,8 @@ def ln_W2(V, b, a, Cla, ac):
 
     Thesis equations 7.55, 7.79.
 
-    Parameters
-    ----------
-    V : array_like
-        airspeed [m/s]
-    b : array_like
-        semichord [m]
-    a : array_like
-        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
-    Cla : array_like
-        section lift-curve slope (2π for Theodorsen's flat plate) [1/rad]
-    ac : array_like
-        aerodynamic centre aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+    A view: `ln_blocks`'s "ln_W2" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `ln_blocks`).
 
     Returns
     -------
@@ -687,13 +790,7 @@ def ln_W2(V, b, a, Cla, ac):
         rows: w1, w2
         columns: h, alpha
     """
-    shape, (V, b, a, Cla, ac,) = _broadcast(V, b, a, Cla, ac)
-    _c0 = V**(-1.0)
-    _c1 = _c0*b
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 1, 0] = _c0
-    out[..., 1, 1] = (1/2)*Cla*_c1/numpy.pi - _c1*a + _c1*ac
-    return out
+    return _view(ln_blocks, "ln_W2", V=V, b=b, a=a, Cla=Cla, ac=ac)
 
 
 def ln_W3(V):
@@ -701,10 +798,8 @@ def ln_W3(V):
 
     Thesis equations 7.56, 7.80.
 
-    Parameters
-    ----------
-    V : array_like
-        airspeed [m/s]
+    A view: `ln_blocks`'s "ln_W3" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `ln_blocks`).
 
     Returns
     -------
@@ -712,10 +807,7 @@ def ln_W3(V):
         rows: w1, w2
         columns: h, alpha
     """
-    shape, (V,) = _broadcast(V)
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 1, 1] = 1
-    return out
+    return _view(ln_blocks, "ln_W3", V=V)
 
 
 def theodorsen_M(rho, b, a):
@@ -723,14 +815,8 @@ def theodorsen_M(rho, b, a):
 
     Thesis equations 7.24–7.27.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    b : array_like
-        semichord [m]
-    a : array_like
-        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
+    A view: `theodorsen_blocks`'s "theodorsen_M" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `theodorsen_blocks`).
 
     Returns
     -------
@@ -738,16 +824,7 @@ def theodorsen_M(rho, b, a):
         rows: h, alpha
         columns: h, alpha
     """
-    shape, (rho, b, a,) = _broadcast(rho, b, a)
-    _c0 = numpy.pi*rho
-    _c1 = _c0*a*b**3
-    _c2 = _c0*b**4
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = -_c0*b**2
-    out[..., 0, 1] = _c1
-    out[..., 1, 0] = _c1
-    out[..., 1, 1] = -_c2*a**2 - 1/8*_c2
-    return out
+    return _view(theodorsen_blocks, "theodorsen_M", rho=rho, b=b, a=a)
 
 
 def theodorsen_C(rho, V, b, a, Cla, ac, k, F, G):
@@ -755,26 +832,8 @@ def theodorsen_C(rho, V, b, a, Cla, ac, k, F, G):
 
     Thesis equations 4.31, 7.24–7.27, 7.64–7.66.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        airspeed [m/s]
-    b : array_like
-        semichord [m]
-    a : array_like
-        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
-    Cla : array_like
-        section lift-curve slope (2π for Theodorsen's flat plate) [1/rad]
-    ac : array_like
-        aerodynamic centre aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
-    k : array_like
-        reduced frequency ω b / V of harmonic motion [-]
-    F : array_like
-        real part of Theodorsen's function C(k) = F + iG [-]
-    G : array_like
-        imaginary part of Theodorsen's function C(k) = F + iG [-]
+    A view: `theodorsen_blocks`'s "theodorsen_C" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `theodorsen_blocks`).
 
     Returns
     -------
@@ -782,28 +841,7 @@ def theodorsen_C(rho, V, b, a, Cla, ac, k, F, G):
         rows: h, alpha
         columns: h, alpha
     """
-    shape, (rho, V, b, a, Cla, ac, k, F, G,) = _broadcast(rho, V, b, a, Cla, ac, k, F, G)
-    _c0 = V*rho
-    _c1 = Cla*_c0
-    _c2 = F*_c1
-    _c3 = b**2
-    _c4 = numpy.pi*_c0
-    _c5 = _c2*_c3
-    _c6 = _c5*ac
-    _c7 = k**(-1.0)
-    _c8 = G*_c7
-    _c9 = numpy.pi**(-1.0)
-    _c10 = Cla**2
-    _c11 = (1/2)*F*_c0*_c10*_c9
-    _c12 = b**3
-    _c13 = _c1*_c12
-    _c14 = _c12*_c2
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = -_c2*b
-    out[..., 0, 1] = Cla*F*V*_c3*a*rho - _c1*_c3*_c8 - _c11*_c3 - _c3*_c4 - _c6
-    out[..., 1, 0] = _c5*a - _c6
-    out[..., 1, 1] = 2*Cla*F*V*_c12*a*ac*rho + Cla*G*V*_c12*_c7*a*rho + (1/2)*F*V*_c10*_c12*_c9*a*rho + numpy.pi*V*_c12*a*rho - _c11*_c12*ac - _c12*_c4*ac - _c13*_c8*ac - 1/2*_c13 - _c14*a**2 - _c14*ac**2
-    return out
+    return _view(theodorsen_blocks, "theodorsen_C", rho=rho, V=V, b=b, a=a, Cla=Cla, ac=ac, k=k, F=F, G=G)
 
 
 def theodorsen_K(rho, V, b, a, Cla, ac, k, F, G):
@@ -811,26 +849,8 @@ def theodorsen_K(rho, V, b, a, Cla, ac, k, F, G):
 
     Thesis equations 4.31, 7.24–7.27, 7.64–7.66.
 
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        airspeed [m/s]
-    b : array_like
-        semichord [m]
-    a : array_like
-        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
-    Cla : array_like
-        section lift-curve slope (2π for Theodorsen's flat plate) [1/rad]
-    ac : array_like
-        aerodynamic centre aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
-    k : array_like
-        reduced frequency ω b / V of harmonic motion [-]
-    F : array_like
-        real part of Theodorsen's function C(k) = F + iG [-]
-    G : array_like
-        imaginary part of Theodorsen's function C(k) = F + iG [-]
+    A view: `theodorsen_blocks`'s "theodorsen_K" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `theodorsen_blocks`).
 
     Returns
     -------
@@ -838,334 +858,7 @@ def theodorsen_K(rho, V, b, a, Cla, ac, k, F, G):
         rows: h, alpha
         columns: h, alpha
     """
-    shape, (rho, V, b, a, Cla, ac, k, F, G,) = _broadcast(rho, V, b, a, Cla, ac, k, F, G)
-    _c0 = V**2
-    _c1 = Cla*_c0*rho
-    _c2 = G*k
-    _c3 = _c1*_c2
-    _c4 = F*_c1
-    _c5 = _c3*b
-    _c6 = _c5*a
-    _c7 = (1/2)*Cla**2*_c0*_c2*rho/numpy.pi
-    _c8 = b**2
-    _c9 = _c4*_c8
-    _c10 = _c3*_c8
-    _c11 = _c7*_c8
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = _c3
-    out[..., 0, 1] = -_c4*b + _c5*ac - _c6 + _c7*b
-    out[..., 1, 0] = Cla*G*_c0*ac*b*k*rho - _c6
-    out[..., 1, 1] = _c10*a**2 - 2*_c10*a*ac + _c10*ac**2 - _c11*a + _c11*ac + _c9*a - _c9*ac
-    return out
-
-
-def ln_blocks(rho, V, b, a, Cla, ac):
-    """ln_M, ln_C, ln_K, ln_W0, ln_W1, ln_W2, ln_W3 at once.
-
-    The arguments are broadcast together once.  Their code is each matrix's own common
-    subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
-    functions.
-
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        airspeed [m/s]
-    b : array_like
-        semichord [m]
-    a : array_like
-        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
-    Cla : array_like
-        section lift-curve slope (2π for Theodorsen's flat plate) [1/rad]
-    ac : array_like
-        aerodynamic centre aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
-
-    Returns
-    -------
-    dict of numpy.ndarray
-        "ln_M", shape (..., 2, 2): as `ln_M`
-        "ln_C", shape (..., 2, 2): as `ln_C`
-        "ln_K", shape (..., 2, 2): as `ln_K`
-        "ln_W0", shape (..., 2, 2): as `ln_W0`
-        "ln_W1", shape (..., 2, 2): as `ln_W1`
-        "ln_W2", shape (..., 2, 2): as `ln_W2`
-        "ln_W3", shape (..., 2, 2): as `ln_W3`
-        (``...`` is the broadcast shape of all the arguments).
-    """
-    shape, (rho, V, b, a, Cla, ac,) = _broadcast(rho, V, b, a, Cla, ac)
-    _c0 = numpy.pi*rho
-    _c1 = _c0*a*b**3
-    _c2 = _c0*b**4
-    _c3 = V*rho
-    _c4 = (1/2)*Cla*_c3
-    _c5 = b**2
-    _c6 = numpy.pi*_c3
-    _c7 = _c4*_c5
-    _c8 = _c7*ac
-    _c9 = numpy.pi**(-1.0)
-    _c10 = Cla**2
-    _c11 = (1/4)*_c3*_c9*_c10
-    _c12 = b**3
-    _c13 = _c4*_c12
-    _c14 = (1/2)*Cla*V**2*rho
-    _c15 = _c14*b**2
-    _c16 = Cla*rho
-    _c17 = (273/40000)*V**4*_c16
-    _c18 = (43203/400000)*V**3*_c16
-    _c19 = _c18*b
-    _c20 = V**(-1.0)
-    _c21 = _c20*b
-    _o0 = numpy.zeros(shape + (2, 2))
-    _o0[..., 0, 0] = -_c0*b**2
-    _o0[..., 0, 1] = _c1
-    _o0[..., 1, 0] = _c1
-    _o0[..., 1, 1] = -_c2*a**2 - 1/8*_c2
-    _o1 = numpy.zeros(shape + (2, 2))
-    _o1[..., 0, 0] = -_c4*b
-    _o1[..., 0, 1] = (1/2)*Cla*V*_c5*a*rho - _c5*_c6 - _c5*_c11 - _c8
-    _o1[..., 1, 0] = _c7*a - _c8
-    _o1[..., 1, 1] = Cla*V*_c12*a*ac*rho + (1/4)*V*_c9*_c10*_c12*a*rho + numpy.pi*V*_c12*a*rho - _c13*a**2 - _c13*ac**2 - _c13 - _c6*_c12*ac - _c11*_c12*ac
-    _o2 = numpy.zeros(shape + (2, 2))
-    _o2[..., 0, 1] = -_c14*b
-    _o2[..., 1, 1] = _c15*a - _c15*ac
-    _o3 = numpy.zeros(shape + (2, 2))
-    _o3[..., 0, 0] = -_c17/b
-    _o3[..., 0, 1] = -_c18
-    _o3[..., 1, 0] = _c17*a - _c17*ac
-    _o3[..., 1, 1] = _c19*a - _c19*ac
-    _o4 = numpy.zeros(shape + (2, 2))
-    _o4[..., 0, 1] = 1
-    _o4[..., 1, 0] = -273/20000*V**2/b**2
-    _o4[..., 1, 1] = -691/2000*V/b
-    _o5 = numpy.zeros(shape + (2, 2))
-    _o5[..., 1, 0] = _c20
-    _o5[..., 1, 1] = (1/2)*Cla*_c21/numpy.pi - _c21*a + _c21*ac
-    _o6 = numpy.zeros(shape + (2, 2))
-    _o6[..., 1, 1] = 1
-    return {
-        "ln_M": _o0,
-        "ln_C": _o1,
-        "ln_K": _o2,
-        "ln_W0": _o3,
-        "ln_W1": _o4,
-        "ln_W2": _o5,
-        "ln_W3": _o6,
-    }
-
-
-def theodorsen_blocks(rho, V, b, a, Cla, ac, k, F, G):
-    """theodorsen_M, theodorsen_C, theodorsen_K at once.
-
-    The arguments are broadcast together once.  Their code is each matrix's own common
-    subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
-    functions.
-
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        airspeed [m/s]
-    b : array_like
-        semichord [m]
-    a : array_like
-        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
-    Cla : array_like
-        section lift-curve slope (2π for Theodorsen's flat plate) [1/rad]
-    ac : array_like
-        aerodynamic centre aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
-    k : array_like
-        reduced frequency ω b / V of harmonic motion [-]
-    F : array_like
-        real part of Theodorsen's function C(k) = F + iG [-]
-    G : array_like
-        imaginary part of Theodorsen's function C(k) = F + iG [-]
-
-    Returns
-    -------
-    dict of numpy.ndarray
-        "theodorsen_M", shape (..., 2, 2): as `theodorsen_M`
-        "theodorsen_C", shape (..., 2, 2): as `theodorsen_C`
-        "theodorsen_K", shape (..., 2, 2): as `theodorsen_K`
-        (``...`` is the broadcast shape of all the arguments).
-    """
-    shape, (rho, V, b, a, Cla, ac, k, F, G,) = _broadcast(rho, V, b, a, Cla, ac, k, F, G)
-    _c0 = numpy.pi*rho
-    _c1 = _c0*a*b**3
-    _c2 = _c0*b**4
-    _c3 = V*rho
-    _c4 = Cla*_c3
-    _c5 = F*_c4
-    _c6 = b**2
-    _c7 = numpy.pi*_c3
-    _c8 = _c5*_c6
-    _c9 = _c8*ac
-    _c10 = k**(-1.0)
-    _c11 = G*_c10
-    _c12 = numpy.pi**(-1.0)
-    _c13 = Cla**2
-    _c14 = (1/2)*F*_c3*_c13*_c12
-    _c15 = b**3
-    _c16 = _c4*_c15
-    _c17 = _c15*_c5
-    _c18 = V**2
-    _c19 = Cla*_c18*rho
-    _c20 = G*k
-    _c21 = _c19*_c20
-    _c22 = F*_c19
-    _c23 = _c21*b
-    _c24 = _c23*a
-    _c25 = (1/2)*Cla**2*_c18*_c20*rho/numpy.pi
-    _c26 = _c22*_c6
-    _c27 = _c21*_c6
-    _c28 = _c25*_c6
-    _o0 = numpy.zeros(shape + (2, 2))
-    _o0[..., 0, 0] = -_c0*b**2
-    _o0[..., 0, 1] = _c1
-    _o0[..., 1, 0] = _c1
-    _o0[..., 1, 1] = -_c2*a**2 - 1/8*_c2
-    _o1 = numpy.zeros(shape + (2, 2))
-    _o1[..., 0, 0] = -_c5*b
-    _o1[..., 0, 1] = Cla*F*V*_c6*a*rho - _c4*_c6*_c11 - _c14*_c6 - _c6*_c7 - _c9
-    _o1[..., 1, 0] = _c8*a - _c9
-    _o1[..., 1, 1] = 2*Cla*F*V*_c15*a*ac*rho + Cla*G*V*_c15*_c10*a*rho + (1/2)*F*V*_c13*_c15*_c12*a*rho + numpy.pi*V*_c15*a*rho - _c14*_c15*ac - _c15*_c7*ac - _c16*_c11*ac - 1/2*_c16 - _c17*a**2 - _c17*ac**2
-    _o2 = numpy.zeros(shape + (2, 2))
-    _o2[..., 0, 0] = _c21
-    _o2[..., 0, 1] = -_c22*b + _c23*ac - _c24 + _c25*b
-    _o2[..., 1, 0] = Cla*G*_c18*ac*b*k*rho - _c24
-    _o2[..., 1, 1] = _c27*a**2 - 2*_c27*a*ac + _c27*ac**2 - _c28*a + _c28*ac + _c26*a - _c26*ac
-    return {
-        "theodorsen_M": _o0,
-        "theodorsen_C": _o1,
-        "theodorsen_K": _o2,
-    }
-
-
-def wagner_blocks(rho, V, b, a, Cla, ac):
-    """wagner_M, wagner_C, wagner_K, wagner_W0, wagner_W1, wagner_W2 at once.
-
-    The arguments are broadcast together once.  Their code is each matrix's own common
-    subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
-    functions.
-
-    Parameters
-    ----------
-    rho : array_like
-        air density [kg/m^3]
-    V : array_like
-        airspeed [m/s]
-    b : array_like
-        semichord [m]
-    a : array_like
-        elastic axis aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
-    Cla : array_like
-        section lift-curve slope (2π for Theodorsen's flat plate) [1/rad]
-    ac : array_like
-        aerodynamic centre aft of mid-chord, in semichords (-1/2 = quarter chord) [-]
-
-    Returns
-    -------
-    dict of numpy.ndarray
-        "wagner_M", shape (..., 2, 2): as `wagner_M`
-        "wagner_C", shape (..., 2, 2): as `wagner_C`
-        "wagner_K", shape (..., 2, 2): as `wagner_K`
-        "wagner_W0", shape (..., 2, 4): as `wagner_W0`
-        "wagner_W1", shape (..., 4, 2): as `wagner_W1`
-        "wagner_W2", shape (..., 4, 4): as `wagner_W2`
-        (``...`` is the broadcast shape of all the arguments).
-    """
-    shape, (rho, V, b, a, Cla, ac,) = _broadcast(rho, V, b, a, Cla, ac)
-    _c0 = numpy.pi*rho
-    _c1 = _c0*a*b**3
-    _c2 = _c0*b**4
-    _c3 = V*rho
-    _c4 = (1/2)*Cla*_c3
-    _c5 = b**2
-    _c6 = numpy.pi*_c3
-    _c7 = _c4*_c5
-    _c8 = _c7*ac
-    _c9 = numpy.pi**(-1.0)
-    _c10 = Cla**2
-    _c11 = (1/4)*_c3*_c9*_c10
-    _c12 = b**3
-    _c13 = _c4*_c12
-    _c14 = V**2
-    _c15 = _c14*rho
-    _c16 = Cla*_c15
-    _c17 = (43203/400000)*_c16
-    _c18 = (1/2)*_c16
-    _c19 = _c17*b
-    _c20 = _c19*ac
-    _c21 = (43203/800000)*_c15*_c9*_c10
-    _c22 = _c5*_c17
-    _c23 = V**3
-    _c24 = _c23*rho
-    _c25 = Cla*_c24
-    _c26 = _c25/b
-    _c27 = (3003/400000)*_c25
-    _c28 = (273273/800000000)*_c25
-    _c29 = _c28*a
-    _c30 = Cla**2*_c24/numpy.pi
-    _c31 = (273273/1600000000)*_c30
-    _c32 = (201/2000)*_c25
-    _c33 = (603/20000)*_c25
-    _c34 = _c33*a
-    _c35 = (603/40000)*_c30
-    _c36 = _c27*b
-    _c37 = a*b
-    _c38 = _c37*_c25*ac
-    _c39 = a**2
-    _c40 = _c28*b
-    _c41 = ac**2
-    _c42 = ac*b
-    _c43 = _c32*b
-    _c44 = _c33*b
-    _c45 = V/b
-    _c46 = -91/2000*_c45
-    _c47 = -3/10*_c45
-    _o0 = numpy.zeros(shape + (2, 2))
-    _o0[..., 0, 0] = -_c0*b**2
-    _o0[..., 0, 1] = _c1
-    _o0[..., 1, 0] = _c1
-    _o0[..., 1, 1] = -_c2*a**2 - 1/8*_c2
-    _o1 = numpy.zeros(shape + (2, 2))
-    _o1[..., 0, 0] = -_c4*b
-    _o1[..., 0, 1] = (1/2)*Cla*V*_c5*a*rho - _c5*_c6 - _c5*_c11 - _c8
-    _o1[..., 1, 0] = _c7*a - _c8
-    _o1[..., 1, 1] = Cla*V*_c12*a*ac*rho + (1/4)*V*_c9*_c10*_c12*a*rho + numpy.pi*V*_c12*a*rho - _c13*a**2 - _c13*ac**2 - _c13 - _c6*_c12*ac - _c11*_c12*ac
-    _o2 = numpy.zeros(shape + (2, 2))
-    _o2[..., 0, 0] = -_c17
-    _o2[..., 0, 1] = (43203/400000)*Cla*_c14*a*b*rho - _c18*b - _c20 - _c21*b
-    _o2[..., 1, 0] = _c19*a - _c20
-    _o2[..., 1, 1] = (43203/200000)*Cla*_c14*_c5*a*ac*rho + (1/2)*Cla*_c14*_c5*a*rho + (43203/800000)*_c14*_c5*_c9*_c10*a*rho - _c5*_c18*ac - _c5*_c21*ac - _c22*a**2 - _c22*ac**2
-    _o3 = numpy.zeros(shape + (2, 4))
-    _o3[..., 0, 0] = (273273/800000000)*_c26
-    _o3[..., 0, 1] = (603/20000)*_c26
-    _o3[..., 0, 2] = -_c27 + _c28*ac - _c29 + _c31
-    _o3[..., 0, 3] = _c33*ac - _c34 + _c35 - _c32
-    _o3[..., 1, 0] = (273273/800000000)*Cla*_c23*ac*rho - _c29
-    _o3[..., 1, 1] = (603/20000)*Cla*_c23*ac*rho - _c34
-    _o3[..., 1, 2] = _c36*a - _c36*ac - _c37*_c31 - 273273/400000000*_c38 + _c39*_c40 + _c40*_c41 + _c42*_c31
-    _o3[..., 1, 3] = -_c35*_c37 + _c35*_c42 - 603/10000*_c38 + _c39*_c44 + _c41*_c44 + _c43*a - _c43*ac
-    _o4 = numpy.zeros(shape + (4, 2))
-    _o4[..., 0, 0] = 1
-    _o4[..., 1, 0] = 1
-    _o4[..., 2, 1] = 1
-    _o4[..., 3, 1] = 1
-    _o5 = numpy.zeros(shape + (4, 4))
-    _o5[..., 0, 0] = _c46
-    _o5[..., 1, 1] = _c47
-    _o5[..., 2, 2] = _c46
-    _o5[..., 3, 3] = _c47
-    return {
-        "wagner_M": _o0,
-        "wagner_C": _o1,
-        "wagner_K": _o2,
-        "wagner_W0": _o3,
-        "wagner_W1": _o4,
-        "wagner_W2": _o5,
-    }
+    return _view(theodorsen_blocks, "theodorsen_K", rho=rho, V=V, b=b, a=a, Cla=Cla, ac=ac, k=k, F=F, G=G)
 
 
 def ln_blocks_d(rho, V, b, a, Cla, ac):

@@ -8,9 +8,10 @@ may be an array and all arguments broadcast together; each function returns an a
 shape ``broadcast_shape + (rows, cols)``.
 
 The block functions (`blocks`) return several of these matrices
-at once (a dict), broadcasting their arguments once.  Their code is each matrix's own common
-subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
-functions.
+at once (a dict), broadcasting their arguments once, with one common-subexpression elimination
+over all their matrices; the runtime calls them.  The function of each of their matrices
+(`mass`, `stiffness`) is a view: it calls its block function
+(`VIEWS` names it) and returns that matrix.
 
 The derivative functions (`blocks_d`) return the
 exact parameter derivatives of those matrices: ``{matrix name: {parameter name: array}}`` with
@@ -57,6 +58,12 @@ BLOCKS = {
     "blocks": (('m', 'S', 'I_alpha', 'K_h', 'K_alpha'), ('mass', 'stiffness')),
 }
 
+#: matrix function name -> the block function it is a view of
+VIEWS = {
+    "mass": "blocks",
+    "stiffness": "blocks",
+}
+
 #: derivative function name -> (argument names, {matrix name: parameters it depends on})
 PARTIALS = {
     "blocks_d": (('m', 'S', 'I_alpha', 'K_h', 'K_alpha'), {'mass': ('m', 'S', 'I_alpha'), 'stiffness': ('K_h', 'K_alpha')}),
@@ -68,67 +75,17 @@ def _broadcast(*args):
     return arrays[0].shape, arrays
 
 
-
-def mass(m, S, I_alpha):
-    """Structural mass matrix [h, α].
-
-    Thesis equations 5.1, 7.3.
-
-    Parameters
-    ----------
-    m : array_like
-        mass per unit span [kg/m]
-    S : array_like
-        static unbalance per unit span, m x_α b (centre of gravity aft positive) [kg]
-    I_alpha : array_like
-        pitch inertia per unit span about the elastic axis [kg m]
-
-    Returns
-    -------
-    numpy.ndarray, shape (..., 2, 2)
-        rows: h, alpha
-        columns: h, alpha
-    """
-    shape, (m, S, I_alpha,) = _broadcast(m, S, I_alpha)
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = m
-    out[..., 0, 1] = S
-    out[..., 1, 0] = S
-    out[..., 1, 1] = I_alpha
-    return out
-
-
-def stiffness(K_h, K_alpha):
-    """Spring stiffness matrix [h, α].
-
-    Thesis equations 5.1.
-
-    Parameters
-    ----------
-    K_h : array_like
-        plunge spring per unit span [N/m^2]
-    K_alpha : array_like
-        pitch spring per unit span [N]
-
-    Returns
-    -------
-    numpy.ndarray, shape (..., 2, 2)
-        rows: h, alpha
-        columns: h, alpha
-    """
-    shape, (K_h, K_alpha,) = _broadcast(K_h, K_alpha)
-    out = numpy.zeros(shape + (2, 2))
-    out[..., 0, 0] = K_h
-    out[..., 1, 1] = K_alpha
-    return out
+def _view(block, name, **values):
+    """Matrix `name` of block function `block` at `values`, the block's other arguments NaN
+    (only its other matrices depend on them: the result is that of `values` alone)."""
+    return block(**{a: values.get(a, numpy.nan) for a in BLOCKS[block.__name__][0]})[name]
 
 
 def blocks(m, S, I_alpha, K_h, K_alpha):
     """mass, stiffness at once.
 
-    The arguments are broadcast together once.  Their code is each matrix's own common
-    subexpressions, identical ones computed once: the results are bit-identical to the per-matrix
-    functions.
+    The arguments are broadcast together once; one common-subexpression elimination over all
+    the matrices.
 
     Parameters
     ----------
@@ -146,8 +103,8 @@ def blocks(m, S, I_alpha, K_h, K_alpha):
     Returns
     -------
     dict of numpy.ndarray
-        "mass", shape (..., 2, 2): as `mass`
-        "stiffness", shape (..., 2, 2): as `stiffness`
+        "mass", shape (..., 2, 2): see `mass`
+        "stiffness", shape (..., 2, 2): see `stiffness`
         (``...`` is the broadcast shape of all the arguments).
     """
     shape, (m, S, I_alpha, K_h, K_alpha,) = _broadcast(m, S, I_alpha, K_h, K_alpha)
@@ -163,6 +120,40 @@ def blocks(m, S, I_alpha, K_h, K_alpha):
         "mass": _o0,
         "stiffness": _o1,
     }
+
+
+def mass(m, S, I_alpha):
+    """Structural mass matrix [h, α].
+
+    Thesis equations 5.1, 7.3.
+
+    A view: `blocks`'s "mass" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `blocks`).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 2, 2)
+        rows: h, alpha
+        columns: h, alpha
+    """
+    return _view(blocks, "mass", m=m, S=S, I_alpha=I_alpha)
+
+
+def stiffness(K_h, K_alpha):
+    """Spring stiffness matrix [h, α].
+
+    Thesis equations 5.1.
+
+    A view: `blocks`'s "stiffness" at these arguments (array_like, broadcast
+    together; their meanings and units are in `PARAMETERS` and `blocks`).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 2, 2)
+        rows: h, alpha
+        columns: h, alpha
+    """
+    return _view(blocks, "stiffness", K_h=K_h, K_alpha=K_alpha)
 
 
 def blocks_d(m, S, I_alpha, K_h, K_alpha):

@@ -52,8 +52,11 @@ def test_every_block_function_and_every_matrix_has_derivatives():
 def test_derivatives_equal_central_differences_of_the_generated_matrices(name, fname, data, n):
     """∂M/∂p of every matrix for every argument p (zero where PARTIALS leaves p out) against
     (M(p + h) − M(p − h))/2h with h = 1e-5 p: truncation ~ (h/p)² = 1e-10 and rounding
-    ~ 1e-16 |M|/h ≈ 1e-11 |M|/p, so 1e-6 of max(|∂M/∂p|, |M|/p) separates a wrong
-    derivative from the difference's error."""
+    ~ 1e-16 |terms of M|/h ≈ 1e-11 |terms of M|/p, so 1e-6 of max(|∂M/∂p|, |terms of M|/p)
+    separates a wrong derivative from the difference's error.  |terms of M| is |M|, or, where
+    M's terms cancel (an entry exactly 0 from terms of size 1: the rounding of M(p ± h) is
+    then that of its terms, not of |M|), the largest |q ∂M/∂q| over the arguments q: the size
+    of the terms M is a sum of (a wrong ∂M/∂q fails its own check, scaled by itself)."""
     mod = GENERATED[name]
     argnames, nonzero = mod.PARTIALS[fname]
     values = draw_values(data, argnames, n)
@@ -69,6 +72,9 @@ def test_derivatives_equal_central_differences_of_the_generated_matrices(name, f
         fu, fd = f(**up), f(**down)
         hh = np.reshape(h, np.shape(h) + (1, 1))
         for m in nonzero:
+            terms = max([float(np.max(np.abs(base[m])))]
+                        + [float(np.max(np.abs(np.reshape(values[q], np.shape(values[q]) + (1, 1))
+                                               * got[m][q]))) for q in got[m]])
             diff = (np.broadcast_to(fu[m], shape + base[m].shape[-2:])
                     - np.broadcast_to(fd[m], shape + base[m].shape[-2:])) / (2 * hh)
             exact = got[m].get(p)
@@ -76,7 +82,7 @@ def test_derivatives_equal_central_differences_of_the_generated_matrices(name, f
             if exact is None:
                 exact = np.zeros_like(diff)
             assert exact.shape == shape + base[m].shape[-2:], (m, p)
-            scale = max(np.max(np.abs(exact)), np.max(np.abs(base[m]) / np.min(np.abs(values[p]))))
+            scale = max(np.max(np.abs(exact)), terms / np.min(np.abs(values[p])))
             assert np.max(np.abs(exact - diff)) <= 1e-6 * scale, (m, p)
 
 
