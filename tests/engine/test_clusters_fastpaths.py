@@ -15,6 +15,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from propwhirl.engine import clusters as cl
+from propwhirl.engine.cluster_tables import cluster_tables
 
 SETTINGS = settings(max_examples=150, deadline=None, derandomize=True)
 
@@ -109,7 +110,7 @@ def test_real_root_count_is_that_of_np_roots(seed, k, zeros):
 
 @pytest.mark.parametrize("k", [1, 2, 3, 4, 5])
 def test_tables(k):
-    tab = cl._tables(k)
+    tab = cluster_tables(k)
     perms = [tuple(p) for p in itertools.permutations(range(k))]
     assert [tuple(p) for p in tab.perms.tolist()] == perms
     for i, p in enumerate(perms):
@@ -121,7 +122,7 @@ def test_tables(k):
     assert not tab.perms.flags.writeable and not tab.e1.flags.writeable
     D = np.arange(k * k).reshape(k, k)
     assert tab.gather.tolist() == [[D[i, p[i]] for i in range(k)] for p in perms]
-    assert cl._tables(k) is cl._tables(k) or k > 4     # built once for the sizes that occur
+    assert cluster_tables(k) is cluster_tables(k) or k > 4     # built once for the sizes that occur
 
 
 IMAG = st.sampled_from([0.0, -0.0, 1e-300, -1e-300, 2.5, -2.5, np.nan])
@@ -178,7 +179,7 @@ def interpolated(coeffs):
 @given(seed=st.integers(0, 2**32 - 1), k=st.integers(1, 4))
 def test_plain_steps_as_formulated_before(seed, k):
     roots = interpolated(random_coeffs(seed, k))
-    tab = cl._tables(k)
+    tab = cluster_tables(k)
     best, plain = cl._plain_steps(roots, tab)
     best0, plain0 = plain_reference(roots, tab.perms)
     assert same_bits(plain, plain0)
@@ -231,7 +232,7 @@ def test_substeps_composed_by_table_are_the_step_by_step_follow(seed, k, jitter)
     start = roots[0][np.random.default_rng(seed).permutation(k)]
     if jitter:                 # the exact roots at the start are not the interpolated ones
         start = start * (1 + 1e-12) + 1e-13
-    tab = cl._tables(k)
+    tab = cluster_tables(k)
     track = np.empty(roots.shape, dtype=complex)
     track[0] = start
     cl._follow_substeps(track, roots, cl._S, coeffs, tab)

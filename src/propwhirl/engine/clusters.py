@@ -15,12 +15,10 @@ points, :func:`propwhirl.engine.crossings._branch_point_speeds`).
 """
 from __future__ import annotations
 
-import itertools
-from dataclasses import dataclass
-
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
+from propwhirl.engine.cluster_tables import ClusterTables, frozen as _frozen, cluster_tables as _tables
 from propwhirl.engine.hermite import _hermite_coeffs, _hermite_eval
 from propwhirl.engine.nodes import _Node
 from propwhirl.engine.options import TrackingOptions
@@ -55,65 +53,6 @@ def _cluster_mismatch(ca, dca, cb, dcb, h, scale):
     change = cb - ca
     mis = np.abs(change - 0.5 * (dca + dcb) * h)
     return (np.minimum(mis, np.abs(change)) / sc).max(axis=-1), mis
-
-
-def _frozen(x: np.ndarray) -> np.ndarray:
-    """``x``, made read-only (the module's constant tables)."""
-    x.flags.writeable = False
-    return x
-
-
-@dataclass(frozen=True)
-class _Tables:
-    """Index tables of a cluster of k roots, built once per k (read-only arrays).
-
-    perms: (k!, k) the permutations of range(k) (in ``itertools.permutations`` order);
-    index: the row of each permutation (as a tuple) in ``perms``; compose[i][j]: the row of
-    perms[i][perms[j]]; others: (k, k − 1), row m the members other than m; sub: rows and
-    columns of the companion matrix's subdiagonal; orders: 1 … k, the orders of the
-    coefficients; w1, e1 / w2: factors and exponents of the first / second derivative of a
-    monic polynomial of degree k in the powers of z (coefficient order: highest power first;
-    the exponents of the second are e1[1:]); gather: (k!, k), the flat indices i·k + perm[i]
-    of a k × k matrix picked by each permutation.
-    """
-
-    perms: np.ndarray
-    index: dict[tuple[int, ...], int]
-    compose: tuple[tuple[int, ...], ...]
-    others: np.ndarray
-    sub: tuple[np.ndarray, np.ndarray]
-    orders: np.ndarray
-    w1: np.ndarray
-    e1: np.ndarray
-    w2: np.ndarray
-    gather: np.ndarray
-
-    @classmethod
-    def build(cls, k: int) -> _Tables:
-        pw = np.arange(k, -1, -1)
-        perms = list(itertools.permutations(range(k)))
-        index = {p: i for i, p in enumerate(perms)}
-        compose = tuple(tuple(index[tuple(p[j] for j in r)] for r in perms) for p in perms)
-        arrays = dict(
-            perms=np.array(perms), orders=np.arange(1, k + 1),
-            others=np.array([[j for j in range(k) if j != m] for m in range(k)],
-                            dtype=int).reshape(k, k - 1),
-            w1=pw[:-1, None], e1=np.maximum(pw[:-1, None] - 1, 0),
-            w2=(pw[:-2] * (pw[:-2] - 1))[:, None],
-            gather=np.arange(k) * k + np.array(perms, dtype=int).reshape(-1, k))
-        sub = (_frozen(np.arange(1, k)), _frozen(np.arange(k - 1)))
-        return cls(sub=sub, index=index, compose=compose,
-                   **{name: _frozen(x) for name, x in arrays.items()})
-
-
-#: the tables of the cluster sizes that occur (2–4 roots; 1 for completeness)
-_TABLES = {k: _Tables.build(k) for k in range(1, 5)}
-
-
-def _tables(k: int) -> _Tables:
-    """The index tables of a cluster of k roots (built anew only for k > 4)."""
-    t = _TABLES.get(k)
-    return t if t is not None else _Tables.build(k)
 
 
 def _alternative_mismatches(lam, dlam, cand, dcand, ca, dca, cb, dcb, h, scale):
@@ -233,7 +172,7 @@ def _follow_substep(cur, r, s0, s1, coeffs, perms, depth):
     return _follow_substep(mid, r, sm, s1, coeffs, perms, depth + 1)
 
 
-def _plain_steps(roots: np.ndarray, tab: _Tables) -> tuple[np.ndarray, np.ndarray]:
+def _plain_steps(roots: np.ndarray, tab: ClusterTables) -> tuple[np.ndarray, np.ndarray]:
     """Per sub-step m − 1 → m: the nearest assignment of the roots at m − 1 (LAPACK order) to
     those at m (index into ``tab.perms``), and whether the step is *plain* — its nearest
     assignment is unambiguous (the best sum of distances below the second best by far more
@@ -268,7 +207,7 @@ def _order_of(x: np.ndarray, r: np.ndarray) -> np.ndarray | None:
 
 
 def _follow_substeps(track: np.ndarray, roots: np.ndarray, S: np.ndarray, coeffs,
-                     tab: _Tables) -> None:
+                     tab: ClusterTables) -> None:
     """Fill ``track[1:]`` (track[0]: the exact roots at the start) by :func:`_follow_substep`
     on every sub-step — runs of plain sub-steps (:func:`_plain_steps`) by composing their
     assignments, which gives the same roots in the same order without a call per sub-step
