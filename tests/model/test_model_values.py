@@ -13,6 +13,7 @@ import propwhirl
 from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
 from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
 from propwhirl.model.propeller import MeasuredDerivatives, PointMass
+from propwhirl.model.protocol import Evaluator, Model
 from propwhirl.model.systems import PropellerWingAssembly
 
 SPEEDS = np.array([30.0, 150.0, 290.0])
@@ -189,6 +190,8 @@ def test_an_assembly_is_built_anew_and_its_parts_are_read_only():
     m = wingtip_propeller_wing()
     a, b = m.assembly(), m.assembly()
     assert isinstance(a, PropellerWingAssembly) and a is not b
+    assert isinstance(a, Evaluator) and isinstance(m, Model)
+    assert isinstance(isolated_baseline_propeller().assembly(), Evaluator)
     assert a.structure[0] is not b.structure[0]
     for X in a.structure + (a.keep_q, a.propellers[0].dofs):
         assert not X.flags.writeable
@@ -212,7 +215,7 @@ def test_with_switches_shares_only_what_the_switches_do_not_decide():
 
 # ----------------------------------------------------------------------------- privates
 MODEL_CLASSES = ("PropellerWing", "PropellerWingAssembly", "InstalledPropeller",
-                 "IsolatedPropeller", "TypicalSection", "StateSpaceModel", "Evaluator", "Wing",
+                 "IsolatedPropeller", "TypicalSection", "StateSpaceModel", "EvaluatorBase", "Wing",
                  "Propeller", "Installation", "FlightCondition", "ReducedModel")
 SRC = Path(propwhirl.__file__).parent
 

@@ -10,8 +10,8 @@ from propwhirl.model.assembly import blame_entry
 from propwhirl.model.statespace import SecondOrder, StateMatrixError, check_system, state_matrix
 
 
-class Evaluator:
-    """What evaluates a model at airspeeds (the model itself, or the assembly a model builds,
+class EvaluatorBase:
+    """What every evaluator of a model shares (the model itself, or the assembly a model builds,
     :meth:`StateSpaceModel.assembly`): A(V) from ``second_order`` by the one builder, and a
     bad entry explained by the model parameter behind it.
 
@@ -58,7 +58,7 @@ class Evaluator:
         return self.dof_map().state_labels
 
 
-class StateSpaceModel(Evaluator):
+class StateSpaceModel(EvaluatorBase):
     """What every model shares (the :class:`~propwhirl.model.protocol.Model` contract).
 
     Subclasses define ``second_order(V, ...)``, ``dof_map()`` and ``without_aerodynamics()``;
@@ -66,7 +66,7 @@ class StateSpaceModel(Evaluator):
     overrides :meth:`assembly`.
     """
 
-    def assembly(self) -> Evaluator:
+    def assembly(self) -> EvaluatorBase:
         """The evaluator of this model that an analysis builds once and evaluates at every
         speed (``second_order``, ``state_matrix``, ``dof_map``).  By default the model itself:
         nothing of its matrices is worth building ahead."""

@@ -66,7 +66,7 @@ from propwhirl.model.propeller_blocks import (propeller_constants, propeller_mat
 from propwhirl.model.blocks import BlockSystem, LagBlocks, LocalBlocks
 from propwhirl.model.protocol import DofMap, PropellerDofs
 from propwhirl.model import validity
-from propwhirl.model.base import Evaluator, StateSpaceModel
+from propwhirl.model.base import EvaluatorBase, StateSpaceModel
 from propwhirl.model.section import TypicalSection  # noqa: F401 (re-export: its former home)
 from propwhirl.model.statespace import SecondOrder
 from propwhirl.model.wing import Wing
@@ -323,7 +323,7 @@ class InstalledPropeller:
 
 
 @dataclass(frozen=True, eq=False)
-class PropellerWingAssembly(Evaluator):
+class PropellerWingAssembly(EvaluatorBase):
     """A :class:`PropellerWing` with everything its matrices need that does not depend on the
     airspeed, built once (:meth:`build`, :meth:`PropellerWing.assembly`) and then evaluated at
     any speeds: :meth:`blocks` (the hot path: no checks), :meth:`second_order_blocks`,
