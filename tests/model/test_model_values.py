@@ -253,3 +253,45 @@ def test_no_private_attribute_of_a_model_is_read_outside_its_module():
                     and not (isinstance(node.value, ast.Name) and node.value.id in ("self", "cls"))):
                 bad.append(f"{rel}:{node.lineno} .{node.attr}")
     assert not bad, bad
+
+
+# ----------------------------------------------------------------------------- the other models
+def _section():
+    from propwhirl.model.section import TypicalSection
+
+    return TypicalSection(b=1.0, a=-0.2, x_alpha=0.1, r_alpha=0.5, m=10.0, omega_h=5.0,
+                          omega_alpha=10.0, flight=MODEL.flight)
+
+
+OTHER = [
+    (isolated_baseline_propeller, dict(propeller=dataclasses.replace(PROP, f_psi=6.0)), True),
+    (isolated_baseline_propeller, dict(flight=dataclasses.replace(MODEL.flight, density=0.5)), True),
+    (isolated_baseline_propeller, dict(propeller_aero=False), True),
+    (isolated_baseline_propeller, dict(rotating=False), True),
+    (isolated_baseline_propeller, dict(name="another"), False),
+    (_section, dict(b=1.2), True), (_section, dict(a=-0.1), True),
+    (_section, dict(x_alpha=0.2), True), (_section, dict(r_alpha=0.6), True),
+    (_section, dict(m=12.0), True), (_section, dict(omega_h=6.0), True),
+    (_section, dict(omega_alpha=11.0), True),
+    (_section, dict(flight=dataclasses.replace(MODEL.flight, density=0.5)), True),
+    (_section, dict(Cla=5.5), True), (_section, dict(ac=-0.4), True),
+    (_section, dict(aero_model="wagner"), True), (_section, dict(name="another"), False),
+    (_section, dict(aero=False), True),
+]
+
+
+def test_the_other_table_changes_every_field_of_the_other_models():
+    for build in (isolated_baseline_propeller, _section):
+        assert {k for b, c, _ in OTHER if b is build for k in c} == _init_fields(build())
+
+
+@pytest.mark.parametrize("how", ["replace", "with_"])
+@pytest.mark.parametrize("build, changes, matters", OTHER,
+                         ids=[f"{b.__name__}:{','.join(c)}" for b, c, _ in OTHER])
+def test_a_changed_field_of_another_model_evaluates_as_a_fresh_model(build, changes, matters, how):
+    m = build()
+    r0 = _evaluate(m)
+    changed = dataclasses.replace(m, **changes) if how == "replace" else m.with_(**changes)
+    r1 = _evaluate(changed)
+    assert _same(r1, _evaluate(_fresh(changed)))
+    assert _same(r1, r0) is not matters
