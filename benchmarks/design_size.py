@@ -183,7 +183,7 @@ def wingtip_vs_grid(model_factory: Callable[[], Any] | None = None, repeats: int
     t_red, n_red, a_red = time_analysis(model_factory, "reduced", repeats, short=1e9, speeds=None)
     t_def, n_def, a_def = time_analysis(model_factory, "auto", repeats, short=1e9, speeds=None)
     model = model_factory()
-    fn = model.state_matrix
+    fn = model.assembly().state_matrix          # built once, as an analysis does
     runs = [evfg.fixed_grid_sweep(fn, grid_speeds, threads=1) for _ in range(max(1, repeats))]
     grid = min(runs, key=lambda r: r.total.cpu)
     errors, grid_only = {}, {}

@@ -16,13 +16,12 @@ def test_stack_blocks_is_np_block(nV, r1, r2, c1, c2, seed):
     assert np.array_equal(_stack_blocks([[a, b], [c, d]]), np.block([[a, b], [c, d]]))
 
 
-def test_propeller_constants_are_computed_once_and_do_not_leak_into_values():
-    m = wingtip_propeller_wing()
+def test_propeller_values_are_new_dicts_over_the_assembly_constants():
+    a = wingtip_propeller_wing().assembly()
+    p = a.propellers[0]
     V = np.array([100.0, 200.0])
-    v1 = m._propeller_values(0, V)
-    const = m._memo["installations"][0]
-    assert "V" not in const and "Omega" not in const and "CZ_theta" not in const
-    v1["K_theta"] = -1.0                                 # the caller's dict, not the memo
-    v2 = m._propeller_values(0, V)
-    assert v2["K_theta"] == const["K_theta"] > 0
-    assert m._propeller_constants(0) is const
+    v1 = a.propeller_values(p, V)
+    assert "V" not in p.constants and "Omega" not in p.constants and "CZ_theta" not in p.constants
+    v1["K_theta"] = -1.0                                 # the caller's dict, not the assembly's
+    v2 = a.propeller_values(p, V)
+    assert v2["K_theta"] == p.constants["K_theta"] > 0

@@ -387,10 +387,11 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         lift = run.model.lift
         unconverged = [p for p, s in zip(an.criticals.points, run.corrections) if s is None]
     else:
-        an = engine_analyse(model.state_matrix, grid, displacement=dm.displacement,
+        matrix_fn = model.assembly().state_matrix     # built once for the analysis
+        an = engine_analyse(matrix_fn, grid, displacement=dm.displacement,
                             state_labels=dm.state_labels, options=options, xtol=xtol,
                             **({"initial_step": None} if vgf else {}))
-        matrix_fn, basis, lift = model.state_matrix, None, None
+        basis, lift = None, None
         unconverged = []
     sw = an.sweep
     names = mode_names(model, sw, basis)

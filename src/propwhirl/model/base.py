@@ -1,5 +1,6 @@
 """What every model shares: A(V) from its second-order matrices by the one builder, errors
-that name the model parameter behind a bad entry, state labels from the DOF map."""
+that name the model parameter behind a bad entry, state labels from the DOF map; and the
+evaluator a model gives an analysis (:meth:`StateSpaceModel.assembly`)."""
 from __future__ import annotations
 
 import numpy as np
@@ -9,11 +10,12 @@ from propwhirl.model.assembly import blame_entry
 from propwhirl.model.statespace import SecondOrder, StateMatrixError, check_system, state_matrix
 
 
-class StateSpaceModel:
-    """What every model shares (the :class:`~propwhirl.model.protocol.Model` contract): A(V)
-    from its second-order matrices by the one builder, and its state labels from its DOF map.
+class EvaluatorBase:
+    """What every evaluator of a model shares (the model itself, or the assembly a model builds,
+    :meth:`StateSpaceModel.assembly`): A(V) from ``second_order`` by the one builder, and a
+    bad entry explained by the model parameter behind it.
 
-    Subclasses define ``second_order(V, ...)``, ``dof_map()`` and ``without_aerodynamics()``.
+    Subclasses define ``second_order(V, ...)`` and ``dof_map()``.
     """
 
     def state_matrix(self, V, **options) -> np.ndarray:
@@ -51,16 +53,21 @@ class StateSpaceModel:
         block of the model (none by default: the error keeps naming the entry's states)."""
         return []
 
-    def release_caches(self) -> None:
-        """Free what the model memoised while it was analysed (its speed-independent matrices:
-        the wing structure of a PropellerWing, ≈ 150 kB for the wingtip model; its last few
-        evaluations of the blocks).  A study that
-        analyses thousands of variants in one process calls it after each, so that its memory
-        does not grow with the number of points; the next analysis recomputes them."""
-        memo = getattr(self, "_memo", None)
-        if memo is not None:
-            memo.clear()
-
     def state_labels(self) -> tuple[str, ...]:
         """Labels of the first-order state [q, q̇, w] (:attr:`DofMap.state_labels`)."""
         return self.dof_map().state_labels
+
+
+class StateSpaceModel(EvaluatorBase):
+    """What every model shares (the :class:`~propwhirl.model.protocol.Model` contract).
+
+    Subclasses define ``second_order(V, ...)``, ``dof_map()`` and ``without_aerodynamics()``;
+    a model whose matrices need speed-independent parts built ahead (a wing's structure)
+    overrides :meth:`assembly`.
+    """
+
+    def assembly(self) -> EvaluatorBase:
+        """The evaluator of this model that an analysis builds once and evaluates at every
+        speed (``second_order``, ``state_matrix``, ``dof_map``).  By default the model itself:
+        nothing of its matrices is worth building ahead."""
+        return self

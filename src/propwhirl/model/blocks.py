@@ -230,15 +230,19 @@ class BlockSystem:
 
 
 class RecentBlocks:
-    """The last few :class:`BlockSystem` evaluations of one model, for speeds asked for again.
+    """The last few :class:`BlockSystem` evaluations of one evaluator (an assembly of one
+    model: everything but the airspeeds fixed), for speeds asked for again.
 
-    An analysis evaluates some speeds twice: the full-order correction of a crossing at the
-    speed its reduced refinement evaluated, the shape of a branch point at a speed of its
-    bracket, the in-vacuo matrices at 1 m/s for the names, content and participation of the
-    modes.  A request whose speeds all lie in one kept evaluation is answered from it
-    (:meth:`BlockSystem.take`: the same values — the blocks are elementwise in V); others
-    are evaluated and kept.  At most ``max_batches`` evaluations of at most ``max_speeds``
-    speeds in all are kept (the oldest dropped first), their arrays read-only.
+    An explicit store, owned by a per-analysis object and passed where it is needed (the
+    :class:`~propwhirl.model.reduction.ReducedModel` of one analysis holds one), never a
+    model's: a reduced analysis evaluates some speeds twice (the full-order correction of a
+    crossing at the speed its reduced refinement evaluated, the shape of a branch point at a
+    speed of its bracket).  Keyed on the speeds only, so its owner must use it for one
+    evaluator's own rotational speeds (no Ω override).  A request whose speeds all lie in one
+    kept evaluation is answered from it (:meth:`BlockSystem.take`: the same values — the
+    blocks are elementwise in V); others are evaluated and kept.  At most ``max_batches``
+    evaluations of at most ``max_speeds`` speeds in all are kept (the oldest dropped first),
+    their arrays read-only.
     """
 
     def __init__(self, max_batches: int = 8, max_speeds: int = 64) -> None:

@@ -77,6 +77,7 @@ from propwhirl.model import derivatives_blade as _blade
 from propwhirl.model import derivatives_section as _section
 from propwhirl.model.propeller import MeasuredDerivatives
 from propwhirl.model.propeller_aero import DERIVATIVE_NAMES
+from propwhirl.model.propeller_blocks import propeller_constants, propeller_values
 from propwhirl.model.statespace import SecondOrder
 from propwhirl.model.systems import PropellerWing
 from propwhirl import validate as v
@@ -325,7 +326,13 @@ class _Context:
     def _prop_derivatives(self, j: int) -> tuple:
         model, inst = self.model, self.model.propellers[j]
         if j not in self.prop:
-            values = model._propeller_values(j, self.V, self.omega, self.memo)
+            const = propeller_constants(inst.propeller, model.wing, model.nodes[j],
+                                        model.flight.density)
+            values = propeller_values(const, inst.propeller, self.V, self.omega,
+                                      rotating=model.rotating,
+                                      aero=model.propeller_aero and inst.aero,
+                                      speed_of_sound=model.flight.speed_of_sound,
+                                      derivatives=self.memo)
             struct = prop_flexwing.structure_blocks_d(
                 **{a: values[a] for a in prop_flexwing.PARTIALS["structure_blocks_d"][0]})
             aero = {}
@@ -356,7 +363,7 @@ class _Context:
 
     def _local(self, mount: str, struct: dict, aero: dict, arg: str):
         """∂(M, C, K)/∂arg of a propeller's local block, assembled as
-        PropellerWing._propeller_matrices assembles (M, C, K)."""
+        :func:`~propwhirl.model.propeller_blocks.propeller_matrices` assembles (M, C, K)."""
         z = np.zeros((self.nV, 2, 2))
 
         def g(d: dict, name: str) -> np.ndarray:

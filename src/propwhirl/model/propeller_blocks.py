@@ -1,22 +1,26 @@
-"""The propeller blocks of a PropellerWing: the arguments of the generated functions of an
-installation and its local (M, C, K) (ch. 8: eq. 8.5–8.6 inertia about the pivots, 8.13–8.35
-the structural and aerodynamic blocks; issue 14: the in-plane terms).
+"""The physics of one installed propeller's block: the arguments of the generated functions
+and its local (M, C, K) (ch. 8: eq. 8.5–8.6 inertia about the pivots, 8.13–8.35 the
+structural and aerodynamic blocks; issue 14: the in-plane terms).
 
-``model`` is a :class:`~propwhirl.model.systems.PropellerWing`; ``j`` the index of an
-installation in ``model.propellers``.  The speed-independent arguments are computed once per
-model (kept in its memo); the speed-dependent ones — the spin rate and the Houbolt–Reed
-derivatives — at every evaluation.
+Functions of explicit arguments (a propeller, its wing and node, the switches that apply):
+the speed-independent arguments (:func:`propeller_constants`) are computed when a
+:class:`~propwhirl.model.systems.PropellerWingAssembly` is built and kept there, the
+speed-dependent ones — the spin rate and the aerodynamic derivatives
+(:func:`propeller_values`) — at every evaluation.
 """
 from __future__ import annotations
+
+from collections.abc import Mapping
 
 import numpy as np
 
 from propwhirl.generated import prop_flexwing, prop_flexwing_inplane
 from propwhirl.model.assembly import call_blocks
 from propwhirl.model.propeller import Propeller
+from propwhirl.model.wing import Wing
 
 
-def _design_key(p: Propeller) -> int:
+def design_key(p: Propeller) -> int:
     """Key of a propeller in a derivatives memo: its identity (installations sharing one
     Propeller object share its derivatives; equality would ignore fields compared loosely)."""
     return id(p)
@@ -36,38 +40,13 @@ def _stack_blocks(rows: list[list[np.ndarray]]) -> np.ndarray:
     return out
 
 
-def propeller_values(model, j: int, V: np.ndarray, omega: np.ndarray | None = None,
-                     derivatives: dict | None = None) -> dict:
-    """The arguments of the generated propeller blocks (inertia, mounts, spin, derivatives)."""
-    inst = model.propellers[j]
-    p = inst.propeller
-    if not model.rotating:
-        Omega = np.zeros_like(V)
-    elif omega is not None:
-        Omega = p.rotation * np.broadcast_to(np.asarray(omega, dtype=float), V.shape)
-    else:
-        Omega = p.spin_rate(V)
-    values = dict(propeller_constants(model, j), Omega=Omega, V=V)
-    if model.propeller_aero and inst.aero:
-        memo = {} if derivatives is None else derivatives
-        key = _design_key(p)
-        if key not in memo:
-            memo[key] = p.aerodynamic_derivatives(V, model.flight.speed_of_sound)
-        values.update(memo[key])
-    return values
-
-
-def propeller_constants(model, j: int) -> dict:
-    """The speed-independent arguments of propeller j's generated blocks (inertia about the
-    pivots and the elastic axis, 8.5–8.6, 8.35; mount stiffness and damping; geometry),
-    computed once per model (and shared by its variants with the same wing, propellers
-    and flight condition, :meth:`PropellerWing._shared`)."""
-    memo = model._memo.setdefault("installations", {})
-    if j in memo:
-        return memo[j]
-    p = model.propellers[j].propeller
-    node = model.nodes[j]
-    a_b = model.wing.node_properties()
+def propeller_constants(propeller: Propeller, wing: Wing, node: int, density: float) -> dict:
+    """The speed-independent arguments of the generated blocks of ``propeller`` installed at
+    node ``node`` of ``wing`` in air of density [kg/m^3] (inertia about the pivots and the
+    elastic axis, 8.5–8.6, 8.35; mount stiffness and damping; geometry; with in-plane
+    bending the in-plane inertias).  A new dict each call."""
+    p = propeller
+    a_b = wing.node_properties()
     ea = a_b["a"][node] * a_b["b"][node]  # elastic axis aft of mid-chord [m] (a_P b_P)
     inertia = p.pivot_inertia()
     S_alpha, I_alpha, I_theta_alpha = prop_flexwing.inertia(
@@ -79,10 +58,10 @@ def propeller_constants(model, j: int) -> dict:
     values = dict(
         inertia, S_alpha_P=S_alpha, I_alpha_P=I_alpha, I_theta_alpha_P=I_theta_alpha,
         I_Omega=p.I_Omega, K_theta=Kt, K_psi=Kp, zeta_theta=zt, zeta_psi=zp,
-        rho=model.flight.density, R=p.radius, e_theta=p.e_theta, e_psi=p.e_psi,
+        rho=density, R=p.radius, e_theta=p.e_theta, e_psi=p.e_psi,
         e_alpha=e_alpha,
     )
-    if model.wing.in_plane:
+    if wing.in_plane:
         m = np.array([pm.mass for pm in p.all_masses])
         x = np.array([pm.x for pm in p.all_masses])
         S_psi = float(np.sum(m * (x - p.pivot_yaw)))
@@ -90,44 +69,71 @@ def propeller_constants(model, j: int) -> dict:
             inertia["M_P"], S_psi, inertia["I_psi_P"], p.pivot_yaw, ea)[..., 0]
         values.update(S_psi_P=S_psi, l_psi=p.pivot_yaw, a_P_b_P=ea, I_chi_P=I_chi,
                       I_psi_chi_P=I_psi_chi)
-    memo[j] = values
     return values
 
 
-def propeller_matrices(model, j: int, values: dict):
-    """(M, C, K) of propeller j from :func:`propeller_values`."""
-    inst = model.propellers[j]
+def propeller_values(constants: Mapping, propeller: Propeller, V: np.ndarray,
+                     omega: np.ndarray | None, *, rotating: bool, aero: bool,
+                     speed_of_sound: float, derivatives: dict | None = None) -> dict:
+    """The arguments of the generated propeller blocks at airspeeds V [m/s]: ``constants``
+    (:func:`propeller_constants`) with the spin rate Ω [rad/s] (zero when not ``rotating``;
+    ``omega`` [rad/s], broadcast to V, overrides the propeller's own rotational speed) and,
+    with ``aero``, the aerodynamic derivatives at V.  ``derivatives``: a dict {key: the
+    derivatives at V} shared by the installations of one propeller design in one evaluation
+    (keyed by :func:`design_key`), or None.  A new dict each call."""
+    p = propeller
+    if not rotating:
+        Omega = np.zeros_like(V)
+    elif omega is not None:
+        Omega = p.rotation * np.broadcast_to(np.asarray(omega, dtype=float), V.shape)
+    else:
+        Omega = p.spin_rate(V)
+    values = dict(constants, Omega=Omega, V=V)
+    if aero:
+        memo = {} if derivatives is None else derivatives
+        key = design_key(p)
+        if key not in memo:
+            memo[key] = p.aerodynamic_derivatives(V, speed_of_sound)
+        values.update(memo[key])
+    return values
+
+
+def propeller_matrices(values: dict, *, mount: str, in_plane: bool, aero: bool):
+    """(M, C, K) of a propeller's local block from :func:`propeller_values`: 4×4 over
+    [θ, ψ, h_P, α_P] (``mount`` "flexible") or 2×2 over [h_P, α_P] ("rigid"); with
+    ``in_plane`` bending 6×6 or 4×4 (:func:`_matrices_inplane`); ``aero``: its aerodynamic
+    blocks on."""
     nV = np.shape(values["V"])[0]
     shape = (nV,)
-    if model.wing.in_plane:
-        return _matrices_inplane(model, j, values)
+    if in_plane:
+        return _matrices_inplane(values, mount, aero)
     get = call_blocks(prop_flexwing, "structure_blocks", shape, **values).__getitem__
-    if model.propeller_aero and inst.aero:
-        aero = call_blocks(prop_flexwing, "aero_blocks", shape, **values)
+    if aero:
+        aero_b = call_blocks(prop_flexwing, "aero_blocks", shape, **values)
     else:
         z = np.zeros((nV, 2, 2))
-        aero = {n: z for n in ("Aa", "Ba", "Ca", "Da", "Ea", "Fa", "P1", "P2", "P3", "P4", "P5", "P6")}
-    if inst.mount == "rigid":
-        return get("Gs") - aero["P2"], -aero["P4"], -aero["P6"]
-    M = _stack_blocks([[get("As") - aero["Aa"], get("Bs") - aero["Ba"]],
-                       [get("Fs") - aero["P1"], get("Gs") - aero["P2"]]])
-    C = _stack_blocks([[get("Cs_viscous") - aero["Ca"], get("Ds") - aero["Da"]],
-                       [get("Hs") - aero["P3"], -aero["P4"]]])
-    K = _stack_blocks([[get("Es") - aero["Ea"], -aero["Fa"]],
-                       [-aero["P5"], -aero["P6"]]])
+        aero_b = {n: z for n in ("Aa", "Ba", "Ca", "Da", "Ea", "Fa", "P1", "P2", "P3", "P4", "P5", "P6")}
+    a = aero_b
+    if mount == "rigid":
+        return get("Gs") - a["P2"], -a["P4"], -a["P6"]
+    M = _stack_blocks([[get("As") - a["Aa"], get("Bs") - a["Ba"]],
+                       [get("Fs") - a["P1"], get("Gs") - a["P2"]]])
+    C = _stack_blocks([[get("Cs_viscous") - a["Ca"], get("Ds") - a["Da"]],
+                       [get("Hs") - a["P3"], -a["P4"]]])
+    K = _stack_blocks([[get("Es") - a["Ea"], -a["Fa"]],
+                       [-a["P5"], -a["P6"]]])
     return M, C, K
 
 
-def _matrices_inplane(model, j: int, values: dict):
-    """(M, C, K) of propeller j with in-plane bending: 6×6 over [θ, ψ, h_P, α_P, v_P, χ_P]
+def _matrices_inplane(values: dict, mount: str, aero: bool):
+    """(M, C, K) of a propeller with in-plane bending: 6×6 over [θ, ψ, h_P, α_P, v_P, χ_P]
     (flexible) or 4×4 over [h_P, α_P, v_P, χ_P] (rigid).  The θ–ψ blocks A, C, E are
     chapter 8's (prop_flexwing), the others prop_flexwing_inplane's."""
-    inst = model.propellers[j]
     nV = np.shape(values["V"])[0]
     shape = (nV,)
     s8 = call_blocks(prop_flexwing, "structure_blocks", shape, **values)
     s = call_blocks(prop_flexwing_inplane, "structure_blocks", shape, **values)
-    if model.propeller_aero and inst.aero:
+    if aero:
         a8 = call_blocks(prop_flexwing, "aero_blocks", shape, **values)
         a = call_blocks(prop_flexwing_inplane, "aero_blocks", shape, **values)
     else:
@@ -136,7 +142,7 @@ def _matrices_inplane(model, j: int, values: dict):
         a = {n: z24 for n in ("Ba", "Da", "Fa")}
         a.update({n: z24.transpose(0, 2, 1) for n in ("P1", "P3", "P5")})
         a.update({n: z4 for n in ("P2", "P4", "P6")})
-    if inst.mount == "rigid":
+    if mount == "rigid":
         return s["Gs"] - a["P2"], s["Js"] - a["P4"], -a["P6"]
     M = _stack_blocks([[s8["As"] - a8["Aa"], s["Bs"] - a["Ba"]],
                        [s["Fs"] - a["P1"], s["Gs"] - a["P2"]]])

@@ -15,7 +15,16 @@ Every model — :class:`~propwhirl.model.systems.PropellerWing`,
   and ψ indices, sense of rotation and spanwise position;
 * ``without_aerodynamics()`` — the same model with every aerodynamic load switched off (its
   structural matrices: kinetic and strain energies, in-vacuo modes);
+* ``assembly()`` — the model's *evaluator*: an object with ``second_order(V)``,
+  ``state_matrix(V)`` and ``dof_map()`` as above, holding what the matrices need that does
+  not depend on the airspeed, built when it is made (a wing's structure, each propeller's
+  constants: :class:`~propwhirl.model.systems.PropellerWingAssembly`; a model with nothing to
+  build ahead is its own evaluator).  An analysis asks for it once and evaluates it at every
+  speed; a new one each call, so nothing of an analysis stays with the model;
 * ``name`` and ``flight`` (the :class:`~propwhirl.model.flight.FlightCondition`).
+
+A model is an immutable value: it keeps no caches, and a copy with a field replaced
+(``dataclasses.replace`` or ``with_``) evaluates to the matrices of a model built with that value.
 
 The analyses read the states' meaning from the map only — never from a model's class name,
 its attributes or its state labels.  Labels are for people: ``"node 3 h"``, ``"propeller 1
@@ -219,3 +228,17 @@ class Model(Protocol):
     def dof_map(self) -> DofMap: ...
 
     def without_aerodynamics(self) -> "Model": ...
+
+    def assembly(self) -> "Evaluator": ...
+
+
+@runtime_checkable
+class Evaluator(Protocol):
+    """What :meth:`Model.assembly` returns: the model's matrices at airspeeds V [m/s],
+    from parts built once (see the module docstring)."""
+
+    def second_order(self, V) -> SecondOrder: ...
+
+    def state_matrix(self, V) -> np.ndarray: ...
+
+    def dof_map(self) -> DofMap: ...

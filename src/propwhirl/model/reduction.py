@@ -38,7 +38,7 @@ import numpy as np
 import scipy.linalg as sla
 
 from propwhirl import validate as v
-from propwhirl.model.blocks import BlockSystem
+from propwhirl.model.blocks import BlockSystem, RecentBlocks
 from propwhirl.model.statespace import SecondOrder, rate_label, state_matrix
 
 #: f_c = CUTOFF_FACTOR × the reference frequency (module docstring, step 1)
@@ -85,9 +85,9 @@ def _full_rows(n_full: int, keep: np.ndarray, X: np.ndarray) -> np.ndarray:
     return out
 
 
-def _reference_frequency(model, f: np.ndarray, shapes: np.ndarray, M: np.ndarray) -> float:
+def _reference_frequency(assembly, f: np.ndarray, shapes: np.ndarray, M: np.ndarray) -> float:
     """f_ref [Hz] (module docstring, step 1) from the in-vacuo modes (shapes over kept DOFs)."""
-    groups = model.dof_map().groups()
+    groups = assembly.dof_map().groups()
     e = np.real(shapes * (M @ shapes))
     e = e / np.sum(e, axis=0)
     share = {g: e[np.asarray(ix, dtype=int)].sum(axis=0) for g, ix in groups.items()}
@@ -110,30 +110,31 @@ def modal_basis(model, speeds, *, cutoff_hz: float | None = None,
 
     ``cutoff_hz`` overrides f_c; ``factor`` scales the reference frequency (module docstring).
     """
-    return _modal_basis(model, speeds, cutoff_hz, factor)[0]
+    return _modal_basis(model.assembly(), speeds, cutoff_hz, factor)[0]
 
 
-def _modal_basis(model, speeds, cutoff_hz: float | None,
+def _modal_basis(assembly, speeds, cutoff_hz: float | None,
                  factor: float) -> tuple[ModalBasis, BlockSystem]:
-    """:func:`modal_basis` and the model's blocks at three speeds of the range (their constant
-    parts are those of every speed)."""
+    """:func:`modal_basis` of the model of ``assembly`` (its
+    :class:`~propwhirl.model.systems.PropellerWingAssembly`) and its blocks at three speeds of
+    the range (their constant parts are those of every speed)."""
     V = np.asarray(speeds, dtype=float)
     v.positive("factor", factor)
-    quiet = model.with_(rotating=False).without_aerodynamics()
+    quiet = assembly.with_switches(rotating=False, wing_aero=False, propeller_aero=False)
     qb = quiet.second_order_blocks(V[:1])
     kq = qb.keep_q
     S = qb.dense()
     M, K = S.S1[0], S.S3[0]
     w2, shapes = sla.eigh(K, M)
     f_all = np.sqrt(np.abs(w2)) / (2 * np.pi)
-    ref = _reference_frequency(model, f_all, shapes, M)
+    ref = _reference_frequency(assembly, f_all, shapes, M)
     fc = factor * ref if cutoff_hz is None else v.positive("cutoff_hz", cutoff_hz, "Hz")
     n_keep = max(int(np.sum(f_all <= fc)), min(6, f_all.size))
     Phi_c = shapes[:, :n_keep]
     # static correction at the middle and the top of the range; the lag basis from the first
     # and the last speed: one evaluation of the blocks at the three speeds
     Vs = np.array([V[0], 0.5 * (V[0] + V[-1]), V[-1]])
-    blocks = model.second_order_blocks(Vs)
+    blocks = assembly.second_order_blocks(Vs)
     S3 = blocks.matrix("S3")
     cho = sla.cho_factor(K)
     X = [sla.cho_solve(cho, (S3[t] - K) @ Phi_c) for t in ([1, 2] if V[-1] > V[0] else [2])]
@@ -181,31 +182,43 @@ def _lag_basis(b: BlockSystem, Phi: np.ndarray, at: list[int]) -> np.ndarray | N
 class ReducedModel:
     """A PropellerWing projected on a :class:`ModalBasis`: state z = [η, η̇, ζ] (r, r, L).
 
+    ``assembly`` is the model's :class:`~propwhirl.model.systems.PropellerWingAssembly`
+    (built once by :func:`reduce`; every evaluation of the reduced model evaluates it);
+    ``recent`` the last few of its evaluations at the model's own rotational speeds
+    (:class:`~propwhirl.model.blocks.RecentBlocks`), for the speeds one analysis asks for
+    again — a reduced model is made for one analysis.
+
     ``state_matrix(V)`` is the reduced A(V) (the one builder,
     :func:`propwhirl.model.statespace.state_matrix`); :attr:`lift` maps reduced state vectors to
     the full state [q, q̇, w] of ``model`` (q = Φη, q̇ = Φη̇, w = Qζ); :meth:`pencil` is the
     full-order sparse pencil of one speed, for the correction of crossings.
     """
 
-    model: object
+    assembly: object
     basis: ModalBasis
     #: the model's blocks at any speed, for the constant parts (default: evaluated at 1 m/s)
     blocks: InitVar[BlockSystem | None] = None
+    recent: RecentBlocks = field(default_factory=RecentBlocks, repr=False, compare=False)
     #: Φᵀ(M, C, K)Φ of the speed-independent parts, and the kept DOFs and lag states
     _const: tuple = field(init=False, repr=False, compare=False)
     _keep: tuple = field(init=False, repr=False, compare=False)
     _pencil_const: tuple = field(init=False, repr=False, compare=False)
 
     def __post_init__(self, blocks: BlockSystem | None) -> None:
-        b = self.model.second_order_blocks(np.array([1.0])) if blocks is None else blocks
+        b = self.assembly.second_order_blocks(np.array([1.0])) if blocks is None else blocks
         P = self.basis.Phi
         object.__setattr__(self, "_const", tuple(P.T @ X @ P for X in (b.M, b.C, b.K)))
         object.__setattr__(self, "_keep", (b.keep_q, b.keep_w))
         object.__setattr__(self, "_pencil_const", b.pencil_constant())
 
     @property
+    def model(self):
+        """The model that was reduced."""
+        return self.assembly.model
+
+    @property
     def name(self) -> str:
-        return self.model.name
+        return self.assembly.model.name
 
     @property
     def n_states(self) -> int:
@@ -224,7 +237,7 @@ class ReducedModel:
 
     def second_order(self, V, omega=None) -> SecondOrder:
         """The projected second-order system at airspeeds V [m/s] (array)."""
-        b = self.model.second_order_blocks(V, omega)
+        b = self._blocks(V, omega)
         S1, S2, S3, S4, Ww, Wv, Wq = b.project(self.basis.Phi, self.basis.Q, self._const)
         q = self.labels()[: self.basis.r]
         return SecondOrder(S1, S2, S3, S4, Ww, Wv, Wq, q, self.labels()[2 * self.basis.r:])
@@ -256,8 +269,15 @@ class ReducedModel:
     def pencil(self, V: float):
         """The full-order sparse pencil (F, E) at one airspeed V [m/s]
         (:meth:`propwhirl.model.blocks.BlockSystem.pencil`)."""
-        return self.model.second_order_blocks(np.array([float(V)])).pencil(
-            0, self._pencil_const)
+        return self._blocks(np.array([float(V)]), None).pencil(0, self._pencil_const)
+
+    def _blocks(self, V, omega) -> BlockSystem:
+        """The assembly's blocks at V (checked), from :attr:`recent` at the model's own
+        rotational speeds."""
+        if omega is not None:
+            return self.assembly.second_order_blocks(V, omega)
+        V = np.atleast_1d(np.asarray(V, dtype=float))
+        return self.recent.get(V) or self.recent.add(self.assembly.second_order_blocks(V))
 
 
 def reduce(model, speeds, *, cutoff_hz: float | None = None,
@@ -277,5 +297,8 @@ def reduce(model, speeds, *, cutoff_hz: float | None = None,
     >>> R.basis.r, R.basis.L, R.n_states
     (11, 28, 50)
     """
-    basis, blocks = _modal_basis(model, speeds, cutoff_hz, factor)
-    return ReducedModel(model, basis, blocks)
+    assembly = model.assembly()
+    basis, blocks = _modal_basis(assembly, speeds, cutoff_hz, factor)
+    recent = RecentBlocks()
+    recent.add(blocks)                  # the basis's three speeds (the first, for one)
+    return ReducedModel(assembly, basis, blocks, recent)

@@ -25,10 +25,19 @@ structure, and each propeller's block is 6×6 on [θ_j, ψ_j, h_P, α_P, v_P, χ
 (derivations/prop_flexwing_inplane.py: the nacelle yaws with χ_P; side force, yaw moment and
 gyroscopic moment load the node in its plane).  A rigid mount then keeps G_s and the rotor's
 gyroscopic coupling J_s of the node's twist and in-plane slope.
+
+A model is an immutable value and keeps nothing of its evaluations.  What its matrices need
+that does not depend on the airspeed — the wing structure, each installation's constants and
+DOFs, the labels and DOF map — is a :class:`PropellerWingAssembly` with those named parts,
+built by :meth:`PropellerWing.assembly` (a new one each call) and evaluated at any speeds; an
+analysis builds it once and passes it where the speeds are evaluated.  The physics of one
+propeller's block is :mod:`propwhirl.model.propeller_blocks` (functions of explicit arguments).
 """
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
+from types import MappingProxyType
 from typing import Literal
 
 import numpy as np
@@ -54,10 +63,10 @@ from propwhirl.model.flight import SPEED_OF_SOUND_8000FT, FlightCondition  # noq
 from propwhirl.model.propeller import Propeller
 from propwhirl.model.propeller_blocks import (propeller_constants, propeller_matrices,
                                              propeller_values)
-from propwhirl.model.blocks import BlockSystem, LagBlocks, LocalBlocks, RecentBlocks
+from propwhirl.model.blocks import BlockSystem, LagBlocks, LocalBlocks
 from propwhirl.model.protocol import DofMap, PropellerDofs
 from propwhirl.model import validity
-from propwhirl.model.base import StateSpaceModel
+from propwhirl.model.base import EvaluatorBase, StateSpaceModel
 from propwhirl.model.section import TypicalSection  # noqa: F401 (re-export: its former home)
 from propwhirl.model.statespace import SecondOrder
 from propwhirl.model.wing import Wing
@@ -69,6 +78,9 @@ PROPELLER_UNITS = dict(
     I_Y="kg m^2", I_Z="kg m^2", Omega="rad/s", K_theta="N m/rad", K_psi="N m/rad",
     rho="kg/m^3", V="m/s", R="m", e_theta="m", e_psi="m", e_alpha="m", S_psi_P="kg m",
     I_chi_P="kg m^2", I_psi_chi_P="kg m^2", l_psi="m", a_P_b_P="m")
+#: The fields of a PropellerWing that decide neither its structure nor its propellers'
+#: constants (:meth:`PropellerWingAssembly.with_switches`).
+SWITCHES = ("wing_aero", "propeller_aero", "rotating", "name")
 #: Units of the wing element properties (:meth:`Wing.element_properties`) and Rayleigh terms.
 ELEMENT_UNITS = dict(length="m", m="kg/m", rho_Ip="kg m", x_alpha_b="m", EI="N m^2",
                      GJ="N m^2", rayleigh_mu="1/s", rayleigh_lambda="s", rho_Iz="kg m",
@@ -128,6 +140,10 @@ class PropellerWing(StateSpaceModel):
     With no propellers it is the wing model of chapter 7.  ``model.wing`` is the given wing, or,
     when a propeller is off its nodes, that wing with every installation's y added to its
     stations (so the mesh holds every propeller; rule in :mod:`propwhirl.model.mesh`).
+
+    A value: it keeps nothing of its evaluations.  What its matrices need that does not depend
+    on the airspeed is built by :meth:`assembly` (a :class:`PropellerWingAssembly`, a new one
+    each call); an analysis builds it once and evaluates it at every speed.
     """
 
     wing: Wing = field(metadata=spec("wing", "", "the wing"))
@@ -146,11 +162,6 @@ class PropellerWing(StateSpaceModel):
         "name", "", "label", default="setting"))
     _nodes: tuple[int, ...] = field(default=(), repr=False, compare=False, metadata=spec(
         None, "", "node of each propeller (derived)", default="none", form="derived"))
-    #: what is made once per model (shared with variants, :meth:`_shared`): the wing structure,
-    #: the propeller constants, labels, DOF map, the quiet variant; the recent evaluations
-    _memo: dict = field(init=False, default_factory=dict, repr=False, compare=False,
-                        metadata=spec(None, "", "speed-independent matrices (derived)",
-                                      default="none", form="derived"))
 
     def __post_init__(self) -> None:
         check_fields(self)  # a Wing, a FlightCondition, Installations, bool switches
@@ -184,25 +195,13 @@ class PropellerWing(StateSpaceModel):
         return wing.with_stations(ys, names, paths)
 
     def with_(self, **changes) -> "PropellerWing":
-        """A copy with fields replaced (switches, flight condition, ...); it shares the
-        speed-independent matrices that the change leaves as they are (:meth:`_shared`)."""
-        return self._shared(replace(self, **changes))
-
-    def _shared(self, other: "PropellerWing") -> "PropellerWing":
-        """``other`` (a copy of this model with fields replaced) sharing this model's memos of
-        what the change leaves as it is: the wing's (its structure) if it has the same wing,
-        the installations' (the propeller constants) if it also has the same propellers and
-        flight condition (same objects).  Shared, not copied: whichever of them computes an
-        entry first computes it for both."""
-        if other.wing is self.wing:
-            other._memo["wing"] = self._memo.setdefault("wing", {})
-            if other.propellers is self.propellers and other.flight is self.flight:
-                other._memo["installations"] = self._memo.setdefault("installations", {})
-        return other
+        """A copy with fields replaced (switches, flight condition, ...): ``dataclasses.replace``."""
+        return replace(self, **changes)
 
     # ------------------------------------------------------------------ layout
     @property
     def nodes(self) -> tuple[int, ...]:
+        """The wing node of each installation (index into ``wing.node_y``)."""
         return self._nodes
 
     @property
@@ -213,191 +212,66 @@ class PropellerWing(StateSpaceModel):
     def q_labels(self) -> tuple[str, ...]:
         """Labels of the DOFs q: the wing's ("node i h", ...), then "propeller k theta",
         "propeller k psi" of each flexibly mounted propeller, numbered from 1 for people
-        (k = index in `propellers` + 1; :class:`PropellerDofs.number` keeps the index).
-        Made once per model."""
-        if "q labels" not in self._memo:
-            self._memo["q labels"] = self._new_q_labels()
-        return self._memo["q labels"]
-
-    def _new_q_labels(self) -> tuple[str, ...]:
+        (k = index in `propellers` + 1; :class:`PropellerDofs.number` keeps the index)."""
         wing = wing_dof_labels(self.wing.n_nodes)
         if self.wing.in_plane:
             wing = wing + inplane_dof_labels(self.wing.n_nodes)
         prop = tuple(f"propeller {j + 1} {d}" for j in self.flexible for d in ("theta", "psi"))
         return wing + prop
 
-    # ------------------------------------------------------------------ propeller blocks
-    def _propeller_blocks(self, j: int, V: np.ndarray, omega: np.ndarray | None = None,
-                          derivatives: dict | None = None):
-        """Local (M, C, K) over [θ, ψ, h_P, α_P] (flexible) or [h_P, α_P] (rigid), (nV, k, k).
-
-        `omega` [rad/s] (shape of V) overrides the propeller's own rotational speed;
-        `derivatives`: a memo {propeller: its aerodynamic derivatives at V}, shared by the
-        installations of one propeller design in one assembly."""
-        return self._propeller_matrices(j, self._propeller_values(j, V, omega, derivatives))
-
-    def _propeller_values(self, j: int, V: np.ndarray, omega: np.ndarray | None = None,
-                          derivatives: dict | None = None) -> dict:
-        """:func:`propwhirl.model.propeller_blocks.propeller_values` of propeller j."""
-        return propeller_values(self, j, V, omega, derivatives)
-
-    def _propeller_constants(self, j: int) -> dict:
-        """:func:`propwhirl.model.propeller_blocks.propeller_constants` of propeller j."""
-        return propeller_constants(self, j)
-
-    def _propeller_matrices(self, j: int, values: dict):
-        """(M, C, K) of propeller j (:func:`propwhirl.model.propeller_blocks.propeller_matrices`)."""
-        return propeller_matrices(self, j, values)
-
-    def _propeller_dofs(self, j: int) -> tuple[str, ...]:
-        """Global DOF labels of propeller j's local block ([θ, ψ,] h, α [, v, χ] at its node)."""
-        node = self.nodes[j]
-        wing = (f"node {node} h", f"node {node} alpha")
-        if self.wing.in_plane:
-            wing = wing + (f"node {node} v", f"node {node} chi")
-        if self.propellers[j].mount == "rigid":
-            return wing
-        return (f"propeller {j + 1} theta", f"propeller {j + 1} psi") + wing
-
-    def _contributions(self, V: np.ndarray, omega):
-        out = []
-        for j in range(len(self.propellers)):
-            out.append((f"propeller {j + 1}", self._propeller_dofs(j),
-                        lambda vals, j=j: self._propeller_matrices(j, vals),
-                        self._propeller_values(j, V, omega), PROPELLER_UNITS))
-        out += self._element_contributions(
-            self.wing.element_properties(), (beam_element, "blocks", "mass", "stiffness"),
-            WING_DOF_NAMES, "")
-        pi = self.wing.inplane_properties()
-        if pi is not None:
-            out += self._element_contributions(
-                pi, (beam_inplane, "inplane_blocks", "inplane_mass", "inplane_stiffness"),
-                INPLANE_DOF_NAMES, " (in-plane)")
-        return out
-
-    def _element_contributions(self, props: dict, generated: tuple, dof_names, suffix: str):
-        """One contribution per wing element: its (mass, Rayleigh damping, stiffness) from the
-        generated block function ``generated`` = (module, function, mass, stiffness names)."""
-        module, fn, mass, stiffness = generated
-        mu, lam = self.wing.rayleigh
-
-        def element(vals):
-            b = call_blocks(module, fn, (1,), **{k: vals[k] for k in props})
-            Mb, Kb = b[mass], b[stiffness]
-            return Mb, vals["rayleigh_mu"] * Mb + vals["rayleigh_lambda"] * Kb, Kb
-
-        out = []
-        for e in range(self.wing.element_count):
-            vals = {k: x[e:e + 1] for k, x in props.items()}
-            vals.update(rayleigh_mu=mu, rayleigh_lambda=lam)
-            dofs = tuple(f"node {i} {d}" for i in (e, e + 1) for d in dof_names)
-            out.append((f"wing element {e}{suffix}", dofs, element, vals, ELEMENT_UNITS))
-        return out
+    def propeller_dofs(self, j: int) -> tuple[np.ndarray, tuple[str, ...]]:
+        """Full DOF indices and labels of propeller j's local block: [θ, ψ,] h, α [, v, χ]
+        at its node (θ, ψ of a flexible mount after the wing's DOFs)."""
+        wing, node = self.wing, self.nodes[j]
+        nqw = 3 * wing.n_nodes
+        nqi = 2 * wing.n_nodes if wing.in_plane else 0
+        idx = [3 * node, 3 * node + 2]
+        labels = (f"node {node} h", f"node {node} alpha")
+        if nqi:
+            idx += [nqw + 2 * node, nqw + 2 * node + 1]
+            labels = labels + (f"node {node} v", f"node {node} chi")
+        if self.propellers[j].mount == "flexible":
+            pj = nqw + nqi + 2 * self.flexible.index(j)
+            idx = [pj, pj + 1] + idx
+            labels = (f"propeller {j + 1} theta", f"propeller {j + 1} psi") + labels
+        return np.array(idx), labels
 
     # ------------------------------------------------------------------ system
+    def assembly(self) -> "PropellerWingAssembly":
+        """What the matrices need that does not depend on the airspeed (the wing structure,
+        each installation's constants, the DOF layout), built now: a new
+        :class:`PropellerWingAssembly` each call.  An analysis builds it once and evaluates it
+        at every speed (:meth:`PropellerWingAssembly.blocks`)."""
+        return PropellerWingAssembly.build(self)
+
     def second_order(self, V, omega=None) -> SecondOrder:
         """The reduced second-order system (root removed) at airspeeds V [m/s] (array).
 
         `omega` [rad/s], broadcast to V, overrides every propeller's rotational speed (used for
         Campbell diagrams and rotational-speed studies).  Refuses what the aerodynamics cannot
         represent (:mod:`propwhirl.model.validity`); a non-finite entry is an InputError naming
-        the model parameter behind it."""
-        V = np.atleast_1d(v.positive("airspeed V", V, "m/s"))
-        if validity.has_aerodynamics(self):
-            validity.check_mach(V, self.flight.speed_of_sound)
-        if self.wing_aero:
-            validity.check_lift_slope(self.wing.node_properties()["Cla"][1:], "lift_slope",
-                                      "wing_aero = false")
-        with np.errstate(all="ignore"):
-            sys = self._assemble(V, omega)
-        return self._checked(sys, V, {"omega": omega})
-
-    def _assemble(self, V: np.ndarray, omega) -> SecondOrder:
-        return self._blocks(V, omega).dense()
+        the model parameter behind it.  (:meth:`PropellerWingAssembly.second_order` of a new
+        :meth:`assembly`.)"""
+        return self.assembly().second_order(V, omega)
 
     def second_order_blocks(self, V, omega=None) -> BlockSystem:
         """:meth:`second_order` as constant matrices plus local blocks
         (:class:`~propwhirl.model.blocks.BlockSystem`: dense, sparse-pencil and projected
         forms, the last two linear in the number of elements).  Same checks of V."""
-        V = np.atleast_1d(v.positive("airspeed V", V, "m/s"))
-        if validity.has_aerodynamics(self):
-            validity.check_mach(V, self.flight.speed_of_sound)
-        with np.errstate(all="ignore"):
-            return self._blocks(V, omega)
+        return self.assembly().second_order_blocks(V, omega)
 
-    def _blocks(self, V: np.ndarray, omega) -> BlockSystem:
-        """The blocks of the system at the airspeeds V [m/s] (:meth:`_evaluate_blocks`); at
-        speeds evaluated a moment ago (own rotational speeds), the kept evaluation's
-        (:class:`~propwhirl.model.blocks.RecentBlocks`)."""
-        if omega is not None:
-            return self._evaluate_blocks(V, omega)
-        recent = self._memo.setdefault("recent blocks", RecentBlocks())
-        return recent.get(V) or recent.add(self._evaluate_blocks(V, None))
-
-    def _evaluate_blocks(self, V: np.ndarray, omega) -> BlockSystem:
-        """The blocks of the system: the wing structure (7.9–7.22), the strip aerodynamics of
-        each node (signs applied: S1 = M − M_a, ...), each propeller's block at its node."""
-        wing = self.wing
-        nqw = 3 * wing.n_nodes
-        nqi = 2 * wing.n_nodes if wing.in_plane else 0     # in-plane [v_i, χ_i] after them
-        flex = self.flexible
-        n = nqw + nqi + 2 * len(flex)
-        memo = self._memo.setdefault("wing", {})
-        if "structure" not in memo:
-            mats = tuple(np.zeros((n, n)) for _ in range(3))
-            for X, Xw in zip(mats, wing_structure(wing)):
-                X[:nqw, :nqw] = Xw
-            if nqi:
-                for X, Xi in zip(mats, inplane_structure(wing)):
-                    X[nqw:nqw + nqi, nqw:nqw + nqi] = Xi
-            for X in mats:
-                X.flags.writeable = False
-            memo["structure"] = mats
-        Ms, Cs, Ks = memo["structure"]
-        groups = []
-        lag, m, w_labels, keep_w = None, 0, (), np.arange(0)
-        if self.wing_aero:
-            aero = wing_aero_blocks(wing, self.flight.density, V)
-            groups.append(LocalBlocks("wing strips", aero["qrows"], -aero["Ma"], -aero["Ca"],
-                                      -aero["Ka"]))
-            m, w_labels = aero["m"], aero["labels"]
-            lag = LagBlocks(aero["qrows"], aero["wrows"], aero["W0"], aero["Ww"], aero["Wv"],
-                            aero["Wq"])
-            keep_w = np.arange(LAG_STATES[wing.aero_model], m)
-        derivatives: dict = {}
-        for j, inst in enumerate(self.propellers):
-            node = self.nodes[j]
-            wing_idx = [3 * node, 3 * node + 2]
-            if nqi:
-                wing_idx += [nqw + 2 * node, nqw + 2 * node + 1]
-            if inst.mount == "flexible":
-                pj = nqw + nqi + 2 * flex.index(j)
-                idx = np.array([pj, pj + 1] + wing_idx)
-            else:
-                idx = np.array(wing_idx)
-            M, C, K = self._propeller_blocks(j, V, omega, derivatives)
-            groups.append(LocalBlocks(f"propeller {j}", idx[None, :], M[:, None], C[:, None],
-                                      K[:, None]))
-        keep_q = np.concatenate([free_dofs(wing.n_nodes), np.arange(nqw + 2 if nqi else nqw, n)])
-        return BlockSystem(V, Ms, Cs, Ks, tuple(groups), lag, m, self.q_labels(), w_labels,
-                           keep_q, keep_w)
+    def state_matrix(self, V, **options) -> np.ndarray:
+        """A(V) (:meth:`PropellerWingAssembly.state_matrix` of a new :meth:`assembly`)."""
+        return self.assembly().state_matrix(V, **options)
 
     def without_aerodynamics(self) -> "PropellerWing":
-        """The same wing and propellers with wing and propeller aerodynamics off (made once
-        per model: the analyses of one model ask for it several times)."""
-        if "quiet" not in self._memo:
-            self._memo["quiet"] = self.with_(wing_aero=False, propeller_aero=False)
-        return self._memo["quiet"]
+        """The same wing and propellers with wing and propeller aerodynamics off."""
+        return self.with_(wing_aero=False, propeller_aero=False)
 
     def dof_map(self) -> DofMap:
         """The states of :meth:`second_order`: the free wing DOFs (node ≥ 1: h, φ, α, eq. 7.20),
         with in-plane bending the in-plane v, χ of nodes ≥ 1, then θ, ψ of each flexibly
-        mounted propeller, then the lag states of nodes ≥ 1 (made once per model)."""
-        if "dof map" not in self._memo:
-            self._memo["dof map"] = self._new_dof_map()
-        return self._memo["dof map"]
-
-    def _new_dof_map(self) -> DofMap:
+        mounted propeller, then the lag states of nodes ≥ 1."""
         nn = self.wing.n_nodes
         keep = free_dofs(nn)
         labels = list(np.asarray(wing_dof_labels(nn), dtype=object)[keep])
@@ -426,6 +300,206 @@ class PropellerWing(StateSpaceModel):
             w_node, w_labels = (), ()
         return DofMap(tuple(labels), tuple(kinds), tuple(node), tuple(prop), w_labels, w_node,
                       tuple(props), tuple(float(y) for y in ys))
+
+
+@dataclass(frozen=True, eq=False)
+class InstalledPropeller:
+    """One installation of a :class:`PropellerWingAssembly`: what its block needs that does
+    not depend on the airspeed.
+
+    number:      index in ``model.propellers`` (0-based);
+    installation: the :class:`Installation`;
+    dofs:        full DOF indices of its local block (read-only; :meth:`PropellerWing.propeller_dofs`);
+    dof_labels:  their labels;
+    constants:   the speed-independent arguments of its generated blocks
+                 (:func:`~propwhirl.model.propeller_blocks.propeller_constants`, read-only).
+    """
+
+    number: int
+    installation: Installation
+    dofs: np.ndarray
+    dof_labels: tuple[str, ...]
+    constants: Mapping[str, object]
+
+
+@dataclass(frozen=True, eq=False)
+class PropellerWingAssembly(EvaluatorBase):
+    """A :class:`PropellerWing` with everything its matrices need that does not depend on the
+    airspeed, built once (:meth:`build`, :meth:`PropellerWing.assembly`) and then evaluated at
+    any speeds: :meth:`blocks` (the hot path: no checks), :meth:`second_order_blocks`,
+    :meth:`second_order` and :meth:`state_matrix` (with the model's checks).
+
+    model:      the model it was built from (switches, flight condition, wing);
+    structure:  the full (n_q, n_q) structural M, C (Rayleigh), K of the wing (7.9–7.22; with
+                in-plane bending its in-plane block), read-only;
+    propellers: one :class:`InstalledPropeller` per installation;
+    q_labels:   labels of the full DOFs (root included);
+    keep_q:     the kept DOFs (root removed, 7.59);
+    states:     the model's :class:`~propwhirl.model.protocol.DofMap` (:meth:`dof_map`).
+
+    Nothing is computed after construction and nothing is kept of an evaluation: the same
+    speeds give the same matrices every time.
+    """
+
+    model: PropellerWing
+    structure: tuple[np.ndarray, np.ndarray, np.ndarray]
+    propellers: tuple[InstalledPropeller, ...]
+    q_labels: tuple[str, ...]
+    keep_q: np.ndarray
+    states: DofMap
+
+    @classmethod
+    def build(cls, model: PropellerWing) -> "PropellerWingAssembly":
+        """The assembly of ``model``: its wing structure, each installation's constants and
+        DOFs, the labels and the DOF map."""
+        wing = model.wing
+        nqw = 3 * wing.n_nodes
+        nqi = 2 * wing.n_nodes if wing.in_plane else 0     # in-plane [v_i, χ_i] after them
+        n = nqw + nqi + 2 * len(model.flexible)
+        mats = tuple(np.zeros((n, n)) for _ in range(3))
+        for X, Xw in zip(mats, wing_structure(wing)):
+            X[:nqw, :nqw] = Xw
+        if nqi:
+            for X, Xi in zip(mats, inplane_structure(wing)):
+                X[nqw:nqw + nqi, nqw:nqw + nqi] = Xi
+        for X in mats:
+            X.flags.writeable = False
+        props = []
+        for j, inst in enumerate(model.propellers):
+            idx, labels = model.propeller_dofs(j)
+            idx.flags.writeable = False
+            const = propeller_constants(inst.propeller, wing, model.nodes[j],
+                                        model.flight.density)
+            for x in const.values():
+                if isinstance(x, np.ndarray):
+                    x.flags.writeable = False
+            props.append(InstalledPropeller(j, inst, idx, labels, MappingProxyType(const)))
+        keep_q = np.concatenate([free_dofs(wing.n_nodes), np.arange(nqw + 2 if nqi else nqw, n)])
+        keep_q.flags.writeable = False
+        return cls(model, mats, tuple(props), model.q_labels(), keep_q, model.dof_map())
+
+    def with_switches(self, **switches) -> "PropellerWingAssembly":
+        """The assembly of the model with switches changed (``wing_aero``, ``propeller_aero``,
+        ``rotating``, ``name``): the same structure and installation constants (the switches
+        decide neither), a new model and DOF map."""
+        bad = sorted(set(switches) - set(SWITCHES))
+        if bad:
+            raise v.InputError(f"with_switches: {bad} are not switches (the structure and the "
+                               f"propeller constants depend on them); switches: {SWITCHES}")
+        model = self.model.with_(**switches)
+        return replace(self, model=model, states=model.dof_map())
+
+    def without_aerodynamics(self) -> "PropellerWingAssembly":
+        """The assembly of ``model.without_aerodynamics()`` (:meth:`with_switches`)."""
+        return self.with_switches(wing_aero=False, propeller_aero=False)
+
+    def dof_map(self) -> DofMap:
+        """The model's :class:`~propwhirl.model.protocol.DofMap` (built with the assembly)."""
+        return self.states
+
+    # ------------------------------------------------------------------ evaluation
+    def second_order(self, V, omega=None) -> SecondOrder:
+        """:meth:`PropellerWing.second_order` (same checks)."""
+        model = self.model
+        V = np.atleast_1d(v.positive("airspeed V", V, "m/s"))
+        if validity.has_aerodynamics(model):
+            validity.check_mach(V, model.flight.speed_of_sound)
+        if model.wing_aero:
+            validity.check_lift_slope(model.wing.node_properties()["Cla"][1:], "lift_slope",
+                                      "wing_aero = false")
+        with np.errstate(all="ignore"):
+            sys = self.blocks(V, omega).dense()
+        return self._checked(sys, V, {"omega": omega})
+
+    def second_order_blocks(self, V, omega=None) -> BlockSystem:
+        """:meth:`PropellerWing.second_order_blocks` (same checks of V)."""
+        V = np.atleast_1d(v.positive("airspeed V", V, "m/s"))
+        if validity.has_aerodynamics(self.model):
+            validity.check_mach(V, self.model.flight.speed_of_sound)
+        with np.errstate(all="ignore"):
+            return self.blocks(V, omega)
+
+    def blocks(self, V: np.ndarray, omega=None) -> BlockSystem:
+        """The blocks of the system at the airspeeds V [m/s] (1-D array, not checked): the
+        wing structure (7.9–7.22), the strip aerodynamics of each node (signs applied:
+        S1 = M − M_a, ...), each propeller's block at its node.  `omega` [rad/s], broadcast
+        to V, overrides every propeller's rotational speed."""
+        model, wing = self.model, self.model.wing
+        Ms, Cs, Ks = self.structure
+        groups = []
+        lag, m, w_labels, keep_w = None, 0, (), np.arange(0)
+        if model.wing_aero:
+            aero = wing_aero_blocks(wing, model.flight.density, V)
+            groups.append(LocalBlocks("wing strips", aero["qrows"], -aero["Ma"], -aero["Ca"],
+                                      -aero["Ka"]))
+            m, w_labels = aero["m"], aero["labels"]
+            lag = LagBlocks(aero["qrows"], aero["wrows"], aero["W0"], aero["Ww"], aero["Wv"],
+                            aero["Wq"])
+            keep_w = np.arange(LAG_STATES[wing.aero_model], m)
+        derivatives: dict = {}        # one design's derivatives, shared by its installations
+        for p in self.propellers:
+            M, C, K = self.propeller_matrices(p, self.propeller_values(p, V, omega, derivatives))
+            groups.append(LocalBlocks(f"propeller {p.number}", p.dofs[None, :], M[:, None],
+                                      C[:, None], K[:, None]))
+        return BlockSystem(V, Ms, Cs, Ks, tuple(groups), lag, m, self.q_labels, w_labels,
+                           self.keep_q, keep_w)
+
+    def propeller_aero(self, p: InstalledPropeller) -> bool:
+        """Whether installation ``p``'s aerodynamic loads are on (model switch and its own)."""
+        return self.model.propeller_aero and p.installation.aero
+
+    def propeller_values(self, p: InstalledPropeller, V: np.ndarray, omega=None,
+                         derivatives: dict | None = None) -> dict:
+        """The arguments of installation ``p``'s generated blocks at airspeeds V
+        (:func:`~propwhirl.model.propeller_blocks.propeller_values`; a new dict)."""
+        model = self.model
+        return propeller_values(p.constants, p.installation.propeller, V, omega,
+                                rotating=model.rotating, aero=self.propeller_aero(p),
+                                speed_of_sound=model.flight.speed_of_sound,
+                                derivatives=derivatives)
+
+    def propeller_matrices(self, p: InstalledPropeller, values: dict):
+        """(M, C, K) of installation ``p`` from :meth:`propeller_values`."""
+        return propeller_matrices(values, mount=p.installation.mount,
+                                  in_plane=self.model.wing.in_plane, aero=self.propeller_aero(p))
+
+    # ------------------------------------------------------------------ error messages
+    def _contributions(self, V: np.ndarray, omega):
+        out = []
+        for p in self.propellers:
+            out.append((f"propeller {p.number + 1}", p.dof_labels,
+                        lambda vals, p=p: self.propeller_matrices(p, vals),
+                        self.propeller_values(p, V, omega), PROPELLER_UNITS))
+        wing = self.model.wing
+        out += _element_contributions(
+            wing, wing.element_properties(), (beam_element, "blocks", "mass", "stiffness"),
+            WING_DOF_NAMES, "")
+        pi = wing.inplane_properties()
+        if pi is not None:
+            out += _element_contributions(
+                wing, pi, (beam_inplane, "inplane_blocks", "inplane_mass", "inplane_stiffness"),
+                INPLANE_DOF_NAMES, " (in-plane)")
+        return out
+
+
+def _element_contributions(wing: Wing, props: dict, generated: tuple, dof_names, suffix: str):
+    """One contribution per wing element: its (mass, Rayleigh damping, stiffness) from the
+    generated block function ``generated`` = (module, function, mass, stiffness names)."""
+    module, fn, mass, stiffness = generated
+    mu, lam = wing.rayleigh
+
+    def element(vals):
+        b = call_blocks(module, fn, (1,), **{k: vals[k] for k in props})
+        Mb, Kb = b[mass], b[stiffness]
+        return Mb, vals["rayleigh_mu"] * Mb + vals["rayleigh_lambda"] * Kb, Kb
+
+    out = []
+    for e in range(wing.element_count):
+        vals = {k: x[e:e + 1] for k, x in props.items()}
+        vals.update(rayleigh_mu=mu, rayleigh_lambda=lam)
+        dofs = tuple(f"node {i} {d}" for i in (e, e + 1) for d in dof_names)
+        out.append((f"wing element {e}{suffix}", dofs, element, vals, ELEMENT_UNITS))
+    return out
 
 
 @dataclass(frozen=True)

@@ -67,12 +67,7 @@ def evaluate(task: tuple) -> dict[str, Any]:
     see :func:`propwhirl.studies.critical.critical_instability` for the two flags; method: that
     of :func:`propwhirl.analysis.stability.analyse` (default "auto").
     """
-    model = task[0]
-    try:
-        return _evaluate(task)
-    finally:       # a serial study keeps every variant: its memory must not grow per point
-        if hasattr(model, "release_caches"):
-            model.release_caches()
+    return _evaluate(task)     # (a model keeps nothing of its analysis: no memory per point)
 
 
 def _evaluate(task: tuple) -> dict[str, Any]:

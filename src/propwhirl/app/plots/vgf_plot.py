@@ -62,7 +62,7 @@ def fine_sweep(analysis: "ModelAnalysis", model: "Model", speeds=None,
     if dm.n_states != sw0.eigenvalues.shape[1]:
         raise v.InputError(f"model {getattr(model, 'name', '?')!r} has {dm.n_states} states, the "
                            f"analysis {sw0.eigenvalues.shape[1]}: pass the analysed model")
-    sw = engine_sweep(model.state_matrix, speeds, displacement=dm.displacement,
+    sw = engine_sweep(model.assembly().state_matrix, speeds, displacement=dm.displacement,
                       state_labels=dm.state_labels)
     sw = sw.relabel(mode_names(model, sw))
     missing = sorted(set(sw0.mode_labels) - set(sw.mode_labels))
