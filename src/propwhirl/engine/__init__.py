@@ -34,8 +34,10 @@ crossings
     All critical-point refinement: crossings of Re λ = 0 (flutter, divergence), branch points
     of unstable pairs turning real, frequency-zero events; the default tolerance :data:`XTOL`.
 tracker
-    The sweep loop (:func:`sweep`, :func:`analyse`): refinement of ambiguous steps, hump
-    check, branch-point bracketing.
+    The one tracking core over any scalar parameter (``_follow``: nodes and linking plugged
+    in, ambiguous steps split; also the Campbell diagram's and the mode naming's tracking over
+    Ω) and the sweep over V on it (:func:`sweep`, :func:`analyse`): refinement of ambiguous
+    steps, hump check, branch-point bracketing.
 results
     Result types: :class:`Sweep`, :class:`CriticalPoint`, :class:`Hump`, :class:`Criticals`,
     :class:`FrequencyZero`, :class:`Analysis`.

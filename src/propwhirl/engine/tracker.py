@@ -1,5 +1,13 @@
-"""The sweep loop: eigen-analysis along the speeds with mode tracking and refinement.
+"""The tracking core, and the sweep over V on it: eigen-analysis with mode tracking and refinement.
 
+:func:`_follow`
+    The one tracking core: every eigen-solution branch followed along a scalar parameter
+    (the airspeed, the rotational speed, a design parameter), with the problem's node
+    evaluator and linking plugged in; an ambiguous step is split down to a smallest step and
+    within a node budget.  The sweep over V below is this core with the engine's nodes and
+    linking and the airspeed's own refinements layered on top; the Campbell diagram over Ω and
+    the naming of modes from Ω = 0 (:mod:`propwhirl.analysis.modes`) are this core with the
+    undamped gyroscopic system's Hermitian-definite nodes and their MAC in the energy norm.
 :func:`sweep`
     Eigenvalues/eigenvectors along V with *mode tracking*: every eigenvalue branch is followed
     from speed to speed (nodes: :mod:`propwhirl.engine.nodes`; linking two speeds, clusters
