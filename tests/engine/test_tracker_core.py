@@ -1,4 +1,4 @@
-"""The one tracking core (propwhirl.engine.tracker._follow): its contract over any scalar
+"""The one tracking core (propwhirl.engine.follow): its contract over any scalar
 parameter, and that the sweep over V, the Campbell diagram over Ω and the naming of modes from
 Ω = 0 all run through it (issue 21, item 3: one tracker)."""
 from __future__ import annotations
@@ -7,6 +7,7 @@ import sys
 from dataclasses import dataclass
 
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -14,7 +15,8 @@ from propwhirl.analysis.campbell import campbell
 from propwhirl.analysis.modes import label_modes
 from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
 from propwhirl.engine import sweep
-from propwhirl.engine.tracker import _follow
+from propwhirl.engine import follow
+from propwhirl.validate import InputError
 
 
 @dataclass(frozen=True)
@@ -30,7 +32,7 @@ class _Verdict:
 def _calls_of(fn, *args, **kwargs) -> int:
     """How many times the core's code runs while ``fn(*args, **kwargs)`` runs."""
     count = 0
-    code = _follow.__code__
+    code = follow.__code__
 
     def profile(frame, event, arg):
         nonlocal count
@@ -78,7 +80,7 @@ def test_the_core_splits_ambiguous_steps_within_its_budget_and_smallest_step(
         linked.append((a.s, b.s))
         return _Verdict(always_ambiguous)
 
-    nodes, links, refined = _follow(evaluate, link, np.linspace(0.0, 1.0, first),
+    nodes, links, refined = follow(evaluate, link, np.linspace(0.0, 1.0, first),
                                     min_step=min_step, budget=budget,
                                     split=lambda a, b, lk: 0.5 * (a.s + b.s))
     s = np.array([nd.s for nd in nodes])
@@ -108,10 +110,43 @@ def test_the_core_restarts_a_degenerate_first_node_on_each_new_neighbour():
         calls.append(len(nodes))
         return [0.875] if len(calls) == 1 else []
 
-    nodes, links, refined = _follow(
+    nodes, links, refined = follow(
         lambda s: [_Point(float(x)) for x in s],
         lambda a, b: _Verdict(b.s - a.s > 0.3), np.array([0.0, 1.0]), min_step=0.01,
         budget=50, split=lambda a, b, lk: 0.5 * (a.s + b.s), settle=settle, at_start=at_start)
     assert [nd.s for nd in nodes] == [0.0, 0.25, 0.5, 0.75, 0.875, 1.0]
     assert seen == [1.0, 0.5, 0.25]
     assert refined == 3 and calls == [5, 6]
+
+
+def _points(s):
+    return [_Point(float(x)) for x in s]
+
+
+def _midpoint(a, b, lk):
+    return 0.5 * (a.s + b.s)
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({"first": [0.0, 1.0, 0.5]}, "first is invalid: must be strictly increasing"),
+    ({"first": [0.0, float("nan")]}, "first"),
+    ({"min_step": 0.0}, "min_step"),
+    ({"budget": 1}, "budget"),
+    ({"split": lambda a, b, lk: b.s}, "split returned s = 1.0 for the step (0.0, 1.0)"),
+    ({"split": lambda a, b, lk: None}, "no bracket"),
+    ({"evaluate": lambda s: _points(s)[:1]}, "evaluate returned 1 nodes for 2"),
+])
+def test_the_core_refuses_what_it_cannot_follow_in_one_line(kwargs, message):
+    args = {"evaluate": _points, "link": lambda a, b: _Verdict(True), "first": [0.0, 1.0],
+            "min_step": 0.01, "budget": 10, "split": _midpoint}
+    args.update(kwargs)
+    evaluate, link, first = args.pop("evaluate"), args.pop("link"), args.pop("first")
+    with pytest.raises(InputError) as err:
+        follow(evaluate, link, first, **args)
+    assert message in str(err.value) and "\n" not in str(err.value)
+
+
+def test_a_single_value_is_followed_as_it_is():
+    nodes, links, refined = follow(_points, lambda a, b: _Verdict(True), [0.0], min_step=0.01,
+                                   budget=10, split=_midpoint)
+    assert [nd.s for nd in nodes] == [0.0] and links == {} and refined == 0

@@ -10,7 +10,7 @@
     Every mode of the undamped gyroscopic system followed along the rotational speed Ω: the
     tracking over Ω of the Campbell diagram (:func:`propwhirl.analysis.campbell.campbell`) and
     of :func:`label_modes`.  It is the engine's tracking core
-    (:func:`propwhirl.engine.tracker._follow`, the loop that also runs the sweep over the
+    (:func:`propwhirl.engine.follow`, the loop that also runs the sweep over the
     airspeed) with this problem's node evaluator and linking plugged in.
 
 The gyroscopic system M q̈ + G(Ω) q̇ + K q = 0 (aerodynamics and dissipative damping off; G the
@@ -50,8 +50,7 @@ import scipy.linalg as sl
 from scipy.optimize import linear_sum_assignment
 
 from propwhirl import validate as v
-from propwhirl.engine import single_thread_blas
-from propwhirl.engine.tracker import _follow
+from propwhirl.engine import follow, single_thread_blas
 
 
 @dataclass(frozen=True)
@@ -347,7 +346,7 @@ def _track(system: _GyroscopicSystem, Omega: np.ndarray, *, mac_min: float = 0.8
 
 def _track_nodes(system, grid, mac_min, min_step, degenerate_tol, max_nodes) -> _Tracks:
     start = np.union1d([0.0], grid)
-    nodes, links, _ = _follow(
+    nodes, links, _ = follow(
         lambda Omega: _evaluate(system, Omega, degenerate_tol),
         lambda a, b: _link(a, b, mac_min), start, min_step=min_step,
         budget=max_nodes or (20 * start.size + 200),
