@@ -1,4 +1,5 @@
-"""The Campbell tracker (propwhirl.analysis.vibration) on gyroscopic systems with known curves.
+"""The tracking over Ω (propwhirl.analysis.modes._track: the engine's tracking core with the
+gyroscopic nodes; importable from propwhirl.analysis.vibration) on systems with known curves.
 
 A rotor with equal pitch and yaw stiffness (θ, ψ; unit inertias, gyroscopic coupling g Ω)
 whirls at ω± = √(ω₀² + (gΩ/2)²) ± gΩ/2: a repeated frequency at Ω = 0 that splits at first

@@ -6,7 +6,7 @@ speed of a sweep (a tracked mode keeps its name along the sweep):
 
 * models with wing degrees of freedom (propeller–wing models, chapters 7–11): each oscillatory
   mode is matched, by an optimal one-to-one MAC assignment on the displacement part, to the
-  in-vacuo modes named by :func:`propwhirl.analysis.vibration.label_modes` ("wing n",
+  in-vacuo modes named by :func:`propwhirl.analysis.modes.label_modes` ("wing n",
   "backward k", "forward k");
 * models with a spinning propeller and no wing (chapter 6): "backward" and "forward" whirl from
   the sense of the θ–ψ orbit; not spinning: "pitch" and "yaw" by increasing frequency;
@@ -28,6 +28,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
+from propwhirl.analysis.modes import label_modes, model_modes
 from propwhirl.analysis.whirl import whirl_sense
 from propwhirl.engine import Sweep, mac
 from propwhirl.model.protocol import DofMap, Model
@@ -63,7 +64,7 @@ def _oscillatory(sw: Sweep, t: int = 0) -> list[int]:
 def mode_names(model: Model, sw: Sweep, basis: np.ndarray | None = None) -> list[str]:
     """Names of the tracked modes of ``sw`` = a sweep of ``model``, decided at its first speed
     (rules in the module docstring).  ``basis``: a reduced model's basis over the DOFs (the
-    reference modes are then its Rayleigh–Ritz modes, :func:`~propwhirl.analysis.vibration.model_modes`)."""
+    reference modes are then its Rayleigh–Ritz modes, :func:`~propwhirl.analysis.modes.model_modes`)."""
     dm = model.dof_map()
     n = sw.n_modes
     lam0 = sw.eigenvalues[0]
@@ -78,8 +79,6 @@ def mode_names(model: Model, sw: Sweep, basis: np.ndarray | None = None) -> list
     for i, k in enumerate(k for k in real if k not in diverged):
         names[k] = f"lag {i + 1}"
     if dm.has_wing:
-        from propwhirl.analysis.vibration import label_modes, model_modes
-
         modes, _ = model_modes(model, basis)
         ref = [lab for lab, _ in label_modes(model, basis, modes)]
         shapes = modes.shapes.astype(complex)

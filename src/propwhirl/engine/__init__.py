@@ -9,7 +9,8 @@ A model supplies
   ``n_dof`` states, eq. 5.7) or a boolean ``displacement`` mask.  Velocity states follow the
   displacements, aerodynamic lag states come last.
 
-:func:`sweep` tracks every eigenvalue branch along the speeds, :func:`critical_points` refines
+:func:`sweep` tracks every eigenvalue branch along the speeds (on :func:`follow`, the tracking
+core over any scalar parameter), :func:`critical_points` refines
 every sign change of a tracked mode's real part, :func:`analyse` does both in one call,
 :func:`frequency_zero_points` locates unstable pairs turning real.
 
@@ -34,8 +35,10 @@ crossings
     All critical-point refinement: crossings of Re λ = 0 (flutter, divergence), branch points
     of unstable pairs turning real, frequency-zero events; the default tolerance :data:`XTOL`.
 tracker
-    The sweep loop (:func:`sweep`, :func:`analyse`): refinement of ambiguous steps, hump
-    check, branch-point bracketing.
+    The one tracking core over any scalar parameter (:func:`follow`: nodes and linking plugged
+    in, ambiguous steps split; also the Campbell diagram's and the mode naming's tracking over
+    Ω) and the sweep over V on it (:func:`sweep`, :func:`analyse`): refinement of ambiguous
+    steps, hump check, branch-point bracketing.
 results
     Result types: :class:`Sweep`, :class:`CriticalPoint`, :class:`Hump`, :class:`Criticals`,
     :class:`FrequencyZero`, :class:`Analysis`.
@@ -51,11 +54,11 @@ from propwhirl.engine.eigensolve import (eigen, eigenvalues, mac, single_thread_
 from propwhirl.engine.options import TrackingOptions
 from propwhirl.engine.results import Analysis, CriticalPoint, Criticals, FrequencyZero, Hump, Sweep
 from propwhirl.engine.free_response import TimeResponse, time_response
-from propwhirl.engine.tracker import ANALYSE_INITIAL_STEP, analyse, sweep
+from propwhirl.engine.tracker import ANALYSE_INITIAL_STEP, analyse, follow, sweep
 
 __all__ = [
     "TrackingOptions", "Sweep", "CriticalPoint", "Hump", "Criticals", "FrequencyZero", "Analysis",
     "TimeResponse", "eigen", "eigenvalues", "single_thread_blas", "mac", "sweep",
     "critical_points", "frequency_zero_points", "analyse", "tracked_eigenvalue", "time_response",
-    "ANALYSE_INITIAL_STEP", "XTOL",
+    "ANALYSE_INITIAL_STEP", "XTOL", "follow",
 ]

@@ -30,6 +30,11 @@ class _Node:
     conj: np.ndarray   # (n,) int, index of the conjugate (itself if real)
     floor: float       # scale floor for relative distances [1/s]
 
+    @property
+    def s(self) -> float:
+        """The tracked parameter (the airspeed V [m/s]) for the tracking core."""
+        return self.V
+
 
 def _evaluate_nodes(fn: StateMatrixFn, V: np.ndarray, n: int | None,
                     labels: Sequence[str] | None, opts: TrackingOptions,

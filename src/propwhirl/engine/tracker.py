@@ -1,5 +1,13 @@
-"""The sweep loop: eigen-analysis along the speeds with mode tracking and refinement.
+"""The tracking core, and the sweep over V on it: eigen-analysis with mode tracking and refinement.
 
+:func:`follow`
+    The one tracking core: every eigen-solution branch followed along a scalar parameter
+    (the airspeed, the rotational speed, a design parameter), with the problem's node
+    evaluator and linking plugged in; an ambiguous step is split down to a smallest step and
+    within a node budget.  The sweep over V below is this core with the engine's nodes and
+    linking and the airspeed's own refinements layered on top; the Campbell diagram over Ω and
+    the naming of modes from Ω = 0 (:mod:`propwhirl.analysis.modes`) are this core with the
+    undamped gyroscopic system's Hermitian-definite nodes and their MAC in the energy norm.
 :func:`sweep`
     Eigenvalues/eigenvectors along V with *mode tracking*: every eigenvalue branch is followed
     from speed to speed (nodes: :mod:`propwhirl.engine.nodes`; linking two speeds, clusters
@@ -36,6 +44,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
+from typing import Any
 
 import numpy as np
 
@@ -49,7 +58,7 @@ from propwhirl.engine.nodes import _evaluate_nodes, _Node
 from propwhirl.engine.options import TrackingOptions, _check_speeds
 from propwhirl.engine.ordering import _initial_order, _order_chain
 from propwhirl.engine.results import Analysis, Sweep
-from propwhirl.validate import InputError, positive
+from propwhirl.validate import InputError, finite, increasing, integer_at_least, positive
 
 
 #: default spacing [m/s] of the speeds :func:`analyse` evaluates first (see its docstring)
@@ -151,69 +160,197 @@ def _evaluate(fn, V, n: int, labels, opts: TrackingOptions, stats: dict[str, int
     return out
 
 
+def follow(evaluate: Callable[[np.ndarray], list], link: Callable[[Any, Any], Any],
+           first, *, min_step: float, budget: int,
+           split: Callable[[Any, Any, Any], float | None],
+           bracket: Callable[[list], list[float]] | None = None,
+           settle: Callable[[list, dict], list[float]] | None = None,
+           at_start: Callable[[Any, Any], Any] | None = None) -> tuple[list, dict, int]:
+    """The tracking core: follow every eigen-solution branch along a scalar parameter s.
+
+    One loop for every tracked problem — the sweep over the airspeed V (:func:`sweep`), the
+    Campbell diagram over the rotational speed Ω and the naming of modes from Ω = 0
+    (:mod:`propwhirl.analysis.modes`), or a design parameter.  The problem plugs in how to
+    solve it at given s and how to link two solutions; the core decides where to evaluate: an
+    ambiguous step is split while its half is at least ``min_step`` and the node count stays
+    below ``budget``; one still ambiguous is kept with its link (the caller reports it).
+
+    Parameters
+    ----------
+    evaluate : callable
+        ``evaluate(s) -> nodes``: the eigen-solutions at the parameter values ``s`` (1-D
+        array, in the parameter's unit), one node per value, each with its value as ``.s``.
+    link : callable
+        ``link(a, b) -> link``: which root at node ``a`` continues which at the next node
+        ``b``; the link has ``.ambiguous`` (the step does not resolve the continuation).
+    first : array_like
+        The parameter values evaluated first, increasing.
+    min_step : float
+        Smallest step of the refinement (the parameter's unit): a step is split only while
+        its half is at least this.
+    budget : int
+        At most this many nodes for the splitting (and for what ``settle`` asks).
+    split : callable
+        ``split(a, b, link) -> s or None``: where to split an ambiguous step (inside it);
+        None leaves the step to ``bracket``.
+    bracket : callable, optional
+        ``bracket([(a, b, link), ...]) -> s values``: new values for the steps ``split``
+        left (e.g. bracketing a branch point found inside the step).
+    settle : callable, optional
+        ``settle(nodes, links) -> s values``: called when every step is linked; values to
+        add still (e.g. where a crossing of Re λ = 0 may hide inside a step); none ends the
+        loop.  Cut to the budget.
+    at_start : callable, optional
+        ``at_start(a, b) -> a``: the first node re-expressed for its continuation to the node
+        next to it (a degenerate start, such as the repeated frequencies of a symmetric mount
+        at Ω = 0); it replaces the first node, again whenever refinement puts a new node next
+        to it.
+
+    Returns
+    -------
+    nodes : list
+        Every evaluated node, sorted by s.
+    links : dict
+        ``{(a.s, b.s): link}`` for each pair of consecutive nodes.
+    refined : int
+        Number of values added for ambiguous steps (by ``split`` and ``bracket``).
+
+    Examples
+    --------
+    The eigenvalues of [[1, 0.1], [0.1, p]] veer at p = 1, where the eigenvectors turn fast;
+    a link that calls a step ambiguous where the first eigenvector's MAC falls below 0.9 has
+    the core refine there, and only there:
+
+    >>> import numpy as np
+    >>> from types import SimpleNamespace
+    >>> from propwhirl.engine import follow
+    >>> def evaluate(p):
+    ...     return [SimpleNamespace(s=float(x), X=np.linalg.eigh([[1.0, 0.1], [0.1, x]])[1])
+    ...             for x in p]
+    >>> def link(a, b):
+    ...     return SimpleNamespace(ambiguous=bool(abs(a.X[:, 0] @ b.X[:, 0]) ** 2 < 0.9))
+    >>> nodes, links, refined = follow(evaluate, link, [0.0, 1.0, 2.0], min_step=0.01,
+    ...                                budget=100, split=lambda a, b, lk: 0.5 * (a.s + b.s))
+    >>> [nd.s for nd in nodes], refined
+    ([0.0, 0.5, 0.75, 0.875, 1.0, 1.125, 1.25, 1.5, 2.0], 6)
+    """
+    first = finite("first", np.atleast_1d(np.asarray(first, dtype=float)))
+    if first.size > 1 or first.ndim != 1:
+        increasing("first", first)
+    positive("min_step", min_step)
+    integer_at_least("budget", budget, 2)
+
+    def split_inside(a, b, lk):
+        where = split(a, b, lk)
+        if where is not None and not a.s < where < b.s:
+            raise InputError(f"split returned s = {where!r} for the step ({a.s!r}, {b.s!r}): "
+                             "must be inside it")
+        return where
+
+    def solve(s: np.ndarray) -> list:
+        out = list(evaluate(s))
+        if len(out) != s.size:
+            raise InputError(f"evaluate returned {len(out)} nodes for {s.size} parameter values: "
+                             "must return one per value")
+        return out
+
+    nodes = sorted(solve(first), key=lambda nd: nd.s)
+    links: dict[tuple[float, float], Any] = {}
+    refined = 0
+    while True:
+        new: list[float] = []
+        located = []
+        for t, (a, b) in enumerate(zip(nodes[:-1], nodes[1:])):
+            key = (a.s, b.s)
+            if key in links:
+                continue
+            if t == 0 and at_start is not None:
+                a = nodes[0] = at_start(a, b)
+            lk = link(a, b)
+            if (lk.ambiguous and 0.5 * (b.s - a.s) >= min_step
+                    and len(nodes) + len(new) < budget):
+                where = split_inside(a, b, lk)
+                if where is None:
+                    located.append((a, b, lk))
+                else:
+                    new.append(where)
+                continue
+            links[key] = lk
+        if located:
+            if bracket is None:
+                raise InputError("split returned None (leave the step to bracket) but no "
+                                 "bracket was given")
+            new += bracket(located)
+        if not new:
+            new = [] if settle is None else settle(nodes, links)
+            new = new[: max(0, budget - len(nodes))]
+            if not new:
+                break
+        else:
+            refined += len(new)
+        nodes = sorted(nodes + solve(np.array(new, dtype=float)), key=lambda nd: nd.s)
+    return nodes, links, refined
+
+
 def _sweep(fn, grid, n_dof, displacement, labels, mode_labels, opts,
            initial_step: float | None = None) -> Sweep:
+    """The sweep over V: the tracking core (:func:`follow`) with the engine's nodes and
+    linking, and the airspeed's own refinements layered on it — bisection at grid speeds or
+    where a cluster asks, bracketing of unstable branch points, the Hermite hump check."""
     stats: dict[str, int] = {}
     first = _initial_subset(grid, initial_step)
     # the number of states before any batch: from the labels, else from A at one speed
     n = len(labels) if labels is not None else _call_state_matrix(fn, first[:1], None,
                                                                    None).shape[-1]
     limits.check_sweep(first.size, n)
-    nodes = _evaluate(fn, first, n, labels, opts, stats)
+    given = labels
     if labels is None:
         labels = tuple(f"x{i}" for i in range(n))
     disp = _displacement_mask(n, n_dof, displacement)
     budget = limits.node_budget(grid.size, first.size, n, opts.max_nodes)
-    links: dict[tuple[float, float], _Link] = {}
-    refined = 0
-    while True:
+    chain_order: list[np.ndarray] = []
+
+    def evaluate(V):            # the first batch's errors name the labels only if given
+        return _evaluate(fn, V, n, given if "eig" not in stats else labels, opts, stats)
+
+    def split(a, b, lk):
+        if lk.branch_points:        # refine there: bracket the unstable branch point
+            return None
+        return _split_speed(a.V, b.V, grid) if lk.split_at is None else lk.split_at
+
+    def bracket(located):
+        found = _branch_point_speeds(fn, located, n, labels, opts, stats)
+        stats["branch_point_nodes"] = stats.get("branch_point_nodes", 0) + len(found)
         new_V = []
-        located = []
-        for a, b in zip(nodes[:-1], nodes[1:]):
-            key = (a.V, b.V)
-            if key in links:
-                continue
-            lk = _link(a, b, disp, opts)
-            if (lk.ambiguous and 0.5 * (b.V - a.V) >= opts.min_step
-                    and len(nodes) + len(new_V) < budget):
-                if lk.branch_points:        # refine there: bracket the unstable branch point
-                    located.append((a, b, lk))
-                else:
-                    new_V.append(_split_speed(a.V, b.V, grid) if lk.split_at is None
-                                 else lk.split_at)
-                continue
-            links[key] = lk
-        if located:
-            found = _branch_point_speeds(fn, located, n, labels, opts, stats)
-            stats["branch_point_nodes"] = stats.get("branch_point_nodes", 0) + len(found)
-            for a, b, _ in located:
-                here = [v for v in found if a.V < v < b.V]
-                new_V += here if here else [_split_speed(a.V, b.V, grid)]
+        for a, b, _ in located:
+            here = [v for v in found if a.V < v < b.V]
+            new_V += here if here else [_split_speed(a.V, b.V, grid)]
+        return new_V
+
+    def settle(nodes, links):
+        chain = [links[(a.V, b.V)] for a, b in zip(nodes[:-1], nodes[1:])]
+        R = _order_chain(nodes, [lk.perm for lk in chain])
+        chain_order[:] = [R]
+        if not opts.hump_check:
+            return []
+        V = np.array([nd.V for nd in nodes])
+        fl = np.array([nd.floor for nd in nodes])
+        new_V = _hump_candidates(V, _step_models(nodes, R, chain), fl, opts)
+        stats["hump_refined"] = stats.get("hump_refined", 0) + len(new_V)
         if not new_V:
-            chain = [links[(a.V, b.V)] for a, b in zip(nodes[:-1], nodes[1:])]
-            R = _order_chain(nodes, [lk.perm for lk in chain])
-            if not opts.hump_check:
-                break
-            V = np.array([nd.V for nd in nodes])
-            fl = np.array([nd.floor for nd in nodes])
-            new_V = _hump_candidates(V, _step_models(nodes, R, chain), fl, opts)
-            stats["hump_refined"] = stats.get("hump_refined", 0) + len(new_V)
-            if not new_V:
-                new_V = _branch_point_speeds(fn, list(zip(nodes[:-1], nodes[1:], chain)), n,
-                                             labels, opts, stats)
-                stats["branch_point_nodes"] = stats.get("branch_point_nodes", 0) + len(new_V)
-            new_V = new_V[: max(0, budget - len(nodes))]
-            if not new_V:
-                break
-        else:
-            refined += len(new_V)
-        nodes = sorted(nodes + _evaluate(fn, np.array(new_V), n, labels, opts, stats),
-                       key=lambda nd: nd.V)
+            new_V = _branch_point_speeds(fn, list(zip(nodes[:-1], nodes[1:], chain)), n,
+                                         labels, opts, stats)
+            stats["branch_point_nodes"] = stats.get("branch_point_nodes", 0) + len(new_V)
+        return new_V
+
+    nodes, links, refined = follow(evaluate, lambda a, b: _link(a, b, disp, opts), first,
+                                    min_step=opts.min_step, budget=budget, split=split,
+                                    bracket=bracket, settle=settle)
     stats["refined"] = refined
     stats["nodes"] = len(nodes)
     unresolved = tuple((a.V, b.V) for a, b in zip(nodes[:-1], nodes[1:])
                        if links[(a.V, b.V)].ambiguous)
-    return _assemble(nodes, R, grid, labels, disp, mode_labels, unresolved, stats)
+    return _assemble(nodes, chain_order[0], grid, labels, disp, mode_labels, unresolved, stats)
 
 
 def _assemble(nodes, R, grid, labels, disp, mode_labels, unresolved, stats) -> Sweep:
