@@ -318,9 +318,14 @@ NODE_SECONDS_PER_STATE = 1e-5
 #: per analysis: the naming, the events, the result [s]
 ANALYSIS_SECONDS = 0.05
 #: above this many states ``method="auto"`` tracks a reduced model
-#: (:data:`propwhirl.analysis.reduced.REDUCED_ABOVE`); its size is not known before the
-#: reduction: the estimate takes this many states, an upper estimate for wings
-ESTIMATE_STATES_CAP = 400
+#: (:data:`propwhirl.analysis.reduced.REDUCED_ABOVE`)
+ESTIMATE_REDUCED_ABOVE = 400
+#: the reduced model's size is not known before the reduction: estimated as
+#: REDUCED_STATES_BASE + REDUCED_STATES_PER_PROPELLER per flexibly mounted propeller (at most
+#: the full size): measured 50, 176, 242, 242 and 448 reduced states for 1, 8, 12, 12 and 64
+#: propellers (docs/performance.md, issue 20.9)
+REDUCED_STATES_BASE = 40
+REDUCED_STATES_PER_PROPELLER = 16
 #: bytes per point of a study in the parent process: its model variant (≈ 4.8 kB measured
 #: with tracemalloc for the wingtip model) and its result row (a dict of 15 columns)
 STUDY_POINT_BYTES = 8192
@@ -355,17 +360,27 @@ def format_seconds(s: float) -> str:
     return f"{s / 86400:,.1f} days"
 
 
-def analysis_seconds(n_states: int, method: str = "auto") -> float:
+def effective_states(n_states: int, method: str = "auto", n_propellers: int = 0) -> int:
+    """The states the engine tracks: ``n_states``, or for a model that ``method`` reduces
+    (``"reduced"``, or ``"auto"`` above :data:`ESTIMATE_REDUCED_ABOVE` states) the estimated
+    reduced size (:data:`REDUCED_STATES_BASE` + :data:`REDUCED_STATES_PER_PROPELLER` per
+    propeller, at most ``n_states``)."""
+    n = int(n_states)
+    if method == "reduced" or (method == "auto" and n > ESTIMATE_REDUCED_ABOVE):
+        return min(n, REDUCED_STATES_BASE + REDUCED_STATES_PER_PROPELLER * int(n_propellers))
+    return n
+
+
+def analysis_seconds(n_states: int, method: str = "auto", n_propellers: int = 0) -> float:
     """Estimated CPU time [s] of one default analysis (``analyse(model)``) of a model of
     ``n_states`` first-order states on one BLAS thread: :data:`STUDY_NODES` eigen-solutions
-    of O(n³) and their O(n) work per node, and :data:`ANALYSIS_SECONDS` (the states capped at
-    :data:`ESTIMATE_STATES_CAP` where ``method="auto"`` reduces).  Measured: 0.03 s for the
-    isolated propeller (4 states), 0.14 s / 0.38 s / 0.75 s for the baseline wing of 12
-    elements (100 states) / the wingtip model (204) / 25 elements with 4 propellers (216);
-    this gives 0.05 / 0.12 / 0.41 / 0.45 s."""
-    n = float(n_states)
-    if method in ("auto", "reduced") and n > ESTIMATE_STATES_CAP:
-        n = float(ESTIMATE_STATES_CAP)
+    of O(n³) and their O(n) work per node, and :data:`ANALYSIS_SECONDS`; n the
+    :func:`effective_states`.  Measured (one thread) against estimated: isolated propeller
+    (4 states) 0.03 / 0.05 s; baseline wing of 12 elements (100) 0.14 / 0.12 s; the wingtip
+    model (204) 0.38 / 0.42 s; 25 elements and 4 propellers (216) 0.75 / 0.48 s; reduced:
+    100/1 (804 states) 0.08 / 0.08 s, 50/8 (432) 0.45 / 0.28 s, 100/12 (848) 1.2 / 0.57 s,
+    25 elements and 64 propellers (768) 22 / 16 s.  An estimate within about 2×."""
+    n = float(effective_states(n_states, method, n_propellers))
     return ANALYSIS_SECONDS + STUDY_NODES * (EIG_SECONDS_PER_STATE3 * n ** 3
                                              + NODE_SECONDS_PER_STATE * n)
 
@@ -380,14 +395,13 @@ class StudyEstimate:
     """
 
     def __init__(self, n_points: int, n_states: int, processes: int = 1,
-                 method: str = "auto") -> None:
+                 method: str = "auto", n_propellers: int = 0) -> None:
         self.n_points, self.n_states = int(n_points), int(n_states)
         self.processes = max(1, int(processes))
-        self.per_analysis = analysis_seconds(n_states, method)
+        self.per_analysis = analysis_seconds(n_states, method, n_propellers)
         self.cpu_seconds = self.n_points * self.per_analysis
         self.seconds = self.cpu_seconds / min(self.processes, max(self.n_points, 1))
-        n = min(self.n_states, ESTIMATE_STATES_CAP) if method in ("auto", "reduced") \
-            else self.n_states
+        n = effective_states(n_states, method, n_propellers)
         self.bytes = (min(self.processes, max(self.n_points, 1)) * sweep_bytes(STUDY_NODES, n)
                       + self.n_points * STUDY_POINT_BYTES)
 
@@ -402,8 +416,9 @@ class StudyEstimate:
 def study_estimate(model, n_points: int, processes: int = 1,
                    method: str = "auto") -> StudyEstimate:
     """The :class:`StudyEstimate` of ``n_points`` analyses of variants of ``model`` (their
-    size: the model's ``dof_map().n_states``)."""
-    return StudyEstimate(n_points, model.dof_map().n_states, processes, method)
+    size: the model's ``dof_map()``: its states and flexibly mounted propellers)."""
+    dm = model.dof_map()
+    return StudyEstimate(n_points, dm.n_states, processes, method, len(dm.propellers))
 
 
 def check_study(model, n_points: int, processes: int = 1, *, method: str = "auto",
