@@ -118,3 +118,49 @@ def test_a_small_study_still_runs(monkeypatch):
     r = sweeps.sweep(isolated_baseline_propeller(), "propeller.f_psi", [6.0, 8.0],
                      speeds=[100.0, 200.0, 300.0])
     assert list(r.kind) == ["flutter", "flutter"]
+
+
+# ----------------------------------------------------------------------------- many propellers
+def _propellers_on_wingtip(tmp_path, n: int, n_elements: int = 12):
+    """The wingtip example with ``n`` equal propellers evenly spaced to the tip."""
+    import re
+    from pathlib import Path
+
+    from propwhirl.io import load_model
+
+    text = (Path(__file__).resolve().parents[2] / "examples" / "wingtip.toml").read_text()
+    rows = "".join(f'    {{ propeller = "p1", y_m = {5.7 * (i + 1) / n!r}, mount = "flexible", '
+                   'aero = true },\n' for i in range(n))
+    text = re.sub(r"installations = \[\n.*?\n\]\n", f"installations = [\n{rows}]\n", text,
+                  flags=re.S).replace("n_elements = 25", f"n_elements = {n_elements}")
+    path = tmp_path / f"props_{n}.toml"
+    path.write_text(text)
+    return load_model(path)
+
+
+def test_naming_many_equal_propellers_on_a_reduced_basis_is_bounded(tmp_path, monkeypatch):
+    """16 equal propellers, the reduced basis of method="reduced": their mount modes are
+    near-repeated, and the Campbell tracking that names them (from rpm 0 to a small rpm)
+    bisected its unresolvable steps to its budget (69 eigen-solutions here; 240 for 64
+    propellers: 16 s of a 37 s analysis).  Every thesis model needs 2."""
+    import propwhirl.analysis.modes as modes
+    from propwhirl.analysis.modes import label_modes
+    from propwhirl.model.reduction import reduce
+
+    solved = {"n": 0}
+    original = modes._evaluate
+
+    def counted(system, Omega, tol):
+        solved["n"] += len(Omega)
+        return original(system, Omega, tol)
+
+    monkeypatch.setattr(modes, "_evaluate", counted)
+    model = _propellers_on_wingtip(tmp_path, 16)
+    basis = reduce(model, model.flight.speeds()).dof_basis
+    labels = [name for name, _ in label_modes(model, basis=basis)]
+    assert solved["n"] <= 32
+    kinds = [x.split()[0] for x in labels]
+    assert kinds.count("backward") == kinds.count("forward") == 16
+    solved["n"] = 0
+    label_modes(wingtip_propeller_wing())
+    assert solved["n"] == 2
