@@ -297,3 +297,149 @@ def printable(text) -> str:
         return s
     return "".join(_escape(c) if (unicodedata.category(c) in ("Cc", "Zl", "Zp")
                                   or ord(c) in _BIDI) else c for c in s)
+
+
+# ----------------------------------------------------------------------------- studies
+#: environment variable of the longest study started without asking (seconds, or a number
+#: with a unit: "90min", "12h", "3d"; "none": no limit)
+STUDY_TIME_ENV = "PROPWHIRL_STUDY_TIME_LIMIT"
+#: default longest estimated study [s] (wall-clock on the given processes): 12 hours
+DEFAULT_STUDY_SECONDS = 12 * 3600.0
+#: a study estimated at least this long [s] prints its estimate before the work
+STUDY_NOTICE_SECONDS = 60.0
+#: speeds an analysis evaluates, typically (the thesis's models: 8–30 with ``analyse``'s
+#: refinement; docs/performance.md) — the estimate's nodes per analysis
+STUDY_NODES = 40
+#: seconds per state³ of one eigen-solution (``eig`` with vectors, dλ/dV included):
+#: ≈ 7 ms for the 204 states of the wingtip model on one thread (docs/performance.md)
+EIG_SECONDS_PER_STATE3 = 8.5e-10
+#: per node and state: the model's matrices, the linking, the crossings [s]
+NODE_SECONDS_PER_STATE = 1e-5
+#: per analysis: the naming, the events, the result [s]
+ANALYSIS_SECONDS = 0.05
+#: above this many states ``method="auto"`` tracks a reduced model
+#: (:data:`propwhirl.analysis.reduced.REDUCED_ABOVE`)
+ESTIMATE_REDUCED_ABOVE = 400
+#: the reduced model's size is not known before the reduction: estimated as
+#: REDUCED_STATES_BASE + REDUCED_STATES_PER_PROPELLER per flexibly mounted propeller (at most
+#: the full size): measured 50, 176, 242, 242 and 448 reduced states for 1, 8, 12, 12 and 64
+#: propellers (docs/performance.md, issue 20.9)
+REDUCED_STATES_BASE = 40
+REDUCED_STATES_PER_PROPELLER = 16
+#: bytes per point of a study in the parent process: its model variant (≈ 4.8 kB measured
+#: with tracemalloc for the wingtip model) and its result row (a dict of 15 columns)
+STUDY_POINT_BYTES = 8192
+
+_TIME_UNITS = {"": 1.0, "s": 1.0, "sec": 1.0, "min": 60.0, "m": 60.0, "h": 3600.0,
+               "d": 86400.0}
+
+
+def study_time_limit() -> float:
+    """The longest study started without asking [s]: ``PROPWHIRL_STUDY_TIME_LIMIT`` (seconds,
+    "90min", "12h", "3d"; "none" or "inf": no limit), else :data:`DEFAULT_STUDY_SECONDS`."""
+    text = os.environ.get(STUDY_TIME_ENV, "").strip().lower()
+    if not text:
+        return DEFAULT_STUDY_SECONDS
+    if text in ("none", "inf", "infinite", "unlimited"):
+        return math.inf
+    m = re.fullmatch(r"([0-9]*\.?[0-9]+(?:e[+-]?[0-9]+)?)\s*([a-z]*)", text)
+    if m is None or m.group(2) not in _TIME_UNITS or not float(m.group(1)) > 0:
+        raise InputError(f"{STUDY_TIME_ENV} = {text!r} is invalid: give seconds or a number "
+                         "with a unit (s, min, h, d), e.g. 12h, or none")
+    return float(m.group(1)) * _TIME_UNITS[m.group(2)]
+
+
+def format_seconds(s: float) -> str:
+    """'42 s', '17 min', '3.5 h', '2.9 days'."""
+    if s < 90:
+        return f"{s:.0f} s"
+    if s < 5400:
+        return f"{s / 60:.0f} min"
+    if s < 2 * 86400:
+        return f"{s / 3600:.1f} h"
+    return f"{s / 86400:,.1f} days"
+
+
+def effective_states(n_states: int, method: str = "auto", n_propellers: int = 0) -> int:
+    """The states the engine tracks: ``n_states``, or for a model that ``method`` reduces
+    (``"reduced"``, or ``"auto"`` above :data:`ESTIMATE_REDUCED_ABOVE` states) the estimated
+    reduced size (:data:`REDUCED_STATES_BASE` + :data:`REDUCED_STATES_PER_PROPELLER` per
+    propeller, at most ``n_states``)."""
+    n = int(n_states)
+    if method == "reduced" or (method == "auto" and n > ESTIMATE_REDUCED_ABOVE):
+        return min(n, REDUCED_STATES_BASE + REDUCED_STATES_PER_PROPELLER * int(n_propellers))
+    return n
+
+
+def analysis_seconds(n_states: int, method: str = "auto", n_propellers: int = 0) -> float:
+    """Estimated CPU time [s] of one default analysis (``analyse(model)``) of a model of
+    ``n_states`` first-order states on one BLAS thread: :data:`STUDY_NODES` eigen-solutions
+    of O(n³) and their O(n) work per node, and :data:`ANALYSIS_SECONDS`; n the
+    :func:`effective_states`.  Measured (one thread) against estimated: isolated propeller
+    (4 states) 0.03 / 0.05 s; baseline wing of 12 elements (100) 0.14 / 0.12 s; the wingtip
+    model (204) 0.38 / 0.42 s; 25 elements and 4 propellers (216) 0.75 / 0.48 s; reduced:
+    100/1 (804 states) 0.08 / 0.08 s, 50/8 (432) 0.45 / 0.28 s, 100/12 (848) 1.2 / 0.57 s,
+    25 elements and 64 propellers (768) 22 / 16 s.  An estimate within about 2×."""
+    n = float(effective_states(n_states, method, n_propellers))
+    return ANALYSIS_SECONDS + STUDY_NODES * (EIG_SECONDS_PER_STATE3 * n ** 3
+                                             + NODE_SECONDS_PER_STATE * n)
+
+
+class StudyEstimate:
+    """Time and memory of a study of ``n_points`` analyses before it starts.
+
+    seconds: wall-clock [s] on ``processes`` processes (CPU time / processes); cpu_seconds:
+    all analyses [s]; per_analysis: one analysis [s] (:func:`analysis_seconds`); bytes: peak
+    memory [bytes]: each process's sweep (:func:`sweep_bytes` of :data:`STUDY_NODES` speeds)
+    and the points' variants and result rows (:data:`STUDY_POINT_BYTES`).
+    """
+
+    def __init__(self, n_points: int, n_states: int, processes: int = 1,
+                 method: str = "auto", n_propellers: int = 0) -> None:
+        self.n_points, self.n_states = int(n_points), int(n_states)
+        self.processes = max(1, int(processes))
+        self.per_analysis = analysis_seconds(n_states, method, n_propellers)
+        self.cpu_seconds = self.n_points * self.per_analysis
+        self.seconds = self.cpu_seconds / min(self.processes, max(self.n_points, 1))
+        n = effective_states(n_states, method, n_propellers)
+        self.bytes = (min(self.processes, max(self.n_points, 1)) * sweep_bytes(STUDY_NODES, n)
+                      + self.n_points * STUDY_POINT_BYTES)
+
+    def text(self) -> str:
+        """'250,000 analyses of 204 states: ≈ 1.2 days on 1 process (≈ 0.41 s each), ≈ 80 MiB'"""
+        p = self.processes
+        return (f"{self.n_points:,} analyses of {self.n_states:,} states: "
+                f"≈ {format_seconds(self.seconds)} on {p} process{'es' if p > 1 else ''} "
+                f"(≈ {self.per_analysis:.2g} s each), ≈ {format_bytes(self.bytes)}")
+
+
+def study_estimate(model, n_points: int, processes: int = 1,
+                   method: str = "auto") -> StudyEstimate:
+    """The :class:`StudyEstimate` of ``n_points`` analyses of variants of ``model`` (their
+    size: the model's ``dof_map()``: its states and flexibly mounted propellers)."""
+    dm = model.dof_map()
+    return StudyEstimate(n_points, dm.n_states, processes, method, len(dm.propellers))
+
+
+def check_study(model, n_points: int, processes: int = 1, *, method: str = "auto",
+                cluster: bool = False, progress=None, stream=None) -> StudyEstimate:
+    """Refuse a study estimated (:func:`study_estimate`) longer than :func:`study_time_limit`
+    (not on a cluster, whose size is unknown here) or larger in memory than
+    :func:`memory_limit`, with a one-line InputError giving the estimate; print the
+    estimate on stderr (``stream``) before a long one (:data:`STUDY_NOTICE_SECONDS`) when a
+    progress bar was asked for (``progress`` True).  Returns the estimate."""
+    import sys
+
+    p = processes if isinstance(processes, int) and processes >= 1 else 1   # checked later
+    est = study_estimate(model, n_points, 1 if cluster else p, method)
+    limit, mem = study_time_limit(), memory_limit()
+    if est.bytes > mem:
+        raise InputError(f"the study needs {est.text()} (memory limit {format_bytes(mem)}: "
+                         f"set {MEMORY_ENV}, or fewer points or processes)")
+    if not cluster and est.seconds > limit:
+        raise InputError(f"the study of {est.text()} exceeds {format_seconds(limit)} "
+                         f"(set {STUDY_TIME_ENV}, e.g. 3d or none, or give fewer points or "
+                         "more processes)")
+    if progress is True and est.seconds >= STUDY_NOTICE_SECONDS:
+        print(f"propwhirl: estimate: {est.text()}", file=stream or sys.stderr)
+    return est

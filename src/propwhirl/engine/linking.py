@@ -91,6 +91,28 @@ def _near(lam: np.ndarray, conj: np.ndarray, scale: np.ndarray, tol: float,
     return (d <= tol * scale[rows, None]).any(axis=1)
 
 
+#: a root with Re λ < 0 and |Im λ| ≤ SINK_IM · |Re λ| (damping ratio ζ ≥ 0.99995: a period
+#: over 600 times its decay time) is treated like a real root of its sign (:func:`_sink`)
+SINK_IM = 1e-2
+
+
+def _sink(lam: np.ndarray) -> np.ndarray:
+    """Roots that are non-oscillatory for stability tracking: Re λ < 0 and |Im λ| at most
+    :data:`SINK_IM` · |Re λ| (exactly real negative roots included).
+
+    Heavily over-damped modes give them: with stiffness-proportional Rayleigh damping
+    C = μM + λK every mode of ω > 2/λ is over-damped, and its slow root tends to −1/λ —
+    with λ = 1 s the wing's twenty-odd bending and torsion modes leave a near-multiple root
+    at −1 s⁻¹, split by rounding into real roots and pairs of |Im λ| ~ 1e-9 … 1e-3.  Their
+    shapes there are arbitrary combinations and no assignment among them is better than
+    another, so a shape or distance test would flag every step (and refine it to
+    ``min_step`` without end).  Like real roots of one sign (which carry no shape
+    identity, :func:`_link`), they are matched by distance alone and never flagged: which
+    of them continues which does not change a sign of Re λ.
+    """
+    return (lam.real < 0) & (np.abs(lam.imag) <= SINK_IM * np.abs(lam.real))
+
+
 def _free_columns(n: int, taken: np.ndarray) -> np.ndarray:
     """The columns 0..n-1 not in ``taken``, increasing (``np.setdiff1d(np.arange(n), taken)``
     by a mask, without its sort)."""
@@ -154,6 +176,7 @@ def _link(a: _Node, b: _Node, disp: np.ndarray, opts: TrackingOptions) -> _Link:
     trap = np.abs(dl - 0.5 * (a.dlam[:, None] + b.dlam[None, :]) * h)
     dist = np.minimum(trap, np.abs(dl)) / scale[:, None]
     ra, rb = a.lam.imag == 0, b.lam.imag == 0
+    sa, sb = _sink(a.lam), _sink(b.lam)
     if n == 1:
         perm = np.zeros(1, dtype=int)
         return _Link(perm, bool(dist[0, 0] > opts.dist_max), trap[0, :1].copy())
@@ -184,7 +207,8 @@ def _link(a: _Node, b: _Node, disp: np.ndarray, opts: TrackingOptions) -> _Link:
     hard = np.nonzero(~easy)[0]
     if hard.size:
         free = _free_columns(n, j1[easy])
-        w = np.where(ra[hard][:, None] & rb[None, :], 0.0, 1.0)
+        w = np.where((ra[hard][:, None] & rb[None, :]) | (sa[hard][:, None] & sb[None, :]),
+                     0.0, 1.0)
         macH = _mac_matrix(a.X[:, hard], b.X, disp)
         costH = w * (1.0 - macH) + dist[hard]
         r_, c_ = linear_sum_assignment(costH[:, free])
@@ -214,7 +238,8 @@ def _link(a: _Node, b: _Node, disp: np.ndarray, opts: TrackingOptions) -> _Link:
                      & (altD >= opts.dist_max))
         shape_free = _near(a.lam, a.conj, scale, opts.degenerate_tol, hard) & _near(
             b.lam, b.conj, np.maximum(np.abs(b.lam), b.floor), opts.degenerate_tol, ph)
-        same_real = ra[hard] & rb[ph] & (np.sign(a.lam[hard].real) == np.sign(b.lam[ph].real))
+        same_real = ((ra[hard] & rb[ph] & (np.sign(a.lam[hard].real) == np.sign(b.lam[ph].real)))
+                     | (sa[hard] & sb[ph]))
         amb[hard] = ~same_real & ~decisiveH & (
             (~shape_free & ((c0 > opts.cost_ratio * altH) | (macH[hh, ph] < opts.mac_min)))
             | (d0 > opts.dist_max))
@@ -222,8 +247,8 @@ def _link(a: _Node, b: _Node, disp: np.ndarray, opts: TrackingOptions) -> _Link:
     clusters, split_at, events = _cluster_continuations(a, b, perm, amb, trap[ar, perm] / scale,
                                                         disp, opts)
     err = trap[ar, perm]
-    in_clusters = [i for rows in clusters for i in rows]
-    return _Link(perm, bool(amb.any() or _approach(a, b, perm, opts, in_clusters)), err,
+    skip = [i for rows in clusters for i in rows] + list(np.nonzero(sa & sb[perm])[0])
+    return _Link(perm, bool(amb.any() or _approach(a, b, perm, opts, skip)), err,
                  clusters, split_at, events)
 
 

@@ -28,7 +28,7 @@ from typing import Any, Mapping, Sequence
 
 import numpy as np
 
-from propwhirl import fileio
+from propwhirl import fileio, limits
 from propwhirl import validate as v
 from propwhirl.analysis.stability import ModelAnalysis, analyse
 from propwhirl.analysis.summary import text_table
@@ -422,6 +422,8 @@ def critical_map(model: Any, axes: Sequence[tuple[str, Any]], *, speeds=None,
         raise v.InputError(f"axes: {len(axes)} given, a study varies 1 to 3 parameters")
     resolved = [_axis(model, p, vals) for p, vals in axes]
     P.check_independent([p for p, _ in resolved])     # f_theta x K_theta: one would be ignored
+    limits.check_study(model, math.prod(ax.values.size for _, ax in resolved), processes,
+                       method=method, cluster=client is not None, progress=progress)
     variants: list[Any] = []
     keys = []
     for idx in np.ndindex(*(len(ax.values) for _, ax in resolved)):
