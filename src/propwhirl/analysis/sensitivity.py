@@ -31,6 +31,8 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from propwhirl import validate as v
+from propwhirl.analysis.stability import ModelAnalysis
+from propwhirl.analysis.summary import text_table
 from propwhirl.engine.correction import full_order_root, real_direction
 from propwhirl.model import derivatives as D
 
@@ -89,8 +91,6 @@ class CriticalSensitivities:
 
     def format(self, top: int | None = 10) -> str:
         """A text table of the ranked sensitivities."""
-        from propwhirl.analysis.summary import text_table
-
         head = (f"{self.kind} {self.event} of {self.mode} at V = {self.V:.2f} m/s, "
                 f"f = {self.frequency_hz:.3f} Hz: sensitivities (normalised: % of V_crit per % "
                 "of the parameter)")
@@ -103,8 +103,6 @@ class CriticalSensitivities:
 def _check_pair(model, analysis) -> None:
     """Refuse, before any matrix is built, a model without the full-order pencil (only a
     PropellerWing has one) and an analysis that is not a ModelAnalysis of a model of this size."""
-    from propwhirl.analysis.stability import ModelAnalysis
-
     if not hasattr(model, "second_order_blocks"):
         raise v.InputError(f"model = {type(model).__name__}: sensitivities need the full-order "
                            "pencil of a wing model (PropellerWing); an IsolatedPropeller has none")
