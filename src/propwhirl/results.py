@@ -157,6 +157,25 @@ class SavedDict:
             raise self._fail(key, f"= {x!r} is invalid: must be one of {', '.join(choices)}")
         return x
 
+    def boolean(self, key: str) -> bool:
+        """true or false (not 0 or 1)."""
+        x = self.d[key]
+        if not isinstance(x, bool):
+            raise self._fail(key, f"must be true or false, got {_json_value(x)}")
+        return x
+
+    def number_or_nan(self, key: str) -> float:
+        """A finite number, or null for one that was not finite (read back as NaN)."""
+        x = self.number(key, optional=True)
+        return float("nan") if x is None else x
+
+    def items(self, key: str) -> list[tuple[str, Any]]:
+        """The entries of the list `key` with their dotted paths (``key[i]``)."""
+        x = self.d[key]
+        if not isinstance(x, list):
+            raise self._fail(key, f"must be a list, got {_json_type(x)}")
+        return [(f"{self.name(key)}[{i}]", y) for i, y in enumerate(x)]
+
     def strings(self, key: str, n: int | None = None) -> tuple[str, ...]:
         x = self.d[key]
         if not isinstance(x, list) or not all(isinstance(s, str) for s in x):
@@ -343,7 +362,7 @@ class Result:
             raise InputError(f"{at}format {_json_value(fmt)} is {_article(other)} {other} "
                              f"file, not {want}")
         if tag is None:
-            raise InputError(f"{at}format = {_json_value(fmt)} is invalid: not {want}")
+            raise InputError(f"{at}not {want}: format = {_json_value(fmt)} is invalid")
         if tag[1] not in cls.READABLE:
             newer = " (written by a newer propwhirl?)" if tag[1] > cls.VERSION else ""
             raise InputError(f"{at}format {fmt!r}: version {tag[1]} is not supported{newer}: "

@@ -193,7 +193,8 @@ def test_nan_and_infinite_speeds(doc, tmp_path):
                                   r"file \(format 'propwhirl.analysis/3'\)"),
     ("format", "propwhirl.analysis/4", r"version 4 is not supported \(written by a newer"),
     ("format", "propwhirl.clearance/1", r"is a clearance file, not an analysis file"),
-    ("format", 3, r"format = 3 is invalid: not an analysis file"),
+    ("format", 3, r"not an analysis file \(format 'propwhirl.analysis/3'\): format = 3 is "
+                  r"invalid"),
 ])
 def test_wrong_value(doc, tmp_path, where, value, match):
     refused(write_doc(tmp_path, mutate(doc, where, value)), match)
