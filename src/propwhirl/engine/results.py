@@ -10,11 +10,11 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
-from propwhirl.results import SavedDict, _json_type, _shape_text  # noqa: F401 (SavedDict: its home)
+from propwhirl.results import Result, SavedDict, _json_type, _shape_text
 from propwhirl.validate import InputError
 
 
@@ -222,7 +222,12 @@ class Sweep:
 
 @dataclass(frozen=True)
 class CriticalPoint:
-    """A sign change of a tracked mode's real part.
+    """A sign change of a tracked mode's real part: the engine's raw crossing.
+
+    The analysis names it (:class:`propwhirl.analysis.stability.Instability`, the event a
+    user sees: its ``event`` is this ``direction``, or "unstable-at-start" /
+    "frequency-zero" for events without a crossing).  The quantities both have carry the same
+    names in both dict forms: kind, mode, label, V [m/s], frequency_hz [Hz], benignity [m/s].
 
     mode, label:   tracked mode id and label.
     kind:          "flutter" (complex pair, Im λ ≠ 0) or "divergence" (real root through 0).
@@ -356,28 +361,42 @@ class FrequencyZero:
 
 
 @dataclass(frozen=True)
-class Analysis:
-    """A sweep and its critical points."""
+class Analysis(Result):
+    """A sweep and its critical points (the engine's result, before modes are named).
+
+    A :class:`~propwhirl.results.Result` of kind "engine-analysis" (format
+    ``propwhirl.engine-analysis/1``; a dict without a format, as written before it, is
+    version 1).  Its eigenvectors are in the JSON (``include_eigenvectors``)."""
 
     sweep: Sweep
     criticals: Criticals
 
+    KIND: ClassVar[str] = "engine-analysis"
+    VERSION: ClassVar[int] = 1
+    READABLE: ClassVar[tuple[int, ...]] = (1,)
+    UNTAGGED: ClassVar[int | None] = 1
+    WHAT: ClassVar[str] = "engine analysis file"
+
     def to_dict(self, include_eigenvectors: bool = True) -> dict[str, Any]:
-        return {"sweep": self.sweep.to_dict(include_eigenvectors),
+        """``{"format": ..., "sweep": ..., "criticals": ...}`` (JSON-able)."""
+        return {"format": self.format_name(), "sweep": self.sweep.to_dict(include_eigenvectors),
                 "criticals": self.criticals.to_dict()}
 
+    def encode(self) -> dict[str, Any]:
+        return {"sweep": self.sweep.to_dict(), "criticals": self.criticals.to_dict()}
+
     @classmethod
-    def from_dict(cls, d: Mapping[str, Any]) -> "Analysis":
-        """The analysis written by :meth:`to_dict`, checked (an :class:`InputError` naming the
-        key): the sweep, its crossings, and mode ids within the sweep's modes."""
-        r = SavedDict(d, "", ("sweep", "criticals"))
-        sweep = Sweep.from_dict(r.raw("sweep"))
-        crit = Criticals.from_dict(r.raw("criticals"))
+    def decode(cls, d: Mapping[str, Any], version: int, where: str = "") -> "Analysis":
+        """The sweep, its crossings, and mode ids within the sweep's modes, checked (an
+        :class:`InputError` naming the key)."""
+        r = SavedDict(d, where, ("sweep", "criticals"))
+        sweep = Sweep.from_dict(r.raw("sweep"), r.name("sweep"))
+        crit = Criticals.from_dict(r.raw("criticals"), r.name("criticals"))
         ids = [("points", p.mode) for p in crit.points] + [("humps", h.mode) for h in crit.humps]
         ids += [("unstable_at_start", k) for k in crit.unstable_at_start]
         for key, k in ids:
             if k >= sweep.n_modes:
-                raise InputError(f"criticals.{key}: mode id {k} is outside the sweep's "
+                raise InputError(f"{r.name('criticals')}.{key}: mode id {k} is outside the sweep's "
                                  f"{sweep.n_modes} modes")
         return cls(sweep, crit)
 
