@@ -135,9 +135,15 @@ class SavedDict:
         x = self.d[key]
         if x is None and optional:
             return None
-        if isinstance(x, bool) or not isinstance(x, (int, float)) or not np.isfinite(x):
+        if isinstance(x, bool) or not isinstance(x, (int, float)):
             raise self._fail(key, f"must be a finite number, got {_json_value(x)}")
-        return float(x)
+        try:
+            value = float(x)               # an integer of 400 digits: OverflowError
+        except OverflowError:
+            value = float("inf")
+        if not np.isfinite(value):
+            raise self._fail(key, f"must be a finite number, got {_json_value(x)}")
+        return value
 
     def integer(self, key: str, low: int | None = None, high: int | None = None) -> int:
         x = self.d[key]
