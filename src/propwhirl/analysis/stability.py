@@ -11,9 +11,12 @@ Instabilities are the onsets of the engine's crossings (flutter: a complex pair;
 real root through zero), modes already unstable at the first speed, and *frequency-zero* events:
 an already unstable oscillatory mode whose frequency falls to zero (the pair splits into real
 roots) — the thesis's "whirl divergence" (Table 10.4).  :func:`critical` is the one definition
-of the critical instability.  Results are saved and re-read with :meth:`ModelAnalysis.save` /
-:func:`load` (the file format: :mod:`propwhirl.analysis.files`, re-exported here: ``load``,
-``FORMAT``, ``FORMAT_VERSION``, ``READABLE_VERSIONS``, ``eigenvectors_path``).
+of the critical instability (:mod:`propwhirl.analysis.events`, with :class:`Instability`;
+both re-exported here).  :class:`ModelAnalysis` is a :class:`~propwhirl.results.Result`: saved
+and re-read with :meth:`ModelAnalysis.save` / :meth:`ModelAnalysis.load` (the analysis file,
+format ``propwhirl.analysis/3``, defined in the class; ``load``, ``FORMAT``,
+``FORMAT_VERSION``, ``READABLE_VERSIONS`` and ``eigenvectors_path`` are kept here under the
+names of earlier releases).
 """
 from __future__ import annotations
 
