@@ -17,18 +17,20 @@ ALLOWED = {
     "validate": set(),
     "limits": {"validate"},                       # memory estimates and size limits
     "fileio": {"validate"},                       # atomic file writes, writability checks
+    "results": {"fileio", "validate"},            # the result protocol, the checked reader
     "documents": {"validate"},                    # the installed docs/*.md pages
     "progress": {"validate"},                     # progress bars and spinners on a terminal
     "model": {"generated", "limits", "validate"},
-    "engine": {"limits", "validate"},             # model-agnostic: A(V) in, eigen-data out
-    "analysis": {"engine", "fileio", "limits", "model", "validate"},
+    "engine": {"limits", "results", "validate"},             # model-agnostic: A(V) in, eigen-data out
+    "analysis": {"engine", "fileio", "limits", "model", "results", "validate"},
     "cases": {"model", "validate"},               # model factories only
-    "studies": {"analysis", "cases", "engine", "fileio", "limits", "model", "progress", "validate"},
+    "studies": {"analysis", "cases", "engine", "fileio", "limits", "model", "progress", "results",
+                "validate"},
     "reproduce": {"analysis", "cases", "documents", "engine", "fileio", "generated", "model", "progress",
-                  "studies", "validate"},
+                  "results", "studies", "validate"},
     "io": {"fileio", "limits", "model", "validate"},
     "app": {"analysis", "cases", "documents", "engine", "fileio", "io", "limits", "model", "progress",
-            "reproduce", "studies", "validate"},
+            "reproduce", "results", "studies", "validate"},
     # entry point and compatibility re-exports
     "__main__": {"app"}, "__init__": set(), "wing": {"model"}, "propeller": {"model"},
     "plots": {"app"},

@@ -77,7 +77,7 @@ def test_frequency_from_the_eigenvalue_and_ranking(wingtip):
     r = cs.ranked()
     assert abs(r[0].normalised) >= abs(r[1].normalised)
     d = cs.to_dict(1)
-    assert set(d["critical"]) >= {"V", "f", "kind", "mode"} and len(d["sensitivities"]) == 1
+    assert set(d["critical"]) >= {"V", "frequency_hz", "kind", "mode"} and len(d["sensitivities"]) == 1
     assert set(d["sensitivities"][0]) >= {"path", "value", "unit", "dV_dp", "normalised"}
 
 

@@ -48,7 +48,8 @@ def test_the_file_names_its_format_and_version(analysis, tmp_path):
     path = tmp_path / "a.json"
     analysis.save(path)
     d = json.loads(path.read_text())
-    assert (d["format"], d["format_version"]) == (FORMAT, FORMAT_VERSION) == ("propwhirl-analysis", 2)
+    assert d["format"] == FORMAT == "propwhirl.analysis/3" and FORMAT_VERSION == 3
+    assert "format_version" not in d     # the version is in the tag (issue 21.4)
     back = load(path)
     assert back.events == analysis.events and back.content == analysis.content
     assert back.dof_map == analysis.dof_map
@@ -188,13 +189,30 @@ def test_nan_and_infinite_speeds(doc, tmp_path):
     ("dof_map.q_labels", ["a", "b"], r"dof_map: its 4 states do not match"),
     ("dof_map.propellers", [{"number": 0}], r"dof_map\.propellers\[0\]: missing keys"),
     ("dof_map.propellers.0.theta", 7, r"dof_map\.propellers\[0\]\.theta: = 7 is outside"),
-    ("format", "propwhirl-model", r"format = 'propwhirl-model' is invalid"),
-    ("format_version", 3, r"format_version = 3 is not supported: this propwhirl reads versions 1, 2"),
-    ("format_version", "1", r"format_version = '1' is not supported"),
-    ("format_version", True, r"format_version = True is not supported"),
+    ("format", "propwhirl-model", r"format 'propwhirl-model' is a model file, not an analysis "
+                                  r"file \(format 'propwhirl.analysis/3'\)"),
+    ("format", "propwhirl.analysis/4", r"version 4 is not supported \(written by a newer"),
+    ("format", "propwhirl.clearance/1", r"is a clearance file, not an analysis file"),
+    ("format", 3, r"not an analysis file \(format 'propwhirl.analysis/3'\): format = 3 is "
+                  r"invalid"),
 ])
 def test_wrong_value(doc, tmp_path, where, value, match):
     refused(write_doc(tmp_path, mutate(doc, where, value)), match)
+
+
+@pytest.mark.parametrize("version, match", [
+    (3, r"format_version = 3 is not supported: this propwhirl reads 'propwhirl-analysis' "
+        r"versions 1, 2"),
+    ("1", r"format_version = '1' is not supported"),
+    (True, r"format_version = True is not supported"),
+    (None, r"missing key 'format_version'"),
+])
+def test_wrong_old_version(doc, tmp_path, version, match):
+    """Files of the earlier format name keep their version key, checked as before."""
+    old = dict(doc, format="propwhirl-analysis")
+    if version is not None:
+        old["format_version"] = version
+    refused(write_doc(tmp_path, old), match)
 
 
 def test_from_dict_errors_are_input_errors(doc):

@@ -53,10 +53,12 @@ from typing import Any
 
 import numpy as np
 
+from propwhirl import fileio
 from propwhirl import validate as v
 from propwhirl.analysis.whirl import whirl_sense
 from propwhirl.engine import eigen, mac
 from propwhirl.model.protocol import DofMap, Model
+from propwhirl.results import SavedDict
 
 _WHIRL = ("forward", "backward", "planar")
 
@@ -160,8 +162,6 @@ class ModeParticipation:
     @classmethod
     def from_dict(cls, d: Any, where: str = "participation") -> "ModeParticipation":
         """The participation written by :meth:`to_dict`, checked (an InputError naming the key)."""
-        from propwhirl.engine.results import SavedDict
-
         r = SavedDict(d, where, ("V", "wing", "other", "propellers"))
         props = r.raw("propellers")
         if not isinstance(props, list):
@@ -385,8 +385,6 @@ def events_table(events) -> dict[str, np.ndarray]:
 def events_csv(events, path=None) -> str:
     """:func:`events_table` as CSV, header "column [unit]"; NaN as an empty cell; written to
     ``path`` too if given (atomically, :func:`propwhirl.fileio.write_text`)."""
-    from propwhirl import fileio
-
     t = events_table(events)
     return fileio.csv_table({k: t[k] for k, _ in EVENT_COLUMNS}, dict(EVENT_COLUMNS), path,
                             what="events table")

@@ -34,6 +34,11 @@ import numpy as np
 from scipy.optimize import brentq
 
 from propwhirl import validate as v
+from propwhirl.analysis.events import Instability
+from propwhirl.analysis.naming import whirl
+from propwhirl.analysis.participation import with_participation
+from propwhirl.engine import mac
+from propwhirl.model.systems import TypicalSection
 from propwhirl.model.frequency_domain import (
     K_MIN,
     check_pk_model,
@@ -54,8 +59,6 @@ WING_MODES = 6
 
 
 def _is_section(model) -> bool:
-    from propwhirl.model.systems import TypicalSection
-
     return isinstance(model, TypicalSection)
 
 
@@ -283,8 +286,6 @@ def tracked_mode(sweep, x: np.ndarray, p: complex, V: float) -> int:
     the one it started from (the wingtip model's forward-whirl flutter is reached from the
     in-vacuo "wing 2" mode), so the shape at the event, not the start, names the mode.
     """
-    from propwhirl.engine import mac
-
     n = int(np.count_nonzero(sweep.displacement))      # the states q first, then q̇, lags
     t = int(np.argmin(np.abs(sweep.V - V)))
     q = np.asarray(x)[:n]
@@ -331,10 +332,6 @@ def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: flo
     the model's own DOFs) and, for flutter crossings, the benignity (dζ/dV)⁻¹ of the p-k
     root [m/s] (:func:`_benignity`).
     """
-    from propwhirl.analysis.naming import whirl
-    from propwhirl.analysis.participation import with_participation
-    from propwhirl.analysis.stability import Instability
-
     r = pk_sweep(model, speeds, xtol=xtol)
     dm = model.dof_map()
     n = dm.n_dof

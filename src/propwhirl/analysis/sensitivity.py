@@ -24,15 +24,21 @@ point, where λ is not differentiable) are refused with an error saying so.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, replace
+from pathlib import Path
+from typing import Any, ClassVar
 
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from propwhirl import validate as v
+from propwhirl.analysis.stability import ModelAnalysis
+from propwhirl.analysis.summary import text_table
 from propwhirl.engine.correction import full_order_root, real_direction
 from propwhirl.model import derivatives as D
+from propwhirl.results import Result, SavedDict
 
 #: relative step of the central difference ∂/∂V of the pencil
 DV_STEP = 1e-5
@@ -57,15 +63,40 @@ class Sensitivity:
     df_dp: float
     normalised: float
 
-    def to_dict(self) -> dict:
-        return {"path": self.path, "value": self.value, "unit": self.unit,
-                "dV_dp": self.dV_dp, "df_dp": self.df_dp, "normalised": self.normalised}
+    def to_dict(self) -> dict[str, Any]:
+        """Every field (∂λ/∂p as ``{"re", "im"}``); a part of a sensitivities file."""
+        return {"path": self.path, "value": self.value, "unit": self.unit, "doc": self.doc,
+                "dlam_dp": _complex_dict(self.dlam_dp), "dV_dp": self.dV_dp,
+                "df_dp": self.df_dp, "normalised": self.normalised}
+
+    @classmethod
+    def from_dict(cls, d: Any, where: str = "sensitivity") -> "Sensitivity":
+        """The entry written by :meth:`to_dict`, checked (InputError naming the key)."""
+        r = SavedDict(d, where, ("path", "value", "unit", "doc", "dlam_dp", "dV_dp", "df_dp",
+                                 "normalised"))
+        return cls(r.string("path"), r.number("value"), r.string("unit"), r.string("doc"),
+                   _complex_of(r, "dlam_dp"), r.number("dV_dp"), r.number("df_dp"),
+                   r.number("normalised"))
+
+
+def _complex_dict(z: complex) -> dict[str, float]:
+    return {"re": float(z.real), "im": float(z.imag)}
+
+
+def _complex_of(r: SavedDict, key: str) -> complex:
+    c = r.sub(key, ("re", "im"))
+    return complex(c.number("re"), c.number("im"))
 
 
 @dataclass(frozen=True)
-class CriticalSensitivities:
+class CriticalSensitivities(Result):
     """The sensitivities of one critical point (V [m/s], f [Hz], kind, event, mode label,
-    λ and ∂λ/∂V there), one :class:`Sensitivity` per parameter in the model's order."""
+    λ and ∂λ/∂V there), one :class:`Sensitivity` per parameter in the model's order.
+
+    A :class:`~propwhirl.results.Result` of kind "sensitivities" (format
+    ``propwhirl.sensitivities/1``; ``propwhirl sensitivities --json`` writes it): the
+    critical point's keys are those of an :class:`~propwhirl.analysis.stability.Instability`
+    (V, frequency_hz, kind, event; mode is its label) and λ, ∂λ/∂V."""
 
     V: float
     frequency_hz: float
@@ -76,21 +107,48 @@ class CriticalSensitivities:
     dlam_dV: complex
     sensitivities: tuple[Sensitivity, ...]
 
+    KIND: ClassVar[str] = "sensitivities"
+    VERSION: ClassVar[int] = 1
+    READABLE: ClassVar[tuple[int, ...]] = (1,)
+    WHAT: ClassVar[str] = "sensitivities file"
+
     def ranked(self, top: int | None = None) -> list[Sensitivity]:
         """By decreasing |normalised| (the first ``top``)."""
         out = sorted(self.sensitivities, key=lambda s: -abs(s.normalised))
         return out if top is None else out[:top]
 
-    def to_dict(self, top: int | None = None) -> dict:
-        """``{"critical": {"V", "f", "kind", "mode"}, "sensitivities": [...]}`` (ranked)."""
-        return {"critical": {"V": self.V, "f": self.frequency_hz, "kind": self.kind,
-                             "event": self.event, "mode": self.mode},
+    def to_dict(self, top: int | None = None) -> dict[str, Any]:
+        """``{"format", "critical": {"V", "frequency_hz", "kind", "event", "mode",
+        "eigenvalue", "dlam_dV"}, "sensitivities": [...]}``, ranked (the first `top`)."""
+        return {"format": self.format_name(), **self.encode(top)}
+
+    def encode(self, top: int | None = None) -> dict[str, Any]:
+        return {"critical": {"V": self.V, "frequency_hz": self.frequency_hz, "kind": self.kind,
+                             "event": self.event, "mode": self.mode,
+                             "eigenvalue": _complex_dict(self.eigenvalue),
+                             "dlam_dV": _complex_dict(self.dlam_dV)},
                 "sensitivities": [s.to_dict() for s in self.ranked(top)]}
+
+    @classmethod
+    def decode(cls, d: Mapping[str, Any], version: int,
+               where: str = "") -> "CriticalSensitivities":
+        r = SavedDict(d, where, ("critical", "sensitivities"))
+        c = r.sub("critical", ("V", "frequency_hz", "kind", "event", "mode", "eigenvalue",
+                               "dlam_dV"))
+        return cls(c.number("V"), c.number("frequency_hz"),
+                   c.string("kind", ("flutter", "divergence")), c.string("event"),
+                   c.string("mode"), _complex_of(c, "eigenvalue"), _complex_of(c, "dlam_dV"),
+                   tuple(Sensitivity.from_dict(x, w) for w, x in r.items("sensitivities")))
+
+    def save(self, path: str | Path, top: int | None = None) -> Path:
+        """Write the sensitivities (the first `top` ranked) as JSON, atomically
+        (:meth:`Result.save`)."""
+        if top is None:
+            return super().save(path)
+        return replace(self, sensitivities=tuple(self.ranked(top))).save(path)
 
     def format(self, top: int | None = 10) -> str:
         """A text table of the ranked sensitivities."""
-        from propwhirl.analysis.summary import text_table
-
         head = (f"{self.kind} {self.event} of {self.mode} at V = {self.V:.2f} m/s, "
                 f"f = {self.frequency_hz:.3f} Hz: sensitivities (normalised: % of V_crit per % "
                 "of the parameter)")
@@ -103,8 +161,6 @@ class CriticalSensitivities:
 def _check_pair(model, analysis) -> None:
     """Refuse, before any matrix is built, a model without the full-order pencil (only a
     PropellerWing has one) and an analysis that is not a ModelAnalysis of a model of this size."""
-    from propwhirl.analysis.stability import ModelAnalysis
-
     if not hasattr(model, "second_order_blocks"):
         raise v.InputError(f"model = {type(model).__name__}: sensitivities need the full-order "
                            "pencil of a wing model (PropellerWing); an IsolatedPropeller has none")

@@ -11,148 +11,68 @@ Instabilities are the onsets of the engine's crossings (flutter: a complex pair;
 real root through zero), modes already unstable at the first speed, and *frequency-zero* events:
 an already unstable oscillatory mode whose frequency falls to zero (the pair splits into real
 roots) — the thesis's "whirl divergence" (Table 10.4).  :func:`critical` is the one definition
-of the critical instability.  Results are saved and re-read with :meth:`ModelAnalysis.save` /
-:func:`load` (the file format: :mod:`propwhirl.analysis.files`, re-exported here: ``load``,
-``FORMAT``, ``FORMAT_VERSION``, ``READABLE_VERSIONS``, ``eigenvectors_path``).
+of the critical instability (:mod:`propwhirl.analysis.events`, with :class:`Instability`;
+both re-exported here).  :class:`ModelAnalysis` is a :class:`~propwhirl.results.Result`: saved
+and re-read with :meth:`ModelAnalysis.save` / :meth:`ModelAnalysis.load` (the analysis file,
+format ``propwhirl.analysis/3``, defined in the class; ``load``, ``FORMAT``,
+``FORMAT_VERSION``, ``READABLE_VERSIONS`` and ``eigenvectors_path`` are kept here under the
+names of earlier releases).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+import json
+from collections.abc import Mapping
+from dataclasses import dataclass, field, replace
 from pathlib import Path
-from collections.abc import Callable, Sequence
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
-from propwhirl.engine import XTOL, Criticals, Sweep, TrackingOptions, frequency_zero_points
-from propwhirl.engine import analyse as engine_analyse
-from propwhirl.engine.options import check_speeds
+from propwhirl import fileio
 from propwhirl import validate as v
-# the analysis file; load, READABLE_VERSIONS and eigenvectors_path re-exported (public here)
-from propwhirl.analysis.files import (FORMAT, FORMAT_VERSION, READABLE_VERSIONS,  # noqa: F401
-                                      _event_dict, analysis_from_dict, eigenvectors_path, load,
-                                      save_analysis)
+from propwhirl.analysis.events import (UNSTABLE_EVENTS, Exclusion, Instability,  # noqa: F401
+                                       critical, describe_critical)
 from propwhirl.analysis.naming import mode_content, mode_names, whirl
-from propwhirl.analysis.participation import (ModeParticipation, branch_point_shape, events_csv,
-                                              events_table, participation_lines,
+from propwhirl.analysis.participation import (ModeParticipation, branch_point_shape,  # noqa: F401
+                                              events_csv, events_table, participation_lines,
                                               with_participation)
+from propwhirl.analysis.pk import pk_instabilities
 from propwhirl.analysis.reduced import choose_method, reduced_engine_analysis
 from propwhirl.analysis.summary import (FiniteState, FlutterSummary, MethodComparison,
                                         Reference, aero_model_of, compare_methods,
                                         flutter_summary, reference, text_table)
+from propwhirl.engine import XTOL, Criticals, Sweep, TrackingOptions, frequency_zero_points
+from propwhirl.engine import analyse as engine_analyse
+from propwhirl.engine.options import check_speeds
+from propwhirl.engine.results import (eigenvectors_npz, eigenvectors_path,  # noqa: F401
+                                      read_eigenvectors)
 from propwhirl.model import validity
-from propwhirl.model.protocol import DofMap, Model
+from propwhirl.model.protocol import DofMap, Model, PropellerDofs
+from propwhirl.results import Result, SavedDict, non_finite_key
 
 #: Default airspeed grid of the thesis's analyses (0–350 m/s; the engine refines it) [m/s]
 DEFAULT_SPEEDS = np.arange(1.0, 351.0, 10.0)
 
 
-@dataclass(frozen=True)
-class Instability:
-    """One instability event of a tracked mode.
-
-    kind:   "flutter" (oscillatory) or "divergence" (non-oscillatory)
-    event:  "onset" (Re λ becomes positive), "recovery" (becomes negative again; hump modes),
-            "frequency-zero" (an unstable pair turns into real roots: divergence of that mode),
-            "unstable-at-start" (Re λ > 0 already at the first analysed speed, V = that speed)
-    mode, label: tracked mode id and its name (e.g. "forward 1", "wing 2", "lag 1")
-    V [m/s], frequency_hz [Hz] at the event; whirl: "forward"/"backward"/"planar" sense of the
-    θ–ψ orbit of the propeller with the largest θ–ψ motion (None without flexible propellers);
-    benignity [m/s] (eq. 5.13) at flutter onsets; participation: every flexibly mounted
-    propeller's share of the mode's kinetic energy, whirl sense, relative amplitude and
-    position at the event (:mod:`propwhirl.analysis.participation`; None without the mode
-    shape).
-    """
-
-    kind: str
-    event: str
-    mode: int
-    label: str
-    V: float
-    frequency_hz: float
-    whirl: str | None = None
-    benignity: float | None = None
-    participation: ModeParticipation | None = None
-
-    def propeller_text(self, count: int | None = None) -> str:
-        """Which propellers take part: 'propeller 3 (y = 3 m): 61 %, backward whirl, ...'
-        ("" without flexibly mounted propellers or without the mode shape)."""
-        p = self.participation
-        return "" if p is None or not p.propellers else p.describe(count)
-
-
-#: Events that make the system (more) unstable, candidates for the critical instability.
-UNSTABLE_EVENTS = ("onset", "unstable-at-start", "frequency-zero")
-
-#: What :func:`critical` may leave out: kinds ("flutter", "divergence"), or a predicate on an
-#: event that is True for events to leave out.
-Exclusion = str | Sequence[str] | Callable[[Instability], bool]
-
-
-def critical(events: Sequence[Instability], *, exclude: Exclusion = ()) -> Instability | None:
-    """The critical instability: the lowest-speed event that makes the system unstable.
-
-    This is the one definition used by the summary, the CLI, ``propwhirl run``, the studies and
-    the result files.  Candidates are the onsets of flutter and of divergence (static
-    divergence included), frequency-zero events (an unstable pair turning real), and modes
-    already unstable at the first analysed speed — event "unstable-at-start", reported at that
-    speed, never skipped.  Ties at one speed go to the lower mode id.
-
-    Parameters
-    ----------
-    events : sequence of Instability
-        The events of an analysis (:attr:`ModelAnalysis.events`).
-    exclude : str, sequence of str or callable, optional
-        Leave out events of these kinds ("flutter", "divergence"), or the events for which
-        ``exclude(event)`` is True (e.g. the wing's static divergence, which the thesis's
-        chapter-11 studies ignore).  Default: nothing is left out.
-
-    Returns
-    -------
-    Instability or None
-        None when nothing is unstable in the analysed range.
-
-    Examples
-    --------
-    >>> from propwhirl.analysis.stability import Instability, critical
-    >>> ev = [Instability("flutter", "onset", 3, "forward 1", 159.39, 11.25),
-    ...       Instability("divergence", "onset", 0, "wing 1", 143.15, 0.0)]
-    >>> critical(ev).label
-    'wing 1'
-    >>> critical(ev, exclude="divergence").V
-    159.39
-    """
-    if callable(exclude):
-        leave_out = exclude
-    else:
-        kinds = {exclude} if isinstance(exclude, str) else set(exclude)
-        bad = sorted(kinds - {"flutter", "divergence"})
-        if bad:
-            raise v.InputError(f"exclude = {bad!r} is invalid: kinds are 'flutter' and 'divergence'")
-        leave_out = lambda e: e.kind in kinds  # noqa: E731
-    cands = [e for e in events if e.event in UNSTABLE_EVENTS and not leave_out(e)]
-    return min(cands, key=lambda e: (e.V, e.mode)) if cands else None
-
-
-def describe_critical(c: Instability | None, describe: Callable[[str], str] = str) -> str:
-    """One line for the critical instability, e.g. 'flutter of forward 1 (yaw) at 159.39 m/s,
-    11.247 Hz' or 'unstable from V = 150 m/s, the start of the range: divergence of wing 1'."""
-    if c is None:
-        return "none in the speed range"
-    what = f"{c.kind} of {describe(c.label)}"
-    if c.event == "unstable-at-start":
-        f = f" ({c.frequency_hz:.3f} Hz)" if c.kind == "flutter" else ""
-        who = c.propeller_text(count=3)
-        return (f"unstable from V = {c.V:g} m/s, the start of the range: {what}{f}"
-                + (f"; {who}" if who else ""))
-    f = f", {c.frequency_hz:.3f} Hz" if c.kind == "flutter" else ""
-    who = c.propeller_text(count=3)
-    return f"{what} at {c.V:.2f} m/s{f}" + (f"; {who}" if who else "")
-
-
 @dataclass
-class ModelAnalysis:
-    """A labelled sweep and its instabilities (sorted by speed)."""
+class ModelAnalysis(Result):
+    """A labelled sweep and its instabilities (sorted by speed).
+
+    A :class:`~propwhirl.results.Result`: :meth:`save` / :meth:`load` write and re-read the
+    analysis file (format ``propwhirl.analysis/3``; the files of earlier releases,
+    ``"propwhirl-analysis"`` with ``format_version`` 1 or 2 or without a format, still load).
+    """
+
+    KIND: ClassVar[str] = "analysis"
+    #: 3: the format tag ``propwhirl.analysis/3`` (the layout of version 2); 2 added the
+    #: propellers' participation at each event, the summary's reference and the eigenvector
+    #: file; 1: the first release
+    VERSION: ClassVar[int] = 3
+    READABLE: ClassVar[tuple[int, ...]] = (1, 2, 3)
+    OLD_FORMATS: ClassVar[Mapping[str, Any]] = {
+        "propwhirl-analysis": ("format_version", (1, 2))}
+    UNTAGGED: ClassVar[int | None] = 1
+    WHAT: ClassVar[str] = "analysis file"
 
     model_name: str
     sweep: Sweep
@@ -269,39 +189,78 @@ class ModelAnalysis:
         """:meth:`events_table` as CSV (also written to ``path``, atomically)."""
         return events_csv(self.events, path)
 
+    # ------------------------------------------------------------------ the analysis file
     def to_dict(self, include_eigenvectors: bool = False) -> dict[str, Any]:
         """The analysis as a JSON-able dict (the document :meth:`save` writes, format
-        :data:`FORMAT` version :data:`FORMAT_VERSION`); a non-finite benignity becomes None."""
+        :data:`FORMAT`), the sweep with its eigenvectors only with ``include_eigenvectors``;
+        a non-finite benignity becomes None."""
+        d = {"format": self.format_name(), **self.encode()}
+        if include_eigenvectors:
+            d["sweep"] = self.sweep.to_dict(include_eigenvectors=True)
+        return d
+
+    def encode(self) -> dict[str, Any]:
         c = self.critical
         pk = {} if self.finite_state is None else {
             "finite_state": {"aero_model": self.finite_state.aero_model,
-                             "events": [_event_dict(e) for e in self.finite_state.events]},
+                             "events": [e.to_dict() for e in self.finite_state.events]},
             "method_comparison": self.method_comparison().to_dict()}
         return {
-            "format": FORMAT, "format_version": FORMAT_VERSION,
             "model_name": self.model_name,
-            "events": [_event_dict(e) for e in self.events],
-            "critical": None if c is None else _event_dict(c),
+            "events": [e.to_dict() for e in self.events],
+            "critical": None if c is None else c.to_dict(),
             "dof_map": None if self.dof_map is None else self.dof_map.to_dict(),
             "content": self.content,
-            "sweep": self.sweep.to_dict(include_eigenvectors=include_eigenvectors),
+            "sweep": self.sweep.to_dict(include_eigenvectors=False),
             "warnings": list(self.warnings),
             "reference": None if self.reference is None else self.reference.to_dict(),
             **pk,
         }
 
     @classmethod
-    def from_dict(cls, d: dict[str, Any]) -> "ModelAnalysis":
-        """The analysis of a dict written by :meth:`to_dict`, checked: format and version,
-        every key, types, shapes (T speeds, n modes), finite numbers, mode ids and names, the
-        DOF map against the sweep's states, the saved critical instability against the events.
-        Anything else is an :class:`~propwhirl.validate.InputError` naming the key.
+    def from_dict(cls, d: Any, where: str = "") -> "ModelAnalysis":
+        """The analysis of a dict written by :meth:`to_dict`, checked: format and version
+        (:data:`READABLE_VERSIONS`; an older format name, or none, is an older version), every
+        key, types, shapes (T speeds, n modes), finite numbers, mode ids and names, the DOF
+        map against the sweep's states, the saved critical instability against the events.
+        Anything else is an :class:`~propwhirl.validate.InputError` naming the key."""
+        return super().from_dict(d, where)
 
-        A dict without "format" and "format_version" (written before they were introduced,
-        otherwise the same layout) is read as version 1."""
-        return analysis_from_dict(d)
+    @classmethod
+    def decode(cls, d: Mapping[str, Any], version: int, where: str = "") -> "ModelAnalysis":
+        keys = ("model_name", "events", "critical", "dof_map", "content", "sweep")
+        r = SavedDict(d, where, keys, ("warnings", "reference", "eigenvectors_file",
+                                       "finite_state", "method_comparison"))
+        sweep = Sweep.from_dict(r.raw("sweep"), r.name("sweep"))
+        events = _events_from(r, "events", sweep)
+        dm = None if r.raw("dof_map") is None else _dof_map_from_dict(r.raw("dof_map"), sweep)
+        notes = r.raw("warnings") if r.has("warnings") else []
+        if not isinstance(notes, list) or not all(isinstance(w, str) for w in notes):
+            raise v.InputError(f"{r.name('warnings')}: must be a list of strings")
+        ref = r.raw("reference") if r.has("reference") else None
+        if r.has("eigenvectors_file"):
+            name = r.raw("eigenvectors_file")
+            if (not isinstance(name, str) or not name or Path(name).name != name
+                    or name in (".", "..")):
+                raise v.InputError(f"{r.name('eigenvectors_file')} = {name!r} is invalid: must "
+                                   "be the name of a file beside the analysis file")
+        a = cls(r.string("model_name"), sweep, events,
+                content=_content_from_dict(r.raw("content"), sweep), dof_map=dm,
+                warnings=tuple(notes),
+                reference=None if ref is None else Reference.from_dict(ref, r.name("reference")),
+                finite_state=_finite_state_from_dict(r, sweep))
+        c = a.critical
+        if r.raw("critical") != (None if c is None else c.to_dict()):
+            raise v.InputError(f"{r.name('critical')}: does not match the critical instability "
+                               "of the events")
+        if r.has("method_comparison") != (a.finite_state is not None) or (
+                r.has("method_comparison")
+                and r.raw("method_comparison") != a.method_comparison().to_dict()):
+            raise v.InputError(f"{r.name('method_comparison')}: does not match the events and "
+                               "finite_state (both or neither must be given)")
+        return a
 
-    def save(self, path: str | Path, include_eigenvectors: bool = False) -> None:
+    def save(self, path: str | Path, include_eigenvectors: bool = False) -> Path:
         """Write the analysis as JSON (V-g-f table, labels, instabilities and their propeller
         participation); with ``include_eigenvectors`` also the eigenvectors of every speed, in
         a NumPy ``.npz`` file beside it (:func:`eigenvectors_path`: ``a.json`` →
@@ -312,7 +271,170 @@ class ModelAnalysis:
         Ctrl-C leaves the old file or none, never a partial one; the npz is written first).
         JSON without NaN or infinity: a non-finite number is an
         :class:`~propwhirl.validate.InputError` naming the key, and nothing is written."""
-        save_analysis(self, path, include_eigenvectors)
+        path = Path(path)
+        d = self.to_dict()
+        npz = None
+        if include_eigenvectors:
+            npz = eigenvectors_path(path)
+            d["eigenvectors_file"] = npz.name
+        bad = non_finite_key(d)
+        if bad:
+            raise v.InputError(f"cannot save the analysis to {fileio.quoted(path)}: {bad} is "
+                               "not a finite number")
+        text = json.dumps(d, allow_nan=False)
+        if npz is not None:
+            try:
+                data = eigenvectors_npz(self.sweep)
+            except v.InputError as exc:
+                raise v.InputError(f"cannot save the analysis to {fileio.quoted(path)}: {exc}"
+                                   ) from None
+            try:
+                fileio.write_bytes(npz, data, what="eigenvector file")
+            except v.InputError as exc:     # name the file asked for (the JSON is untouched)
+                why = str(exc).removeprefix(f"cannot write eigenvector file "
+                                            f"{fileio.quoted(npz)}: ")
+                raise v.InputError(f"cannot write analysis file {fileio.quoted(path)}: {why} "
+                                   f"(writing its eigenvectors to {fileio.shown(npz.name)})"
+                                   ) from None
+        return fileio.write_text(path, text, what="analysis file")
+
+    @classmethod
+    def load(cls, path: str | Path) -> "ModelAnalysis":
+        """Re-read an analysis written by :meth:`save` (any readable version), with its
+        eigenvectors when the file names an eigenvector file and that file is beside it
+        (:func:`~propwhirl.engine.results.read_eigenvectors`: checked against the analysis
+        before it is read), without them otherwise.
+
+        The file is checked throughout (:meth:`from_dict`): an empty, truncated or non-JSON
+        file, another kind or version, a missing key, a wrong type, NaN or infinity,
+        inconsistent shapes is an :class:`~propwhirl.validate.InputError` of one line starting
+        with the path.
+
+        Examples
+        --------
+        >>> import tempfile, pathlib
+        >>> from propwhirl.analysis import ModelAnalysis, analyse
+        >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+        >>> a = analyse(isolated_baseline_propeller(), speeds=[100.0, 200.0, 250.0])
+        >>> path = pathlib.Path(tempfile.mkdtemp()) / "a.json"
+        >>> _ = a.save(path)
+        >>> ModelAnalysis.load(path).critical == a.critical
+        True
+        """
+        return super().load(path)
+
+    def loaded_from(self, path: Path, doc: Mapping[str, Any]) -> "ModelAnalysis":
+        """With the eigenvectors of the file `doc` names, when it is beside `path`."""
+        name = doc.get("eigenvectors_file")
+        if name is None or self.sweep.eigenvectors is not None or not _is_file(path.parent / name):
+            return self
+        X = read_eigenvectors(path.parent / name, self.sweep, fileio.shown(path.parent / name))
+        return replace(self, sweep=replace(self.sweep, eigenvectors=X))
+
+
+#: The format tag of the analysis file this propwhirl writes, its version and the versions it
+#: reads (:class:`ModelAnalysis`; kept under the names of earlier releases).
+FORMAT = ModelAnalysis.format_name()
+FORMAT_VERSION = ModelAnalysis.VERSION
+READABLE_VERSIONS = ModelAnalysis.READABLE
+
+
+def load(path: str | Path) -> ModelAnalysis:
+    """Re-read an analysis file: :meth:`ModelAnalysis.load` (this function is its alias, the
+    name scripts of earlier releases use).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from propwhirl.analysis import analyse, load
+    >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+    >>> a = analyse(isolated_baseline_propeller(), speeds=[100.0, 200.0, 250.0])
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "a.json"
+    >>> _ = a.save(path)
+    >>> load(path).critical == a.critical
+    True
+    """
+    return ModelAnalysis.load(path)
+
+
+def _is_file(path: Path) -> bool:
+    """Whether `path` is a file; an error of the operating system (a name too long, no
+    permission for the folder) is one line naming it."""
+    try:
+        return path.is_file()
+    except OSError as exc:
+        raise v.InputError(f"cannot read eigenvector file {fileio.quoted(path)}: "
+                           f"{fileio.reason(exc)}") from None
+
+
+def _events_from(r: SavedDict, key: str, sweep: Sweep) -> tuple[Instability, ...]:
+    if not isinstance(r.raw(key), list):
+        raise v.InputError(f"{r.name(key)}: must be a list")
+    return tuple(Instability.from_dict(e, f"{r.name(key)}[{i}]", sweep.mode_labels)
+                 for i, e in enumerate(r.raw(key)))
+
+
+def _dof_map_from_dict(d: Any, sweep: Sweep) -> DofMap:
+    """The DOF map of an analysis file, checked against the sweep's states."""
+    keys = ("q_labels", "q_kinds", "q_node", "q_propeller", "w_labels", "w_node", "node_y",
+            "propellers")
+    r = SavedDict(d, "dof_map", keys)
+    n_dof = len(r.strings("q_labels"))
+    props = r.raw("propellers")
+    if not isinstance(props, list):
+        raise v.InputError("dof_map.propellers: must be a list")
+    dofs = []
+    for i, p in enumerate(props):
+        pr = SavedDict(p, f"dof_map.propellers[{i}]",
+                       ("number", "theta", "psi", "rotation", "spinning", "y", "node"))
+        spinning = pr.raw("spinning")
+        if not isinstance(spinning, bool):
+            raise v.InputError(f"{pr.name('spinning')}: must be true or false")
+        node = pr.raw("node")
+        dofs.append(PropellerDofs(
+            pr.integer("number", 0), pr.integer("theta", 0, n_dof - 1),
+            pr.integer("psi", 0, n_dof - 1), pr.integer("rotation", -1, 1), spinning,
+            pr.number("y", optional=True), None if node is None else pr.integer("node", 0)))
+    kw = dict(q_labels=r.strings("q_labels"), q_kinds=r.strings("q_kinds"),
+              q_node=tuple(int(k) for k in r.array("q_node", int)),
+              q_propeller=tuple(int(k) for k in r.array("q_propeller", int)),
+              w_labels=r.strings("w_labels"),
+              w_node=tuple(int(k) for k in r.array("w_node", int)),
+              propellers=tuple(dofs), node_y=tuple(float(y) for y in r.array("node_y")))
+    try:
+        dm = DofMap(**kw)
+    except v.InputError as exc:
+        raise v.InputError(f"dof_map: {exc}") from None
+    if dm.state_labels != sweep.state_labels:
+        raise v.InputError(f"dof_map: its {dm.n_states} states do not match the sweep's "
+                           f"{len(sweep.state_labels)} state labels")
+    return dm
+
+
+def _content_from_dict(d: Any, sweep: Sweep) -> dict[str, dict[str, float]]:
+    if not isinstance(d, dict):
+        raise v.InputError("content: must be an object {mode name: {group: share}}")
+    out = {}
+    for label, shares in d.items():
+        if label not in sweep.mode_labels:
+            raise v.InputError(f"content: {label!r} is not a mode of the sweep")
+        r = SavedDict(shares, f"content.{label}", (), tuple(shares) if isinstance(shares, dict)
+                      else ())
+        out[label] = {g: r.number(g) for g in shares}
+    return out
+
+
+def _finite_state_from_dict(r: SavedDict, sweep: Sweep) -> FiniteState | None:
+    """The finite-state events of a p-k analysis (key "finite_state", absent otherwise and in
+    files written before it)."""
+    if not r.has("finite_state"):
+        return None
+    f = r.sub("finite_state", ("aero_model", "events"))
+    events = _events_from(f, "events", sweep)
+    try:
+        return FiniteState(f.string("aero_model"), events)
+    except v.InputError as exc:
+        raise v.InputError(f"finite_state: {exc}") from None
 
 
 # ----------------------------------------------------------------------------- analyse
@@ -414,8 +536,6 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         shapes.append(branch_point_shape(model, sw, p.mode, p.bracket[0], matrix_fn, lift))
     events = with_participation(model, events, shapes)
     if chosen == "pk":  # the tracked finite-state modes, their crossings by the exact p-k method
-        from propwhirl.analysis.pk import pk_instabilities
-
         pk_notes: list[str] = []
         finite_state = tuple(sorted(events, key=lambda e: (e.V, e.mode)))
         events = pk_instabilities(model, sw.eigenvalues[0], names, grid, xtol=xtol,

@@ -34,7 +34,9 @@ import numpy as np
 
 from propwhirl import fileio
 from propwhirl import validate as v
-from propwhirl.engine.results import SavedDict, Sweep
+from propwhirl.engine.results import Sweep
+from propwhirl.model.systems import IsolatedPropeller, PropellerWing, TypicalSection
+from propwhirl.results import SavedDict
 
 
 # ----------------------------------------------------------------------------- text tables
@@ -143,8 +145,6 @@ def reference(model) -> Reference:
     """The :class:`Reference` of a model: b_ref is the wing's root semichord (propeller-wing
     models), the semichord b (typical section) or the propeller radius R (an isolated
     propeller); density and speed of sound of ``model.flight``."""
-    from propwhirl.model.systems import IsolatedPropeller, PropellerWing, TypicalSection
-
     if isinstance(model, PropellerWing):
         b, what = model.wing.root_chord / 2, "root semichord of the wing"
     elif isinstance(model, TypicalSection):

@@ -147,9 +147,6 @@ def _add_clearance(sub) -> None:
 
 
 def _sensitivity(args: argparse.Namespace) -> int:
-    import json
-
-    from propwhirl import fileio
     from propwhirl.analysis.sensitivity import critical_sensitivities
     from propwhirl.analysis.stability import analyse
 
@@ -170,8 +167,7 @@ def _sensitivity(args: argparse.Namespace) -> int:
     cs = critical_sensitivities(model, a, event)
     echo(cs.format(args.top))
     if args.json:
-        fileio.write_text(args.json, json.dumps(cs.to_dict(args.top), indent=1) + "\n",
-                          what="sensitivities")
+        cs.save(args.json, args.top)
         print(f"wrote {args.json}")
     if args.plot:
         from propwhirl.app import plots

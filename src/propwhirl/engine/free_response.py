@@ -3,23 +3,34 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 import scipy.linalg as sla
 from scipy.integrate import solve_ivp
 
 from propwhirl.engine.eigensolve import _as_square_stack, single_thread_blas
+from propwhirl.results import Result, SavedDict
 from propwhirl.validate import InputError, finite, in_range, increasing
 
 
 @dataclass(frozen=True)
-class TimeResponse:
-    """Time histories of the states: t (T,) [s], x (T, n), labels (n)."""
+class TimeResponse(Result):
+    """Time histories of the states: t (T,) [s], x (T, n), labels (n).
+
+    A :class:`~propwhirl.results.Result` of kind "time-response" (format
+    ``propwhirl.time-response/1``; a dict without a format, as written before it, is
+    version 1): :meth:`save` / :meth:`load`."""
 
     t: np.ndarray
     x: np.ndarray
     labels: tuple[str, ...]
+
+    KIND: ClassVar[str] = "time-response"
+    VERSION: ClassVar[int] = 1
+    READABLE: ClassVar[tuple[int, ...]] = (1,)
+    UNTAGGED: ClassVar[int | None] = 1
+    WHAT: ClassVar[str] = "time-response file"
 
     def __getitem__(self, label: str) -> np.ndarray:
         try:
@@ -27,13 +38,21 @@ class TimeResponse:
         except ValueError:
             raise InputError(f"no state labelled {label!r}; states are {self.labels}") from None
 
-    def to_dict(self) -> dict[str, Any]:
+    def encode(self) -> dict[str, Any]:
         return {"t": self.t.tolist(), "x": self.x.tolist(), "labels": list(self.labels)}
 
     @classmethod
-    def from_dict(cls, d: Mapping[str, Any]) -> "TimeResponse":
-        return cls(np.asarray(d["t"], dtype=float), np.asarray(d["x"], dtype=float),
-                   tuple(d["labels"]))
+    def decode(cls, d: Mapping[str, Any], version: int, where: str = "") -> "TimeResponse":
+        """t finite and increasing, x of shape (T, n) finite, n labels (InputError naming the
+        key)."""
+        r = SavedDict(d, where, ("t", "x", "labels"))
+        t = r.array("t")
+        if t.size == 0:
+            raise InputError(f"{r.name('t')}: no times")
+        if not (np.diff(t) > 0).all():
+            raise InputError(f"{r.name('t')}: times must increase")
+        labels = r.strings("labels")
+        return cls(t, r.array("x", ndim=2, shape=(t.size, len(labels))), labels)
 
 
 def time_response(A, x0, t, state_labels: Sequence[str] | None = None, *,

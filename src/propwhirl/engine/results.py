@@ -10,10 +10,11 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
+from propwhirl.results import Result, SavedDict, _json_type, _shape_text
 from propwhirl.validate import InputError
 
 
@@ -24,152 +25,6 @@ def _c2d(z: np.ndarray) -> dict[str, Any]:
 
 def _d2c(d: Mapping[str, Any]) -> np.ndarray:
     return np.asarray(d["re"], dtype=float) + 1j * np.asarray(d["im"], dtype=float)
-
-
-def _shape_text(shape: tuple[int, ...]) -> str:
-    return str(tuple(int(s) for s in shape))
-
-
-class SavedDict:
-    """Reading a dict re-read from a result file: every value is checked for its type, shape
-    and finiteness, and an error names the key (``sweep.eigenvalues.re: shape (35, 12) does
-    not match 3 speeds``) — never a ``KeyError`` or ``TypeError``.
-
-    `where` is the dotted path of the dict in the file ("sweep", "events[3]"); `required` and
-    `optional` are its keys (any other key is an error).
-    """
-
-    _KINDS = {float: "fiu", int: "iu", bool: "b"}
-    _TYPE_NAMES = {float: "numbers", int: "integers", bool: "booleans (true/false)"}
-
-    def __init__(self, d: Any, where: str, required: Sequence[str], optional: Sequence[str] = ()):
-        self.where = where
-        if not isinstance(d, Mapping):
-            raise InputError(f"{where}: must be an object, got {_json_type(d)}")
-        missing = [k for k in required if k not in d]
-        if missing:
-            raise InputError(f"{where}: missing key{'s' * (len(missing) > 1)} "
-                             + ", ".join(repr(k) for k in missing))
-        unknown = sorted(str(k) for k in d if k not in required and k not in optional)
-        if unknown:
-            raise InputError(f"{where}: unknown key{'s' * (len(unknown) > 1)} "
-                             + ", ".join(repr(k) for k in unknown))
-        self.d = d
-
-    def name(self, key: str) -> str:
-        return f"{self.where}.{key}" if self.where else key
-
-    def has(self, key: str) -> bool:
-        return key in self.d
-
-    def raw(self, key: str) -> Any:
-        return self.d[key]
-
-    def sub(self, key: str, required: Sequence[str], optional: Sequence[str] = ()) -> "SavedDict":
-        return SavedDict(self.d[key], self.name(key), required, optional)
-
-    def _fail(self, key: str, must: str) -> InputError:
-        return InputError(f"{self.name(key)}: {must}")
-
-    def array(self, key: str, kind: type = float, ndim: int = 1,
-              shape: Sequence[int | None] | None = None, finite: bool = True) -> np.ndarray:
-        """`key` as an array of `kind` (float, int or bool) with `ndim` dimensions; `shape`
-        entries that are not None must match."""
-        raw = self.d[key]
-        if not isinstance(raw, list):
-            raise self._fail(key, f"must be a list, got {_json_type(raw)}")
-        try:
-            arr = np.asarray(raw)
-        except (ValueError, TypeError, RecursionError):
-            raise self._fail(key, "must be a rectangular list of lists "
-                             f"({ndim}-dimensional)") from None
-        if arr.size == 0 and arr.ndim == 1 and ndim > 1:  # [] for an empty (0, m) table
-            rest = tuple(shape[1:]) if shape is not None else (None,) * (ndim - 1)
-            arr = arr.reshape((0,) + tuple(0 if m is None else m for m in rest))
-        if arr.ndim != ndim:
-            raise self._fail(key, f"must be {ndim}-dimensional, got shape {_shape_text(arr.shape)}")
-        if arr.size and arr.dtype.kind not in self._KINDS[kind]:
-            raise self._fail(key, f"must hold {self._TYPE_NAMES[kind]} only")
-        arr = arr.astype(kind)
-        if finite and kind is float and not np.isfinite(arr).all():
-            raise self._fail(key, "holds non-finite numbers (NaN or infinity)")
-        if shape is not None:
-            for axis, (got, want) in enumerate(zip(arr.shape, shape)):
-                if want is not None and got != want:
-                    raise self._fail(key, f"shape {_shape_text(arr.shape)}: axis {axis} must "
-                                     f"have {want} entries")
-        return arr
-
-    def complex_array(self, key: str, ndim: int, shape: Sequence[int | None] | None = None
-                      ) -> np.ndarray:
-        """`key` saved as ``{"re": ..., "im": ...}`` (finite, same shape)."""
-        c = self.sub(key, ("re", "im"))
-        re = c.array("re", ndim=ndim, shape=shape)
-        im = c.array("im", ndim=ndim, shape=re.shape)
-        return re + 1j * im
-
-    def number(self, key: str, optional: bool = False) -> float | None:
-        """A finite number (None allowed with `optional`)."""
-        x = self.d[key]
-        if x is None and optional:
-            return None
-        if isinstance(x, bool) or not isinstance(x, (int, float)) or not np.isfinite(x):
-            raise self._fail(key, f"must be a finite number, got {_json_value(x)}")
-        return float(x)
-
-    def integer(self, key: str, low: int | None = None, high: int | None = None) -> int:
-        x = self.d[key]
-        if isinstance(x, bool) or not isinstance(x, int):
-            raise self._fail(key, f"must be an integer, got {_json_value(x)}")
-        if (low is not None and x < low) or (high is not None and x > high):
-            raise self._fail(key, f"= {x} is outside [{low}, {high}]")
-        return x
-
-    def string(self, key: str, choices: Sequence[str] = (), optional: bool = False) -> str | None:
-        x = self.d[key]
-        if x is None and optional:
-            return None
-        if not isinstance(x, str):
-            raise self._fail(key, f"must be a string, got {_json_value(x)}")
-        if choices and x not in choices:
-            raise self._fail(key, f"= {x!r} is invalid: must be one of {', '.join(choices)}")
-        return x
-
-    def strings(self, key: str, n: int | None = None) -> tuple[str, ...]:
-        x = self.d[key]
-        if not isinstance(x, list) or not all(isinstance(s, str) for s in x):
-            raise self._fail(key, "must be a list of strings")
-        if n is not None and len(x) != n:
-            raise self._fail(key, f"has {len(x)} entries, need {n}")
-        return tuple(x)
-
-    def counters(self, key: str) -> dict[str, int]:
-        x = self.d[key]
-        if not isinstance(x, Mapping) or not all(
-                isinstance(k, str) and isinstance(c, int) and not isinstance(c, bool)
-                for k, c in x.items()):
-            raise self._fail(key, "must be an object of integer counters")
-        return dict(x)
-
-    def bracket(self, key: str) -> tuple[float, float]:
-        """A speed interval [lo, hi] [m/s], finite, lo <= hi."""
-        b = self.array(key, shape=(2,))
-        if not b[0] <= b[1]:
-            raise self._fail(key, f"= [{float(b[0])!r}, {float(b[1])!r}] is invalid: must "
-                             "have lo <= hi")
-        return float(b[0]), float(b[1])
-
-
-def _json_type(x: Any) -> str:
-    return {dict: "an object", list: "a list", str: "a string", bool: "a boolean",
-            int: "a number", float: "a number", type(None): "null"}.get(type(x), type(x).__name__)
-
-
-def _json_value(x: Any) -> str:
-    if isinstance(x, (dict, list)):
-        return _json_type(x)
-    text = repr(x)
-    return text if len(text) <= 40 else text[:37] + "..."
 
 
 @dataclass(frozen=True)
@@ -367,7 +222,12 @@ class Sweep:
 
 @dataclass(frozen=True)
 class CriticalPoint:
-    """A sign change of a tracked mode's real part.
+    """A sign change of a tracked mode's real part: the engine's raw crossing.
+
+    The analysis names it (:class:`propwhirl.analysis.stability.Instability`, the event a
+    user sees: its ``event`` is this ``direction``, or "unstable-at-start" /
+    "frequency-zero" for events without a crossing).  The quantities both have carry the same
+    names in both dict forms: kind, mode, label, V [m/s], frequency_hz [Hz], benignity [m/s].
 
     mode, label:   tracked mode id and label.
     kind:          "flutter" (complex pair, Im λ ≠ 0) or "divergence" (real root through 0).
@@ -501,28 +361,42 @@ class FrequencyZero:
 
 
 @dataclass(frozen=True)
-class Analysis:
-    """A sweep and its critical points."""
+class Analysis(Result):
+    """A sweep and its critical points (the engine's result, before modes are named).
+
+    A :class:`~propwhirl.results.Result` of kind "engine-analysis" (format
+    ``propwhirl.engine-analysis/1``; a dict without a format, as written before it, is
+    version 1).  Its eigenvectors are in the JSON (``include_eigenvectors``)."""
 
     sweep: Sweep
     criticals: Criticals
 
+    KIND: ClassVar[str] = "engine-analysis"
+    VERSION: ClassVar[int] = 1
+    READABLE: ClassVar[tuple[int, ...]] = (1,)
+    UNTAGGED: ClassVar[int | None] = 1
+    WHAT: ClassVar[str] = "engine analysis file"
+
     def to_dict(self, include_eigenvectors: bool = True) -> dict[str, Any]:
-        return {"sweep": self.sweep.to_dict(include_eigenvectors),
+        """``{"format": ..., "sweep": ..., "criticals": ...}`` (JSON-able)."""
+        return {"format": self.format_name(), "sweep": self.sweep.to_dict(include_eigenvectors),
                 "criticals": self.criticals.to_dict()}
 
+    def encode(self) -> dict[str, Any]:
+        return {"sweep": self.sweep.to_dict(), "criticals": self.criticals.to_dict()}
+
     @classmethod
-    def from_dict(cls, d: Mapping[str, Any]) -> "Analysis":
-        """The analysis written by :meth:`to_dict`, checked (an :class:`InputError` naming the
-        key): the sweep, its crossings, and mode ids within the sweep's modes."""
-        r = SavedDict(d, "", ("sweep", "criticals"))
-        sweep = Sweep.from_dict(r.raw("sweep"))
-        crit = Criticals.from_dict(r.raw("criticals"))
+    def decode(cls, d: Mapping[str, Any], version: int, where: str = "") -> "Analysis":
+        """The sweep, its crossings, and mode ids within the sweep's modes, checked (an
+        :class:`InputError` naming the key)."""
+        r = SavedDict(d, where, ("sweep", "criticals"))
+        sweep = Sweep.from_dict(r.raw("sweep"), r.name("sweep"))
+        crit = Criticals.from_dict(r.raw("criticals"), r.name("criticals"))
         ids = [("points", p.mode) for p in crit.points] + [("humps", h.mode) for h in crit.humps]
         ids += [("unstable_at_start", k) for k in crit.unstable_at_start]
         for key, k in ids:
             if k >= sweep.n_modes:
-                raise InputError(f"criticals.{key}: mode id {k} is outside the sweep's "
+                raise InputError(f"{r.name('criticals')}.{key}: mode id {k} is outside the sweep's "
                                  f"{sweep.n_modes} modes")
         return cls(sweep, crit)
 

@@ -36,11 +36,11 @@ from __future__ import annotations
 
 import csv
 import io
-import json
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Callable, Sequence
+from typing import Any, Callable, ClassVar, Sequence
 
 import numpy as np
 
@@ -49,13 +49,13 @@ from propwhirl import validate as v
 from propwhirl.engine import eigenvalues
 from propwhirl.studies import paths as P
 from propwhirl.model import validity
+from propwhirl.results import Result, SavedDict
 from propwhirl.studies.continuation import ContinuationOptions, Counted, point_key, trace
 
 #: A variant of the model at a point of the plane: ``variant(p) -> Model``.
 Variant = Callable[[np.ndarray], Any]
 
 #: Format of the saved boundaries.
-FORMAT = "propwhirl.boundary/1"
 
 
 def path_variant(model: Any, parameters: Sequence[str]) -> tuple[Variant, tuple[P.Parameter, ...]]:
@@ -140,8 +140,11 @@ class CriticalSpeedLevel:
 
 # ============================================================================ result
 @dataclass(frozen=True)
-class Boundary:
+class Boundary(Result):
     """A traced boundary in a parameter plane.
+
+    A :class:`~propwhirl.results.Result` of kind "boundary" (format ``propwhirl.boundary/1``):
+    :meth:`save` / :meth:`load`.
 
     kind: "neutral-stability" (max Re λ = 0 at `speed`) or "critical-speed" (V_crit = `speed`);
     parameters, units: the two paths and their units; lower, upper: the plane's bounds;
@@ -166,6 +169,11 @@ class Boundary:
     starts: np.ndarray
     model_name: str = ""
     settings: dict[str, Any] = field(default_factory=dict)
+
+    KIND: ClassVar[str] = "boundary"
+    VERSION: ClassVar[int] = 1
+    READABLE: ClassVar[tuple[int, ...]] = (1,)
+    WHAT: ClassVar[str] = "boundary file"
 
     @property
     def evaluation_name(self) -> str:
@@ -192,13 +200,13 @@ class Boundary:
                 lines.append(f"    {p[0]:10.4f} {p[1]:10.4f}{extra}")
         return "\n".join(lines)
 
-    def to_dict(self) -> dict[str, Any]:
+    def encode(self) -> dict[str, Any]:
         def clean(x: Any) -> Any:
             if isinstance(x, float) and not math.isfinite(x):
                 return None
             return x
 
-        return {"format": FORMAT, "kind": self.kind, "model_name": self.model_name,
+        return {"kind": self.kind, "model_name": self.model_name,
                 "parameters": list(self.parameters), "units": list(self.units),
                 "speed": self.speed, "lower": list(self.lower), "upper": list(self.upper),
                 "evaluations": self.evaluations, "evaluation": self.evaluation_name,
@@ -207,41 +215,37 @@ class Boundary:
                             "info": [{k: clean(x) for k, x in d.items()} for d in inf]}
                            for c, cl, st, inf in zip(self.curves, self.closed, self.stops, self.info)]}
 
-    def save_json(self, path: str | Path) -> None:
-        """The boundary as JSON (atomically)."""
-        fileio.write_text(path, json.dumps(self.to_dict(), indent=1, allow_nan=False),
-                          what="boundary file")
-
     @classmethod
-    def from_dict(cls, d: Any, where: str = "boundary") -> "Boundary":
-        """The boundary written by :meth:`to_dict`, checked (InputError naming what is wrong;
-        a frequency written as null — not finite — is read back as NaN)."""
-        if not isinstance(d, dict) or d.get("format") != FORMAT:
-            raise v.InputError(f"{where}: not a boundary file (format must be {FORMAT!r})")
+    def decode(cls, d: Mapping[str, Any], version: int, where: str = "") -> "Boundary":
+        """Every key checked (a frequency written as null — not finite — is read back as
+        NaN)."""
+        r = SavedDict(d, where, ("kind", "parameters", "units", "speed", "lower", "upper",
+                                 "evaluations", "starts", "curves"),
+                      ("model_name", "settings", "evaluation"))
+        kind = r.string("kind", ("neutral-stability", "critical-speed"))
+        curves, closed, stops, info = [], [], [], []
+        for w, c in r.items("curves"):
+            cr = SavedDict(c, w, ("points", "closed", "stops", "info"))
+            pts = cr.array("points", ndim=2, shape=(None, 2))
+            curves.append(pts)
+            closed.append(cr.boolean("closed"))
+            stops.append(cr.strings("stops"))
+            rows = cr.items("info")
+            if len(rows) != len(pts):
+                raise v.InputError(f"{cr.name('info')}: has {len(rows)} entries, need one per "
+                                   f"point ({len(pts)})")
+            info.append(tuple(_info_entry(x, wi) for wi, x in rows))
+        return cls(kind, r.strings("parameters", 2), r.strings("units", 2), r.number("speed"),
+                   tuple(float(x) for x in r.array("lower", shape=(2,))),
+                   tuple(float(x) for x in r.array("upper", shape=(2,))),
+                   tuple(curves), tuple(closed), tuple(stops), tuple(info),
+                   r.integer("evaluations", 0), r.array("starts", ndim=2, shape=(None, 2)),
+                   r.string("model_name") if r.has("model_name") else "",
+                   _settings(r) if r.has("settings") else {})
 
-        def number(x: Any) -> Any:
-            return math.nan if x is None else x
-
-        try:
-            curves = d["curves"]
-            return cls(
-                str(d["kind"]), tuple(str(p) for p in d["parameters"]),
-                tuple(str(u) for u in d["units"]), float(d["speed"]),
-                tuple(float(x) for x in d["lower"]), tuple(float(x) for x in d["upper"]),
-                tuple(np.asarray(c["points"], dtype=float).reshape(-1, 2) for c in curves),
-                tuple(bool(c["closed"]) for c in curves),
-                tuple(tuple(str(x) for x in c["stops"]) for c in curves),
-                tuple(tuple({k: number(x) for k, x in inf.items()} for inf in c["info"])
-                      for c in curves),
-                int(d["evaluations"]), np.asarray(d["starts"], dtype=float),
-                str(d.get("model_name", "")), dict(d.get("settings", {})))
-        except (KeyError, TypeError, ValueError, AttributeError) as exc:
-            raise v.InputError(f"{where}: malformed ({type(exc).__name__}: {exc})") from None
-
-    @classmethod
-    def load(cls, path: str | Path) -> "Boundary":
-        """Read a boundary written by :meth:`save_json`."""
-        return cls.from_dict(fileio.read_json(path, "boundary file"), str(path))
+    def save_json(self, path: str | Path) -> Path:
+        """Alias of :meth:`save` (the name of earlier releases)."""
+        return self.save(path)
 
     def to_csv(self, path: str | Path | None = None) -> str:
         """One row per point: curve (from 1), point, the two parameters, the mode's data."""
@@ -258,6 +262,40 @@ class Boundary:
         if path is not None:
             fileio.write_text(path, text, what="boundary table")
         return text
+
+
+
+#: The format tag of the boundary file (:class:`Boundary`; the name of earlier releases).
+FORMAT = Boundary.format_name()
+
+
+def _info_entry(x: Any, where: str) -> dict[str, Any]:
+    """One point's data of a boundary file: names → a number (null: NaN) or a string."""
+    if not isinstance(x, dict):
+        raise v.InputError(f"{where}: must be an object")
+    out = {}
+    for k, y in x.items():
+        if isinstance(y, str):
+            out[k] = y
+        elif y is None:
+            out[k] = math.nan
+        elif isinstance(y, (int, float)) and not isinstance(y, bool) and math.isfinite(y):
+            out[k] = y
+        else:
+            raise v.InputError(f"{where}.{k}: must be a finite number, null or a string, got "
+                               f"{v.short_repr(y)}")
+    return out
+
+
+def _settings(r: SavedDict) -> dict[str, Any]:
+    """The options a boundary was traced with: names → true/false, a number, a string or null."""
+    x = r.raw("settings")
+    if not isinstance(x, dict) or not all(
+            y is None or isinstance(y, (bool, str)) or
+            (isinstance(y, (int, float)) and math.isfinite(y)) for y in x.values()):
+        raise v.InputError(f"{r.name('settings')}: must be an object of options (true/false, "
+                           "numbers, strings)")
+    return dict(x)
 
 
 def _check_plane(lower: Sequence[float], upper: Sequence[float],

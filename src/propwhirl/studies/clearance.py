@@ -26,11 +26,11 @@ from __future__ import annotations
 
 import csv
 import io
-import json
 import math
-from dataclasses import dataclass, replace
+from collections.abc import Mapping
+from dataclasses import dataclass, fields, replace
 from pathlib import Path
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 from scipy.optimize import brentq
@@ -39,6 +39,7 @@ from propwhirl import fileio, limits
 from propwhirl import validate as v
 from propwhirl.analysis.stability import ModelAnalysis, analyse
 from propwhirl.model import validity
+from propwhirl.results import Result, SavedDict
 from propwhirl.studies import paths as P
 from propwhirl.studies.critical import convention, critical_instability, wing_divergence_predicate
 
@@ -46,11 +47,12 @@ from propwhirl.studies.critical import convention, critical_instability, wing_di
 FACTOR_CS25 = 1.15
 FACTOR_CFR23 = 1.2
 
-FORMAT = "propwhirl.clearance/1"
 
 
-#: the fields written as null when not finite (read back as NaN)
-_NAN_FIELDS = ("V", "frequency_hz", "margin", "critical_speed")
+def _clean(d: dict[str, Any]) -> dict[str, Any]:
+    """A dataclass's fields for JSON: a non-finite float as None, a tuple as a list."""
+    return {k: (None if isinstance(x, float) and not math.isfinite(x) else
+                list(x) if isinstance(x, tuple) else x) for k, x in d.items()}
 
 
 @dataclass(frozen=True)
@@ -65,6 +67,19 @@ class Margin:
     frequency_hz: float
     margin: float
     counted: bool
+
+    def to_dict(self) -> dict[str, Any]:
+        """The fields (a non-finite number as None).  ``mode`` is the mode's name (the
+        ``label`` of an :class:`~propwhirl.analysis.stability.Instability`)."""
+        return _clean(vars(self))
+
+    @classmethod
+    def from_dict(cls, d: Any, where: str = "margin") -> "Margin":
+        """The margin written by :meth:`to_dict`, checked (null numbers read as NaN)."""
+        r = SavedDict(d, where, [f.name for f in fields(cls)])
+        return cls(r.string("kind"), r.string("event"), r.string("mode"), r.number_or_nan("V"),
+                   r.number_or_nan("frequency_hz"), r.number_or_nan("margin"),
+                   r.boolean("counted"))
 
 
 @dataclass(frozen=True)
@@ -91,10 +106,34 @@ class MinimumFrequency:
     note: str
     analyses: int
 
+    def to_dict(self) -> dict[str, Any]:
+        """The fields (a non-finite number as None)."""
+        return _clean(vars(self))
+
+    @classmethod
+    def from_dict(cls, d: Any, where: str = "minimum") -> "MinimumFrequency":
+        """The entry written by :meth:`to_dict`, checked (a null critical speed as NaN)."""
+        r = SavedDict(d, where, [f.name for f in fields(cls)])
+        lo, hi = r.array("range", shape=(2,))
+        return cls(r.integer("propeller", 1), r.string("parameter", ("f_theta", "f_psi")),
+                   r.string("path"), r.number("current", optional=True),
+                   r.number("frequency", optional=True),
+                   r.string("status", ("found", "at or below the range", "none in range")),
+                   r.number_or_nan("critical_speed"), (float(lo), float(hi)), r.string("note"),
+                   r.integer("analyses", 0))
+
 
 @dataclass(frozen=True)
-class Clearance:
-    """The clearance result (module docstring); ``cleared`` decides the CLI's exit code."""
+class Clearance(Result):
+    """The clearance result (module docstring); ``cleared`` decides the CLI's exit code.
+
+    A :class:`~propwhirl.results.Result` of kind "clearance" (format
+    ``propwhirl.clearance/1``): :meth:`save` / :meth:`load`."""
+
+    KIND: ClassVar[str] = "clearance"
+    VERSION: ClassVar[int] = 1
+    READABLE: ClassVar[tuple[int, ...]] = (1,)
+    WHAT: ClassVar[str] = "clearance file"
 
     model_name: str
     V_D: float
@@ -143,54 +182,34 @@ class Clearance:
         lines.append(f"  {self.analyses} analyses")
         return "\n".join(lines)
 
-    def to_dict(self) -> dict[str, Any]:
-        def clean(d: dict[str, Any]) -> dict[str, Any]:
-            return {k: (None if isinstance(x, float) and not math.isfinite(x) else
-                        list(x) if isinstance(x, tuple) else x) for k, x in d.items()}
-
-        return {"format": FORMAT, "model_name": self.model_name, "V_D": self.V_D,
+    def encode(self) -> dict[str, Any]:
+        return {"model_name": self.model_name, "V_D": self.V_D,
                 "factor": self.factor, "V_required": self.V_required, "cleared": self.cleared,
                 "convention": self.convention, "speed_range": list(self.speed_range),
-                "critical": None if self.critical is None else clean(vars(self.critical)),
-                "margins": [clean(vars(m)) for m in self.margins],
-                "minimum_frequencies": [clean(vars(q)) for q in self.minimum],
+                "critical": None if self.critical is None else self.critical.to_dict(),
+                "margins": [m.to_dict() for m in self.margins],
+                "minimum_frequencies": [q.to_dict() for q in self.minimum],
                 "analyses": self.analyses}
 
-    def save_json(self, path: str | Path) -> None:
-        """The result as JSON (atomically)."""
-        fileio.write_text(path, json.dumps(self.to_dict(), indent=1, allow_nan=False),
-                          what="clearance file")
-
     @classmethod
-    def from_dict(cls, d: Any, where: str = "clearance") -> "Clearance":
-        """The result written by :meth:`to_dict`, checked (InputError naming what is wrong;
-        a speed written as null — not finite — is read back as NaN)."""
-        if not isinstance(d, dict) or d.get("format") != FORMAT:
-            raise v.InputError(f"{where}: not a clearance file (format must be {FORMAT!r})")
+    def decode(cls, d: Mapping[str, Any], version: int, where: str = "") -> "Clearance":
+        """Every key checked (a speed written as null — not finite — is read back as NaN)."""
+        r = SavedDict(d, where, ("model_name", "V_D", "factor", "V_required", "cleared",
+                                 "convention", "speed_range", "critical", "margins",
+                                 "minimum_frequencies", "analyses"))
+        crit = r.raw("critical")
+        lo, hi = r.bracket("speed_range")
+        return cls(r.string("model_name"), r.number("V_D"), r.number("factor"),
+                   r.number("V_required"), r.boolean("cleared"),
+                   None if crit is None else Margin.from_dict(crit, r.name("critical")),
+                   tuple(Margin.from_dict(m, w) for w, m in r.items("margins")),
+                   tuple(MinimumFrequency.from_dict(q, w)
+                         for w, q in r.items("minimum_frequencies")),
+                   r.string("convention"), (lo, hi), r.integer("analyses", 0))
 
-        def fields_of(kind, x: dict) -> dict:
-            out = {k: (math.nan if x[k] is None and k in _NAN_FIELDS else x[k])
-                   for k in kind.__dataclass_fields__}
-            return {k: tuple(y) if isinstance(y, list) else y for k, y in out.items()}
-
-        try:
-            crit = d["critical"]
-            return cls(
-                str(d["model_name"]), float(d["V_D"]), float(d["factor"]),
-                float(d["V_required"]), bool(d["cleared"]),
-                None if crit is None else Margin(**fields_of(Margin, crit)),
-                tuple(Margin(**fields_of(Margin, m)) for m in d["margins"]),
-                tuple(MinimumFrequency(**fields_of(MinimumFrequency, q))
-                      for q in d["minimum_frequencies"]),
-                str(d["convention"]), tuple(float(x) for x in d["speed_range"]),
-                int(d["analyses"]))
-        except (KeyError, TypeError, ValueError, AttributeError) as exc:
-            raise v.InputError(f"{where}: malformed ({type(exc).__name__}: {exc})") from None
-
-    @classmethod
-    def load(cls, path: str | Path) -> "Clearance":
-        """Read a result written by :meth:`save_json`."""
-        return cls.from_dict(fileio.read_json(path, "clearance file"), str(path))
+    def save_json(self, path: str | Path) -> Path:
+        """Alias of :meth:`save` (the name of earlier releases)."""
+        return self.save(path)
 
     def to_csv(self, path: str | Path | None = None) -> str:
         """Two tables in one CSV: the instabilities (section "instability") and the minimum
@@ -216,6 +235,10 @@ class Clearance:
         if path is not None:
             fileio.write_text(path, text, what="clearance table")
         return text
+
+
+#: The format tag of the clearance file (:class:`Clearance`; the name of earlier releases).
+FORMAT = Clearance.format_name()
 
 
 def clearance_speeds(model: Any, V_required: float, speeds=None) -> np.ndarray:

@@ -20,11 +20,10 @@ from __future__ import annotations
 
 import csv
 import io
-import json
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import Any, ClassVar, Mapping, Sequence
 
 import numpy as np
 
@@ -32,6 +31,7 @@ from propwhirl import fileio, limits
 from propwhirl import validate as v
 from propwhirl.analysis.stability import ModelAnalysis, analyse
 from propwhirl.analysis.summary import text_table
+from propwhirl.results import Result, SavedDict
 from propwhirl.studies import paths as P
 from propwhirl.studies.critical import (convention, critical_instability, static_divergence_speed,
                                         wing_divergence_predicate)
@@ -49,7 +49,6 @@ _FLOAT_COLUMNS = ("critical_speed", "critical_frequency", "propeller_share", "st
 _INT_COLUMNS = ("propeller",)
 
 #: Format version of the saved maps.
-FORMAT = "propwhirl.critical-map/1"
 
 
 # ============================================================================ one point
@@ -177,10 +176,25 @@ class Axis:
         return {"path": self.path, "values": [float(x) for x in self.values], "unit": self.unit,
                 "design": self.design, "doc": self.doc}
 
+    @classmethod
+    def from_dict(cls, d: Any, where: str = "axis") -> "Axis":
+        """The axis written by :meth:`to_dict`, checked (unit, design and doc may be absent)."""
+        r = SavedDict(d, where, ("path", "values"), ("unit", "design", "doc"))
+        values = r.array("values")
+        if values.size == 0:
+            raise v.InputError(f"{r.name('values')}: no values")
+        return cls(r.string("path"), values, r.string("unit") if r.has("unit") else "",
+                   r.number("design", optional=True) if r.has("design") else None,
+                   r.string("doc") if r.has("doc") else "")
+
 
 @dataclass(frozen=True)
-class CriticalMap:
+class CriticalMap(Result):
     """The critical speed of a model over one (a sweep) or two (a map) parameters.
+
+    A :class:`~propwhirl.results.Result` of kind "critical-map" (format
+    ``propwhirl.critical-map/1``); :meth:`save` / :meth:`load` also write and read CSV by the
+    file's suffix.
 
     axes:    the varied parameters (:class:`Axis`), in order
     columns: the result columns of :data:`RESULT_UNITS`, each an array of shape
@@ -194,6 +208,11 @@ class CriticalMap:
     convention: str = "every instability counts (propwhirl.analysis.critical)"
     xtol: float = STUDY_XTOL
     units: Mapping[str, str] = field(default_factory=lambda: dict(RESULT_UNITS))
+
+    KIND: ClassVar[str] = "critical-map"
+    VERSION: ClassVar[int] = 1
+    READABLE: ClassVar[tuple[int, ...]] = (1,)
+    WHAT: ClassVar[str] = "critical map"
 
     @property
     def shape(self) -> tuple[int, ...]:
@@ -236,8 +255,8 @@ class CriticalMap:
         return df
 
     # ------------------------------------------------------------------ files
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dict (NaN → None)."""
+    def encode(self) -> dict[str, Any]:
+        """JSON-ready fields (NaN → None)."""
         def clean(x):
             if isinstance(x, (float, np.floating)):
                 return None if not math.isfinite(x) else float(x)
@@ -245,30 +264,32 @@ class CriticalMap:
                 return int(x)
             return x
 
-        return {"format": FORMAT, "model": self.model_name, "convention": self.convention,
+        return {"model": self.model_name, "convention": self.convention,
                 "xtol": self.xtol, "axes": [a.to_dict() for a in self.axes],
                 "units": dict(self.units),
                 "columns": {k: [clean(x) for x in np.asarray(c).ravel().tolist()]
                             for k, c in self.columns.items()}}
 
     @classmethod
-    def from_dict(cls, d: Any, where: str = "critical map") -> "CriticalMap":
-        """The map written by :meth:`to_dict`, checked (InputError naming what is wrong)."""
-        if not isinstance(d, dict) or d.get("format") != FORMAT:
-            raise v.InputError(f"{where}: not a critical map (format must be {FORMAT!r})")
-        try:
-            axes = tuple(Axis(str(a["path"]), np.asarray(a["values"], dtype=float),
-                              str(a.get("unit", "")),
-                              None if a.get("design") is None else float(a["design"]),
-                              str(a.get("doc", ""))) for a in d["axes"])
-            shape = tuple(len(a.values) for a in axes)
-            cols = {k: _column_array(k, d["columns"][k], shape) for k in RESULT_UNITS}
-            return cls(str(d["model"]), axes, cols, str(d["convention"]), float(d["xtol"]))
-        except (KeyError, TypeError, ValueError) as exc:
-            raise v.InputError(f"{where}: malformed ({type(exc).__name__}: {exc})") from None
-
-    def to_json(self) -> str:
-        return json.dumps(self.to_dict(), indent=1) + "\n"
+    def decode(cls, d: Mapping[str, Any], version: int, where: str = "") -> "CriticalMap":
+        """Every key checked: the axes, each result column of :data:`RESULT_UNITS` with one
+        value per point (null: NaN)."""
+        r = SavedDict(d, where, ("model", "convention", "xtol", "axes", "columns"), ("units",))
+        axes = tuple(Axis.from_dict(a, w) for w, a in r.items("axes"))
+        if not axes:
+            raise v.InputError(f"{r.name('axes')}: no axes")
+        shape = tuple(len(a.values) for a in axes)
+        c = r.sub("columns", tuple(RESULT_UNITS))
+        cols = {}
+        for k in RESULT_UNITS:
+            raw = c.raw(k)
+            if not isinstance(raw, list):
+                raise v.InputError(f"{c.name(k)}: must be a list")
+            try:
+                cols[k] = _column_array(k, raw, shape)
+            except (ValueError, TypeError, OverflowError) as exc:
+                raise v.InputError(f"{c.name(k)}: {exc}") from None
+        return cls(r.string("model"), axes, cols, r.string("convention"), r.number("xtol"))
 
     def to_csv(self, path: str | Path | None = None) -> str:
         """One row per point (header "column [unit]"); also written to `path` if given
@@ -316,19 +337,21 @@ class CriticalMap:
         return cls("", axes, cols, "")
 
     def save(self, path: str | Path) -> Path:
-        """Write the map: CSV for a ``.csv`` suffix, else JSON (atomically)."""
+        """Write the map: CSV for a ``.csv`` suffix, else JSON (:meth:`Result.save`;
+        atomically)."""
         path = Path(path)
         if path.suffix.lower() == ".csv":
             self.to_csv(path)
             return path
-        return fileio.write_text(path, self.to_json(), what="critical map")
+        return super().save(path)
 
     @classmethod
     def load(cls, path: str | Path) -> "CriticalMap":
-        """Read a map written by :meth:`save` (JSON, or CSV by its suffix)."""
+        """Read a map written by :meth:`save` (JSON, checked by :meth:`Result.load`, or CSV
+        by its suffix)."""
         if Path(path).suffix.lower() == ".csv":
-            return cls.from_csv(fileio.read_text(path, "critical map"), str(path))
-        return cls.from_dict(fileio.read_json(path, "critical map"), str(path))
+            return cls.from_csv(fileio.read_text(path, "critical map"), fileio.shown(path))
+        return super().load(path)
 
     # ------------------------------------------------------------------ text
     def lowest(self) -> dict[str, Any] | None:
@@ -374,6 +397,10 @@ class CriticalMap:
             if n_none:
                 lines.append(f"{n_none} of {len(self)} points: no instability in the speed range")
         return "\n".join(lines)
+
+
+#: The format tag of the critical-map file (:class:`CriticalMap`; the name of earlier releases).
+FORMAT = CriticalMap.format_name()
 
 
 def _column_array(name: str, values: Sequence[Any], shape: tuple[int, ...]) -> np.ndarray:

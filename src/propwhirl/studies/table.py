@@ -6,13 +6,28 @@ import io
 import math
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any, ClassVar, Mapping
 
 import numpy as np
 
 from propwhirl import fileio
 from propwhirl import validate as v
 from propwhirl.analysis.summary import text_table
+from propwhirl.results import Result, SavedDict
+
+def _column(c: SavedDict, key: str) -> np.ndarray:
+    """A column of a study-table file: numbers (null: NaN) as floats, or strings."""
+    x = c.raw(key)
+    if not isinstance(x, list):
+        raise v.InputError(f"{c.name(key)}: must be a list")
+    if all(isinstance(y, str) for y in x):
+        return np.array(x, dtype=object)
+    if all(y is None or (isinstance(y, (int, float)) and not isinstance(y, bool)
+                         and math.isfinite(y)) for y in x):
+        return np.array([math.nan if y is None else float(y) for y in x], dtype=float)
+    raise v.InputError(f"{c.name(key)}: must hold finite numbers (null for none) or strings "
+                       "only")
+
 
 #: Units of the result columns.
 RESULT_UNITS: dict[str, str] = {
@@ -22,7 +37,7 @@ RESULT_UNITS: dict[str, str] = {
 
 
 @dataclass(frozen=True)
-class StudyTable:
+class StudyTable(Result):
     """Result of a parametric study: equal-length columns, one row per (model, value).
 
     name:      what was varied (e.g. "nacelle stiffness, yaw varied")
@@ -35,6 +50,11 @@ class StudyTable:
                static_divergence_speed [m/s]
     units:     unit of each column ("" for text and dimensionless columns)
     convention: which events count as critical (module docstring)
+
+    A :class:`~propwhirl.results.Result` of kind "study-table" (format
+    ``propwhirl.study-table/1``; a dict of :meth:`to_dict` without a format, as written
+    before it, is version 1): :meth:`save` / :meth:`load`.  A column of numbers (null: NaN)
+    is read back as floats, a column of strings as strings.
     """
 
     name: str
@@ -43,6 +63,12 @@ class StudyTable:
     units: Mapping[str, str] = field(default_factory=dict)
     #: which events the critical instability counts (:func:`convention`)
     convention: str = "every instability counts (propwhirl.analysis.critical)"
+
+    KIND: ClassVar[str] = "study-table"
+    VERSION: ClassVar[int] = 1
+    READABLE: ClassVar[tuple[int, ...]] = (1,)
+    UNTAGGED: ClassVar[int | None] = 1
+    WHAT: ClassVar[str] = "study table file"
 
     def __len__(self) -> int:
         return len(self.columns["model"])
@@ -64,8 +90,8 @@ class StudyTable:
         t = self.for_model(model)
         return np.asarray(t.columns[self.parameter], dtype=float), np.asarray(t.columns["critical_speed"], dtype=float)
 
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dict: name, parameter, units and columns as lists (NaN → None)."""
+    def encode(self) -> dict[str, Any]:
+        """name, parameter, convention, units and columns as lists (NaN → None)."""
         def clean(x):
             if isinstance(x, (float, np.floating)):
                 return None if not math.isfinite(x) else float(x)
@@ -76,6 +102,28 @@ class StudyTable:
         return {"name": self.name, "parameter": self.parameter, "convention": self.convention,
                 "units": dict(self.units),
                 "columns": {k: [clean(x) for x in np.asarray(c).tolist()] for k, c in self.columns.items()}}
+
+    @classmethod
+    def decode(cls, d: Mapping[str, Any], version: int, where: str = "") -> "StudyTable":
+        r = SavedDict(d, where, ("name", "parameter", "convention", "units", "columns"))
+        units = r.raw("units")
+        if not isinstance(units, dict) or not all(isinstance(u, str) for u in units.values()):
+            raise v.InputError(f"{r.name('units')}: must be an object of unit strings")
+        raw = r.raw("columns")
+        if not isinstance(raw, dict) or "model" not in raw:
+            raise v.InputError(f"{r.name('columns')}: must be an object of columns, with "
+                               "'model'")
+        c = r.sub("columns", (), tuple(raw))
+        columns = {k: _column(c, k) for k in raw}
+        sizes = {k: len(x) for k, x in columns.items()}
+        if len(set(sizes.values())) > 1:
+            k = next(k for k in sizes if sizes[k] != sizes["model"])
+            raise v.InputError(f"{c.name(k)}: has {sizes[k]} entries, 'model' has "
+                               f"{sizes['model']}")
+        parameter = r.string("parameter")
+        if parameter not in columns:
+            raise v.InputError(f"{r.name('parameter')} = {parameter!r} is not a column")
+        return cls(r.string("name"), parameter, columns, dict(units), r.string("convention"))
 
     def to_csv(self, path: str | Path | None = None) -> str:
         """The table as CSV text (header "column [unit]"); also written to `path` if given
