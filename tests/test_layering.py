@@ -85,3 +85,78 @@ def test_the_architecture_document_names_every_module():
         if f"`{rel.name}`" not in doc:
             missing.append(str(rel))
     assert not missing, f"docs/architecture.md does not describe {missing}"
+
+
+# ----------------------------------------------------------------------------- cycles
+def _module_name(path: Path) -> str:
+    parts = list(path.relative_to(SRC.parent).with_suffix("").parts)
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+MODULES = {_module_name(p): p for p in FILES}
+
+
+def _targets(node: ast.AST) -> list[str]:
+    """The propwhirl modules an import statement loads (``from propwhirl.x import y`` loads
+    ``propwhirl.x.y`` when that is a module, else ``propwhirl.x``)."""
+    out = []
+    if isinstance(node, ast.ImportFrom) and node.level == 0 and (node.module or "").startswith("propwhirl"):
+        for a in node.names:
+            sub = f"{node.module}.{a.name}"
+            out.append(sub if sub in MODULES else node.module)
+    elif isinstance(node, ast.Import):
+        out += [a.name for a in node.names if a.name.startswith("propwhirl")]
+    return [t for t in out if t in MODULES]
+
+
+def _import_graph() -> tuple[dict[str, set[str]], list[tuple[str, int, str]]]:
+    """Module-level imports {module: modules it loads when imported} (a submodule also loads
+    its packages' __init__) and the function-level imports (module, line, target)."""
+    graph, inner = {}, []
+    for name, path in MODULES.items():
+        tree = ast.parse(path.read_text())
+        in_functions = set()
+        for fn in ast.walk(tree):
+            if isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                for node in ast.walk(fn):
+                    if isinstance(node, (ast.Import, ast.ImportFrom)):
+                        in_functions.add(id(node))
+                        inner += [(name, node.lineno, t) for t in _targets(node)]
+        graph[name] = {t for node in ast.walk(tree) if isinstance(node, (ast.Import, ast.ImportFrom))
+                       and id(node) not in in_functions for t in _targets(node)}
+    for name in list(graph):
+        parts = name.split(".")
+        graph[name] |= {".".join(parts[:i]) for i in range(1, len(parts))} - {name}
+    return graph, inner
+
+
+def _reaches(graph: dict[str, set[str]], a: str, b: str) -> bool:
+    seen, stack = set(), [a]
+    while stack:
+        x = stack.pop()
+        if x == b:
+            return True
+        if x not in seen:
+            seen.add(x)
+            stack.extend(graph.get(x, ()))
+    return False
+
+
+def test_no_import_cycle_between_modules():
+    """Issue 21.2: no two modules import each other, directly or round a loop (a package's
+    ``__init__`` re-exporting its modules is not a loop: the edges from a module up to its
+    own packages are left out here)."""
+    graph, _ = _import_graph()
+    explicit = {m: {t for t in ts if not m.startswith(t + ".")} for m, ts in graph.items()}
+    loops = sorted(f"{a} -> {b}" for a, ts in explicit.items() for b in ts
+                   if not b.startswith(a + ".") and _reaches(explicit, b, a))
+    assert loops == []
+
+
+def test_no_function_level_import_breaks_a_cycle():
+    """Issue 21.2: an import inside a function is there for start-up time or an optional
+    dependency, never to break a cycle: its target never loads the importing module back
+    (at module level, packages' ``__init__`` included)."""
+    graph, inner = _import_graph()
+    breakers = sorted(f"{m}:{line} -> {t}" for m, line, t in inner if _reaches(graph, t, m))
+    assert breakers == []
