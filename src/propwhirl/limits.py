@@ -421,6 +421,21 @@ def study_estimate(model, n_points: int, processes: int = 1,
     return StudyEstimate(n_points, dm.n_states, processes, method, len(dm.propellers))
 
 
+#: an analysis estimated at least this long [s] is announced before it starts (the CLI)
+ANALYSIS_NOTICE_SECONDS = 10.0
+
+
+def analysis_notice(model, method: str = "auto") -> str | None:
+    """One line announcing a long analysis of ``model`` before it starts (its states, the
+    estimated time and memory: :func:`study_estimate` of one point), or None when it is
+    estimated shorter than :data:`ANALYSIS_NOTICE_SECONDS`."""
+    est = study_estimate(model, 1, 1, method)
+    if est.seconds < ANALYSIS_NOTICE_SECONDS:
+        return None
+    return (f"an analysis of {est.n_states:,} states: ≈ {format_seconds(est.seconds)}, "
+            f"≈ {format_bytes(est.bytes)} (estimated from the model's size)")
+
+
 def check_study(model, n_points: int, processes: int = 1, *, method: str = "auto",
                 cluster: bool = False, progress=None, stream=None) -> StudyEstimate:
     """Refuse a study estimated (:func:`study_estimate`) longer than :func:`study_time_limit`

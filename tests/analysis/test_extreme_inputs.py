@@ -164,3 +164,33 @@ def test_naming_many_equal_propellers_on_a_reduced_basis_is_bounded(tmp_path, mo
     solved["n"] = 0
     label_modes(wingtip_propeller_wing())
     assert solved["n"] == 2
+
+
+def test_a_long_analysis_is_announced_before_the_work(tmp_path, monkeypatch, capsys):
+    """Issue 20.9: 64 propellers (the limit) is an analysis of ~20 s CPU; the command says so,
+    with its size, before it starts (nothing is analysed here: the analysis is stubbed), and
+    says nothing before a short one."""
+    import propwhirl.analysis.stability as stability
+    from propwhirl.app import cli
+
+    class Stop(Exception):
+        pass
+
+    def stop(*args, **kwargs):
+        raise Stop
+
+    big = _propellers_on_wingtip(tmp_path, 64, n_elements=25)
+    assert limits.analysis_notice(big) is not None
+    assert limits.analysis_notice(wingtip_propeller_wing()) is None
+    from propwhirl.io import save_model
+
+    path = tmp_path / "big.toml"
+    save_model(big, path)
+    monkeypatch.setattr(stability, "analyse", stop)
+    with pytest.raises(Stop):
+        cli.main(["analyse", str(path)])
+    err = capsys.readouterr().err
+    assert err.startswith("propwhirl: estimate: an analysis of 768 states: ≈ ") and err.count("\n") == 1
+    with pytest.raises(Stop):
+        cli.main(["analyse", str(path), "--quiet"])
+    assert capsys.readouterr().err == ""

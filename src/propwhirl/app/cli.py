@@ -232,6 +232,9 @@ def _analyse(args: argparse.Namespace) -> int:
                              "number of modes they show)")
     model = load_model(args.model)
     speeds = speed_grid(*args.speeds) if args.speeds else None
+    notice = None if args.quiet else limits.analysis_notice(model, args.method)
+    if notice:                             # a long one is announced before the work (issue 20.9)
+        print(f"propwhirl: estimate: {notice}", file=sys.stderr)
     with progress.spinner(f"analysing {limits.printable(model.name)}", quiet=args.quiet):
         a = analyse(model, speeds, vgf=True, method=args.method)
     echo(a.summary())
