@@ -28,6 +28,7 @@ from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
 from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
 from propwhirl.engine import Analysis
 from propwhirl.engine.free_response import TimeResponse, time_response
+from propwhirl.reproduce.harness import Records
 from propwhirl.results import FORMAT_PATTERN, Result
 from propwhirl.studies.boundary import Boundary
 from propwhirl.studies.clearance import Clearance
@@ -78,6 +79,7 @@ def results() -> dict[type, Result]:
                                                     (73.0, 160.4, 171.0),
                                                     (74.0, 172.3, 160.6),
                                                     (80.0, math.nan, 161.0))),
+        Records: Records.load(OLD / "reproduction-untagged-1.json"),
         # V = inf: nothing unstable in the range (saved as null)
         OptimisationResult: OptimisationResult(
             ("propellers[0].propeller.K_theta", "propellers[0].propeller.K_psi"),
@@ -100,6 +102,7 @@ def test_every_result_type_is_covered_here(results):
     import propwhirl.analysis.modes  # noqa: F401
     import propwhirl.analysis.response  # noqa: F401
     import propwhirl.analysis.summary  # noqa: F401
+    import propwhirl.reproduce.harness  # noqa: F401
     import propwhirl.studies.boundary  # noqa: F401
     import propwhirl.studies.gradients  # noqa: F401
     import propwhirl.studies.parametric  # noqa: F401
@@ -111,7 +114,7 @@ def test_every_result_type_is_covered_here(results):
 
 KINDS = [ModelAnalysis, Analysis, TimeResponse, Clearance, Boundary, CriticalMap, StudyTable,
          CriticalSensitivities, CampbellResult, Response, FlutterSummary, ModeSwitch,
-         OptimisationResult]
+         OptimisationResult, Records]
 
 
 def test_the_user_facing_results_are_results():
@@ -145,6 +148,7 @@ def test_save_and_load_round_trip(results, cls, tmp_path):
     ("boundary-1.json", Boundary),
     ("critical-map-1.json", CriticalMap),
     ("campbell-untagged-1.json", CampbellResult),   # json.dumps(campbell(...).to_dict())
+    ("reproduction-untagged-1.json", Records),      # propwhirl reproduce --only t9.5 --json
 ])
 def test_files_of_earlier_releases_still_load(name, cls, tmp_path):
     """Written by propwhirl before the protocol (main at 2d5b893): they load, and saving
@@ -173,10 +177,31 @@ def test_old_campbell_file_is_the_diagram_computed_now():
     assert np.array_equal(old.rpm, new.rpm) and np.array_equal(old.resolved, new.resolved)
 
 
+def test_a_flutter_summary_with_k_zero_round_trips(results, tmp_path):
+    """1/k is infinite where k = 0 (a real root): saved as null, read back as infinity."""
+    fs = results[FlutterSummary]
+    cols = {key: np.array(col, copy=True) for key, col in fs.columns.items()}
+    cols["k"][0], cols["inv_k"][0] = 0.0, math.inf
+    path = FlutterSummary(cols, fs.reference, fs.model_name).save(tmp_path / "s.json")
+    assert json.loads(Path(path).read_text())["columns"]["inv_k"][0] is None
+    back = FlutterSummary.load(path)
+    assert back.columns["inv_k"][0] == math.inf and back.to_csv() == FlutterSummary(
+        cols, fs.reference, fs.model_name).to_csv()
+
+
+def test_the_old_records_file_keeps_its_keys(results, tmp_path):
+    """`propwhirl reproduce --json`: the same record keys as before the protocol, and the
+    records of the old file read back (tolerance not saved: NaN)."""
+    old = json.loads((OLD / "reproduction-untagged-1.json").read_text())
+    new = json.loads(Path(results[Records].save(tmp_path / "r.json")).read_text())
+    assert new["records"] == old["records"] and set(new) == {"format", "records"}
+    assert all(math.isnan(r.tol) for r in results[Records].records)
+
+
 def test_old_untagged_engine_dicts_load(results):
     """The engine's Analysis and TimeResponse dicts and CampbellResult's had no format: read
     as version 1."""
-    for cls in (Analysis, TimeResponse, CampbellResult):
+    for cls in (Analysis, TimeResponse, CampbellResult, Records):
         d = results[cls].to_dict()
         del d["format"]
         assert cls.from_dict(d).to_dict() == results[cls].to_dict()
@@ -298,6 +323,10 @@ def test_a_corrupted_entry_loads_or_is_one_line(results, cls, data, tmp_path):
     (OptimisationResult, ("x",), [1.0], r"x: shape \(1,\): axis 0 must have 2 entries"),
     (OptimisationResult, ("V_m_per_s",), 0.0, r"V_m_per_s = 0\.0 is invalid"),
     (OptimisationResult, ("cleared",), "yes", r"cleared: must be true or false"),
+    (Records, ("records", 1, "computed"), None,
+     r"records\[1\]\.rel_error: must be null exactly when computed is null"),
+    (Records, ("records", 0, "reference"), "book", r"records\[0\]\.reference: = 'book' is invalid"),
+    (Records, ("records", 2, "id"), "t9.5/whirl_flutter_speed", r"records\[2\]\.id: .* twice"),
 ])
 def test_corrupted_entries_name_the_file_and_key(results, cls, where, value, match, tmp_path):
     path = tmp_path / "r.json"
