@@ -19,14 +19,21 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from propwhirl.analysis.campbell import CampbellResult, campbell
+from propwhirl.analysis.response import Response, simulate
 from propwhirl.analysis.sensitivity import CriticalSensitivities, Sensitivity
 from propwhirl.analysis.stability import ModelAnalysis, analyse
+from propwhirl.analysis.summary import FlutterSummary, Reference
 from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
 from propwhirl.engine import Analysis
 from propwhirl.engine.free_response import TimeResponse, time_response
+from propwhirl.reproduce.harness import Records
 from propwhirl.results import FORMAT_PATTERN, Result
 from propwhirl.studies.boundary import Boundary
 from propwhirl.studies.clearance import Clearance
+from propwhirl.studies.gradients import OptimisationResult
+from propwhirl.studies.parametric import ModeSwitch
 from propwhirl.studies.sweeps import CriticalMap
 from propwhirl.studies.table import StudyTable
 from propwhirl.validate import InputError
@@ -38,8 +45,10 @@ SRC = Path(__file__).resolve().parent.parent / "src" / "propwhirl"
 @pytest.fixture(scope="module")
 def results() -> dict[type, Result]:
     """One result of every kind (cheap: three speeds of the isolated propeller; the study
-    results from the files written by the code before the protocol)."""
-    a = analyse(isolated_baseline_propeller(), speeds=[100.0, 200.0, 250.0])
+    results and the Campbell diagram from the files written by the code before the
+    protocol)."""
+    iso = isolated_baseline_propeller()
+    a = analyse(iso, speeds=[100.0, 200.0, 250.0])
     A = np.array([[0.0, 1.0], [-4.0, -0.1]])
     sens = CriticalSensitivities(
         221.5, 5.01, "flutter", "onset", "backward", complex(1e-4, 31.5), complex(0.02, -0.01),
@@ -62,6 +71,20 @@ def results() -> dict[type, Result]:
         CriticalMap: CriticalMap.load(OLD / "critical-map-1.json"),
         StudyTable: table,
         CriticalSensitivities: sens,
+        CampbellResult: CampbellResult.load(OLD / "campbell-untagged-1.json"),
+        Response: simulate(iso, 200.0, {"propeller 1 theta": 0.01}, duration=0.05, dt=0.01),
+        FlutterSummary: a.flutter_summary(),
+        # NaN: that mode does not flutter in the speed range (saved as null)
+        ModeSwitch: ModeSwitch(73.5, (73.0, 74.0), ((60.0, 151.2, math.nan),
+                                                    (73.0, 160.4, 171.0),
+                                                    (74.0, 172.3, 160.6),
+                                                    (80.0, math.nan, 161.0))),
+        Records: Records.load(OLD / "reproduction-untagged-1.json"),
+        # V = inf: nothing unstable in the range (saved as null)
+        OptimisationResult: OptimisationResult(
+            ("propellers[0].propeller.K_theta", "propellers[0].propeller.K_psi"),
+            np.array([1.2e5, 0.9e5]), math.inf, 0.93, True, "Optimization terminated "
+            "successfully", 14, np.array([1.21e5, 0.9e5]), 47),
     }
 
 
@@ -75,7 +98,14 @@ def _all_subclasses(cls: type) -> set[type]:
 def test_every_result_type_is_covered_here(results):
     """A new Result must be added to `results` (so these tests hold it to the protocol)."""
     import propwhirl.analysis  # noqa: F401
+    import propwhirl.analysis.campbell  # noqa: F401
+    import propwhirl.analysis.modes  # noqa: F401
+    import propwhirl.analysis.response  # noqa: F401
+    import propwhirl.analysis.summary  # noqa: F401
+    import propwhirl.reproduce.harness  # noqa: F401
     import propwhirl.studies.boundary  # noqa: F401
+    import propwhirl.studies.gradients  # noqa: F401
+    import propwhirl.studies.parametric  # noqa: F401
     import propwhirl.studies.sweeps  # noqa: F401
     import propwhirl.studies.table  # noqa: F401
 
@@ -83,7 +113,18 @@ def test_every_result_type_is_covered_here(results):
 
 
 KINDS = [ModelAnalysis, Analysis, TimeResponse, Clearance, Boundary, CriticalMap, StudyTable,
-         CriticalSensitivities]
+         CriticalSensitivities, CampbellResult, Response, FlutterSummary, ModeSwitch,
+         OptimisationResult, Records]
+
+
+def test_the_user_facing_results_are_results():
+    """Issue 21.4: every result a public function returns (and the command line prints or
+    saves) implements the protocol: a kind of its own, save/load, a checked decode in its
+    own module."""
+    for cls in KINDS:
+        assert issubclass(cls, Result) and cls.KIND, cls
+        assert "decode" in vars(cls) and "encode" in vars(cls), cls
+    assert len({cls.KIND for cls in KINDS}) == len(KINDS)
 
 
 @pytest.mark.parametrize("cls", KINDS, ids=lambda c: c.KIND)
@@ -106,6 +147,8 @@ def test_save_and_load_round_trip(results, cls, tmp_path):
     ("clearance-1.json", Clearance),
     ("boundary-1.json", Boundary),
     ("critical-map-1.json", CriticalMap),
+    ("campbell-untagged-1.json", CampbellResult),   # json.dumps(campbell(...).to_dict())
+    ("reproduction-untagged-1.json", Records),      # propwhirl reproduce --only t9.5 --json
 ])
 def test_files_of_earlier_releases_still_load(name, cls, tmp_path):
     """Written by propwhirl before the protocol (main at 2d5b893): they load, and saving
@@ -124,9 +167,41 @@ def test_old_analysis_files_read_as_the_new_ones(results):
         assert np.array_equal(old.sweep.eigenvalues, a.sweep.eigenvalues)
 
 
+def test_old_campbell_file_is_the_diagram_computed_now():
+    """The fixture (main at 19687c0: ``json.dumps(campbell(wingtip_propeller_wing(), [0.0,
+    2000.0, 4000.0], max_frequency_hz=10.0).to_dict())``) reads back as that diagram."""
+    old = CampbellResult.load(OLD / "campbell-untagged-1.json")
+    new = campbell(wingtip_propeller_wing(), [0.0, 2000.0, 4000.0], max_frequency_hz=10.0)
+    assert (old.labels, old.families, old.rpm_ratio) == (new.labels, new.families, new.rpm_ratio)
+    assert np.allclose(old.frequency_hz, new.frequency_hz, rtol=1e-9, atol=0.0)
+    assert np.array_equal(old.rpm, new.rpm) and np.array_equal(old.resolved, new.resolved)
+
+
+def test_a_flutter_summary_with_k_zero_round_trips(results, tmp_path):
+    """1/k is infinite where k = 0 (a real root): saved as null, read back as infinity."""
+    fs = results[FlutterSummary]
+    cols = {key: np.array(col, copy=True) for key, col in fs.columns.items()}
+    cols["k"][0], cols["inv_k"][0] = 0.0, math.inf
+    path = FlutterSummary(cols, fs.reference, fs.model_name).save(tmp_path / "s.json")
+    assert json.loads(Path(path).read_text())["columns"]["inv_k"][0] is None
+    back = FlutterSummary.load(path)
+    assert back.columns["inv_k"][0] == math.inf and back.to_csv() == FlutterSummary(
+        cols, fs.reference, fs.model_name).to_csv()
+
+
+def test_the_old_records_file_keeps_its_keys(results, tmp_path):
+    """`propwhirl reproduce --json`: the same record keys as before the protocol, and the
+    records of the old file read back (tolerance not saved: NaN)."""
+    old = json.loads((OLD / "reproduction-untagged-1.json").read_text())
+    new = json.loads(Path(results[Records].save(tmp_path / "r.json")).read_text())
+    assert new["records"] == old["records"] and set(new) == {"format", "records"}
+    assert all(math.isnan(r.tol) for r in results[Records].records)
+
+
 def test_old_untagged_engine_dicts_load(results):
-    """The engine's Analysis and TimeResponse dicts had no format: read as version 1."""
-    for cls in (Analysis, TimeResponse):
+    """The engine's Analysis and TimeResponse dicts and CampbellResult's had no format: read
+    as version 1."""
+    for cls in (Analysis, TimeResponse, CampbellResult, Records):
         d = results[cls].to_dict()
         del d["format"]
         assert cls.from_dict(d).to_dict() == results[cls].to_dict()
@@ -228,6 +303,30 @@ def test_a_corrupted_entry_loads_or_is_one_line(results, cls, data, tmp_path):
     (CriticalSensitivities, ("sensitivities", 1, "dlam_dp"), 3.0,
      r"sensitivities\[1\]\.dlam_dp: must be an object"),
     (TimeResponse, ("x",), [[1.0, 2.0]], r"x: shape \(1, 2\): axis 0 must have 5 entries"),
+    (CampbellResult, ("rpm",), [4000.0, 0.0, 2000.0], r"rpm: must be increasing speeds"),
+    (CampbellResult, ("unresolved",), [[2000.0, 0.0]], r"unresolved\[0\]: must be a pair"),
+    (CampbellResult, ("families",), ["wing bending"], r"families: has 1 entries, need 3"),
+    (CampbellResult, ("families", 0), "wing", r"families: 'wing' is invalid"),
+    (CampbellResult, ("frequency_hz", 1), [1.0, 2.0], r"frequency_hz: must be a rectangular"),
+    (CampbellResult, ("resolved", 0), 1, r"resolved: must hold booleans"),
+    (Response, ("n_dof",), 9, r"n_dof: = 9 is outside \[0, 2\]"),
+    (Response, ("eigenvectors", "im"), [[0.0]], r"eigenvectors\.im: shape \(1, 1\)"),
+    (Response, ("V_m_per_s",), -1.0, r"V_m_per_s = -1\.0 is invalid: must be > 0"),
+    (FlutterSummary, ("columns", "inv_k", 0), -1.0,
+     r"columns\.inv_k\[0\]: must be a number > 0 or null"),
+    (FlutterSummary, ("columns", "mach"), [0.3], r"columns\.mach: shape \(1,\): axis 0"),
+    (FlutterSummary, ("columns", "label"), ["a"], r"columns\.label: has 1 entries, need 6"),
+    (FlutterSummary, ("reference", "density_kg_per_m3"), 0.0, r"reference: density"),
+    (ModeSwitch, ("beta_deg",), 90.0, r"beta_deg = 90\.0 is invalid: must lie in bracket"),
+    (ModeSwitch, ("evaluations", 0, "V_forward_m_per_s"), -1.0,
+     r"evaluations\[0\]\.V_forward_m_per_s: must be a speed > 0 m/s or null"),
+    (OptimisationResult, ("x",), [1.0], r"x: shape \(1,\): axis 0 must have 2 entries"),
+    (OptimisationResult, ("V_m_per_s",), 0.0, r"V_m_per_s = 0\.0 is invalid"),
+    (OptimisationResult, ("cleared",), "yes", r"cleared: must be true or false"),
+    (Records, ("records", 1, "computed"), None,
+     r"records\[1\]\.rel_error: must be null exactly when computed is null"),
+    (Records, ("records", 0, "reference"), "book", r"records\[0\]\.reference: = 'book' is invalid"),
+    (Records, ("records", 2, "id"), "t9.5/whirl_flutter_speed", r"records\[2\]\.id: .* twice"),
 ])
 def test_corrupted_entries_name_the_file_and_key(results, cls, where, value, match, tmp_path):
     path = tmp_path / "r.json"

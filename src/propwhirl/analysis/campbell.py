@@ -10,8 +10,9 @@ analytic branches, true crossings kept) — and names the modes at Ω = 0 by
 """
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -20,6 +21,7 @@ from propwhirl import validate as v
 from propwhirl.analysis.modes import (_flexible_propellers, _GyroscopicSystem,  # noqa: F401
                                      _skew_part, _track, label_modes, model_modes)
 from propwhirl.analysis.naming import kinetic_energy_shares
+from propwhirl.results import Result, SavedDict
 
 #: Default propeller speeds of :func:`campbell`: 0–6000 rev/min every 250 (covers the
 #: operating range of chapters 9–10; 4433 rev/min at the flutter point of Table 9.5)
@@ -73,8 +75,12 @@ def operating_rpm_ratio(model) -> tuple[float, ...]:
 
 
 @dataclass(frozen=True)
-class CampbellResult:
+class CampbellResult(Result):
     """A tracked Campbell diagram: natural frequencies against propeller rotational speed.
+
+    A :class:`~propwhirl.results.Result` of kind "campbell" (format ``propwhirl.campbell/1``;
+    a dict of :meth:`to_dict` without a format, as written before it, is version 1):
+    :meth:`save` / :meth:`load`, every field checked when read.
 
     rpm:           (T,) rotational speeds [rev/min] of the first propeller, increasing;
                    propeller j spins at ``rpm_ratio[j]`` × rpm (all at rpm when the ratios are 1).
@@ -129,7 +135,13 @@ class CampbellResult:
             "resolved": np.repeat(self.resolved, K),
         }
 
-    def to_dict(self) -> dict[str, Any]:
+    KIND: ClassVar[str] = "campbell"
+    VERSION: ClassVar[int] = 1
+    READABLE: ClassVar[tuple[int, ...]] = (1,)
+    UNTAGGED: ClassVar[int | None] = 1
+    WHAT: ClassVar[str] = "Campbell diagram file"
+
+    def encode(self) -> dict[str, Any]:
         """JSON-able dict of the fields (units as in the field names and docstring)."""
         return {
             "rpm": self.rpm.tolist(), "frequency_hz": self.frequency_hz.tolist(),
@@ -138,6 +150,56 @@ class CampbellResult:
             "nodes": self.nodes, "families": list(self.families),
             "rpm_ratio": list(self.rpm_ratio),
         }
+
+    @classmethod
+    def decode(cls, d: Mapping[str, Any], version: int, where: str = "") -> "CampbellResult":
+        """rpm (T,) in [0, MAX_RPM] increasing; frequency_hz and slope_hz_per_rpm (T, K)
+        finite, frequencies >= 0; K labels; resolved (T,) true/false; unresolved [a, b]
+        pairs [rev/min]; nodes >= 0; families none or K of :data:`FAMILIES`; rpm_ratio
+        positive (InputError naming the key)."""
+        r = SavedDict(d, where, ("rpm", "frequency_hz", "labels", "slope_hz_per_rpm",
+                                 "resolved", "unresolved", "nodes", "families", "rpm_ratio"))
+        rpm = r.array("rpm")
+        if rpm.size == 0:
+            raise v.InputError(f"{r.name('rpm')}: no speeds")
+        if ((rpm < 0) | (rpm > limits.MAX_RPM)).any() or (np.diff(rpm) <= 0).any():
+            raise v.InputError(f"{r.name('rpm')}: must be increasing speeds in "
+                               f"[0, {limits.MAX_RPM:g}] rev/min")
+        labels = r.strings("labels")
+        shape = (rpm.size, len(labels))
+        f = r.array("frequency_hz", ndim=2, shape=shape)
+        if (f < 0).any():
+            raise v.InputError(f"{r.name('frequency_hz')}: frequencies must be >= 0 Hz")
+        families = r.strings("families")
+        if families and len(families) != len(labels):
+            raise v.InputError(f"{r.name('families')}: has {len(families)} entries, need "
+                               f"{len(labels)} (one per label) or none")
+        bad = [x for x in families if x not in FAMILIES]
+        if bad:
+            raise v.InputError(f"{r.name('families')}: {bad[0]!r} is invalid: must be one of "
+                               f"{', '.join(FAMILIES)}")
+        ratio = r.array("rpm_ratio")
+        if (ratio <= 0).any():
+            raise v.InputError(f"{r.name('rpm_ratio')}: ratios must be > 0")
+        pairs = [_pair(pair, w) for w, pair in r.items("unresolved")]
+        return cls(rpm, f, labels, r.array("slope_hz_per_rpm", ndim=2, shape=shape),
+                   r.array("resolved", kind=bool, shape=(rpm.size,)), tuple(pairs),
+                   r.integer("nodes", 0), families, tuple(float(x) for x in ratio))
+
+
+def _pair(x: Any, where: str) -> tuple[float, float]:
+    """An unresolved step [rpm_a, rpm_b] [rev/min] (finite, a <= b) read at `where`."""
+    bad = v.InputError(f"{where}: must be a pair [rpm_a, rpm_b] of finite speeds [rev/min] "
+                       "with rpm_a <= rpm_b")
+    if not isinstance(x, list) or len(x) != 2 or any(isinstance(y, bool) for y in x):
+        raise bad
+    try:
+        a, b = (float(y) for y in x)
+    except (TypeError, ValueError, OverflowError):
+        raise bad from None
+    if not (np.isfinite(a) and np.isfinite(b) and a <= b):
+        raise bad
+    return a, b
 
 
 def campbell(model, rpm=None, *, rpm_ratio=None, max_frequency_hz: float | None = None,

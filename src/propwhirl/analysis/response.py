@@ -27,12 +27,14 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from typing import Any, ClassVar
 
 import numpy as np
 
 from propwhirl.analysis.whirl import rotation_sign_from_gyroscopic
 from propwhirl.engine import eigen, time_response
 from propwhirl import validate as v
+from propwhirl.results import Result, SavedDict
 
 __all__ = [
     "Response", "simulate", "rotation_sign",
@@ -43,13 +45,17 @@ __all__ = [
 # Time response
 # ----------------------------------------------------------------------------------------------
 @dataclass(frozen=True)
-class Response:
+class Response(Result):
     """Free response of a model at one airspeed.
 
     model_name; V [m/s]; t (T,) [s]; x (T, n) state histories (SI) with ``labels`` (n);
     n_dof: the first n_dof states are the displacements (degrees of freedom), the next n_dof
     their rates, the rest aerodynamic lag states; eigenvalues (n,) [1/s] and right
     eigenvectors (n, n) of A(V), used by :meth:`modal`.
+
+    A :class:`~propwhirl.results.Result` of kind "free-response" (format
+    ``propwhirl.free-response/1``): :meth:`save` / :meth:`load`, every field checked when
+    read (complex numbers saved as ``{"re": ..., "im": ...}``).
     """
 
     model_name: str
@@ -60,6 +66,39 @@ class Response:
     n_dof: int
     eigenvalues: np.ndarray
     eigenvectors: np.ndarray
+
+    KIND: ClassVar[str] = "free-response"
+    VERSION: ClassVar[int] = 1
+    READABLE: ClassVar[tuple[int, ...]] = (1,)
+    WHAT: ClassVar[str] = "free-response file"
+
+    def encode(self) -> dict[str, Any]:
+        lam, X = np.asarray(self.eigenvalues), np.asarray(self.eigenvectors)
+        return {"model_name": self.model_name, "V_m_per_s": float(self.V),
+                "t_s": self.t.tolist(), "x": self.x.tolist(), "labels": list(self.labels),
+                "n_dof": int(self.n_dof),
+                "eigenvalues_per_s": {"re": lam.real.tolist(), "im": lam.imag.tolist()},
+                "eigenvectors": {"re": X.real.tolist(), "im": X.imag.tolist()}}
+
+    @classmethod
+    def decode(cls, d: Mapping[str, Any], version: int, where: str = "") -> "Response":
+        """V > 0; t finite and increasing; x (T, n) finite with n labels; n_dof in
+        [0, n/2]; eigenvalues (n,) and eigenvectors (n, n), finite (InputError naming the
+        key)."""
+        r = SavedDict(d, where, ("model_name", "V_m_per_s", "t_s", "x", "labels", "n_dof",
+                                 "eigenvalues_per_s", "eigenvectors"))
+        V = r.number("V_m_per_s")
+        if V <= 0:
+            raise v.InputError(f"{r.name('V_m_per_s')} = {V!r} is invalid: must be > 0 m/s")
+        t = r.array("t_s")
+        if t.size == 0 or not (np.diff(t) > 0).all():
+            raise v.InputError(f"{r.name('t_s')}: must be at least one time, increasing")
+        labels = r.strings("labels")
+        n = len(labels)
+        return cls(r.string("model_name"), V, t, r.array("x", ndim=2, shape=(t.size, n)),
+                   labels, r.integer("n_dof", 0, n // 2),
+                   r.complex_array("eigenvalues_per_s", 1, (n,)),
+                   r.complex_array("eigenvectors", 2, (n, n)))
 
     def __getitem__(self, label: str) -> np.ndarray:
         """History of the state called ``label`` (SI)."""

@@ -11,8 +11,9 @@ f = |Im λ|/2π [Hz], the air density [kg/m³], the Mach number V/a and λ itsel
 "DAMPING" g = 2 Re p / |Im p| is positive when unstable.
 
 The summary comes as text (:meth:`FlutterSummary.format`, one block per mode like SOL 145),
-CSV (:meth:`FlutterSummary.to_csv`) and a pandas DataFrame (:meth:`FlutterSummary.to_dataframe`,
-the ``data`` extra).
+CSV (:meth:`FlutterSummary.to_csv`), a pandas DataFrame (:meth:`FlutterSummary.to_dataframe`,
+the ``data`` extra) and a result file (:meth:`FlutterSummary.save`, format
+``propwhirl.flutter-summary/1``, re-read checked by :meth:`FlutterSummary.load`).
 
 :func:`text_table` lays out every text table of propwhirl (the instabilities of an analysis,
 ``make run``'s report, the studies) with `tabulate <https://pypi.org/project/tabulate/>`_
@@ -25,10 +26,10 @@ from __future__ import annotations
 import csv
 import io
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -36,7 +37,7 @@ from propwhirl import fileio
 from propwhirl import validate as v
 from propwhirl.engine.results import Sweep
 from propwhirl.model.systems import IsolatedPropeller, PropellerWing, TypicalSection
-from propwhirl.results import SavedDict
+from propwhirl.results import Result, SavedDict
 
 
 # ----------------------------------------------------------------------------- text tables
@@ -172,13 +173,56 @@ CONVENTION = ("zeta = -Re(lambda)/|lambda| (eq. 5.5), g = 2 zeta: g > 0 damped, 
 
 
 @dataclass(frozen=True)
-class FlutterSummary:
+class FlutterSummary(Result):
     """Every physical mode at every speed (tidy: one row per speed and mode, sorted by mode
-    then speed): the columns of :data:`COLUMNS` (module docstring)."""
+    then speed): the columns of :data:`COLUMNS` (module docstring).
+
+    A :class:`~propwhirl.results.Result` of kind "flutter-summary" (format
+    ``propwhirl.flutter-summary/1``): the columns under their CSV names (1/k null where
+    k = 0), the reference and the model's name; :meth:`save` / :meth:`load`, checked."""
 
     columns: dict[str, np.ndarray]
     reference: Reference
     model_name: str = ""
+
+    KIND: ClassVar[str] = "flutter-summary"
+    VERSION: ClassVar[int] = 1
+    READABLE: ClassVar[tuple[int, ...]] = (1,)
+    WHAT: ClassVar[str] = "flutter summary file"
+
+    def encode(self) -> dict[str, Any]:
+        cols: dict[str, list] = {}
+        for key, name, _ in COLUMNS:
+            x = np.asarray(self.columns[key])
+            cols[name] = ([str(y) for y in x] if key == "label"
+                          else [int(y) for y in x] if key == "mode"
+                          else [float(y) if math.isfinite(y) else None for y in x]
+                          if key == "inv_k" else x.astype(float).tolist())
+        return {"model_name": self.model_name, "reference": self.reference.to_dict(),
+                "columns": cols}
+
+    @classmethod
+    def decode(cls, d: Mapping[str, Any], version: int, where: str = "") -> "FlutterSummary":
+        """Every column of :data:`COLUMNS` (by its CSV name) with one entry per row: mode
+        ids >= 0, labels, finite numbers (1/k > 0 or null); the reference checked
+        (:meth:`Reference.from_dict`).  InputError naming the key."""
+        r = SavedDict(d, where, ("model_name", "reference", "columns"))
+        ref = Reference.from_dict(r.raw("reference"), r.name("reference"))
+        c = r.sub("columns", [name for _, name, _ in COLUMNS])
+        mode = c.array("mode", kind=int)
+        if (mode < 0).any():
+            raise v.InputError(f"{c.name('mode')}: mode ids must be >= 0")
+        n = mode.size
+        cols: dict[str, np.ndarray] = {"mode": mode,
+                                       "label": np.asarray(c.strings("label", n), dtype=object)}
+        for key, name, _ in COLUMNS:
+            if key in ("mode", "label"):
+                continue
+            if key == "inv_k":
+                cols[key] = _inverse_k(c, name, n)
+            else:
+                cols[key] = c.array(name, shape=(n,))
+        return cls(cols, ref, r.string("model_name"))
 
     def __len__(self) -> int:
         return len(self.columns["V"])
@@ -249,6 +293,27 @@ class FlutterSummary:
         df.attrs["reference"] = self.reference.to_dict()
         df.attrs["convention"] = CONVENTION
         return df
+
+
+def _inverse_k(c: SavedDict, name: str, n: int) -> np.ndarray:
+    """The 1/k column: n numbers > 0, null for k = 0 (read as infinity)."""
+    raw = c.raw(name)
+    if not isinstance(raw, list) or len(raw) != n:
+        raise v.InputError(f"{c.name(name)}: must be a list of {n} entries (one per row)")
+    out = np.empty(n)
+    for i, x in enumerate(raw):
+        if x is None:
+            out[i] = np.inf
+            continue
+        ok = isinstance(x, (int, float)) and not isinstance(x, bool)
+        try:
+            out[i] = float(x) if ok else np.nan
+        except OverflowError:
+            out[i] = np.nan
+        if not (math.isfinite(out[i]) and out[i] > 0):
+            raise v.InputError(f"{c.name(name)}[{i}]: must be a number > 0 or null (k = 0), "
+                               f"got {x!r:.40}")
+    return out
 
 
 def _inv(x: float) -> str:

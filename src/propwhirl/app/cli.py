@@ -59,7 +59,7 @@ def _reproduce(args: argparse.Namespace) -> int:
     records = reproduce.run(args.only, **execution_options.run_options(args), checkpoint=cp)
     print(reproduce.format_table(records))
     if args.json:
-        fileio.write_text(args.json, reproduce.to_json(records), what="records file")
+        reproduce.Records(tuple(records)).save(args.json)
         print(f"wrote {args.json}")
     execution_options.finish(cp)
     return 0

@@ -54,7 +54,7 @@ def _boundary(args: argparse.Namespace) -> int:
                             oscillatory=args.oscillatory)
     echo(b.format())
     if args.json:
-        b.save_json(args.json)
+        b.save(args.json)
         print(f"wrote {args.json}")
     if args.csv:
         b.to_csv(args.csv)
@@ -114,7 +114,7 @@ def _clearance(args: argparse.Namespace) -> int:
                   frequency_range=tuple(args.frequency_range))
     echo(r.format())
     if args.json:
-        r.save_json(args.json)
+        r.save(args.json)
         print(f"wrote {args.json}")
     if args.csv:
         r.to_csv(args.csv)

@@ -11,6 +11,7 @@ import numpy as np
 from propwhirl import fileio
 from propwhirl.app import execution_options
 from propwhirl.app.cli_common import check_outputs, echo, load_model, speed_grid
+from propwhirl.results import Result
 from propwhirl.cases import registry
 from propwhirl.validate import InputError
 
@@ -83,7 +84,7 @@ def _write_study(result, args: argparse.Namespace, plot, checkpoint=None) -> Non
     if not every_point_failed:
         execution_options.report_failures(errors)
     if args.json:
-        fileio.write_text(args.json, result.to_json(), what="critical map")
+        Result.save(result, args.json)        # JSON even for a name ending in .csv
         print(f"wrote {args.json}")
         execution_options.finish(checkpoint)
     if args.csv:

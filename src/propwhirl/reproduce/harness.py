@@ -23,18 +23,19 @@ imports no chapter module.
 from __future__ import annotations
 
 import importlib
-import json
 import math
 import numbers
 import tomllib
+from collections.abc import Mapping
 from dataclasses import asdict, dataclass
 from importlib import resources
 from pathlib import Path
-from typing import Any, Callable, Iterable
+from typing import Any, Callable, ClassVar, Iterable
 
 from propwhirl import fileio
 from propwhirl import documents
 from propwhirl.progress import ProgressCallback
+from propwhirl.results import Result, SavedDict
 from propwhirl.studies import execution
 from propwhirl.studies.partial import Checkpoint
 from propwhirl.validate import InputError
@@ -274,11 +275,65 @@ JSON_FIELDS = ("id", "table", "quantity", "unit", "thesis", "computed", "rel_err
                "reference", "reference_value", "literature_checked")
 
 
+@dataclass(frozen=True)
+class Records(Result):
+    """The records of a reproduction run, as ``propwhirl reproduce --json`` writes them.
+
+    A :class:`~propwhirl.results.Result` of kind "reproduction" (format
+    ``propwhirl.reproduction/1``): ``{"records": [{field: value, ...}, ...]}`` with
+    :data:`JSON_FIELDS` (the form of earlier releases, which had no format: read as version
+    1).  The file holds neither the tolerance nor the notes: a record re-read has tol NaN and
+    empty notes."""
+
+    records: tuple[Record, ...]
+
+    KIND: ClassVar[str] = "reproduction"
+    VERSION: ClassVar[int] = 1
+    READABLE: ClassVar[tuple[int, ...]] = (1,)
+    UNTAGGED: ClassVar[int | None] = 1
+    WHAT: ClassVar[str] = "records file"
+
+    def encode(self) -> dict[str, Any]:
+        out = []
+        for r in self.records:
+            d = asdict(r)
+            d.update(reference_value=r.target, literature_checked=r.literature_checked)
+            out.append({k: d[k] for k in JSON_FIELDS})
+        return {"records": out}
+
+    @classmethod
+    def decode(cls, d: Mapping[str, Any], version: int, where: str = "") -> "Records":
+        """Each record: the strings, finite numbers, computed and rel_error both numbers or
+        both null (not computed: not within tolerance), reference "thesis" or "literature"
+        as literature_checked says, each id once.  InputError naming the key."""
+        r = SavedDict(d, where, ("records",))
+        out, seen = [], set()
+        for w, x in r.items("records"):
+            q = SavedDict(x, w, JSON_FIELDS)
+            rid = q.string("id")
+            if rid in seen:
+                raise InputError(f"{q.name('id')}: {rid!r} appears twice")
+            seen.add(rid)
+            computed = q.number("computed", optional=True)
+            rel = q.number("rel_error", optional=True)
+            if (computed is None) != (rel is None):
+                raise InputError(f"{q.name('rel_error')}: must be null exactly when computed is "
+                                 "null (not computed)")
+            within = q.boolean("within_tol")
+            if within and computed is None:
+                raise InputError(f"{q.name('within_tol')}: must be false for a value not "
+                                 "computed")
+            ref = q.string("reference", ("thesis", "literature"))
+            if q.boolean("literature_checked") != (ref == "literature"):
+                raise InputError(f"{q.name('literature_checked')}: must be true exactly when "
+                                 "reference is 'literature'")
+            out.append(Record(rid, q.string("table"), q.string("quantity"), q.string("unit"),
+                              q.number("thesis"), computed, rel, within, math.nan,
+                              q.number("reference_value"), reference=ref))
+        return cls(tuple(out))
+
+
 def to_json(records: list[Record]) -> str:
-    """The records as JSON: {"records": [{field: value, ...}, ...]} with :data:`JSON_FIELDS`."""
-    out = []
-    for r in records:
-        d = asdict(r)
-        d.update(reference_value=r.target, literature_checked=r.literature_checked)
-        out.append({k: d[k] for k in JSON_FIELDS})
-    return json.dumps({"records": out}, indent=2)
+    """The records as JSON (:class:`Records`): {"format": "propwhirl.reproduction/1",
+    "records": [{field: value, ...}, ...]} with :data:`JSON_FIELDS`."""
+    return Records(tuple(records)).to_json()

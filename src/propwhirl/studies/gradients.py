@@ -18,8 +18,10 @@ V_crit / (factor · V_D) − 1, with analytic partials.
 """
 from __future__ import annotations
 
+import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any, Sequence
+from typing import Any, ClassVar, Sequence
 
 import numpy as np
 
@@ -27,6 +29,7 @@ from propwhirl import validate as v
 from propwhirl.analysis.sensitivity import critical_sensitivities
 from propwhirl.analysis.stability import analyse
 from propwhirl.model import derivatives as D
+from propwhirl.results import Result, SavedDict
 from propwhirl.studies.critical import critical_instability, wing_divergence_predicate
 from propwhirl.studies.paths import ALTERNATIVES
 
@@ -136,10 +139,14 @@ class CriticalSpeed:
 
 
 @dataclass(frozen=True)
-class OptimisationResult:
+class OptimisationResult(Result):
     """The optimum x (in the paths' units), V_crit there [m/s], the objective Σ x/x₀, whether it
     clears, SLSQP's message, and the analyses it took with exact and with finite-difference
-    gradients (and each optimum)."""
+    gradients (and each optimum).
+
+    A :class:`~propwhirl.results.Result` of kind "stiffness-optimisation" (format
+    ``propwhirl.stiffness-optimisation/1``): :meth:`save` / :meth:`load`, checked; V = inf
+    (nothing unstable in the range) is saved as null."""
 
     paths: tuple[str, ...]
     x: np.ndarray
@@ -150,6 +157,38 @@ class OptimisationResult:
     analyses: int
     x_fd: np.ndarray
     analyses_fd: int
+
+    KIND: ClassVar[str] = "stiffness-optimisation"
+    VERSION: ClassVar[int] = 1
+    READABLE: ClassVar[tuple[int, ...]] = (1,)
+    WHAT: ClassVar[str] = "optimisation file"
+
+    def encode(self) -> dict[str, Any]:
+        return {"paths": list(self.paths), "x": np.asarray(self.x, dtype=float).tolist(),
+                "V_m_per_s": float(self.V) if math.isfinite(self.V) else None,
+                "objective": float(self.objective), "cleared": bool(self.cleared),
+                "message": self.message, "analyses": int(self.analyses),
+                "x_fd": np.asarray(self.x_fd, dtype=float).tolist(),
+                "analyses_fd": int(self.analyses_fd)}
+
+    @classmethod
+    def decode(cls, d: Mapping[str, Any], version: int, where: str = "") -> "OptimisationResult":
+        """paths (strings, at least one); x and x_fd one finite value per path; V [m/s] > 0
+        or null (infinite: nothing unstable); the counts >= 0.  InputError naming the key."""
+        r = SavedDict(d, where, ("paths", "x", "V_m_per_s", "objective", "cleared", "message",
+                                 "analyses", "x_fd", "analyses_fd"))
+        paths = r.strings("paths")
+        if not paths:
+            raise v.InputError(f"{r.name('paths')}: must name at least one parameter path")
+        V = r.number("V_m_per_s", optional=True)
+        if V is not None and V <= 0:
+            raise v.InputError(f"{r.name('V_m_per_s')} = {V!r} is invalid: must be > 0 m/s "
+                               "(null: nothing unstable)")
+        n = len(paths)
+        return cls(paths, r.array("x", shape=(n,)), math.inf if V is None else V,
+                   r.number("objective"), r.boolean("cleared"), r.string("message"),
+                   r.integer("analyses", 0), r.array("x_fd", shape=(n,)),
+                   r.integer("analyses_fd", 0))
 
 
 def minimum_mount_stiffness(model, vd: float, factor: float = 1.15, *, propeller: int = 0,

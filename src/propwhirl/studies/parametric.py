@@ -54,7 +54,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from typing import Literal, Mapping, Sequence
+from typing import Any, ClassVar, Literal, Mapping, Sequence
 
 import numpy as np
 
@@ -62,6 +62,7 @@ from propwhirl import validate as v
 from propwhirl.analysis.stability import analyse
 from propwhirl.cases.ch09_baseline import baseline_propeller
 from propwhirl.model.propeller import Propeller
+from propwhirl.results import Result, SavedDict
 from propwhirl.studies import paths as P
 from propwhirl.studies.critical import (convention, critical_instability, mount_strain_share,  # noqa: F401
                                         static_divergence_speed, wing_divergence_predicate)
@@ -331,7 +332,7 @@ def blade_angle(betas=BLADE_ANGLES, *, propeller: Propeller | None = None,
 
 
 @dataclass(frozen=True)
-class ModeSwitch:
+class ModeSwitch(Result):
     """Blade angle [deg] where the wingtip model's critical whirl mode changes sense (§11.6).
 
     beta: the switch angle, midpoint of the final bracket (β_forward, β_backward) [deg];
@@ -347,6 +348,46 @@ class ModeSwitch:
     beta: float
     bracket: tuple[float, float]
     evaluations: tuple[tuple[float, float, float], ...]
+
+    # A Result of kind "mode-switch" (format propwhirl.mode-switch/1): save / load, checked;
+    # a speed that is NaN (no flutter of that mode) is saved as null.
+    KIND: ClassVar[str] = "mode-switch"
+    VERSION: ClassVar[int] = 1
+    READABLE: ClassVar[tuple[int, ...]] = (1,)
+    WHAT: ClassVar[str] = "mode-switch file"
+
+    def encode(self) -> dict[str, Any]:
+        return {"beta_deg": float(self.beta), "bracket_deg": [float(b) for b in self.bracket],
+                "evaluations": [{"beta_deg": float(b), "V_forward_m_per_s": _or_null(f),
+                                 "V_backward_m_per_s": _or_null(w)}
+                                for b, f, w in self.evaluations]}
+
+    @classmethod
+    def decode(cls, d: Mapping[str, Any], version: int, where: str = "") -> "ModeSwitch":
+        """bracket [lo, hi] [deg] with beta inside it; each evaluation's beta [deg] and the
+        two flutter speeds [m/s] (> 0, or null: no flutter of that mode).  InputError naming
+        the key."""
+        r = SavedDict(d, where, ("beta_deg", "bracket_deg", "evaluations"))
+        lo, hi = r.bracket("bracket_deg")
+        beta = r.number("beta_deg")
+        if not lo <= beta <= hi:
+            raise v.InputError(f"{r.name('beta_deg')} = {beta!r} is invalid: must lie in "
+                               f"bracket_deg [{lo!r}, {hi!r}]")
+        evals = []
+        for w, e in r.items("evaluations"):
+            q = SavedDict(e, w, ("beta_deg", "V_forward_m_per_s", "V_backward_m_per_s"))
+            speeds = [q.number_or_nan(k) for k in ("V_forward_m_per_s", "V_backward_m_per_s")]
+            bad = [k for k, V in zip(("V_forward_m_per_s", "V_backward_m_per_s"), speeds)
+                   if V <= 0]
+            if bad:
+                raise v.InputError(f"{q.name(bad[0])}: must be a speed > 0 m/s or null")
+            evals.append((q.number("beta_deg"), *speeds))
+        return cls(beta, (lo, hi), tuple(evals))
+
+
+def _or_null(x: float) -> float | None:
+    """x, or None (JSON null) where it is not finite (NaN: no flutter of that mode)."""
+    return float(x) if math.isfinite(x) else None
 
 
 def whirl_flutter_speeds(beta: float, propeller: Propeller | None = None, speeds=None,
