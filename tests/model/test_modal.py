@@ -1,0 +1,221 @@
+"""Modal structures (issue 22, item 2): a wing given by its normal modes.
+
+The exactness check: a beam model's own modes, all of them, at one grid per node, with the
+strips at the nodes, give the same A(V) (its eigenvalues) and the same critical speeds as the
+beam model itself — bare wing, wingtip propeller, two propellers.  The spline: exact for the
+beam's own interpolation (cubic heave, linear twist).  Errors: one line naming the key and id.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy.optimize import linear_sum_assignment
+
+from propwhirl import InputError
+from propwhirl.analysis.stability import analyse
+from propwhirl.cases.ch10_other_wings import two_propeller_wing, wingtip_propeller_wing
+from propwhirl.engine import XTOL
+from propwhirl.model.modal import (ModalInstallation, ModalPropellerWing, ModalStructure,
+                                   StripPlanform, strip_interpolation)
+from propwhirl.model.protocol import Model
+
+
+def modal_of(full, n_modes=None):
+    """The modal model of a PropellerWing: its wing's modes at its nodes, propellers at the
+    nodes' grids with their own mounts (what io.write_modes writes)."""
+    w = full.wing
+    s = ModalStructure.from_wing(w, n_modes)
+    inst = tuple(ModalInstallation(i.propeller, 1 + node, i.mount, i.aero)
+                 for i, node in zip(full.propellers, full.nodes))
+    return ModalPropellerWing(s, tuple(int(g) for g in s.grid_ids), StripPlanform.from_wing(w),
+                              full.flight, inst, full.wing_aero, full.propeller_aero,
+                              full.rotating)
+
+
+def matched_gap(a, b):
+    """Largest relative distance between the eigenvalues of a and b, optimally paired."""
+    ea, eb = np.linalg.eigvals(a), np.linalg.eigvals(b)
+    d = np.abs(ea[:, None] - eb[None, :]) / np.maximum(1.0, np.abs(ea))[:, None]
+    r, c = linear_sum_assignment(d)
+    return float(d[r, c].max())
+
+
+MODELS = {"bare wing": lambda: wingtip_propeller_wing().with_(propellers=()),
+          "wingtip": wingtip_propeller_wing,
+          "wingtip rigid": lambda: wingtip_propeller_wing(mount="rigid"),
+          "two propellers": two_propeller_wing}
+
+
+@pytest.mark.parametrize("name", MODELS)
+def test_all_modes_at_the_nodes_give_the_beam_models_state_matrix(name):
+    full = MODELS[name]()
+    modal = modal_of(full)
+    assert isinstance(modal, Model)
+    V = np.array([20.0, 150.0, 300.0])
+    Af, Am = full.state_matrix(V), modal.state_matrix(V)
+    assert Af.shape == Am.shape
+    for t in range(V.size):
+        assert matched_gap(Af[t], Am[t]) < 1e-6
+
+
+@pytest.mark.parametrize("name", ["bare wing", "wingtip"])
+def test_all_modes_give_the_beam_models_critical_speeds(name):
+    full = MODELS[name]()
+    a, b = analyse(full), analyse(modal_of(full))
+    assert [e.kind for e in a.events] == [e.kind for e in b.events]
+    for x, y in zip(a.events, b.events):
+        assert abs(x.V - y.V) <= 2 * XTOL, (x, y)
+    assert abs(a.critical.V - b.critical.V) <= 2 * XTOL
+
+
+def test_the_dof_map_names_modes_and_propellers():
+    m = modal_of(two_propeller_wing(), 6)
+    dm = m.dof_map()
+    assert dm.q_labels[:6] == tuple(f"mode {k}" for k in range(1, 7))
+    assert dm.q_labels[6:] == ("propeller 1 theta", "propeller 1 psi", "propeller 2 theta",
+                               "propeller 2 psi")
+    assert [p.theta for p in dm.propellers] == [6, 8]
+    assert dm.n_lag == 2 * m.planform.y.size
+    assert m.second_order(np.array([100.0])).S1.shape == (1, 10, 10)
+    quiet = m.without_aerodynamics().dof_map()
+    assert quiet.n_lag == 0
+
+
+def test_fewer_modes_converge_to_the_full_models_matrix_eigenvalues():
+    full = wingtip_propeller_wing()
+    V = np.array([150.0])
+    ref = np.linalg.eigvals(full.state_matrix(V)[0])
+    target = ref[np.argmax(ref.real)]           # the least stable root at 150 m/s
+    errors = []
+    for n in (2, 4, 8, 16):
+        lam = np.linalg.eigvals(modal_of(full, n).state_matrix(V)[0])
+        errors.append(float(np.min(np.abs(lam - target)) / abs(target)))
+    assert errors[-1] < errors[0]
+    assert errors[-1] < 1e-2
+
+
+# ------------------------------------------------------------------------------- the spline
+def _structure_from_field(y_grid, h, dh, alpha, x_grid=None):
+    """One mode whose heave h, slope dh/dy and twist alpha at the grids are given."""
+    n = len(y_grid)
+    xyz = np.zeros((n, 3))
+    xyz[:, 1] = y_grid
+    if x_grid is not None:
+        xyz[:, 0] = x_grid
+    shapes = np.zeros((1, n, 6))
+    shapes[0, :, 2], shapes[0, :, 3], shapes[0, :, 4] = -h, -dh, alpha
+    shapes[0, :, 0] = 1.0             # chordwise motion: not read by the strips, never zero
+    return ModalStructure(np.arange(1, n + 1), xyz, [5.0], [1.0], [0.0], shapes)
+
+
+def _planform(ys, ea=0.4, chord=1.0, x_le=None):
+    n = len(ys)
+    x_le = -ea * chord * np.ones(n) if x_le is None else x_le
+    return StripPlanform(np.asarray(ys), np.full(n, 0.1), np.full(n, chord), x_le,
+                         np.full(n, ea), np.full(n, 0.25), np.full(n, 2 * np.pi))
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.floats(-1, 1), min_size=4, max_size=4),
+       st.lists(st.floats(-1, 1), min_size=2, max_size=2),
+       st.lists(st.floats(0.05, 1.0), min_size=2, max_size=6))
+def test_the_spline_is_exact_for_cubic_heave_and_linear_twist(c, d, steps):
+    """The beam element's own interpolation (Hermite cubic heave, linear twist) is
+    reproduced exactly between any grids: the spline's error is only the field's departure
+    from a cubic (heave) or a straight line (twist) between two grids."""
+    yg = np.concatenate([[0.0], np.cumsum(steps)])
+    h = lambda y: c[0] + c[1] * y + c[2] * y**2 + c[3] * y**3            # noqa: E731
+    dh = lambda y: c[1] + 2 * c[2] * y + 3 * c[3] * y**2                # noqa: E731
+    s = _structure_from_field(yg, h(yg), dh(yg), d[0] + d[1] * yg)
+    ys = np.linspace(0, yg[-1], 17)
+    T = strip_interpolation(s, s.grid_ids, _planform(ys))
+    hs = np.einsum("scgk,gk->sc", T, s.shapes[0])
+    scale = 1 + np.max(np.abs(h(ys)))
+    np.testing.assert_allclose(hs[:, 0], h(ys), atol=1e-12 * scale)
+    np.testing.assert_allclose(hs[:, 1], d[0] + d[1] * ys, atol=1e-12)
+
+
+def test_the_heave_is_carried_to_the_elastic_axis_by_the_rigid_chord():
+    """A reference axis 0.3 m ahead of the strips' elastic axis: h_ea = h_ref + 0.3 α (x aft,
+    nose up α lowers the points behind the reference axis: h down)."""
+    yg = np.array([0.0, 1.0, 2.0])
+    s = _structure_from_field(yg, np.zeros(3), np.zeros(3), np.full(3, 0.01),
+                              x_grid=np.full(3, -0.3))
+    T = strip_interpolation(s, s.grid_ids, _planform([0.5, 1.5]))
+    hs = np.einsum("scgk,gk->sc", T, s.shapes[0])
+    np.testing.assert_allclose(hs[:, 0], 0.3 * 0.01)
+    np.testing.assert_allclose(hs[:, 1], 0.01)
+
+
+def test_the_beams_own_modes_are_reproduced_exactly_at_every_strip():
+    full = two_propeller_wing()
+    s = ModalStructure.from_wing(full.wing, 10)
+    T = strip_interpolation(s, s.grid_ids, StripPlanform.from_wing(full.wing))
+    got = np.einsum("scgk,mgk->msc", T, s.shapes)
+    want = np.stack([-s.shapes[:, 1:, 2], s.shapes[:, 1:, 4]], axis=-1)
+    np.testing.assert_allclose(got, want, atol=1e-14)
+
+
+# ------------------------------------------------------------------------------- errors
+def _good():
+    return ModalStructure.from_wing(wingtip_propeller_wing().wing, 4)
+
+
+def _replace(s, **kw):
+    d = dict(grid_ids=s.grid_ids, xyz=s.xyz, frequencies_hz=s.frequencies_hz,
+             modal_mass=s.modal_mass, damping_ratio=s.damping_ratio, shapes=s.shapes,
+             source="wing.modes.npz")
+    d.update(kw)
+    return ModalStructure(**d)
+
+
+@pytest.mark.parametrize("change, words", [
+    (lambda s: dict(frequencies_hz=np.r_[0.0, s.frequencies_hz[1:]]),
+     ["wing.modes.npz", "frequencies_hz[0]", "rigid-body mode", "mode 1"]),
+    (lambda s: dict(grid_ids=np.r_[s.grid_ids[:-1], s.grid_ids[0]]),
+     ["wing.modes.npz", "grid_ids", "grid 1 twice"]),
+    (lambda s: dict(modal_mass=-s.modal_mass), ["wing.modes.npz", "modal_mass[0]", "> 0"]),
+    (lambda s: dict(damping_ratio=np.full(4, 1.5)), ["damping_ratio[0]", "[0, 1)"]),
+    (lambda s: dict(shapes=s.shapes[:, :3]), ["wing.modes.npz", "shapes", "shape"]),
+    (lambda s: dict(xyz=np.where(np.arange(3) == 1, np.nan, s.xyz)), ["xyz", "finite"]),
+    (lambda s: dict(grid_ids=-s.grid_ids), ["grid_ids[0]", "positive"]),
+    (lambda s: dict(shapes=np.concatenate([s.shapes[:3], 0 * s.shapes[3:]])),
+     ["shapes[3]", "no motion"]),
+])
+def test_a_bad_structure_is_one_line_naming_the_source_key_and_id(change, words):
+    s = _good()
+    with pytest.raises(InputError) as e:
+        _replace(s, **change(s))
+    msg = str(e.value)
+    assert "\n" not in msg
+    for w in words:
+        assert w in msg, msg
+
+
+def test_a_hub_grid_not_in_the_modes_or_not_moving_is_refused():
+    full = wingtip_propeller_wing()
+    m = modal_of(full, 4)
+    prop = full.propellers[0].propeller
+    with pytest.raises(InputError, match=r"propellers\[0\]\.grid = 999 is not a grid"):
+        m.with_(propellers=(ModalInstallation(prop, 999),))
+    with pytest.raises(InputError, match=r"grid = 1 does not move in any mode"):
+        m.with_(propellers=(ModalInstallation(prop, 1),))           # the clamped root
+    with pytest.raises(InputError, match=r"propellers\[1\]\.grid = 5 .*at most one"):
+        m.with_(propellers=(ModalInstallation(prop, 5), ModalInstallation(prop, 5)))
+    with pytest.raises(InputError, match="not implemented"):
+        ModalInstallation(prop, 5, mount="rigid-on-grid")
+
+
+def test_strips_outside_the_grids_or_unordered_grids_are_refused():
+    m = modal_of(wingtip_propeller_wing(), 4)
+    ys = m.planform.y.copy()
+    ys[-1] += 1.0
+    bad = _planform(ys)
+    with pytest.raises(InputError, match=r"y\[\d+\] = .* outside the wing grids' span"):
+        m.with_(planform=bad)
+    with pytest.raises(InputError, match=r"wing_grids\[1\] = 1 .* ordered root to tip"):
+        m.with_(wing_grids=(2, 1, 3))
+    with pytest.raises(InputError, match=r"wing_grids\[0\] = 77 is not a grid"):
+        m.with_(wing_grids=(77, 1))
