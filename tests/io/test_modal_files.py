@@ -152,3 +152,21 @@ def test_write_modes_refuses_what_it_cannot_write(tmp_path):
     with pytest.raises(InputError, match="only a PropellerWing"):
         write_modes(isolated_baseline_propeller(), tmp_path / "x.toml")
     assert not list(tmp_path.iterdir())
+
+
+def test_the_whole_structures_modes_with_hub_grids_round_trip(tmp_path):
+    """Way (b): the modes of the wing with the propellers' masses and mount springs, each
+    propeller on a hub grid of its own, written and read back: the same A(V) as the model
+    built in memory."""
+    from propwhirl.model.modal import ModalStructure
+
+    full = two_propeller_wing()
+    toml, npz = write_modes(full, tmp_path / "two.toml", n_modes=12, mount="on-grid")
+    m = load_modal_model(toml)
+    s, hubs, _ = ModalStructure.with_mounts(full, 12)
+    assert [p.grid for p in m.propellers] == list(hubs)
+    assert all(p.mount == "on-grid" for p in m.propellers)
+    assert np.array_equal(m.structure.shapes, s.shapes)
+    assert m.dof_map().n_dof == 12
+    with pytest.raises(InputError, match="mount = 'rigid' is invalid"):
+        write_modes(full, tmp_path / "x.toml", mount="rigid")

@@ -29,8 +29,8 @@ from propwhirl import fileio, limits
 from propwhirl import validate as v
 from propwhirl.io.model_files import _build, _Table, _toml_error, _Writer
 from propwhirl.model.flight import FlightCondition
-from propwhirl.model.modal import (ModalInstallation, ModalPropellerWing, ModalStructure,
-                                   StripPlanform, _id_list)
+from propwhirl.model.modal import (MOUNTS, ModalInstallation, ModalPropellerWing,
+                                   ModalStructure, StripPlanform, _id_list)
 from propwhirl.model.propeller import Propeller
 from propwhirl.model.systems import PropellerWing
 
@@ -220,7 +220,7 @@ def _from_dict(data: dict[str, Any], path: Path) -> ModalPropellerWing:
         if g not in ids:
             raise _fail(str(path), f"installations[{j}].grid = {g} is not a grid of {file}: "
                         f"the modes have no hub grid {g} (grids {_id_list(structure.grid_ids)})")
-        mount = t.string("mount", choices=("flexible", "rigid")) if t.has("mount") else "flexible"
+        mount = t.string("mount", choices=MOUNTS) if t.has("mount") else "flexible"
         aero = t.boolean("aero") if t.has("aero") else True
         installations.append(ModalInstallation(ctx[t.string("propeller")], g, mount, aero))
     planform = StripPlanform(**{f: np.array(x) for f, x in values.items()},
@@ -239,15 +239,19 @@ def _keys(cls: type) -> tuple[str, ...]:
 
 
 # =============================================================================== writing
-def write_modes(model: PropellerWing, path: str | Path, n_modes: int | None = None
-                ) -> tuple[Path, Path]:
-    """Write ``model``'s wing as a modal model: its wing's in-vacuo modes (the lowest
-    ``n_modes``, default all; :meth:`ModalStructure.from_wing`: one grid per node, the wing
-    alone, without the propellers' masses and mounts) to ``<stem>.modes.npz`` beside ``path``,
-    and the TOML description to ``path``: the strips at the wing's nodes, every propeller at
-    its node's grid with its own mount ("flexible": its pitch and yaw DOFs and springs added
-    by the modal model), the flight condition and switches.  Read back with
-    :func:`load_modal_model`.  Returns (TOML path, npz path).  Needs tomli-w."""
+def write_modes(model: PropellerWing, path: str | Path, n_modes: int | None = None,
+                mount: str = "own") -> tuple[Path, Path]:
+    """Write ``model`` as a modal model: modes to ``<stem>.modes.npz`` beside ``path``, the
+    TOML description to ``path`` (the strips at the wing's nodes, the propellers, the flight
+    condition and switches).  Read back with :func:`load_modal_model`.  Returns (TOML path,
+    npz path).  Needs tomli-w.
+
+    ``mount = "own"`` (way a): the wing's in-vacuo modes alone (the lowest ``n_modes``,
+    default all; :meth:`ModalStructure.from_wing`, one grid per node), every propeller at its
+    node's grid with its own mount (a flexible one's pitch and yaw DOFs and springs, and its
+    mass, added by the modal model).  ``mount = "on-grid"`` (way b): the modes of the whole
+    structure — wing, propeller masses and mount springs (:meth:`ModalStructure.with_mounts`)
+    — and every propeller "on-grid" at a hub grid of its own."""
     if not isinstance(model, PropellerWing):
         raise v.InputError(f"write_modes: model is a {type(model).__name__}: only a "
                            "PropellerWing's wing can be written as modes")
@@ -260,20 +264,29 @@ def write_modes(model: PropellerWing, path: str | Path, n_modes: int | None = No
         raise v.InputError("writing a modal model file needs tomli-w: "
                            "pip install propwhirl[toml]") from None
     path = Path(path)
+    if mount not in ("own", "on-grid"):
+        raise v.InputError(f"write_modes: mount = {mount!r} is invalid: must be 'own' or "
+                           "'on-grid'")
     npz = path.with_name(path.name.removesuffix(".toml") + ".modes.npz")
     wing = model.wing
-    s = ModalStructure.from_wing(wing, n_modes)
+    if mount == "own":
+        s = ModalStructure.from_wing(wing, n_modes)
+        grids = [int(1 + node) for node in model.nodes]
+        mounts = [inst.mount for inst in model.propellers]
+    else:
+        s, hubs, _ = ModalStructure.with_mounts(model, n_modes)
+        grids, mounts = list(hubs), ["on-grid"] * len(hubs)
     planform = StripPlanform.from_wing(wing)
     w = _Writer()
-    installations = [{"propeller": w.propeller_key(inst.propeller), "grid": int(1 + node),
-                      "mount": inst.mount, "aero": inst.aero}
-                     for inst, node in zip(model.propellers, model.nodes)]
+    installations = [{"propeller": w.propeller_key(inst.propeller), "grid": g, "mount": m,
+                      "aero": inst.aero}
+                     for inst, g, m in zip(model.propellers, grids, mounts)]
     doc: dict[str, Any] = {
         "format": FORMAT, "format_version": FORMAT_VERSION, "name": f"{model.name} (modal)",
         "installations": installations,
         "units": dict(UNITS),
         "modes": {"file": npz.name, "n_modes": s.n_modes, "n_grids": int(s.grid_ids.size),
-                  "wing_grids": [int(g) for g in s.grid_ids]},
+                  "wing_grids": [int(g) for g in s.grid_ids[:wing.n_nodes]]},
         "strips": {"aero_model": planform.aero_model,
                    **{k: [float(x) for x in getattr(planform, f)] for k, f in STRIP_KEYS}},
         "flight": w.encode(model.flight, "flight"),

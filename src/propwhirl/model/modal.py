@@ -33,8 +33,13 @@ yaw DOFs and springs, as a :class:`~propwhirl.model.systems.PropellerWing`'s, it
 block (:mod:`propwhirl.model.propeller_blocks`, 4×4 on [θ, ψ, h_P, α_P]) coupled through the
 hub grid's heave and twist, h_P = −T_z, α_P = R_y, with a_P b_P the hub grid's x aft of the
 local mid-chord; ``mount = "rigid"``: the 2×2 rigid-mount block on [h_P, α_P] (its mass and
-aerodynamic loads, §9.3.1).  A propeller rigid on its hub grid with the mount's flexibility
-inside the modes (way b) is not implemented.
+aerodynamic loads, §9.3.1).  ``mount = "on-grid"`` (way b, Rodden/Čečrdle practice): the
+propeller rigid on its hub grid, which sits at the hub (the centre of the propeller plane), the
+mount's flexibility and the propeller's mass inside the modes; its Houbolt–Reed loads and its
+rotor's gyroscopic moments act on the hub grid's motion u = [z_H, y_H, θ_H, ψ_H] =
+[−T_z, T_y, R_y, −R_z] (down, outboard, nose up, and yaw in the sense of the thesis's ψ) by the
+generated :mod:`propwhirl.generated.prop_hub` (derivations/prop_hub.py, checked there to be
+chapter 8's loads through the hub's motion).
 """
 from __future__ import annotations
 
@@ -47,7 +52,8 @@ import numpy as np
 from propwhirl import limits
 from propwhirl import validate as v
 from propwhirl.model import validity
-from propwhirl.model.assembly import LAG_STATES, strip_aero_blocks
+from propwhirl.generated import prop_hub
+from propwhirl.model.assembly import LAG_STATES, call_blocks, strip_aero_blocks
 from propwhirl.model.base import EvaluatorBase, StateSpaceModel
 from propwhirl.model.flight import FlightCondition
 from propwhirl.model.propeller import Propeller
@@ -60,6 +66,8 @@ from propwhirl.model.statespace import SecondOrder
 COMPONENTS = ("T_x", "T_y", "T_z", "R_x", "R_y", "R_z")
 #: Modes whose frequency is below this [Hz] are rigid-body modes: a cantilever wing has none.
 RIGID_BODY_HZ = 1e-3
+#: How a propeller sits on its hub grid (module docstring).
+MOUNTS = ("flexible", "rigid", "on-grid")
 
 
 def _array(source: str, key: str, value, shape: tuple, dtype=float) -> np.ndarray:
@@ -185,6 +193,77 @@ class ModalStructure:
                    frequencies_hz=omega / (2 * np.pi), modal_mass=np.ones(n),
                    damping_ratio=0.5 * (mu / omega + lam * omega), shapes=shapes,
                    source=f"modes of wing {getattr(wing, 'name', '')}".rstrip())
+
+    @classmethod
+    def with_mounts(cls, model, n_modes: int | None = None, first_hub_id: int = 1001
+                    ) -> tuple["ModalStructure", tuple[int, ...], float]:
+        """The in-vacuo modes of a :class:`~propwhirl.model.systems.PropellerWing`'s whole
+        structure — the wing, every propeller's mass and its pitch and yaw springs (not
+        spinning) — for propellers mounted "on-grid" (way b): the wing's node grids as
+        :meth:`from_wing`, and a hub grid per propeller (ids ``first_hub_id`` + its index) at
+        its hub, x = e_α aft of the elastic axis, moving as chapter 8's hub
+        (:func:`propwhirl.generated.prop_hub.hub_motion`): T_z = −z_H, T_y = y_H, R_y = θ_H,
+        R_z = −ψ_H, R_x the node's.  Mass-normalised; the modal damping ratio of each mode
+        from the structure's damping C, ζ_i = φ_iᵀ C φ_i / (2 ω_i) (its couplings between
+        modes dropped).  Returns (structure, hub grid ids, the largest coupling dropped,
+        |φ_iᵀ C φ_j| / √(c_ii c_jj), 0 when C is diagonal in the modes)."""
+        import scipy.linalg
+
+        from propwhirl.model.assembly import free_dofs
+        from propwhirl.model.propeller_blocks import propeller_constants
+
+        wing = model.wing
+        if wing.in_plane:
+            raise v.InputError("ModalStructure.with_mounts: in-plane bending (EI_chordwise) "
+                               "is not supported")
+        quiet = model.with_(wing_aero=False, propeller_aero=False, rotating=False)
+        sys = quiet.second_order(np.array([1.0]))
+        M, C, K = sys.S1[0], sys.S2[0], sys.S3[0]
+        w2, X = scipy.linalg.eigh(K, M)
+        n = w2.size if n_modes is None else v.integer_at_least("n_modes", n_modes, 1)
+        if n > w2.size:
+            raise v.InputError(f"n_modes = {n} is invalid: the structure has {w2.size} modes")
+        w2, X = w2[:n], X[:, :n]
+        for k in range(n):
+            i = int(np.argmax(np.abs(X[:, k])))
+            X[:, k] *= np.sign(X[i, k])
+        omega = np.sqrt(w2)
+        Cm = X.T @ C @ X
+        d = np.sqrt(np.abs(np.outer(np.diag(Cm), np.diag(Cm))))
+        off = Cm - np.diag(np.diag(Cm))
+        coupling = float(np.max(np.where(d > 0, np.abs(off) / np.where(d > 0, d, 1), 0.0)))
+        nn, f = wing.n_nodes, free_dofs(wing.n_nodes)
+        nodal = np.zeros((3 * nn, n))
+        nodal[f] = X[: f.size]
+        nodal = nodal.reshape(nn, 3, n)                # [h, φ, α] per node
+        props = list(model.propellers)
+        shapes = np.zeros((n, nn + len(props), 6))
+        shapes[:, :nn, 2] = -nodal[:, 0].T
+        shapes[:, :nn, 3] = -nodal[:, 1].T
+        shapes[:, :nn, 4] = nodal[:, 2].T
+        xyz = np.zeros((nn + len(props), 3))
+        xyz[:nn, 1] = wing.node_y
+        flex = model.flexible
+        for j, inst in enumerate(props):
+            node = model.nodes[j]
+            c = propeller_constants(inst.propeller, wing, node, model.flight.density)
+            G = prop_hub.hub_motion(c["e_theta"], c["e_psi"], c["e_alpha"])[:, :4]
+            q = np.zeros((4, n))                        # [θ, ψ, h_P, α_P]
+            if inst.mount == "flexible":
+                pj = f.size + 2 * flex.index(j)
+                q[0], q[1] = X[pj], X[pj + 1]
+            q[2], q[3] = nodal[node, 0], nodal[node, 2]
+            z, y, th, ps = G @ q
+            g = nn + j
+            shapes[:, g, 1], shapes[:, g, 2] = y, -z
+            shapes[:, g, 3], shapes[:, g, 4], shapes[:, g, 5] = -nodal[node, 1], th, -ps
+            xyz[g] = (c["e_alpha"], wing.node_y[node], 0.0)
+        hub_ids = tuple(first_hub_id + j for j in range(len(props)))
+        ids = np.concatenate([1 + np.arange(nn), np.array(hub_ids, dtype=np.int64)])
+        out = cls(grid_ids=ids, xyz=xyz, frequencies_hz=omega / (2 * np.pi),
+                  modal_mass=np.ones(n), damping_ratio=np.diag(Cm) / (2 * omega),
+                  shapes=shapes, source=f"modes of {model.name}")
+        return out, hub_ids, coupling
 
     @property
     def n_modes(self) -> int:
@@ -347,12 +426,14 @@ def strip_interpolation(structure: ModalStructure, wing_grids, planform: StripPl
 class ModalInstallation:
     """A propeller at hub grid ``grid`` of a :class:`ModalPropellerWing`.
 
-    mount: "flexible" (its own pitch and yaw DOFs and springs) or "rigid" (the rigid-mount
-    block on the hub grid's heave and twist); aero: its aerodynamic loads on."""
+    mount: "flexible" (its own pitch and yaw DOFs and springs), "rigid" (the rigid-mount
+    block on the hub grid's heave and twist) or "on-grid" (rigid on the hub grid, its mount
+    and mass in the modes: only its aerodynamic and gyroscopic loads added); aero: its
+    aerodynamic loads on."""
 
     propeller: Propeller
     grid: int
-    mount: Literal["flexible", "rigid"] = "flexible"
+    mount: Literal["flexible", "rigid", "on-grid"] = "flexible"
     aero: bool = True
 
     def __post_init__(self) -> None:
@@ -362,10 +443,9 @@ class ModalInstallation:
         if isinstance(self.grid, bool) or not isinstance(self.grid, (int, np.integer)):
             raise v.InputError(f"grid = {v.short_repr(self.grid)} is invalid: must be a grid "
                                "id (an integer)")
-        if self.mount not in ("flexible", "rigid"):
-            raise v.InputError(f"mount = {self.mount!r} is invalid: must be 'flexible' or "
-                               "'rigid' (a propeller rigid on its hub grid with the mount in "
-                               "the modes is not implemented)")
+        if self.mount not in MOUNTS:
+            raise v.InputError(f"mount = {self.mount!r} is invalid: must be one of "
+                               + ", ".join(map(repr, MOUNTS)))
         v.boolean("aero", self.aero)
 
 
@@ -499,6 +579,15 @@ class ModalAssembly(EvaluatorBase):
         hubs, consts = [], []
         for j, inst in enumerate(model.propellers):
             g = s.index(inst.grid)
+            if inst.mount == "on-grid":
+                hub = np.zeros((4, n))
+                hub[:, :nm] = Phi[g, [2, 1, 4, 5]] * np.array([-1.0, 1.0, 1.0, -1.0])[:, None]
+                hub.flags.writeable = False
+                hubs.append(hub)
+                p = inst.propeller
+                consts.append(MappingProxyType(dict(I_Omega=p.I_Omega, rho=model.flight.density,
+                                                    R=p.radius)))
+                continue
             hub = np.zeros((2, n))
             hub[0, :nm] = -Phi[g, 2]                           # h_P = −T_z
             hub[1, :nm] = Phi[g, 4]                            # α_P = R_y
@@ -546,8 +635,11 @@ class ModalAssembly(EvaluatorBase):
             vals = propeller_values(const, inst.propeller, V, omega, rotating=model.rotating,
                                     aero=aero, speed_of_sound=model.flight.speed_of_sound,
                                     derivatives=derivatives)
-            for Si, B in zip(S, propeller_matrices(vals, mount=inst.mount, in_plane=False,
-                                                   aero=aero)):
+            if inst.mount == "on-grid":
+                mats = _on_grid_matrices(vals, aero, nV)
+            else:
+                mats = propeller_matrices(vals, mount=inst.mount, in_plane=False, aero=aero)
+            for Si, B in zip(S, mats):
                 Si += hub.T @ B @ hub
         if not model.wing_aero:
             z = np.zeros((nV, 0, n))
@@ -567,3 +659,23 @@ class ModalAssembly(EvaluatorBase):
         for s in range(ns):
             Ww[:, s * k:(s + 1) * k, s * k:(s + 1) * k] = a["Ww"][:, s]
         return SecondOrder(*S, S4, Ww, Wv, Wq, self.states.q_labels, self.states.w_labels)
+
+
+def _on_grid_matrices(values: dict, aero: bool, nV: int):
+    """(M, C, K) (nV, 4, 4) on the hub's [z_H, y_H, θ_H, ψ_H] of a propeller rigid on its hub
+    grid: the generated gyroscopic matrix and, with ``aero``, the Houbolt–Reed loads (signs
+    applied: S1 = −M_a, S2 = C_g − C_a, S3 = −K_a)."""
+    if not aero:
+        Cg = call_blocks(prop_hub, "hub_blocks", (nV,), **_zero_derivatives(values))["Cg"]
+        z = np.zeros((nV, 4, 4))
+        return z, Cg, z.copy()
+    b = call_blocks(prop_hub, "hub_blocks", (nV,), **values)
+    return -b["Ma_hub"], b["Cg"] - b["Ca_hub"], -b["Ka_hub"]
+
+
+def _zero_derivatives(values: dict) -> dict:
+    """``values`` with every aerodynamic derivative 0 (the gyroscopic matrix alone)."""
+    out = dict(values)
+    for name in prop_hub.BLOCKS["hub_blocks"][0]:
+        out.setdefault(name, 0.0)
+    return out
