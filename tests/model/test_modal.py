@@ -285,3 +285,19 @@ def test_a_propeller_on_grid_is_spinning_and_loaded_only_through_its_hub():
     np.testing.assert_allclose(G, -G.T, atol=1e-12 * np.abs(G).max())
     assert np.abs(G).max() > 0
     np.testing.assert_array_equal(spin.S1, still.S1)      # no mass of its own: in the modes
+
+
+def test_the_events_of_a_modal_model_are_named_by_its_modes_and_the_wing_participates():
+    """The analyses read a modal model from its DOF map: its events named after their
+    largest coordinate (a mode of the structure or a propeller's θ, ψ), the modes counted as
+    the wing in the participation (not "other")."""
+    a = analyse(modal_of(wingtip_propeller_wing(), 12))
+    labels = {e.label for e in a.events}
+    assert labels <= {f"mode {k}" for k in range(1, 13)} | {"propeller 1 theta",
+                                                            "propeller 1 psi"}, labels
+    for e in a.events:
+        assert e.participation.other == 0.0
+        assert e.participation.wing > 0.0
+    whirl = max((e for e in a.events if e.kind == "flutter"),
+                key=lambda e: e.participation.propellers[0].share)
+    assert whirl.whirl in ("forward", "backward")

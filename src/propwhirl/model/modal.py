@@ -376,8 +376,8 @@ class StripPlanform:
         return float(np.interp(y, self.y, self.leading_edge_x + 0.5 * self.chord))
 
 
-def strip_interpolation(structure: ModalStructure, wing_grids, planform: StripPlanform
-                        ) -> np.ndarray:
+def strip_interpolation(structure: ModalStructure, wing_grids, planform: StripPlanform,
+                        twist_spline: str = "linear") -> np.ndarray:
     """T (n_strips, 2, n_grids, 6): each strip's heave h [m] (positive down, at its elastic
     axis) and twist α [rad] (nose up) from the grids' six components (rule in the module
     docstring: Hermite cubic in y for T_z with R_x as slope, linear for R_y, rigid chord).
@@ -406,6 +406,7 @@ def strip_interpolation(structure: ModalStructure, wing_grids, planform: StripPl
     T = np.zeros((ys.size, 2, structure.grid_ids.size, 6))
     xg = structure.xyz[idx, 0]
     x_ea = planform.leading_edge_x + planform.elastic_axis * planform.chord
+    twist = _twist_weights(yg, ys, twist_spline)          # (n_strips, n_wing_grids)
     for s, y in enumerate(ys):
         k = int(np.clip(np.searchsorted(yg, y, side="right") - 1, 0, yg.size - 2))
         i0, i1 = idx[k], idx[k + 1]
@@ -415,11 +416,24 @@ def strip_interpolation(structure: ModalStructure, wing_grids, planform: StripPl
         h00, h10 = 1 - 3 * t**2 + 2 * t**3, (t - 2 * t**2 + t**3) * L
         h01, h11 = 3 * t**2 - 2 * t**3, (-t**2 + t**3) * L
         lever = x_ea[s] - ((1 - t) * xg[k] + t * xg[k + 1])
-        # h = −(T_z − R_y · lever), α = R_y
-        T[s, 0, i0, 2], T[s, 0, i0, 3], T[s, 0, i0, 4] = -h00, -h10, (1 - t) * lever
-        T[s, 0, i1, 2], T[s, 0, i1, 3], T[s, 0, i1, 4] = -h01, -h11, t * lever
-        T[s, 1, i0, 4], T[s, 1, i1, 4] = 1 - t, t
+        # h = −(T_z − α · lever), α = R_y splined
+        T[s, 0, i0, 2], T[s, 0, i0, 3] = -h00, -h10
+        T[s, 0, i1, 2], T[s, 0, i1, 3] = -h01, -h11
+        T[s, 0, idx, 4] += twist[s] * lever
+        T[s, 1, idx, 4] = twist[s]
     return T
+
+
+def _twist_weights(yg: np.ndarray, ys: np.ndarray, kind: str) -> np.ndarray:
+    """Weights (n_strips, n_grids) of the twist at stations ``ys`` from its values at the
+    grids ``yg``: "linear" (piecewise), or "cubic" (the not-a-knot cubic spline through the
+    grids; a parabola through 3 grids, linear through 2)."""
+    if kind == "linear" or yg.size == 2:
+        eye = np.eye(yg.size)
+        return np.stack([np.interp(ys, yg, eye[i]) for i in range(yg.size)], axis=1)
+    from scipy.interpolate import CubicSpline
+
+    return CubicSpline(yg, np.eye(yg.size), bc_type="not-a-knot")(ys)
 
 
 @dataclass(frozen=True)
