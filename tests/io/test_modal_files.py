@@ -170,3 +170,12 @@ def test_the_whole_structures_modes_with_hub_grids_round_trip(tmp_path):
     assert m.dof_map().n_dof == 12
     with pytest.raises(InputError, match="mount = 'rigid' is invalid"):
         write_modes(full, tmp_path / "x.toml", mount="rigid")
+
+
+def test_a_modal_model_given_as_a_model_file_says_how_to_read_it(written):
+    from propwhirl.io import load_model
+
+    toml, _ = written
+    with pytest.raises(InputError, match="this is a modal model: read it with "
+                                         "propwhirl.io.modal_files.load_modal_model"):
+        load_model(toml)

@@ -301,3 +301,38 @@ def test_the_events_of_a_modal_model_are_named_by_its_modes_and_the_wing_partici
     whirl = max((e for e in a.events if e.kind == "flutter"),
                 key=lambda e: e.participation.propellers[0].share)
     assert whirl.whirl in ("forward", "backward")
+
+
+# ------------------------------------------------------------------------------- convergence
+def _relative_errors(ref, got):
+    """|ΔV|/V of each event of ``ref`` from its match in ``got`` (same kind and event, one to
+    one by nearest speed); inf for an event with no match."""
+    cost = np.full((len(ref), max(1, len(got))), np.inf)
+    for i, a in enumerate(ref):
+        for j, b in enumerate(got):
+            if (a.kind, a.event) == (b.kind, b.event):
+                cost[i, j] = abs(b.V - a.V) / a.V
+    out = np.full(len(ref), np.inf)
+    finite = np.where(np.isfinite(cost), cost, 1e9)
+    for i, j in zip(*linear_sum_assignment(finite)):
+        out[i] = cost[i, j]
+    return out
+
+
+@pytest.mark.parametrize("name, build, enough", [
+    ("wingtip", on_grid_of, 10), ("two propellers", on_grid_of, 10),
+    ("wingtip", modal_of, 16),
+])
+def test_the_critical_speeds_converge_to_the_beam_models_as_modes_are_added(name, build,
+                                                                             enough):
+    """Issue 22, 4(b) (docs/validation.md, "Modal structures"): every instability of the beam
+    model within 0.5 % from ``enough`` modes on (the mounts in the modes: 10; the bare wing's
+    modes with the propellers' own mounts: 16 for the wingtip model), and not with a third of
+    them."""
+    full = MODELS[name]()
+    ref = analyse(full).events
+    for n in (enough, enough + 2, 20):
+        err = _relative_errors(ref, analyse(build(full, n)).events)
+        assert err.max() <= 5e-3, (n, err)
+    err = _relative_errors(ref, analyse(build(full, enough // 3)).events)
+    assert err.max() > 5e-3
