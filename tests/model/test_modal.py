@@ -336,3 +336,21 @@ def test_the_critical_speeds_converge_to_the_beam_models_as_modes_are_added(name
         assert err.max() <= 5e-3, (n, err)
     err = _relative_errors(ref, analyse(build(full, enough // 3)).events)
     assert err.max() > 5e-3
+
+
+ANY_ARRAY = st.one_of(
+    st.none(), st.text(max_size=3), st.floats(), st.lists(st.floats(), max_size=4),
+    st.lists(st.lists(st.floats(allow_nan=True), min_size=1, max_size=3), max_size=3),
+    st.lists(st.integers(-3, 30), max_size=4), st.lists(st.text(max_size=2), max_size=3))
+
+
+@settings(max_examples=150, deadline=None)
+@given(key=st.sampled_from(["grid_ids", "xyz", "frequencies_hz", "modal_mass",
+                            "damping_ratio", "shapes"]), value=ANY_ARRAY)
+def test_any_array_gives_a_structure_or_one_line_naming_the_key(key, value):
+    """Every field of a ModalStructure replaced by anything: a structure, or one line
+    naming the source (never a NumPy traceback)."""
+    try:
+        _replace(_good(), **{key: value})
+    except InputError as exc:
+        assert "\n" not in str(exc) and "wing.modes.npz" in str(exc), str(exc)

@@ -73,7 +73,14 @@ MOUNTS = ("flexible", "rigid", "on-grid")
 def _array(source: str, key: str, value, shape: tuple, dtype=float) -> np.ndarray:
     """`value` as a read-only copy of `shape` (-1: any length) and dtype, finite; else a
     one-line error naming `source` and `key`."""
-    arr = np.array(value, dtype=dtype, copy=True) if not isinstance(value, str) else None
+    try:
+        arr = None if isinstance(value, (str, bytes)) else np.array(value, dtype=dtype, copy=True)
+    except (TypeError, ValueError, OverflowError):
+        arr = None
+    if arr is not None and np.dtype(dtype).kind == "i":
+        raw = np.asarray(value)
+        if raw.dtype.kind not in "iu" or not np.array_equal(raw, arr):
+            raise v.InputError(f"{source}: {key} has dtype {raw.dtype}, must be integers")
     if arr is None or arr.ndim != len(shape) or any(
             s not in (-1, n) for s, n in zip(shape, arr.shape)):
         got = None if arr is None else arr.shape
