@@ -179,3 +179,12 @@ def test_a_modal_model_given_as_a_model_file_says_how_to_read_it(written):
     with pytest.raises(InputError, match="this is a modal model: read it with "
                                          "propwhirl.io.modal_files.load_modal_model"):
         load_model(toml)
+
+
+def test_more_modes_than_the_limit_are_refused_before_reading(written, tmp_path):
+    toml, npz = written
+    bad = tmp_path / "wingtip.toml"
+    bad.write_text(toml.read_text().replace("n_modes = 75", "n_modes = 1000000"))
+    with pytest.raises(InputError, match=r"\[modes\] n_modes = 1000000 is invalid: must be an "
+                                         r"integer in \[1, 1000\]"):
+        load_modal_model(bad)

@@ -29,7 +29,7 @@ from propwhirl import fileio, limits
 from propwhirl import validate as v
 from propwhirl.io.model_files import _build, _Table, _toml_error, _Writer
 from propwhirl.model.flight import FlightCondition
-from propwhirl.model.modal import (MOUNTS, ModalInstallation, ModalPropellerWing,
+from propwhirl.model.modal import (MAX_MODES, MOUNTS, ModalInstallation, ModalPropellerWing,
                                    ModalStructure, StripPlanform, _id_list)
 from propwhirl.model.propeller import Propeller
 from propwhirl.model.systems import PropellerWing
@@ -171,9 +171,9 @@ def _from_dict(data: dict[str, Any], path: Path) -> ModalPropellerWing:
     modes = top.sub("modes", ("file", "n_modes", "n_grids", "wing_grids"))
     file = path.parent / modes.string("file")
     n_modes, n_grids = modes.integer("n_modes"), modes.integer("n_grids")
-    for key, n in (("n_modes", n_modes), ("n_grids", n_grids)):
-        if n < 1:
-            raise modes.bad(key, "an integer >= 1")
+    for key, n, most in (("n_modes", n_modes, MAX_MODES), ("n_grids", n_grids, None)):
+        if n < 1 or (most is not None and n > most):
+            raise modes.bad(key, f"an integer in [1, {most}]" if most else "an integer >= 1")
     raw_grids = modes.raw("wing_grids")
     if (not isinstance(raw_grids, list) or len(raw_grids) < 2
             or any(isinstance(g, bool) or not isinstance(g, int) for g in raw_grids)):

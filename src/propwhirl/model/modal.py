@@ -66,6 +66,10 @@ from propwhirl.model.statespace import SecondOrder
 COMPONENTS = ("T_x", "T_y", "T_z", "R_x", "R_y", "R_z")
 #: Modes whose frequency is below this [Hz] are rigid-body modes: a cantilever wing has none.
 RIGID_BODY_HZ = 1e-3
+#: Most modes and strips of a model (a beam model has at most 3 × limits.MAX_ELEMENTS DOFs
+#: and MAX_ELEMENTS + 1 strips): the analyses' matrices grow with their squares.
+MAX_MODES = 1000
+MAX_STRIPS = 1000
 #: How a propeller sits on its hub grid (module docstring).
 MOUNTS = ("flexible", "rigid", "on-grid")
 
@@ -122,6 +126,9 @@ class ModalStructure:
         ng = ids.size
         f = _array(src, "frequencies_hz", self.frequencies_hz, (-1,))
         nm = f.size
+        if nm > MAX_MODES:
+            raise v.InputError(f"{src}: {nm} modes is too many: at most {MAX_MODES} (keep the "
+                               "lowest)")
         if nm == 0 or ng == 0:
             raise v.InputError(f"{src}: {'no modes' if nm == 0 else 'no grids'}: a modal "
                                "structure needs at least one mode and one grid")
@@ -339,8 +346,8 @@ class StripPlanform:
         src = self.source
         y = _array(src, "y", self.y, (-1,))
         n = y.size
-        if n == 0:
-            raise v.InputError(f"{src}: y is empty: give at least one strip")
+        if n == 0 or n > MAX_STRIPS:
+            raise v.InputError(f"{src}: y has {n} strips: give 1 to {MAX_STRIPS}")
         object.__setattr__(self, "y", y)
         for k in ("width", "chord", "leading_edge_x", "elastic_axis", "aerodynamic_centre",
                   "lift_slope"):
