@@ -60,7 +60,7 @@ def test_all_modes_at_the_nodes_give_the_beam_models_state_matrix(name):
         assert matched_gap(Af[t], Am[t]) < 1e-6
 
 
-@pytest.mark.parametrize("name", ["bare wing", "wingtip"])
+@pytest.mark.parametrize("name", ["bare wing", "wingtip", "two propellers"])
 def test_all_modes_give_the_beam_models_critical_speeds(name):
     full = MODELS[name]()
     a, b = analyse(full), analyse(modal_of(full))
@@ -354,3 +354,22 @@ def test_any_array_gives_a_structure_or_one_line_naming_the_key(key, value):
         _replace(_good(), **{key: value})
     except InputError as exc:
         assert "\n" not in str(exc) and "wing.modes.npz" in str(exc), str(exc)
+
+
+@settings(max_examples=12, deadline=None)
+@given(d=st.floats(-0.6, 0.6), speed=st.floats(30.0, 320.0))
+def test_grids_off_the_elastic_axis_give_the_same_model(d, speed):
+    """The grids (wing and hub) moved a distance d [m] along x off the elastic axis, the mode
+    shapes carried rigidly with them (T_z at x = d is T_z − R_y d): the strips' heave is taken
+    back to the elastic axis and the propeller's block is written about the hub grid
+    (a_P b_P = x_grid − x_mid-chord), so A(V) is unchanged."""
+    m = modal_of(wingtip_propeller_wing(), 8)
+    s = m.structure
+    shapes = s.shapes.copy()
+    shapes[..., 2] -= d * s.shapes[..., 4]
+    xyz = s.xyz.copy()
+    xyz[:, 0] += d
+    moved = m.with_(structure=ModalStructure(s.grid_ids, xyz, s.frequencies_hz, s.modal_mass,
+                                             s.damping_ratio, shapes))
+    V = np.array([speed])
+    assert matched_gap(m.state_matrix(V)[0], moved.state_matrix(V)[0]) < 1e-8
