@@ -29,8 +29,8 @@ from propwhirl import fileio, limits
 from propwhirl import validate as v
 from propwhirl.io.model_files import _build, _Table, _toml_error, _Writer
 from propwhirl.model.flight import FlightCondition
-from propwhirl.model.modal import (MAX_MODES, MOUNTS, ModalInstallation, ModalPropellerWing,
-                                   ModalStructure, StripPlanform, _id_list)
+from propwhirl.model.modal import MOUNTS, ModalInstallation, ModalPropellerWing
+from propwhirl.model.modal_structure import MAX_MODES, ModalStructure, StripPlanform, _id_list
 from propwhirl.model.propeller import Propeller
 from propwhirl.model.systems import PropellerWing
 
