@@ -5,8 +5,9 @@
 - `beam_inplane`: In-plane (chordwise) bending of the beam element (thesis eq. 7.1–7.16 extended (issue 14)), from `derivations/beam_inplane.py`
 - `prop_flexwing`: Propeller on a flexible wing (propeller rows and wing-node coupling) (thesis eq. 8.1–8.42), from `derivations/prop_flexwing.py`
 - `prop_flexwing_inplane`: Propeller on a flexible wing with in-plane bending (wing-node coupling) (thesis eq. 8.1–8.42 extended (issue 14)), from `derivations/prop_flexwing_inplane.py`
+- `prop_hub`: Propeller rigid on a hub point (aerodynamic and gyroscopic loads on the hub) (thesis eq. 4.25, 8.7, 8.26 (issue 22)), from `derivations/prop_hub.py`
 - `prop_rigid`: Propeller on a rigid wing (pitch–yaw whirl) (thesis eq. 6.1–6.17), from `derivations/prop_rigid.py`
 - `strip_aero`: Strip aerodynamics: Theodorsen section loads with Wagner and Leishman–Nguyen states (thesis eq. 7.24–7.56, 7.64–7.80), from `derivations/strip_aero.py`
 - `typical_section`: Typical section (pitch–plunge aerofoil on springs) (thesis eq. 5.1, 7.1–7.3), from `derivations/typical_section.py`
 """
-MODULES = ("beam_element", "beam_inplane", "prop_flexwing", "prop_flexwing_inplane", "prop_rigid", "strip_aero", "typical_section", )
+MODULES = ("beam_element", "beam_inplane", "prop_flexwing", "prop_flexwing_inplane", "prop_hub", "prop_rigid", "strip_aero", "typical_section", )

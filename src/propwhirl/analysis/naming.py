@@ -87,6 +87,9 @@ def mode_names(model: Model, sw: Sweep, basis: np.ndarray | None = None) -> list
         for r, c in zip(rows, cols):
             names[osc[r]] = ref[c]
 
+    elif "eta" in dm.q_kinds:       # a modal structure: its largest coordinate ("mode 3", ...)
+        for k in osc:
+            names[k] = dm.q_labels[int(np.argmax(np.abs(X0[: dm.n_dof, k])))]
     elif dm.propellers:
         p = dm.propellers[0]
         order = sorted(osc, key=lambda k: abs(lam0[k].imag))

@@ -249,7 +249,8 @@ def participation(dm: DofMap, X, M, eigenvalues, V) -> Participation:
     props = dm.propellers
     groups: dict[str, np.ndarray] = {f"p{j}": np.array([p.theta, p.psi])
                                      for j, p in enumerate(props)}
-    wing = np.array([i for i, n in enumerate(dm.q_node) if n >= 0], dtype=int)
+    wing = np.array([i for i, (n, k) in enumerate(zip(dm.q_node, dm.q_kinds))
+                     if n >= 0 or k == "eta"], dtype=int)        # a modal structure's modes too
     used = set(wing.tolist()) | {i for p in props for i in (p.theta, p.psi)}
     groups["wing"] = wing
     groups["other"] = np.array(sorted(set(range(dm.n_dof)) - used), dtype=int)

@@ -138,16 +138,25 @@ def wing_aero_blocks(wing: Wing, rho: float, V: np.ndarray) -> dict[str, np.ndar
     (nV, nn, k, 2) of ẇ = Ww w + Wv q̇ + Wq q; "qrows" (nn, 2) and "wrows" (nn, k), the global
     indices of each node's [h, α] and lag states; "m" the number of lag states; "labels".
     """
+    return strip_aero_blocks(wing.node_properties(), wing.aero_model, rho, V)
+
+
+def strip_aero_blocks(node: dict[str, np.ndarray], aero_model: str, rho: float,
+                      V: np.ndarray) -> dict[str, np.ndarray | tuple[str, ...]]:
+    """:func:`wing_aero_blocks` of any strips: ``node`` holds per strip its width [m], b
+    (semichord) [m], a and ac (elastic axis and aerodynamic centre, semichords aft of
+    mid-chord) and Cla [1/rad] (the keys of :meth:`Wing.node_properties`); ``aero_model`` a key
+    of :data:`LAG_STATES`.  The wing's strips, or a modal model's
+    (:mod:`propwhirl.model.modal`); "qrows"/"wrows" index the strips in order as nodes."""
     from propwhirl.generated import strip_aero
 
-    node = wing.node_properties()
-    nn = wing.n_nodes
-    k = LAG_STATES[wing.aero_model]
+    nn = len(node["b"])
+    k = LAG_STATES[aero_model]
     Vc = np.asarray(V, dtype=float)[:, None]
     values = dict(rho=rho, V=Vc, b=node["b"], a=node["a"], Cla=node["Cla"], ac=node["ac"])
     shape = (Vc.shape[0], nn)
     width = node["width"][None, :, None, None]
-    group, names = STRIP_AERO[wing.aero_model]
+    group, names = STRIP_AERO[aero_model]
     blocks = call_blocks(strip_aero, group, shape, **values)
     mats = {role: blocks[fn] for role, fn in names.items()}
     M, C, K, W0, Ww, Wq = (mats[r] for r in ("M", "C", "K", "W0", "Ww", "Wq"))

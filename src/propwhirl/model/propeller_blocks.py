@@ -45,9 +45,17 @@ def propeller_constants(propeller: Propeller, wing: Wing, node: int, density: fl
     node ``node`` of ``wing`` in air of density [kg/m^3] (inertia about the pivots and the
     elastic axis, 8.5–8.6, 8.35; mount stiffness and damping; geometry; with in-plane
     bending the in-plane inertias).  A new dict each call."""
-    p = propeller
     a_b = wing.node_properties()
     ea = a_b["a"][node] * a_b["b"][node]  # elastic axis aft of mid-chord [m] (a_P b_P)
+    return propeller_constants_at(propeller, float(ea), density, wing.in_plane)
+
+
+def propeller_constants_at(propeller: Propeller, ea: float, density: float,
+                           in_plane: bool = False) -> dict:
+    """:func:`propeller_constants` of ``propeller`` on a point of a wing whose heave and twist
+    are its [h_P, α_P]: ``ea`` [m] is that point's position aft of the wing mid-chord (a_P b_P,
+    the elastic axis for a beam; a modal model's hub grid, :mod:`propwhirl.model.modal`)."""
+    p = propeller
     inertia = p.pivot_inertia()
     S_alpha, I_alpha, I_theta_alpha = prop_flexwing.inertia(
         inertia["M_P"], inertia["S_theta_P"], inertia["I_theta_P"], p.pivot_pitch, ea
@@ -61,7 +69,7 @@ def propeller_constants(propeller: Propeller, wing: Wing, node: int, density: fl
         rho=density, R=p.radius, e_theta=p.e_theta, e_psi=p.e_psi,
         e_alpha=e_alpha,
     )
-    if wing.in_plane:
+    if in_plane:
         m = np.array([pm.mass for pm in p.all_masses])
         x = np.array([pm.x for pm in p.all_masses])
         S_psi = float(np.sum(m * (x - p.pivot_yaw)))

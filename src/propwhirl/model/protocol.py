@@ -67,6 +67,7 @@ DOF_KINDS: dict[str, tuple[str, str]] = {
     "psi": ("rad", "yaw"),            # propeller yaw about its pivot
     "plunge": ("m", "plunge"),        # typical-section plunge h, positive down
     "pitch": ("rad", "pitch"),        # typical-section pitch α, nose up
+    "eta": ("", "modal"),             # modal coordinate of a modal structure (model/modal.py)
 }
 
 

@@ -1,0 +1,312 @@
+"""A wing given by its normal modes, with strip aerodynamics and propellers (issue 22, item 2).
+
+:class:`ModalPropellerWing` implements the :class:`~propwhirl.model.protocol.Model` contract
+on a :class:`~propwhirl.model.modal_structure.ModalStructure` (the modes, their frame and sign
+conventions, and the strips' spline are in :mod:`propwhirl.model.modal_structure`), so the
+engine and the analyses work unchanged: its degrees of freedom are the modal coordinates η
+(then θ, ψ of each flexibly mounted propeller), its structure generalised M = diag(m_i),
+K = diag(m_i ω_i²), C = diag(2 ζ_i m_i ω_i).
+
+**Strip aerodynamics on the modes.**  The wing's strips (the same generated strip
+aerodynamics as a :class:`~propwhirl.model.wing.Wing`'s,
+:func:`propwhirl.model.assembly.strip_aero_blocks`) sit at the stations of a
+:class:`~propwhirl.model.modal_structure.StripPlanform`; with T the spline
+(:func:`~propwhirl.model.modal_structure.strip_interpolation`) the aerodynamic matrices are
+(TΦ)ᵀ A_strip (TΦ), the lag states' couplings projected the same way.
+
+**Propellers.**  Each sits at a hub grid.  ``mount = "flexible"`` (way a): its own pitch and
+yaw DOFs and springs, as a :class:`~propwhirl.model.systems.PropellerWing`'s, its generated
+block (:mod:`propwhirl.model.propeller_blocks`, 4×4 on [θ, ψ, h_P, α_P]) coupled through the
+hub grid's heave and twist, h_P = −T_z, α_P = R_y, with a_P b_P the hub grid's x aft of the
+local mid-chord; ``mount = "rigid"``: the 2×2 rigid-mount block on [h_P, α_P] (its mass and
+aerodynamic loads, §9.3.1).  ``mount = "on-grid"`` (way b, Rodden/Čečrdle practice): the
+propeller rigid on its hub grid, which sits at the hub (the centre of the propeller plane), the
+mount's flexibility and the propeller's mass inside the modes; its Houbolt–Reed loads and its
+rotor's gyroscopic moments act on the hub grid's motion u = [z_H, y_H, θ_H, ψ_H] =
+[−T_z, T_y, R_y, −R_z] (down, outboard, nose up, and yaw in the sense of the thesis's ψ) by the
+generated :mod:`propwhirl.generated.prop_hub` (derivations/prop_hub.py, checked there to be
+chapter 8's loads through the hub's motion).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from types import MappingProxyType
+from typing import Literal
+
+import numpy as np
+
+from propwhirl import limits
+from propwhirl import validate as v
+from propwhirl.generated import prop_hub
+from propwhirl.model import validity
+from propwhirl.model.assembly import LAG_STATES, call_blocks, strip_aero_blocks
+from propwhirl.model.base import EvaluatorBase, StateSpaceModel
+from propwhirl.model.flight import FlightCondition
+from propwhirl.model.modal_structure import ModalStructure, StripPlanform, strip_interpolation
+from propwhirl.model.propeller import Propeller
+from propwhirl.model.propeller_blocks import (propeller_constants_at, propeller_matrices,
+                                             propeller_values)
+from propwhirl.model.protocol import DofMap, PropellerDofs
+from propwhirl.model.statespace import SecondOrder
+
+#: How a propeller sits on its hub grid (module docstring).
+MOUNTS = ("flexible", "rigid", "on-grid")
+
+
+@dataclass(frozen=True)
+class ModalInstallation:
+    """A propeller at hub grid ``grid`` of a :class:`ModalPropellerWing`.
+
+    mount: "flexible" (its own pitch and yaw DOFs and springs), "rigid" (the rigid-mount
+    block on the hub grid's heave and twist) or "on-grid" (rigid on the hub grid, its mount
+    and mass in the modes: only its aerodynamic and gyroscopic loads added); aero: its
+    aerodynamic loads on."""
+
+    propeller: Propeller
+    grid: int
+    mount: Literal["flexible", "rigid", "on-grid"] = "flexible"
+    aero: bool = True
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.propeller, Propeller):
+            raise v.InputError(f"propeller = {v.short_repr(self.propeller)} is invalid: must "
+                               "be a Propeller")
+        if isinstance(self.grid, bool) or not isinstance(self.grid, (int, np.integer)):
+            raise v.InputError(f"grid = {v.short_repr(self.grid)} is invalid: must be a grid "
+                               "id (an integer)")
+        if self.mount not in MOUNTS:
+            raise v.InputError(f"mount = {self.mount!r} is invalid: must be one of "
+                               + ", ".join(map(repr, MOUNTS)))
+        v.boolean("aero", self.aero)
+
+
+@dataclass(frozen=True, eq=False)
+class ModalPropellerWing(StateSpaceModel):
+    """A wing given by its normal modes, with strip aerodynamics and propellers at hub grids
+    (the module docstring).  Implements the :class:`~propwhirl.model.protocol.Model` contract.
+
+    structure:  the :class:`ModalStructure`;
+    wing_grids: ids of its reference-axis grids, root to tip (the strips' spline);
+    planform:   the :class:`StripPlanform`;
+    flight:     the :class:`~propwhirl.model.flight.FlightCondition`;
+    propellers: :class:`ModalInstallation` s, at most one per hub grid;
+    wing_aero, propeller_aero, rotating: switches as :class:`~propwhirl.model.systems.PropellerWing`'s.
+    """
+
+    structure: ModalStructure
+    wing_grids: tuple[int, ...]
+    planform: StripPlanform
+    flight: FlightCondition
+    propellers: tuple[ModalInstallation, ...] = ()
+    wing_aero: bool = True
+    propeller_aero: bool = True
+    rotating: bool = True
+    name: str = "modal propeller-wing"
+
+    def __post_init__(self) -> None:
+        for k in ("wing_aero", "propeller_aero", "rotating"):
+            v.boolean(k, getattr(self, k))
+        if not isinstance(self.flight, FlightCondition):
+            raise v.InputError(f"flight = {v.short_repr(self.flight)} is invalid: must be a "
+                               "FlightCondition")
+        object.__setattr__(self, "wing_grids", tuple(int(g) for g in self.wing_grids))
+        object.__setattr__(self, "propellers", tuple(self.propellers))
+        limits.check_propellers(len(self.propellers))
+        s = self.structure
+        seen: dict[int, int] = {}
+        for j, inst in enumerate(self.propellers):
+            i = s.index(int(inst.grid), f"propellers[{j}].grid")
+            if not np.any(s.shapes[:, i, :]):
+                raise v.InputError(f"{s.source}: propellers[{j}].grid = {inst.grid} does not "
+                                   "move in any mode: the modes do not include the hub grid")
+            if int(inst.grid) in seen:
+                raise v.InputError(f"propellers[{j}].grid = {inst.grid} is invalid: "
+                                   f"propellers[{seen[int(inst.grid)]}] is on it already (at "
+                                   "most one per hub grid)")
+            seen[int(inst.grid)] = j
+        strip_interpolation(s, self.wing_grids, self.planform)   # checks the grids now
+
+    def with_(self, **changes) -> "ModalPropellerWing":
+        """A copy with fields replaced (``dataclasses.replace``)."""
+        return replace(self, **changes)
+
+    @property
+    def flexible(self) -> list[int]:
+        """Indices of the flexibly mounted propellers (those with θ, ψ DOFs)."""
+        return [j for j, inst in enumerate(self.propellers) if inst.mount == "flexible"]
+
+    def without_aerodynamics(self) -> "ModalPropellerWing":
+        """The same structure and propellers with wing and propeller aerodynamics off."""
+        return self.with_(wing_aero=False, propeller_aero=False)
+
+    def assembly(self) -> "ModalAssembly":
+        """The speed-independent parts (a new :class:`ModalAssembly` each call)."""
+        return ModalAssembly.build(self)
+
+    def second_order(self, V, omega=None) -> SecondOrder:
+        """The second-order system at airspeeds V [m/s] (:meth:`ModalAssembly.second_order`)."""
+        return self.assembly().second_order(V, omega)
+
+    def state_matrix(self, V, **options) -> np.ndarray:
+        """A(V) (:meth:`ModalAssembly.state_matrix` of a new :meth:`assembly`)."""
+        return self.assembly().state_matrix(V, **options)
+
+    def dof_map(self) -> DofMap:
+        """The states: η of every mode ("mode k", kind "eta"), then θ, ψ of each flexibly
+        mounted propeller, then the lag states of every strip ("strip s w1", ...)."""
+        n = self.structure.n_modes
+        labels = [f"mode {k + 1}" for k in range(n)]
+        kinds, node, prop = ["eta"] * n, [-1] * n, [-1] * n
+        props = []
+        for j in self.flexible:
+            inst = self.propellers[j]
+            y = float(self.structure.xyz[self.structure.index(inst.grid), 1])
+            props.append(PropellerDofs(j, len(labels), len(labels) + 1,
+                                       inst.propeller.rotation, self.rotating, y, None))
+            labels += [f"propeller {j + 1} theta", f"propeller {j + 1} psi"]
+            kinds += ["theta", "psi"]
+            node += [-1, -1]
+            prop += [j, j]
+        w_labels: tuple[str, ...] = ()
+        if self.wing_aero:
+            k = LAG_STATES[self.planform.aero_model]
+            w_labels = tuple(f"strip {s + 1} w{r + 1}" for s in range(self.planform.y.size)
+                             for r in range(k))
+        return DofMap(tuple(labels), tuple(kinds), tuple(node), tuple(prop), w_labels,
+                      (-1,) * len(w_labels), tuple(props))
+
+
+@dataclass(frozen=True, eq=False)
+class ModalAssembly(EvaluatorBase):
+    """A :class:`ModalPropellerWing` with its speed-independent parts, built once.
+
+    structure:  the generalised (n_q, n_q) M, C, K (modes and propeller DOFs), read-only;
+    strips:     (n_strips, 2, n_q): each strip's [h, α] from q (T Φ);
+    hubs:       per installation (its local DOFs, 2 or 4, n_q): [θ, ψ,] h_P, α_P from q;
+    constants:  per installation its generated blocks' speed-independent arguments;
+    states:     the :class:`~propwhirl.model.protocol.DofMap`.
+    """
+
+    model: ModalPropellerWing
+    structure: tuple[np.ndarray, np.ndarray, np.ndarray]
+    strips: np.ndarray
+    hubs: tuple[np.ndarray, ...]
+    constants: tuple
+    states: DofMap
+
+    @classmethod
+    def build(cls, model: ModalPropellerWing) -> "ModalAssembly":
+        s = model.structure
+        nm = s.n_modes
+        flex = model.flexible
+        n = nm + 2 * len(flex)
+        mats = tuple(np.zeros((n, n)) for _ in range(3))
+        for X, Xm in zip(mats, s.generalised()):
+            X[:nm, :nm] = Xm
+        Phi = s.shapes.transpose(1, 2, 0)                      # (n_grids, 6, n_modes)
+        T = strip_interpolation(s, model.wing_grids, model.planform)
+        strips = np.zeros((model.planform.y.size, 2, n))
+        strips[:, :, :nm] = np.einsum("scgk,gkm->scm", T, Phi)
+        hubs, consts = [], []
+        for j, inst in enumerate(model.propellers):
+            g = s.index(inst.grid)
+            if inst.mount == "on-grid":
+                hub = np.zeros((4, n))
+                hub[:, :nm] = Phi[g, [2, 1, 4, 5]] * np.array([-1.0, 1.0, 1.0, -1.0])[:, None]
+                hub.flags.writeable = False
+                hubs.append(hub)
+                p = inst.propeller
+                consts.append(MappingProxyType(dict(I_Omega=p.I_Omega, rho=model.flight.density,
+                                                    R=p.radius)))
+                continue
+            hub = np.zeros((2, n))
+            hub[0, :nm] = -Phi[g, 2]                           # h_P = −T_z
+            hub[1, :nm] = Phi[g, 4]                            # α_P = R_y
+            if inst.mount == "flexible":
+                pj = nm + 2 * flex.index(j)
+                rows = np.zeros((2, n))
+                rows[0, pj], rows[1, pj + 1] = 1.0, 1.0
+                hub = np.vstack([rows, hub])
+            ea = float(s.xyz[g, 0]) - model.planform.mid_chord_x(float(s.xyz[g, 1]))
+            c = propeller_constants_at(inst.propeller, ea, model.flight.density)
+            hub.flags.writeable = False
+            hubs.append(hub)
+            consts.append(MappingProxyType(c))
+        for X in (*mats, strips):
+            X.flags.writeable = False
+        return cls(model, mats, strips, tuple(hubs), tuple(consts), model.dof_map())
+
+    def dof_map(self) -> DofMap:
+        return self.states
+
+    def without_aerodynamics(self) -> "ModalAssembly":
+        """The assembly of ``model.without_aerodynamics()`` (same parts)."""
+        model = self.model.without_aerodynamics()
+        return replace(self, model=model, states=model.dof_map())
+
+    def second_order(self, V, omega=None) -> SecondOrder:
+        """S1 q̈ + S2 q̇ + S3 q = S4 w, ẇ = Ww w + Wv q̇ + Wq q at airspeeds V [m/s] (array).
+        `omega` [rad/s] overrides every propeller's rotational speed.  The checks of
+        :meth:`PropellerWingAssembly.second_order`."""
+        model = self.model
+        V = np.atleast_1d(v.positive("airspeed V", V, "m/s"))
+        if validity.has_aerodynamics(model):
+            validity.check_mach(V, model.flight.speed_of_sound)
+        with np.errstate(all="ignore"):
+            sys = self._assemble(V, omega)
+        return self._checked(sys, V, {"omega": omega})
+
+    def _assemble(self, V: np.ndarray, omega) -> SecondOrder:
+        model, nV = self.model, V.shape[0]
+        n = self.structure[0].shape[0]
+        S = [np.broadcast_to(X, (nV, n, n)).copy() for X in self.structure]
+        derivatives: dict = {}
+        for inst, hub, const in zip(model.propellers, self.hubs, self.constants):
+            aero = model.propeller_aero and inst.aero
+            vals = propeller_values(const, inst.propeller, V, omega, rotating=model.rotating,
+                                    aero=aero, speed_of_sound=model.flight.speed_of_sound,
+                                    derivatives=derivatives)
+            if inst.mount == "on-grid":
+                mats = _on_grid_matrices(vals, aero, nV)
+            else:
+                mats = propeller_matrices(vals, mount=inst.mount, in_plane=False, aero=aero)
+            for Si, B in zip(S, mats):
+                Si += hub.T @ B @ hub
+        if not model.wing_aero:
+            z = np.zeros((nV, 0, n))
+            return SecondOrder(*S, np.zeros((nV, n, 0)), np.zeros((nV, 0, 0)), z, z.copy(),
+                               self.states.q_labels, ())
+        a = strip_aero_blocks(model.planform.node_properties(), model.planform.aero_model,
+                              model.flight.density, V)
+        P = self.strips                                           # (ns, 2, n)
+        for Si, A in zip(S, (a["Ma"], a["Ca"], a["Ka"])):
+            Si -= np.einsum("sim,vsij,sjn->vmn", P, A, P)
+        ns, k = P.shape[0], a["Ww"].shape[-1]
+        m = ns * k
+        S4 = np.einsum("sim,vsir->vmsr", P, a["W0"]).reshape(nV, n, m)
+        Wv = np.einsum("vsri,sin->vsrn", a["Wv"], P).reshape(nV, m, n)
+        Wq = np.einsum("vsri,sin->vsrn", a["Wq"], P).reshape(nV, m, n)
+        Ww = np.zeros((nV, m, m))
+        for s in range(ns):
+            Ww[:, s * k:(s + 1) * k, s * k:(s + 1) * k] = a["Ww"][:, s]
+        return SecondOrder(*S, S4, Ww, Wv, Wq, self.states.q_labels, self.states.w_labels)
+
+
+def _on_grid_matrices(values: dict, aero: bool, nV: int):
+    """(M, C, K) (nV, 4, 4) on the hub's [z_H, y_H, θ_H, ψ_H] of a propeller rigid on its hub
+    grid: the generated gyroscopic matrix and, with ``aero``, the Houbolt–Reed loads (signs
+    applied: S1 = −M_a, S2 = C_g − C_a, S3 = −K_a)."""
+    if not aero:
+        Cg = call_blocks(prop_hub, "hub_blocks", (nV,), **_zero_derivatives(values))["Cg"]
+        z = np.zeros((nV, 4, 4))
+        return z, Cg, z.copy()
+    b = call_blocks(prop_hub, "hub_blocks", (nV,), **values)
+    return -b["Ma_hub"], b["Cg"] - b["Ca_hub"], -b["Ka_hub"]
+
+
+def _zero_derivatives(values: dict) -> dict:
+    """``values`` with every aerodynamic derivative 0 (the gyroscopic matrix alone)."""
+    out = dict(values)
+    for name in prop_hub.BLOCKS["hub_blocks"][0]:
+        out.setdefault(name, 0.0)
+    return out

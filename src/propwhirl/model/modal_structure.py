@@ -1,0 +1,412 @@
+"""Modal structures: a structure given by its normal modes, and the strips' spline (issue 22).
+
+:class:`ModalStructure` holds what any finite-element code's normal-modes solution gives:
+the natural frequencies, modal masses and modal damping ratios, and every mode's six
+displacements and rotations at named grid points (checked: no rigid-body mode, unique ids,
+finite values); :meth:`ModalStructure.from_wing` and :meth:`ModalStructure.with_mounts` give
+a beam model's own.  :class:`StripPlanform` holds the wing's aerodynamic strips and
+:func:`strip_interpolation` their heave and twist from the grids.  The model on them is
+:class:`propwhirl.model.modal.ModalPropellerWing`.
+
+**Frame and sign conventions** (the file format's, ``docs/modal-structures.md``): the wing
+frame is right-handed, x aft (chordwise, rearward), y spanwise outboard, z up; each grid's
+six components are [T_x, T_y, T_z, R_x, R_y, R_z] [m, m, m, rad, rad, rad].  The beam models'
+heave h is positive down and twist α nose up, so h = −T_z, α = R_y and the bending slope
+∂h/∂y = −R_x.
+
+**The strips' spline.**  The heave and twist of each strip are interpolated from the
+``wing_grids`` (the grids on the wing's reference axis, ordered root to tip): along the span,
+T_z by the cubic Hermite spline of each grid interval with the grids' R_x as its slopes
+(∂T_z/∂y = R_x), R_y linearly; across the chord, the section is rigid, so the heave at the
+strip's elastic axis is h = −(T_z − R_y (x_ea − x_ref)) with x_ref the reference axis (the
+grids' x, linear in y).  This is the beam element's own interpolation (Hermite cubic in
+bending, linear in torsion), so with a grid at every node of a beam model the spline
+reproduces the beam's modes exactly at every point; on a coarser grid its error is measured
+in ``docs/validation.md`` ("Modal structures").
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+import scipy.linalg
+from scipy.interpolate import CubicSpline
+
+from propwhirl import validate as v
+from propwhirl.generated import prop_hub
+from propwhirl.model.assembly import LAG_STATES, free_dofs, wing_structure
+from propwhirl.model.propeller_blocks import propeller_constants
+
+#: Components of a grid's motion in a mode shape, in the order of the last axis of ``shapes``.
+COMPONENTS = ("T_x", "T_y", "T_z", "R_x", "R_y", "R_z")
+#: Modes whose frequency is below this [Hz] are rigid-body modes: a cantilever wing has none.
+RIGID_BODY_HZ = 1e-3
+#: Most modes and strips of a model (a beam model has at most 3 × limits.MAX_ELEMENTS DOFs
+#: and MAX_ELEMENTS + 1 strips): the analyses' matrices grow with their squares.
+MAX_MODES = 1000
+MAX_STRIPS = 1000
+
+
+def _array(source: str, key: str, value, shape: tuple, dtype=float) -> np.ndarray:
+    """`value` as a read-only copy of `shape` (-1: any length) and dtype, finite; else a
+    one-line error naming `source` and `key`."""
+    try:
+        arr = None if isinstance(value, (str, bytes)) else np.array(value, dtype=dtype, copy=True)
+    except (TypeError, ValueError, OverflowError):
+        arr = None
+    if arr is not None and np.dtype(dtype).kind == "i":
+        raw = np.asarray(value)
+        if raw.dtype.kind not in "iu" or not np.array_equal(raw, arr):
+            raise v.InputError(f"{source}: {key} has dtype {raw.dtype}, must be integers")
+    if arr is None or arr.ndim != len(shape) or any(
+            s not in (-1, n) for s, n in zip(shape, arr.shape)):
+        got = None if arr is None else arr.shape
+        raise v.InputError(f"{source}: {key} has shape {got}, must be "
+                           f"{tuple('n' if s == -1 else s for s in shape)}")
+    if arr.dtype.kind == "f" and not np.all(np.isfinite(arr)):
+        i = tuple(int(x) for x in np.argwhere(~np.isfinite(arr))[0])
+        raise v.InputError(f"{source}: {key}{list(i)} = {arr[i]} is invalid: must be finite")
+    arr.flags.writeable = False
+    return arr
+
+
+@dataclass(frozen=True, eq=False)
+class ModalStructure:
+    """The normal modes of a structure, at named grid points (SI units; frame in the module
+    docstring).
+
+    grid_ids:        (n_grids,) distinct positive integer ids;
+    xyz:             (n_grids, 3) grid positions [m] in the wing frame;
+    frequencies_hz:  (n_modes,) natural frequencies [Hz], all above :data:`RIGID_BODY_HZ`;
+    modal_mass:      (n_modes,) generalised masses φᵀ M φ [kg, with φ in m and rad], > 0;
+    damping_ratio:   (n_modes,) modal viscous damping ratios ζ, in [0, 1);
+    shapes:          (n_modes, n_grids, 6) each mode's [T_x, T_y, T_z, R_x, R_y, R_z] at
+                     each grid [m, rad];
+    source:          where it came from (a file's name), for the error messages.
+    """
+
+    grid_ids: np.ndarray
+    xyz: np.ndarray
+    frequencies_hz: np.ndarray
+    modal_mass: np.ndarray
+    damping_ratio: np.ndarray
+    shapes: np.ndarray
+    source: str = "modal structure"
+
+    def __post_init__(self) -> None:
+        src = self.source
+        ids = _array(src, "grid_ids", self.grid_ids, (-1,), dtype=np.int64)
+        ng = ids.size
+        f = _array(src, "frequencies_hz", self.frequencies_hz, (-1,))
+        nm = f.size
+        if nm > MAX_MODES:
+            raise v.InputError(f"{src}: {nm} modes is too many: at most {MAX_MODES} (keep the "
+                               "lowest)")
+        if nm == 0 or ng == 0:
+            raise v.InputError(f"{src}: {'no modes' if nm == 0 else 'no grids'}: a modal "
+                               "structure needs at least one mode and one grid")
+        put = lambda k, x: object.__setattr__(self, k, x)  # noqa: E731
+        put("grid_ids", ids)
+        put("xyz", _array(src, "xyz", self.xyz, (ng, 3)))
+        put("frequencies_hz", f)
+        put("modal_mass", _array(src, "modal_mass", self.modal_mass, (nm,)))
+        put("damping_ratio", _array(src, "damping_ratio", self.damping_ratio, (nm,)))
+        put("shapes", _array(src, "shapes", self.shapes, (nm, ng, 6)))
+        if np.any(ids <= 0):
+            i = int(np.argmax(ids <= 0))
+            raise v.InputError(f"{src}: grid_ids[{i}] = {ids[i]} is invalid: grid ids must be "
+                               "positive integers")
+        uniq, counts = np.unique(ids, return_counts=True)
+        if np.any(counts > 1):
+            dup = int(uniq[np.argmax(counts > 1)])
+            where = [int(i) for i in np.flatnonzero(ids == dup)]
+            raise v.InputError(f"{src}: grid_ids has grid {dup} twice (at {where}): each grid "
+                               "id once")
+        low = np.flatnonzero(f < RIGID_BODY_HZ)
+        if low.size:
+            i = int(low[0])
+            raise v.InputError(
+                f"{src}: frequencies_hz[{i}] = {f[i]:.6g} Hz is a rigid-body mode (below "
+                f"{RIGID_BODY_HZ:g} Hz): a cantilever wing has none; remove it (mode {i + 1})")
+        bad = np.flatnonzero(self.modal_mass <= 0)
+        if bad.size:
+            i = int(bad[0])
+            raise v.InputError(f"{src}: modal_mass[{i}] = {self.modal_mass[i]:.6g} kg is "
+                               f"invalid: must be > 0 (mode {i + 1})")
+        bad = np.flatnonzero((self.damping_ratio < 0) | (self.damping_ratio >= 1))
+        if bad.size:
+            i = int(bad[0])
+            raise v.InputError(f"{src}: damping_ratio[{i}] = {self.damping_ratio[i]:.6g} is "
+                               f"invalid: must be in [0, 1) (mode {i + 1})")
+        zero = np.flatnonzero(~np.any(self.shapes.reshape(nm, -1), axis=1))
+        if zero.size:
+            raise v.InputError(f"{src}: shapes[{int(zero[0])}] is zero at every grid: mode "
+                               f"{int(zero[0]) + 1} has no motion")
+
+    @classmethod
+    def from_wing(cls, wing, n_modes: int | None = None, first_id: int = 1) -> "ModalStructure":
+        """The in-vacuo modes of a beam :class:`~propwhirl.model.wing.Wing` (its structure
+        alone, root clamped: 7.9–7.22), the lowest ``n_modes`` (default all), at one grid per
+        node (ids ``first_id`` + node, the root's included, on the elastic axis at x = 0,
+        y the node's station): T_z = −h, R_x = −∂h/∂y, R_y = α, the rest 0.  Mass-normalised
+        (modal masses 1 kg); the modal damping ratio of the wing's Rayleigh damping
+        C = μM + λK, ζ_i = (μ/ω_i + λ ω_i)/2 (exact: C is diagonal in these modes)."""
+        M, _, K = wing_structure(wing)
+        f = free_dofs(wing.n_nodes)
+        w2, X = scipy.linalg.eigh(K[np.ix_(f, f)], M[np.ix_(f, f)])
+        n = w2.size if n_modes is None else v.integer_at_least("n_modes", n_modes, 1)
+        if n > w2.size:
+            raise v.InputError(f"n_modes = {n} is invalid: the wing has {w2.size} modes")
+        w2, X = w2[:n], X[:, :n]
+        full = np.zeros((3 * wing.n_nodes, n))
+        full[f] = X
+        for k in range(n):                         # a sign convention: largest entry positive
+            i = int(np.argmax(np.abs(full[:, k])))
+            full[:, k] *= np.sign(full[i, k])
+        nodal = full.reshape(wing.n_nodes, 3, n)   # [h, φ, α] per node
+        shapes = np.zeros((n, wing.n_nodes, 6))
+        shapes[:, :, 2] = -nodal[:, 0].T
+        shapes[:, :, 3] = -nodal[:, 1].T
+        shapes[:, :, 4] = nodal[:, 2].T
+        omega = np.sqrt(w2)
+        mu, lam = wing.rayleigh
+        xyz = np.zeros((wing.n_nodes, 3))
+        xyz[:, 1] = wing.node_y
+        return cls(grid_ids=first_id + np.arange(wing.n_nodes), xyz=xyz,
+                   frequencies_hz=omega / (2 * np.pi), modal_mass=np.ones(n),
+                   damping_ratio=0.5 * (mu / omega + lam * omega), shapes=shapes,
+                   source=f"modes of wing {getattr(wing, 'name', '')}".rstrip())
+
+    @classmethod
+    def with_mounts(cls, model, n_modes: int | None = None, first_hub_id: int = 1001
+                    ) -> tuple["ModalStructure", tuple[int, ...], float]:
+        """The in-vacuo modes of a :class:`~propwhirl.model.systems.PropellerWing`'s whole
+        structure — the wing, every propeller's mass and its pitch and yaw springs (not
+        spinning) — for propellers mounted "on-grid" (way b): the wing's node grids as
+        :meth:`from_wing`, and a hub grid per propeller (ids ``first_hub_id`` + its index) at
+        its hub, x = e_α aft of the elastic axis, moving as chapter 8's hub
+        (:func:`propwhirl.generated.prop_hub.hub_motion`): T_z = −z_H, T_y = y_H, R_y = θ_H,
+        R_z = −ψ_H, R_x the node's.  Mass-normalised; the modal damping ratio of each mode
+        from the structure's damping C, ζ_i = φ_iᵀ C φ_i / (2 ω_i) (its couplings between
+        modes dropped).  Returns (structure, hub grid ids, the largest coupling dropped,
+        |φ_iᵀ C φ_j| / √(c_ii c_jj), 0 when C is diagonal in the modes)."""
+        wing = model.wing
+        if wing.in_plane:
+            raise v.InputError("ModalStructure.with_mounts: in-plane bending (EI_chordwise) "
+                               "is not supported")
+        quiet = model.with_(wing_aero=False, propeller_aero=False, rotating=False)
+        sys = quiet.second_order(np.array([1.0]))
+        M, C, K = sys.S1[0], sys.S2[0], sys.S3[0]
+        w2, X = scipy.linalg.eigh(K, M)
+        n = w2.size if n_modes is None else v.integer_at_least("n_modes", n_modes, 1)
+        if n > w2.size:
+            raise v.InputError(f"n_modes = {n} is invalid: the structure has {w2.size} modes")
+        w2, X = w2[:n], X[:, :n]
+        for k in range(n):
+            i = int(np.argmax(np.abs(X[:, k])))
+            X[:, k] *= np.sign(X[i, k])
+        omega = np.sqrt(w2)
+        Cm = X.T @ C @ X
+        d = np.sqrt(np.abs(np.outer(np.diag(Cm), np.diag(Cm))))
+        off = Cm - np.diag(np.diag(Cm))
+        coupling = float(np.max(np.where(d > 0, np.abs(off) / np.where(d > 0, d, 1), 0.0)))
+        nn, f = wing.n_nodes, free_dofs(wing.n_nodes)
+        nodal = np.zeros((3 * nn, n))
+        nodal[f] = X[: f.size]
+        nodal = nodal.reshape(nn, 3, n)                # [h, φ, α] per node
+        props = list(model.propellers)
+        shapes = np.zeros((n, nn + len(props), 6))
+        shapes[:, :nn, 2] = -nodal[:, 0].T
+        shapes[:, :nn, 3] = -nodal[:, 1].T
+        shapes[:, :nn, 4] = nodal[:, 2].T
+        xyz = np.zeros((nn + len(props), 3))
+        xyz[:nn, 1] = wing.node_y
+        flex = model.flexible
+        for j, inst in enumerate(props):
+            node = model.nodes[j]
+            c = propeller_constants(inst.propeller, wing, node, model.flight.density)
+            G = prop_hub.hub_motion(c["e_theta"], c["e_psi"], c["e_alpha"])[:, :4]
+            q = np.zeros((4, n))                        # [θ, ψ, h_P, α_P]
+            if inst.mount == "flexible":
+                pj = f.size + 2 * flex.index(j)
+                q[0], q[1] = X[pj], X[pj + 1]
+            q[2], q[3] = nodal[node, 0], nodal[node, 2]
+            z, y, th, ps = G @ q
+            g = nn + j
+            shapes[:, g, 1], shapes[:, g, 2] = y, -z
+            shapes[:, g, 3], shapes[:, g, 4], shapes[:, g, 5] = -nodal[node, 1], th, -ps
+            xyz[g] = (c["e_alpha"], wing.node_y[node], 0.0)
+        hub_ids = tuple(first_hub_id + j for j in range(len(props)))
+        ids = np.concatenate([1 + np.arange(nn), np.array(hub_ids, dtype=np.int64)])
+        out = cls(grid_ids=ids, xyz=xyz, frequencies_hz=omega / (2 * np.pi),
+                  modal_mass=np.ones(n), damping_ratio=np.diag(Cm) / (2 * omega),
+                  shapes=shapes, source=f"modes of {model.name}")
+        return out, hub_ids, coupling
+
+    @property
+    def n_modes(self) -> int:
+        """Number of modes."""
+        return self.frequencies_hz.size
+
+    @property
+    def omega(self) -> np.ndarray:
+        """Circular frequencies ω_i = 2π f_i [rad/s]."""
+        return 2.0 * np.pi * self.frequencies_hz
+
+    def index(self, grid: int, key: str = "grid") -> int:
+        """Position of grid id ``grid`` in :attr:`grid_ids`; an error naming ``key`` if absent."""
+        hit = np.flatnonzero(self.grid_ids == grid)
+        if not hit.size:
+            raise v.InputError(f"{self.source}: {key} = {grid} is not a grid of the modes "
+                               f"(grids {_id_list(self.grid_ids)})")
+        return int(hit[0])
+
+    def truncated(self, n_modes: int) -> "ModalStructure":
+        """The structure with its first ``n_modes`` modes only."""
+        n = v.integer_at_least("n_modes", n_modes, 1)
+        if n > self.n_modes:
+            raise v.InputError(f"n_modes = {n} is invalid: the structure has {self.n_modes} "
+                               "modes")
+        return replace(self, frequencies_hz=self.frequencies_hz[:n],
+                       modal_mass=self.modal_mass[:n], damping_ratio=self.damping_ratio[:n],
+                       shapes=self.shapes[:n])
+
+    def generalised(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The generalised M = diag(m_i), C = diag(2 ζ_i m_i ω_i), K = diag(m_i ω_i²)."""
+        m, w, z = self.modal_mass, self.omega, self.damping_ratio
+        return np.diag(m), np.diag(2.0 * z * m * w), np.diag(m * w * w)
+
+
+def _id_list(ids, limit: int = 8) -> str:
+    ids = [int(i) for i in ids]
+    return ", ".join(map(str, ids[:limit])) + (", ..." if len(ids) > limit else "")
+
+
+@dataclass(frozen=True, eq=False)
+class StripPlanform:
+    """The wing's aerodynamic strips: one per spanwise station (arrays of equal length).
+
+    y:                  station of each strip [m], increasing;
+    width:              strip width [m], > 0;
+    chord:              local chord [m], > 0;
+    leading_edge_x:     x of the leading edge [m] in the wing frame (x aft);
+    elastic_axis:       elastic axis, fraction of the chord aft of the leading edge;
+    aerodynamic_centre: aerodynamic centre, fraction of the chord aft of the leading edge;
+    lift_slope:         section C_lα [1/rad], > 0;
+    aero_model:         "leishman-nguyen" (2 lag states per strip) or "wagner" (4).
+    """
+
+    y: np.ndarray
+    width: np.ndarray
+    chord: np.ndarray
+    leading_edge_x: np.ndarray
+    elastic_axis: np.ndarray
+    aerodynamic_centre: np.ndarray
+    lift_slope: np.ndarray
+    aero_model: str = "leishman-nguyen"
+    source: str = "strips"
+
+    def __post_init__(self) -> None:
+        src = self.source
+        y = _array(src, "y", self.y, (-1,))
+        n = y.size
+        if n == 0 or n > MAX_STRIPS:
+            raise v.InputError(f"{src}: y has {n} strips: give 1 to {MAX_STRIPS}")
+        object.__setattr__(self, "y", y)
+        for k in ("width", "chord", "leading_edge_x", "elastic_axis", "aerodynamic_centre",
+                  "lift_slope"):
+            object.__setattr__(self, k, _array(src, k, getattr(self, k), (n,)))
+        if n > 1 and np.any(np.diff(y) <= 0):
+            i = int(np.argmax(np.diff(y) <= 0)) + 1
+            raise v.InputError(f"{src}: y[{i}] = {y[i]:.6g} m is invalid: the strips' "
+                               "stations must increase")
+        for k in ("width", "chord", "lift_slope"):
+            x = getattr(self, k)
+            if np.any(x <= 0):
+                i = int(np.argmax(x <= 0))
+                raise v.InputError(f"{src}: {k}[{i}] = {x[i]:.6g} is invalid: must be > 0")
+        if self.aero_model not in LAG_STATES:
+            raise v.InputError(f"{src}: aero_model = {self.aero_model!r} is invalid: must be "
+                               f"one of {', '.join(map(repr, LAG_STATES))}")
+
+    @classmethod
+    def from_wing(cls, wing, nodes: np.ndarray | None = None) -> "StripPlanform":
+        """The strips of a :class:`~propwhirl.model.wing.Wing` at its nodes (default: every
+        node but the clamped root), the elastic axis at x = 0 (its nodes' grids' x)."""
+        p = wing.node_properties()
+        nodes = np.arange(1, wing.n_nodes) if nodes is None else np.asarray(nodes)
+        c = 2.0 * p["b"][nodes]
+        ea = 0.5 * (p["a"][nodes] + 1.0)
+        return cls(y=p["y"][nodes], width=p["width"][nodes], chord=c,
+                   leading_edge_x=-ea * c, elastic_axis=ea,
+                   aerodynamic_centre=0.5 * (p["ac"][nodes] + 1.0),
+                   lift_slope=p["Cla"][nodes], aero_model=wing.aero_model)
+
+    def node_properties(self) -> dict[str, np.ndarray]:
+        """The strips as :meth:`Wing.node_properties` gives a wing's nodes: y, width, b, a,
+        ac, Cla (for :func:`~propwhirl.model.assembly.strip_aero_blocks`)."""
+        return dict(y=self.y, width=self.width, b=0.5 * self.chord,
+                    a=2.0 * self.elastic_axis - 1.0, ac=2.0 * self.aerodynamic_centre - 1.0,
+                    Cla=self.lift_slope)
+
+    def mid_chord_x(self, y: float) -> float:
+        """x [m] of the mid-chord at station y (linear between the strips, constant beyond)."""
+        return float(np.interp(y, self.y, self.leading_edge_x + 0.5 * self.chord))
+
+
+def strip_interpolation(structure: ModalStructure, wing_grids, planform: StripPlanform,
+                        twist_spline: str = "linear") -> np.ndarray:
+    """T (n_strips, 2, n_grids, 6): each strip's heave h [m] (positive down, at its elastic
+    axis) and twist α [rad] (nose up) from the grids' six components (rule in the module
+    docstring: Hermite cubic in y for T_z with R_x as slope, linear for R_y, rigid chord).
+
+    ``wing_grids``: ids of the reference-axis grids, strictly increasing in y; every strip
+    must lie within their span (an error names the first that does not)."""
+    src = structure.source
+    idx = np.array([structure.index(int(g), f"wing_grids[{i}]")
+                    for i, g in enumerate(wing_grids)], dtype=int)
+    if idx.size < 2:
+        raise v.InputError(f"{src}: wing_grids has {idx.size} grid(s): the spline needs at "
+                           "least 2")
+    yg = structure.xyz[idx, 1]
+    if np.any(np.diff(yg) <= 0):
+        i = int(np.argmax(np.diff(yg) <= 0)) + 1
+        raise v.InputError(f"{src}: wing_grids[{i}] = {int(wing_grids[i])} (y = {yg[i]:.6g} m) "
+                           "is invalid: the wing grids must be ordered root to tip, y "
+                           "increasing")
+    ys = planform.y
+    tol = 1e-9 * max(1.0, float(yg[-1] - yg[0]))
+    out = np.flatnonzero((ys < yg[0] - tol) | (ys > yg[-1] + tol))
+    if out.size:
+        i = int(out[0])
+        raise v.InputError(f"{planform.source}: y[{i}] = {ys[i]:.6g} m is outside the wing "
+                           f"grids' span [{yg[0]:.6g}, {yg[-1]:.6g}] m")
+    T = np.zeros((ys.size, 2, structure.grid_ids.size, 6))
+    xg = structure.xyz[idx, 0]
+    x_ea = planform.leading_edge_x + planform.elastic_axis * planform.chord
+    twist = _twist_weights(yg, ys, twist_spline)          # (n_strips, n_wing_grids)
+    for s, y in enumerate(ys):
+        k = int(np.clip(np.searchsorted(yg, y, side="right") - 1, 0, yg.size - 2))
+        i0, i1 = idx[k], idx[k + 1]
+        L = yg[k + 1] - yg[k]
+        t = float(np.clip((y - yg[k]) / L, 0.0, 1.0))
+        # cubic Hermite basis: value and slope at each end
+        h00, h10 = 1 - 3 * t**2 + 2 * t**3, (t - 2 * t**2 + t**3) * L
+        h01, h11 = 3 * t**2 - 2 * t**3, (-t**2 + t**3) * L
+        lever = x_ea[s] - ((1 - t) * xg[k] + t * xg[k + 1])
+        # h = −(T_z − α · lever), α = R_y splined
+        T[s, 0, i0, 2], T[s, 0, i0, 3] = -h00, -h10
+        T[s, 0, i1, 2], T[s, 0, i1, 3] = -h01, -h11
+        T[s, 0, idx, 4] += twist[s] * lever
+        T[s, 1, idx, 4] = twist[s]
+    return T
+
+
+def _twist_weights(yg: np.ndarray, ys: np.ndarray, kind: str) -> np.ndarray:
+    """Weights (n_strips, n_grids) of the twist at stations ``ys`` from its values at the
+    grids ``yg``: "linear" (piecewise), or "cubic" (the not-a-knot cubic spline through the
+    grids; a parabola through 3 grids, linear through 2)."""
+    if kind == "linear" or yg.size == 2:
+        eye = np.eye(yg.size)
+        return np.stack([np.interp(ys, yg, eye[i]) for i in range(yg.size)], axis=1)
+    return CubicSpline(yg, np.eye(yg.size), bc_type="not-a-knot")(ys)

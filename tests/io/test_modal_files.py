@@ -1,0 +1,190 @@
+"""Modal-model files (issue 22, items 2 and 5): a beam model's modes written to the open
+format (.npz + TOML) and read back give the same model; every bad file is one line naming
+the file, the key and the id, and nothing is half-imported."""
+from __future__ import annotations
+
+import re
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from propwhirl import InputError
+from propwhirl.cases.ch10_other_wings import two_propeller_wing, wingtip_propeller_wing
+from propwhirl.io.modal_files import load_modal_model, load_modes, write_modes
+from propwhirl.model.modal import ModalPropellerWing, ModalStructure
+
+
+@pytest.fixture(scope="module")
+def written(tmp_path_factory):
+    d = tmp_path_factory.mktemp("modal")
+    return write_modes(wingtip_propeller_wing(), d / "wingtip.toml")
+
+
+def test_the_written_modes_read_back_bit_for_bit(written):
+    toml, npz = written
+    assert npz.name == "wingtip.modes.npz"
+    m = load_modal_model(toml)
+    assert isinstance(m, ModalPropellerWing)
+    ref = ModalStructure.from_wing(wingtip_propeller_wing().wing)
+    for k in ("grid_ids", "xyz", "frequencies_hz", "modal_mass", "damping_ratio", "shapes"):
+        assert np.array_equal(getattr(m.structure, k), getattr(ref, k)), k
+    full = wingtip_propeller_wing()
+    assert m.flight == full.flight
+    assert m.propellers[0].propeller == full.propellers[0].propeller
+    assert m.propellers[0].grid == 1 + full.nodes[0]
+    V = np.array([150.0])
+    a, b = np.linalg.eigvals(full.state_matrix(V)[0]), np.linalg.eigvals(m.state_matrix(V)[0])
+    assert np.allclose(np.sort_complex(a), np.sort_complex(b), rtol=1e-6, atol=1e-6)
+
+
+def test_truncated_modes_and_two_propellers_round_trip(tmp_path):
+    toml, _ = write_modes(two_propeller_wing(), tmp_path / "two.toml", n_modes=6)
+    m = load_modal_model(toml)
+    assert m.structure.n_modes == 6
+    assert [p.grid for p in m.propellers] == [1 + n for n in two_propeller_wing().nodes]
+    assert m.dof_map().n_dof == 6 + 4
+
+
+def _edit(toml, old, new, count=1):
+    text = toml.read_text()
+    assert old in text, old
+    toml.write_text(text.replace(old, new, count))
+
+
+CASES = [
+    # (edit of the TOML text, words the one-line error must hold)
+    (('length = "m"', 'length = "mm"'), ["[units] length", "'mm'", "SI"]),
+    (('mass = "kg"\n', ''), ["'mass'", "[units]", "stated"]),
+    (('[units]\nlength = "m"\nmass = "kg"\ntime = "s"\nangle = "rad"\nfrequency = "Hz"\n', ''),
+     ["'units'", "stated"]),
+    (('grid = 26,', 'grid = 99,'), ["installations[0].grid = 99", "no hub grid 99",
+                                   "wingtip.modes.npz"]),
+    (('n_modes = 75', 'n_modes = 74'), ["wingtip.modes.npz", "frequencies_hz", "n_modes = 74"]),
+    (('wing_grids = [\n    1,', 'wing_grids = [\n    77,'), ["wing_grids[0] = 77",
+                                                             "not a grid"]),
+    (('propeller = "p1"', 'propeller = "p9"'), ["installations[0]", "propeller", "p9"]),
+    (('format_version = 1', 'format_version = 2'), ["format_version = 2"]),
+    (('mount = "flexible"', 'mount = "rigid-on-grid"'), ["installations[0]", "mount"]),
+]
+
+
+@pytest.mark.parametrize("edit, words", CASES, ids=[c[0][1][:20] for c in CASES])
+def test_a_bad_description_is_one_line_naming_file_key_and_id(tmp_path, edit, words):
+    toml, npz = write_modes(wingtip_propeller_wing(), tmp_path / "wingtip.toml")
+    _edit(toml, *edit)
+    with pytest.raises(InputError) as e:
+        load_modal_model(toml)
+    msg = str(e.value)
+    assert "\n" not in msg and msg.startswith(str(toml)), msg
+    for w in words:
+        assert w in msg, msg
+
+
+def _rewrite_npz(npz, **changes):
+    with np.load(npz, allow_pickle=False) as f:
+        arrays = {k: f[k] for k in f.files}
+    arrays.update(changes)
+    np.savez(npz, **arrays)
+
+
+@pytest.mark.parametrize("change, words", [
+    (lambda a: dict(frequencies_hz=np.r_[0.0, a["frequencies_hz"][1:]]),
+     ["frequencies_hz[0]", "rigid-body mode"]),
+    (lambda a: dict(grid_ids=np.r_[a["grid_ids"][:-1], a["grid_ids"][:1]]),
+     ["grid_ids", "grid 1 twice"]),
+    (lambda a: dict(grid_ids=a["grid_ids"].astype(np.float64)), ["grid_ids"]),
+    (lambda a: dict(shapes=a["shapes"][:, :, :3]), ["shapes"]),
+    (lambda a: dict(modal_mass=np.zeros_like(a["modal_mass"])), ["modal_mass[0]", "> 0"]),
+])
+def test_a_bad_modes_file_is_one_line_naming_it_and_the_array(tmp_path, change, words):
+    toml, npz = write_modes(wingtip_propeller_wing(), tmp_path / "wingtip.toml")
+    with np.load(npz, allow_pickle=False) as f:
+        arrays = {k: f[k] for k in f.files}
+    _rewrite_npz(npz, **change(arrays))
+    with pytest.raises(InputError) as e:
+        load_modal_model(toml)
+    msg = str(e.value)
+    assert "\n" not in msg and str(npz) in msg, msg
+    for w in words:
+        assert w in msg, msg
+
+
+def test_a_modes_file_with_a_pickle_or_missing_is_refused(tmp_path):
+    toml, npz = write_modes(wingtip_propeller_wing(), tmp_path / "wingtip.toml")
+    np.savez(npz, grid_ids=np.array([object()], dtype=object))
+    with pytest.raises(InputError, match="wingtip.modes.npz"):
+        load_modal_model(toml)
+    npz.unlink()
+    with pytest.raises(InputError, match="not found"):
+        load_modes(npz, 3, 3)
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(line=st.integers(0, 400), junk=st.sampled_from(
+    ["= 1", '= "x"', "= -1", "= []", "= [0.0]", "= true", "= 1e400", "= nan", "= 0"]))
+def test_any_corrupted_line_gives_a_model_or_one_line(written, tmp_path_factory, line, junk):
+    """Every line of a valid file replaced by a key with a bad value: a model, or one line
+    starting with the file's name; nothing else (no traceback from NumPy)."""
+    toml, npz = written
+    d = tmp_path_factory.mktemp("fuzz")
+    lines = toml.read_text().splitlines()
+    i = line % len(lines)
+    m = re.match(r"\s*([A-Za-z_]\w*)\s*=", lines[i])
+    if m is None:
+        return
+    lines[i] = f"{m.group(1)} {junk}" + ("," if lines[i].rstrip().endswith(",") else "")
+    bad = d / "wingtip.toml"
+    bad.write_text("\n".join(lines) + "\n")
+    (d / npz.name).write_bytes(npz.read_bytes())
+    try:
+        model = load_modal_model(bad)
+    except InputError as exc:
+        assert "\n" not in str(exc) and str(exc).startswith(str(bad)), str(exc)
+    else:
+        assert isinstance(model, ModalPropellerWing)
+
+
+def test_write_modes_refuses_what_it_cannot_write(tmp_path):
+    from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+
+    with pytest.raises(InputError, match="only a PropellerWing"):
+        write_modes(isolated_baseline_propeller(), tmp_path / "x.toml")
+    assert not list(tmp_path.iterdir())
+
+
+def test_the_whole_structures_modes_with_hub_grids_round_trip(tmp_path):
+    """Way (b): the modes of the wing with the propellers' masses and mount springs, each
+    propeller on a hub grid of its own, written and read back: the same A(V) as the model
+    built in memory."""
+    from propwhirl.model.modal import ModalStructure
+
+    full = two_propeller_wing()
+    toml, npz = write_modes(full, tmp_path / "two.toml", n_modes=12, mount="on-grid")
+    m = load_modal_model(toml)
+    s, hubs, _ = ModalStructure.with_mounts(full, 12)
+    assert [p.grid for p in m.propellers] == list(hubs)
+    assert all(p.mount == "on-grid" for p in m.propellers)
+    assert np.array_equal(m.structure.shapes, s.shapes)
+    assert m.dof_map().n_dof == 12
+    with pytest.raises(InputError, match="mount = 'rigid' is invalid"):
+        write_modes(full, tmp_path / "x.toml", mount="rigid")
+
+
+def test_a_modal_model_given_as_a_model_file_says_how_to_read_it(written):
+    from propwhirl.io import load_model
+
+    toml, _ = written
+    with pytest.raises(InputError, match="this is a modal model: read it with "
+                                         "propwhirl.io.modal_files.load_modal_model"):
+        load_model(toml)
+
+
+def test_more_modes_than_the_limit_are_refused_before_reading(written, tmp_path):
+    toml, npz = written
+    bad = tmp_path / "wingtip.toml"
+    bad.write_text(toml.read_text().replace("n_modes = 75", "n_modes = 1000000"))
+    with pytest.raises(InputError, match=r"\[modes\] n_modes = 1000000 is invalid: must be an "
+                                         r"integer in \[1, 1000\]"):
+        load_modal_model(bad)
