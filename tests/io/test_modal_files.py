@@ -177,7 +177,7 @@ def test_a_modal_model_given_as_a_model_file_says_how_to_read_it(written):
 
     toml, _ = written
     with pytest.raises(InputError, match="this is a modal model: read it with "
-                                         "propwhirl.io.modal_files.load_modal_model"):
+                                         "propwhirl.io.load_modal_model"):
         load_model(toml)
 
 

@@ -37,6 +37,7 @@ from propwhirl import fileio
 from propwhirl import validate as v
 from propwhirl.engine.results import Sweep
 from propwhirl.model.systems import IsolatedPropeller, PropellerWing, TypicalSection
+from propwhirl.model.modal import ModalPropellerWing
 from propwhirl.results import Result, SavedDict
 
 
@@ -144,7 +145,7 @@ class Reference:
 
 def reference(model) -> Reference:
     """The :class:`Reference` of a model: b_ref is the wing's root semichord (propeller-wing
-    models), the semichord b (typical section) or the propeller radius R (an isolated
+    models; a modal model's: that of its root strip), the semichord b (typical section) or the propeller radius R (an isolated
     propeller); density and speed of sound of ``model.flight``."""
     if isinstance(model, PropellerWing):
         b, what = model.wing.root_chord / 2, "root semichord of the wing"
@@ -152,6 +153,8 @@ def reference(model) -> Reference:
         b, what = model.b, "semichord of the section"
     elif isinstance(model, IsolatedPropeller):
         b, what = model.propeller.radius, "propeller radius R"
+    elif isinstance(model, ModalPropellerWing):
+        b, what = model.planform.chord[0] / 2, "semichord of the wing's root strip"
     else:
         raise v.InputError(f"model = {type(model).__name__} has no reference length: give a "
                            "Reference(b_ref, b_ref_is, density, speed_of_sound)")

@@ -230,7 +230,7 @@ def _analyse(args: argparse.Namespace) -> int:
         if not (args.plot or args.summary):
             raise InputError(f"--plot-modes {args.plot_modes} needs --plot or --summary (the "
                              "number of modes they show)")
-    model = load_model(args.model)
+    model = load_model(args.model, modal=True)
     speeds = speed_grid(*args.speeds) if args.speeds else None
     notice = None if args.quiet else limits.analysis_notice(model, args.method)
     if notice:                             # a long one is announced before the work (issue 20.9)

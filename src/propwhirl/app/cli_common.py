@@ -18,12 +18,16 @@ def echo(text: str) -> None:
     print("\n".join(limits.printable(line) for line in str(text).split("\n")))
 
 
-def load_model(path: str):
+def load_model(path: str, *, modal: bool = False):
     """The model of a TOML model file (:func:`propwhirl.io.load_model`), refused with one line
-    when the file holds something that is not a model to analyse."""
+    when the file holds something that is not a model to analyse; with ``modal``, a modal
+    model's file too (:func:`propwhirl.io.load_modal_model`: the commands that take them)."""
     from propwhirl import io
+    from propwhirl.io.modal_files import is_modal_file
     from propwhirl.model.protocol import Model
 
+    if modal and is_modal_file(path):
+        return io.load_modal_model(path)
     notes: list[str] = []  # the values assumed for a file of an older format version
     model = io.load_model(path, notes=notes)
     if not isinstance(model, Model):

@@ -126,6 +126,16 @@ def load_modes(path: str | Path, n_modes: int, n_grids: int, where: str | None =
     return ModalStructure(**arrays, source=where)
 
 
+def is_modal_file(path: str | Path) -> bool:
+    """Whether the TOML file at ``path`` declares ``format = "propwhirl-modal-model"`` (a file
+    that cannot be read or parsed is not: the model-file reader then says why)."""
+    try:
+        data = tomllib.loads(fileio.read_text(path, "model file"))
+    except (v.InputError, tomllib.TOMLDecodeError, RecursionError):
+        return False
+    return isinstance(data, dict) and data.get("format") == FORMAT
+
+
 def load_modal_model(path: str | Path) -> ModalPropellerWing:
     """The :class:`~propwhirl.model.modal.ModalPropellerWing` of the TOML file at ``path``
     and the ``.npz`` it names (relative to the TOML's folder).  Errors: one line starting with

@@ -33,8 +33,9 @@ def check_pk_model(model) -> None:
         return
     if isinstance(model, PropellerWing) and model.wing_aero:
         return
-    raise v.InputError(f"model = {model!r:.60} is invalid for the p-k method: must be a "
-                       "TypicalSection with aero = True or a PropellerWing with wing_aero = True")
+    raise v.InputError(f"model = {type(model).__name__} {getattr(model, 'name', '')!r} is invalid "
+                       "for the p-k method: must be a TypicalSection with aero = True or a "
+                       "PropellerWing with wing_aero = True")
 
 
 #: kept for the typical-section-only callers
