@@ -27,6 +27,7 @@ import numpy as np
 
 from propwhirl import fileio, limits
 from propwhirl import validate as v
+from propwhirl.io import schema
 from propwhirl.io.model_files import _build, _Table, _toml_error, _Writer
 from propwhirl.model.flight import FlightCondition
 from propwhirl.model.modal import MOUNTS, ModalInstallation, ModalPropellerWing
@@ -243,8 +244,6 @@ def _from_dict(data: dict[str, Any], path: Path) -> ModalPropellerWing:
 
 
 def _keys(cls: type) -> tuple[str, ...]:
-    from propwhirl.io import schema
-
     return schema.table_keys(cls)
 
 
