@@ -365,6 +365,51 @@ def at_altitude(model: Any, altitude_m: float) -> Any:
     return dataclasses.replace(model, flight=fc)
 
 
+def from_spec(spec: Any) -> Campaign:
+    """The :class:`Campaign` of a campaign file read by
+    :func:`propwhirl.io.campaign_files.load_campaign` (a ``CampaignSpec``): its cases made
+    (``each_propeller`` expanded, a product of the groups), its envelope points, and every
+    case's model at every point built (:func:`tasks`) — so every error comes now, before any
+    analysis, one line starting with the file's name and naming the case's table."""
+    try:
+        return _from_spec(spec)
+    except v.InputError as exc:
+        raise v.InputError(f"{spec.source}: {' '.join(str(exc).split())}") from None
+
+
+def _from_spec(spec: Any) -> Campaign:
+    n = len(spec.model.propellers)
+    groups: dict[str, list[Case]] = {}
+    cases: list[Case] = []
+    for cs in spec.cases:
+        try:
+            which = [(i,) for i in (cs.propellers or range(1, n + 1))] if cs.each_propeller \
+                else [cs.propellers]
+            made = [Case(f"{cs.name} (propeller {p[0]})" if cs.each_propeller else cs.name, p,
+                         **cs.transform) for p in which]
+            for c in made:
+                c.apply(spec.model)
+        except v.InputError as exc:
+            raise v.InputError(f"[{cs.table}] {exc}") from None
+        groups.setdefault(cs.group, []).extend(made)
+        cases.extend(made)
+    if spec.combine == "product":
+        cases = list(product(list(groups.values())))
+    seen: set[str] = set()
+    for c in cases:
+        if c.name in seen:
+            raise v.InputError(f"[[cases]] name {c.name!r} is given twice: every case needs its "
+                               "own name")
+        seen.add(c.name)
+    thesis = spec.convention == "thesis"
+    camp = Campaign(spec.name, spec.model, tuple(cases),
+                    envelope(spec.V_D, spec.altitudes_m, airspeed=spec.airspeed, M_D=spec.M_D),
+                    spec.regulation, spec.factor, spec.min_damping_g,
+                    static_divergence=not thesis, low_speed=not thesis)
+    tasks(camp)          # every case's model at every point, built and checked now
+    return camp
+
+
 @dataclass(frozen=True)
 class _Task:
     """One analysis of a campaign: a (case, point) model, its speeds and the requirement."""
