@@ -668,11 +668,13 @@ class CampaignResult(Result):
         g = "" if self.min_damping_g is None else f"; g >= {self.min_damping_g:g} up to V_D"
         head = (f"{self.name}: {self.model_name}: clearance to {self.factor:g} V_D "
                 f"({self.regulation}{g}); {self.convention}")
-        lines = [head, f"{'case':32s} {'verdict':11s} {'alt [m]':>8s} {'V_req':>8s} "
+        summaries = self.cases()
+        w = max([4] + [len(s.case) for s in summaries])
+        lines = [head, f"{'case':{w}s} {'verdict':11s} {'alt [m]':>8s} {'V_req':>8s} "
                        f"{'V_crit':>8s} {'margin':>8s} {'margin':>7s} {'min g':>7s} "
                        f"{'dzeta/dV':>9s}  critical", f"{'':32s} {'':11s} {'':>8s} "
                        f"{'[m/s]':>8s} {'[m/s]':>8s} {'[m/s]':>8s} {'[%]':>7s}"]
-        for s in self.cases():
+        for s in summaries:
             r = s.worst
             num = (lambda x, f: "-" if x is None else format(x, f))
             crit = ("analysis failed: " + r.error if r.error else "none in range (to "
@@ -680,13 +682,14 @@ class CampaignResult(Result):
                     f"{r.kind} {r.event} of {r.mode} at {num(r.frequency_hz, '.2f')} Hz"
                     + (f", {r.whirl} whirl" if r.whirl else ""))
             verdict = "cleared" if s.cleared else f"NOT ({s.failing})"
-            lines.append(f"{s.case[:32]:32s} {verdict:11s} {r.altitude_m:8.0f} "
+            lines.append(f"{s.case:{w}s} {verdict:11s} {r.altitude_m:8.0f} "
                          f"{r.V_required:8.2f} {num(r.critical_speed, '8.2f'):>8s} "
                          f"{num(r.margin_m_per_s, '+8.2f'):>8s} {num(r.margin_percent, '+7.2f'):>7s} "
                          f"{num(r.least_g, '7.4f'):>7s} {num(r.dzeta_dV_at_required, '+9.2e'):>9s}"
                          f"  {crit}" + (f" ({r.reason})" if r.reason and not r.error else ""))
-        n_ok = sum(s.cleared for s in self.cases())
-        lines.append(f"{n_ok} of {len(self.cases())} cases cleared; {self.analyses} analyses: "
+        n_ok = sum(s.cleared for s in summaries)
+        lines.append("(each case's least-margin altitude; every altitude: the CSV)")
+        lines.append(f"{n_ok} of {len(summaries)} cases cleared; {self.analyses} analyses: "
                      + ("CLEARED" if self.cleared else "NOT CLEARED"))
         return "\n".join(lines)
 
