@@ -57,8 +57,8 @@ from propwhirl.studies.critical import convention
 REGULATIONS: dict[str, tuple[float, str]] = {
     "cs25": (1.15, "CS 25.629(b)(1): aeroelastic stability up to 1.15 V_D/M_D (EASA CS-25)"),
     "far25": (1.15, "14 CFR 25.629(b)(1): aeroelastic stability up to 1.15 V_D/M_D"),
-    "far23": (1.2, "14 CFR 23.629(a) (amdt. 23-63 and earlier) and AC 23.629-1B: flutter "
-                   "free up to 1.2 V_D"),
+    "far23": (1.2, "14 CFR 23.629 (amendments up to 23-63; now 14 CFR 23.2245 with its means "
+                   "of compliance) and AC 23.629-1B: free from flutter up to 1.2 V_D by analysis"),
 }
 #: The airspeeds V_D can be given as: equivalent or true airspeed.
 AIRSPEEDS = ("EAS", "TAS")
