@@ -74,6 +74,14 @@ def test_degraded_mount_lowers_whirl_flutter_speed(model):
     assert number == 1 and 0.0 < share <= 1.0 and whirl in ("forward", "backward", "planar")
     summary = {s.case: s for s in r.cases()}
     assert summary["mount at 50 %"].worst.margin_percent < summary["nominal"].worst.margin_percent
+    # as the mount-stiffness study (section 11.1, f_theta = f_psi varied) says: K x 0.5 is
+    # f = 7 Hz x sqrt(0.5) on the thesis's wingtip model
+    from propwhirl.studies.parametric import nacelle_stiffness
+
+    study = nacelle_stiffness("both", [7.0, 7.0 * math.sqrt(0.5)], models=("wingtip",),
+                              static_divergence=False, low_speed=False)
+    assert list(study.columns["critical_speed"]) == pytest.approx(
+        [nominal.critical_speed, degraded.critical_speed], rel=1e-4)
 
 
 def test_mount_stiffness_factor_is_on_the_stiffness(model):
