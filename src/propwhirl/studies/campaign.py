@@ -37,7 +37,7 @@ import io
 import itertools
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, ClassVar
 
@@ -672,14 +672,15 @@ class CampaignResult(Result):
         w = max([4] + [len(s.case) for s in summaries])
         lines = [head, f"{'case':{w}s} {'verdict':11s} {'alt [m]':>8s} {'V_req':>8s} "
                        f"{'V_crit':>8s} {'margin':>8s} {'margin':>7s} {'min g':>7s} "
-                       f"{'dzeta/dV':>9s}  critical", f"{'':32s} {'':11s} {'':>8s} "
-                       f"{'[m/s]':>8s} {'[m/s]':>8s} {'[m/s]':>8s} {'[%]':>7s}"]
+                       f"{'dzeta/dV':>9s}  critical", f"{'':{w}s} {'':11s} {'':>8s} "
+                       f"{'[m/s]':>8s} {'[m/s]':>8s} {'[m/s]':>8s} {'[%]':>7s} {'':>7s} {'[s/m]':>9s}"]
         for s in summaries:
             r = s.worst
             num = (lambda x, f: "-" if x is None else format(x, f))
             crit = ("analysis failed: " + r.error if r.error else "none in range (to "
                     f"{r.analysed_to:.1f} m/s)" if r.kind == "none" else
-                    f"{r.kind} {r.event} of {r.mode} at {num(r.frequency_hz, '.2f')} Hz"
+                    f"{r.kind} {r.event} of {r.mode}"
+                    + (f" at {num(r.frequency_hz, '.2f')} Hz" if r.kind == "flutter" else "")
                     + (f", {r.whirl} whirl" if r.whirl else ""))
             verdict = "cleared" if s.cleared else f"NOT ({s.failing})"
             lines.append(f"{s.case:{w}s} {verdict:11s} {r.altitude_m:8.0f} "
