@@ -32,6 +32,7 @@ from propwhirl.reproduce.harness import Records
 from propwhirl.results import FORMAT_PATTERN, Result
 from propwhirl.studies.boundary import Boundary
 from propwhirl.studies.clearance import Clearance
+from propwhirl.studies.campaign import CampaignResult, PointRow
 from propwhirl.studies.gradients import OptimisationResult
 from propwhirl.studies.parametric import ModeSwitch
 from propwhirl.studies.sweeps import CriticalMap
@@ -85,6 +86,11 @@ def results() -> dict[type, Result]:
             ("propellers[0].propeller.K_theta", "propellers[0].propeller.K_psi"),
             np.array([1.2e5, 0.9e5]), math.inf, 0.93, True, "Optimization terminated "
             "successfully", 14, np.array([1.21e5, 0.9e5]), 47),
+        # a point without instability in its range (V_crit and margins null)
+        CampaignResult: CampaignResult("c", "wing", "cs25", 1.15, 0.03, "propwhirl", (PointRow(
+            "nominal", "nominal", 0.0, "EAS", 100.0, 100.0, False, 115.0, True, "", None, None,
+            None, "none", "", "", None, "", (), 351.0, 0.04, 1.0, "wing 1", 0.04, "wing 1",
+            0.05, 1e-4, "wing 1", ""),), 1),
     }
 
 
@@ -114,7 +120,7 @@ def test_every_result_type_is_covered_here(results):
 
 KINDS = [ModelAnalysis, Analysis, TimeResponse, Clearance, Boundary, CriticalMap, StudyTable,
          CriticalSensitivities, CampbellResult, Response, FlutterSummary, ModeSwitch,
-         OptimisationResult, Records]
+         OptimisationResult, Records, CampaignResult]
 
 
 def test_the_user_facing_results_are_results():

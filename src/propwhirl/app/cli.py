@@ -497,7 +497,7 @@ class _Parser(argparse.ArgumentParser):
 
 
 #: The exit codes, as `propwhirl --help` lists them.
-EXIT_CODES = ("Exit codes: 0 done; 1 clearance not cleared; 2 bad input (one line on stderr, "
+EXIT_CODES = ("Exit codes: 0 done; 1 clearance or certify not cleared; 2 bad input (one line on stderr, "
               "before any analysis starts) or a sweep/map whose every point failed (some failed "
               "points: 0 and a warning); 130 interrupted (Ctrl-C); 141 the output's reader "
               "stopped early.")
@@ -518,12 +518,13 @@ def build_parser() -> argparse.ArgumentParser:
     _add_analyse(sub)
     _add_modes(sub)
     _add_campbell(sub)
-    from propwhirl.app import cli_design, cli_studies
+    from propwhirl.app import cli_certify, cli_design, cli_studies
 
     cli_studies.add_commands(sub)
     _add_case(sub)
     _add_upgrade_model(sub)
     cli_design.add_commands(sub)
+    cli_certify.add_commands(sub)
     _add_docs(sub)
     return parser
 

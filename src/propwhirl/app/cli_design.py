@@ -105,13 +105,17 @@ def _add_boundary(sub) -> None:
 
 
 def _clearance(args: argparse.Namespace) -> int:
-    from propwhirl.studies.clearance import clearance
+    from propwhirl.app import execution_options
+    from propwhirl.studies.clearance import clearance, phase_checkpoints
 
     check_outputs(json=args.json, csv=args.csv, plot=args.plot, model=args.model)
+    options = execution_options.run_options(args)
+    cp = execution_options.checkpoint(args, args.json)
     model = _model_or_case(args.model)
     r = clearance(model, args.vd, args.factor, static_divergence=not args.thesis,
                   low_speed=not args.thesis, minimum=not args.no_minimum,
-                  frequency_range=tuple(args.frequency_range))
+                  frequency_range=tuple(args.frequency_range), propellers=args.propellers,
+                  **options, checkpoint=cp)
     echo(r.format())
     if args.json:
         r.save(args.json)
@@ -124,10 +128,15 @@ def _clearance(args: argparse.Namespace) -> int:
 
         plots.clearance_plot(r, path=args.plot)
         print(f"wrote {args.plot}")
+    for c in [cp, *phase_checkpoints(cp)]:
+        if c is not None:
+            c.discard()
     return 0 if r.cleared else 1
 
 
 def _add_clearance(sub) -> None:
+    from propwhirl.app import execution_options
+
     p = sub.add_parser("clearance", help="clearance to factor x V_D (exit code 0 cleared, 1 not)")
     p.add_argument("model", metavar="MODEL", help="model file (TOML) or case name")
     p.add_argument("--vd", type=float, required=True, metavar="V", help="design dive speed V_D [m/s]")
@@ -137,11 +146,14 @@ def _add_clearance(sub) -> None:
                    metavar=("LO", "HI"), help="range of the minimum mount frequencies [Hz] "
                    "(default 1 30)")
     p.add_argument("--no-minimum", action="store_true", help="skip the minimum mount frequencies")
+    p.add_argument("--propellers", type=int, nargs="+", metavar="N", help="search the minimum "
+                   "mount frequencies of these propellers only (numbered from 1; default all)")
     p.add_argument("--thesis", action="store_true", help="the thesis's convention: the wing's "
                    "static divergence and recovering low-speed instabilities left out")
     p.add_argument("--json", metavar="OUT", help="write the result as JSON")
     p.add_argument("--csv", metavar="OUT", help="write the result as CSV")
     p.add_argument("--plot", metavar="PNG", help="plot the margins")
+    execution_options.add(p)
     p.set_defaults(func=_clearance)
 
 

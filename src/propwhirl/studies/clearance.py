@@ -82,6 +82,10 @@ class Margin:
                    r.boolean("counted"))
 
 
+#: The outcomes of a minimum-frequency search (:class:`MinimumFrequency`).
+STATUSES = ("found", "at or below the range", "none in range", "not monotone")
+
+
 @dataclass(frozen=True)
 class MinimumFrequency:
     """The minimum mount frequency of one propeller that clears the requirement.
@@ -89,7 +93,10 @@ class MinimumFrequency:
     propeller: numbered from 1; parameter: "f_theta" or "f_psi"; path: its parameter path;
     current: the model's value [Hz] (None when given as a stiffness); frequency [Hz] (None when
     no frequency of the range clears); status: "found", "at or below the range" (every
-    sampled frequency clears: the minimum is ≤ the range's bottom), "none in range";
+    sampled frequency clears: the minimum is ≤ the range's bottom), "none in range", "not
+    monotone" (samples below the frequency found clear too, others between do not: V_crit(f)
+    switches critical mode — the frequency is the lowest above which every sample clears,
+    not a single minimum, and not a margin);
     critical_speed: V_crit [m/s] at `frequency` (the check; NaN: no instability in range);
     range [Hz]; note: e.g. samples below the minimum that clear too (not monotone);
     analyses: analyses it took.
@@ -118,7 +125,7 @@ class MinimumFrequency:
         return cls(r.integer("propeller", 1), r.string("parameter", ("f_theta", "f_psi")),
                    r.string("path"), r.number("current", optional=True),
                    r.number("frequency", optional=True),
-                   r.string("status", ("found", "at or below the range", "none in range")),
+                   r.string("status", STATUSES),
                    r.number_or_nan("critical_speed"), (float(lo), float(hi)), r.string("note"),
                    r.integer("analyses", 0))
 
@@ -173,6 +180,9 @@ class Clearance(Result):
             if q.status == "found":
                 Vc = "no instability" if not math.isfinite(q.critical_speed) else f"V_crit = {q.critical_speed:.2f} m/s"
                 text = f"{q.frequency:.3f} Hz{cur}: {Vc}"
+            elif q.status == "not monotone":
+                text = (f"NOT MONOTONE{cur}: every sample above {q.frequency:.3f} Hz clears, "
+                        "but there is no single minimum")
             elif q.status == "at or below the range":
                 text = f"<= {q.range[0]:g} Hz{cur}: every sampled frequency of {rng} clears"
             else:
@@ -323,60 +333,224 @@ def _check_search(par: P.Parameter, frequency_range: Any, n_scan: Any,
     return lo, hi
 
 
+#: The phases of the minimum-frequency searches, each one batch of independent analyses
+#: (and its own partial-results file beside the clearance's): the top of every range, the
+#: rest of the scans whose top clears, the root refinements.
+PHASES = ("top", "scan", "refine")
+
+
+def phase_checkpoints(checkpoint: Any) -> list:
+    """The partial-results files of the phases of a clearance whose file is `checkpoint` (to
+    remove them with it once the result is written)."""
+    return [] if checkpoint is None else [_phase_checkpoint(checkpoint, n) for n in PHASES]
+
+
+def _phase_checkpoint(checkpoint: Any, name: str) -> Any:
+    if checkpoint is None:
+        return None
+    from dataclasses import replace as _replace
+
+    path = Path(checkpoint.path)
+    return _replace(checkpoint, path=path.with_name(f"{path.name}.{name}")).with_entries(
+        phase=name)
+
+
+@dataclass(frozen=True)
+class _Refine:
+    """One root refinement (a picklable task): the frequency path, the bracket [Hz] and the
+    critical speeds known at its ends [m/s]."""
+
+    model: Any
+    path: str
+    V_required: float
+    speeds: np.ndarray
+    bracket: tuple[float, float]
+    known: tuple[tuple[float, float], ...]
+    frequency_tol: float
+    xtol: float
+    static_divergence: bool
+    low_speed: bool
+
+
+def _refine(t: _Refine) -> dict[str, Any]:
+    """Brent's method on V_crit(f) − V_required in the bracket, the root rounded up to the
+    tolerance and checked (it clears); {frequency, critical_speed (None: none in range),
+    analyses}."""
+    from propwhirl.studies.sweeps import evaluate
+
+    par = P.resolve(t.model, t.path)
+    vcrit = dict(t.known)
+    count = [0]
+    top = float(t.speeds[-1])
+
+    def h(f: float) -> float:
+        if f not in vcrit:
+            count[0] += 1
+            vcrit[f] = evaluate((par.set(t.model, f), t.speeds, t.xtol, t.static_divergence,
+                                 t.low_speed))["critical_speed"]
+        Vc = vcrit[f]
+        return (top if not math.isfinite(Vc) else Vc) - t.V_required
+
+    lo, hi = t.bracket
+    tol = t.frequency_tol
+    root = brentq(h, lo, hi, xtol=tol)
+    freq = math.ceil((root + tol) / tol) * tol
+    while h(freq) <= 0 and freq < hi:     # the check: the reported frequency clears
+        freq = min(freq + tol, hi)
+    Vc = vcrit[freq]
+    return {"frequency": float(freq), "critical_speed": None if not math.isfinite(Vc) else Vc,
+            "analyses": count[0]}
+
+
+def _minimum_frequencies(model: Any, searches: list[tuple[int, str]], V_required: float,
+                         speeds: np.ndarray, *, frequency_range, n_scan: int,
+                         frequency_tol: float, xtol: float, static_divergence: bool,
+                         low_speed: bool, processes: int = 1, client=None, progress=None,
+                         checkpoint=None) -> list[MinimumFrequency]:
+    """The searches (propeller index from 0, "f_theta"/"f_psi"), their analyses run in three
+    batches (:data:`PHASES`) by :func:`propwhirl.studies.execution.map_analyses`."""
+    from propwhirl.studies import execution
+    from propwhirl.studies.runner import STUDY_ROW
+    from propwhirl.studies.sweeps import evaluate
+
+    pars = [_frequency_path(model, n, name) for n, name in searches]
+    lo, hi = 0.0, 0.0
+    for par in pars:
+        lo, hi = _check_search(par, frequency_range, n_scan, frequency_tol)
+    f = np.geomspace(lo, hi, n_scan)
+    f[-1] = hi
+    grid = [float(x) for x in f]
+    vcrit: list[dict[float, float]] = [{} for _ in pars]
+    modes: list[dict[float, str]] = [{} for _ in pars]
+    if checkpoint is not None:
+        checkpoint = checkpoint.with_entries(
+            study="clearance minimum frequencies", model=execution.content_digest(model),
+            speeds=execution.content_digest(list(map(float, speeds))),
+            V_required=float(V_required), xtol=float(xtol), frequencies=grid,
+            frequency_tol=float(frequency_tol), paths=[p.path for p in pars],
+            convention=convention(static_divergence, low_speed))
+
+    def batch(items: list[tuple[int, float]], phase: str) -> None:
+        if not items:
+            return
+        rows = execution.map_analyses(
+            evaluate, [(pars[i].set(model, x), speeds, xtol, static_divergence, low_speed)
+                       for i, x in items], processes, client=client, progress=progress,
+            checkpoint=None if checkpoint is None else
+            _phase_checkpoint(checkpoint, phase).with_entries(STUDY_ROW),
+            keys=[f"{pars[i].path}={x!r}" for i, x in items],
+            desc=f"minimum frequencies ({phase})")
+        for (i, x), row in zip(items, rows):
+            vcrit[i][x] = row["critical_speed"]
+            modes[i][x] = row["critical_mode"]
+
+    def clears(i: int, x: float) -> bool:
+        Vc = vcrit[i][x]
+        return (float(speeds[-1]) if not math.isfinite(Vc) else Vc) > V_required
+
+    batch([(i, hi) for i in range(len(pars))], "top")
+    alive = [i for i in range(len(pars)) if clears(i, hi)]
+    batch([(i, x) for i in alive for x in grid[:-1]], "scan")
+    plan: dict[int, tuple[str, int]] = {}
+    for i in range(len(pars)):
+        if i not in alive:
+            plan[i] = ("none in range", 0)
+            continue
+        ok = [clears(i, x) for x in grid]
+        k = len(grid) - 1
+        while k > 0 and ok[k - 1]:
+            k -= 1
+        if k == 0:
+            plan[i] = ("at or below the range", 0)
+        else:
+            plan[i] = ("not monotone" if any(ok[:k - 1]) else "found", k)
+    refine = [i for i in range(len(pars)) if plan[i][0] in ("found", "not monotone")]
+    refined = execution.map_analyses(
+        _refine, [_Refine(model, pars[i].path, float(V_required), speeds,
+                          (grid[plan[i][1] - 1], grid[plan[i][1]]),
+                          tuple(vcrit[i].items()), float(frequency_tol), float(xtol),
+                          bool(static_divergence), bool(low_speed)) for i in refine],
+        processes, client=client, progress=progress,
+        checkpoint=None if checkpoint is None or not refine else
+        _phase_checkpoint(checkpoint, "refine"),
+        keys=[pars[i].path for i in refine], desc="minimum frequencies (refine)")
+    done = dict(zip(refine, refined))
+    out = []
+    for i, ((number, name), par) in enumerate(zip(searches, pars)):
+        status, k = plan[i]
+        count = len(vcrit[i])
+        note, freq, Vc = "", None, math.nan
+        if status == "at or below the range":
+            freq, Vc = lo, vcrit[i][lo]
+        elif status in ("found", "not monotone"):
+            r = done[i]
+            freq = r["frequency"]
+            Vc = math.nan if r["critical_speed"] is None else r["critical_speed"]
+            count += r["analyses"]
+        if status == "not monotone":
+            good = [x for x in grid[:k - 1] if clears(i, x)]
+            bad = [x for x in grid[:k] if not clears(i, x)]
+            seq = []
+            for x in grid:
+                m = modes[i][x] or "none"
+                if not seq or seq[-1] != m:
+                    seq.append(m)
+            note = (f"V_crit(f) is not monotone: the sampled {_hz(good)} Hz clear too and "
+                    f"{_hz(bad)} Hz do not (critical mode over the samples: "
+                    f"{' -> '.join(seq)}); {freq:.3f} Hz is the lowest frequency above which "
+                    "every sample clears, not a margin")
+        out.append(MinimumFrequency(number + 1, name, par.path, par.value(model), freq, status,
+                                    float(Vc), (lo, hi), note, count))
+    return out
+
+
+def _hz(xs: list[float]) -> str:
+    return ", ".join(f"{x:.3g}" for x in xs)
+
+
 def minimum_frequency(model: Any, number: int, name: str, V_required: float, speeds: np.ndarray,
                       *, frequency_range: tuple[float, float] = (1.0, 30.0), n_scan: int = 8,
                       frequency_tol: float = 1e-3, xtol: float = 0.01,
-                      static_divergence: bool = True, low_speed: bool = True) -> MinimumFrequency:
+                      static_divergence: bool = True, low_speed: bool = True,
+                      processes: int = 1, client=None, progress=None,
+                      checkpoint=None) -> MinimumFrequency:
     """The minimum `name` ("f_theta"/"f_psi") [Hz] of propeller `number` (its index in the
-    model, from 0) clearing `V_required` [m/s] (module docstring)."""
-    from propwhirl.studies.sweeps import evaluate
-
+    model, from 0) clearing `V_required` [m/s] (module docstring); processes, client,
+    progress, checkpoint: :func:`propwhirl.studies.execution.map_analyses`."""
     if name not in ("f_theta", "f_psi"):
         raise v.InputError(f"parameter = {name!r} is invalid: must be 'f_theta' or 'f_psi'")
-    par = _frequency_path(model, number, name)
-    lo, hi = _check_search(par, frequency_range, n_scan, frequency_tol)
-    count = [0]
-    vcrit: dict[float, float] = {}
+    (q,) = _minimum_frequencies(
+        model, [(number, name)], V_required, speeds, frequency_range=frequency_range,
+        n_scan=n_scan, frequency_tol=frequency_tol, xtol=xtol,
+        static_divergence=static_divergence, low_speed=low_speed, processes=processes,
+        client=client, progress=progress, checkpoint=checkpoint)
+    return q
 
-    def V_crit(f: float) -> float:
-        if f not in vcrit:
-            count[0] += 1
-            row = evaluate((par.set(model, f), speeds, xtol, static_divergence, low_speed))
-            vcrit[f] = row["critical_speed"]
-        return vcrit[f]
 
-    def h(f: float) -> float:  # > 0: cleared
-        Vc = V_crit(f)
-        return (speeds[-1] if not math.isfinite(Vc) else Vc) - V_required
-
-    def result(freq, status, note=""):
-        Vc = float("nan") if freq is None else V_crit(freq)
-        return MinimumFrequency(number + 1, name, par.path, par.value(model), freq, status, Vc,
-                                (lo, hi), note, count[0])
-
-    if h(hi) <= 0:
-        return result(None, "none in range")
-    f = np.geomspace(lo, hi, n_scan)
-    f[-1] = hi
-    ok = [h(float(x)) > 0 for x in f]
-    k = len(f) - 1
-    while k > 0 and ok[k - 1]:
-        k -= 1
-    if k == 0:
-        return result(lo, "at or below the range")
-    below = [f"{x:.3g}" for x, good in zip(f[:k - 1], ok[:k - 1]) if good]
-    note = f"also clears at the sampled {', '.join(below)} Hz (not monotone)" if below else ""
-    root = brentq(h, float(f[k - 1]), float(f[k]), xtol=frequency_tol)
-    freq = math.ceil((root + frequency_tol) / frequency_tol) * frequency_tol
-    while h(freq) <= 0 and freq < f[k]:     # the check: the reported frequency clears
-        freq = min(freq + frequency_tol, float(f[k]))
-    return result(float(freq), "found", note)
+def _check_propellers(model: Any, propellers: Any) -> list[int] | None:
+    """`propellers` (numbers from 1, None: all) as model indices from 0, checked."""
+    if propellers is None:
+        return None
+    numbers = [pd.number for pd in model.dof_map().propellers]
+    items = list(propellers) if not isinstance(propellers, (int, str)) else [propellers]
+    if not items:
+        raise v.InputError("propellers = [] is invalid: give one or more propeller numbers")
+    out = []
+    for x in items:
+        if isinstance(x, bool) or not isinstance(x, (int, np.integer)) or x - 1 not in numbers:
+            valid = ", ".join(str(n + 1) for n in numbers) or "none: no flexibly mounted propeller"
+            raise v.InputError(f"propellers = {v.short_repr(x)} is invalid: the flexibly mounted "
+                               f"propellers of the model are {valid}")
+        out.append(int(x) - 1)
+    return sorted(set(out))
 
 
 def clearance(model: Any, V_D: float, factor: float = FACTOR_CS25, *, speeds=None,
               xtol: float = 0.01, static_divergence: bool = True, low_speed: bool = True,
               minimum: bool = True, frequency_range: tuple[float, float] = (1.0, 30.0),
-              n_scan: int = 8, frequency_tol: float = 1e-3) -> Clearance:
+              n_scan: int = 8, frequency_tol: float = 1e-3, propellers=None,
+              processes: int = 1, client=None, progress=None,
+              checkpoint=None) -> Clearance:
     """Clearance of `model` to ``factor · V_D`` (module docstring).
 
     Parameters
@@ -395,16 +569,26 @@ def clearance(model: Any, V_D: float, factor: float = FACTOR_CS25, *, speeds=Non
     minimum : bool
         Also find each propeller's minimum clearing f_θ and f_ψ (:func:`minimum_frequency`,
         in `frequency_range` [Hz], ``n_scan`` samples, to ``frequency_tol`` [Hz]).
+    propellers : sequence of int, optional
+        The propellers (numbered from 1) whose minimum frequencies are searched (default all).
+    processes, client, progress, checkpoint
+        How the searches' analyses run (:func:`propwhirl.studies.execution.map_analyses`:
+        local processes, a Dask cluster, a progress bar, partial-results files beside
+        ``checkpoint.path`` per phase, :func:`phase_checkpoints`, resumed with
+        ``resume=True``).  The model's own analysis runs in this process.
     """
     v.positive("V_D", V_D, "m/s")
     v.in_range("factor", factor, 1.0, 3.0)
     V_req = float(factor) * float(V_D)
     grid = clearance_speeds(model, V_req, speeds)
+    chosen = _check_propellers(model, propellers)
+    v.integer_at_least("processes", processes, 1)
+    searches = [(pd.number, name) for pd in model.dof_map().propellers
+                if chosen is None or pd.number in chosen for name in ("f_theta", "f_psi")]
     if minimum:              # the search's options, checked before the first analysis
-        for pd in model.dof_map().propellers:
-            for name in ("f_theta", "f_psi"):
-                _check_search(_frequency_path(model, pd.number, name), frequency_range,
-                              n_scan, frequency_tol)
+        for number, name in searches:
+            _check_search(_frequency_path(model, number, name), frequency_range,
+                          n_scan, frequency_tol)
     a, is_wing, crit = _analysis_critical(model, grid, xtol, static_divergence, low_speed)
 
     def margin(e) -> Margin:
@@ -415,13 +599,12 @@ def clearance(model: Any, V_D: float, factor: float = FACTOR_CS25, *, speeds=Non
     cmargin = None if crit is None else next(m for e, m in zip(a.onsets, margins) if e is crit)
     cleared = crit is None or crit.V > V_req
     found: list[MinimumFrequency] = []
-    if minimum:
-        for pd in model.dof_map().propellers:
-            for name in ("f_theta", "f_psi"):
-                found.append(minimum_frequency(
-                    model, pd.number, name, V_req, grid, frequency_range=frequency_range,
-                    n_scan=n_scan, frequency_tol=frequency_tol, xtol=xtol,
-                    static_divergence=static_divergence, low_speed=low_speed))
+    if minimum and searches:
+        found = _minimum_frequencies(
+            model, searches, V_req, grid, frequency_range=frequency_range, n_scan=n_scan,
+            frequency_tol=frequency_tol, xtol=xtol, static_divergence=static_divergence,
+            low_speed=low_speed, processes=processes, client=client, progress=progress,
+            checkpoint=checkpoint)
     return Clearance(getattr(model, "name", ""), float(V_D), float(factor), V_req, cleared,
                      cmargin, margins, tuple(found), convention(static_divergence, low_speed),
                      (float(grid[0]), float(grid[-1])), 1 + sum(q.analyses for q in found))

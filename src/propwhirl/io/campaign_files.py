@@ -1,0 +1,265 @@
+"""Campaign files (TOML): :func:`loads` / :func:`load_campaign` read a whirl-flutter clearance
+campaign as a :class:`CampaignSpec` (plain checked values and the loaded model), which
+:func:`propwhirl.studies.campaign.from_spec` makes a
+:class:`~propwhirl.studies.campaign.Campaign` (io does not import the studies: the package
+layers, tests/test_layering.py); the format is ``docs/campaign.md``.
+
+Every problem — bad TOML, an unknown or missing key, a wrong type, a value out of its range,
+a model file that cannot be read, a case the model cannot take (overspeed of a windmilling
+propeller, a propeller it does not have) — is a one-line InputError starting with the file's
+name and naming the key as written, the value and the valid range; all of it before any
+analysis (:func:`~propwhirl.studies.campaign.from_spec` builds the model of every case at every
+envelope point before the first analysis; its errors start with the file's name and name the
+case's table too).
+
+Layout::
+
+    format = "propwhirl-campaign"
+    format_version = 1
+    name = "..."
+    model = "wingtip.toml"            # relative to the campaign file
+    convention = "propwhirl"          # or "thesis"
+    combine = "list"                  # or "product" (of the case groups)
+    [regulation]                      # name = cs25 | far25 | far23 | explicit (+ factor)
+    [envelope]                        # airspeed, V_D_m_per_s, M_D, altitudes_m | altitudes_ft
+    [[cases]]                         # name, propellers, each_propeller, mount_stiffness, ...
+"""
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from propwhirl import fileio, limits
+from propwhirl import validate as v
+from propwhirl.io.model_files import _Table, _toml_error, load_model
+
+#: The format tag and version of a campaign file.
+FORMAT = "propwhirl-campaign"
+FORMAT_VERSION = 1
+#: Most (case, envelope point) analyses a campaign file may ask for.
+MAX_TASKS = 10_000
+#: Most altitudes, cases (before expansion), added masses or values of one case.
+MAX_ITEMS = 1000
+#: The regulations' speed factors (those of :data:`propwhirl.studies.campaign.REGULATIONS`).
+REGULATIONS = {"cs25": 1.15, "far25": 1.15, "far23": 1.2}
+#: The airspeeds V_D can be given as; the operations a case can switch a propeller to.
+AIRSPEEDS = ("EAS", "TAS")
+OPERATIONS = ("windmilling",)
+#: Feet to metres.
+FT = 0.3048
+
+_TOP = ("format", "format_version", "name", "model", "convention", "combine", "regulation",
+        "envelope", "cases")
+_REGULATION = ("name", "factor", "min_damping_g")
+_ENVELOPE = ("airspeed", "V_D_m_per_s", "M_D", "altitudes_m", "altitudes_ft")
+_CASE = ("name", "group", "propellers", "each_propeller", "mount_stiffness", "mount_damping",
+         "wing_damping", "operation", "rpm_factor", "reverse_rotation", "added_masses", "values")
+_MASS = ("mass_kg", "x_m")
+#: Ranges of the case factors: key → (low, high).
+FACTOR_RANGES = {"mount_stiffness": (1e-3, 100.0), "mount_damping": (0.0, 100.0),
+                 "wing_damping": (0.0, 100.0), "rpm_factor": (0.1, 3.0)}
+
+
+def _number_in(t: _Table, key: str, low: float, high: float, what: str = "") -> float:
+    x = t.number(key, what)
+    if not (math.isfinite(x) and low <= x <= high):
+        raise t.bad(key, f"a number in [{low:g}, {high:g}]", what)
+    return x
+
+
+def _list_of_numbers(t: _Table, key: str, low: float, high: float) -> list[float]:
+    x = t.raw(key)
+    if not isinstance(x, list) or not 1 <= len(x) <= MAX_ITEMS or any(
+            isinstance(i, bool) or not isinstance(i, (int, float)) or not math.isfinite(i)
+            or not low <= i <= high for i in x):
+        raise t.bad(key, f"a list of 1 to {MAX_ITEMS} numbers in [{low:g}, {high:g}]")
+    return [float(i) for i in x]
+
+
+def _regulation(t: _Table) -> tuple[str, float, float | None]:
+    name = t.string("name", choices=(*REGULATIONS, "explicit"))
+    if name == "explicit":
+        factor = _number_in(t, "factor", 1.0, 3.0, "the speed factor of regulation 'explicit'")
+    else:
+        factor = REGULATIONS[name]
+        if t.has("factor") and t.data["factor"] != factor:
+            raise t.bad("factor", f"{factor:g} with name = {name!r} (or give name = 'explicit')")
+    g = _number_in(t, "min_damping_g", 0.0, 1.0) if t.has("min_damping_g") else None
+    return name, factor, g
+
+
+def _envelope(t: _Table) -> tuple[str, tuple[float, ...], tuple[float, ...], float | None]:
+    airspeed = t.string("airspeed", "which airspeed V_D is", AIRSPEEDS)
+    if t.has("altitudes_m") == t.has("altitudes_ft"):
+        raise v.InputError(f"[{t.where}] give exactly one of altitudes_m, altitudes_ft")
+    if t.has("altitudes_m"):
+        alts = _list_of_numbers(t, "altitudes_m", -5000.0, 32000.0)
+    else:
+        alts = [h * FT for h in _list_of_numbers(t, "altitudes_ft", -5000.0 / FT, 32000.0 / FT)]
+    raw = t.raw("V_D_m_per_s", "the design dive speed [m/s]")
+    if isinstance(raw, list):
+        vd = _list_of_numbers(t, "V_D_m_per_s", 1.0, 1000.0)
+        if len(vd) != len(alts):
+            raise t.bad("V_D_m_per_s", f"one speed, or one per altitude ({len(alts)})")
+    else:
+        vd = [_number_in(t, "V_D_m_per_s", 1.0, 1000.0)]
+    M_D = _number_in(t, "M_D", 0.01, 0.95) if t.has("M_D") else None
+    return airspeed, tuple(vd), tuple(alts), M_D
+
+
+def _case(t: _Table, n_propellers: int) -> CaseSpec:
+    name = t.string("name")
+    if not name.strip() or not name.isprintable() or len(name) > 200:
+        raise t.bad("name", "a non-empty printable name of at most 200 characters")
+    group = t.string("group") if t.has("group") else ""
+    kw: dict[str, Any] = {}
+    for key, (lo, hi) in FACTOR_RANGES.items():
+        if t.has(key):
+            kw[key] = _number_in(t, key, lo, hi)
+    if t.has("operation"):
+        kw["operation"] = t.string("operation", "feathered propellers are not modelled",
+                                   OPERATIONS)
+    if t.has("reverse_rotation"):
+        kw["reverse_rotation"] = t.boolean("reverse_rotation")
+    props: tuple[int, ...] = ()
+    if t.has("propellers"):
+        x = t.raw("propellers")
+        if (not isinstance(x, list) or not x or len(set(map(str, x))) != len(x)
+                or any(isinstance(i, bool) or not isinstance(i, int) or not 1 <= i <= n_propellers
+                       for i in x)):
+            raise t.bad("propellers", f"a list of distinct propeller numbers in [1, "
+                                      f"{n_propellers}] (the model's propellers, from 1)")
+        props = tuple(x)
+    if t.has("added_masses"):
+        x = t.raw("added_masses")
+        if not isinstance(x, list) or not 1 <= len(x) <= MAX_ITEMS:
+            raise t.bad("added_masses", f"a list of 1 to {MAX_ITEMS} tables "
+                                        "{ mass_kg = ..., x_m = ... }")
+        masses = []
+        for i, m in enumerate(x):
+            mt = _Table(m, f"{t.where}.added_masses[{i}]", _MASS)
+            masses.append((_number_in(mt, "mass_kg", 1e-4, 1e5), _number_in(mt, "x_m", -100.0, 100.0)))
+        kw["added_masses"] = tuple(masses)
+    if t.has("values"):
+        vt = t.sub("values", [k for k in (t.data["values"] if isinstance(t.data["values"], dict)
+                                          else ())])
+        if not 1 <= len(vt.data) <= MAX_ITEMS:
+            raise t.bad("values", f"a table of 1 to {MAX_ITEMS} \"path\" = number entries")
+        kw["values"] = tuple((k, vt.number(k, "a parameter path's value")) for k in vt.data)
+    each = t.boolean("each_propeller") if t.has("each_propeller") else False
+    return CaseSpec(t.where, name, group, props, each, kw)
+
+
+@dataclass(frozen=True)
+class CaseSpec:
+    """One [[cases]] table, checked: table ("cases[2]"), name, group ("" outside a product),
+    propellers (numbers from 1; empty: all), each_propeller (one case per propeller) and
+    transform: the :class:`~propwhirl.studies.campaign.Case` fields it sets."""
+
+    table: str
+    name: str
+    group: str
+    propellers: tuple[int, ...]
+    each_propeller: bool
+    transform: dict[str, Any] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class CampaignSpec:
+    """A campaign file, checked (module docstring): source (the file's name), name, model
+    (loaded), model_path, convention ("propwhirl"/"thesis"), combine ("list"/"product"),
+    regulation, factor, min_damping_g (None: none), airspeed ("EAS"/"TAS"), V_D [m/s] (one,
+    or one per altitude), altitudes_m [m], M_D (None: none), cases."""
+
+    source: str
+    name: str
+    model: Any
+    model_path: str
+    convention: str
+    combine: str
+    regulation: str
+    factor: float
+    min_damping_g: float | None
+    airspeed: str
+    V_D: tuple[float, ...]
+    altitudes_m: tuple[float, ...]
+    M_D: float | None
+    cases: tuple[CaseSpec, ...]
+
+
+def _from_dict(data: dict[str, Any], base: Path, source: str) -> CampaignSpec:
+    top = _Table(data, "", _TOP)
+    fmt = top.string("format")
+    if fmt != FORMAT:
+        raise top.bad("format", repr(FORMAT))
+    version = top.integer("format_version")
+    if version != FORMAT_VERSION:
+        raise top.bad("format_version", f"{FORMAT_VERSION} (this propwhirl reads campaign files "
+                                        f"of version {FORMAT_VERSION})")
+    name = top.string("name") if top.has("name") else Path(source).stem
+    model_key = top.string("model", "the model file, relative to the campaign file")
+    path = Path(model_key)
+    if not path.is_absolute():
+        path = base / path
+    try:
+        model = load_model(path)
+    except v.InputError as exc:
+        raise v.InputError(f"model = {model_key!r}: {exc}") from None
+    n = len(getattr(model, "propellers", ()) if isinstance(getattr(model, "propellers", None),
+                                                           tuple) else ())
+    if n == 0:
+        raise top.bad("model", "a propeller-wing model with at least one propeller "
+                               f"({str(path)!r} holds a {type(model).__name__} without any)")
+    conv = top.string("convention", choices=("propwhirl", "thesis")) \
+        if top.has("convention") else "propwhirl"
+    combine = top.string("combine", choices=("list", "product")) \
+        if top.has("combine") else "list"
+    regulation, factor, g = _regulation(top.sub("regulation", _REGULATION))
+    airspeed, vd, alts, M_D = _envelope(top.sub("envelope", _ENVELOPE))
+    raw = top.raw("cases", "one [[cases]] table per case")
+    if not isinstance(raw, list) or not 1 <= len(raw) <= MAX_ITEMS:
+        raise top.bad("cases", f"1 to {MAX_ITEMS} [[cases]] tables")
+    specs = []
+    groups: dict[str, int] = {}
+    for i, d in enumerate(raw):
+        t = _Table(d, f"cases[{i}]", _CASE)
+        c = _case(t, n)
+        if combine == "product" and not c.group:
+            raise t.missing("group", "every case of combine = 'product' names its group")
+        groups[c.group] = groups.get(c.group, 0) + (len(c.propellers) or n if c.each_propeller
+                                                    else 1)
+        specs.append(c)
+    count = math.prod(groups.values()) if combine == "product" else sum(groups.values())
+    if count * len(alts) > MAX_TASKS:
+        raise v.InputError(f"the cases ({count}) x altitudes ({len(alts)}) make "
+                           f"{count * len(alts)} analyses, at most {MAX_TASKS}")
+    return CampaignSpec(source, name, model, str(path), conv, combine, regulation, factor, g,
+                        airspeed, vd, alts, M_D, tuple(specs))
+
+
+def loads(text: str, source: str = "<string>", base: str | Path = ".") -> CampaignSpec:
+    """The campaign in TOML `text`; its model path is relative to `base`.  Every problem is a
+    one-line InputError starting with `source` (module docstring)."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise v.InputError(f"{source}: not valid TOML: {_toml_error(exc, text)}") from exc
+    except RecursionError:
+        raise limits.nesting_error(source) from None
+    limits.check_nesting(data, source)
+    try:
+        return _from_dict(data, Path(base), source)
+    except v.InputError as exc:
+        raise v.InputError(f"{source}: {' '.join(str(exc).split())}") from exc
+    except (TypeError, ValueError) as exc:   # anything a constructor let through unchecked
+        raise v.InputError(f"{source}: invalid campaign: {exc}") from exc
+
+
+def load_campaign(path: str | Path) -> CampaignSpec:
+    """Read a campaign file (errors as :func:`loads`, naming the path)."""
+    path = Path(path)
+    text = fileio.read_text(path, "campaign file", empty_ok=True)
+    return loads(text, str(path), path.parent)

@@ -1,0 +1,794 @@
+"""A whirl-flutter clearance campaign: one model, its flight envelope, the failure cases, and
+the verdict of a regulation for every (case, envelope point).
+
+A :class:`Campaign` holds
+
+* the model (any propeller-wing model; :func:`propwhirl.io.load_model`);
+* the regulation's speed factor (:data:`REGULATIONS`: CS 25.629 and 14 CFR 25.629 1.15, 14 CFR
+  23.629 1.2, or an explicit factor) and, optionally, a damping requirement: the structural
+  damping coefficient g = 2ζ of every oscillatory mode at least ``min_damping_g`` at every
+  speed up to V_D;
+* the envelope: :class:`EnvelopePoint` s, each an ISA altitude with its V_D as a true
+  airspeed [m/s] (:func:`envelope`: V_D given as EAS is converted with the ISA density,
+  V_TAS = V_EAS · sqrt(ρ0 / ρ(h)); an M_D limits it to M_D · a(h)).  The analyses'
+  speeds are true airspeeds (:class:`propwhirl.model.flight.FlightCondition`);
+* the cases: :class:`Case` s, named model transformations (mount stiffness and damping
+  factors, the wing's structural damping, windmilling, overspeed, reversed rotation, added
+  masses, any parameter path of :mod:`propwhirl.studies.paths`), applied to the chosen
+  propellers (numbered from 1; all by default).
+
+:func:`run_campaign` builds every (case, point) model first (each bad case or point is a
+one-line InputError before any analysis), then runs one analysis per (case, point) with
+:func:`propwhirl.studies.execution.map_analyses` (serial, local processes or Dask, a progress
+bar, a partial-results file and resume).  Each point's result (:func:`evaluate_point`) holds
+the critical instability (:func:`propwhirl.studies.critical.critical_instability`: kind, event,
+mode, frequency, whirl sense, every propeller's share), V_crit, the required speed factor · V_D,
+the margin V_crit − factor · V_D [m/s] and [%], the least damping g = 2ζ of the oscillatory
+modes (those with an event and the :data:`DAMPING_MODES` of lowest frequency) up to the required speed and up to V_D (with mode and speed), and the slope dζ/dV [s/m]
+of the least damped mode at the required speed ("rapid loss of stability").  A point clears
+when no counted instability lies at or below the required speed and, with a damping
+requirement, the least damping up to V_D meets it; a case clears when all its points do.
+"""
+from __future__ import annotations
+
+import csv
+import dataclasses
+import io
+import itertools
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, ClassVar
+
+import numpy as np
+
+from propwhirl import fileio
+from propwhirl import validate as v
+from propwhirl.model import atmosphere
+from propwhirl.model.flight import FlightCondition
+from propwhirl.progress import ProgressCallback
+from propwhirl.results import Result, SavedDict
+from propwhirl.studies import execution
+from propwhirl.studies import paths as P
+from propwhirl.studies.critical import convention
+
+#: The regulations' speed factors and their sources: name → (factor, source).
+REGULATIONS: dict[str, tuple[float, str]] = {
+    "cs25": (1.15, "CS 25.629(b)(1): aeroelastic stability up to 1.15 V_D/M_D (EASA CS-25)"),
+    "far25": (1.15, "14 CFR 25.629(b)(1): aeroelastic stability up to 1.15 V_D/M_D"),
+    "far23": (1.2, "14 CFR 23.629 (amendments up to 23-63; now 14 CFR 23.2245 with its means "
+                   "of compliance) and AC 23.629-1B: free from flutter up to 1.2 V_D by analysis"),
+}
+#: The airspeeds V_D can be given as: equivalent or true airspeed.
+AIRSPEEDS = ("EAS", "TAS")
+#: Sea-level ISA density ρ0 [kg/m³] (the reference of an equivalent airspeed).
+RHO0 = float(atmosphere.density(0.0))
+#: The damping results consider the modes with an event and this many oscillatory modes of
+#: lowest frequency (:meth:`propwhirl.analysis.stability.ModelAnalysis.modes_of_interest`).
+DAMPING_MODES = 8
+#: Operations a case can switch a propeller to.
+OPERATIONS = ("windmilling",)
+
+
+# ============================================================================== cases
+@dataclass(frozen=True)
+class Case:
+    """A named model transformation (one failure case of a campaign).
+
+    name:             the case's name in the report (unique in a campaign);
+    propellers:       the propellers the propeller transformations act on, numbered from 1
+                      (empty: every propeller);
+    mount_stiffness:  factor on the pitch and yaw mount stiffness K_θ, K_ψ [-] (a frequency
+                      f_θ, f_ψ given instead is multiplied by its square root);
+    mount_damping:    factor on the mount damping (damping_theta, damping_psi) [-] (0: a failed
+                      damper);
+    wing_damping:     factor on the wing's Rayleigh structural damping (μ, λ) [-];
+    operation:        "windmilling": a constant-speed propeller switched to fixed-pitch
+                      windmilling (its blade angle kept); "" keeps the operation;
+    rpm_factor:       overspeed: the rpm of constant-speed propellers times this [-];
+    reverse_rotation: the sense of rotation reversed;
+    added_masses:     (mass [kg], x [m]) point masses added on each chosen propeller's shaft
+                      (a battery or a tank in the nacelle);
+    values:           (parameter path, value) pairs set on the model
+                      (:func:`propwhirl.studies.paths.set_values`), after the rest.
+    """
+
+    name: str
+    propellers: tuple[int, ...] = ()
+    mount_stiffness: float = 1.0
+    mount_damping: float = 1.0
+    wing_damping: float = 1.0
+    operation: str = ""
+    rpm_factor: float = 1.0
+    reverse_rotation: bool = False
+    added_masses: tuple[tuple[float, float], ...] = ()
+    values: tuple[tuple[str, float], ...] = ()
+
+    def __post_init__(self) -> None:
+        where = f"case {self.name!r}"
+        if not isinstance(self.name, str) or not self.name.strip() or not self.name.isprintable():
+            raise v.InputError(f"case name = {v.short_repr(self.name)} is invalid: must be a "
+                               "non-empty printable string")
+        for i in self.propellers:
+            v.integer_at_least(f"{where}: propellers", i, 1)
+        v.in_range(f"{where}: mount_stiffness", self.mount_stiffness, 1e-3, 100.0)
+        v.in_range(f"{where}: mount_damping", self.mount_damping, 0.0, 100.0)
+        v.in_range(f"{where}: wing_damping", self.wing_damping, 0.0, 100.0)
+        v.in_range(f"{where}: rpm_factor", self.rpm_factor, 0.1, 3.0)
+        if self.operation not in ("", *OPERATIONS):
+            raise v.InputError(f"{where}: operation = {v.short_repr(self.operation)} is invalid: "
+                               f"must be one of {', '.join(OPERATIONS)} (a feathered propeller "
+                               "is not modelled by propwhirl)")
+
+    def describe(self) -> str:
+        """The transformation in words ("nominal" when it changes nothing)."""
+        on = ("" if not self.propellers else
+              " on propeller" + "s" * (len(self.propellers) > 1) + " "
+              + ", ".join(str(i) for i in self.propellers))
+        parts = []
+        if self.mount_stiffness != 1.0:
+            parts.append(f"mount stiffness x {self.mount_stiffness:g}{on}")
+        if self.mount_damping != 1.0:
+            parts.append(f"mount damping x {self.mount_damping:g}{on}")
+        if self.wing_damping != 1.0:
+            parts.append(f"wing structural damping x {self.wing_damping:g}")
+        if self.operation:
+            parts.append(f"{self.operation}{on}")
+        if self.rpm_factor != 1.0:
+            parts.append(f"rpm x {self.rpm_factor:g}{on}")
+        if self.reverse_rotation:
+            parts.append(f"rotation reversed{on}")
+        for m, x in self.added_masses:
+            parts.append(f"+{m:g} kg at x = {x:g} m{on}")
+        for path, value in self.values:
+            parts.append(f"{path} = {value:g}")
+        return "; ".join(parts) or "nominal"
+
+    def combine(self, other: "Case") -> "Case":
+        """This case followed by `other` (a product of cases): the names joined with " + ",
+        the factors multiplied, the masses and values appended; the two must act on the same
+        propellers when both transform propellers."""
+        if self.propellers != other.propellers and _acts_on_propellers(self) \
+                and _acts_on_propellers(other):
+            raise v.InputError(f"cases {self.name!r} and {other.name!r} cannot be combined: they "
+                               "transform different propellers (give them the same propellers)")
+        props = self.propellers if _acts_on_propellers(self) else other.propellers
+        return Case(f"{self.name} + {other.name}", props,
+                    self.mount_stiffness * other.mount_stiffness,
+                    self.mount_damping * other.mount_damping,
+                    self.wing_damping * other.wing_damping,
+                    other.operation or self.operation, self.rpm_factor * other.rpm_factor,
+                    self.reverse_rotation != other.reverse_rotation,
+                    self.added_masses + other.added_masses, self.values + other.values)
+
+    def apply(self, model: Any) -> Any:
+        """The model transformed (every change checked by the model's own validation; an error
+        names the case)."""
+        try:
+            return self._apply(model)
+        except v.InputError as exc:
+            raise v.InputError(f"case {self.name!r}: {exc}") from None
+
+    def _apply(self, model: Any) -> Any:
+        installs = getattr(model, "propellers", None)
+        if not isinstance(installs, tuple):
+            raise v.InputError("a campaign needs a propeller-wing model (a wing with propellers)")
+        n = len(installs)
+        for i in self.propellers:
+            if i > n:
+                raise v.InputError(f"propellers = {list(self.propellers)} is invalid: the model "
+                                   f"has {n} propeller{'s' * (n != 1)} (numbered 1 to {n})")
+        chosen = [i - 1 for i in self.propellers] or list(range(n))
+        values: dict[str, float] = {}
+        for i in chosen:
+            prop = installs[i].propeller
+            base = f"propellers[{i}].propeller"
+            if self.mount_stiffness != 1.0:
+                for f, k in (("f_theta", "K_theta"), ("f_psi", "K_psi")):
+                    if getattr(prop, k, None) is not None:
+                        values[f"{base}.{k}*"] = self.mount_stiffness
+                    else:
+                        values[f"{base}.{f}*"] = math.sqrt(self.mount_stiffness)
+            if self.mount_damping != 1.0:
+                for k in ("damping_theta", "damping_psi"):
+                    values[f"{base}.{k}"] = self.mount_damping * float(getattr(prop, k))
+        if self.wing_damping != 1.0:
+            mu, lam = model.wing.rayleigh
+            values["wing.rayleigh[0]"] = self.wing_damping * float(mu)
+            values["wing.rayleigh[1]"] = self.wing_damping * float(lam)
+        if values:
+            model = P.set_values(model, values)
+        if self.operation or self.rpm_factor != 1.0 or self.reverse_rotation or self.added_masses:
+            new = list(model.propellers)
+            for i in chosen:
+                new[i] = dataclasses.replace(new[i], propeller=self._propeller(new[i].propeller, i))
+            model = dataclasses.replace(model, propellers=tuple(new))
+        if self.values:
+            model = P.set_values(model, dict(self.values))
+        return model
+
+    def _propeller(self, prop: Any, i: int) -> Any:
+        from propwhirl.model.propeller import PointMass
+
+        changes: dict[str, Any] = {}
+        if self.operation == "windmilling" and prop.operation != "fixed-pitch":
+            changes.update(operation="fixed-pitch", rpm=None)
+        if self.rpm_factor != 1.0:
+            if (changes.get("operation") or prop.operation) != "constant-speed":
+                raise v.InputError(f"rpm_factor = {self.rpm_factor:g} is invalid for propeller "
+                                   f"{i + 1}: it is a fixed-pitch windmilling propeller, whose "
+                                   "rpm follows the airspeed (overspeed needs operation = "
+                                   "'constant-speed')")
+            changes["rpm"] = float(prop.rpm) * self.rpm_factor
+        if self.reverse_rotation:
+            changes["rotation"] = -int(prop.rotation)
+        if self.added_masses:
+            changes["masses"] = tuple(prop.masses) + tuple(PointMass(m, x)
+                                                           for m, x in self.added_masses)
+        return dataclasses.replace(prop, **changes)
+
+
+def _acts_on_propellers(c: Case) -> bool:
+    return (c.mount_stiffness != 1.0 or c.mount_damping != 1.0 or bool(c.operation)
+            or c.rpm_factor != 1.0 or c.reverse_rotation or bool(c.added_masses))
+
+
+def product(groups: Sequence[Sequence[Case]]) -> tuple[Case, ...]:
+    """Every combination of one case from each group (:meth:`Case.combine`), in order."""
+    out = []
+    for combo in itertools.product(*groups):
+        c = combo[0]
+        for other in combo[1:]:
+            c = c.combine(other)
+        out.append(c)
+    return tuple(out)
+
+
+# ============================================================================== envelope
+@dataclass(frozen=True)
+class EnvelopePoint:
+    """One point of the flight envelope: an ISA altitude [m] and V_D there.
+
+    V_D: the design dive speed as a true airspeed [m/s] (what the analyses use);
+    V_D_given: as given [m/s] (`airspeed`: "EAS" or "TAS"); mach_limited: V_D = M_D · a(h)
+    (M_D is the lower bound at this altitude)."""
+
+    altitude_m: float
+    V_D: float
+    V_D_given: float
+    airspeed: str
+    mach_limited: bool = False
+
+
+def true_airspeed(V: float, airspeed: str, altitude_m: float) -> float:
+    """V [m/s] as a true airspeed at the ISA `altitude_m` [m]: V_TAS = V_EAS · sqrt(ρ0 / ρ(h))
+    for an equivalent airspeed ("EAS"), V itself for "TAS"."""
+    if airspeed not in AIRSPEEDS:
+        raise v.InputError(f"airspeed = {v.short_repr(airspeed)} is invalid: must be one of "
+                           f"{', '.join(AIRSPEEDS)}")
+    if airspeed == "TAS":
+        return float(V)
+    return float(V) * math.sqrt(RHO0 / float(atmosphere.density(altitude_m)))
+
+
+def envelope(V_D: float | Sequence[float], altitudes_m: Sequence[float], *,
+             airspeed: str = "EAS", M_D: float | None = None) -> tuple[EnvelopePoint, ...]:
+    """The envelope points: V_D [m/s] (one for all altitudes, or one per altitude: a
+    V–altitude line) as `airspeed` at each ISA altitude [m], limited by M_D · a(h) [m/s]
+    when M_D is given."""
+    alts = np.atleast_1d(np.asarray(v.finite("altitudes_m", altitudes_m, "m"), dtype=float))
+    if alts.ndim != 1 or alts.size == 0:
+        raise v.InputError("altitudes_m is invalid: give one or more altitudes")
+    v.in_range("altitudes_m", alts, -5000.0, 32000.0)
+    vd = np.atleast_1d(np.asarray(v.positive("V_D", V_D, "m/s"), dtype=float))
+    if vd.size == 1:
+        vd = np.full(alts.size, float(vd[0]))
+    if vd.shape != alts.shape:
+        raise v.InputError(f"V_D has {vd.size} speeds for {alts.size} altitudes: give one V_D "
+                           "or one per altitude")
+    if M_D is not None:
+        v.in_range("M_D", M_D, 0.01, 0.95)
+    out = []
+    for h, V in zip(alts, vd):
+        tas = true_airspeed(float(V), airspeed, float(h))
+        limited = False
+        if M_D is not None:
+            vm = float(M_D) * float(atmosphere.speed_of_sound(float(h)))
+            if vm < tas:
+                tas, limited = vm, True
+        out.append(EnvelopePoint(float(h), tas, float(V), airspeed, limited))
+    return tuple(out)
+
+
+# ============================================================================== campaign
+@dataclass(frozen=True)
+class Campaign:
+    """Everything a campaign runs (module docstring).
+
+    factor: the speed factor [-] (:data:`REGULATIONS` or explicit); regulation: its name
+    ("cs25", "far25", "far23" or "explicit"); min_damping_g: the least g = 2ζ required up to
+    V_D (None: no damping requirement); static_divergence, low_speed: the convention
+    (:func:`propwhirl.studies.critical.critical_instability`); xtol: accuracy of each critical
+    speed [m/s]."""
+
+    name: str
+    model: Any
+    cases: tuple[Case, ...]
+    points: tuple[EnvelopePoint, ...]
+    regulation: str = "cs25"
+    factor: float = 1.15
+    min_damping_g: float | None = None
+    static_divergence: bool = True
+    low_speed: bool = True
+    xtol: float = 0.01
+
+    def __post_init__(self) -> None:
+        if not self.cases:
+            raise v.InputError("a campaign needs at least one case")
+        if not self.points:
+            raise v.InputError("a campaign needs at least one envelope point")
+        names = [c.name for c in self.cases]
+        for n in names:
+            if names.count(n) > 1:
+                raise v.InputError(f"case name {n!r} is given twice: every case needs its own name")
+        v.in_range("factor", self.factor, 1.0, 3.0)
+        if self.min_damping_g is not None:
+            v.in_range("min_damping_g", self.min_damping_g, 0.0, 1.0)
+        v.positive("xtol", self.xtol, "m/s")
+
+    @property
+    def convention(self) -> str:
+        return convention(self.static_divergence, self.low_speed)
+
+
+def regulation_factor(regulation: str, factor: float | None = None) -> float:
+    """The speed factor of `regulation` ("cs25", "far25", "far23"; or "explicit" with
+    `factor`)."""
+    if regulation == "explicit":
+        if factor is None:
+            raise v.InputError("regulation 'explicit' needs a factor")
+        return float(v.in_range("factor", factor, 1.0, 3.0))
+    if regulation not in REGULATIONS:
+        raise v.InputError(f"regulation = {v.short_repr(regulation)} is invalid: must be one of "
+                           f"{', '.join(REGULATIONS)}, explicit")
+    if factor is not None and float(factor) != REGULATIONS[regulation][0]:
+        raise v.InputError(f"factor = {factor!r} is invalid with regulation {regulation!r}, whose "
+                           f"factor is {REGULATIONS[regulation][0]:g}: give regulation = "
+                           "'explicit' for another factor")
+    return REGULATIONS[regulation][0]
+
+
+def at_altitude(model: Any, altitude_m: float) -> Any:
+    """The model at the ISA altitude [m] (density and speed of sound; its speed grid kept)."""
+    fc = FlightCondition.from_altitude(altitude_m, speed_range=tuple(model.flight.speed_range))
+    return dataclasses.replace(model, flight=fc)
+
+
+def from_spec(spec: Any) -> Campaign:
+    """The :class:`Campaign` of a campaign file read by
+    :func:`propwhirl.io.campaign_files.load_campaign` (a ``CampaignSpec``): its cases made
+    (``each_propeller`` expanded, a product of the groups), its envelope points, and every
+    case's model at every point built (:func:`tasks`) — so every error comes now, before any
+    analysis, one line starting with the file's name and naming the case's table."""
+    try:
+        return _from_spec(spec)
+    except v.InputError as exc:
+        raise v.InputError(f"{spec.source}: {' '.join(str(exc).split())}") from None
+
+
+def _from_spec(spec: Any) -> Campaign:
+    n = len(spec.model.propellers)
+    groups: dict[str, list[Case]] = {}
+    cases: list[Case] = []
+    for cs in spec.cases:
+        try:
+            which = [(i,) for i in (cs.propellers or range(1, n + 1))] if cs.each_propeller \
+                else [cs.propellers]
+            made = [Case(f"{cs.name} (propeller {p[0]})" if cs.each_propeller else cs.name, p,
+                         **cs.transform) for p in which]
+            for c in made:
+                c.apply(spec.model)
+        except v.InputError as exc:
+            raise v.InputError(f"[{cs.table}] {exc}") from None
+        groups.setdefault(cs.group, []).extend(made)
+        cases.extend(made)
+    if spec.combine == "product":
+        cases = list(product(list(groups.values())))
+    seen: set[str] = set()
+    for c in cases:
+        if c.name in seen:
+            raise v.InputError(f"[[cases]] name {c.name!r} is given twice: every case needs its "
+                               "own name")
+        seen.add(c.name)
+    thesis = spec.convention == "thesis"
+    camp = Campaign(spec.name, spec.model, tuple(cases),
+                    envelope(spec.V_D, spec.altitudes_m, airspeed=spec.airspeed, M_D=spec.M_D),
+                    spec.regulation, spec.factor, spec.min_damping_g,
+                    static_divergence=not thesis, low_speed=not thesis)
+    tasks(camp)          # every case's model at every point, built and checked now
+    return camp
+
+
+@dataclass(frozen=True)
+class _Task:
+    """One analysis of a campaign: a (case, point) model, its speeds and the requirement."""
+
+    model: Any
+    speeds: np.ndarray
+    V_D: float
+    V_required: float
+    xtol: float
+    static_divergence: bool
+    low_speed: bool
+
+
+def tasks(c: Campaign) -> tuple[list[_Task], list[str]]:
+    """Every (case, point) task, case-major, and its key ("case @ altitude"); every model
+    built and every speed grid checked here, before any analysis."""
+    from propwhirl.studies.clearance import clearance_speeds
+
+    out, keys = [], []
+    for case in c.cases:
+        model = case.apply(c.model)
+        for p in c.points:
+            m = at_altitude(model, p.altitude_m)
+            V_req = c.factor * p.V_D
+            try:
+                grid = clearance_speeds(m, V_req)
+            except v.InputError as exc:
+                raise v.InputError(f"case {case.name!r} at {p.altitude_m:g} m: {exc}") from None
+            out.append(_Task(m, grid, p.V_D, V_req, c.xtol, c.static_divergence, c.low_speed))
+            keys.append(f"{case.name} @ {p.altitude_m!r} m")
+    return out, keys
+
+
+# ============================================================================== one point
+def _damping(sweep: Any, modes: Sequence[int]) -> tuple[np.ndarray, np.ndarray]:
+    """ζ (T, n) of the sweep's physical oscillatory modes among `modes` (NaN elsewhere) and
+    dζ/dV [s/m]."""
+    lam = np.asarray(sweep.eigenvalues)
+    dlam = np.asarray(sweep.dlam_dV)
+    mag = np.abs(lam)
+    osc = np.asarray(sweep.physical, dtype=bool) & (lam.imag > 1e-9 * np.maximum(mag, 1.0))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        zeta = -lam.real / mag
+        dmag = (lam.real * dlam.real + lam.imag * dlam.imag) / mag
+        dzeta = -(dlam.real * mag - lam.real * dmag) / mag**2
+    keep = np.zeros(lam.shape[1], dtype=bool)
+    keep[list(modes)] = True
+    osc &= keep[None, :]
+    zeta = np.where(osc, zeta, np.nan)
+    return zeta, np.where(osc, dzeta, np.nan)
+
+
+def _least(zeta: np.ndarray, V: np.ndarray, top: float, labels: Sequence[str]) -> dict[str, Any]:
+    """The least ζ at the sweep's speeds V <= top: {zeta, V, mode} (None when none)."""
+    rows = V <= top * (1 + 1e-12)
+    z = np.where(rows[:, None], zeta, np.nan)
+    if not np.isfinite(z).any():
+        return {"zeta": None, "V": None, "mode": ""}
+    t, k = np.unravel_index(np.nanargmin(z), z.shape)
+    return {"zeta": float(z[t, k]), "V": float(V[t]), "mode": labels[k]}
+
+
+def _at(zeta: np.ndarray, dzeta: np.ndarray, V: np.ndarray, speed: float,
+        labels: Sequence[str]) -> dict[str, Any]:
+    """The least damped oscillatory mode at `speed` [m/s] (linear interpolation between the
+    sweep's speeds): {zeta, dzeta_dV, mode}."""
+    j = int(np.searchsorted(V, speed))
+    j = min(max(j, 1), len(V) - 1)
+    w = (speed - V[j - 1]) / (V[j] - V[j - 1]) if V[j] > V[j - 1] else 1.0
+    z = (1 - w) * zeta[j - 1] + w * zeta[j]
+    dz = (1 - w) * dzeta[j - 1] + w * dzeta[j]
+    if not np.isfinite(z).any():
+        return {"zeta": None, "dzeta_dV": None, "mode": ""}
+    k = int(np.nanargmin(z))
+    return {"zeta": float(z[k]), "dzeta_dV": float(dz[k]), "mode": labels[k]}
+
+
+def evaluate_point(task: _Task) -> dict[str, Any]:
+    """Analyse one (case, point) and return its result row (plain JSON: module docstring)."""
+    from propwhirl.analysis.stability import analyse
+    from propwhirl.studies.critical import critical_instability, wing_divergence_predicate
+
+    a = analyse(task.model, task.speeds, xtol=task.xtol)
+    is_wing = wing_divergence_predicate(task.model, a)
+    e = critical_instability(a, static_divergence=task.static_divergence,
+                             low_speed=task.low_speed, is_wing_divergence=is_wing)
+    sweep = a.sweep
+    V = np.asarray(sweep.V, dtype=float)
+    labels = tuple(sweep.mode_labels)
+    zeta, dzeta = _damping(sweep, a.modes_of_interest(DAMPING_MODES))
+    least_req = _least(zeta, V, task.V_required, labels)
+    least_vd = _least(zeta, V, task.V_D, labels)
+    slope = _at(zeta, dzeta, V, task.V_required, labels)
+    shares = []
+    if e is not None and e.participation is not None:
+        shares = [[int(p.propeller), float(p.share), p.whirl or ""]
+                  for p in e.participation.propellers]
+    Vc = None if e is None else float(e.V)
+    return {
+        "critical_speed": Vc,
+        "kind": "none" if e is None else e.kind,
+        "event": "" if e is None else e.event,
+        "mode": "" if e is None else e.label,
+        "frequency_hz": None if e is None else float(e.frequency_hz),
+        "whirl": "" if e is None or e.whirl is None else e.whirl,
+        "propeller_shares": shares,
+        "analysed_to": float(V[-1]),
+        "least_zeta": least_req["zeta"], "least_zeta_V": least_req["V"],
+        "least_zeta_mode": least_req["mode"],
+        "least_zeta_to_V_D": least_vd["zeta"], "least_zeta_to_V_D_mode": least_vd["mode"],
+        "zeta_at_required": slope["zeta"], "dzeta_dV_at_required": slope["dzeta_dV"],
+        "mode_at_required": slope["mode"],
+    }
+
+
+# ============================================================================== result
+_ROW_KEYS = ("case", "description", "altitude_m", "airspeed", "V_D_given", "V_D", "mach_limited",
+             "V_required", "cleared", "reason", "critical_speed", "margin_m_per_s",
+             "margin_percent", "kind", "event", "mode", "frequency_hz", "whirl",
+             "propeller_shares", "analysed_to", "least_g", "least_g_V", "least_g_mode",
+             "least_g_to_V_D", "least_g_to_V_D_mode", "g_at_required", "dzeta_dV_at_required",
+             "mode_at_required", "error")
+_ROW_NUMBERS = ("critical_speed", "margin_m_per_s", "margin_percent", "frequency_hz",
+                "analysed_to", "least_g", "least_g_V", "least_g_to_V_D", "g_at_required",
+                "dzeta_dV_at_required")
+_ROW_STRINGS = ("case", "description", "airspeed", "reason", "kind", "event", "mode", "whirl",
+                "least_g_mode", "least_g_to_V_D_mode", "mode_at_required", "error")
+
+
+@dataclass(frozen=True)
+class PointRow:
+    """One (case, envelope point) of a campaign's result.
+
+    Speeds are true airspeeds [m/s]; margin_m_per_s = V_crit − V_required, margin_percent =
+    100 (V_crit / V_required − 1) (None when no counted instability lies in the analysed range,
+    which ends at `analysed_to` [m/s], beyond V_required); least_g: the least g = 2ζ of the
+    oscillatory modes up to V_required (at least_g_V, of least_g_mode); least_g_to_V_D: up to
+    V_D (the damping requirement's range); g_at_required and dzeta_dV_at_required [s/m]: the
+    least damped mode at V_required and the slope of its ζ; propeller_shares:
+    [[propeller, share, whirl], ...] of the critical mode; reason: why it does not clear ("" when
+    it does); error: the message of an analysis that failed."""
+
+    case: str
+    description: str
+    altitude_m: float
+    airspeed: str
+    V_D_given: float
+    V_D: float
+    mach_limited: bool
+    V_required: float
+    cleared: bool
+    reason: str
+    critical_speed: float | None
+    margin_m_per_s: float | None
+    margin_percent: float | None
+    kind: str
+    event: str
+    mode: str
+    frequency_hz: float | None
+    whirl: str
+    propeller_shares: tuple[tuple[int, float, str], ...]
+    analysed_to: float | None
+    least_g: float | None
+    least_g_V: float | None
+    least_g_mode: str
+    least_g_to_V_D: float | None
+    least_g_to_V_D_mode: str
+    g_at_required: float | None
+    dzeta_dV_at_required: float | None
+    mode_at_required: str
+    error: str
+
+    def to_dict(self) -> dict[str, Any]:
+        d = {k: getattr(self, k) for k in _ROW_KEYS}
+        d["propeller_shares"] = [list(s) for s in self.propeller_shares]
+        return {k: (None if isinstance(x, float) and not math.isfinite(x) else x)
+                for k, x in d.items()}
+
+    @classmethod
+    def from_dict(cls, d: Any, where: str = "row") -> "PointRow":
+        r = SavedDict(d, where, _ROW_KEYS)
+        vals: dict[str, Any] = {}
+        for k in _ROW_NUMBERS:
+            vals[k] = r.number(k, optional=True)
+        for k in _ROW_STRINGS:
+            vals[k] = r.string(k)
+        for k in ("altitude_m", "V_D_given", "V_D", "V_required"):
+            vals[k] = r.number(k)
+        for k in ("mach_limited", "cleared"):
+            vals[k] = r.boolean(k)
+        shares = []
+        for w, s in r.items("propeller_shares"):
+            if not (isinstance(s, list) and len(s) == 3 and isinstance(s[0], int)
+                    and not isinstance(s[0], bool) and isinstance(s[1], (int, float))
+                    and not isinstance(s[1], bool) and math.isfinite(s[1])
+                    and isinstance(s[2], str)):
+                raise v.InputError(f"{w}: must be [propeller, share, whirl]")
+            shares.append((int(s[0]), float(s[1]), str(s[2])))
+        vals["propeller_shares"] = tuple(shares)
+        return cls(**vals)
+
+
+@dataclass(frozen=True)
+class CaseSummary:
+    """A case over its envelope: cleared (every point), its worst point (the least margin in
+    %, or the first that fails) and the number of points that fail."""
+
+    case: str
+    cleared: bool
+    worst: PointRow
+    failing: int
+
+
+@dataclass(frozen=True)
+class CampaignResult(Result):
+    """The result of a campaign: one :class:`PointRow` per (case, envelope point), case-major.
+
+    A :class:`~propwhirl.results.Result` of kind "campaign" (``propwhirl.campaign/1``):
+    :meth:`save` / :meth:`load`; :meth:`to_csv` the same numbers as a table;
+    :meth:`format` the plain-text summary; ``cleared`` decides the exit code of
+    ``propwhirl certify``."""
+
+    KIND: ClassVar[str] = "campaign"
+    VERSION: ClassVar[int] = 1
+    READABLE: ClassVar[tuple[int, ...]] = (1,)
+    WHAT: ClassVar[str] = "campaign result file"
+
+    name: str
+    model_name: str
+    regulation: str
+    factor: float
+    min_damping_g: float | None
+    convention: str
+    rows: tuple[PointRow, ...]
+    analyses: int = 0
+
+    @property
+    def cleared(self) -> bool:
+        return all(r.cleared for r in self.rows)
+
+    def cases(self) -> list[CaseSummary]:
+        """Every case's summary, in campaign order."""
+        out: dict[str, list[PointRow]] = {}
+        for r in self.rows:
+            out.setdefault(r.case, []).append(r)
+
+        def key(r: PointRow) -> tuple:
+            return (r.cleared, -math.inf if r.error else
+                    (math.inf if r.margin_percent is None else r.margin_percent))
+
+        return [CaseSummary(name, all(r.cleared for r in rows), min(rows, key=key),
+                            sum(not r.cleared for r in rows)) for name, rows in out.items()]
+
+    def format(self) -> str:
+        """The plain-text summary table: one line per case (its worst envelope point)."""
+        g = "" if self.min_damping_g is None else f"; g >= {self.min_damping_g:g} up to V_D"
+        head = (f"{self.name}: {self.model_name}: clearance to {self.factor:g} V_D "
+                f"({self.regulation}{g}); {self.convention}")
+        summaries = self.cases()
+        w = max([4] + [len(s.case) for s in summaries])
+        lines = [head, f"{'case':{w}s} {'verdict':11s} {'alt [m]':>8s} {'V_req':>8s} "
+                       f"{'V_crit':>8s} {'margin':>8s} {'margin':>7s} {'min g':>7s} "
+                       f"{'dzeta/dV':>9s}  critical", f"{'':{w}s} {'':11s} {'':>8s} "
+                       f"{'[m/s]':>8s} {'[m/s]':>8s} {'[m/s]':>8s} {'[%]':>7s} {'':>7s} {'[s/m]':>9s}"]
+        for s in summaries:
+            r = s.worst
+            num = (lambda x, f: "-" if x is None else format(x, f))
+            crit = ("analysis failed: " + r.error if r.error else "none in range (to "
+                    f"{r.analysed_to:.1f} m/s)" if r.kind == "none" else
+                    f"{r.kind} {r.event} of {r.mode}"
+                    + (f" at {num(r.frequency_hz, '.2f')} Hz" if r.kind == "flutter" else "")
+                    + (f", {r.whirl} whirl" if r.whirl else ""))
+            verdict = "cleared" if s.cleared else f"NOT ({s.failing})"
+            lines.append(f"{s.case:{w}s} {verdict:11s} {r.altitude_m:8.0f} "
+                         f"{r.V_required:8.2f} {num(r.critical_speed, '8.2f'):>8s} "
+                         f"{num(r.margin_m_per_s, '+8.2f'):>8s} {num(r.margin_percent, '+7.2f'):>7s} "
+                         f"{num(r.least_g, '7.4f'):>7s} {num(r.dzeta_dV_at_required, '+9.2e'):>9s}"
+                         f"  {crit}" + (f" ({r.reason})" if r.reason and not r.error else ""))
+        n_ok = sum(s.cleared for s in summaries)
+        lines.append("(each case's least-margin altitude; every altitude: the CSV)")
+        lines.append(f"{n_ok} of {len(summaries)} cases cleared; {self.analyses} analyses: "
+                     + ("CLEARED" if self.cleared else "NOT CLEARED"))
+        return "\n".join(lines)
+
+    def encode(self) -> dict[str, Any]:
+        return {"name": self.name, "model_name": self.model_name, "regulation": self.regulation,
+                "factor": self.factor, "min_damping_g": self.min_damping_g,
+                "convention": self.convention, "cleared": self.cleared,
+                "cases": [{"case": s.case, "cleared": s.cleared, "failing_points": s.failing}
+                          for s in self.cases()],
+                "rows": [r.to_dict() for r in self.rows], "analyses": self.analyses}
+
+    @classmethod
+    def decode(cls, d: Mapping[str, Any], version: int, where: str = "") -> "CampaignResult":
+        r = SavedDict(d, where, ("name", "model_name", "regulation", "factor", "min_damping_g",
+                                 "convention", "cleared", "cases", "rows", "analyses"))
+        out = cls(r.string("name"), r.string("model_name"), r.string("regulation"),
+                  r.number("factor"), r.number("min_damping_g", optional=True),
+                  r.string("convention"),
+                  tuple(PointRow.from_dict(x, w) for w, x in r.items("rows")),
+                  r.integer("analyses", 0))
+        if r.boolean("cleared") != out.cleared:
+            raise v.InputError(f"{r.name('cleared')}: does not match the rows' verdicts")
+        return out
+
+    def to_csv(self, path: str | Path | None = None) -> str:
+        """Every row's numbers as CSV (one line per (case, point); shares as
+        "propeller:share:whirl" joined with spaces; empty for a missing number)."""
+        buf = io.StringIO()
+        w = csv.writer(buf, lineterminator="\n")
+        w.writerow(_ROW_KEYS)
+        for r in self.rows:
+            d = r.to_dict()
+            d["propeller_shares"] = " ".join(f"{p}:{s:.6g}:{wh}" for p, s, wh in r.propeller_shares)
+            w.writerow(["" if d[k] is None else ("yes" if d[k] else "no") if isinstance(d[k], bool)
+                        else f"{d[k]:.10g}" if isinstance(d[k], float) else d[k] for k in _ROW_KEYS])
+        text = buf.getvalue()
+        if path is not None:
+            fileio.write_text(path, text, what="campaign table")
+        return text
+
+
+def _row(c: Campaign, case: Case, p: EnvelopePoint, r: Any) -> PointRow:
+    """The :class:`PointRow` of one point's result `r` (a dict of :func:`evaluate_point` or a
+    TaskError)."""
+    V_req = c.factor * p.V_D
+    base = dict(case=case.name, description=case.describe(), altitude_m=p.altitude_m,
+                airspeed=p.airspeed, V_D_given=p.V_D_given, V_D=p.V_D,
+                mach_limited=p.mach_limited, V_required=V_req)
+    if isinstance(r, execution.TaskError):
+        return PointRow(**base, cleared=False, reason="analysis failed", critical_speed=None,
+                        margin_m_per_s=None, margin_percent=None, kind="error", event="",
+                        mode="", frequency_hz=None, whirl="", propeller_shares=(),
+                        analysed_to=None, least_g=None, least_g_V=None, least_g_mode="",
+                        least_g_to_V_D=None, least_g_to_V_D_mode="", g_at_required=None,
+                        dzeta_dV_at_required=None, mode_at_required="", error=str(r))
+    Vc = r["critical_speed"]
+    g = (lambda z: None if z is None else 2.0 * z)
+    reasons = []
+    if Vc is not None and not Vc > V_req:
+        reasons.append(f"{r['kind']} of {r['mode']} at {Vc:.2f} m/s <= {V_req:.2f} m/s")
+    least_vd = g(r["least_zeta_to_V_D"])
+    if c.min_damping_g is not None and (least_vd is None or least_vd < c.min_damping_g):
+        reasons.append("g = " + ("?" if least_vd is None else f"{least_vd:.4f}")
+                       + f" < {c.min_damping_g:g} below V_D ({r['least_zeta_to_V_D_mode']})")
+    return PointRow(
+        **base, cleared=not reasons, reason="; ".join(reasons), critical_speed=Vc,
+        margin_m_per_s=None if Vc is None else Vc - V_req,
+        margin_percent=None if Vc is None else 100.0 * (Vc / V_req - 1.0),
+        kind=r["kind"], event=r["event"], mode=r["mode"], frequency_hz=r["frequency_hz"],
+        whirl=r["whirl"], propeller_shares=tuple((int(a), float(b), str(w))
+                                                 for a, b, w in r["propeller_shares"]),
+        analysed_to=r["analysed_to"], least_g=g(r["least_zeta"]), least_g_V=r["least_zeta_V"],
+        least_g_mode=r["least_zeta_mode"], least_g_to_V_D=least_vd,
+        least_g_to_V_D_mode=r["least_zeta_to_V_D_mode"], g_at_required=g(r["zeta_at_required"]),
+        dzeta_dV_at_required=r["dzeta_dV_at_required"], mode_at_required=r["mode_at_required"],
+        error="")
+
+
+def run_campaign(c: Campaign, *, processes: int = 1, client=None,
+                 progress: bool | ProgressCallback | None = None,
+                 checkpoint: execution.Checkpoint | None = None) -> CampaignResult:
+    """Run every (case, point) of `c` (module docstring).
+
+    processes, client, progress: :func:`propwhirl.studies.execution.map_analyses`;
+    checkpoint: the partial-results file (its fingerprint gets the content of every task:
+    a file of another campaign is refused).  A point whose analysis fails is recorded (not
+    cleared, its message in ``error``); the others go on."""
+    todo, keys = tasks(c)
+    if checkpoint is not None:
+        checkpoint = checkpoint.with_entries(
+            study="campaign", convention=c.convention, factor=float(c.factor),
+            min_damping_g=c.min_damping_g,
+            tasks=execution.content_digest([(t.model, list(map(float, t.speeds)), t.V_D,
+                                             t.V_required, t.xtol) for t in todo]))
+    results = execution.map_analyses(evaluate_point, todo, processes, client=client,
+                                     progress=progress, errors="record", checkpoint=checkpoint,
+                                     keys=keys, desc="campaign")
+    it = iter(results)
+    rows = tuple(_row(c, case, p, next(it)) for case in c.cases for p in c.points)
+    return CampaignResult(c.name, str(getattr(c.model, "name", "")), c.regulation,
+                          float(c.factor), c.min_damping_g, c.convention, rows, len(todo))
