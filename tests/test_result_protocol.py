@@ -374,7 +374,7 @@ def test_the_old_names_are_aliases(results, tmp_path):
 
     assert FORMAT == "propwhirl.analysis/3" and READABLE_VERSIONS == (1, 2, 3)
     assert (clearance.FORMAT, boundary.FORMAT, sweeps.FORMAT) == (
-        "propwhirl.clearance/1", "propwhirl.boundary/1", "propwhirl.critical-map/1")
+        "propwhirl.clearance/2", "propwhirl.boundary/1", "propwhirl.critical-map/1")
     results[Clearance].save_json(tmp_path / "c.json")
     assert Clearance.load(tmp_path / "c.json") == results[Clearance]
     results[ModelAnalysis].save(tmp_path / "a.json")

@@ -135,11 +135,13 @@ class Clearance(Result):
     """The clearance result (module docstring); ``cleared`` decides the CLI's exit code.
 
     A :class:`~propwhirl.results.Result` of kind "clearance" (format
-    ``propwhirl.clearance/1``): :meth:`save` / :meth:`load`."""
+    ``propwhirl.clearance/2``; version 2 added the minimum-frequency status "not monotone",
+    which a reader of version 1 does not know; version-1 files are read):
+    :meth:`save` / :meth:`load`."""
 
     KIND: ClassVar[str] = "clearance"
-    VERSION: ClassVar[int] = 1
-    READABLE: ClassVar[tuple[int, ...]] = (1,)
+    VERSION: ClassVar[int] = 2
+    READABLE: ClassVar[tuple[int, ...]] = (1, 2)
     WHAT: ClassVar[str] = "clearance file"
 
     model_name: str
