@@ -97,6 +97,13 @@ class PanelMesh:
         p1, l1, l2, b1, _ = self._edges()
         return p1 + fraction * 0.5 * (l1 + l2) + 0.5 * b1
 
+    def mirrored(self) -> "PanelMesh":
+        """The panels of both half-wings: the mirror image in the root plane y = 0 (panel p of
+        the other half at index p), then these; every panel still defined from left to right
+        (its corners reordered), so every normal points up."""
+        m = self.corners[:, [3, 2, 1, 0]] * np.array([1.0, -1.0, 1.0])
+        return PanelMesh(np.concatenate([m, self.corners]), self.n_chord, 2 * self.n_span)
+
     def aerogrid(self) -> dict:
         """The panels in PanelAero's ``aerogrid`` form (its DLM and VLM read l, A, N,
         offset_l / _k / _j at 1/4, 1/2, 3/4 chord, offset_P1 / _P3 the doublet line's ends)."""

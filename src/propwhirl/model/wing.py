@@ -25,6 +25,7 @@ import numpy as np
 from propwhirl import limits
 from propwhirl import validate as v
 from propwhirl.model import mesh as meshing
+from propwhirl.model.dlm_mesh import panel_counts
 from propwhirl.model.fields import check_fields, check_values, spec
 from propwhirl.model.mesh import Mesh
 
@@ -205,7 +206,6 @@ class Wing:
         self.node_properties()
         self.inplane_properties()
         if self.aero == "dlm":                      # the panel counts, before any analysis
-            from propwhirl.model.dlm_mesh import panel_counts
             panel_counts(self)
 
     # ------------------------------------------------------------------ discretisation
