@@ -24,7 +24,8 @@ replaces only the wing's strip aerodynamics).
 Q is tabulated lazily on a grid of k (0, then :data:`K_PER_DECADE` points per decade from
 :data:`K_FIRST`) and of Mach (steps of :data:`MACH_STEP` up to :data:`MACH_MAX`), every entry
 computed once per geometry and kept (:func:`dlm_aerodynamics` keeps the last
-:data:`CACHE_SIZE` geometries in memory), and interpolated: cubic (Lagrange through the four
+:data:`CACHE_SIZE` geometries in memory; with ``PROPWHIRL_DLM_CACHE`` set, every AIC also on
+disk, :mod:`propwhirl.model.dlm_cache`), and interpolated: cubic (Lagrange through the four
 nearest k) in k, linear in Mach.  The Mach number is that of each analysed speed, V / a
 (:func:`pk_system_dlm`).
 """
@@ -36,6 +37,7 @@ from dataclasses import replace
 import numpy as np
 
 from propwhirl import validate as v
+from propwhirl.model import dlm_cache
 from propwhirl.model.dlm_mesh import PanelMesh, panel_mesh, spline
 
 #: first non-zero reduced frequency of the tables (on the reference semichord)
@@ -91,6 +93,10 @@ class DlmAerodynamics:
         self._left = -(Zl.T * self.mesh.area[None, :])
         self._table: dict[tuple[int, int], np.ndarray] = {}
         self.evaluations = 0
+        #: the disk cache (``PROPWHIRL_DLM_CACHE``, :mod:`propwhirl.model.dlm_cache`) or None
+        self.cache = dlm_cache.cache_dir()
+        self._geometry = dlm_cache.geometry_key(self.mesh.mirrored().corners)
+        self.cache_hits = 0
 
     # ------------------------------------------------------------------ exact
     def aic(self, mach: float, k: float) -> np.ndarray:
@@ -99,12 +105,20 @@ class DlmAerodynamics:
         (VLM + DLM increment, parabolic kernel) of both halves, k̄ = k / b_ref its ω/U, then
         Q_sym = Q_RR + Q_RL.  (PanelAero's own ``xz_symmetry`` mirrors the panels upside down;
         its DLM then departs from Theodorsen's limit: docs/validation.md.)"""
-        DLM = _panelaero()
         n = self.mesh.n
+        if self.cache is not None:
+            Q = dlm_cache.load(self.cache, self._geometry, mach, float(k) / self.b_ref, n)
+            if Q is not None:
+                self.cache_hits += 1
+                return Q
+        DLM = _panelaero()
         with np.errstate(all="ignore"):
             Q = DLM.calc_Qjj(self.grid, float(mach), float(k) / self.b_ref)
         self.evaluations += 1
-        return Q[n:, n:] + Q[n:, :n]
+        Q = Q[n:, n:] + Q[n:, :n]
+        if self.cache is not None:
+            dlm_cache.store(self.cache, self._geometry, mach, float(k) / self.b_ref, Q)
+        return Q
 
     def exact(self, mach: float, k: float) -> np.ndarray:
         """Q(k, M) (3 n_nodes, 3 n_nodes) complex computed at k [-] and Mach (no table)."""
