@@ -58,7 +58,7 @@ def test_dlm_refused_where_it_has_no_state_space():
         analyse(m, speeds=SPEEDS, method="dense")
     with pytest.raises(InputError, match="method = 'reduced' is invalid for wing aero = 'dlm'"):
         analyse(m, speeds=SPEEDS, method="reduced")
-    with pytest.raises(InputError, match="wing aero = 'dlm' has no finite-state"):
+    with pytest.raises(InputError, match="wing aero = 'dlm' has no strip lag states"):
         m.state_matrix(np.array([10.0]))
 
 
