@@ -70,3 +70,17 @@ def test_supersonic_speeds_refused_before_any_panel_work():
     with pytest.raises(InputError, match=r"Mach = 0.95 \(V = .* m/s\) is invalid for aero = 'dlm'"):
         pk_sweep(m, [10.0, 20.0, top])
     assert key not in dlm._CACHE                          # no panels, no AIC built
+
+
+def test_missing_panelaero_is_said_before_any_work(monkeypatch):
+    import builtins
+    real = builtins.__import__
+
+    def no_panelaero(name, *args, **kw):
+        if name.split(".")[0] == "panelaero":
+            raise ImportError("blocked")
+        return real(name, *args, **kw)
+
+    monkeypatch.setattr(builtins, "__import__", no_panelaero)
+    with pytest.raises(InputError, match=r"aero = 'dlm' needs PanelAero: pip install"):
+        analyse(patil_dlm(), speeds=SPEEDS)

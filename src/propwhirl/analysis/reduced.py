@@ -24,6 +24,7 @@ from propwhirl.engine import analyse as engine_analyse
 from propwhirl.engine import single_thread_blas
 from propwhirl.engine.correction import correct_crossing
 from propwhirl.engine.results import Analysis, Criticals
+from propwhirl.model.dlm import require_panelaero
 from propwhirl.model.frequency_domain import check_section
 from propwhirl.model.reduction import CUTOFF_FACTOR, ReducedModel, reduce
 
@@ -50,6 +51,8 @@ def choose_method(model, method: str) -> str:
         raise v.InputError(f"method = {method!r} is invalid: must be one of "
                            f"{', '.join(repr(m) for m in METHODS)}")
     dlm = getattr(getattr(model, "wing", None), "aero", "strip") == "dlm" and model.wing_aero
+    if dlm:
+        require_panelaero()                 # before the finite-state tracking starts
     if method == "pk" or (method == "auto" and dlm):
         check_section(model)
         return "pk"

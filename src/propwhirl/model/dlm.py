@@ -57,10 +57,15 @@ def _panelaero():
     """PanelAero's DLM module, or an InputError saying how to install it."""
     try:
         from panelaero import DLM
-    except ImportError as exc:                                   # pragma: no cover
+    except ImportError as exc:
         raise v.InputError("aero = 'dlm' needs PanelAero: pip install 'propwhirl[dlm]' "
                            "(or pip install panelaero)") from exc
     return DLM
+
+
+def require_panelaero() -> None:
+    """InputError now, before any analysis, when PanelAero is not installed."""
+    _panelaero()
 
 
 def check_mach(mach: float, V: float | None = None) -> None:
