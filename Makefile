@@ -31,10 +31,10 @@ comma := ,
 generate: $(VENV)/.stamp-codegen
 	$(BIN)/python -m derivations.generate --out generated
 
-test: $(VENV)/.stamp-codegen+data+docs+tables+test+plots+toml+notebooks+distributed+progress+mdo
+test: $(VENV)/.stamp-codegen+data+dlm+docs+tables+test+plots+toml+notebooks+distributed+progress+mdo
 	$(BIN)/python -m pytest -q
 
-test-fast: $(VENV)/.stamp-codegen+data+docs+tables+test+plots+toml+notebooks+distributed+progress+mdo
+test-fast: $(VENV)/.stamp-codegen+data+dlm+docs+tables+test+plots+toml+notebooks+distributed+progress+mdo
 	$(BIN)/python -m pytest -q -m "not long"
 
 # BENCH_MD=path writes the tables elsewhere; BENCH_ARGS e.g. "--repeats 1 --no-variants"

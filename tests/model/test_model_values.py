@@ -22,6 +22,12 @@ SPEEDS = np.array([30.0, 150.0, 290.0])
 def _evaluate(model) -> tuple:
     """What a model evaluates to: its dense system at SPEEDS (every matrix, its labels) and
     its DOF map."""
+    wing = getattr(model, "wing", None)
+    if wing is not None and wing.aero == "dlm":     # no finite-state form: its p-k matrices
+        pytest.importorskip("panelaero")
+        from propwhirl.model.frequency_domain import pk_system
+        return (tuple(pk_system(model, float(V))(10.0) for V in SPEEDS)[0], model.q_labels(),
+                (), model.dof_map())
     s = model.second_order(SPEEDS)
     return (tuple(np.asarray(getattr(s, k)) for k in ("S1", "S2", "S3", "S4", "Ww", "Wv", "Wq")),
             s.q_labels, s.w_labels, model.dof_map())
@@ -91,6 +97,8 @@ CHANGES = [
     (("wing",), dict(aero_model="wagner"), True),
     (("wing",), dict(rayleigh=(0.1, 1e-4)), True),
     (("wing",), dict(EI_chordwise=1.4e7), True),
+    (("wing",), dict(aero="dlm", dlm_chordwise_panels=2, dlm_spanwise_panels=6), True),
+    (("wing",), dict(dlm_chordwise_panels=4), False),      # strip aerodynamics: not used
     (("wing",), dict(name="another wing"), False),
     (("flight",), dict(density=0.5), True),
     (("flight",), dict(speed_of_sound=300.0), True),

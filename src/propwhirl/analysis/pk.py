@@ -14,6 +14,13 @@ loads (7.24–7.27, 7.64–7.66) generated from ``derivations/strip_aero.py``
 own structure and propellers with every strip at its own k = ω b_i / V
 (:func:`propwhirl.model.frequency_domain.pk_system`; k reported on the root semichord).
 
+A wing with ``aero = "dlm"`` has doublet-lattice loads instead of the strips
+(:mod:`propwhirl.model.dlm`: Q(k, M) of the panels, the propellers' Houbolt–Reed loads
+unchanged, Mach V/a of each speed) in the same p-k equation with M_a = 0,
+C_a = ½ρV² Im Q / ω, K_a = ½ρV² Re Q; the finite-state model it starts from, tracks and names
+its modes with and reports beside its events is its strip twin
+(:func:`propwhirl.model.dlm.strip_twin`).
+
 The modes to follow start from the finite-state eigenvalues of the model's own state matrix
 (Leishman–Nguyen or Wagner lag states) at the first speed, and are continued speed by speed.
 The flutter speed of a mode is where its p-k decay rate Re p crosses zero from below, refined by
@@ -39,6 +46,8 @@ from propwhirl.analysis.naming import whirl
 from propwhirl.analysis.participation import with_participation
 from propwhirl.engine import mac
 from propwhirl.model.systems import TypicalSection
+from propwhirl.model.dlm import check_mach, dlm_aerodynamics, strip_twin
+from propwhirl.model.dlm_mesh import guideline_note
 from propwhirl.model.frequency_domain import (
     K_MIN,
     check_pk_model,
@@ -56,6 +65,8 @@ KTOL = 1e-7
 STATIC = 1e-6
 #: in-vacuo modes a wing's p-k sweep follows by default (lowest frequencies first)
 WING_MODES = 6
+#: the note that opens a doublet-lattice analysis's notes (ModelAnalysis.doublet_lattice)
+DLM_NOTE = "p-k aerodynamics: doublet-lattice"
 
 
 def _is_section(model) -> bool:
@@ -184,6 +195,7 @@ def pk_mode(model, V: float, p0: complex, *, system=None) -> tuple[complex, floa
 def _start_roots(model, V: float, n_modes: int | None) -> tuple[np.ndarray, tuple[str, ...]]:
     """The finite-state eigenvalues at V [m/s] of the model's oscillatory modes (one per
     in-vacuo mode, the lowest `n_modes`, nearest its in-vacuo root), and the modes' labels."""
+    model = strip_twin(model)           # a doublet-lattice wing starts from its strips
     vac = np.linalg.eigvals(model.without_aerodynamics().state_matrix(np.array([V]))[0])
     vac = vac[vac.imag > 0]
     vac = vac[np.argsort(vac.imag)][:n_modes]
@@ -209,6 +221,9 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None) -
         raise v.InputError(f"speeds = {speeds!r:.60} is invalid: must be at least two "
                            "increasing airspeeds > 0 [m/s]")
     v.positive("xtol", xtol, "m/s")
+    if strip_twin(model) is not model:  # doublet-lattice tables: every Mach subsonic, first
+        for Vi in V:
+            check_mach(Vi / model.flight.speed_of_sound, float(Vi))
     if n_modes is None:
         n_modes = None if _is_section(model) else WING_MODES
     elif not isinstance(n_modes, (int, np.integer)) or n_modes < 1:
@@ -316,6 +331,24 @@ def _benignity(model, V: float, p: complex) -> float | None:
     return 1.0 / dz if dz != 0 else None
 
 
+def dlm_notes(model, sweep: PKSweep) -> list[str]:
+    """What a doublet-lattice p-k analysis used (:data:`DLM_NOTE` first: panels, Mach, k
+    convention) and, when broken, the panel-length guideline at the first speed and the
+    highest followed frequency (:func:`propwhirl.model.dlm_mesh.guideline_note`)."""
+    aero = dlm_aerodynamics(model.wing)
+    m = aero.mesh
+    out = [f"{DLM_NOTE} panels ({m.n_chord} chordwise x {m.n_span} spanwise on the half-wing, "
+           f"root a plane of symmetry), Mach V/a at each speed, k = omega b_ref / V on the root "
+           f"semichord b_ref = {aero.b_ref:.4g} m; the finite-state events beside them are the "
+           "strip model's"]
+    f = np.abs(sweep.roots[0].imag[np.isfinite(sweep.roots[0])]) / (2 * np.pi)
+    if f.size:
+        note = guideline_note(m, float(sweep.speeds[0]), float(f.max()))
+        if note is not None:
+            out.append(note)
+    return out
+
+
 def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: float = XTOL,
                      notes: list | None = None, sweep=None):
     """The p-k crossings as :class:`~propwhirl.analysis.stability.Instability` events of the
@@ -333,6 +366,8 @@ def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: flo
     root [m/s] (:func:`_benignity`).
     """
     r = pk_sweep(model, speeds, xtol=xtol)
+    if notes is not None and strip_twin(model) is not model:
+        notes.extend(dlm_notes(model, r))
     dm = model.dof_map()
     n = dm.n_dof
     tracked = [int(np.argmin(np.abs(np.asarray(start_roots) - p))) for p in r.start]

@@ -24,6 +24,7 @@ from propwhirl.engine import analyse as engine_analyse
 from propwhirl.engine import single_thread_blas
 from propwhirl.engine.correction import correct_crossing
 from propwhirl.engine.results import Analysis, Criticals
+from propwhirl.model.dlm import require_panelaero
 from propwhirl.model.frequency_domain import check_section
 from propwhirl.model.reduction import CUTOFF_FACTOR, ReducedModel, reduce
 
@@ -35,6 +36,8 @@ METHODS = ("auto", "dense", "reduced", "pk")
 def choose_method(model, method: str) -> str:
     """"dense", "reduced" or "pk" for ``method`` ("auto", "dense", "reduced" or "pk": the
     p-k method with the exact Theodorsen function, typical sections and wings) and ``model``.
+    A wing with ``aero = "dlm"`` (doublet-lattice loads, no state-space form): "auto" is
+    "pk", "dense" and "reduced" are refused.
 
     Examples
     --------
@@ -47,9 +50,15 @@ def choose_method(model, method: str) -> str:
     if method not in METHODS:
         raise v.InputError(f"method = {method!r} is invalid: must be one of "
                            f"{', '.join(repr(m) for m in METHODS)}")
-    if method == "pk":
+    dlm = getattr(getattr(model, "wing", None), "aero", "strip") == "dlm" and model.wing_aero
+    if dlm:
+        require_panelaero()                 # before the finite-state tracking starts
+    if method == "pk" or (method == "auto" and dlm):
         check_section(model)
         return "pk"
+    if dlm:
+        raise v.InputError(f"method = {method!r} is invalid for wing aero = 'dlm': the "
+                           "doublet-lattice loads have no state-space form; use 'pk' or 'auto'")
     reducible = hasattr(model, "second_order_blocks")
     if method == "reduced" and not reducible:
         raise v.InputError(f"method = 'reduced' is invalid for a {type(model).__name__}: "

@@ -36,7 +36,8 @@ from propwhirl.analysis.naming import mode_content, mode_names, whirl
 from propwhirl.analysis.participation import (ModeParticipation, branch_point_shape,  # noqa: F401
                                               events_csv, events_table, participation_lines,
                                               with_participation)
-from propwhirl.analysis.pk import pk_instabilities
+from propwhirl.analysis.pk import DLM_NOTE, pk_instabilities
+from propwhirl.model.dlm import strip_twin
 from propwhirl.analysis.reduced import choose_method, reduced_engine_analysis
 from propwhirl.analysis.summary import (FiniteState, FlutterSummary, MethodComparison,
                                         Reference, aero_model_of, compare_methods,
@@ -95,8 +96,10 @@ class ModelAnalysis(Result):
     def method_comparison(self) -> MethodComparison | None:
         """The p-k events beside the finite-state ones (:func:`compare_methods`: V and f by
         each, their differences), or None unless analysed with method="pk"."""
-        return None if self.finite_state is None else compare_methods(self.events,
-                                                                      self.finite_state)
+        if self.finite_state is None:
+            return None
+        out = compare_methods(self.events, self.finite_state)
+        return replace(out, exact="p-k, doublet-lattice panels") if self.doublet_lattice else out
 
     def describe(self, label: str) -> str:
         """'label (dominant content)', e.g. 'wing 2 (torsion)'."""
@@ -128,11 +131,19 @@ class ModelAnalysis(Result):
                 if e.label == label and e.event == event and (kind is None or e.kind == kind)]
         return min(hits, key=lambda e: e.V) if hits else None
 
+    @property
+    def doublet_lattice(self) -> bool:
+        """Whether the p-k events come from doublet-lattice wing aerodynamics (the analysis's
+        note saying so, :data:`propwhirl.analysis.pk.DLM_NOTE`, is saved with it)."""
+        return any(w.startswith(DLM_NOTE) for w in self.warnings)
+
     def summary(self) -> str:
         """The instabilities as a text table (the propeller column names the propeller whose
         whirl is given: the one with the largest θ–ψ amplitude, numbered from 1), each event's
         propeller participation, and the critical instability (last line)."""
-        how = "" if self.finite_state is None else " (p-k method, exact Theodorsen function)"
+        how = ("" if self.finite_state is None else
+               " (p-k method, doublet-lattice wing aerodynamics)" if self.doublet_lattice else
+               " (p-k method, exact Theodorsen function)")
         lines = [f"{self.model_name}: instabilities{how} between {self.sweep.V[0]:g} and {self.sweep.V[-1]:g} m/s"]
         rows = [[e.kind, e.event, self.describe(e.label), _leading(e), e.whirl or "-",
                  f"{e.V:.2f}", f"{e.frequency_hz:.3f}"] for e in self.events]
@@ -501,6 +512,7 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         raise v.InputError(f"options = {options!r} is invalid: must be a TrackingOptions")
     dm = model.dof_map()
     chosen = choose_method(model, method)
+    finite = strip_twin(model)                 # tracks, names and starts the p-k modes
     if chosen == "reduced":
         run = reduced_engine_analysis(model, grid, displacement=dm.displacement,
                                       state_labels=dm.state_labels, options=options, xtol=xtol,
@@ -509,14 +521,14 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         lift = run.model.lift
         unconverged = [p for p, s in zip(an.criticals.points, run.corrections) if s is None]
     else:
-        matrix_fn = model.assembly().state_matrix     # built once for the analysis
+        matrix_fn = finite.assembly().state_matrix    # built once for the analysis
         an = engine_analyse(matrix_fn, grid, displacement=dm.displacement,
                             state_labels=dm.state_labels, options=options, xtol=xtol,
                             **({"initial_step": None} if vgf else {}))
         basis, lift = None, None
         unconverged = []
     sw = an.sweep
-    names = mode_names(model, sw, basis)
+    names = mode_names(finite, sw, basis)
     sw = sw.relabel(names)
     events, shapes = [], []
     for p in an.criticals.points:
@@ -533,8 +545,8 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         shapes.append((sw.eigenvectors[0, :, k], lam0, float(sw.V[0])))
     for p in frequency_zero_points(sw, matrix_fn, xtol=xtol):
         events.append(Instability("divergence", "frequency-zero", p.mode, names[p.mode], p.V, 0.0))
-        shapes.append(branch_point_shape(model, sw, p.mode, p.bracket[0], matrix_fn, lift))
-    events = with_participation(model, events, shapes)
+        shapes.append(branch_point_shape(finite, sw, p.mode, p.bracket[0], matrix_fn, lift))
+    events = with_participation(finite, events, shapes)
     if chosen == "pk":  # the tracked finite-state modes, their crossings by the exact p-k method
         pk_notes: list[str] = []
         finite_state = tuple(sorted(events, key=lambda e: (e.V, e.mode)))
@@ -557,7 +569,7 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
     except v.InputError:                     # a model of another kind: no summary reference
         ref = None
     return ModelAnalysis(model.name, sw, tuple(events), an.criticals,
-                         mode_content(model, sw, names), dm, notes, ref,
+                         mode_content(finite, sw, names), dm, notes, ref,
                          None if finite_state is None
                          else FiniteState(aero_model_of(model), finite_state))
 

@@ -443,6 +443,8 @@ class MethodComparison:
 
     aerodynamics: str
     rows: tuple[ComparedEvent, ...]
+    #: the p-k side's aerodynamics (the table's heading; not saved: the analysis's notes say it)
+    exact: str = "p-k, Theodorsen's C(k)"
 
     def format(self, indent: str = "  ") -> str:
         """The side-by-side table as text, with its legend."""
@@ -457,7 +459,7 @@ class MethodComparison:
         rows = [[r.kind, r.event, r.label, num(r.V_pk, ".2f"), num(r.V_fs, ".2f"),
                  num(r.dV, "+.2f"), pct(r.dV_percent), num(r.f_pk, ".3f"), num(r.f_fs, ".3f"),
                  num(r.df, "+.3f"), pct(r.df_percent)] for r in self.rows]
-        lines = [f"exact (p-k, Theodorsen's C(k)) vs finite-state ({self.aerodynamics}) "
+        lines = [f"exact ({self.exact}) vs finite-state ({self.aerodynamics}) "
                  "aerodynamics, per instability:"]
         lines += text_table(rows, heads, "lll" + "r" * 8).splitlines()
         lines.append(f"dV = V p-k - V finite state, df = f p-k - f finite state (%: of the "

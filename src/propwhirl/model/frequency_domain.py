@@ -88,12 +88,17 @@ def pk_system(model, V: float):
     """ω ↦ (M, C, K) of the p-k equation of `model` at airspeed V [m/s] and frequency ω [rad/s]:
     the typical section (:func:`section_pk_matrices`) or a PropellerWing (its structure and
     propellers, computed once, every wing strip with the exact Theodorsen loads at its own
-    k = ω b_i / V), on the model's degrees of freedom (its ``dof_map``, without lag states)."""
+    k = ω b_i / V; a wing with ``aero = "dlm"``: the doublet-lattice loads instead,
+    :func:`propwhirl.model.dlm.pk_system_dlm`), on the model's degrees of freedom (its
+    ``dof_map``, without lag states)."""
     from propwhirl.model.assembly import free_dofs, place
     from propwhirl.model.systems import TypicalSection
 
     if isinstance(model, TypicalSection):
         return lambda omega: section_pk_matrices(model, V, omega * model.b / V)
+    if model.wing.aero == "dlm":                 # doublet-lattice panels instead of the strips
+        from propwhirl.model.dlm import pk_system_dlm
+        return pk_system_dlm(model, V, K_MIN)
     dry = replace(model, wing_aero=False).second_order(np.array([V]))
     if dry.n_lag:
         raise v.InputError(f"model = {model.name!r} is invalid for the p-k method: its "

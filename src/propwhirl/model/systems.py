@@ -429,6 +429,11 @@ class PropellerWingAssembly(EvaluatorBase):
         groups = []
         lag, m, w_labels, keep_w = None, 0, (), np.arange(0)
         if model.wing_aero:
+            if wing.aero == "dlm":      # no finite-state form of the DLM (no RFA): say so
+                raise v.InputError(
+                    f"model {model.name!r}: wing aero = 'dlm' has no strip lag states; analyse "
+                    "it with method = 'pk' (or 'auto'), take its Roger state space from "
+                    "propwhirl.model.dlm_rfa, or set aero = 'strip'")
             aero = wing_aero_blocks(wing, model.flight.density, V)
             groups.append(LocalBlocks("wing strips", aero["qrows"], -aero["Ma"], -aero["Ca"],
                                       -aero["Ka"]))

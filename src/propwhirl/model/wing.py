@@ -25,6 +25,7 @@ import numpy as np
 from propwhirl import limits
 from propwhirl import validate as v
 from propwhirl.model import mesh as meshing
+from propwhirl.model.dlm_mesh import panel_counts
 from propwhirl.model.fields import check_fields, check_values, spec
 from propwhirl.model.mesh import Mesh
 
@@ -104,6 +105,12 @@ class Wing:
         plane too (in-plane displacement v and slope χ per node, derivations/beam_inplane.py)
         and the propellers' side force, yaw and gyroscopic moments load it there; None (the
         default): rigid in its plane, the thesis's model
+    aero : "strip" (default: Theodorsen strips at the nodes, finite-state lag states, the
+        thesis's model) or "dlm" (doublet-lattice panels of the planform, exact in k, through
+        the p-k method only: :mod:`propwhirl.model.dlm`)
+    dlm_chordwise_panels, dlm_spanwise_panels : the doublet-lattice panel counts (aero =
+        "dlm"); spanwise None: the fewest with a panel aspect ratio <= 2
+        (:func:`propwhirl.model.dlm_mesh.panel_counts`)
     """
 
     semi_span: float = field(metadata=spec("semi_span_m", "m", "root-to-tip length",
@@ -166,6 +173,17 @@ class Wing:
         "EI_chordwise_N_m2", "N m^2", "in-plane (chordwise) bending rigidity: the wing bends "
         "in its plane too (in-plane displacement and slope per node); omitted: rigid in its "
         "plane (the thesis's model)", default="none", form="spanwise", range=(1e-3, 1e14)))
+    aero: Literal["strip", "dlm"] = field(default="strip", metadata=spec(
+        "aero", "", "wing aerodynamics: \"strip\" (Theodorsen strips, finite-state lag states; "
+        "the thesis's) or \"dlm\" (doublet-lattice panels, p-k method only; needs the dlm "
+        "extra)", default="setting"))
+    dlm_chordwise_panels: int = field(default=8, metadata=spec(
+        "dlm_chordwise_panels", "", "doublet-lattice panels along the chord (aero = \"dlm\")",
+        default="setting"))
+    dlm_spanwise_panels: int | None = field(default=None, metadata=spec(
+        "dlm_spanwise_panels", "", "doublet-lattice panels along the semi-span (aero = "
+        "\"dlm\"); omitted: the fewest with a panel aspect ratio (width / length) <= 2",
+        default="none"))
     name: str = field(default="wing", metadata=spec("name", "", "label", default="setting"))
     _mesh: Mesh | None = field(default=None, init=False, repr=False, compare=False, metadata=spec(
         None, "", "the mesh (derived from the fields above)", default="none", form="derived"))
@@ -174,6 +192,9 @@ class Wing:
         check_fields(self)  # types and the declared ranges of every field
         v.integer_at_least("n_elements", self.n_elements, 1)
         limits.check_elements(self.n_elements)
+        v.integer_at_least("dlm_chordwise_panels", self.dlm_chordwise_panels, 1)
+        if self.dlm_spanwise_panels is not None:
+            v.integer_at_least("dlm_spanwise_panels", self.dlm_spanwise_panels, 1)
         if self.stations is not None and len(self.stations) == 0:
             object.__setattr__(self, "stations", None)  # no stations (saved as an omitted key)
         object.__setattr__(self, "_mesh", meshing.build(
@@ -184,6 +205,8 @@ class Wing:
         self.element_properties()
         self.node_properties()
         self.inplane_properties()
+        if self.aero == "dlm":                      # the panel counts, before any analysis
+            panel_counts(self)
 
     # ------------------------------------------------------------------ discretisation
     @property

@@ -1,0 +1,231 @@
+"""Generalised aerodynamic forces of the doublet-lattice method on a wing's DOFs (issue 23).
+
+For harmonic motion q(t) = q̂ e^{iωt} at airspeed V and Mach number M, the wing's aerodynamic
+generalised forces are Q_aero = ½ ρ V² Q(k, M) q̂, with k = ω b_ref / V the reduced frequency
+on the reference semichord (the root semichord, NASTRAN's k = ω c_ref / 2V, as every p-k result
+of propwhirl reports it).  Q is built from the panels and spline of
+:mod:`propwhirl.model.dlm_mesh` and PanelAero's AIC matrix (the ``dlm`` extra,
+``panelaero.DLM.calc_Qjjs``: the steady vortex-lattice part plus the oscillatory doublet-lattice
+increment, Rodden's parabolic kernel approximation, the root a plane of symmetry):
+
+    w_j = S_j q̂ + i k̄ Z_j q̂            normalised normal wash at the collocation points (3/4)
+    c_p = Q_jj(k̄, M) w                    pressure coefficients (lift positive up)
+    Q(k, M) = −Z_lᵀ diag(A) Q_jj (S_j + i k̄ Z_j)
+
+where Z, S are the spline's displacement (positive down) and chordwise slope
+(:func:`~propwhirl.model.dlm_mesh.spline`) at the collocation points (j) and the force points
+on the doublet lines (l, 1/4 panel chord), A the panel areas and **k̄ = ω / V = k / b_ref
+[1/m] PanelAero's reduced frequency** (its "classical" ω/U, not NASTRAN's ωc/2U: converted
+here, nowhere else).  The minus sign: the generalised load of a force is its work on the
+displacement, positive down (Q_h = −L, as the strips' 7.27).  In-plane DOFs and propeller
+DOFs get nothing from the panels; the propellers' Houbolt–Reed loads stay as they are (the DLM
+replaces only the wing's strip aerodynamics).
+
+Q is tabulated lazily on a grid of k (0, then :data:`K_PER_DECADE` points per decade from
+:data:`K_FIRST`) and of Mach (steps of :data:`MACH_STEP` up to :data:`MACH_MAX`), every entry
+computed once per geometry and kept (:func:`dlm_aerodynamics` keeps the last
+:data:`CACHE_SIZE` geometries in memory; with ``PROPWHIRL_DLM_CACHE`` set, every AIC also on
+disk, :mod:`propwhirl.model.dlm_cache`), and interpolated: cubic (Lagrange through the four
+nearest k) in k, linear in Mach.  The Mach number is that of each analysed speed, V / a
+(:func:`pk_system_dlm`).
+"""
+from __future__ import annotations
+
+from collections import OrderedDict
+from dataclasses import replace
+
+import numpy as np
+
+from propwhirl import validate as v
+from propwhirl.model import dlm_cache
+from propwhirl.model.dlm_mesh import PanelMesh, panel_mesh, spline
+
+#: first non-zero reduced frequency of the tables (on the reference semichord)
+K_FIRST = 0.01
+#: table points per decade of k (ratio 10^(1/8) ≈ 1.33 between neighbours: Q within ~0.2 %
+#: of the computed one, tests/model/test_dlm.py)
+K_PER_DECADE = 8
+#: Mach step of the tables (linear interpolation between them)
+MACH_STEP = 0.05
+#: highest Mach number of the tables: the DLM is a subsonic linear theory
+MACH_MAX = 0.9
+#: geometries whose tables :func:`dlm_aerodynamics` keeps
+CACHE_SIZE = 4
+
+
+def _panelaero():
+    """PanelAero's DLM module, or an InputError saying how to install it."""
+    try:
+        from panelaero import DLM
+    except ImportError as exc:
+        raise v.InputError("aero = 'dlm' needs PanelAero: pip install 'propwhirl[dlm]' "
+                           "(or pip install panelaero)") from exc
+    return DLM
+
+
+def require_panelaero() -> None:
+    """InputError now, before any analysis, when PanelAero is not installed."""
+    _panelaero()
+
+
+def check_mach(mach: float, V: float | None = None) -> None:
+    """InputError unless 0 <= mach <= :data:`MACH_MAX` (V [m/s] named when given)."""
+    if not (np.isfinite(mach) and 0.0 <= mach <= MACH_MAX + 1e-12):
+        at = "" if V is None else f" (V = {V:.4g} m/s)"
+        raise v.InputError(f"Mach = {mach:.4g}{at} is invalid for aero = 'dlm': the "
+                           f"doublet-lattice tables cover Mach 0 to {MACH_MAX:g} (subsonic); "
+                           "analyse lower speeds")
+
+
+class DlmAerodynamics:
+    """The doublet-lattice GAFs of one wing geometry: panels, spline, lazily filled tables.
+
+    wing: the :class:`~propwhirl.model.wing.Wing`; b_ref [m]: the semichord of k (default the
+    root semichord).  :meth:`gaf` is the interpolated Q(k, M) (3 n_nodes, 3 n_nodes) on the
+    wing's bending–torsion DOFs (root included), :meth:`exact` the one computed at (k, M).
+    ``evaluations`` counts the AIC matrices computed (each an (2n)² complex kernel).
+    """
+
+    def __init__(self, wing, b_ref: float | None = None, n_chord: int | None = None,
+                 n_span: int | None = None):
+        self.mesh: PanelMesh = panel_mesh(wing, n_chord, n_span)
+        self.b_ref = float(wing.node_properties()["b"][0] if b_ref is None else b_ref)
+        self.grid = self.mesh.mirrored().aerogrid()         # both half-wings
+        self.n_nodes = wing.n_nodes
+        Zj, Sj = spline(wing, self.mesh.points(0.75))
+        Zl, _ = spline(wing, self.mesh.points(0.25))
+        self._Zj, self._Sj = Zj, Sj
+        self._left = -(Zl.T * self.mesh.area[None, :])
+        self._table: dict[tuple[int, int], np.ndarray] = {}
+        self.evaluations = 0
+        #: the disk cache (``PROPWHIRL_DLM_CACHE``, :mod:`propwhirl.model.dlm_cache`) or None
+        self.cache = dlm_cache.cache_dir()
+        self._geometry = dlm_cache.geometry_key(self.mesh.mirrored().corners)
+        self.cache_hits = 0
+
+    # ------------------------------------------------------------------ exact
+    def aic(self, mach: float, k: float) -> np.ndarray:
+        """The symmetric AIC Q_jj (n, n) complex of the half-wing at Mach and k (on b_ref):
+        c_p = Q_jj w for a wash w mirrored on the other half-wing.  PanelAero's ``calc_Qjj``
+        (VLM + DLM increment, parabolic kernel) of both halves, k̄ = k / b_ref its ω/U, then
+        Q_sym = Q_RR + Q_RL.  (PanelAero's own ``xz_symmetry`` mirrors the panels upside down;
+        its DLM then departs from Theodorsen's limit: docs/validation.md.)"""
+        n = self.mesh.n
+        if self.cache is not None:
+            Q = dlm_cache.load(self.cache, self._geometry, mach, float(k) / self.b_ref, n)
+            if Q is not None:
+                self.cache_hits += 1
+                return Q
+        DLM = _panelaero()
+        with np.errstate(all="ignore"):
+            Q = DLM.calc_Qjj(self.grid, float(mach), float(k) / self.b_ref)
+        self.evaluations += 1
+        Q = Q[n:, n:] + Q[n:, :n]
+        if self.cache is not None:
+            dlm_cache.store(self.cache, self._geometry, mach, float(k) / self.b_ref, Q)
+        return Q
+
+    def exact(self, mach: float, k: float) -> np.ndarray:
+        """Q(k, M) (3 n_nodes, 3 n_nodes) complex computed at k [-] and Mach (no table)."""
+        kbar = float(k) / self.b_ref
+        Qjj = self.aic(mach, k)
+        return self._left @ (Qjj @ (self._Sj + 1j * kbar * self._Zj))
+
+    # ------------------------------------------------------------------ tables
+    @staticmethod
+    def k_node(i: int) -> float:
+        """k of table node i: 0 for i = 0, else K_FIRST · 10^((i − 1)/K_PER_DECADE)."""
+        return 0.0 if i == 0 else K_FIRST * 10.0 ** ((i - 1) / K_PER_DECADE)
+
+    def _node(self, im: int, ik: int) -> np.ndarray:
+        key = (im, ik)
+        if key not in self._table:
+            self._table[key] = self.exact(im * MACH_STEP, self.k_node(ik))
+        return self._table[key]
+
+    def _in_k(self, im: int, k: float) -> np.ndarray:
+        """Cubic Lagrange interpolation in k through the four table nodes around k."""
+        i = 0 if k < K_FIRST else 1 + int(np.floor(np.log10(k / K_FIRST) * K_PER_DECADE + 1e-12))
+        lo = max(0, i - 1)
+        nodes = range(lo, lo + 4)
+        ks = np.array([self.k_node(j) for j in nodes])
+        out = np.zeros((3 * self.n_nodes, 3 * self.n_nodes), complex)
+        for j, kj in zip(nodes, ks):
+            w = np.prod([(k - km) / (kj - km) for km in ks if km != kj])
+            out += w * self._node(im, j)
+        return out
+
+    def gaf(self, mach: float, k: float) -> np.ndarray:
+        """Q(k, M) interpolated from the tables (cubic in k, linear in Mach) [-]."""
+        check_mach(mach)
+        k = max(float(k), 0.0)
+        x = mach / MACH_STEP
+        im = min(int(np.floor(x + 1e-12)), int(round(MACH_MAX / MACH_STEP)))
+        t = x - im
+        Q = self._in_k(im, k)
+        if t > 1e-9:
+            Q = (1 - t) * Q + t * self._in_k(im + 1, k)
+        return Q
+
+
+_CACHE: "OrderedDict[tuple, DlmAerodynamics]" = OrderedDict()
+
+
+def _geometry_key(wing) -> tuple:
+    node = wing.node_properties()
+    return (tuple(np.round(node["y"], 12)), tuple(np.round(node["b"], 12)),
+            tuple(np.round(node["a"], 12)), wing.dlm_chordwise_panels, wing.dlm_spanwise_panels)
+
+
+def dlm_aerodynamics(wing) -> DlmAerodynamics:
+    """The :class:`DlmAerodynamics` of ``wing`` (its panel counts, root semichord), shared by
+    every wing of the same geometry: its tables fill once per analysis and are kept for the
+    last :data:`CACHE_SIZE` geometries."""
+    key = _geometry_key(wing)
+    if key in _CACHE:
+        _CACHE.move_to_end(key)
+        return _CACHE[key]
+    aero = DlmAerodynamics(wing)
+    _CACHE[key] = aero
+    while len(_CACHE) > CACHE_SIZE:
+        _CACHE.popitem(last=False)
+    return aero
+
+
+def pk_system_dlm(model, V: float, k_min: float):
+    """ω ↦ (M, C, K) of the p-k equation of a PropellerWing with doublet-lattice wing
+    aerodynamics at airspeed V [m/s]: its structure and propellers (the model's own second-order
+    system with the wing aerodynamics off), minus the DLM loads in the p-k form
+    K_a = ½ρV² Re Q(k, M), C_a = ½ρV² Im Q(k, M) / ω (exact at p = iω), k = ω b_ref / V
+    (raised to ``k_min``), M = V / a of this speed."""
+    from propwhirl.model.assembly import free_dofs
+
+    mach = V / model.flight.speed_of_sound
+    check_mach(mach, V)
+    dry = replace(model, wing_aero=False).second_order(np.array([V]))
+    aero = dlm_aerodynamics(model.wing)
+    keep = free_dofs(model.wing.n_nodes)
+    q = 0.5 * model.flight.density * V ** 2
+    structure = (dry.S1[0], dry.S2[0], dry.S3[0])
+    b = aero.b_ref
+
+    def matrices(omega: float):
+        k = max(float(omega) * b / V, k_min)
+        Q = q * aero.gaf(mach, k)[np.ix_(keep, keep)]
+        M, C, K = (np.array(X, dtype=float) for X in structure)
+        n = keep.size
+        C[:n, :n] -= Q.imag / (k * V / b)
+        K[:n, :n] -= Q.real
+        return M, C, K
+
+    return matrices
+
+
+def strip_twin(model):
+    """The model with strip aerodynamics on its wing (``aero = "strip"``), the model itself
+    when it has them: the finite-state model a doublet-lattice p-k analysis tracks and names
+    its modes with, starts its p-k roots from and reports beside its events."""
+    wing = getattr(model, "wing", None)
+    if wing is None or wing.aero != "dlm":
+        return model
+    return model.with_(wing=replace(wing, aero="strip"))

@@ -1,0 +1,62 @@
+"""The disk cache of doublet-lattice AICs (issue 23, item 6): propwhirl.model.dlm_cache."""
+import numpy as np
+import pytest
+
+pytest.importorskip("panelaero")
+
+from propwhirl.model import dlm, dlm_cache  # noqa: E402
+from propwhirl.model.wing import Wing  # noqa: E402
+from propwhirl.validate import InputError  # noqa: E402
+
+
+def aero(**kw):
+    w = Wing(semi_span=2.0, mass_per_length=1.0, EI=1e4, GJ=1e4, radius_of_gyration=0.25,
+             n_elements=4, **kw)
+    return dlm.DlmAerodynamics(w, n_chord=3, n_span=4)
+
+
+def test_no_cache_by_default(monkeypatch, tmp_path):
+    monkeypatch.delenv(dlm_cache.CACHE_ENV, raising=False)
+    a = aero()
+    assert a.cache is None
+    a.aic(0.2, 0.4)
+    assert a.evaluations == 1 and a.cache_hits == 0
+
+
+def test_a_second_analysis_reads_the_aics_back(monkeypatch, tmp_path):
+    monkeypatch.setenv(dlm_cache.CACHE_ENV, str(tmp_path / "aic"))
+    first = aero()
+    Q = first.aic(0.2, 0.4)
+    assert first.evaluations == 1 and len(list((tmp_path / "aic").glob("aic-*.npy"))) == 1
+    second = aero()                                   # a new analysis of the same panels
+    assert np.array_equal(second.aic(0.2, 0.4), Q)
+    assert second.evaluations == 0 and second.cache_hits == 1
+    # another k, Mach or planform is another matrix
+    second.aic(0.2, 0.41)
+    second.aic(0.25, 0.4)
+    assert second.evaluations == 2
+    other = aero(root_chord=1.1)
+    other.aic(0.2, 0.4)
+    assert other.evaluations == 1 and len(list((tmp_path / "aic").glob("*.npy"))) == 4
+
+
+def test_a_damaged_file_is_computed_again(monkeypatch, tmp_path):
+    monkeypatch.setenv(dlm_cache.CACHE_ENV, str(tmp_path))
+    Q = aero().aic(0.0, 0.3)
+    (path,) = tmp_path.glob("aic-*.npy")
+    path.write_bytes(b"not a matrix")
+    again = aero()
+    assert np.array_equal(again.aic(0.0, 0.3), Q) and again.evaluations == 1
+    np.save(path, np.zeros((2, 2)), allow_pickle=False)     # wrong shape and type
+    third = aero()
+    assert np.array_equal(third.aic(0.0, 0.3), Q) and third.evaluations == 1
+    assert dlm_cache.load(tmp_path, third._geometry, 0.0, 0.3 / third.b_ref, third.mesh.n) \
+        is not None                                   # rewritten
+
+
+def test_an_unusable_directory_is_an_input_error(monkeypatch, tmp_path):
+    blocker = tmp_path / "file"
+    blocker.write_text("x")
+    monkeypatch.setenv(dlm_cache.CACHE_ENV, str(blocker / "sub"))
+    with pytest.raises(InputError, match="PROPWHIRL_DLM_CACHE = .* is invalid: cannot create"):
+        aero()
