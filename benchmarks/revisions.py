@@ -76,7 +76,7 @@ def _same(a: list, b: list) -> str:
     """The events of both revisions: the same kinds in order, and the largest |ΔV| [m/s]."""
     if [e[:2] for e in a] != [e[:2] for e in b]:
         return "different events"
-    return f"same; max |ΔV| {max((abs(x[2] - y[2]) for x, y in zip(a, b)), default=0.0):.1e} m/s"
+    return f"same; largest ΔV {max((abs(x[2] - y[2]) for x, y in zip(a, b)), default=0.0):.1e} m/s"
 
 
 def main(argv=None) -> int:
