@@ -32,7 +32,7 @@ from propwhirl.reproduce.harness import Records
 from propwhirl.results import FORMAT_PATTERN, Result
 from propwhirl.studies.boundary import Boundary
 from propwhirl.studies.clearance import Clearance
-from propwhirl.studies.campaign import CampaignResult, PointRow
+from propwhirl.studies.campaign_result import CampaignResult, PointRow
 from propwhirl.studies.gradients import OptimisationResult
 from propwhirl.studies.parametric import ModeSwitch
 from propwhirl.studies.sweeps import CriticalMap

@@ -5,7 +5,7 @@ clearance campaign (:mod:`propwhirl.studies.campaign`, the file format ``docs/ca
                       [--resume] [--quiet]
 
 Runs every case over its envelope, writes ``REPORT/campaign.json`` (the
-:class:`~propwhirl.studies.campaign.CampaignResult`) and ``REPORT/campaign.csv`` (every number,
+:class:`~propwhirl.studies.campaign_result.CampaignResult`) and ``REPORT/campaign.csv`` (every number,
 one line per case and altitude) and prints the summary table.  Exit code 0 when every case
 clears, 1 when one does not, 2 for bad input (nothing is analysed).  While it runs, the
 finished analyses are kept in ``REPORT/campaign.json.partial``; ``--resume`` continues from it.

@@ -31,27 +31,24 @@ requirement, the least damping up to V_D meets it; a case clears when all its po
 """
 from __future__ import annotations
 
-import csv
 import dataclasses
-import io
 import itertools
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
-from pathlib import Path
-from typing import Any, ClassVar
+from typing import Any
 
 import numpy as np
 
-from propwhirl import fileio
 from propwhirl import validate as v
 from propwhirl.model import atmosphere
 from propwhirl.model.flight import FlightCondition
 from propwhirl.progress import ProgressCallback
-from propwhirl.results import Result, SavedDict
 from propwhirl.studies import execution
 from propwhirl.studies import paths as P
 from propwhirl.studies.critical import convention
+from propwhirl.studies.campaign_result import (  # noqa: F401 (re-exported)
+    CampaignResult, CaseSummary, PointRow)
 
 #: The regulations' speed factors and their sources: name → (factor, source).
 REGULATIONS: dict[str, tuple[float, str]] = {
@@ -523,213 +520,6 @@ def evaluate_point(task: _Task) -> dict[str, Any]:
         "zeta_at_required": slope["zeta"], "dzeta_dV_at_required": slope["dzeta_dV"],
         "mode_at_required": slope["mode"],
     }
-
-
-# ============================================================================== result
-_ROW_KEYS = ("case", "description", "altitude_m", "airspeed", "V_D_given", "V_D", "mach_limited",
-             "V_required", "cleared", "reason", "critical_speed", "margin_m_per_s",
-             "margin_percent", "kind", "event", "mode", "frequency_hz", "whirl",
-             "propeller_shares", "analysed_to", "least_g", "least_g_V", "least_g_mode",
-             "least_g_to_V_D", "least_g_to_V_D_mode", "g_at_required", "dzeta_dV_at_required",
-             "mode_at_required", "error")
-_ROW_NUMBERS = ("critical_speed", "margin_m_per_s", "margin_percent", "frequency_hz",
-                "analysed_to", "least_g", "least_g_V", "least_g_to_V_D", "g_at_required",
-                "dzeta_dV_at_required")
-_ROW_STRINGS = ("case", "description", "airspeed", "reason", "kind", "event", "mode", "whirl",
-                "least_g_mode", "least_g_to_V_D_mode", "mode_at_required", "error")
-
-
-@dataclass(frozen=True)
-class PointRow:
-    """One (case, envelope point) of a campaign's result.
-
-    Speeds are true airspeeds [m/s]; margin_m_per_s = V_crit − V_required, margin_percent =
-    100 (V_crit / V_required − 1) (None when no counted instability lies in the analysed range,
-    which ends at `analysed_to` [m/s], beyond V_required); least_g: the least g = 2ζ of the
-    oscillatory modes up to V_required (at least_g_V, of least_g_mode); least_g_to_V_D: up to
-    V_D (the damping requirement's range); g_at_required and dzeta_dV_at_required [s/m]: the
-    least damped mode at V_required and the slope of its ζ; propeller_shares:
-    [[propeller, share, whirl], ...] of the critical mode; reason: why it does not clear ("" when
-    it does); error: the message of an analysis that failed."""
-
-    case: str
-    description: str
-    altitude_m: float
-    airspeed: str
-    V_D_given: float
-    V_D: float
-    mach_limited: bool
-    V_required: float
-    cleared: bool
-    reason: str
-    critical_speed: float | None
-    margin_m_per_s: float | None
-    margin_percent: float | None
-    kind: str
-    event: str
-    mode: str
-    frequency_hz: float | None
-    whirl: str
-    propeller_shares: tuple[tuple[int, float, str], ...]
-    analysed_to: float | None
-    least_g: float | None
-    least_g_V: float | None
-    least_g_mode: str
-    least_g_to_V_D: float | None
-    least_g_to_V_D_mode: str
-    g_at_required: float | None
-    dzeta_dV_at_required: float | None
-    mode_at_required: str
-    error: str
-
-    def to_dict(self) -> dict[str, Any]:
-        d = {k: getattr(self, k) for k in _ROW_KEYS}
-        d["propeller_shares"] = [list(s) for s in self.propeller_shares]
-        return {k: (None if isinstance(x, float) and not math.isfinite(x) else x)
-                for k, x in d.items()}
-
-    @classmethod
-    def from_dict(cls, d: Any, where: str = "row") -> "PointRow":
-        r = SavedDict(d, where, _ROW_KEYS)
-        vals: dict[str, Any] = {}
-        for k in _ROW_NUMBERS:
-            vals[k] = r.number(k, optional=True)
-        for k in _ROW_STRINGS:
-            vals[k] = r.string(k)
-        for k in ("altitude_m", "V_D_given", "V_D", "V_required"):
-            vals[k] = r.number(k)
-        for k in ("mach_limited", "cleared"):
-            vals[k] = r.boolean(k)
-        shares = []
-        for w, s in r.items("propeller_shares"):
-            if not (isinstance(s, list) and len(s) == 3 and isinstance(s[0], int)
-                    and not isinstance(s[0], bool) and isinstance(s[1], (int, float))
-                    and not isinstance(s[1], bool) and math.isfinite(s[1])
-                    and isinstance(s[2], str)):
-                raise v.InputError(f"{w}: must be [propeller, share, whirl]")
-            shares.append((int(s[0]), float(s[1]), str(s[2])))
-        vals["propeller_shares"] = tuple(shares)
-        return cls(**vals)
-
-
-@dataclass(frozen=True)
-class CaseSummary:
-    """A case over its envelope: cleared (every point), its worst point (the least margin in
-    %, or the first that fails) and the number of points that fail."""
-
-    case: str
-    cleared: bool
-    worst: PointRow
-    failing: int
-
-
-@dataclass(frozen=True)
-class CampaignResult(Result):
-    """The result of a campaign: one :class:`PointRow` per (case, envelope point), case-major.
-
-    A :class:`~propwhirl.results.Result` of kind "campaign" (``propwhirl.campaign/1``):
-    :meth:`save` / :meth:`load`; :meth:`to_csv` the same numbers as a table;
-    :meth:`format` the plain-text summary; ``cleared`` decides the exit code of
-    ``propwhirl certify``."""
-
-    KIND: ClassVar[str] = "campaign"
-    VERSION: ClassVar[int] = 1
-    READABLE: ClassVar[tuple[int, ...]] = (1,)
-    WHAT: ClassVar[str] = "campaign result file"
-
-    name: str
-    model_name: str
-    regulation: str
-    factor: float
-    min_damping_g: float | None
-    convention: str
-    rows: tuple[PointRow, ...]
-    analyses: int = 0
-
-    @property
-    def cleared(self) -> bool:
-        return all(r.cleared for r in self.rows)
-
-    def cases(self) -> list[CaseSummary]:
-        """Every case's summary, in campaign order."""
-        out: dict[str, list[PointRow]] = {}
-        for r in self.rows:
-            out.setdefault(r.case, []).append(r)
-
-        def key(r: PointRow) -> tuple:
-            return (r.cleared, -math.inf if r.error else
-                    (math.inf if r.margin_percent is None else r.margin_percent))
-
-        return [CaseSummary(name, all(r.cleared for r in rows), min(rows, key=key),
-                            sum(not r.cleared for r in rows)) for name, rows in out.items()]
-
-    def format(self) -> str:
-        """The plain-text summary table: one line per case (its worst envelope point)."""
-        g = "" if self.min_damping_g is None else f"; g >= {self.min_damping_g:g} up to V_D"
-        head = (f"{self.name}: {self.model_name}: clearance to {self.factor:g} V_D "
-                f"({self.regulation}{g}); {self.convention}")
-        summaries = self.cases()
-        w = max([4] + [len(s.case) for s in summaries])
-        lines = [head, f"{'case':{w}s} {'verdict':11s} {'alt [m]':>8s} {'V_req':>8s} "
-                       f"{'V_crit':>8s} {'margin':>8s} {'margin':>7s} {'min g':>7s} "
-                       f"{'dzeta/dV':>9s}  critical", f"{'':{w}s} {'':11s} {'':>8s} "
-                       f"{'[m/s]':>8s} {'[m/s]':>8s} {'[m/s]':>8s} {'[%]':>7s} {'':>7s} {'[s/m]':>9s}"]
-        for s in summaries:
-            r = s.worst
-            num = (lambda x, f: "-" if x is None else format(x, f))
-            crit = ("analysis failed: " + r.error if r.error else "none in range (to "
-                    f"{r.analysed_to:.1f} m/s)" if r.kind == "none" else
-                    f"{r.kind} {r.event} of {r.mode}"
-                    + (f" at {num(r.frequency_hz, '.2f')} Hz" if r.kind == "flutter" else "")
-                    + (f", {r.whirl} whirl" if r.whirl else ""))
-            verdict = "cleared" if s.cleared else f"NOT ({s.failing})"
-            lines.append(f"{s.case:{w}s} {verdict:11s} {r.altitude_m:8.0f} "
-                         f"{r.V_required:8.2f} {num(r.critical_speed, '8.2f'):>8s} "
-                         f"{num(r.margin_m_per_s, '+8.2f'):>8s} {num(r.margin_percent, '+7.2f'):>7s} "
-                         f"{num(r.least_g, '7.4f'):>7s} {num(r.dzeta_dV_at_required, '+9.2e'):>9s}"
-                         f"  {crit}" + (f" ({r.reason})" if r.reason and not r.error else ""))
-        n_ok = sum(s.cleared for s in summaries)
-        lines.append("(each case's least-margin altitude; every altitude: the CSV)")
-        lines.append(f"{n_ok} of {len(summaries)} cases cleared; {self.analyses} analyses: "
-                     + ("CLEARED" if self.cleared else "NOT CLEARED"))
-        return "\n".join(lines)
-
-    def encode(self) -> dict[str, Any]:
-        return {"name": self.name, "model_name": self.model_name, "regulation": self.regulation,
-                "factor": self.factor, "min_damping_g": self.min_damping_g,
-                "convention": self.convention, "cleared": self.cleared,
-                "cases": [{"case": s.case, "cleared": s.cleared, "failing_points": s.failing}
-                          for s in self.cases()],
-                "rows": [r.to_dict() for r in self.rows], "analyses": self.analyses}
-
-    @classmethod
-    def decode(cls, d: Mapping[str, Any], version: int, where: str = "") -> "CampaignResult":
-        r = SavedDict(d, where, ("name", "model_name", "regulation", "factor", "min_damping_g",
-                                 "convention", "cleared", "cases", "rows", "analyses"))
-        out = cls(r.string("name"), r.string("model_name"), r.string("regulation"),
-                  r.number("factor"), r.number("min_damping_g", optional=True),
-                  r.string("convention"),
-                  tuple(PointRow.from_dict(x, w) for w, x in r.items("rows")),
-                  r.integer("analyses", 0))
-        if r.boolean("cleared") != out.cleared:
-            raise v.InputError(f"{r.name('cleared')}: does not match the rows' verdicts")
-        return out
-
-    def to_csv(self, path: str | Path | None = None) -> str:
-        """Every row's numbers as CSV (one line per (case, point); shares as
-        "propeller:share:whirl" joined with spaces; empty for a missing number)."""
-        buf = io.StringIO()
-        w = csv.writer(buf, lineterminator="\n")
-        w.writerow(_ROW_KEYS)
-        for r in self.rows:
-            d = r.to_dict()
-            d["propeller_shares"] = " ".join(f"{p}:{s:.6g}:{wh}" for p, s, wh in r.propeller_shares)
-            w.writerow(["" if d[k] is None else ("yes" if d[k] else "no") if isinstance(d[k], bool)
-                        else f"{d[k]:.10g}" if isinstance(d[k], float) else d[k] for k in _ROW_KEYS])
-        text = buf.getvalue()
-        if path is not None:
-            fileio.write_text(path, text, what="campaign table")
-        return text
 
 
 def _row(c: Campaign, case: Case, p: EnvelopePoint, r: Any) -> PointRow:
