@@ -27,34 +27,37 @@ $(VENV)/.stamp-%: pyproject.toml | $(BIN)/python
 	touch $@
 
 comma := ,
+# Every extra: make test, the benchmarks and make docs share one set-up (make docs after make
+# test installs nothing again).
+ALL := $(VENV)/.stamp-codegen+data+dlm+docs+tables+test+plots+toml+notebooks+distributed+progress+mdo
 
 generate: $(VENV)/.stamp-codegen
 	$(BIN)/python -m derivations.generate --out generated
 
-test: $(VENV)/.stamp-codegen+data+dlm+docs+tables+test+plots+toml+notebooks+distributed+progress+mdo
+test: $(ALL)
 	$(BIN)/python -m pytest -q
 
-test-fast: $(VENV)/.stamp-codegen+data+dlm+docs+tables+test+plots+toml+notebooks+distributed+progress+mdo
+test-fast: $(ALL)
 	$(BIN)/python -m pytest -q -m "not long"
 
 # BENCH_MD=path writes the tables elsewhere; BENCH_ARGS e.g. "--repeats 1 --no-variants"
 BENCH_MD ?= docs/performance.md
-bench: $(VENV)/.stamp-codegen+data+docs+tables+test+plots+toml+notebooks+distributed+progress+mdo
+bench: $(ALL)
 	$(BIN)/python benchmarks/engine_vs_fixed_grid.py --markdown $(BENCH_MD) $(BENCH_ARGS)
 
 # BENCH_MD as above; BENCH_DESIGN_ARGS e.g. "--quick" (no dense 100-element / 12-propeller run)
-bench-design: $(VENV)/.stamp-codegen+data+docs+tables+test+plots+toml+notebooks+distributed+progress+mdo
+bench-design: $(ALL)
 	$(BIN)/python benchmarks/design_size.py --markdown $(BENCH_MD) $(BENCH_DESIGN_ARGS)
 
 # BENCH_MD as above; BENCH_MAP_ARGS e.g. "--n 10" or "--reference sample" (100 reference points)
-bench-map: $(VENV)/.stamp-codegen+data+docs+tables+test+plots+toml+notebooks+distributed+progress+mdo
+bench-map: $(ALL)
 	$(BIN)/python benchmarks/map_speed.py --markdown $(BENCH_MD) $(BENCH_MAP_ARGS)
 
 # Material for MkDocs prints an end-of-life banner on every build; NO_MKDOCS_2_WARNING silences it.
-docs: $(VENV)/.stamp-docs
+docs: $(ALL)
 	NO_MKDOCS_2_WARNING=1 $(BIN)/mkdocs build --strict -d site
 
-run: $(VENV)/.stamp-plots+tables+toml
+run: $(VENV)/.stamp-data+plots+tables+toml
 	$(BIN)/propwhirl run --out out
 
 clean:

@@ -89,3 +89,15 @@ def test_reproduction_examples_run(tmp_path, monkeypatch, capsys, reproduction_r
         assert "t7.2/first_bending" in capsys.readouterr().out
     assert asked == [(None, 1), (["t7", "t9.5"], 2)]
     assert (tmp_path / "out" / "records.json").stat().st_size > 0
+
+
+def test_make_run_installs_what_the_python_example_needs():
+    """Issue 25.8: the Python example failed after `make run` (to_dataframe needs the `data`
+    extra, which `make run` did not install): the extras of `make run`'s set-up cover every
+    optional library the example uses."""
+    makefile = (Path(__file__).resolve().parent.parent / "Makefile").read_text()
+    (stamp,) = re.findall(r"^run: \$\(VENV\)/\.stamp-([\w+]+)", makefile, flags=re.M)
+    extras = set(stamp.split("+"))
+    (code,) = _blocks(_section("Using it"), "python")
+    needs = {"data": "to_dataframe(", "plots": "plots.", "tables": "summary()"}
+    assert {extra for extra, use in needs.items() if use in code} <= extras
