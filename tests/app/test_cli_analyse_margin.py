@@ -3,7 +3,6 @@ summary reads well with several propellers: '-' in the propeller column of a win
 one warning listing the propellers it applies to, text instead of NaN."""
 from __future__ import annotations
 
-import math
 import re
 
 import pytest
