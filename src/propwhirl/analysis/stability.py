@@ -139,7 +139,8 @@ class ModelAnalysis(Result):
 
     def summary(self) -> str:
         """The instabilities as a text table (the propeller column names the propeller whose
-        whirl is given: the one with the largest θ–ψ amplitude, numbered from 1), each event's
+        whirl is given: the one with the largest θ–ψ amplitude, numbered from 1; '-' when every
+        propeller's share is below 0.5 %), each event's
         propeller participation, and the critical instability (last line)."""
         how = ("" if self.finite_state is None else
                " (p-k method, doublet-lattice wing aerodynamics)" if self.doublet_lattice else
@@ -574,10 +575,19 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
                          else FiniteState(aero_model_of(model), finite_state))
 
 
+#: Below this share of the mode's kinetic energy [-] in every propeller (0.5 %, printed as
+#: 0 %), the summary's propeller column names none: the event is the wing's.
+LEADING_SHARE_MIN = 0.005
+
+
 def _leading(e: Instability) -> str:
-    """'3 (y = 3.00 m)': the propeller with the largest θ–ψ amplitude at the event, or '-'."""
-    p = None if e.participation is None else e.participation.leading
-    return "-" if p is None else p.name().removeprefix("propeller ")
+    """'3 (y = 3.00 m)': the propeller with the largest θ–ψ amplitude at the event, or '-'
+    (none, or every propeller's share below :data:`LEADING_SHARE_MIN`)."""
+    part = e.participation
+    p = None if part is None else part.leading
+    if p is None or all(q.share < LEADING_SHARE_MIN for q in part.propellers):
+        return "-"
+    return p.name().removeprefix("propeller ")
 
 
 def speed_and_frequency(event: Instability | None) -> tuple[float, float]:

@@ -230,8 +230,13 @@ def _analyse(args: argparse.Namespace) -> int:
         if not (args.plot or args.summary):
             raise InputError(f"--plot-modes {args.plot_modes} needs --plot or --summary (the "
                              "number of modes they show)")
+    V_req = _analyse_required_speed(args)
     model = load_model(args.model, modal=True)
     speeds = speed_grid(*args.speeds) if args.speeds else None
+    if V_req is not None:                  # the grid reaches beyond factor x V_D, as clearance's
+        from propwhirl.studies.clearance import clearance_speeds
+
+        speeds = clearance_speeds(model, V_req, speeds)
     notice = None if args.quiet else limits.analysis_notice(model, args.method)
     if notice:                             # a long one is announced before the work (issue 20.9)
         print(f"propwhirl: estimate: {notice}", file=sys.stderr)
@@ -244,6 +249,10 @@ def _analyse(args: argparse.Namespace) -> int:
               f" {st['reduced_r']} Ritz vectors, {st['reduced_L']} lag states); "
               f"{a.criticals.stats.get('corrected', 0)} of {len(a.criticals.points)} crossings "
               "converged on the full-order model")
+    if V_req is not None:                  # the summary's last line (issue 25.5)
+        from propwhirl.analysis.margin import speed_margin
+
+        echo("  " + speed_margin(a, args.vd, args.factor, describe=a.describe).format())
     for note in a.warnings:
         print(f"propwhirl: warning: {limits.printable(note)}", file=sys.stderr)
     if args.json:
@@ -274,6 +283,21 @@ def _analyse(args: argparse.Namespace) -> int:
     return 0
 
 
+def _analyse_required_speed(args: argparse.Namespace) -> float | None:
+    """factor x V_D [m/s] of ``analyse --vd V [--factor F]`` (None without --vd), checked
+    before the work: --factor needs --vd."""
+    from propwhirl.analysis.margin import FACTOR_CS25, required_speed
+
+    if args.vd is None:
+        if args.factor is not None:
+            raise InputError(f"--factor {args.factor:g} needs --vd (the design dive speed V_D "
+                             "[m/s] it multiplies)")
+        return None
+    if args.factor is None:
+        args.factor = FACTOR_CS25
+    return required_speed(args.vd, args.factor, vd_name="--vd", factor_name="--factor")
+
+
 def _add_analyse(sub) -> None:
     p = sub.add_parser("analyse", help="stability analysis of a TOML model file")
     p.add_argument("model", metavar="MODEL.toml", help="model file (see `propwhirl case`)")
@@ -299,6 +323,14 @@ def _add_analyse(sub) -> None:
                         "auto (default): reduced above 400 states, else dense")
     p.add_argument("--quiet", action="store_true", help="no progress spinner (there is none "
                    "either when stderr is not a terminal)")
+    p.add_argument("--vd", type=float, default=None, metavar="V", help="design dive speed V_D "
+                   "[m/s]: the summary ends with the margin of the critical instability to "
+                   "factor x V_D [m/s and %%] and the least damping g = 2 zeta below it (the "
+                   "speeds reach beyond factor x V_D); the exit code stays 0: `propwhirl "
+                   "clearance` and `propwhirl certify` give the pass/fail exit code")
+    p.add_argument("--factor", type=float, default=None, metavar="F", help="the required "
+                   "speed's factor on --vd, in [1, 3]: 1.15 (CS/FAR 25.629, default) or 1.2 "
+                   "(14 CFR 23.629); only with --vd")
     p.set_defaults(func=_analyse)
 
 

@@ -195,6 +195,7 @@ def analysis_warnings(model, speed_range: tuple[float, float],
             f"V = {V0:.2f} m/s ({d0}) is Mach {V0 / a:.2f}{more}{tail}: beyond Mach "
             f"{MACH_COMPRESSIBLE:g} {' and '.join(what)} {'is' if len(what) == 1 else 'are'} "
             "not valid")
+    tips: dict[str, list[int]] = {}       # one line per text, listing its propellers
     for j, p in houbolt_reed_propellers(model):
         hits = [(V, d, float(tip_mach(p, V, a))) for V, d in ev]
         hits = [h for h in hits if h[2] > TIP_MACH]
@@ -202,11 +203,15 @@ def analysis_warnings(model, speed_range: tuple[float, float],
             V0, d0, mt = hits[0]
             n = len(hits) - 1
             more = f" ({n} more event{'s' if n > 1 else ''} above it)" if n else ""
-            out.append(
-                f"propeller {j + 1}: helical tip Mach number {mt:.2f} at V = {V0:.2f} m/s "
+            tips.setdefault(
+                f"helical tip Mach number {mt:.2f} at V = {V0:.2f} m/s "
                 f"({d0}){more}: above {TIP_MACH:g} the blade tips are supersonic and the "
                 "Houbolt-Reed derivatives rest on the Rodden-Rose cut-off, not on the "
-                "subsonic theory")
+                "subsonic theory", []).append(j + 1)
+    for text, numbers in tips.items():
+        who = (f"propeller {numbers[0]}" if len(numbers) == 1
+               else "propellers " + ", ".join(str(k) for k in numbers))
+        out.append(f"{who}: {text}")
     last = float(speed_range[1])
     if not unstable and last / a > MACH_COMPRESSIBLE:
         out.append(

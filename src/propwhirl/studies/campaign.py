@@ -41,6 +41,9 @@ from typing import Any
 import numpy as np
 
 from propwhirl import validate as v
+from propwhirl.analysis.margin import DAMPING_MODES  # noqa: F401 (re-exported)
+from propwhirl.analysis.margin import least_damping as _least
+from propwhirl.analysis.margin import oscillatory_damping as _damping
 from propwhirl.model import atmosphere
 from propwhirl.model.flight import FlightCondition
 from propwhirl.progress import ProgressCallback
@@ -61,9 +64,6 @@ REGULATIONS: dict[str, tuple[float, str]] = {
 AIRSPEEDS = ("EAS", "TAS")
 #: Sea-level ISA density ρ0 [kg/m³] (the reference of an equivalent airspeed).
 RHO0 = float(atmosphere.density(0.0))
-#: The damping results consider the modes with an event and this many oscillatory modes of
-#: lowest frequency (:meth:`propwhirl.analysis.stability.ModelAnalysis.modes_of_interest`).
-DAMPING_MODES = 8
 #: Operations a case can switch a propeller to.
 OPERATIONS = ("windmilling",)
 
@@ -441,34 +441,6 @@ def tasks(c: Campaign) -> tuple[list[_Task], list[str]]:
 
 
 # ============================================================================== one point
-def _damping(sweep: Any, modes: Sequence[int]) -> tuple[np.ndarray, np.ndarray]:
-    """ζ (T, n) of the sweep's physical oscillatory modes among `modes` (NaN elsewhere) and
-    dζ/dV [s/m]."""
-    lam = np.asarray(sweep.eigenvalues)
-    dlam = np.asarray(sweep.dlam_dV)
-    mag = np.abs(lam)
-    osc = np.asarray(sweep.physical, dtype=bool) & (lam.imag > 1e-9 * np.maximum(mag, 1.0))
-    with np.errstate(invalid="ignore", divide="ignore"):
-        zeta = -lam.real / mag
-        dmag = (lam.real * dlam.real + lam.imag * dlam.imag) / mag
-        dzeta = -(dlam.real * mag - lam.real * dmag) / mag**2
-    keep = np.zeros(lam.shape[1], dtype=bool)
-    keep[list(modes)] = True
-    osc &= keep[None, :]
-    zeta = np.where(osc, zeta, np.nan)
-    return zeta, np.where(osc, dzeta, np.nan)
-
-
-def _least(zeta: np.ndarray, V: np.ndarray, top: float, labels: Sequence[str]) -> dict[str, Any]:
-    """The least ζ at the sweep's speeds V <= top: {zeta, V, mode} (None when none)."""
-    rows = V <= top * (1 + 1e-12)
-    z = np.where(rows[:, None], zeta, np.nan)
-    if not np.isfinite(z).any():
-        return {"zeta": None, "V": None, "mode": ""}
-    t, k = np.unravel_index(np.nanargmin(z), z.shape)
-    return {"zeta": float(z[t, k]), "V": float(V[t]), "mode": labels[k]}
-
-
 def _at(zeta: np.ndarray, dzeta: np.ndarray, V: np.ndarray, speed: float,
         labels: Sequence[str]) -> dict[str, Any]:
     """The least damped oscillatory mode at `speed` [m/s] (linear interpolation between the

@@ -43,9 +43,7 @@ from propwhirl.results import Result, SavedDict
 from propwhirl.studies import paths as P
 from propwhirl.studies.critical import convention, critical_instability, wing_divergence_predicate
 
-#: The factors of the regulations [-]: CS/FAR 25.629 and 14 CFR 23.629.
-FACTOR_CS25 = 1.15
-FACTOR_CFR23 = 1.2
+from propwhirl.analysis.margin import FACTOR_CFR23, FACTOR_CS25, required_speed  # noqa: F401
 
 
 
@@ -579,9 +577,7 @@ def clearance(model: Any, V_D: float, factor: float = FACTOR_CS25, *, speeds=Non
         ``checkpoint.path`` per phase, :func:`phase_checkpoints`, resumed with
         ``resume=True``).  The model's own analysis runs in this process.
     """
-    v.positive("V_D", V_D, "m/s")
-    v.in_range("factor", factor, 1.0, 3.0)
-    V_req = float(factor) * float(V_D)
+    V_req = required_speed(V_D, factor)
     grid = clearance_speeds(model, V_req, speeds)
     chosen = _check_propellers(model, propellers)
     v.integer_at_least("processes", processes, 1)

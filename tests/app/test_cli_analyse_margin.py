@@ -1,0 +1,147 @@
+"""``propwhirl analyse --vd`` ends with the margin to factor x V_D (issue 25.5), and the
+summary reads well with several propellers: '-' in the propeller column of a wing's event,
+one warning listing the propellers it applies to, text instead of NaN."""
+from __future__ import annotations
+
+import re
+
+import pytest
+
+from propwhirl import io
+from propwhirl.app import cli
+from propwhirl.cases.ch09_baseline import baseline_flight, baseline_propeller, baseline_wing
+from propwhirl.model.systems import Installation, PropellerWing
+
+NUMBER = r"[-+]?\d+(?:\.\d+)?"
+
+
+@pytest.fixture(scope="module")
+def two_file(tmp_path_factory):
+    """A 5-element wing with propellers at 1.6 m and the tip (fast to analyse)."""
+    m = PropellerWing(baseline_wing(5), baseline_flight(),
+                      (Installation(baseline_propeller(), 1.6),
+                       Installation(baseline_propeller(), 5.7)), name="two small")
+    path = tmp_path_factory.mktemp("models") / "two.toml"
+    io.save_model(m, path)
+    return path
+
+
+def _run(*argv):
+    """(stdout, stderr, exit code) of ``propwhirl *argv``."""
+    import contextlib
+    import io as _io
+
+    out, err = _io.StringIO(), _io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        rc = cli.main(list(argv))
+    return out.getvalue(), err.getvalue(), rc
+
+
+@pytest.fixture(scope="module")
+def analysed(two_file):
+    """(stdout, stderr, exit code) of ``analyse two.toml --vd 130``."""
+    return _run("analyse", str(two_file), "--vd", "130", "--quiet")
+
+
+@pytest.fixture(scope="module")
+def plain(two_file):
+    """(stdout, stderr, exit code) of ``analyse two.toml`` (no --vd)."""
+    return _run("analyse", str(two_file), "--quiet")
+
+
+def _clearance(path, capsys, *extra):
+    rc = cli.main(["clearance", str(path), "--vd", "130", "--no-minimum", *extra])
+    return capsys.readouterr().out, rc
+
+
+def test_vd_ends_with_clearance_margin_and_least_damping(two_file, analysed, capsys):
+    from propwhirl.studies.campaign import _Task, evaluate_point
+    from propwhirl.studies.clearance import clearance_speeds
+
+    out, _, rc = analysed
+    assert rc == 0                                  # analyse is no clearance: exit code 0
+    last = out.strip().splitlines()[-1]
+    cl, crc = _clearance(two_file, capsys)
+    # clearance: "critical: divergence (onset) of wing 1 at 141.83 m/s, margin -5.1 %"
+    V_req = float(re.search(rf"= ({NUMBER}) m/s: (?:NOT )?CLEARED", cl).group(1))
+    cV, cpct = re.search(rf"critical: .* at ({NUMBER}) m/s, margin ({NUMBER}) %", cl).groups()
+    assert f"1.15 x 130 = {V_req:.2f} m/s" in last
+    m = re.search(rf"at ({NUMBER}) m/s, margin ({NUMBER}) m/s \(({NUMBER}) %\)", last)
+    assert m, last
+    assert m.group(1) == cV and m.group(3) == cpct
+    assert float(m.group(2)) == pytest.approx(float(cV) - V_req, abs=0.006)
+    # the least damping g = 2 zeta below factor x V_D: the campaign's (certify's) definition
+    model = io.load_model(two_file)
+    grid = clearance_speeds(model, V_req)
+    r = evaluate_point(_Task(model, grid, 130.0, V_req, 0.01, True, True))
+    g = re.search(rf"g = 2 zeta = ({NUMBER}) \((.+) at ({NUMBER}) m/s\)", last)
+    assert g, last
+    assert float(g.group(1)) == pytest.approx(2 * r["least_zeta"], abs=6e-5)
+    assert g.group(2) == r["least_zeta_mode"]
+    assert float(g.group(3)) == pytest.approx(r["least_zeta_V"], abs=0.006)
+    assert "nan" not in last.lower()
+    assert crc == 1 and rc == 0
+
+
+def test_factor_passed_on(two_file, capsys):
+    assert cli.main(["analyse", str(two_file), "--vd", "100", "--factor", "1.2",
+                     "--quiet"]) == 0
+    last = capsys.readouterr().out.strip().splitlines()[-1]
+    assert "margin to 1.2 V_D = 1.2 x 100 = 120.00 m/s" in last
+
+
+@pytest.mark.parametrize("argv, says", [
+    (["--factor", "1.2"], "--factor 1.2 needs --vd"),
+    (["--vd", "130", "--factor", "4"], "--factor = 4.0 is outside the valid range [1, 3]"),
+    (["--vd", "0"], "--vd = 0.0 m/s is invalid"),
+])
+def test_bad_vd_factor_refused_before_the_work(two_file, monkeypatch, capsys, argv, says):
+    import propwhirl.analysis.stability as st
+
+    def boom(*a, **k):
+        raise AssertionError("analysed before the options were checked")
+
+    monkeypatch.setattr(st, "analyse", boom)
+    assert cli.main(["analyse", str(two_file), *argv]) == 2
+    err = capsys.readouterr().err
+    assert says in err and len(err.strip().splitlines()) == 1
+
+
+def test_no_instability_is_text_not_nan(two_file, capsys):
+    assert cli.main(["analyse", str(two_file), "--vd", "20", "--speeds", "1", "30", "1",
+                     "--quiet"]) == 0
+    last = capsys.readouterr().out.strip().splitlines()[-1]
+    assert "margin to 1.15 V_D" in last
+    assert "none in the analysed range" in last
+    assert "nan" not in last.lower() and "none" in last
+
+
+def test_divergence_row_without_propeller_share_names_none(plain):
+    out = plain[0]
+    rows = [ln for ln in out.splitlines() if re.match(r"\s+divergence\s+onset\s+wing", ln)]
+    assert rows, out
+    for ln in rows:
+        cols = re.split(r"\s{2,}", ln.strip())
+        assert cols[3] == "-", ln                  # type, event, mode, propeller
+
+
+def test_divergence_row_in_summary_unit():
+    """The rule itself: every share below 0.5 % -> '-'; one at 0.5 % or more -> named."""
+    from propwhirl.analysis.participation import ModeParticipation, PropellerShare
+    from propwhirl.analysis.stability import Instability, _leading
+
+    def ev(shares):
+        props = tuple(PropellerShare(k + 1, 1.6 * (k + 1), s, None, 1.0 - 0.1 * k)
+                      for k, s in enumerate(shares))
+        part = ModeParticipation(100.0, 1.0 - sum(shares), 0.0, props)
+        return Instability("divergence", "onset", 0, "wing 1", 100.0, 0.0, participation=part)
+
+    assert _leading(ev([0.004, 0.001])) == "-"
+    assert _leading(ev([0.004, 0.006])).startswith("1")
+
+
+def test_tip_mach_warning_once_listing_propellers(plain):
+    err = plain[1]
+    tips = [ln for ln in err.splitlines() if "helical tip Mach" in ln]
+    assert len(tips) == 1, err
+    assert "propellers 1, 2:" in tips[0]
