@@ -37,6 +37,8 @@ from propwhirl.model.dlm_mesh import panel_counts
 
 SPEEDS = np.r_[np.arange(100.0, 295.0, 10.0), 296.0]
 COARSE = (4, 12)
+#: (Mach, k) of the wingtip model's DLM forward whirl onset (204 m/s, 6.3 Hz, k on b_ref 0.625 m)
+DAMPING_AT = (0.616, 0.122)
 MODELS = {"wingtip": wingtip_propeller_wing, "two-propeller": two_propeller_wing}
 
 
@@ -56,23 +58,24 @@ def events(model, method: str = "auto") -> tuple[list[tuple[str, str, float, flo
     return [(e.kind, e.label, e.V, e.frequency_hz) for e in a.events if e.event == "onset"], cpu
 
 
-def torsion_mode(wing) -> np.ndarray:
-    """The clean wing's first in-vacuo mode with most of its kinetic energy in twist, on the
-    free wing DOFs (h, φ, α per node)."""
+def first_mode(wing, dof: int = 2) -> np.ndarray:
+    """The clean wing's first in-vacuo mode with most of its kinetic energy in DOF ``dof`` of
+    each node (0 heave: first bending, 2 twist: first torsion), on the free wing DOFs (h, φ, α
+    per node), scaled to a largest value 1 of that DOF."""
     M, _, K = wing_structure(wing)
     keep = free_dofs(wing.n_nodes)
     M, K = M[np.ix_(keep, keep)], K[np.ix_(keep, keep)]
     w, X = np.linalg.eig(np.linalg.solve(M, K))
     for j in np.argsort(w.real):
         x = X[:, j].real
-        alpha = np.zeros_like(x)
-        alpha[2::3] = x[2::3]
-        if alpha @ M @ alpha > 0.5 * (x @ M @ x):
-            return x / np.max(np.abs(x[2::3]))
-    raise RuntimeError("no torsion mode")
+        part = np.zeros_like(x)
+        part[dof::3] = x[dof::3]
+        if part @ M @ part > 0.5 * (x @ M @ x):
+            return x / np.max(np.abs(x[dof::3]))
+    raise RuntimeError("no such mode")
 
 
-def lift_ratios(model, machs) -> dict:
+def lift_ratios(model, machs, damping_at: tuple[float, float]) -> dict:
     """The tip-loss numbers of the module docstring on the default panels."""
     dlm_model = with_dlm(model)
     wing = dlm_model.wing
@@ -91,7 +94,7 @@ def lift_ratios(model, machs) -> dict:
     total = float(np.sum(np.abs(lift) * mesh.width.reshape(ns, nc)[:, 0])
                   / np.sum(wing.lift_slope * chord * mesh.width.reshape(ns, nc)[:, 0]))
     # (b) generalised aerodynamic stiffness of the first torsion mode at k = 0, DLM / strips
-    x = torsion_mode(wing)
+    x = first_mode(wing, 2)
     keep = free_dofs(wing.n_nodes)
     n = keep.size
     V = 100.0
@@ -101,7 +104,19 @@ def lift_ratios(model, machs) -> dict:
     strip = x @ Ka_strip @ x / q
     gaf = {f"{m:.3f}": float(x @ aero.gaf(m, 0.0).real[np.ix_(keep, keep)] @ x / strip)
            for m in machs}
-    return {"panels": (nc, ns), "stations": stations, "total": total, "torsion_gaf": gaf}
+    # (c) generalised aerodynamic damping (Im Q / k) of the first bending and torsion modes at
+    # the reduced frequency and Mach of a DLM event, DLM / strips
+    Mw, kw = damping_at
+    omega = kw * V / aero.b_ref
+    dryC = dataclasses.replace(model, wing_aero=False).second_order(np.array([V])).S2[0][:n, :n]
+    Ca_strip = dryC - pk_system(model, V)(omega)[1][:n, :n]
+    Q = aero.gaf(Mw, kw)[np.ix_(keep, keep)]
+    damping = {}
+    for name, dof in (("bending", 0), ("torsion", 2)):
+        z = first_mode(wing, dof)
+        damping[name] = float((z @ Q.imag @ z / omega) / (z @ Ca_strip @ z / q))
+    return {"panels": (nc, ns), "stations": stations, "total": total, "torsion_gaf": gaf,
+            "damping": damping}
 
 
 def main() -> None:
@@ -141,13 +156,15 @@ def main() -> None:
         if not args.quick:
             print("## why: tip loss and compressibility (wingtip model, default panels)")
             t = time.process_time()
-            r = lift_ratios(wingtip_propeller_wing(), sorted(set(machs)))
+            r = lift_ratios(wingtip_propeller_wing(), sorted(set(machs)), DAMPING_AT)
             print(f"panels {r['panels']}; CPU {time.process_time() - t:.1f} s")
             print("steady lift per unit span DLM / strips (Mach 0) at y/s:", {
                 k: round(v, 3) for k, v in r["stations"].items()})
             print(f"whole-wing lift DLM / strips (Mach 0): {r['total']:.3f}")
             print("first torsion mode generalised aero stiffness DLM / strips at k = 0, by Mach:",
                   {k: round(v, 3) for k, v in r["torsion_gaf"].items()})
+            print(f"generalised aero damping DLM / strips at Mach {DAMPING_AT[0]}, "
+                  f"k = {DAMPING_AT[1]}:", {k: round(v, 3) for k, v in r["damping"].items()})
 
 
 if __name__ == "__main__":
