@@ -30,6 +30,6 @@ def test_wingtip_dlm_whirl_flutter_near_the_strips():
     assert dlm.label == strip.label
     # computed (validation page): 4 x 12 panels +1.7 %, default 8 x 29 panels +1.8 %; the
     # panels lose ~15 % of both the lift and the pitch damping (tip loss, partly offset by the
-    # compressibility at Mach 0.49), which nearly cancel; a b_ref / k or Mach slip would not
+    # compressibility at Mach 0.49), which nearly cancel
     assert 0.0 < dlm.V / strip.V - 1 < 0.05
     assert abs(dlm.frequency_hz / strip.frequency_hz - 1) < 0.03
