@@ -13,7 +13,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from fuzz.conftest import FUZZ, ROOT, held_to_the_rule
-from fuzz.test_fuzz_model_files import VALUES, _leaves, _scaled
+from fuzz.test_fuzz_model_files import VALUES, mutate
 from propwhirl.io.campaign_files import loads
 from propwhirl.studies.campaign import from_spec, tasks
 
@@ -35,20 +35,7 @@ def _check(text: str) -> None:
 @given(data=st.data())
 def test_mutated_values(data):
     doc = tomllib.loads(BASE)
-    leaves = _leaves(doc)
-    for _ in range(data.draw(st.integers(1, 3), label="mutations")):
-        container, key = data.draw(st.sampled_from(leaves), label="leaf")
-        kind = data.draw(st.sampled_from(["scaled", "scaled", "value", "delete", "unknown"]),
-                         label="kind")
-        if kind == "scaled":
-            container[key] = _scaled(container[key], data)
-        elif kind == "value":
-            container[key] = data.draw(VALUES, label="value")
-        elif kind == "delete" and isinstance(container, dict):
-            container.pop(key, None)
-        elif isinstance(container, dict):
-            container[data.draw(st.text("abcdefgh_", min_size=1, max_size=8))] = 1.0
-        leaves = _leaves(doc)
+    mutate(doc, data, ("scaled", "scaled", "value", "delete", "unknown"))
     with held_to_the_rule("campaign: mutated values/keys", SOURCE):
         _check(tomli_w.dumps(doc))
 

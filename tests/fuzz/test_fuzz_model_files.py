@@ -58,15 +58,14 @@ def _scaled(value, data):
     return int(round(out)) if isinstance(value, int) else out
 
 
-@FUZZ
-@given(data=st.data())
-def test_mutated_values(base_text, data):
-    doc = tomllib.loads(base_text)
+def mutate(doc, data, kinds) -> None:
+    """Mutate the TOML document `doc` in place 1–3 times: at a drawn leaf, a kind drawn from
+    `kinds` — "scaled" (:func:`_scaled`), "value" (any of :data:`VALUES`), "delete" the key, or
+    "unknown" (a key the schema does not know).  Shared by the fuzz cases of every TOML file."""
     leaves = _leaves(doc)
     for _ in range(data.draw(st.integers(1, 3), label="mutations")):
         container, key = data.draw(st.sampled_from(leaves), label="leaf")
-        kind = data.draw(st.sampled_from(["scaled", "scaled", "scaled", "value", "delete",
-                                          "unknown"]), label="kind")
+        kind = data.draw(st.sampled_from(list(kinds)), label="kind")
         if kind == "scaled":
             container[key] = _scaled(container[key], data)
         elif kind == "value":
@@ -76,6 +75,13 @@ def test_mutated_values(base_text, data):
         elif isinstance(container, dict):
             container[data.draw(st.text("abcdefgh_", min_size=1, max_size=8))] = 1.0
         leaves = _leaves(doc)
+
+
+@FUZZ
+@given(data=st.data())
+def test_mutated_values(base_text, data):
+    doc = tomllib.loads(base_text)
+    mutate(doc, data, ("scaled", "scaled", "scaled", "value", "delete", "unknown"))
     text = tomli_w.dumps(doc)
     with held_to_the_rule("toml: mutated values/keys", SOURCE):
         _check_model(loads(text, SOURCE))
