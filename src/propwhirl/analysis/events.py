@@ -16,6 +16,8 @@ it carries): the analysis (:mod:`~propwhirl.analysis.stability`), the p-k method
 """
 from __future__ import annotations
 
+import re
+
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, fields
 from typing import Any
@@ -154,12 +156,49 @@ def critical(events: Sequence[Instability], *, exclude: Exclusion = ()) -> Insta
     return min(cands, key=lambda e: (e.V, e.mode)) if cands else None
 
 
+def _named_numbers(label: str) -> set[int] | None:
+    """The propeller numbers a mode's name carries ('... propellers 1–6, 8 ...'), or None."""
+    m = re.search(r"propellers? ([0-9–, ]+)", label)
+    if m is None:
+        return None
+    out: set[int] = set()
+    for part in m.group(1).replace(" ", "").split(","):
+        lo, _, hi = part.partition("–")
+        if lo.isdigit():
+            out.update(range(int(lo), int(hi if hi.isdigit() else lo) + 1))
+    return out or None
+
+
+def at_the_event(e: Instability) -> str:
+    """What a whirl flutter mode is at its event when its name (what it was at the first speed)
+    says otherwise, e.g. 'backward whirl at the onset' for the wingtip model's 'forward 1' at
+    159.39 m/s, or 'at the onset: backward whirl, propeller 3 leading' for a mode named after
+    propeller 7; '' when the name still says it (or for a divergence, a wing mode)."""
+    if e.kind != "flutter" or e.whirl not in ("forward", "backward"):
+        return ""
+    sense = e.label.split()[0] if e.label.startswith(("forward", "backward")) else None
+    if sense is None:
+        return ""
+    p = e.participation
+    lead = p.leading if p is not None else None
+    named = _named_numbers(e.label)
+    if lead is not None and named is not None and lead.propeller not in named:
+        return f"at the {e.event}: {e.whirl} whirl, propeller {lead.propeller} leading"
+    if e.whirl != sense:
+        return f"{e.whirl} whirl at the {e.event}"
+    return ""
+
+
 def describe_critical(c: Instability | None, describe: Callable[[str], str] = str) -> str:
     """One line for the critical instability, e.g. 'flutter of forward 1 (yaw) at 159.39 m/s,
     11.247 Hz' or 'unstable from V = 150 m/s, the start of the range: divergence of wing 1'."""
     if c is None:
         return "none in the speed range"
     what = f"{c.kind} of {describe(c.label)}"
+    there = at_the_event(c)
+    if there:                        # the name says what the mode was at V0: say both
+        what = (what[:-1] + f"; {there})" if what.endswith(")") and describe(c.label) != c.label
+                else f"{what} ({there})")
     if c.event == "unstable-at-start":
         f = f" ({c.frequency_hz:.3f} Hz)" if c.kind == "flutter" else ""
         who = c.propeller_text(count=3)

@@ -343,8 +343,12 @@ def participation_lines(events, indent: str = "") -> list[str]:
     lines = [f"{indent}propellers at each event (numbered from 1): share of the mode's kinetic "
              "energy in each propeller's", f"{indent}pitch and yaw (the wing's: the rest), whirl "
              "sense of its orbit, amplitude relative to the largest"]
+    from propwhirl.analysis.events import at_the_event      # (events imports this module)
+
     for e in with_props:
-        head = f"{indent}  at the {e.kind} {e.event} of {e.label} ({e.V:.2f} m/s)"
+        there = at_the_event(e)
+        head = (f"{indent}  at the {e.kind} {e.event} of {e.label} ({e.V:.2f} m/s"
+                + (f"; {there})" if there else ")"))
         p = e.participation
         if len(p.propellers) == 1:
             lines.append(f"{head}: {p.describe()}")
