@@ -16,7 +16,6 @@ it carries): the analysis (:mod:`~propwhirl.analysis.stability`), the p-k method
 """
 from __future__ import annotations
 
-import re
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, fields
@@ -25,7 +24,7 @@ from typing import Any
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.analysis.participation import ModeParticipation
+from propwhirl.analysis.participation import ModeParticipation, at_the_event
 from propwhirl.results import SavedDict
 
 __all__ = ["Exclusion", "Instability", "UNSTABLE_EVENTS", "critical", "describe_critical"]
@@ -154,39 +153,6 @@ def critical(events: Sequence[Instability], *, exclude: Exclusion = ()) -> Insta
         leave_out = lambda e: e.kind in kinds  # noqa: E731
     cands = [e for e in events if e.event in UNSTABLE_EVENTS and not leave_out(e)]
     return min(cands, key=lambda e: (e.V, e.mode)) if cands else None
-
-
-def _named_numbers(label: str) -> set[int] | None:
-    """The propeller numbers a mode's name carries ('... propellers 1–6, 8 ...'), or None."""
-    m = re.search(r"propellers? ([0-9–, ]+)", label)
-    if m is None:
-        return None
-    out: set[int] = set()
-    for part in m.group(1).replace(" ", "").split(","):
-        lo, _, hi = part.partition("–")
-        if lo.isdigit():
-            out.update(range(int(lo), int(hi if hi.isdigit() else lo) + 1))
-    return out or None
-
-
-def at_the_event(e: Instability) -> str:
-    """What a whirl flutter mode is at its event when its name (what it was at the first speed)
-    says otherwise, e.g. 'backward whirl at the onset' for the wingtip model's 'forward 1' at
-    159.39 m/s, or 'at the onset: backward whirl, propeller 3 leading' for a mode named after
-    propeller 7; '' when the name still says it (or for a divergence, a wing mode)."""
-    if e.kind != "flutter" or e.whirl not in ("forward", "backward"):
-        return ""
-    sense = e.label.split()[0] if e.label.startswith(("forward", "backward")) else None
-    if sense is None:
-        return ""
-    p = e.participation
-    lead = p.leading if p is not None else None
-    named = _named_numbers(e.label)
-    if lead is not None and named is not None and lead.propeller not in named:
-        return f"at the {e.event}: {e.whirl} whirl, propeller {lead.propeller} leading"
-    if e.whirl != sense:
-        return f"{e.whirl} whirl at the {e.event}"
-    return ""
 
 
 def describe_critical(c: Instability | None, describe: Callable[[str], str] = str) -> str:

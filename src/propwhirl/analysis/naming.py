@@ -39,6 +39,7 @@ import numpy as np
 from scipy.optimize import linear_sum_assignment
 
 from propwhirl.analysis.modes import label_modes, model_modes
+from propwhirl.analysis.participation import mode_participation
 from propwhirl.analysis.whirl import whirl_sense
 from propwhirl.engine import Sweep, mac
 from propwhirl.model.protocol import DofMap, Model
@@ -195,8 +196,6 @@ def propeller_names(model: Model, sw: Sweep, names: Sequence[str],
       there are n ≥ 2 of them; ", collective" when every propeller of a set of several moves
       in phase (coherence ≥ :data:`COLLECTIVE_COHERENCE`).
     """
-    from propwhirl.analysis.participation import mode_participation
-
     out = list(names)
     if not whirls:
         return out
