@@ -106,11 +106,15 @@ class ModelAnalysis(Result):
         return replace(out, exact="p-k, doublet-lattice panels") if self.doublet_lattice else out
 
     def describe(self, label: str) -> str:
-        """'label (dominant content)', e.g. 'wing 2 (torsion)'."""
+        """'label (dominant content)', e.g. 'wing 2 (torsion)'; a label that ends in its own
+        parenthesis takes the content inside it: 'backward whirl, propellers 1–6 (1 of 6; pitch)'."""
         c = self.content.get(label)
         if not c:
             return label
-        return f"{label} ({max(c, key=lambda g: c[g])})"
+        content = max(c, key=lambda g: c[g])
+        if label.endswith(")"):
+            return f"{label[:-1]}; {content})"
+        return f"{label} ({content})"
 
     @property
     def onsets(self) -> list[Instability]:
