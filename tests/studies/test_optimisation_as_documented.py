@@ -113,3 +113,25 @@ def test_a_version_1_file_still_loads(tmp_path):
     assert r.analyses_fd == 18 and r.target is None and "150.000 m/s" in str(r)
     r2 = G.OptimisationResult.load(r.save(tmp_path / "o2.json"))
     assert r2.analyses_fd == 18 and math.isfinite(r2.V)
+
+
+def test_openmdao_names_are_the_documented_rule(wingtip):
+    """Every `path` → `name` pair of the OpenMDAO section is openmdao_name's, and a component
+    over those paths has exactly those inputs (no analysis: setup only)."""
+    text = DOCS.read_text(encoding="utf-8")
+    section = text[text.index("## OpenMDAO"):]
+    pairs = re.findall(r"`([\w.\[\]]+)` →\s*`(\w+)`", section)
+    assert len(pairs) >= 3 and ("propellers[6].propeller.f_theta",
+                                "propellers_6_propeller_f_theta") in pairs
+    for path, name in pairs:
+        assert G.openmdao_name(path) == name
+    om = pytest.importorskip("openmdao.api")
+    paths = ["propellers[0].propeller.f_theta", "wing.EI[3]"]
+    comp = G.openmdao_component(wingtip, paths, vd=130.0)
+    prob = om.Problem(reports=False)
+    prob.model.add_subsystem("whirl", comp)
+    prob.setup()
+    prob.final_setup()
+    inputs = {m["prom_name"] for _, m in comp.list_inputs(out_stream=None, prom_name=True)}
+    assert inputs == {"propellers_0_propeller_f_theta", "wing_EI_3"}
+    assert comp.input_names == dict(zip(paths, ["propellers_0_propeller_f_theta", "wing_EI_3"]))
