@@ -69,6 +69,7 @@ def test_a_critical_speed_the_mount_does_not_move_stops_at_once(method, analyses
     assert f.analyses == analyses
     assert V == 80.0 and np.all(x == 1.0)
     assert msg.startswith("not cleared: V_crit = 80.000 m/s is 69.5 m/s short")
+    assert msg.endswith("this mount cannot clear it")
     assert "does not move with these stiffnesses" in msg
 
 

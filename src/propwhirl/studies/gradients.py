@@ -97,6 +97,7 @@ class CriticalSpeed:
     x0: np.ndarray = field(init=False, repr=False)
     units: tuple[str, ...] = field(init=False, repr=False)
     _cache: dict = field(default_factory=dict, repr=False)
+    _labels: dict = field(default_factory=dict, repr=False)
 
     def __post_init__(self) -> None:
         self.paths = _checked_paths(self.paths)
@@ -124,6 +125,7 @@ class CriticalSpeed:
         e = critical_instability(a, static_divergence=self.static_divergence,
                                  low_speed=self.low_speed,
                                  is_wing_divergence=wing_divergence_predicate(m, a))
+        self._labels[key] = "" if e is None else f"{e.kind} of {e.label}"
         if e is None:
             out = (float("inf"), np.zeros(len(self.paths)))
         elif e.event not in ("onset", "recovery"):
@@ -138,6 +140,11 @@ class CriticalSpeed:
     def value(self, x) -> float:
         """V_crit(x) [m/s] (inf when nothing is unstable in the range)."""
         return self._evaluate(x)[0]
+
+    def critical(self, x) -> str:
+        """What the critical instability at x is ("flutter of forward 1"; "" when none)."""
+        self._evaluate(x)
+        return self._labels.get(tuple(np.round(np.asarray(x, dtype=float), 12)), "")
 
     def gradient(self, x) -> np.ndarray:
         """dV_crit/dx [m/s per unit of each path]; an error where the critical event is not a
@@ -256,6 +263,12 @@ def _fd_gradient(f: "CriticalSpeed", x: np.ndarray) -> np.ndarray:
     return g
 
 
+def _what(f: "CriticalSpeed") -> str:
+    """" (the flutter of …)": what V_crit is at the design point, or "" if unknown."""
+    label = f.critical(f.x0) if hasattr(f, "critical") else ""
+    return f" (the {label})" if label else ""
+
+
 def _optimise(f: "CriticalSpeed", method: str, target: float, lower: float, upper: float):
     """SLSQP on the normalised stiffnesses x/x₀ with `method`'s gradients: (x, V, message)."""
     from scipy.optimize import minimize
@@ -275,11 +288,11 @@ def _optimise(f: "CriticalSpeed", method: str, target: float, lower: float, uppe
             reach = float(np.sum(np.maximum(g * (upper - 1.0), g * (lower - 1.0))))
             if reach < REACH_FRACTION * (target - V0):
                 return one, V0, (
-                    f"not cleared: V_crit = {V0:.3f} m/s is {target - V0:.3g} m/s short of "
-                    f"{target:.3f} m/s and does not move with these stiffnesses (V_crit "
-                    f"rises by at most {reach:.3g} m/s, by the gradient at the design "
-                    f"point, between {lower:.3g} and {upper:.3g} times the design values): "
-                    "another mode or parameter governs the critical speed")
+                    f"not cleared: V_crit = {V0:.3f} m/s{_what(f)} is {target - V0:.3g} m/s "
+                    f"short of {target:.3f} m/s and does not move with these stiffnesses (by "
+                    f"the gradient at the design point it rises by at most {reach:.3g} m/s "
+                    f"between {lower:.3g} and {upper:.3g} times the design values): this "
+                    "mount cannot clear it")
     cons = {"type": "ineq", "fun": lambda x: (f.value(x * f.x0) - aim) / target}
     if method == "exact":
         cons["jac"] = lambda x: f.gradient(x * f.x0) * f.x0 / target
