@@ -98,6 +98,9 @@ def test_the_cli_computes_only_the_params_asked_for(flutter, monkeypatch, capsys
     err = capsys.readouterr().err.strip()
     assert "--param 'wing.EI' is invalid" in err and "propwhirl sensitivity wingtip --list" in err
     assert len(err.splitlines()) == 1 and not calls               # refused before analysing
+    assert main(["sensitivity", "wingtip", "--param", "wing.GJ*", "--plot", "s.png"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "--plot draws the per-element" in err and len(err.splitlines()) == 1 and not calls
     assert main(["sensitivity", "wingtip", "--kind", "flutter", "--param", "wing.GJ*",
                  "--param", "flight.density"]) == 0
     out = capsys.readouterr().out
@@ -106,3 +109,12 @@ def test_the_cli_computes_only_the_params_asked_for(flutter, monkeypatch, capsys
     assert main(["sensitivity", "wingtip", "--list"]) == 0
     listed = capsys.readouterr().out
     assert all(p in listed for p in NEW) and calls == [1]
+
+
+def test_a_version_1_entry_has_no_scale():
+    d = {"path": "propellers[0].propeller.pivot_pitch", "value": 0.1, "unit": "m", "doc": "",
+         "dlam_dp": {"re": 1.0, "im": 0.0}, "dV_dp": 2.0, "df_dp": 0.0, "normalised": 0.001}
+    s = S.Sensitivity.from_dict(d)
+    assert s.scale is None and s.per == "value"
+    with pytest.raises(InputError, match=r"sensitivity\.scale = -1\.0 is invalid"):
+        S.Sensitivity.from_dict({**d, "scale": -1.0, "scale_of": "R"})

@@ -182,6 +182,10 @@ def _sensitivity(args: argparse.Namespace) -> int:
                              f"this model (`propwhirl sensitivity {args.model} --list` lists "
                              f"the {len(paths)} valid paths)")
         params = list(dict.fromkeys(args.param))
+        spanwise = ("wing.EI[", "wing.GJ[", "wing.mass_per_length[")
+        if args.plot and not any(q.startswith(spanwise) for q in params):
+            raise InputError("--plot draws the per-element sensitivities of EI, GJ and m: "
+                             "leave out --param, or add paths such as --param 'wing.GJ[0]'")
     a = analyse(model)
     event = a.critical
     if args.kind is not None:
