@@ -102,6 +102,8 @@ class DlmAerodynamics:
         self.cache = dlm_cache.cache_dir()
         self._geometry = dlm_cache.geometry_key(self.mesh.mirrored().corners)
         self.cache_hits = 0
+        #: rational-function fits of the tables (:func:`propwhirl.model.dlm_rfa.node_fit`)
+        self.fits: dict = {}
 
     # ------------------------------------------------------------------ exact
     def aic(self, mach: float, k: float) -> np.ndarray:
