@@ -139,6 +139,11 @@ class DlmAerodynamics:
         """k of table node i: 0 for i = 0, else K_FIRST · 10^((i − 1)/K_PER_DECADE)."""
         return 0.0 if i == 0 else K_FIRST * 10.0 ** ((i - 1) / K_PER_DECADE)
 
+    def node(self, im: int, ik: int) -> np.ndarray:
+        """Q (3 n_nodes, 3 n_nodes) of table node (Mach im · MACH_STEP, k :meth:`k_node` (ik)),
+        computed once (no interpolation)."""
+        return self._node(im, ik)
+
     def _node(self, im: int, ik: int) -> np.ndarray:
         key = (im, ik)
         if key not in self._table:

@@ -176,9 +176,12 @@ def node_fit(aero: DlmAerodynamics, im: int, ks: np.ndarray | None = None,
     key = ("roger", int(im), ks.tobytes(), lags.tobytes())
     if key not in aero.fits:
         keep = free_dofs(aero.n_nodes)
-        mach = im * MACH_STEP
-        Q = np.stack([aero.gaf(mach, k)[np.ix_(keep, keep)] for k in ks])
-        aero.fits[key] = _fit(Q, ks, lags, mach, aero.b_ref)
+        nodes = {aero.k_node(i): i for i in range(len(ks) + 64)}
+        if any(k not in nodes for k in ks):          # not the tables' own k: interpolated
+            Q = np.stack([aero.gaf(im * MACH_STEP, k)[np.ix_(keep, keep)] for k in ks])
+        else:                                        # the table nodes themselves, no more
+            Q = np.stack([aero.node(im, nodes[k])[np.ix_(keep, keep)] for k in ks])
+        aero.fits[key] = _fit(Q, ks, lags, im * MACH_STEP, aero.b_ref)
     return aero.fits[key]
 
 
