@@ -91,6 +91,7 @@ def test_wingtip_events_close_to_pk():
     +0.2 %, -1.0 % in V), the same whirl senses and propeller participation."""
     m = small_wingtip()
     a = analyse(m, speeds=WINGTIP_SPEEDS)
+    assert a.doublet_lattice and a.finite_state is None           # the state space, not p-k
     pk = analyse(m, speeds=WINGTIP_SPEEDS, method="pk")
 
     def onsets(an):
