@@ -10,6 +10,7 @@ pytest.importorskip("panelaero")
 
 from propwhirl.analysis import analyse, critical_sensitivities  # noqa: E402
 from propwhirl.analysis.pk import pk_sweep  # noqa: E402
+from propwhirl.analysis.stability import ModelAnalysis  # noqa: E402
 from propwhirl.cases.ch07_patil import patil_model  # noqa: E402
 from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing  # noqa: E402
 from propwhirl.model import dlm, dlm_cache, dlm_rfa  # noqa: E402
@@ -68,7 +69,7 @@ def test_state_space_roots_are_the_pk_roots_near_the_axis():
             assert np.min(np.abs(lam - p)) < 0.01 * abs(p)
 
 
-def test_analyse_dlm_auto_is_the_roger_state_space_with_pk_events():
+def test_analyse_dlm_auto_is_the_roger_state_space_with_pk_events(tmp_path):
     """The flutter of the Patil wing on panels: the state space 26.89 m/s, the p-k 27.21 m/s.
     Tolerance 2 % on V, 1 % on f: the flutter root of A(V) is 0.2 % from the p-k root at
     27 m/s, and the slow damping slope of this mode turns that into ~1 % in V."""
@@ -77,6 +78,8 @@ def test_analyse_dlm_auto_is_the_roger_state_space_with_pk_events():
     assert a.doublet_lattice and a.finite_state is None
     assert a.warnings[0].startswith(dlm_rfa.RFA_NOTE) and "4 chordwise x 16 spanwise" in a.warnings[0]
     assert "(Roger state space of doublet-lattice wing aerodynamics)" in a.summary().splitlines()[0]
+    back = ModelAnalysis.load(a.save(tmp_path / "a.json"))
+    assert back.doublet_lattice and back.summary() == a.summary()
     pk = analyse(m, speeds=PATIL_SPEEDS, method="pk")
     (e,), (p,) = ([x for x in an.events if x.kind == "flutter" and x.event == "onset"]
                   for an in (a, pk))
