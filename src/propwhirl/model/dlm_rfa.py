@@ -282,7 +282,10 @@ def rfa_note(model, V) -> str:
     (:data:`RFA_NOTE` first): panels, lag roots, fitted k, Mach, the worst fit error."""
     aero = dlm_aerodynamics(model.wing)
     m = aero.mesh
-    fits = fits_used(model, V)
+    V = np.atleast_1d(np.asarray(V, float))
+    lo, hi = (mach_nodes(x / model.flight.speed_of_sound)[0] for x in (V.min(), V.max()))
+    fits = [f for key, f in aero.fits.items()             # the fits computed: no new AIC
+            if key[0] == "roger" and lo <= key[1] <= hi + 1] or fits_used(model, V)
     worst = max(fits, key=lambda f: f.error)
     ks = fits[0].ks
     return (f"{RFA_NOTE} panels ({m.n_chord} chordwise x {m.n_span} spanwise on the half-wing), "
