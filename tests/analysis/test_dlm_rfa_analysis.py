@@ -5,6 +5,8 @@ import dataclasses
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 pytest.importorskip("panelaero")
 
@@ -146,3 +148,24 @@ def test_mach_beyond_the_tables_refused_before_any_aic():
     with pytest.raises(InputError, match=r"Mach = 0.95 \(V = .* m/s\) is invalid for aero = 'dlm'"):
         analyse(m, speeds=[10.0, 20.0, top])
     assert key not in dlm._CACHE
+
+
+@settings(max_examples=12, deadline=None, derandomize=True)
+@given(st.floats(0.5, 1.2 * dlm.MACH_MAX * 330.8027446243564))
+def test_any_speed_gives_a_finite_state_matrix_or_one_line_error(V):
+    """Any airspeed: A(V) finite with its lag roots -(V/b) beta_l on the lag states' diagonal,
+    or (above Mach 0.9) a one-line InputError naming the Mach number."""
+    m = patil_dlm(2, 8)
+    try:
+        A = m.state_matrix([V])[0]
+    except InputError as exc:
+        assert "\n" not in str(exc) and "is invalid for aero = 'dlm'" in str(exc)
+        assert V > dlm.MACH_MAX * m.flight.speed_of_sound
+        return
+    assert V <= dlm.MACH_MAX * m.flight.speed_of_sound * (1 + 1e-12)
+    assert np.all(np.isfinite(A))
+    dm = m.dof_map()
+    lagdiag = np.diag(A)[2 * dm.n_dof:]
+    b = dlm.dlm_aerodynamics(m.wing).b_ref
+    want = -np.repeat(np.asarray(dlm_rfa.DEFAULT_LAGS) * V / b, 3 * (m.wing.n_nodes - 1))
+    assert np.allclose(lagdiag, want)
