@@ -169,3 +169,17 @@ def test_any_speed_gives_a_finite_state_matrix_or_one_line_error(V):
     b = dlm.dlm_aerodynamics(m.wing).b_ref
     want = -np.repeat(np.asarray(dlm_rfa.DEFAULT_LAGS) * V / b, 3 * (m.wing.n_nodes - 1))
     assert np.allclose(lagdiag, want)
+
+
+def test_events_beyond_the_fitted_k_are_flagged():
+    """A 49 Hz event at 2 m/s has k = 2 pi f b / V = 96 on b_ref = 0.625 m, far beyond the
+    fitted k <= 1.78: noted; the same mode at 200 m/s (k = 0.96) is not."""
+    from types import SimpleNamespace
+
+    m = small_wingtip()
+    low, high = (SimpleNamespace(kind="flutter", event="onset", label="wing 4", V=V,
+                                 frequency_hz=49.0) for V in (2.0, 200.0))
+    (note,) = dlm_rfa.extrapolation_notes(m, [low, high])
+    assert note.startswith("V = 2.00 m/s (flutter onset of wing 4): reduced frequency k = 96.2 "
+                           "beyond the Roger fit's k <= 1.78")
+    assert "\n" not in note

@@ -526,7 +526,7 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
     dlm_rfa = chosen != "pk" and getattr(getattr(model, "wing", None), "aero", "") == "dlm" \
         and model.wing_aero
     if dlm_rfa:                                # Mach within the tables before any work
-        from propwhirl.model.dlm_rfa import rfa_note
+        from propwhirl.model.dlm_rfa import extrapolation_notes, rfa_note
         for Vi in (grid[0], grid[-1]):
             check_mach(Vi / model.flight.speed_of_sound, Vi)
     if chosen == "reduced":
@@ -581,7 +581,7 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         "full-order model; the speed is the reduced model's (run method='dense' to check)"
         for p in unconverged) + unconverged_pk
     if dlm_rfa:
-        notes = (rfa_note(model, grid),) + notes
+        notes = (rfa_note(model, grid),) + notes + tuple(extrapolation_notes(model, events))
     try:
         ref = reference(model)
     except v.InputError:                     # a model of another kind: no summary reference

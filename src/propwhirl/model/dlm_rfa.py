@@ -293,3 +293,22 @@ def rfa_note(model, V) -> str:
             f"on k = {ks.min():g}-{ks.max():.3g} ({ks.size} values, root semichord b_ref = "
             f"{aero.b_ref:.4g} m) at every Mach node, linear in Mach V/a; worst fit error "
             f"{100 * worst.error:.2g} % of max |Q| (Mach {worst.mach:.2f})")
+
+
+def extrapolation_notes(model, events) -> list[str]:
+    """One note per event (``Instability``-like: kind, event, label, V [m/s], frequency_hz)
+    whose reduced frequency k = 2π f b_ref / V lies beyond the fitted k (:func:`fit_ks`):
+    there the Roger state space extrapolates Q (at low speeds a structural mode's k is large
+    and its small aerodynamic damping can change sign), so the event is to be checked by the
+    p-k method or by analysing from higher speeds."""
+    b = dlm_aerodynamics(model.wing).b_ref
+    top = float(fit_ks()[-1])
+    out = []
+    for e in events:
+        k = 2 * np.pi * e.frequency_hz * b / e.V
+        if k > top * (1 + 1e-9):
+            out.append(f"V = {e.V:.2f} m/s ({e.kind} {e.event} of {e.label}): reduced frequency "
+                       f"k = {k:.3g} beyond the Roger fit's k <= {top:.3g}, where the state "
+                       "space extrapolates the doublet-lattice loads; check it with method = "
+                       "'pk' or analyse from higher speeds")
+    return out
