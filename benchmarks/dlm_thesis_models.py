@@ -131,8 +131,8 @@ def main() -> None:
             print(f"## {name} (default panels {panel_counts(with_dlm(model).wing)})")
             runs = [("strip", model, "pk")]
             if not args.quick:
-                runs.append(("DLM default", with_dlm(model), "auto"))
-            runs.append((f"DLM {COARSE[0]}x{COARSE[1]}", with_dlm(model, COARSE), "auto"))
+                runs.append(("DLM default", with_dlm(model), "pk"))
+            runs.append((f"DLM {COARSE[0]}x{COARSE[1]}", with_dlm(model, COARSE), "pk"))
             results = {}
             for label, m, method in runs:
                 ev, cpu = events(m, method)

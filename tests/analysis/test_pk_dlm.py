@@ -1,5 +1,6 @@
 """The p-k method on doublet-lattice aerodynamics (issue 23, stages 3-4): a wing with
-aero = "dlm" is analysed by p-k (method "auto" or "pk") with the same events, names,
+aero = "dlm" is analysed by p-k (method "pk"; "auto" is its Roger state space,
+tests/analysis/test_dlm_rfa_analysis.py) with the same events, names,
 participation and summary as the strip p-k, its strip twin's finite-state events beside them."""
 import dataclasses
 
@@ -26,7 +27,7 @@ def patil_dlm(nc=4, ns=32):
 
 @pytest.fixture(scope="module")
 def analysed():
-    return analyse(patil_dlm(), speeds=SPEEDS)            # method "auto": p-k for a DLM wing
+    return analyse(patil_dlm(), speeds=SPEEDS, method="pk")
 
 
 def test_dlm_analysis_is_a_pk_analysis_with_the_strips_beside(analysed):
@@ -52,14 +53,12 @@ def test_saved_dlm_analysis_keeps_its_aerodynamics(analysed, tmp_path):
     assert back.summary() == analysed.summary()
 
 
-def test_dlm_refused_where_it_has_no_state_space():
+def test_dlm_refused_where_it_has_no_block_form():
     m = patil_dlm()
-    with pytest.raises(InputError, match="method = 'dense' is invalid for wing aero = 'dlm'"):
-        analyse(m, speeds=SPEEDS, method="dense")
     with pytest.raises(InputError, match="method = 'reduced' is invalid for wing aero = 'dlm'"):
         analyse(m, speeds=SPEEDS, method="reduced")
-    with pytest.raises(InputError, match="wing aero = 'dlm' has no strip lag states"):
-        m.state_matrix(np.array([10.0]))
+    with pytest.raises(InputError, match="wing aero = 'dlm' has no local \\(block\\) form"):
+        m.second_order_blocks(np.array([10.0]))
 
 
 def test_supersonic_speeds_refused_before_any_panel_work():

@@ -24,7 +24,7 @@ def test_wingtip_dlm_whirl_flutter_near_the_strips():
     dlm_model = strip_model.with_(wing=dataclasses.replace(
         strip_model.wing, aero="dlm", dlm_chordwise_panels=4, dlm_spanwise_panels=12))
     strip = first_whirl_flutter(analyse(strip_model, speeds=SPEEDS, method="pk"))
-    a = analyse(dlm_model, speeds=SPEEDS)
+    a = analyse(dlm_model, speeds=SPEEDS, method="pk")
     assert a.doublet_lattice
     dlm = first_whirl_flutter(a)
     assert dlm.label == strip.label

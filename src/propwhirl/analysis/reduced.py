@@ -36,8 +36,9 @@ METHODS = ("auto", "dense", "reduced", "pk")
 def choose_method(model, method: str) -> str:
     """"dense", "reduced" or "pk" for ``method`` ("auto", "dense", "reduced" or "pk": the
     p-k method with the exact Theodorsen function, typical sections and wings) and ``model``.
-    A wing with ``aero = "dlm"`` (doublet-lattice loads, no state-space form): "auto" is
-    "pk", "dense" and "reduced" are refused.
+    A wing with ``aero = "dlm"`` (doublet-lattice loads): "auto" is "dense" (its Roger
+    state space, :mod:`propwhirl.model.dlm_rfa`), "pk" the p-k method on Q(k), "reduced" is
+    refused (the Roger state space is dense: no local blocks to reduce).
 
     Examples
     --------
@@ -53,12 +54,14 @@ def choose_method(model, method: str) -> str:
     dlm = getattr(getattr(model, "wing", None), "aero", "strip") == "dlm" and model.wing_aero
     if dlm:
         require_panelaero()                 # before the finite-state tracking starts
-    if method == "pk" or (method == "auto" and dlm):
+    if method == "pk":
         check_section(model)
         return "pk"
     if dlm:
-        raise v.InputError(f"method = {method!r} is invalid for wing aero = 'dlm': the "
-                           "doublet-lattice loads have no state-space form; use 'pk' or 'auto'")
+        if method == "reduced":
+            raise v.InputError("method = 'reduced' is invalid for wing aero = 'dlm': its Roger "
+                               "state space is dense; use 'auto', 'dense' or 'pk'")
+        return "dense"
     reducible = hasattr(model, "second_order_blocks")
     if method == "reduced" and not reducible:
         raise v.InputError(f"method = 'reduced' is invalid for a {type(model).__name__}: "

@@ -37,7 +37,8 @@ from propwhirl.analysis.participation import (ModeParticipation, branch_point_sh
                                               events_csv, events_table, participation_lines,
                                               with_participation)
 from propwhirl.analysis.pk import DLM_NOTE, pk_instabilities
-from propwhirl.model.dlm import strip_twin
+from propwhirl.model.dlm import check_mach, strip_twin
+from propwhirl.model.dlm_rfa import RFA_NOTE
 from propwhirl.analysis.reduced import choose_method, reduced_engine_analysis
 from propwhirl.analysis.summary import (FiniteState, FlutterSummary, MethodComparison,
                                         Reference, aero_model_of, compare_methods,
@@ -143,15 +144,18 @@ class ModelAnalysis(Result):
     @property
     def doublet_lattice(self) -> bool:
         """Whether the p-k events come from doublet-lattice wing aerodynamics (the analysis's
-        note saying so, :data:`propwhirl.analysis.pk.DLM_NOTE`, is saved with it)."""
-        return any(w.startswith(DLM_NOTE) for w in self.warnings)
+        note saying so, :data:`propwhirl.analysis.pk.DLM_NOTE`, is saved with it) or from
+        the Roger state space of doublet-lattice wing aerodynamics
+        (:data:`propwhirl.model.dlm_rfa.RFA_NOTE`)."""
+        return any(w.startswith((DLM_NOTE, RFA_NOTE)) for w in self.warnings)
 
     def summary(self) -> str:
         """The instabilities as a text table (the propeller column names the propeller whose
         whirl is given: the one with the largest θ–ψ amplitude, numbered from 1; '-' when every
         propeller's share is below 0.5 %), each event's
         propeller participation, and the critical instability (last line)."""
-        how = ("" if self.finite_state is None else
+        how = ((" (Roger state space of doublet-lattice wing aerodynamics)"
+                if self.doublet_lattice else "") if self.finite_state is None else
                " (p-k method, doublet-lattice wing aerodynamics)" if self.doublet_lattice else
                " (p-k method, exact Theodorsen function)")
         lines = [f"{self.model_name}: instabilities{how} between {self.sweep.V[0]:g} and {self.sweep.V[-1]:g} m/s"]
@@ -490,7 +494,10 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         the modes below a frequency cut-off on a reduced-order model, every crossing then
         converged on the full-order model (:mod:`propwhirl.analysis.reduced`); "auto"
         (default): reduced for wing models of more than
-        :data:`~propwhirl.analysis.reduced.REDUCED_ABOVE` states, else dense.
+        :data:`~propwhirl.analysis.reduced.REDUCED_ABOVE` states, else dense.  A wing with
+        ``aero = "dlm"``: "auto" and "dense" analyse its Roger state space (the lag states of
+        the rational-function fit of Q(k, V/a), :mod:`propwhirl.model.dlm_rfa`), "pk" the p-k
+        method on Q(k) itself, "reduced" is refused.
 
     Returns
     -------
@@ -520,9 +527,17 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         raise v.InputError(f"vgf = {vgf!r} is invalid: must be True or False")
     if options is not None and not isinstance(options, TrackingOptions):
         raise v.InputError(f"options = {options!r} is invalid: must be a TrackingOptions")
-    dm = model.dof_map()
     chosen = choose_method(model, method)
-    finite = strip_twin(model)                 # tracks, names and starts the p-k modes
+    # p-k: the strip twin tracks, names and starts the p-k modes; a DLM wing otherwise runs on
+    # its own Roger state space (propwhirl.model.dlm_rfa)
+    finite = strip_twin(model) if chosen == "pk" else model
+    dm = finite.dof_map()
+    dlm_rfa = chosen != "pk" and getattr(getattr(model, "wing", None), "aero", "") == "dlm" \
+        and model.wing_aero
+    if dlm_rfa:                                # Mach within the tables before any work
+        from propwhirl.model.dlm_rfa import extrapolation_notes, rfa_note
+        for Vi in (grid[0], grid[-1]):
+            check_mach(Vi / model.flight.speed_of_sound, Vi)
     if chosen == "reduced":
         run = reduced_engine_analysis(model, grid, displacement=dm.displacement,
                                       state_labels=dm.state_labels, options=options, xtol=xtol,
@@ -574,6 +589,8 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         f"V = {p.V:.2f} m/s ({p.kind} {p.direction} of {names[p.mode]}): not converged on the "
         "full-order model; the speed is the reduced model's (run method='dense' to check)"
         for p in unconverged) + unconverged_pk
+    if dlm_rfa:
+        notes = (rfa_note(model, grid),) + notes + tuple(extrapolation_notes(model, events))
     try:
         ref = reference(model)
     except v.InputError:                     # a model of another kind: no summary reference

@@ -164,6 +164,11 @@ def _check_model(model) -> None:
     if not isinstance(model, PropellerWing):
         raise v.InputError(f"model = {type(model).__name__} is invalid: parameter derivatives "
                            "are available for a PropellerWing")
+    if model.wing_aero and model.wing.aero == "dlm":
+        raise v.InputError(
+            "wing.aero = 'dlm' is invalid for exact sensitivities and gradients: they need the "
+            "parameter derivatives of the doublet-lattice (Roger) blocks, which propwhirl does "
+            "not have; use finite differences (propwhirl.studies.sweep) or aero = 'strip'")
     if model.wing.in_plane:
         raise v.InputError(
             f"wing.EI_chordwise = {model.wing.EI_chordwise!r} N m^2 (in-plane bending): parameter "

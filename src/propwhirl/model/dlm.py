@@ -102,6 +102,8 @@ class DlmAerodynamics:
         self.cache = dlm_cache.cache_dir()
         self._geometry = dlm_cache.geometry_key(self.mesh.mirrored().corners)
         self.cache_hits = 0
+        #: rational-function fits of the tables (:func:`propwhirl.model.dlm_rfa.node_fit`)
+        self.fits: dict = {}
 
     # ------------------------------------------------------------------ exact
     def aic(self, mach: float, k: float) -> np.ndarray:
@@ -136,6 +138,11 @@ class DlmAerodynamics:
     def k_node(i: int) -> float:
         """k of table node i: 0 for i = 0, else K_FIRST · 10^((i − 1)/K_PER_DECADE)."""
         return 0.0 if i == 0 else K_FIRST * 10.0 ** ((i - 1) / K_PER_DECADE)
+
+    def node(self, im: int, ik: int) -> np.ndarray:
+        """Q (3 n_nodes, 3 n_nodes) of table node (Mach im · MACH_STEP, k :meth:`k_node` (ik)),
+        computed once (no interpolation)."""
+        return self._node(im, ik)
 
     def _node(self, im: int, ik: int) -> np.ndarray:
         key = (im, ik)

@@ -15,10 +15,23 @@ aeroelastic system at airspeed V with q = ½ρV² is
     (M_s − q (b/V)² A₂) q̈ + (C_s − q (b/V) A₁) q̇ + (K_s − q A₀) q − q Σ_l A_{2+l} x_l = 0
 
 on the model's DOFs (the wing block; the propellers' Houbolt–Reed loads as the model has
-them), i.e. a constant-coefficient state matrix of size 2n + L n_w (:func:`state_matrix`),
-which the eigenvalue engine analyses like the strip model's.  The fit is at one Mach number
-(a matched point: give the Mach of the speed of interest); its error is reported
-(:attr:`RogerFit.error`: the largest |Q_fit − Q| over the fitted k, relative to max |Q|).
+them), i.e. a constant-coefficient state matrix of size 2n + L n_w, which the eigenvalue engine
+analyses like the strip model's.  :func:`roger_fit` is one fit at one Mach number (a matched
+point); its error is reported (:attr:`RogerFit.error`: the largest |Q_fit − Q| over the fitted
+k, relative to max |Q|; :attr:`RogerFit.entry_error` per entry).
+
+**The runtime's state space** (:func:`second_order`, what ``PropellerWing.second_order`` and
+``analyse(model)`` use on a wing with ``aero = "dlm"``): the Mach number is V / a at each
+analysed speed, as the p-k method's (:func:`propwhirl.model.dlm.pk_system_dlm`).  Q is fitted
+once at every Mach node of the tables (steps of :data:`~propwhirl.model.dlm.MACH_STEP`) over the
+table's reduced frequencies 0 … :data:`K_MAX` (:func:`fit_ks`) with the lag roots
+:data:`DEFAULT_LAGS`, and the A's are interpolated linearly in Mach between the two nodes
+around V / a.  The least squares being linear in Q, that is exactly the fit of the tables'
+Q(k, V/a) (linear in Mach too): the state space approximates the very Q the p-k iterates on.
+The fits are data (matrices fitted from Q(k), kept with the geometry's tables,
+:class:`~propwhirl.model.dlm.DlmAerodynamics`), assembled here with the model's structure and
+propellers at each speed.  The lag states are ordered lag by lag: x_1 of every free wing DOF,
+then x_2, …; labelled "node i h lag 1" etc.
 """
 from __future__ import annotations
 
@@ -27,10 +40,17 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.model.dlm import check_mach, dlm_aerodynamics
+from propwhirl.model.dlm import (MACH_MAX, MACH_STEP, DlmAerodynamics, check_mach,
+                                 dlm_aerodynamics)
+from propwhirl.model.statespace import SecondOrder
 
 #: default lag roots β_l (nondimensional, on the reference semichord)
 DEFAULT_LAGS = (0.2, 0.5, 1.0, 2.0)
+#: highest reduced frequency (on b_ref) of the runtime's fits (:func:`fit_ks`): the wing's
+#: flutter and whirl-flutter roots of the thesis's models sit at k = 0.05–0.8
+K_MAX = 2.0
+#: the note that opens a Roger-state-space doublet-lattice analysis's notes
+RFA_NOTE = "state-space aerodynamics: doublet-lattice"
 
 
 def _basis(k: np.ndarray, lags: np.ndarray) -> np.ndarray:
@@ -50,6 +70,9 @@ class RogerFit:
     mach: float
     b_ref: float
     error: float
+    #: per entry (n_w, n_w): max over the fitted k of |Q_fit − Q|_ij / max over k of |Q_ij|
+    #: (NaN where Q_ij is zero at every k)
+    entry_error: np.ndarray | None = None
 
     def __call__(self, k: float) -> np.ndarray:
         """Q_fit(ik) (n_w, n_w) complex."""
@@ -76,14 +99,24 @@ def roger_fit(model, mach: float, ks, lags=DEFAULT_LAGS) -> RogerFit:
     aero = dlm_aerodynamics(model.wing)
     keep = free_dofs(model.wing.n_nodes)
     Q = np.stack([aero.gaf(mach, k)[np.ix_(keep, keep)] for k in ks])      # (m, n_w, n_w)
+    return _fit(Q, ks, lags, float(mach), aero.b_ref)
+
+
+def _fit(Q: np.ndarray, ks: np.ndarray, lags: np.ndarray, mach: float, b_ref: float) -> RogerFit:
+    """The least-squares Roger fit of Q (m, n_w, n_w) tabulated at the m reduced frequencies
+    ``ks`` with the lag roots ``lags``."""
     B = _basis(ks, lags)
     rows = np.concatenate([B.real, B.imag])                                  # (2m, 3 + L)
     rhs = np.concatenate([Q.real, Q.imag]).reshape(2 * ks.size, -1)
     coef, *_ = np.linalg.lstsq(rows, rhs, rcond=None)
     A = coef.reshape((3 + lags.size,) + Q.shape[1:])
-    fit = np.tensordot(B, A, axes=1)
-    error = float(np.abs(fit - Q).max() / np.abs(Q).max())
-    return RogerFit(A, lags, ks, float(mach), aero.b_ref, error)
+    A.flags.writeable = False
+    dev = np.abs(np.tensordot(B, A, axes=1) - Q)
+    error = float(dev.max() / np.abs(Q).max())
+    scale = np.abs(Q).max(axis=0)
+    with np.errstate(all="ignore"):
+        entry = np.where(scale > 0, dev.max(axis=0) / scale, np.nan)
+    return RogerFit(A, lags, ks, mach, b_ref, error, entry)
 
 
 def state_matrix(model, fit: RogerFit, V) -> np.ndarray:
@@ -117,4 +150,165 @@ def state_matrix(model, fit: RogerFit, V) -> np.ndarray:
             r = slice(2 * n + l * nw, 2 * n + (l + 1) * nw)
             A[r, n:n + nw] = np.eye(nw)
             A[r, r] = -(Vi / b) * fit.lags[l] * np.eye(nw)
+    return out
+
+
+# ----------------------------------------------------------------------------- the runtime's
+def fit_ks(k_max: float = K_MAX) -> np.ndarray:
+    """The reduced frequencies of the runtime's fits: the tables' own nodes 0, 0.01, … up to
+    ``k_max`` (:meth:`~propwhirl.model.dlm.DlmAerodynamics.k_node`: no interpolated Q fitted)."""
+    out, i = [0.0], 1
+    while DlmAerodynamics.k_node(i) <= k_max * (1 + 1e-12):
+        out.append(DlmAerodynamics.k_node(i))
+        i += 1
+    return np.array(out)
+
+
+def node_fit(aero: DlmAerodynamics, im: int, ks: np.ndarray | None = None,
+             lags=DEFAULT_LAGS) -> RogerFit:
+    """The Roger fit of ``aero``'s tables at Mach node ``im`` (Mach im · MACH_STEP) on the free
+    wing DOFs (root removed), over ``ks`` (default :func:`fit_ks`) with ``lags``; computed once
+    per geometry and kept with its tables (``aero.fits``)."""
+    from propwhirl.model.assembly import free_dofs
+
+    ks = fit_ks() if ks is None else np.asarray(ks, float)
+    lags = np.asarray(lags, float)
+    key = ("roger", int(im), ks.tobytes(), lags.tobytes())
+    if key not in aero.fits:
+        keep = free_dofs(aero.n_nodes)
+        nodes = {aero.k_node(i): i for i in range(len(ks) + 64)}
+        if any(k not in nodes for k in ks):          # not the tables' own k: interpolated
+            Q = np.stack([aero.gaf(im * MACH_STEP, k)[np.ix_(keep, keep)] for k in ks])
+        else:                                        # the table nodes themselves, no more
+            Q = np.stack([aero.node(im, nodes[k])[np.ix_(keep, keep)] for k in ks])
+        aero.fits[key] = _fit(Q, ks, lags, im * MACH_STEP, aero.b_ref)
+    return aero.fits[key]
+
+
+def mach_nodes(mach: float) -> tuple[int, float]:
+    """(im, t): Mach = (im + t) · MACH_STEP, 0 <= t < 1, im the table node below (the top node
+    at :data:`~propwhirl.model.dlm.MACH_MAX`)."""
+    x = float(mach) / MACH_STEP
+    im = min(int(np.floor(x + 1e-12)), int(round(MACH_MAX / MACH_STEP)))
+    return im, x - im
+
+
+def coefficients(model, V) -> np.ndarray:
+    """The Roger matrices A (nV, 3 + L, n_w, n_w) of ``model``'s doublet-lattice wing at the
+    airspeeds V [m/s]: at Mach V / a, linear in Mach between the fits of the two Mach nodes
+    around it (:func:`node_fit`).  InputError when V / a is beyond the tables' Mach."""
+    V = np.atleast_1d(np.asarray(V, float))
+    a = model.flight.speed_of_sound
+    for Vi in V:
+        check_mach(Vi / a, Vi)
+    aero = dlm_aerodynamics(model.wing)
+    out = None
+    for i, Vi in enumerate(V):
+        im, t = mach_nodes(Vi / a)
+        A = node_fit(aero, im).A
+        if t > 1e-9:
+            A = (1 - t) * A + t * node_fit(aero, im + 1).A
+        if out is None:
+            out = np.empty((V.size,) + A.shape)
+        out[i] = A
+    return out
+
+
+def lag_labels(model, lags=DEFAULT_LAGS) -> tuple[tuple[str, ...], tuple[int, ...]]:
+    """Labels ("node i h lag l") and wing nodes of the Roger lag states of ``model``: lag by
+    lag, every free wing DOF (h, φ, α of nodes >= 1)."""
+    from propwhirl.model.assembly import free_dofs, wing_dof_labels
+
+    nn = model.wing.n_nodes
+    keep = free_dofs(nn)
+    dofs = np.asarray(wing_dof_labels(nn), dtype=object)[keep]
+    labels = tuple(f"{d} lag {l + 1}" for l in range(len(lags)) for d in dofs)
+    nodes = tuple(int(i // 3) for _ in range(len(lags)) for i in keep)
+    return labels, nodes
+
+
+def second_order(assembly, V: np.ndarray, omega=None) -> SecondOrder:
+    """The second-order system with lag states (:class:`~propwhirl.model.statespace.SecondOrder`)
+    of a PropellerWing with ``aero = "dlm"`` at the airspeeds V [m/s] (1-D array): its structure
+    and propellers (the ``assembly``'s blocks with the wing aerodynamics off, Houbolt–Reed loads
+    unchanged at the hubs), and on the free wing DOFs the Roger terms of :func:`coefficients`
+
+        S1 −= ½ρ b² A₂,  S2 −= ½ρ V b A₁,  S3 −= ½ρV² A₀,  S4 = ½ρV² [A₃ … A_{2+L}],
+        ẋ_l = q̇_w − (V/b) β_l x_l,
+
+    the lag states after any the structure and propellers have.  ``omega`` [rad/s] as
+    :meth:`~propwhirl.model.systems.PropellerWingAssembly.blocks`."""
+    model = assembly.model
+    V = np.atleast_1d(np.asarray(V, float))
+    A = coefficients(model, V)
+    dry = assembly.with_switches(wing_aero=False).blocks(V, omega).dense()
+    lags = np.asarray(DEFAULT_LAGS, float)
+    b = dlm_aerodynamics(model.wing).b_ref
+    rho = model.flight.density
+    nV, n, m0 = V.size, dry.n_dof, dry.n_lag
+    nw, L = A.shape[-1], lags.size
+    m = m0 + L * nw
+    q = (0.5 * rho * V**2)[:, None, None]
+    S1, S2, S3 = (np.array(X, float) for X in (dry.S1, dry.S2, dry.S3))
+    S1[:, :nw, :nw] -= 0.5 * rho * b * b * A[:, 2]
+    S2[:, :nw, :nw] -= q * (b / V)[:, None, None] * A[:, 1]
+    S3[:, :nw, :nw] -= q * A[:, 0]
+    S4 = np.zeros((nV, n, m))
+    Ww, Wv, Wq = np.zeros((nV, m, m)), np.zeros((nV, m, n)), np.zeros((nV, m, n))
+    S4[:, :, :m0], Ww[:, :m0, :m0], Wv[:, :m0], Wq[:, :m0] = dry.S4, dry.Ww, dry.Wv, dry.Wq
+    eye = np.eye(nw)
+    for l in range(L):
+        r = slice(m0 + l * nw, m0 + (l + 1) * nw)
+        S4[:, :nw, r] = q * A[:, 3 + l]
+        Ww[:, r, r] = -(V / b * lags[l])[:, None, None] * eye
+        Wv[:, r, :nw] = eye
+    labels, _ = lag_labels(model, lags)
+    return SecondOrder(S1, S2, S3, S4, Ww, Wv, Wq, dry.q_labels, dry.w_labels + labels)
+
+
+def fits_used(model, V) -> list[RogerFit]:
+    """The runtime's node fits (:func:`node_fit`) that airspeeds between min(V) and max(V)
+    [m/s] use (computed if not yet), by Mach."""
+    a = model.flight.speed_of_sound
+    aero = dlm_aerodynamics(model.wing)
+    V = np.atleast_1d(np.asarray(V, float))
+    lo, _ = mach_nodes(V.min() / a)
+    hi, t = mach_nodes(V.max() / a)
+    return [node_fit(aero, im) for im in range(lo, hi + (2 if t > 1e-9 else 1))]
+
+
+def rfa_note(model, V) -> str:
+    """What a Roger-state-space doublet-lattice analysis over the speeds V [m/s] used
+    (:data:`RFA_NOTE` first): panels, lag roots, fitted k, Mach, the worst fit error."""
+    aero = dlm_aerodynamics(model.wing)
+    m = aero.mesh
+    V = np.atleast_1d(np.asarray(V, float))
+    lo, hi = (mach_nodes(x / model.flight.speed_of_sound)[0] for x in (V.min(), V.max()))
+    fits = [f for key, f in aero.fits.items()             # the fits computed: no new AIC
+            if key[0] == "roger" and lo <= key[1] <= hi + 1] or fits_used(model, V)
+    worst = max(fits, key=lambda f: f.error)
+    ks = fits[0].ks
+    return (f"{RFA_NOTE} panels ({m.n_chord} chordwise x {m.n_span} spanwise on the half-wing), "
+            f"Roger state space: lag roots {', '.join(f'{x:g}' for x in fits[0].lags)}, fitted "
+            f"on k = {ks.min():g}-{ks.max():.3g} ({ks.size} values, root semichord b_ref = "
+            f"{aero.b_ref:.4g} m) at every Mach node, linear in Mach V/a; worst fit error "
+            f"{100 * worst.error:.2g} % of max |Q| (Mach {worst.mach:.2f})")
+
+
+def extrapolation_notes(model, events) -> list[str]:
+    """One note per event (``Instability``-like: kind, event, label, V [m/s], frequency_hz)
+    whose reduced frequency k = 2π f b_ref / V lies beyond the fitted k (:func:`fit_ks`):
+    there the Roger state space extrapolates Q (at low speeds a structural mode's k is large
+    and its small aerodynamic damping can change sign), so the event is to be checked by the
+    p-k method or by analysing from higher speeds."""
+    b = dlm_aerodynamics(model.wing).b_ref
+    top = float(fit_ks()[-1])
+    out = []
+    for e in events:
+        k = 2 * np.pi * e.frequency_hz * b / e.V
+        if k > top * (1 + 1e-9):
+            out.append(f"V = {e.V:.2f} m/s ({e.kind} {e.event} of {e.label}): reduced frequency "
+                       f"k = {k:.3g} beyond the Roger fit's k <= {top:.3g}, where the state "
+                       "space extrapolates the doublet-lattice loads; check it with method = "
+                       "'pk' or analyse from higher speeds")
     return out

@@ -271,7 +271,8 @@ class PropellerWing(StateSpaceModel):
     def dof_map(self) -> DofMap:
         """The states of :meth:`second_order`: the free wing DOFs (node ≥ 1: h, φ, α, eq. 7.20),
         with in-plane bending the in-plane v, χ of nodes ≥ 1, then θ, ψ of each flexibly
-        mounted propeller, then the lag states of nodes ≥ 1."""
+        mounted propeller, then the lag states of nodes ≥ 1 (with ``aero = "dlm"`` the Roger
+        lag states, :func:`propwhirl.model.dlm_rfa.lag_labels`)."""
         nn = self.wing.n_nodes
         keep = free_dofs(nn)
         labels = list(np.asarray(wing_dof_labels(nn), dtype=object)[keep])
@@ -292,7 +293,10 @@ class PropellerWing(StateSpaceModel):
             kinds += ["theta", "psi"]
             node += [-1, -1]
             prop += [j, j]
-        if self.wing_aero:
+        if self.wing_aero and self.wing.aero == "dlm":     # the Roger lag states
+            from propwhirl.model.dlm_rfa import lag_labels
+            w_labels, w_node = lag_labels(self)
+        elif self.wing_aero:
             k = LAG_STATES[self.wing.aero_model]
             w_node = tuple(i for i in range(1, nn) for _ in range(k))
             w_labels = tuple(f"node {i} w{r + 1}" for i in range(1, nn) for r in range(k))
@@ -408,7 +412,11 @@ class PropellerWingAssembly(EvaluatorBase):
             validity.check_lift_slope(model.wing.node_properties()["Cla"][1:], "lift_slope",
                                       "wing_aero = false")
         with np.errstate(all="ignore"):
-            sys = self.blocks(V, omega).dense()
+            if model.wing_aero and model.wing.aero == "dlm":     # Roger's state space of the DLM
+                from propwhirl.model import dlm_rfa
+                sys = dlm_rfa.second_order(self, V, omega)
+            else:
+                sys = self.blocks(V, omega).dense()
         return self._checked(sys, V, {"omega": omega})
 
     def second_order_blocks(self, V, omega=None) -> BlockSystem:
@@ -429,11 +437,11 @@ class PropellerWingAssembly(EvaluatorBase):
         groups = []
         lag, m, w_labels, keep_w = None, 0, (), np.arange(0)
         if model.wing_aero:
-            if wing.aero == "dlm":      # no finite-state form of the DLM (no RFA): say so
+            if wing.aero == "dlm":      # the DLM's Roger state space is dense: no local blocks
                 raise v.InputError(
-                    f"model {model.name!r}: wing aero = 'dlm' has no strip lag states; analyse "
-                    "it with method = 'pk' (or 'auto'), take its Roger state space from "
-                    "propwhirl.model.dlm_rfa, or set aero = 'strip'")
+                    f"model {model.name!r}: wing aero = 'dlm' has no local (block) form; its "
+                    "Roger state space is dense (second_order, method = 'dense' or 'auto') or "
+                    "analyse it with method = 'pk', or set aero = 'strip'")
             aero = wing_aero_blocks(wing, model.flight.density, V)
             groups.append(LocalBlocks("wing strips", aero["qrows"], -aero["Ma"], -aero["Ca"],
                                       -aero["Ka"]))

@@ -106,8 +106,9 @@ class Wing:
         and the propellers' side force, yaw and gyroscopic moments load it there; None (the
         default): rigid in its plane, the thesis's model
     aero : "strip" (default: Theodorsen strips at the nodes, finite-state lag states, the
-        thesis's model) or "dlm" (doublet-lattice panels of the planform, exact in k, through
-        the p-k method only: :mod:`propwhirl.model.dlm`)
+        thesis's model) or "dlm" (doublet-lattice panels of the planform,
+        :mod:`propwhirl.model.dlm`: analysed by its Roger state space,
+        :mod:`propwhirl.model.dlm_rfa`, or by the p-k method with method "pk")
     dlm_chordwise_panels, dlm_spanwise_panels : the doublet-lattice panel counts (aero =
         "dlm"); spanwise None: the fewest with a panel aspect ratio <= 2
         (:func:`propwhirl.model.dlm_mesh.panel_counts`)
@@ -175,8 +176,8 @@ class Wing:
         "plane (the thesis's model)", default="none", form="spanwise", range=(1e-3, 1e14)))
     aero: Literal["strip", "dlm"] = field(default="strip", metadata=spec(
         "aero", "", "wing aerodynamics: \"strip\" (Theodorsen strips, finite-state lag states; "
-        "the thesis's) or \"dlm\" (doublet-lattice panels, p-k method only; needs the dlm "
-        "extra)", default="setting"))
+        "the thesis's) or \"dlm\" (doublet-lattice panels: Roger state space, or p-k with "
+        "method pk; needs the dlm extra)", default="setting"))
     dlm_chordwise_panels: int = field(default=8, metadata=spec(
         "dlm_chordwise_panels", "", "doublet-lattice panels along the chord (aero = \"dlm\")",
         default="setting"))
