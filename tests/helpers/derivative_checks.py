@@ -4,6 +4,7 @@ import numpy as np
 
 from propwhirl.analysis import analyse
 from propwhirl.model import derivatives as D
+from propwhirl.studies import paths as P
 
 NAMES = ("S1", "S2", "S3", "S4", "Ww", "Wv", "Wq")
 
@@ -32,9 +33,12 @@ def assert_matches_central_differences(model, par, exact, V, rel_step=1e-5, rtol
 def fd_critical_speed(model, path, value, event, rel=1e-3):
     """Central difference of the engine's speed of the same event (kind, mode) [m/s per unit]."""
     h = rel * abs(value)
+    # whole-distribution factors ("wing.GJ*", value 1) and the density are set as the studies
+    # set them; every other path as the derivatives name it
+    set_value = P.set_value if path.endswith("*") or path == "flight.density" else D.with_value
     V = []
     for s in (1.0, -1.0):
-        a = analyse(D.with_value(model, path, value + s * h))
+        a = analyse(set_value(model, path, value + s * h))
         e = min((x for x in a.events if (x.kind, x.event, x.label) ==
                  (event.kind, event.event, event.label)), key=lambda x: abs(x.V - event.V))
         V.append(e.V)
