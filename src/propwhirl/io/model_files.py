@@ -250,12 +250,32 @@ def _read_field(f: Field, t: _Table | None, ctx: dict[str, Propeller],
                                         f"invalid: must be one of {choices}"))
         cls = DERIVATIVE_SOURCES[source]
         return _build(cls, t.sub(s.key, ("source",) + schema.table_keys(cls)), ctx)
+    if form == "groups":
+        return _read_groups(t, s.key)
     if form == "reference":
         key = t.raw(s.key)
         if not isinstance(key, str) or key not in ctx:
             raise t.bad(s.key, f"the key of a [propellers.*] table ({', '.join(ctx) or 'none given'})")
         return ctx[key]
     return _read_scalar(f, t, s.key)
+
+
+def _read_groups(t: _Table, key: str) -> dict[str, tuple[int, ...]]:
+    """The [groups] table: NAME = [indices of installations, from 0] (checked further by the
+    model: :func:`propwhirl.model.systems.check_groups`)."""
+    raw = t.raw(key)
+    if not isinstance(raw, dict):
+        raise t.bad(key, "a table [groups] of NAME = [indices of installations, from 0]")
+    out = {}
+    for name, members in raw.items():
+        if (not isinstance(members, list) or not members
+                or any(isinstance(i, bool) or not isinstance(i, int) for i in members)):
+            raise _in_file(v.InputError(
+                f"[{t.name(key)}] {name} = {v.short_repr(members)} is invalid: must be a "
+                "non-empty list of installation indices (integers from 0: 0 is the first entry "
+                "of installations, 'propeller 1' of the reports)"))
+        out[name] = tuple(members)
+    return out
 
 
 def _old_default(cls: type, f: Field, t: _Table | None) -> Any:
@@ -527,6 +547,9 @@ class _Writer:
             out[s.key] = {"source": source, **self.encode(value, _join(where, s.key))}
         elif form == "reference":
             out[s.key] = self.propeller_key(value)
+        elif form == "groups":
+            if value:
+                out[s.key] = {k: [int(i) for i in x] for k, x in value.items()}
         elif form in ("spanwise", "number_or_string") and callable(value) and not isinstance(value, str):
             raise _function(name, form)
         elif form == "spanwise":

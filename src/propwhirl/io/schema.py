@@ -300,6 +300,7 @@ def _value_type(f: Field) -> str:
         "table": "table", "tables": "list of tables", "mapping": "table",
         "derivatives": "table", "reference": "string",
         "installations": "list of tables",
+        "groups": "table of lists of integers",
     }[f.form]
 
 
@@ -312,7 +313,7 @@ def _default(f: Field, value: Any = dataclasses.MISSING) -> str:
     kind = f.spec.default
     if value is dataclasses.MISSING:
         value = f.default if f.default is not dataclasses.MISSING else f.spec.file_default
-    if kind == "none" and value in (None, ()):
+    if kind == "none" and (value is None or (isinstance(value, (tuple, dict)) and not value)):
         return "omitted"
     if dataclasses.is_dataclass(value):
         return f"its defaults ({kind})"
