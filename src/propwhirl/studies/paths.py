@@ -12,9 +12,27 @@ figures and reports number propellers from 1)::
     wing.rayleigh[0]                     # one entry of a list of numbers
     propellers[1].propeller.f_theta      # a field of the second installation's propeller
     propellers[*].propeller.f_psi        # the same field of every installation
+    propellers[0:6].propeller.f_psi      # a slice (Python's: 0 to 5, STOP excluded; 0:6:2)
+    propellers[0,2,4].propeller.f_psi    # a list of installations
+    propellers[high_lift].propeller.f_psi    # a named group (PropellerWing.groups, [groups])
     propellers[0].propeller.masses[0].mass
     propellers[0].propeller.inertia.I_theta_P    # an entry of a mapping
     propeller.beta_075_deg               # an IsolatedPropeller's propeller
+    propellers[0].propeller.f_theta,propellers[0].propeller.f_psi   # linked: one value, both
+
+Selections (``*``, slices, lists, groups) address lists of tables (the installations, a
+propeller's masses); a list of numbers takes one index.  The indices of installations are
+those of ``model.propellers`` and of the file's ``installations`` list, from 0 — the reports
+and figures number propellers from 1, so "propellers 1–6" are ``propellers[0:6]``.  A named
+group is a model's ``groups`` entry (``PropellerWing(groups={"high_lift": (0, 1, 2)})``, the
+``[groups]`` table of a model file).  Setting a field through one installation changes that
+installation's propeller only, also when the file shares one ``[propellers.KEY]`` table
+between installations (each installation holds its own copy once changed).
+
+Linked paths (a tuple of paths, or paths joined by commas outside brackets) are one
+parameter: every path takes its one value (an isotropic mount: f_theta and f_psi together).
+They must share the unit (or all be scale forms) and reach distinct values; the value is
+checked against every path's range.
 
 The field metadata (``model/fields.py``'s :func:`~propwhirl.model.fields.spec`: unit, range,
 description) gives every path its unit and valid range, and the list of valid paths of a
