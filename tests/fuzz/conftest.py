@@ -47,17 +47,20 @@ def record(category: str, outcome: str) -> None:
 @contextmanager
 def held_to_the_rule(category: str, source: str | None = None):
     """Run one fuzz case: warnings are errors; an InputError must be one line (naming
-    ``source`` when given); anything else fails the test.  Records the outcome."""
+    ``source`` when given) — or, a model file's every error at once, one such line per error
+    (its ``errors``); anything else fails the test.  Records the outcome."""
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         try:
             yield
         except InputError as exc:
-            msg = str(exc)
-            assert "\n" not in msg, f"multi-line error: {msg!r}"
-            assert msg.strip(), "empty error message"
-            if source is not None:
-                assert source in msg, f"error does not name {source!r}: {msg}"
+            lines = getattr(exc, "errors", None) or [str(exc)]
+            assert "\n".join(lines) == str(exc), f"errors are not the message: {exc!s}"
+            for msg in lines:
+                assert "\n" not in msg, f"multi-line error: {msg!r}"
+                assert msg.strip(), "empty error message"
+                if source is not None:
+                    assert source in msg, f"error does not name {source!r}: {msg}"
             record(category, "InputError")
             return
     record(category, "result")

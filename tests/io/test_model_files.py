@@ -177,7 +177,7 @@ def test_every_model_field_is_known_to_the_writer():
                       "beta_075_deg", "zero_lift_angle_deg", "advance_rule", "inertia", "rpm",
                       "derivatives", "aero_settings", "rotation", "name"},
         "PropellerWing": {"wing", "flight", "propellers", "wing_aero", "propeller_aero",
-                          "rotating", "name", "_nodes"},
+                          "rotating", "name", "groups", "_nodes"},
         "IsolatedPropeller": {"propeller", "flight", "propeller_aero", "rotating", "name"},
         "Installation": {"propeller", "y", "mount", "aero"},
         "FlightCondition": {"density", "speed_of_sound", "speed_range"},

@@ -104,8 +104,8 @@ def random_model(data) -> PropellerWing:
               dict(beta_075_deg=u(25.0, 45.0), zero_lift_angle_deg=u(-4.0, -1.0),
                    advance_rule=data.draw(st.sampled_from(["thesis_eq_9_1",
                                                            "blade_element"]))))
-        base = dict(radius=0.762, hub_radius=0.125, blade_chord=0.094,
-                    rotor=PointMass(8.0, -1.16), masses=(PointMass(35.0, -0.86),),
+        base = dict(radius=0.762, hub_radius=0.125, blade_chord=0.094, n_blades=3,
+                    pivot_pitch=0.0, pivot_yaw=0.0, rotor=PointMass(8.0, -1.16), masses=(PointMass(35.0, -0.86),),
                     f_theta=u(5.0, 8.0), f_psi=u(5.0, 8.0), damping_theta=0.01,
                     damping_psi=0.01, operation=op, aero_settings=settings_,
                     rotation=data.draw(st.sampled_from([1, -1])), **kw)
@@ -160,7 +160,9 @@ def test_advance_ratio_rates():
     np.testing.assert_allclose(dmu, (1 + mu ** 2) * math.pi / 180, rtol=1e-15)
     np.testing.assert_allclose(dom, -V / (mu ** 2 * prop.radius) * dmu, rtol=1e-14)
     cs = Propeller(**{**{f: getattr(prop, f) for f in ("radius", "rotor", "masses", "f_theta",
-                                                        "f_psi", "blade_chord", "hub_radius")},
+                                                        "f_psi", "blade_chord", "hub_radius",
+                                                        "n_blades", "pivot_pitch", "pivot_yaw",
+                                                        "rotation")},
                       "operation": "constant-speed", "rpm": 2000.0})
     dmu, dom = B.advance_ratio_rates(cs, "rpm", V)
     Om = 2000.0 * 2 * math.pi / 60
@@ -177,4 +179,7 @@ def test_an_unknown_derivative_source_has_no_rotation_parameters():
 
     assert B.parameters(prop, True) and not B.parameters(
         Propeller(**{f: getattr(prop, f) for f in ("radius", "rotor", "masses", "f_theta",
-                                                   "f_psi")}, derivatives=source), True)
+                                                   "f_psi", "pivot_pitch", "pivot_yaw",
+                                                   "rotation", "beta_075_deg",
+                                                   "zero_lift_angle_deg")},
+                  derivatives=source), True)

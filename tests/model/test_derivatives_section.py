@@ -44,7 +44,7 @@ def random_model(data) -> PropellerWing:
             masses=(PointMass(u(20.0, 40.0), u(-0.9, -0.6)),), pivot_pitch=u(-0.2, 0.2),
             pivot_yaw=u(-0.2, 0.2), f_theta=u(4.0, 9.0), K_psi=u(5e4, 2e5),
             damping_theta=0.02, damping_psi=0.02, operation="constant-speed",
-            rpm=u(1500.0, 2500.0),
+            rpm=u(1500.0, 2500.0), rotation=1,
             derivatives=MeasuredDerivatives({k: u(-1.0, 1.0) for k in DERIVATIVE_NAMES}))
         installs.append(Installation(prop, float(wing.node_y[node]),
                                      mount=data.draw(st.sampled_from(["flexible", "rigid"]))))

@@ -78,6 +78,7 @@ CHANGES = [
     ((), dict(propeller_aero=False), True),
     ((), dict(rotating=False), True),
     ((), dict(name="another name"), False),
+    ((), dict(groups={"tip": (0,)}), False),             # names for parameter paths only
     (("wing",), dict(semi_span=6.0), True),
     (("wing",), dict(mass_per_length=30.0), True),
     (("wing",), dict(EI=8e5), True),

@@ -64,7 +64,7 @@ def test_measured_derivatives_subset_rest_zero():
         ({"inertia": {"I_x": 1.0}}, ["inertia", "unknown entry", "I_x"]),
         ({"inertia": {"I_theta_P": -1.0}}, ["I_theta_P", "-1.0 kg m^2", "[1e-8, 1e9]"]),
         ({"pivot_pitch": np.inf}, ["pivot_pitch", "finite"]),
-        ({"blade_chord": None}, ["blade_chord is required", "Houbolt-Reed"]),
+        ({"blade_chord": None}, ["missing blade_chord", "Houbolt-Reed"]),
     ],
 )
 def test_bad_propeller_input(change, words):

@@ -124,7 +124,8 @@ def test_variants_and_grid():
     ("wing.gj", r"parameter path 'wing.gj' is invalid: wing has no field 'gj'; nearest valid paths: wing.GJ"),
     ("GJ", r"PropellerWing has no field 'GJ'; nearest valid paths: wing.GJ"),
     ("flight.densty", r"flight has no field 'densty'; nearest valid paths: flight.density"),
-    ("propellers[2].propeller.f_theta", r"propellers has 2 entries \(indices 0 to 1\); nearest valid "
+    ("propellers[2].propeller.f_theta", r"propellers has 2 entries \(indices 0 to 1, from 0: propellers\[0\] is "
+                                        r"propeller 1 of the reports\); nearest valid "
                                         r"paths: propellers\[1\].propeller.f_theta"),
     ("propellers.propeller.f_theta", r"propellers is a list of tables: give an index"),
     ("wing.rayleigh", r"wing.rayleigh is a list of numbers: address one entry; nearest valid paths: "

@@ -607,7 +607,8 @@ def main(argv: list[str] | None = None) -> int:
         print(f"propwhirl: interrupted{detail}", file=sys.stderr, flush=True)
         return EXIT_INTERRUPTED
     except InputError as exc:
-        print(f"propwhirl: error: {limits.printable(_one_line(str(exc)))}", file=sys.stderr)
+        for line in getattr(exc, "errors", None) or [str(exc)]:   # a file's every error
+            print(f"propwhirl: error: {limits.printable(_one_line(line))}", file=sys.stderr)
         return 2
     except OSError as exc:  # a file error not raised through propwhirl.fileio
         name = getattr(exc, "filename", None)

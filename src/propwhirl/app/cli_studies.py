@@ -110,12 +110,34 @@ FAILED_POINTS_HELP = ("A point whose model cannot be built or whose analysis fai
                       "error), as for bad input.")
 
 
+#: The index and link syntax of parameter paths (--list-params; docs/studies.md).
+PATH_SYNTAX = (
+    "indices of installations are from 0 (propellers[0] is propeller 1 of the reports); "
+    "select several with",
+    "  propellers[*]                  every installation",
+    "  propellers[0:6]                a Python slice: 0 to 5 (STOP excluded; 0:6:2 every other)",
+    "  propellers[0,2,4]              a list",
+    "  propellers[NAME]               a named group: the model file's [groups] table, "
+    "NAME = [indices from 0]",
+    "link paths with commas to set one value on each (quote the whole in the shell):",
+    '  --param "propellers[0].propeller.f_theta,propellers[0].propeller.f_psi" 6 14 5',
+)
+
+
 def _list_parameters(model) -> int:
     from propwhirl.studies import paths
 
     echo(f"{model.name}: parameter paths (PATH* scales a distribution by a factor)")
     for p in paths.parameters(model):
         echo(f"  {p.describe()}")
+    for line in PATH_SYNTAX:
+        echo(line)
+    groups = paths.groups_of(model)
+    if groups:
+        echo("groups of this model (indices into propellers, from 0):")
+        for name, members in groups.items():
+            echo(f"  propellers[{name}] = propellers[{','.join(map(str, members))}] "
+                 f"(propellers {', '.join(str(i + 1) for i in members)} of the reports)")
     return 0
 
 
@@ -207,11 +229,18 @@ def _add_sweep(sub) -> None:
                        description="Critical speed (kind, mode, dominant propeller) of MODEL "
                        "at N values of one parameter, e.g. --param "
                        "propellers[0].propeller.f_psi 3 12 10, or --param wing.EI* 0.5 2 7 "
-                       "(a factor on the distribution).  --list-params lists the paths.  "
+                       "(a factor on the distribution).  Installations are indexed from 0 "
+                       "(propellers[0] is propeller 1 of the reports); several at once: "
+                       "propellers[0:6] (a slice), propellers[0,2,4], propellers[NAME] (a "
+                       "group of the model file's [groups] table); linked paths take one "
+                       "value: --param \"propellers[0].propeller.f_theta,"
+                       "propellers[0].propeller.f_psi\" 6 14 5 (quote paths with brackets).  "
+                       "--list-params lists the paths.  "
                        + FAILED_POINTS_HELP)
     _add_study_options(p)
     p.add_argument("--param", nargs=4, metavar=("PATH", "START", "STOP", "N"),
-                   help="the parameter path and N values from START to STOP")
+                   help="the parameter path (or linked paths PATH1,PATH2: one value set on "
+                   "each) and N values from START to STOP")
     p.add_argument("--list-params", action="store_true", help="list the model's parameter paths")
     p.set_defaults(func=_sweep)
 
@@ -220,7 +249,9 @@ def _add_map(sub) -> None:
     p = sub.add_parser("map", help="critical speed of a model over two parameter paths",
                        description="Critical speed of MODEL over the N1 x N2 grid of two "
                        "parameters: --param PATH START STOP N twice (`propwhirl sweep MODEL "
-                       "--list-params` lists the paths).  " + FAILED_POINTS_HELP)
+                       "--list-params` lists the paths, the selections propellers[0:6], "
+                       "propellers[0,2,4], propellers[NAME] and linked paths PATH1,PATH2).  "
+                       + FAILED_POINTS_HELP)
     _add_study_options(p)
     p.add_argument("--param", nargs=4, action="append", metavar=("PATH", "START", "STOP", "N"),
                    help="a parameter path and N values from START to STOP (give it twice)")

@@ -76,7 +76,8 @@ def bennett_bland_propeller(case: int, settings: aero.AeroSettings = aero.AeroSe
         spin_inertia=SPIN_INERTIA,
         f_theta=c.f_theta, f_psi=c.f_psi, damping="zeta",
         damping_theta=c.two_zeta_theta / 2, damping_psi=c.two_zeta_psi / 2,
-        beta_075_deg=c.beta_deg, advance_rule=advance_rule,
+        beta_075_deg=c.beta_deg, zero_lift_angle_deg=-3.0, advance_rule=advance_rule,
+        rotation=1,
         derivatives=aero.HouboltReedSource(bennett_bland_geometry(), settings),
     )
     return IsolatedPropeller(prop, FlightCondition(c.density_slug_ft3 * SLUG_FT3, RR_SPEED_OF_SOUND,

@@ -77,6 +77,7 @@ def baseline_propeller(**changes) -> Propeller:
         damping="g",
         beta_075_deg=35.0,
         zero_lift_angle_deg=-3.0,
+        rotation=1,
     )
     base.update(changes)
     return Propeller(**base)

@@ -27,6 +27,7 @@ Layout of a file (TOML tables in this order)::
 """
 from __future__ import annotations
 
+import contextvars
 import difflib
 import math
 import re
@@ -46,6 +47,7 @@ from propwhirl.model.propeller_aero import Distribution
 from propwhirl.model.systems import Installation
 
 _MISSING = object()
+_FAILED = object()   # a [propellers.KEY] table that could not be read (its errors reported)
 _NUMBER_HELP = {"spanwise": "give a number or one value per element (evaluate the function at "
                             "wing.element_y)",
                 "number_or_string": "give a number or one of the strings",
@@ -66,6 +68,28 @@ def _in_file(exc: v.InputError) -> v.InputError:
     return exc
 
 
+#: Most errors of one file reported (the rest are counted).
+MAX_ERRORS = 20
+#: The errors of the file being read (set by :func:`loads`: every error of a file is reported
+#: at once); None outside it: the first error is raised (campaign and modal files).
+_ERRORS: contextvars.ContextVar[list[str] | None] = contextvars.ContextVar("_ERRORS", default=None)
+
+
+class _Failed(Exception):
+    """A table (or a key) that could not be read: its errors are recorded already; whatever
+    depends on it is not read (no error follows from another)."""
+
+
+def _report(exc: v.InputError) -> None:
+    """Record `exc` (one error of the file) when every error is collected; else raise it."""
+    errors = _ERRORS.get()
+    if errors is None:
+        raise exc
+    text = str(exc)
+    if text not in errors:
+        errors.append(text)
+
+
 class _Table:
     """A TOML table being read: known keys only; errors name the table and the key as written."""
 
@@ -75,13 +99,14 @@ class _Table:
                                         "table"))
         self.data, self.where = data, where
         allowed = tuple(allowed)
-        unknown = [k for k in data if k not in allowed]
-        if unknown:
-            close = difflib.get_close_matches(unknown[0], allowed, 1)
+        #: unknown keys (reported): a key missing from this table may be one of them misspelled
+        self.unknown = [k for k in data if k not in allowed]
+        for key in self.unknown:   # each one reported
+            close = difflib.get_close_matches(key, allowed, 1)
             hint = f" (did you mean {close[0]}?)" if close else ""
-            raise _in_file(v.InputError(
-                f"unknown key {unknown[0]!r} in {_table_label(where)}{hint}: valid keys are "
-                f"{', '.join(allowed)}"))
+            _report(_in_file(v.InputError(
+                f"unknown key {key!r} in {_table_label(where)}{hint}: valid keys are "
+                f"{', '.join(allowed)}")))
 
     def name(self, key: str) -> str:
         return _join(self.where, key)
@@ -89,7 +114,9 @@ class _Table:
     def has(self, key: str) -> bool:
         return key in self.data
 
-    def missing(self, key: str, what: str = "", kind: str = "key") -> v.InputError:
+    def missing(self, key: str, what: str = "", kind: str = "key") -> Exception:
+        if self.unknown:     # perhaps misspelled as an unknown key: that one is reported
+            return _Failed()
         return _in_file(v.InputError(f"missing {kind} {key!r} in {_table_label(self.where)}"
                                      + (f" ({what})" if what else "")))
 
@@ -228,8 +255,19 @@ def _read_field(f: Field, t: _Table | None, ctx: dict[str, Propeller],
         raw = t.raw(s.key)
         if not isinstance(raw, list):
             raise t.bad(s.key, "a list of tables", _what(f))
-        return tuple(_build(item, _Table(x, f"{t.name(s.key)}[{i}]", schema.table_keys(item)), ctx)
-                     for i, x in enumerate(raw))
+        out, failed = [], False
+        for i, x in enumerate(raw):   # every entry read, its errors reported
+            try:
+                out.append(_build(item, _Table(x, f"{t.name(s.key)}[{i}]",
+                                               schema.table_keys(item)), ctx))
+            except v.InputError as exc:
+                _report(exc)
+                failed = True
+            except _Failed:
+                failed = True
+        if failed:
+            raise _Failed
+        return tuple(out)
     if form == "mapping":
         m = t.sub(s.key, [e.key for e in s.entries])
         out = {}
@@ -250,12 +288,34 @@ def _read_field(f: Field, t: _Table | None, ctx: dict[str, Propeller],
                                         f"invalid: must be one of {choices}"))
         cls = DERIVATIVE_SOURCES[source]
         return _build(cls, t.sub(s.key, ("source",) + schema.table_keys(cls)), ctx)
+    if form == "groups":
+        return _read_groups(t, s.key)
     if form == "reference":
         key = t.raw(s.key)
         if not isinstance(key, str) or key not in ctx:
             raise t.bad(s.key, f"the key of a [propellers.*] table ({', '.join(ctx) or 'none given'})")
+        if ctx[key] is _FAILED:       # the table's own errors are reported
+            raise _Failed
         return ctx[key]
     return _read_scalar(f, t, s.key)
+
+
+def _read_groups(t: _Table, key: str) -> dict[str, tuple[int, ...]]:
+    """The [groups] table: NAME = [indices of installations, from 0] (checked further by the
+    model: :func:`propwhirl.model.systems.check_groups`)."""
+    raw = t.raw(key)
+    if not isinstance(raw, dict):
+        raise t.bad(key, "a table [groups] of NAME = [indices of installations, from 0]")
+    out = {}
+    for name, members in raw.items():
+        if (not isinstance(members, list) or not members
+                or any(isinstance(i, bool) or not isinstance(i, int) for i in members)):
+            raise _in_file(v.InputError(
+                f"[{t.name(key)}] {name} = {v.short_repr(members)} is invalid: must be a "
+                "non-empty list of installation indices (integers from 0: 0 is the first entry "
+                "of installations, 'propeller 1' of the reports)"))
+        out[name] = tuple(members)
+    return out
 
 
 def _old_default(cls: type, f: Field, t: _Table | None) -> Any:
@@ -271,26 +331,39 @@ def _build(cls: type, t: _Table, ctx: dict[str, Propeller]) -> Any:
     """An instance of schema class `cls` from table `t` (whose keys were checked)."""
     kw: dict[str, Any] = {}
     sections: dict[str, _Table | None] = {}
+    failed = False          # a key could not be read: its error is reported, cls not built
     try:  # keys standing for other fields (the ISA altitude of [flight]): io/alternatives.py
         given, replaced = alternatives.read(cls, t, {f.name: f.key for f in schema.fields_of(cls)})
     except v.InputError as exc:
-        raise _in_file(exc) from None
+        _report(_in_file(exc))
+        alt = alternatives.ALTERNATIVES.get(cls)
+        given, replaced, failed = {}, set(alt.replaces if alt else ()), True
     kw.update(given)
     for f in schema.fields_of(cls):
         if f.spec.key is None or f.name in replaced:
             continue
-        table: _Table | None = t
-        if f.spec.section is not None:
-            sec = f.spec.section
-            if sec not in sections:
-                allowed = [k for g in schema.section_fields(cls, sec) for k in g.keys()]
-                sections[sec] = t.sub(sec, allowed) if t.has(sec) else None
-            table = sections[sec]
-        value = _old_default(cls, f, table)
-        if value is _MISSING:
-            value = _read_field(f, table, ctx, t)
+        try:
+            table: _Table | None = t
+            if f.spec.section is not None:
+                sec = f.spec.section
+                if sec not in sections:
+                    allowed = [k for g in schema.section_fields(cls, sec) for k in g.keys()]
+                    sections[sec] = t.sub(sec, allowed) if t.has(sec) else None
+                table = sections[sec]
+            value = _old_default(cls, f, table)
+            if value is _MISSING:
+                value = _read_field(f, table, ctx, t)
+        except v.InputError as exc:   # reported; the other keys are read on
+            _report(exc)
+            failed = True
+            continue
+        except _Failed:
+            failed = True
+            continue
         if value is not _MISSING:
             kw[f.name] = value
+    if failed:
+        raise _Failed
     with _Context(t.where, cls, t):
         return cls(**kw)
 
@@ -362,8 +435,15 @@ def _from_dict(data: dict[str, Any]) -> Any:
     if not isinstance(props_raw, dict):
         raise top.bad("propellers", "tables [propellers.KEY]")
     keys = schema.table_keys(Propeller)
-    ctx = {k: _build(Propeller, _Table(p, f"propellers.{k}", keys), {})
-           for k, p in props_raw.items()}
+    ctx: dict[str, Any] = {}
+    for k, p in props_raw.items():   # every table read; a failed one is not referred to again
+        try:
+            ctx[k] = _build(Propeller, _Table(p, f"propellers.{k}", keys), {})
+        except v.InputError as exc:
+            _report(exc)
+            ctx[k] = _FAILED
+        except _Failed:
+            ctx[k] = _FAILED
     if cls is Propeller:
         if top.has("name"):
             top.string("name")
@@ -385,8 +465,12 @@ def loads(text: str, source: str = "<string>", *, notes: list[str] | None = None
     """The model in TOML `text` (a PropellerWing, IsolatedPropeller or Propeller).
 
     Every problem — bad TOML, a key given twice, an unknown or missing key, a wrong type, an
-    invalid value, a format version newer than this propwhirl — is a one-line InputError whose
-    message starts with `source` and names the key as written in the file.
+    invalid value, a format version newer than this propwhirl — is a one-line error starting
+    with `source` and naming the key as written in the file.  Every error of the file is
+    reported at once (one InputError, one line per error, at most :data:`MAX_ERRORS` of them;
+    the lines are also its attribute ``errors``); a table that cannot be read is not used
+    further, so no error follows from another.  Bad TOML and an unknown format version stop
+    the reading at once.
 
     A file of an older format version (``format_version = 1``, or none) is read as that
     version built its model (:mod:`propwhirl.io.versions`); one line starting with `source` and
@@ -424,18 +508,41 @@ def loads(text: str, source: str = "<string>", *, notes: list[str] | None = None
     limits.check_nesting(data, source)
     reading = versions.Reading()
     token = versions.CURRENT.set(reading)
+    errors: list[str] = []
+    collecting = _ERRORS.set(errors)
     try:
         model = _from_dict(data)
     except v.InputError as exc:
-        raise v.InputError(f"{source}: {exc}") from exc
+        _report(exc)
+    except _Failed:
+        pass
     except (TypeError, ValueError) as exc:  # anything a constructor let through unchecked
-        raise v.InputError(f"{source}: invalid model: {exc}") from exc
+        errors.append(f"invalid model: {exc}")
     finally:
+        _ERRORS.reset(collecting)
         versions.CURRENT.reset(token)
+    if errors:
+        raise _file_errors(source, errors)
     note = reading.note(source)
     if notes is not None and note is not None:
         notes.append(note)
     return model
+
+
+def _file_errors(source: str, errors: list[str]) -> v.InputError:
+    """One InputError of every error of file `source`: one line each, naming the file (its
+    lines also as the attribute ``errors``)."""
+    def table(e: str) -> bool:     # the [propellers.KEY] tables last, as the file has them
+        m = re.search(r"\[([^\]]*)\]", e)
+        return bool(m) and m.group(1).startswith("propellers.")
+
+    errors = sorted(errors, key=table)
+    lines = [f"{source}: {e}" for e in errors[:MAX_ERRORS]]
+    if len(errors) > MAX_ERRORS:
+        lines.append(f"{source}: and {len(errors) - MAX_ERRORS} more errors")
+    exc = v.InputError("\n".join(lines))
+    exc.errors = lines  # type: ignore[attr-defined]
+    return exc
 
 
 def load_model(path: str | Path, *, notes: list[str] | None = None) -> Any:
@@ -527,6 +634,9 @@ class _Writer:
             out[s.key] = {"source": source, **self.encode(value, _join(where, s.key))}
         elif form == "reference":
             out[s.key] = self.propeller_key(value)
+        elif form == "groups":
+            if value:
+                out[s.key] = {k: [int(i) for i in x] for k, x in value.items()}
         elif form in ("spanwise", "number_or_string") and callable(value) and not isinstance(value, str):
             raise _function(name, form)
         elif form == "spanwise":

@@ -300,6 +300,7 @@ def _value_type(f: Field) -> str:
         "table": "table", "tables": "list of tables", "mapping": "table",
         "derivatives": "table", "reference": "string",
         "installations": "list of tables",
+        "groups": "table of lists of integers",
     }[f.form]
 
 
@@ -312,7 +313,7 @@ def _default(f: Field, value: Any = dataclasses.MISSING) -> str:
     kind = f.spec.default
     if value is dataclasses.MISSING:
         value = f.default if f.default is not dataclasses.MISSING else f.spec.file_default
-    if kind == "none" and value in (None, ()):
+    if kind == "none" and (value is None or (isinstance(value, (tuple, dict)) and not value)):
         return "omitted"
     if dataclasses.is_dataclass(value):
         return f"its defaults ({kind})"
@@ -468,7 +469,10 @@ reads it; from Python `propwhirl.io.save_model(model, path)` and `propwhirl.io.l
 library). `examples/wingtip.toml` is an example.
 
 Reading is strict: an unknown key, a missing required key, a key given twice or a value of the
-wrong type is an error naming the file and the key. Omitted optional keys take the defaults
+wrong type is an error naming the file and the key. Every error of a file is reported at once,
+one line each (`propwhirl: error: FILE: [table] key = ... is invalid: ...`, exit code 2; at most
+20); a table that cannot be read is not used further, and a table with an unknown key reports
+no missing key (it may be the misspelled one), so no error follows from another. Omitted optional keys take the defaults
 below (the defaults of the Python classes); the writer writes every value, so a saved file does
 not depend on them. Floats are written exactly (a save and load round trip is exact).
 
@@ -488,7 +492,10 @@ Required keys: a value of the aircraft that no default can stand for is *require
 reader names the missing key with its meaning, unit and range). Some keys are required only
 where they are used: the blade geometry (`n_blades`, `hub_radius_m`, `blade_chord_m`) when
 the propeller's derivatives come from its blades by Houbolt–Reed (no `[derivatives]` table),
-the blade angles (`beta_075_deg`, `zero_lift_angle_deg`) for fixed-pitch operation. Defaults
+the blade angles (`beta_075_deg`, `zero_lift_angle_deg`) for fixed-pitch operation. The
+Python classes require the same values: `Propeller(...)` without `pivot_pitch`, `pivot_yaw`,
+`rotation` (or the blade geometry, or the blade angles, where used) is one InputError naming
+every missing one, so a script and a file never build different models. Defaults
 kept: switches, labels and numerical settings; thin-aerofoil values (lift-curve slope 2 pi,
 aerodynamic centre at quarter chord); the Rodden–Rose cut-off slope 4 pi; the spin inertia
 M_r R^2/3 (eq. 9.2); and no structural damping (Rayleigh and mount damping 0: the
@@ -507,6 +514,12 @@ damping g or zeta up to 2 (critically damped and beyond), Rayleigh coefficients 
 1e3 1/s and 1 s, dimensionless derivatives within ±1e3, chordwise positions within the chord
 and lift-curve slopes in (0, 4 pi]. A value beyond is a typing or unit error, and the
 computation would overflow (an EI of 1e300 N m^2 gives infinite matrices).
+
+Groups (type = "propeller-wing"): a top-level `[groups]` table names groups of installations
+for parameter paths of studies, each a list of indices into `installations` from 0 (as in the
+paths; the reports number propellers from 1): `high_lift = [0, 1, 2, 3, 4, 5]` makes
+`propellers[high_lift].propeller.f_theta` set the first six installations' f_theta
+(docs/studies.md).
 
 | suffix | unit |
 |---|---|

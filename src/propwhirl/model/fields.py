@@ -54,6 +54,7 @@ Form = Literal[
     "derivatives",       # an aerodynamic derivative source: a table chosen by its `source` key
     "reference",         # a Propeller, written as the key of a [propellers.KEY] table
     "installations",     # the installed propellers of a wing: a list of tables
+    "groups",            # named groups of installations: a table NAME = [indices from 0]
     "unsaved",           # not in the file: only the Python default can be saved (`doc` says why)
     "derived",           # not in the file: computed by the class from the other fields
 ]

@@ -44,6 +44,27 @@ from propwhirl.model.propeller_aero import (
 CROSS_DERIVATIVES = ("CZ_psi", "CZ_r", "Cm_psi", "Cm_r", "CY_theta", "CY_q", "Cn_theta", "Cn_q")
 
 
+#: The fields a Propeller must be given (no default stands for them), as a model file must:
+#: field → None (always) or the condition of :data:`propwhirl.model.fields.REQUIRED_WHEN`
+#: ("houbolt-reed": derivatives from the blades, derivatives=None; "fixed-pitch").
+REQUIRED: dict[str, str | None] = {
+    "pivot_pitch": None, "pivot_yaw": None, "rotation": None,
+    "n_blades": "houbolt-reed", "hub_radius": "houbolt-reed", "blade_chord": "houbolt-reed",
+    "beta_075_deg": "fixed-pitch", "zero_lift_angle_deg": "fixed-pitch",
+}
+_REQUIRED_DOC = {
+    "pivot_pitch": "pitch pivot position l_theta [m], aft of the wing mid-chord",
+    "pivot_yaw": "yaw pivot position l_psi [m], aft of the wing mid-chord",
+    "rotation": "+1 counter-clockwise seen from the front, -1 clockwise",
+    "n_blades": "number of blades, for Houbolt-Reed derivatives (derivatives = None)",
+    "hub_radius": "hub radius r0 [m], for Houbolt-Reed derivatives (derivatives = None)",
+    "blade_chord": "blade chord [m], for Houbolt-Reed derivatives (derivatives = None)",
+    "beta_075_deg": "blade angle at 0.75 R [deg], for operation = 'fixed-pitch' (the default)",
+    "zero_lift_angle_deg": "blade-section zero-lift angle [deg], for operation = 'fixed-pitch' "
+                           "(the default)",
+}
+
+
 class DerivativeSource(Protocol):
     """Gives the 16 propeller aerodynamic derivatives (4.25) at airspeeds V [m/s] and
     rotational speeds Ω [rad/s] (arrays of equal shape), for a propeller of radius R [m]."""
@@ -87,6 +108,12 @@ class PointMass:
 class Propeller:
     """A flexibly mounted tractor propeller (SI units; positions aft of the wing mid-chord).
 
+    Required, as in a model file (no default stands for a value of the aircraft; one
+    InputError names every missing one, :data:`REQUIRED`): radius, rotor, pivot_pitch,
+    pivot_yaw, rotation, a mount stiffness or frequency per axis; n_blades, hub_radius and
+    blade_chord when the derivatives come from the blades (derivatives = None); beta_075_deg
+    and zero_lift_angle_deg for fixed-pitch operation (the default).
+
     Parameters
     ----------
     radius : rotor radius R [m]
@@ -126,11 +153,11 @@ class Propeller:
     masses: tuple[PointMass, ...] = field(default=(), metadata=spec(
         "masses", "", "further point masses on the shaft (motor, nacelle, ...)",
         default="physical"))
-    pivot_pitch: float = field(default=0.0, metadata=spec(
-        "pivot_pitch_m", "m", "pitch pivot position l_theta", default="physical",
+    pivot_pitch: float | None = field(default=None, metadata=spec(
+        "pivot_pitch_m", "m", "pitch pivot position l_theta", default="none",
         file_required=True, range=(-100.0, 100.0)))
-    pivot_yaw: float = field(default=0.0, metadata=spec(
-        "pivot_yaw_m", "m", "yaw pivot position l_psi", default="physical", file_required=True,
+    pivot_yaw: float | None = field(default=None, metadata=spec(
+        "pivot_yaw_m", "m", "yaw pivot position l_psi", default="none", file_required=True,
         range=(-100.0, 100.0)))
     f_theta: float | None = field(default=None, metadata=spec(
         "f_theta_hz", "Hz", "uncoupled pitch frequency (or K_theta)", default="none",
@@ -156,11 +183,11 @@ class Propeller:
     spin_inertia: float | None = field(default=None, metadata=spec(
         "spin_inertia_kg_m2", "kg m^2", "spin inertia I_Omega; omitted: M_r R^2/3 (eq. 9.2)",
         default="none", range=(0.0, 1e6)))
-    n_blades: int = field(default=3, metadata=spec(
-        "n_blades", "", "number of blades (>= 3)", default="physical",
+    n_blades: int | None = field(default=None, metadata=spec(
+        "n_blades", "", "number of blades (>= 3)", default="none",
         file_required="houbolt-reed", range=(3, 20)))
-    hub_radius: float = field(default=0.0, metadata=spec(
-        "hub_radius_m", "m", "hub radius r0 (< radius)", default="physical",
+    hub_radius: float | None = field(default=None, metadata=spec(
+        "hub_radius_m", "m", "hub radius r0 (< radius)", default="none",
         file_required="houbolt-reed", range=(0.0, 20.0)))
     blade_chord: float | Callable[[np.ndarray], np.ndarray] | None = field(
         default=None, metadata=spec(
@@ -170,11 +197,11 @@ class Propeller:
     operation: Literal["fixed-pitch", "constant-speed"] = field(default="fixed-pitch", metadata=spec(
         "operation", "", "fixed-pitch windmilling (Omega rises with V) or constant-speed (rpm)",
         default="setting"))
-    beta_075_deg: float = field(default=35.0, metadata=spec(
-        "beta_075_deg", "deg", "blade angle at 0.75 R", default="physical",
+    beta_075_deg: float | None = field(default=None, metadata=spec(
+        "beta_075_deg", "deg", "blade angle at 0.75 R", default="none",
         file_required="fixed-pitch", range=(-90.0, 90.0)))
-    zero_lift_angle_deg: float = field(default=-3.0, metadata=spec(
-        "zero_lift_angle_deg", "deg", "blade-section zero-lift angle", default="physical",
+    zero_lift_angle_deg: float | None = field(default=None, metadata=spec(
+        "zero_lift_angle_deg", "deg", "blade-section zero-lift angle", default="none",
         file_required="fixed-pitch", range=(-30.0, 30.0)))
     advance_rule: AdvanceRule = field(default="thesis_eq_9_1", metadata=spec(
         "advance_rule", "", "advance ratio of fixed-pitch operation: eq. 9.1 as the thesis uses "
@@ -197,14 +224,15 @@ class Propeller:
         "with aero_settings", default="none", form="derivatives"))
     aero_settings: AeroSettings = field(default=AeroSettings(), metadata=spec(
         "aero_settings", "", "Houbolt-Reed switches", default="setting"))
-    rotation: int = field(default=1, metadata=spec(
+    rotation: int | None = field(default=None, metadata=spec(
         "rotation", "", "+1 counter-clockwise seen from the front (the thesis's sense), -1 "
-        "clockwise", default="physical", file_required=True))
+        "clockwise", default="none", file_required=True))
     name: str = field(default="propeller", metadata=spec("name", "", "label", default="setting"))
 
     def __post_init__(self) -> None:
+        self._check_required()
         check_fields(self)  # types and the declared ranges of every field
-        if not self.hub_radius < self.radius:
+        if self.hub_radius is not None and not self.hub_radius < self.radius:
             raise v.fail("hub_radius", self.hub_radius,
                          f"invalid: must be < radius = {self.radius!r} m", "m")
         if (self.f_theta is None) == (self.K_theta is None):
@@ -228,9 +256,18 @@ class Propeller:
                              "deg") from None
         if self.rotation not in (1, -1):
             raise v.fail("rotation", self.rotation, "invalid: must be +1 or -1")
-        if self.derivatives is None and self.blade_chord is None:
-            raise v.InputError("blade_chord is required for Houbolt-Reed derivatives "
-                               "(derivatives = None): give the blade chord [m]")
+
+    def _check_required(self) -> None:
+        """The values of the aircraft that no default stands for, as a model file requires
+        them (:data:`REQUIRED`): one InputError naming every missing one."""
+        missing = [name for name, when in REQUIRED.items()
+                   if getattr(self, name) is None and (
+                       when is None or (when == "houbolt-reed" and self.derivatives is None)
+                       or (when == "fixed-pitch" and self.operation != "constant-speed"))]
+        if missing:
+            described = "; ".join(f"{n} ({_REQUIRED_DOC[n]})" for n in missing)
+            raise v.InputError(f"Propeller: missing {described}: a value of the aircraft has no "
+                               "default (a model file requires the same keys)")
 
     # ------------------------------------------------------------------ inertia (8.5–8.6)
     @property

@@ -35,6 +35,7 @@ propeller's block is :mod:`propwhirl.model.propeller_blocks` (functions of expli
 """
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from types import MappingProxyType
@@ -133,6 +134,44 @@ def node_at(wing: Wing, y: float, tol: float = 1e-6, name: str = "propeller posi
     return i
 
 
+_GROUP_NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+
+
+def check_groups(groups: object, n: int) -> dict[str, tuple[int, ...]]:
+    """Named groups of installations (:attr:`PropellerWing.groups`) checked and normalised:
+    name (an identifier) → the distinct indices (from 0) of `n` installations, in the order
+    given.  One InputError naming the group, its value and what is valid."""
+    if groups is None:
+        return {}
+    if not isinstance(groups, Mapping):
+        raise v.fail("groups", groups, "invalid: must be a mapping NAME -> indices of "
+                     "installations (from 0)")
+    out: dict[str, tuple[int, ...]] = {}
+    for name, members in groups.items():
+        where = f"groups.{name}"
+        if not isinstance(name, str) or not _GROUP_NAME.match(name):
+            raise v.fail("groups", name, "invalid: a group name must be an identifier (letters, "
+                         "digits, _; not starting with a digit), e.g. high_lift")
+        try:
+            items = list(members)
+        except TypeError:
+            items = None
+        if not items or any(isinstance(i, (bool, np.bool_)) or not isinstance(i, (int, np.integer))
+                            for i in items):
+            raise v.fail(where, members, "invalid: must be a non-empty list of installation "
+                         "indices (integers from 0: 0 is the first installation)")
+        bad = [int(i) for i in items if not 0 <= i < n]
+        if bad:
+            raise v.fail(where, [int(i) for i in items], f"invalid: index {bad[0]} is outside the "
+                         f"{n} installations (indices from 0 to {n - 1}: 0 is the first, "
+                         "'propeller 1' of the reports)")
+        if len(set(map(int, items))) != len(items):
+            dup = next(int(i) for i in items if items.count(i) > 1)
+            raise v.fail(where, [int(i) for i in items], f"invalid: lists installation {dup} twice")
+        out[name] = tuple(int(i) for i in items)
+    return out
+
+
 @dataclass(frozen=True)
 class PropellerWing(StateSpaceModel):
     """A cantilever wing with flexibly (or rigidly) mounted propellers (chapter 8, appendix D).
@@ -160,12 +199,17 @@ class PropellerWing(StateSpaceModel):
         section="switches"))
     name: str = field(default="propeller-wing", metadata=spec(
         "name", "", "label", default="setting"))
+    groups: Mapping[str, tuple[int, ...]] = field(default_factory=dict, metadata=spec(
+        "groups", "", "named groups of installations for parameter paths "
+        "(propellers[NAME].propeller.f_theta): NAME = [indices into installations, from 0]",
+        default="none", form="groups"))
     _nodes: tuple[int, ...] = field(default=(), repr=False, compare=False, metadata=spec(
         None, "", "node of each propeller (derived)", default="none", form="derived"))
 
     def __post_init__(self) -> None:
         check_fields(self)  # a Wing, a FlightCondition, Installations, bool switches
         limits.check_propellers(len(self.propellers))
+        object.__setattr__(self, "groups", check_groups(self.groups, len(self.propellers)))
         object.__setattr__(self, "wing", self._meshed_wing())
         nodes = tuple(node_at(self.wing, inst.y, name=f"propellers[{j}].y",
                               path=("propellers", j, "y"))

@@ -12,9 +12,27 @@ figures and reports number propellers from 1)::
     wing.rayleigh[0]                     # one entry of a list of numbers
     propellers[1].propeller.f_theta      # a field of the second installation's propeller
     propellers[*].propeller.f_psi        # the same field of every installation
+    propellers[0:6].propeller.f_psi      # a slice (Python's: 0 to 5, STOP excluded; 0:6:2)
+    propellers[0,2,4].propeller.f_psi    # a list of installations
+    propellers[high_lift].propeller.f_psi    # a named group (PropellerWing.groups, [groups])
     propellers[0].propeller.masses[0].mass
     propellers[0].propeller.inertia.I_theta_P    # an entry of a mapping
     propeller.beta_075_deg               # an IsolatedPropeller's propeller
+    propellers[0].propeller.f_theta,propellers[0].propeller.f_psi   # linked: one value, both
+
+Selections (``*``, slices, lists, groups) address lists of tables (the installations, a
+propeller's masses); a list of numbers takes one index.  The indices of installations are
+those of ``model.propellers`` and of the file's ``installations`` list, from 0 — the reports
+and figures number propellers from 1, so "propellers 1–6" are ``propellers[0:6]``.  A named
+group is a model's ``groups`` entry (``PropellerWing(groups={"high_lift": (0, 1, 2)})``, the
+``[groups]`` table of a model file).  Setting a field through one installation changes that
+installation's propeller only, also when the file shares one ``[propellers.KEY]`` table
+between installations (each installation holds its own copy once changed).
+
+Linked paths (a tuple of paths, or paths joined by commas outside brackets) are one
+parameter: every path takes its one value (an isotropic mount: f_theta and f_psi together).
+They must share the unit (or all be scale forms) and reach distinct values; the value is
+checked against every path's range.
 
 The field metadata (``model/fields.py``'s :func:`~propwhirl.model.fields.spec`: unit, range,
 description) gives every path its unit and valid range, and the list of valid paths of a
@@ -69,8 +87,15 @@ _TUPLE_FORMS = ("tables", "installations")
 #: Forms never addressable (not a model quantity).
 _HIDDEN_FORMS = ("derived",)
 
-_SEGMENT = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)((?:\[(?:\d+|\*)\])*)$")
-_INDEX = re.compile(r"\[(\d+|\*)\]")
+_SEGMENT = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)((?:\[[^\[\]]*\])*)$")
+_INDEX = re.compile(r"\[([^\[\]]*)\]")
+#: The forms of an index between brackets: a number, ``*``, a slice, a list, a group name.
+_NUMBER_INDEX = re.compile(r"^\d+$")
+_SLICE_INDEX = re.compile(r"^(-?\d*):(-?\d*)(?::(-?\d*))?$")
+_LIST_INDEX = re.compile(r"^\d+(?:,\d+)+$")
+_GROUP_INDEX = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+#: How indices of lists of tables are numbered, for messages.
+NUMBERING = "from 0: propellers[0] is propeller 1 of the reports"
 #: An index of more significant digits than this addresses no entry of any model (int() of a
 #: string of thousands of digits is refused by Python itself): it is taken as this large number,
 #: which every list's bounds check refuses.
@@ -94,7 +119,11 @@ class Scaled:
 @dataclass(frozen=True)
 class _Step:
     name: str
-    indices: tuple[int | str, ...] = ()   # int, or "*" for every entry
+    #: int; "*" for every entry; a tuple of ints for a selection (a slice, a list, a group)
+    indices: tuple[int | str | tuple[int, ...], ...] = ()
+    #: the indices as the path writes them ("0:6", "high_lift"); "" where the index is shown
+    #: as its resolved value
+    shown: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -107,6 +136,8 @@ class Parameter:
     doc:   the field's description (its metadata)
     range: the declared valid range of the value (None for a factor or an undeclared one)
     integer: the field holds an integer (values must be whole numbers)
+    links: the parameters this one sets to its one value (linked paths, ``PATH1,PATH2``);
+        () for one path
     """
 
     path: str
@@ -118,6 +149,12 @@ class Parameter:
     integer: bool = False
     #: the class holding the field (for its alternative: f_theta of a Propeller clears K_theta)
     owner: str = ""
+    links: tuple["Parameter", ...] = ()
+
+    @property
+    def members(self) -> tuple["Parameter", ...]:
+        """The single-path parameters this one sets: its links, or itself."""
+        return self.links or (self,)
 
     @property
     def label(self) -> str:
@@ -137,6 +174,9 @@ class Parameter:
         given, e.g. f_theta of a propeller given K_theta, or not one number)."""
         if self.scale:
             return 1.0
+        if self.links:
+            vals = [p.value(model) for p in self.links]
+            return vals[0] if vals[0] is not None and all(x == vals[0] for x in vals) else None
         vals = [x for x in _leaves(model, self.steps)]
         if not vals or any(not _is_number(x) for x in vals):
             return None
@@ -146,6 +186,15 @@ class Parameter:
     def set(self, model: Any, value: float) -> Any:
         """`model` with this parameter set to `value` (a factor for the scale form), rebuilt
         through :func:`dataclasses.replace` so that its own validation runs."""
+        if self.links:
+            if np.ndim(value):
+                raise v.InputError(f"{self.path} = {v.short_repr(value)} is invalid: must be "
+                                   "one number")
+            for p in self.links:
+                p.check_values(value)       # every path's range before anything is built
+            for p in self.links:
+                model = p.set(model, value)
+            return model
         x = self._checked(value)
         try:
             return _set(model, self.steps, lambda old: self._leaf(old, x))
@@ -161,6 +210,11 @@ class Parameter:
         One InputError names the path (or `name`, e.g. ``"upper"``), the offending values
         (the first few) and the valid range.
         """
+        if self.links:
+            arr = np.asarray(0.0)
+            for p in self.links:
+                arr = p.check_values(values, name)
+            return arr
         label = self.path if name is None else f"{self.path}: {name}"
         arr = np.atleast_1d(np.asarray(v.finite(label, values, "" if self.scale else self.unit),
                                        dtype=float))
@@ -256,9 +310,23 @@ def _leaves(obj: Any, steps: Sequence[_Step]) -> Iterable[Any]:
     cur = obj.get(step.name) if isinstance(obj, Mapping) else getattr(obj, step.name)
     items = [cur]
     for i in step.indices:
-        items = [y for c in items for y in (list(c) if i == "*" else [c[i]])]
+        items = [y for c in items for y in _select(c, i)]
     for c in items:
         yield from _leaves(c, rest)
+
+
+def _select(container: Any, i: int | str | tuple[int, ...]) -> list[Any]:
+    """The entries of `container` index `i` reaches (every one for "*", a selection's)."""
+    if i == "*":
+        return list(container)
+    if isinstance(i, tuple):
+        return [container[k] for k in i]
+    return [container[i]]
+
+
+def _positions(i: int | str | tuple[int, ...], n: int) -> Iterable[int]:
+    """The positions index `i` reaches in a list of `n` entries."""
+    return range(n) if i == "*" else i if isinstance(i, tuple) else [i]
 
 
 def _replace_index(container: Any, indices: Sequence[int | str], fn: Callable[[Any], Any]) -> Any:
@@ -267,11 +335,11 @@ def _replace_index(container: Any, indices: Sequence[int | str], fn: Callable[[A
     i, rest = indices[0], indices[1:]
     if isinstance(container, np.ndarray):
         out = container.astype(float, copy=True)
-        for k in (range(out.size) if i == "*" else [i]):
+        for k in _positions(i, out.size):
             out[k] = _replace_index(out[k], rest, fn)
         return out
     items = list(container)
-    for k in (range(len(items)) if i == "*" else [i]):
+    for k in _positions(i, len(items)):
         items[k] = _replace_index(items[k], rest, fn)
     return tuple(items)
 
@@ -401,73 +469,204 @@ def _not_numeric(text: str, node: _Node, what: str) -> v.InputError:
                         "not a number: only numeric fields can be varied")
 
 
-def resolve(model: Any, path: str) -> Parameter:
+def resolve(model: Any, path: str | Sequence[str]) -> Parameter:
     """The :class:`Parameter` of `path` in `model` (see the module docstring for the syntax).
+
+    `path` may link several paths that take one value: a tuple of paths, or one string of
+    paths separated by commas (outside brackets), e.g.
+    ``"propellers[high_lift].propeller.f_theta,propellers[high_lift].propeller.f_psi"``.
 
     Raises
     ------
     InputError
-        The path is malformed or unknown (the message lists the nearest valid paths), or it
-        names a field that is not a number (a string, a switch, a table, a function).
+        The path is malformed or unknown (the message lists the nearest valid paths), an index
+        is out of range, a slice or a list selects nothing or an entry twice, a group is not
+        defined, or it names a field that is not a number (a string, a switch, a table, a
+        function); linked paths of different units, or that reach one value twice.
     """
     _check_model(model)
-    if not isinstance(path, str) or not path.strip():
-        raise v.InputError(f"parameter path = {v.short_repr(path)} is invalid: must be a "
-                           "non-empty string such as 'wing.GJ'")
+    if isinstance(path, (tuple, list)):
+        if not path or not all(isinstance(x, str) for x in path):
+            raise v.InputError(f"parameter path = {v.short_repr(path)} is invalid: linked paths "
+                               "must be a non-empty tuple of strings such as "
+                               "('propellers[0].propeller.f_theta', 'propellers[0].propeller.f_psi')")
+        parts = [x for text in path for x in _split_links(text)] if path else []
+    else:
+        if not isinstance(path, str) or not path.strip():
+            raise v.InputError(f"parameter path = {v.short_repr(path)} is invalid: must be a "
+                               "non-empty string such as 'wing.GJ'")
+        parts = _split_links(path)
+    if len(parts) == 1:
+        return _resolve_one(model, parts[0])
+    if any(not x for x in parts):
+        raise v.InputError(f"parameter path {_shown(','.join(parts))!r} is invalid: an empty "
+                           "path between commas (linked paths: PATH1,PATH2,...)")
+    return _linked(model, [_resolve_one(model, x) for x in parts])
+
+
+def _split_links(text: str) -> list[str]:
+    """`text` split at the commas outside brackets (the commas of linked paths), spaces
+    removed."""
+    text = "".join(text.split())
+    out, depth, cur = [], 0, ""
+    for ch in text:
+        depth += (ch == "[") - (ch == "]")
+        if ch == "," and depth == 0:
+            out.append(cur)
+            cur = ""
+        else:
+            cur += ch
+    out.append(cur)
+    return out
+
+
+def _linked(model: Any, members: list[Parameter]) -> Parameter:
+    """One parameter setting every one of `members` to its value (linked paths)."""
+    check_independent(members)
+    first = members[0]
+    for p in members[1:]:
+        if p.scale != first.scale or (not p.scale and p.unit != first.unit):
+            what = lambda q: "a factor" if q.scale else f"[{q.unit or 'dimensionless'}]"
+            raise v.InputError(f"parameter paths {first.path!r} and {p.path!r} are invalid "
+                               f"linked: one value for both, but one is {what(first)} and the "
+                               f"other {what(p)} (link paths of one unit)")
+    text = ",".join(p.path for p in members)
+    return Parameter(text, (), first.scale, first.unit,
+                     "linked: " + "; ".join(dict.fromkeys(p.doc for p in members)),
+                     first.range, any(p.integer for p in members), "", tuple(members))
+
+
+def _resolve_one(model: Any, path: str) -> Parameter:
+    """The :class:`Parameter` of one path (no commas outside brackets)."""
     text = "".join(path.split())
     scale = text.endswith("*")
     body = text[:-1] if scale else text
-    steps = []
+    raw = []
     for seg in body.split("."):
         m = _SEGMENT.match(seg)
         if m is None:
             raise _unknown(model, text, f"{_shown(seg)!r} is not a field name with optional "
                            "[index]")
-        steps.append(_Step(m.group(1), tuple(i if i == "*" else _index_number(i)
-                                             for i in _INDEX.findall(m.group(2)))))
+        raw.append((m.group(1), tuple(_INDEX.findall(m.group(2)))))
     node = _Node(None, "table", model, type(model).__name__)
     done = ""
-    for k, step in enumerate(steps):
+    steps = []
+    for k, (name, tokens) in enumerate(raw):
         kids = _children(node)
         if kids is None:
             raise _unknown(model, text, f"{done or type(model).__name__} has no fields")
-        if step.name not in kids:
+        if name not in kids:
             where = done or type(model).__name__
-            raise _unknown(model, text, f"{where} has no field {step.name!r}")
-        node = kids[step.name]
-        done = f"{done}.{step.name}" if done else step.name
-        for i in step.indices:
-            node, done = _index(model, text, node, done, i)
-        if k < len(steps) - 1 and node.form in _TUPLE_FORMS:
+            raise _unknown(model, text, f"{where} has no field {name!r}")
+        node = kids[name]
+        done = f"{done}.{name}" if done else name
+        indices, shown = [], []
+        for token in tokens:
+            node, done, index, written = _index(model, text, node, done, token)
+            indices.append(index)
+            shown.append(written)
+        steps.append(_Step(name, tuple(indices), tuple(shown)))
+        if k < len(raw) - 1 and node.form in _TUPLE_FORMS:
             raise _unknown(model, text, f"{done} is a list of tables: give an index, e.g. {done}[0]")
     return _leaf_parameter(model, _canonical(steps, scale), steps, node, scale)
 
 
 def _canonical(steps: Sequence[_Step], scale: bool) -> str:
-    """The path text of `steps`: indices without leading zeros, ``*`` last for the scale form."""
-    return ".".join(s.name + "".join(f"[{i}]" for i in s.indices) for s in steps) \
-        + ("*" if scale else "")
+    """The path text of `steps`: indices without leading zeros (a slice, a list or a group as
+    written), ``*`` last for the scale form."""
+    return ".".join(s.name + "".join(f"[{t}]" for t in (s.shown or map(str, s.indices)))
+                    for s in steps) + ("*" if scale else "")
 
 
-def _index(model: Any, text: str, node: _Node, done: str, i: int | str) -> tuple[_Node, str]:
+def groups_of(model: Any) -> dict[str, tuple[int, ...]]:
+    """The named groups of installations of `model` (``{}`` when it defines none): name →
+    indices into ``model.propellers`` (from 0, as in paths)."""
+    return dict(getattr(model, "groups", None) or {})
+
+
+def _selection_error(model: Any, text: str, done: str, token: str, why: str, n: int) -> v.InputError:
+    valid = (f"an index 0 to {n - 1}, *, a slice such as 0:{n}, a list such as 0,1"
+             + (f", or a group ({', '.join(groups_of(model))})" if groups_of(model) and
+                done.endswith("propellers") else ""))
+    return v.InputError(f"parameter path {_shown(text)!r} is invalid: {done}[{_shown(token)}] "
+                        f"{why}; {done} has {n} entr{'y' if n == 1 else 'ies'}, {NUMBERING}: "
+                        f"give {valid}")
+
+
+def _tuple_index(model: Any, text: str, node: _Node, done: str,
+                 token: str) -> tuple[int | str | tuple[int, ...], str]:
+    """The resolved index `token` of a list of tables (and its text in the canonical path)."""
+    n = len(node.value or ())
+    if token == "*":
+        return "*", "*"
+    if _NUMBER_INDEX.match(token):
+        i = _index_number(token)
+        if not i < n:
+            raise _unknown(model, text, f"{done} has {n} entr{'y' if n == 1 else 'ies'} "
+                           f"(indices 0 to {n - 1}, {NUMBERING})")
+        return i, str(i)
+    m = _SLICE_INDEX.match(token)
+    if m is not None:
+        parts = [None if not g else _index_number(g.lstrip("-")) * (-1 if g.startswith("-") else 1)
+                 for g in m.groups()]
+        if parts[2] == 0:
+            raise _selection_error(model, text, done, token, "has a slice step of 0", n)
+        chosen = tuple(range(n)[slice(*parts)])
+        if not chosen:
+            raise _selection_error(model, text, done, token, "selects no entry (a Python slice: "
+                                   "START:STOP excludes STOP)", n)
+        return chosen, token
+    if _LIST_INDEX.match(token):
+        chosen = tuple(_index_number(x) for x in token.split(","))
+        bad = [i for i in chosen if not i < n]
+        if bad:
+            raise _selection_error(model, text, done, token, f"has {bad[0]}, out of range", n)
+        if len(set(chosen)) != len(chosen):
+            dup = next(i for i in chosen if chosen.count(i) > 1)
+            raise _selection_error(model, text, done, token, f"lists {dup} twice", n)
+        return chosen, ",".join(map(str, chosen))
+    if _GROUP_INDEX.match(token):
+        groups = groups_of(model) if done == "propellers" else {}
+        if token not in groups:
+            known = (f"the model's groups are {', '.join(groups)}" if groups else
+                     "the model defines no groups (a [groups] table of the model file, or "
+                     "PropellerWing(groups={...}))")
+            if done != "propellers":
+                known = "groups name installations: propellers[GROUP]"
+            raise v.InputError(f"parameter path {_shown(text)!r} is invalid: {done}[{token}] "
+                               f"names no group: {known}")
+        return tuple(groups[token]), token
+    raise _selection_error(model, text, done, token, "is not an index", n)
+
+
+def _index(model: Any, text: str, node: _Node, done: str,
+           token: str) -> tuple[_Node, str, int | str | tuple[int, ...], str]:
+    """The node index `token` reaches below `node`, the path text so far, the resolved index
+    and its text."""
     value, form = node.value, node.form
     if form in _TUPLE_FORMS:
+        i, written = _tuple_index(model, text, node, done, token)
         n = len(value or ())
-        if i != "*" and not i < n:
-            raise _unknown(model, text, f"{done} has {n} entr{'y' if n == 1 else 'ies'} "
-                           f"(indices 0 to {n - 1})")
-        item = value[0 if i == "*" else i] if n else None
+        first = 0 if i == "*" else i[0] if isinstance(i, tuple) else i
+        item = value[first] if n else None
         sub = _Node(node.spec, "table", item, node.cls_name)
-        return sub, f"{done}[{i}]"
+        return sub, f"{done}[{written}]", i, written
+    if not _NUMBER_INDEX.match(token):
+        if form in ("numbers", "split") or (form == "spanwise" and isinstance(value, np.ndarray)):
+            n = 0 if value is None else len(value)
+            raise _unknown(model, text, f"{done} has {n} values: give one index from 0 to "
+                           f"{n - 1} (slices, lists and groups select tables, e.g. propellers)")
+        raise _unknown(model, text, f"{done} is not a list: it takes no index")
+    i = _index_number(token)
     if form in ("numbers", "split") or (form == "spanwise" and isinstance(value, np.ndarray)):
         n = 0 if value is None else len(value)
-        if i == "*" or not i < n:
+        if not i < n:
             raise _unknown(model, text, f"{done} has {n} values: give an index from 0 to {n - 1}")
         spec = node.spec
         if form == "split":
             spec = dataclasses.replace(spec, unit=spec.unit_of(i), range=spec.range_of(i),
                                        doc=f"{spec.doc} (entry {i})")
-        return _Node(spec, "number", value[i], node.cls_name), f"{done}[{i}]"
+        return _Node(spec, "number", value[i], node.cls_name), f"{done}[{i}]", i, str(i)
     raise _unknown(model, text, f"{done} is not a list: it takes no index")
 
 
@@ -504,11 +703,25 @@ def _leaf_parameter(model: Any, text: str, steps: list[_Step], node: _Node, scal
 
 
 # ============================================================================ variants
+def _disjoint(i: int | str | tuple[int, ...], j: int | str | tuple[int, ...]) -> bool:
+    """Indices `i` and `j` of one list reach no common entry."""
+    if "*" in (i, j):
+        return False
+    return not set(i if isinstance(i, tuple) else (i,)) & set(j if isinstance(j, tuple) else (j,))
+
+
 def _conflict(a: Parameter, b: Parameter) -> str | None:
     """Why `a` and `b` cannot be varied together (they reach the same value, or a field and
     its alternative of the same object), or None when they are independent."""
+    if a.links or b.links:
+        for x in a.members:
+            for y in b.members:
+                why = _conflict(x, y)
+                if why is not None:
+                    return f"{x.path!r} and {y.path!r}: {why}"
+        return None
     for k, (x, y) in enumerate(zip(a.steps, b.steps)):
-        if any(i != j and "*" not in (i, j) for i, j in zip(x.indices, y.indices)):
+        if any(_disjoint(i, j) for i, j in zip(x.indices, y.indices)):
             return None                      # different entries of one list: independent
         if x.name != y.name:
             last = k == len(a.steps) - 1 and k == len(b.steps) - 1
@@ -526,7 +739,9 @@ def check_independent(params: Sequence[Parameter]) -> None:
     ``wing.EI*``), paths reaching the same value (``propellers[*].propeller.f_psi`` and
     ``propellers[0].propeller.f_psi``, ``wing.EI*`` and ``wing.EI[3]``), or a field and its
     alternative on the same object (f_theta and K_theta of one propeller: setting one clears
-    the other, :data:`ALTERNATIVES`).  One InputError naming the two paths."""
+    the other, :data:`ALTERNATIVES`); selections that share an entry (``propellers[0:3]`` and
+    ``propellers[2]``); linked paths, each of their paths.  One InputError naming the two
+    paths."""
     for k, a in enumerate(params):
         for b in params[k + 1:]:
             why = _conflict(a, b)
@@ -595,5 +810,6 @@ def grid_variants(model: Any, axes: Sequence[tuple[str, Sequence[float]]]) -> li
     return out
 
 
-__all__ = ["Parameter", "Scaled", "ALTERNATIVES", "resolve", "valid_paths", "parameters",
+__all__ = ["Parameter", "Scaled", "ALTERNATIVES", "NUMBERING", "resolve", "groups_of",
+           "valid_paths", "parameters",
            "set_value", "set_values", "variants", "grid_variants", "check_independent"]
