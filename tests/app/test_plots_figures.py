@@ -97,7 +97,13 @@ def test_vgf_on_a_fine_grid_with_the_modes_that_matter(analysis, model, fine, mo
     assert to_rgba(shade[0].get_facecolor())[:3] == to_rgba("red")[:3]
     drawn = np.concatenate([np.asarray(ln.get_ydata(), float) for ln in lines.values()])
     drawn = drawn[np.isfinite(drawn)]
-    assert lo < drawn.min() and hi > drawn.max() and hi < 1.0 and lo > -1.0
+    # the ζ window: around zero, not stretched to ±1; where a curve leaves it, a triangle
+    assert lo <= vgf_plot.ZETA_BOTTOM and 0.0 < hi <= 1.15 * vgf_plot.ZETA_TOP and lo > -1.0
+    marks = [ln for ln in ax_z.get_lines() if ln.get_marker() in ("^", "v")]
+    for ln in lines.values():
+        y = np.asarray(ln.get_ydata(), float)
+        if ((y > hi) | (y < lo))[np.isfinite(y)].any():
+            assert any(to_rgba(m.get_color()) == to_rgba(ln.get_color()) for m in marks)
     # instabilities annotated with V and f
     texts = [t.get_text() for t in ax_z.texts]
     for e in analysis.events:
