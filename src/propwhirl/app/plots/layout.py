@@ -33,6 +33,9 @@ FAMILY_COLOURS = {"wing bending": "tab:blue", "wing torsion": "tab:purple",
                   "in-plane": "tab:orange", "other": "0.4"}
 #: characters per line of a wrapped label
 WRAP = 30
+#: cost of moving a label one pixel from its anchor, against the area [px²] of curves it
+#: covers (:func:`place_labels`): about 500 px of leader line for one curve across a label
+DISTANCE_COST = 1.0
 
 
 def mode_family(label: str, content: Mapping[str, float] | None = None) -> str:
@@ -105,77 +108,136 @@ def _overlaps(a, b, pad: float) -> bool:
                 or a.y1 + pad <= b.y0 or b.y1 + pad <= a.y0)
 
 
-def _inside(box, frame) -> bool:
-    return (box.x0 >= frame.x0 and box.x1 <= frame.x1 and box.y0 >= frame.y0
-            and box.y1 <= frame.y1)
-
-
 def _offsets(step_x: float, step_y: float, nx: int, ny: int,
-             prefer: str) -> list[tuple[float, float]]:
-    """Candidate offsets [points] around an anchor, nearest first (the `prefer`red side
-    first at equal distance)."""
-    cand = [(i * step_x, j * step_y) for i in range(-nx, nx + 1)
-            for j in range(-ny, ny + 1) if (i, j) != (0, 0)]
+             prefer: str) -> tuple[np.ndarray, np.ndarray]:
+    """(M, 2) candidate offsets [points] around an anchor and (M,) their distances [points],
+    nearest first: vertical distance counts 1.6 times, the side away from `prefer`
+    ("below", "above", "right") three times."""
+    i, j = np.meshgrid(np.arange(-nx, nx + 1), np.arange(-ny, ny + 1), indexing="ij")
+    cand = np.column_stack([i.ravel() * step_x, j.ravel() * step_y])
+    cand = cand[(i.ravel() != 0) | (j.ravel() != 0)]
+    away = {"below": cand[:, 1] > 0, "above": cand[:, 1] < 0, "right": cand[:, 0] < 0}[prefer]
+    dist = np.hypot(cand[:, 0], 1.6 * cand[:, 1]) * np.where(away, 3.0, 1.0)
+    order = np.argsort(dist, kind="stable")
+    return cand[order], dist[order]
 
-    def key(o):
-        dx, dy = o
-        away = {"below": dy > 0, "above": dy < 0, "right": dx < 0}[prefer]
-        return (1.5 if away else 1.0) * float(np.hypot(dx, 1.6 * dy))
-    return sorted(cand, key=key)
+
+def _areas(boxes: np.ndarray, obstacles: np.ndarray, pad: float) -> np.ndarray:
+    """(M,) summed overlap areas [px²] of boxes (M, 4: x0, y0, x1, y1) with obstacles (N, 4),
+    each obstacle grown by `pad`."""
+    if obstacles.size == 0:
+        return np.zeros(len(boxes))
+    w = (np.minimum(boxes[:, None, 2], obstacles[None, :, 2] + pad)
+         - np.maximum(boxes[:, None, 0], obstacles[None, :, 0] - pad))
+    h = (np.minimum(boxes[:, None, 3], obstacles[None, :, 3] + pad)
+         - np.maximum(boxes[:, None, 1], obstacles[None, :, 1] - pad))
+    return (np.clip(w, 0.0, None) * np.clip(h, 0.0, None)).sum(axis=1)
+
+
+def curve_boxes(ax, lines: Sequence, step_px: float = 3.0, size_px: float = 3.0) -> list:
+    """Small boxes [display pixels] along the drawn part of `lines` of `ax` (every `step_px`
+    along the path, inside the axes): obstacles that :func:`place_labels` keeps its labels
+    off where it can."""
+    from matplotlib.transforms import Bbox
+
+    frame = ax.get_window_extent()
+    out = []
+    for ln in lines:
+        xy = np.column_stack([np.asarray(ln.get_xdata(), float), np.asarray(ln.get_ydata(), float)])
+        for seg in np.split(xy, np.flatnonzero(~np.isfinite(xy).all(axis=1))):
+            seg = seg[np.isfinite(seg).all(axis=1)]
+            if len(seg) == 0:
+                continue
+            d = ax.transData.transform(seg)
+            step = np.hypot(*np.diff(d, axis=0).T) if len(d) > 1 else np.zeros(0)
+            pts = [d[:1]] + [np.linspace(a, b, max(int(n / step_px), 1) + 1)[1:]
+                             for a, b, n in zip(d[:-1], d[1:], step)]
+            for x, y in np.concatenate(pts):
+                if frame.x0 <= x <= frame.x1 and frame.y0 <= y <= frame.y1:
+                    out.append(Bbox.from_bounds(x - 0.5 * size_px, y - 0.5 * size_px,
+                                                size_px, size_px))
+    return out
 
 
 def place_labels(ax, anchors: Sequence[tuple[float, float]], texts: Sequence[str],
-                 colours: Sequence, *, fontsize: float = 7.5, avoid: Sequence = (),
-                 prefer: str = "below", gid: str = "label", pad: float = 2.0) -> list:
+                 colours: Sequence, *, fontsize: float = 8.0, avoid: Sequence = (),
+                 soft: Sequence = (), prefer: str = "below", gid: str = "label",
+                 pad: float = 2.0, aligns: Sequence[str] | None = None) -> list:
     """Annotate `ax` at data points `anchors` with `texts`, no two boxes overlapping.
 
     The labels are placed in the order given (put the important ones first), each at the
-    nearest offset of a grid around its anchor (steps of about one label width by half a
-    label height, up to the whole axes) where its box, padded by `pad` pixels, overlaps no
-    label placed before and no bounding box in `avoid` (display coordinates, e.g. markers),
-    and lies inside the axes; a leader line joins it to its anchor.  If no spot is free the
-    label takes the spot of least overlap (never seen in the figures of this package).  The
-    figure's layout must be frozen (:func:`freeze_layout`).  Returns the annotations, with
-    ``gid`` set (a test finds them by it).
+    nearest offset of a grid around its anchor (steps of a quarter of a label width by half a
+    label height, up to the whole axes; the `prefer`red side first) where its box, padded by
+    `pad` pixels, lies inside the axes and overlaps no label placed before, no bounding box
+    in `avoid` (display coordinates, e.g. markers) and whose leader crosses no label; among
+    those, the spot of least covered area of `soft` (e.g. :func:`curve_boxes` of the
+    curves that matter) plus :data:`DISTANCE_COST` × its distance.  Only where no spot is
+    free of labels and `avoid`, the spot of least overlap.  A leader line joins each label to its anchor.  The figure's layout
+    must be frozen (:func:`freeze_layout`).  `aligns`: each label's line alignment ("center"
+    by default; "left" for a table).  Returns the annotations, with ``gid`` set.
     """
     fig = ax.figure
     renderer = fig.canvas.get_renderer()
     frame = ax.get_window_extent(renderer)
-    placed: list = list(avoid)
+    hard = [tuple(b.extents) for b in avoid]
+    n_avoid = len(hard)
+    soft_arr = np.array([tuple(b.extents) for b in soft], dtype=float).reshape(-1, 4)
     out = []
     pts = fig.dpi / 72.0                        # pixels per point
-    for (x, y), text, colour in zip(anchors, texts, colours):
+    aligns = list(aligns) if aligns is not None else ["center"] * len(texts)
+    for (x, y), text, colour, align in zip(anchors, texts, colours, aligns):
         ann = ax.annotate(text, xy=(x, y), xytext=(0.0, 0.0), textcoords="offset points",
                           fontsize=fontsize, color=colour, ha="center", va="center", gid=gid,
+                          multialignment=align,
                           annotation_clip=False, zorder=6,
                           bbox=dict(boxstyle="round,pad=0.15", fc="white", ec="none",
                                     alpha=0.85),
                           arrowprops=dict(arrowstyle="-", color=colour, lw=0.6,
                                           shrinkA=0.0, shrinkB=3.0))
         box = _text_box(ann, renderer)                  # at offset 0: centred on the anchor
-        w, h = box.width / pts, box.height / pts
-        nx = int(frame.width / max(0.55 * box.width, 1.0)) + 1
-        ny = int(frame.height / max(0.55 * box.height, 1.0)) + 1
-        best, best_cost = (0.0, 0.0), np.inf
-        for dx, dy in _offsets(0.55 * w, 0.55 * h, nx, ny, prefer):
-            b = box.translated(dx * pts, dy * pts)
-            if not _inside(b, frame):
-                continue
-            cost = sum(_overlap_area(b, o, pad) for o in placed)
-            if cost < best_cost:
-                best, best_cost = (dx, dy), cost
-                if cost == 0.0:
-                    break
-        ann.xyann = best
-        placed.append(_text_box(ann, renderer))
+        nx = int(frame.width / max(0.25 * box.width, 1.0)) + 1
+        ny = int(frame.height / max(0.5 * box.height, 1.0)) + 1
+        off, dist = _offsets(0.25 * box.width / pts, 0.5 * box.height / pts, nx, ny, prefer)
+        boxes = np.asarray(box.extents)[None, :] + np.tile(off * pts, 2)
+        ok = ((boxes[:, 0] >= frame.x0) & (boxes[:, 2] <= frame.x1)
+              & (boxes[:, 1] >= frame.y0) & (boxes[:, 3] <= frame.y1))
+        dist = dist * pts                                # [px]
+        if ok.any():
+            off, boxes, dist = off[ok], boxes[ok], dist[ok]
+        hard_arr = np.array(hard, dtype=float).reshape(-1, 4)
+        labels_arr = np.array(hard[n_avoid:], dtype=float).reshape(-1, 4)
+        anchor = ax.transData.transform((x, y))
+        best, best_cost = 0, np.inf
+        for c0 in range(0, len(off), 256):               # nearest first, in chunks
+            chunk = boxes[c0:c0 + 256]
+            cost = (1e6 * _areas(chunk, hard_arr, pad) + 1e3 * _crossings(anchor, chunk, labels_arr)
+                    + _areas(chunk, soft_arr, 0.0) + DISTANCE_COST * dist[c0:c0 + 256])
+            k = int(np.argmin(cost))
+            if cost[k] < best_cost:
+                best, best_cost = c0 + k, float(cost[k])
+            if c0 + 256 < len(off) and DISTANCE_COST * dist[c0 + 256] > best_cost:
+                break                                    # no farther spot can be better
+        ann.xyann = (float(off[best, 0]), float(off[best, 1]))
+        placed = _text_box(ann, renderer)
+        hard.append(tuple(placed.extents))
+        leader = np.linspace(anchor, (0.5 * (placed.x0 + placed.x1),
+                                      0.5 * (placed.y0 + placed.y1)), 12)   # anchor → centre
+        soft_arr = np.vstack([soft_arr, np.column_stack([leader - 1.5, leader + 1.5])])
         out.append(ann)
     return out
 
 
-def _overlap_area(a, b, pad: float) -> float:
-    w = min(a.x1, b.x1) + pad - max(a.x0, b.x0)
-    h = min(a.y1, b.y1) + pad - max(a.y0, b.y0)
-    return max(w, 0.0) * max(h, 0.0)
+def _crossings(anchor: np.ndarray, boxes: np.ndarray, labels: np.ndarray) -> np.ndarray:
+    """(M,) how many of 10 points along the leader from `anchor` to each box's centre lie
+    inside a label already placed."""
+    if labels.size == 0:
+        return np.zeros(len(boxes))
+    centre = 0.5 * (boxes[:, :2] + boxes[:, 2:])
+    t = np.linspace(0.05, 0.95, 10)[None, :, None]
+    p = anchor[None, None, :] + t * (centre[:, None, :] - anchor[None, None, :])   # (M, 10, 2)
+    inside = ((p[:, :, None, 0] > labels[None, None, :, 0]) & (p[:, :, None, 0] < labels[None, None, :, 2])
+              & (p[:, :, None, 1] > labels[None, None, :, 1]) & (p[:, :, None, 1] < labels[None, None, :, 3]))
+    return inside.any(axis=2).sum(axis=1).astype(float)
 
 
 def end_labels(ax, x_end: float, ends: Sequence[float], texts: Sequence[str],

@@ -24,7 +24,7 @@ from propwhirl import validate as v
 from propwhirl.app.plots.canvas import (DIVERGENCE_COLOUR, FLUTTER_COLOUR, finish,
                                         matplotlib_or_error, new_figure)
 from propwhirl.app.plots.layout import (FAMILY_COLOURS, family_shades, freeze_layout, mode_family,
-                                        place_labels, wrap)
+                                        place_labels, wrap, curve_boxes)
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
@@ -305,8 +305,8 @@ def _zeta_window(analysis, sw, bold: Sequence[int], z: np.ndarray,
     """ζ axis limits around the region that matters: the emphasised modes that flutter or
     come near it (not those emphasised only for a divergence: a real root's approach
     stretches ζ towards 1), up to a little above their highest damping before their
-    lowest, at most :data:`ZETA_TOP`; below zero to :data:`ZETA_BOTTOM` or a third of the
-    top, whichever is lower."""
+    lowest, at most :data:`ZETA_TOP`; below zero to :data:`ZETA_BOTTOM` or 0.8 × the top,
+    whichever is lower (room for the labels in the unstable half)."""
     m = DAMPING_MARGIN if margin is None else abs(float(margin))
     flutter = {e.label for e in analysis.events if e.kind == "flutter"}
     diverging = {e.label for e in analysis.events if e.kind == "divergence"}
@@ -318,7 +318,7 @@ def _zeta_window(analysis, sw, bold: Sequence[int], z: np.ndarray,
         return ZETA_BOTTOM, max(2.0 * m, 0.05)
     top = min(max(float(finite.max()), 2.0 * m, 1e-3), ZETA_TOP)
     hi = top + 0.15 * top
-    lo = min(ZETA_BOTTOM, -hi / 3.0, float(finite.min()) if finite.min() > -hi else -hi / 3.0)
+    lo = min(ZETA_BOTTOM, -0.8 * hi)
     return lo, hi
 
 
@@ -347,24 +347,62 @@ def _mark_events(analysis, drawn: dict, ax_z, ax_f, xlim: tuple[float, float]) -
     return sorted(events, key=lambda e: (e.event == "recovery", e.V))
 
 
+#: events of one kind closer than this fraction of the speed range share one label (a table)
+CROWD = 0.03
+#: longest row of such a table before a mode's name and its speed take two lines
+WRAP_ROW = 44
+
+
+def _where(e) -> str:
+    """'80.0 m/s, 7.02 Hz' of an event (no frequency at a divergence)."""
+    return f"{e.V:.1f} m/s" + (f", {e.frequency_hz:.2f} Hz" if e.kind == "flutter" else "")
+
+
+def _crowds(events, gap: float) -> list[list]:
+    """The events in groups of one kind and event type whose speeds follow each other within
+    `gap` [m/s] (each group sorted by speed); groups in the order of their first event."""
+    groups: list[list] = []
+    for e in sorted(events, key=lambda e: (e.event == "recovery", e.V)):
+        for g in groups:
+            if (g[-1].kind, g[-1].event) == (e.kind, e.event) and e.V - g[-1].V <= gap:
+                g.append(e)
+                break
+        else:
+            groups.append([e])
+    return groups
+
+
 _WHAT = {"onset": "{kind} of {mode}", "recovery": "{kind} recovery of {mode}",
          "frequency-zero": "divergence (f → 0) of {mode}",
          "unstable-at-start": "{mode} unstable from the start"}
 
 
 def _label_events(ax_z, events, analysis, sw, bold, z: np.ndarray, zlim) -> None:
-    """Label every event in range ("flutter of <mode>", V [m/s], f [Hz]) and each emphasised
-    mode without one (its least damping after its peak), no label on another or on a
-    marker (:func:`~propwhirl.app.plots.layout.place_labels`)."""
-    anchors, texts, cols = [], [], []
-    for e in events:
+    """Label every event in range ("flutter of <mode>", V [m/s], f [Hz]; events of one kind
+    within :data:`CROWD` of the speed range of each other in one table-like label, one row
+    per mode) and each emphasised mode without one (its least damping after its peak), no
+    label on another or on a marker (:func:`~propwhirl.app.plots.layout.place_labels`)."""
+    anchors, texts, cols, aligns = [], [], [], []
+    span = float(sw.V[-1] - sw.V[0]) or 1.0
+    for group in _crowds(events, CROWD * span):
+        e = group[0]
         colour = FLUTTER_COLOUR if e.kind == "flutter" else DIVERGENCE_COLOUR
-        what = _WHAT.get(e.event, "{kind} " + e.event + " of {mode}").format(
-            kind=e.kind, mode=analysis.describe(e.label))
-        f = f", {e.frequency_hz:.2f} Hz" if e.kind == "flutter" else ""
         anchors.append((e.V, 0.0))
-        texts.append(f"{wrap(what)}\n{e.V:.1f} m/s{f}")
         cols.append(colour)
+        aligns.append("center" if len(group) == 1 else "left")
+        if len(group) == 1:
+            what = _WHAT.get(e.event, "{kind} " + e.event + " of {mode}").format(
+                kind=e.kind, mode=analysis.describe(e.label))
+            texts.append(f"{wrap(what)}\n{_where(e)}")
+            continue
+        head = _WHAT.get(e.event, "{kind} " + e.event + " of {mode}").format(
+            kind=e.kind, mode=f"{len(group)} modes")
+        rows = []
+        for g in group:
+            name, where = analysis.describe(g.label), _where(g)
+            one = f"{name}: {where}"
+            rows.append(one if len(one) <= WRAP_ROW else f"{wrap(name)}:\n   {where}")
+        texts.append(head + "\n" + "\n".join(rows))
     labelled = {e.label for e in events}
     lo, hi = zlim
     for k in bold:
@@ -379,12 +417,16 @@ def _label_events(ax_z, events, analysis, sw, bold, z: np.ndarray, zlim) -> None
         anchors.append((float(sw.V[t]), float(zk[t])))
         texts.append(f"{wrap(analysis.describe(name))}\nζ min {zk[t]:.3f} at {sw.V[t]:.0f} m/s")
         cols.append("0.2")
+        aligns.append("center")
     renderer = ax_z.figure.canvas.get_renderer()
     avoid = []
     for ln in ax_z.get_lines():            # the event markers
         if ln.get_marker() == "o":
             avoid.append(ln.get_window_extent(renderer))
-    place_labels(ax_z, anchors, texts, cols, avoid=avoid, prefer="below", gid=LABEL_GID)
+    bold_lines = [ln for ln in ax_z.get_lines() if ln.get_linewidth() >= 2.0
+                  and ln.get_linestyle() == "-"]
+    place_labels(ax_z, anchors, texts, cols, avoid=avoid, soft=curve_boxes(ax_z, bold_lines),
+                 prefer="below", gid=LABEL_GID, aligns=aligns)
 
 
 #: ``gid`` of the labels of the V-g-f and Campbell diagrams (tests find them by it)
