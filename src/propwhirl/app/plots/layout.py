@@ -24,6 +24,8 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
+from propwhirl.app.plots.canvas import spread_labels
+
 #: families in the order of the legends, with their hue (a matplotlib sequential colormap)
 FAMILY_MAPS = {"wing bending": "Blues", "wing torsion": "Purples", "backward whirl": "Reds",
                "forward whirl": "Greens", "in-plane": "Oranges", "other": "Greys"}
@@ -172,9 +174,9 @@ def place_labels(ax, anchors: Sequence[tuple[float, float]], texts: Sequence[str
     in `avoid` (display coordinates, e.g. markers) and whose leader crosses no label; among
     those, the spot of least covered area of `soft` (e.g. :func:`curve_boxes` of the
     curves that matter) plus :data:`DISTANCE_COST` × its distance.  Only where no spot is
-    free of labels and `avoid`, the spot of least overlap.  A leader line joins each label to its anchor.  The figure's layout
-    must be frozen (:func:`freeze_layout`).  `aligns`: each label's line alignment ("center"
-    by default; "left" for a table).  Returns the annotations, with ``gid`` set.
+    free of labels and `avoid`, the spot of least overlap.  A leader line joins each label to
+    its anchor.  The figure's layout must be frozen (:func:`freeze_layout`).  `aligns`: each
+    label's line alignment ("center" by default; "left" for a table).  Returns the annotations, with ``gid`` set.
     """
     fig = ax.figure
     renderer = fig.canvas.get_renderer()
@@ -235,8 +237,9 @@ def _crossings(anchor: np.ndarray, boxes: np.ndarray, labels: np.ndarray) -> np.
     centre = 0.5 * (boxes[:, :2] + boxes[:, 2:])
     t = np.linspace(0.05, 0.95, 10)[None, :, None]
     p = anchor[None, None, :] + t * (centre[:, None, :] - anchor[None, None, :])   # (M, 10, 2)
-    inside = ((p[:, :, None, 0] > labels[None, None, :, 0]) & (p[:, :, None, 0] < labels[None, None, :, 2])
-              & (p[:, :, None, 1] > labels[None, None, :, 1]) & (p[:, :, None, 1] < labels[None, None, :, 3]))
+    x, y = p[:, :, None, 0], p[:, :, None, 1]
+    box = labels[None, None, :, :]
+    inside = (x > box[..., 0]) & (x < box[..., 2]) & (y > box[..., 1]) & (y < box[..., 3])
     return inside.any(axis=2).sum(axis=1).astype(float)
 
 
@@ -259,8 +262,6 @@ def stack_labels(ax, anns: Sequence) -> None:
     near its curve's end as the others allow and at least one text height (measured with
     the renderer) from the next, inside the axes' height when they fit.  The layout must be
     frozen (:func:`freeze_layout`)."""
-    from propwhirl.app.plots.canvas import spread_labels
-
     if not anns:
         return
     fig = ax.figure
