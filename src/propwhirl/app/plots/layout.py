@@ -176,7 +176,8 @@ def place_labels(ax, anchors: Sequence[tuple[float, float]], texts: Sequence[str
     curves that matter) plus :data:`DISTANCE_COST` × its distance.  Only where no spot is
     free of labels and `avoid`, the spot of least overlap.  A leader line joins each label to
     its anchor.  The figure's layout must be frozen (:func:`freeze_layout`).  `aligns`: each
-    label's line alignment ("center" by default; "left" for a table).  Returns the annotations, with ``gid`` set.
+    label's line alignment ("center" by default; "left" for a table).  Returns the
+    annotations, with ``gid`` set.
     """
     fig = ax.figure
     renderer = fig.canvas.get_renderer()
