@@ -8,7 +8,7 @@ import pytest
 from helpers.derivative_checks import fd_critical_speed
 from helpers.work import count_calls, named
 from propwhirl.analysis import analyse
-from propwhirl.analysis.sensitivity import critical_sensitivities
+from propwhirl.analysis.sensitivity import critical_sensitivities, sensitivity_parameters
 from propwhirl.cases.ch09_baseline import baseline_flight, baseline_propeller, baseline_wing
 from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
 from propwhirl.model import derivatives as D
@@ -61,7 +61,7 @@ def test_all_sensitivities_cost_less_than_one_analysis(wingtip):
     m = wingtip_propeller_wing()
     a, analysis_calls = count_calls(analyse, m)
     cs, sens_calls = count_calls(critical_sensitivities, m, a)
-    assert len(cs.sensitivities) == len(D.parameters(m)) > 100
+    assert len(cs.sensitivities) == len(sensitivity_parameters(m)) == len(D.parameters(m)) + 4 > 100
     assert named(sens_calls, "splu") <= 2
     assert named(sens_calls, "eig", "eigvals", "eigh") == 0
     assert named(analysis_calls, "eig", "eigvals") >= 10
@@ -92,12 +92,12 @@ def test_cli_json_and_plot(tmp_path, capsys):
     from propwhirl.app.cli import main
 
     out, png = tmp_path / "s.json", tmp_path / "s.png"
-    assert main(["sensitivity", "wingtip", "--kind", "flutter", "--top", "4", "--json",
+    assert main(["sensitivity", "wingtip", "--kind", "flutter", "--top", "7", "--json",
                  str(out), "--plot", str(png)]) == 0
     text = capsys.readouterr().out
     assert "flutter onset of forward 1" in text and "propellers[0].propeller.f_theta" in text
     d = json.loads(out.read_text())
-    assert d["critical"]["kind"] == "flutter" and len(d["sensitivities"]) == 4
+    assert d["critical"]["kind"] == "flutter" and len(d["sensitivities"]) == 7
     assert png.stat().st_size > 10_000
     assert main(["sensitivity", "isolated-propeller"]) == 2
     assert "wing models" in capsys.readouterr().err

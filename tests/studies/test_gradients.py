@@ -32,15 +32,17 @@ def test_unknown_paths_are_refused(model):
 
 
 @pytest.mark.long
-def test_minimum_stiffness_clears_with_fewer_analyses_than_finite_differences(model):
+def test_minimum_stiffness_clears_in_few_analyses(model):
+    """Exact gradients only (the comparison is an option: 18 analyses with finite differences,
+    docs/gradients.md); cleared without tolerance."""
     r = minimum_mount_stiffness(model, 130.0, 1.15)
-    assert r.cleared and r.V == pytest.approx(149.5, abs=1e-3)
-    np.testing.assert_allclose(r.x, r.x_fd, rtol=1e-4)       # the same optimum
-    assert r.analyses < r.analyses_fd
+    assert r.cleared and r.V >= 149.5 and r.V == pytest.approx(149.5, abs=0.01)
+    assert r.x_fd is None and r.analyses <= 6
+    assert r.message.startswith("cleared: ")
     # the optimum really clears: an independent analysis at it
     from propwhirl.studies.gradients import CriticalSpeed as C
     check = C(model, r.paths, static_divergence=False, low_speed=False)
-    assert check.value(r.x) >= 1.15 * 130.0 - 1e-3
+    assert check.value(r.x) >= 1.15 * 130.0
 
 
 def test_openmdao_component_partials(model):

@@ -16,6 +16,7 @@ it carries): the analysis (:mod:`~propwhirl.analysis.stability`), the p-k method
 """
 from __future__ import annotations
 
+
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, fields
 from typing import Any
@@ -23,7 +24,7 @@ from typing import Any
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.analysis.participation import ModeParticipation
+from propwhirl.analysis.participation import ModeParticipation, at_the_event
 from propwhirl.results import SavedDict
 
 __all__ = ["Exclusion", "Instability", "UNSTABLE_EVENTS", "critical", "describe_critical"]
@@ -160,6 +161,10 @@ def describe_critical(c: Instability | None, describe: Callable[[str], str] = st
     if c is None:
         return "none in the speed range"
     what = f"{c.kind} of {describe(c.label)}"
+    there = at_the_event(c)
+    if there:                        # the name says what the mode was at V0: say both
+        what = (what[:-1] + f"; {there})" if what.endswith(")") and describe(c.label) != c.label
+                else f"{what} ({there})")
     if c.event == "unstable-at-start":
         f = f" ({c.frequency_hz:.3f} Hz)" if c.kind == "flutter" else ""
         who = c.propeller_text(count=3)

@@ -7,7 +7,17 @@ speed of a sweep (a tracked mode keeps its name along the sweep):
 * models with wing degrees of freedom (propeller–wing models, chapters 7–11): each oscillatory
   mode is matched, by an optimal one-to-one MAC assignment on the displacement part, to the
   in-vacuo modes named by :func:`propwhirl.analysis.modes.label_modes` ("wing n",
-  "backward k", "forward k");
+  "backward k", "forward k": the thesis's names, kept for models with one flexibly mounted
+  propeller);
+* with two or more flexibly mounted, spinning propellers the whirl modes ("backward k",
+  "forward k" above) are renamed by what they are at the first speed V0 (:func:`propeller_names`):
+  "backward whirl, propeller 7", "backward whirl, propellers 1–6 (2 of 6)",
+  "forward whirl, propellers 1–6 (1 of 6, collective)" — the sense of the propellers' orbits,
+  the set of identical propellers that carries most of the mode's kinetic energy and, when that
+  set has several modes of that sense, the mode's place among them by frequency at V0.  A name
+  thus depends on the model at V0 and on the tracked branch, not on the speed grid, and the
+  number no longer counts the other sets' modes (a tip propeller's modes moving through the
+  high-lift propellers' leave their names alone).  The wing modes keep "wing n";
 * models with a spinning propeller and no wing (chapter 6): "backward" and "forward" whirl from
   the sense of the θ–ψ orbit; not spinning: "pitch" and "yaw" by increasing frequency;
 * any other model (the typical section): the dominant content group of each mode ("plunge",
@@ -29,6 +39,7 @@ import numpy as np
 from scipy.optimize import linear_sum_assignment
 
 from propwhirl.analysis.modes import label_modes, model_modes
+from propwhirl.analysis.participation import mode_participation
 from propwhirl.analysis.whirl import whirl_sense
 from propwhirl.engine import Sweep, mac
 from propwhirl.model.protocol import DofMap, Model
@@ -61,10 +72,21 @@ def _oscillatory(sw: Sweep, t: int = 0) -> list[int]:
             if sw.physical[t, k] and abs(lam[k].imag) > 1e-9 * max(1.0, abs(lam[k]))]
 
 
-def mode_names(model: Model, sw: Sweep, basis: np.ndarray | None = None) -> list[str]:
+def mode_names(model: Model, sw: Sweep, basis: np.ndarray | None = None,
+               thesis: bool = False) -> list[str]:
     """Names of the tracked modes of ``sw`` = a sweep of ``model``, decided at its first speed
     (rules in the module docstring).  ``basis``: a reduced model's basis over the DOFs (the
-    reference modes are then its Rayleigh–Ritz modes, :func:`~propwhirl.analysis.modes.model_modes`)."""
+    reference modes are then its Rayleigh–Ritz modes, :func:`~propwhirl.analysis.modes.model_modes`).
+    ``thesis``: the thesis's names ("backward k", "forward k") also with several propellers
+    (default: those named by their propellers, :func:`propeller_names`)."""
+    names, thesis_names = named_modes(model, sw, basis)
+    return thesis_names if thesis else names
+
+
+def named_modes(model: Model, sw: Sweep,
+                basis: np.ndarray | None = None) -> tuple[list[str], list[str]]:
+    """(names, the thesis's names) of the tracked modes of ``sw`` (:func:`mode_names`): the
+    same lists but with two or more flexibly mounted, spinning propellers."""
     dm = model.dof_map()
     n = sw.n_modes
     lam0 = sw.eigenvalues[0]
@@ -86,6 +108,11 @@ def mode_names(model: Model, sw: Sweep, basis: np.ndarray | None = None) -> list
         rows, cols = linear_sum_assignment(-M)
         for r, c in zip(rows, cols):
             names[osc[r]] = ref[c]
+        if len(_spinning_flexible(dm)) >= 2:
+            whirls = [k for k in osc if not names[k].startswith("wing")]
+            thesis_names = list(names)
+            names = propeller_names(model, sw, names, whirls)
+            return _partners(sw, names), _partners(sw, thesis_names)
 
     elif "eta" in dm.q_kinds:       # a modal structure: its largest coordinate ("mode 3", ...)
         for k in osc:
@@ -104,10 +131,112 @@ def mode_names(model: Model, sw: Sweep, basis: np.ndarray | None = None) -> list
         for k in osc:
             e = {g: float(np.sum(np.abs(X0[ix, k]) ** 2)) for g, ix in groups.items()}
             names[k] = max(e, key=lambda g: e[g])
-    for k in range(n):  # hidden conjugate partners: "<name>'"
+    names = _partners(sw, names)
+    return names, names
+
+
+def _partners(sw: Sweep, names: list[str]) -> list[str]:
+    names = list(names)
+    for k in range(sw.n_modes):  # hidden conjugate partners: "<name>'"
         if not sw.physical[0, k] and sw.partner[k] >= 0:
             names[k] = f"{names[sw.partner[k]]}'"
     return names
+
+
+def _spinning_flexible(dm: DofMap) -> list:
+    return [p for p in dm.propellers if p.spinning]
+
+
+def propeller_sets(model: Model) -> list[tuple[int, ...]]:
+    """The flexibly mounted propellers (numbered from 1, DOF-map order) in sets of identical
+    installations: the same propeller (every field of its table) and the same sense of
+    rotation; the positions along the span may differ.  Sets in order of their first member."""
+    dm = model.dof_map()
+    keys: dict[str, list[int]] = {}
+    for p in dm.propellers:
+        prop = model.propellers[p.number].propeller if dm.has_wing else model.propeller
+        keys.setdefault(f"{prop!r}|{p.rotation}|{p.spinning}", []).append(p.number + 1)
+    return [tuple(g) for g in keys.values()]
+
+
+def numbers_text(numbers: Sequence[int]) -> str:
+    """'propeller 7', 'propellers 1–6', 'propellers 1, 3–4' (numbers from 1).
+
+    >>> numbers_text([1, 2, 3, 5]), numbers_text([7])
+    ('propellers 1–3, 5', 'propeller 7')
+    """
+    ns = sorted(set(int(n) for n in numbers))
+    runs: list[list[int]] = []
+    for n in ns:
+        if runs and n == runs[-1][-1] + 1:
+            runs[-1].append(n)
+        else:
+            runs.append([n])
+    text = ", ".join(f"{r[0]}" if len(r) == 1 else f"{r[0]}–{r[-1]}" for r in runs)
+    return f"propeller{'s' if len(ns) > 1 else ''} {text}"
+
+
+#: Phase coherence |Σ_j x̂_j| / Σ_j |x̂_j| over a set's propellers (x̂_j = (θ̂_j, ψ̂_j)) at and
+#: above which a mode of that set is "collective": every propeller in phase [-].
+COLLECTIVE_COHERENCE = 0.9
+
+
+def propeller_names(model: Model, sw: Sweep, names: Sequence[str],
+                    whirls: Sequence[int]) -> list[str]:
+    """``names`` with the whirl modes ``whirls`` (mode ids of ``sw``) named by their propellers
+    at the first speed V0 of the sweep (module docstring), from the modes' kinetic-energy
+    shares (:func:`propwhirl.analysis.participation.participation`):
+
+    * the set: of the sets of identical propellers (:func:`propeller_sets`), the one whose
+      propellers' shares add up to most;
+    * the sense: the whirl sense ("forward"/"backward") of most of that set's share (each
+      propeller's orbit relative to its own rotation); the thesis's sense of the name (how the
+      frequency moves as the rotors spin up) where the orbits give none;
+    * the place: the set's modes of one sense, by increasing frequency at V0, "(k of n)" when
+      there are n ≥ 2 of them; ", collective" when every propeller of a set of several moves
+      in phase (coherence ≥ :data:`COLLECTIVE_COHERENCE`).
+    """
+    out = list(names)
+    if not whirls:
+        return out
+    dm = model.dof_map()
+    lam0 = sw.eigenvalues[0]
+    X0 = sw.eigenvectors[0]
+    part = mode_participation(model, X0[:, list(whirls)], lam0[list(whirls)], float(sw.V[0]))
+    sets = propeller_sets(model)
+    col = {int(n): j for j, n in enumerate(part.number)}
+    by_number = {p.number + 1: p for p in dm.propellers}
+    found = {}
+    for i, k in enumerate(whirls):
+        share = {s: sum(float(part.share[col[n], i]) for n in s) for s in sets}
+        best = max(sets, key=lambda s: share[s])
+        votes = {"forward": 0.0, "backward": 0.0}
+        for n in best:
+            w = part.whirl[col[n], i]
+            if w in votes:
+                votes[w] += float(part.share[col[n], i])
+        thesis_kind = names[k].split()[0]
+        sense = max(votes, key=lambda w: votes[w]) if any(votes.values()) else thesis_kind
+        x = np.array([[X0[by_number[n].theta, k], X0[by_number[n].psi, k]] for n in best])
+        mags = np.linalg.norm(x, axis=1)
+        coherent = (len(best) > 1 and mags.sum() > 0
+                    and np.linalg.norm(x.sum(axis=0)) >= COLLECTIVE_COHERENCE * mags.sum())
+        found[k] = (sense, best, coherent)
+    for (sense, best), ks in _grouped(found).items():
+        ks = sorted(ks, key=lambda k: (abs(lam0[k].imag), k))
+        for place, k in enumerate(ks, start=1):
+            tags = [f"{place} of {len(ks)}"] if len(ks) > 1 else []
+            tags += ["collective"] if found[k][2] else []
+            tail = f" ({', '.join(tags)})" if tags else ""
+            out[k] = f"{sense} whirl, {numbers_text(best)}{tail}"
+    return out
+
+
+def _grouped(found: Mapping[int, tuple[str, tuple[int, ...], bool]]) -> dict:
+    groups: dict[tuple[str, tuple[int, ...]], list[int]] = {}
+    for k, (sense, best, _) in found.items():
+        groups.setdefault((sense, best), []).append(k)
+    return groups
 
 
 def whirl(dm: DofMap, x: np.ndarray, lam: complex) -> str | None:

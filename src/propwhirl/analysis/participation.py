@@ -48,6 +48,7 @@ propeller 1: 100 %, backward whirl
 """
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -333,6 +334,40 @@ def with_participation(model: Model, events: list,
     return [replace(e, participation=part.mode(k)) for k, e in enumerate(events)]
 
 
+def _named_numbers(label: str) -> set[int] | None:
+    """The propeller numbers a mode's name carries ('... propellers 1–6, 8 ...'), or None."""
+    m = re.search(r"propellers? ([0-9–, ]+)", label)
+    if m is None:
+        return None
+    out: set[int] = set()
+    for part in m.group(1).replace(" ", "").split(","):
+        lo, _, hi = part.partition("–")
+        if lo.isdigit():
+            out.update(range(int(lo), int(hi if hi.isdigit() else lo) + 1))
+    return out or None
+
+
+def at_the_event(e) -> str:
+    """What a whirl flutter mode is at its event when its name (what it was at the first speed)
+    says otherwise, e.g. 'backward whirl at the onset' for the wingtip model's 'forward 1' at
+    159.39 m/s, or 'at the onset: backward whirl, propeller 3 leading' for a mode named after
+    propeller 7; '' when the name still says it (or for a divergence, a wing mode).
+    ``e``: an :class:`~propwhirl.analysis.stability.Instability`."""
+    if e.kind != "flutter" or e.whirl not in ("forward", "backward"):
+        return ""
+    sense = e.label.split()[0] if e.label.startswith(("forward", "backward")) else None
+    if sense is None:
+        return ""
+    p = e.participation
+    lead = p.leading if p is not None else None
+    named = _named_numbers(e.label)
+    if lead is not None and named is not None and lead.propeller not in named:
+        return f"at the {e.event}: {e.whirl} whirl, propeller {lead.propeller} leading"
+    if e.whirl != sense:
+        return f"{e.whirl} whirl at the {e.event}"
+    return ""
+
+
 def participation_lines(events, indent: str = "") -> list[str]:
     """Text lines of the propellers' participation at each event that has propellers (events:
     :class:`~propwhirl.analysis.stability.Instability`): one line per event, one more per
@@ -344,7 +379,9 @@ def participation_lines(events, indent: str = "") -> list[str]:
              "energy in each propeller's", f"{indent}pitch and yaw (the wing's: the rest), whirl "
              "sense of its orbit, amplitude relative to the largest"]
     for e in with_props:
-        head = f"{indent}  at the {e.kind} {e.event} of {e.label} ({e.V:.2f} m/s)"
+        there = at_the_event(e)
+        head = (f"{indent}  at the {e.kind} {e.event} of {e.label} ({e.V:.2f} m/s"
+                + (f"; {there})" if there else ")"))
         p = e.participation
         if len(p.propellers) == 1:
             lines.append(f"{head}: {p.describe()}")

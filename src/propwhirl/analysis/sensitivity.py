@@ -14,8 +14,20 @@ Houbolt–Reed derivatives are not polynomial in V).  Keeping Re λ = 0 along th
     dV_crit/dp = −Re(∂λ/∂p) / Re(∂λ/∂V),
     df/dp = sign(Im λ) (Im ∂λ/∂p + Im ∂λ/∂V · dV_crit/dp) / 2π     (0 for divergence),
 
-and the normalised sensitivity (p / V_crit) dV_crit/dp says by how many percent the critical speed
-moves for one percent of p.  All sensitivities of one point need one sparse factorisation for
+and the normalised sensitivity (s / V_crit) dV_crit/dp says by how many percent the critical speed
+moves when p moves by one percent of its scale s: the value p itself for a magnitude (a
+stiffness, a mass, a frequency, a chord), a stated physical scale for a position, whose value
+depends on its origin (:func:`scale_of`: the propeller radius R for the positions of a
+propeller's point masses and pivots along its axis, the chord for the chordwise section
+positions, which are fractions of it).
+
+Beyond the parameters of :func:`propwhirl.model.derivatives.parameters`, the whole-distribution
+factors of the studies (:mod:`propwhirl.studies.paths`' scale form ``wing.EI*``, ``wing.GJ*``,
+``wing.mass_per_length*``: a factor on every element, 1 = the model as given) have
+∂λ/∂(factor) = Σₑ pₑ ∂λ/∂pₑ exactly, from the per-element derivatives, and ``flight.density``
+has ∂λ/∂ρ from the generated ∂/∂ρ of the aerodynamic blocks
+(:func:`propwhirl.model.derivatives.density_blocks`); :func:`sensitivity_parameters` lists
+them all.  All sensitivities of one point need one sparse factorisation for
 the two eigenvectors, two pencil evaluations for ∂/∂V and one sparse product per parameter —
 less than one analysis (measured in the tests).
 
@@ -24,6 +36,7 @@ point, where λ is not differentiable) are refused with an error saying so.
 """
 from __future__ import annotations
 
+import difflib
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -50,9 +63,10 @@ SAME_ROOT = 1e-4
 
 @dataclass(frozen=True)
 class Sensitivity:
-    """One parameter: path, value and unit (:mod:`propwhirl.model.derivatives`), ∂λ/∂p
+    """One parameter: path, value and unit (:func:`sensitivity_parameters`), ∂λ/∂p
     [1/s per unit], dV_crit/dp [m/s per unit], df/dp [Hz per unit] and
-    normalised = (p / V_crit) dV_crit/dp [-]."""
+    normalised = (scale / V_crit) dV_crit/dp [-], ``scale`` [unit] the value itself (None)
+    or, for a position, the physical scale named by ``scale_of`` (:func:`scale_of`)."""
 
     path: str
     value: float
@@ -62,21 +76,40 @@ class Sensitivity:
     dV_dp: float
     df_dp: float
     normalised: float
+    scale: float | None = None
+    scale_of: str = ""
+
+    @property
+    def per(self) -> str:
+        """What the normalised sensitivity is per: "value" or the scale, e.g. "R = 0.9 m"."""
+        if self.scale is None:
+            return "value"
+        if self.unit == "chord" and self.scale == 1.0:
+            return self.scale_of
+        return f"{self.scale_of} = {self.scale:.4g} {self.unit}".rstrip()
 
     def to_dict(self) -> dict[str, Any]:
-        """Every field (∂λ/∂p as ``{"re", "im"}``); a part of a sensitivities file."""
+        """Every field (∂λ/∂p as ``{"re", "im"}``, ``scale`` null for the value itself); a
+        part of a sensitivities file."""
         return {"path": self.path, "value": self.value, "unit": self.unit, "doc": self.doc,
                 "dlam_dp": _complex_dict(self.dlam_dp), "dV_dp": self.dV_dp,
-                "df_dp": self.df_dp, "normalised": self.normalised}
+                "df_dp": self.df_dp, "normalised": self.normalised, "scale": self.scale,
+                "scale_of": self.scale_of}
 
     @classmethod
     def from_dict(cls, d: Any, where: str = "sensitivity") -> "Sensitivity":
-        """The entry written by :meth:`to_dict`, checked (InputError naming the key)."""
+        """The entry written by :meth:`to_dict`, checked (InputError naming the key); entries
+        of version 1 files have no scale (normalised by the value)."""
         r = SavedDict(d, where, ("path", "value", "unit", "doc", "dlam_dp", "dV_dp", "df_dp",
-                                 "normalised"))
+                                 "normalised"), ("scale", "scale_of"))
+        scale = r.number("scale", optional=True) if r.has("scale") else None
+        if scale is not None and scale <= 0:
+            raise v.InputError(f"{r.name('scale')} = {scale!r} is invalid: must be > 0 "
+                               "(or null: the value)")
         return cls(r.string("path"), r.number("value"), r.string("unit"), r.string("doc"),
                    _complex_of(r, "dlam_dp"), r.number("dV_dp"), r.number("df_dp"),
-                   r.number("normalised"))
+                   r.number("normalised"), scale,
+                   r.string("scale_of") if r.has("scale_of") else "")
 
 
 def _complex_dict(z: complex) -> dict[str, float]:
@@ -94,7 +127,7 @@ class CriticalSensitivities(Result):
     λ and ∂λ/∂V there), one :class:`Sensitivity` per parameter in the model's order.
 
     A :class:`~propwhirl.results.Result` of kind "sensitivities" (format
-    ``propwhirl.sensitivities/1``; ``propwhirl sensitivities --json`` writes it): the
+    ``propwhirl.sensitivities/2``, each entry with its scale; version 1 still loads; ``propwhirl sensitivities --json`` writes it): the
     critical point's keys are those of an :class:`~propwhirl.analysis.stability.Instability`
     (V, frequency_hz, kind, event; mode is its label) and λ, ∂λ/∂V."""
 
@@ -108,8 +141,8 @@ class CriticalSensitivities(Result):
     sensitivities: tuple[Sensitivity, ...]
 
     KIND: ClassVar[str] = "sensitivities"
-    VERSION: ClassVar[int] = 1
-    READABLE: ClassVar[tuple[int, ...]] = (1,)
+    VERSION: ClassVar[int] = 2
+    READABLE: ClassVar[tuple[int, ...]] = (1, 2)
     WHAT: ClassVar[str] = "sensitivities file"
 
     def ranked(self, top: int | None = None) -> list[Sensitivity]:
@@ -150,12 +183,13 @@ class CriticalSensitivities(Result):
     def format(self, top: int | None = 10) -> str:
         """A text table of the ranked sensitivities."""
         head = (f"{self.kind} {self.event} of {self.mode} at V = {self.V:.2f} m/s, "
-                f"f = {self.frequency_hz:.3f} Hz: sensitivities (normalised: % of V_crit per % "
-                "of the parameter)")
-        rows = [[s.path, f"{s.value:.6g}", s.unit, f"{s.dV_dp:.6g}", f"{s.normalised:+.4f}"]
-                for s in self.ranked(top)]
+                f"f = {self.frequency_hz:.3f} Hz: sensitivities (normalised: % of V_crit per "
+                "% of the parameter's value, or of the scale shown for a position)")
+        rows = [[s.path, f"{s.value:.6g}", s.unit, f"{s.dV_dp:.6g}", f"{s.normalised:+.4f}",
+                 s.per] for s in self.ranked(top)]
         return head + "\n" + text_table(rows, ["parameter", "value", "unit",
-                                               "dV/dp [m/s per unit]", "normalised"], "lrlrr")
+                                               "dV/dp [m/s per unit]", "normalised", "per"],
+                                        "lrlrrl")
 
 
 def _check_pair(model, analysis) -> None:
@@ -192,10 +226,73 @@ def _left_vector(F, E, lam: complex, y0: np.ndarray) -> np.ndarray:
     return y
 
 
+#: the whole-distribution factors (the studies' scale form, :mod:`propwhirl.studies.paths`):
+#: path → the per-element parameter name of :func:`propwhirl.model.derivatives.parameters`
+FACTORS = {"wing.EI*": "EI", "wing.GJ*": "GJ", "wing.mass_per_length*": "mass_per_length"}
+#: the air density's path (``flight.density`` [kg/m³])
+DENSITY = "flight.density"
+_FACTOR_DOCS = {"EI": "bending rigidity", "GJ": "torsional rigidity",
+                "mass_per_length": "mass per unit span"}
+
+
+def sensitivity_parameters(model) -> tuple[D.Parameter, ...]:
+    """Every parameter :func:`critical_sensitivities` covers for ``model`` (a PropellerWing):
+    those of :func:`propwhirl.model.derivatives.parameters`, then the whole-distribution
+    factors :data:`FACTORS` (value 1, kind "factor") and ``flight.density`` [kg/m³] (kind
+    "flight")."""
+    base = D.parameters(model)
+    out = list(base)
+    for path, name in FACTORS.items():
+        out.append(D.Parameter(path, "factor", -1, name, 1.0, "",
+                               f"factor on the whole {_FACTOR_DOCS[name]} distribution "
+                               f"(every element; 1 = as given)"))
+    out.append(D.Parameter(DENSITY, "flight", -1, "density", float(model.flight.density),
+                           "kg/m^3", "air density"))
+    return tuple(out)
+
+
+def scale_of(model, p: D.Parameter) -> tuple[float | None, str]:
+    """The scale [p's unit] of the normalised sensitivity of ``p`` and what it is: (None, "")
+    for a magnitude (normalised by its own value); for a position, whose value depends on its
+    origin, a physical scale — the propeller's radius R for its point masses' and pivots'
+    positions along its axis [m], the chord for the chordwise section positions (elastic axis,
+    centre of gravity, aerodynamic centre, in chords: scale 1)."""
+    if p.kind == "propeller" and (p.name.startswith("x:") or p.name.startswith("pivot_")):
+        return float(model.propellers[p.index].propeller.radius), "propeller radius R"
+    if p.kind == "section" and p.name in ("elastic_axis", "centre_of_gravity",
+                                          "aerodynamic_centre"):
+        return 1.0, "the chord"
+    return None, ""
+
+
+def _resolve(model, params) -> list[D.Parameter]:
+    """The parameters named by ``params`` (paths or Parameters; None: all), checked before any
+    work: an unknown path is one InputError saying where to find the valid ones."""
+    known = {p.path: p for p in sensitivity_parameters(model)}
+    if params is None:
+        return list(known.values())
+    if isinstance(params, (str, bytes)):
+        params = [params]
+    out, seen = [], set()
+    for q in params:
+        path = q.path if isinstance(q, D.Parameter) else q
+        if not isinstance(path, str) or path not in known:
+            near = difflib.get_close_matches(str(path), list(known), n=3)
+            hint = f" (did you mean {', '.join(map(repr, near))}?)" if near else ""
+            raise v.InputError(
+                f"parameter = {v.short_repr(path)} is invalid: not a parameter with derivatives "
+                f"of this model{hint}; `propwhirl sensitivity MODEL --list` or "
+                "propwhirl.analysis.sensitivity.sensitivity_parameters(model) lists them")
+        if path not in seen:
+            seen.add(path)
+            out.append(known[path])
+    return out
+
+
 def critical_sensitivities(model, analysis, event=None, *, params=None) -> CriticalSensitivities:
     """The sensitivities of ``event`` (default ``analysis.critical``) of ``analysis`` (an
     analysis of ``model``, a PropellerWing) for ``params`` (paths of
-    :func:`propwhirl.model.derivatives.parameters`; default all).
+    :func:`sensitivity_parameters`, checked before any work; default all).
 
     Examples
     --------
@@ -213,6 +310,7 @@ def critical_sensitivities(model, analysis, event=None, *, params=None) -> Criti
     (159.39, 3.74, 0.164)
     """
     _check_pair(model, analysis)
+    pars = _resolve(model, params)
     e = analysis.critical if event is None else event
     if e is None:
         raise v.InputError("no instability in the analysed range: no critical speed to "
@@ -245,16 +343,35 @@ def critical_sensitivities(model, analysis, event=None, *, params=None) -> Criti
     (Fp, Ep), (Fm, Em) = (model.second_order_blocks(np.array([V + s])).pencil(0)
                           for s in (h, -h))
     dlam_dV = np.vdot(y, ((Fp - Fm) - lam * (Ep - Em)) @ x) / (2 * h * denom)
-    pars = D.parameters(model) if params is None else D._lookup(model, params)
-    blocks = D.derivative_blocks(model, np.array([V]), pars)
+
+    def dlam_of(blocks) -> complex:
+        dF, dE = D.pencil_derivative(blocks, 0)
+        return complex(np.vdot(y, (dF - lam * dE) @ x) / denom)
+
+    # the model's own parameters, those the factors sum over included (each computed once)
+    base = {p.path: p for p in D.parameters(model)}
+    need = {p.path: p for p in pars if p.path in base}
+    for p in pars:
+        if p.kind == "factor":
+            need.update((q.path, q) for q in base.values()
+                        if q.kind == "element" and q.name == p.name)
+    blocks = D.derivative_blocks(model, np.array([V]), list(need.values()))
+    dlams = {path: dlam_of(b) for path, b in blocks.items()}
     out = []
     sgn = 1.0 if np.imag(lam) >= 0 else -1.0
     for p in pars:
-        dF, dE = D.pencil_derivative(blocks[p.path], 0)
-        dlam = complex(np.vdot(y, (dF - lam * dE) @ x) / denom)
+        if p.kind == "factor":          # d/dc of every p_e → c p_e at c = 1: Σ p_e ∂λ/∂p_e
+            dlam = complex(sum(q.value * dlams[q.path] for q in need.values()
+                               if q.kind == "element" and q.name == p.name))
+        elif p.kind == "flight":
+            dlam = dlam_of(D.density_blocks(model, np.array([V])))
+        else:
+            dlam = dlams[p.path]
         dV = -dlam.real / dlam_dV.real
         df = 0.0 if real else sgn * (dlam.imag + dlam_dV.imag * dV) / (2 * np.pi)
+        scale, what = scale_of(model, p)
         out.append(Sensitivity(p.path, p.value, p.unit, p.doc, dlam, float(dV), float(df),
-                               float(p.value / V * dV)))
+                               float((p.value if scale is None else scale) / V * dV),
+                               scale, what))
     return CriticalSensitivities(V, abs(float(np.imag(lam))) / (2 * np.pi), e.kind, e.event,
                                  e.label, complex(lam), complex(dlam_dV), tuple(out))

@@ -32,7 +32,7 @@ from propwhirl import fileio
 from propwhirl import validate as v
 from propwhirl.analysis.events import (UNSTABLE_EVENTS, Exclusion, Instability,  # noqa: F401
                                        critical, describe_critical)
-from propwhirl.analysis.naming import mode_content, mode_names, whirl
+from propwhirl.analysis.naming import mode_content, named_modes, whirl
 from propwhirl.analysis.participation import (ModeParticipation, branch_point_shape,  # noqa: F401
                                               events_csv, events_table, participation_lines,
                                               with_participation)
@@ -92,6 +92,10 @@ class ModelAnalysis(Result):
     #: with method="pk" (the events are then the p-k method's): the finite-state events of the
     #: same tracked modes and their aerodynamics (saved and re-read); None otherwise
     finite_state: FiniteState | None = None
+    #: mode name -> the thesis's name of the mode ("backward 2") where they differ (several
+    #: propellers, :func:`propwhirl.analysis.naming.named_modes`): :meth:`first` takes either;
+    #: not saved (an analysis re-read from a file knows its names only)
+    thesis_names: dict[str, str] = field(default_factory=dict, repr=False, compare=False)
 
     def method_comparison(self) -> MethodComparison | None:
         """The p-k events beside the finite-state ones (:func:`compare_methods`: V and f by
@@ -102,11 +106,15 @@ class ModelAnalysis(Result):
         return replace(out, exact="p-k, doublet-lattice panels") if self.doublet_lattice else out
 
     def describe(self, label: str) -> str:
-        """'label (dominant content)', e.g. 'wing 2 (torsion)'."""
+        """'label (dominant content)', e.g. 'wing 2 (torsion)'; a label that ends in its own
+        parenthesis takes the content inside it: 'backward whirl, propellers 1–6 (1 of 6; pitch)'."""
         c = self.content.get(label)
         if not c:
             return label
-        return f"{label} ({max(c, key=lambda g: c[g])})"
+        content = max(c, key=lambda g: c[g])
+        if label.endswith(")"):
+            return f"{label[:-1]}; {content})"
+        return f"{label} ({content})"
 
     @property
     def onsets(self) -> list[Instability]:
@@ -126,9 +134,10 @@ class ModelAnalysis(Result):
         return critical(self.events, exclude=exclude)
 
     def first(self, label: str, kind: str | None = None, event: str = "onset") -> Instability | None:
-        """The lowest-speed event of the mode named `label` (optionally of one kind)."""
+        """The lowest-speed event of the mode named `label` (optionally of one kind); `label`
+        may also be the thesis's name of the mode (:attr:`thesis_names`: "backward 2")."""
         hits = [e for e in self.events
-                if e.label == label and e.event == event and (kind is None or e.kind == kind)]
+                if label in (e.label, self.thesis_names.get(e.label)) and e.event == event and (kind is None or e.kind == kind)]
         return min(hits, key=lambda e: e.V) if hits else None
 
     @property
@@ -529,7 +538,7 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         basis, lift = None, None
         unconverged = []
     sw = an.sweep
-    names = mode_names(finite, sw, basis)
+    names, thesis_names = named_modes(finite, sw, basis)
     sw = sw.relabel(names)
     events, shapes = [], []
     for p in an.criticals.points:
@@ -572,7 +581,8 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
     return ModelAnalysis(model.name, sw, tuple(events), an.criticals,
                          mode_content(finite, sw, names), dm, notes, ref,
                          None if finite_state is None
-                         else FiniteState(aero_model_of(model), finite_state))
+                         else FiniteState(aero_model_of(model), finite_state),
+                         {a: b for a, b in zip(names, thesis_names) if a != b})
 
 
 #: Below this share of the mode's kinetic energy [-] in every propeller (0.5 %, printed as

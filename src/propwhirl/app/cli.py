@@ -350,16 +350,35 @@ def _modes(args: argparse.Namespace) -> int:
     groups = ("bending", "torsion") + (("chordwise",) if "chordwise" in found else ()) + (
         "pitch", "yaw")                  # chordwise: in-plane bending (wing.EI_chordwise)
     share = kinetic_energy_shares(modes.shapes, M, {g: found.get(g, []) for g in groups})
-    echo(f"{model.name}: in-vacuo modes (V = 0, not rotating; kinetic-energy shares)")
-    print(f"  {'mode':12s} {'f [Hz]':>10s} " + " ".join(f"{g:>8s}" for g in groups))
+    many = len(dm.propellers) >= 2
+    if many:                         # each propeller's share (its θ, ψ; participation.py)
+        from propwhirl.analysis.participation import participation
+        part = participation(dm, modes.shapes, M, 1j * modes.omega, 0.0)
+    echo(f"{model.name}: in-vacuo modes (V = 0, not rotating; kinetic-energy shares"
+         + ("; propellers: the three largest propeller shares, numbered from 1)" if many
+            else ")"))
+    print(f"  {'mode':12s} {'f [Hz]':>10s} " + " ".join(f"{g:>8s}" for g in groups)
+          + ("  propellers" if many else ""))
     order = np.argsort(modes.omega, kind="stable")
     for r, i in enumerate(order[:count]):
         if names is not None:
             label, f = names[r]
         else:  # no wing (isolated propeller): named by its dominant motion
             label, f = max(groups, key=lambda g: share[g][i]), float(modes.frequency_hz[i])
-        echo(f"  {label:12s} {f:10.4f} " + " ".join(f"{share[g][i]:8.3f}" for g in groups))
+        who = f"  {_leading_shares(part, int(i))}" if many else ""
+        echo(f"  {label:12s} {f:10.4f} " + " ".join(f"{share[g][i]:8.3f}" for g in groups)
+             + who)
     return 0
+
+
+def _leading_shares(part, k: int, count: int = 3) -> str:
+    """'3 27 %, 4 21 %, 2 20 %': the (at most ``count``) propellers of mode ``k`` of a
+    :class:`~propwhirl.analysis.participation.Participation` with the largest shares of its
+    kinetic energy (their θ, ψ), numbered from 1; those under 0.5 % left out ('-' if all)."""
+    order = sorted(range(part.number.size), key=lambda j: -part.share[j, k])[:count]
+    out = [f"{int(part.number[j])} {100 * part.share[j, k]:.0f} %" for j in order
+           if part.share[j, k] >= 0.005]
+    return ", ".join(out) or "-"
 
 
 def _add_modes(sub) -> None:

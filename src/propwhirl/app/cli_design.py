@@ -159,7 +159,7 @@ def _add_clearance(sub) -> None:
 
 
 def _sensitivity(args: argparse.Namespace) -> int:
-    from propwhirl.analysis.sensitivity import critical_sensitivities
+    from propwhirl.analysis.sensitivity import critical_sensitivities, sensitivity_parameters
     from propwhirl.analysis.stability import analyse
 
     check_outputs(json=args.json, plot=args.plot, model=args.model)
@@ -169,6 +169,23 @@ def _sensitivity(args: argparse.Namespace) -> int:
     if not hasattr(model, "second_order_blocks"):
         raise InputError(f"{type(model).__name__}: sensitivities are available for wing models "
                          "(PropellerWing) only")
+    known = sensitivity_parameters(model)
+    if args.list:
+        echo("\n".join(f"{p.path}  [{p.unit or 'factor'}]  {p.doc}" for p in known))
+        return 0
+    params = None
+    if args.param:
+        paths = {p.path for p in known}
+        bad = next((q for q in args.param if q not in paths), None)
+        if bad is not None:
+            raise InputError(f"--param {bad!r} is invalid: not a parameter with derivatives of "
+                             f"this model (`propwhirl sensitivity {args.model} --list` lists "
+                             f"the {len(paths)} valid paths)")
+        params = list(dict.fromkeys(args.param))
+        spanwise = ("wing.EI[", "wing.GJ[", "wing.mass_per_length[")
+        if args.plot and not any(q.startswith(spanwise) for q in params):
+            raise InputError("--plot draws the per-element sensitivities of EI, GJ and m: "
+                             "leave out --param, or add paths such as --param 'wing.GJ[0]'")
     a = analyse(model)
     event = a.critical
     if args.kind is not None:
@@ -176,7 +193,7 @@ def _sensitivity(args: argparse.Namespace) -> int:
         if not cands:
             raise InputError(f"no {args.kind} onset in the analysed range")
         event = min(cands, key=lambda e: e.V)
-    cs = critical_sensitivities(model, a, event)
+    cs = critical_sensitivities(model, a, event, params=params)
     echo(cs.format(args.top))
     if args.json:
         cs.save(args.json, args.top)
@@ -200,6 +217,11 @@ def _add_sensitivity(sub) -> None:
     p.add_argument("--json", metavar="FILE", help="write the critical point and the ranked "
                    "sensitivities as JSON")
     p.add_argument("--plot", metavar="PNG", help="write the spanwise sensitivities of EI, GJ, m")
+    p.add_argument("--param", action="append", metavar="PATH",
+                   help="compute only this parameter's sensitivity (repeat for more; "
+                   "--list shows the valid paths)")
+    p.add_argument("--list", action="store_true",
+                   help="list the parameter paths with derivatives of the model and stop")
     p.set_defaults(func=_sensitivity)
 
 

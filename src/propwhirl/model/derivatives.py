@@ -246,6 +246,12 @@ class _Context:
 
     # ---------------------------------------------------------------- strip aerodynamics
     def node(self, par: Parameter) -> BlockSystem:
+        block, lag = self._strips("Cla", np.array([par.index]))
+        return self.system((block,), lag)
+
+    def _strips(self, arg: str, nodes: np.ndarray) -> tuple[LocalBlocks, LagBlocks]:
+        """∂/∂arg (a generated argument of the strip aerodynamics: "Cla", "rho") of the strip
+        blocks of `nodes`, with the widths and signs of the assembly."""
         wing = self.model.wing
         group, roles = STRIP_AERO[wing.aero_model]
         group += "_d"
@@ -257,23 +263,37 @@ class _Context:
                           a=node["a"], Cla=node["Cla"], ac=node["ac"])
             self.strip = (getattr(strip_aero, group)(**values), node["width"])
         d, width = self.strip
-        i, k = par.index, LAG_STATES[wing.aero_model]
+        k = LAG_STATES[wing.aero_model]
         shape = {"M": (2, 2), "C": (2, 2), "K": (2, 2), "W0": (2, k), "Ww": (k, k),
                  "Wv": (k, 2), "Wq": (k, 2)}
 
-        def get(role: str) -> np.ndarray:  # (nV, 1, r, c) at node i
-            x = d[roles[role]].get("Cla") if role in roles else None
+        def get(role: str) -> np.ndarray:  # (nV, len(nodes), r, c)
+            x = d[roles[role]].get(arg) if role in roles else None
             if x is None:
-                return np.zeros((self.nV, 1) + shape[role])
-            return np.broadcast_to(x, (self.nV, wing.n_nodes) + shape[role])[:, i:i + 1]
+                return np.zeros((self.nV, nodes.size) + shape[role])
+            return np.broadcast_to(x, (self.nV, wing.n_nodes) + shape[role])[:, nodes]
 
-        w = width[i]
-        qrows = np.array([[3 * i, 3 * i + 2]])
-        wrows = k * i + np.arange(k)[None, :]
-        block = LocalBlocks(f"wing strip {i}", qrows, -w * get("M"), -w * get("C"),
-                            -w * get("K"))
-        lag = LagBlocks(qrows, wrows, w * get("W0"), get("Ww"), get("Wv"), get("Wq"))
-        return self.system((block,), lag)
+        w = width[nodes][None, :, None, None]
+        qrows = 3 * nodes[:, None] + np.array([0, 2])[None, :]
+        wrows = k * nodes[:, None] + np.arange(k)[None, :]
+        block = LocalBlocks("wing strips" if nodes.size > 1 else f"wing strip {nodes[0]}",
+                            qrows, -w * get("M"), -w * get("C"), -w * get("K"))
+        return block, LagBlocks(qrows, wrows, w * get("W0"), get("Ww"), get("Wv"), get("Wq"))
+
+    # ---------------------------------------------------------------- flight
+    def density(self) -> BlockSystem:
+        """∂/∂ρ of the blocks [per kg/m³]: every strip's aerodynamic blocks and every
+        propeller's with its loads on, through the generated ∂/∂rho (the lag dynamics, the
+        structure and the nondimensional propeller derivatives do not depend on ρ)."""
+        model = self.model
+        groups, lag = [], None
+        if model.wing_aero:
+            block, lag = self._strips("rho", np.arange(model.wing.n_nodes))
+            groups.append(block)
+        for j, inst in enumerate(model.propellers):
+            if model.propeller_aero and inst.aero:
+                groups.append(self.propeller_block(j, [("rho", 1.0)]))
+        return self.system(tuple(groups), lag)
 
     # ---------------------------------------------------------------- section fields
     def section(self, par: Parameter) -> BlockSystem:
@@ -487,6 +507,16 @@ def derivative_blocks(model: PropellerWing, V, params: Iterable[str | Parameter]
     ctx = _Context(model, V, omega)
     with np.errstate(all="ignore"):
         return {p.path: getattr(ctx, p.kind)(p) for p in pars}
+
+
+def density_blocks(model: PropellerWing, V, omega=None) -> BlockSystem:
+    """∂(blocks)/∂ρ [per kg/m³] of ``model.second_order_blocks(V, omega)`` with respect to
+    the air density ``flight.density`` (the layout of :func:`derivative_blocks`): the strip
+    and propeller aerodynamic blocks, exact from the generated ∂/∂rho."""
+    _check_model(model)
+    V = np.atleast_1d(v.positive("airspeed V", V, "m/s"))
+    with np.errstate(all="ignore"):
+        return _Context(model, V, omega).density()
 
 
 def second_order_derivatives(model: PropellerWing, V,

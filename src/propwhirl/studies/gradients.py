@@ -8,13 +8,13 @@ and its gradient from :func:`propwhirl.analysis.sensitivity.critical_sensitiviti
 analysis per point, the gradient included.  It counts the analyses it ran.
 
 :func:`minimum_mount_stiffness` is the optimisation of issue 13.4: the smallest pitch and yaw
-mount stiffnesses (Σ K/K₀) for which V_crit ≥ factor · V_D, by SLSQP (``scipy.optimize``), once
-with these gradients and once with finite-difference gradients (SLSQP's own, step
-:data:`FD_STEP` relative), so that the numbers of analyses can be compared.
+mount stiffnesses (Σ K/K₀) for which V_crit ≥ factor · V_D, by SLSQP (``scipy.optimize``), with
+these gradients (default) or finite-difference gradients (SLSQP's own, step :data:`FD_STEP`
+relative), or both with ``compare=True`` so that the numbers of analyses can be compared.
 
 :func:`openmdao_component` returns an ``openmdao.api.ExplicitComponent`` (the ``mdo`` extra):
-inputs the chosen parameter paths, outputs the critical speed and the clearance margin
-V_crit / (factor · V_D) − 1, with analytic partials.
+inputs the chosen parameter paths (named by :func:`openmdao_name`), outputs the critical speed
+and the clearance margin V_crit / (factor · V_D) − 1, with analytic partials.
 """
 from __future__ import annotations
 
@@ -41,6 +41,16 @@ FD_STEP = 1e-4
 #: optimum there sits on a discontinuity where no gradient exists (SLSQP stalled at 50
 #: iterations with the bound 0.05).
 LOWER_BOUND = (3.0 / 7.0) ** 2
+#: upper bound of each stiffness relative to its design value: 9, three times the design mount
+#: frequency.  Without it a critical speed the mount barely moves sent SLSQP to 10⁵ K₀ and past
+#: the model's valid range (the X-57-like model, propeller 7: issue 25.7)
+UPPER_BOUND = 9.0
+#: SLSQP aims at factor · V_D · (1 + CLEARANCE_MARGIN): it accepts a constraint violated by up
+#: to its ftol (1e-6 of the target), and a result 3e-6 m/s short is not cleared
+CLEARANCE_MARGIN = 1e-5
+#: below this fraction of the shortfall recovered by the design point's gradient within the
+#: bounds, the critical instability is not the mount's (the optimisation is not started)
+REACH_FRACTION = 0.1
 
 
 def _checked_paths(paths: Any) -> tuple[str, ...]:
@@ -87,6 +97,7 @@ class CriticalSpeed:
     x0: np.ndarray = field(init=False, repr=False)
     units: tuple[str, ...] = field(init=False, repr=False)
     _cache: dict = field(default_factory=dict, repr=False)
+    _labels: dict = field(default_factory=dict, repr=False)
 
     def __post_init__(self) -> None:
         self.paths = _checked_paths(self.paths)
@@ -114,6 +125,7 @@ class CriticalSpeed:
         e = critical_instability(a, static_divergence=self.static_divergence,
                                  low_speed=self.low_speed,
                                  is_wing_divergence=wing_divergence_predicate(m, a))
+        self._labels[key] = "" if e is None else f"{e.kind} of {e.label}"
         if e is None:
             out = (float("inf"), np.zeros(len(self.paths)))
         elif e.event not in ("onset", "recovery"):
@@ -129,6 +141,11 @@ class CriticalSpeed:
         """V_crit(x) [m/s] (inf when nothing is unstable in the range)."""
         return self._evaluate(x)[0]
 
+    def critical(self, x) -> str:
+        """What the critical instability at x is ("flutter of forward 1"; "" when none)."""
+        self._evaluate(x)
+        return self._labels.get(tuple(np.round(np.asarray(x, dtype=float), 12)), "")
+
     def gradient(self, x) -> np.ndarray:
         """dV_crit/dx [m/s per unit of each path]; an error where the critical event is not a
         crossing (no derivative)."""
@@ -140,12 +157,15 @@ class CriticalSpeed:
 
 @dataclass(frozen=True)
 class OptimisationResult(Result):
-    """The optimum x (in the paths' units), V_crit there [m/s], the objective Σ x/x₀, whether it
-    clears, SLSQP's message, and the analyses it took with exact and with finite-difference
-    gradients (and each optimum).
+    """The stiffnesses found, x (in the paths' units, design values ``x0``), V_crit there
+    [m/s] against the required ``target`` = factor · V_D [m/s], the objective Σ x/x₀, whether
+    V_crit ≥ target there (``cleared``: no tolerance), a plain message, the gradients used
+    (``method``: "exact" or "fd") and the analyses they took; with ``compare=True`` also the
+    other method's optimum ``x_fd`` and analyses ``analyses_fd`` (None otherwise).
 
-    A :class:`~propwhirl.results.Result` of kind "stiffness-optimisation" (format
-    ``propwhirl.stiffness-optimisation/1``): :meth:`save` / :meth:`load`, checked; V = inf
+    ``str(result)`` is a readable summary.  A :class:`~propwhirl.results.Result` of kind
+    "stiffness-optimisation" (format ``propwhirl.stiffness-optimisation/2``; version 1 files,
+    which always held both methods, still load): :meth:`save` / :meth:`load`, checked; V = inf
     (nothing unstable in the range) is saved as null."""
 
     paths: tuple[str, ...]
@@ -155,28 +175,55 @@ class OptimisationResult(Result):
     cleared: bool
     message: str
     analyses: int
-    x_fd: np.ndarray
-    analyses_fd: int
+    x_fd: np.ndarray | None = None
+    analyses_fd: int | None = None
+    method: str = "exact"
+    target: float | None = None
+    x0: np.ndarray | None = None
 
     KIND: ClassVar[str] = "stiffness-optimisation"
-    VERSION: ClassVar[int] = 1
-    READABLE: ClassVar[tuple[int, ...]] = (1,)
+    VERSION: ClassVar[int] = 2
+    READABLE: ClassVar[tuple[int, ...]] = (1, 2)
     WHAT: ClassVar[str] = "optimisation file"
 
+    def __str__(self) -> str:
+        lines = []
+        for i, p in enumerate(self.paths):
+            rel = "" if self.x0 is None else f" ({self.x[i] / self.x0[i]:.3f} × design)"
+            lines.append(f"  {p} = {self.x[i]:.6g}{rel}")
+        V = "none in range" if not math.isfinite(self.V) else f"{self.V:.3f} m/s"
+        need = "" if self.target is None else f", required {self.target:.3f} m/s"
+        head = "cleared" if self.cleared else "NOT cleared"
+        out = [f"stiffness optimisation ({self.method} gradients): {head}",
+               *lines, f"  V_crit = {V}{need}", f"  objective Σ K/K₀ = {self.objective:.4f}",
+               f"  {self.analyses} analys{'i' if self.analyses == 1 else 'e'}s",
+               f"  {self.message}"]
+        if self.x_fd is not None:
+            other = "finite-difference" if self.method == "exact" else "exact"
+            out.append(f"  compared: {other} gradients took {self.analyses_fd} analyses, "
+                       "optimum " + ", ".join(f"{x:.6g}" for x in self.x_fd))
+        return "\n".join(out)
+
     def encode(self) -> dict[str, Any]:
-        return {"paths": list(self.paths), "x": np.asarray(self.x, dtype=float).tolist(),
+        def arr(a):
+            return None if a is None else np.asarray(a, dtype=float).tolist()
+        return {"paths": list(self.paths), "x": arr(self.x), "x0": arr(self.x0),
                 "V_m_per_s": float(self.V) if math.isfinite(self.V) else None,
+                "target_m_per_s": None if self.target is None else float(self.target),
                 "objective": float(self.objective), "cleared": bool(self.cleared),
-                "message": self.message, "analyses": int(self.analyses),
-                "x_fd": np.asarray(self.x_fd, dtype=float).tolist(),
-                "analyses_fd": int(self.analyses_fd)}
+                "message": self.message, "method": self.method,
+                "analyses": int(self.analyses), "x_fd": arr(self.x_fd),
+                "analyses_fd": None if self.analyses_fd is None else int(self.analyses_fd)}
 
     @classmethod
     def decode(cls, d: Mapping[str, Any], version: int, where: str = "") -> "OptimisationResult":
-        """paths (strings, at least one); x and x_fd one finite value per path; V [m/s] > 0
-        or null (infinite: nothing unstable); the counts >= 0.  InputError naming the key."""
-        r = SavedDict(d, where, ("paths", "x", "V_m_per_s", "objective", "cleared", "message",
-                                 "analyses", "x_fd", "analyses_fd"))
+        """paths (strings, at least one); x, x0 and x_fd one finite value per path (x0, x_fd
+        null allowed); V [m/s] > 0 or null (infinite: nothing unstable); target [m/s] > 0 or
+        null; method "exact" or "fd"; the counts >= 0.  InputError naming the key."""
+        keys = ("paths", "x", "V_m_per_s", "objective", "cleared", "message", "analyses",
+                "x_fd", "analyses_fd")
+        r = SavedDict(d, where, keys + (("x0", "target_m_per_s", "method") if version >= 2
+                                        else ()))
         paths = r.strings("paths")
         if not paths:
             raise v.InputError(f"{r.name('paths')}: must name at least one parameter path")
@@ -185,48 +232,147 @@ class OptimisationResult(Result):
             raise v.InputError(f"{r.name('V_m_per_s')} = {V!r} is invalid: must be > 0 m/s "
                                "(null: nothing unstable)")
         n = len(paths)
+
+        def maybe(key):
+            return None if r.raw(key) is None else r.array(key, shape=(n,))
+        if version < 2:
+            return cls(paths, r.array("x", shape=(n,)), math.inf if V is None else V,
+                       r.number("objective"), r.boolean("cleared"), r.string("message"),
+                       r.integer("analyses", 0), r.array("x_fd", shape=(n,)),
+                       r.integer("analyses_fd", 0))
+        target = r.number("target_m_per_s", optional=True)
+        if target is not None and target <= 0:
+            raise v.InputError(f"{r.name('target_m_per_s')} = {target!r} is invalid: must be "
+                               "> 0 m/s (or null)")
         return cls(paths, r.array("x", shape=(n,)), math.inf if V is None else V,
                    r.number("objective"), r.boolean("cleared"), r.string("message"),
-                   r.integer("analyses", 0), r.array("x_fd", shape=(n,)),
-                   r.integer("analyses_fd", 0))
+                   r.integer("analyses", 0), maybe("x_fd"),
+                   None if r.raw("analyses_fd") is None else r.integer("analyses_fd", 0),
+                   r.string("method", ("exact", "fd")), target, maybe("x0"))
+
+
+def _fd_gradient(f: "CriticalSpeed", x: np.ndarray) -> np.ndarray:
+    """dV/dx at normalised x by forward differences of step :data:`FD_STEP` (SLSQP's own
+    steps: the same points, so SLSQP's first gradient costs no further analysis)."""
+    V = f.value(x * f.x0)
+    g = np.empty(x.size)
+    for i in range(x.size):
+        xi = x.copy()
+        xi[i] += FD_STEP
+        g[i] = (f.value(xi * f.x0) - V) / FD_STEP
+    return g
+
+
+def _what(f: "CriticalSpeed") -> str:
+    """" (the flutter of …)": what V_crit is at the design point, or "" if unknown."""
+    label = f.critical(f.x0) if hasattr(f, "critical") else ""
+    return f" (the {label})" if label else ""
+
+
+def _optimise(f: "CriticalSpeed", method: str, target: float, lower: float, upper: float):
+    """SLSQP on the normalised stiffnesses x/x₀ with `method`'s gradients: (x, V, message)."""
+    from scipy.optimize import minimize
+
+    n = len(f.paths)
+    one = np.ones(n)
+    aim = target * (1.0 + CLEARANCE_MARGIN)
+    V0 = f.value(f.x0)
+    if V0 < target:
+        # can the mount move the critical instability at all?  the gradient at the design
+        # point, extrapolated linearly to the most favourable corner of the bounds
+        try:
+            g = f.gradient(f.x0) * f.x0 if method == "exact" else _fd_gradient(f, one)
+        except v.InputError:
+            g = None
+        if g is not None:
+            reach = float(np.sum(np.maximum(g * (upper - 1.0), g * (lower - 1.0))))
+            if reach < REACH_FRACTION * (target - V0):
+                return one, V0, (
+                    f"not cleared: V_crit = {V0:.3f} m/s{_what(f)} is {target - V0:.3g} m/s "
+                    f"short of {target:.3f} m/s and does not move with these stiffnesses (by "
+                    f"the gradient at the design point it rises by at most {reach:.3g} m/s "
+                    f"between {lower:.3g} and {upper:.3g} times the design values): this "
+                    "mount cannot clear it")
+    cons = {"type": "ineq", "fun": lambda x: (f.value(x * f.x0) - aim) / target}
+    if method == "exact":
+        cons["jac"] = lambda x: f.gradient(x * f.x0) * f.x0 / target
+    r = minimize(lambda x: float(np.sum(x)), one, jac=lambda x: one,
+                 bounds=[(lower, upper)] * n, constraints=[cons], method="SLSQP",
+                 options={"ftol": 1e-6, "maxiter": 50, "eps": FD_STEP})
+    x = np.clip(r.x, lower, upper)
+    V = f.value(x * f.x0)
+    if V >= target:
+        msg = (f"cleared: V_crit = {V:.3f} m/s ≥ {target:.3f} m/s (SLSQP: {r.message})")
+    else:
+        msg = (f"not cleared: V_crit = {V:.3f} m/s is {target - V:.3g} m/s short of "
+               f"{target:.3f} m/s (SLSQP: {r.message})")
+    return x, V, msg
 
 
 def minimum_mount_stiffness(model, vd: float, factor: float = 1.15, *, propeller: int = 0,
                             static_divergence: bool = False, low_speed: bool = False,
-                            lower: float = LOWER_BOUND) -> OptimisationResult:
-    """The smallest pitch and yaw mount stiffnesses of propeller ``propeller`` (objective
-    K_θ/K_θ0 + K_ψ/K_ψ0, each at least ``lower`` × its value, default :data:`LOWER_BOUND`)
-    that keep V_crit ≥ factor · V_D (module docstring); the convention of
-    :mod:`propwhirl.studies.critical` (default the thesis's, without the wing's static
-    divergence, which no mount stiffness changes)."""
-    from scipy.optimize import minimize
+                            lower: float = LOWER_BOUND, upper: float = UPPER_BOUND,
+                            gradients: str = "exact",
+                            compare: bool = False) -> OptimisationResult:
+    """The smallest pitch and yaw mount stiffnesses of propeller ``propeller`` (the index of
+    ``model.propellers``, from 0: ``propeller=6`` is the seventh) — objective
+    K_θ/K_θ0 + K_ψ/K_ψ0, each between ``lower`` and ``upper`` times its design value (defaults
+    :data:`LOWER_BOUND`, :data:`UPPER_BOUND`) — that keep V_crit ≥ factor · V_D (module
+    docstring); the convention of :mod:`propwhirl.studies.critical` (default the thesis's,
+    without the wing's static divergence, which no mount stiffness changes).
 
+    gradients: "exact" (:class:`CriticalSpeed`, one analysis per point) or "fd" (SLSQP's
+    forward differences, relative step :data:`FD_STEP`); compare: also run the other method
+    (its optimum and analyses in ``x_fd``, ``analyses_fd``).  SLSQP aims at
+    target · (1 + :data:`CLEARANCE_MARGIN`) so that its accepted constraint violation (ftol
+    1e-6) still clears the target; ``cleared`` is V_crit ≥ factor · V_D at the result, without
+    tolerance, and the message says by how much it is short otherwise.  When V_crit at the
+    design point is short and its gradient, extrapolated to the bounds, recovers less than
+    :data:`REACH_FRACTION` of the shortfall, the critical instability is not this mount's: the
+    result says so after one analysis (exact) or three (fd)."""
     v.positive("vd", vd, "m/s")
     v.in_range("factor", factor, 1.0, 3.0)      # the regulations' 1.15, 1.2 (as clearance)
+    if gradients not in ("exact", "fd"):
+        raise v.InputError(f"gradients = {v.short_repr(gradients)} is invalid: must be "
+                           "'exact' or 'fd'")
+    v.boolean("compare", compare)
+    n_props = len(getattr(model, "propellers", ()))
+    if isinstance(propeller, bool) or not isinstance(propeller, (int, np.integer)) \
+            or not 0 <= propeller < n_props:
+        raise v.InputError(f"propeller = {v.short_repr(propeller)} is invalid: must be an "
+                           f"index of model.propellers, 0 to {n_props - 1} (0 is the first)")
+    v.in_range("lower", lower, 1e-3, 1.0)
+    v.in_range("upper", upper, 1.0, 1e3)
     pre = f"propellers[{propeller}].propeller."
     paths = (pre + "K_theta", pre + "K_psi")
     target = factor * vd
     runs = {}
-    for mode in ("exact", "fd"):
+    for method in ((gradients, "fd" if gradients == "exact" else "exact") if compare
+                   else (gradients,)):
         f = CriticalSpeed(model, paths, static_divergence, low_speed)
-        x0 = f.x0
-        cons = {"type": "ineq", "fun": lambda x, f=f: (f.value(x * x0) - target) / target}
-        if mode == "exact":
-            cons["jac"] = lambda x, f=f: f.gradient(x * x0) * x0 / target
-        r = minimize(lambda x: float(np.sum(x)), np.ones(2), jac=lambda x: np.ones(2),
-                     bounds=[(lower, None)] * 2, constraints=[cons], method="SLSQP",
-                     options={"ftol": 1e-6, "maxiter": 50, "eps": FD_STEP})
-        runs[mode] = (r, f)
-    (r, f), (rf, ff) = runs["exact"], runs["fd"]
-    V = f.value(r.x * f.x0)
-    return OptimisationResult(paths, r.x * f.x0, V, float(np.sum(r.x)), bool(V >= target - 1e-6),
-                              str(r.message), f.analyses, rf.x * ff.x0, ff.analyses)
+        runs[method] = (f, *_optimise(f, method, target, lower, upper))
+    f, x, V, msg = runs[gradients]
+    other = next((r for m, r in runs.items() if m != gradients), None)
+    return OptimisationResult(paths, x * f.x0, V, float(np.sum(x)), bool(V >= target), msg,
+                              f.analyses, None if other is None else other[1] * other[0].x0,
+                              None if other is None else other[0].analyses, gradients,
+                              float(target), f.x0.copy())
+
+
+def openmdao_name(path: str) -> str:
+    """The OpenMDAO input name of a parameter path: every "." and every "[" becomes one "_",
+    every "]" is dropped —
+    ``propellers[6].propeller.f_theta`` → ``propellers_6_propeller_f_theta``, ``wing.EI[3]`` → ``wing_EI_3``, ``propellers[0].propeller.derivatives.values[Aa]`` →
+    ``propellers_0_propeller_derivatives_values_Aa``.  (OpenMDAO reserves "." for its own
+    hierarchy.)  Two paths of one component that would share a name are refused."""
+    return path.replace(".", "_").replace("[", "_").replace("]", "")
 
 
 def openmdao_component(model, paths: Sequence[str], *, vd: float, factor: float = 1.15,
                        static_divergence: bool = True, low_speed: bool = True):
-    """An OpenMDAO ``ExplicitComponent``: inputs the parameter ``paths`` (names with "." and
-    "[]" replaced by "_"; each path's value and unit), outputs ``V_crit`` [m/s] and ``margin``
+    """An OpenMDAO ``ExplicitComponent``: inputs the parameter ``paths`` (named by
+    :func:`openmdao_name`; ``comp.input_names`` maps each path to its name; each path's value),
+    outputs ``V_crit`` [m/s] and ``margin``
     = V_crit / (factor · V_D) − 1 [-], analytic partials (:class:`CriticalSpeed`).  Needs
     ``pip install propwhirl[mdo]``.
 
@@ -240,7 +386,7 @@ def openmdao_component(model, paths: Sequence[str], *, vd: float, factor: float 
                           "propwhirl[mdo]") from None
     target = float(v.in_range("factor", factor, 1.0, 3.0)) * float(v.positive("vd", vd, "m/s"))
     f = CriticalSpeed(model, paths, static_divergence, low_speed)
-    names = [p.replace(".", "_").replace("[", "_").replace("]", "") for p in f.paths]
+    names = [openmdao_name(p) for p in f.paths]
     clash = [(p, q) for i, (p, n) in enumerate(zip(f.paths, names))
              for q, m in zip(f.paths[i + 1:], names[i + 1:]) if n == m]
     if clash:
@@ -273,4 +419,5 @@ def openmdao_component(model, paths: Sequence[str], *, vd: float, factor: float 
 
     comp = CriticalSpeedComponent()
     comp.propwhirl = f
+    comp.input_names = dict(zip(f.paths, names))
     return comp
