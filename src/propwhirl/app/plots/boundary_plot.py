@@ -15,6 +15,7 @@ import numpy as np
 
 from propwhirl import validate as v
 from propwhirl.app.plots.canvas import finish, new_figure
+from propwhirl.app.plots.layout import wrap
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
@@ -130,11 +131,11 @@ FAIL_COLOUR = "tab:red"
 
 
 def _propellers_of(margin, analysis) -> str:
-    """'propeller 6' / 'propellers 1, 4, 2': the propellers of the analysis's event of
+    """'propeller 6' / 'propellers 4, 2, 1': the propellers of the analysis's event of
     `margin` holding at least half the largest propeller share (at most three, largest
     first); "" without the analysis, the event, its participation or a propeller share of
     5 % or more."""
-    if analysis is None or "propeller" in margin.mode:
+    if analysis is None:
         return ""
     for e in analysis.events:
         if (e.label, e.kind, e.event) == (margin.mode, margin.kind, margin.event) and \
@@ -156,8 +157,9 @@ def clearance_plot(result: "Clearance", *, analysis: "ModelAnalysis | None" = No
     """The margin V / (factor · V_D) − 1 [%] of every instability in the analysed range as
     horizontal bars coloured by the verdict (:data:`PASS_COLOUR` where the margin is ≥ 0,
     :data:`FAIL_COLOUR` where it is negative; events the convention leaves out hatched and
-    pale), each named by its kind, event, mode and — given the `analysis` the clearance was
-    computed from — the propellers that whirl in it; the requirement at 0."""
+    pale), each named by its kind, event, mode and speed and — given the `analysis` the
+    clearance was computed from — the propellers that lead the whirl at the event ("propellers
+    4, 2, 1 leading": those with at least half the largest share); the requirement at 0."""
     from matplotlib.patches import Patch
 
     fig = new_figure(figsize=(8.5, 1.8 + 0.5 * max(len(result.margins), 1)), layout="constrained")
@@ -165,8 +167,8 @@ def clearance_plot(result: "Clearance", *, analysis: "ModelAnalysis | None" = No
     names = []
     for m in result.margins:
         who = _propellers_of(m, analysis)
-        names.append(f"{m.kind} {m.event} of {m.mode}" + (f", {who}" if who else "")
-                     + f" ({m.V:.1f} m/s)")
+        names.append(f"{m.kind} {m.event} of {m.mode} ({m.V:.1f} m/s)"
+                     + (f"\n{who} leading" if who else ""))
     vals = [100 * m.margin for m in result.margins]
     cols = [PASS_COLOUR if m.margin >= 0 else FAIL_COLOUR for m in result.margins]
     y = np.arange(len(vals))
@@ -180,7 +182,7 @@ def clearance_plot(result: "Clearance", *, analysis: "ModelAnalysis | None" = No
     ax.axvline(0.0, color="black", lw=1.5)
     ax.set_xlabel(f"margin V / ({result.factor:g} V_D) - 1 [%]   (V_D = {result.V_D:g} m/s)")
     verdict = "cleared" if result.cleared else "NOT cleared"
-    ax.set_title(title or f"{result.model_name}\n{verdict} to {result.factor:g} V_D = "
+    ax.set_title(title or f"{wrap(result.model_name, 60)}\n{verdict} to {result.factor:g} V_D = "
                  f"{result.V_required:.1f} m/s", fontsize=10)
     ax.grid(True, axis="x", alpha=0.3)
     if result.margins:

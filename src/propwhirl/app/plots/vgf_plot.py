@@ -350,12 +350,39 @@ def _mark_events(analysis, drawn: dict, ax_z, ax_f, xlim: tuple[float, float]) -
 #: events of one kind closer than this fraction of the speed range share one label (a table)
 CROWD = 0.03
 #: longest row of such a table before a mode's name and its speed take two lines
-WRAP_ROW = 44
+WRAP_ROW = 52
 
 
 def _where(e) -> str:
     """'80.0 m/s, 7.02 Hz' of an event (no frequency at a divergence)."""
     return f"{e.V:.1f} m/s" + (f", {e.frequency_hz:.2f} Hz" if e.kind == "flutter" else "")
+
+
+def _split_name(name: str) -> tuple[str, str]:
+    """('backward whirl, propellers 1–6', '2 of 6; pitch') of 'backward whirl, propellers
+    1–6 (2 of 6; pitch)'; (name, '') without a trailing parenthesis."""
+    head, sep, tail = name.partition(" (")
+    return (head, tail[:-1]) if sep and tail.endswith(")") else (name, "")
+
+
+def _table_rows(rows: Sequence[tuple[str, str]]) -> list[str]:
+    """Rows 'name: where' of a crowd's label; names sharing their part before the
+    parenthesis (a family of propellers) under one heading, one indented row per mode
+    '  detail: where'; a row longer than :data:`WRAP_ROW` in two lines."""
+    bases = [_split_name(name)[0] for name, _ in rows]
+    out: list[str] = []
+    for i, (name, where) in enumerate(rows):
+        base, detail = _split_name(name)
+        if detail and bases.count(base) > 1:
+            if base not in bases[:i]:
+                out.append(f"{base}:")
+            line = f"  {detail}: {where}"
+            out.append(line if len(line) <= WRAP_ROW else
+                       f"  {detail}:\n     {where}")
+            continue
+        one = f"{name}: {where}"
+        out.append(one if len(one) <= WRAP_ROW else f"{wrap(name)}:\n   {where}")
+    return out
 
 
 def _crowds(events, gap: float) -> list[list]:
@@ -397,12 +424,8 @@ def _label_events(ax_z, events, analysis, sw, bold, z: np.ndarray, zlim) -> None
             continue
         head = _WHAT.get(e.event, "{kind} " + e.event + " of {mode}").format(
             kind=e.kind, mode=f"{len(group)} modes")
-        rows = []
-        for g in group:
-            name, where = analysis.describe(g.label), _where(g)
-            one = f"{name}: {where}"
-            rows.append(one if len(one) <= WRAP_ROW else f"{wrap(name)}:\n   {where}")
-        texts.append(head + "\n" + "\n".join(rows))
+        texts.append(head + "\n" + "\n".join(_table_rows(
+            [(analysis.describe(g.label), _where(g)) for g in group])))
     labelled = {e.label for e in events}
     lo, hi = zlim
     for k in bold:
