@@ -65,16 +65,19 @@ def test_ipython_formatter_shows_the_image(analysis):
 
 
 # ----------------------------------------------------------------------------- V-g-f
-def _mode_lines(ax):
-    return {ln.get_label().split(" (")[0]: ln for ln in ax.get_lines()
-            if not ln.get_label().startswith("_")}
+def _mode_lines(ax, analysis, sweep):
+    """{mode label: its ζ line}; a line is labelled analysis.describe(label) (names may hold
+    parentheses of their own: 'backward whirl, propellers 1–2 (1 of 2, collective; pitch)')."""
+    by_text = {analysis.describe(lab): lab for lab in sweep.mode_labels}
+    return {by_text[ln.get_label()]: ln for ln in ax.get_lines()
+            if ln.get_label() in by_text}
 
 
 def test_vgf_on_a_fine_grid_with_the_modes_that_matter(analysis, model, fine, monkeypatch):
     monkeypatch.setattr(vgf_plot, "fine_sweep", lambda *a, **k: fine)
     fig = plots.vgf(analysis, model)
     ax_z, ax_f = fig.axes[:2]
-    lines = _mode_lines(ax_z)
+    lines = _mode_lines(ax_z, analysis, fine)
     # every mode with an instability is drawn, and no mode far above them
     assert {e.label for e in analysis.events} <= set(lines)
     ids = plots.select_modes(analysis, sweep=fine)
@@ -84,7 +87,8 @@ def test_vgf_on_a_fine_grid_with_the_modes_that_matter(analysis, model, fine, mo
     assert max(f0.values()) <= vgf_plot.CUTOFF_FACTOR * top
     assert len(lines) < len(plots.select_modes(analysis, sweep=fine, margin=None))
     # the fine grid, not the engine's nodes
-    x = np.asarray(lines["forward 1"].get_xdata(), float)
+    flutter = next(e.label for e in analysis.events if e.kind == "flutter")
+    x = np.asarray(lines[flutter].get_xdata(), float)
     np.testing.assert_array_equal(x, fine.V)
     assert x.size > 2 * analysis.sweep.V.size or x.size >= 41
     # the convention on the axis, the shaded unstable half, limits from the data
@@ -97,12 +101,18 @@ def test_vgf_on_a_fine_grid_with_the_modes_that_matter(analysis, model, fine, mo
     assert to_rgba(shade[0].get_facecolor())[:3] == to_rgba("red")[:3]
     drawn = np.concatenate([np.asarray(ln.get_ydata(), float) for ln in lines.values()])
     drawn = drawn[np.isfinite(drawn)]
-    assert lo < drawn.min() and hi > drawn.max() and hi < 1.0 and lo > -1.0
+    # the ζ window: around zero, not stretched to ±1; where a curve leaves it, a triangle
+    assert lo <= vgf_plot.ZETA_BOTTOM and 0.0 < hi <= 1.15 * vgf_plot.ZETA_TOP and lo > -1.0
+    marks = [ln for ln in ax_z.get_lines() if ln.get_marker() in ("^", "v")]
+    for ln in lines.values():
+        y = np.asarray(ln.get_ydata(), float)
+        if ((y > hi) | (y < lo))[np.isfinite(y)].any():
+            assert any(to_rgba(m.get_color()) == to_rgba(ln.get_color()) for m in marks)
     # instabilities annotated with V and f
-    texts = [t.get_text() for t in ax_z.texts]
+    texts = [" ".join(t.get_text().split()) for t in ax_z.texts]      # labels wrap
     for e in analysis.events:
         if e.event == "onset":
-            assert any(f"{e.V:.1f} m/s" in t and e.label in t for t in texts)
+            assert any(f"{e.V:.1f} m/s" in t and analysis.describe(e.label) in t for t in texts)
             if e.kind == "flutter":
                 assert any(f"{e.frequency_hz:.2f} Hz" in t for t in texts)
     assert any(getattr(c, "get_ylabel", lambda: "")() == "g = 2ζ" for c in ax_z.child_axes)

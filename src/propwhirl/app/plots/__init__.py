@@ -25,7 +25,8 @@ from 1 in every figure.
   (:mod:`~propwhirl.app.plots.sensitivity_plot`).
 """
 from propwhirl.app.plots.animation import animate_event, animate_mode
-from propwhirl.app.plots.boundary_plot import boundary_plot, clearance_plot
+from propwhirl.app.plots.boundary_plot import (FAIL_COLOUR, PASS_COLOUR, boundary_plot,
+                                              clearance_plot)
 from propwhirl.app.plots.campbell_plot import campbell, campbell_diagram
 from propwhirl.app.plots.canvas import (DIVERGENCE_COLOUR, FLUTTER_COLOUR, INSTALL_HINT, save)
 from propwhirl.app.plots.map_plot import critical_map, critical_sweep
@@ -39,5 +40,6 @@ __all__ = [
     "event_mode_shape", "event_eigenvector", "animate_mode", "animate_event", "time_history",
     "critical_map", "critical_sweep", "boundary_plot", "clearance_plot", "spanwise_sensitivity",
     "save",
-    "FLUTTER_COLOUR", "DIVERGENCE_COLOUR", "INSTALL_HINT", "DAMPING_MARGIN",
+    "FLUTTER_COLOUR", "DIVERGENCE_COLOUR", "INSTALL_HINT", "DAMPING_MARGIN", "PASS_COLOUR",
+    "FAIL_COLOUR",
 ]

@@ -14,12 +14,14 @@ from typing import TYPE_CHECKING, Sequence
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.app.plots.canvas import DIVERGENCE_COLOUR, FLUTTER_COLOUR, finish, new_figure
+from propwhirl.app.plots.canvas import finish, new_figure
+from propwhirl.app.plots.layout import wrap
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
 
     from propwhirl.studies.boundary import Boundary, GridMap
+    from propwhirl.analysis.stability import ModelAnalysis
     from propwhirl.studies.clearance import Clearance
 
 _CURVE_COLOURS = ("black", "darkorange", "purple", "teal")
@@ -75,6 +77,8 @@ def boundary_plot(boundaries: "Boundary | Sequence[Boundary]", grid: "GridMap | 
         c = _CURVE_COLOURS[i % len(_CURVE_COLOURS)]
         style = dict(lw=4.0, ms=6) if i == 0 else dict(lw=1.5, ms=3.0)  # coinciding curves stay visible
         for k, pts in enumerate(b.curves):
+            closed = k < len(b.closed) and bool(b.closed[k]) and len(pts) > 2
+            pts = np.vstack([pts, pts[:1]]) if closed else pts       # a closed curve drawn closed
             ax.plot(pts[:, 0], pts[:, 1], "-o", color=c, **style,
                     label=f"{_curve_label(b)} ({b.evaluations} {b.evaluation_name})" if k == 0 else None)
         if len(b.starts):
@@ -87,34 +91,88 @@ def boundary_plot(boundaries: "Boundary | Sequence[Boundary]", grid: "GridMap | 
     ax.set_ylim(first.lower[1], first.upper[1])
     ax.set_xlabel(f"{first.parameters[0]} [{first.units[0]}]" if first.units[0] else first.parameters[0])
     ax.set_ylabel(f"{first.parameters[1]} [{first.units[1]}]" if first.units[1] else first.parameters[1])
-    if grid is not None and first.kind == "neutral-stability":
-        X, Y = np.meshgrid(grid.x, grid.y, indexing="ij")
-        for side, colour, name in ((grid.values > 0, "darkred", "unstable"),
-                                   (grid.values < 0, "navy", "stable")):
-            if side.any():
-                # the grid point of that side closest to the side's centroid
-                cx, cy = X[side].mean(), Y[side].mean()
-                k = int(np.argmin(np.hypot(X[side] - cx, Y[side] - cy)))
-                ax.text(X[side][k], Y[side][k], name, ha="center", va="center", fontsize=12,
-                        color=colour, weight="bold")
+    if grid is not None:
+        _sides(ax, grid, first)
     ax.legend(fontsize=8, loc="lower right", framealpha=0.9)
     ax.grid(True, alpha=0.3)
     ax.set_title(title or f"{first.model_name}: stability boundary", fontsize=10)
     return finish(fig, path)
 
 
-def clearance_plot(result: "Clearance", *, title: str | None = None,
+def _unstable(grid: "GridMap", b: "Boundary") -> np.ndarray:
+    """Where the grid's level function says unstable: max Re λ > 0 (a neutral curve) or
+    V_crit below the boundary's speed (a V_crit contour: the level is V_crit − speed)."""
+    return grid.values > 0 if b.kind == "neutral-stability" else grid.values < 0
+
+
+def _sides(ax, grid: "GridMap", b: "Boundary") -> None:
+    """The unstable side hatched over the filled contours (in the legend "unstable side"),
+    each side named at its grid point nearest its centroid."""
+    X, Y = np.meshgrid(grid.x, grid.y, indexing="ij")
+    bad = _unstable(grid, b)
+    if bad.any() and (~bad).any():
+        ax.contourf(X, Y, bad.astype(float), levels=[0.5, 1.5], colors="none",
+                    hatches=["//"])
+    if bad.any():
+        ax.fill([], [], facecolor="none", edgecolor="black", hatch="//", label="unstable side"
+                + ("" if b.kind == "neutral-stability" else f" (V_crit < {b.speed:g} m/s)"))
+    for side, colour, name in ((bad, "darkred", "unstable"), (~bad, "navy", "stable")):
+        if side.any():
+            cx, cy = X[side].mean(), Y[side].mean()
+            k = int(np.argmin(np.hypot(X[side] - cx, Y[side] - cy)))
+            ax.text(X[side][k], Y[side][k], name, ha="center", va="center", fontsize=12,
+                    color=colour, weight="bold",
+                    bbox=dict(boxstyle="round,pad=0.2", fc="white", ec="none", alpha=0.8))
+
+
+#: bar colours of the clearance chart: the requirement met or not
+PASS_COLOUR = "tab:green"
+FAIL_COLOUR = "tab:red"
+
+
+def _propellers_of(margin, analysis) -> str:
+    """'propeller 6' / 'propellers 4, 2, 1': the propellers of the analysis's event of
+    `margin` holding at least half the largest propeller share (at most three, largest
+    first); "" without the analysis, the event, its participation or a propeller share of
+    5 % or more."""
+    if analysis is None:
+        return ""
+    for e in analysis.events:
+        if (e.label, e.kind, e.event) == (margin.mode, margin.kind, margin.event) and \
+                abs(e.V - margin.V) <= 1e-6 * max(1.0, abs(margin.V)):
+            p = e.participation
+            if p is None or not p.propellers:
+                return ""
+            shares = sorted(p.propellers, key=lambda s: -s.share)
+            if shares[0].share < 0.05:
+                return ""
+            who = [s.propeller for s in shares if s.share >= 0.5 * shares[0].share][:3]
+            return ("propeller " if len(who) == 1 else "propellers ") + ", ".join(map(str, who))
+    return ""
+
+
+def clearance_plot(result: "Clearance", *, analysis: "ModelAnalysis | None" = None,
+                   title: str | None = None,
                    path: str | Path | None = None) -> "Figure":
     """The margin V / (factor · V_D) − 1 [%] of every instability in the analysed range as
-    horizontal bars (flutter red, divergence green, events the convention leaves out hatched),
-    the requirement at 0."""
-    fig = new_figure(figsize=(8.0, 1.6 + 0.45 * max(len(result.margins), 1)), layout="constrained")
+    horizontal bars coloured by the verdict (:data:`PASS_COLOUR` where the margin is ≥ 0,
+    :data:`FAIL_COLOUR` where it is negative; events the convention leaves out hatched and
+    pale), each named by its kind, event, mode and speed and — given the `analysis` the
+    clearance was computed from — the propellers that lead the whirl at the event ("propellers
+    4, 2, 1 leading": those with at least half the largest share); the requirement at 0."""
+    from matplotlib.patches import Patch
+
+    fig = new_figure(figsize=(8.5, 1.8 + 0.5 * max(len(result.margins), 1)), layout="constrained")
     ax = fig.subplots()
-    names = [f"{m.kind} {m.event} of {m.mode} ({m.V:.1f} m/s)" for m in result.margins]
+    names = []
+    for m in result.margins:
+        who = _propellers_of(m, analysis)
+        names.append(f"{m.kind} {m.event} of {m.mode} ({m.V:.1f} m/s)"
+                     + (f"\n{who} leading" if who else ""))
     vals = [100 * m.margin for m in result.margins]
-    cols = [FLUTTER_COLOUR if m.kind == "flutter" else DIVERGENCE_COLOUR for m in result.margins]
+    cols = [PASS_COLOUR if m.margin >= 0 else FAIL_COLOUR for m in result.margins]
     y = np.arange(len(vals))
-    bars = ax.barh(y, vals, color=cols, alpha=0.8)
+    bars = ax.barh(y, vals, color=cols, alpha=0.85)
     for bar, m in zip(bars, result.margins):
         if not m.counted:
             bar.set_hatch("//")
@@ -124,9 +182,15 @@ def clearance_plot(result: "Clearance", *, title: str | None = None,
     ax.axvline(0.0, color="black", lw=1.5)
     ax.set_xlabel(f"margin V / ({result.factor:g} V_D) - 1 [%]   (V_D = {result.V_D:g} m/s)")
     verdict = "cleared" if result.cleared else "NOT cleared"
-    ax.set_title(title or f"{result.model_name}\n{verdict} to {result.factor:g} V_D = "
+    ax.set_title(title or f"{wrap(result.model_name, 60)}\n{verdict} to {result.factor:g} V_D = "
                  f"{result.V_required:.1f} m/s", fontsize=10)
     ax.grid(True, axis="x", alpha=0.3)
+    if result.margins:
+        handles = [Patch(color=PASS_COLOUR, alpha=0.85, label="margin met"),
+                   Patch(color=FAIL_COLOUR, alpha=0.85, label="margin not met")]
+        if not all(m.counted for m in result.margins):
+            handles.append(Patch(facecolor="0.8", hatch="//", label="not counted (convention)"))
+        ax.legend(handles=handles, fontsize=8, loc="best")
     if not result.margins:
         ax.text(0.5, 0.5, "no instability in the analysed range", transform=ax.transAxes,
                 ha="center")

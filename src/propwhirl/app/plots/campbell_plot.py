@@ -17,7 +17,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.app.plots.canvas import finish, new_figure, spread_labels
+from propwhirl.app.plots.canvas import finish, new_figure
+from propwhirl.app.plots.layout import end_labels, freeze_layout, stack_labels, wrap
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
@@ -109,18 +110,13 @@ def campbell_diagram(rpm, frequencies=None, *, n_modes: int | None = None,
     span = float(r[-1] - r[0]) if r.size > 1 else max(float(r[0]), 1.0)
     x_end = float(r[-1])
     ax.set_xlim(float(r[0]), x_end + 0.16 * span)
+    anns = []
     if r.size:
         ends = [float(f[-1, i]) for i in range(n)]
-        ys = spread_labels(ends, gap=0.032 * top, lo=0.02 * top, hi=0.98 * top)
-        for i, (y_end, y_txt) in enumerate(zip(ends, ys)):
-            ax.annotate(names[i], (x_end, y_end), xytext=(x_end + 0.03 * span, y_txt),
-                        textcoords="data", fontsize=8, va="center",
-                        color=FAMILY_COLOURS.get(families[i], "0.2"),
-                        arrowprops=dict(arrowstyle="-", color="0.6", lw=0.6,
-                                        shrinkA=0, shrinkB=0))
-    same = rpm_ratio is None or len(set(rpm_ratio)) <= 1
-    ax.set_xlabel("propeller rotational speed n [rpm]" if same
-                  else "rotational speed of propeller 1, n [rpm]")
+        anns = end_labels(ax, x_end, ends, [wrap(nm) for nm in names[:n]],
+                          [FAMILY_COLOURS.get(fam, "0.2") for fam in families[:n]],
+                          dx_points=12.0, gid=LABEL_GID)
+    _rpm_axes(ax, rpm_ratio)
     ax.set_ylabel("natural frequency f [Hz]")
     ax.grid(True, alpha=0.3)
     from matplotlib.lines import Line2D
@@ -131,19 +127,63 @@ def campbell_diagram(rpm, frequencies=None, *, n_modes: int | None = None,
     labels = present + labels
     ax.legend(handles, labels, loc="upper left", fontsize=8.5)
     fig.suptitle(title or "Campbell diagram")
+    ax.set_title(AERO_NOTE, fontsize=8.5, color="0.3")
+    freeze_layout(fig)
+    stack_labels(ax, anns)
     return finish(fig, path)
 
 
-def _excitation_lines(ax, r: np.ndarray, rpm_ratio, top: float) -> None:
-    """1P and 2P lines, one pair per distinct propeller speed (labelled with its propellers)."""
+#: the note under every Campbell diagram
+AERO_NOTE = ("aerodynamics off: natural frequencies of the undamped gyroscopic system "
+             "(no airspeed, no aerodynamic stiffness or damping)")
+#: ``gid`` of the curves' end labels
+LABEL_GID = "label"
+
+
+def _groups(rpm_ratio) -> list[tuple[float, list[int]]]:
+    """(ratio, propellers numbered from 1) per distinct propeller speed, fastest first."""
     ratios = [1.0] if not rpm_ratio else [float(x) for x in rpm_ratio]
     groups: dict[float, list[int]] = {}
     for j, q in enumerate(ratios):
         groups.setdefault(q, []).append(j + 1)
+    return sorted(groups.items(), reverse=True)
+
+
+def _who(props: Sequence[int]) -> str:
+    """'propeller 7', 'propellers 1–6', 'propellers 1, 3, 5'."""
+    if len(props) == 1:
+        return f"propeller {props[0]}"
+    run = list(range(props[0], props[-1] + 1)) == list(props)
+    return f"propellers {props[0]}–{props[-1]}" if run and len(props) > 2 else \
+        "propellers " + ", ".join(map(str, props))
+
+
+def _rpm_axes(ax, rpm_ratio) -> None:
+    """x label in the first propeller's rpm; where the propellers turn at different speeds
+    the bottom axis names the propellers at the first's speed and one axis on top per other
+    speed gives theirs [rev/min]."""
+    groups = _groups(rpm_ratio)
+    if len(groups) == 1:
+        ax.set_xlabel("propeller rotational speed n [rpm]")
+        return
+    ratios = [1.0] if not rpm_ratio else [float(x) for x in rpm_ratio]
+    base = ratios[0]
+    first = next(props for q, props in groups if q == base)
+    ax.set_xlabel(f"rotational speed n of {_who(first)} [rpm]")
+    others = [(q, props) for q, props in groups if q != base]
+    for i, (q, props) in enumerate(others[:3]):
+        k = q / base
+        sec = ax.secondary_xaxis("top" if i == 0 else 1.0 + 0.12 * i,
+                                 functions=(lambda x, k=k: k * x, lambda x, k=k: x / k))
+        sec.set_xlabel(f"rotational speed of {_who(props)} [rpm]", fontsize=9)
+
+
+def _excitation_lines(ax, r: np.ndarray, rpm_ratio, top: float) -> None:
+    """1P and 2P lines, one pair per distinct propeller speed (labelled with its propellers)."""
+    groups = _groups(rpm_ratio)
     shades = ["0.35", "tab:brown", "tab:olive", "tab:cyan", "tab:pink", "tab:gray"]
-    for g, (q, props) in enumerate(sorted(groups.items(), reverse=True)):
-        who = (f"propeller {props[0]}" if len(props) == 1
-               else "propellers " + ", ".join(map(str, props)))
+    for g, (q, props) in enumerate(groups):
+        who = _who(props)
         for order, style in ORDER_STYLES.items():
             k = "" if order == 1 else str(order)
             label = (f"{order}P (f = {k}n/60)" if len(groups) == 1

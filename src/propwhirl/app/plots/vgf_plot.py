@@ -21,8 +21,10 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.app.plots.canvas import (DIVERGENCE_COLOUR, FLUTTER_COLOUR, colours, finish,
-                                        new_figure)
+from propwhirl.app.plots.canvas import (DIVERGENCE_COLOUR, FLUTTER_COLOUR, finish,
+                                        matplotlib_or_error, new_figure)
+from propwhirl.app.plots.layout import (FAMILY_COLOURS, family_shades, freeze_layout, mode_family,
+                                        place_labels, wrap, curve_boxes)
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
@@ -154,12 +156,41 @@ def _natural(label: str) -> tuple:
     return (head, int(num)) if num.isdigit() else (label, 0)
 
 
+def emphasised_modes(analysis: "ModelAnalysis", sw: "Sweep", ids: Sequence[int],
+                     margin: float | None = DAMPING_MARGIN) -> list[int]:
+    """The modes of `ids` (ids of `sw`) drawn bold and labelled: those with an instability of
+    the analysis in the range of `sw` and those whose ζ, after its peak, falls below `margin`
+    (default :data:`DAMPING_MARGIN` when None) by more than margin/2 (:func:`damping_fall`);
+    if there are none, the (at most four) least damped modes by that fall."""
+    m = DAMPING_MARGIN if margin is None else float(margin)
+    V0, V1 = float(sw.V[0]), float(sw.V[-1])
+    with_event = {e.label for e in analysis.events if V0 <= e.V <= V1}
+    fall = damping_fall(sw)
+    out = [k for k in ids if sw.mode_labels[k] in with_event
+           or (fall[k, 1] < m and fall[k, 0] - fall[k, 1] > 0.5 * m)]
+    if not out:
+        out = sorted(ids, key=lambda k: fall[k, 1] - fall[k, 0])[:4]
+    return [k for k in ids if k in out]
+
+
 def vgf(analysis: "ModelAnalysis", model: "Model | None" = None, *, speeds=None,
         n_speeds: int = FINE_SPEEDS, margin: float | None = DAMPING_MARGIN,
         max_frequency_hz: float | None = None, n_modes: int | None = None,
         labels: Sequence[str] | None = None, include_lag: bool = False,
         title: str | None = None, path: str | Path | None = None) -> "Figure":
     """V-g-f diagram of an analysis: ζ and f [Hz] against V [m/s] of the modes that matter.
+
+    Laid out for many modes: each mode coloured by its family
+    (:func:`~propwhirl.app.plots.layout.mode_family`: wing bending blue, wing torsion purple,
+    backward whirl red, forward whirl green, in-plane orange; shades within a family); the
+    modes with an instability in range or whose damping falls below the margin
+    (:func:`emphasised_modes`) bold and named in the legend, the others thin and pale; the ζ
+    axis around the region that matters (from ζ = −0.05 or below to a little above the
+    highest damping of the emphasised flutter and near-critical modes, at most
+    :data:`ZETA_TOP`), the frequency axis to the emphasised modes' highest frequency plus a
+    margin; where a curve leaves the ζ axis a triangle marks it.  Every instability in range
+    is marked and labelled "what of which mode, V m/s, f Hz", the labels placed where they
+    collide with no other label or marker (:func:`~propwhirl.app.plots.layout.place_labels`).
 
     Parameters
     ----------
@@ -185,90 +216,241 @@ def vgf(analysis: "ModelAnalysis", model: "Model | None" = None, *, speeds=None,
         Two axes (ζ with the unstable half shaded and a g = 2ζ scale on the right; f), one
         line per mode in each, the instabilities marked and annotated "V m/s, f Hz".
     """
+    matplotlib_or_error()
+    from matplotlib.lines import Line2D
+
     sw = analysis.sweep if model is None else fine_sweep(analysis, model, speeds, n_speeds)
     ids = select_modes(analysis, n_modes, labels, include_lag, sweep=sw, margin=margin,
                        max_frequency_hz=max_frequency_hz)
     if not ids:
         raise v.InputError("no modes to plot: the selection is empty")
-    fig = new_figure(figsize=(10.0, 7.0), layout="constrained")
+    bold = emphasised_modes(analysis, sw, ids, margin)
+    thin = [k for k in ids if k not in bold]
+    family = {k: mode_family(sw.mode_labels[k], analysis.content.get(sw.mode_labels[k]))
+              for k in ids}
+    order = sorted(bold, key=lambda k: list(FAMILY_COLOURS).index(family[k]))
+    colour = dict(zip(order, family_shades([family[k] for k in order])))
+    thin_order = sorted(thin, key=lambda k: list(FAMILY_COLOURS).index(family[k]))
+    colour.update(zip(thin_order, family_shades([family[k] for k in thin_order])))
+
+    fig = new_figure(figsize=(11.0, 7.5), layout="constrained")
     ax_z, ax_f = fig.subplots(2, 1, sharex=True)
-    cmap = colours(len(ids))
     V = sw.V
     zeta, freq, osc = sw.damping_ratio, sw.frequency_hz, _oscillatory(sw)
+    z_all = np.where(osc, zeta, np.nan)
+    f_all = np.where(sw.physical, freq, np.nan)
+    lo, hi = _zeta_window(analysis, sw, bold, z_all, margin)
     drawn: dict[str, object] = {}
-    for colour, k in zip(cmap, ids):
-        name = sw.mode_labels[k]
-        ax_z.plot(V, np.where(osc[:, k], zeta[:, k], np.nan), "-", color=colour, lw=1.5,
-                  label=analysis.describe(name))
-        ax_f.plot(V, np.where(sw.physical[:, k], freq[:, k], np.nan), "-", color=colour, lw=1.5)
-        drawn[name] = colour
-    z_drawn = np.where(osc[:, ids], zeta[:, ids], np.nan)
-    lo, hi = _zeta_limits(z_drawn)
+    for k in thin + order:
+        strong = k in bold
+        style = dict(color=colour[k], lw=2.0 if strong else 0.9, alpha=1.0 if strong else 0.45,
+                     zorder=3 if strong else 2)
+        ax_z.plot(V, z_all[:, k], "-", label=analysis.describe(sw.mode_labels[k]), **style)
+        ax_f.plot(V, f_all[:, k], "-", **style)
+        _mark_clipping(ax_z, V, z_all[:, k], lo, hi, colour[k], strong)
+        drawn[sw.mode_labels[k]] = colour[k]
     ax_z.axhspan(lo, 0.0, facecolor=FLUTTER_COLOUR, alpha=0.07, lw=0, zorder=0,
                  label="unstable (ζ < 0)")
     ax_z.axhline(0.0, color="0.3", lw=0.8)
-    _mark_events(analysis, drawn, ax_z, ax_f, (lo, hi), (float(V[0]), float(V[-1])))
+    events = _mark_events(analysis, drawn, ax_z, ax_f, (float(V[0]), float(V[-1])))
     ax_z.set_ylim(lo, hi)
     ax_z.set_ylabel(ZETA_LABEL)
     g_axis = ax_z.secondary_yaxis("right", functions=(lambda z: 2.0 * z, lambda g: 0.5 * g))
     g_axis.set_ylabel("g = 2ζ")
-    f_top = np.nanmax(np.where(sw.physical[:, ids], freq[:, ids], np.nan))
-    ax_f.set_ylim(0.0, 1.08 * float(f_top) if f_top > 0 else 1.0)
+    f_top = np.nanmax(f_all[:, bold]) if np.isfinite(f_all[:, bold]).any() else np.nan
+    if not np.isfinite(f_top) or f_top <= 0:
+        f_top = np.nanmax(f_all[:, ids]) if np.isfinite(f_all[:, ids]).any() else 1.0
+    ax_f.set_ylim(0.0, 1.12 * float(f_top) if f_top > 0 else 1.0)
     ax_f.set_ylabel("frequency f [Hz]")
     ax_f.set_xlabel("airspeed V [m/s]")
     ax_f.set_xlim(V[0], V[-1])
     for ax in (ax_z, ax_f):
         ax.grid(True, alpha=0.3)
-    from matplotlib.lines import Line2D
 
-    handles, names = ax_z.get_legend_handles_labels()
-    handles += [Line2D([], [], ls="", marker="o", mec=FLUTTER_COLOUR, mfc=FLUTTER_COLOUR, ms=8),
+    handles = [Line2D([], [], color=colour[k], lw=2.0) for k in order]
+    names = [wrap(analysis.describe(sw.mode_labels[k]), LEGEND_WRAP) for k in order]
+    for fam in FAMILY_COLOURS:
+        n_thin = sum(family[k] == fam for k in thin)
+        if n_thin:
+            handles.append(Line2D([], [], color=FAMILY_COLOURS[fam], lw=0.9, alpha=0.45))
+            names.append(f"{fam}: {n_thin} other mode{'s' if n_thin > 1 else ''}")
+    handles += [ax_z.patches[-1] if ax_z.patches else Line2D([], []),
+                Line2D([], [], ls="", marker="o", mec=FLUTTER_COLOUR, mfc=FLUTTER_COLOUR, ms=8),
                 Line2D([], [], ls="", marker="o", mec=DIVERGENCE_COLOUR, mfc=DIVERGENCE_COLOUR,
-                       ms=8)]
-    names += ["flutter onset", "divergence onset"]
-    fig.legend(handles, names, loc="outside right upper", fontsize=9)
+                       ms=8),
+                Line2D([], [], ls="", marker="v", color="0.3", ms=6)]
+    names += ["unstable (ζ < 0)", "flutter onset (open: recovery)",
+              "divergence onset", "curve leaves the ζ axis"]
+    fig.legend(handles, names, loc="outside right upper", fontsize=8)
     grid = f"{V.size} speeds" + ("" if model is None else ", fine grid")
-    ax_z.set_title(title or f"{analysis.model_name}: V-g-f ({grid})")   # over the axes: clear
-    #                                                                      of the legend
+    head = f"{analysis.model_name}: V-g-f ({grid})"
+    if len(head) > 80:
+        head = f"{analysis.model_name}\nV-g-f ({grid})"
+    ax_z.set_title(title or head, fontsize=11)
+    freeze_layout(fig)
+    _label_events(ax_z, events, analysis, sw, bold, z_all, (lo, hi))
     return finish(fig, path)
 
 
-def _mark_events(analysis, drawn: dict, ax_z, ax_f, zlim: tuple[float, float],
-                 xlim: tuple[float, float] | None = None) -> None:
-    """Markers of the drawn modes' events; onsets annotated with V [m/s] and f [Hz], the
-    labels spread so that they do not overlap."""
-    events = [e for e in analysis.events if e.label in drawn]
-    notes = []
+#: the ζ axis never reaches above this (a mode damped more than this is far from flutter)
+ZETA_TOP = 0.3
+#: the ζ axis reaches at least this far below zero
+ZETA_BOTTOM = -0.05
+#: characters per line of a mode name in the legend
+LEGEND_WRAP = 34
+
+
+def _zeta_window(analysis, sw, bold: Sequence[int], z: np.ndarray,
+                 margin: float | None) -> tuple[float, float]:
+    """ζ axis limits around the region that matters: the emphasised modes that flutter or
+    come near it (not those emphasised only for a divergence: a real root's approach
+    stretches ζ towards 1), up to a little above their highest damping before their
+    lowest, at most :data:`ZETA_TOP`; below zero to :data:`ZETA_BOTTOM` or 0.8 × the top,
+    whichever is lower (room for the labels in the unstable half)."""
+    m = DAMPING_MARGIN if margin is None else abs(float(margin))
+    flutter = {e.label for e in analysis.events if e.kind == "flutter"}
+    diverging = {e.label for e in analysis.events if e.kind == "divergence"}
+    rel = [k for k in bold if sw.mode_labels[k] in flutter
+           or sw.mode_labels[k] not in diverging] or list(bold)
+    zr = z[:, rel]
+    finite = zr[np.isfinite(zr)]
+    if finite.size == 0:
+        return ZETA_BOTTOM, max(2.0 * m, 0.05)
+    top = min(max(float(finite.max()), 2.0 * m, 1e-3), ZETA_TOP)
+    hi = top + 0.15 * top
+    lo = min(ZETA_BOTTOM, -0.8 * hi)
+    return lo, hi
+
+
+def _mark_clipping(ax, V: np.ndarray, z: np.ndarray, lo: float, hi: float, colour,
+                   strong: bool) -> None:
+    """A triangle where curve `z` leaves the ζ window [lo, hi] (▲ at the top, ▼ at the
+    bottom), at the crossing speed on the axis edge."""
+    inside = np.isfinite(z) & (z >= lo) & (z <= hi)
+    for i in np.flatnonzero(inside[:-1] & ~inside[1:] & np.isfinite(z[1:])):
+        edge = hi if z[i + 1] > hi else lo
+        t = (edge - z[i]) / (z[i + 1] - z[i]) if z[i + 1] != z[i] else 0.0
+        ax.plot([V[i] + t * (V[i + 1] - V[i])], [edge], "^" if edge == hi else "v",
+                color=colour, ms=7 if strong else 4.5, alpha=1.0 if strong else 0.6,
+                clip_on=False, zorder=4)
+
+
+def _mark_events(analysis, drawn: dict, ax_z, ax_f, xlim: tuple[float, float]) -> list:
+    """Markers of the drawn modes' events in range (flutter red, divergence green; filled
+    at an onset, open at a recovery); returns those events, onsets first then by speed."""
+    events = [e for e in analysis.events if e.label in drawn and xlim[0] <= e.V <= xlim[1]]
     for e in events:
         colour = FLUTTER_COLOUR if e.kind == "flutter" else DIVERGENCE_COLOUR
         face = colour if e.event != "recovery" else "none"
         for ax, y in ((ax_z, 0.0), (ax_f, e.frequency_hz)):
             ax.plot([e.V], [y], "o", ms=8, mec=colour, mfc=face, mew=1.8, zorder=5)
-        if e.event != "recovery":
-            what = "flutter" if e.kind == "flutter" else "divergence"
-            f = f", {e.frequency_hz:.2f} Hz" if e.kind == "flutter" else ""
-            notes.append((e.V, f"{what} of {e.label}\n{e.V:.1f} m/s{f}", colour))
-    if not notes:
-        return
-    lo = zlim[0]
-    notes.sort()
-    V0, V1 = ax_z.get_xlim() if xlim is None else xlim
-    for i, (V, text, colour) in enumerate(notes):   # staggered on three levels by speed
-        where = (V - V0) / (V1 - V0) if V1 > V0 else 0.5
-        ha = "right" if where > 0.85 else "left" if where < 0.15 else "center"
-        ax_z.annotate(text, xy=(V, 0.0), xytext=(V, -(0.15 + 0.27 * (i % 3)) * (0.0 - lo)),
-                      textcoords="data", fontsize=7.5, color=colour, ha=ha, va="top",
-                      arrowprops=dict(arrowstyle="-", color=colour, lw=0.7),
-                      bbox=dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.8))
+    return sorted(events, key=lambda e: (e.event == "recovery", e.V))
 
 
-def _zeta_limits(z: np.ndarray) -> tuple[float, float]:
-    """ζ axis from the drawn (oscillatory) data, always with room below zero for the
-    shaded unstable half and the notes."""
-    finite = z[np.isfinite(z)]
-    if finite.size == 0:
-        return -0.1, 0.1
-    lo, hi = min(float(finite.min()), 0.0), max(float(finite.max()), 0.0)
-    span = max(hi - lo, 1e-3)
-    lo = min(lo - 0.08 * span, -0.35 * span)
-    return lo, hi + 0.08 * span
+#: events of one kind closer than this fraction of the speed range share one label (a table)
+CROWD = 0.03
+#: longest row of such a table before a mode's name and its speed take two lines
+WRAP_ROW = 52
+
+
+def _where(e) -> str:
+    """'80.0 m/s, 7.02 Hz' of an event (no frequency at a divergence)."""
+    return f"{e.V:.1f} m/s" + (f", {e.frequency_hz:.2f} Hz" if e.kind == "flutter" else "")
+
+
+def _split_name(name: str) -> tuple[str, str]:
+    """('backward whirl, propellers 1–6', '2 of 6; pitch') of 'backward whirl, propellers
+    1–6 (2 of 6; pitch)'; (name, '') without a trailing parenthesis."""
+    head, sep, tail = name.partition(" (")
+    return (head, tail[:-1]) if sep and tail.endswith(")") else (name, "")
+
+
+def _table_rows(rows: Sequence[tuple[str, str]]) -> list[str]:
+    """Rows 'name: where' of a crowd's label; names sharing their part before the
+    parenthesis (a family of propellers) under one heading, one indented row per mode
+    '  detail: where'; a row longer than :data:`WRAP_ROW` in two lines."""
+    bases = [_split_name(name)[0] for name, _ in rows]
+    out: list[str] = []
+    for i, (name, where) in enumerate(rows):
+        base, detail = _split_name(name)
+        if detail and bases.count(base) > 1:
+            if base not in bases[:i]:
+                out.append(f"{base}:")
+            line = f"  {detail}: {where}"
+            out.append(line if len(line) <= WRAP_ROW else
+                       f"  {detail}:\n     {where}")
+            continue
+        one = f"{name}: {where}"
+        out.append(one if len(one) <= WRAP_ROW else f"{wrap(name)}:\n   {where}")
+    return out
+
+
+def _crowds(events, gap: float) -> list[list]:
+    """The events in groups of one kind and event type whose speeds follow each other within
+    `gap` [m/s] (each group sorted by speed); groups in the order of their first event."""
+    groups: list[list] = []
+    for e in sorted(events, key=lambda e: (e.event == "recovery", e.V)):
+        for g in groups:
+            if (g[-1].kind, g[-1].event) == (e.kind, e.event) and e.V - g[-1].V <= gap:
+                g.append(e)
+                break
+        else:
+            groups.append([e])
+    return groups
+
+
+_WHAT = {"onset": "{kind} of {mode}", "recovery": "{kind} recovery of {mode}",
+         "frequency-zero": "divergence (f → 0) of {mode}",
+         "unstable-at-start": "{mode} unstable from the start"}
+
+
+def _label_events(ax_z, events, analysis, sw, bold, z: np.ndarray, zlim) -> None:
+    """Label every event in range ("flutter of <mode>", V [m/s], f [Hz]; events of one kind
+    within :data:`CROWD` of the speed range of each other in one table-like label, one row
+    per mode) and each emphasised mode without one (its least damping after its peak), no
+    label on another or on a marker (:func:`~propwhirl.app.plots.layout.place_labels`)."""
+    anchors, texts, cols, aligns = [], [], [], []
+    span = float(sw.V[-1] - sw.V[0]) or 1.0
+    for group in _crowds(events, CROWD * span):
+        e = group[0]
+        colour = FLUTTER_COLOUR if e.kind == "flutter" else DIVERGENCE_COLOUR
+        anchors.append((e.V, 0.0))
+        cols.append(colour)
+        aligns.append("center" if len(group) == 1 else "left")
+        if len(group) == 1:
+            what = _WHAT.get(e.event, "{kind} " + e.event + " of {mode}").format(
+                kind=e.kind, mode=analysis.describe(e.label))
+            texts.append(f"{wrap(what)}\n{_where(e)}")
+            continue
+        head = _WHAT.get(e.event, "{kind} " + e.event + " of {mode}").format(
+            kind=e.kind, mode=f"{len(group)} modes")
+        texts.append(head + "\n" + "\n".join(_table_rows(
+            [(analysis.describe(g.label), _where(g)) for g in group])))
+    labelled = {e.label for e in events}
+    lo, hi = zlim
+    for k in bold:
+        name = sw.mode_labels[k]
+        zk = z[:, k]
+        if name in labelled or not np.isfinite(zk).any():
+            continue
+        t0 = int(np.nanargmax(zk))
+        t = t0 + int(np.nanargmin(zk[t0:]))
+        if not lo <= zk[t] <= hi:
+            continue
+        anchors.append((float(sw.V[t]), float(zk[t])))
+        texts.append(f"{wrap(analysis.describe(name))}\nζ min {zk[t]:.3f} at {sw.V[t]:.0f} m/s")
+        cols.append("0.2")
+        aligns.append("center")
+    renderer = ax_z.figure.canvas.get_renderer()
+    avoid = []
+    for ln in ax_z.get_lines():            # the event markers
+        if ln.get_marker() == "o":
+            avoid.append(ln.get_window_extent(renderer))
+    bold_lines = [ln for ln in ax_z.get_lines() if ln.get_linewidth() >= 2.0
+                  and ln.get_linestyle() == "-"]
+    place_labels(ax_z, anchors, texts, cols, avoid=avoid, soft=curve_boxes(ax_z, bold_lines),
+                 prefer="below", gid=LABEL_GID, aligns=aligns)
+
+
+#: ``gid`` of the labels of the V-g-f and Campbell diagrams (tests find them by it)
+LABEL_GID = "label"
