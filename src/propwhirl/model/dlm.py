@@ -38,6 +38,7 @@ import numpy as np
 
 from propwhirl import validate as v
 from propwhirl.model import dlm_cache
+from propwhirl.model.assembly import free_dofs
 from propwhirl.model.dlm_mesh import PanelMesh, panel_mesh, spline
 
 #: first non-zero reduced frequency of the tables (on the reference semichord)
@@ -205,8 +206,6 @@ def pk_system_dlm(model, V: float, k_min: float):
     system with the wing aerodynamics off), minus the DLM loads in the p-k form
     K_a = ½ρV² Re Q(k, M), C_a = ½ρV² Im Q(k, M) / ω (exact at p = iω), k = ω b_ref / V
     (raised to ``k_min``), M = V / a of this speed."""
-    from propwhirl.model.assembly import free_dofs
-
     mach = V / model.flight.speed_of_sound
     check_mach(mach, V)
     dry = replace(model, wing_aero=False).second_order(np.array([V]))

@@ -40,6 +40,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from propwhirl import validate as v
+from propwhirl.model.assembly import free_dofs, wing_dof_labels
 from propwhirl.model.dlm import (MACH_MAX, MACH_STEP, DlmAerodynamics, check_mach,
                                  dlm_aerodynamics)
 from propwhirl.model.statespace import SecondOrder
@@ -83,8 +84,6 @@ def roger_fit(model, mach: float, ks, lags=DEFAULT_LAGS) -> RogerFit:
     """The Roger fit of ``model``'s doublet-lattice Q(k, mach) on its free wing DOFs over the
     reduced frequencies ``ks`` (at least 3 + len(lags) of them, >= 0) with lag roots
     ``lags`` (> 0, distinct).  InputError for bad arguments, before any AIC is computed."""
-    from propwhirl.model.assembly import free_dofs
-
     if getattr(getattr(model, "wing", None), "aero", None) != "dlm":
         raise v.InputError(f"model = {getattr(model, 'name', model)!r:.60} is invalid for the "
                            "Roger fit: needs a wing with aero = 'dlm'")
@@ -169,7 +168,6 @@ def node_fit(aero: DlmAerodynamics, im: int, ks: np.ndarray | None = None,
     """The Roger fit of ``aero``'s tables at Mach node ``im`` (Mach im · MACH_STEP) on the free
     wing DOFs (root removed), over ``ks`` (default :func:`fit_ks`) with ``lags``; computed once
     per geometry and kept with its tables (``aero.fits``)."""
-    from propwhirl.model.assembly import free_dofs
 
     ks = fit_ks() if ks is None else np.asarray(ks, float)
     lags = np.asarray(lags, float)
@@ -217,7 +215,6 @@ def coefficients(model, V) -> np.ndarray:
 def lag_labels(model, lags=DEFAULT_LAGS) -> tuple[tuple[str, ...], tuple[int, ...]]:
     """Labels ("node i h lag l") and wing nodes of the Roger lag states of ``model``: lag by
     lag, every free wing DOF (h, φ, α of nodes >= 1)."""
-    from propwhirl.model.assembly import free_dofs, wing_dof_labels
 
     nn = model.wing.n_nodes
     keep = free_dofs(nn)

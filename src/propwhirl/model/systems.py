@@ -66,7 +66,7 @@ from propwhirl.model.propeller_blocks import (propeller_constants, propeller_mat
                                              propeller_values)
 from propwhirl.model.blocks import BlockSystem, LagBlocks, LocalBlocks
 from propwhirl.model.protocol import DofMap, PropellerDofs
-from propwhirl.model import validity
+from propwhirl.model import dlm_rfa, validity
 from propwhirl.model.base import EvaluatorBase, StateSpaceModel
 from propwhirl.model.section import TypicalSection  # noqa: F401 (re-export: its former home)
 from propwhirl.model.statespace import SecondOrder
@@ -338,8 +338,7 @@ class PropellerWing(StateSpaceModel):
             node += [-1, -1]
             prop += [j, j]
         if self.wing_aero and self.wing.aero == "dlm":     # the Roger lag states
-            from propwhirl.model.dlm_rfa import lag_labels
-            w_labels, w_node = lag_labels(self)
+            w_labels, w_node = dlm_rfa.lag_labels(self)
         elif self.wing_aero:
             k = LAG_STATES[self.wing.aero_model]
             w_node = tuple(i for i in range(1, nn) for _ in range(k))
@@ -457,7 +456,6 @@ class PropellerWingAssembly(EvaluatorBase):
                                       "wing_aero = false")
         with np.errstate(all="ignore"):
             if model.wing_aero and model.wing.aero == "dlm":     # Roger's state space of the DLM
-                from propwhirl.model import dlm_rfa
                 sys = dlm_rfa.second_order(self, V, omega)
             else:
                 sys = self.blocks(V, omega).dense()
