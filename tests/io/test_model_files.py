@@ -179,7 +179,7 @@ def test_every_model_field_is_known_to_the_writer():
         "PropellerWing": {"wing", "flight", "propellers", "wing_aero", "propeller_aero",
                           "rotating", "name", "_nodes"},
         "IsolatedPropeller": {"propeller", "flight", "propeller_aero", "rotating", "name"},
-        "Installation": {"propeller", "y", "mount", "aero"},
+        "Installation": {"propeller", "y", "mount", "aero", "state", "rotation"},
         "FlightCondition": {"density", "speed_of_sound", "speed_range"},
         "AeroSettings": {"wake", "compressibility", "aspect_ratio_correction", "cnq_sign",
                          "method", "cutoff_lift_slope", "quadrature_order"},
