@@ -192,12 +192,13 @@ class _GyroscopicSystem:
         if not model.dof_map().has_wing:
             ratio = (1.0,) if rpm_ratio is None else rpm_ratio
             still = model.with_(propeller_aero=False, rotating=False)
-            spun = model.with_(propeller_aero=False, rotating=True,
-                               propeller=spinning(model.propeller, ratio[0]))
+            spun = still if ratio[0] == 0 else model.with_(
+                propeller_aero=False, rotating=True, propeller=spinning(model.propeller, ratio[0]))
         else:
             still = model.with_(wing_aero=False, propeller_aero=False, rotating=False)
-            spun = still.with_(rotating=True, propellers=tuple(
-                replace(inst, propeller=spinning(inst.propeller, r))
+            spun = still.with_(rotating=True, propellers=tuple(   # ratio 0: not turning
+                replace(inst, propeller=spinning(inst.propeller, r)) if r > 0
+                else replace(inst, state="stopped")
                 for inst, r in zip(model.propellers, rpm_ratio)))
         V = np.array([1.0])                              # V plays no part here
         s0, s1 = still.second_order(V), spun.second_order(V)
