@@ -253,3 +253,15 @@ def test_parameter_derivatives_follow_the_states_and_the_override():
     derivs = D.second_order_derivatives(model, Vs, chosen)
     for par in chosen:
         assert_matches_central_differences(model, par, derivs[par.path], Vs)
+
+
+def test_mode_names_count_only_the_turning_rotors():
+    """A stopped rotor's pitch and yaw do not split into backward and forward whirl: with one
+    of two propellers stopped, one backward and one forward mode are named (before: two of
+    each, one pair of them arbitrary)."""
+    from propwhirl.analysis.modes import label_modes
+
+    kinds = [lab.split()[0] for lab, _ in label_modes(small_x57(("stopped", "operating")))]
+    assert kinds.count("backward") == 1 and kinds.count("forward") == 1
+    kinds = [lab.split()[0] for lab, _ in label_modes(small_x57(("stopped", "stopped")))]
+    assert set(kinds) == {"wing"}

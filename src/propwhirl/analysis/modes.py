@@ -104,7 +104,9 @@ def label_modes(model, basis: np.ndarray | None = None,
     so the shifts stay far below the gaps between modes), each mode followed by :func:`_track`
     (the engine's tracking core, as in the Campbell diagram); with N flexible propellers the N
     modes that fall most are 'backward k', the N that rise most 'forward k' (k by frequency),
-    the rest 'wing n'.
+    the rest 'wing n'.  Stopped and feathered installations (``Installation.state``) do not
+    turn, so their pitch and yaw modes do not split: they count as neither (N is the number of
+    flexibly mounted propellers that turn).
     ``basis``: the modes of the Rayleigh–Ritz problem on its columns (:func:`model_modes`);
     ``modes``: those modes if already computed (``model_modes(model, basis)[0]``).
     """
@@ -137,12 +139,13 @@ def label_modes(model, basis: np.ndarray | None = None,
 
 
 def _flexible_propellers(model) -> list:
-    """The Propeller of each flexibly mounted propeller (DOF-map order) of a PropellerWing or
-    an IsolatedPropeller."""
+    """The Propeller of each flexibly mounted propeller that turns (DOF-map order; not the
+    stopped or feathered installations) of a PropellerWing or an IsolatedPropeller."""
     dm = model.dof_map()
     if not dm.has_wing:
         return [model.propeller] if dm.propellers else []
-    return [model.propellers[p.number].propeller for p in dm.propellers]
+    return [model.propellers[p.number].propeller for p in dm.propellers
+            if getattr(model.propellers[p.number], "spinning", True)]
 
 
 @dataclass(frozen=True)
