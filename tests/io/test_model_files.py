@@ -385,7 +385,7 @@ EXAMPLE = (ROOT / "examples" / "wingtip.toml").read_text()
     ("    350.0,\n    10.0,\n]", "    350.0,\n]", "[flight] speed_range_m_per_s = [1.0, 350.0] is invalid"),
     ("    1.0,\n    350.0,", "    0.0,\n    350.0,",
      "[flight] speed_range_m_per_s[0] = 0.0 is outside the valid range (0, 10000] m/s"),
-    ("aero = true }", "aero = \"yes\" }", "[installations[0]] aero = 'yes' is invalid"),
+    ("aero = true, ", "aero = \"yes\", ", "[installations[0]] aero = 'yes' is invalid"),
     ("semi_span_m = 5.7", "semi_span_m = 5.7\nsemi_span_m = 6.0",
      "column 18): 'semi_span_m = 6.0'"),
     ("blade_chord_m = 0.094", "blade_chord_m = 0.094\nblade_chord = { eta = [0.0, 1.0], chord_m = [0.1, 0.1] }",

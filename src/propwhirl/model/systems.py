@@ -124,9 +124,11 @@ class Installation:
     aero: bool = field(default=True, metadata=spec(
         "aero", "", "this propeller's aerodynamic loads", default="setting"))
     state: Literal["operating", "feathered", "stopped"] = field(default="operating", metadata=spec(
-        "state", "", "operating: turning as the propeller's operation says (fixed-pitch is "
-        "windmilling); stopped: Omega = 0, no propeller aerodynamics; feathered: Omega = 0, "
-        "the feathered blades' side forces (needs the blade geometry)", default="setting"))
+        "state", "", "operating: turning as the propeller's operation says (windmilling is "
+        "operation = fixed-pitch, not a state of its own); stopped: Omega = 0, no propeller "
+        "aerodynamics (folded blades); feathered: Omega = 0, the feathered blades' side forces "
+        "(the Omega -> 0 limit of Houbolt-Reed; needs the blade geometry); the mount and masses "
+        "stay in every state", default="setting"))
     rotation: int | None = field(default=None, metadata=spec(
         "rotation", "", "+1 counter-clockwise seen from the front, -1 clockwise, overriding "
         "the propeller's rotation; omitted: the propeller's", default="none"))
