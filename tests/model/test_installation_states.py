@@ -16,6 +16,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 import tomli_w
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from propwhirl.analysis.campbell import campbell, operating_rpm_ratio
 from propwhirl.io import dumps, loads
@@ -38,6 +40,17 @@ def small_x57(states=("operating", "operating"), wing_aero=True, **inst):
     del doc["propellers"]["cruise"]
     model = loads(tomli_w.dumps(doc), "small_x57.toml")
     return model.with_(wing_aero=wing_aero)
+
+
+def _small_doc() -> dict:
+    doc = tomllib.loads((ROOT / "examples" / "x57_like.toml").read_text())
+    doc["wing"].update(n_elements=2, semi_span_m=2.4)
+    doc["installations"] = [doc["installations"][k] for k in (0, 2)]
+    del doc["propellers"]["cruise"]
+    return doc
+
+
+_SMALL_DOC = _small_doc()
 
 
 def _system(model, V):
@@ -265,3 +278,48 @@ def test_mode_names_count_only_the_turning_rotors():
     assert kinds.count("backward") == 1 and kinds.count("forward") == 1
     kinds = [lab.split()[0] for lab, _ in label_modes(small_x57(("stopped", "stopped")))]
     assert set(kinds) == {"wing"}
+
+
+# ----------------------------------------------------------------------------- fuzz-style
+_ANY = st.one_of(st.integers(-3, 3), st.floats(allow_nan=True, allow_infinity=True),
+                 st.booleans(), st.text(max_size=12),
+                 st.sampled_from(["operating", "feathered", "stopped", "windmilling",
+                                  "Stopped", " stopped"]),
+                 st.lists(st.integers(-1, 1), max_size=2),
+                 st.dictionaries(st.sampled_from(["a", "state"]), st.integers(), max_size=1))
+
+
+@settings(max_examples=60, deadline=None, derandomize=True,
+          suppress_health_check=[HealthCheck.too_slow])
+@given(state=st.one_of(st.none(), _ANY), rotation=st.one_of(st.none(), _ANY),
+       which=st.integers(0, 1))
+def test_any_state_or_rotation_in_a_file_loads_or_is_one_line(state, rotation, which):
+    """Whatever a file gives as state and rotation of an installation: the model it means
+    (a valid state and ±1), or a one-line InputError naming the file and the installation."""
+    doc = dict(_SMALL_DOC, installations=[dict(i) for i in _SMALL_DOC["installations"]])
+    for key, value in (("state", state), ("rotation", rotation)):
+        if value is not None:
+            doc["installations"][which][key] = value
+    try:
+        m = loads(tomli_w.dumps(doc), "fz.toml")
+    except InputError as exc:
+        msg = str(exc)
+        assert "\n" not in msg and msg.startswith(f"fz.toml: [installations[{which}]] ")
+        return
+    inst = m.propellers[which]
+    assert inst.state == (state if state is not None else "operating")
+    assert inst.rotation == rotation and inst.sense in (1, -1)
+    assert type(inst.rotation) in (int, type(None))
+
+
+def test_campbell_command_names_the_turning_propeller(tmp_path, capsys):
+    """`propwhirl campbell` with the first propeller stopped: the RPM axis is the turning
+    propeller's and the stopped one is said to be still (before: "RPM of propeller 1", the
+    stopped one)."""
+    from propwhirl.app import cli
+
+    path = tmp_path / "m.toml"
+    path.write_text(dumps(small_x57(("stopped", "operating"))))
+    assert cli.main(["campbell", str(path), "--rpm", "0", "3000", "2"]) == 0
+    out = capsys.readouterr().out.splitlines()
+    assert out[1] == "  RPM of propeller 2; propeller 1 not turning (stopped or feathered)"
