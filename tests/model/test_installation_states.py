@@ -323,3 +323,20 @@ def test_campbell_command_names_the_turning_propeller(tmp_path, capsys):
     assert cli.main(["campbell", str(path), "--rpm", "0", "3000", "2"]) == 0
     out = capsys.readouterr().out.splitlines()
     assert out[1] == "  RPM of propeller 2; propeller 1 not turning (stopped or feathered)"
+
+
+def test_reversing_one_rotor_is_a_mirror_image_without_in_plane_bending():
+    """Without in-plane bending nothing of the wing moves sideways, so reversing one rotor
+    (gyroscopic sign and the eight cross derivatives together) is the mirror image ψ → −ψ of
+    its yaw: the same eigenvalues.  In-plane bending couples the yaw to the wing (χ_P): then
+    the sense matters."""
+    def eig(model):
+        return np.sort(np.abs(np.linalg.eigvals(model.state_matrix(np.array([150.0]))[0])))
+
+    base = small_x57()
+    flip = base.with_(propellers=(replace(base.propellers[0], rotation=-1), base.propellers[1]))
+    np.testing.assert_allclose(eig(flip), eig(base), rtol=1e-9)
+    inplane = base.with_(wing=replace(base.wing, EI_chordwise=5e6))
+    flip_ip = inplane.with_(propellers=(replace(inplane.propellers[0], rotation=-1),
+                                        inplane.propellers[1]))
+    assert not np.allclose(eig(flip_ip), eig(inplane), rtol=1e-6)
