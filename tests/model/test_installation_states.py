@@ -340,3 +340,15 @@ def test_reversing_one_rotor_is_a_mirror_image_without_in_plane_bending():
     flip_ip = inplane.with_(propellers=(replace(inplane.propellers[0], rotation=-1),
                                         inplane.propellers[1]))
     assert not np.allclose(eig(flip_ip), eig(inplane), rtol=1e-6)
+
+
+def test_tip_mach_warning_names_only_the_turning_rotors():
+    """The helical-tip-Mach warning is about turning blades: a feathered rotor's tips move
+    with the free stream, a stopped one has no propeller aerodynamics."""
+    from propwhirl.model import validity
+
+    for states in (("feathered", "operating"), ("stopped", "operating")):
+        m = small_x57(states)
+        (tip,) = [w for w in validity.analysis_warnings(m, (1.0, 250.0), [(240.0, "x")], True)
+                  if "tip Mach" in w]
+        assert tip.startswith("propeller 2: helical tip Mach number")

@@ -199,7 +199,8 @@ def analysis_warnings(model, speed_range: tuple[float, float],
             "not valid")
     tips: dict[str, list[int]] = {}       # one line per text, listing its propellers
     for j, p in houbolt_reed_propellers(model):
-        if not getattr(model.propellers[j], "spinning", True) if hasattr(model, "propellers") else False:
+        installs = getattr(model, "propellers", ())
+        if installs and not getattr(installs[j], "spinning", True):
             continue                      # a feathered rotor: its tips move with the free stream
         hits = [(V, d, float(tip_mach(p, V, a))) for V, d in ev]
         hits = [h for h in hits if h[2] > TIP_MACH]
