@@ -134,7 +134,7 @@ class Installation:
         "the propeller's rotation; omitted: the propeller's", default="none"))
 
     def __post_init__(self) -> None:
-        if self.state == "windmilling":   # not a state of its own: say what it is
+        if isinstance(self.state, str) and self.state == "windmilling":   # not a state: say what
             raise v.fail("state", self.state, "invalid: windmilling is state = 'operating' "
                          "of a propeller with operation = 'fixed-pitch' (Omega = V/(mu R)); "
                          "the states are operating, feathered, stopped")
