@@ -90,7 +90,7 @@ class CampbellResult(Result):
     a dict of :meth:`to_dict` without a format, as written before it, is version 1):
     :meth:`save` / :meth:`load`, every field checked when read.
 
-    rpm:           (T,) rotational speeds [rev/min] of the first propeller, increasing;
+    rpm:           (T,) rotational speeds [rev/min] of the first propeller that turns, increasing;
                    propeller j spins at ``rpm_ratio[j]`` × rpm (all at rpm when the ratios are 1).
     frequency_hz:  (T, K) natural frequencies [Hz]; column k is one mode followed along rpm
                    (columns ordered by frequency at rpm = 0).
@@ -221,7 +221,7 @@ def campbell(model, rpm=None, *, rpm_ratio=None, max_frequency_hz: float | None 
         With at least one flexibly mounted propeller; aerodynamics and dissipative damping are
         switched off (the undamped gyroscopic system; the airspeed plays no part).
     rpm : array_like, optional
-        Rotational speeds [rev/min] of the first propeller, ≥ 0, increasing (default
+        Rotational speeds [rev/min] of the first propeller that turns, ≥ 0, increasing (default
         :data:`CAMPBELL_RPM`, 0–6000 every 250).  The modes are followed from rpm = 0
         whether or not it is asked for.
     rpm_ratio : sequence of float, optional
