@@ -225,9 +225,10 @@ def campbell(model, rpm=None, *, rpm_ratio=None, max_frequency_hz: float | None 
         :data:`CAMPBELL_RPM`, 0–6000 every 250).  The modes are followed from rpm = 0
         whether or not it is asked for.
     rpm_ratio : sequence of float, optional
-        Each propeller's speed relative to the first's (one per propeller, >= 0, 0 for one that does not turn; the first
-        1).  Default :func:`operating_rpm_ratio`: as the propellers operate (all 1 for equal
-        propellers: every propeller spins at rpm).
+        Each propeller's speed relative to the first turning one's (one per propeller,
+        >= 0, 0 for one that does not turn).  Default :func:`operating_rpm_ratio`: as the
+        propellers operate (all 1 for equal propellers: every propeller spins at rpm; 0 for a
+        stopped or feathered installation).
     max_frequency_hz : float, optional
         Keep only the modes below this frequency [Hz] at rpm = 0.
     mac_min : float

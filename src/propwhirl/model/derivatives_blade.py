@@ -217,8 +217,8 @@ def chain(ctx, par) -> list[tuple[str, np.ndarray]]:
     out = []
     if model.rotating and ctx.omega is None and inst.spinning:
         out.append(("Omega", inst.sense * dOmega))
-    if not (model.propeller_aero and inst.has_aero and inst.spinning) or isinstance(prop.derivatives,
-                                                               MeasuredDerivatives):
+    if (not (model.propeller_aero and inst.has_aero and inst.spinning)
+            or isinstance(prop.derivatives, MeasuredDerivatives)):
         return out
     source = prop.derivatives if prop.derivatives is not None else houbolt_reed_source(
         prop, prop.aero_settings)

@@ -14,8 +14,8 @@ A :class:`Campaign` holds
   speeds are true airspeeds (:class:`propwhirl.model.flight.FlightCondition`);
 * the cases: :class:`Case` s, named model transformations (mount stiffness and damping
   factors, the wing's structural damping, windmilling, feathered or stopped rotors, overspeed,
-  reversed rotation, added masses, any parameter path of :mod:`propwhirl.studies.paths`), applied to the chosen
-  propellers (numbered from 1; all by default).
+  reversed rotation, added masses, any parameter path of :mod:`propwhirl.studies.paths`),
+  applied to the chosen propellers (numbered from 1; all by default).
 
 :func:`run_campaign` builds every (case, point) model first (each bad case or point is a
 one-line InputError before any analysis), then runs one analysis per (case, point) with
