@@ -43,6 +43,7 @@ def test_mutated_values(data):
 CASE_KEYS = st.fixed_dictionaries({}, optional={
     "mount_stiffness": VALUES, "mount_damping": VALUES, "wing_damping": VALUES,
     "rpm_factor": VALUES, "operation": st.sampled_from(["windmilling", "feathered", ""]),
+    "state": st.sampled_from(["feathered", "stopped", "operating", "windmilling", "", 1]),
     "reverse_rotation": VALUES, "propellers": st.lists(st.integers(-2, 3), max_size=3),
     "each_propeller": st.booleans(), "group": st.sampled_from(["a", "b"]),
     "added_masses": st.lists(st.fixed_dictionaries({"mass_kg": VALUES, "x_m": VALUES}),

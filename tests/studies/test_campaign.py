@@ -96,8 +96,8 @@ def test_case_transformations(model):
     p0 = model.propellers[0].propeller
     p = C.Case("damper", mount_damping=0.0).apply(model).propellers[0].propeller
     assert p.damping_theta == 0.0 and p.damping_psi == 0.0
-    p = C.Case("rev", reverse_rotation=True).apply(model).propellers[0].propeller
-    assert p.rotation == -p0.rotation
+    inst = C.Case("rev", reverse_rotation=True).apply(model).propellers[0]
+    assert inst.sense == -p0.rotation and inst.propeller == p0   # the installation's, not the table's
     p = C.Case("mass", added_masses=((20.0, -0.5),)).apply(model).propellers[0].propeller
     assert len(p.masses) == len(p0.masses) + 1 and p.masses[-1].mass == 20.0
     m = C.Case("ei", values=(("wing.EI*", 0.9),)).apply(model)

@@ -61,16 +61,24 @@ def operating_rpm_ratio(model) -> tuple[float, ...]:
     fixed-pitch windmilling Ω = V/(μR) — a ratio that holds at every airspeed when the
     propellers run in the same operation.  Where it depends on the airspeed (fixed-pitch and
     constant-speed propellers mixed) every ratio is 1 (pass ``rpm_ratio`` to
-    :func:`campbell`).  An isolated propeller: (1.0,)."""
-    props = ([model.propeller] if not model.dof_map().has_wing
-             else [inst.propeller for inst in model.propellers])
+    :func:`campbell`).  A stopped or feathered installation (``state``) turns at 0 rpm: its
+    ratio is 0, and the ratios are relative to the first propeller that turns (all 0 when
+    none does).  An isolated propeller: (1.0,)."""
+    if not model.dof_map().has_wing:
+        props, turning = [model.propeller], [True]
+    else:
+        props = [inst.propeller for inst in model.propellers]
+        turning = [inst.spinning for inst in model.propellers]
     if not props:
         return ()
+    if not any(turning):
+        return (0.0,) * len(props)
     Vs = np.array([100.0, 200.0])
-    speeds = np.array([p.rotational_speed(Vs) for p in props])     # (n, 2) [rad/s]
-    ratio = speeds / speeds[0]
+    speeds = np.array([p.rotational_speed(Vs) if t else np.zeros(2)
+                       for p, t in zip(props, turning)])             # (n, 2) [rad/s]
+    ratio = speeds / speeds[turning.index(True)]
     if not np.allclose(ratio[:, 0], ratio[:, 1], rtol=1e-12, atol=0.0):
-        return (1.0,) * len(props)
+        return tuple(1.0 if t else 0.0 for t in turning)
     return tuple(float(r) for r in ratio[:, 0])
 
 
@@ -82,7 +90,7 @@ class CampbellResult(Result):
     a dict of :meth:`to_dict` without a format, as written before it, is version 1):
     :meth:`save` / :meth:`load`, every field checked when read.
 
-    rpm:           (T,) rotational speeds [rev/min] of the first propeller, increasing;
+    rpm:           (T,) rotational speeds [rev/min] of the first propeller that turns, increasing;
                    propeller j spins at ``rpm_ratio[j]`` × rpm (all at rpm when the ratios are 1).
     frequency_hz:  (T, K) natural frequencies [Hz]; column k is one mode followed along rpm
                    (columns ordered by frequency at rpm = 0).
@@ -179,8 +187,9 @@ class CampbellResult(Result):
             raise v.InputError(f"{r.name('families')}: {bad[0]!r} is invalid: must be one of "
                                f"{', '.join(FAMILIES)}")
         ratio = r.array("rpm_ratio")
-        if (ratio <= 0).any():
-            raise v.InputError(f"{r.name('rpm_ratio')}: ratios must be > 0")
+        if (ratio < 0).any():
+            raise v.InputError(f"{r.name('rpm_ratio')}: ratios must be >= 0 (0: a stopped "
+                               "propeller)")
         pairs = [_pair(pair, w) for w, pair in r.items("unresolved")]
         return cls(rpm, f, labels, r.array("slope_hz_per_rpm", ndim=2, shape=shape),
                    r.array("resolved", kind=bool, shape=(rpm.size,)), tuple(pairs),
@@ -212,13 +221,14 @@ def campbell(model, rpm=None, *, rpm_ratio=None, max_frequency_hz: float | None 
         With at least one flexibly mounted propeller; aerodynamics and dissipative damping are
         switched off (the undamped gyroscopic system; the airspeed plays no part).
     rpm : array_like, optional
-        Rotational speeds [rev/min] of the first propeller, ≥ 0, increasing (default
+        Rotational speeds [rev/min] of the first propeller that turns, ≥ 0, increasing (default
         :data:`CAMPBELL_RPM`, 0–6000 every 250).  The modes are followed from rpm = 0
         whether or not it is asked for.
     rpm_ratio : sequence of float, optional
-        Each propeller's speed relative to the first's (one per propeller, > 0; the first
-        1).  Default :func:`operating_rpm_ratio`: as the propellers operate (all 1 for equal
-        propellers: every propeller spins at rpm).
+        Each propeller's speed relative to the first turning one's (one per propeller,
+        >= 0, 0 for one that does not turn).  Default :func:`operating_rpm_ratio`: as the
+        propellers operate (all 1 for equal propellers: every propeller spins at rpm; 0 for a
+        stopped or feathered installation).
     max_frequency_hz : float, optional
         Keep only the modes below this frequency [Hz] at rpm = 0.
     mac_min : float
@@ -294,11 +304,12 @@ def _check_rpm(rpm) -> np.ndarray:
 
 
 def _check_ratio(model, rpm_ratio) -> tuple[float, ...]:
-    """rpm_ratio: one positive finite number per propeller of `model`."""
+    """rpm_ratio: one finite number >= 0 per propeller of `model` (0: not turning; a stopped
+    or feathered installation does not turn whatever its ratio)."""
     n = len(operating_rpm_ratio(model))
     r = np.atleast_1d(np.asarray(rpm_ratio, dtype=float))
     if r.ndim != 1 or r.size != n:
         raise v.InputError(f"rpm_ratio = {rpm_ratio!r:.60} is invalid: must give one ratio per "
                            f"propeller ({n})")
-    v.positive("rpm_ratio", r)
+    v.non_negative("rpm_ratio", r)
     return tuple(float(x) for x in r)

@@ -104,7 +104,9 @@ def label_modes(model, basis: np.ndarray | None = None,
     so the shifts stay far below the gaps between modes), each mode followed by :func:`_track`
     (the engine's tracking core, as in the Campbell diagram); with N flexible propellers the N
     modes that fall most are 'backward k', the N that rise most 'forward k' (k by frequency),
-    the rest 'wing n'.
+    the rest 'wing n'.  Stopped and feathered installations (``Installation.state``) do not
+    turn, so their pitch and yaw modes do not split: they count as neither (N is the number of
+    flexibly mounted propellers that turn).
     ``basis``: the modes of the Rayleigh–Ritz problem on its columns (:func:`model_modes`);
     ``modes``: those modes if already computed (``model_modes(model, basis)[0]``).
     """
@@ -137,12 +139,13 @@ def label_modes(model, basis: np.ndarray | None = None,
 
 
 def _flexible_propellers(model) -> list:
-    """The Propeller of each flexibly mounted propeller (DOF-map order) of a PropellerWing or
-    an IsolatedPropeller."""
+    """The Propeller of each flexibly mounted propeller that turns (DOF-map order; not the
+    stopped or feathered installations) of a PropellerWing or an IsolatedPropeller."""
     dm = model.dof_map()
     if not dm.has_wing:
         return [model.propeller] if dm.propellers else []
-    return [model.propellers[p.number].propeller for p in dm.propellers]
+    return [model.propellers[p.number].propeller for p in dm.propellers
+            if getattr(model.propellers[p.number], "spinning", True)]
 
 
 @dataclass(frozen=True)
@@ -192,12 +195,13 @@ class _GyroscopicSystem:
         if not model.dof_map().has_wing:
             ratio = (1.0,) if rpm_ratio is None else rpm_ratio
             still = model.with_(propeller_aero=False, rotating=False)
-            spun = model.with_(propeller_aero=False, rotating=True,
-                               propeller=spinning(model.propeller, ratio[0]))
+            spun = still if ratio[0] == 0 else model.with_(
+                propeller_aero=False, rotating=True, propeller=spinning(model.propeller, ratio[0]))
         else:
             still = model.with_(wing_aero=False, propeller_aero=False, rotating=False)
-            spun = still.with_(rotating=True, propellers=tuple(
-                replace(inst, propeller=spinning(inst.propeller, r))
+            spun = still.with_(rotating=True, propellers=tuple(   # ratio 0: not turning
+                replace(inst, propeller=spinning(inst.propeller, r)) if r > 0
+                else replace(inst, state="stopped")
                 for inst, r in zip(model.propellers, rpm_ratio)))
         V = np.array([1.0])                              # V plays no part here
         s0, s1 = still.second_order(V), spun.second_order(V)

@@ -415,9 +415,14 @@ def _campbell(args: argparse.Namespace) -> int:
     echo(f"{model.name}: natural frequencies [Hz] against propeller speed (no aerodynamics), "
           "each mode followed from RPM 0")
     if len(set(result.rpm_ratio)) > 1:        # the propellers turn at different speeds
-        echo("  RPM of propeller 1; " + ", ".join(
-            f"propeller {j + 1} at {r:.4g} x RPM" for j, r in enumerate(result.rpm_ratio)
-            if j > 0))
+        ratio = result.rpm_ratio
+        ref = next((j for j, r in enumerate(ratio) if r > 0), 0)    # the first that turns
+        still = [str(j + 1) for j, r in enumerate(ratio) if r == 0]
+        echo(f"  RPM of propeller {ref + 1}; " + ", ".join(
+            [f"propeller {j + 1} at {r:.4g} x RPM" for j, r in enumerate(ratio)
+             if j != ref and r > 0]
+            + ([f"propeller{'s' * (len(still) > 1)} {', '.join(still)} not turning "
+                "(stopped or feathered)"] if still else [])))
     echo(f"  {'RPM':>8s} " + " ".join(f"{lab:>11s}" for lab in result.labels[:count]))
     for r, row in zip(result.rpm, result.frequency_hz):
         print(f"  {r:8.1f} " + " ".join(f"{x:11.3f}" for x in row[:count]))

@@ -48,6 +48,8 @@ REGULATIONS = {"cs25": 1.15, "far25": 1.15, "far23": 1.2}
 #: The airspeeds V_D can be given as; the operations a case can switch a propeller to.
 AIRSPEEDS = ("EAS", "TAS")
 OPERATIONS = ("windmilling",)
+#: The installation states a case can set (those of :data:`propwhirl.studies.campaign.STATES`).
+STATES = ("operating", "feathered", "stopped")
 #: Feet to metres.
 FT = 0.3048
 
@@ -56,7 +58,8 @@ _TOP = ("format", "format_version", "name", "model", "convention", "combine", "r
 _REGULATION = ("name", "factor", "min_damping_g")
 _ENVELOPE = ("airspeed", "V_D_m_per_s", "M_D", "altitudes_m", "altitudes_ft")
 _CASE = ("name", "group", "propellers", "each_propeller", "mount_stiffness", "mount_damping",
-         "wing_damping", "operation", "rpm_factor", "reverse_rotation", "added_masses", "values")
+         "wing_damping", "operation", "state", "rpm_factor", "reverse_rotation", "added_masses",
+         "values")
 _MASS = ("mass_kg", "x_m")
 #: Ranges of the case factors: key → (low, high).
 FACTOR_RANGES = {"mount_stiffness": (1e-3, 100.0), "mount_damping": (0.0, 100.0),
@@ -120,8 +123,12 @@ def _case(t: _Table, n_propellers: int) -> CaseSpec:
         if t.has(key):
             kw[key] = _number_in(t, key, lo, hi)
     if t.has("operation"):
-        kw["operation"] = t.string("operation", "feathered propellers are not modelled",
-                                   OPERATIONS)
+        kw["operation"] = t.string("operation", "a constant-speed propeller switched to "
+                                   "windmilling; feathered or stopped rotors: state", OPERATIONS)
+    if t.has("state"):
+        kw["state"] = t.string("state", "the chosen installations' state: feathered (Omega = 0, "
+                               "the feathered blades' side forces), stopped (Omega = 0, no "
+                               "propeller aerodynamics) or operating", STATES)
     if t.has("reverse_rotation"):
         kw["reverse_rotation"] = t.boolean("reverse_rotation")
     props: tuple[int, ...] = ()

@@ -76,6 +76,7 @@ from propwhirl.model.blocks import BlockSystem, LagBlocks, LocalBlocks
 from propwhirl.model import derivatives_blade as _blade
 from propwhirl.model import derivatives_section as _section
 from propwhirl.model.propeller import MeasuredDerivatives
+from propwhirl.model.propeller import CROSS_DERIVATIVES
 from propwhirl.model.propeller_aero import DERIVATIVE_NAMES
 from propwhirl.model.propeller_blocks import propeller_constants, propeller_values
 from propwhirl.model.statespace import SecondOrder
@@ -126,7 +127,10 @@ def parameters(model: PropellerWing) -> tuple[Parameter, ...]:
     for j, inst in enumerate(model.propellers):
         prop = inst.propeller
         pre = f"propellers[{j}].propeller."
-        for name, value, unit, doc in _blade.parameters(prop, model.propeller_aero and inst.aero):
+        aero = model.propeller_aero and inst.has_aero
+        # a stopped or feathered rotor (Omega = 0) has no rotation parameters
+        rotation = _blade.parameters(prop, aero) if inst.spinning else []
+        for name, value, unit, doc in rotation:
             out.append(Parameter(pre + name, "rotation", j, name, value, unit, doc))
         K = prop.stiffness()
         zeta = prop.viscous_damping_ratios()
@@ -151,7 +155,7 @@ def parameters(model: PropellerWing) -> tuple[Parameter, ...]:
                                  float(pm.mass), "kg", f"point mass {where}"))
             out.append(Parameter(pre + f"{where}.x", "propeller", j, f"x:{k}", float(pm.x),
                                  "m", f"position of point mass {where} aft of the mid-chord"))
-        if (model.propeller_aero and inst.aero
+        if (aero and inst.spinning                 # a feathered rotor's come from its blades
                 and isinstance(prop.derivatives, MeasuredDerivatives)):
             for name in DERIVATIVE_NAMES:
                 out.append(Parameter(pre + f"derivatives.values[{name}]", "propeller", j, name,
@@ -340,7 +344,7 @@ class _Context:
         node = self.model.nodes[j]
         ea = float(node_ab["a"][node] * node_ab["b"][node])  # a_P b_P [m]
         return self.system((self.propeller_block(
-            j, _chain(self.model.propellers[j].propeller, par, {**values, "ea": ea})),), None)
+            j, _chain(self.model.propellers[j], par, {**values, "ea": ea})),), None)
 
     def prop_values(self, j: int) -> dict:
         """The arguments of propeller j's generated blocks at the speeds V (computed once,
@@ -355,13 +359,14 @@ class _Context:
                                         model.flight.density)
             values = propeller_values(const, inst.propeller, self.V, self.omega,
                                       rotating=model.rotating,
-                                      aero=model.propeller_aero and inst.aero,
+                                      aero=model.propeller_aero and inst.has_aero,
                                       speed_of_sound=model.flight.speed_of_sound,
-                                      derivatives=self.memo)
+                                      derivatives=self.memo, state=inst.state,
+                                      rotation=inst.sense)
             struct = prop_flexwing.structure_blocks_d(
                 **{a: values[a] for a in prop_flexwing.PARTIALS["structure_blocks_d"][0]})
             aero = {}
-            if model.propeller_aero and inst.aero:
+            if model.propeller_aero and inst.has_aero:
                 aero = prop_flexwing.aero_blocks_d(
                     **{a: values[a] for a in prop_flexwing.PARTIALS["aero_blocks_d"][0]})
             self.prop[j] = (values, struct, aero)
@@ -478,9 +483,10 @@ def _pivot_chain(prop, par: Parameter, values: dict) -> list[tuple[str, float]]:
     return [("I_psi_P", dI), ("e_psi", -1.0)] + _mount_stiffness(prop, {"I_psi_P": dI})
 
 
-def _chain(prop, par: Parameter, values: dict) -> list[tuple[str, float]]:
-    """[(generated argument, ∂argument/∂parameter)] of a propeller parameter (exact)."""
-    name = par.name
+def _chain(inst, par: Parameter, values: dict) -> list[tuple[str, float]]:
+    """[(generated argument, ∂argument/∂parameter)] of a parameter of the propeller of
+    installation ``inst`` (exact)."""
+    prop, name = inst.propeller, par.name
     if name.startswith(("mass:", "x:")):
         return _mass_chain(prop, par, values)
     if name in ("pivot_pitch", "pivot_yaw"):
@@ -494,7 +500,9 @@ def _chain(prop, par: Parameter, values: dict) -> list[tuple[str, float]]:
         return [("zeta_" + name[8:], 1.0 if prop.damping == "zeta" else 0.5)]
     if name == "spin_inertia":
         return [("I_Omega", 1.0)]
-    return [(name, 1.0)]                      # an aerodynamic derivative
+    # a measured aerodynamic derivative: mirrored where the installation turns the other way
+    flip = name in CROSS_DERIVATIVES and inst.sense != prop.rotation
+    return [(name, -1.0 if flip else 1.0)]
 
 
 def derivative_blocks(model: PropellerWing, V, params: Iterable[str | Parameter] | None = None,

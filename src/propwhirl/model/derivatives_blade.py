@@ -215,10 +215,10 @@ def chain(ctx, par) -> list[tuple[str, np.ndarray]]:
     V = ctx.V
     dmu, dOmega = advance_ratio_rates(prop, par.name, V)
     out = []
-    if model.rotating and ctx.omega is None:
-        out.append(("Omega", prop.rotation * dOmega))
-    if not (model.propeller_aero and inst.aero) or isinstance(prop.derivatives,
-                                                               MeasuredDerivatives):
+    if model.rotating and ctx.omega is None and inst.spinning:
+        out.append(("Omega", inst.sense * dOmega))
+    if (not (model.propeller_aero and inst.has_aero and inst.spinning)
+            or isinstance(prop.derivatives, MeasuredDerivatives)):
         return out
     source = prop.derivatives if prop.derivatives is not None else houbolt_reed_source(
         prop, prop.aero_settings)
@@ -226,7 +226,7 @@ def chain(ctx, par) -> list[tuple[str, np.ndarray]]:
     mach = V / a if a is not None else np.zeros_like(V)
     _, d = derivatives_and_mu_derivatives(source.geometry, source.settings, V,
                                           prop.rotational_speed(V), mach)
-    flip = prop.derivatives is None and prop.rotation == -1
+    flip = prop.derivatives is None and inst.sense == -1
     for name, x in d.items():
         sign = -1.0 if flip and name in CROSS_DERIVATIVES else 1.0
         out.append((name, sign * x * dmu))

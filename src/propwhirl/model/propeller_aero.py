@@ -350,6 +350,17 @@ def _nodes(edges: np.ndarray, order: int) -> tuple[np.ndarray, np.ndarray]:
     return eta.reshape(n, -1), wt.reshape(n, -1)
 
 
+def _lift_factor(geometry: PropellerGeometry, settings: AeroSettings, eta: np.ndarray,
+                 mr2: np.ndarray, A: float) -> np.ndarray:
+    """g(η) of eq. 4.42: a(η)/(2π) · 1/sqrt(1 − M_r²) · A'/(A' + 2) (4.18–4.20), for the
+    sections at η with squared relative Mach numbers ``mr2`` (already cut off, 4.23–4.24)."""
+    slope_ratio = 1.0 if geometry.lift_slope is None else geometry.lift_slope(eta) / _TWO_PI
+    beta = np.sqrt(1.0 - mr2)
+    pg = 1.0 / beta                                                    # eq. 4.18
+    arf = (A * beta) / (A * beta + 2.0) if settings.aspect_ratio_correction else 1.0  # 4.19
+    return slope_ratio * pg * arf
+
+
 def _integrals(geometry: PropellerGeometry, settings: AeroSettings, mu: np.ndarray,
                omega: np.ndarray, airspeed: np.ndarray, mach: np.ndarray,
                wake: bool) -> tuple[np.ndarray, ...]:
@@ -370,12 +381,8 @@ def _integrals(geometry: PropellerGeometry, settings: AeroSettings, mu: np.ndarr
     eta = mu_ * np.sinh(t)
 
     chord = geometry.chord(eta)
-    slope_ratio = 1.0 if geometry.lift_slope is None else geometry.lift_slope(eta) / _TWO_PI
     mr2 = np.minimum(m2_ * (1.0 + eta ** 2 / mu_ ** 2), mr2_max)       # eq. 4.20, 4.24
-    beta = np.sqrt(1.0 - mr2)
-    pg = 1.0 / beta                                                    # eq. 4.18
-    arf = (A * beta) / (A * beta + 2.0) if settings.aspect_ratio_correction else 1.0  # 4.19
-    g = slope_ratio * pg * arf
+    g = _lift_factor(geometry, settings, eta, mr2, A)
 
     base = w * chord * g                                               # w · dη/sqrt(μ²+η²)
     if wake:
@@ -510,6 +517,48 @@ def _derivatives(geometry: PropellerGeometry, settings: AeroSettings, Vf: np.nda
         Cn_theta=-Cm_psi, Cn_psi=Cm_theta, Cn_q=-Cm_r, Cn_r=Cm_q,
     )
     return d, mu, cutoff, dict(I1=I1, I2=I2, I3=I3, J1=J1, J2=J2, J3=J3)
+
+
+def stopped_blades(geometry: PropellerGeometry, airspeed, speed_of_sound=None,
+                   settings: AeroSettings = AeroSettings()) -> dict[str, np.ndarray]:
+    """The sixteen derivatives (eq. 4.25) of a stopped rotor whose blades lie along the free
+    stream (feathered): the limit Ω → 0 at fixed V of eq. 4.39–4.42, arrays of V's shape.
+
+    With μ = V/(ΩR) → ∞ the windmilling blade's inflow angle tends to 90°, so the limit is
+    the feathered blade (chord along the shaft), and the blade-element terms become:
+    k = Ωc/(2U) → 0, so F → 1 and G → 0 (every J_n term vanishes); M_r² → M² (4.20);
+    Ωc0/V · I2 and Ωc0/V · I3 → 0 (they carry one and two powers of Ω more than I1);
+    and 4Ωc0/V · I1 = N_b μ/R ∫ c g F/sqrt(μ² + η²) dη → N_b/R ∫_{η0}^{1} c(η) g(η) dη.
+    What remains is C_Yψ = −C_Zθ = N_b/R ∫ c g dη: each blade is a fin, and a nacelle angle ψ
+    (or θ) gives the blade at azimuth φ the cross-flow angle ψ sin φ, so the N_b blades give
+    the side force ½ρV² · N_b/2 · ∫_{r0}^{R} a c A'/(A'+2)/sqrt(1 − M²) dr per radian
+    (with C_Yψ per ½ρV²πR², eq. 4.25).  The Bennett–Bland method has the same limit (its
+    phase lag δ → 0) with M = 0.
+
+    airspeed        V [m/s] > 0, any shape
+    speed_of_sound  a [m/s] > 0 (M = V/a); needed when compressibility is on
+    """
+    V = v.positive("airspeed", airspeed, "m/s")
+    bennett_bland = settings.method == "bennett_bland"
+    if settings.compressibility and not bennett_bland:
+        if speed_of_sound is None:
+            raise v.InputError(
+                "speed_of_sound is missing: required with compressibility on")
+        M = V / v.positive("speed_of_sound", speed_of_sound, "m/s")
+    else:
+        M = np.zeros(V.shape)
+    Vf, Mf = (np.ascontiguousarray(x, dtype=float).ravel() for x in (V, M))
+    validity.check_propeller(geometry.n_blades, geometry.radius, geometry.blade_area(), Vf, Mf)
+    mr2_max = 1.0 - (_TWO_PI / settings.cutoff_lift_slope) ** 2       # eq. 4.23–4.24
+    edges = np.concatenate(([geometry.hub_ratio], geometry.knots, [1.0]))[None, :]
+    eta, w = _nodes(edges, settings.quadrature_order)                 # (1, m)
+    mr2 = np.minimum(Mf[:, None] ** 2, mr2_max)                        # (n, 1): M_r = M
+    g = _lift_factor(geometry, settings, eta, mr2, geometry.blade_aspect_ratio)
+    cy_psi = geometry.n_blades / geometry.radius * np.sum(w * geometry.chord(eta) * g, axis=1)
+    cy_psi = cy_psi.reshape(V.shape)
+    out = {n: np.zeros(V.shape) for n in DERIVATIVE_NAMES}
+    out["CY_psi"], out["CZ_theta"] = cy_psi, -cy_psi                   # eq. 4.27
+    return out
 
 
 def constant_speed(geometry: PropellerGeometry, airspeed, omega: float, speed_of_sound=None,

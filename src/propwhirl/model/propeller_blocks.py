@@ -16,7 +16,8 @@ import numpy as np
 
 from propwhirl.generated import prop_flexwing, prop_flexwing_inplane
 from propwhirl.model.assembly import call_blocks
-from propwhirl.model.propeller import Propeller
+from propwhirl.model.propeller import CROSS_DERIVATIVES, Propeller
+from propwhirl.model.propeller_aero import stopped_blades
 from propwhirl.model.wing import Wing
 
 
@@ -80,28 +81,57 @@ def propeller_constants_at(propeller: Propeller, ea: float, density: float,
     return values
 
 
+def installed_derivatives(propeller: Propeller, V: np.ndarray, speed_of_sound: float, *,
+                          state: str = "operating", rotation: int | None = None
+                          ) -> dict[str, np.ndarray]:
+    """The 16 aerodynamic derivatives of ``propeller`` installed in ``state`` with the sense
+    of rotation ``rotation`` (None: the propeller's) at airspeeds V [m/s].
+
+    "operating": the propeller's own (:meth:`Propeller.aerodynamic_derivatives`), mirrored
+    (the eight cross-coupling derivatives negated) when ``rotation`` is opposite to the
+    propeller's — measured derivatives too, as they belong to the propeller's own sense;
+    "feathered": the stopped, feathered blades of its geometry
+    (:func:`~propwhirl.model.propeller_aero.stopped_blades`, no cross-coupling terms);
+    "stopped": none (an error: a stopped rotor has no aerodynamic loads)."""
+    p = propeller
+    if state == "feathered":
+        return stopped_blades(p.default_derivatives().geometry, V, speed_of_sound,
+                              p.aero_settings)
+    if state != "operating":
+        raise ValueError(f"state {state!r} has no propeller aerodynamic derivatives")
+    d = p.aerodynamic_derivatives(V, speed_of_sound)
+    if rotation is not None and rotation != p.rotation:
+        d = {k: (-x if k in CROSS_DERIVATIVES else x) for k, x in d.items()}
+    return d
+
+
 def propeller_values(constants: Mapping, propeller: Propeller, V: np.ndarray,
                      omega: np.ndarray | None, *, rotating: bool, aero: bool,
-                     speed_of_sound: float, derivatives: dict | None = None) -> dict:
+                     speed_of_sound: float, derivatives: dict | None = None,
+                     state: str = "operating", rotation: int | None = None) -> dict:
     """The arguments of the generated propeller blocks at airspeeds V [m/s]: ``constants``
-    (:func:`propeller_constants`) with the spin rate Ω [rad/s] (zero when not ``rotating``;
-    ``omega`` [rad/s], broadcast to V, overrides the propeller's own rotational speed) and,
-    with ``aero``, the aerodynamic derivatives at V.  ``derivatives``: a dict {key: the
-    derivatives at V} shared by the installations of one propeller design in one evaluation
-    (keyed by :func:`design_key`), or None.  A new dict each call."""
+    (:func:`propeller_constants`) with the spin rate Ω [rad/s] (zero when not ``rotating``
+    or when the installation's ``state`` is "stopped" or "feathered"; ``omega`` [rad/s],
+    broadcast to V, overrides an operating propeller's own rotational speed; its sign is the
+    sense ``rotation``, None: the propeller's) and, with ``aero``, the aerodynamic
+    derivatives at V (:func:`installed_derivatives`).  ``derivatives``: a dict {key: the
+    derivatives at V} shared by the installations of one propeller design, state and sense in
+    one evaluation (keyed by :func:`design_key`), or None.  A new dict each call."""
     p = propeller
-    if not rotating:
+    sense = p.rotation if rotation is None else rotation
+    if not rotating or state != "operating":
         Omega = np.zeros_like(V)
     elif omega is not None:
-        Omega = p.rotation * np.broadcast_to(np.asarray(omega, dtype=float), V.shape)
+        Omega = sense * np.broadcast_to(np.asarray(omega, dtype=float), V.shape)
     else:
-        Omega = p.spin_rate(V)
+        Omega = sense * p.rotational_speed(V)
     values = dict(constants, Omega=Omega, V=V)
-    if aero:
+    if aero and state != "stopped":
         memo = {} if derivatives is None else derivatives
-        key = design_key(p)
+        key = (design_key(p), state, sense if state == "operating" else 0)
         if key not in memo:
-            memo[key] = p.aerodynamic_derivatives(V, speed_of_sound)
+            memo[key] = installed_derivatives(p, V, speed_of_sound, state=state,
+                                              rotation=sense)
         values.update(memo[key])
     return values
 

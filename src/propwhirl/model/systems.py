@@ -94,9 +94,26 @@ class Installation:
 
     :class:`PropellerWing` makes y a node of the mesh (it adds y to the wing's stations).
 
-    `aero=False` switches this propeller's aerodynamic loads off (e.g. folded blades, as the
-    X-57's inboard high-lift propellers in cruise); the model-wide `propeller_aero` switch
-    acts on all propellers.
+    `aero=False` switches this propeller's aerodynamic loads off while it still turns; the
+    model-wide `propeller_aero` switch acts on all propellers.
+
+    `state` is what this installation's rotor does (issue 25, item 3):
+
+    - "operating" (default): as its propeller's `operation` says — "fixed-pitch" is the
+      windmilling rotor (Ω = V/(μR), μ from the blade angle), "constant-speed" turns at `rpm`.
+      Windmilling is that operation, not a separate state.
+    - "stopped": Ω = 0 (no gyroscopic coupling) and no propeller aerodynamic loads (e.g. the
+      X-57's folded high-lift propellers in cruise); the mount, its stiffness and damping and
+      every mass stay.
+    - "feathered": Ω = 0 and the feathered blades' aerodynamics, the limit Ω → 0 of the
+      Houbolt–Reed blade elements (:func:`~propwhirl.model.propeller_aero.stopped_blades`):
+      each blade is a fin, giving the side forces C_Yψ = −C_Zθ only.  Needs the blade
+      geometry (`blade_chord`, `n_blades`, `hub_radius`), also when the propeller's
+      derivatives are measured (those are for the turning rotor).
+
+    `rotation` (+1 counter-clockwise seen from the front, −1 clockwise) overrides the
+    propeller's `rotation` for this installation, so counter-rotating neighbours share one
+    propeller table; None keeps the propeller's.
     """
 
     propeller: Propeller = field(metadata=spec(
@@ -107,9 +124,45 @@ class Installation:
         "mount", "", "flexible (pitch and yaw DOFs) or rigid", default="setting"))
     aero: bool = field(default=True, metadata=spec(
         "aero", "", "this propeller's aerodynamic loads", default="setting"))
+    state: Literal["operating", "feathered", "stopped"] = field(default="operating", metadata=spec(
+        "state", "", "operating: turning as the propeller's operation says (windmilling is "
+        "operation = fixed-pitch, not a state of its own); stopped: Omega = 0, no propeller "
+        "aerodynamics (folded blades); feathered: Omega = 0, the feathered blades' side forces "
+        "(the Omega -> 0 limit of Houbolt-Reed; needs the blade geometry); the mount and masses "
+        "stay in every state", default="setting"))
+    rotation: int | None = field(default=None, metadata=spec(
+        "rotation", "", "+1 counter-clockwise seen from the front, -1 clockwise, overriding "
+        "the propeller's rotation; omitted: the propeller's", default="none"))
 
     def __post_init__(self) -> None:
-        check_fields(self)  # a Propeller, y in range, mount one of the two, aero a bool
+        if isinstance(self.state, str) and self.state == "windmilling":   # not a state: say what
+            raise v.fail("state", self.state, "invalid: windmilling is state = 'operating' "
+                         "of a propeller with operation = 'fixed-pitch' (Omega = V/(mu R)); "
+                         "the states are operating, feathered, stopped")
+        check_fields(self)  # a Propeller, y in range, mount and state of their choices, ...
+        if self.rotation is not None and self.rotation not in (1, -1):
+            raise v.fail("rotation", self.rotation, "invalid: must be +1 or -1 (or omitted: "
+                         "the propeller's)")
+        if self.state == "feathered" and self.propeller.blade_chord is None:
+            raise v.fail("state", self.state, "invalid for a propeller without blade_chord: "
+                         "the feathered blades' aerodynamics need the blade geometry "
+                         "(blade_chord, n_blades, hub_radius)")
+
+    @property
+    def sense(self) -> int:
+        """The sense of rotation of this installation's rotor: `rotation`, or the propeller's."""
+        return self.propeller.rotation if self.rotation is None else self.rotation
+
+    @property
+    def spinning(self) -> bool:
+        """Whether this rotor turns (state "operating")."""
+        return self.state == "operating"
+
+    @property
+    def has_aero(self) -> bool:
+        """Whether this installation has propeller aerodynamic loads of its own (`aero` on and
+        not stopped; the model-wide switch `propeller_aero` is not included)."""
+        return self.aero and self.state != "stopped"
 
 
 def node_at(wing: Wing, y: float, tol: float = 1e-6, name: str = "propeller position y",
@@ -331,8 +384,9 @@ class PropellerWing(StateSpaceModel):
         ys = self.wing.node_y
         for j in self.flexible:
             inst = self.propellers[j]
-            props.append(PropellerDofs(j, len(labels), len(labels) + 1, inst.propeller.rotation,
-                                       self.rotating, float(ys[self.nodes[j]]), self.nodes[j]))
+            props.append(PropellerDofs(j, len(labels), len(labels) + 1, inst.sense,
+                                       self.rotating and inst.spinning,
+                                       float(ys[self.nodes[j]]), self.nodes[j]))
             labels += [f"propeller {j + 1} theta", f"propeller {j + 1} psi"]
             kinds += ["theta", "psi"]
             node += [-1, -1]
@@ -500,18 +554,20 @@ class PropellerWingAssembly(EvaluatorBase):
                            self.keep_q, keep_w)
 
     def propeller_aero(self, p: InstalledPropeller) -> bool:
-        """Whether installation ``p``'s aerodynamic loads are on (model switch and its own)."""
-        return self.model.propeller_aero and p.installation.aero
+        """Whether installation ``p``'s aerodynamic loads are on (model switch, its own, and
+        not stopped: :attr:`Installation.has_aero`)."""
+        return self.model.propeller_aero and p.installation.has_aero
 
     def propeller_values(self, p: InstalledPropeller, V: np.ndarray, omega=None,
                          derivatives: dict | None = None) -> dict:
         """The arguments of installation ``p``'s generated blocks at airspeeds V
         (:func:`~propwhirl.model.propeller_blocks.propeller_values`; a new dict)."""
-        model = self.model
-        return propeller_values(p.constants, p.installation.propeller, V, omega,
+        model, inst = self.model, p.installation
+        return propeller_values(p.constants, inst.propeller, V, omega,
                                 rotating=model.rotating, aero=self.propeller_aero(p),
                                 speed_of_sound=model.flight.speed_of_sound,
-                                derivatives=derivatives)
+                                derivatives=derivatives, state=inst.state,
+                                rotation=inst.sense)
 
     def propeller_matrices(self, p: InstalledPropeller, values: dict):
         """(M, C, K) of installation ``p`` from :meth:`propeller_values`."""

@@ -142,7 +142,8 @@ def has_aerodynamics(model) -> bool:
     if getattr(model, "wing_aero", False) or getattr(model, "aero", False) is True:
         return True
     if hasattr(model, "propellers"):
-        return bool(model.propeller_aero and any(i.aero for i in model.propellers))
+        return bool(model.propeller_aero and any(getattr(i, "has_aero", i.aero)
+                                                 for i in model.propellers))
     return bool(getattr(model, "propeller_aero", False))
 
 
@@ -152,7 +153,8 @@ def houbolt_reed_propellers(model) -> list[tuple[int, object]]:
         if not model.propeller_aero:
             return []
         return [(j, i.propeller) for j, i in enumerate(model.propellers)
-                if i.aero and i.propeller.derivatives is None]
+                if getattr(i, "has_aero", i.aero) and (i.propeller.derivatives is None
+                                                       or getattr(i, "state", "") == "feathered")]
     p = getattr(model, "propeller", None)
     if p is not None and getattr(model, "propeller_aero", False) and p.derivatives is None:
         return [(0, p)]
@@ -197,6 +199,9 @@ def analysis_warnings(model, speed_range: tuple[float, float],
             "not valid")
     tips: dict[str, list[int]] = {}       # one line per text, listing its propellers
     for j, p in houbolt_reed_propellers(model):
+        installs = getattr(model, "propellers", ())
+        if installs and not getattr(installs[j], "spinning", True):
+            continue                      # a feathered rotor: its tips move with the free stream
         hits = [(V, d, float(tip_mach(p, V, a))) for V, d in ev]
         hits = [h for h in hits if h[2] > TIP_MACH]
         if hits:

@@ -13,9 +13,9 @@ A :class:`Campaign` holds
   V_TAS = V_EAS · sqrt(ρ0 / ρ(h)); an M_D limits it to M_D · a(h)).  The analyses'
   speeds are true airspeeds (:class:`propwhirl.model.flight.FlightCondition`);
 * the cases: :class:`Case` s, named model transformations (mount stiffness and damping
-  factors, the wing's structural damping, windmilling, overspeed, reversed rotation, added
-  masses, any parameter path of :mod:`propwhirl.studies.paths`), applied to the chosen
-  propellers (numbered from 1; all by default).
+  factors, the wing's structural damping, windmilling, feathered or stopped rotors, overspeed,
+  reversed rotation, added masses, any parameter path of :mod:`propwhirl.studies.paths`),
+  applied to the chosen propellers (numbered from 1; all by default).
 
 :func:`run_campaign` builds every (case, point) model first (each bad case or point is a
 one-line InputError before any analysis), then runs one analysis per (case, point) with
@@ -66,6 +66,8 @@ AIRSPEEDS = ("EAS", "TAS")
 RHO0 = float(atmosphere.density(0.0))
 #: Operations a case can switch a propeller to.
 OPERATIONS = ("windmilling",)
+#: States a case can put an installation in (:class:`propwhirl.model.systems.Installation`).
+STATES = ("operating", "feathered", "stopped")
 
 
 # ============================================================================== cases
@@ -83,8 +85,12 @@ class Case:
     wing_damping:     factor on the wing's Rayleigh structural damping (μ, λ) [-];
     operation:        "windmilling": a constant-speed propeller switched to fixed-pitch
                       windmilling (its blade angle kept); "" keeps the operation;
+    state:            the installations' state (:data:`STATES`): "feathered" (Ω = 0, the
+                      feathered blades' side forces), "stopped" (Ω = 0, no propeller
+                      aerodynamics), "operating"; "" keeps each installation's;
     rpm_factor:       overspeed: the rpm of constant-speed propellers times this [-];
-    reverse_rotation: the sense of rotation reversed;
+    reverse_rotation: the sense of rotation reversed (the installation's ``rotation``, so
+                      propellers sharing a table are reversed one by one);
     added_masses:     (mass [kg], x [m]) point masses added on each chosen propeller's shaft
                       (a battery or a tank in the nacelle);
     values:           (parameter path, value) pairs set on the model
@@ -101,6 +107,7 @@ class Case:
     reverse_rotation: bool = False
     added_masses: tuple[tuple[float, float], ...] = ()
     values: tuple[tuple[str, float], ...] = ()
+    state: str = ""
 
     def __post_init__(self) -> None:
         where = f"case {self.name!r}"
@@ -115,8 +122,11 @@ class Case:
         v.in_range(f"{where}: rpm_factor", self.rpm_factor, 0.1, 3.0)
         if self.operation not in ("", *OPERATIONS):
             raise v.InputError(f"{where}: operation = {v.short_repr(self.operation)} is invalid: "
-                               f"must be one of {', '.join(OPERATIONS)} (a feathered propeller "
-                               "is not modelled by propwhirl)")
+                               f"must be one of {', '.join(OPERATIONS)} (feathered or stopped "
+                               "rotors: state)")
+        if self.state not in ("", *STATES):
+            raise v.InputError(f"{where}: state = {v.short_repr(self.state)} is invalid: must be "
+                               f"one of {', '.join(STATES)}")
 
     def describe(self) -> str:
         """The transformation in words ("nominal" when it changes nothing)."""
@@ -132,6 +142,8 @@ class Case:
             parts.append(f"wing structural damping x {self.wing_damping:g}")
         if self.operation:
             parts.append(f"{self.operation}{on}")
+        if self.state:
+            parts.append(f"{self.state}{on}")
         if self.rpm_factor != 1.0:
             parts.append(f"rpm x {self.rpm_factor:g}{on}")
         if self.reverse_rotation:
@@ -157,7 +169,8 @@ class Case:
                     self.wing_damping * other.wing_damping,
                     other.operation or self.operation, self.rpm_factor * other.rpm_factor,
                     self.reverse_rotation != other.reverse_rotation,
-                    self.added_masses + other.added_masses, self.values + other.values)
+                    self.added_masses + other.added_masses, self.values + other.values,
+                    other.state or self.state)
 
     def apply(self, model: Any) -> Any:
         """The model transformed (every change checked by the model's own validation; an error
@@ -196,10 +209,19 @@ class Case:
             values["wing.rayleigh[1]"] = self.wing_damping * float(lam)
         if values:
             model = P.set_values(model, values)
-        if self.operation or self.rpm_factor != 1.0 or self.reverse_rotation or self.added_masses:
+        if (self.operation or self.rpm_factor != 1.0 or self.reverse_rotation or self.added_masses
+                or self.state):
             new = list(model.propellers)
             for i in chosen:
-                new[i] = dataclasses.replace(new[i], propeller=self._propeller(new[i].propeller, i))
+                inst = new[i]
+                changes: dict[str, Any] = {}
+                if self.operation or self.rpm_factor != 1.0 or self.added_masses:
+                    changes["propeller"] = self._propeller(inst.propeller, i)
+                if self.reverse_rotation:      # the installation's sense, not the shared table
+                    changes["rotation"] = -int(inst.sense)
+                if self.state:
+                    changes["state"] = self.state
+                new[i] = dataclasses.replace(inst, **changes)
             model = dataclasses.replace(model, propellers=tuple(new))
         if self.values:
             model = P.set_values(model, dict(self.values))
@@ -218,8 +240,6 @@ class Case:
                                    "rpm follows the airspeed (overspeed needs operation = "
                                    "'constant-speed')")
             changes["rpm"] = float(prop.rpm) * self.rpm_factor
-        if self.reverse_rotation:
-            changes["rotation"] = -int(prop.rotation)
         if self.added_masses:
             changes["masses"] = tuple(prop.masses) + tuple(PointMass(m, x)
                                                            for m, x in self.added_masses)
@@ -228,7 +248,8 @@ class Case:
 
 def _acts_on_propellers(c: Case) -> bool:
     return (c.mount_stiffness != 1.0 or c.mount_damping != 1.0 or bool(c.operation)
-            or c.rpm_factor != 1.0 or c.reverse_rotation or bool(c.added_masses))
+            or c.rpm_factor != 1.0 or c.reverse_rotation or bool(c.added_masses)
+            or bool(c.state))
 
 
 def product(groups: Sequence[Sequence[Case]]) -> tuple[Case, ...]:
