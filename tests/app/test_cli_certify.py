@@ -57,7 +57,7 @@ def test_cleared_exits_0_and_writes_the_report(small_file, vcrit, tmp_path, caps
     r = C.CampaignResult.load(out / "campaign.json")
     assert r.cleared and len(r.rows) == 6 and r.factor == 1.15
     doc = json.loads((out / "campaign.json").read_text())
-    assert doc["format"] == "propwhirl.campaign/1" and doc["cleared"] is True
+    assert doc["format"] == "propwhirl.campaign/2" and doc["cleared"] is True
     lines = (out / "campaign.csv").read_text().splitlines()
     assert len(lines) == 7 and lines[0].split(",")[:3] == ["case", "description", "altitude_m"]
     assert not (out / "campaign.json.partial").exists()
