@@ -2,13 +2,14 @@
 clearance campaign (:mod:`propwhirl.studies.campaign`, the file format ``docs/campaign.md``).
 
     propwhirl certify CAMPAIGN.toml --out REPORT/ [--processes N | --scheduler ADDRESS]
-                      [--resume] [--quiet] [--pdf | --no-pdf]
+                      [--resume] [--quiet] [--pdf | --no-pdf | --no-report]
 
 Runs every case over its envelope, writes ``REPORT/campaign.json`` (the
 :class:`~propwhirl.studies.campaign_result.CampaignResult`), ``REPORT/campaign.csv`` (every number,
 one line per case and altitude), ``REPORT/report.html`` (the report, :mod:`propwhirl.app.report`)
 and ``REPORT/report.pdf`` (printed by headless Chromium: by default when one is found,
-``--pdf`` requires it, ``--no-pdf`` leaves it out) and prints the summary table.  Exit code 0 when every case
+``--pdf`` requires it, ``--no-pdf`` leaves it out; ``--no-report`` writes neither) and prints
+the summary table.  Exit code 0 when every case
 clears, 1 when one does not, 2 for bad input (nothing is analysed).  While it runs, the
 finished analyses are kept in ``REPORT/campaign.json.partial``; ``--resume`` continues from it.
 """
@@ -52,8 +53,9 @@ def _certify(args: argparse.Namespace) -> int:
     result.save(json_path)
     result.to_csv(csv_path)
     execution_options.finish(cp)
-    written = write_report(result, out, campaign_file=args.campaign, model_file=spec.model_path,
-                           model=campaign.model, pdf=args.pdf)
+    written = [] if args.pdf == "none" else write_report(
+        result, out, campaign_file=args.campaign, model_file=spec.model_path,
+        model=campaign.model, pdf=args.pdf)
     echo(result.format())
     print(f"wrote {', '.join(map(str, [json_path, csv_path, *written]))}")
     execution_options.report_failures([r.error for r in result.rows], "analyses")
@@ -74,5 +76,7 @@ def add_commands(sub) -> None:
                      "found; default: printed when Chromium is found)")
     pdf.add_argument("--no-pdf", dest="pdf", action="store_false",
                      help=f"write no {PDF_NAME}")
+    pdf.add_argument("--no-report", dest="pdf", action="store_const", const="none",
+                     help=f"write neither {HTML_NAME} nor {PDF_NAME} (only the numbers)")
     execution_options.add(p)
     p.set_defaults(func=_certify)
