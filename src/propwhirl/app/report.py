@@ -49,7 +49,9 @@ table { border-collapse: collapse; margin: 0.6em 0; } th, td { border: 1px solid
 padding: 2px 6px; } th { background: #eee; text-align: left; } td.num { text-align: right;
 font-variant-numeric: tabular-nums; white-space: nowrap; }
 table.summary { font-size: 9pt; }
-.pass { color: #0a6d1d; font-weight: bold; } .fail { color: #b00000; font-weight: bold; }
+td.pass, span.pass, p.pass { color: #0a6d1d; font-weight: bold; }
+td.fail, span.fail, p.fail { color: #b00000; font-weight: bold; }
+tr.fail td { background: #fdecec; }
 .verdict { font-size: 1.3em; padding: 0.3em 0.6em; border: 2px solid; display: inline-block; }
 code, .hash { font-family: "DejaVu Sans Mono", monospace; font-size: 0.9em;
 word-break: break-all; }
@@ -97,8 +99,10 @@ def _figure(fig: Any) -> bytes:
 def _table(head: Sequence[str], rows: Sequence[Sequence[str]], cls: str = "",
            row_attrs: Sequence[str] | None = None) -> str:
     """A table of already-escaped cells; `head` plain text (escaped here)."""
-    out = [f'<table class="{cls}">' if cls else "<table>", "<thead><tr>"
-           + "".join(f"<th>{e(h)}</th>" for h in head) + "</tr></thead><tbody>"]
+    out = [f'<table class="{cls}">' if cls else "<table>"]
+    if any(head):
+        out.append("<thead><tr>" + "".join(f"<th>{e(h)}</th>" for h in head) + "</tr></thead>")
+    out.append("<tbody>")
     for i, r in enumerate(rows):
         attrs = "" if row_attrs is None else " " + row_attrs[i]
         out.append(f"<tr{attrs}>" + "".join(r) + "</tr>")
