@@ -503,13 +503,19 @@ def plot_data(a: Any, modes: Sequence[int], e: Any) -> dict[str, Any]:
     lam = np.asarray(sw.eigenvalues)[:, ids]
     mag = np.abs(lam)
     osc = np.asarray(sw.physical, dtype=bool)[:, ids] & (lam.imag > 1e-9 * np.maximum(mag, 1.0))
-    with np.errstate(invalid="ignore", divide="ignore"):
-        zeta = np.where(osc, -lam.real / np.where(mag > 0, mag, 1.0), 0.0)
+    dlam = np.asarray(sw.dlam_dV)[:, ids]
+    m = np.where(mag > 0, mag, 1.0)
+    zeta = np.where(osc, -lam.real / m, 0.0)
     freq = np.where(osc, lam.imag / (2.0 * np.pi), 0.0)
+    dmag = (lam.real * dlam.real + lam.imag * dlam.imag) / m        # d|λ|/dV
+    dzeta = np.where(osc, -(dlam.real * m - lam.real * dmag) / m**2, 0.0)
+    dfreq = np.where(osc, dlam.imag / (2.0 * np.pi), 0.0)
+    finite = np.isfinite(dzeta) & np.isfinite(dfreq)
+    osc, dzeta, dfreq = osc & finite, np.where(finite, dzeta, 0.0), np.where(finite, dfreq, 0.0)
     events = tuple((float(ev.V), float(ev.frequency_hz), ev.kind, ev.event, ev.label)
                    for ev in a.events if ev.mode in ids)
     return PointPlot(np.asarray(sw.V, dtype=float), tuple(sw.mode_labels[k] for k in ids), zeta,
-                     freq, osc, events, _critical_shape(a, e)).to_dict()
+                     freq, osc, dzeta, dfreq, events, _critical_shape(a, e)).to_dict()
 
 
 def evaluate_point(task: _Task) -> dict[str, Any]:

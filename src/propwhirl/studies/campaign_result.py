@@ -43,7 +43,8 @@ class PointPlot:
     V: the analysed speeds [m/s] (the analysis's sweep nodes, T); modes: the names of the
     modes of interest (the modes with an event and the oscillatory modes of lowest frequency,
     n); zeta: (T, n) damping ratio ζ [-] and frequency_hz: (T, n) f [Hz], where `oscillatory`
-    (T, n) is true (0 elsewhere); events: (V [m/s], f [Hz], kind, event, mode) of those modes'
+    (T, n) is true (0 elsewhere), and their exact slopes dzeta_dV [s/m] and dfrequency_dV
+    [Hz s/m] (from dλ/dV: the figure draws cubic Hermite curves between the speeds); events: (V [m/s], f [Hz], kind, event, mode) of those modes'
     instabilities; shape: the critical mode's shape (None: no critical instability) —
     {"V": m/s, "eigenvalue": (re, im) [1/s], "y": wing node positions [m], "h", "alpha":
     complex values at the nodes, "propellers": [(number from 1, y [m] or None, θ̂, ψ̂)]},
@@ -54,6 +55,8 @@ class PointPlot:
     zeta: np.ndarray
     frequency_hz: np.ndarray
     oscillatory: np.ndarray
+    dzeta_dV: np.ndarray
+    dfrequency_dV: np.ndarray
     events: tuple[tuple[float, float, str, str, str], ...]
     shape: dict[str, Any] | None
 
@@ -76,19 +79,23 @@ class PointPlot:
                 "zeta": np.asarray(self.zeta, float).tolist(),
                 "frequency_hz": np.asarray(self.frequency_hz, float).tolist(),
                 "oscillatory": np.asarray(self.oscillatory, bool).tolist(),
+                "dzeta_dV": np.asarray(self.dzeta_dV, float).tolist(),
+                "dfrequency_dV": np.asarray(self.dfrequency_dV, float).tolist(),
                 "events": [[float(a), float(b), str(k), str(e), str(m)]
                            for a, b, k, e, m in self.events], "shape": shape}
 
     @classmethod
     def from_dict(cls, d: Any, where: str = "plot") -> "PointPlot":
-        r = SavedDict(d, where, ("V", "modes", "zeta", "frequency_hz", "oscillatory", "events",
-                                 "shape"))
+        r = SavedDict(d, where, ("V", "modes", "zeta", "frequency_hz", "oscillatory", "dzeta_dV",
+                                 "dfrequency_dV", "events", "shape"))
         V = r.array("V")
         modes = r.strings("modes")
         shape = (V.size, len(modes))
         zeta = r.array("zeta", ndim=2, shape=shape)
         freq = r.array("frequency_hz", ndim=2, shape=shape)
         osc = r.array("oscillatory", bool, ndim=2, shape=shape)
+        dz = r.array("dzeta_dV", ndim=2, shape=shape)
+        df = r.array("dfrequency_dV", ndim=2, shape=shape)
         events = []
         for w, e in r.items("events"):
             if not (isinstance(e, list) and len(e) == 5 and all(
@@ -110,7 +117,7 @@ class PointPlot:
             sh = {"V": s.number("V"), "eigenvalue": complex(lam[0], lam[1]), "y": y,
                   "h": s.complex_array("h", 1, (y.size,)),
                   "alpha": s.complex_array("alpha", 1, (y.size,)), "propellers": props}
-        return cls(V, modes, zeta, freq, osc, tuple(events), sh)
+        return cls(V, modes, zeta, freq, osc, dz, df, tuple(events), sh)
 
 
 def _complex_dict(x: Any) -> dict[str, list[float]]:

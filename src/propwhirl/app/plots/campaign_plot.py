@@ -3,7 +3,8 @@ result keeps of each analysis (:class:`~propwhirl.studies.campaign_result.PointP
 report can be drawn again from ``campaign.json`` without analysing anything:
 
 * :func:`point_vgf` — ζ and f [Hz] against V [m/s] of the modes of interest at the analysed
-  speeds (the sweep's nodes, marked), the instabilities marked (flutter red, divergence green,
+  speeds (the sweep's nodes, marked; cubic Hermite curves between them from the exact
+  slopes, :func:`hermite`), the instabilities marked (flutter red, divergence green,
   as :mod:`~propwhirl.app.plots.vgf_plot`), V_D and the required speed factor · V_D drawn as
   vertical lines, the damping requirement g = 2ζ ≥ g_min as a horizontal line up to V_D;
 * :func:`point_mode_shape` — the critical mode: the wing's h and α along the span (Re x̂ and
@@ -30,6 +31,8 @@ if TYPE_CHECKING:  # pragma: no cover
 REQUIREMENT_COLOUR = "0.15"
 #: the V-g-f's ζ axis spans at most ±this [-] (beyond: the curve leaves the axes)
 ZETA_LIMIT = 0.4
+#: points of the drawn curve per analysed speed step
+HERMITE_POINTS = 12
 
 
 def point_vgf(row: "PointRow", min_damping_g: float | None = None, *,
@@ -46,10 +49,11 @@ def point_vgf(row: "PointRow", min_damping_g: float | None = None, *,
     cmap = colours(len(p.modes))
     for k, (name, colour) in enumerate(zip(p.modes, cmap)):
         osc = p.oscillatory[:, k]
-        ax_z.plot(V, np.where(osc, p.zeta[:, k], np.nan), "-", marker=".", ms=3, color=colour,
-                  lw=1.4, label=name)
-        ax_f.plot(V, np.where(osc, p.frequency_hz[:, k], np.nan), "-", marker=".", ms=3,
-                  color=colour, lw=1.4)
+        for ax, y, dy in ((ax_z, p.zeta[:, k], p.dzeta_dV[:, k]),
+                          (ax_f, p.frequency_hz[:, k], p.dfrequency_dV[:, k])):
+            ax.plot(*hermite(V, y, dy, osc), "-", color=colour, lw=1.4,
+                    label=name if ax is ax_z else None)
+            ax.plot(V[osc], y[osc], ".", ms=3, color=colour)
     z = np.where(p.oscillatory, p.zeta, np.nan)
     finite = z[np.isfinite(z)]
     # the axis from the data, clipped at ZETA_LIMIT: a root near the real axis (|ζ| → 1) would
@@ -93,8 +97,37 @@ def point_vgf(row: "PointRow", min_damping_g: float | None = None, *,
     ax_f.set_ylim(bottom=0.0)
     ax_f.set_xlim(float(V[0]), float(V[-1]))
     fig.legend(loc="outside right upper", fontsize=8)
-    ax_z.set_title(title or f"{row.case} at {row.altitude_m:g} m: V-g-f", fontsize=10)
+    ax_z.set_title(title or _wrap(f"{row.case} at {row.altitude_m:g} m: V-g-f"), fontsize=10)
     return finish(fig, path)
+
+
+def hermite(V: np.ndarray, y: np.ndarray, dy: np.ndarray, valid: np.ndarray,
+            n: int = HERMITE_POINTS) -> tuple[np.ndarray, np.ndarray]:
+    """The cubic Hermite curve through (V, y) with slopes dy [per m/s], `n` points per step
+    where both ends are `valid`; NaN between (a gap in the drawn line).  A step whose cubic
+    leaves the band of its end values widened by their difference (and 5 % of their size) is
+    drawn straight: there the slope is near-singular (a branch point) and the cubic would
+    invent a peak."""
+    xs, ys = [], []
+    t = np.linspace(0.0, 1.0, n)
+    h00, h10 = 2 * t**3 - 3 * t**2 + 1, t**3 - 2 * t**2 + t
+    h01, h11 = -2 * t**3 + 3 * t**2, t**3 - t**2
+    for j in range(len(V) - 1):
+        if not (valid[j] and valid[j + 1]):
+            xs.append([np.nan])
+            ys.append([np.nan])
+            continue
+        dV = V[j + 1] - V[j]
+        seg = h00 * y[j] + h10 * dV * dy[j] + h01 * y[j + 1] + h11 * dV * dy[j + 1]
+        lo, hi = min(y[j], y[j + 1]), max(y[j], y[j + 1])
+        room = (hi - lo) + 0.05 * max(abs(lo), abs(hi))
+        if not np.isfinite(seg).all() or seg.min() < lo - room or seg.max() > hi + room:
+            seg = y[j] + t * (y[j + 1] - y[j])     # near a branch point the slope is singular
+        xs.append(V[j] + t * dV)
+        ys.append(seg)
+    if not xs:
+        return V[valid], y[valid]
+    return np.concatenate(xs), np.concatenate(ys)
 
 
 def point_mode_shape(row: "PointRow", *, title: str | None = None,
@@ -160,9 +193,9 @@ def point_mode_shape(row: "PointRow", *, title: str | None = None,
         axp.set_xlabel("θ (pitch)", fontsize=8)
         axp.set_ylabel("ψ (yaw)", fontsize=8)
     f_hz = abs(lam.imag) / (2.0 * np.pi)
-    fig.suptitle(title or f"{row.case} at {row.altitude_m:g} m: critical mode {row.mode} "
-                 f"({row.kind} {row.event}), V = {sh['V']:.2f} m/s, f = {f_hz:.3f} Hz",
-                 fontsize=10)
+    fig.suptitle(title or _wrap(f"{row.case} at {row.altitude_m:g} m: critical mode {row.mode} "
+                                f"({row.kind} {row.event})")
+                 + f"\nV = {sh['V']:.2f} m/s, f = {f_hz:.3f} Hz", fontsize=10)
     return finish(fig, path)
 
 
@@ -189,6 +222,12 @@ def mesh_plot(node_y: Sequence[float], propellers: Sequence[tuple[int, float | N
     if title:
         ax.set_title(title, fontsize=10)
     return finish(fig, path)
+
+
+def _wrap(text: str, width: int = 90) -> str:
+    import textwrap
+
+    return "\n".join(textwrap.wrap(text, width)) or text
 
 
 def png_bytes(fig: Any, dpi: int = 80) -> bytes:
