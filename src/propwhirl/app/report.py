@@ -58,7 +58,10 @@ word-break: break-all; }
 img { max-width: 100%; height: auto; display: block; margin: 0.5em 0; }
 section.case { page-break-before: always; break-before: page; }
 .note { color: #444; font-size: 0.9em; }
+figure { margin: 0; break-inside: avoid; page-break-inside: avoid; }
 @page { size: A4; margin: 12mm; }
+@media print { figure img { max-height: 100mm; width: auto; max-width: 100%; }
+               body { max-width: none; margin: 0; } }
 """
 
 
@@ -283,14 +286,14 @@ def report_html(result: Any, *, campaign_file: str | Path | None = None,
                          "the result file was written without them (propwhirl.campaign/1).")
                          + "</p>")
         else:
-            parts.append(f"<h3>V-g-f at {r.altitude_m:g} m</h3>")
+            parts.append(f"<figure><h3>V-g-f at {r.altitude_m:g} m</h3>")
             parts.append(_img(_figure(cp.point_vgf(r, result.min_damping_g)),
-                              f"V-g-f of {s.case} at {r.altitude_m:g} m"))
+                              f"V-g-f of {s.case} at {r.altitude_m:g} m") + "</figure>")
             shape = cp.point_mode_shape(r)
             if shape is not None:
-                parts.append(f"<h3>Critical mode at {r.altitude_m:g} m</h3>")
+                parts.append(f"<figure><h3>Critical mode at {r.altitude_m:g} m</h3>")
                 parts.append(_img(_figure(shape), f"critical mode of {s.case} at "
-                                  f"{r.altitude_m:g} m"))
+                                  f"{r.altitude_m:g} m") + "</figure>")
         parts.append("</section>")
     parts.append(f'<p class="note">Every number of this report: campaign.json and campaign.csv '
                  f"beside it. propwhirl {e(propwhirl.__version__)}, {e(date)}.</p>")
