@@ -35,10 +35,10 @@ altitudes_m = [0.0, 3000.0]
 [[cases]]
 name = "nominal"
 [[cases]]
-name = "mount at 50 % <script>alert(1)</script>"
+name = 'mount at 50 % <script>alert(1)</script> & "q"'
 mount_stiffness = 0.5
 """
-CASES = ("nominal", "mount at 50 % <script>alert(1)</script>")
+CASES = ("nominal", 'mount at 50 % <script>alert(1)</script> & "q"')
 ALTITUDES = (0.0, 3000.0)
 
 
@@ -170,7 +170,7 @@ def test_every_user_string_is_escaped_and_every_number_has_its_unit(certified, r
     page = _Page()
     page.feed(text)
     assert page.scripts == 0 and "<script>alert" not in text and "<b>campaign" not in text
-    assert "&lt;script&gt;alert(1)&lt;/script&gt;" in text
+    assert "&lt;script&gt;alert(1)&lt;/script&gt; &amp; &quot;q&quot;" in text
     summary = next(t for t in page.tables if t["class"] == "summary")
     head = [c[2] for c in summary["rows"][0]]
     body = summary["rows"][1:]
@@ -235,3 +235,34 @@ def test_pdf_without_a_browser_is_refused_before_any_analysis(small_file, tmp_pa
     assert cli.main(["certify", str(path), "--out", str(tmp_path / "r"), "--pdf"]) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "--pdf" in err and "apt-get install" in err
+
+
+def test_the_vgf_curve_is_hermite_and_straight_near_a_branch_point():
+    from propwhirl.app.plots.campaign_plot import hermite
+
+    V = np.array([0.0, 1.0, 3.0, 4.0])
+    y, dy = V**3 - V, 3 * V**2 - 1                    # a cubic is drawn exactly
+    x, c = hermite(V, y, dy, np.ones(4, bool), n=9)
+    assert np.allclose(c, x**3 - x)
+    dy_singular = dy.copy()
+    dy_singular[2] = 1e6                                # f -> 0 with an infinite slope
+    x, c = hermite(V, y, dy_singular, np.ones(4, bool), n=9)
+    step = (x >= 1.0) & (x <= 3.0)
+    assert np.allclose(c[step], np.interp(x[step], V, y))
+    x, c = hermite(V, y, dy, np.array([True, True, False, True]), n=9)
+    assert np.isnan(c).sum() == 2 and np.isfinite(c).sum() == 9   # no line through a gap
+
+
+def test_a_failing_print_is_one_line_naming_the_browser(tmp_path, monkeypatch):
+    page = tmp_path / "p.html"
+    page.write_text("<p>x</p>")
+    monkeypatch.setenv("PROPWHIRL_CHROMIUM", "/bin/false")
+    assert browser.find_chromium() == "/bin/false"
+    with pytest.raises(R.v.InputError) as err:
+        browser.print_pdf(page, tmp_path / "p.pdf")
+    assert len(str(err.value).splitlines()) == 1 and "/bin/false" in str(err.value)
+    assert not (tmp_path / "p.pdf").exists()
+    monkeypatch.setenv("PROPWHIRL_CHROMIUM", str(tmp_path / "none"))
+    assert browser.find_chromium() is None
+    with pytest.raises(R.v.InputError, match="apt-get install -y chromium"):
+        browser.print_pdf(page, tmp_path / "p.pdf")
