@@ -266,3 +266,13 @@ def test_a_failing_print_is_one_line_naming_the_browser(tmp_path, monkeypatch):
     assert browser.find_chromium() is None
     with pytest.raises(R.v.InputError, match="apt-get install -y chromium"):
         browser.print_pdf(page, tmp_path / "p.pdf")
+
+
+def test_a_failing_print_leaves_the_page_and_a_note(result, tmp_path, monkeypatch):
+    monkeypatch.setenv("PROPWHIRL_CHROMIUM", "/bin/false")
+    notes: list[str] = []
+    written = R.write_report(result, tmp_path, pdf=None, figures=False, notes=notes)
+    assert written == [tmp_path / "report.html"] and not (tmp_path / "report.pdf").exists()
+    assert len(notes) == 1 and "report.pdf not written" in notes[0] and "/bin/false" in notes[0]
+    with pytest.raises(R.v.InputError):
+        R.write_report(result, tmp_path, pdf=True, figures=False)

@@ -8,8 +8,8 @@ Runs every case over its envelope, writes ``REPORT/campaign.json`` (the
 :class:`~propwhirl.studies.campaign_result.CampaignResult`), ``REPORT/campaign.csv`` (every number,
 one line per case and altitude), ``REPORT/report.html`` (the report, :mod:`propwhirl.app.report`)
 and ``REPORT/report.pdf`` (printed by headless Chromium: by default when one is found,
-``--pdf`` requires it, ``--no-pdf`` leaves it out; ``--no-report`` writes neither) and prints
-the summary table.  Exit code 0 when every case
+``--pdf`` requires it, ``--no-pdf`` leaves it out; ``--no-report`` writes neither; a print that
+fails is a note on stderr, the exit code stays the verdict's) and prints the summary table.  Exit code 0 when every case
 clears, 1 when one does not, 2 for bad input (nothing is analysed).  While it runs, the
 finished analyses are kept in ``REPORT/campaign.json.partial``; ``--resume`` continues from it.
 """
@@ -20,7 +20,7 @@ from pathlib import Path
 
 from propwhirl import fileio
 from propwhirl.app import browser, execution_options
-from propwhirl.app.cli_common import echo
+from propwhirl.app.cli_common import echo, print_notes
 from propwhirl.app.report import HTML_NAME, PDF_NAME, write_report
 from propwhirl.validate import InputError
 
@@ -53,10 +53,12 @@ def _certify(args: argparse.Namespace) -> int:
     result.save(json_path)
     result.to_csv(csv_path)
     execution_options.finish(cp)
+    notes: list[str] = []
     written = [] if args.pdf == "none" else write_report(
         result, out, campaign_file=args.campaign, model_file=spec.model_path,
-        model=campaign.model, pdf=args.pdf)
+        model=campaign.model, pdf=args.pdf, notes=notes)
     echo(result.format())
+    print_notes(notes)
     print(f"wrote {', '.join(map(str, [json_path, csv_path, *written]))}")
     execution_options.report_failures([r.error for r in result.rows], "analyses")
     return 0 if result.cleared else 1

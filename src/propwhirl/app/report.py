@@ -303,16 +303,23 @@ def report_html(result: Any, *, campaign_file: str | Path | None = None,
 
 def write_report(result: Any, folder: str | Path, *, campaign_file: str | Path | None = None,
                  model_file: str | Path | None = None, model: Any = None,
-                 pdf: bool | None = None, date: str | None = None) -> list[Path]:
+                 pdf: bool | None = None, date: str | None = None, figures: bool = True,
+                 notes: list[str] | None = None) -> list[Path]:
     """Write ``report.html`` into `folder` and, with `pdf` True (or None and a Chromium found:
     :func:`propwhirl.app.browser.find_chromium`), ``report.pdf`` printed from it; returns the
-    paths written."""
+    paths written.  A print that fails is a note appended to `notes` (the HTML is written;
+    without `notes` the InputError is raised)."""
     from propwhirl.app import browser
 
     folder = Path(folder)
     page = report_html(result, campaign_file=campaign_file, model_file=model_file, model=model,
-                       date=date)
+                       date=date, figures=figures)
     out = [fileio.write_text(folder / HTML_NAME, page, what="report")]
     if pdf or (pdf is None and browser.find_chromium() is not None):
-        out.append(browser.print_pdf(out[0], folder / PDF_NAME))
+        try:
+            out.append(browser.print_pdf(out[0], folder / PDF_NAME))
+        except v.InputError as exc:
+            if notes is None:
+                raise
+            notes.append(f"{PDF_NAME} not written: {exc} ({HTML_NAME} is written)")
     return out
