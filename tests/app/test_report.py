@@ -196,6 +196,7 @@ def test_the_files_hashes_and_the_version_are_named(certified, small_file):
     assert digest in text and campaign in text
     assert f"propwhirl {__version__}" in text
     assert "1.15 × V_D" in text and "g = 2ζ ≥ 0.0001" in text
+    assert "V_D 40 m/s TAS at 0, 3000 m" in text
 
 
 def test_a_version_1_result_file_still_makes_a_report(certified, tmp_path):

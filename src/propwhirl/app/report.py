@@ -130,6 +130,24 @@ def _critical(r: Any) -> str:
     return out
 
 
+def _envelope(rows: Sequence[Any]) -> str:
+    """'V_D 100 m/s EAS at 0, 2438.4, 5000 m' (each altitude's V_D when they differ; M_D-limited
+    points named)."""
+    points: dict[float, Any] = {}
+    for r in rows:
+        points.setdefault(r.altitude_m, r)
+    alts = ", ".join(f"{h:g}" for h in points)
+    given = {(r.V_D_given, r.airspeed) for r in points.values()}
+    if len(given) == 1:
+        (vd, air), = given
+        text = f"V_D {vd:g} m/s {air} at {alts} m"
+    else:
+        text = "V_D " + ", ".join(f"{r.V_D_given:g} m/s {r.airspeed} at {h:g} m"
+                                  for h, r in points.items())
+    limited = [f"{h:g}" for h, r in points.items() if r.mach_limited]
+    return text + (f"; limited by M_D at {', '.join(limited)} m" if limited else "")
+
+
 #: The summary table's columns: (heading with its unit, the cell of a row).
 SUMMARY_COLUMNS = (
     ("case", lambda r: _td(e(r.case))),
@@ -227,6 +245,7 @@ def report_html(result: Any, *, campaign_file: str | Path | None = None,
             files.append((label, f"<code>{e(path)}</code>"))
             files.append((f"{label} SHA-256", f'<span class="hash">{sha256_file(path)}</span>'))
     rows = [("campaign", e(result.name)), ("model", e(result.model_name)), *files,
+            ("envelope", e(_envelope(result.rows))),
             ("regulation", e(result.regulation)),
             ("required speed", f"{result.factor:g} × V_D (true airspeed)"),
             ("damping requirement", e(g)), ("convention", e(result.convention)),
