@@ -268,7 +268,8 @@ def report_html(result: Any, *, campaign_file: str | Path | None = None,
     parts.append("<h2>Summary</h2>")
     parts.append('<p class="note">Every case at every altitude. Speeds are true airspeeds; '
                  "margin = V_crit − V_required and 100 (V_crit / V_required − 1); least g: of the "
-                 "oscillatory modes up to the required speed.</p>")
+                 "oscillatory modes up to the required speed. Every number of this report, and "
+                 "every altitude's: campaign.json and campaign.csv beside it.</p>")
     parts.append(_table([h for h, _ in SUMMARY_COLUMNS],
                         [[cell(r) for _, cell in SUMMARY_COLUMNS] for r in result.rows],
                         "summary",
@@ -314,8 +315,6 @@ def report_html(result: Any, *, campaign_file: str | Path | None = None,
                 parts.append(_img(_figure(shape), f"critical mode of {s.case} at "
                                   f"{r.altitude_m:g} m") + "</figure>")
         parts.append("</section>")
-    parts.append(f'<p class="note">Every number of this report: campaign.json and campaign.csv '
-                 f"beside it. propwhirl {e(propwhirl.__version__)}, {e(date)}.</p>")
     parts.append("</body></html>")
     return "\n".join(parts) + "\n"
 
