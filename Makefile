@@ -9,6 +9,10 @@
 #   make bench-design  design-size models (reduced vs dense, size scaling, memory); rewrites its
 #                  table of docs/performance.md (a few minutes)
 #   make docs      the documentation site in site/ (mkdocs, strict: a warning fails; the test suite builds it too)
+#   make report    the example certification report in examples/certification/wingtip/ (HTML,
+#                  its numbers, a screenshot, the PDF's pages as PNG); CAMPAIGN=... REPORT_DIR=...
+#   make browser   the distribution's headless Chromium for the report's PDF and browser test
+#                  (apt-get as root; said and skipped where it cannot be installed)
 PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
@@ -16,7 +20,7 @@ BIN    := $(VENV)/bin
 export OPENBLAS_NUM_THREADS ?= 1
 export OMP_NUM_THREADS ?= 1
 
-.PHONY: run test test-fast generate bench bench-design bench-map docs clean
+.PHONY: run test test-fast generate bench bench-design bench-map docs report browser clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -29,15 +33,28 @@ $(VENV)/.stamp-%: pyproject.toml | $(BIN)/python
 comma := ,
 # Every extra: make test, the benchmarks and make docs share one set-up (make docs after make
 # test installs nothing again).
-ALL := $(VENV)/.stamp-codegen+data+dlm+docs+tables+test+plots+toml+notebooks+distributed+progress+mdo
+ALL := $(VENV)/.stamp-codegen+data+dlm+docs+tables+test+plots+toml+notebooks+distributed+progress+mdo+report
+
+# Chromium and its chromedriver from the distribution (Debian: chromium, chromium-driver) for the
+# report's PDF and its browser test.  Installed with apt-get where we are root; elsewhere a clear
+# message, and the browser tests skip naming what is missing.
+browser:
+	@if command -v chromium >/dev/null 2>&1 && command -v chromedriver >/dev/null 2>&1; then :; \
+	elif [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
+	  echo "installing the headless browser: apt-get install chromium chromium-driver"; \
+	  (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq \
+	    chromium chromium-driver >/dev/null) || echo "could not install chromium with apt-get: \
+	the report's browser tests will be skipped"; \
+	else echo "no chromium and chromedriver, and no apt-get as root to install them: \
+	install your distribution's chromium and chromium-driver (the report's browser tests skip)"; fi
 
 generate: $(VENV)/.stamp-codegen
 	$(BIN)/python -m derivations.generate --out generated
 
-test: $(ALL)
+test: $(ALL) browser
 	$(BIN)/python -m pytest -q
 
-test-fast: $(ALL)
+test-fast: $(ALL) browser
 	$(BIN)/python -m pytest -q -m "not long"
 
 # BENCH_MD=path writes the tables elsewhere; BENCH_ARGS e.g. "--repeats 1 --no-variants"
@@ -56,6 +73,12 @@ bench-map: $(ALL)
 # Material for MkDocs prints an end-of-life banner on every build; NO_MKDOCS_2_WARNING silences it.
 docs: $(ALL)
 	NO_MKDOCS_2_WARNING=1 $(BIN)/mkdocs build --strict -d site
+
+# The example report (make report CAMPAIGN=examples/other.toml REPORT_DIR=examples/certification/other)
+CAMPAIGN ?= examples/wingtip_campaign.toml
+REPORT_DIR ?= examples/certification/wingtip
+report: $(ALL) browser
+	$(BIN)/python examples/certification/make_report.py $(CAMPAIGN) $(REPORT_DIR)
 
 run: $(VENV)/.stamp-data+plots+tables+toml
 	$(BIN)/propwhirl run --out out

@@ -51,22 +51,23 @@ def vcrit(small_file) -> float:
 def test_cleared_exits_0_and_writes_the_report(small_file, vcrit, tmp_path, capsys):
     out = tmp_path / "report"
     assert cli.main(["certify", str(_write(tmp_path, small_file, vcrit / 1.15 / 1.01)),
-                     "--out", str(out), "--quiet"]) == 0
+                     "--out", str(out), "--quiet", "--no-pdf"]) == 0
     text = capsys.readouterr().out
     assert "3 of 3 cases cleared" in text and "CLEARED" in text and "failed damper" in text
     r = C.CampaignResult.load(out / "campaign.json")
     assert r.cleared and len(r.rows) == 6 and r.factor == 1.15
     doc = json.loads((out / "campaign.json").read_text())
-    assert doc["format"] == "propwhirl.campaign/1" and doc["cleared"] is True
+    assert doc["format"] == "propwhirl.campaign/2" and doc["cleared"] is True
     lines = (out / "campaign.csv").read_text().splitlines()
     assert len(lines) == 7 and lines[0].split(",")[:3] == ["case", "description", "altitude_m"]
     assert not (out / "campaign.json.partial").exists()
+    assert (out / "report.html").exists() and not (out / "report.pdf").exists()
 
 
 def test_not_cleared_exits_1(small_file, vcrit, tmp_path, capsys):
     out = tmp_path / "report"
     assert cli.main(["certify", str(_write(tmp_path, small_file, vcrit / 1.15 / 0.99)),
-                     "--out", str(out), "--quiet"]) == 1
+                     "--out", str(out), "--quiet", "--no-report"]) == 1
     text = capsys.readouterr().out
     assert "NOT CLEARED" in text
     assert not C.CampaignResult.load(out / "campaign.json").cleared
@@ -104,7 +105,7 @@ def test_two_processes_give_the_result_of_one(small_file, vcrit, tmp_path):
     path = _write(tmp_path, small_file, vcrit / 1.15 / 1.01)
     for n in ("1", "2"):
         assert cli.main(["certify", str(path), "--out", str(tmp_path / n), "--quiet",
-                         "--processes", n]) == 0
+                         "--processes", n, "--no-report"]) == 0
     assert (tmp_path / "1" / "campaign.json").read_text() == \
         (tmp_path / "2" / "campaign.json").read_text()
     assert (tmp_path / "1" / "campaign.csv").read_text() == \
@@ -114,7 +115,7 @@ def test_two_processes_give_the_result_of_one(small_file, vcrit, tmp_path):
 def test_an_interrupted_campaign_resumes(small_file, vcrit, tmp_path, capsys, monkeypatch):
     path = _write(tmp_path, small_file, vcrit / 1.15 / 1.01)
     plain = tmp_path / "plain"
-    assert cli.main(["certify", str(path), "--out", str(plain), "--quiet"]) == 0
+    assert cli.main(["certify", str(path), "--out", str(plain), "--quiet", "--no-report"]) == 0
     real = C.evaluate_point
     seen = []
 
@@ -132,7 +133,8 @@ def test_an_interrupted_campaign_resumes(small_file, vcrit, tmp_path, capsys, mo
     assert partial.exists() and not (out / "campaign.json").exists()
     seen.clear()
     monkeypatch.setattr(C, "evaluate_point", lambda t: (seen.append(t), real(t))[1])
-    assert cli.main(["certify", str(path), "--out", str(out), "--quiet", "--resume"]) == 0
+    assert cli.main(["certify", str(path), "--out", str(out), "--quiet", "--resume",
+                     "--no-report"]) == 0
     assert len(seen) == 4                   # only the points the partial file lacked
     assert (out / "campaign.json").read_text() == (plain / "campaign.json").read_text()
     assert not partial.exists()

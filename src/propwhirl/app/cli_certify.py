@@ -2,11 +2,14 @@
 clearance campaign (:mod:`propwhirl.studies.campaign`, the file format ``docs/campaign.md``).
 
     propwhirl certify CAMPAIGN.toml --out REPORT/ [--processes N | --scheduler ADDRESS]
-                      [--resume] [--quiet]
+                      [--resume] [--quiet] [--pdf | --no-pdf | --no-report]
 
 Runs every case over its envelope, writes ``REPORT/campaign.json`` (the
-:class:`~propwhirl.studies.campaign_result.CampaignResult`) and ``REPORT/campaign.csv`` (every number,
-one line per case and altitude) and prints the summary table.  Exit code 0 when every case
+:class:`~propwhirl.studies.campaign_result.CampaignResult`), ``REPORT/campaign.csv`` (every number,
+one line per case and altitude), ``REPORT/report.html`` (the report, :mod:`propwhirl.app.report`)
+and ``REPORT/report.pdf`` (printed by headless Chromium: by default when one is found,
+``--pdf`` requires it, ``--no-pdf`` leaves it out; ``--no-report`` writes neither; a print that
+fails is a note on stderr, the exit code stays the verdict's) and prints the summary table.  Exit code 0 when every case
 clears, 1 when one does not, 2 for bad input (nothing is analysed).  While it runs, the
 finished analyses are kept in ``REPORT/campaign.json.partial``; ``--resume`` continues from it.
 """
@@ -16,8 +19,9 @@ import argparse
 from pathlib import Path
 
 from propwhirl import fileio
-from propwhirl.app import execution_options
-from propwhirl.app.cli_common import echo
+from propwhirl.app import browser, execution_options
+from propwhirl.app.cli_common import echo, print_notes
+from propwhirl.app.report import HTML_NAME, PDF_NAME, write_report
 from propwhirl.validate import InputError
 
 #: The files written in the --out folder.
@@ -34,7 +38,11 @@ def _certify(args: argparse.Namespace) -> int:
         raise InputError(f"--out {args.out}: is a file, must be a folder (it gets "
                          f"{JSON_NAME} and {CSV_NAME})")
     options = execution_options.run_options(args)
-    campaign = from_spec(load_campaign(args.campaign))   # every check before any analysis
+    if args.pdf is True and browser.find_chromium() is None:
+        raise InputError(f"--pdf: no Chromium found to print {PDF_NAME}: {browser.INSTALL_HINT}"
+                         " (or give --no-pdf)")
+    spec = load_campaign(args.campaign)
+    campaign = from_spec(spec)                           # every check before any analysis
     try:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
@@ -45,8 +53,13 @@ def _certify(args: argparse.Namespace) -> int:
     result.save(json_path)
     result.to_csv(csv_path)
     execution_options.finish(cp)
+    notes: list[str] = []
+    written = [] if args.pdf == "none" else write_report(
+        result, out, campaign_file=args.campaign, model_file=spec.model_path,
+        model=campaign.model, pdf=args.pdf, notes=notes)
     echo(result.format())
-    print(f"wrote {json_path} and {csv_path}")
+    print_notes(notes)
+    print(f"wrote {', '.join(map(str, [json_path, csv_path, *written]))}")
     execution_options.report_failures([r.error for r in result.rows], "analyses")
     return 0 if result.cleared else 1
 
@@ -57,7 +70,15 @@ def add_commands(sub) -> None:
                        "envelope (exit code 0 all cleared, 1 not, 2 bad input)",
                        description=__doc__.split("\n\n")[0])
     p.add_argument("campaign", metavar="CAMPAIGN", help="campaign file (TOML, docs/campaign.md)")
-    p.add_argument("--out", required=True, metavar="DIR", help=f"report folder: {JSON_NAME} and "
-                   f"{CSV_NAME} (made if missing)")
+    p.add_argument("--out", required=True, metavar="DIR", help=f"report folder: {JSON_NAME}, "
+                   f"{CSV_NAME}, {HTML_NAME} and {PDF_NAME} (made if missing)")
+    pdf = p.add_mutually_exclusive_group()
+    pdf.add_argument("--pdf", dest="pdf", action="store_true", default=None,
+                     help=f"print {PDF_NAME} with headless Chromium (an error when none is "
+                     "found; default: printed when Chromium is found)")
+    pdf.add_argument("--no-pdf", dest="pdf", action="store_false",
+                     help=f"write no {PDF_NAME}")
+    pdf.add_argument("--no-report", dest="pdf", action="store_const", const="none",
+                     help=f"write neither {HTML_NAME} nor {PDF_NAME} (only the numbers)")
     execution_options.add(p)
     p.set_defaults(func=_certify)

@@ -51,7 +51,7 @@ from propwhirl.studies import execution
 from propwhirl.studies import paths as P
 from propwhirl.studies.critical import convention
 from propwhirl.studies.campaign_result import (  # noqa: F401 (re-exported)
-    CampaignResult, CaseSummary, PointRow)
+    CampaignResult, CaseSummary, PointPlot, PointRow)
 
 #: The regulations' speed factors and their sources: name → (factor, source).
 REGULATIONS: dict[str, tuple[float, str]] = {
@@ -477,6 +477,68 @@ def _at(zeta: np.ndarray, dzeta: np.ndarray, V: np.ndarray, speed: float,
     return {"zeta": float(z[k]), "dzeta_dV": float(dz[k]), "mode": labels[k]}
 
 
+def _critical_shape(a: Any, e: Any) -> dict[str, Any] | None:
+    """The shape of the critical instability `e` of analysis `a` (:class:`PointPlot`'s
+    ``shape``): the refined critical point's eigenvector, else the tracked mode's at the
+    nearest sweep speed; None when there is none."""
+    dm = a.dof_map
+    if e is None or dm is None:
+        return None
+    x = lam = None
+    Ve = float(e.V)
+    if a.criticals is not None:
+        for p in a.criticals.points:
+            if p.mode == e.mode and abs(p.V - e.V) <= 1e-9 * max(1.0, abs(e.V)):
+                x, lam, Ve = np.asarray(p.eigenvector), complex(p.eigenvalue), float(p.V)
+    if x is None and a.sweep.eigenvectors is not None:
+        t = int(np.argmin(np.abs(a.sweep.V - e.V)))
+        x, lam = a.sweep.eigenvectors[t, :, e.mode], complex(a.sweep.eigenvalues[t, e.mode])
+        Ve = float(a.sweep.V[t])
+    if x is None:
+        return None
+    x = np.asarray(x, dtype=complex).ravel()[: dm.n_dof]
+    shown = [i for i, k in enumerate(dm.q_kinds) if k in ("h", "alpha", "theta", "psi")]
+    if not shown or not np.abs(x[shown]).max() > 0:
+        return None
+    x = x / x[shown[int(np.argmax(np.abs(x[shown])))]]
+
+    def wing(key: str) -> np.ndarray:
+        out = np.zeros(len(dm.node_y), dtype=complex)
+        for node in range(out.size):
+            i = dm.wing_dof(node, key)
+            if i is not None:
+                out[node] = x[i]
+        return out
+
+    return {"V": Ve, "eigenvalue": lam, "y": np.asarray(dm.node_y, dtype=float),
+            "h": wing("h"), "alpha": wing("alpha"),
+            "propellers": [(p.number + 1, p.y, x[p.theta], x[p.psi])
+                           for p in sorted(dm.propellers, key=lambda p: p.number)]}
+
+
+def plot_data(a: Any, modes: Sequence[int], e: Any) -> dict[str, Any]:
+    """What the report draws of analysis `a` (:class:`PointPlot` as plain JSON): the V-g-f
+    curves of `modes` at the sweep's speeds, their instabilities, the critical mode's shape."""
+    sw = a.sweep
+    ids = list(modes)
+    lam = np.asarray(sw.eigenvalues)[:, ids]
+    mag = np.abs(lam)
+    osc = np.asarray(sw.physical, dtype=bool)[:, ids] & (lam.imag > 1e-9 * np.maximum(mag, 1.0))
+    dlam = np.asarray(sw.dlam_dV)[:, ids]
+    m = np.where(mag > 0, mag, 1.0)
+    zeta = np.where(osc, -lam.real / m, 0.0)
+    freq = np.where(osc, lam.imag / (2.0 * np.pi), 0.0)
+    dmag = (lam.real * dlam.real + lam.imag * dlam.imag) / m        # d|λ|/dV
+    dzeta = np.where(osc, -(dlam.real * m - lam.real * dmag) / m**2, 0.0)
+    dfreq = np.where(osc, dlam.imag / (2.0 * np.pi), 0.0)
+    finite = np.isfinite(dzeta) & np.isfinite(dfreq)
+    osc, dzeta, dfreq = osc & finite, np.where(finite, dzeta, 0.0), np.where(finite, dfreq, 0.0)
+    events = tuple((float(ev.V), float(ev.frequency_hz), ev.kind, ev.event, ev.label)
+                   for ev in a.events if ev.mode in ids)
+    return PointPlot(np.asarray(sw.V, dtype=float), tuple(sw.mode_labels[k] for k in ids), zeta,
+                     freq, osc, dzeta, dfreq, events, _critical_shape(a, e)).to_dict()
+
+
 def evaluate_point(task: _Task) -> dict[str, Any]:
     """Analyse one (case, point) and return its result row (plain JSON: module docstring)."""
     from propwhirl.analysis.stability import analyse
@@ -489,7 +551,8 @@ def evaluate_point(task: _Task) -> dict[str, Any]:
     sweep = a.sweep
     V = np.asarray(sweep.V, dtype=float)
     labels = tuple(sweep.mode_labels)
-    zeta, dzeta = _damping(sweep, a.modes_of_interest(DAMPING_MODES))
+    interest = a.modes_of_interest(DAMPING_MODES)
+    zeta, dzeta = _damping(sweep, interest)
     least_req = _least(zeta, V, task.V_required, labels)
     least_vd = _least(zeta, V, task.V_D, labels)
     slope = _at(zeta, dzeta, V, task.V_required, labels)
@@ -512,6 +575,7 @@ def evaluate_point(task: _Task) -> dict[str, Any]:
         "least_zeta_to_V_D": least_vd["zeta"], "least_zeta_to_V_D_mode": least_vd["mode"],
         "zeta_at_required": slope["zeta"], "dzeta_dV_at_required": slope["dzeta_dV"],
         "mode_at_required": slope["mode"],
+        "plot": plot_data(a, interest, e),
     }
 
 
@@ -549,7 +613,7 @@ def _row(c: Campaign, case: Case, p: EnvelopePoint, r: Any) -> PointRow:
         least_g_mode=r["least_zeta_mode"], least_g_to_V_D=least_vd,
         least_g_to_V_D_mode=r["least_zeta_to_V_D_mode"], g_at_required=g(r["zeta_at_required"]),
         dzeta_dV_at_required=r["dzeta_dV_at_required"], mode_at_required=r["mode_at_required"],
-        error="")
+        error="", plot=None if r.get("plot") is None else PointPlot.from_dict(r["plot"]))
 
 
 def run_campaign(c: Campaign, *, processes: int = 1, client=None,

@@ -3,7 +3,9 @@
 instability, the least damping and its slope at the required speed — the
 :class:`CaseSummary` of each case, and :class:`CampaignResult`, a
 :class:`~propwhirl.results.Result` of kind "campaign" (its JSON file, its CSV table and the
-plain-text summary ``propwhirl certify`` prints)."""
+plain-text summary ``propwhirl certify`` prints).  Each row keeps, in :class:`PointPlot`, what the
+report's figures of it need (:mod:`propwhirl.app.report`): the V-g-f curves of the analysis's
+modes of interest and the critical mode's shape."""
 from __future__ import annotations
 
 import csv
@@ -13,6 +15,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, ClassVar
+
+import numpy as np
 
 from propwhirl import fileio
 from propwhirl import validate as v
@@ -32,6 +36,95 @@ _ROW_STRINGS = ("case", "description", "airspeed", "reason", "kind", "event", "m
                 "least_g_mode", "least_g_to_V_D_mode", "mode_at_required", "error")
 
 
+@dataclass(frozen=True, eq=False)
+class PointPlot:
+    """What the report draws of one (case, point): the V-g-f curves and the critical mode.
+
+    V: the analysed speeds [m/s] (the analysis's sweep nodes, T); modes: the names of the
+    modes of interest (the modes with an event and the oscillatory modes of lowest frequency,
+    n); zeta: (T, n) damping ratio ζ [-] and frequency_hz: (T, n) f [Hz], where `oscillatory`
+    (T, n) is true (0 elsewhere), and their exact slopes dzeta_dV [s/m] and dfrequency_dV
+    [Hz s/m] (from dλ/dV: the figure draws cubic Hermite curves between the speeds); events: (V [m/s], f [Hz], kind, event, mode) of those modes'
+    instabilities; shape: the critical mode's shape (None: no critical instability) —
+    {"V": m/s, "eigenvalue": (re, im) [1/s], "y": wing node positions [m], "h", "alpha":
+    complex values at the nodes, "propellers": [(number from 1, y [m] or None, θ̂, ψ̂)]},
+    normalised to its largest h, α, θ or ψ entry."""
+
+    V: np.ndarray
+    modes: tuple[str, ...]
+    zeta: np.ndarray
+    frequency_hz: np.ndarray
+    oscillatory: np.ndarray
+    dzeta_dV: np.ndarray
+    dfrequency_dV: np.ndarray
+    events: tuple[tuple[float, float, str, str, str], ...]
+    shape: dict[str, Any] | None
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, PointPlot) and self.to_dict() == other.to_dict()
+
+    def to_dict(self) -> dict[str, Any]:
+        shape = None
+        if self.shape is not None:
+            sh = self.shape
+            shape = {"V": float(sh["V"]), "eigenvalue": [float(complex(sh["eigenvalue"]).real),
+                                                         float(complex(sh["eigenvalue"]).imag)],
+                     "y": [float(y) for y in sh["y"]],
+                     "h": _complex_dict(sh["h"]), "alpha": _complex_dict(sh["alpha"]),
+                     "propellers": [{"number": int(n), "y": None if y is None else float(y),
+                                     "theta": [float(complex(t).real), float(complex(t).imag)],
+                                     "psi": [float(complex(p).real), float(complex(p).imag)]}
+                                    for n, y, t, p in sh["propellers"]]}
+        return {"V": [float(x) for x in self.V], "modes": list(self.modes),
+                "zeta": np.asarray(self.zeta, float).tolist(),
+                "frequency_hz": np.asarray(self.frequency_hz, float).tolist(),
+                "oscillatory": np.asarray(self.oscillatory, bool).tolist(),
+                "dzeta_dV": np.asarray(self.dzeta_dV, float).tolist(),
+                "dfrequency_dV": np.asarray(self.dfrequency_dV, float).tolist(),
+                "events": [[float(a), float(b), str(k), str(e), str(m)]
+                           for a, b, k, e, m in self.events], "shape": shape}
+
+    @classmethod
+    def from_dict(cls, d: Any, where: str = "plot") -> "PointPlot":
+        r = SavedDict(d, where, ("V", "modes", "zeta", "frequency_hz", "oscillatory", "dzeta_dV",
+                                 "dfrequency_dV", "events", "shape"))
+        V = r.array("V")
+        modes = r.strings("modes")
+        shape = (V.size, len(modes))
+        zeta = r.array("zeta", ndim=2, shape=shape)
+        freq = r.array("frequency_hz", ndim=2, shape=shape)
+        osc = r.array("oscillatory", bool, ndim=2, shape=shape)
+        dz = r.array("dzeta_dV", ndim=2, shape=shape)
+        df = r.array("dfrequency_dV", ndim=2, shape=shape)
+        events = []
+        for w, e in r.items("events"):
+            if not (isinstance(e, list) and len(e) == 5 and all(
+                    isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x)
+                    for x in e[:2]) and all(isinstance(x, str) for x in e[2:])):
+                raise v.InputError(f"{w}: must be [V, frequency_hz, kind, event, mode]")
+            events.append((float(e[0]), float(e[1]), e[2], e[3], e[4]))
+        sh = None
+        if r.raw("shape") is not None:
+            s = r.sub("shape", ("V", "eigenvalue", "y", "h", "alpha", "propellers"))
+            y = s.array("y")
+            lam = s.array("eigenvalue", shape=(2,))
+            props = []
+            for w, p in s.items("propellers"):
+                q = SavedDict(p, w, ("number", "y", "theta", "psi"))
+                props.append((q.integer("number", 1), q.number("y", optional=True),
+                              complex(*q.array("theta", shape=(2,))),
+                              complex(*q.array("psi", shape=(2,)))))
+            sh = {"V": s.number("V"), "eigenvalue": complex(lam[0], lam[1]), "y": y,
+                  "h": s.complex_array("h", 1, (y.size,)),
+                  "alpha": s.complex_array("alpha", 1, (y.size,)), "propellers": props}
+        return cls(V, modes, zeta, freq, osc, dz, df, tuple(events), sh)
+
+
+def _complex_dict(x: Any) -> dict[str, list[float]]:
+    a = np.asarray(x, dtype=complex)
+    return {"re": a.real.tolist(), "im": a.imag.tolist()}
+
+
 @dataclass(frozen=True)
 class PointRow:
     """One (case, envelope point) of a campaign's result.
@@ -43,7 +136,8 @@ class PointRow:
     V_D (the damping requirement's range); g_at_required and dzeta_dV_at_required [s/m]: the
     least damped mode at V_required and the slope of its ζ; propeller_shares:
     [[propeller, share, whirl], ...] of the critical mode; reason: why it does not clear ("" when
-    it does); error: the message of an analysis that failed."""
+    it does); error: the message of an analysis that failed; plot: what the report draws
+    (:class:`PointPlot`; None in files of version 1 and for a failed analysis)."""
 
     case: str
     description: str
@@ -74,16 +168,20 @@ class PointRow:
     dzeta_dV_at_required: float | None
     mode_at_required: str
     error: str
+    plot: PointPlot | None = None
 
     def to_dict(self) -> dict[str, Any]:
+        """The row's numbers (the CSV's columns) and, under "plot", its figures' data."""
         d = {k: getattr(self, k) for k in _ROW_KEYS}
         d["propeller_shares"] = [list(s) for s in self.propeller_shares]
-        return {k: (None if isinstance(x, float) and not math.isfinite(x) else x)
-                for k, x in d.items()}
+        d = {k: (None if isinstance(x, float) and not math.isfinite(x) else x)
+             for k, x in d.items()}
+        d["plot"] = None if self.plot is None else self.plot.to_dict()
+        return d
 
     @classmethod
     def from_dict(cls, d: Any, where: str = "row") -> "PointRow":
-        r = SavedDict(d, where, _ROW_KEYS)
+        r = SavedDict(d, where, _ROW_KEYS, ("plot",))
         vals: dict[str, Any] = {}
         for k in _ROW_NUMBERS:
             vals[k] = r.number(k, optional=True)
@@ -102,6 +200,8 @@ class PointRow:
                 raise v.InputError(f"{w}: must be [propeller, share, whirl]")
             shares.append((int(s[0]), float(s[1]), str(s[2])))
         vals["propeller_shares"] = tuple(shares)
+        if r.has("plot") and r.raw("plot") is not None:
+            vals["plot"] = PointPlot.from_dict(r.raw("plot"), r.name("plot"))
         return cls(**vals)
 
 
@@ -123,11 +223,12 @@ class CampaignResult(Result):
     A :class:`~propwhirl.results.Result` of kind "campaign" (``propwhirl.campaign/1``):
     :meth:`save` / :meth:`load`; :meth:`to_csv` the same numbers as a table;
     :meth:`format` the plain-text summary; ``cleared`` decides the exit code of
-    ``propwhirl certify``."""
+    ``propwhirl certify``.  Version 2 added each row's ``plot`` (:class:`PointPlot`, the
+    report's figures); version-1 files are read with ``plot`` None."""
 
     KIND: ClassVar[str] = "campaign"
-    VERSION: ClassVar[int] = 1
-    READABLE: ClassVar[tuple[int, ...]] = (1,)
+    VERSION: ClassVar[int] = 2
+    READABLE: ClassVar[tuple[int, ...]] = (1, 2)
     WHAT: ClassVar[str] = "campaign result file"
 
     name: str
@@ -216,6 +317,7 @@ class CampaignResult(Result):
         w.writerow(_ROW_KEYS)
         for r in self.rows:
             d = r.to_dict()
+            del d["plot"]
             d["propeller_shares"] = " ".join(f"{p}:{s:.6g}:{wh}" for p, s, wh in r.propeller_shares)
             w.writerow(["" if d[k] is None else ("yes" if d[k] else "no") if isinstance(d[k], bool)
                         else f"{d[k]:.10g}" if isinstance(d[k], float) else d[k] for k in _ROW_KEYS])

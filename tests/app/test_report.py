@@ -1,0 +1,279 @@
+"""The certification report of `propwhirl certify` (issue 24, item 3), read as a person reads it:
+the HTML page opened in the distribution's headless Chromium (driven by selenium) — every figure
+loads, every (case, altitude) row of the summary table is there, a screenshot is saved — and the
+PDF's pages rendered to PNG (pypdfium2).  Skipped, naming what is missing and how to install it,
+only where no browser is found.  Without a browser: the page escapes every user string, gives
+every number its unit, names the files with their SHA-256 and propwhirl's version, and is
+drawn from a version-1 result file too."""
+from __future__ import annotations
+
+import hashlib
+import html.parser
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from propwhirl import __version__
+from propwhirl.app import browser, cli
+from propwhirl.app import report as R
+from propwhirl.studies import campaign as C
+
+CAMPAIGN = """
+format = "propwhirl-campaign"
+format_version = 1
+name = "report test <b>campaign</b>"
+model = "{model}"
+[regulation]
+name = "cs25"
+min_damping_g = 0.0001
+[envelope]
+airspeed = "TAS"
+V_D_m_per_s = 40.0
+altitudes_m = [0.0, 3000.0]
+[[cases]]
+name = "nominal"
+[[cases]]
+name = 'mount at 50 % <script>alert(1)</script> & "q"'
+mount_stiffness = 0.5
+"""
+CASES = ("nominal", 'mount at 50 % <script>alert(1)</script> & "q"')
+ALTITUDES = (0.0, 3000.0)
+
+
+def _browser_or_skip() -> None:
+    try:
+        import pypdfium2  # noqa: F401
+        import selenium  # noqa: F401
+    except ImportError as exc:
+        pytest.skip(f"the report's browser test needs {exc.name}: pip install -e '.[report]' "
+                    "(make test installs it)")
+    if browser.find_chromium() is None or browser.find_chromedriver() is None:
+        pytest.skip("no headless browser: " + browser.INSTALL_HINT + " (make test does it where "
+                    "it runs as root)")
+
+
+@pytest.fixture(scope="module")
+def certified(small_file, tmp_path_factory) -> Path:
+    """The report folder of a small campaign (2 cases x 2 altitudes) run by `propwhirl
+    certify`, with its PDF where a browser is found."""
+    folder = tmp_path_factory.mktemp("certify")
+    path = folder / "c.toml"
+    path.write_text(CAMPAIGN.format(model=Path(small_file).as_posix()))
+    pdf = "--pdf" if browser.find_chromium() else "--no-pdf"
+    assert cli.main(["certify", str(path), "--out", str(folder / "out"), "--quiet", pdf]) in (0, 1)
+    return folder / "out"
+
+
+def test_the_report_in_a_browser(certified, tmp_path):
+    _browser_or_skip()
+    result = C.CampaignResult.load(certified / "campaign.json")
+    d = browser.webdriver(1100, 900)
+    try:
+        d.get((certified / "report.html").resolve().as_uri())
+        images = d.execute_script(
+            "return [...document.images].map(i => [i.complete, i.naturalWidth, i.alt])")
+        rows = d.execute_script(
+            "return [...document.querySelectorAll('table.summary tbody tr')].map("
+            "r => [r.dataset.case, r.dataset.altitude, r.cells.length, r.innerText])")
+        title = d.title
+        height = d.execute_script("return document.body.scrollHeight")
+        d.set_window_size(1100, min(int(height) + 50, 8000))
+        shot = tmp_path / "report.png"
+        assert d.save_screenshot(str(shot))
+    finally:
+        d.quit()
+    # every figure loads: the mesh, and per case its V-g-f and critical mode
+    with_shape = sum(1 for s in result.cases() if s.worst.plot and s.worst.plot.shape)
+    assert len(images) == 1 + len(result.cases()) + with_shape
+    assert all(ok and width > 0 for ok, width, _ in images), images
+    assert "<b>campaign</b>" in title          # shown as text, not markup
+    # every (case, altitude) row, in the campaign's order, with its verdict
+    assert [(c, float(a)) for c, a, _, _ in rows] == [(c, a) for c in CASES for a in ALTITUDES]
+    assert all(n == len(R.SUMMARY_COLUMNS) for _, _, n, _ in rows)
+    for (_, _, _, text), r in zip(rows, result.rows):
+        assert ("pass" if r.cleared else "FAIL") in text and f"{r.V_required:.2f}" in text
+    _not_blank(shot, min_height=1000)
+
+
+def test_the_pdf_pages_render(certified, tmp_path):
+    _browser_or_skip()
+    import pypdfium2 as pdfium
+
+    pdf = pdfium.PdfDocument(str(certified / "report.pdf"))
+    try:
+        pages = len(pdf)
+        # the campaign, model and summary, then each case on its own page (or more)
+        assert pages >= 1 + len(CASES)
+        for i in range(pages):
+            png = tmp_path / f"page-{i + 1}.png"
+            pdf[i].render(scale=0.5).to_pil().save(png)
+            _not_blank(png, min_height=300)
+    finally:
+        pdf.close()
+
+
+def _not_blank(png: Path, min_height: int) -> None:
+    """A PNG of at least `min_height` pixels with ink on it: more than 0.5 % of its pixels
+    not white."""
+    from matplotlib import image
+
+    a = image.imread(png)
+    assert a.shape[0] >= min_height
+    ink = (a[..., :3] < 0.9).any(axis=-1).mean()
+    assert ink > 0.005, f"{png.name}: {100 * ink:.2f} % ink"
+
+
+# ------------------------------------------------------------------------------ no browser
+class _Page(html.parser.HTMLParser):
+    """The tables of a page: per table its head cells and its rows of (class, text) cells;
+    every <script> tag and every image source."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.tables: list[dict] = []
+        self.scripts = 0
+        self.images: list[str] = []
+        self._cell: list | None = None
+
+    def handle_starttag(self, tag, attrs):
+        a = dict(attrs)
+        if tag == "script":
+            self.scripts += 1
+        elif tag == "img":
+            self.images.append(a.get("src", ""))
+        elif tag == "table":
+            self.tables.append({"class": a.get("class", ""), "head": [], "rows": []})
+        elif tag == "tr" and self.tables:
+            self.tables[-1]["rows"].append([])
+        elif tag in ("td", "th") and self.tables:
+            self._cell = [tag, a.get("class", ""), ""]
+
+    def handle_data(self, data):
+        if self._cell is not None:
+            self._cell[2] += data
+
+    def handle_endtag(self, tag):
+        if tag in ("td", "th") and self._cell is not None:
+            self.tables[-1]["rows"][-1].append(tuple(self._cell))
+            self._cell = None
+
+
+@pytest.fixture(scope="module")
+def result(certified) -> C.CampaignResult:
+    return C.CampaignResult.load(certified / "campaign.json")
+
+
+def test_every_user_string_is_escaped_and_every_number_has_its_unit(certified, result):
+    text = (certified / "report.html").read_text()
+    page = _Page()
+    page.feed(text)
+    assert page.scripts == 0 and "<script>alert" not in text and "<b>campaign" not in text
+    assert "&lt;script&gt;alert(1)&lt;/script&gt; &amp; &quot;q&quot;" in text
+    summary = next(t for t in page.tables if t["class"] == "summary")
+    head = [c[2] for c in summary["rows"][0]]
+    body = summary["rows"][1:]
+    assert len(body) == len(result.rows) == len(CASES) * len(ALTITUDES)
+    numeric = 0
+    for row in body:
+        for (tag, cls, cell), h in zip(row, head):
+            if cls == "num" and cell != "–":
+                numeric += 1
+                float(cell)                          # a number, its unit in the heading
+                assert "[" in h and h.endswith("]"), h
+    assert numeric >= 3 * len(body)
+    for t in page.tables:                            # the per-case margin tables too
+        if t["class"] == "margins":
+            assert all("[" in c[2] for c in t["rows"][0][:-1])
+    assert all(src.startswith("data:image/png;base64,") for src in page.images)
+
+
+def test_the_files_hashes_and_the_version_are_named(certified, small_file):
+    text = (certified / "report.html").read_text()
+    digest = hashlib.sha256(Path(small_file).read_bytes()).hexdigest()
+    campaign = hashlib.sha256((certified.parent / "c.toml").read_bytes()).hexdigest()
+    assert digest in text and campaign in text
+    assert f"propwhirl {__version__}" in text
+    assert "1.15 × V_D" in text and "g = 2ζ ≥ 0.0001" in text
+    assert "V_D 40 m/s TAS at 0, 3000 m" in text
+
+
+def test_a_version_1_result_file_still_makes_a_report(certified, tmp_path):
+    doc = json.loads((certified / "campaign.json").read_text())
+    assert doc["format"] == "propwhirl.campaign/2"
+    doc["format"] = "propwhirl.campaign/1"
+    for row in doc["rows"]:
+        del row["plot"]
+    old = tmp_path / "old.json"
+    old.write_text(json.dumps(doc))
+    r = C.CampaignResult.load(old)
+    assert all(x.plot is None for x in r.rows)
+    page = R.report_html(r, date="2026-01-01")
+    assert page.count("propwhirl.campaign/1") == len(CASES) and "<img" not in page
+
+
+def test_the_figures_data_is_saved_and_read_back(result):
+    for r in result.rows:
+        p = r.plot
+        assert p is not None and p.zeta.shape == p.frequency_hz.shape == (p.V.size,
+                                                                            len(p.modes))
+        assert np.isfinite(p.zeta).all() and p.oscillatory.any()
+        if r.critical_speed is not None:
+            assert p.shape is not None and abs(p.shape["V"] - r.critical_speed) < 1e-6
+            peak = max(np.abs(np.r_[p.shape["h"], p.shape["alpha"]]).max(),
+                       max(max(abs(t), abs(q)) for _, _, t, q in p.shape["propellers"]))
+            assert peak == pytest.approx(1.0)        # normalised to its largest entry
+    assert C.PointPlot.from_dict(result.rows[0].plot.to_dict()) == result.rows[0].plot
+
+
+def test_pdf_without_a_browser_is_refused_before_any_analysis(small_file, tmp_path,
+                                                              monkeypatch, capsys):
+    monkeypatch.setattr(browser, "find_chromium", lambda: None)
+    monkeypatch.setattr(C, "evaluate_point", lambda t: pytest.fail("an analysis ran"))
+    path = tmp_path / "c.toml"
+    path.write_text(CAMPAIGN.format(model=Path(small_file).as_posix()))
+    assert cli.main(["certify", str(path), "--out", str(tmp_path / "r"), "--pdf"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "--pdf" in err and "apt-get install" in err
+
+
+def test_the_vgf_curve_is_hermite_and_straight_near_a_branch_point():
+    from propwhirl.app.plots.campaign_plot import hermite
+
+    V = np.array([0.0, 1.0, 3.0, 4.0])
+    y, dy = V**3 - V, 3 * V**2 - 1                    # a cubic is drawn exactly
+    x, c = hermite(V, y, dy, np.ones(4, bool), n=9)
+    assert np.allclose(c, x**3 - x)
+    dy_singular = dy.copy()
+    dy_singular[2] = 1e6                                # f -> 0 with an infinite slope
+    x, c = hermite(V, y, dy_singular, np.ones(4, bool), n=9)
+    step = (x >= 1.0) & (x <= 3.0)
+    assert np.allclose(c[step], np.interp(x[step], V, y))
+    x, c = hermite(V, y, dy, np.array([True, True, False, True]), n=9)
+    assert np.isnan(c).sum() == 2 and np.isfinite(c).sum() == 9   # no line through a gap
+
+
+def test_a_failing_print_is_one_line_naming_the_browser(tmp_path, monkeypatch):
+    page = tmp_path / "p.html"
+    page.write_text("<p>x</p>")
+    monkeypatch.setenv("PROPWHIRL_CHROMIUM", "/bin/false")
+    assert browser.find_chromium() == "/bin/false"
+    with pytest.raises(R.v.InputError) as err:
+        browser.print_pdf(page, tmp_path / "p.pdf")
+    assert len(str(err.value).splitlines()) == 1 and "/bin/false" in str(err.value)
+    assert not (tmp_path / "p.pdf").exists()
+    monkeypatch.setenv("PROPWHIRL_CHROMIUM", str(tmp_path / "none"))
+    assert browser.find_chromium() is None
+    with pytest.raises(R.v.InputError, match="apt-get install -y chromium"):
+        browser.print_pdf(page, tmp_path / "p.pdf")
+
+
+def test_a_failing_print_leaves_the_page_and_a_note(result, tmp_path, monkeypatch):
+    monkeypatch.setenv("PROPWHIRL_CHROMIUM", "/bin/false")
+    notes: list[str] = []
+    written = R.write_report(result, tmp_path, pdf=None, figures=False, notes=notes)
+    assert written == [tmp_path / "report.html"] and not (tmp_path / "report.pdf").exists()
+    assert len(notes) == 1 and "report.pdf not written" in notes[0] and "/bin/false" in notes[0]
+    with pytest.raises(R.v.InputError):
+        R.write_report(result, tmp_path, pdf=True, figures=False)
