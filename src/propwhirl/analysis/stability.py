@@ -45,6 +45,7 @@ from propwhirl.analysis.summary import (FiniteState, FlutterSummary, MethodCompa
                                         flutter_summary, reference, text_table)
 from propwhirl.engine import XTOL, Criticals, Sweep, TrackingOptions, frequency_zero_points
 from propwhirl.engine import analyse as engine_analyse
+from propwhirl.engine.eigensolve import one_blas_thread
 from propwhirl.engine.options import check_speeds
 from propwhirl.engine.results import (eigenvectors_npz, eigenvectors_path,  # noqa: F401
                                       read_eigenvectors)
@@ -463,6 +464,7 @@ def _finite_state_from_dict(r: SavedDict, sweep: Sweep) -> FiniteState | None:
 
 
 # ----------------------------------------------------------------------------- analyse
+@one_blas_thread
 def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
             options: TrackingOptions | None = None, method: str = "auto") -> ModelAnalysis:
     """Every instability of `model` over `speeds` [m/s], with tracked, named modes.

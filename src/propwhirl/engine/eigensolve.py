@@ -99,6 +99,19 @@ def single_thread_blas():
     return _blas_controller().limit(limits=1)
 
 
+def one_blas_thread(func: Callable) -> Callable:
+    """``func`` run with BLAS/OpenMP limited to one thread (:func:`single_thread_blas`) from
+    its start to its end — for a whole analysis, whose naming, content and participation
+    multiply small matrices outside the engine: a 77 × 77 matrix times a vector costs ≈ 8 µs
+    on one thread and ≈ 8 ms under several OpenBLAS threads on a loaded machine (measured on
+    2 shared cores, docs/performance.md)."""
+    @functools.wraps(func)
+    def limited(*args, **kwargs):
+        with single_thread_blas():
+            return func(*args, **kwargs)
+    return limited
+
+
 def _as_square_stack(A, name: str = "A") -> np.ndarray:
     arr = np.asarray(A)
     if arr.ndim < 2 or arr.shape[-1] != arr.shape[-2]:
