@@ -57,7 +57,7 @@ bench-map: $(ALL)
 docs: $(ALL)
 	NO_MKDOCS_2_WARNING=1 $(BIN)/mkdocs build --strict -d site
 
-run: $(VENV)/.stamp-data+plots+tables+toml
+run: $(VENV)/.stamp-data+dlm+plots+tables+toml
 	$(BIN)/propwhirl run --out out
 
 clean:
