@@ -16,8 +16,8 @@ own structure and propellers with every strip at its own k = ω b_i / V
 
 A wing with ``aero = "dlm"`` has doublet-lattice loads instead of the strips
 (:mod:`propwhirl.model.dlm`: Q(k, M) of the panels, the propellers' Houbolt–Reed loads
-unchanged, Mach V/a of each speed or the wing's fixed ``dlm_mach``) in the same p-k equation with M_a = 0,
-C_a = ½ρV² Im Q / ω, K_a = ½ρV² Re Q; the finite-state model it starts from, tracks and names
+unchanged, Mach V/a of each speed or the wing's fixed ``dlm_mach``) in the same p-k equation
+with M_a = 0, C_a = ½ρV² Im Q / ω, K_a = ½ρV² Re Q; the finite-state model it starts from, tracks and names
 its modes with and reports beside its events is its strip twin
 (:func:`propwhirl.model.dlm.strip_twin`).
 

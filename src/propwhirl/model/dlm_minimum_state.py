@@ -12,9 +12,10 @@ found by alternating least squares on the part of Q that the quasi-steady terms 
 (variable projection: A₀, A₁, A₂ are projected out, then fitted last): with D fixed, E is one
 linear least-squares problem (the same design matrix for every column of Q); with E fixed, D
 is the same problem for Qᵀ; repeated from Roger's fit with the same lag roots (each lag
-matrix's leading singular pair) until the residual stops falling.  Rows and columns of Q are scaled by the
-square roots of their largest magnitudes first (heave in metres and twist in radians alike) and
-unscaled after.  The lag states obey ẋ = (V/b) R x + E q̇_w and load the wing with ½ρV² D x.
+matrix's leading singular pair) until the residual stops falling.  Rows and columns of Q are
+scaled by the square roots of their largest magnitudes first (heave in metres and twist in
+radians alike) and unscaled after.  The lag states obey ẋ = (V/b) R x + E q̇_w and load the
+wing with ½ρV² D x.
 
 :func:`state_matrix` builds the first-order matrices of a model with such a fit (as
 :func:`propwhirl.model.dlm_rfa.state_matrix` does with Roger's), for the engine; the

@@ -295,6 +295,12 @@ def fits_used(model, V) -> list[RogerFit]:
     return [node_fit(aero, im) for im in range(lo, hi + (2 if t > 1e-9 else 1))]
 
 
+def _is_node(mach: float) -> bool:
+    """True when ``mach`` is a Mach node of the tables (im · MACH_STEP)."""
+    x = mach / MACH_STEP
+    return abs(x - round(x)) < 1e-9
+
+
 def rfa_note(model, V) -> str:
     """What a Roger-state-space doublet-lattice analysis over the speeds V [m/s] used
     (:data:`RFA_NOTE` first): panels, lag roots, fitted k, Mach, the worst fit error."""
@@ -310,7 +316,8 @@ def rfa_note(model, V) -> str:
         lo = hi = snap_mach(fixed)
         where = f"at the fixed Mach {fixed:g} (dlm_mach) for every speed"
     fits = [f for key, f in aero.fits.items()             # the fits computed: no new AIC
-            if key[0] == "roger" and lo <= key[1] <= hi] or fits_used(model, V)
+            if key[0] == "roger" and lo <= key[1] <= hi
+            and (fixed is not None or _is_node(key[1]))] or fits_used(model, V)
     worst = max(fits, key=lambda f: f.error)
     ks = fits[0].ks
     return (f"{RFA_NOTE} panels ({m.n_chord} chordwise x {m.n_span} spanwise on the half-wing), "
