@@ -173,3 +173,6 @@ def test_fixed_mach_far_from_the_event_is_flagged_as_non_matched():
     assert len(far) == 1 and "fixed Mach 0 (dlm_mach)" in far[0] and "Mach 0.60" in far[0]
     near = validity.analysis_warnings(small_model(dlm_mach=0.6), (10.0, 70.0), events, True)
     assert near == ()
+    later = events + [(85.0, "flutter onset of wing 2"), (90.0, "flutter onset of wing 3")]
+    (one,) = validity.analysis_warnings(small_model(dlm_mach=0.6), (10.0, 95.0), later, True)
+    assert one.startswith("V = 85.00 m/s (flutter onset of wing 2) is Mach 0.85 (1 more such")

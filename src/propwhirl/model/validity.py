@@ -33,8 +33,8 @@ compressible (linear subsonic theory, Mach <= 0.9): with ``dlm_mach = "speed"`` 
 at V/a of each speed, speeds beyond Mach 0.9 are refused before any analysis
 (:func:`propwhirl.model.dlm.check_mach`) and the Mach 0.7 warnings above name only the
 propellers' Prandtl–Glauert correction (none when no propeller has Houbolt–Reed derivatives);
-with a fixed ``dlm_mach`` its loads are at that Mach at every speed, and an analysis whose
-first event is at a V/a more than :data:`DLM_MACH_MISMATCH` from it is flagged as non-matched.
+with a fixed ``dlm_mach`` its loads are at that Mach at every speed, and the events at a V/a
+more than :data:`DLM_MACH_MISMATCH` from it are flagged as non-matched (the first one named).
 
 Free-stream Mach numbers between 1 and 5 are computed and flagged, not refused, because the
 thesis itself goes there: its 0–350 m/s range at 8000 ft ends at Mach 1.06, §9.2 reports a
@@ -57,8 +57,8 @@ MACH_REFUSED = 5.0
 MACH_COMPRESSIBLE = 0.7
 #: Helical tip Mach number above which results are flagged (supersonic blade tips).
 TIP_MACH = 1.0
-#: A doublet-lattice wing with a fixed Mach (``dlm_mach``) is flagged when the first event's
-#: V/a differs from it by more than this (one Mach step of the tables).
+#: A doublet-lattice wing with a fixed Mach (``dlm_mach``) is flagged when an event's V/a
+#: differs from it by more than this (one Mach step of the tables).
 DLM_MACH_MISMATCH = 0.05
 
 
@@ -227,14 +227,17 @@ def analysis_warnings(model, speed_range: tuple[float, float],
         who = (f"propeller {numbers[0]}" if len(numbers) == 1
                else "propellers " + ", ".join(str(k) for k in numbers))
         out.append(f"{who}: {text}")
-    if dlm is not None and dlm != "speed" and ev:
-        V0, d0 = ev[0]
-        if abs(V0 / a - dlm) > DLM_MACH_MISMATCH:
-            out.append(
-                f"V = {V0:.2f} m/s ({d0}) is Mach {V0 / a:.2f}, but the doublet-lattice wing's "
-                f"loads are at the fixed Mach {dlm:g} (dlm_mach) at every speed: a non-matched "
-                "analysis (the compressibility of the wing's loads is Mach "
-                f"{dlm:g}'s); set dlm_mach = \"speed\" for V/a")
+    far = [] if dlm is None or dlm == "speed" else [
+        (V, d) for V, d in ev if abs(V / a - dlm) > DLM_MACH_MISMATCH]
+    if far:
+        V0, d0 = far[0]
+        n = len(far) - 1
+        more = f" ({n} more such event{'s' if n > 1 else ''} above it)" if n else ""
+        out.append(
+            f"V = {V0:.2f} m/s ({d0}) is Mach {V0 / a:.2f}{more}, but the doublet-lattice "
+            f"wing's loads are at the fixed Mach {dlm:g} (dlm_mach) at every speed: a "
+            f"non-matched analysis (the compressibility of the wing's loads is Mach {dlm:g}'s); "
+            "set dlm_mach = \"speed\" for V/a")
     last = float(speed_range[1])
     if not unstable and last / a > MACH_COMPRESSIBLE and what:
         which = ("the subsonic aerodynamics are" if dlm is None else   # a DLM wing: the rest
