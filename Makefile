@@ -80,7 +80,7 @@ REPORT_DIR ?= examples/certification/wingtip
 report: $(ALL) browser
 	$(BIN)/python examples/certification/make_report.py $(CAMPAIGN) $(REPORT_DIR)
 
-run: $(VENV)/.stamp-data+plots+tables+toml
+run: $(VENV)/.stamp-data+dlm+plots+tables+toml
 	$(BIN)/propwhirl run --out out
 
 clean:

@@ -17,8 +17,8 @@ Like for like with the one quotable three-dimensional source found (SHARPy's UVL
 flutter test, ρ = 1.02 kg/m³, incompressible potential flow, 16 chordwise × 32 spanwise
 vortex rings over the whole span = 16 × 16 on the half-wing, 4 modes; see the validation page
 for the sources and what could not be read) the DLM tables are evaluated at **Mach 0** here
-(:func:`fixed_mach`; propwhirl's analyses use Mach V/a of each speed, whose effect is one row
-of the experiment table).
+(the wing key ``dlm_mach = 0``, one Mach for every speed; propwhirl's default ``"speed"`` uses
+Mach V/a of each speed, whose effect is one row of the experiment table).
 """
 from __future__ import annotations
 
@@ -26,7 +26,6 @@ import argparse
 import dataclasses
 import sys
 import time
-from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
@@ -39,7 +38,6 @@ from markdown_section import replace_section  # noqa: E402
 from propwhirl.analysis.pk import pk_sweep  # noqa: E402
 from propwhirl.engine import single_thread_blas  # noqa: E402
 from propwhirl.model import FlightCondition, PropellerWing, Wing  # noqa: E402
-from propwhirl.model import dlm as dlm_module  # noqa: E402
 
 #: airspeeds of the p-k sweeps [m/s]
 SPEEDS = np.arange(120.0, 201.0, 10.0)
@@ -67,18 +65,6 @@ def goland_wing(aero: str = "strip", panels: tuple[int, int] | None = None,
                 dlm_spanwise_panels=ns)
 
 
-@contextmanager
-def fixed_mach(mach: float):
-    """Within the block, every doublet-lattice Q(k, M) is taken at ``mach`` instead of the
-    speed's V/a (a numerical experiment: the incompressible source's Mach 0)."""
-    original = dlm_module.DlmAerodynamics.gaf
-    dlm_module.DlmAerodynamics.gaf = lambda self, _mach, k: original(self, mach, k)
-    try:
-        yield
-    finally:
-        dlm_module.DlmAerodynamics.gaf = original
-
-
 @dataclasses.dataclass(frozen=True)
 class Flutter:
     """The critical p-k crossing: V [m/s], ω [rad/s], k (root semichord) and CPU time [s]."""
@@ -95,16 +81,14 @@ class Flutter:
 
 def flutter(wing: Wing, density: float, *, mach: float | None = 0.0, n_modes: int = N_MODES,
             speed_of_sound: float = 340.0) -> Flutter:
-    """The wing's p-k flutter at ``density`` [kg/m³]: Mach ``mach`` for the panels (None:
-    V / ``speed_of_sound`` of each speed)."""
+    """The wing's p-k flutter at ``density`` [kg/m³]: Mach ``mach`` for the panels at every
+    speed (the wing's ``dlm_mach``; None: "speed", V / ``speed_of_sound`` of each speed)."""
+    if wing.aero == "dlm":
+        wing = dataclasses.replace(wing, dlm_mach="speed" if mach is None else mach)
     model = PropellerWing(wing, FlightCondition(density, speed_of_sound=speed_of_sound),
                           name="goland")
     t = time.process_time()
-    if mach is None or wing.aero != "dlm":
-        sweep = pk_sweep(model, SPEEDS, n_modes=n_modes)
-    else:
-        with fixed_mach(mach):
-            sweep = pk_sweep(model, SPEEDS, n_modes=n_modes)
+    sweep = pk_sweep(model, SPEEDS, n_modes=n_modes)
     c = sweep.critical
     if c is None or c.kind != "flutter":
         raise RuntimeError(f"no flutter of the Goland wing on {SPEEDS[0]}-{SPEEDS[-1]} m/s")

@@ -170,7 +170,7 @@ def test_every_model_field_is_known_to_the_writer():
                  "polar_inertia", "radius_of_gyration", "elastic_axis", "centre_of_gravity",
                  "lift_slope", "aerodynamic_centre", "n_elements", "stations", "max_element_length",
                  "aero_model", "rayleigh", "EI_chordwise", "aero", "dlm_chordwise_panels",
-                 "dlm_spanwise_panels", "name", "_mesh"},
+                 "dlm_mach", "dlm_spanwise_panels", "name", "_mesh"},
         "Propeller": {"radius", "rotor", "masses", "pivot_pitch", "pivot_yaw", "f_theta", "f_psi",
                       "K_theta", "K_psi", "damping_theta", "damping_psi", "damping",
                       "spin_inertia", "n_blades", "hub_radius", "blade_chord", "operation",

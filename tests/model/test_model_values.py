@@ -100,6 +100,7 @@ CHANGES = [
     (("wing",), dict(EI_chordwise=1.4e7), True),
     (("wing",), dict(aero="dlm", dlm_chordwise_panels=2, dlm_spanwise_panels=6), True),
     (("wing",), dict(dlm_chordwise_panels=4), False),      # strip aerodynamics: not used
+    (("wing",), dict(dlm_mach=0.3), False),                # strip aerodynamics: not used
     (("wing",), dict(name="another wing"), False),
     (("flight",), dict(density=0.5), True),
     (("flight",), dict(speed_of_sound=300.0), True),

@@ -16,8 +16,8 @@ own structure and propellers with every strip at its own k = ω b_i / V
 
 A wing with ``aero = "dlm"`` has doublet-lattice loads instead of the strips
 (:mod:`propwhirl.model.dlm`: Q(k, M) of the panels, the propellers' Houbolt–Reed loads
-unchanged, Mach V/a of each speed) in the same p-k equation with M_a = 0,
-C_a = ½ρV² Im Q / ω, K_a = ½ρV² Re Q; the finite-state model it starts from, tracks and names
+unchanged, Mach V/a of each speed or the wing's fixed ``dlm_mach``) in the same p-k equation
+with M_a = 0, C_a = ½ρV² Im Q / ω, K_a = ½ρV² Re Q; the finite-state model it starts from, tracks and names
 its modes with and reports beside its events is its strip twin
 (:func:`propwhirl.model.dlm.strip_twin`).
 
@@ -46,7 +46,7 @@ from propwhirl.analysis.naming import whirl
 from propwhirl.analysis.participation import with_participation
 from propwhirl.engine import mac
 from propwhirl.model.systems import TypicalSection
-from propwhirl.model.dlm import check_mach, dlm_aerodynamics, strip_twin
+from propwhirl.model.dlm import check_speed_mach, dlm_aerodynamics, fixed_mach, strip_twin
 from propwhirl.model.dlm_mesh import guideline_note
 from propwhirl.model.frequency_domain import (
     K_MIN,
@@ -222,8 +222,7 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None) -
                            "increasing airspeeds > 0 [m/s]")
     v.positive("xtol", xtol, "m/s")
     if strip_twin(model) is not model:  # doublet-lattice tables: every Mach subsonic, first
-        for Vi in V:
-            check_mach(Vi / model.flight.speed_of_sound, float(Vi))
+        check_speed_mach(model, V)
     if n_modes is None:
         n_modes = None if _is_section(model) else WING_MODES
     elif not isinstance(n_modes, (int, np.integer)) or n_modes < 1:
@@ -337,8 +336,11 @@ def dlm_notes(model, sweep: PKSweep) -> list[str]:
     highest followed frequency (:func:`propwhirl.model.dlm_mesh.guideline_note`)."""
     aero = dlm_aerodynamics(model.wing)
     m = aero.mesh
+    fixed = fixed_mach(model.wing)
+    mach = ("Mach V/a at each speed" if fixed is None
+            else f"Mach {fixed:g} at every speed (dlm_mach: not matched to V/a)")
     out = [f"{DLM_NOTE} panels ({m.n_chord} chordwise x {m.n_span} spanwise on the half-wing, "
-           f"root a plane of symmetry), Mach V/a at each speed, k = omega b_ref / V on the root "
+           f"root a plane of symmetry), {mach}, k = omega b_ref / V on the root "
            f"semichord b_ref = {aero.b_ref:.4g} m; the finite-state events beside them are the "
            "strip model's"]
     f = np.abs(sweep.roots[0].imag[np.isfinite(sweep.roots[0])]) / (2 * np.pi)

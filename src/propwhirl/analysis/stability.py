@@ -37,7 +37,7 @@ from propwhirl.analysis.participation import (ModeParticipation, branch_point_sh
                                               events_csv, events_table, participation_lines,
                                               with_participation)
 from propwhirl.analysis.pk import DLM_NOTE, pk_instabilities
-from propwhirl.model.dlm import check_mach, strip_twin
+from propwhirl.model.dlm import check_speed_mach, strip_twin
 from propwhirl.model.dlm_rfa import RFA_NOTE, extrapolation_notes, rfa_note
 from propwhirl.analysis.reduced import choose_method, reduced_engine_analysis
 from propwhirl.analysis.summary import (FiniteState, FlutterSummary, MethodComparison,
@@ -537,8 +537,7 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
     dlm_rfa = chosen != "pk" and getattr(getattr(model, "wing", None), "aero", "") == "dlm" \
         and model.wing_aero
     if dlm_rfa:                                # Mach within the tables before any work
-        for Vi in (grid[0], grid[-1]):
-            check_mach(Vi / model.flight.speed_of_sound, Vi)
+        check_speed_mach(model, (grid[0], grid[-1]))
     if chosen == "reduced":
         run = reduced_engine_analysis(model, grid, displacement=dm.displacement,
                                       state_labels=dm.state_labels, options=options, xtol=xtol,

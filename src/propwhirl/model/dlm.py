@@ -26,8 +26,12 @@ Q is tabulated lazily on a grid of k (0, then :data:`K_PER_DECADE` points per de
 computed once per geometry and kept (:func:`dlm_aerodynamics` keeps the last
 :data:`CACHE_SIZE` geometries in memory; with ``PROPWHIRL_DLM_CACHE`` set, every AIC also on
 disk, :mod:`propwhirl.model.dlm_cache`), and interpolated: cubic (Lagrange through the four
-nearest k) in k, linear in Mach.  The Mach number is that of each analysed speed, V / a
-(:func:`pk_system_dlm`).
+nearest k) in k, linear in Mach.  The Mach number is the wing's ``dlm_mach``
+(:func:`wing_mach`): by default "speed", V / a of each analysed speed (a matched analysis,
+the Mach interpolated between the table's Mach nodes, the speeds beyond Mach
+:data:`MACH_MAX` refused), or one fixed number in [0, :data:`MACH_MAX`] for every speed (the
+non-matched analysis of most published DLM flutter results; its own column of the tables,
+cubic in k only: the AICs of one Mach number).
 """
 from __future__ import annotations
 
@@ -67,6 +71,53 @@ def _panelaero():
 def require_panelaero() -> None:
     """InputError now, before any analysis, when PanelAero is not installed."""
     _panelaero()
+
+
+#: the ``dlm_mach`` of a wing whose doublet-lattice Mach is V / a of each analysed speed
+MATCHED = "speed"
+
+
+def check_dlm_mach(value) -> None:
+    """InputError unless ``value`` (a wing's ``dlm_mach``) is "speed" or a number in
+    [0, :data:`MACH_MAX`]."""
+    if isinstance(value, str):
+        ok = value == MATCHED
+    else:
+        ok = (isinstance(value, (int, float, np.integer, np.floating))
+              and not isinstance(value, (bool, np.bool_))
+              and bool(np.isfinite(value)) and 0.0 <= float(value) <= MACH_MAX)
+    if not ok:
+        raise v.InputError(f"dlm_mach = {value!r:.40} is invalid: must be \"{MATCHED}\" (Mach "
+                           f"V/a at each analysed speed) or a number in [0, {MACH_MAX:g}] "
+                           "(one Mach for every speed)")
+
+
+def fixed_mach(wing) -> float | None:
+    """The wing's fixed doublet-lattice Mach number (its ``dlm_mach`` number), None when it is
+    matched (``dlm_mach = "speed"``: V / a of each speed)."""
+    m = getattr(wing, "dlm_mach", MATCHED)
+    return None if isinstance(m, str) else float(m)
+
+
+def wing_mach(model, V: float) -> float:
+    """The Mach number of ``model``'s doublet-lattice loads at airspeed V [m/s]: its wing's
+    fixed ``dlm_mach``, or V / a (``dlm_mach = "speed"``)."""
+    m = fixed_mach(model.wing)
+    return float(V) / model.flight.speed_of_sound if m is None else m
+
+
+def check_speed_mach(model, V) -> None:
+    """InputError, before any analysis, when the doublet-lattice Mach of ``model`` at one of
+    the airspeeds V [m/s] is beyond the tables (only possible with ``dlm_mach = "speed"``)."""
+    for Vi in np.atleast_1d(np.asarray(V, float)):
+        check_mach(wing_mach(model, Vi), float(Vi))
+
+
+def snap_mach(mach: float) -> float:
+    """``mach``, or the Mach of the table node it is within 1e-9 steps of (so that a fixed
+    Mach 0.3 uses the node im = 6's own AICs, 6 · 0.05, not another column)."""
+    x = float(mach) / MACH_STEP
+    return round(x) * MACH_STEP if abs(x - round(x)) < 1e-9 else float(mach)
 
 
 def check_mach(mach: float, V: float | None = None) -> None:
@@ -143,16 +194,25 @@ class DlmAerodynamics:
     def node(self, im: int, ik: int) -> np.ndarray:
         """Q (3 n_nodes, 3 n_nodes) of table node (Mach im · MACH_STEP, k :meth:`k_node` (ik)),
         computed once (no interpolation)."""
-        return self._node(im, ik)
+        return self.column_node(im * MACH_STEP, ik)
 
-    def _node(self, im: int, ik: int) -> np.ndarray:
-        key = (im, ik)
+    def column_node(self, mach: float, ik: int) -> np.ndarray:
+        """Q at k :meth:`k_node` (ik) in the table column of Mach ``mach`` (a fixed Mach's own
+        column, or a Mach node's), computed once."""
+        key = (float(mach), ik)
         if key not in self._table:
-            self._table[key] = self.exact(im * MACH_STEP, self.k_node(ik))
+            self._table[key] = self.exact(float(mach), self.k_node(ik))
         return self._table[key]
 
-    def _in_k(self, im: int, k: float) -> np.ndarray:
-        """Cubic Lagrange interpolation in k through the four table nodes around k."""
+    @property
+    def columns(self) -> tuple[float, ...]:
+        """The Mach numbers of the table columns computed so far, ascending."""
+        return tuple(sorted({m for m, _ in self._table}))
+
+    def _in_k(self, im: int | float, k: float, *, mach: float | None = None) -> np.ndarray:
+        """Cubic Lagrange interpolation in k through the four table nodes around k, in the
+        column of Mach node ``im`` (or of Mach ``mach`` when given)."""
+        mach = im * MACH_STEP if mach is None else mach
         i = 0 if k < K_FIRST else 1 + int(np.floor(np.log10(k / K_FIRST) * K_PER_DECADE + 1e-12))
         lo = max(0, i - 1)
         nodes = range(lo, lo + 4)
@@ -160,13 +220,17 @@ class DlmAerodynamics:
         out = np.zeros((3 * self.n_nodes, 3 * self.n_nodes), complex)
         for j, kj in zip(nodes, ks):
             w = np.prod([(k - km) / (kj - km) for km in ks if km != kj])
-            out += w * self._node(im, j)
+            out += w * self.column_node(mach, j)
         return out
 
-    def gaf(self, mach: float, k: float) -> np.ndarray:
-        """Q(k, M) interpolated from the tables (cubic in k, linear in Mach) [-]."""
+    def gaf(self, mach: float, k: float, *, exact_mach: bool = False) -> np.ndarray:
+        """Q(k, M) interpolated from the tables (cubic in k, linear in Mach) [-]; with
+        ``exact_mach`` (a wing's fixed ``dlm_mach``) from the column of that very Mach
+        (:func:`snap_mach`), cubic in k only: one Mach's AICs, none of its neighbours'."""
         check_mach(mach)
         k = max(float(k), 0.0)
+        if exact_mach:
+            return self._in_k(0, k, mach=snap_mach(mach))
         x = mach / MACH_STEP
         im = min(int(np.floor(x + 1e-12)), int(round(MACH_MAX / MACH_STEP)))
         t = x - im
@@ -205,8 +269,10 @@ def pk_system_dlm(model, V: float, k_min: float):
     aerodynamics at airspeed V [m/s]: its structure and propellers (the model's own second-order
     system with the wing aerodynamics off), minus the DLM loads in the p-k form
     K_a = ½ρV² Re Q(k, M), C_a = ½ρV² Im Q(k, M) / ω (exact at p = iω), k = ω b_ref / V
-    (raised to ``k_min``), M = V / a of this speed."""
-    mach = V / model.flight.speed_of_sound
+    (raised to ``k_min``), M the wing's Mach at this speed (:func:`wing_mach`: V / a, or its
+    fixed ``dlm_mach``)."""
+    mach = wing_mach(model, V)
+    exact = fixed_mach(model.wing) is not None
     check_mach(mach, V)
     dry = replace(model, wing_aero=False).second_order(np.array([V]))
     aero = dlm_aerodynamics(model.wing)
@@ -217,7 +283,7 @@ def pk_system_dlm(model, V: float, k_min: float):
 
     def matrices(omega: float):
         k = max(float(omega) * b / V, k_min)
-        Q = q * aero.gaf(mach, k)[np.ix_(keep, keep)]
+        Q = q * aero.gaf(mach, k, exact_mach=exact)[np.ix_(keep, keep)]
         M, C, K = (np.array(X, dtype=float) for X in structure)
         n = keep.size
         C[:n, :n] -= Q.imag / (k * V / b)

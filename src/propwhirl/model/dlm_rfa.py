@@ -21,8 +21,10 @@ point); its error is reported (:attr:`RogerFit.error`: the largest |Q_fit − Q|
 k, relative to max |Q|; :attr:`RogerFit.entry_error` per entry).
 
 **The runtime's state space** (:func:`second_order`, what ``PropellerWing.second_order`` and
-``analyse(model)`` use on a wing with ``aero = "dlm"``): the Mach number is V / a at each
-analysed speed, as the p-k method's (:func:`propwhirl.model.dlm.pk_system_dlm`).  Q is fitted
+``analyse(model)`` use on a wing with ``aero = "dlm"``): the Mach number is the wing's
+``dlm_mach``, as the p-k method's (:func:`propwhirl.model.dlm.pk_system_dlm`): by default V / a
+at each analysed speed; a fixed number fits the one table column of that Mach
+(:func:`column_fit`) and uses it at every speed.  Q is fitted
 once at every Mach node of the tables (steps of :data:`~propwhirl.model.dlm.MACH_STEP`) over the
 table's reduced frequencies 0 … :data:`K_MAX` (:func:`fit_ks`) with the lag roots
 :data:`DEFAULT_LAGS`, and the A's are interpolated linearly in Mach between the two nodes
@@ -42,7 +44,7 @@ import numpy as np
 from propwhirl import validate as v
 from propwhirl.model.assembly import free_dofs, wing_dof_labels
 from propwhirl.model.dlm import (MACH_MAX, MACH_STEP, DlmAerodynamics, check_mach,
-                                 dlm_aerodynamics)
+                                 dlm_aerodynamics, fixed_mach, snap_mach, wing_mach)
 from propwhirl.model.statespace import SecondOrder
 
 #: default lag roots β_l (nondimensional, on the reference semichord)
@@ -168,18 +170,25 @@ def node_fit(aero: DlmAerodynamics, im: int, ks: np.ndarray | None = None,
     """The Roger fit of ``aero``'s tables at Mach node ``im`` (Mach im · MACH_STEP) on the free
     wing DOFs (root removed), over ``ks`` (default :func:`fit_ks`) with ``lags``; computed once
     per geometry and kept with its tables (``aero.fits``)."""
+    return column_fit(aero, im * MACH_STEP, ks, lags)
 
+
+def column_fit(aero: DlmAerodynamics, mach: float, ks: np.ndarray | None = None,
+               lags=DEFAULT_LAGS) -> RogerFit:
+    """The Roger fit of ``aero``'s table column of Mach ``mach`` (a Mach node's, or a wing's
+    fixed ``dlm_mach``: :func:`~propwhirl.model.dlm.snap_mach`) as :func:`node_fit`."""
     ks = fit_ks() if ks is None else np.asarray(ks, float)
     lags = np.asarray(lags, float)
-    key = ("roger", int(im), ks.tobytes(), lags.tobytes())
+    mach = snap_mach(mach)
+    key = ("roger", mach, ks.tobytes(), lags.tobytes())
     if key not in aero.fits:
         keep = free_dofs(aero.n_nodes)
         nodes = {aero.k_node(i): i for i in range(len(ks) + 64)}
         if any(k not in nodes for k in ks):          # not the tables' own k: interpolated
-            Q = np.stack([aero.gaf(im * MACH_STEP, k)[np.ix_(keep, keep)] for k in ks])
+            Q = np.stack([aero.gaf(mach, k, exact_mach=True)[np.ix_(keep, keep)] for k in ks])
         else:                                        # the table nodes themselves, no more
-            Q = np.stack([aero.node(im, nodes[k])[np.ix_(keep, keep)] for k in ks])
-        aero.fits[key] = _fit(Q, ks, lags, im * MACH_STEP, aero.b_ref)
+            Q = np.stack([aero.column_node(mach, nodes[k])[np.ix_(keep, keep)] for k in ks])
+        aero.fits[key] = _fit(Q, ks, lags, mach, aero.b_ref)
     return aero.fits[key]
 
 
@@ -194,12 +203,17 @@ def mach_nodes(mach: float) -> tuple[int, float]:
 def coefficients(model, V) -> np.ndarray:
     """The Roger matrices A (nV, 3 + L, n_w, n_w) of ``model``'s doublet-lattice wing at the
     airspeeds V [m/s]: at Mach V / a, linear in Mach between the fits of the two Mach nodes
-    around it (:func:`node_fit`).  InputError when V / a is beyond the tables' Mach."""
+    around it (:func:`node_fit`); with a fixed ``dlm_mach``, the one fit of its own column
+    (:func:`column_fit`) at every speed.  InputError when V / a is beyond the tables' Mach."""
     V = np.atleast_1d(np.asarray(V, float))
-    a = model.flight.speed_of_sound
     for Vi in V:
-        check_mach(Vi / a, Vi)
+        check_mach(wing_mach(model, Vi), Vi)
     aero = dlm_aerodynamics(model.wing)
+    fixed = fixed_mach(model.wing)
+    if fixed is not None:
+        A = column_fit(aero, fixed).A
+        return np.broadcast_to(A, (V.size,) + A.shape).copy()
+    a = model.flight.speed_of_sound
     out = None
     for i, Vi in enumerate(V):
         im, t = mach_nodes(Vi / a)
@@ -266,12 +280,21 @@ def second_order(assembly, V: np.ndarray, omega=None) -> SecondOrder:
 def fits_used(model, V) -> list[RogerFit]:
     """The runtime's node fits (:func:`node_fit`) that airspeeds between min(V) and max(V)
     [m/s] use (computed if not yet), by Mach."""
-    a = model.flight.speed_of_sound
     aero = dlm_aerodynamics(model.wing)
+    fixed = fixed_mach(model.wing)
+    if fixed is not None:
+        return [column_fit(aero, fixed)]
+    a = model.flight.speed_of_sound
     V = np.atleast_1d(np.asarray(V, float))
     lo, _ = mach_nodes(V.min() / a)
     hi, t = mach_nodes(V.max() / a)
     return [node_fit(aero, im) for im in range(lo, hi + (2 if t > 1e-9 else 1))]
+
+
+def _is_node(mach: float) -> bool:
+    """True when ``mach`` is a Mach node of the tables (im · MACH_STEP)."""
+    x = mach / MACH_STEP
+    return abs(x - round(x)) < 1e-9
 
 
 def rfa_note(model, V) -> str:
@@ -280,15 +303,23 @@ def rfa_note(model, V) -> str:
     aero = dlm_aerodynamics(model.wing)
     m = aero.mesh
     V = np.atleast_1d(np.asarray(V, float))
-    lo, hi = (mach_nodes(x / model.flight.speed_of_sound)[0] for x in (V.min(), V.max()))
+    fixed = fixed_mach(model.wing)
+    if fixed is None:
+        lo, hi = (mach_nodes(x / model.flight.speed_of_sound)[0] for x in (V.min(), V.max()))
+        lo, hi = lo * MACH_STEP - 1e-9, (hi + 1) * MACH_STEP + 1e-9
+        where = "at every Mach node, linear in Mach V/a"
+    else:
+        lo = hi = snap_mach(fixed)
+        where = f"at the fixed Mach {fixed:g} (dlm_mach) for every speed"
     fits = [f for key, f in aero.fits.items()             # the fits computed: no new AIC
-            if key[0] == "roger" and lo <= key[1] <= hi + 1] or fits_used(model, V)
+            if key[0] == "roger" and lo <= key[1] <= hi
+            and (fixed is not None or _is_node(key[1]))] or fits_used(model, V)
     worst = max(fits, key=lambda f: f.error)
     ks = fits[0].ks
     return (f"{RFA_NOTE} panels ({m.n_chord} chordwise x {m.n_span} spanwise on the half-wing), "
             f"Roger state space: lag roots {', '.join(f'{x:g}' for x in fits[0].lags)}, fitted "
             f"on k = {ks.min():g}-{ks.max():.3g} ({ks.size} values, root semichord b_ref = "
-            f"{aero.b_ref:.4g} m) at every Mach node, linear in Mach V/a; worst fit error "
+            f"{aero.b_ref:.4g} m) {where}; worst fit error "
             f"{100 * worst.error:.2g} % of max |Q| (Mach {worst.mach:.2f})")
 
 

@@ -28,6 +28,14 @@ Flagged, as one line each in :attr:`propwhirl.analysis.stability.ModelAnalysis.w
 * an analysis that finds no instability while its range extends beyond Mach 0.7 (stability
   there is not established by these methods).
 
+A wing with doublet-lattice aerodynamics (``aero = "dlm"``, :mod:`propwhirl.model.dlm`) is
+compressible (linear subsonic theory, Mach <= 0.9): with ``dlm_mach = "speed"`` its loads are
+at V/a of each speed, speeds beyond Mach 0.9 are refused before any analysis
+(:func:`propwhirl.model.dlm.check_mach`) and the Mach 0.7 warnings above name only the
+propellers' Prandtl–Glauert correction (none when no propeller has Houbolt–Reed derivatives);
+with a fixed ``dlm_mach`` its loads are at that Mach at every speed, and the events at a V/a
+more than :data:`DLM_MACH_MISMATCH` from it are flagged as non-matched (the first one named).
+
 Free-stream Mach numbers between 1 and 5 are computed and flagged, not refused, because the
 thesis itself goes there: its 0–350 m/s range at 8000 ft ends at Mach 1.06, §9.2 reports a
 constant-speed whirl-flutter speed of 428 m/s (Mach 1.29) and the chapter-11 isolated
@@ -49,6 +57,9 @@ MACH_REFUSED = 5.0
 MACH_COMPRESSIBLE = 0.7
 #: Helical tip Mach number above which results are flagged (supersonic blade tips).
 TIP_MACH = 1.0
+#: A doublet-lattice wing with a fixed Mach (``dlm_mach``) is flagged when an event's V/a
+#: differs from it by more than this (one Mach step of the tables).
+DLM_MACH_MISMATCH = 0.05
 
 
 def _mach(M: float) -> str:
@@ -181,18 +192,22 @@ def analysis_warnings(model, speed_range: tuple[float, float],
     a = float(model.flight.speed_of_sound)
     out = []
     ev = sorted(events)
+    dlm = _dlm_wing(model)
+    strip = (getattr(model, "wing_aero", False) or getattr(model, "aero", False) is True) \
+        and dlm is None
     high = [(V, d) for V, d in ev if V / a > MACH_COMPRESSIBLE]
-    if high:
+    what = [w for w, on in (("the incompressible strip aerodynamics", strip),
+                            ("the Prandtl-Glauert correction of the propeller derivatives",
+                             bool(houbolt_reed_propellers(model)))) if on]
+    if not what and dlm is None:
+        what = ["the aerodynamics"]
+    if high and what:
         V0, d0 = high[0]
         sup = [V for V, _ in high if V / a >= 1.0]
         n = len(high) - 1
         more = f" ({n} more event{'s' if n > 1 else ''} above it)" if n else ""
         tail = (f"; {len(sup)} at Mach >= 1 (supersonic free stream, from V = {sup[0]:.2f} m/s)"
                 if sup else "")
-        what = [w for w, on in (("the incompressible strip aerodynamics",
-                                 getattr(model, "wing_aero", False) or getattr(model, "aero", False) is True),
-                                ("the Prandtl-Glauert correction of the propeller derivatives",
-                                 bool(houbolt_reed_propellers(model)))) if on] or ["the aerodynamics"]
         out.append(
             f"V = {V0:.2f} m/s ({d0}) is Mach {V0 / a:.2f}{more}{tail}: beyond Mach "
             f"{MACH_COMPRESSIBLE:g} {' and '.join(what)} {'is' if len(what) == 1 else 'are'} "
@@ -217,10 +232,33 @@ def analysis_warnings(model, speed_range: tuple[float, float],
         who = (f"propeller {numbers[0]}" if len(numbers) == 1
                else "propellers " + ", ".join(str(k) for k in numbers))
         out.append(f"{who}: {text}")
+    far = [] if dlm is None or dlm == "speed" else [
+        (V, d) for V, d in ev if abs(V / a - dlm) > DLM_MACH_MISMATCH]
+    if far:
+        V0, d0 = far[0]
+        n = len(far) - 1
+        more = f" ({n} more such event{'s' if n > 1 else ''} above it)" if n else ""
+        out.append(
+            f"V = {V0:.2f} m/s ({d0}) is Mach {V0 / a:.2f}{more}, but the doublet-lattice "
+            f"wing's loads are at the fixed Mach {dlm:g} (dlm_mach) at every speed: a "
+            f"non-matched analysis (the compressibility of the wing's loads is Mach {dlm:g}'s); "
+            "set dlm_mach = \"speed\" for V/a")
     last = float(speed_range[1])
-    if not unstable and last / a > MACH_COMPRESSIBLE:
+    if not unstable and last / a > MACH_COMPRESSIBLE and what:
+        which = ("the subsonic aerodynamics are" if dlm is None else   # a DLM wing: the rest
+                 f"{' and '.join(what)} {'is' if len(what) == 1 else 'are'}")
         out.append(
             f"no instability up to V = {last:g} m/s, but above V = "
-            f"{MACH_COMPRESSIBLE * a:.2f} m/s (Mach {MACH_COMPRESSIBLE:g}) the subsonic "
-            "aerodynamics are not valid: stability there is not established")
+            f"{MACH_COMPRESSIBLE * a:.2f} m/s (Mach {MACH_COMPRESSIBLE:g}) {which} not valid: "
+            "stability there is not established")
     return tuple(out)
+
+
+def _dlm_wing(model):
+    """The ``dlm_mach`` of ``model``'s wing ("speed" or a number) when it has doublet-lattice
+    aerodynamics on, else None."""
+    wing = getattr(model, "wing", None)
+    if not getattr(model, "wing_aero", False) or getattr(wing, "aero", "strip") != "dlm":
+        return None
+    m = getattr(wing, "dlm_mach", "speed")
+    return m if isinstance(m, str) else float(m)

@@ -25,6 +25,7 @@ import numpy as np
 from propwhirl import limits
 from propwhirl import validate as v
 from propwhirl.model import mesh as meshing
+from propwhirl.model.dlm import MACH_MAX as DLM_MACH_MAX, check_dlm_mach
 from propwhirl.model.dlm_mesh import panel_counts
 from propwhirl.model.fields import check_fields, check_values, spec
 from propwhirl.model.mesh import Mesh
@@ -112,6 +113,11 @@ class Wing:
     dlm_chordwise_panels, dlm_spanwise_panels : the doublet-lattice panel counts (aero =
         "dlm"); spanwise None: the fewest with a panel aspect ratio <= 2
         (:func:`propwhirl.model.dlm_mesh.panel_counts`)
+    dlm_mach : the Mach number of the doublet-lattice loads (aero = "dlm"): "speed" (the
+        default; matched, V/a of each analysed speed: speeds beyond Mach 0.9 refused) or a
+        number in [0, 0.9], the same Mach at every speed (non-matched: the usual way of
+        published DLM flutter results, e.g. the Goland wing at Mach 0; one Mach column of
+        AICs instead of one per Mach step crossed)
     """
 
     semi_span: float = field(metadata=spec("semi_span_m", "m", "root-to-tip length",
@@ -181,6 +187,11 @@ class Wing:
     dlm_chordwise_panels: int = field(default=8, metadata=spec(
         "dlm_chordwise_panels", "", "doublet-lattice panels along the chord (aero = \"dlm\")",
         default="setting"))
+    dlm_mach: Union[float, Literal["speed"]] = field(default="speed", metadata=spec(
+        "dlm_mach", "", "Mach number of the doublet-lattice loads (aero = \"dlm\"): "
+        "\"speed\" (matched: V/a at each analysed speed) or one number for every speed "
+        "(the non-matched analysis of most published DLM results)", default="setting",
+        form="number_or_string", range=(0.0, DLM_MACH_MAX)))
     dlm_spanwise_panels: int | None = field(default=None, metadata=spec(
         "dlm_spanwise_panels", "", "doublet-lattice panels along the semi-span (aero = "
         "\"dlm\"); omitted: the fewest with a panel aspect ratio (width / length) <= 2",
@@ -190,6 +201,7 @@ class Wing:
         None, "", "the mesh (derived from the fields above)", default="none", form="derived"))
 
     def __post_init__(self) -> None:
+        check_dlm_mach(self.dlm_mach)  # before check_fields: its own one-line message
         check_fields(self)  # types and the declared ranges of every field
         v.integer_at_least("n_elements", self.n_elements, 1)
         limits.check_elements(self.n_elements)
