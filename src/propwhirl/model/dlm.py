@@ -43,6 +43,8 @@ import numpy as np
 from propwhirl import validate as v
 from propwhirl.model import dlm_cache
 from propwhirl.model.assembly import free_dofs
+# the wing's own checks of its dlm_mach (re-exported: MACH_MAX, MATCHED, check_dlm_mach)
+from propwhirl.model.wing import DLM_MACH_MAX as MACH_MAX, DLM_MATCHED as MATCHED, check_dlm_mach  # noqa: F401
 from propwhirl.model.dlm_mesh import PanelMesh, panel_mesh, spline
 
 #: first non-zero reduced frequency of the tables (on the reference semichord)
@@ -52,8 +54,6 @@ K_FIRST = 0.01
 K_PER_DECADE = 8
 #: Mach step of the tables (linear interpolation between them)
 MACH_STEP = 0.05
-#: highest Mach number of the tables: the DLM is a subsonic linear theory
-MACH_MAX = 0.9
 #: geometries whose tables :func:`dlm_aerodynamics` keeps
 CACHE_SIZE = 4
 
@@ -71,25 +71,6 @@ def _panelaero():
 def require_panelaero() -> None:
     """InputError now, before any analysis, when PanelAero is not installed."""
     _panelaero()
-
-
-#: the ``dlm_mach`` of a wing whose doublet-lattice Mach is V / a of each analysed speed
-MATCHED = "speed"
-
-
-def check_dlm_mach(value) -> None:
-    """InputError unless ``value`` (a wing's ``dlm_mach``) is "speed" or a number in
-    [0, :data:`MACH_MAX`]."""
-    if isinstance(value, str):
-        ok = value == MATCHED
-    else:
-        ok = (isinstance(value, (int, float, np.integer, np.floating))
-              and not isinstance(value, (bool, np.bool_))
-              and bool(np.isfinite(value)) and 0.0 <= float(value) <= MACH_MAX)
-    if not ok:
-        raise v.InputError(f"dlm_mach = {value!r:.40} is invalid: must be \"{MATCHED}\" (Mach "
-                           f"V/a at each analysed speed) or a number in [0, {MACH_MAX:g}] "
-                           "(one Mach for every speed)")
 
 
 def fixed_mach(wing) -> float | None:

@@ -25,10 +25,31 @@ import numpy as np
 from propwhirl import limits
 from propwhirl import validate as v
 from propwhirl.model import mesh as meshing
-from propwhirl.model.dlm import MACH_MAX as DLM_MACH_MAX, check_dlm_mach
 from propwhirl.model.dlm_mesh import panel_counts
 from propwhirl.model.fields import check_fields, check_values, spec
 from propwhirl.model.mesh import Mesh
+
+#: highest Mach number of the doublet-lattice tables: the DLM is a subsonic linear theory
+DLM_MACH_MAX = 0.9
+
+#: the ``dlm_mach`` of a wing whose doublet-lattice Mach is V / a of each analysed speed
+DLM_MATCHED = "speed"
+
+
+def check_dlm_mach(value) -> None:
+    """InputError unless ``value`` (a wing's ``dlm_mach``) is "speed" or a number in
+    [0, :data:`DLM_MACH_MAX`]."""
+    if isinstance(value, str):
+        ok = value == DLM_MATCHED
+    else:
+        ok = (isinstance(value, (int, float, np.integer, np.floating))
+              and not isinstance(value, (bool, np.bool_))
+              and bool(np.isfinite(value)) and 0.0 <= float(value) <= DLM_MACH_MAX)
+    if not ok:
+        raise v.InputError(f"dlm_mach = {value!r:.40} is invalid: must be \"{DLM_MATCHED}\" "
+                           f"(Mach V/a at each analysed speed) or a number in "
+                           f"[0, {DLM_MACH_MAX:g}] (one Mach for every speed)")
+
 
 Spanwise = Union[float, np.ndarray, Callable[[np.ndarray], np.ndarray]]
 LiftSlope = Union[float, Literal["elliptic"], Callable[[np.ndarray], np.ndarray]]
