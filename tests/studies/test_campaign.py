@@ -227,3 +227,20 @@ def test_campaign_checks():
     with pytest.raises(InputError, match="at least one case"):
         C.Campaign("x", None, (), C.envelope(100.0, [0.0]))
 
+
+
+def test_wingtip_divergence_at_sea_level_is_not_named_after_a_lag_state():
+    """examples/wingtip_campaign.toml, nominal at 0 m: the critical real root starts as a strip
+    aerodynamic lag state ("lag 5" at the first speed) and crosses zero at 127.28 m/s as the
+    wing's static divergence; the campaign names it by its content at the event."""
+    from propwhirl.io.campaign_files import load_campaign
+
+    spec = load_campaign(ROOT / "examples" / "wingtip_campaign.toml")
+    camp = C.from_spec(spec)
+    camp = dataclasses.replace(camp, cases=camp.cases[:1],
+                               points=tuple(p for p in camp.points if p.altitude_m == 0.0))
+    (row,) = C.run_campaign(camp).rows
+    assert row.case == "nominal" and row.kind == "divergence"
+    assert row.critical_speed == pytest.approx(127.28, abs=0.02)
+    assert not row.mode.startswith("lag") and row.mode.startswith("the wing (bending"), row.mode
+    assert "at the event; lag " in row.mode          # and where the tracked root came from

@@ -640,25 +640,30 @@ def _at(zeta: np.ndarray, dzeta: np.ndarray, V: np.ndarray, speed: float,
     return {"zeta": float(z[k]), "dzeta_dV": float(dz[k]), "mode": labels[k]}
 
 
-def _critical_shape(a: Any, e: Any) -> dict[str, Any] | None:
-    """The shape of the critical instability `e` of analysis `a` (:class:`PointPlot`'s
-    ``shape``): the refined critical point's eigenvector, else the tracked mode's at the
-    nearest sweep speed; None when there is none."""
-    dm = a.dof_map
-    if e is None or dm is None:
+def _event_vector(a: Any, e: Any) -> tuple[np.ndarray, complex, float] | None:
+    """(eigenvector, eigenvalue, V [m/s]) of event `e` of analysis `a`: the refined critical
+    point's, else the tracked mode's at the nearest sweep speed; None when there is none."""
+    if e is None:
         return None
-    x = lam = None
-    Ve = float(e.V)
     if a.criticals is not None:
         for p in a.criticals.points:
             if p.mode == e.mode and abs(p.V - e.V) <= 1e-9 * max(1.0, abs(e.V)):
-                x, lam, Ve = np.asarray(p.eigenvector), complex(p.eigenvalue), float(p.V)
-    if x is None and a.sweep.eigenvectors is not None:
+                return np.asarray(p.eigenvector), complex(p.eigenvalue), float(p.V)
+    if a.sweep.eigenvectors is not None:
         t = int(np.argmin(np.abs(a.sweep.V - e.V)))
-        x, lam = a.sweep.eigenvectors[t, :, e.mode], complex(a.sweep.eigenvalues[t, e.mode])
-        Ve = float(a.sweep.V[t])
-    if x is None:
+        return (a.sweep.eigenvectors[t, :, e.mode], complex(a.sweep.eigenvalues[t, e.mode]),
+                float(a.sweep.V[t]))
+    return None
+
+
+def _critical_shape(a: Any, e: Any) -> dict[str, Any] | None:
+    """The shape of the critical instability `e` of analysis `a` (:class:`PointPlot`'s
+    ``shape``): :func:`_event_vector`; None when there is none."""
+    dm = a.dof_map
+    found = None if dm is None else _event_vector(a, e)
+    if found is None:
         return None
+    x, lam, Ve = found
     x = np.asarray(x, dtype=complex).ravel()[: dm.n_dof]
     shown = [i for i, k in enumerate(dm.q_kinds) if k in ("h", "alpha", "theta", "psi")]
     if not shown or not np.abs(x[shown]).max() > 0:
@@ -704,6 +709,7 @@ def plot_data(a: Any, modes: Sequence[int], e: Any) -> dict[str, Any]:
 
 def evaluate_point(task: _Task) -> dict[str, Any]:
     """Analyse one (case, point) and return its result row (plain JSON: module docstring)."""
+    from propwhirl.analysis.naming import real_root_at_the_event
     from propwhirl.analysis.stability import analyse
     from propwhirl.studies.critical import critical_instability, wing_divergence_predicate
 
@@ -724,11 +730,16 @@ def evaluate_point(task: _Task) -> dict[str, Any]:
         shares = [[int(p.propeller), float(p.share), p.whirl or ""]
                   for p in e.participation.propellers]
     Vc = None if e is None else float(e.V)
+    mode = "" if e is None else e.label
+    if e is not None and e.kind == "divergence" and mode.startswith("lag "):
+        found = _event_vector(a, e)       # a real root from a lag state: name it at the event
+        if found is not None:
+            mode = real_root_at_the_event(task.model, mode, found[0], found[2])
     return {
         "critical_speed": Vc,
         "kind": "none" if e is None else e.kind,
         "event": "" if e is None else e.event,
-        "mode": "" if e is None else e.label,
+        "mode": mode,
         "frequency_hz": None if e is None else float(e.frequency_hz),
         "whirl": "" if e is None or e.whirl is None else e.whirl,
         "propeller_shares": shares,
