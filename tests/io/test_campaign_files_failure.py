@@ -3,11 +3,14 @@ V_C_m_per_s and M_C, [[cases]] failure; the keys read, and every bad one is one 
 file, the key, the value and what is valid."""
 from __future__ import annotations
 
+import math
 import tomllib
 from pathlib import Path
 
 import pytest
 import tomli_w
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from propwhirl.io.campaign_files import loads
 from propwhirl.studies.campaign import from_spec
@@ -81,3 +84,20 @@ def test_failure_must_be_a_boolean():
     with pytest.raises(InputError, match=r"^c\.toml: \[cases\[0\]\] failure = 'yes' is invalid: "
                                          "must be true or false"):
         _load(doc)
+
+
+@settings(max_examples=60, deadline=None)
+@given(V_C=st.one_of(st.floats(allow_nan=True, allow_infinity=True),
+                     st.lists(st.floats(0.0, 2000.0), min_size=1, max_size=3)),
+       M_C=st.one_of(st.none(), st.floats(allow_nan=True, allow_infinity=True)),
+       alts=st.lists(st.floats(-6000.0, 33000.0), min_size=1, max_size=3))
+def test_any_failure_envelope_is_finite_or_one_line(V_C, M_C, alts):
+    """Whatever V_C, M_C and altitudes: finite envelope points or a one-line InputError."""
+    from propwhirl.studies.campaign import envelope
+
+    try:
+        pts = envelope(150.0, alts, V_C=V_C, M_C=M_C)
+    except InputError as exc:
+        assert "\n" not in str(exc)
+        return
+    assert all(math.isfinite(p.V_line) and p.V_line > 0 and p.line_part for p in pts)
