@@ -138,3 +138,20 @@ def test_an_interrupted_campaign_resumes(small_file, vcrit, tmp_path, capsys, mo
     assert len(seen) == 4                   # only the points the partial file lacked
     assert (out / "campaign.json").read_text() == (plain / "campaign.json").read_text()
     assert not partial.exists()
+
+
+def test_a_dask_scheduler_gives_the_result_of_one_process(small_file, vcrit, tmp_path):
+    """--scheduler (the Dask route, the distributed extra) on an in-process LocalCluster: the
+    same campaign.json and campaign.csv as --processes 1."""
+    distributed = pytest.importorskip("distributed", reason="the [distributed] extra is not "
+                                                           "installed")
+    path = _write(tmp_path, small_file, vcrit / 1.15 / 1.01)
+    assert cli.main(["certify", str(path), "--out", str(tmp_path / "one"), "--quiet",
+                     "--processes", "1", "--no-report"]) == 0
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
+                                  dashboard_address=None) as cluster:
+        assert cli.main(["certify", str(path), "--out", str(tmp_path / "dask"), "--quiet",
+                         "--scheduler", cluster.scheduler_address, "--no-report"]) == 0
+    for name in ("campaign.json", "campaign.csv"):
+        assert (tmp_path / "dask" / name).read_text() == (tmp_path / "one" / name).read_text()
+    assert len(C.CampaignResult.load(tmp_path / "dask" / "campaign.json").rows) == 6

@@ -267,3 +267,35 @@ def mode_content(model: Model, sw: Sweep, names: Sequence[str]) -> dict[str, dic
         frac = kinetic_energy_shares(X[:, [k]], s.S1[0], groups)
         out[names[k]] = {g: round(float(f[0]), 4) for g, f in frac.items() if abs(f[0]) > 1e-3}
     return out
+
+
+def shape_content(model: Model, x: np.ndarray, V: float) -> dict[str, float]:
+    """Kinetic-energy shares of one shape (a state vector ``x``, its first ``n_dof`` entries
+    the displacements) at speed ``V`` [m/s] by content group (:func:`kinetic_energy_shares`
+    with the structural mass, aerodynamics off): {group: share}."""
+    quiet = model.without_aerodynamics()
+    dm = quiet.dof_map()
+    s = quiet.second_order(np.array([float(V)]))
+    X = np.asarray(x, dtype=complex).ravel()[: dm.n_dof, None]
+    return {g: float(f[0]) for g, f in kinetic_energy_shares(X, s.S1[0], dm.groups()).items()}
+
+
+def real_root_at_the_event(model: Model, label: str, x: np.ndarray, V: float) -> str:
+    """What a real root named "lag k" (an aerodynamic lag state at the first speed) is at an
+    event at ``V`` [m/s] with shape ``x``: e.g. "the wing (torsion 71 %, bending 29 % at the
+    event; lag 5 at the first speed)" — with lag states a static divergence (λ = 0) need not
+    come from a structural mode: the real branch through zero can be one that starts as a lag
+    state and turns right as the speed grows.  "the wing" when the wing's bending, torsion or
+    other non-mount groups hold at least half the kinetic energy, else "the propeller mounts";
+    any other label is returned as it is."""
+    if not label.startswith("lag "):
+        return label
+    shares = shape_content(model, x, V)
+    if not shares or not all(np.isfinite(list(shares.values()))):
+        return label
+    mounts = sum(f for g, f in shares.items() if g in ("pitch", "yaw"))
+    who = "the propeller mounts" if mounts > 0.5 and model.dof_map().has_wing else "the wing"
+    parts = ", ".join(f"{g} {100 * f:.0f} %" for g, f in sorted(shares.items(),
+                                                                key=lambda gf: -gf[1])
+                      if f >= 0.005)
+    return f"{who} ({parts} at the event; {label} at the first speed)"

@@ -153,6 +153,7 @@ SUMMARY_COLUMNS = (
     ("case", lambda r: _td(e(r.case))),
     ("altitude [m]", lambda r: _td(_num(r.altitude_m, ".0f"), "num")),
     ("V_D (TAS) [m/s]", lambda r: _td(_num(r.V_D, ".2f"), "num")),
+    ("rule", lambda r: _td(e(r.rule or "–"))),
     ("V_required [m/s]", lambda r: _td(_num(r.V_required, ".2f"), "num")),
     ("V_crit [m/s]", lambda r: _td(_num(r.critical_speed, ".2f"), "num")),
     ("margin [m/s]", lambda r: _td(_num(r.margin_m_per_s, "+.2f"), "num")),
@@ -247,7 +248,10 @@ def report_html(result: Any, *, campaign_file: str | Path | None = None,
     rows = [("campaign", e(result.name)), ("model", e(result.model_name)), *files,
             ("envelope", e(_envelope(result.rows))),
             ("regulation", e(result.regulation)),
-            ("required speed", f"{result.factor:g} × V_D (true airspeed)"),
+            ("required speed", f"{result.factor:g} × V_D (true airspeed)" + (
+                "; failure cases (25.629(b)(2)): the greater of V_D (M_D) and the 1.15 V_C / "
+                "M_C + 0.05 line, each row's rule" if any(r.rule.startswith("25.629(b)(2)")
+                                                         for r in result.rows) else "")),
             ("damping requirement", e(g)), ("convention", e(result.convention)),
             ("cases cleared", f"{n_ok} of {len(summaries)}"),
             ("analyses", str(result.analyses)),
@@ -284,7 +288,8 @@ def report_html(result: Any, *, campaign_file: str | Path | None = None,
         parts.append(f"<p>Transformation: {e(r.description)}.</p>")
         margin = ("no counted instability up to " + _num(r.analysed_to, ".2f", "m/s")
                   if r.critical_speed is None else
-                  f"V_crit = {r.critical_speed:.2f} m/s, required {r.V_required:.2f} m/s: margin "
+                  f"V_crit = {r.critical_speed:.2f} m/s, required {r.V_required:.2f} m/s"
+                  + (f" ({r.rule})" if r.rule else "") + ": margin "
                   f"{r.margin_m_per_s:+.2f} m/s ({r.margin_percent:+.2f} %)")
         parts.append(f"<p>Least margin at {r.altitude_m:g} m: {e(margin)}; critical: "
                      f"{e(_critical(r))}" + (f"; not cleared: {e(r.reason)}" if r.reason else "")

@@ -21,8 +21,10 @@ Layout::
     convention = "propwhirl"          # or "thesis"
     combine = "list"                  # or "product" (of the case groups)
     [regulation]                      # name = cs25 | far25 | far23 | explicit (+ factor)
-    [envelope]                        # airspeed, V_D_m_per_s, M_D, altitudes_m | altitudes_ft
-    [[cases]]                         # name, propellers, each_propeller, mount_stiffness, ...
+    [envelope]                        # airspeed, V_D_m_per_s, M_D, altitudes_m | altitudes_ft,
+                                      # V_C_m_per_s, M_C (failure cases, 25.629(b)(2))
+    [[cases]]                         # name, propellers, each_propeller, mount_stiffness, ...,
+                                      # failure
 """
 from __future__ import annotations
 
@@ -45,6 +47,8 @@ MAX_TASKS = 10_000
 MAX_ITEMS = 1000
 #: The regulations' speed factors (those of :data:`propwhirl.studies.campaign.REGULATIONS`).
 REGULATIONS = {"cs25": 1.15, "far25": 1.15, "far23": 1.2}
+#: The regulations whose failure cases are held to the envelope of 25.629(b)(2).
+PART25 = ("cs25", "far25")
 #: The airspeeds V_D can be given as; the operations a case can switch a propeller to.
 AIRSPEEDS = ("EAS", "TAS")
 OPERATIONS = ("windmilling",)
@@ -56,10 +60,11 @@ FT = 0.3048
 _TOP = ("format", "format_version", "name", "model", "convention", "combine", "regulation",
         "envelope", "cases")
 _REGULATION = ("name", "factor", "min_damping_g")
-_ENVELOPE = ("airspeed", "V_D_m_per_s", "M_D", "altitudes_m", "altitudes_ft")
+_ENVELOPE = ("airspeed", "V_D_m_per_s", "M_D", "V_C_m_per_s", "M_C", "altitudes_m",
+             "altitudes_ft")
 _CASE = ("name", "group", "propellers", "each_propeller", "mount_stiffness", "mount_damping",
          "wing_damping", "operation", "state", "rpm_factor", "reverse_rotation", "added_masses",
-         "values")
+         "values", "failure")
 _MASS = ("mass_kg", "x_m")
 #: Ranges of the case factors: key → (low, high).
 FACTOR_RANGES = {"mount_stiffness": (1e-3, 100.0), "mount_damping": (0.0, 100.0),
@@ -94,7 +99,8 @@ def _regulation(t: _Table) -> tuple[str, float, float | None]:
     return name, factor, g
 
 
-def _envelope(t: _Table) -> tuple[str, tuple[float, ...], tuple[float, ...], float | None]:
+def _envelope(t: _Table) -> tuple[str, tuple[float, ...], tuple[float, ...], float | None,
+                                  tuple[float, ...] | None, float | None]:
     airspeed = t.string("airspeed", "which airspeed V_D is", AIRSPEEDS)
     if t.has("altitudes_m") == t.has("altitudes_ft"):
         raise v.InputError(f"[{t.where}] give exactly one of altitudes_m, altitudes_ft")
@@ -110,7 +116,20 @@ def _envelope(t: _Table) -> tuple[str, tuple[float, ...], tuple[float, ...], flo
     else:
         vd = [_number_in(t, "V_D_m_per_s", 1.0, 1000.0)]
     M_D = _number_in(t, "M_D", 0.01, 0.95) if t.has("M_D") else None
-    return airspeed, tuple(vd), tuple(alts), M_D
+    V_C: tuple[float, ...] | None = None
+    if t.has("V_C_m_per_s"):
+        if isinstance(t.raw("V_C_m_per_s"), list):
+            V_C = tuple(_list_of_numbers(t, "V_C_m_per_s", 1.0, 1000.0))
+            if len(V_C) != len(alts):
+                raise t.bad("V_C_m_per_s", f"one speed, or one per altitude ({len(alts)})")
+        else:
+            V_C = (_number_in(t, "V_C_m_per_s", 1.0, 1000.0,
+                              "the design cruise speed, an equivalent airspeed [m/s]"),)
+    M_C = _number_in(t, "M_C", 0.01, 0.95) if t.has("M_C") else None
+    if M_C is not None and V_C is None:
+        raise t.missing("V_C_m_per_s", "M_C needs V_C (the failure-case envelope of "
+                                       "25.629(b)(2)(ii))")
+    return airspeed, tuple(vd), tuple(alts), M_D, V_C, M_C
 
 
 def _case(t: _Table, n_propellers: int) -> CaseSpec:
@@ -156,6 +175,8 @@ def _case(t: _Table, n_propellers: int) -> CaseSpec:
         if not 1 <= len(vt.data) <= MAX_ITEMS:
             raise t.bad("values", f"a table of 1 to {MAX_ITEMS} \"path\" = number entries")
         kw["values"] = tuple((k, vt.number(k, "a parameter path's value")) for k in vt.data)
+    if t.has("failure"):
+        kw["failure"] = t.boolean("failure")
     each = t.boolean("each_propeller") if t.has("each_propeller") else False
     return CaseSpec(t.where, name, group, props, each, kw)
 
@@ -179,7 +200,9 @@ class CampaignSpec:
     """A campaign file, checked (module docstring): source (the file's name), name, model
     (loaded), model_path, convention ("propwhirl"/"thesis"), combine ("list"/"product"),
     regulation, factor, min_damping_g (None: none), airspeed ("EAS"/"TAS"), V_D [m/s] (one,
-    or one per altitude), altitudes_m [m], M_D (None: none), cases."""
+    or one per altitude), altitudes_m [m], M_D (None: none), cases, V_C [m/s EAS] (one, or
+    one per altitude; None: none) and M_C (None: none): the failure-case envelope of
+    25.629(b)(2)(ii)."""
 
     source: str
     name: str
@@ -195,6 +218,8 @@ class CampaignSpec:
     altitudes_m: tuple[float, ...]
     M_D: float | None
     cases: tuple[CaseSpec, ...]
+    V_C: tuple[float, ...] | None = None
+    M_C: float | None = None
 
 
 def _from_dict(data: dict[str, Any], base: Path, source: str) -> CampaignSpec:
@@ -225,7 +250,13 @@ def _from_dict(data: dict[str, Any], base: Path, source: str) -> CampaignSpec:
     combine = top.string("combine", choices=("list", "product")) \
         if top.has("combine") else "list"
     regulation, factor, g = _regulation(top.sub("regulation", _REGULATION))
-    airspeed, vd, alts, M_D = _envelope(top.sub("envelope", _ENVELOPE))
+    env = top.sub("envelope", _ENVELOPE)
+    airspeed, vd, alts, M_D, V_C, M_C = _envelope(env)
+    if V_C is not None and regulation not in PART25:
+        raise env.bad("V_C_m_per_s", f"absent with [regulation] name = {regulation!r}: the "
+                      "failure-case envelope (V_C, M_C) is that of 25.629(b)(2) (cs25, far25); "
+                      f"under {regulation!r} every case, failure or not, is held to "
+                      f"{factor:g} V_D")
     raw = top.raw("cases", "one [[cases]] table per case")
     if not isinstance(raw, list) or not 1 <= len(raw) <= MAX_ITEMS:
         raise top.bad("cases", f"1 to {MAX_ITEMS} [[cases]] tables")
@@ -244,7 +275,7 @@ def _from_dict(data: dict[str, Any], base: Path, source: str) -> CampaignSpec:
         raise v.InputError(f"the cases ({count}) x altitudes ({len(alts)}) make "
                            f"{count * len(alts)} analyses, at most {MAX_TASKS}")
     return CampaignSpec(source, name, model, str(path), conv, combine, regulation, factor, g,
-                        airspeed, vd, alts, M_D, tuple(specs))
+                        airspeed, vd, alts, M_D, tuple(specs), V_C, M_C)
 
 
 def loads(text: str, source: str = "<string>", base: str | Path = ".") -> CampaignSpec:

@@ -22,8 +22,10 @@ one-line InputError before any analysis), then runs one analysis per (case, poin
 :func:`propwhirl.studies.execution.map_analyses` (serial, local processes or Dask, a progress
 bar, a partial-results file and resume).  Each point's result (:func:`evaluate_point`) holds
 the critical instability (:func:`propwhirl.studies.critical.critical_instability`: kind, event,
-mode, frequency, whirl sense, every propeller's share), V_crit, the required speed factor · V_D,
-the margin V_crit − factor · V_D [m/s] and [%], the least damping g = 2ζ of the oscillatory
+mode, frequency, whirl sense, every propeller's share), V_crit, the required speed and its rule
+(:func:`required_speed`: factor · V_D, or for a failure case of CS/14 CFR 25.629(b)(2) the
+greater of V_D and the 1.15 V_C / M_C + 0.05 line, :func:`failure_line`),
+the margin V_crit − V_required [m/s] and [%], the least damping g = 2ζ of the oscillatory
 modes (those with an event and the :data:`DAMPING_MODES` of lowest frequency) up to the required speed and up to V_D (with mode and speed), and the slope dζ/dV [s/m]
 of the least damped mode at the required speed ("rapid loss of stability").  A point clears
 when no counted instability lies at or below the required speed and, with a damping
@@ -68,6 +70,14 @@ RHO0 = float(atmosphere.density(0.0))
 OPERATIONS = ("windmilling",)
 #: States a case can put an installation in (:class:`propwhirl.model.systems.Installation`).
 STATES = ("operating", "feathered", "stopped")
+#: The transformations that make a case a failure condition of 25.629(d) unless it says
+#: ``failure = false`` (:attr:`Case.is_failure`), with the paragraph of 25.629(d).
+FAILURE_KINDS = ("mount_stiffness < 1: (d)(4), (d)(5)", "mount_damping < 1: (d)(2)",
+                 "state feathered or stopped: (d)(6)", "rpm_factor > 1: (d)(7)")
+#: The regulations whose failure cases are held to the envelope of 25.629(b)(2).
+PART25 = ("cs25", "far25")
+#: The Mach number added to M_C above the lowest V_C/M_C intersection in 25.629(b)(2)(ii).
+DELTA_M_C = 0.05
 
 
 # ============================================================================== cases
@@ -94,7 +104,11 @@ class Case:
     added_masses:     (mass [kg], x [m]) point masses added on each chosen propeller's shaft
                       (a battery or a tank in the nacelle);
     values:           (parameter path, value) pairs set on the model
-                      (:func:`propwhirl.studies.paths.set_values`), after the rest.
+                      (:func:`propwhirl.studies.paths.set_values`), after the rest;
+    failure:          a failure, malfunction or adverse condition of 25.629(d), held to the
+                      failure-case envelope of 25.629(b)(2) under "cs25"/"far25"
+                      (:func:`required_speed`); None (default): :attr:`is_failure` decides
+                      from the transformation (:data:`FAILURE_KINDS`).
     """
 
     name: str
@@ -108,6 +122,7 @@ class Case:
     added_masses: tuple[tuple[float, float], ...] = ()
     values: tuple[tuple[str, float], ...] = ()
     state: str = ""
+    failure: bool | None = None
 
     def __post_init__(self) -> None:
         where = f"case {self.name!r}"
@@ -127,6 +142,20 @@ class Case:
         if self.state not in ("", *STATES):
             raise v.InputError(f"{where}: state = {v.short_repr(self.state)} is invalid: must be "
                                f"one of {', '.join(STATES)}")
+        if self.failure is not None and not isinstance(self.failure, bool):
+            raise v.InputError(f"{where}: failure = {v.short_repr(self.failure)} is invalid: "
+                               "must be true or false")
+
+    @property
+    def is_failure(self) -> bool:
+        """Whether the case is a failure condition of 25.629(d) (held to 25.629(b)(2)): its
+        `failure` when given, else whether it is one of the :data:`FAILURE_KINDS` — a mount
+        degraded (mount_stiffness < 1), a damper degraded or failed (mount_damping < 1), a
+        feathered or stopped rotor, overspeed (rpm_factor > 1)."""
+        if self.failure is not None:
+            return self.failure
+        return (self.mount_stiffness < 1.0 or self.mount_damping < 1.0
+                or self.state in ("feathered", "stopped") or self.rpm_factor > 1.0)
 
     def describe(self) -> str:
         """The transformation in words ("nominal" when it changes nothing)."""
@@ -156,8 +185,8 @@ class Case:
 
     def combine(self, other: "Case") -> "Case":
         """This case followed by `other` (a product of cases): the names joined with " + ",
-        the factors multiplied, the masses and values appended; the two must act on the same
-        propellers when both transform propellers."""
+        the factors multiplied, the masses and values appended, a failure when either is; the
+        two must act on the same propellers when both transform propellers."""
         if self.propellers != other.propellers and _acts_on_propellers(self) \
                 and _acts_on_propellers(other):
             raise v.InputError(f"cases {self.name!r} and {other.name!r} cannot be combined: they "
@@ -170,7 +199,9 @@ class Case:
                     other.operation or self.operation, self.rpm_factor * other.rpm_factor,
                     self.reverse_rotation != other.reverse_rotation,
                     self.added_masses + other.added_masses, self.values + other.values,
-                    other.state or self.state)
+                    other.state or self.state,
+                    None if self.failure is None and other.failure is None
+                    else self.is_failure or other.is_failure)
 
     def apply(self, model: Any) -> Any:
         """The model transformed (every change checked by the model's own validation; an error
@@ -270,13 +301,18 @@ class EnvelopePoint:
 
     V_D: the design dive speed as a true airspeed [m/s] (what the analyses use);
     V_D_given: as given [m/s] (`airspeed`: "EAS" or "TAS"); mach_limited: V_D = M_D · a(h)
-    (M_D is the lower bound at this altitude)."""
+    (M_D is the lower bound at this altitude); V_line: the failure-case line of
+    25.629(b)(2)(ii) at this altitude as a true airspeed [m/s] (None: no V_C given) and
+    line_part: which part of it ("1.15 V_C", "V_C-M_C line", "M_C + 0.05";
+    :func:`failure_line`)."""
 
     altitude_m: float
     V_D: float
     V_D_given: float
     airspeed: str
     mach_limited: bool = False
+    V_line: float | None = None
+    line_part: str = ""
 
 
 def true_airspeed(V: float, airspeed: str, altitude_m: float) -> float:
@@ -290,11 +326,99 @@ def true_airspeed(V: float, airspeed: str, altitude_m: float) -> float:
     return float(V) * math.sqrt(RHO0 / float(atmosphere.density(altitude_m)))
 
 
+def mach_eas(M: float, altitude_m: float) -> float:
+    """The equivalent airspeed [m/s] of Mach `M` at the ISA `altitude_m` [m]:
+    M a(h) sqrt(ρ(h) / ρ0)."""
+    h = float(altitude_m)
+    return float(M) * float(atmosphere.speed_of_sound(h)) * math.sqrt(
+        float(atmosphere.density(h)) / RHO0)
+
+
+def _crossing(f: Any) -> float | None:
+    """The lowest ISA altitude [m] where f(h) changes from > 0 to <= 0 (f continuous), None
+    when f > 0 over the whole ISA range; -inf when f <= 0 already at its bottom."""
+    from scipy.optimize import brentq
+
+    grid = np.linspace(atmosphere.MIN_ALTITUDE, atmosphere.MAX_ALTITUDE, 371)
+    vals = [f(h) for h in grid]
+    if vals[0] <= 0.0:
+        return -math.inf
+    for i in range(1, grid.size):
+        if vals[i] <= 0.0:
+            return float(brentq(f, grid[i - 1], grid[i], xtol=1e-6))
+    return None
+
+
+def failure_line(altitudes_m: Sequence[float], V_C: float | Sequence[float],
+                 M_C: float | None = None,
+                 V_C_altitudes_m: Sequence[float] | None = None) -> list[tuple[float, str]]:
+    """The altitude-airspeed envelope of 25.629(b)(2)(ii) at each ISA altitude [m]:
+    (equivalent airspeed [m/s], which part of the line) —
+
+    * "1.15 V_C": 15 % above V_C (EAS) at constant altitude, from sea level (and below) to h1,
+      the altitude where 1.15 V_C meets the extension of the M_C line (M_C a(h) in EAS:
+      :func:`mach_eas`);
+    * "V_C-M_C line": linear in EAS against altitude from 1.15 V_C at h1 to M_C + 0.05 at h2,
+      the altitude of the lowest V_C/M_C intersection;
+    * "M_C + 0.05": above h2, (M_C + 0.05) a(h) at constant altitude.
+
+    V_C [m/s] is an EAS, one for every altitude or one per altitude of `V_C_altitudes_m`
+    (default `altitudes_m`; linear between them, constant beyond).  Without M_C the line is
+    1.15 V_C at every altitude.  An M_C whose line lies below 1.15 V_C already at the ISA's
+    lowest altitude, or whose V_C/M_C intersection is above its highest with h1 below it, is
+    an InputError."""
+    alts = np.atleast_1d(np.asarray(altitudes_m, dtype=float))
+    vc = np.atleast_1d(np.asarray(V_C, dtype=float))
+    at = alts if V_C_altitudes_m is None else np.atleast_1d(np.asarray(V_C_altitudes_m, float))
+    if vc.size == 1:
+        vc, at = np.full(1, vc[0]), np.zeros(1)
+    if vc.size != at.size:
+        raise v.InputError(f"V_C has {vc.size} speeds for {at.size} altitudes: give one V_C or "
+                           "one per altitude")
+    order = np.argsort(at)
+    at, vc = at[order], vc[order]
+
+    def V_C_at(h: float) -> float:
+        return float(np.interp(h, at, vc))
+
+    if M_C is None:
+        return [(1.15 * V_C_at(h), "1.15 V_C") for h in alts]
+    h1 = _crossing(lambda h: mach_eas(M_C, h) - 1.15 * V_C_at(h))
+    h2 = _crossing(lambda h: mach_eas(M_C, h) - V_C_at(h))
+    if h1 == -math.inf:
+        raise v.InputError(f"M_C = {M_C:g} is invalid with V_C = {vc.min():g} m/s (EAS): its "
+                           "line is below 1.15 V_C "
+                           f"already at {atmosphere.MIN_ALTITUDE:g} m (M_C is the cruise Mach "
+                           "number above the V_C/M_C intersection)")
+    if h1 is None:                            # the M_C line never reaches 1.15 V_C
+        return [(1.15 * V_C_at(h), "1.15 V_C") for h in alts]
+    if h2 is None:
+        raise v.InputError(f"M_C = {M_C:g} is invalid with V_C = {vc.min():g} m/s (EAS): "
+                           "1.15 V_C meets its line at "
+                           f"{h1:.0f} m but V_C does not below {atmosphere.MAX_ALTITUDE:g} m")
+    top = mach_eas(M_C + DELTA_M_C, h2)
+    start = 1.15 * V_C_at(h1)
+    out = []
+    for h in alts:
+        if h <= h1:
+            out.append((1.15 * V_C_at(h), "1.15 V_C"))
+        elif h <= h2:
+            w = (h - h1) / (h2 - h1) if h2 > h1 else 1.0
+            out.append((float(start + w * (top - start)), "V_C-M_C line"))
+        else:
+            out.append((mach_eas(M_C + DELTA_M_C, h), "M_C + 0.05"))
+    return out
+
+
 def envelope(V_D: float | Sequence[float], altitudes_m: Sequence[float], *,
-             airspeed: str = "EAS", M_D: float | None = None) -> tuple[EnvelopePoint, ...]:
+             airspeed: str = "EAS", M_D: float | None = None,
+             V_C: float | Sequence[float] | None = None,
+             M_C: float | None = None) -> tuple[EnvelopePoint, ...]:
     """The envelope points: V_D [m/s] (one for all altitudes, or one per altitude: a
     V–altitude line) as `airspeed` at each ISA altitude [m], limited by M_D · a(h) [m/s]
-    when M_D is given."""
+    when M_D is given; with V_C (an EAS [m/s], one or one per altitude) and optionally M_C,
+    each point's failure-case line of 25.629(b)(2)(ii) (:func:`failure_line`) as a true
+    airspeed."""
     alts = np.atleast_1d(np.asarray(v.finite("altitudes_m", altitudes_m, "m"), dtype=float))
     if alts.ndim != 1 or alts.size == 0:
         raise v.InputError("altitudes_m is invalid: give one or more altitudes")
@@ -307,15 +431,25 @@ def envelope(V_D: float | Sequence[float], altitudes_m: Sequence[float], *,
                            "or one per altitude")
     if M_D is not None:
         v.in_range("M_D", M_D, 0.01, 0.95)
+    line: list[tuple[float | None, str]] = [(None, "")] * alts.size
+    if V_C is not None:
+        v.in_range("V_C", V_C, 1.0, 1000.0)
+        if M_C is not None:
+            v.in_range("M_C", M_C, 0.01, 0.95)
+        line = list(failure_line(alts, V_C, M_C))
+    elif M_C is not None:
+        raise v.InputError("M_C needs V_C (the failure-case envelope of 25.629(b)(2)(ii))")
     out = []
-    for h, V in zip(alts, vd):
+    for h, V, (eas, part) in zip(alts, vd, line):
         tas = true_airspeed(float(V), airspeed, float(h))
         limited = False
         if M_D is not None:
             vm = float(M_D) * float(atmosphere.speed_of_sound(float(h)))
             if vm < tas:
                 tas, limited = vm, True
-        out.append(EnvelopePoint(float(h), tas, float(V), airspeed, limited))
+        out.append(EnvelopePoint(float(h), tas, float(V), airspeed, limited,
+                                 None if eas is None else true_airspeed(eas, "EAS", float(h)),
+                                 part))
     return tuple(out)
 
 
@@ -351,6 +485,11 @@ class Campaign:
             if names.count(n) > 1:
                 raise v.InputError(f"case name {n!r} is given twice: every case needs its own name")
         v.in_range("factor", self.factor, 1.0, 3.0)
+        if self.regulation not in PART25 and any(p.V_line is not None for p in self.points):
+            raise v.InputError(f"V_C is invalid with regulation {self.regulation!r}: the "
+                               "failure-case envelope (V_C, M_C) is 25.629(b)(2)'s (cs25, far25); "
+                               f"under {self.regulation!r} every case is held to "
+                               f"{self.factor:g} V_D")
         if self.min_damping_g is not None:
             v.in_range("min_damping_g", self.min_damping_g, 0.0, 1.0)
         v.positive("xtol", self.xtol, "m/s")
@@ -358,6 +497,26 @@ class Campaign:
     @property
     def convention(self) -> str:
         return convention(self.static_divergence, self.low_speed)
+
+
+def required_speed(c: Campaign, case: Case, p: EnvelopePoint) -> tuple[float, str]:
+    """The speed [m/s, TAS] case `case` must clear at point `p` of campaign `c`, and the rule
+    that sets it:
+
+    * a case that is not a failure (:attr:`Case.is_failure`), and every case under "far23" or
+      "explicit" (14 CFR 23.629 and AC 23.629-1B hold failure cases to the same 1.2 V_D): the
+      factor times V_D ("25.629(b)(1) 1.15 V_D", "23.629 1.2 V_D", "1.25 V_D");
+    * a failure case under "cs25"/"far25" (25.629(b)(2)): the greater of V_D (with its M_D
+      limit; "25.629(b)(2)(i) V_D") and the point's line of (b)(2)(ii)
+      (:func:`failure_line`; "25.629(b)(2)(ii) 1.15 V_C", "... V_C-M_C line",
+      "... M_C + 0.05"); without V_C, V_D."""
+    if c.regulation not in PART25 or not case.is_failure:
+        where = {"cs25": "25.629(b)(1) ", "far25": "25.629(b)(1) ",
+                 "far23": "23.629 "}.get(c.regulation, "")
+        return c.factor * p.V_D, f"{where}{c.factor:g} V_D"
+    if p.V_line is not None and p.V_line > p.V_D:
+        return p.V_line, f"25.629(b)(2)(ii) {p.line_part}"
+    return p.V_D, "25.629(b)(2)(i) " + ("M_D" if p.mach_limited else "V_D")
 
 
 def regulation_factor(regulation: str, factor: float | None = None) -> float:
@@ -420,8 +579,12 @@ def _from_spec(spec: Any) -> Campaign:
                                "own name")
         seen.add(c.name)
     thesis = spec.convention == "thesis"
-    camp = Campaign(spec.name, spec.model, tuple(cases),
-                    envelope(spec.V_D, spec.altitudes_m, airspeed=spec.airspeed, M_D=spec.M_D),
+    try:
+        points = envelope(spec.V_D, spec.altitudes_m, airspeed=spec.airspeed, M_D=spec.M_D,
+                          V_C=spec.V_C, M_C=spec.M_C)
+    except v.InputError as exc:
+        raise v.InputError(f"[envelope] {exc}") from None
+    camp = Campaign(spec.name, spec.model, tuple(cases), points,
                     spec.regulation, spec.factor, spec.min_damping_g,
                     static_divergence=not thesis, low_speed=not thesis)
     tasks(camp)          # every case's model at every point, built and checked now
@@ -451,7 +614,7 @@ def tasks(c: Campaign) -> tuple[list[_Task], list[str]]:
         model = case.apply(c.model)
         for p in c.points:
             m = at_altitude(model, p.altitude_m)
-            V_req = c.factor * p.V_D
+            V_req, _ = required_speed(c, case, p)
             try:
                 grid = clearance_speeds(m, V_req)
             except v.InputError as exc:
@@ -477,25 +640,30 @@ def _at(zeta: np.ndarray, dzeta: np.ndarray, V: np.ndarray, speed: float,
     return {"zeta": float(z[k]), "dzeta_dV": float(dz[k]), "mode": labels[k]}
 
 
-def _critical_shape(a: Any, e: Any) -> dict[str, Any] | None:
-    """The shape of the critical instability `e` of analysis `a` (:class:`PointPlot`'s
-    ``shape``): the refined critical point's eigenvector, else the tracked mode's at the
-    nearest sweep speed; None when there is none."""
-    dm = a.dof_map
-    if e is None or dm is None:
+def _event_vector(a: Any, e: Any) -> tuple[np.ndarray, complex, float] | None:
+    """(eigenvector, eigenvalue, V [m/s]) of event `e` of analysis `a`: the refined critical
+    point's, else the tracked mode's at the nearest sweep speed; None when there is none."""
+    if e is None:
         return None
-    x = lam = None
-    Ve = float(e.V)
     if a.criticals is not None:
         for p in a.criticals.points:
             if p.mode == e.mode and abs(p.V - e.V) <= 1e-9 * max(1.0, abs(e.V)):
-                x, lam, Ve = np.asarray(p.eigenvector), complex(p.eigenvalue), float(p.V)
-    if x is None and a.sweep.eigenvectors is not None:
+                return np.asarray(p.eigenvector), complex(p.eigenvalue), float(p.V)
+    if a.sweep.eigenvectors is not None:
         t = int(np.argmin(np.abs(a.sweep.V - e.V)))
-        x, lam = a.sweep.eigenvectors[t, :, e.mode], complex(a.sweep.eigenvalues[t, e.mode])
-        Ve = float(a.sweep.V[t])
-    if x is None:
+        return (a.sweep.eigenvectors[t, :, e.mode], complex(a.sweep.eigenvalues[t, e.mode]),
+                float(a.sweep.V[t]))
+    return None
+
+
+def _critical_shape(a: Any, e: Any) -> dict[str, Any] | None:
+    """The shape of the critical instability `e` of analysis `a` (:class:`PointPlot`'s
+    ``shape``): :func:`_event_vector`; None when there is none."""
+    dm = a.dof_map
+    found = None if dm is None else _event_vector(a, e)
+    if found is None:
         return None
+    x, lam, Ve = found
     x = np.asarray(x, dtype=complex).ravel()[: dm.n_dof]
     shown = [i for i, k in enumerate(dm.q_kinds) if k in ("h", "alpha", "theta", "psi")]
     if not shown or not np.abs(x[shown]).max() > 0:
@@ -541,6 +709,7 @@ def plot_data(a: Any, modes: Sequence[int], e: Any) -> dict[str, Any]:
 
 def evaluate_point(task: _Task) -> dict[str, Any]:
     """Analyse one (case, point) and return its result row (plain JSON: module docstring)."""
+    from propwhirl.analysis.naming import real_root_at_the_event
     from propwhirl.analysis.stability import analyse
     from propwhirl.studies.critical import critical_instability, wing_divergence_predicate
 
@@ -561,11 +730,16 @@ def evaluate_point(task: _Task) -> dict[str, Any]:
         shares = [[int(p.propeller), float(p.share), p.whirl or ""]
                   for p in e.participation.propellers]
     Vc = None if e is None else float(e.V)
+    mode = "" if e is None else e.label
+    if e is not None and e.kind == "divergence" and mode.startswith("lag "):
+        found = _event_vector(a, e)       # a real root from a lag state: name it at the event
+        if found is not None:
+            mode = real_root_at_the_event(task.model, mode, found[0], found[2])
     return {
         "critical_speed": Vc,
         "kind": "none" if e is None else e.kind,
         "event": "" if e is None else e.event,
-        "mode": "" if e is None else e.label,
+        "mode": mode,
         "frequency_hz": None if e is None else float(e.frequency_hz),
         "whirl": "" if e is None or e.whirl is None else e.whirl,
         "propeller_shares": shares,
@@ -582,10 +756,10 @@ def evaluate_point(task: _Task) -> dict[str, Any]:
 def _row(c: Campaign, case: Case, p: EnvelopePoint, r: Any) -> PointRow:
     """The :class:`PointRow` of one point's result `r` (a dict of :func:`evaluate_point` or a
     TaskError)."""
-    V_req = c.factor * p.V_D
+    V_req, rule = required_speed(c, case, p)
     base = dict(case=case.name, description=case.describe(), altitude_m=p.altitude_m,
                 airspeed=p.airspeed, V_D_given=p.V_D_given, V_D=p.V_D,
-                mach_limited=p.mach_limited, V_required=V_req)
+                mach_limited=p.mach_limited, V_required=V_req, rule=rule)
     if isinstance(r, execution.TaskError):
         return PointRow(**base, cleared=False, reason="analysis failed", critical_speed=None,
                         margin_m_per_s=None, margin_percent=None, kind="error", event="",

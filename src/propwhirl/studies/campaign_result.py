@@ -24,7 +24,7 @@ from propwhirl.results import Result, SavedDict
 
 #: The keys of a point's row, and which of them are numbers and strings.
 _ROW_KEYS = ("case", "description", "altitude_m", "airspeed", "V_D_given", "V_D", "mach_limited",
-             "V_required", "cleared", "reason", "critical_speed", "margin_m_per_s",
+             "V_required", "rule", "cleared", "reason", "critical_speed", "margin_m_per_s",
              "margin_percent", "kind", "event", "mode", "frequency_hz", "whirl",
              "propeller_shares", "analysed_to", "least_g", "least_g_V", "least_g_mode",
              "least_g_to_V_D", "least_g_to_V_D_mode", "g_at_required", "dzeta_dV_at_required",
@@ -32,6 +32,8 @@ _ROW_KEYS = ("case", "description", "altitude_m", "airspeed", "V_D_given", "V_D"
 _ROW_NUMBERS = ("critical_speed", "margin_m_per_s", "margin_percent", "frequency_hz",
                 "analysed_to", "least_g", "least_g_V", "least_g_to_V_D", "g_at_required",
                 "dzeta_dV_at_required")
+#: Row keys that files written before them lack (read as "").
+_ROW_LATER = ("rule",)
 _ROW_STRINGS = ("case", "description", "airspeed", "reason", "kind", "event", "mode", "whirl",
                 "least_g_mode", "least_g_to_V_D_mode", "mode_at_required", "error")
 
@@ -129,7 +131,10 @@ def _complex_dict(x: Any) -> dict[str, list[float]]:
 class PointRow:
     """One (case, envelope point) of a campaign's result.
 
-    Speeds are true airspeeds [m/s]; margin_m_per_s = V_crit − V_required, margin_percent =
+    Speeds are true airspeeds [m/s]; V_required: the speed the point must clear and rule: the
+    rule that sets it (:func:`propwhirl.studies.campaign.required_speed`: "25.629(b)(1) 1.15
+    V_D", "25.629(b)(2)(i) V_D", "25.629(b)(2)(ii) 1.15 V_C", "23.629 1.2 V_D", ...; "" in
+    files written before it); margin_m_per_s = V_crit − V_required, margin_percent =
     100 (V_crit / V_required − 1) (None when no counted instability lies in the analysed range,
     which ends at `analysed_to` [m/s], beyond V_required); least_g: the least g = 2ζ of the
     oscillatory modes up to V_required (at least_g_V, of least_g_mode); least_g_to_V_D: up to
@@ -169,6 +174,7 @@ class PointRow:
     mode_at_required: str
     error: str
     plot: PointPlot | None = None
+    rule: str = ""
 
     def to_dict(self) -> dict[str, Any]:
         """The row's numbers (the CSV's columns) and, under "plot", its figures' data."""
@@ -181,12 +187,15 @@ class PointRow:
 
     @classmethod
     def from_dict(cls, d: Any, where: str = "row") -> "PointRow":
-        r = SavedDict(d, where, _ROW_KEYS, ("plot",))
+        r = SavedDict(d, where, [k for k in _ROW_KEYS if k not in _ROW_LATER],
+                      ("plot", *_ROW_LATER))
         vals: dict[str, Any] = {}
         for k in _ROW_NUMBERS:
             vals[k] = r.number(k, optional=True)
         for k in _ROW_STRINGS:
             vals[k] = r.string(k)
+        for k in _ROW_LATER:
+            vals[k] = r.string(k) if r.has(k) else ""
         for k in ("altitude_m", "V_D_given", "V_D", "V_required"):
             vals[k] = r.number(k)
         for k in ("mach_limited", "cleared"):
@@ -262,11 +271,15 @@ class CampaignResult(Result):
         g = "" if self.min_damping_g is None else f"; g >= {self.min_damping_g:g} up to V_D"
         head = (f"{self.name}: {self.model_name}: clearance to {self.factor:g} V_D "
                 f"({self.regulation}{g}); {self.convention}")
+        if any(r.rule.startswith("25.629(b)(2)") for r in self.rows):
+            head += "; failure cases: 25.629(b)(2)"
         summaries = self.cases()
         w = max([4] + [len(s.case) for s in summaries])
-        lines = [head, f"{'case':{w}s} {'verdict':11s} {'alt [m]':>8s} {'V_req':>8s} "
+        wr = max([4] + [len(s.worst.rule) for s in summaries])
+        lines = [head, f"{'case':{w}s} {'verdict':11s} {'alt [m]':>8s} {'rule':{wr}s} "
+                       f"{'V_req':>8s} "
                        f"{'V_crit':>8s} {'margin':>8s} {'margin':>7s} {'min g':>7s} "
-                       f"{'dzeta/dV':>9s}  critical", f"{'':{w}s} {'':11s} {'':>8s} "
+                       f"{'dzeta/dV':>9s}  critical", f"{'':{w}s} {'':11s} {'':>8s} {'':{wr}s} "
                        f"{'[m/s]':>8s} {'[m/s]':>8s} {'[m/s]':>8s} {'[%]':>7s} {'':>7s} {'[s/m]':>9s}"]
         for s in summaries:
             r = s.worst
@@ -277,7 +290,7 @@ class CampaignResult(Result):
                     + (f" at {num(r.frequency_hz, '.2f')} Hz" if r.kind == "flutter" else "")
                     + (f", {r.whirl} whirl" if r.whirl else ""))
             verdict = "cleared" if s.cleared else f"NOT ({s.failing})"
-            lines.append(f"{s.case:{w}s} {verdict:11s} {r.altitude_m:8.0f} "
+            lines.append(f"{s.case:{w}s} {verdict:11s} {r.altitude_m:8.0f} {r.rule:{wr}s} "
                          f"{r.V_required:8.2f} {num(r.critical_speed, '8.2f'):>8s} "
                          f"{num(r.margin_m_per_s, '+8.2f'):>8s} {num(r.margin_percent, '+7.2f'):>7s} "
                          f"{num(r.least_g, '7.4f'):>7s} {num(r.dzeta_dV_at_required, '+9.2e'):>9s}"
