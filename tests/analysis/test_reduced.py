@@ -211,3 +211,14 @@ def test_model_variants_reduced_equal_dense(name):
     """Every switch and aerodynamic model of the wing reduces: the same events as dense."""
     m = _variant(name)
     assert_same_events(analyse(m, method="reduced"), analyse(m, method="dense"))
+
+
+def test_a_wing_with_a_propeller_without_aerodynamics_is_reduced():
+    """The wingtip model with propeller_aero off (Table 10.4): the propeller modes have no
+    aerodynamic stiffness, so their static corrections are zero vectors — dropped from the
+    basis (they made it NaN: "array must not contain infs or NaNs"); the default analysis is
+    reduced and equals the dense reference."""
+    m = wingtip_propeller_wing(propeller_aero=False)
+    auto = analyse(m)
+    assert auto.sweep.stats["reduced_states"] < m.dof_map().n_states
+    assert_same_events(auto, analyse(m, method="dense"))
