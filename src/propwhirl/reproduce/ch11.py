@@ -8,7 +8,7 @@ measure.
 """
 from __future__ import annotations
 
-from propwhirl.analysis.stability import analyse, speed_and_frequency
+from propwhirl.analysis.stability import speed_and_frequency
 from propwhirl.cases.ch11_parametric import (
     TABLE_11_1_CASES,
     TABLE_11_3_CASES,
@@ -21,7 +21,7 @@ from propwhirl.cases.ch11_parametric import (
 )
 from propwhirl.generated import prop_flexwing
 from propwhirl.model.propeller import Propeller
-from propwhirl.reproduce.harness import register
+from propwhirl.reproduce.harness import analyse, register
 from propwhirl.studies.parametric import blade_angle_mode_switch
 
 
