@@ -174,21 +174,25 @@ def _reduced_engine_analysis(model, grid, displacement, state_labels, options, x
     return ReducedRun(Analysis(lifted, crit), R, tuple(shifts))
 
 
-def _unstable_pairs(state_matrix, V: float) -> int:
-    """Eigenvalues with Re λ > 0 and Im λ > 0 of ``state_matrix`` at V [m/s] (as the engine's
+def _unstable_pairs(A: np.ndarray) -> int:
+    """Eigenvalues with Re λ > 0 and Im λ > 0 of the state matrix ``A`` (as the engine's
     frequency-zero search counts them)."""
-    lam = np.linalg.eigvals(state_matrix(np.array([V]))[0])
+    lam = np.linalg.eigvals(A)
     return int(np.sum((lam.real > 0) & (lam.imag > 1e-9 * np.maximum(1.0, np.abs(lam)))))
 
 
 def frequency_zero_on_full_order(points, state_matrix) -> bool:
     """Whether every frequency-zero event ``points`` (of the reduced model, brackets of width
     ≤ xtol) is one of the full-order model too: its count of unstable complex pairs
-    (``state_matrix``: the full-order A(V)) falls inside each bracket, so the full-order branch
-    point lies within xtol of the event's speed.  Two full eigenvalue solves per event."""
+    (``state_matrix``: the full-order A(V), evaluated at every bracket end in one call) falls
+    inside each bracket, so the full-order branch point lies within xtol of the event's speed.
+    Two full eigenvalue solves per event."""
+    if not points:
+        return True
     with single_thread_blas():
-        return all(_unstable_pairs(state_matrix, p.bracket[0])
-                   > _unstable_pairs(state_matrix, p.bracket[1]) for p in points)
+        A = state_matrix(np.array([V for p in points for V in p.bracket], dtype=float))
+        return all(_unstable_pairs(A[2 * k]) > _unstable_pairs(A[2 * k + 1])
+                   for k in range(len(points)))
 
 
 def _reduced_slopes(sweep, points) -> list[float | None]:
