@@ -12,11 +12,13 @@ mount frequencies ``propellers[0].propeller.f_theta`` and ``…f_psi`` each at `
 (1–350 m/s), on ``--processes`` local worker processes (BLAS one thread in each).  Measured
 side by side in one run, the machine's core count printed with the results:
 
-* **fast**: ``critical_map(..., method="reduced", warm_start=True)`` — the reduced-order
+* **fast**: ``critical_map(..., method="reduced", warm_start=True)`` (the defaults since
+  issue 26: method "auto" reduces a wing) — the reduced-order
   analysis of every point (crossings converged on the full-order model), warm-started
   (:mod:`propwhirl.studies.warmstart`: a coarse pass over every 5th point, the others over a
   speed range clipped at 1.05 × their coarse corners' highest speed);
-* **reference**: today's default, ``critical_map(...)`` — the dense engine over the whole
+* **reference**: the brute-force reference, ``critical_map(..., method="dense",
+  warm_start=False)`` (the default before issue 26) — the dense engine over the whole
   range at every point (``--reference full``: every point; ``--reference sample``: ``--sample``
   points spread over the map, the full map's time extrapolated from their mean — said so).
 
@@ -77,7 +79,8 @@ def run(n: int, processes: int, reference: str, sample: int):
                                               processes=processes, stats=stats))
     res = {"n": n, "processes": processes, "fast": (wf, cf), "stats": stats, "map": fast}
     if reference == "full":
-        ref, wr, cr = timed(lambda: critical_map(model, axes, processes=processes))
+        ref, wr, cr = timed(lambda: critical_map(model, axes, method="dense", warm_start=False,
+                                                 processes=processes))
         idx = np.arange(n * n)
         res.update(ref=(wr, cr), ref_points=n * n, extrapolated=False)
         ref_rows = {c: ref.columns[c].ravel() for c in ref.columns}
@@ -85,7 +88,7 @@ def run(n: int, processes: int, reference: str, sample: int):
         idx = np.unique(np.linspace(0, n * n - 1, sample).round().astype(int))
         grid = [(values[i // n], values[i % n]) for i in idx]
         variants = [P.set_values(model, {PATHS[0]: a, PATHS[1]: b}) for a, b in grid]
-        rows, wr, cr = timed(lambda: run_points(variants, processes=processes))
+        rows, wr, cr = timed(lambda: run_points(variants, processes=processes, method="dense"))
         res.update(ref=(wr * n * n / idx.size, cr * n * n / idx.size), ref_points=idx.size,
                    extrapolated=True, ref_measured=(wr, cr))
         ref_rows = {c: np.array([r[c] for r in rows]) for c in rows[0]}
@@ -118,7 +121,7 @@ def report(res: dict) -> str:
         "",
         "| method | analyses | wall [s] | CPU [s] | wall per point [ms] | target < 60 s |",
         "|---|---|---|---|---|---|",
-        f"| reference: default (dense, whole range){' — extrapolated from ' + str(res['ref_points']) + ' points' if res['extrapolated'] else ''} "
+        f"| reference: brute force (dense, whole range){' — extrapolated from ' + str(res['ref_points']) + ' points' if res['extrapolated'] else ''} "
         f"| {n * n} | {wr:.1f} | {cr:.1f} | {1e3 * wr / n / n:.1f} | |",
         f"| reduced, warm-started | {st['coarse']} coarse + {st['fine']} fine ({st['clipped']} "
         f"clipped) + {st['again']} again | {wf:.1f} | {cf:.1f} | {1e3 * wf / n / n:.1f} | "

@@ -72,16 +72,72 @@ def test_no_instability_missed_against_a_dense_brute_force_scan():
     assert not missed, missed
 
 
-def test_method_is_checked_and_auto_picks_by_size():
+def test_method_is_checked_and_auto_reduces_every_wing():
+    """issue 26.1: "auto" reduces every wing model whatever its size (the thesis's 204 states
+    too); the models that cannot be reduced stay dense."""
     small = wingtip_propeller_wing()
-    assert choose_method(small, "auto") == "dense"
+    assert small.dof_map().n_states < REDUCED_ABOVE
+    assert choose_method(small, "auto") == "reduced"
+    assert choose_method(small, "dense") == "dense"
     big = wing_with(60, (1.0, 2.0, 3.0, 4.0, 5.0, 5.7))
-    assert big.dof_map().n_states > REDUCED_ABOVE
     assert choose_method(big, "auto") == "reduced"
+    assert choose_method(isolated_baseline_propeller(), "auto") == "dense"
     with pytest.raises(InputError, match="method = 'sparse' is invalid"):
         analyse(small, method="sparse")
     with pytest.raises(InputError, match="only wing models"):
         analyse(isolated_baseline_propeller(), method="reduced")
+
+
+@pytest.fixture(scope="module")
+def wingtip_dense():
+    m = wingtip_propeller_wing()
+    return m, analyse(m, method="dense")
+
+
+def test_the_default_analysis_of_the_wingtip_model_is_reduced_and_equals_dense(wingtip_dense):
+    """The default (auto) keeps the reduced analysis: every crossing corrected on the full
+    order, the frequency-zero event (Table 10.4's whirl divergence at 321 m/s) checked on the
+    full order; the events those of the dense reference."""
+    m, den = wingtip_dense
+    auto = analyse(m)
+    assert auto.sweep.stats["reduced_states"] < m.dof_map().n_states
+    assert auto.criticals.stats["corrected"] == len(auto.criticals.points)
+    assert any(e.event == "frequency-zero" for e in auto.events)
+    assert_same_events(auto, den)
+    assert [e.label for e in auto.events] == [e.label for e in den.events]
+    assert auto.warnings == den.warnings          # validity notes only: nothing unconverged
+
+
+def test_auto_analyses_dense_where_a_crossing_does_not_converge_on_the_full_order(
+        monkeypatch, wingtip_dense):
+    """A crossing whose full-order correction fails: "reduced" keeps the reduced speed with a
+    warning; "auto" does not keep it and analyses the model dense (the reference's events)."""
+    import propwhirl.analysis.reduced as R
+
+    m, den = wingtip_dense
+    monkeypatch.setattr(R, "correct_crossing", lambda *a, **k: None)
+    red, auto = analyse(m, method="reduced"), analyse(m)
+    assert any("not converged on the full-order model" in w for w in red.warnings)
+    assert "reduced_states" in red.sweep.stats
+    assert "reduced_states" not in auto.sweep.stats
+    assert auto.sweep.n_modes > red.sweep.n_modes
+    assert auto.warnings == den.warnings
+    assert [(e.kind, e.event, e.V) for e in auto.events] == [(e.kind, e.event, e.V) for e in den.events]
+
+
+def test_a_frequency_zero_bracket_without_the_full_order_branch_point_is_refused(wingtip_dense):
+    """frequency_zero_on_full_order: True where the full-order count of unstable complex pairs
+    falls inside the bracket, False elsewhere (auto then analyses dense)."""
+    from propwhirl.analysis.reduced import frequency_zero_on_full_order
+    from propwhirl.engine import frequency_zero_points
+
+    m, den = wingtip_dense
+    A = m.assembly().state_matrix
+    (p,) = frequency_zero_points(den.sweep, A)
+    assert frequency_zero_on_full_order([p], A)
+    shifted = type(p)(p.mode, p.label, p.V - 5.0, (p.bracket[0] - 5.0, p.bracket[1] - 5.0))
+    assert not frequency_zero_on_full_order([shifted], A)
+    assert frequency_zero_on_full_order([], A)
 
 
 def test_lifted_eigenvectors_index_like_the_array():
@@ -155,3 +211,14 @@ def test_model_variants_reduced_equal_dense(name):
     """Every switch and aerodynamic model of the wing reduces: the same events as dense."""
     m = _variant(name)
     assert_same_events(analyse(m, method="reduced"), analyse(m, method="dense"))
+
+
+def test_a_wing_with_a_propeller_without_aerodynamics_is_reduced():
+    """The wingtip model with propeller_aero off (Table 10.4): the propeller modes have no
+    aerodynamic stiffness, so their static corrections are zero vectors — dropped from the
+    basis (they made it NaN: "array must not contain infs or NaNs"); the default analysis is
+    reduced and equals the dense reference."""
+    m = wingtip_propeller_wing(propeller_aero=False)
+    auto = analyse(m)
+    assert auto.sweep.stats["reduced_states"] < m.dof_map().n_states
+    assert_same_events(auto, analyse(m, method="dense"))

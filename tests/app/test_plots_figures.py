@@ -118,9 +118,14 @@ def test_vgf_on_a_fine_grid_with_the_modes_that_matter(analysis, model, fine, mo
     assert any(getattr(c, "get_ylabel", lambda: "")() == "g = 2ζ" for c in ax_z.child_axes)
 
 
-def test_fine_sweep_is_the_analysed_model(analysis, fine):
+def test_fine_sweep_is_the_analysed_model(analysis, fine, model):
+    """The fine sweep is dense: every mode of the analysis (the default: reduced, the modes below
+    the cut-off) is one of its modes, and with a dense analysis it has exactly its modes."""
     assert fine.V.size >= 41 and fine.V[0] == analysis.sweep.V[0]
-    assert set(fine.mode_labels) == set(analysis.sweep.mode_labels)
+    assert "reduced_states" in analysis.sweep.stats
+    assert set(analysis.sweep.mode_labels) < set(fine.mode_labels)
+    dense = analyse(model, method="dense")
+    assert set(plots.fine_sweep(dense, model, n_speeds=5).mode_labels) == set(dense.sweep.mode_labels)
     with pytest.raises(InputError, match="pass the analysed model"):
         plots.fine_sweep(analysis, small_wing((5.7,)), n_speeds=5)
 

@@ -49,7 +49,7 @@ def study(model, path: Path, resume: bool = False, stop_after: int | None = None
         if stop_after is not None and done == stop_after:
             raise KeyboardInterrupt
 
-    options = dict(speeds=SPEEDS)
+    options = dict(speeds=SPEEDS, warm_start=False)    # one partial-results file (no passes)
     options.update(kw)
     return sweeps.sweep(model, "propeller.f_psi", VALUES, checkpoint=Checkpoint(path, resume=resume),
                         progress=progress, **options)
@@ -114,7 +114,8 @@ def test_a_forged_pickle_beside_a_cli_output_is_never_run(tmp_path, capsys):
            "points": [{"index": 0, "key": keys[0], "pickle": pickled(marker)}]}
     Path(str(out) + ".partial").write_text(json.dumps(doc))
     code = cli.main(["sweep", "isolated-propeller", "--param", "propeller.f_psi", "4", "8", "3",
-                     "--speeds", "100", "700", "200", "--json", str(out), "--resume", "--quiet"])
+                     "--speeds", "100", "700", "200", "--json", str(out), "--resume", "--quiet",
+                     "--no-warm-start"])
     err = capsys.readouterr().err
     assert code == 2 and "older propwhirl" in err and err.count("\n") == 1, err
     assert not marker.exists() and not out.exists()
@@ -139,7 +140,7 @@ def test_the_file_is_plain_json_with_the_fingerprint(partial):
 
 
 def test_an_interrupted_sweep_resumes_to_the_same_map(partial, tmp_path):
-    full = sweeps.sweep(model_a(), "propeller.f_psi", VALUES, speeds=SPEEDS)
+    full = sweeps.sweep(model_a(), "propeller.f_psi", VALUES, speeds=SPEEDS, warm_start=False)
     path = tmp_path / "copy.partial"
     path.write_text(partial.read_text())
     resumed = study(model_a(), path, resume=True)
@@ -243,7 +244,7 @@ def test_resuming_another_model_on_the_command_line_exits_2(tmp_path, monkeypatc
     io.save_model(model_b(), b)
     out = tmp_path / "r.json"
     argv = ["--param", "propeller.f_psi", "4", "8", "3", "--speeds", "100", "700", "200",
-            "--json", str(out), "--quiet"]
+            "--json", str(out), "--quiet", "--no-warm-start"]
     real, calls = sweeps.evaluate, []
 
     def interrupted_at_the_second(task):

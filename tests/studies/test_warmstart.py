@@ -64,14 +64,17 @@ def test_clipped_grid():
 def cold_and_warm():
     model = small_wing()
     stats = {}
-    cold = critical_map(model, AXES, speeds=SPEEDS, method="reduced")
-    warm_map = critical_map(model, AXES, speeds=SPEEDS, method="reduced", warm_start=True,
-                            stats=stats)
+    # the brute-force reference: every point dense over its whole range
+    cold = critical_map(model, AXES, speeds=SPEEDS, method="dense", warm_start=False)
+    warm_map = critical_map(model, AXES, speeds=SPEEDS, stats=stats)      # the defaults
     return cold, warm_map, stats
 
 
-def test_warm_start_gives_the_full_range_rows(cold_and_warm):
+def test_the_default_map_is_the_brute_force_reference_to_the_crossing_accuracy(cold_and_warm):
+    """issue 26.1: a map with the default options (warm-started, method "auto": reduced on a
+    wing) gives the rows of the brute-force reference to the crossing accuracy."""
     cold, warm, stats = cold_and_warm
+    assert stats["coarse"] + stats["fine"] == 25           # warm-started by default
     assert_same_rows(warm, cold)
     assert set(warm.columns["kind"].ravel()) <= {"flutter", "divergence"}
 
@@ -90,7 +93,7 @@ def test_a_point_above_its_clipped_range_is_analysed_again():
     analysed again over the whole range — and still equal the full-range sweep."""
     model = isolated_baseline_propeller()
     values = np.array([4.0, 9.0, 8.0, 5.0])
-    cold = critical_map(model, [("propeller.f_psi", values)], speeds=SPEEDS)
+    cold = critical_map(model, [("propeller.f_psi", values)], speeds=SPEEDS, warm_start=False)
     variants = [P.set_values(model, {"propeller.f_psi": x}) for x in values]
     stats = {}
     rows = warm_started_rows(variants, [str(x) for x in values], (4,), [SPEEDS] * 4,
@@ -113,8 +116,7 @@ def test_thesis_low_speed_convention_is_not_warm_started():
 
 def test_serial_and_processes_give_identical_warm_maps(cold_and_warm):
     _, warm, _ = cold_and_warm
-    par = critical_map(small_wing(), AXES, speeds=SPEEDS, method="reduced", warm_start=True,
-                       processes=2)
+    par = critical_map(small_wing(), AXES, speeds=SPEEDS, processes=2)
     for col, x in warm.columns.items():
         y = par.columns[col]
         if x.dtype.kind == "f":
@@ -146,8 +148,8 @@ def test_an_interrupted_warm_map_resumes_to_the_same_result(tmp_path, cold_and_w
             raise KeyboardInterrupt
 
     with pytest.raises(Interrupted):
-        critical_map(small_wing(), AXES, speeds=SPEEDS, method="reduced", warm_start=True,
-                     checkpoint=cp, progress=stop_in_fine_pass)
+        critical_map(small_wing(), AXES, speeds=SPEEDS, checkpoint=cp,
+                     progress=stop_in_fine_pass)
     coarse, fine, again = (c.path for c in pass_checkpoints(cp))
     assert coarse.exists() and fine.exists() and not again.exists()
     first = {}
@@ -155,7 +157,7 @@ def test_an_interrupted_warm_map_resumes_to_the_same_result(tmp_path, cold_and_w
     def record(done, total):
         first.setdefault(total, done)
 
-    resumed = critical_map(small_wing(), AXES, speeds=SPEEDS, method="reduced", warm_start=True,
+    resumed = critical_map(small_wing(), AXES, speeds=SPEEDS,
                            checkpoint=Checkpoint(cp.path, resume=True), progress=record)
     assert first == {4: 4, 21: 5}       # the coarse pass and 5 fine points were not redone
     for col, x in warm.columns.items():
@@ -170,7 +172,7 @@ def test_cells_whose_corners_have_no_wing_divergence_are_not_clipped():
     stiff = stiff.with_(wing=replace(stiff.wing, GJ=100.0 * stiff.wing.GJ))
     axes = [("propellers[0].propeller.f_theta", np.linspace(6.0, 12.0, 5)),
             ("propellers[0].propeller.f_psi", np.linspace(4.0, 12.0, 3))]
-    cold = critical_map(stiff, axes, speeds=SPEEDS, method="reduced")
+    cold = critical_map(stiff, axes, speeds=SPEEDS, method="reduced", warm_start=False)
     assert np.all(np.isnan(cold.columns["static_divergence_speed"]))
     assert np.sum(cold.columns["kind"] != "none") >= 5     # criticals without wing divergence
     stats = {}

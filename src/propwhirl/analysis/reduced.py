@@ -28,8 +28,15 @@ from propwhirl.model.dlm import require_panelaero
 from propwhirl.model.frequency_domain import check_section
 from propwhirl.model.reduction import CUTOFF_FACTOR, ReducedModel, reduce
 
-#: models with more states than this are analysed reduced by default (``method="auto"``)
+#: models with more states than this were analysed reduced by default (``method="auto"``)
+#: before issue 26; ``"auto"`` now reduces every reducible model (kept for scripts that read it)
 REDUCED_ABOVE = 400
+#: what ``method="auto"`` asks of a reduced analysis to keep it (else the model is analysed
+#: again, dense): every crossing converged on the full-order model, and every frequency-zero
+#: event's bracket holding the full-order model's branch point
+#: (:func:`frequency_zero_on_full_order`)
+AUTO_NEEDS = ("every crossing converged on the full order, every frequency-zero bracket "
+              "holding the full order's branch point")
 METHODS = ("auto", "dense", "reduced", "pk")
 
 
@@ -43,10 +50,10 @@ def choose_method(model, method: str) -> str:
     Examples
     --------
     >>> from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
-    >>> choose_method(wingtip_propeller_wing(), "auto")      # 204 states: the thesis's models
-    'dense'
-    >>> choose_method(wingtip_propeller_wing(), "reduced")
+    >>> choose_method(wingtip_propeller_wing(), "auto")      # a wing: reduced, checked after
     'reduced'
+    >>> choose_method(wingtip_propeller_wing(), "dense")     # the reference
+    'dense'
     """
     if method not in METHODS:
         raise v.InputError(f"method = {method!r} is invalid: must be one of "
@@ -67,7 +74,7 @@ def choose_method(model, method: str) -> str:
         raise v.InputError(f"method = 'reduced' is invalid for a {type(model).__name__}: "
                            "only wing models (PropellerWing) are reduced; use 'dense'")
     if method == "auto":
-        return "reduced" if reducible and model.dof_map().n_states > REDUCED_ABOVE else "dense"
+        return "reduced" if reducible else "dense"
     return method
 
 
@@ -165,6 +172,27 @@ def _reduced_engine_analysis(model, grid, displacement, state_labels, options, x
                      state_labels=tuple(state_labels), displacement=np.asarray(displacement),
                      stats=sw_stats)
     return ReducedRun(Analysis(lifted, crit), R, tuple(shifts))
+
+
+def _unstable_pairs(A: np.ndarray) -> int:
+    """Eigenvalues with Re λ > 0 and Im λ > 0 of the state matrix ``A`` (as the engine's
+    frequency-zero search counts them)."""
+    lam = np.linalg.eigvals(A)
+    return int(np.sum((lam.real > 0) & (lam.imag > 1e-9 * np.maximum(1.0, np.abs(lam)))))
+
+
+def frequency_zero_on_full_order(points, state_matrix) -> bool:
+    """Whether every frequency-zero event ``points`` (of the reduced model, brackets of width
+    ≤ xtol) is one of the full-order model too: its count of unstable complex pairs
+    (``state_matrix``: the full-order A(V), evaluated at every bracket end in one call) falls
+    inside each bracket, so the full-order branch point lies within xtol of the event's speed.
+    Two full eigenvalue solves per event."""
+    if not points:
+        return True
+    with single_thread_blas():
+        A = state_matrix(np.array([V for p in points for V in p.bracket], dtype=float))
+        return all(_unstable_pairs(A[2 * k]) > _unstable_pairs(A[2 * k + 1])
+                   for k in range(len(points)))
 
 
 def _reduced_slopes(sweep, points) -> list[float | None]:

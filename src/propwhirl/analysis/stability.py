@@ -39,7 +39,8 @@ from propwhirl.analysis.participation import (ModeParticipation, branch_point_sh
 from propwhirl.analysis.pk import DLM_NOTE, pk_instabilities
 from propwhirl.model.dlm import check_speed_mach, strip_twin
 from propwhirl.model.dlm_rfa import RFA_NOTE, extrapolation_notes, rfa_note
-from propwhirl.analysis.reduced import choose_method, reduced_engine_analysis
+from propwhirl.analysis.reduced import (choose_method, frequency_zero_on_full_order,
+                                        reduced_engine_analysis)
 from propwhirl.analysis.summary import (FiniteState, FlutterSummary, MethodComparison,
                                         Reference, aero_model_of, compare_methods,
                                         flutter_summary, reference, text_table)
@@ -495,11 +496,15 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         "dense": every root of the full-order A(V) at each speed (the reference); "reduced":
         the modes below a frequency cut-off on a reduced-order model, every crossing then
         converged on the full-order model (:mod:`propwhirl.analysis.reduced`); "auto"
-        (default): reduced for wing models of more than
-        :data:`~propwhirl.analysis.reduced.REDUCED_ABOVE` states, else dense.  A wing with
-        ``aero = "dlm"``: "auto" and "dense" analyse its Roger state space (the lag states of
-        the rational-function fit of Q(k, V/a), :mod:`propwhirl.model.dlm_rfa`), "pk" the p-k
-        method on Q(k) itself, "reduced" is refused.
+        (default): reduced for every strip-theory wing model, kept where every crossing
+        converged on the full-order model and every frequency-zero event's bracket holds the
+        full-order branch point (:data:`~propwhirl.analysis.reduced.AUTO_NEEDS`), else the
+        model is analysed again, dense; dense for the other models.  With "auto" a wing's
+        sweep holds the modes below the reduction's cut-off only (give "dense" for V-g-f
+        plots of every mode).  A wing with ``aero = "dlm"``: "auto" and "dense" analyse its
+        Roger state space (the lag states of the rational-function fit of Q(k, V/a),
+        :mod:`propwhirl.model.dlm_rfa`), "pk" the p-k method on Q(k) itself, "reduced" is
+        refused.
 
     Returns
     -------
@@ -545,13 +550,18 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         an, matrix_fn, basis = run.analysis, run.model.state_matrix, run.model.dof_basis
         lift = run.model.lift
         unconverged = [p for p, s in zip(an.criticals.points, run.corrections) if s is None]
-    else:
+        fzero = frequency_zero_points(an.sweep, matrix_fn, xtol=xtol)
+        if method == "auto" and (unconverged or not frequency_zero_on_full_order(
+                fzero, finite.assembly().state_matrix)):    # AUTO_NEEDS not met: dense
+            chosen = "dense"
+    if chosen != "reduced":
         matrix_fn = finite.assembly().state_matrix    # built once for the analysis
         an = engine_analyse(matrix_fn, grid, displacement=dm.displacement,
                             state_labels=dm.state_labels, options=options, xtol=xtol,
                             **({"initial_step": None} if vgf else {}))
         basis, lift = None, None
         unconverged = []
+        fzero = frequency_zero_points(an.sweep, matrix_fn, xtol=xtol)
     sw = an.sweep
     names, thesis_names = named_modes(finite, sw, basis)
     sw = sw.relabel(names)
@@ -568,7 +578,7 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         events.append(Instability(kind, "unstable-at-start", int(k), names[k], float(sw.V[0]),
                                   float(abs(lam0.imag) / (2 * np.pi))))
         shapes.append((sw.eigenvectors[0, :, k], lam0, float(sw.V[0])))
-    for p in frequency_zero_points(sw, matrix_fn, xtol=xtol):
+    for p in fzero:
         events.append(Instability("divergence", "frequency-zero", p.mode, names[p.mode], p.V, 0.0))
         shapes.append(branch_point_shape(finite, sw, p.mode, p.bracket[0], matrix_fn, lift))
     events = with_participation(finite, events, shapes)

@@ -320,7 +320,9 @@ def _add_analyse(sub) -> None:
                    help="dense: every root of the full-order model (the reference); reduced: "
                         "a reduced-order model, crossings converged on the full order; pk: the "
                         "p-k method with the exact Theodorsen function (frequency domain); "
-                        "auto (default): reduced above 400 states, else dense")
+                        "auto (default): reduced for a wing, kept where every crossing converged "
+                        "on the full order, else dense; its V-g-f table holds the modes below "
+                        "the reduction's cut-off (dense: every mode)")
     p.add_argument("--quiet", action="store_true", help="no progress spinner (there is none "
                    "either when stderr is not a terminal)")
     p.add_argument("--vd", type=float, default=None, metavar="V", help="design dive speed V_D "

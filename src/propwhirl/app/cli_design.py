@@ -36,6 +36,9 @@ def _boundary(args: argparse.Namespace) -> int:
     if args.oscillatory and args.contour:
         raise InputError("--oscillatory is for the neutral-stability curve, it has no effect "
                          "with --contour: leave one out")
+    from propwhirl.app import execution_options
+
+    run = execution_options.run_options(args)      # checked before the tracing
     model = _model_or_case(args.model)
     params = [P.resolve(model, p) for p in args.params]
     current = [p.value(model) for p in params]
@@ -48,10 +51,10 @@ def _boundary(args: argparse.Namespace) -> int:
         lower, upper = [0.5 * x for x in current], [2.0 * x for x in current]
     if args.contour:
         b = B.speed_contour(model, args.params, lower, upper, args.speed,
-                            static_divergence=not args.thesis, low_speed=not args.thesis)
+                            static_divergence=not args.thesis, low_speed=not args.thesis, **run)
     else:
         b = B.neutral_curve(model, args.params, lower, upper, args.speed,
-                            oscillatory=args.oscillatory)
+                            oscillatory=args.oscillatory, **run)
     echo(b.format())
     if args.json:
         b.save(args.json)
@@ -65,7 +68,7 @@ def _boundary(args: argparse.Namespace) -> int:
         grid = None
         if args.grid:
             v_n = args.grid
-            grid = B.grid_map(B.level_of(b, model), lower, upper, v_n)
+            grid = B.grid_map(B.level_of(b, model, **run), lower, upper, v_n)
             d1, d2 = B.grid_agreement(b, grid)
             print(f"grid map {v_n} x {v_n} ({grid.evaluations} {b.evaluation_name}): traced points "
                   f"within {d1:.2f} cells of the grid's boundary, grid's boundary within "
@@ -101,6 +104,10 @@ def _add_boundary(sub) -> None:
     p.add_argument("--json", metavar="OUT", help="write the boundary as JSON")
     p.add_argument("--csv", metavar="OUT", help="write the boundary's points as CSV")
     p.add_argument("--plot", metavar="PNG", help="plot the boundary over the grid map")
+    from propwhirl.app import execution_options
+
+    # the start search's samples and the grid map are batches of independent evaluations
+    execution_options.add(p, resume=False)
     p.set_defaults(func=_boundary)
 
 

@@ -64,10 +64,30 @@ def _study_options(args: argparse.Namespace) -> dict:
             "checkpoint": execution_options.checkpoint(args, args.json),
             "static_divergence": not args.thesis_convention,
             "low_speed": not args.thesis_convention,
-            "method": args.method, "warm_start": bool(args.warm_start)}
+            "method": _method(args), "warm_start": _warm_start(args)}
     if args.speeds:
         opts["speeds"] = speed_grid(*args.speeds)
     return opts
+
+
+def _method(args: argparse.Namespace) -> str:
+    """--method, "dense" with --reference (which refuses another method)."""
+    if args.reference and args.method not in ("auto", "dense"):
+        raise InputError(f"--reference is the dense brute-force reference: --method "
+                         f"{args.method} contradicts it (leave one out)")
+    return "dense" if args.reference else args.method
+
+
+def _warm_start(args: argparse.Namespace) -> bool:
+    """Whether the study is warm-started: by default, unless --no-warm-start, --reference or
+    --thesis-convention (whose recovering low-speed instabilities a clipped range cannot
+    tell)."""
+    if args.reference and args.warm_start:
+        raise InputError("--reference analyses every point over its whole speed range: "
+                         "--warm-start contradicts it (leave one out)")
+    if args.warm_start is None:
+        return not (args.reference or args.thesis_convention)
+    return bool(args.warm_start)
 
 
 def _write_study(result, args: argparse.Namespace, plot, checkpoint=None) -> None:
@@ -199,7 +219,7 @@ def _check_study_outputs(args: argparse.Namespace) -> None:
     """The outputs of `sweep`/`map` (:func:`check_outputs`): none on another, on the model
     file, or on the partial-results files kept beside --json while the study runs."""
     check_outputs(json=args.json, csv=args.csv, plot=args.plot, model=args.model,
-                  partial_of="json", warm_start=bool(args.warm_start))
+                  partial_of="json", warm_start=_warm_start(args))
 
 
 def _add_study_options(p) -> None:
@@ -210,14 +230,18 @@ def _add_study_options(p) -> None:
     p.add_argument("--thesis-convention", action="store_true", help="leave out the wing's "
                    "static divergence and low-speed instabilities that recover (chapter 11)")
     p.add_argument("--method", choices=("auto", "dense", "reduced"), default="auto",
-                   help="each point's analysis (default auto: dense below 400 states; "
-                   "reduced: a reduced-order model, crossings converged on the full order — "
-                   "the fast choice for wings)")
-    p.add_argument("--warm-start", action="store_true", help="analyse most points only up to "
-                   "the speeds found at their coarse neighbours (every 5th point of each axis, "
-                   "analysed first); a point that finds nothing there is analysed over the "
-                   "whole range: the same results to the crossing accuracy (not with "
-                   "--thesis-convention)")
+                   help="each point's analysis (default auto: for a wing the reduced-order "
+                   "model, kept where every crossing converged on the full order, else dense; "
+                   "dense: every root of the full-order model, the reference)")
+    p.add_argument("--warm-start", action=argparse.BooleanOptionalAction, default=None,
+                   help="analyse most points only up to the speeds found at their coarse "
+                   "neighbours (every 5th point of each axis, analysed first); a point that "
+                   "finds nothing there is analysed over the whole range: the same results to "
+                   "the crossing accuracy (default on; off with --thesis-convention, whose "
+                   "recovering instabilities a clipped range cannot tell)")
+    p.add_argument("--reference", action="store_true", help="the brute-force reference: "
+                   "every point dense over its whole speed range (= --method dense "
+                   "--no-warm-start; the defaults give the same map to the crossing accuracy)")
     p.add_argument("--json", metavar="OUT", help="write the result as JSON")
     p.add_argument("--csv", metavar="OUT", help="write one row per point as CSV")
     p.add_argument("--plot", metavar="PNG", help="write the plot")

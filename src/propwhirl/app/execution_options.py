@@ -1,7 +1,8 @@
 """The command line's execution options of every study command (`propwhirl reproduce`, the
-sweeps and maps): ``--processes``, ``--scheduler``, ``--resume``, ``--quiet``, and what they
-become for :func:`propwhirl.studies.execution.map_analyses` (a scheduler address, a progress
-bar, the partial-results file beside the output).
+sweeps and maps, `clearance`, `certify`, `boundary`): ``--processes``, ``--scheduler``,
+``--resume``, ``--quiet``, and what they become for
+:func:`propwhirl.studies.execution.map_analyses` (a scheduler address, a progress bar, the
+partial-results file beside the output).
 
     p = sub.add_parser("sweep", ...)
     execution_options.add(p)
@@ -29,17 +30,20 @@ from propwhirl.validate import InputError
 PARTIAL_SUFFIX = ".partial"
 
 
-def add(parser: argparse.ArgumentParser, *, processes_default: int = 1) -> None:
-    """Add ``--processes``, ``--scheduler``, ``--resume`` and ``--quiet`` to a study command."""
+def add(parser: argparse.ArgumentParser, *, processes_default: int = 1,
+        resume: bool = True) -> None:
+    """Add ``--processes``, ``--scheduler``, ``--resume`` (unless ``resume=False``: a command
+    that keeps no partial results, e.g. `boundary`) and ``--quiet`` to a study command."""
     g = parser.add_argument_group("execution")
     g.add_argument("--processes", type=int, default=processes_default,
                    help=f"local worker processes (default {processes_default}; at most one per CPU)")
     g.add_argument("--scheduler", metavar="ADDRESS", help="run on a Dask cluster, e.g. "
                    "tcp://host:8786 (needs pip install propwhirl[distributed])")
-    g.add_argument("--resume", action="store_true", help="continue an interrupted run: keep the "
-                   "finished points of the partial-results file beside the output "
-                   f"(OUT{PARTIAL_SUFFIX}) and compute only the others (a file written for "
-                   "another model, parameters, speeds, method or convention is refused)")
+    if resume:
+        g.add_argument("--resume", action="store_true", help="continue an interrupted run: keep "
+                       "the finished points of the partial-results file beside the output "
+                       f"(OUT{PARTIAL_SUFFIX}) and compute only the others (a file written for "
+                       "another model, parameters, speeds, method or convention is refused)")
     g.add_argument("--quiet", action="store_true", help="no progress bar (there is none "
                    "either when stderr is not a terminal)")
 

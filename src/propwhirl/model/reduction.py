@@ -139,6 +139,10 @@ def _modal_basis(assembly, speeds, cutoff_hz: float | None,
     cho = sla.cho_factor(K)
     X = [sla.cho_solve(cho, (S3[t] - K) @ Phi_c) for t in ([1, 2] if V[-1] > V[0] else [2])]
     B = np.hstack([Phi_c] + X)
+    # a zero static correction (a mode without aerodynamic stiffness, e.g. the propeller's
+    # with propeller_aero off) adds nothing: dropped before the normalisation
+    norm2 = np.einsum("ij,ij->j", B, M @ B)
+    B = B[:, norm2 > GRAM_TOL * norm2.max()]
     for _ in range(2):                    # M-orthonormal, dependent vectors dropped; twice,
         B = B / np.sqrt(np.einsum("ij,ij->j", B, M @ B))     # for the rounding of the first
         g, U = sla.eigh(B.T @ M @ B)

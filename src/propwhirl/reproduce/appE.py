@@ -2,13 +2,13 @@
 :mod:`propwhirl.cases.appE_constant_speed`)."""
 from __future__ import annotations
 
-from propwhirl.analysis.stability import analyse, first_of_kind, speed_and_frequency
+from propwhirl.analysis.stability import first_of_kind, speed_and_frequency
 from propwhirl.cases.appE_constant_speed import (
     inboard_constant_speed,
     two_propeller_constant_speed,
     wingtip_constant_speed,
 )
-from propwhirl.reproduce.harness import register
+from propwhirl.reproduce.harness import analyse, register
 
 
 @register("tE.1")

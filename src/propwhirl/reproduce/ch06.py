@@ -1,10 +1,10 @@
 """Chapter 6: Bennett & Bland's isolated propeller (case of :mod:`propwhirl.cases.ch06_isolated`)."""
 from __future__ import annotations
 
-from propwhirl.analysis.stability import analyse, speed_and_frequency
+from propwhirl.analysis.stability import speed_and_frequency
 from propwhirl.cases.ch04_propeller_aero import FT
 from propwhirl.cases.ch06_isolated import bennett_bland_propeller
-from propwhirl.reproduce.harness import register
+from propwhirl.reproduce.harness import analyse, register
 
 
 @register("f6.2")

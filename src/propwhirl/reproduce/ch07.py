@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from propwhirl.analysis.stability import analyse, first_of_kind, speed_and_frequency
+from propwhirl.analysis.stability import first_of_kind, speed_and_frequency
 from propwhirl.analysis.vibration import classify_wing_modes
 from propwhirl.cases.ch07_patil import patil_model, patil_wing
-from propwhirl.reproduce.harness import register
+from propwhirl.reproduce.harness import analyse, register
 
 
 @register("t7.2")

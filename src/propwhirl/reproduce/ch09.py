@@ -8,7 +8,7 @@ import numpy as np
 
 from propwhirl import validate as v
 from propwhirl.analysis.response import Response, simulate
-from propwhirl.analysis.stability import analyse, first_of_kind, speed_and_frequency
+from propwhirl.analysis.stability import first_of_kind, speed_and_frequency
 from propwhirl.analysis.vibration import label_modes, wing_modes
 from propwhirl.cases.ch09_baseline import (
     baseline_propeller,
@@ -18,7 +18,7 @@ from propwhirl.cases.ch09_baseline import (
     isolated_baseline_propeller,
 )
 from propwhirl.model.systems import PropellerWing
-from propwhirl.reproduce.harness import register
+from propwhirl.reproduce.harness import analyse, register
 
 
 @register("t9.2")

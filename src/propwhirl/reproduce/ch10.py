@@ -2,10 +2,10 @@
 and 10.14; the cases are :mod:`propwhirl.cases.ch10_other_wings`)."""
 from __future__ import annotations
 
-from propwhirl.analysis.stability import analyse, speed_and_frequency
+from propwhirl.analysis.stability import speed_and_frequency
 from propwhirl.analysis.vibration import label_modes
 from propwhirl.cases.ch10_other_wings import two_propeller_wing, wingtip_propeller_wing
-from propwhirl.reproduce.harness import register
+from propwhirl.reproduce.harness import analyse, register
 
 
 @register("t10.1")

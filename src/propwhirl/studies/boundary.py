@@ -75,26 +75,56 @@ def path_variant(model: Any, parameters: Sequence[str]) -> tuple[Variant, tuple[
 
 
 # ============================================================================ level functions
+def _least_stable(task: tuple) -> complex:
+    """The least stable eigenvalue λ [1/s] of A(V) of a model (task: model, V [m/s],
+    oscillatory: only complex eigenvalues count) — one evaluation of :class:`DampingLevel`,
+    a module-level function so that it runs on worker processes."""
+    model, V, oscillatory = task
+    lam = eigenvalues(model.state_matrix(np.array([V])))[0]
+    if oscillatory:
+        lam = lam[np.abs(lam.imag) > 1e-9 * np.maximum(1.0, np.abs(lam))]
+        if lam.size == 0:
+            raise v.InputError("oscillatory = True but the model has no complex eigenvalue")
+    return complex(lam[int(np.argmax(lam.real))])
+
+
+def _batch(func: Callable[[Any], Any], tasks: list, level: Any, desc: str) -> list:
+    """``[func(t) for t in tasks]`` on the level's processes or Dask cluster, with its
+    progress (:func:`propwhirl.studies.execution.map_analyses`)."""
+    from propwhirl.studies.execution import map_analyses
+
+    return map_analyses(func, tasks, level.processes, client=level.client,
+                        progress=level.progress, desc=desc)
+
+
 @dataclass
 class DampingLevel:
     """g(p) = max Re λ [1/s] of A(V) of ``variant(p)``; the least stable eigenvalue of every
-    evaluated point is kept (``eigenvalue``), so the curve's mode frequency is known."""
+    evaluated point is kept (``eigenvalue``), so the curve's mode frequency is known.
+    processes, client, progress: how :meth:`batch` runs a batch of points
+    (:func:`propwhirl.studies.execution.map_analyses`)."""
 
     variant: Variant
     V: float
     oscillatory: bool = False
     eigenvalue: dict = field(default_factory=dict, repr=False)
+    processes: int = 1
+    client: Any = None
+    progress: Any = None
 
     def __call__(self, p: np.ndarray) -> float:
-        A = self.variant(p).state_matrix(np.array([self.V]))
-        lam = eigenvalues(A)[0]
-        if self.oscillatory:
-            lam = lam[np.abs(lam.imag) > 1e-9 * np.maximum(1.0, np.abs(lam))]
-            if lam.size == 0:
-                raise v.InputError("oscillatory = True but the model has no complex eigenvalue")
-        k = int(np.argmax(lam.real))
-        self.eigenvalue[point_key(p)] = complex(lam[k])
-        return float(lam[k].real)
+        lam = _least_stable((self.variant(p), self.V, self.oscillatory))
+        self.eigenvalue[point_key(p)] = lam
+        return float(lam.real)
+
+    def batch(self, points: Sequence[np.ndarray], desc: str = "boundary points") -> list[float]:
+        """g at every point, as one batch of independent eigen-solutions (in parallel on
+        ``processes`` or the Dask cluster, with progress)."""
+        lams = _batch(_least_stable, [(self.variant(p), self.V, self.oscillatory)
+                                      for p in points], self, desc)
+        for p, lam in zip(points, lams):
+            self.eigenvalue[point_key(p)] = lam
+        return [float(lam.real) for lam in lams]
 
     def info(self, p: np.ndarray) -> dict[str, Any]:
         lam = self.eigenvalue.get(point_key(p))
@@ -107,7 +137,8 @@ class DampingLevel:
 @dataclass
 class CriticalSpeedLevel:
     """g(p) = V_crit(p) − V_target [m/s], V_crit of one analysis of ``variant(p)``
-    (:func:`propwhirl.studies.sweeps.evaluate`); no instability: V_crit = the range's top."""
+    (:func:`propwhirl.studies.sweeps.evaluate`); no instability: V_crit = the range's top.
+    processes, client, progress: how :meth:`batch` runs a batch of points."""
 
     variant: Variant
     V_target: float
@@ -116,18 +147,35 @@ class CriticalSpeedLevel:
     static_divergence: bool = True
     low_speed: bool = True
     rows: dict = field(default_factory=dict, repr=False)
+    processes: int = 1
+    client: Any = None
+    progress: Any = None
 
-    def __call__(self, p: np.ndarray) -> float:
-        from propwhirl.studies.sweeps import evaluate
+    def _task(self, p: np.ndarray) -> tuple:
+        return (self.variant(p), self.speeds, self.xtol, self.static_divergence, self.low_speed)
 
-        model = self.variant(p)
-        row = evaluate((model, self.speeds, self.xtol, self.static_divergence, self.low_speed))
+    def _value(self, p: np.ndarray, row: dict[str, Any], model: Any) -> float:
         self.rows[point_key(p)] = row
         Vc = row["critical_speed"]
         if not math.isfinite(Vc):
             top = self.speeds[-1] if self.speeds is not None else model.flight.speed_range[1]
             Vc = float(top)
         return Vc - self.V_target
+
+    def __call__(self, p: np.ndarray) -> float:
+        from propwhirl.studies.sweeps import evaluate
+
+        task = self._task(p)
+        return self._value(p, evaluate(task), task[0])
+
+    def batch(self, points: Sequence[np.ndarray], desc: str = "boundary points") -> list[float]:
+        """g at every point, as one batch of independent analyses (in parallel on
+        ``processes`` or the Dask cluster, with progress)."""
+        from propwhirl.studies.sweeps import evaluate
+
+        tasks = [self._task(p) for p in points]
+        rows = _batch(evaluate, tasks, self, desc)
+        return [self._value(p, row, t[0]) for p, row, t in zip(points, rows, tasks)]
 
     def info(self, p: np.ndarray) -> dict[str, Any]:
         row = self.rows.get(point_key(p))
@@ -348,7 +396,8 @@ def neutral_curve(model: Any, parameters: Sequence[str], lower: Sequence[float],
                   upper: Sequence[float], V: float, *, oscillatory: bool = False,
                   line: tuple[Sequence[float], Sequence[float]] | None = None,
                   options: ContinuationOptions = ContinuationOptions(),
-                  variant: Variant | None = None) -> Boundary:
+                  variant: Variant | None = None, processes: int = 1, client=None,
+                  progress=None) -> Boundary:
     """The neutral-stability curve max Re λ(A(V)) = 0 in the plane of two parameter paths.
 
     Parameters
@@ -367,8 +416,14 @@ def neutral_curve(model: Any, parameters: Sequence[str], lower: Sequence[float],
         The start search line (default: the diagonals, then the mid-lines).
     variant : callable, optional
         ``variant(p) -> model`` instead of the paths (the paths then only name the axes).
+    processes, client, progress : optional
+        How the batches of independent evaluations run — the samples of each start search
+        line (and :func:`grid_map` of :func:`level_of`): local processes, a Dask cluster, a
+        progress bar (:func:`propwhirl.studies.execution.map_analyses`); the continuation's
+        steps, each depending on the last, run in this process.
     """
     V = _check_speed(model, "V", V)
+    v.integer_at_least("processes", processes, 1)
     if variant is None:
         variant, params = path_variant(model, parameters)
         lo, hi = _check_plane(lower, upper, params)
@@ -376,7 +431,8 @@ def neutral_curve(model: Any, parameters: Sequence[str], lower: Sequence[float],
     else:
         lo, hi = _check_plane(lower, upper)
         names, units = list(parameters), ["", ""]
-    level = DampingLevel(variant, float(V), bool(oscillatory))
+    level = DampingLevel(variant, float(V), bool(oscillatory), processes=processes,
+                         client=client, progress=progress)
     return _traced("neutral-stability", level, V, names, units, lo, hi, line, options,
                    getattr(model, "name", ""), {"oscillatory": bool(oscillatory)})
 
@@ -386,15 +442,18 @@ def speed_contour(model: Any, parameters: Sequence[str], lower: Sequence[float],
                   static_divergence: bool = True, low_speed: bool = True,
                   line: tuple[Sequence[float], Sequence[float]] | None = None,
                   options: ContinuationOptions = ContinuationOptions(tol=2e-4),
-                  variant: Variant | None = None) -> Boundary:
+                  variant: Variant | None = None, processes: int = 1, client=None,
+                  progress=None) -> Boundary:
     """The contour V_crit(p) = `V_target` [m/s] in the plane of two parameter paths (one
     analysis per evaluation; see :func:`neutral_curve` for the other arguments).
 
     speeds: the analyses' initial speed grid [m/s] (default: the model's range); xtol [m/s]:
     accuracy of each critical speed; static_divergence, low_speed: the thesis's exclusions
-    (:func:`propwhirl.studies.critical.critical_instability`).
+    (:func:`propwhirl.studies.critical.critical_instability`); processes, client, progress:
+    as :func:`neutral_curve` (the start search's analyses in parallel).
     """
     V_target = float(v.positive("V_target", V_target, "m/s"))
+    v.integer_at_least("processes", processes, 1)
     grid = None if speeds is None else v.increasing("speeds", speeds, "m/s")
     first, last = ((float(grid[0]), float(grid[-1])) if grid is not None
                    else (float(model.flight.speed_range[0]), float(model.flight.speed_range[1])))
@@ -410,7 +469,8 @@ def speed_contour(model: Any, parameters: Sequence[str], lower: Sequence[float],
         lo, hi = _check_plane(lower, upper)
         names, units = list(parameters), ["", ""]
     level = CriticalSpeedLevel(variant, float(V_target), grid, xtol, bool(static_divergence),
-                               bool(low_speed))
+                               bool(low_speed), processes=processes, client=client,
+                               progress=progress)
     return _traced("critical-speed", level, V_target, names, units, lo, hi, line, options,
                    getattr(model, "name", ""),
                    {"static_divergence": bool(static_divergence), "low_speed": bool(low_speed),
@@ -433,25 +493,35 @@ class GridMap:
 
 def grid_map(g: Callable[[np.ndarray], float], lower: Sequence[float], upper: Sequence[float],
              n: int | tuple[int, int] = 21) -> GridMap:
-    """g on a regular grid of the plane (n points per axis, or (n₁, n₂))."""
+    """g on a regular grid of the plane (n points per axis, or (n₁, n₂)); a level function
+    of this module (:func:`level_of`) evaluates the grid as one batch of independent tasks on
+    its processes or Dask cluster, with progress."""
     lo, hi = _check_plane(lower, upper)
     n1, n2 = (n, n) if isinstance(n, int) else n
     v.integer_at_least("n", n1, 2)
     v.integer_at_least("n", n2, 2)
     x, y = np.linspace(lo[0], hi[0], n1), np.linspace(lo[1], hi[1], n2)
-    vals = np.array([[g(np.array([a, b])) for b in y] for a in x])
-    return GridMap(x, y, vals)
+    points = [np.array([a, b]) for a in x for b in y]
+    batch = getattr(g, "batch", None)
+    values = batch(points, desc="grid map") if batch is not None else [g(p) for p in points]
+    return GridMap(x, y, np.array(values, dtype=float).reshape(n1, n2))
 
 
-def level_of(boundary: Boundary, model: Any, variant: Variant | None = None) -> Callable[[np.ndarray], float]:
-    """The level function g of a traced boundary (for :func:`grid_map` of the same plane)."""
+def level_of(boundary: Boundary, model: Any, variant: Variant | None = None, *,
+             processes: int = 1, client=None,
+             progress=None) -> Callable[[np.ndarray], float]:
+    """The level function g of a traced boundary (for :func:`grid_map` of the same plane;
+    processes, client, progress: how its batches run, as :func:`neutral_curve`)."""
+    v.integer_at_least("processes", processes, 1)
     if variant is None:
         variant, _ = path_variant(model, boundary.parameters)
+    run = dict(processes=processes, client=client, progress=progress)
     if boundary.kind == "neutral-stability":
-        return DampingLevel(variant, boundary.speed, bool(boundary.settings.get("oscillatory")))
+        return DampingLevel(variant, boundary.speed, bool(boundary.settings.get("oscillatory")),
+                            **run)
     s = boundary.settings
     return CriticalSpeedLevel(variant, boundary.speed, None, s.get("xtol", 0.01),
-                              s.get("static_divergence", True), s.get("low_speed", True))
+                              s.get("static_divergence", True), s.get("low_speed", True), **run)
 
 
 def _sign_cells(grid: GridMap) -> np.ndarray:

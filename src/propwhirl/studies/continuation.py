@@ -5,8 +5,9 @@ Model-agnostic: the curve is the zero set of a scalar function ``g(p: ndarray(2)
 at one airspeed, or the critical speed minus a target).  The algorithm:
 
 * **start** — a bracketing search along a line (by default the two diagonals of the
-  rectangle, then its two mid-lines): g sampled at ``n_search`` points, each sign change
-  refined by Brent's method to ``tol``;
+  rectangle, then its two mid-lines): g sampled at ``n_search`` points (one batch:
+  :meth:`Counted.prefetch`, in parallel where g has a ``batch``), each sign change refined by
+  Brent's method to ``tol``;
 * **predictor** — a step of length h along the unit tangent (the secant of the last two
   points; at the start the normal of the finite-difference gradient), in coordinates scaled to
   the rectangle (u = (p − lower)/(upper − lower), so one tolerance fits both axes);
@@ -64,6 +65,28 @@ class Counted:
                 raise v.InputError(f"the level function is NaN at p = {list(key)}")
             self._memo[key] = value
         return self._memo[key]
+
+    def prefetch(self, points: Sequence[np.ndarray]) -> None:
+        """Evaluate g at the points not yet in the memo at once: by ``g.batch(points)`` (a list
+        of values; e.g. the level functions of :mod:`propwhirl.studies.boundary`, which run
+        them as one batch of independent tasks on the study's processes or Dask cluster)
+        when g has it, else one by one.  Counted like single calls."""
+        todo, seen = [], set()
+        for p in points:
+            key = point_key(p)
+            if key not in self._memo and key not in seen:
+                seen.add(key)
+                todo.append(np.asarray(p, dtype=float))
+        batch = getattr(self.g, "batch", None)
+        if not todo or batch is None:
+            return
+        values = batch(todo)
+        for p, value in zip(todo, values):
+            value = float(value)
+            if math.isnan(value):
+                raise v.InputError(f"the level function is NaN at p = {list(point_key(p))}")
+            self.calls += 1
+            self._memo[point_key(p)] = value
 
 
 @dataclass(frozen=True)
@@ -191,6 +214,9 @@ class _Tracer:
         """Every zero of g on the first search line that has a sign change (scaled coords)."""
         for a, b in lines:
             s = np.linspace(0.0, 1.0, self.o.n_search)
+            # the samples of a line are independent: one batch (in parallel where g can)
+            self.g.prefetch([self.lower + np.clip(a + x * (b - a), 0.0, 1.0) * self.span
+                             for x in s])
             vals = [self.f(a + x * (b - a)) for x in s]
             found = []
             for k in range(len(s) - 1):

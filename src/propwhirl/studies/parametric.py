@@ -391,18 +391,20 @@ def _or_null(x: float) -> float | None:
 
 
 def whirl_flutter_speeds(beta: float, propeller: Propeller | None = None, speeds=None,
-                         xtol: float = 0.01) -> tuple[float, float]:
+                         xtol: float = 0.01, method: str = "auto") -> tuple[float, float]:
     """Flutter onset speeds [m/s] of "forward 1" and "backward 1" of the wingtip model at blade
-    angle `beta` [deg] (NaN where that mode does not flutter in the speed range)."""
+    angle `beta` [deg] (NaN where that mode does not flutter in the speed range); method: the
+    analysis's (:func:`propwhirl.analysis.stability.analyse`)."""
     base = _base(propeller)
     model = P.set_value(build_model("wingtip", base), PROPELLER_PATHS["wingtip"] + "beta_075_deg", beta)
-    a = analyse(model, speeds, xtol=xtol)
+    a = analyse(model, speeds, xtol=xtol, method=method)
     fw, bw = a.first("forward 1", "flutter"), a.first("backward 1", "flutter")
     return (float("nan") if fw is None else fw.V), (float("nan") if bw is None else bw.V)
 
 
 def blade_angle_mode_switch(bracket: tuple[float, float] = (60.0, 80.0), *, xtol: float = 0.1,
-                            propeller: Propeller | None = None, speeds=None) -> ModeSwitch:
+                            propeller: Propeller | None = None, speeds=None,
+                            method: str = "auto") -> ModeSwitch:
     """§11.6: the β_0.75 at which the wingtip model's whirl flutter changes from the forward to
     the backward whirl mode (the thesis: between 73° and 74°).
 
@@ -411,7 +413,7 @@ def blade_angle_mode_switch(bracket: tuple[float, float] = (60.0, 80.0), *, xtol
     negative to positive where the flutter changes mode).  Bracketing + bisection
     (scipy.optimize.brentq on the step function), one wingtip analysis per evaluation;
     `bracket` [deg] must have the forward-whirl flutter first at its lower end and the backward
-    at its upper end; `xtol` [deg].
+    at its upper end; `xtol` [deg]; method: the analyses' (the reproduction's: "dense").
     """
     from scipy.optimize import brentq
 
@@ -423,7 +425,7 @@ def blade_angle_mode_switch(bracket: tuple[float, float] = (60.0, 80.0), *, xtol
     def g(beta: float) -> float:
         beta = float(beta)
         if beta not in evals:  # brentq re-evaluates the bracket ends
-            evals[beta] = whirl_flutter_speeds(beta, propeller, speeds)
+            evals[beta] = whirl_flutter_speeds(beta, propeller, speeds, method=method)
         Vf, Vb = evals[beta]
         if math.isnan(Vf) and math.isnan(Vb):
             raise v.InputError(f"no whirl flutter of the wingtip model at beta = {beta:g} deg "

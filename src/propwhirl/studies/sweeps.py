@@ -432,7 +432,7 @@ def _axis(model: Any, path: str, values: Any) -> tuple[P.Parameter, Axis]:
 def critical_map(model: Any, axes: Sequence[tuple[str, Any]], *, speeds=None,
                  xtol: float = STUDY_XTOL, static_divergence: bool = True, low_speed: bool = True,
                  processes: int = 1, client=None, progress=None, checkpoint=None,
-                 method: str = "auto", warm_start: bool = False,
+                 method: str = "auto", warm_start: bool = True,
                  stats: dict | None = None) -> CriticalMap:
     """The critical speed of `model` over the outer product of `axes` ((path, values) pairs;
     one or more).  An unknown or non-numeric path, two paths that cannot vary together (the
@@ -441,10 +441,13 @@ def critical_map(model: Any, axes: Sequence[tuple[str, Any]], *, speeds=None,
     refuses (e.g. a hub radius beyond the radius) or whose analysis fails is recorded — kind
     "error", its one-line message in the column ``error`` — and the others go on.  client, progress, checkpoint: as
     :func:`propwhirl.studies.execution.map_analyses`; method: each analysis's
-    (:func:`propwhirl.analysis.stability.analyse`: "reduced" is the fast one for wings);
-    warm_start: analyse most points only up to the speeds their neighbours found
-    (:mod:`propwhirl.studies.warmstart`: the same rows to the accuracy xtol; not with
-    ``low_speed=False``); stats: a dict that receives the number of analyses of each pass."""
+    (:func:`propwhirl.analysis.stability.analyse`; the default "auto" is the reduced analysis
+    for wings, crossings converged on the full order; "dense" the reference);
+    warm_start (default True): analyse most points only up to the speeds their neighbours
+    found (:mod:`propwhirl.studies.warmstart`: the same rows to the accuracy xtol; not with
+    ``low_speed=False``, where it is ignored); ``method="dense", warm_start=False`` is the
+    brute-force reference (every point dense over its whole range); stats: a dict that
+    receives the number of analyses of each pass."""
     if not 1 <= len(axes) <= 3:
         raise v.InputError(f"axes: {len(axes)} given, a study varies 1 to 3 parameters")
     resolved = [_axis(model, p, vals) for p, vals in axes]

@@ -61,9 +61,10 @@ def fine_sweep(analysis: "ModelAnalysis", model: "Model", speeds=None,
         n = v.integer_at_least("n_speeds", n_speeds, 2)
         speeds = np.linspace(float(sw0.V[0]), float(sw0.V[-1]), n)
     dm = model.dof_map()
-    if dm.n_states != sw0.eigenvalues.shape[1]:
+    n_analysed = len(sw0.state_labels)       # full-order states, also of a reduced analysis
+    if dm.n_states != n_analysed:
         raise v.InputError(f"model {getattr(model, 'name', '?')!r} has {dm.n_states} states, the "
-                           f"analysis {sw0.eigenvalues.shape[1]}: pass the analysed model")
+                           f"analysis {n_analysed}: pass the analysed model")
     sw = engine_sweep(model.assembly().state_matrix, speeds, displacement=dm.displacement,
                       state_labels=dm.state_labels)
     sw = sw.relabel(mode_names(model, sw))
