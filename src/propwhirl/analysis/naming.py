@@ -159,6 +159,25 @@ def propeller_sets(model: Model) -> list[tuple[int, ...]]:
     return [tuple(g) for g in keys.values()]
 
 
+def with_content(label: str, content: str) -> str:
+    """A mode's name with its dominant content, e.g. "wing 2 (torsion)"; a name that ends in its
+    own parenthesis takes the content inside it: "backward whirl, propellers 1–6 (1 of 6;
+    pitch)".  No content: the name as it is.
+
+    Examples
+    --------
+    >>> with_content("wing 2", "torsion")
+    'wing 2 (torsion)'
+    >>> with_content("backward whirl, propellers 1–6 (2 of 6)", "pitch")
+    'backward whirl, propellers 1–6 (2 of 6; pitch)'
+    """
+    if not content:
+        return label
+    if label.endswith(")"):
+        return f"{label[:-1]}; {content})"
+    return f"{label} ({content})"
+
+
 def numbers_text(numbers: Sequence[int]) -> str:
     """'propeller 7', 'propellers 1–6', 'propellers 1, 3–4' (numbers from 1).
 

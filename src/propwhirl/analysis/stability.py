@@ -32,7 +32,7 @@ from propwhirl import fileio
 from propwhirl import validate as v
 from propwhirl.analysis.events import (UNSTABLE_EVENTS, Exclusion, Instability,  # noqa: F401
                                        critical, describe_critical)
-from propwhirl.analysis.naming import mode_content, named_modes, whirl
+from propwhirl.analysis.naming import mode_content, named_modes, whirl, with_content
 from propwhirl.analysis.participation import (ModeParticipation, branch_point_shape,  # noqa: F401
                                               events_csv, events_table, participation_lines,
                                               with_participation)
@@ -109,15 +109,10 @@ class ModelAnalysis(Result):
         return replace(out, exact="p-k, doublet-lattice panels") if self.doublet_lattice else out
 
     def describe(self, label: str) -> str:
-        """'label (dominant content)', e.g. 'wing 2 (torsion)'; a label that ends in its own
-        parenthesis takes the content inside it: 'backward whirl, propellers 1–6 (1 of 6; pitch)'."""
+        """'label (dominant content)', e.g. 'wing 2 (torsion)'
+        (:func:`~propwhirl.analysis.naming.with_content`)."""
         c = self.content.get(label)
-        if not c:
-            return label
-        content = max(c, key=lambda g: c[g])
-        if label.endswith(")"):
-            return f"{label[:-1]}; {content})"
-        return f"{label} ({content})"
+        return with_content(label, max(c, key=lambda g: c[g])) if c else label
 
     @property
     def onsets(self) -> list[Instability]:

@@ -13,6 +13,7 @@ import numpy as np
 from propwhirl import fileio
 from propwhirl import validate as v
 from propwhirl.analysis.summary import text_table
+from propwhirl.analysis.naming import with_content
 from propwhirl.results import Result, SavedDict
 
 def _column(c: SavedDict, key: str) -> np.ndarray:
@@ -153,7 +154,7 @@ class StudyTable(Result):
         rows = []
         for i in range(len(self)):
             m, x, V, f, lab, c, kind, Vd = (np.asarray(self.columns[k])[i] for k in keys)
-            name = f"{lab} ({c})" if c else lab
+            name = with_content(str(lab), str(c))
             rows.append([m, f"{x:.6g}", f"{V:.2f}", f"{f:.3f}", name, kind, f"{Vd:.2f}"])
         lines = [self.name, f"critical instability: {self.convention}",
                  text_table(rows, heads, "lrrrllr")]
