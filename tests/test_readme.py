@@ -64,6 +64,24 @@ def test_command_line_examples_run(tmp_path):
         assert (tmp_path / f).stat().st_size > 0, f
 
 
+def test_many_propeller_examples_run(tmp_path):
+    """"Many propellers": the commands as written, from a copy of the repository's examples
+    (they name examples/...); the figures, the campaign's report and the margin line."""
+    import shutil
+
+    root = Path(__file__).resolve().parent.parent
+    shutil.copytree(root / "examples", tmp_path / "examples",
+                    ignore=shutil.ignore_patterns("certification", "*.ipynb", "figures"))
+    (block,) = _blocks(_section("Many propellers"), "sh")
+    outs = [_run(argv, tmp_path) for argv in _commands(block)]
+    assert "margin to 1.15 V_D" in outs[0].stdout
+    assert "propellers 1–6" in outs[0].stdout
+    assert "propeller 7 at 0.3111 x RPM" in outs[1].stdout     # the cruise propeller's own rpm
+    assert "critical: divergence" in outs[2].stdout             # folded: no whirl flutter
+    for f in ("x57_vgf.png", "x57_campbell.png", "report/report.html", "report/campaign.csv"):
+        assert (tmp_path / f).stat().st_size > 0, f
+
+
 @pytest.mark.long
 def test_reproduction_examples_run(tmp_path, monkeypatch, capsys, reproduction_records):
     """The commands as written, through the CLI in this process; the reproduction itself is
