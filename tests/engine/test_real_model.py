@@ -48,8 +48,9 @@ def model():
 
 @pytest.fixture(scope="module")
 def engine(model):
+    """The engine on the full-order model (method "dense"), as the dense tracking sees it."""
     with threadpool_limits(limits=1):
-        return analyse(model)
+        return analyse(model, method="dense")
 
 
 @pytest.fixture(scope="module")
