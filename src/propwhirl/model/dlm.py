@@ -43,8 +43,8 @@ import numpy as np
 from propwhirl import validate as v
 from propwhirl.model import dlm_cache
 from propwhirl.model.assembly import free_dofs
-# the wing's own checks of its dlm_mach (re-exported: MACH_MAX, MATCHED, check_dlm_mach)
-from propwhirl.model.wing import DLM_MACH_MAX as MACH_MAX, DLM_MATCHED as MATCHED, check_dlm_mach  # noqa: F401
+# the Mach limits the Wing checks its dlm_mach against (they live with the field)
+from propwhirl.model.wing import DLM_MACH_MAX as MACH_MAX, DLM_MATCHED as MATCHED
 from propwhirl.model.dlm_mesh import PanelMesh, panel_mesh, spline
 
 #: first non-zero reduced frequency of the tables (on the reference semichord)

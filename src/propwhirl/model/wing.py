@@ -50,8 +50,8 @@ def check_dlm_mach(value) -> None:
     if isinstance(value, (int, float, np.integer, np.floating)) and np.isfinite(value) \
             and not isinstance(value, (bool, np.bool_)):
         raise v.InputError(f"dlm_mach = {value!r:.40} is outside the valid range "
-                           f"[0, {DLM_MACH_MAX:g}] (one Mach for every speed; or \"{DLM_MATCHED}\": "
-                           "Mach V/a at each analysed speed)")
+                           f"[0, {DLM_MACH_MAX:g}] (one Mach for every speed; or "
+                           f"\"{DLM_MATCHED}\": Mach V/a at each analysed speed)")
     raise v.InputError(f"dlm_mach = {value!r:.40} is invalid: must be \"{DLM_MATCHED}\" "
                        f"(Mach V/a at each analysed speed) or a number in "
                        f"[0, {DLM_MACH_MAX:g}] (one Mach for every speed)")
