@@ -24,7 +24,7 @@ the p-k's (docs/validation.md, "Karpel's minimum-state approximation").
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -32,7 +32,7 @@ from propwhirl import validate as v
 from propwhirl.model.assembly import free_dofs
 from propwhirl.model.dlm import check_mach, dlm_aerodynamics, fixed_mach, snap_mach
 from propwhirl.model.dlm_rfa import _fit as roger_lstsq
-from propwhirl.model.dlm_rfa import fit_ks
+from propwhirl.model.dlm_rfa import fit_ks, quasi_steady
 
 #: alternating least-squares sweeps at most (each one E-step and one D-step)
 ITERATIONS = 200
@@ -167,17 +167,13 @@ def state_matrix(model, f: MinimumStateFit, V) -> np.ndarray:
     """The first-order state matrices (nV, 2n + m, 2n + m) of ``model`` with the minimum-state
     fit ``f`` of its doublet-lattice loads at the airspeeds V [m/s]; states [q, q̇, x]."""
     V = np.atleast_1d(v.positive("airspeed V", V, "m/s"))
-    dry = replace(model, wing_aero=False).second_order(V)
-    n = dry.S1.shape[-1]
-    nw, m = f.D.shape
     b = f.b_ref
+    Ms, Cs, Ks, qs = quasi_steady(model, V, f.A, b)
+    n = Ms.shape[-1]
+    nw, m = f.D.shape
     out = np.zeros((V.size, 2 * n + m, 2 * n + m))
     for i, Vi in enumerate(V):
-        q = 0.5 * model.flight.density * Vi**2
-        M, C, K = (np.array(X[i], float) for X in (dry.S1, dry.S2, dry.S3))
-        M[:nw, :nw] -= q * (b / Vi) ** 2 * f.A[2]
-        C[:nw, :nw] -= q * (b / Vi) * f.A[1]
-        K[:nw, :nw] -= q * f.A[0]
+        M, C, K, q = Ms[i], Cs[i], Ks[i], qs[i]
         F = np.zeros((n, m))
         F[:nw] = q * f.D
         Minv = np.linalg.inv(M)

@@ -120,24 +120,36 @@ def _fit(Q: np.ndarray, ks: np.ndarray, lags: np.ndarray, mach: float, b_ref: fl
     return RogerFit(A, lags, ks, mach, b_ref, error, entry)
 
 
+def quasi_steady(model, V: np.ndarray, A: np.ndarray, b_ref: float):
+    """``model``'s second-order matrices at the airspeeds V [m/s] (nV,) with the wing's
+    doublet-lattice loads' polynomial part of a fit, q (A_0 + A_1 p̄ + A_2 p̄²) on the first n_w
+    DOFs (p̄ = s b_ref / V, q = ½ρV²), moved to the left-hand side: (M, C, K, q), M, C, K of
+    shape (nV, n, n) and q (nV,); the lag terms are the caller's (Roger's or the minimum
+    state's)."""
+    dry = replace(model, wing_aero=False).second_order(V)
+    q = 0.5 * model.flight.density * V**2
+    nw = A.shape[-1]
+    M, C, K = (np.array(X, float) for X in (dry.S1, dry.S2, dry.S3))
+    M[:, :nw, :nw] -= (q * (b_ref / V) ** 2)[:, None, None] * A[2]
+    C[:, :nw, :nw] -= (q * (b_ref / V))[:, None, None] * A[1]
+    K[:, :nw, :nw] -= q[:, None, None] * A[0]
+    return M, C, K, q
+
+
 def state_matrix(model, fit: RogerFit, V) -> np.ndarray:
     """The first-order state matrices (nV, 2n + L n_w, 2n + L n_w) of ``model`` with the Roger
     fit of its doublet-lattice loads at the airspeeds V [m/s]; states [q, q̇, x_1, …, x_L]
     (q the model's DOFs without lag states, x_l the lag states of the wing DOFs)."""
     V = np.atleast_1d(v.positive("airspeed V", V, "m/s"))
-    dry = replace(model, wing_aero=False).second_order(V)
-    n = dry.S1.shape[-1]
+    b = fit.b_ref
+    Ms, Cs, Ks, qs = quasi_steady(model, V, fit.A, b)
+    n = Ms.shape[-1]
     nw = fit.A.shape[-1]
     L = fit.lags.size
-    b = fit.b_ref
     size = 2 * n + L * nw
     out = np.zeros((V.size, size, size))
     for i, Vi in enumerate(V):
-        q = 0.5 * model.flight.density * Vi**2
-        M, C, K = (np.array(X[i], float) for X in (dry.S1, dry.S2, dry.S3))
-        M[:nw, :nw] -= q * (b / Vi) ** 2 * fit.A[2]
-        C[:nw, :nw] -= q * (b / Vi) * fit.A[1]
-        K[:nw, :nw] -= q * fit.A[0]
+        M, C, K, q = Ms[i], Cs[i], Ks[i], qs[i]
         F = np.zeros((n, L * nw))                    # the lag states' loads on the wing rows
         for l in range(L):
             F[:nw, l * nw:(l + 1) * nw] = q * fit.A[3 + l]

@@ -189,6 +189,17 @@ class DofMap:
                 return i
         return None
 
+    def wing_values(self, x: np.ndarray, kind: str) -> np.ndarray:
+        """Complex DOF ``kind`` ("h", "phi", "alpha") of a shape ``x`` (its first ``n_dof``
+        entries the displacements q) at every wing node, in the order of ``node_y``; 0 where
+        the DOF is not a state (the clamped root)."""
+        vals = np.zeros(len(self.node_y), dtype=complex)
+        for node in range(vals.size):
+            i = self.wing_dof(node, kind)
+            if i is not None:
+                vals[node] = x[i]
+        return vals
+
     def to_dict(self) -> dict:
         """JSON-able dict (re-read with :meth:`from_dict`)."""
         d = {f: list(getattr(self, f)) for f in ("q_labels", "q_kinds", "q_node", "q_propeller",

@@ -670,16 +670,8 @@ def _critical_shape(a: Any, e: Any) -> dict[str, Any] | None:
         return None
     x = x / x[shown[int(np.argmax(np.abs(x[shown])))]]
 
-    def wing(key: str) -> np.ndarray:
-        out = np.zeros(len(dm.node_y), dtype=complex)
-        for node in range(out.size):
-            i = dm.wing_dof(node, key)
-            if i is not None:
-                out[node] = x[i]
-        return out
-
     return {"V": Ve, "eigenvalue": lam, "y": np.asarray(dm.node_y, dtype=float),
-            "h": wing("h"), "alpha": wing("alpha"),
+            "h": dm.wing_values(x, "h"), "alpha": dm.wing_values(x, "alpha"),
             "propellers": [(p.number + 1, p.y, x[p.theta], x[p.psi])
                            for p in sorted(dm.propellers, key=lambda p: p.number)]}
 

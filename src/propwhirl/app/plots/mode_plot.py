@@ -52,13 +52,9 @@ def normalised(eigenvector, dof_map: "DofMap") -> np.ndarray:
 
 
 def wing_values(x: np.ndarray, dof_map: "DofMap", key: str) -> np.ndarray:
-    """Complex `key` ("h" or "alpha") at every wing node (the clamped root 0 as zero)."""
-    vals = np.zeros(len(dof_map.node_y), dtype=complex)
-    for node in range(vals.size):
-        i = dof_map.wing_dof(node, key)
-        if i is not None:
-            vals[node] = x[i]
-    return vals
+    """Complex `key` ("h" or "alpha") at every wing node (the clamped root 0 as zero):
+    :meth:`~propwhirl.model.protocol.DofMap.wing_values`."""
+    return dof_map.wing_values(x, key)
 
 
 def propeller_amplitudes(x: np.ndarray, dof_map: "DofMap") -> dict[int, float]:
