@@ -126,18 +126,26 @@ def test_auto_analyses_dense_where_a_crossing_does_not_converge_on_the_full_orde
 
 
 def test_a_frequency_zero_bracket_without_the_full_order_branch_point_is_refused(wingtip_dense):
-    """frequency_zero_on_full_order: True where the full-order count of unstable complex pairs
-    falls inside the bracket, False elsewhere (auto then analyses dense)."""
-    from propwhirl.analysis.reduced import frequency_zero_on_full_order
+    """frequency_zero_on_full_order: True where the full-order pair turns real inside the
+    reduced event's bracket, False for the same bracket moved by 2 xtol or 5 m/s either way
+    (auto then analyses dense); the full-order branch point (the dense analysis's event) is
+    inside the reduced bracket."""
+    from propwhirl.analysis.reduced import frequency_zero_on_full_order, reduced_engine_analysis
     from propwhirl.engine import frequency_zero_points
 
     m, den = wingtip_dense
-    A = m.assembly().state_matrix
-    (p,) = frequency_zero_points(den.sweep, A)
-    assert frequency_zero_on_full_order([p], A)
-    shifted = type(p)(p.mode, p.label, p.V - 5.0, (p.bracket[0] - 5.0, p.bracket[1] - 5.0))
-    assert not frequency_zero_on_full_order([shifted], A)
-    assert frequency_zero_on_full_order([], A)
+    dm = m.dof_map()
+    run = reduced_engine_analysis(m, m.flight.speeds(), displacement=dm.displacement,
+                                  state_labels=dm.state_labels, xtol=0.01)
+    (p,) = frequency_zero_points(run.analysis.sweep, run.model.state_matrix, xtol=0.01)
+    (full,) = [e for e in den.events if e.event == "frequency-zero"]
+    assert abs(full.V - p.V) <= 0.01
+    assert frequency_zero_on_full_order([p], run.model)
+    for shift in (-5.0, -0.02, 0.02, 5.0):
+        moved = type(p)(p.mode, p.label, p.V + shift,
+                        (p.bracket[0] + shift, p.bracket[1] + shift))
+        assert not frequency_zero_on_full_order([moved], run.model), shift
+    assert frequency_zero_on_full_order([], run.model)
 
 
 def test_lifted_eigenvectors_index_like_the_array():

@@ -2,7 +2,7 @@
 import numpy as np
 import scipy.sparse as sp
 
-from propwhirl.engine.correction import correct_crossing, full_order_root
+from propwhirl.engine.correction import correct_crossing, full_order_pair, full_order_root
 
 
 def oscillator(V):
@@ -51,3 +51,40 @@ def test_a_real_root_given_with_a_quarter_turn_phase_is_still_found():
     np.testing.assert_allclose(real_direction(x0), [1.0, 1e-3])
     c = correct_crossing(pencil, 29.5, -0.5 + 0j, x0, xtol=0.01)
     assert c is not None and abs(c.V - 30.0) < 1e-3
+
+
+def _pair_pencil(d: float, n_far: int = 30):
+    """A real pencil F x = λ E x (E symmetric positive definite, not I) with the pair
+    2 ± √d (complex for d < 0, two real roots for d > 0) and n_far roots between 8 and 40,
+    in a random basis."""
+    rng = np.random.default_rng(3)
+    n = 2 + n_far
+    D = np.zeros((n, n))
+    D[:2, :2] = [[2.0, 1.0], [d, 2.0]]
+    D[2:, 2:] = np.diag(np.linspace(8.0, 40.0, n_far))
+    T = np.eye(n) + 0.3 * rng.standard_normal((n, n))
+    E = rng.standard_normal((n, n))
+    E = E @ E.T + n * np.eye(n)
+    F = E @ T @ D @ np.linalg.inv(T)           # E⁻¹F = T D T⁻¹
+    return sp.csc_matrix(F), sp.csc_matrix(E), rng.standard_normal((n, 2))
+
+
+def test_pair_is_complex_before_and_real_after_the_branch_point():
+    """full_order_pair: the two roots nearest σ, a conjugate pair or exactly real, from a
+    random start subspace, on either side of a branch point as close as 1e-6."""
+    for d in (-1.0, -1e-6, 1e-6, 1.0):
+        F, E, X0 = _pair_pencil(d)
+        lam = full_order_pair(F, E, 2.0, X0)
+        expected = 2.0 + np.sqrt(complex(d)) * np.array([1.0, -1.0])
+        np.testing.assert_allclose(np.sort_complex(lam), np.sort_complex(expected),
+                                   rtol=0, atol=1e-7)
+        if d > 0:
+            assert np.all(lam.imag == 0)
+        else:
+            assert np.all(lam.imag != 0)
+
+
+def test_pair_not_converged_returns_none():
+    """One iteration from a random start does not reach the invariant subspace: None."""
+    F, E, X0 = _pair_pencil(-1.0)
+    assert full_order_pair(F, E, 2.0, X0, max_iter=1) is None

@@ -22,7 +22,7 @@ import numpy as np
 from propwhirl import validate as v
 from propwhirl.engine import analyse as engine_analyse
 from propwhirl.engine import single_thread_blas
-from propwhirl.engine.correction import correct_crossing
+from propwhirl.engine.correction import correct_crossing, full_order_pair
 from propwhirl.engine.results import Analysis, Criticals
 from propwhirl.model.dlm import require_panelaero
 from propwhirl.model.frequency_domain import check_section
@@ -174,25 +174,54 @@ def _reduced_engine_analysis(model, grid, displacement, state_labels, options, x
     return ReducedRun(Analysis(lifted, crit), R, tuple(shifts))
 
 
-def _unstable_pairs(A: np.ndarray) -> int:
-    """Eigenvalues with Re λ > 0 and Im λ > 0 of the state matrix ``A`` (as the engine's
-    frequency-zero search counts them)."""
-    lam = np.linalg.eigvals(A)
-    return int(np.sum((lam.real > 0) & (lam.imag > 1e-9 * np.maximum(1.0, np.abs(lam)))))
+def frequency_zero_on_full_order(points, reduced: ReducedModel) -> bool:
+    """Whether every frequency-zero event ``points`` of the ``reduced`` model (brackets of width
+    ≤ xtol, :func:`propwhirl.engine.frequency_zero_points`) is one of the full-order model too:
+    the full-order pair turns real inside each bracket, so its branch point lies within xtol of
+    the event's speed.
 
-
-def frequency_zero_on_full_order(points, state_matrix) -> bool:
-    """Whether every frequency-zero event ``points`` (of the reduced model, brackets of width
-    ≤ xtol) is one of the full-order model too: its count of unstable complex pairs
-    (``state_matrix``: the full-order A(V), evaluated at every bracket end in one call) falls
-    inside each bracket, so the full-order branch point lies within xtol of the event's speed.
-    Two full eigenvalue solves per event."""
+    The pair is the reduced model's unstable complex root at the bracket's lower end whose
+    frequency is the smallest relative to |λ| (the one about to turn real); its real part is the
+    shift σ and its lifted eigenvector's real and imaginary parts the start of
+    :func:`~propwhirl.engine.correction.full_order_pair` on the full-order sparse pencil at
+    each bracket end: a complex pair with Re λ > 0 at the lower end and two real roots at the
+    upper end (the count of unstable complex pairs falls there, as the event says).  One
+    reduced eigen-solution and two sparse factorisations of the full pencil per event; False
+    where the pair cannot be identified or the iteration does not converge (auto then analyses
+    the model dense)."""
     if not points:
         return True
     with single_thread_blas():
-        A = state_matrix(np.array([V for p in points for V in p.bracket], dtype=float))
-        return all(_unstable_pairs(A[2 * k]) > _unstable_pairs(A[2 * k + 1])
-                   for k in range(len(points)))
+        lam, X = np.linalg.eig(reduced.state_matrix(np.array([p.bracket[0] for p in points])))
+        for k, p in enumerate(points):
+            j = _turning_pair(lam[k])
+            if j is None:
+                return False
+            z = reduced.lift @ X[k][:, j]
+            start = np.column_stack([z.real, z.imag])
+            ends = [full_order_pair(*reduced.pencil(V), float(lam[k][j].real), start)
+                    for V in p.bracket]
+            if any(mu is None for mu in ends):
+                return False
+            lo, hi = ends
+            if not (_unstable_complex(lo).any() and np.all(hi.imag == 0)):
+                return False
+    return True
+
+
+def _unstable_complex(lam: np.ndarray) -> np.ndarray:
+    """Which roots ``lam`` are unstable with Im λ > 0, as the engine's frequency-zero search
+    counts them (Re λ > 0, Im λ > 1e-9 max(1, |λ|))."""
+    return (lam.real > 0) & (lam.imag > 1e-9 * np.maximum(1.0, np.abs(lam)))
+
+
+def _turning_pair(lam: np.ndarray) -> int | None:
+    """The index of the unstable complex root of ``lam`` with the smallest Im λ / |λ| (None if
+    there is none)."""
+    idx = np.flatnonzero(_unstable_complex(lam))
+    if idx.size == 0:
+        return None
+    return int(idx[np.argmin(lam[idx].imag / np.abs(lam[idx]))])
 
 
 def _reduced_slopes(sweep, points) -> list[float | None]:

@@ -547,7 +547,7 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         unconverged = [p for p, s in zip(an.criticals.points, run.corrections) if s is None]
         fzero = frequency_zero_points(an.sweep, matrix_fn, xtol=xtol)
         if method == "auto" and (unconverged or not frequency_zero_on_full_order(
-                fzero, finite.assembly().state_matrix)):    # AUTO_NEEDS not met: dense
+                fzero, run.model)):                          # AUTO_NEEDS not met: dense
             chosen = "dense"
     if chosen != "reduced":
         matrix_fn = finite.assembly().state_matrix    # built once for the analysis
