@@ -364,7 +364,10 @@ def effective_states(n_states: int, method: str = "auto", n_propellers: int = 0)
     """The states the engine tracks: ``n_states``, or for a model that ``method`` reduces
     (``"reduced"``, or ``"auto"`` above :data:`ESTIMATE_REDUCED_ABOVE` states) the estimated
     reduced size (:data:`REDUCED_STATES_BASE` + :data:`REDUCED_STATES_PER_PROPELLER` per
-    propeller, at most ``n_states``)."""
+    propeller, at most ``n_states``).  ``"auto"`` here is a method not resolved for a model
+    (an estimate from the size alone); :func:`study_estimate` is given the resolved one
+    (``analysis.reduced.choose_method``: ``"reduced"`` for every strip-theory wing since issue
+    26)."""
     n = int(n_states)
     if method == "reduced" or (method == "auto" and n > ESTIMATE_REDUCED_ABOVE):
         return min(n, REDUCED_STATES_BASE + REDUCED_STATES_PER_PROPELLER * int(n_propellers))
@@ -416,7 +419,10 @@ class StudyEstimate:
 def study_estimate(model, n_points: int, processes: int = 1,
                    method: str = "auto") -> StudyEstimate:
     """The :class:`StudyEstimate` of ``n_points`` analyses of variants of ``model`` (their
-    size: the model's ``dof_map()``: its states and flexibly mounted propellers)."""
+    size: the model's ``dof_map()``: its states and flexibly mounted propellers).  ``method``:
+    the one the analyses run, resolved for the model (the studies and the CLI pass
+    ``analysis.reduced.choose_method(model, method)``: a wing's ``"auto"`` is ``"reduced"``);
+    an unresolved ``"auto"`` is estimated from the size (:func:`effective_states`)."""
     dm = model.dof_map()
     return StudyEstimate(n_points, dm.n_states, processes, method, len(dm.propellers))
 

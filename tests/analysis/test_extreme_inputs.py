@@ -1,6 +1,7 @@
 """Studies whose cost is inherent tell the user before the work (issue 20, item 9): a 500 × 500
-map (250,000 analyses) is estimated — time and memory, from the model's size — and refused
-beyond ``PROPWHIRL_STUDY_TIME_LIMIT`` (default 12 h) or the memory limit, before a single
+map (250,000 analyses) is estimated — time and memory, from the model's size and the method
+its analyses run — and refused beyond ``PROPWHIRL_STUDY_TIME_LIMIT`` (default 12 h; since issue
+26 the wingtip map's ≈ 5.4 h fit in it, so the tests set 2 h) or the memory limit, before a single
 variant is built; a long study that is started prints its estimate first.  Work is bounded
 by counting (variants built, analyses run) and by tracemalloc, never by the clock."""
 from __future__ import annotations
@@ -40,7 +41,9 @@ AXES = (("wing.EI", np.linspace(5e5, 9e5, 500)), ("wing.GJ", np.linspace(1.5e5, 
 
 
 def test_a_500_by_500_map_is_refused_before_any_work(monkeypatch, variants_built):
-    monkeypatch.delenv(limits.STUDY_TIME_ENV, raising=False)
+    # ≈ 5.4 h on one process by default since issue 26 (the reduced default analysis),
+    # within the default 12 h: refused under a limit of 2 h
+    monkeypatch.setenv(limits.STUDY_TIME_ENV, "2h")
     model = wingtip_propeller_wing()
     tracemalloc.start()
     try:
@@ -61,10 +64,10 @@ def test_the_limit_is_lifted_by_the_environment(monkeypatch, variants_built):
     with pytest.raises(_Started):
         sweeps.map2d(wingtip_propeller_wing(), *AXES)
     assert variants_built["n"] == 1
-    monkeypatch.setenv(limits.STUDY_TIME_ENV, "3d")          # 29 h on one process: within 3 d
+    monkeypatch.setenv(limits.STUDY_TIME_ENV, "3d")          # 5.4 h on one process: within 3 d
     with pytest.raises(_Started):
         sweeps.map2d(wingtip_propeller_wing(), *AXES)
-    monkeypatch.setenv(limits.STUDY_TIME_ENV, "12h")         # or on more processes
+    monkeypatch.setenv(limits.STUDY_TIME_ENV, "2h")          # or on more processes
     with pytest.raises(InputError):
         sweeps.map2d(wingtip_propeller_wing(), *AXES)
     with pytest.raises(_Started):
@@ -194,3 +197,18 @@ def test_a_long_analysis_is_announced_before_the_work(tmp_path, monkeypatch, cap
     with pytest.raises(Stop):
         cli.main(["analyse", str(path), "--quiet"])
     assert capsys.readouterr().err == ""
+
+
+def test_a_study_of_a_wing_is_estimated_as_the_default_analyses_it():
+    """Since issue 26 "auto" analyses every strip-theory wing reduced: a study of the wingtip
+    model (204 states, below the old 400-state threshold) is estimated at the reduced size
+    when the studies pass the resolved method, within 2x of its measured default analysis
+    (≈ 0.065 s on one thread, docs/performance.md) rather than the dense one (≈ 0.28 s)."""
+    from propwhirl.analysis.reduced import choose_method
+
+    wing = wingtip_propeller_wing()
+    resolved = limits.study_estimate(wing, 1000, method=choose_method(wing, "auto"))
+    assert resolved.per_analysis == pytest.approx(limits.analysis_seconds(204, "reduced", 1))
+    assert resolved.per_analysis < 0.5 * limits.study_estimate(wing, 1000, method="dense").per_analysis
+    assert 0.065 / 2 < resolved.per_analysis < 2 * 0.065
+

@@ -219,6 +219,7 @@ def _add_derivatives(sub) -> None:
 # ----------------------------------------------------------------------------- model files
 def _analyse(args: argparse.Namespace) -> int:
     from propwhirl import io
+    from propwhirl.analysis.reduced import choose_method
     from propwhirl.analysis.stability import analyse
 
     check_outputs(json=args.json, csv=args.csv, plot=args.plot, summary_csv=args.summary_csv,
@@ -237,7 +238,8 @@ def _analyse(args: argparse.Namespace) -> int:
         from propwhirl.studies.clearance import clearance_speeds
 
         speeds = clearance_speeds(model, V_req, speeds)
-    notice = None if args.quiet else limits.analysis_notice(model, args.method)
+    notice = None if args.quiet else limits.analysis_notice(model,
+                                                            choose_method(model, args.method))
     if notice:                             # a long one is announced before the work (issue 20.9)
         print(f"propwhirl: estimate: {notice}", file=sys.stderr)
     with progress.spinner(f"analysing {limits.printable(model.name)}", quiet=args.quiet):

@@ -29,6 +29,7 @@ import numpy as np
 
 from propwhirl import fileio, limits
 from propwhirl import validate as v
+from propwhirl.analysis.reduced import choose_method
 from propwhirl.analysis.stability import ModelAnalysis, analyse
 from propwhirl.analysis.summary import text_table
 from propwhirl.results import Result, SavedDict
@@ -453,7 +454,8 @@ def critical_map(model: Any, axes: Sequence[tuple[str, Any]], *, speeds=None,
     resolved = [_axis(model, p, vals) for p, vals in axes]
     P.check_independent([p for p, _ in resolved])     # f_theta x K_theta: one would be ignored
     limits.check_study(model, math.prod(ax.values.size for _, ax in resolved), processes,
-                       method=method, cluster=client is not None, progress=progress)
+                       method=choose_method(model, method), cluster=client is not None,
+                       progress=progress)
     variants: list[Any] = []
     keys = []
     for idx in np.ndindex(*(len(ax.values) for _, ax in resolved)):
