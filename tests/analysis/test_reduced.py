@@ -230,3 +230,21 @@ def test_a_wing_with_a_propeller_without_aerodynamics_is_reduced():
     auto = analyse(m)
     assert auto.sweep.stats["reduced_states"] < m.dof_map().n_states
     assert_same_events(auto, analyse(m, method="dense"))
+
+
+def test_an_analysis_assembles_its_model_once(monkeypatch):
+    """The in-vacuo modes, their names, the content and the participation read the structure
+    from the analysis's own assembly (``in_vacuo``): one PropellerWingAssembly.build per
+    analysis, reduced or dense (five before: each of them assembled the model again)."""
+    from propwhirl.model.systems import PropellerWingAssembly
+
+    built = []
+    real = PropellerWingAssembly.build.__func__
+    monkeypatch.setattr(PropellerWingAssembly, "build",
+                        classmethod(lambda cls, m: built.append(m.name) or real(cls, m)))
+    m = wingtip_propeller_wing()
+    for method in ("auto", "dense"):
+        built.clear()
+        a = analyse(m, method=method)
+        assert len(built) == 1, (method, built)
+        assert any(e.event == "frequency-zero" for e in a.events)

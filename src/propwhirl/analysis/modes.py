@@ -75,7 +75,8 @@ def undamped_modes(M: np.ndarray, K: np.ndarray, labels: tuple[str, ...]) -> Mod
     return Modes(np.sqrt(np.clip(lam, 0.0, None)), X, labels)
 
 
-def model_modes(model, basis: np.ndarray | None = None) -> tuple[Modes, np.ndarray]:
+def model_modes(model, basis: np.ndarray | None = None, in_vacuo=None
+                ) -> tuple[Modes, np.ndarray]:
     """Undamped in-vacuo modes of any model (no aerodynamics; the gyroscopic and dissipative
     terms, which live in the damping matrix, play no part): K x = ω² M x with the structural
     M and K of ``model.without_aerodynamics()``.
@@ -83,8 +84,11 @@ def model_modes(model, basis: np.ndarray | None = None) -> tuple[Modes, np.ndarr
     ``basis`` (n, r): Rayleigh–Ritz on its columns instead (a reduced model's basis,
     :mod:`propwhirl.model.reduction`): r modes, shapes lifted to the n DOFs.
     Returns the modes and the (reduced) structural mass matrix they are normalised with.
+    ``in_vacuo``: the model without aerodynamics, already assembled
+    (``model.assembly().without_aerodynamics()``, built once by an analysis); default: assembled
+    here.
     """
-    s = model.without_aerodynamics().second_order(np.array([1.0]))
+    s = (in_vacuo or model.without_aerodynamics()).second_order(np.array([1.0]))
     if basis is None:
         return undamped_modes(s.S1[0], s.S3[0], s.q_labels), s.S1[0]
     P = np.asarray(basis)
@@ -92,8 +96,8 @@ def model_modes(model, basis: np.ndarray | None = None) -> tuple[Modes, np.ndarr
     return Modes(m.omega, P @ m.shapes, s.q_labels), s.S1[0]
 
 
-def label_modes(model, basis: np.ndarray | None = None,
-                modes: Modes | None = None) -> list[tuple[str, float]]:
+def label_modes(model, basis: np.ndarray | None = None, modes: Modes | None = None,
+                in_vacuo=None) -> list[tuple[str, float]]:
     """All non-rotating modes of a PropellerWing as (label, frequency [Hz]), ascending.
 
     The thesis names one backward and one forward whirl mode per flexibly mounted propeller
@@ -108,10 +112,11 @@ def label_modes(model, basis: np.ndarray | None = None,
     turn, so their pitch and yaw modes do not split: they count as neither (N is the number of
     flexibly mounted propellers that turn).
     ``basis``: the modes of the Rayleigh–Ritz problem on its columns (:func:`model_modes`);
-    ``modes``: those modes if already computed (``model_modes(model, basis)[0]``).
+    ``modes``: those modes if already computed (``model_modes(model, basis)[0]``);
+    ``in_vacuo``: the model without aerodynamics, already assembled (:func:`model_modes`).
     """
     if modes is None:
-        modes, _ = model_modes(model, basis)
+        modes, _ = model_modes(model, basis, in_vacuo)
     f0 = modes.frequency_hz
     kinds = ["wing"] * f0.size
     flex = _flexible_propellers(model)
@@ -121,7 +126,7 @@ def label_modes(model, basis: np.ndarray | None = None,
         rpm = 0.1 * f_mount * 60.0 / (2.0 * np.pi)
         # 2 nodes resolve every thesis model; near-repeated mount modes (64 equal propellers
         # on a reduced basis) stay unresolved after any number: bounded (issue 20.9)
-        tracks = _track(_GyroscopicSystem.of(model, basis=basis),
+        tracks = _track(_GyroscopicSystem.of(model, basis=basis, in_vacuo=in_vacuo),
                         np.array([0.0, rpm]) * 2.0 * np.pi / 60.0, max_nodes=32)
         delta = tracks.omega[-1] - tracks.omega[0]
         n = len(flex)
@@ -163,14 +168,16 @@ class _GyroscopicSystem:
 
     @classmethod
     def of(cls, model, rpm_ratio: tuple[float, ...] | None = None,
-           basis: np.ndarray | None = None) -> "_GyroscopicSystem":
+           basis: np.ndarray | None = None, in_vacuo=None) -> "_GyroscopicSystem":
         """The system of `model`, Ω the first propeller's speed; propeller j spins at
         ``rpm_ratio[j]`` × Ω (default: all at Ω).  ``basis`` (n, r): projected on its columns
-        (a reduced model's basis, :mod:`propwhirl.model.reduction`)."""
+        (a reduced model's basis, :mod:`propwhirl.model.reduction`); ``in_vacuo``: the model
+        without aerodynamics, already assembled (:func:`model_modes`; used when the model's
+        rotors turn)."""
         if basis is not None:
-            return cls.of(model, rpm_ratio)._projected(np.asarray(basis))
+            return cls.of(model, rpm_ratio, in_vacuo=in_vacuo)._projected(np.asarray(basis))
         if model.dof_map().has_wing and (rpm_ratio is None or all(r == 1.0 for r in rpm_ratio)):
-            quiet = (model.without_aerodynamics() if model.rotating
+            quiet = ((in_vacuo or model.without_aerodynamics()) if model.rotating
                      else model.with_(wing_aero=False, propeller_aero=False, rotating=True))
 
             def matrices(omega: np.ndarray):

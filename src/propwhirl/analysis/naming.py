@@ -83,10 +83,12 @@ def mode_names(model: Model, sw: Sweep, basis: np.ndarray | None = None,
     return thesis_names if thesis else names
 
 
-def named_modes(model: Model, sw: Sweep,
-                basis: np.ndarray | None = None) -> tuple[list[str], list[str]]:
+def named_modes(model: Model, sw: Sweep, basis: np.ndarray | None = None,
+                in_vacuo=None) -> tuple[list[str], list[str]]:
     """(names, the thesis's names) of the tracked modes of ``sw`` (:func:`mode_names`): the
-    same lists but with two or more flexibly mounted, spinning propellers."""
+    same lists but with two or more flexibly mounted, spinning propellers.  ``in_vacuo``: the
+    model without aerodynamics, already assembled
+    (:func:`~propwhirl.analysis.modes.model_modes`)."""
     dm = model.dof_map()
     n = sw.n_modes
     lam0 = sw.eigenvalues[0]
@@ -101,8 +103,8 @@ def named_modes(model: Model, sw: Sweep,
     for i, k in enumerate(k for k in real if k not in diverged):
         names[k] = f"lag {i + 1}"
     if dm.has_wing:
-        modes, _ = model_modes(model, basis)
-        ref = [lab for lab, _ in label_modes(model, basis, modes)]
+        modes, _ = model_modes(model, basis, in_vacuo)
+        ref = [lab for lab, _ in label_modes(model, basis, modes, in_vacuo)]
         shapes = modes.shapes.astype(complex)
         M = mac(X0[sw.displacement][:, osc][:, :, None], shapes[:, None, :])
         rows, cols = linear_sum_assignment(-M)
@@ -111,7 +113,7 @@ def named_modes(model: Model, sw: Sweep,
         if len(_spinning_flexible(dm)) >= 2:
             whirls = [k for k in osc if not names[k].startswith("wing")]
             thesis_names = list(names)
-            names = propeller_names(model, sw, names, whirls)
+            names = propeller_names(model, sw, names, whirls, in_vacuo)
             return _partners(sw, names), _partners(sw, thesis_names)
 
     elif "eta" in dm.q_kinds:       # a modal structure: its largest coordinate ("mode 3", ...)
@@ -201,7 +203,7 @@ COLLECTIVE_COHERENCE = 0.9
 
 
 def propeller_names(model: Model, sw: Sweep, names: Sequence[str],
-                    whirls: Sequence[int]) -> list[str]:
+                    whirls: Sequence[int], in_vacuo=None) -> list[str]:
     """``names`` with the whirl modes ``whirls`` (mode ids of ``sw``) named by their propellers
     at the first speed V0 of the sweep (module docstring), from the modes' kinetic-energy
     shares (:func:`propwhirl.analysis.participation.participation`):
@@ -214,6 +216,8 @@ def propeller_names(model: Model, sw: Sweep, names: Sequence[str],
     * the place: the set's modes of one sense, by increasing frequency at V0, "(k of n)" when
       there are n ≥ 2 of them; ", collective" when every propeller of a set of several moves
       in phase (coherence ≥ :data:`COLLECTIVE_COHERENCE`).
+
+    ``in_vacuo``: the model without aerodynamics, already assembled (:func:`named_modes`).
     """
     out = list(names)
     if not whirls:
@@ -221,7 +225,8 @@ def propeller_names(model: Model, sw: Sweep, names: Sequence[str],
     dm = model.dof_map()
     lam0 = sw.eigenvalues[0]
     X0 = sw.eigenvectors[0]
-    part = mode_participation(model, X0[:, list(whirls)], lam0[list(whirls)], float(sw.V[0]))
+    part = mode_participation(model, X0[:, list(whirls)], lam0[list(whirls)], float(sw.V[0]),
+                              in_vacuo)
     sets = propeller_sets(model)
     col = {int(n): j for j, n in enumerate(part.number)}
     by_number = {p.number + 1: p for p in dm.propellers}
@@ -270,11 +275,13 @@ def whirl(dm: DofMap, x: np.ndarray, lam: complex) -> str | None:
     return whirl_sense(x[p.theta], x[p.psi], p.rotation, lam)
 
 
-def mode_content(model: Model, sw: Sweep, names: Sequence[str]) -> dict[str, dict[str, float]]:
+def mode_content(model: Model, sw: Sweep, names: Sequence[str],
+                 in_vacuo=None) -> dict[str, dict[str, float]]:
     """Kinetic-energy shares of each physical oscillatory mode (and of each real root already
     unstable) at the first speed of ``sw``, by content group, rounded to 4 digits (shares
-    ≤ 1e-3 left out): {name: {group: share}}."""
-    quiet = model.without_aerodynamics()
+    ≤ 1e-3 left out): {name: {group: share}}.  ``in_vacuo``: the model without aerodynamics,
+    already assembled (:func:`named_modes`)."""
+    quiet = in_vacuo or model.without_aerodynamics()
     s = quiet.second_order(np.array([float(sw.V[0])]))
     groups = quiet.dof_map().groups()
     X = sw.eigenvectors[0][sw.displacement]

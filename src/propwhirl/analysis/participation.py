@@ -280,23 +280,25 @@ def participation(dm: DofMap, X, M, eigenvalues, V) -> Participation:
         share=share, wing=sh["wing"], other=sh["other"], whirl=whirl, amplitude=rel)
 
 
-def mass_matrices(model: Model, V) -> np.ndarray:
+def mass_matrices(model: Model, V, in_vacuo=None) -> np.ndarray:
     """Structural mass matrices S1 of ``model`` at speeds ``V`` [m/s], (len(V), n_dof, n_dof):
     the model without aerodynamics (module docstring).  A wing model's S1 alone, from its blocks
     (:meth:`~propwhirl.model.blocks.BlockSystem.matrix`): not the six other matrices of each speed,
-    which for a large wing are hundreds of MB."""
-    quiet = model.without_aerodynamics()
+    which for a large wing are hundreds of MB.  ``in_vacuo``: the model without aerodynamics,
+    already assembled (``model.assembly().without_aerodynamics()``); default: assembled here."""
+    quiet = in_vacuo or model.without_aerodynamics()
     V = np.atleast_1d(np.asarray(V, dtype=float))
     if hasattr(quiet, "second_order_blocks"):
         return quiet.second_order_blocks(V).matrix("S1")
     return quiet.second_order(V).S1
 
 
-def mode_participation(model: Model, X, eigenvalues, V) -> Participation:
+def mode_participation(model: Model, X, eigenvalues, V, in_vacuo=None) -> Participation:
     """:func:`participation` of modes of ``model`` at speeds ``V`` [m/s] (one per mode or one
-    for all), with the model's structural mass at each speed."""
+    for all), with the model's structural mass at each speed (:func:`mass_matrices`, which
+    ``in_vacuo`` is passed to)."""
     Vs = np.atleast_1d(np.asarray(V, dtype=float))
-    M = mass_matrices(model, Vs)
+    M = mass_matrices(model, Vs, in_vacuo)
     M = M[0] if Vs.size == 1 else M
     return participation(model.dof_map(), X, M, eigenvalues, V)
 
@@ -323,14 +325,15 @@ def branch_point_shape(model: Model, sw, mode: int, V: float, state_matrix=None,
 
 
 def with_participation(model: Model, events: list,
-                        shapes: list[tuple[np.ndarray, complex, float]]) -> list:
+                        shapes: list[tuple[np.ndarray, complex, float]], in_vacuo=None) -> list:
     """The events with the propellers' participation in their mode at the event
-    (:mod:`propwhirl.analysis.participation`), computed for all events at once."""
+    (:mod:`propwhirl.analysis.participation`), computed for all events at once
+    (``in_vacuo``: :func:`mass_matrices`)."""
     if not events:
         return events
     X = np.stack([x for x, _, _ in shapes], axis=1)
     part = mode_participation(model, X, np.array([lam for _, lam, _ in shapes]),
-                              np.array([V for _, _, V in shapes]))
+                              np.array([V for _, _, V in shapes]), in_vacuo)
     return [replace(e, participation=part.mode(k)) for k, e in enumerate(events)]
 
 

@@ -543,14 +543,15 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
                                       state_labels=dm.state_labels, options=options, xtol=xtol,
                                       vgf=bool(vgf))
         an, matrix_fn, basis = run.analysis, run.model.state_matrix, run.model.dof_basis
-        lift = run.model.lift
+        lift, assembly = run.model.lift, run.model.assembly
         unconverged = [p for p, s in zip(an.criticals.points, run.corrections) if s is None]
         fzero = frequency_zero_points(an.sweep, matrix_fn, xtol=xtol)
         if method == "auto" and (unconverged or not frequency_zero_on_full_order(
                 fzero, run.model)):                          # AUTO_NEEDS not met: dense
             chosen = "dense"
     if chosen != "reduced":
-        matrix_fn = finite.assembly().state_matrix    # built once for the analysis
+        assembly = finite.assembly()                  # built once for the analysis
+        matrix_fn = assembly.state_matrix
         an = engine_analyse(matrix_fn, grid, displacement=dm.displacement,
                             state_labels=dm.state_labels, options=options, xtol=xtol,
                             **({"initial_step": None} if vgf else {}))
@@ -558,7 +559,9 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         unconverged = []
         fzero = frequency_zero_points(an.sweep, matrix_fn, xtol=xtol)
     sw = an.sweep
-    names, thesis_names = named_modes(finite, sw, basis)
+    # the structural system (in-vacuo modes, kinetic energies) from the analysis's assembly
+    in_vacuo = assembly.without_aerodynamics()
+    names, thesis_names = named_modes(finite, sw, basis, in_vacuo)
     sw = sw.relabel(names)
     events, shapes = [], []
     for p in an.criticals.points:
@@ -576,7 +579,7 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
     for p in fzero:
         events.append(Instability("divergence", "frequency-zero", p.mode, names[p.mode], p.V, 0.0))
         shapes.append(branch_point_shape(finite, sw, p.mode, p.bracket[0], matrix_fn, lift))
-    events = with_participation(finite, events, shapes)
+    events = with_participation(finite, events, shapes, in_vacuo)
     if chosen == "pk":  # the tracked finite-state modes, their crossings by the exact p-k method
         pk_notes: list[str] = []
         finite_state = tuple(sorted(events, key=lambda e: (e.V, e.mode)))
@@ -601,7 +604,7 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
     except v.InputError:                     # a model of another kind: no summary reference
         ref = None
     return ModelAnalysis(model.name, sw, tuple(events), an.criticals,
-                         mode_content(finite, sw, names), dm, notes, ref,
+                         mode_content(finite, sw, names, in_vacuo), dm, notes, ref,
                          None if finite_state is None
                          else FiniteState(aero_model_of(model), finite_state),
                          {a: b for a, b in zip(names, thesis_names) if a != b})
