@@ -130,6 +130,7 @@ def test_a_frequency_zero_bracket_without_the_full_order_branch_point_is_refused
     reduced event's bracket, False for the same bracket moved by 2 xtol or 5 m/s either way
     (auto then analyses dense); the full-order branch point (the dense analysis's event) is
     inside the reduced bracket."""
+    from propwhirl.analysis.participation import branch_point_shape
     from propwhirl.analysis.reduced import frequency_zero_on_full_order, reduced_engine_analysis
     from propwhirl.engine import frequency_zero_points
 
@@ -137,15 +138,20 @@ def test_a_frequency_zero_bracket_without_the_full_order_branch_point_is_refused
     dm = m.dof_map()
     run = reduced_engine_analysis(m, m.flight.speeds(), displacement=dm.displacement,
                                   state_labels=dm.state_labels, xtol=0.01)
-    (p,) = frequency_zero_points(run.analysis.sweep, run.model.state_matrix, xtol=0.01)
+    R, sw = run.model, run.analysis.sweep
+    (p,) = frequency_zero_points(sw, R.state_matrix, xtol=0.01)
     (full,) = [e for e in den.events if e.event == "frequency-zero"]
     assert abs(full.V - p.V) <= 0.01
-    assert frequency_zero_on_full_order([p], run.model)
+
+    def shape(q):
+        return branch_point_shape(m, sw, q.mode, q.bracket[0], R.state_matrix, R.lift)
+
+    assert frequency_zero_on_full_order([p], [shape(p)], R)
     for shift in (-5.0, -0.02, 0.02, 5.0):
         moved = type(p)(p.mode, p.label, p.V + shift,
                         (p.bracket[0] + shift, p.bracket[1] + shift))
-        assert not frequency_zero_on_full_order([moved], run.model), shift
-    assert frequency_zero_on_full_order([], run.model)
+        assert not frequency_zero_on_full_order([moved], [shape(moved)], R), shift
+    assert frequency_zero_on_full_order([], [], R)
 
 
 def test_lifted_eigenvectors_index_like_the_array():

@@ -174,32 +174,28 @@ def _reduced_engine_analysis(model, grid, displacement, state_labels, options, x
     return ReducedRun(Analysis(lifted, crit), R, tuple(shifts))
 
 
-def frequency_zero_on_full_order(points, reduced: ReducedModel) -> bool:
+def frequency_zero_on_full_order(points, shapes, reduced: ReducedModel) -> bool:
     """Whether every frequency-zero event ``points`` of the ``reduced`` model (brackets of width
     ≤ xtol, :func:`propwhirl.engine.frequency_zero_points`) is one of the full-order model too:
     the full-order pair turns real inside each bracket, so its branch point lies within xtol of
     the event's speed.
 
-    The pair is the reduced model's unstable complex root at the bracket's lower end whose
-    frequency is the smallest relative to |λ| (the one about to turn real); its real part is the
-    shift σ and its lifted eigenvector's real and imaginary parts the start of
-    :func:`~propwhirl.engine.correction.full_order_pair` on the full-order sparse pencil at
-    each bracket end: a complex pair with Re λ > 0 at the lower end and two real roots at the
-    upper end (the count of unstable complex pairs falls there, as the event says).  One
-    reduced eigen-solution and two sparse factorisations of the full pencil per event; False
-    where the pair cannot be identified or the iteration does not converge (auto then analyses
-    the model dense)."""
-    if not points:
-        return True
+    ``shapes``: each event's (eigenvector lifted to the full state, λ, V) at the bracket's lower
+    end, the pair's root there
+    (:func:`~propwhirl.analysis.participation.branch_point_shape`, which also gives the event
+    its shape).  Its λ's real part is the shift σ and the real and imaginary parts of its
+    vector the start of :func:`~propwhirl.engine.correction.full_order_pair` on the full-order
+    sparse pencil at each bracket end: a complex pair with Re λ > 0 at the lower end and two
+    real roots at the upper end (the count of unstable complex pairs falls there, as the event
+    says).  Two sparse factorisations of the full pencil per event; False where the root at the
+    lower end is not an unstable complex one or the iteration does not converge (auto then
+    analyses the model dense)."""
     with single_thread_blas():
-        lam, X = np.linalg.eig(reduced.state_matrix(np.array([p.bracket[0] for p in points])))
-        for k, p in enumerate(points):
-            j = _turning_pair(lam[k])
-            if j is None:
+        for p, (x, lam, _) in zip(points, shapes, strict=True):
+            if not _unstable_complex(np.array([lam]))[0]:
                 return False
-            z = reduced.lift @ X[k][:, j]
-            start = np.column_stack([z.real, z.imag])
-            ends = [full_order_pair(*reduced.pencil(V), float(lam[k][j].real), start)
+            start = np.column_stack([np.real(x), np.imag(x)])
+            ends = [full_order_pair(*reduced.pencil(V), float(np.real(lam)), start)
                     for V in p.bracket]
             if any(mu is None for mu in ends):
                 return False
@@ -213,15 +209,6 @@ def _unstable_complex(lam: np.ndarray) -> np.ndarray:
     """Which roots ``lam`` are unstable with Im λ > 0, as the engine's frequency-zero search
     counts them (Re λ > 0, Im λ > 1e-9 max(1, |λ|))."""
     return (lam.real > 0) & (lam.imag > 1e-9 * np.maximum(1.0, np.abs(lam)))
-
-
-def _turning_pair(lam: np.ndarray) -> int | None:
-    """The index of the unstable complex root of ``lam`` with the smallest Im λ / |λ| (None if
-    there is none)."""
-    idx = np.flatnonzero(_unstable_complex(lam))
-    if idx.size == 0:
-        return None
-    return int(idx[np.argmin(lam[idx].imag / np.abs(lam[idx]))])
 
 
 def _reduced_slopes(sweep, points) -> list[float | None]:

@@ -546,8 +546,10 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         lift, assembly = run.model.lift, run.model.assembly
         unconverged = [p for p, s in zip(an.criticals.points, run.corrections) if s is None]
         fzero = frequency_zero_points(an.sweep, matrix_fn, xtol=xtol)
+        fzero_shapes = [branch_point_shape(finite, an.sweep, p.mode, p.bracket[0], matrix_fn,
+                                           lift) for p in fzero]
         if method == "auto" and (unconverged or not frequency_zero_on_full_order(
-                fzero, run.model)):                          # AUTO_NEEDS not met: dense
+                fzero, fzero_shapes, run.model)):            # AUTO_NEEDS not met: dense
             chosen = "dense"
     if chosen != "reduced":
         assembly = finite.assembly()                  # built once for the analysis
@@ -558,6 +560,8 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         basis, lift = None, None
         unconverged = []
         fzero = frequency_zero_points(an.sweep, matrix_fn, xtol=xtol)
+        fzero_shapes = [branch_point_shape(finite, an.sweep, p.mode, p.bracket[0], matrix_fn)
+                        for p in fzero]
     sw = an.sweep
     # the structural system (in-vacuo modes, kinetic energies) from the analysis's assembly
     in_vacuo = assembly.without_aerodynamics()
@@ -576,9 +580,9 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         events.append(Instability(kind, "unstable-at-start", int(k), names[k], float(sw.V[0]),
                                   float(abs(lam0.imag) / (2 * np.pi))))
         shapes.append((sw.eigenvectors[0, :, k], lam0, float(sw.V[0])))
-    for p in fzero:
+    for p, shape in zip(fzero, fzero_shapes):
         events.append(Instability("divergence", "frequency-zero", p.mode, names[p.mode], p.V, 0.0))
-        shapes.append(branch_point_shape(finite, sw, p.mode, p.bracket[0], matrix_fn, lift))
+        shapes.append(shape)
     events = with_participation(finite, events, shapes, in_vacuo)
     if chosen == "pk":  # the tracked finite-state modes, their crossings by the exact p-k method
         pk_notes: list[str] = []
