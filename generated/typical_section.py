@@ -71,8 +71,10 @@ PARTIALS = {
 
 
 def _broadcast(*args):
-    arrays = numpy.broadcast_arrays(*(numpy.asarray(a, dtype=float) for a in args))
-    return arrays[0].shape, arrays
+    """The broadcast shape of the arguments and the arguments as float arrays, not expanded to
+    it (every entry is assigned into an array of the full shape, which broadcasts it)."""
+    arrays = [numpy.asarray(a, dtype=float) for a in args]
+    return numpy.broadcast_shapes(*(a.shape for a in arrays)), arrays
 
 
 def _view(block, name, **values):
