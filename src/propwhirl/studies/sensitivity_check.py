@@ -275,7 +275,7 @@ def _check_row(s: Sensitivity, V: float, h: float, up: Any, down: Any, label: st
     if errors:
         e = errors[0]
         return SensitivityCheck(s.path, s.unit, s.value, h, scale, s.dV_dp, None, None, None,
-                                "failed", f"{e.type}: {e.message}")
+                                "failed", f"{e.kind}: {e.message}")
     Vp, Vm = up["V"], down["V"]
     if Vp is None or Vm is None:
         return SensitivityCheck(s.path, s.unit, s.value, h, scale, s.dV_dp, Vp, Vm, None,
