@@ -34,6 +34,7 @@ from propwhirl.studies.boundary import Boundary
 from propwhirl.studies.clearance import Clearance
 from propwhirl.studies.campaign_result import CampaignResult, PointRow
 from propwhirl.studies.gradients import OptimisationResult
+from propwhirl.studies.sensitivity_check import SensitivityCheck, SensitivityVerification
 from propwhirl.studies.parametric import ModeSwitch
 from propwhirl.studies.sweeps import CriticalMap
 from propwhirl.studies.table import StudyTable
@@ -72,6 +73,13 @@ def results() -> dict[type, Result]:
         CriticalMap: CriticalMap.load(OLD / "critical-map-1.json"),
         StudyTable: table,
         CriticalSensitivities: sens,
+        # one check passed, one whose perturbed analysis failed (its speeds and FD null)
+        SensitivityVerification: SensitivityVerification(
+            sens, "auto", np.array([100.0, 200.0, 250.0]), 0.01, 1e-3, 0.01, 1e-4, 4, (
+                SensitivityCheck("propeller.f_theta", "Hz", 7.0, 0.007, None, 12.0, 221.584,
+                                 221.416, 12.0, "ok"),
+                SensitivityCheck("propeller.f_psi", "Hz", 7.0, 0.007, None, -3.0, None, None,
+                                 None, "failed", "InputError: out of range"))),
         CampbellResult: CampbellResult.load(OLD / "campbell-untagged-1.json"),
         Response: simulate(iso, 200.0, {"propeller 1 theta": 0.01}, duration=0.05, dt=0.01),
         FlutterSummary: a.flutter_summary(),
@@ -112,6 +120,7 @@ def test_every_result_type_is_covered_here(results):
     import propwhirl.studies.boundary  # noqa: F401
     import propwhirl.studies.gradients  # noqa: F401
     import propwhirl.studies.parametric  # noqa: F401
+    import propwhirl.studies.sensitivity_check  # noqa: F401
     import propwhirl.studies.sweeps  # noqa: F401
     import propwhirl.studies.table  # noqa: F401
 
@@ -119,8 +128,8 @@ def test_every_result_type_is_covered_here(results):
 
 
 KINDS = [ModelAnalysis, Analysis, TimeResponse, Clearance, Boundary, CriticalMap, StudyTable,
-         CriticalSensitivities, CampbellResult, Response, FlutterSummary, ModeSwitch,
-         OptimisationResult, Records, CampaignResult]
+         CriticalSensitivities, SensitivityVerification, CampbellResult, Response, FlutterSummary,
+         ModeSwitch, OptimisationResult, Records, CampaignResult]
 
 
 def test_the_user_facing_results_are_results():

@@ -5,7 +5,9 @@
   clearance    clearance to factor x V_D (:mod:`propwhirl.studies.clearance`); exit code 0
                when cleared, 1 when not
   sensitivity  the critical point, then the parameters ranked by normalised sensitivity
-               (p/V) dV/dp (:mod:`propwhirl.analysis.sensitivity`)
+               (p/V) dV/dp (:mod:`propwhirl.analysis.sensitivity`); with --verify each
+               checked against a central difference of the critical speed
+               (:mod:`propwhirl.studies.sensitivity_check`), exit code 1 when one is flagged
 
 MODEL is a TOML model file or the name of a case (``propwhirl case``).
 """
@@ -169,9 +171,12 @@ def _sensitivity(args: argparse.Namespace) -> int:
     from propwhirl.analysis.sensitivity import critical_sensitivities, sensitivity_parameters
     from propwhirl.analysis.stability import analyse
 
+    from propwhirl.app import execution_options
+
     check_outputs(json=args.json, plot=args.plot, model=args.model)
     if args.top < 1:
         raise InputError(f"--top {args.top} is invalid: must be >= 1")
+    run = execution_options.run_options(args)      # checked before the analysis
     model = _model_or_case(args.model)
     if not hasattr(model, "second_order_blocks"):
         raise InputError(f"{type(model).__name__}: sensitivities are available for wing models "
@@ -202,33 +207,59 @@ def _sensitivity(args: argparse.Namespace) -> int:
         event = min(cands, key=lambda e: e.V)
     cs = critical_sensitivities(model, a, event, params=params)
     echo(cs.format(args.top))
+    check = None
+    if args.verify:
+        from propwhirl.studies.sensitivity_check import verify_sensitivities
+
+        check = verify_sensitivities(model, a, cs, top=args.top, **run)
+        echo("")
+        echo(check.format())
     if args.json:
-        cs.save(args.json, args.top)
+        if check is not None:
+            check.save(args.json)
+        else:
+            cs.save(args.json, args.top)
         print(f"wrote {args.json}")
     if args.plot:
         from propwhirl.app import plots
 
         plots.spanwise_sensitivity(cs, model, path=args.plot)
         print(f"wrote {args.plot}")
-    return 0
+    return 0 if check is None or check.passed else 1
 
 
 def _add_sensitivity(sub) -> None:
+    from propwhirl.app import execution_options
+    from propwhirl.studies.sensitivity_check import NORMALISED_ATOL, REL_STEP, RTOL
+
     p = sub.add_parser("sensitivity", help="sensitivities of the critical speed to the model's "
-                       "parameters (exact derivatives, ranked)")
+                       "parameters (exact derivatives, ranked; --verify: checked by central "
+                       "differences, exit code 1 when one is flagged)")
     p.add_argument("model", metavar="MODEL", help="a model file (.toml) or a case name")
     p.add_argument("--top", type=int, default=10, metavar="N",
                    help="the N parameters of largest normalised sensitivity (default 10)")
     p.add_argument("--kind", choices=("flutter", "divergence"),
                    help="the first onset of this kind instead of the critical instability")
     p.add_argument("--json", metavar="FILE", help="write the critical point and the ranked "
-                   "sensitivities as JSON")
+                   "sensitivities as JSON (propwhirl.sensitivities/2; with --verify the "
+                   "verification holding them, propwhirl.sensitivity-check/1)")
     p.add_argument("--plot", metavar="PNG", help="write the spanwise sensitivities of EI, GJ, m")
     p.add_argument("--param", action="append", metavar="PATH",
                    help="compute only this parameter's sensitivity (repeat for more; "
                    "--list shows the valid paths)")
     p.add_argument("--list", action="store_true",
                    help="list the parameter paths with derivatives of the model and stop")
+    p.add_argument("--verify", action="store_true",
+                   help="check each sensitivity shown (the --top N, of the --param ones if "
+                   "given) against the central difference of the critical speed: the model "
+                   f"analysed at p(1 +- {REL_STEP:g}) with the same method and speeds, the same "
+                   "event (kind and mode) found in both; 2 analyses per parameter, in one batch "
+                   "(--processes, --scheduler, progress). A check is flagged when "
+                   f"|exact - FD| > {RTOL:g} |FD| + {NORMALISED_ATOL:g} in normalised units, or "
+                   "the critical mode changed, or a variant failed; the exit code is then 1 "
+                   "(0 when all pass)")
+    # the verification's analyses are one batch of independent analyses
+    execution_options.add(p, resume=False)
     p.set_defaults(func=_sensitivity)
 
 
