@@ -254,3 +254,20 @@ def test_an_analysis_assembles_its_model_once(monkeypatch):
         a = analyse(m, method=method)
         assert len(built) == 1, (method, built)
         assert any(e.event == "frequency-zero" for e in a.events)
+
+
+def test_the_folded_x57_cruise_is_not_refined_at_its_stopped_mounts():
+    """examples/x57_like_folded.toml: six equal stopped propellers have one mount eigenvalue
+    at every speed (their copies' "approach" is rounding, engine/linking._approach): 11 nodes
+    and nothing unresolved (720 nodes, every step unresolved, 4.1 s CPU before), the same
+    event as before (244.5787 m/s, measured at 132e3e1)."""
+    from pathlib import Path
+
+    from propwhirl.io import load_model
+
+    m = load_model(Path(__file__).resolve().parents[2] / "examples" / "x57_like_folded.toml")
+    a = analyse(m)
+    assert a.sweep.unresolved == ()
+    assert a.sweep.stats["nodes"] <= 40, a.sweep.stats
+    assert [(e.kind, e.event, e.label) for e in a.events] == [("divergence", "onset", "wing 1")]
+    assert abs(a.events[0].V - 244.5787) <= 0.01

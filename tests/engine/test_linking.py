@@ -125,3 +125,42 @@ def test_lag_root_clusters_need_no_refinement():
     V_exact = Vd[np.argmax(nun > 0)]
     assert p.kind == "flutter" and p.direction == "onset" and p.mode == 0
     assert abs(p.V - V_exact) <= 0.01
+
+
+def _repeated_copies_family(copies: int = 6):
+    """A pair that goes unstable at V = 50 m/s (σ = 0.02 (V − 50), ω = 12 rad/s) and
+    ``copies`` identical uncoupled oscillators (−0.3 ± (75 + 0.05 V) i: the mounts of equal
+    stopped propellers), in a fixed random basis (eigenvectors of the repeated root are then
+    arbitrary combinations at every speed, and its dλ/dV from finite differences of A(V)
+    differs between the copies by rounding)."""
+    n = 2 + 2 * copies
+    T = np.eye(n) + 0.3 * np.random.default_rng(5).standard_normal((n, n))
+    Ti = np.linalg.inv(T)
+
+    def fn(V):
+        V = np.atleast_1d(V)
+        D = np.zeros((V.size, n, n))
+        s = 0.02 * (V - 50.0)
+        D[:, 0, 0] = D[:, 1, 1] = s
+        D[:, 0, 1], D[:, 1, 0] = 12.0, -12.0
+        for c in range(copies):
+            i = 2 + 2 * c
+            D[:, i, i] = D[:, i + 1, i + 1] = -0.3
+            D[:, i, i + 1], D[:, i + 1, i] = 75.0 + 0.05 * V, -(75.0 + 0.05 * V)
+        return T @ D @ Ti
+
+    return fn, n
+
+
+def test_exactly_repeated_roots_cost_no_refinement():
+    """Copies of one uncoupled oscillator keep one eigenvalue at every speed: their "approach"
+    inside a step is rounding, not a veering (linking._approach leaves pairs repeated within
+    degenerate_tol at both ends out).  Before, every step was refined to the node budget
+    (the six stopped propellers of examples/x57_like_folded.toml: 720 nodes)."""
+    fn, n = _repeated_copies_family()
+    disp = np.ones(n, dtype=bool)
+    an = analyse(fn, np.arange(1.0, 102.0, 10.0), displacement=disp, xtol=0.01)
+    assert an.sweep.unresolved == ()
+    assert an.sweep.stats["nodes"] <= 20, an.sweep.stats      # before: 420, the budget
+    (p,) = an.criticals.points
+    assert p.kind == "flutter" and abs(p.V - 50.0) <= 0.01

@@ -262,7 +262,11 @@ def _approach(a: _Node, b: _Node, perm: np.ndarray, opts: TrackingOptions,
     approach_ratio · min(separation at a, at b) flags the step: it does not resolve a veering
     or crossing there (a long step can otherwise take a veering for a crossing, the straight
     lines from either end both missing it).  Rows in ``skip`` (clusters followed as a set,
-    whose single-root slopes are singular) are left out.
+    whose single-root slopes are singular) are left out, and so are pairs repeated (within
+    ``degenerate_tol``, as :func:`_link` treats them) at both ends: identical, uncoupled
+    subsystems — the mounts of equal stopped propellers — have one eigenvalue at every speed,
+    and the approach of its copies is rounding (it refined every step of such a model to the
+    node budget).
     """
     keep = (a.lam.imag > 0) & (b.lam[perm].imag > 0)
     keep[list(skip)] = False
@@ -292,4 +296,6 @@ def _approach(a: _Node, b: _Node, perm: np.ndarray, opts: TrackingOptions,
         dmin = np.min(np.abs(path[i] - path[k]), axis=1)
         flag[i, k] |= dmin < ref[i, k]
     np.fill_diagonal(flag, False)
+    tol = opts.degenerate_tol * np.maximum(np.abs(lam), a.floor)
+    flag &= ~((np.abs(r0) <= tol[:, None]) & (eb <= tol[:, None]))      # repeated at a and b
     return bool(flag.any())
