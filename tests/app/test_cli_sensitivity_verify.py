@@ -91,6 +91,12 @@ def test_execution_options_are_checked_before_the_analysis(small_file, capsys):
     assert "--processes" in capsys.readouterr().err
 
 
+def test_processes_without_verify_are_refused_not_ignored(small_file, capsys):
+    assert cli.main(["sensitivity", str(small_file), "--processes", "2"]) != 0
+    err = capsys.readouterr().err
+    assert "--processes 2 is for --verify" in err
+
+
 def test_the_help_documents_the_exit_code(capsys):
     with pytest.raises(SystemExit):
         cli.main(["sensitivity", "--help"])

@@ -177,6 +177,11 @@ def _sensitivity(args: argparse.Namespace) -> int:
     if args.top < 1:
         raise InputError(f"--top {args.top} is invalid: must be >= 1")
     run = execution_options.run_options(args)      # checked before the analysis
+    if not args.verify and (args.processes != 1 or args.scheduler):
+        given = "--scheduler" if args.scheduler else f"--processes {args.processes}"
+        raise InputError(f"{given} is for --verify (the central-difference analyses); the "
+                         "sensitivities themselves are one analysis: add --verify or leave "
+                         f"{given.split()[0]} out")
     model = _model_or_case(args.model)
     if not hasattr(model, "second_order_blocks"):
         raise InputError(f"{type(model).__name__}: sensitivities are available for wing models "
