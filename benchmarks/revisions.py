@@ -9,8 +9,9 @@ The other revision is the interpreter running this script.  Each round runs ever
 the base, then once here (fresh processes: nothing is shared between the two).  The cases use
 only public names that both revisions have: the wingtip model of chapter 10 analysed with
 ``method="reduced"`` and with the default, the thesis's fixed grid (ΔV = 1 m/s, 1–350 m/s,
-``numpy.linalg.eig`` with vectors at every speed) on its state matrix, and the design model
-of 25 elements and 4 propellers.
+``numpy.linalg.eig`` with vectors at every speed) on its state matrix, the design model
+of 25 elements and 4 propellers, and ``examples/x57_like_folded.toml`` (both revisions must
+have it) with the default.
 """
 from __future__ import annotations
 
@@ -51,6 +52,10 @@ with threadpool_limits(limits=1):
             from design_size import design
             build = lambda: design(25, 4)
             method = "auto"
+        elif case == "x57-folded":                # six equal propellers stopped (issue 25)
+            from propwhirl.io import load_model
+            build = lambda: load_model("examples/x57_like_folded.toml")
+            method = "auto"
         else:
             build, method = wingtip_propeller_wing, case.split("-")[1]
         runs = []
@@ -62,7 +67,7 @@ with threadpool_limits(limits=1):
 print(json.dumps({"cpu": t, **out}))
 '''
 
-CASES = ("wingtip-reduced", "wingtip-auto", "fixed-grid", "design-25-4")
+CASES = ("wingtip-reduced", "wingtip-auto", "fixed-grid", "design-25-4", "x57-folded")
 
 
 def run_case(python: str, cwd: Path, case: str) -> dict:
