@@ -88,7 +88,8 @@ def model_modes(model, basis: np.ndarray | None = None, in_vacuo=None
     (``model.assembly().without_aerodynamics()``, built once by an analysis); default: assembled
     here.
     """
-    s = (in_vacuo or model.without_aerodynamics()).second_order(np.array([1.0]))
+    quiet = model.without_aerodynamics() if in_vacuo is None else in_vacuo
+    s = quiet.second_order(np.array([1.0]))
     if basis is None:
         return undamped_modes(s.S1[0], s.S3[0], s.q_labels), s.S1[0]
     P = np.asarray(basis)
@@ -177,8 +178,10 @@ class _GyroscopicSystem:
         if basis is not None:
             return cls.of(model, rpm_ratio, in_vacuo=in_vacuo)._projected(np.asarray(basis))
         if model.dof_map().has_wing and (rpm_ratio is None or all(r == 1.0 for r in rpm_ratio)):
-            quiet = ((in_vacuo or model.without_aerodynamics()) if model.rotating
-                     else model.with_(wing_aero=False, propeller_aero=False, rotating=True))
+            if not model.rotating:
+                quiet = model.with_(wing_aero=False, propeller_aero=False, rotating=True)
+            else:
+                quiet = model.without_aerodynamics() if in_vacuo is None else in_vacuo
 
             def matrices(omega: np.ndarray):
                 omega = np.asarray(omega, dtype=float)

@@ -281,7 +281,7 @@ def mode_content(model: Model, sw: Sweep, names: Sequence[str],
     unstable) at the first speed of ``sw``, by content group, rounded to 4 digits (shares
     ≤ 1e-3 left out): {name: {group: share}}.  ``in_vacuo``: the model without aerodynamics,
     already assembled (:func:`named_modes`)."""
-    quiet = in_vacuo or model.without_aerodynamics()
+    quiet = model.without_aerodynamics() if in_vacuo is None else in_vacuo
     s = quiet.second_order(np.array([float(sw.V[0])]))
     groups = quiet.dof_map().groups()
     X = sw.eigenvectors[0][sw.displacement]

@@ -286,7 +286,7 @@ def mass_matrices(model: Model, V, in_vacuo=None) -> np.ndarray:
     (:meth:`~propwhirl.model.blocks.BlockSystem.matrix`): not the six other matrices of each speed,
     which for a large wing are hundreds of MB.  ``in_vacuo``: the model without aerodynamics,
     already assembled (``model.assembly().without_aerodynamics()``); default: assembled here."""
-    quiet = in_vacuo or model.without_aerodynamics()
+    quiet = model.without_aerodynamics() if in_vacuo is None else in_vacuo
     V = np.atleast_1d(np.asarray(V, dtype=float))
     if hasattr(quiet, "second_order_blocks"):
         return quiet.second_order_blocks(V).matrix("S1")
