@@ -211,4 +211,3 @@ def test_a_study_of_a_wing_is_estimated_as_the_default_analyses_it():
     assert resolved.per_analysis == pytest.approx(limits.analysis_seconds(204, "reduced", 1))
     assert resolved.per_analysis < 0.5 * limits.study_estimate(wing, 1000, method="dense").per_analysis
     assert 0.065 / 2 < resolved.per_analysis < 2 * 0.065
-

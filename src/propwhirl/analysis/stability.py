@@ -460,6 +460,17 @@ def _finite_state_from_dict(r: SavedDict, sweep: Sweep) -> FiniteState | None:
 
 
 # ----------------------------------------------------------------------------- analyse
+def _frequency_zero_events(model: Model, sweep, state_matrix, xtol: float, lift):
+    """The frequency-zero events of a tracked sweep of ``model`` (brackets of width ≤ xtol
+    [m/s], :func:`~propwhirl.engine.frequency_zero_points`) and each one's shape at its
+    bracket's lower end (:func:`~propwhirl.analysis.participation.branch_point_shape`;
+    ``lift``: a reduced model's map to the full state, or None)."""
+    points = frequency_zero_points(sweep, state_matrix, xtol=xtol)
+    shapes = [branch_point_shape(model, sweep, p.mode, p.bracket[0], state_matrix, lift)
+              for p in points]
+    return points, shapes
+
+
 @one_blas_thread
 def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
             options: TrackingOptions | None = None, method: str = "auto") -> ModelAnalysis:
@@ -545,9 +556,7 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         an, matrix_fn, basis = run.analysis, run.model.state_matrix, run.model.dof_basis
         lift, assembly = run.model.lift, run.model.assembly
         unconverged = [p for p, s in zip(an.criticals.points, run.corrections) if s is None]
-        fzero = frequency_zero_points(an.sweep, matrix_fn, xtol=xtol)
-        fzero_shapes = [branch_point_shape(finite, an.sweep, p.mode, p.bracket[0], matrix_fn,
-                                           lift) for p in fzero]
+        fzero, fzero_shapes = _frequency_zero_events(finite, an.sweep, matrix_fn, xtol, lift)
         if method == "auto" and (unconverged or not frequency_zero_on_full_order(
                 fzero, fzero_shapes, run.model)):            # AUTO_NEEDS not met: dense
             chosen = "dense"
@@ -559,9 +568,7 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
                             **({"initial_step": None} if vgf else {}))
         basis, lift = None, None
         unconverged = []
-        fzero = frequency_zero_points(an.sweep, matrix_fn, xtol=xtol)
-        fzero_shapes = [branch_point_shape(finite, an.sweep, p.mode, p.bracket[0], matrix_fn)
-                        for p in fzero]
+        fzero, fzero_shapes = _frequency_zero_events(finite, an.sweep, matrix_fn, xtol, lift)
     sw = an.sweep
     # the structural system (in-vacuo modes, kinetic energies) from the analysis's assembly
     in_vacuo = assembly.without_aerodynamics()
