@@ -256,3 +256,27 @@ def test_subspace_mac_with_a_stacked_qr(seed, k, n, tiny):
     Qb, _ = np.linalg.qr(Pb)
     ref = float(np.min(np.linalg.svd(Qa.conj().T @ Qb, compute_uv=False)) ** 2)
     assert same_bits(cl._subspace_mac(Xa, Xb, disp), ref)
+
+
+@pytest.mark.parametrize("k", [1, 2, 3, 4])
+def test_sign_change_without_branch_point_is_what_the_followed_track_shows(k):
+    """The early refusal of _follow_cluster (a real part changes sign, the number of real
+    roots never changes) only where following the roots would refuse the same way — and it
+    does fire (the test is not vacuous)."""
+    fired = refused = 0
+    for seed in range(300):
+        coeffs = random_coeffs(seed, k)
+        roots = interpolated(coeffs)
+        start = roots[0][np.random.default_rng(seed).permutation(k)]
+        if (start.real == 0).any():          # refused before, by _follow_cluster itself
+            continue
+        track = np.empty(roots.shape, dtype=complex)
+        track[0] = start
+        cl._follow_substeps(track, roots, cl._S, coeffs, cluster_tables(k))
+        flip = bool((np.sign(track.real) != np.sign(start.real)).any())
+        no_branch_point = bool((np.diff((track.imag == 0).sum(axis=1)) == 0).all())
+        early = cl._sign_change_without_branch_point(start, roots)
+        assert not early or (flip and no_branch_point)
+        fired += early
+        refused += flip and no_branch_point
+    assert fired >= 0.8 * refused and fired > 0

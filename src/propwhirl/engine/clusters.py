@@ -238,6 +238,22 @@ def _follow_substeps(track: np.ndarray, roots: np.ndarray, S: np.ndarray, coeffs
         track[at] = roots[at[:, None], perms[np.array(sigmas)]]
 
 
+def _sign_change_without_branch_point(la: np.ndarray, roots: np.ndarray) -> bool:
+    """Whether following the roots from ``la`` over the sub-steps' ``roots`` (rows 1:) must
+    find a real part changing sign with no branch point inside — without following them.
+
+    Each row of the followed track is an ordering of that sub-step's roots (row 0: la, no
+    real part 0), so a row with another number of roots of Re > 0 than la, or a real part 0,
+    has a root whose real part changed sign whatever the order; and a number of real roots
+    constant along the rows means no branch point to split at.  :func:`_follow_cluster`
+    refuses such a cluster without a split speed either way.
+    """
+    rows = np.concatenate([la[None], roots[1:]])
+    nreal = (rows.imag == 0).sum(axis=1)
+    return bool((nreal == nreal[0]).all() and (
+        ((rows.real > 0).sum(axis=1) != (la.real > 0).sum()).any() or (rows.real == 0).any()))
+
+
 def _follow_cluster(ca, dca, cb, dcb, la, lb, h, margin):
     """Follow the roots of a cluster's characteristic polynomial, interpolated in V.
 
@@ -270,6 +286,8 @@ def _follow_cluster(ca, dca, cb, dcb, la, lb, h, margin):
     sign0 = np.sign(la.real)
     if (sign0 == 0).any() or (np.sign(lb.real) == 0).any():
         return None, None
+    if _sign_change_without_branch_point(la, roots):
+        return None, None       # as after following the roots (below), without following
     track = np.empty((S.size, k), dtype=complex)
     track[0] = la
     _follow_substeps(track, roots, S, coeffs, tab)
@@ -396,6 +414,9 @@ def _cluster_continuations(a: _Node, b: _Node, perm: np.ndarray, amb: np.ndarray
     out = []
     splits: list[float] = []
     events: list[tuple[float, int, int, float]] = []
+    # trials refused in this step, by their rows and columns (a row set can come again from
+    # another seed): the same trial gives the same answer
+    refused: dict[tuple[tuple[int, ...], tuple[int, ...]], float | None] = {}
     for seed in seeds:
         if int(seed) in done:
             continue
@@ -428,7 +449,11 @@ def _cluster_continuations(a: _Node, b: _Node, perm: np.ndarray, amb: np.ndarray
                 continue
             tried.add(frozenset(S))
             rows = np.array(sorted(S))
-            q, info = _try_cluster(a, b, rows, perm[rows], rel_err[rows], disp, opts, h)
+            key = (tuple(rows.tolist()), tuple(perm[rows].tolist()))
+            if key in refused:
+                q, info = None, refused[key]
+            else:
+                q, info = _try_cluster(a, b, rows, perm[rows], rel_err[rows], disp, opts, h)
             if q is not None:
                 perm[rows] = perm[rows][q]
                 inv[perm] = np.arange(n)
@@ -439,6 +464,7 @@ def _cluster_continuations(a: _Node, b: _Node, perm: np.ndarray, amb: np.ndarray
                 for s_ev, i, ic, sig in info:
                     events.append((a.V + s_ev * h, int(rows[i]), int(rows[ic]), sig))
                 break
+            refused[key] = info
             if info is not None:
                 splits.append(a.V + info * h)
             if len(tried) < 4:       # grow by one of the nearest other roots (at a)
