@@ -39,6 +39,7 @@ import scipy.linalg as sla
 
 from propwhirl import validate as v
 from propwhirl.model.blocks import BlockSystem, RecentBlocks
+from propwhirl.model.pencil import SparsePencil
 from propwhirl.model.statespace import SecondOrder, rate_label, state_matrix
 
 #: f_c = CUTOFF_FACTOR × the reference frequency (module docstring, step 1)
@@ -206,14 +207,15 @@ class ReducedModel:
     #: Φᵀ(M, C, K)Φ of the speed-independent parts, and the kept DOFs and lag states
     _const: tuple = field(init=False, repr=False, compare=False)
     _keep: tuple = field(init=False, repr=False, compare=False)
-    _pencil_const: tuple = field(init=False, repr=False, compare=False)
+    #: the full-order pencil's sparsity pattern and constant part (:meth:`pencil`)
+    _pencil: SparsePencil = field(init=False, repr=False, compare=False)
 
     def __post_init__(self, blocks: BlockSystem | None) -> None:
         b = self.assembly.second_order_blocks(np.array([1.0])) if blocks is None else blocks
         P = self.basis.Phi
         object.__setattr__(self, "_const", tuple(P.T @ X @ P for X in (b.M, b.C, b.K)))
         object.__setattr__(self, "_keep", (b.keep_q, b.keep_w))
-        object.__setattr__(self, "_pencil_const", b.pencil_constant())
+        object.__setattr__(self, "_pencil", SparsePencil.of(b))
 
     @property
     def model(self):
@@ -272,8 +274,9 @@ class ReducedModel:
 
     def pencil(self, V: float):
         """The full-order sparse pencil (F, E) at one airspeed V [m/s]
-        (:meth:`propwhirl.model.blocks.BlockSystem.pencil`)."""
-        return self._blocks(np.array([float(V)]), None).pencil(0, self._pencil_const)
+        (:meth:`propwhirl.model.blocks.BlockSystem.pencil`'s matrices, from the pattern built
+        with the model: :class:`~propwhirl.model.pencil.SparsePencil`)."""
+        return self._pencil.at(self._blocks(np.array([float(V)]), None))
 
     def _blocks(self, V, omega) -> BlockSystem:
         """The assembly's blocks at V (checked), from :attr:`recent` at the model's own
