@@ -32,6 +32,7 @@ from propwhirl import fileio
 from propwhirl import validate as v
 from propwhirl.analysis.events import (UNSTABLE_EVENTS, Exclusion, Instability,  # noqa: F401
                                        critical, describe_critical)
+from propwhirl.analysis.modes import InVacuo
 from propwhirl.analysis.naming import mode_content, named_modes, whirl, with_content
 from propwhirl.analysis.participation import (ModeParticipation, branch_point_shape,  # noqa: F401
                                               events_csv, events_table, participation_lines,
@@ -570,8 +571,9 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         unconverged = []
         fzero, fzero_shapes = _frequency_zero_events(finite, an.sweep, matrix_fn, xtol, lift)
     sw = an.sweep
-    # the structural system (in-vacuo modes, kinetic energies) from the analysis's assembly
-    in_vacuo = assembly.without_aerodynamics()
+    # the structural system (in-vacuo modes, kinetic energies) from the analysis's assembly,
+    # evaluated once
+    in_vacuo = InVacuo.of(assembly.without_aerodynamics())
     names, thesis_names = named_modes(finite, sw, basis, in_vacuo)
     sw = sw.relabel(names)
     events, shapes = [], []
