@@ -303,8 +303,8 @@ def mode_participation(model: Model, X, eigenvalues, V, in_vacuo=None) -> Partic
     for all), with the model's structural mass at each speed (:func:`mass_matrices`, which
     ``in_vacuo`` is passed to)."""
     Vs = np.atleast_1d(np.asarray(V, dtype=float))
-    M = in_vacuo.M if isinstance(in_vacuo, InVacuo) else mass_matrices(model, Vs, in_vacuo)
-    M = M[0] if M.ndim == 3 and Vs.size == 1 else M
+    M = mass_matrices(model, Vs, in_vacuo)
+    M = M[0] if Vs.size == 1 else M
     return participation(model.dof_map(), X, M, eigenvalues, V)
 
 
