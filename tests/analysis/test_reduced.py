@@ -271,3 +271,28 @@ def test_the_folded_x57_cruise_is_not_refined_at_its_stopped_mounts():
     assert a.sweep.stats["nodes"] <= 40, a.sweep.stats
     assert [(e.kind, e.event, e.label) for e in a.events] == [("divergence", "onset", "wing 1")]
     assert abs(a.events[0].V - 244.5787) <= 0.01
+
+
+def test_an_analysis_evaluates_its_structure_once(monkeypatch):
+    """The reduced basis, the in-vacuo modes, the Ω-follow of their names, the content and the
+    participation read the structure (M, K and the gyroscopic G(0), ∂G/∂Ω) of one evaluation
+    of the model without aerodynamics (analysis.modes.InVacuo, passed explicitly); five before
+    (the basis, the modes, the Ω-follow, the content, the events' mass at their speeds)."""
+    from propwhirl.model.systems import PropellerWingAssembly
+
+    quiet = []
+    real = {k: getattr(PropellerWingAssembly, k) for k in ("second_order", "second_order_blocks")}
+
+    def counted(name):
+        def f(self, *a, **k):
+            if not (self.model.wing_aero or self.model.propeller_aero):
+                quiet.append(name)
+            return real[name](self, *a, **k)
+        return f
+
+    for name in real:
+        monkeypatch.setattr(PropellerWingAssembly, name, counted(name))
+    m = wingtip_propeller_wing()
+    a = analyse(m, method="reduced")
+    assert len(a.events) == 4 and all(e.participation is not None for e in a.events)
+    assert quiet == ["second_order"], quiet

@@ -75,6 +75,54 @@ def undamped_modes(M: np.ndarray, K: np.ndarray, labels: tuple[str, ...]) -> Mod
     return Modes(np.sqrt(np.clip(lam, 0.0, None)), X, labels)
 
 
+@dataclass(frozen=True, eq=False)
+class InVacuo:
+    """A model without aerodynamics, assembled, and its structural matrices, evaluated once
+    for an analysis (:func:`propwhirl.analysis.stability.analyse`) and passed to what reads the
+    structure: the in-vacuo modes and their names (:func:`model_modes`, :func:`label_modes`),
+    the content and the participation of modes (:mod:`propwhirl.analysis.naming`,
+    :mod:`propwhirl.analysis.participation`).
+
+    system:     the model without aerodynamics (``assembly.without_aerodynamics()``):
+                ``second_order``, ``dof_map``;
+    M, K:       its structural mass and stiffness S1, S3 over the kept DOFs [kg, kg m, kg m²;
+                N/m, N, N m]; with aerodynamics off they depend on neither the airspeed nor the
+                rotational speed (the rotors' speed enters the gyroscopic damping only);
+    q_labels:   the labels of those DOFs;
+    gyroscopic: for a wing whose rotors turn, (G(0), ∂G/∂Ω): the skew part of its damping at
+                Ω = 0 and its slope [kg m²] (:class:`_GyroscopicSystem`), from the same
+                evaluation (at Ω = 0 and 1 rad/s); None otherwise.
+    """
+
+    system: object
+    M: np.ndarray
+    K: np.ndarray
+    q_labels: tuple[str, ...]
+    gyroscopic: tuple[np.ndarray, np.ndarray] | None = None
+
+    @classmethod
+    def of(cls, system) -> "InVacuo":
+        """The structure of ``system``, a model without aerodynamics or its assembly: one
+        evaluation (at V = 1 m/s, which plays no part; a wing whose rotors turn at Ω = 0 and
+        1 rad/s, for :attr:`gyroscopic`)."""
+        model = getattr(system, "model", system)
+        if hasattr(system, "second_order_blocks") and model.dof_map().has_wing \
+                and getattr(model, "rotating", False):
+            s = system.second_order(np.ones(2), np.array([0.0, 1.0]))
+            G = _skew_part(s.S2)
+            return cls(system, s.S1[0], s.S3[0], s.q_labels, (G[0], G[1] - G[0]))
+        s = system.second_order(np.array([1.0]))
+        return cls(system, s.S1[0], s.S3[0], s.q_labels)
+
+
+def in_vacuo_of(model, in_vacuo=None) -> InVacuo:
+    """``in_vacuo`` as an :class:`InVacuo`: itself, the InVacuo of a model without aerodynamics
+    already assembled, or (None) of ``model.without_aerodynamics()``."""
+    if isinstance(in_vacuo, InVacuo):
+        return in_vacuo
+    return InVacuo.of(model.without_aerodynamics() if in_vacuo is None else in_vacuo)
+
+
 def model_modes(model, basis: np.ndarray | None = None, in_vacuo=None
                 ) -> tuple[Modes, np.ndarray]:
     """Undamped in-vacuo modes of any model (no aerodynamics; the gyroscopic and dissipative
@@ -84,17 +132,16 @@ def model_modes(model, basis: np.ndarray | None = None, in_vacuo=None
     ``basis`` (n, r): Rayleigh–Ritz on its columns instead (a reduced model's basis,
     :mod:`propwhirl.model.reduction`): r modes, shapes lifted to the n DOFs.
     Returns the modes and the (reduced) structural mass matrix they are normalised with.
-    ``in_vacuo``: the model without aerodynamics, already assembled
-    (``model.assembly().without_aerodynamics()``, built once by an analysis); default: assembled
-    here.
+    ``in_vacuo``: its structure evaluated once (an :class:`InVacuo`, as an analysis passes), or
+    the model without aerodynamics already assembled (``model.assembly().without_aerodynamics()``);
+    default: assembled here (:func:`in_vacuo_of`).
     """
-    quiet = model.without_aerodynamics() if in_vacuo is None else in_vacuo
-    s = quiet.second_order(np.array([1.0]))
+    iv = in_vacuo_of(model, in_vacuo)
     if basis is None:
-        return undamped_modes(s.S1[0], s.S3[0], s.q_labels), s.S1[0]
+        return undamped_modes(iv.M, iv.K, iv.q_labels), iv.M
     P = np.asarray(basis)
-    m = undamped_modes(P.T @ s.S1[0] @ P, P.T @ s.S3[0] @ P, s.q_labels)
-    return Modes(m.omega, P @ m.shapes, s.q_labels), s.S1[0]
+    m = undamped_modes(P.T @ iv.M @ P, P.T @ iv.K @ P, iv.q_labels)
+    return Modes(m.omega, P @ m.shapes, iv.q_labels), iv.M
 
 
 def label_modes(model, basis: np.ndarray | None = None, modes: Modes | None = None,
@@ -114,8 +161,10 @@ def label_modes(model, basis: np.ndarray | None = None, modes: Modes | None = No
     flexibly mounted propellers that turn).
     ``basis``: the modes of the Rayleigh–Ritz problem on its columns (:func:`model_modes`);
     ``modes``: those modes if already computed (``model_modes(model, basis)[0]``);
-    ``in_vacuo``: the model without aerodynamics, already assembled (:func:`model_modes`).
+    ``in_vacuo``: the model's structure (:func:`model_modes`).
     """
+    if in_vacuo is not None or modes is None:
+        in_vacuo = in_vacuo_of(model, in_vacuo)
     if modes is None:
         modes, _ = model_modes(model, basis, in_vacuo)
     f0 = modes.frequency_hz
@@ -172,22 +221,26 @@ class _GyroscopicSystem:
            basis: np.ndarray | None = None, in_vacuo=None) -> "_GyroscopicSystem":
         """The system of `model`, Ω the first propeller's speed; propeller j spins at
         ``rpm_ratio[j]`` × Ω (default: all at Ω).  ``basis`` (n, r): projected on its columns
-        (a reduced model's basis, :mod:`propwhirl.model.reduction`); ``in_vacuo``: the model
-        without aerodynamics, already assembled (:func:`model_modes`; used when the model's
-        rotors turn)."""
+        (a reduced model's basis, :mod:`propwhirl.model.reduction`); ``in_vacuo``: the model's
+        structure (:func:`model_modes`; used when the model's rotors turn: an :class:`InVacuo`
+        gives the matrices at Ω = 0 and ∂G/∂Ω without a new evaluation)."""
         if basis is not None:
             return cls.of(model, rpm_ratio, in_vacuo=in_vacuo)._projected(np.asarray(basis))
         if model.dof_map().has_wing and (rpm_ratio is None or all(r == 1.0 for r in rpm_ratio)):
             if not model.rotating:
                 quiet = model.with_(wing_aero=False, propeller_aero=False, rotating=True)
             else:
-                quiet = model.without_aerodynamics() if in_vacuo is None else in_vacuo
+                quiet = model.without_aerodynamics() if in_vacuo is None else \
+                    getattr(in_vacuo, "system", in_vacuo)
 
             def matrices(omega: np.ndarray):
                 omega = np.asarray(omega, dtype=float)
                 s = quiet.second_order(np.ones_like(omega), omega)   # V plays no part here
                 return s.S1, _skew_part(s.S2), s.S3
 
+            if model.rotating and getattr(in_vacuo, "gyroscopic", None) is not None:
+                G0, dG = in_vacuo.gyroscopic               # evaluated at Ω = 0 and 1 rad/s
+                return cls(matrices, dG, (in_vacuo.M, G0, in_vacuo.K))
             M, G, K = matrices(np.array([0.0, 1.0]))
             return cls(matrices, G[1] - G[0], (M[0], G[0], K[0]))
         return cls._per_propeller(model, rpm_ratio)

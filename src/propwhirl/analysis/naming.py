@@ -38,7 +38,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
-from propwhirl.analysis.modes import label_modes, model_modes
+from propwhirl.analysis.modes import in_vacuo_of, label_modes, model_modes
 from propwhirl.analysis.participation import mode_participation
 from propwhirl.analysis.whirl import whirl_sense
 from propwhirl.engine import Sweep, mac
@@ -87,8 +87,8 @@ def named_modes(model: Model, sw: Sweep, basis: np.ndarray | None = None,
                 in_vacuo=None) -> tuple[list[str], list[str]]:
     """(names, the thesis's names) of the tracked modes of ``sw`` (:func:`mode_names`): the
     same lists but with two or more flexibly mounted, spinning propellers.  ``in_vacuo``: the
-    model without aerodynamics, already assembled
-    (:func:`~propwhirl.analysis.modes.model_modes`)."""
+    model's structure, evaluated once (:class:`~propwhirl.analysis.modes.InVacuo`), or the model
+    without aerodynamics already assembled (:func:`~propwhirl.analysis.modes.model_modes`)."""
     dm = model.dof_map()
     n = sw.n_modes
     lam0 = sw.eigenvalues[0]
@@ -103,6 +103,7 @@ def named_modes(model: Model, sw: Sweep, basis: np.ndarray | None = None,
     for i, k in enumerate(k for k in real if k not in diverged):
         names[k] = f"lag {i + 1}"
     if dm.has_wing:
+        in_vacuo = in_vacuo_of(model, in_vacuo)
         modes, _ = model_modes(model, basis, in_vacuo)
         ref = [lab for lab, _ in label_modes(model, basis, modes, in_vacuo)]
         shapes = modes.shapes.astype(complex)
@@ -279,18 +280,17 @@ def mode_content(model: Model, sw: Sweep, names: Sequence[str],
                  in_vacuo=None) -> dict[str, dict[str, float]]:
     """Kinetic-energy shares of each physical oscillatory mode (and of each real root already
     unstable) at the first speed of ``sw``, by content group, rounded to 4 digits (shares
-    ≤ 1e-3 left out): {name: {group: share}}.  ``in_vacuo``: the model without aerodynamics,
-    already assembled (:func:`named_modes`)."""
-    quiet = model.without_aerodynamics() if in_vacuo is None else in_vacuo
-    s = quiet.second_order(np.array([float(sw.V[0])]))
-    groups = quiet.dof_map().groups()
+    ≤ 1e-3 left out): {name: {group: share}}.  ``in_vacuo``: the model's structure
+    (:func:`named_modes`; its mass, which does not depend on the speed)."""
+    iv = in_vacuo_of(model, in_vacuo)
+    groups = iv.system.dof_map().groups()
     X = sw.eigenvectors[0][sw.displacement]
     out = {}
     for k in range(sw.n_modes):
         lam = sw.eigenvalues[0, k]
         if not sw.physical[0, k] or (lam.imag == 0 and lam.real <= 0):   # not the lag roots
             continue
-        frac = kinetic_energy_shares(X[:, [k]], s.S1[0], groups)
+        frac = kinetic_energy_shares(X[:, [k]], iv.M, groups)
         out[names[k]] = {g: round(float(f[0]), 4) for g, f in frac.items() if abs(f[0]) > 1e-3}
     return out
 

@@ -56,6 +56,7 @@ import numpy as np
 
 from propwhirl import fileio
 from propwhirl import validate as v
+from propwhirl.analysis.modes import InVacuo
 from propwhirl.analysis.whirl import whirl_sense
 from propwhirl.engine import eigen, mac
 from propwhirl.model.protocol import DofMap, Model
@@ -285,9 +286,13 @@ def mass_matrices(model: Model, V, in_vacuo=None) -> np.ndarray:
     the model without aerodynamics (module docstring).  A wing model's S1 alone, from its blocks
     (:meth:`~propwhirl.model.blocks.BlockSystem.matrix`): not the six other matrices of each speed,
     which for a large wing are hundreds of MB.  ``in_vacuo``: the model without aerodynamics,
-    already assembled (``model.assembly().without_aerodynamics()``); default: assembled here."""
-    quiet = model.without_aerodynamics() if in_vacuo is None else in_vacuo
+    already assembled (``model.assembly().without_aerodynamics()``), or its structure evaluated
+    once (:class:`~propwhirl.analysis.modes.InVacuo`: its mass at every speed, a read-only view
+    — without aerodynamics the mass does not depend on the speed); default: assembled here."""
     V = np.atleast_1d(np.asarray(V, dtype=float))
+    if isinstance(in_vacuo, InVacuo):
+        return np.broadcast_to(in_vacuo.M, V.shape + in_vacuo.M.shape)
+    quiet = model.without_aerodynamics() if in_vacuo is None else in_vacuo
     if hasattr(quiet, "second_order_blocks"):
         return quiet.second_order_blocks(V).matrix("S1")
     return quiet.second_order(V).S1

@@ -130,17 +130,22 @@ class ReducedRun:
 def reduced_engine_analysis(model, grid: np.ndarray, *, displacement, state_labels,
                             options=None, xtol: float, vgf: bool = False,
                             cutoff_hz: float | None = None,
-                            factor: float = CUTOFF_FACTOR) -> ReducedRun:
+                            factor: float = CUTOFF_FACTOR, assembly=None,
+                            structure: tuple[np.ndarray, np.ndarray] | None = None
+                            ) -> ReducedRun:
     """The engine on the reduced model, crossings corrected on the full order (module doc).
-    BLAS at one thread throughout (the basis, the engine, the sparse solves)."""
+    BLAS at one thread throughout (the basis, the engine, the sparse solves).  ``assembly`` and
+    ``structure``: the model's assembly and its structural (M, K), if already built
+    (:func:`~propwhirl.model.reduction.reduce`)."""
     with single_thread_blas():
         return _reduced_engine_analysis(model, grid, displacement, state_labels, options, xtol,
-                                        vgf, cutoff_hz, factor)
+                                        vgf, cutoff_hz, factor, assembly, structure)
 
 
 def _reduced_engine_analysis(model, grid, displacement, state_labels, options, xtol, vgf,
-                             cutoff_hz, factor) -> ReducedRun:
-    R = reduce(model, grid, cutoff_hz=cutoff_hz, factor=factor)
+                             cutoff_hz, factor, assembly, structure) -> ReducedRun:
+    R = reduce(model, grid, cutoff_hz=cutoff_hz, factor=factor, assembly=assembly,
+               structure=structure)
     # the reduced crossings to xtol/10 (cheap: inverse iterations on the small model), so that
     # the full-order correction of a crossing is one evaluation where the truncation error is
     # below xtol/10 (engine/correction.py) — on the wingtip model every crossing

@@ -32,6 +32,7 @@ from propwhirl import fileio
 from propwhirl import validate as v
 from propwhirl.analysis.events import (UNSTABLE_EVENTS, Exclusion, Instability,  # noqa: F401
                                        critical, describe_critical)
+from propwhirl.analysis.modes import InVacuo
 from propwhirl.analysis.naming import mode_content, named_modes, whirl, with_content
 from propwhirl.analysis.participation import (ModeParticipation, branch_point_shape,  # noqa: F401
                                               events_csv, events_table, participation_lines,
@@ -549,19 +550,25 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         and model.wing_aero
     if dlm_rfa:                                # Mach within the tables before any work
         check_speed_mach(model, (grid[0], grid[-1]))
+    assembly, in_vacuo = None, None
     if chosen == "reduced":
+        assembly = finite.assembly()                  # built once for the analysis
+        # the structural system (the basis's in-vacuo modes, the names, kinetic energies),
+        # evaluated once
+        in_vacuo = InVacuo.of(assembly.without_aerodynamics())
         run = reduced_engine_analysis(model, grid, displacement=dm.displacement,
                                       state_labels=dm.state_labels, options=options, xtol=xtol,
-                                      vgf=bool(vgf))
+                                      vgf=bool(vgf), assembly=assembly,
+                                      structure=(in_vacuo.M, in_vacuo.K))
         an, matrix_fn, basis = run.analysis, run.model.state_matrix, run.model.dof_basis
-        lift, assembly = run.model.lift, run.model.assembly
+        lift = run.model.lift
         unconverged = [p for p, s in zip(an.criticals.points, run.corrections) if s is None]
         fzero, fzero_shapes = _frequency_zero_events(finite, an.sweep, matrix_fn, xtol, lift)
         if method == "auto" and (unconverged or not frequency_zero_on_full_order(
                 fzero, fzero_shapes, run.model)):            # AUTO_NEEDS not met: dense
             chosen = "dense"
     if chosen != "reduced":
-        assembly = finite.assembly()                  # built once for the analysis
+        assembly = assembly or finite.assembly()      # built once for the analysis
         matrix_fn = assembly.state_matrix
         an = engine_analyse(matrix_fn, grid, displacement=dm.displacement,
                             state_labels=dm.state_labels, options=options, xtol=xtol,
@@ -570,8 +577,8 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         unconverged = []
         fzero, fzero_shapes = _frequency_zero_events(finite, an.sweep, matrix_fn, xtol, lift)
     sw = an.sweep
-    # the structural system (in-vacuo modes, kinetic energies) from the analysis's assembly
-    in_vacuo = assembly.without_aerodynamics()
+    if in_vacuo is None:   # the structural system (in-vacuo modes, kinetic energies), once
+        in_vacuo = InVacuo.of(assembly.without_aerodynamics())
     names, thesis_names = named_modes(finite, sw, basis, in_vacuo)
     sw = sw.relabel(names)
     events, shapes = [], []

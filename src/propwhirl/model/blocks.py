@@ -167,6 +167,41 @@ class BlockSystem:
             dst.add(n + qpos[r], off + qpos[c], sign * X[r, c])
         return F, E
 
+    def pencil_indices(self) -> tuple[list[tuple[np.ndarray, np.ndarray]],
+                                      list[tuple[np.ndarray, np.ndarray]]]:
+        """(F, E): the (row, column) pencil positions of the speed-dependent entries of
+        :meth:`pencil` (the blocks and the lag states; a removed state's negative), one pair
+        per array of :meth:`pencil_values`, in the same order.  Speed-independent."""
+        n, m, qpos, wpos = self._positions()
+        F, E = [], []
+        for b in self.blocks:
+            rr = n + qpos[np.broadcast_to(b.dofs[:, :, None], b.S1.shape[1:])]
+            cc = qpos[np.broadcast_to(b.dofs[:, None, :], b.S1.shape[1:])]
+            E.append((rr, n + cc))
+            F += [(rr, n + cc), (rr, cc)]
+        lg = self.lag
+        if lg is not None:
+            qr, wr = lg.qrows, lg.wrows
+            F.append((n + qpos[np.broadcast_to(qr[:, :, None], lg.S4.shape[1:])],
+                      wpos[np.broadcast_to(wr[:, None, :], lg.S4.shape[1:])]))
+            F.append((wpos[np.broadcast_to(wr[:, :, None], lg.Ww.shape[1:])],
+                      wpos[np.broadcast_to(wr[:, None, :], lg.Ww.shape[1:])]))
+            for W, off in ((lg.Wv, n), (lg.Wq, 0)):
+                F.append((wpos[np.broadcast_to(wr[:, :, None], W.shape[1:])],
+                          off + qpos[np.broadcast_to(qr[:, None, :], W.shape[1:])]))
+        return F, E
+
+    def pencil_values(self, t: int = 0) -> tuple[list[np.ndarray], list[np.ndarray]]:
+        """(F, E): the values of the speed-dependent entries of :meth:`pencil` at speed index
+        ``t``, at the positions of :meth:`pencil_indices` (F: −S2, −S3 of each block, then
+        the lag S4, Ww, Wv, Wq; E: S1 of each block)."""
+        F = [x for b in self.blocks for x in (-b.S2[t], -b.S3[t])]
+        E = [b.S1[t] for b in self.blocks]
+        lg = self.lag
+        if lg is not None:
+            F += [lg.S4[t], lg.Ww[t], lg.Wv[t], lg.Wq[t]]
+        return F, E
+
     def pencil(self, t: int = 0, constant: tuple["_Triplets", "_Triplets"] | None = None
                ) -> tuple[sp.csc_matrix, sp.csc_matrix]:
         """(F, E) of the first-order form E ẋ = F x, x = [q, q̇, w], at speed index ``t``.
@@ -174,27 +209,16 @@ class BlockSystem:
         E = diag(I, S1, I), F = [[0, I, 0], [−S3, −S2, S4], [Wq, Wv, Ww]] over the kept states:
         the eigenvalues of the pencil are those of A = E⁻¹F (eq. 5.4, 7.59), without forming the
         dense S1⁻¹.  Sparse (CSC), assembled from one list of (row, column, value) triplets per
-        matrix: memory and assembly linear in the number of elements.  ``constant``: the
-        :meth:`pencil_constant` of a system with the same constant parts, if already known."""
-        n, m, qpos, wpos = self._positions()
+        matrix (:meth:`pencil_constant`, then :meth:`pencil_indices` with
+        :meth:`pencil_values`): memory and assembly linear in the number of elements.
+        ``constant``: the :meth:`pencil_constant` of a system with the same constant parts, if
+        already known (:class:`~propwhirl.model.pencil.SparsePencil` also keeps the sparsity
+        pattern)."""
         F, E = (x.copy() for x in (constant or self.pencil_constant()))
-        for b in self.blocks:
-            rr = np.broadcast_to(b.dofs[:, :, None], b.S1.shape[1:])
-            cc = np.broadcast_to(b.dofs[:, None, :], b.S1.shape[1:])
-            E.add(n + qpos[rr], n + qpos[cc], b.S1[t])
-            F.add(n + qpos[rr], n + qpos[cc], -b.S2[t])
-            F.add(n + qpos[rr], qpos[cc], -b.S3[t])
-        lg = self.lag
-        if lg is not None:
-            qr, wr = lg.qrows, lg.wrows
-            F.add(n + qpos[np.broadcast_to(qr[:, :, None], lg.S4.shape[1:])],
-                  wpos[np.broadcast_to(wr[:, None, :], lg.S4.shape[1:])], lg.S4[t])
-            F.add(wpos[np.broadcast_to(wr[:, :, None], lg.Ww.shape[1:])],
-                  wpos[np.broadcast_to(wr[:, None, :], lg.Ww.shape[1:])], lg.Ww[t])
-            for W, off in ((lg.Wv, n), (lg.Wq, 0)):
-                F.add(wpos[np.broadcast_to(wr[:, :, None], W.shape[1:])],
-                      off + qpos[np.broadcast_to(qr[:, None, :], W.shape[1:])], W[t])
-        size = 2 * n + m
+        for X, where, values in zip((F, E), self.pencil_indices(), self.pencil_values(t)):
+            for (r, c), x in zip(where, values):
+                X.add(r, c, x)
+        size = 2 * self.keep_q.size + self.keep_w.size
         return F.matrix(size), E.matrix(size)
 
     # ------------------------------------------------------------------ projection

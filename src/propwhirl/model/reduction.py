@@ -39,6 +39,7 @@ import scipy.linalg as sla
 
 from propwhirl import validate as v
 from propwhirl.model.blocks import BlockSystem, RecentBlocks
+from propwhirl.model.pencil import SparsePencil
 from propwhirl.model.statespace import SecondOrder, rate_label, state_matrix
 
 #: f_c = CUTOFF_FACTOR × the reference frequency (module docstring, step 1)
@@ -113,18 +114,21 @@ def modal_basis(model, speeds, *, cutoff_hz: float | None = None,
     return _modal_basis(model.assembly(), speeds, cutoff_hz, factor)[0]
 
 
-def _modal_basis(assembly, speeds, cutoff_hz: float | None,
-                 factor: float) -> tuple[ModalBasis, BlockSystem]:
+def _modal_basis(assembly, speeds, cutoff_hz: float | None, factor: float,
+                 structure: tuple[np.ndarray, np.ndarray] | None = None
+                 ) -> tuple[ModalBasis, BlockSystem]:
     """:func:`modal_basis` of the model of ``assembly`` (its
     :class:`~propwhirl.model.systems.PropellerWingAssembly`) and its blocks at three speeds of
-    the range (their constant parts are those of every speed)."""
+    the range (their constant parts are those of every speed).  ``structure``: the structural
+    mass and stiffness (M, K) over the kept DOFs (aerodynamics off: they depend on neither the
+    airspeed nor the rotational speed), if already evaluated."""
     V = np.asarray(speeds, dtype=float)
     v.positive("factor", factor)
-    quiet = assembly.with_switches(rotating=False, wing_aero=False, propeller_aero=False)
-    qb = quiet.second_order_blocks(V[:1])
-    kq = qb.keep_q
-    S = qb.dense()
-    M, K = S.S1[0], S.S3[0]
+    if structure is None:
+        quiet = assembly.with_switches(rotating=False, wing_aero=False, propeller_aero=False)
+        S = quiet.second_order_blocks(V[:1]).dense()
+        structure = S.S1[0], S.S3[0]
+    M, K = structure
     w2, shapes = sla.eigh(K, M)
     f_all = np.sqrt(np.abs(w2)) / (2 * np.pi)
     ref = _reference_frequency(assembly, f_all, shapes, M)
@@ -151,7 +155,7 @@ def _modal_basis(assembly, speeds, cutoff_hz: float | None,
     k2, U2 = sla.eigh(B.T @ K @ B)
     Phi = B @ U2
     freq = np.sqrt(np.abs(k2)) / (2 * np.pi)
-    Phi_full = _full_rows(qb.n_q, kq, Phi)
+    Phi_full = _full_rows(blocks.n_q, blocks.keep_q, Phi)
     Q = _lag_basis(blocks, Phi_full, [0, 2])
     return ModalBasis(Phi_full, freq, Q, float(fc), ref, n_keep, f_all), blocks
 
@@ -206,14 +210,15 @@ class ReducedModel:
     #: Φᵀ(M, C, K)Φ of the speed-independent parts, and the kept DOFs and lag states
     _const: tuple = field(init=False, repr=False, compare=False)
     _keep: tuple = field(init=False, repr=False, compare=False)
-    _pencil_const: tuple = field(init=False, repr=False, compare=False)
+    #: the full-order pencil's sparsity pattern and constant part (:meth:`pencil`)
+    _pencil: SparsePencil = field(init=False, repr=False, compare=False)
 
     def __post_init__(self, blocks: BlockSystem | None) -> None:
         b = self.assembly.second_order_blocks(np.array([1.0])) if blocks is None else blocks
         P = self.basis.Phi
         object.__setattr__(self, "_const", tuple(P.T @ X @ P for X in (b.M, b.C, b.K)))
         object.__setattr__(self, "_keep", (b.keep_q, b.keep_w))
-        object.__setattr__(self, "_pencil_const", b.pencil_constant())
+        object.__setattr__(self, "_pencil", SparsePencil.of(b))
 
     @property
     def model(self):
@@ -272,8 +277,9 @@ class ReducedModel:
 
     def pencil(self, V: float):
         """The full-order sparse pencil (F, E) at one airspeed V [m/s]
-        (:meth:`propwhirl.model.blocks.BlockSystem.pencil`)."""
-        return self._blocks(np.array([float(V)]), None).pencil(0, self._pencil_const)
+        (:meth:`propwhirl.model.blocks.BlockSystem.pencil`'s matrices, from the pattern built
+        with the model: :class:`~propwhirl.model.pencil.SparsePencil`)."""
+        return self._pencil.at(self._blocks(np.array([float(V)]), None))
 
     def _blocks(self, V, omega) -> BlockSystem:
         """The assembly's blocks at V (checked), from :attr:`recent` at the model's own
@@ -285,8 +291,12 @@ class ReducedModel:
 
 
 def reduce(model, speeds, *, cutoff_hz: float | None = None,
-           factor: float = CUTOFF_FACTOR) -> ReducedModel:
+           factor: float = CUTOFF_FACTOR, assembly=None,
+           structure: tuple[np.ndarray, np.ndarray] | None = None) -> ReducedModel:
     """The :class:`ReducedModel` of ``model`` for ``speeds`` [m/s] (:func:`modal_basis`).
+    ``assembly``: ``model.assembly()`` if already built; ``structure``: its structural (M, K)
+    over the kept DOFs if already evaluated (an analysis's
+    :class:`~propwhirl.analysis.modes.InVacuo`).
 
     Examples
     --------
@@ -301,8 +311,8 @@ def reduce(model, speeds, *, cutoff_hz: float | None = None,
     >>> R.basis.r, R.basis.L, R.n_states
     (11, 28, 50)
     """
-    assembly = model.assembly()
-    basis, blocks = _modal_basis(assembly, speeds, cutoff_hz, factor)
+    assembly = model.assembly() if assembly is None else assembly
+    basis, blocks = _modal_basis(assembly, speeds, cutoff_hz, factor, structure)
     recent = RecentBlocks()
     recent.add(blocks)                  # the basis's three speeds (the first, for one)
     return ReducedModel(assembly, basis, blocks, recent)
