@@ -417,6 +417,25 @@ def derivatives(geometry: PropellerGeometry, airspeed, omega, speed_of_sound=Non
                     when compressibility is on and the method is Houbolt–Reed
     Returns arrays of the broadcast shape of V and Ω (no loop over operating points).
     """
+    shape, Vf, omf, Mf, d, mu, cutoff, integrals = _evaluate(
+        geometry, settings, airspeed, omega, speed_of_sound, mach)
+    r = lambda x: np.asarray(x, dtype=float).reshape(shape)            # noqa: E731
+    bennett_bland = settings.method == "bennett_bland"
+    return PropellerDerivatives(
+        airspeed=r(Vf), omega=r(omf), advance_ratio=r(mu), mach=r(Mf),
+        cutoff_applied=np.asarray(cutoff & settings.compressibility & (not bennett_bland),
+                                  dtype=bool).reshape(shape),
+        **{n: r(x) for n, x in integrals.items()},
+        **{n: r(x) for n, x in d.items()},
+        reference_chord=geometry.c0, aspect_ratio=geometry.blade_aspect_ratio,
+    )
+
+
+def _evaluate(geometry: PropellerGeometry, settings: AeroSettings, airspeed, omega,
+              speed_of_sound, mach):
+    """What :func:`derivatives` computes, before it is wrapped: the broadcast shape of V and
+    Ω, the flat V [m/s], Ω [rad/s] and M, the sixteen derivatives, μ, the cut-off flag and
+    the six integrals (flat arrays); the inputs checked and the derivatives checked finite."""
     V = v.positive("airspeed", airspeed, "m/s")
     om = v.positive("omega", omega, "rad/s")
     try:
@@ -446,16 +465,7 @@ def derivatives(geometry: PropellerGeometry, airspeed, omega, speed_of_sound=Non
     with np.errstate(over="ignore", under="ignore", invalid="ignore", divide="ignore"):
         d, mu, cutoff, integrals = _derivatives(geometry, settings, Vf, omf, Mf)
     _check_finite(geometry, d, Vf, omf, mu)
-    r = lambda x: np.asarray(x, dtype=float).reshape(shape)            # noqa: E731
-    bennett_bland = settings.method == "bennett_bland"
-    return PropellerDerivatives(
-        airspeed=r(Vf), omega=r(omf), advance_ratio=r(mu), mach=r(Mf),
-        cutoff_applied=np.asarray(cutoff & settings.compressibility & (not bennett_bland),
-                                  dtype=bool).reshape(shape),
-        **{n: r(x) for n, x in integrals.items()},
-        **{n: r(x) for n, x in d.items()},
-        reference_chord=geometry.c0, aspect_ratio=geometry.blade_aspect_ratio,
-    )
+    return shape, Vf, omf, Mf, d, mu, cutoff, integrals
 
 
 def solidity(geometry: PropellerGeometry) -> float:
@@ -472,6 +482,8 @@ def validity_warnings(d: PropellerDerivatives) -> tuple[str, ...]:
 def _check_finite(geometry: PropellerGeometry, d: dict[str, np.ndarray], V: np.ndarray,
                   omega: np.ndarray, mu: np.ndarray) -> None:
     """InputError naming the derivative and the operating point where one is not finite."""
+    if np.isfinite(np.concatenate(list(d.values()))).all():
+        return                               # one test of all of them: every one finite
     for name, x in d.items():
         if not np.isfinite(x).all():
             t = int(np.argmax(~np.isfinite(x)))
@@ -632,8 +644,12 @@ class HouboltReedSource:
         check_fields(self)
 
     def __call__(self, V, Omega, speed_of_sound=None) -> dict[str, np.ndarray]:
-        return derivatives(self.geometry, V, Omega, speed_of_sound=speed_of_sound,
-                           settings=self.settings).derivatives()
+        """The sixteen derivatives of :func:`derivatives` (the same values), without its
+        :class:`PropellerDerivatives` (the model's matrices need only the derivatives and
+        ask at every evaluation)."""
+        shape, *_, d, _mu, _cutoff, _integrals = _evaluate(
+            self.geometry, self.settings, V, Omega, speed_of_sound, None)
+        return {n: np.asarray(d[n], dtype=float).reshape(shape) for n in DERIVATIVE_NAMES}
 
 
 def houbolt_reed_source(propeller, settings: AeroSettings = AeroSettings(),
