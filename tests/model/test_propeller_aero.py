@@ -472,3 +472,32 @@ def test_cli_json_and_windmilling(capsys):
 def test_cli_bad_input(capsys, extra, msg):
     assert main(CLI_BASE + extra) == 2
     assert msg in capsys.readouterr().err
+
+
+def test_source_gives_the_derivatives_without_the_result_object(monkeypatch):
+    """A HouboltReedSource (what a model's matrices ask at every evaluation) returns exactly
+    the derivatives of derivatives(), bit for bit and in V's shape, and builds no
+    PropellerDerivatives (work counted: the sixteen arrays only)."""
+    src = aero.HouboltReedSource(TAB, AeroSettings())
+    V = np.linspace(5.0, 320.0, 12).reshape(3, 4)
+    ref = derivatives(TAB, V, 300.0, speed_of_sound=340.0)
+    def refused(*args, **kwargs):
+        raise AssertionError("a PropellerDerivatives was built")
+
+    monkeypatch.setattr(aero, "PropellerDerivatives", refused)
+    d, calls = count_calls(src, V, np.full(V.shape, 300.0), 340.0)
+    assert list(d) == list(DERIVATIVE_NAMES)
+    for name in DERIVATIVE_NAMES:
+        assert d[name].shape == V.shape
+        assert d[name].tobytes() == getattr(ref, name).tobytes(), name
+    assert sum(n for (f, fn), n in calls.items() if fn == "_check_finite") == 1
+
+
+def test_non_finite_derivative_still_named():
+    """The one-test-of-all fast path of _check_finite leaves the message naming the first
+    non-finite derivative and its operating point."""
+    d = {n: np.ones(3) for n in DERIVATIVE_NAMES}
+    d["Cm_q"] = np.array([1.0, np.inf, 1.0])
+    with pytest.raises(InputError, match=r"Cm_q is not finite at V = 2 m/s"):
+        aero._check_finite(GEO, d, np.array([1.0, 2.0, 3.0]), np.full(3, 100.0),
+                           np.array([0.1, 0.2, 0.3]))
