@@ -481,6 +481,7 @@ def test_source_gives_the_derivatives_without_the_result_object(monkeypatch):
     src = aero.HouboltReedSource(TAB, AeroSettings())
     V = np.linspace(5.0, 320.0, 12).reshape(3, 4)
     ref = derivatives(TAB, V, 300.0, speed_of_sound=340.0)
+
     def refused(*args, **kwargs):
         raise AssertionError("a PropellerDerivatives was built")
 

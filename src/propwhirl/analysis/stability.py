@@ -568,7 +568,8 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
                 fzero, fzero_shapes, run.model)):            # AUTO_NEEDS not met: dense
             chosen = "dense"
     if chosen != "reduced":
-        assembly = assembly or finite.assembly()      # built once for the analysis
+        if assembly is None:                          # built once for the analysis
+            assembly = finite.assembly()
         matrix_fn = assembly.state_matrix
         an = engine_analyse(matrix_fn, grid, displacement=dm.displacement,
                             state_labels=dm.state_labels, options=options, xtol=xtol,
