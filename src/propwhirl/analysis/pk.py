@@ -207,6 +207,52 @@ def _start_roots(model, V: float, n_modes: int | None) -> tuple[np.ndarray, tupl
     return start, labels
 
 
+#: half-widths of the brackets :func:`pk_crossing` tries around a finite-state crossing, as
+#: fractions of its speed (the Roger fit's crossings lie within ~1 % of the p-k's)
+CROSSING_SPREAD = (0.01, 0.02, 0.04, 0.08, 0.16)
+
+
+@dataclass(frozen=True)
+class PKCrossing:
+    """A crossing converged by :func:`pk_crossing`: speed V [m/s], the p-k root p [1/s] and
+    its k [-] there, and the direction ("onset": Re p − → + with V; "recovery")."""
+
+    V: float
+    p: complex
+    k: float
+    direction: str
+
+
+def pk_crossing(model, V0: float, p0: complex, *, lo: float, hi: float,
+                xtol: float = XTOL) -> PKCrossing | None:
+    """The p-k crossing (Re p = 0) of the mode whose root is near ``p0`` [1/s] at V0 [m/s]:
+    a bracket around V0 of half-width :data:`CROSSING_SPREAD` × V0 (widened in turn, within
+    [``lo``, ``hi``] [m/s]) where the p-k root continued from ``p0`` changes sign, refined by
+    Brent's method to ``xtol`` [m/s].  None when the p-k root keeps its sign over the widest
+    bracket (the p-k has no crossing there); RuntimeError when the k iteration does not
+    converge.  What the default analysis of a doublet-lattice wing converges its modal Roger
+    state space's crossings with (:mod:`propwhirl.analysis.modal_dlm`)."""
+    V0 = float(np.clip(V0, lo, hi))
+    guess = {"lo": complex(p0), "hi": complex(p0)}
+    for s in CROSSING_SPREAD:
+        a, b = max(lo, V0 * (1 - s)), min(hi, V0 * (1 + s))
+        pa, _ = pk_root(model, a, guess["lo"])
+        pb, _ = pk_root(model, b, guess["hi"])
+        guess["lo"], guess["hi"] = pa, pb
+        if pa.real != 0 and pb.real != 0 and (pa.real > 0) != (pb.real > 0):
+            start = pa
+
+            def decay(x: float) -> float:
+                return pk_root(model, x, start)[0].real
+
+            V = brentq(decay, a, b, xtol=xtol)
+            p, k = pk_root(model, V, start)
+            return PKCrossing(float(V), p, float(k), "onset" if pa.real < 0 else "recovery")
+        if a <= lo and b >= hi:
+            break
+    return None
+
+
 def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None) -> PKSweep:
     """p-k roots of the modes of a typical section or a wing over ``speeds`` [m/s] and their
     flutter and divergence crossings (Re p = 0, refined by Brent's method to ``xtol`` [m/s]).
@@ -317,7 +363,7 @@ MAC_BAND = 0.9
 BENIGNITY_STEP = 0.1
 
 
-def _benignity(model, V: float, p: complex) -> float | None:
+def pk_benignity(model, V: float, p: complex) -> float | None:
     """(dζ/dV)⁻¹ [m/s] (eq. 5.13) of the p-k root through ``p`` at V, ζ = −Re p/|p| (eq. 5.5),
     by a central difference of :data:`BENIGNITY_STEP`; None if dζ/dV is 0 or a root is lost."""
     h = BENIGNITY_STEP
@@ -365,7 +411,7 @@ def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: flo
     whirl sense and the propellers' participation of its p-k mode shape
     (:mod:`propwhirl.analysis.participation`: the p-k eigenvector's displacements are on
     the model's own DOFs) and, for flutter crossings, the benignity (dζ/dV)⁻¹ of the p-k
-    root [m/s] (:func:`_benignity`).
+    root [m/s] (:func:`pk_benignity`).
     """
     r = pk_sweep(model, speeds, xtol=xtol)
     if notes is not None and strip_twin(model) is not model:
@@ -389,7 +435,7 @@ def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: flo
         events.append(Instability(
             kind, event, mode, names[mode], float(V), f_hz,
             whirl(dm, x[:n], p) if kind == "flutter" else None,
-            _benignity(model, V, p) if benign else None))
+            pk_benignity(model, V, p) if benign else None))
         shapes.append((x[:n], p, float(V)))
 
     for j, p0 in enumerate(r.roots[0]):

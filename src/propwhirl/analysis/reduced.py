@@ -43,9 +43,11 @@ METHODS = ("auto", "dense", "reduced", "pk")
 def choose_method(model, method: str) -> str:
     """"dense", "reduced" or "pk" for ``method`` ("auto", "dense", "reduced" or "pk": the
     p-k method with the exact Theodorsen function, typical sections and wings) and ``model``.
-    A wing with ``aero = "dlm"`` (doublet-lattice loads): "auto" is "dense" (its Roger
-    state space, :mod:`propwhirl.model.dlm_rfa`), "pk" the p-k method on Q(k), "reduced" is
-    refused (the Roger state space is dense: no local blocks to reduce).
+    A wing with ``aero = "dlm"`` (doublet-lattice loads): "auto" is "reduced", its modal
+    Roger state space with every crossing converged by the p-k method
+    (:mod:`propwhirl.analysis.modal_dlm`), "dense" the Roger state space on every DOF
+    (:mod:`propwhirl.model.dlm_rfa`: every structural mode, also those far beyond the fit's
+    reduced frequencies), "pk" the p-k method on Q(k).
 
     Examples
     --------
@@ -64,11 +66,8 @@ def choose_method(model, method: str) -> str:
     if method == "pk":
         check_section(model)
         return "pk"
-    if dlm:
-        if method == "reduced":
-            raise v.InputError("method = 'reduced' is invalid for wing aero = 'dlm': its Roger "
-                               "state space is dense; use 'auto', 'dense' or 'pk'")
-        return "dense"
+    if dlm:                 # the modal Roger state space, its crossings the p-k's
+        return "dense" if method == "dense" else "reduced"
     reducible = hasattr(model, "second_order_blocks")
     if method == "reduced" and not reducible:
         raise v.InputError(f"method = 'reduced' is invalid for a {type(model).__name__}: "

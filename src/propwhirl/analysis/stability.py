@@ -32,6 +32,7 @@ from propwhirl import fileio
 from propwhirl import validate as v
 from propwhirl.analysis.events import (UNSTABLE_EVENTS, Exclusion, Instability,  # noqa: F401
                                        critical, describe_critical)
+from propwhirl.analysis.modal_dlm import modal_dlm_analysis
 from propwhirl.analysis.modes import InVacuo
 from propwhirl.analysis.naming import mode_content, named_modes, whirl, with_content
 from propwhirl.analysis.participation import (ModeParticipation, branch_point_shape,  # noqa: F401
@@ -508,10 +509,12 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         full-order branch point (:data:`~propwhirl.analysis.reduced.AUTO_NEEDS`), else the
         model is analysed again, dense; dense for the other models.  With "auto" a wing's
         sweep holds the modes below the reduction's cut-off only (give "dense" for V-g-f
-        plots of every mode).  A wing with ``aero = "dlm"``: "auto" and "dense" analyse its
-        Roger state space (the lag states of the rational-function fit of Q(k, V/a),
-        :mod:`propwhirl.model.dlm_rfa`), "pk" the p-k method on Q(k) itself, "reduced" is
-        refused.
+        plots of every mode).  A wing with ``aero = "dlm"``: "auto" and "reduced" analyse its
+        Roger state space (the lag states of the rational-function fit of Q(k, V/a)) on the
+        in-vacuo modes below a cut-off and converge every crossing by the p-k method on Q(k)
+        (:mod:`propwhirl.analysis.modal_dlm`: only critical speeds the p-k has), "dense" the
+        Roger state space on every DOF (:mod:`propwhirl.model.dlm_rfa`; modes far beyond the
+        fit's reduced frequencies included), "pk" the p-k method on Q(k) itself.
 
     Returns
     -------
@@ -551,11 +554,21 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
     if dlm_rfa:                                # Mach within the tables before any work
         check_speed_mach(model, (grid[0], grid[-1]))
     assembly, in_vacuo = None, None
+    dlm_notes: tuple[str, ...] = ()
     if chosen == "reduced":
         assembly = finite.assembly()                  # built once for the analysis
         # the structural system (the basis's in-vacuo modes, the names, kinetic energies),
         # evaluated once
         in_vacuo = InVacuo.of(assembly.without_aerodynamics())
+    if chosen == "reduced" and dlm_rfa:               # the modal Roger state space, p-k
+        run = modal_dlm_analysis(model, grid, displacement=dm.displacement,
+                                 state_labels=dm.state_labels, options=options, xtol=xtol,
+                                 vgf=bool(vgf), assembly=assembly,
+                                 structure=(in_vacuo.M, in_vacuo.K))
+        an, matrix_fn, basis = run.analysis, run.model.state_matrix, run.model.dof_basis
+        lift, unconverged, dlm_notes = run.model.lift, [], run.notes
+        fzero, fzero_shapes = _frequency_zero_events(finite, an.sweep, matrix_fn, xtol, lift)
+    elif chosen == "reduced":
         run = reduced_engine_analysis(model, grid, displacement=dm.displacement,
                                       state_labels=dm.state_labels, options=options, xtol=xtol,
                                       vgf=bool(vgf), assembly=assembly,
@@ -616,7 +629,9 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         f"V = {p.V:.2f} m/s ({p.kind} {p.direction} of {names[p.mode]}): not converged on the "
         "full-order model; the speed is the reduced model's (run method='dense' to check)"
         for p in unconverged) + unconverged_pk
-    if dlm_rfa:
+    if dlm_rfa and chosen == "reduced":
+        notes = (rfa_note(model, grid, run.model),) + notes + dlm_notes
+    elif dlm_rfa:
         notes = (rfa_note(model, grid),) + notes + tuple(extrapolation_notes(model, events))
     try:
         ref = reference(model)

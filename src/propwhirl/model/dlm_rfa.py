@@ -309,9 +309,11 @@ def _is_node(mach: float) -> bool:
     return abs(x - round(x)) < 1e-9
 
 
-def rfa_note(model, V) -> str:
+def rfa_note(model, V, modal=None) -> str:
     """What a Roger-state-space doublet-lattice analysis over the speeds V [m/s] used
-    (:data:`RFA_NOTE` first): panels, lag roots, fitted k, Mach, the worst fit error."""
+    (:data:`RFA_NOTE` first): panels, lag roots, fitted k, Mach, the worst fit error; with
+    ``modal`` (a :class:`~propwhirl.model.dlm_modal.ModalRoger`, the default analysis) the
+    modes it kept and that its crossings are the p-k method's."""
     aero = dlm_aerodynamics(model.wing)
     m = aero.mesh
     V = np.atleast_1d(np.asarray(V, float))
@@ -332,7 +334,12 @@ def rfa_note(model, V) -> str:
             f"Roger state space: lag roots {', '.join(f'{x:g}' for x in fits[0].lags)}, fitted "
             f"on k = {ks.min():g}-{ks.max():.3g} ({ks.size} values, root semichord b_ref = "
             f"{aero.b_ref:.4g} m) {where}; worst fit error "
-            f"{100 * worst.error:.2g} % of max |Q| (Mach {worst.mach:.2f})")
+            f"{100 * worst.error:.2g} % of max |Q| (Mach {worst.mach:.2f})"
+            + ("" if modal is None else
+               f"; on the {modal.r} in-vacuo modes up to {modal.frequencies_hz[-1]:.4g} Hz "
+               f"(cut-off {modal.cutoff_hz:.4g} Hz: the lower of 3 x the reference "
+               f"{modal.reference_hz:.4g} Hz and the fit's k at the top speed), every crossing "
+               "converged by the p-k method on Q(k) with the whole structure"))
 
 
 def extrapolation_notes(model, events) -> list[str]:

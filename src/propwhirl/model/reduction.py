@@ -86,6 +86,19 @@ def _full_rows(n_full: int, keep: np.ndarray, X: np.ndarray) -> np.ndarray:
     return out
 
 
+def cutoff(assembly, f: np.ndarray, shapes: np.ndarray, M: np.ndarray,
+           factor: float = CUTOFF_FACTOR, cutoff_hz: float | None = None) -> tuple[float, float]:
+    """(f_ref, f_c) [Hz]: the reference frequency (module docstring, step 1) of the in-vacuo
+    modes of ``assembly``'s model (frequencies ``f`` [Hz], ``shapes`` over its DOFs, mass
+    ``M``) and the cut-off f_c = ``factor`` · f_ref, or ``cutoff_hz`` when given.  The one
+    choice of the modes a reduced model keeps (strips: :func:`modal_basis`; doublet lattice:
+    :func:`propwhirl.model.dlm_modal.modal_roger`)."""
+    v.positive("factor", factor)
+    ref = _reference_frequency(assembly, f, shapes, M)
+    return ref, (factor * ref if cutoff_hz is None
+                 else float(v.positive("cutoff_hz", cutoff_hz, "Hz")))
+
+
 def _reference_frequency(assembly, f: np.ndarray, shapes: np.ndarray, M: np.ndarray) -> float:
     """f_ref [Hz] (module docstring, step 1) from the in-vacuo modes (shapes over kept DOFs)."""
     groups = assembly.dof_map().groups()
@@ -123,7 +136,6 @@ def _modal_basis(assembly, speeds, cutoff_hz: float | None, factor: float,
     mass and stiffness (M, K) over the kept DOFs (aerodynamics off: they depend on neither the
     airspeed nor the rotational speed), if already evaluated."""
     V = np.asarray(speeds, dtype=float)
-    v.positive("factor", factor)
     if structure is None:
         quiet = assembly.with_switches(rotating=False, wing_aero=False, propeller_aero=False)
         S = quiet.second_order_blocks(V[:1]).dense()
@@ -131,8 +143,7 @@ def _modal_basis(assembly, speeds, cutoff_hz: float | None, factor: float,
     M, K = structure
     w2, shapes = sla.eigh(K, M)
     f_all = np.sqrt(np.abs(w2)) / (2 * np.pi)
-    ref = _reference_frequency(assembly, f_all, shapes, M)
-    fc = factor * ref if cutoff_hz is None else v.positive("cutoff_hz", cutoff_hz, "Hz")
+    ref, fc = cutoff(assembly, f_all, shapes, M, factor, cutoff_hz)
     n_keep = max(int(np.sum(f_all <= fc)), min(6, f_all.size))
     Phi_c = shapes[:, :n_keep]
     # static correction at the middle and the top of the range; the lag basis from the first

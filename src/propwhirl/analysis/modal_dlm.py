@@ -1,0 +1,130 @@
+"""The default analysis of a doublet-lattice wing: the modal Roger state space tracks, the p-k
+method converges (issue 37, item 1).
+
+``analyse(model)`` on a wing with ``aero = "dlm"`` (``method="auto"`` or ``"reduced"``):
+
+1. the engine tracks every mode of the modal Roger state space
+   (:class:`~propwhirl.model.dlm_modal.ModalRoger`: the in-vacuo modes below the cut-off, the
+   Roger fit's lag states on them) and locates its crossings;
+2. every crossing is converged by the p-k method on the whole structure with the computed
+   Q(k, M) at the mode's own k (:func:`propwhirl.analysis.pk.pk_crossing`): its speed,
+   frequency, p-k root and mode shape are the p-k's (at Re p = 0 the p-k root is exact).  A
+   crossing the p-k does not have (its root keeps its sign over ±16 % of the speed) is not
+   reported: a note gives the state space's speed and the p-k's verdict.  A crossing whose k
+   iteration does not converge keeps the state space's speed, with a note;
+3. a mode the state space finds unstable at the first speed is reported only when its p-k
+   root there is unstable too.
+
+So the default reports only critical speeds the p-k method has, at the p-k's speed; the
+modes above the cut-off (far beyond the fit's k and the panels' validity at the analysed
+speeds) enter the p-k's matrices, where they respond to the loads quasi-statically.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from propwhirl.analysis.pk import (CROSSING_SPREAD, pk_benignity, pk_crossing, pk_mode,
+                                   pk_root)
+from propwhirl.analysis.reduced import LiftedEigenvectors
+from propwhirl.engine import analyse as engine_analyse
+from propwhirl.engine import single_thread_blas
+from propwhirl.engine.results import Analysis, Criticals
+from propwhirl.model.dlm import dlm_aerodynamics
+from propwhirl.model.dlm_modal import ModalRoger, modal_roger
+
+
+@dataclass(frozen=True)
+class ModalDlmRun:
+    """What :func:`modal_dlm_analysis` returns: the engine Analysis (its sweep lifted to the
+    full Roger state, its crossings the p-k's), the modal state space, and the notes on the
+    state space's events the p-k did not confirm or could not converge."""
+
+    analysis: Analysis
+    model: ModalRoger
+    notes: tuple[str, ...]
+
+
+def full_state(assembly, V: float, p: complex, q: np.ndarray) -> np.ndarray:
+    """The full Roger state [q, q̇, w] (unit norm) of the harmonic motion q e^{pt} of the
+    model's DOFs at V [m/s]: q̇ = p q and every lag state w = (p I − Ww)⁻¹ (p Wv + Wq) q, its
+    response to that motion (:func:`propwhirl.model.dlm_rfa.second_order`)."""
+    sys = assembly.second_order(np.array([float(V)]))
+    Ww, Wv, Wq = sys.Ww[0], sys.Wv[0], sys.Wq[0]
+    w = np.linalg.solve(p * np.eye(Ww.shape[0]) - Ww, (p * Wv + Wq) @ q)
+    x = np.concatenate([q, p * q, w])
+    return x / np.linalg.norm(x)
+
+
+def modal_dlm_analysis(model, grid: np.ndarray, *, displacement, state_labels, options=None,
+                       xtol: float, vgf: bool = False, assembly=None,
+                       structure: tuple[np.ndarray, np.ndarray] | None = None) -> ModalDlmRun:
+    """The engine on the modal Roger state space of ``model``, its crossings converged by the
+    p-k method (module docstring) over the airspeeds ``grid`` [m/s], to ``xtol`` [m/s].
+    ``displacement`` and ``state_labels``: the model's full state's (its DOF map);
+    ``assembly`` and ``structure`` (M, K): the model's, if already built.  BLAS at one
+    thread."""
+    with single_thread_blas():
+        R = modal_roger(model, grid, assembly=assembly, structure=structure)
+        an = engine_analyse(R.state_matrix, grid, displacement=R.displacement,
+                            state_labels=R.labels(), options=options, xtol=xtol,
+                            **({"initial_step": None} if vgf else {}))
+        lift = R.lift
+        n = R.Phi.shape[0]
+        lo, hi = float(grid[0]), float(grid[-1])
+        b_ref = dlm_aerodynamics(model.wing).b_ref
+        points, notes = [], []
+        for pt in an.criticals.points:
+            what = f"{pt.kind} {pt.direction} of state-space mode {pt.mode + 1}"
+            try:
+                c = pk_crossing(model, pt.V, pt.eigenvalue, lo=lo, hi=hi, xtol=xtol)
+            except RuntimeError:
+                x0 = lift @ pt.eigenvector
+                points.append(replace(pt, eigenvector=x0 / np.linalg.norm(x0)))
+                notes.append(f"V = {pt.V:.2f} m/s ({what}): the p-k iteration did not converge "
+                             "near it; the speed is the Roger state space's (check it with "
+                             "method = 'pk')")
+                continue
+            if c is None:
+                k = 2 * np.pi * pt.frequency_hz * b_ref / pt.V
+                notes.append(f"V = {pt.V:.2f} m/s ({what}, {pt.frequency_hz:.4g} Hz, k = "
+                             f"{k:.3g}) of the Roger state space is not a crossing of the p-k "
+                             "method on Q(k) (its root keeps its sign from "
+                             f"{max(lo, (1 - CROSSING_SPREAD[-1]) * pt.V):.2f} to "
+                             f"{min(hi, (1 + CROSSING_SPREAD[-1]) * pt.V):.2f} m/s): not "
+                             "reported")
+                continue
+            p, k, x = pk_mode(model, c.V, c.p)
+            p = p if p.imag >= 0 else p.conjugate()
+            flutter = pt.kind == "flutter"
+            half = 0.5 * (pt.bracket[1] - pt.bracket[0])
+            bz = pk_benignity(model, c.V, p) if flutter else None
+            points.append(replace(
+                pt, V=c.V, bracket=(c.V - half, c.V + half), direction=c.direction,
+                eigenvalue=p, frequency_hz=float(abs(p.imag) / (2 * np.pi)) if flutter else 0.0,
+                eigenvector=full_state(R.assembly, c.V, p, x[:n]),
+                benignity=bz, dzeta_dV=None if bz is None else 1.0 / bz))
+        start = []
+        for k in an.criticals.unstable_at_start:
+            lam0 = complex(an.sweep.eigenvalues[0, k])
+            try:
+                p, _ = pk_root(model, lo, lam0)
+            except RuntimeError:
+                start.append(k)
+                continue
+            if p.real > 0:
+                start.append(k)
+            else:
+                notes.append(f"V = {lo:.2f} m/s: state-space mode {k + 1} "
+                             f"({abs(lam0.imag) / (2 * np.pi):.4g} Hz) is unstable at the first "
+                             f"speed in the Roger state space but stable in the p-k method on "
+                             f"Q(k) (Re p = {p.real:.3g} 1/s): not reported")
+        points.sort(key=lambda q: q.V)
+        crit = Criticals(tuple(points), an.criticals.humps, tuple(start),
+                         dict(an.criticals.stats, pk_converged=len(points)))
+        sw = an.sweep
+        lifted = replace(sw, eigenvectors=LiftedEigenvectors(sw.eigenvectors, lift),
+                         state_labels=tuple(state_labels), displacement=np.asarray(displacement),
+                         stats=dict(sw.stats, reduced_states=R.n_states, reduced_r=R.r))
+        return ModalDlmRun(Analysis(lifted, crit), R, tuple(notes))
