@@ -31,13 +31,9 @@ ALLOWED = {
     "io": {"fileio", "limits", "model", "validate"},
     "app": {"analysis", "cases", "documents", "engine", "fileio", "io", "limits", "model", "progress",
             "reproduce", "results", "studies", "validate"},
-    # entry point and compatibility re-exports
-    "__main__": {"app"}, "__init__": set(), "wing": {"model"}, "propeller": {"model"},
-    "plots": {"app"},
-    # the flat layout of the first release (issue 20, item 11: old import paths keep working)
-    "aero": {"model"}, "assembly": {"model"}, "statespace": {"model"}, "vibration": {"analysis"},
-    "response": {"analysis", "reproduce"}, "stability": {"analysis", "engine", "model"},
-    "cli": {"app", "cases"}, "mainjob": {"app"},
+    # entry point; the old import paths of the first release's flat layout, one alias table
+    # (issue 38, item 5: its targets are imported by name, at first use, whatever their layer)
+    "__main__": {"app"}, "__init__": {"compat"}, "compat": set(),
 }
 
 

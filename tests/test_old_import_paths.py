@@ -9,6 +9,7 @@ public names at 593f546^ (`git show 593f546^:src/propwhirl/NAME.py`).
 from __future__ import annotations
 
 import importlib
+import importlib.util
 import subprocess
 import sys
 
@@ -120,3 +121,20 @@ def test_the_removed_names_are_not_silently_claimed():
     for dotted in REMOVED:
         path, name = dotted.rsplit(".", 1)
         assert not hasattr(importlib.import_module(path), name), dotted
+
+
+def test_one_alias_table_and_no_shim_files():
+    """Issue 38, item 5: the old paths come from propwhirl.compat.ALIASES, not from two-line
+    modules on the top floor; every old flat module of OLD_NAMES that is not a package today is
+    in the table."""
+    from pathlib import Path
+
+    import propwhirl
+    from propwhirl import compat
+
+    top = Path(propwhirl.__file__).parent
+    assert not [m for m in compat.ALIASES if (top / f"{m.split('.')[1]}.py").exists()]
+    flat = {p for p in OLD_NAMES if not (top / p.split(".")[1]).is_dir()
+            and not (top / f"{p.split('.')[1]}.py").exists()}
+    assert flat <= set(compat.ALIASES)
+    assert isinstance(importlib.util.find_spec("propwhirl.mainjob").loader, compat.AliasFinder)

@@ -36,7 +36,10 @@ Examples
 from importlib import import_module
 from typing import Any
 
+from propwhirl import compat as _compat
+
 __version__ = "0.1.0"
+_compat.install()              # the old import paths of the flat layout (propwhirl.compat)
 
 _EXPORTS = {
     "analyse": "propwhirl.analysis", "load": "propwhirl.analysis",
