@@ -9,7 +9,7 @@ The wingtip model (§10.1, 25 elements) with ``aero = "dlm"``, 4 × 12 panels an
 ``dlm_mach = 0.5`` (one Mach: the minimum-state fit is at one Mach number, and so is the
 comparison): the critical speeds of the engine on Roger's state space (the runtime's, lags
 0.2, 0.5, 1, 2 per free wing DOF) and on minimum-state state spaces of m = 4, 6, 8, 12 lag
-states in all (:mod:`propwhirl.model.dlm_minimum_state`), against the p-k method on the same
+states in all (``benchmarks/minimum_state.py``), against the p-k method on the same
 tables; the states, the fit's error and the CPU of one eigen-solution of A(V) and of the fit.
 """
 from __future__ import annotations
@@ -31,7 +31,7 @@ from propwhirl.analysis.pk import pk_sweep  # noqa: E402
 from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing  # noqa: E402
 from propwhirl.engine import analyse as engine_analyse  # noqa: E402
 from propwhirl.engine import single_thread_blas  # noqa: E402
-from propwhirl.model import dlm_minimum_state as ms  # noqa: E402
+import minimum_state as ms  # noqa: E402
 from propwhirl.model import dlm_rfa  # noqa: E402
 from propwhirl.model.dlm import dlm_aerodynamics  # noqa: E402
 

@@ -100,10 +100,11 @@ def roger_fit(model, mach: float, ks, lags=DEFAULT_LAGS) -> RogerFit:
     aero = dlm_aerodynamics(model.wing)
     keep = free_dofs(model.wing.n_nodes)
     Q = np.stack([aero.gaf(mach, k)[np.ix_(keep, keep)] for k in ks])      # (m, n_w, n_w)
-    return _fit(Q, ks, lags, float(mach), aero.b_ref)
+    return lstsq_fit(Q, ks, lags, float(mach), aero.b_ref)
 
 
-def _fit(Q: np.ndarray, ks: np.ndarray, lags: np.ndarray, mach: float, b_ref: float) -> RogerFit:
+def lstsq_fit(Q: np.ndarray, ks: np.ndarray, lags: np.ndarray, mach: float,
+              b_ref: float) -> RogerFit:
     """The least-squares Roger fit of Q (m, n_w, n_w) tabulated at the m reduced frequencies
     ``ks`` with the lag roots ``lags``."""
     B = _basis(ks, lags)
@@ -200,7 +201,7 @@ def column_fit(aero: DlmAerodynamics, mach: float, ks: np.ndarray | None = None,
             Q = np.stack([aero.gaf(mach, k, exact_mach=True)[np.ix_(keep, keep)] for k in ks])
         else:                                        # the table nodes themselves, no more
             Q = np.stack([aero.column_node(mach, nodes[k])[np.ix_(keep, keep)] for k in ks])
-        aero.fits[key] = _fit(Q, ks, lags, mach, aero.b_ref)
+        aero.fits[key] = lstsq_fit(Q, ks, lags, mach, aero.b_ref)
     return aero.fits[key]
 
 

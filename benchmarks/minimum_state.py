@@ -1,5 +1,8 @@
 """Karpel's minimum-state approximation of the doublet-lattice GAFs (issue 23, item 3b: "and
-Karpel's minimum-state if it pays") — a measurement, not (yet) a runtime option.
+Karpel's minimum-state if it pays") — a measurement, kept beside its benchmark
+(``benchmarks/dlm_minimum_state.py``), not a runtime option (issue 38, item 6: the runtime's
+default, the modal Roger state space of :mod:`propwhirl.model.dlm_modal`, already has a few lag
+states per kept mode, and this fit costs 0.5–1.7 s per Mach and cannot be interpolated in Mach).
 
 On the free wing DOFs (n_w of them) and at one Mach number, the tabulated Q(k)
 (:mod:`propwhirl.model.dlm`) is fitted in p̄ = s b_ref / V (p̄ = ik on the imaginary axis) by
@@ -31,7 +34,7 @@ import numpy as np
 from propwhirl import validate as v
 from propwhirl.model.assembly import free_dofs
 from propwhirl.model.dlm import check_mach, dlm_aerodynamics, fixed_mach, snap_mach
-from propwhirl.model.dlm_rfa import _fit as roger_lstsq
+from propwhirl.model.dlm_rfa import lstsq_fit as roger_lstsq
 from propwhirl.model.dlm_rfa import fit_ks, quasi_steady
 
 #: alternating least-squares sweeps at most (each one E-step and one D-step)

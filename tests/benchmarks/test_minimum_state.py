@@ -1,13 +1,21 @@
 """Karpel's minimum-state approximation of the doublet-lattice GAFs (issue 23, item 3b):
-propwhirl.model.dlm_minimum_state against an exact minimum-state table, Roger's fit and the
+benchmarks/minimum_state.py (beside its benchmark since issue 38, item 6) against an exact minimum-state table, Roger's fit and the
 DLM p-k flutter it approximates."""
 import dataclasses
+import importlib.util
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
 
-from propwhirl.model import dlm_minimum_state as ms
 from propwhirl.validate import InputError
+
+_SPEC = importlib.util.spec_from_file_location(
+    "minimum_state", Path(__file__).resolve().parents[2] / "benchmarks" / "minimum_state.py")
+ms = importlib.util.module_from_spec(_SPEC)
+sys.modules.setdefault("minimum_state", ms)          # its dataclasses look their module up
+_SPEC.loader.exec_module(ms)
 
 KS = np.concatenate([[0.0], np.geomspace(0.02, 2.0, 16)])    # synthetic tables only
 
