@@ -37,7 +37,7 @@ import scipy.linalg as sla
 from propwhirl import validate as v
 from propwhirl.model.assembly import free_dofs
 from propwhirl.model.dlm import dlm_aerodynamics
-from propwhirl.model.dlm_rfa import DEFAULT_LAGS, coefficients, fit_ks
+from propwhirl.model.dlm_rfa import DEFAULT_LAGS, coefficients, fit_ks, roger_system
 from propwhirl.model.reduction import CUTOFF_FACTOR, cutoff
 from propwhirl.model.statespace import SecondOrder, rate_label, state_matrix
 
@@ -55,7 +55,7 @@ class ModalRoger:
     (M-orthonormal); ``frequencies_hz`` (r,) theirs [Hz]; ``cutoff_hz`` f_c and
     ``reference_hz`` f_ref [Hz] (:func:`~propwhirl.model.reduction.cutoff`); ``in_vacuo_hz``
     every in-vacuo frequency [Hz]; ``n_w`` the free wing DOFs the doublet lattice loads (the
-    first ``n_w`` DOFs); ``n_dry_lags`` the lag states of the model without wing aerodynamics.
+    first ``n_w`` DOFs); ``dry_labels`` the lag states of the model without wing aerodynamics.
 
     State z = [η, η̇, w, z_1 … z_L] (r, r, n_dry_lags, L r).
     """
@@ -67,8 +67,13 @@ class ModalRoger:
     reference_hz: float
     in_vacuo_hz: np.ndarray = field(repr=False)
     n_w: int = 0
-    n_dry_lags: int = 0
+    #: the labels of the lag states of the model without wing aerodynamics (m₀ of them)
+    dry_labels: tuple[str, ...] = ()
     lags: tuple[float, ...] = DEFAULT_LAGS
+
+    @property
+    def n_dry_lags(self) -> int:
+        return len(self.dry_labels)
 
     @property
     def model(self):
@@ -93,8 +98,7 @@ class ModalRoger:
         q = tuple(f"mode {i + 1}" for i in range(self.r))
         lag = tuple(f"mode {i + 1} lag {l + 1}" for l in range(len(self.lags))
                     for i in range(self.r))
-        dry = tuple(f"lag state {i + 1}" for i in range(self.n_dry_lags))
-        return q + tuple(rate_label(s) for s in q) + dry + lag
+        return q + tuple(rate_label(s) for s in q) + self.dry_labels + lag
 
     @property
     def displacement(self) -> np.ndarray:
@@ -133,28 +137,10 @@ class ModalRoger:
         A = coefficients(model, V)                                  # (nV, 3 + L, nw, nw)
         with np.errstate(all="ignore"):
             dry = self.assembly.with_switches(wing_aero=False).blocks(V, omega).dense()
-        P, Pw = self.Phi, self.Phi[: self.n_w]
-        Ar = np.einsum("ia,vkij,jb->vkab", Pw, A, Pw)               # (nV, 3 + L, r, r)
-        b = dlm_aerodynamics(model.wing).b_ref
-        rho = model.flight.density
-        nV, r, m0, L = V.size, self.r, dry.n_lag, len(self.lags)
-        q = (0.5 * rho * V**2)[:, None, None]
-        S1 = P.T @ dry.S1 @ P - 0.5 * rho * b * b * Ar[:, 2]
-        S2 = P.T @ dry.S2 @ P - q * (b / V)[:, None, None] * Ar[:, 1]
-        S3 = P.T @ dry.S3 @ P - q * Ar[:, 0]
-        m = m0 + L * r
-        S4, Ww = np.zeros((nV, r, m)), np.zeros((nV, m, m))
-        Wv, Wq = np.zeros((nV, m, r)), np.zeros((nV, m, r))
-        S4[:, :, :m0], Ww[:, :m0, :m0] = P.T @ dry.S4, dry.Ww
-        Wv[:, :m0], Wq[:, :m0] = dry.Wv @ P, dry.Wq @ P
-        eye = np.eye(r)
-        for l, beta in enumerate(self.lags):
-            z = slice(m0 + l * r, m0 + (l + 1) * r)
-            S4[:, :, z] = q * Ar[:, 3 + l]
-            Ww[:, z, z] = -(V / b * beta)[:, None, None] * eye
-            Wv[:, z, :] = eye
         labels = self.labels()
-        return SecondOrder(S1, S2, S3, S4, Ww, Wv, Wq, labels[:r], labels[2 * r:])
+        return roger_system(dry, A, V, dlm_aerodynamics(model.wing).b_ref, model.flight.density,
+                            self.lags, labels[2 * self.r + self.n_dry_lags:], self.Phi,
+                            labels[:self.r])
 
     def state_matrix(self, V, **options) -> np.ndarray:
         """The modal A(V), shape (nV, 2r + m₀ + L r, 2r + m₀ + L r)."""
@@ -209,4 +195,4 @@ def modal_roger(model, speeds, *, assembly=None,
         dry = assembly.with_switches(wing_aero=False).blocks(V[:1]).dense()
     n_w = int(free_dofs(model.wing.n_nodes).size)
     return ModalRoger(assembly, shapes[:, :n_keep], f_all[:n_keep], fc, ref, f_all, n_w,
-                      dry.n_lag)
+                      tuple(dry.w_labels))

@@ -46,6 +46,7 @@ from propwhirl.model.assembly import free_dofs, wing_dof_labels
 from propwhirl.model.dlm import (MACH_MAX, MACH_STEP, DlmAerodynamics, check_mach,
                                  dlm_aerodynamics, fixed_mach, snap_mach, wing_mach)
 from propwhirl.model.statespace import SecondOrder
+from propwhirl.model.statespace import state_matrix as statespace_matrix
 
 #: default lag roots β_l (nondimensional, on the reference semichord)
 DEFAULT_LAGS = (0.2, 0.5, 1.0, 2.0)
@@ -140,31 +141,63 @@ def quasi_steady(model, V: np.ndarray, A: np.ndarray, b_ref: float):
 def state_matrix(model, fit: RogerFit, V) -> np.ndarray:
     """The first-order state matrices (nV, 2n + L n_w, 2n + L n_w) of ``model`` with the Roger
     fit of its doublet-lattice loads at the airspeeds V [m/s]; states [q, q̇, x_1, …, x_L]
-    (q the model's DOFs without lag states, x_l the lag states of the wing DOFs)."""
+    (q the model's DOFs without lag states, x_l the lag states of the wing DOFs): the one
+    builder, :func:`roger_system`, with ``fit`` at every speed."""
     V = np.atleast_1d(v.positive("airspeed V", V, "m/s"))
-    b = fit.b_ref
-    Ms, Cs, Ks, qs = quasi_steady(model, V, fit.A, b)
-    n = Ms.shape[-1]
-    nw = fit.A.shape[-1]
-    L = fit.lags.size
-    size = 2 * n + L * nw
-    out = np.zeros((V.size, size, size))
-    for i, Vi in enumerate(V):
-        M, C, K, q = Ms[i], Cs[i], Ks[i], qs[i]
-        F = np.zeros((n, L * nw))                    # the lag states' loads on the wing rows
-        for l in range(L):
-            F[:nw, l * nw:(l + 1) * nw] = q * fit.A[3 + l]
-        Minv = np.linalg.inv(M)
-        A = out[i]
-        A[:n, n:2 * n] = np.eye(n)
-        A[n:2 * n, :n] = -Minv @ K
-        A[n:2 * n, n:2 * n] = -Minv @ C
-        A[n:2 * n, 2 * n:] = Minv @ F
-        for l in range(L):
-            r = slice(2 * n + l * nw, 2 * n + (l + 1) * nw)
-            A[r, n:n + nw] = np.eye(nw)
-            A[r, r] = -(Vi / b) * fit.lags[l] * np.eye(nw)
-    return out
+    dry = replace(model, wing_aero=False).second_order(V)
+    A = np.broadcast_to(fit.A, (V.size,) + fit.A.shape)
+    labels, _ = lag_labels(model, fit.lags)
+    sys = roger_system(dry, A, V, fit.b_ref, model.flight.density, fit.lags, labels)
+    return statespace_matrix(sys, V)
+
+
+def roger_system(dry: SecondOrder, A: np.ndarray, V: np.ndarray, b_ref: float, rho: float,
+                 lags, lag_labels: tuple[str, ...], Phi: np.ndarray | None = None,
+                 q_labels: tuple[str, ...] | None = None) -> SecondOrder:
+    """The one builder of a Roger state space: the second-order system of the structure and
+    propellers ``dry`` (wing aerodynamics off; (nV, n, n), its lag states m₀) with the Roger
+    terms of ``A`` (nV, 3 + L, n_w, n_w) on the first n_w DOFs at the airspeeds V [m/s]
+    (ρ [kg/m³], b_ref [m], the lag roots ``lags``)
+
+        S1 −= ½ρ b² A₂,  S2 −= ½ρ V b A₁,  S3 −= ½ρV² A₀,  S4 = ½ρV² [A₃ … A_{2+L}],
+        ẋ_l = q̇_w − (V/b) β_l x_l,
+
+    the lag states after the dry system's.  ``Phi`` None: on every DOF, a lag state per wing
+    DOF and lag (n_w L of them).  ``Phi`` (n, r): on the modes q = Φη
+    (:mod:`propwhirl.model.dlm_modal`), Φᵀ(·)Φ of every matrix and lag states x_l = Φ_w z_l,
+    ż_l = η̇ − (V/b) β_l z_l (r L of them): the Galerkin projection of the first.
+    ``lag_labels`` name the Roger lag states, ``q_labels`` the modes (default: the dry
+    system's DOFs)."""
+    n, m0, nw = dry.n_dof, dry.n_lag, A.shape[-1]
+    T = np.eye(n) if Phi is None else np.asarray(Phi, float)           # q = T η
+    Tw = T[:nw]                                                       # the wing DOFs' rows
+    B = np.eye(nw) if Phi is None else Tw                             # x_l = B z_l
+    G = Tw if Phi is None else np.eye(T.shape[1])                     # ż_l = G η̇ − …: B G = Tw
+    nV, r, c, L = V.size, T.shape[1], B.shape[1], len(lags)
+    full = Phi is None
+    Ap = A[:, :3] if full else np.einsum("ia,vkij,jb->vkab", Tw, A[:, :3], Tw)
+    Al = A[:, 3:] if full else np.einsum("ia,vkij,jc->vkac", Tw, A[:, 3:], B)
+    q = (0.5 * rho * V**2)[:, None, None]
+    S1, S2, S3 = ((np.array(X, float) for X in (dry.S1, dry.S2, dry.S3)) if full else
+                  (T.T @ X @ T for X in (dry.S1, dry.S2, dry.S3)))
+    w = slice(None, nw) if full else slice(None)                      # where Ap acts
+    S1[:, w, w] -= 0.5 * rho * b_ref * b_ref * Ap[:, 2]
+    S2[:, w, w] -= q * (b_ref / V)[:, None, None] * Ap[:, 1]
+    S3[:, w, w] -= q * Ap[:, 0]
+    m = m0 + L * c
+    S4, Ww = np.zeros((nV, r, m)), np.zeros((nV, m, m))
+    Wv, Wq = np.zeros((nV, m, r)), np.zeros((nV, m, r))
+    S4[:, :, :m0], Ww[:, :m0, :m0] = T.T @ dry.S4, dry.Ww
+    Wv[:, :m0], Wq[:, :m0] = dry.Wv @ T, dry.Wq @ T
+    eye = np.eye(c)
+    for l, beta in enumerate(lags):
+        z = slice(m0 + l * c, m0 + (l + 1) * c)
+        S4[:, w, z] = q * Al[:, l]
+        Ww[:, z, z] = -(V / b_ref * beta)[:, None, None] * eye
+        Wv[:, z, :] = G
+    return SecondOrder(S1, S2, S3, S4, Ww, Wv, Wq,
+                       dry.q_labels if q_labels is None else q_labels,
+                       dry.w_labels + tuple(lag_labels))
 
 
 # ----------------------------------------------------------------------------- the runtime's
@@ -256,38 +289,15 @@ def second_order(assembly, V: np.ndarray, omega=None) -> SecondOrder:
     of a PropellerWing with ``aero = "dlm"`` at the airspeeds V [m/s] (1-D array): its structure
     and propellers (the ``assembly``'s blocks with the wing aerodynamics off, Houbolt–Reed loads
     unchanged at the hubs), and on the free wing DOFs the Roger terms of :func:`coefficients`
-
-        S1 −= ½ρ b² A₂,  S2 −= ½ρ V b A₁,  S3 −= ½ρV² A₀,  S4 = ½ρV² [A₃ … A_{2+L}],
-        ẋ_l = q̇_w − (V/b) β_l x_l,
-
-    the lag states after any the structure and propellers have.  ``omega`` [rad/s] as
-    :meth:`~propwhirl.model.systems.PropellerWingAssembly.blocks`."""
+    (:func:`roger_system`), the lag states after any the structure and propellers have.
+    ``omega`` [rad/s] as :meth:`~propwhirl.model.systems.PropellerWingAssembly.blocks`."""
     model = assembly.model
     V = np.atleast_1d(np.asarray(V, float))
     A = coefficients(model, V)
     dry = assembly.with_switches(wing_aero=False).blocks(V, omega).dense()
-    lags = np.asarray(DEFAULT_LAGS, float)
-    b = dlm_aerodynamics(model.wing).b_ref
-    rho = model.flight.density
-    nV, n, m0 = V.size, dry.n_dof, dry.n_lag
-    nw, L = A.shape[-1], lags.size
-    m = m0 + L * nw
-    q = (0.5 * rho * V**2)[:, None, None]
-    S1, S2, S3 = (np.array(X, float) for X in (dry.S1, dry.S2, dry.S3))
-    S1[:, :nw, :nw] -= 0.5 * rho * b * b * A[:, 2]
-    S2[:, :nw, :nw] -= q * (b / V)[:, None, None] * A[:, 1]
-    S3[:, :nw, :nw] -= q * A[:, 0]
-    S4 = np.zeros((nV, n, m))
-    Ww, Wv, Wq = np.zeros((nV, m, m)), np.zeros((nV, m, n)), np.zeros((nV, m, n))
-    S4[:, :, :m0], Ww[:, :m0, :m0], Wv[:, :m0], Wq[:, :m0] = dry.S4, dry.Ww, dry.Wv, dry.Wq
-    eye = np.eye(nw)
-    for l in range(L):
-        r = slice(m0 + l * nw, m0 + (l + 1) * nw)
-        S4[:, :nw, r] = q * A[:, 3 + l]
-        Ww[:, r, r] = -(V / b * lags[l])[:, None, None] * eye
-        Wv[:, r, :nw] = eye
-    labels, _ = lag_labels(model, lags)
-    return SecondOrder(S1, S2, S3, S4, Ww, Wv, Wq, dry.q_labels, dry.w_labels + labels)
+    labels, _ = lag_labels(model, DEFAULT_LAGS)
+    return roger_system(dry, A, V, dlm_aerodynamics(model.wing).b_ref, model.flight.density,
+                        DEFAULT_LAGS, labels)
 
 
 def fits_used(model, V) -> list[RogerFit]:
