@@ -32,22 +32,19 @@ from propwhirl import fileio
 from propwhirl import validate as v
 from propwhirl.analysis.events import (UNSTABLE_EVENTS, Exclusion, Instability,  # noqa: F401
                                        critical, describe_critical)
-from propwhirl.analysis.modal_dlm import modal_dlm_analysis
-from propwhirl.analysis.modes import InVacuo
 from propwhirl.analysis.naming import mode_content, named_modes, whirl, with_content
 from propwhirl.analysis.participation import (ModeParticipation, branch_point_shape,  # noqa: F401
                                               events_csv, events_table, participation_lines,
                                               with_participation)
 from propwhirl.analysis.pk import DLM_NOTE, pk_instabilities
-from propwhirl.model.dlm import check_speed_mach, strip_twin
-from propwhirl.model.dlm_rfa import RFA_NOTE, extrapolation_notes, rfa_note
-from propwhirl.analysis.reduced import (choose_method, frequency_zero_on_full_order,
-                                        reduced_engine_analysis)
+from propwhirl.analysis.reduced import choose_method
+from propwhirl.analysis.runners import Job, Tracked, track
+from propwhirl.model.dlm import strip_twin
+from propwhirl.model.dlm_rfa import RFA_NOTE, extrapolation_notes
 from propwhirl.analysis.summary import (FiniteState, FlutterSummary, MethodComparison,
                                         Reference, aero_model_of, compare_methods,
                                         flutter_summary, reference, text_table)
-from propwhirl.engine import XTOL, Criticals, Sweep, TrackingOptions, frequency_zero_points
-from propwhirl.engine import analyse as engine_analyse
+from propwhirl.engine import XTOL, Criticals, Sweep, TrackingOptions
 from propwhirl.engine.eigensolve import one_blas_thread
 from propwhirl.engine.options import check_speeds
 from propwhirl.engine.results import (eigenvectors_npz, eigenvectors_path,  # noqa: F401
@@ -462,17 +459,6 @@ def _finite_state_from_dict(r: SavedDict, sweep: Sweep) -> FiniteState | None:
 
 
 # ----------------------------------------------------------------------------- analyse
-def _frequency_zero_events(model: Model, sweep, state_matrix, xtol: float, lift):
-    """The frequency-zero events of a tracked sweep of ``model`` (brackets of width ≤ xtol
-    [m/s], :func:`~propwhirl.engine.frequency_zero_points`) and each one's shape at its
-    bracket's lower end (:func:`~propwhirl.analysis.participation.branch_point_shape`;
-    ``lift``: a reduced model's map to the full state, or None)."""
-    points = frequency_zero_points(sweep, state_matrix, xtol=xtol)
-    shapes = [branch_point_shape(model, sweep, p.mode, p.bracket[0], state_matrix, lift)
-              for p in points]
-    return points, shapes
-
-
 @one_blas_thread
 def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
             options: TrackingOptions | None = None, method: str = "auto") -> ModelAnalysis:
@@ -545,103 +531,59 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
     if options is not None and not isinstance(options, TrackingOptions):
         raise v.InputError(f"options = {options!r} is invalid: must be a TrackingOptions")
     chosen = choose_method(model, method)
-    # p-k: the strip twin tracks, names and starts the p-k modes; a DLM wing otherwise runs on
-    # its own Roger state space (propwhirl.model.dlm_rfa)
+    # p-k: the strip twin tracks, names and starts the p-k modes (propwhirl.analysis.runners)
     finite = strip_twin(model) if chosen == "pk" else model
     dm = finite.dof_map()
-    dlm_rfa = chosen != "pk" and getattr(getattr(model, "wing", None), "aero", "") == "dlm" \
-        and model.wing_aero
-    if dlm_rfa:                                # Mach within the tables before any work
-        check_speed_mach(model, (grid[0], grid[-1]))
-    assembly, in_vacuo = None, None
-    dlm_notes: tuple[str, ...] = ()
-    if chosen == "reduced":
-        assembly = finite.assembly()                  # built once for the analysis
-        # the structural system (the basis's in-vacuo modes, the names, kinetic energies),
-        # evaluated once
-        in_vacuo = InVacuo.of(assembly.without_aerodynamics())
-    if chosen == "reduced" and dlm_rfa:               # the modal Roger state space, p-k
-        run = modal_dlm_analysis(model, grid, displacement=dm.displacement,
-                                 state_labels=dm.state_labels, options=options, xtol=xtol,
-                                 vgf=bool(vgf), assembly=assembly,
-                                 structure=(in_vacuo.M, in_vacuo.K))
-        an, matrix_fn, basis = run.analysis, run.model.state_matrix, run.model.dof_basis
-        lift, unconverged, dlm_notes = run.model.lift, [], run.notes
-        fzero, fzero_shapes = _frequency_zero_events(finite, an.sweep, matrix_fn, xtol, lift)
-    elif chosen == "reduced":
-        run = reduced_engine_analysis(model, grid, displacement=dm.displacement,
-                                      state_labels=dm.state_labels, options=options, xtol=xtol,
-                                      vgf=bool(vgf), assembly=assembly,
-                                      structure=(in_vacuo.M, in_vacuo.K))
-        an, matrix_fn, basis = run.analysis, run.model.state_matrix, run.model.dof_basis
-        lift = run.model.lift
-        unconverged = [p for p, s in zip(an.criticals.points, run.corrections) if s is None]
-        fzero, fzero_shapes = _frequency_zero_events(finite, an.sweep, matrix_fn, xtol, lift)
-        if method == "auto" and (unconverged or not frequency_zero_on_full_order(
-                fzero, fzero_shapes, run.model)):            # AUTO_NEEDS not met: dense
-            chosen = "dense"
-    if chosen != "reduced":
-        if assembly is None:                          # built once for the analysis
-            assembly = finite.assembly()
-        matrix_fn = assembly.state_matrix
-        an = engine_analyse(matrix_fn, grid, displacement=dm.displacement,
-                            state_labels=dm.state_labels, options=options, xtol=xtol,
-                            **({"initial_step": None} if vgf else {}))
-        basis, lift = None, None
-        unconverged = []
-        fzero, fzero_shapes = _frequency_zero_events(finite, an.sweep, matrix_fn, xtol, lift)
-    sw = an.sweep
-    if in_vacuo is None:   # the structural system (in-vacuo modes, kinetic energies), once
-        in_vacuo = InVacuo.of(assembly.without_aerodynamics())
-    names, thesis_names = named_modes(finite, sw, basis, in_vacuo)
+    t = track(Job(model, finite, grid, xtol, bool(vgf), options, method == "auto"), chosen)
+    sw = t.analysis.sweep
+    names, thesis_names = named_modes(finite, sw, t.basis, t.in_vacuo)
     sw = sw.relabel(names)
-    events, shapes = [], []
-    for p in an.criticals.points:
-        sense = whirl(dm, p.eigenvector, p.eigenvalue) if p.kind == "flutter" else None
-        events.append(Instability(p.kind, p.direction, p.mode, names[p.mode], float(p.V),
-                                  float(p.frequency_hz), sense,
-                                  None if p.benignity is None else float(p.benignity)))
-        shapes.append((p.eigenvector, p.eigenvalue, float(p.V)))
-    for k in an.criticals.unstable_at_start:
-        lam0 = sw.eigenvalues[0, k]
-        kind = "flutter" if abs(lam0.imag) > 0 else "divergence"
-        events.append(Instability(kind, "unstable-at-start", int(k), names[k], float(sw.V[0]),
-                                  float(abs(lam0.imag) / (2 * np.pi))))
-        shapes.append((sw.eigenvectors[0, :, k], lam0, float(sw.V[0])))
-    for p, shape in zip(fzero, fzero_shapes):
-        events.append(Instability("divergence", "frequency-zero", p.mode, names[p.mode], p.V, 0.0))
-        shapes.append(shape)
-    events = with_participation(finite, events, shapes, in_vacuo)
+    events = with_participation(finite, *_events(t, sw, names, dm), t.in_vacuo)
+    finite_state, pk_notes = None, []
     if chosen == "pk":  # the tracked finite-state modes, their crossings by the exact p-k method
-        pk_notes: list[str] = []
-        finite_state = tuple(sorted(events, key=lambda e: (e.V, e.mode)))
+        finite_state = FiniteState(aero_model_of(model),
+                                   tuple(sorted(events, key=lambda e: (e.V, e.mode))))
         events = pk_instabilities(model, sw.eigenvalues[0], names, grid, xtol=xtol,
                                   notes=pk_notes, sweep=sw)
-        unconverged_pk = tuple(pk_notes)
-    else:
-        unconverged_pk, finite_state = (), None
     events.sort(key=lambda e: (e.V, e.mode))
     notes = validity.analysis_warnings(
         model, (float(sw.V[0]), float(sw.V[-1])),
         [(e.V, f"{e.kind} {e.event} of {e.label}") for e in events],
         any(e.event in UNSTABLE_EVENTS for e in events))
-    notes = tuple(notes) + tuple(
+    notes = t.notes_first + tuple(notes) + tuple(
         f"V = {p.V:.2f} m/s ({p.kind} {p.direction} of {names[p.mode]}): not converged on the "
         "full-order model; the speed is the reduced model's (run method='dense' to check)"
-        for p in unconverged) + unconverged_pk
-    if dlm_rfa and chosen == "reduced":
-        notes = (rfa_note(model, grid, run.model),) + notes + dlm_notes
-    elif dlm_rfa:
-        notes = (rfa_note(model, grid),) + notes + tuple(extrapolation_notes(model, events))
+        for p in t.unconverged) + tuple(pk_notes) + t.notes_last + (
+        tuple(extrapolation_notes(model, events)) if t.extrapolation else ())
     try:
         ref = reference(model)
     except v.InputError:                     # a model of another kind: no summary reference
         ref = None
-    return ModelAnalysis(model.name, sw, tuple(events), an.criticals,
-                         mode_content(finite, sw, names, in_vacuo), dm, notes, ref,
-                         None if finite_state is None
-                         else FiniteState(aero_model_of(model), finite_state),
-                         {a: b for a, b in zip(names, thesis_names) if a != b})
+    return ModelAnalysis(model.name, sw, tuple(events), t.analysis.criticals,
+                         mode_content(finite, sw, names, t.in_vacuo), dm, notes, ref,
+                         finite_state, {a: b for a, b in zip(names, thesis_names) if a != b})
+
+
+def _events(t: Tracked, sw: Sweep, names, dm: DofMap) -> tuple[list, list]:
+    """The named events of a tracked analysis and each one's (shape, λ, V): the crossings,
+    the modes unstable at the first speed and the frequency-zero events."""
+    events, shapes = [], []
+    for p in t.analysis.criticals.points:
+        sense = whirl(dm, p.eigenvector, p.eigenvalue) if p.kind == "flutter" else None
+        events.append(Instability(p.kind, p.direction, p.mode, names[p.mode], float(p.V),
+                                  float(p.frequency_hz), sense,
+                                  None if p.benignity is None else float(p.benignity)))
+        shapes.append((p.eigenvector, p.eigenvalue, float(p.V)))
+    for k in t.analysis.criticals.unstable_at_start:
+        lam0 = sw.eigenvalues[0, k]
+        kind = "flutter" if abs(lam0.imag) > 0 else "divergence"
+        events.append(Instability(kind, "unstable-at-start", int(k), names[k], float(sw.V[0]),
+                                  float(abs(lam0.imag) / (2 * np.pi))))
+        shapes.append((sw.eigenvectors[0, :, k], lam0, float(sw.V[0])))
+    for p, shape in zip(t.fzero, t.fzero_shapes):
+        events.append(Instability("divergence", "frequency-zero", p.mode, names[p.mode], p.V, 0.0))
+        shapes.append(shape)
+    return events, shapes
 
 
 #: Below this share of the mode's kinetic energy [-] in every propeller (0.5 %, printed as
