@@ -5,7 +5,7 @@ real roots merging, a split and a merge in one step — single-root predictions 
 *clusters* (2–4 roots) are then followed as a set: the coefficients of their characteristic
 polynomial are analytic through the branch points, are predicted like single roots, and the
 roots of their Hermite interpolant, followed on sub-steps, fix who is who and show that no real
-part changes sign inside (:func:`_cluster_continuations`, step 3 of the linking of
+part changes sign inside (:func:`cluster_continuations`, step 3 of the linking of
 :mod:`propwhirl.engine.linking`).  Inside a cluster followed as a set, the conventions of
 :mod:`propwhirl.engine.ordering` are applied along the followed roots of its interpolated
 characteristic polynomial (a pair formed inside a step by roots that were not partners gives
@@ -14,6 +14,8 @@ report the unstable pairs that turn real inside them (the tracker brackets those
 points, :func:`propwhirl.engine.crossings._branch_point_speeds`).
 """
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import linear_sum_assignment
@@ -364,8 +366,48 @@ def _closure(seed: set[int], perm: list[int], inv: list[int], conj_a: list[int],
         S = S2
 
 
-def _cluster_continuations(a: _Node, b: _Node, perm: np.ndarray, amb: np.ndarray,
-                           rel_err: np.ndarray, disp: np.ndarray, opts: TrackingOptions):
+@dataclass(frozen=True)
+class ClusterLinks:
+    """What :func:`cluster_continuations` returns: the assignment ``perm`` (b[perm[i]]
+    continues a[i]) and the ambiguity flags ``amb`` with the accepted clusters' assignment and
+    flags applied (new arrays: the caller's are not changed); the ``clusters`` (raw row indices
+    at a); ``split_at``, where to split the step [m/s] or None; and the ``events``, unstable
+    pairs turning real inside accepted clusters (speed [m/s], raw rows of the pair at a,
+    estimated double root [1/s])."""
+
+    perm: np.ndarray
+    amb: np.ndarray
+    clusters: tuple[tuple[int, ...], ...]
+    split_at: float | None
+    events: tuple[tuple[float, int, int, float], ...]
+
+
+def _first_trials(a: _Node, seed: int, base: set[int], bl: np.ndarray, ra: np.ndarray,
+                  rb_perm: np.ndarray, mis: np.ndarray, rel_err: np.ndarray,
+                  opts: TrackingOptions) -> list[set[int]]:
+    """The row sets first tried from one seed's closure ``base`` (rows ``bl``): the closure
+    itself when it has a real root (at either end) or a pair near the real axis; complex
+    pairs away from the axis only when their prediction fails (with one of the three real
+    roots nearest them: a real root may have joined them through branch points); a lone root
+    with one of its three nearest others."""
+    if not (ra[bl].any() or rb_perm[bl].any() or (np.abs(a.lam[bl].imag) <= mis[bl]).any()):
+        if not (rel_err[bl] > opts.dist_max).any():
+            return []                                   # a veering, resolved by refinement
+        d = np.abs(a.lam[:, None] - a.lam[bl][None, :]).min(axis=1)
+        d[~ra] = np.inf
+        d[bl] = np.inf
+        near = [int(x) for x in d.argsort()[:3] if np.isfinite(d[x])]
+        return [base | {x} for x in near]
+    if len(base) > 1:
+        return [base]
+    d = np.abs(a.lam - a.lam[seed])
+    d[seed] = np.inf
+    return [base | {int(x)} for x in d.argsort()[:3]]
+
+
+def cluster_continuations(a: _Node, b: _Node, perm: np.ndarray, amb: np.ndarray,
+                          rel_err: np.ndarray, disp: np.ndarray,
+                          opts: TrackingOptions) -> ClusterLinks:
     """Follow small clusters of roots as a set where single roots cannot be followed.
 
     Where roots meet — a pair turning real at its square-root branch point, two real roots
@@ -390,13 +432,15 @@ def _cluster_continuations(a: _Node, b: _Node, perm: np.ndarray, amb: np.ndarray
       (a crossing inside is resolved with single roots, by refinement) and end on the exact
       roots — which also fixes who is who inside the cluster.
 
-    Accepted clusters get that assignment and lose their ambiguity flags; their members are
-    then checked as a cluster, not by the per-root Hermite check.  Returns the clusters (raw
-    row indices at a); when a cluster was refused because a root crosses the imaginary axis
+    Accepted clusters get that assignment and lose their ambiguity flags (in the returned
+    copies of ``perm`` and ``amb``); their members are then checked as a cluster, not by the
+    per-root Hermite check.  Returns a :class:`ClusterLinks`: those, the clusters (raw row
+    indices at a); when a cluster was refused because a root crosses the imaginary axis
     inside the step, a speed where to split the step (between the crossing and the nearest
     branch point) [m/s]; and the unstable pairs that turn real inside accepted clusters
     (estimated speed [m/s], raw rows of the pair at a, estimated double root [1/s]).
     """
+    perm, amb = np.array(perm), np.array(amb)
     n = a.lam.size
     h = b.V - a.V
     inv = np.empty(n, dtype=int)
@@ -423,23 +467,7 @@ def _cluster_continuations(a: _Node, b: _Node, perm: np.ndarray, amb: np.ndarray
         base = _closure({int(seed)}, *lists)
         done.update(base)
         bl = np.array(sorted(base))
-        if not (ra[bl].any() or rb[perm[bl]].any()
-                or (np.abs(a.lam[bl].imag) <= mis[bl]).any()):
-            # complex pairs away from the real axis: a veering, unless their prediction
-            # fails — then a real root may have joined them through branch points
-            if not (rel_err[bl] > opts.dist_max).any():
-                continue
-            d = np.abs(a.lam[:, None] - a.lam[bl][None, :]).min(axis=1)
-            d[~ra] = np.inf
-            d[bl] = np.inf
-            near = [int(x) for x in d.argsort()[:3] if np.isfinite(d[x])]
-            trials = [base | {x} for x in near]
-        elif len(base) > 1:
-            trials = [base]
-        else:                                   # a lone root: with one of its nearest others
-            d = np.abs(a.lam - a.lam[seed])
-            d[seed] = np.inf
-            trials = [base | {int(x)} for x in d.argsort()[:3]]
+        trials = _first_trials(a, int(seed), base, bl, ra, rb[perm], mis, rel_err, opts)
         tried: set[frozenset[int]] = set()
         # trials: row sets closed when their turn comes (the lists change only when a
         # cluster is accepted, and then the remaining trials are dropped)
@@ -472,12 +500,12 @@ def _cluster_continuations(a: _Node, b: _Node, perm: np.ndarray, amb: np.ndarray
                 d[rows] = np.inf
                 for x in d.argsort()[:3]:
                     trials.append(S | {int(x)})
-    return tuple(out), (min(splits) if splits else None), tuple(events)
+    return ClusterLinks(perm, amb, tuple(out), min(splits) if splits else None, tuple(events))
 
 
 def _try_cluster(a: _Node, b: _Node, rows: np.ndarray, cols: np.ndarray, rel_err: np.ndarray,
                  disp: np.ndarray, opts: TrackingOptions, h: float):
-    """The assignment inside an acceptable cluster (see :func:`_cluster_continuations`):
+    """The assignment inside an acceptable cluster (see :func:`cluster_continuations`):
     (q, events of :func:`_follow_cluster`) with b[cols[q[i]]] the continuation of a[rows[i]];
     (None, where to split the step or None) if not acceptable."""
     la, da, lb, db = a.lam[rows], a.dlam[rows], b.lam[cols], b.dlam[cols]

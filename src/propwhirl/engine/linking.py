@@ -19,7 +19,7 @@ The prediction of a branch over a step is trapezoidal, ``λ_b ≈ λ_a + ½(λ'_
    characteristic polynomial are analytic through the branch points, are predicted like
    single roots, and the roots of their Hermite interpolant, followed on sub-steps, fix
    who is who and show that no real part changes sign inside
-   (:func:`propwhirl.engine.clusters._cluster_continuations`);
+   (:func:`propwhirl.engine.clusters.cluster_continuations`);
 4. two complex branches whose paths (straight from the first sample, or the Hermite curves
    through both) approach each other inside the step mark it as an unresolved veering or
    crossing (:func:`_approach`).
@@ -40,7 +40,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
-from propwhirl.engine.clusters import _cluster_continuations
+from propwhirl.engine.clusters import cluster_continuations
 from propwhirl.engine.hermite import _CHECK_S, _hermite_coeffs, _hermite_eval
 from propwhirl.engine.nodes import _Node
 from propwhirl.engine.options import TrackingOptions
@@ -136,10 +136,10 @@ class _Link:
     err:   absolute uncertainty of each a-row's continuation [1/s]: the mismatch of its
            trapezoidal prediction.
     clusters: roots followed as a set over the step (through branch points, see
-           :func:`_cluster_continuations`), raw indices at a; checked as a cluster, so left
+           :func:`cluster_continuations`), raw indices at a; checked as a cluster, so left
            out of the per-root Hermite check.
     split_at: where to refine an ambiguous step other than its middle [m/s] (see
-           :func:`_cluster_continuations`).
+           :func:`cluster_continuations`).
     branch_points: unstable pairs turning real inside the step, estimated from accepted
            clusters: (V [m/s], raw rows at a, double root [1/s]).
     """
@@ -244,8 +244,8 @@ def _link(a: _Node, b: _Node, disp: np.ndarray, opts: TrackingOptions) -> _Link:
             (~shape_free & ((c0 > opts.cost_ratio * altH) | (macH[hh, ph] < opts.mac_min)))
             | (d0 > opts.dist_max))
     err = trap[ar, perm]
-    clusters, split_at, events = _cluster_continuations(a, b, perm, amb, trap[ar, perm] / scale,
-                                                        disp, opts)
+    cl = cluster_continuations(a, b, perm, amb, trap[ar, perm] / scale, disp, opts)
+    perm, amb, clusters, split_at, events = cl.perm, cl.amb, cl.clusters, cl.split_at, cl.events
     err = trap[ar, perm]
     skip = [i for rows in clusters for i in rows] + list(np.nonzero(sa & sb[perm])[0])
     return _Link(perm, bool(amb.any() or _approach(a, b, perm, opts, skip)), err,

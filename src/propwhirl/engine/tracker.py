@@ -442,7 +442,7 @@ def _step_models(nodes: list[_Node], R: np.ndarray, links: list[_Link],
                  fd_rel: float = 1e-6):
     """Per step and branch: (Re λ_a, Re λ_b, Re λ'_a, Re λ'_b, uncertainty, checked) (T−1, n).
 
-    Members of clusters followed as a set over a step (:func:`_cluster_continuations`) were
+    Members of clusters followed as a set over a step (:func:`cluster_continuations`) were
     checked there and are not checked again.
 
     The uncertainty is the trapezoidal mismatch m of the step (:attr:`_Link.err`, |m|)
