@@ -59,12 +59,17 @@ CACHE_SIZE = 4
 
 
 def _panelaero():
-    """PanelAero's DLM module, or an InputError saying how to install it."""
+    """PanelAero's DLM module, or an InputError saying how to install it.  Importing it calls
+    ``np.seterr(all='ignore')`` (panelaero/DLM.py): the caller's floating-point error state is
+    restored, whatever the import does (its calls run inside ``np.errstate``, :meth:`aic`)."""
+    saved = np.geterr()
     try:
         from panelaero import DLM
     except ImportError as exc:
         raise v.InputError("aero = 'dlm' needs PanelAero: pip install 'propwhirl[dlm]' "
                            "(or pip install panelaero)") from exc
+    finally:
+        np.seterr(**saved)
     return DLM
 
 
