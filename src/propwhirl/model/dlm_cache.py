@@ -163,7 +163,7 @@ def load(directory: Path, geometry: str, mach: float, kbar: float, n: int) -> np
         Q = np.load(path, allow_pickle=False)
     except FileNotFoundError:
         return None
-    except (OSError, ValueError) as exc:
+    except (OSError, ValueError, EOFError) as exc:          # EOFError: an empty file
         return _damaged(path, f"unreadable: {type(exc).__name__}")
     if Q.shape != (n, n) or Q.dtype != np.complex128 or not np.all(np.isfinite(Q)):
         return _damaged(path, f"not a finite {n} x {n} complex matrix")
