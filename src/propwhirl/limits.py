@@ -24,6 +24,13 @@ The memory limit (:func:`memory_limit`)
     :data:`DEFAULT_LIMIT_CAP` (8 GiB: an analysis that needs more is refused unless asked for
     explicitly), at least 256 MiB; 2 GiB where the machine does not report its memory.
 
+Memory of a doublet-lattice AIC (:func:`aic_bytes`, :func:`check_panels`)
+    PanelAero computes the AIC of n panels of a half-wing on both halves, a (2n)² complex
+    kernel, from some twenty (2n, 2n) temporaries: :data:`AIC_BYTES_PER_ENTRY` = 512 bytes per
+    entry of (2n)².  Measured on 200–1200 mirrored panels at k > 0 (planar wing): 480 bytes
+    per entry (tracemalloc peak), 485–502 (growth of the process's peak RSS); at k = 0, 280.
+    2,000 panels (``dlm_mesh.MAX_PANELS``): ≈ 7.6 GiB.  Checked before any panel is built.
+
 Arrays read from a file (:func:`check_read`)
     The bytes the file's description says its arrays hold (e.g. an eigenvector ``.npz``: the
     speeds and states of its analysis file) against :func:`memory_limit`, before reading.
@@ -69,6 +76,10 @@ BATCH_MEMORY = 256 * MiB
 #: the model's own temporaries per speed of a batch [bytes]: the Houbolt–Reed integrals of a
 #: propeller at the default order, measured ≈ 25 kB per speed (isolated propeller, tracemalloc)
 BATCH_MODEL_BYTES = 32 * 2 ** 10
+
+#: bytes per entry of the (2n)² doublet-lattice kernel of n half-wing panels while PanelAero
+#: computes one AIC (module docstring: measured 480–502)
+AIC_BYTES_PER_ENTRY = 512
 
 #: speeds in one grid: a sweep refined to the tracker's 0.01 m/s over 0–1000 m/s has 100,000
 MAX_SPEEDS = 100_000
@@ -176,6 +187,30 @@ def check_read(n_bytes: int, what: str) -> None:
     if n_bytes > limit:
         raise InputError(f"{what} needs ≈ {format_bytes(n_bytes)} to read (limit "
                          f"{format_bytes(limit)}, set {MEMORY_ENV})")
+
+
+def aic_bytes(n_panels: int) -> int:
+    """Estimated peak memory [bytes] of one doublet-lattice AIC of ``n_panels`` panels of a
+    half-wing (module docstring): :data:`AIC_BYTES_PER_ENTRY` per entry of (2 n_panels)²."""
+    return int(AIC_BYTES_PER_ENTRY * (2.0 * n_panels) ** 2)
+
+
+def check_panels(n_chord: int, n_span: int) -> None:
+    """Refuse doublet-lattice panels whose AIC (:func:`aic_bytes`) exceeds
+    :func:`memory_limit`, naming the panel counts that fit (the chordwise count kept, or the
+    spanwise one)."""
+    n = int(n_chord) * int(n_span)
+    need, limit = aic_bytes(n), memory_limit()
+    if need <= limit:
+        return
+    most = int(math.isqrt(limit // AIC_BYTES_PER_ENTRY) // 2)          # aic_bytes(most) <= limit
+    fits = [f"{a} x {b}" for a, b in ((n_chord, most // n_chord), (most // n_span, n_span))
+            if a >= 1 and b >= 1]
+    raise InputError(
+        f"dlm_chordwise_panels x dlm_spanwise_panels = {n_chord} x {n_span} = {n:,} panels is "
+        f"invalid: each AIC needs ≈ {format_bytes(need)} (limit {format_bytes(limit)}, set "
+        f"{MEMORY_ENV}); at most {most:,} panels fit"
+        + (f", e.g. {' or '.join(fits)}" if fits else ""))
 
 
 def node_budget(n_grid: int, n_first: int, n_states: int, requested: int | None = None) -> int:

@@ -28,16 +28,23 @@ def test_a_second_analysis_reads_the_aics_back(monkeypatch, tmp_path):
     first = aero()
     Q = first.aic(0.2, 0.4)
     assert first.evaluations == 1 and len(list((tmp_path / "aic").glob("aic-*.npy"))) == 1
+    assert len(list((tmp_path / "aic").glob("aic-*.sha256"))) == 1       # its checksum
     second = aero()                                   # a new analysis of the same panels
     assert np.array_equal(second.aic(0.2, 0.4), Q)
-    assert second.evaluations == 0 and second.cache_hits == 1
+    # the first entry read of a geometry is computed again all the same (the spot check)
+    assert second.evaluations == 1 and second.cache_hits == 1
     # another k, Mach or planform is another matrix
     second.aic(0.2, 0.41)
     second.aic(0.25, 0.4)
-    assert second.evaluations == 2
+    assert second.evaluations == 3
     other = aero(root_chord=1.1)
     other.aic(0.2, 0.4)
     assert other.evaluations == 1 and len(list((tmp_path / "aic").glob("*.npy"))) == 4
+    third = aero()                                    # after its spot check, read only
+    for k in (0.4, 0.41):
+        third.aic(0.2, k)
+    third.aic(0.25, 0.4)
+    assert third.evaluations == 1 and third.cache_hits == 3
 
 
 def test_a_damaged_file_is_computed_again(monkeypatch, tmp_path):
@@ -46,10 +53,12 @@ def test_a_damaged_file_is_computed_again(monkeypatch, tmp_path):
     (path,) = tmp_path.glob("aic-*.npy")
     path.write_bytes(b"not a matrix")
     again = aero()
-    assert np.array_equal(again.aic(0.0, 0.3), Q) and again.evaluations == 1
+    with pytest.warns(UserWarning, match=f"{path.name} is damaged .unreadable"):
+        assert np.array_equal(again.aic(0.0, 0.3), Q) and again.evaluations == 1
     np.save(path, np.zeros((2, 2)), allow_pickle=False)     # wrong shape and type
     third = aero()
-    assert np.array_equal(third.aic(0.0, 0.3), Q) and third.evaluations == 1
+    with pytest.warns(UserWarning, match=f"{path.name} is damaged .not a finite 12 x 12"):
+        assert np.array_equal(third.aic(0.0, 0.3), Q) and third.evaluations == 1
     assert dlm_cache.load(tmp_path, third._geometry, 0.0, 0.3 / third.b_ref, third.mesh.n) \
         is not None                                   # rewritten
 

@@ -25,6 +25,7 @@ from propwhirl.engine import single_thread_blas
 from propwhirl.engine.correction import correct_crossing, full_order_pair
 from propwhirl.engine.results import Analysis, Criticals
 from propwhirl.model.dlm import require_panelaero
+from propwhirl.model.dlm_mesh import check_memory
 from propwhirl.model.frequency_domain import check_section
 from propwhirl.model.reduction import CUTOFF_FACTOR, ReducedModel, reduce
 
@@ -63,6 +64,7 @@ def choose_method(model, method: str) -> str:
     dlm = getattr(getattr(model, "wing", None), "aero", "strip") == "dlm" and model.wing_aero
     if dlm:
         require_panelaero()                 # before the finite-state tracking starts
+        check_memory(model.wing)            # one AIC of its panels within the memory limit
     if method == "pk":
         check_section(model)
         return "pk"

@@ -59,12 +59,17 @@ CACHE_SIZE = 4
 
 
 def _panelaero():
-    """PanelAero's DLM module, or an InputError saying how to install it."""
+    """PanelAero's DLM module, or an InputError saying how to install it.  Importing it calls
+    ``np.seterr(all='ignore')`` (panelaero/DLM.py): the caller's floating-point error state is
+    restored, whatever the import does (its calls run inside ``np.errstate``, :meth:`aic`)."""
+    saved = np.geterr()
     try:
         from panelaero import DLM
     except ImportError as exc:
         raise v.InputError("aero = 'dlm' needs PanelAero: pip install 'propwhirl[dlm]' "
                            "(or pip install panelaero)") from exc
+    finally:
+        np.seterr(**saved)
     return DLM
 
 
@@ -144,19 +149,26 @@ class DlmAerodynamics:
         c_p = Q_jj w for a wash w mirrored on the other half-wing.  PanelAero's ``calc_Qjj``
         (VLM + DLM increment, parabolic kernel) of both halves, k̄ = k / b_ref its ω/U, then
         Q_sym = Q_RR + Q_RL.  (PanelAero's own ``xz_symmetry`` mirrors the panels upside down;
-        its DLM then departs from Theodorsen's limit: docs/validation.md.)"""
+        its DLM then departs from Theodorsen's limit: docs/validation.md.)  With
+        ``PROPWHIRL_DLM_CACHE`` an entry with a valid checksum is read instead; the first one
+        read is computed again all the same and compared (:func:`dlm_cache.spot_check`)."""
         n = self.mesh.n
+        cached = None
         if self.cache is not None:
-            Q = dlm_cache.load(self.cache, self._geometry, mach, float(k) / self.b_ref, n)
-            if Q is not None:
+            cached = dlm_cache.load(self.cache, self._geometry, mach, float(k) / self.b_ref, n)
+            if cached is not None and self.cache_hits:   # the first one read: spot-checked
                 self.cache_hits += 1
-                return Q
+                return cached
         DLM = _panelaero()
         with np.errstate(all="ignore"):
             Q = DLM.calc_Qjj(self.grid, float(mach), float(k) / self.b_ref)
         self.evaluations += 1
         Q = Q[n:, n:] + Q[n:, :n]
-        if self.cache is not None:
+        if cached is not None:                 # InputError when they differ (dlm_cache)
+            dlm_cache.spot_check(self.cache, self._geometry, mach, float(k) / self.b_ref,
+                                 cached, Q)
+            self.cache_hits += 1
+        elif self.cache is not None:
             dlm_cache.store(self.cache, self._geometry, mach, float(k) / self.b_ref, Q)
         return Q
 

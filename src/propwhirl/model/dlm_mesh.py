@@ -37,7 +37,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.interpolate import CubicHermiteSpline
 
-from propwhirl import validate as v
+from propwhirl import limits, validate as v
 
 #: panels along the chord by default
 DEFAULT_CHORDWISE = 8
@@ -145,9 +145,18 @@ def panel_counts(wing, n_chord: int | None = None, n_span: int | None = None) ->
     return n_chord, n_span
 
 
+def check_memory(wing, n_chord: int | None = None, n_span: int | None = None) -> None:
+    """InputError, before any panel is built, when one AIC of the wing's panels
+    (:func:`panel_counts`) would exceed the memory limit (:func:`propwhirl.limits.check_panels`,
+    naming the counts that fit)."""
+    limits.check_panels(*panel_counts(wing, n_chord, n_span))
+
+
 def panel_mesh(wing, n_chord: int | None = None, n_span: int | None = None) -> PanelMesh:
-    """The DLM panels of ``wing``'s half planform (counts: :func:`panel_counts`)."""
+    """The DLM panels of ``wing``'s half planform (counts: :func:`panel_counts`; refused when
+    their AIC would exceed the memory limit, :func:`check_memory`)."""
     n_chord, n_span = panel_counts(wing, n_chord, n_span)
+    limits.check_panels(n_chord, n_span)
     ys = np.linspace(0.0, wing.semi_span, n_span + 1)
     le, te = _planform(wing, ys)
     f = np.linspace(0.0, 1.0, n_chord + 1)
