@@ -109,3 +109,17 @@ def test_bad_input_is_one_line_and_writes_nothing(case, message, old_file, tmp_p
     err = _one_line_error(capsys, ["upgrade-model", str(old), str(new)])
     assert message in err
     assert not new.exists()
+
+
+# ------------------------------------------------------------------ issue 33, item 3
+@pytest.mark.parametrize("device", ["/dev/zero", "/dev/urandom"])
+def test_old_as_a_device_is_refused_before_it_is_opened(device, tmp_path, capsys, monkeypatch):
+    """Item 3: `upgrade-model /dev/zero out.toml` grew past 4 GB."""
+    from helpers.files import never_opened
+
+    never_opened(monkeypatch, device)
+    err = _one_line_error(capsys, ["upgrade-model", device, str(tmp_path / "out.toml")])
+    assert err == (f"propwhirl: error: cannot read model file {device!r}: it is a character "
+                   "device, not a regular file (propwhirl reads regular files only)\n")
+    assert not (tmp_path / "out.toml").exists()
+

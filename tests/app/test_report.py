@@ -277,3 +277,30 @@ def test_a_failing_print_leaves_the_page_and_a_note(result, tmp_path, monkeypatc
     assert len(notes) == 1 and "report.pdf not written" in notes[0] and "/bin/false" in notes[0]
     with pytest.raises(R.v.InputError):
         R.write_report(result, tmp_path, pdf=True, figures=False)
+
+
+# ------------------------------------------------------------------ issue 33, item 3
+from propwhirl.validate import InputError  # noqa: E402
+
+EXAMPLE_RESULT = (Path(__file__).resolve().parents[2] / "examples" / "certification" / "wingtip"
+                  / "campaign.json")
+
+
+@pytest.fixture(scope="module")
+def example_result() -> C.CampaignResult:
+    """The committed example's result (no campaign run)."""
+    return C.CampaignResult.load(EXAMPLE_RESULT)
+
+
+@pytest.mark.parametrize("device", ["/dev/zero", "/dev/urandom"])
+def test_the_hash_of_a_device_is_refused_before_it_is_opened(example_result, monkeypatch,
+                                                             device):
+    """Item 3: the report's SHA-256 of campaign_file='/dev/zero' grew past 4 GB."""
+    from helpers.files import never_opened
+
+    never_opened(monkeypatch, device)
+    with pytest.raises(InputError) as e:
+        R.report_html(example_result, campaign_file=device, figures=False)
+    assert str(e.value) == (f"cannot read campaign file {device!r}: it is a character device, "
+                            "not a regular file (propwhirl reads regular files only)")
+

@@ -56,11 +56,14 @@ _HEADER_MAX, _ZIP_OVERHEAD = 4096, 65536
 
 
 def read_arrays(path: Path, expected: dict[str, tuple[tuple[int, ...], np.dtype]],
-                where: str, mismatch: str = "") -> dict[str, np.ndarray]:
-    """The arrays of the ``.npz`` at ``path``, each of the shape and dtype ``expected``:
-    the file's size, its member names, each member's declared size and ``.npy`` header are
-    checked before its data is read (within :func:`propwhirl.limits.memory_limit`); no
-    pickle.  Anything else: one line starting with ``where`` naming the array."""
+                where: str, mismatch: str = "", what: str = "modes file"
+                ) -> dict[str, np.ndarray]:
+    """The arrays of the ``.npz`` at ``path`` (a `what`, e.g. "[modes] file"), each of the
+    shape and dtype ``expected``: the file — a regular file of at most the bytes its arrays
+    take (:func:`propwhirl.fileio.open_input`, before it is opened) —, its member names, each
+    member's declared size and ``.npy`` header are checked before its data is read (within
+    :func:`propwhirl.limits.memory_limit`); no pickle.  Anything else: one line starting with
+    ``where`` naming the array."""
     import zipfile
 
     from numpy.lib import format as npf
@@ -68,13 +71,10 @@ def read_arrays(path: Path, expected: dict[str, tuple[tuple[int, ...], np.dtype]
     n_bytes = {k: int(np.prod(s, dtype=np.int64)) * np.dtype(d).itemsize
                for k, (s, d) in expected.items()}
     limits.check_read(sum(n_bytes.values()), f"{where}: its arrays")
+    most = sum(n_bytes.values()) + len(expected) * _HEADER_MAX + _ZIP_OVERHEAD
     try:
-        with open(path, "rb") as fh:
-            size = path.stat().st_size
-            most = sum(n_bytes.values()) + len(expected) * _HEADER_MAX + _ZIP_OVERHEAD
-            if size > most:
-                raise v.InputError(f"{where}: {size:,} bytes is more than its arrays take "
-                                   f"({most:,} at most{mismatch})")
+        with fileio.open_input(path, what, most, bound=f"its arrays take at most{mismatch}"
+                               ) as fh:
             with zipfile.ZipFile(fh) as z:
                 names = sorted(i.filename for i in z.infolist())
                 if names != sorted(f"{k}.npy" for k in expected):
@@ -102,19 +102,20 @@ def read_arrays(path: Path, expected: dict[str, tuple[tuple[int, ...], np.dtype]
                         out[key] = np.asarray(npf.read_array(member, allow_pickle=False),
                                               dtype=dtype)
                 return out
-    except v.InputError:
-        raise
-    except FileNotFoundError:
-        raise v.InputError(f"{where}: the modes file is not found") from None
+    except v.InputError as exc:     # fileio's line names the file: `where` only if it is not
+        msg = str(exc)
+        named = msg.startswith(where) or fileio.quoted(path) in msg
+        raise v.InputError(msg if named else f"{where}: {msg}") from None
     except (OSError, ValueError, zipfile.BadZipFile, EOFError, RuntimeError) as exc:
         why = " ".join(str(exc).split())[:200]
         raise v.InputError(f"{where}: cannot read the modes file: {why}") from None
 
 
-def load_modes(path: str | Path, n_modes: int, n_grids: int, where: str | None = None
-               ) -> ModalStructure:
-    """The :class:`~propwhirl.model.modal.ModalStructure` of the ``.npz`` at ``path``, whose
-    arrays must have the sizes given (checked before reading); errors name the file."""
+def load_modes(path: str | Path, n_modes: int, n_grids: int, where: str | None = None,
+               what: str = "modes file") -> ModalStructure:
+    """The :class:`~propwhirl.model.modal.ModalStructure` of the ``.npz`` at ``path`` (a
+    `what`), whose arrays must have the sizes given (checked before reading); errors name
+    the file."""
     path = Path(path)
     where = str(path) if where is None else where
     nm = v.integer_at_least("n_modes", n_modes, 1)
@@ -123,7 +124,7 @@ def load_modes(path: str | Path, n_modes: int, n_grids: int, where: str | None =
                 "frequencies_hz": ((nm,), np.float64), "modal_mass": ((nm,), np.float64),
                 "damping_ratio": ((nm,), np.float64), "shapes": ((nm, ng, 6), np.float64)}
     arrays = read_arrays(path, expected, where,
-                         f" (n_modes = {nm}, n_grids = {ng} as the model file states)")
+                         f" (n_modes = {nm}, n_grids = {ng} as the model file states)", what)
     return ModalStructure(**arrays, source=where)
 
 
@@ -131,7 +132,7 @@ def is_modal_file(path: str | Path) -> bool:
     """Whether the TOML file at ``path`` declares ``format = "propwhirl-modal-model"`` (a file
     that cannot be read or parsed is not: the model-file reader then says why)."""
     try:
-        data = tomllib.loads(fileio.read_text(path, "model file"))
+        data = tomllib.loads(fileio.read_text(path, "model file", limit=fileio.MAX_TOML_BYTES))
     except (v.InputError, tomllib.TOMLDecodeError, RecursionError):
         return False
     return isinstance(data, dict) and data.get("format") == FORMAT
@@ -143,7 +144,7 @@ def load_modal_model(path: str | Path) -> ModalPropellerWing:
     the file, naming the key (and the grid id) as written."""
     path = Path(path)
     src = str(path)
-    text = fileio.read_text(path, "modal model file")
+    text = fileio.read_text(path, "modal model file", limit=fileio.MAX_TOML_BYTES)
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -219,7 +220,7 @@ def _from_dict(data: dict[str, Any], path: Path) -> ModalPropellerWing:
             raise t.bad("propeller", "the key of a [propellers.KEY] table ("
                         + (", ".join(ctx) or "none given") + ")")
     # only now the arrays: the description is whole and consistent
-    structure = load_modes(file, n_modes, n_grids)
+    structure = load_modes(file, n_modes, n_grids, what="[modes] file")
     ids = set(int(i) for i in structure.grid_ids)
     for i, g in enumerate(raw_grids):
         if g not in ids:

@@ -11,8 +11,10 @@ A file holds one matrix in NumPy's ``.npy`` format, written and read with
 matrix: this cache's :data:`FORMAT`, PanelAero's version, the panels' corner coordinates
 (both half-wings, [m], exactly as float64) and the exact Mach number and PanelAero's reduced
 frequency k̄ = ω/U [1/m] (their hexadecimal float forms).  A file whose shape or type is not the expected one, or that cannot be read, is
-computed anew and rewritten; files are written to a temporary name and renamed, so a reader
-never sees half a file.  A directory that cannot be created or written is an InputError
+computed anew and rewritten (its ``.npy`` header is read first: nothing is allocated on the
+file's word); an entry that is not a regular file (a FIFO, a device) or is larger than its
+matrix is an InputError naming it, refused before it is opened; files are written to a
+temporary name and renamed, so a reader never sees half a file.  A directory that cannot be created or written is an InputError
 before any matrix is computed.
 """
 from __future__ import annotations
@@ -25,12 +27,16 @@ from pathlib import Path
 
 import numpy as np
 
+from propwhirl import fileio
 from propwhirl import validate as v
 
 #: the environment variable naming the cache directory
 CACHE_ENV = "PROPWHIRL_DLM_CACHE"
 #: version of the cache's key and file layout
 FORMAT = 1
+#: bytes of a cache file beyond its matrix's: the ``.npy`` magic and header (numpy pads the
+#: header to 64 or 4096 bytes)
+NPY_HEADER_MAX = 4096
 
 
 def cache_dir() -> Path | None:
@@ -73,11 +79,32 @@ def _path(directory: Path, geometry: str, mach: float, kbar: float) -> Path:
 
 def load(directory: Path, geometry: str, mach: float, kbar: float, n: int) -> np.ndarray | None:
     """The cached (n, n) complex AIC at Mach and k̄ [1/m], or None when absent or not such a
-    matrix."""
+    matrix (its ``.npy`` header is checked before any data is allocated).  An entry that is
+    not a regular file (a FIFO, a device: never written by the cache) or larger than such a
+    matrix (n² · 16 bytes + :data:`NPY_HEADER_MAX`) is an InputError naming it
+    (:func:`propwhirl.fileio.open_input`, checked before it is opened)."""
+    from numpy.lib import format as npf
+
     path = _path(directory, geometry, mach, kbar)
+    what = f"{CACHE_ENV} entry"
+    if not fileio.exists(path, what):
+        return None
+    want = np.dtype(np.complex128)
+    limit = n * n * want.itemsize + NPY_HEADER_MAX
     try:
-        Q = np.load(path, allow_pickle=False)
-    except (OSError, ValueError):
+        with fileio.open_input(path, what, limit, bound=f"a {n} x {n} complex AIC and its "
+                               ".npy header; remove the entry") as fh:
+            version = npf.read_magic(fh)
+            read_header = (npf.read_array_header_1_0 if version == (1, 0)
+                           else npf.read_array_header_2_0)
+            shape, _, dtype = read_header(fh)
+            if tuple(shape) != (n, n) or dtype != want:
+                return None
+            fh.seek(0)
+            Q = npf.read_array(fh, allow_pickle=False)
+    except v.InputError:                    # not a regular file, or too large: named
+        raise
+    except (OSError, ValueError, EOFError):
         return None
     if Q.shape != (n, n) or Q.dtype != np.complex128 or not np.all(np.isfinite(Q)):
         return None
