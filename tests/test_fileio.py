@@ -267,8 +267,8 @@ def test_two_writers_never_show_a_partial_file(tmp_path):
 
 
 # ------------------------------------------------------------------- issue 33, items 1-3
-# Reading: regular files only, the size checked before reading.  Special files are refused
-# before they are opened.
+# Reading: regular files only, the size checked before reading; writing: regular files or
+# new paths only.  Special files are refused before they are opened.
 from helpers.files import (FifoWriter, ZERO_DEVICE, char_device, is_char_device,  # noqa: E402
                            never_opened, unix_socket)
 
@@ -357,6 +357,50 @@ def test_the_hash_is_of_the_bytes(tmp_path):
     data = os.urandom(3 * fileio.CHUNK + 17)
     path.write_bytes(data)
     assert fileio.sha256_file(path, "model file") == hashlib.sha256(data).hexdigest()
+
+
+def _special(kind: str, path: Path):
+    """A device node of our own, a FIFO or a socket at `path` (the thing to keep)."""
+    if kind == "device":
+        return char_device(path)
+    if kind == "fifo":
+        os.mkfifo(path)
+        return path
+    return unix_socket(path)
+
+
+def _intact(kind: str, path: Path) -> bool:
+    import stat
+
+    mode = os.lstat(path).st_mode
+    return {"device": stat.S_ISCHR, "fifo": stat.S_ISFIFO, "socket": stat.S_ISSOCK}[kind](mode)
+
+
+@pytest.mark.parametrize("kind", ["device", "fifo", "socket"])
+@pytest.mark.parametrize("link", [False, True])
+def test_a_special_file_as_an_output_is_refused_before_any_write(tmp_path, monkeypatch, kind,
+                                                                 link):
+    """Item 2: the atomic rename would replace the node (run as root, /dev/null stopped being
+    a device): refused in one line, no temporary file made — tested on nodes of our own."""
+    node = tmp_path / "node"
+    held = _special(kind, node)
+    target = node
+    if link:
+        target = tmp_path / "out.csv"
+        target.symlink_to(node)
+    made = []
+    monkeypatch.setattr(fileio, "_create_temporary", lambda p: made.append(p))
+    try:
+        with pytest.raises(InputError) as err:
+            fileio.write_text(target, "x\n", what="table")
+        assert "not a regular file (propwhirl writes regular files only)" in str(err.value)
+        assert str(err.value).startswith(f"cannot write table {str(target)!r}: it is a")
+        with pytest.raises(InputError, match="not a regular file"):
+            fileio.check_writable(target, what="--csv")
+        assert made == [] and _intact(kind, node)
+    finally:
+        if kind == "socket":
+            held.close()
 
 
 def test_a_private_device_reads_as_a_device(tmp_path, monkeypatch):

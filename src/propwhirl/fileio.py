@@ -24,6 +24,10 @@ model, modal-model and campaign files, :data:`MAX_READ_BYTES` for any other file
 ``.npz`` or ``.npy`` file.  :func:`open_input` opens such a file (the ``.npz`` readers),
 :func:`read_bytes`, :func:`read_text`, :func:`read_json` and :func:`sha256_file` read it.
 
+Writing goes only to a regular file or a new path (:func:`check_output`): a device
+(``/dev/null``), a FIFO or a socket as an output is refused before anything is computed or
+written — the atomic rename would otherwise replace the device node itself.
+
 The readers and :func:`check_writable` turn every ``OSError`` into such a line too.  A path
 longer than :data:`SHOWN_PATH` characters is named shortened (:func:`shown`: its first 60 and
 last 20 characters and its length), so a file name of thousands of characters ("File name too
@@ -340,8 +344,7 @@ def write_with(path: str | Path, fill: Callable[[BinaryIO], None], *, what: str 
     path = Path(path)
     tmp: Path | None = None
     try:
-        if path.is_dir():       # may raise (e.g. "File name too long")
-            raise InputError(f"cannot write {_name(path, what)}: it is a folder")
+        check_output(path, what)    # a folder, a device, a FIFO, a socket: refused
         fd, tmp = _create_temporary(path)
         with os.fdopen(fd, "wb") as fh:
             fill(fh)
@@ -359,6 +362,41 @@ def write_with(path: str | Path, fill: Callable[[BinaryIO], None], *, what: str 
                 pass
     _sync_folder(path.parent)
     return path
+
+
+def check_output(path: str | Path, what: str = "") -> None:
+    """Refuse to write `path` (a `what`) unless it is a regular file or a new path (symbolic
+    links followed): a folder, a device (``/dev/null``, ``/dev/full``), a FIFO or a socket is
+    one :class:`InputError` line, before anything is written.  The atomic write renames a new
+    regular file onto the path: on a device node it would replace the node itself (run as
+    root, ``/dev/null`` would stop being a device), so it is refused rather than written
+    through (a FIFO written through would also wait for a reader without end).
+
+    >>> check_output("/dev/null", "--json")
+    Traceback (most recent call last):
+    ...
+    propwhirl.validate.InputError: cannot write --json '/dev/null': it is a character device, not a regular file (propwhirl writes regular files only)
+    """
+    try:
+        problem = _output_kind(path)
+    except OSError as exc:
+        raise InputError(f"cannot write {_name(path, what)}: {reason(exc)}") from None
+    if problem == _KINDS[stat.S_IFDIR]:
+        raise InputError(f"cannot write {_name(path, what)}: it is a folder")
+    if problem is not None:
+        raise InputError(f"cannot write {_name(path, what)}: it is {problem}, not a regular "
+                         "file (propwhirl writes regular files only)")
+
+
+def _output_kind(path: str | Path) -> str | None:
+    """What the existing `path` is when it is no regular file (:func:`kind`: "a folder", "a
+    character device", ...; symbolic links followed), None for a regular file or a new path;
+    an ``OSError`` other than "not found" is raised."""
+    try:
+        st = os.stat(path)
+    except (FileNotFoundError, NotADirectoryError):
+        return None                              # a new path (its folder is checked apart)
+    return None if stat.S_ISREG(st.st_mode) else kind(st.st_mode)
 
 
 def _write_all(fh: BinaryIO, data: bytes) -> None:
@@ -413,7 +451,8 @@ def check_writable(path: str | Path, *, folder: bool = False, create: bool = Fal
     ------
     InputError
         The folder does not exist (and may not or cannot be created), is not a folder, or a
-        file cannot be created in it; or `path` is an existing folder where a file is meant.
+        file cannot be created in it; or `path` is an existing folder, device, FIFO or socket
+        where a file is meant (:func:`check_output`).
         The message names the path and the reason.
     """
     path = Path(path)
@@ -426,8 +465,12 @@ def check_writable(path: str | Path, *, folder: bool = False, create: bool = Fal
 
 
 def _check_writable(path: Path, target: Path, label: str, folder: bool, create: bool) -> Path:
-    if not folder and path.is_dir():
+    problem = None if folder else _output_kind(path)     # check_output's rule
+    if problem == _KINDS[stat.S_IFDIR]:
         raise InputError(f"{label}: is a folder, not a file")
+    if problem is not None:
+        raise InputError(f"{label}: is {problem}, not a regular file (propwhirl writes "
+                         "regular files only)")
     if not target.is_dir():
         if target.exists():
             raise InputError(f"{label}: {quoted(target)} is not a folder")

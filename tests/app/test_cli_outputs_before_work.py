@@ -256,3 +256,17 @@ def test_the_exit_codes_of_failed_points_are_documented(capsys, command):
     assert "exit code 2 when every point failed" in " ".join(text.split())
     assert "0 when some failed" in " ".join(text.split())
     assert "every point failed" in cli.__doc__
+
+
+# ------------------------------------------------------------------ issue 33, item 2
+@pytest.mark.parametrize("option", ["--json", "--csv", "--summary-csv", "--plot"])
+def test_an_output_on_a_device_is_refused_before_the_analysis(small_file, here, capsys, work,
+                                                               option):
+    """Item 2, on a device node of our own (never /dev/null itself)."""
+    from helpers.files import char_device, is_char_device
+
+    node = char_device(here / "out.png")
+    err = _refused(capsys, work, ["analyse", str(small_file), option, str(node)])
+    assert err == (f"propwhirl: error: {option} {node}: is a character device, not a regular "
+                   "file (propwhirl writes regular files only)\n")
+    assert is_char_device(node)
