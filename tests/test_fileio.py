@@ -268,7 +268,7 @@ def test_two_writers_never_show_a_partial_file(tmp_path):
 
 # ------------------------------------------------------------------- issue 33, items 1-3
 # Reading: regular files only, the size checked before reading; writing: regular files or
-# new paths only.  Special files are refused before they are opened.
+# new paths only; no output on an input.  Special files are refused before they are opened.
 from helpers.files import (FifoWriter, ZERO_DEVICE, char_device, is_char_device,  # noqa: E402
                            never_opened, unix_socket)
 
@@ -401,6 +401,26 @@ def test_a_special_file_as_an_output_is_refused_before_any_write(tmp_path, monke
     finally:
         if kind == "socket":
             held.close()
+
+
+def test_outputs_apart_and_not_on_an_input(tmp_path, monkeypatch):
+    """Item 1: resolved paths, symbolic links followed, hard links by their inode."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "m.toml").write_text("x")
+    (tmp_path / "sub").mkdir()
+    os.link(tmp_path / "m.toml", tmp_path / "hard.toml")
+    (tmp_path / "soft.toml").symlink_to(tmp_path / "m.toml")
+    model = [("the model file MODEL m.toml", "m.toml")]
+    for out in ("m.toml", "./m.toml", "sub/../m.toml", str(tmp_path / "m.toml"), "hard.toml",
+                "soft.toml"):
+        with pytest.raises(InputError) as err:
+            fileio.check_apart([("--json", out)], model)
+        assert str(err.value) == f"--json {out} is the model file MODEL m.toml: give another path"
+    with pytest.raises(InputError, match="--csv ./a and --json a are the same file"):
+        fileio.check_apart([("--json", "a"), ("--csv", "./a")])
+    fileio.check_apart([("--json", "a"), ("--csv", "sub/a"), ("--plot", None)],
+                       model + [("nothing", None)])
+    assert fileio.same_file("m.toml", "hard.toml") and not fileio.same_file("m.toml", "a")
 
 
 def test_a_private_device_reads_as_a_device(tmp_path, monkeypatch):

@@ -26,7 +26,9 @@ model, modal-model and campaign files, :data:`MAX_READ_BYTES` for any other file
 
 Writing goes only to a regular file or a new path (:func:`check_output`): a device
 (``/dev/null``), a FIFO or a socket as an output is refused before anything is computed or
-written — the atomic rename would otherwise replace the device node itself.
+written — the atomic rename would otherwise replace the device node itself.  No output may be
+one of the command's inputs, nor two outputs one file (:func:`check_apart`: paths compared
+resolved, symbolic links followed, hard links by their inode).
 
 The readers and :func:`check_writable` turn every ``OSError`` into such a line too.  A path
 longer than :data:`SHOWN_PATH` characters is named shortened (:func:`shown`: its first 60 and
@@ -41,7 +43,7 @@ from __future__ import annotations
 import os
 import secrets
 import stat
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from typing import BinaryIO
@@ -397,6 +399,55 @@ def _output_kind(path: str | Path) -> str | None:
     except (FileNotFoundError, NotADirectoryError):
         return None                              # a new path (its folder is checked apart)
     return None if stat.S_ISREG(st.st_mode) else kind(st.st_mode)
+
+
+def file_identity(path: str | Path) -> tuple:
+    """One key per file: an existing file's (device, inode) — symbolic and hard links are the
+    file —, else its absolute path with ``.``/``..`` and symbolic links resolved."""
+    try:
+        st = os.stat(path)
+        return ("inode", st.st_dev, st.st_ino)
+    except (OSError, ValueError):
+        return ("path", os.path.normcase(os.path.realpath(os.path.abspath(path))))
+
+
+def same_file(a: str | Path, b: str | Path) -> bool:
+    """Whether the paths `a` and `b` name one file (:func:`file_identity`; also two new paths
+    that resolve alike)."""
+    return file_identity(a) == file_identity(b)
+
+
+def check_apart(outputs: Iterable[tuple[str, str | Path]],
+                inputs: Iterable[tuple[str, str | Path]] = ()) -> None:
+    """Refuse, before any work, two outputs on one file and an output on one of the inputs.
+
+    Parameters
+    ----------
+    outputs : iterable of (label, path)
+        The files to be written, each with how the user gave it (``"--json"``,
+        ``"--out DIR: campaign.json"``); outputs given as None are left out.
+    inputs : iterable of (what, path)
+        The files read (or kept) while the outputs are made, each with what it is (``"the
+        model file MODEL m.toml"``); an input given as None is left out.
+
+    Raises
+    ------
+    InputError
+        ``LABEL1 PATH1 and LABEL2 PATH2 are the same file: give each output its own path``,
+        or ``LABEL PATH is WHAT: give another path`` (paths compared by :func:`same_file`).
+    """
+    taken: dict[tuple, tuple[str, str]] = {}
+    for label, path in sorted((lb, str(p)) for lb, p in outputs if p is not None):
+        twin = taken.setdefault(file_identity(path), (label, path))
+        if twin != (label, path):
+            raise InputError(f"{twin[0]} {twin[1]} and {label} {path} are the same file: give "
+                             "each output its own path")
+    for what, other in inputs:
+        if other is None:
+            continue
+        label, path = taken.get(file_identity(other), (None, None))
+        if label is not None:
+            raise InputError(f"{label} {path} is {what}: give another path")
 
 
 def _write_all(fh: BinaryIO, data: bytes) -> None:

@@ -157,3 +157,11 @@ def test_old_as_a_device_is_refused_before_it_is_opened(device, tmp_path, capsys
                    "device, not a regular file (propwhirl reads regular files only)\n")
     assert not (tmp_path / "out.toml").exists()
 
+
+def test_a_hard_link_of_old_is_old(old_file, tmp_path, capsys):
+    import os
+
+    link = tmp_path / "link.toml"
+    os.link(old_file, link)
+    err = _one_line_error(capsys, ["upgrade-model", str(old_file), str(link)])
+    assert f"NEW {link} is the file OLD" in err

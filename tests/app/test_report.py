@@ -279,7 +279,7 @@ def test_a_failing_print_leaves_the_page_and_a_note(result, tmp_path, monkeypatc
         R.write_report(result, tmp_path, pdf=True, figures=False)
 
 
-# ------------------------------------------------------------------ issue 33, item 3
+# ----------------------------------------------------------- issue 33, items 1 and 3
 from propwhirl.validate import InputError  # noqa: E402
 
 EXAMPLE_RESULT = (Path(__file__).resolve().parents[2] / "examples" / "certification" / "wingtip"
@@ -304,3 +304,18 @@ def test_the_hash_of_a_device_is_refused_before_it_is_opened(example_result, mon
     assert str(e.value) == (f"cannot read campaign file {device!r}: it is a character device, "
                             "not a regular file (propwhirl reads regular files only)")
 
+
+@pytest.mark.parametrize("name", [R.HTML_NAME, R.PDF_NAME])
+def test_the_report_is_not_written_over_the_model_file(example_result, tmp_path, monkeypatch,
+                                                       name):
+    """Item 1: the report written onto the model (or campaign) file it names and hashes."""
+    model = tmp_path / name
+    model.write_text("[wing]\n")
+    monkeypatch.setattr(R, "report_html", lambda *a, **k: pytest.fail("the report was drawn"))
+    with pytest.raises(InputError) as e:
+        R.write_report(example_result, tmp_path, model_file=model, pdf=False)
+    label = "report" if name == R.HTML_NAME else "PDF report"
+    assert str(e.value) == (f"{label} {model} is the model file {model}: give another path")
+    with pytest.raises(InputError, match="is the campaign file"):
+        R.write_report(example_result, tmp_path, campaign_file=tmp_path / "." / name, pdf=False)
+    assert model.read_text() == "[wing]\n"

@@ -190,7 +190,7 @@ def test_more_modes_than_the_limit_are_refused_before_reading(written, tmp_path)
         load_modal_model(bad)
 
 
-# ------------------------------------------------------------------ issue 33, item 3
+# ----------------------------------------------------------- issue 33, items 1 and 3
 def _modal_with_modes_file(written, tmp_path, file: str):
     """A copy of the written TOML whose [modes] file is `file` (absolute or relative)."""
     toml = tmp_path / "m.toml"
@@ -246,3 +246,33 @@ def test_a_modal_file_linked_to_a_device_is_refused(tmp_path, monkeypatch):
         load_modal_model(link)
     assert cli.main(["analyse", str(link)]) == 2
 
+
+def test_write_modes_refuses_the_beam_models_own_file(tmp_path):
+    """Item 1: write_modes(model, "wing.toml") onto the beam model's file replaced it."""
+    from propwhirl import io
+
+    beam = tmp_path / "wing.toml"
+    io.save_model(wingtip_propeller_wing(), beam)
+    before = beam.read_bytes()
+    model = io.load_model(beam)
+    with pytest.raises(InputError) as e:
+        write_modes(model, beam)
+    assert str(e.value).startswith(f"write_modes: path {str(beam)!r} exists and is not a modal "
+                                   "model file")
+    assert beam.read_bytes() == before and not (tmp_path / "wing.modes.npz").exists()
+    toml, npz = write_modes(model, tmp_path / "modal.toml")       # a new path
+    write_modes(model, toml, n_modes=4)                             # its own file again
+    assert load_modal_model(toml).structure.n_modes == 4
+
+
+def test_an_analysis_output_on_the_modes_file_is_refused(written, tmp_path, capsys):
+    """Item 1: the modes file is an input of `analyse` too."""
+    from propwhirl.app import cli
+
+    toml, npz = written
+    before = npz.read_bytes()
+    assert cli.main(["analyse", str(toml), "--json", str(npz)]) == 2
+    err = capsys.readouterr().err
+    assert err == (f"propwhirl: error: --json {npz} is the modes file of MODEL {toml} "
+                   "([modes] file): give another path\n")
+    assert npz.read_bytes() == before

@@ -329,10 +329,18 @@ def write_report(result: Any, folder: str | Path, *, campaign_file: str | Path |
     """Write ``report.html`` into `folder` and, with `pdf` True (or None and a Chromium found:
     :func:`propwhirl.app.browser.find_chromium`), ``report.pdf`` printed from it; returns the
     paths written.  A print that fails is a note appended to `notes` (the HTML is written;
-    without `notes` the InputError is raised)."""
+    without `notes` the InputError is raised).  Before anything is hashed or drawn, neither
+    report file may be the campaign file or the model file (InputError,
+    :func:`propwhirl.fileio.check_apart`: resolved, symbolic links followed), nor a device, a
+    FIFO or a socket (:func:`propwhirl.fileio.check_output`)."""
     from propwhirl.app import browser
 
     folder = Path(folder)
+    outputs = [("report", folder / HTML_NAME), ("PDF report", folder / PDF_NAME)]
+    for what, path in outputs:
+        fileio.check_output(path, what)
+    fileio.check_apart(outputs, [(f"the campaign file {campaign_file}", campaign_file),
+                                 (f"the model file {model_file}", model_file)])
     page = report_html(result, campaign_file=campaign_file, model_file=model_file, model=model,
                        date=date, figures=figures)
     out = [fileio.write_text(folder / HTML_NAME, page, what="report")]

@@ -128,6 +128,21 @@ def load_modes(path: str | Path, n_modes: int, n_grids: int, where: str | None =
     return ModalStructure(**arrays, source=where)
 
 
+def modes_path(path: str | Path) -> Path | None:
+    """The modes file (``.npz``) the modal model file at ``path`` names (``[modes] file``,
+    relative to its folder), None when ``path`` is no readable modal model file or names
+    none: the reader then says why."""
+    try:
+        data = tomllib.loads(fileio.read_text(path, "model file", limit=fileio.MAX_TOML_BYTES))
+    except (v.InputError, tomllib.TOMLDecodeError, RecursionError):
+        return None
+    if not (isinstance(data, dict) and data.get("format") == FORMAT):
+        return None
+    modes = data.get("modes")
+    file = modes.get("file") if isinstance(modes, dict) else None
+    return Path(path).parent / file if isinstance(file, str) and file else None
+
+
 def is_modal_file(path: str | Path) -> bool:
     """Whether the TOML file at ``path`` declares ``format = "propwhirl-modal-model"`` (a file
     that cannot be read or parsed is not: the model-file reader then says why)."""
@@ -248,6 +263,21 @@ def _keys(cls: type) -> tuple[str, ...]:
     return schema.table_keys(cls)
 
 
+def _check_targets(path: Path, npz: Path) -> None:
+    """:func:`write_modes`' outputs: regular files or new paths, apart, and `path` a new path
+    or a modal model file (no other file is replaced: the model written from may have been
+    read from it)."""
+    outputs = [("write_modes: path", path), ("write_modes: its modes file", npz)]
+    for label, p in outputs:
+        fileio.check_output(p, label)
+    fileio.check_apart(outputs)
+    if fileio.exists(path, "modal model file") and not is_modal_file(path):
+        raise v.InputError(f"write_modes: path {fileio.quoted(path)} exists and is not a modal "
+                           f"model file (format = {FORMAT!r}): write_modes replaces only a "
+                           "modal model file, never another file such as the beam model's "
+                           "own; give another path")
+
+
 # =============================================================================== writing
 def write_modes(model: PropellerWing, path: str | Path, n_modes: int | None = None,
                 mount: str = "own") -> tuple[Path, Path]:
@@ -261,7 +291,12 @@ def write_modes(model: PropellerWing, path: str | Path, n_modes: int | None = No
     node's grid with its own mount (a flexible one's pitch and yaw DOFs and springs, and its
     mass, added by the modal model).  ``mount = "on-grid"`` (way b): the modes of the whole
     structure — wing, propeller masses and mount springs (:meth:`ModalStructure.with_mounts`)
-    — and every propeller "on-grid" at a hub grid of its own."""
+    — and every propeller "on-grid" at a hub grid of its own.
+
+    Before anything is computed, ``path`` must be a new path or a modal model file (one
+    :func:`write_modes` wrote: any other file there — the beam model's own file above all —
+    is refused, not replaced), neither file a device, a FIFO or a socket, and the two not one
+    file (:func:`propwhirl.fileio.check_output`, :func:`propwhirl.fileio.check_apart`)."""
     if not isinstance(model, PropellerWing):
         raise v.InputError(f"write_modes: model is a {type(model).__name__}: only a "
                            "PropellerWing's wing can be written as modes")
@@ -278,6 +313,7 @@ def write_modes(model: PropellerWing, path: str | Path, n_modes: int | None = No
         raise v.InputError(f"write_modes: mount = {mount!r} is invalid: must be 'own' or "
                            "'on-grid'")
     npz = path.with_name(path.name.removesuffix(".toml") + ".modes.npz")
+    _check_targets(path, npz)
     wing = model.wing
     if mount == "own":
         s = ModalStructure.from_wing(wing, n_modes)
