@@ -264,3 +264,169 @@ def test_two_writers_never_show_a_partial_file(tmp_path):
             reads += 1
     assert [p.wait(timeout=120) for p in procs] == [0, 0]
     assert leftovers(tmp_path, {"vgf.csv", "writer.py"}) == []
+
+
+# ------------------------------------------------------------------- issue 33, items 1-3
+# Reading: regular files only, the size checked before reading; writing: regular files or
+# new paths only; no output on an input.  Special files are refused before they are opened.
+from helpers.files import (FifoWriter, ZERO_DEVICE, char_device, is_char_device,  # noqa: E402
+                           never_opened, unix_socket)
+
+
+@pytest.mark.parametrize("device", ["/dev/zero", "/dev/urandom"])
+def test_a_device_is_refused_before_it_is_opened(monkeypatch, device):
+    never_opened(monkeypatch, device)
+    for read in (lambda: fileio.read_text(device, "model file"),
+                 lambda: fileio.read_bytes(device, "model file"),
+                 lambda: fileio.sha256_file(device, "model file")):
+        with pytest.raises(InputError) as err:
+            read()
+        assert str(err.value) == (f"cannot read model file {device!r}: it is a character "
+                                  "device, not a regular file (propwhirl reads regular files "
+                                  "only)")
+
+
+def test_a_link_to_a_device_is_the_device(tmp_path, monkeypatch):
+    link = tmp_path / "wing.toml"
+    link.symlink_to("/dev/zero")
+    never_opened(monkeypatch, "/dev/zero")
+    with pytest.raises(InputError, match=r"wing\.toml': it is a character device"):
+        fileio.read_text(link, "model file")
+
+
+def test_a_fifo_is_refused_without_opening_it(tmp_path):
+    with FifoWriter(tmp_path / "pipe.toml") as fifo:
+        with pytest.raises(InputError, match=r"pipe\.toml': it is a FIFO \(named pipe\), not a "
+                                             r"regular file"):
+            fileio.read_text(fifo.path, "model file")
+        assert not fifo.opened.is_set()
+
+
+def test_a_fifo_put_in_place_after_the_check_does_not_wait(tmp_path, monkeypatch):
+    """The check on the open descriptor: opened non-blocking, then refused (no writer needed)."""
+    monkeypatch.setattr(fileio, "check_input", lambda *a, **k: None)
+    with FifoWriter(tmp_path / "late.toml") as fifo:
+        with pytest.raises(InputError, match="it is a FIFO"):
+            with fileio.open_input(fifo.path, "model file"):
+                pass
+
+
+def test_a_socket_and_a_folder_are_refused(tmp_path):
+    s = unix_socket(tmp_path / "s.toml")
+    try:
+        with pytest.raises(InputError, match="it is a socket, not a regular file"):
+            fileio.read_text(tmp_path / "s.toml", "model file")
+    finally:
+        s.close()
+    with pytest.raises(InputError, match="it is a folder, not a regular file"):
+        fileio.read_text(tmp_path, "model file")
+
+
+def test_the_size_is_checked_before_reading(tmp_path, monkeypatch):
+    big = tmp_path / "big.json"
+    with open(big, "wb") as fh:                       # sparse: no disk used
+        fh.truncate(fileio.MAX_READ_BYTES + 1)
+    reads = []
+    monkeypatch.setattr(fileio, "_read_at_most", lambda *a: reads.append(a))
+    with pytest.raises(InputError) as err:
+        fileio.read_text(big, "analysis file")
+    assert str(err.value) == (f"cannot read analysis file {str(big)!r}: it has "
+                              f"{fileio.MAX_READ_BYTES + 1:,} bytes, more than "
+                              f"{fileio.MAX_READ_BYTES:,} (the most propwhirl reads of such a "
+                              "file)")
+    assert reads == []
+    with pytest.raises(InputError, match="has 11 bytes, more than 10 .its arrays."):
+        (tmp_path / "a.npz").write_bytes(b"x" * 11)
+        fileio.check_input(tmp_path / "a.npz", "modes file", 10, bound="its arrays")
+
+
+def test_a_file_grown_after_its_check_is_cut_at_the_limit(tmp_path, monkeypatch):
+    path = tmp_path / "a.txt"
+    path.write_bytes(b"x" * 100)
+    monkeypatch.setattr(fileio, "_check_input_stat", lambda *a: None)   # grown after it
+    with pytest.raises(InputError, match="it has more than 10 bytes"):
+        fileio.read_bytes(path, "table", 10)
+    with pytest.raises(InputError, match="it has more than 10 bytes"):
+        fileio.sha256_file(path, "table", 10)
+
+
+def test_the_hash_is_of_the_bytes(tmp_path):
+    import hashlib
+
+    path = tmp_path / "m.toml"
+    data = os.urandom(3 * fileio.CHUNK + 17)
+    path.write_bytes(data)
+    assert fileio.sha256_file(path, "model file") == hashlib.sha256(data).hexdigest()
+
+
+def _special(kind: str, path: Path):
+    """A device node of our own, a FIFO or a socket at `path` (the thing to keep)."""
+    if kind == "device":
+        return char_device(path)
+    if kind == "fifo":
+        os.mkfifo(path)
+        return path
+    return unix_socket(path)
+
+
+def _intact(kind: str, path: Path) -> bool:
+    import stat
+
+    mode = os.lstat(path).st_mode
+    return {"device": stat.S_ISCHR, "fifo": stat.S_ISFIFO, "socket": stat.S_ISSOCK}[kind](mode)
+
+
+@pytest.mark.parametrize("kind", ["device", "fifo", "socket"])
+@pytest.mark.parametrize("link", [False, True])
+def test_a_special_file_as_an_output_is_refused_before_any_write(tmp_path, monkeypatch, kind,
+                                                                 link):
+    """Item 2: the atomic rename would replace the node (run as root, /dev/null stopped being
+    a device): refused in one line, no temporary file made — tested on nodes of our own."""
+    node = tmp_path / "node"
+    held = _special(kind, node)
+    target = node
+    if link:
+        target = tmp_path / "out.csv"
+        target.symlink_to(node)
+    made = []
+    monkeypatch.setattr(fileio, "_create_temporary", lambda p: made.append(p))
+    try:
+        with pytest.raises(InputError) as err:
+            fileio.write_text(target, "x\n", what="table")
+        assert "not a regular file (propwhirl writes regular files only)" in str(err.value)
+        assert str(err.value).startswith(f"cannot write table {str(target)!r}: it is a")
+        with pytest.raises(InputError, match="not a regular file"):
+            fileio.check_writable(target, what="--csv")
+        assert made == [] and _intact(kind, node)
+    finally:
+        if kind == "socket":
+            held.close()
+
+
+def test_outputs_apart_and_not_on_an_input(tmp_path, monkeypatch):
+    """Item 1: resolved paths, symbolic links followed, hard links by their inode."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "m.toml").write_text("x")
+    (tmp_path / "sub").mkdir()
+    os.link(tmp_path / "m.toml", tmp_path / "hard.toml")
+    (tmp_path / "soft.toml").symlink_to(tmp_path / "m.toml")
+    model = [("the model file MODEL m.toml", "m.toml")]
+    for out in ("m.toml", "./m.toml", "sub/../m.toml", str(tmp_path / "m.toml"), "hard.toml",
+                "soft.toml"):
+        with pytest.raises(InputError) as err:
+            fileio.check_apart([("--json", out)], model)
+        assert str(err.value) == f"--json {out} is the model file MODEL m.toml: give another path"
+    with pytest.raises(InputError, match="--csv ./a and --json a are the same file"):
+        fileio.check_apart([("--json", "a"), ("--csv", "./a")])
+    fileio.check_apart([("--json", "a"), ("--csv", "sub/a"), ("--plot", None)],
+                       model + [("nothing", None)])
+    assert fileio.same_file("m.toml", "hard.toml") and not fileio.same_file("m.toml", "a")
+
+
+def test_a_private_device_reads_as_a_device(tmp_path, monkeypatch):
+    """The refusal does not depend on the name: a node of /dev/zero's numbers elsewhere."""
+    node = char_device(tmp_path / "zero.toml", ZERO_DEVICE)
+    never_opened(monkeypatch, node)
+    with pytest.raises(InputError, match="it is a character device"):
+        fileio.read_text(node, "model file")
+    assert is_char_device(node)

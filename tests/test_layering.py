@@ -20,8 +20,8 @@ ALLOWED = {
     "results": {"fileio", "validate"},            # the result protocol, the checked reader
     "documents": {"validate"},                    # the installed docs/*.md pages
     "progress": {"validate"},                     # progress bars and spinners on a terminal
-    "model": {"generated", "limits", "validate"},
-    "engine": {"limits", "results", "validate"},             # model-agnostic: A(V) in, eigen-data out
+    "model": {"fileio", "generated", "limits", "validate"},
+    "engine": {"fileio", "limits", "results", "validate"},   # model-agnostic: A(V) in, eigen-data out
     "analysis": {"engine", "fileio", "limits", "model", "results", "validate"},
     "cases": {"model", "validate"},               # model factories only
     "studies": {"analysis", "cases", "engine", "fileio", "limits", "model", "progress", "results",

@@ -15,10 +15,25 @@ On any failure the temporary file is removed and the target is left untouched; a
 becomes one :class:`~propwhirl.validate.InputError` naming the file and the operating system's
 reason, e.g. ``cannot write 'out/a.json': No space left on device``.
 
-The readers (:func:`read_text`, :func:`read_json`) and :func:`check_writable` turn every
-``OSError`` into such a line too.  A path longer than :data:`SHOWN_PATH` characters is named
-shortened (:func:`shown`: its first 60 and last 20 characters and its length), so a file name
-of thousands of characters ("File name too long") still gives one short line.
+Reading is bounded (:func:`check_input`, the one rule of every file propwhirl reads): only a
+regular file (symbolic links followed) is read — a device (``/dev/zero``), a FIFO or a socket
+is refused before it is opened, so nothing grows without end and nothing waits forever — and
+its size is checked against a stated limit before a byte is read: :data:`MAX_TOML_BYTES` for
+model, modal-model and campaign files, :data:`MAX_READ_BYTES` for any other file read whole
+(results, tables, the files the certification report hashes), the size its arrays take for an
+``.npz`` or ``.npy`` file.  :func:`open_input` opens such a file (the ``.npz`` readers),
+:func:`read_bytes`, :func:`read_text`, :func:`read_json` and :func:`sha256_file` read it.
+
+Writing goes only to a regular file or a new path (:func:`check_output`): a device
+(``/dev/null``), a FIFO or a socket as an output is refused before anything is computed or
+written — the atomic rename would otherwise replace the device node itself.  No output may be
+one of the command's inputs, nor two outputs one file (:func:`check_apart`: paths compared
+resolved, symbolic links followed, hard links by their inode).
+
+The readers and :func:`check_writable` turn every ``OSError`` into such a line too.  A path
+longer than :data:`SHOWN_PATH` characters is named shortened (:func:`shown`: its first 60 and
+last 20 characters and its length), so a file name of thousands of characters ("File name too
+long") still gives one short line.
 
 :func:`check_writable` lets a command fail *before* a long computation when an output folder
 does not exist or cannot be written to.
@@ -27,7 +42,9 @@ from __future__ import annotations
 
 import os
 import secrets
-from collections.abc import Callable
+import stat
+from collections.abc import Callable, Iterable, Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import BinaryIO
 
@@ -40,6 +57,17 @@ SHOWN_PATH = 120
 #: Characters of a temporary file's name taken from the target's name (a name of 255
 #: characters, the usual limit, must not give a temporary name beyond it).
 _TMP_STEM = 100
+#: The largest model, modal-model or campaign file (TOML) read [bytes]: 16 MiB.  A model at
+#: every size bound (200 elements, 64 propellers, per-node tables) takes well under 1 MiB.
+MAX_TOML_BYTES = 16 * 2 ** 20
+#: The largest file read whole otherwise [bytes]: 256 MiB (result files — JSON, CSV —, the
+#: partial-results file of a study, the files the certification report hashes).
+MAX_READ_BYTES = 256 * 2 ** 20
+
+#: What a file that is not a regular one is, by its type (``stat.S_IFMT``).
+_KINDS = {stat.S_IFDIR: "a folder", stat.S_IFCHR: "a character device",
+          stat.S_IFBLK: "a block device", stat.S_IFIFO: "a FIFO (named pipe)",
+          stat.S_IFSOCK: "a socket"}
 
 
 def reason(exc: BaseException) -> str:
@@ -111,10 +139,140 @@ def exists(path: str | Path, what: str) -> bool:
     return True
 
 
-def read_text(path: str | Path, what: str, *, empty_ok: bool = False) -> str:
+def kind(mode: int) -> str:
+    """What a file of mode `mode` (``os.stat(...).st_mode``) is: "a regular file", "a folder",
+    "a character device", "a FIFO (named pipe)", "a socket", ...."""
+    if stat.S_ISREG(mode):
+        return "a regular file"
+    return _KINDS.get(stat.S_IFMT(mode), "not a regular file")
+
+
+def _stat(path: str | Path, name: str) -> os.stat_result:
+    """``os.stat(path)`` (symbolic links followed), errors as one line naming `name`."""
+    try:
+        return os.stat(path)
+    except FileNotFoundError:
+        raise InputError(f"{name} not found") from None
+    except OSError as exc:
+        raise InputError(f"cannot read {name}: {reason(exc)}") from None
+    except ValueError as exc:                     # a NUL character in the name
+        raise InputError(f"{name} is not a valid file name: {exc}") from None
+
+
+def _check_input_stat(st: os.stat_result, name: str, limit: int, bound: str) -> None:
+    if not stat.S_ISREG(st.st_mode):
+        raise InputError(f"cannot read {name}: it is {kind(st.st_mode)}, not a regular file "
+                         "(propwhirl reads regular files only)")
+    if st.st_size > limit:
+        raise InputError(f"cannot read {name}: it has {st.st_size:,} bytes, more than "
+                         f"{limit:,} ({bound or 'the most propwhirl reads of such a file'})")
+
+
+def check_input(path: str | Path, what: str, limit: int = MAX_READ_BYTES, *,
+                bound: str = "") -> os.stat_result:
+    """Check, before opening it, that `path` (a `what`, e.g. "model file") is a file propwhirl
+    may read: it exists, is a regular file (symbolic links followed: not a device, a FIFO, a
+    socket or a folder) and has at most `limit` bytes (`bound` says where the limit comes
+    from, e.g. "the size its arrays take").  Returns its ``os.stat`` result; else one
+    :class:`InputError` line naming the file.
+
+    >>> check_input("/dev/zero", "model file")
+    Traceback (most recent call last):
+    ...
+    propwhirl.validate.InputError: cannot read model file '/dev/zero': it is a character device, not a regular file (propwhirl reads regular files only)
+    """
+    name = _name(path, what)
+    st = _stat(path, name)
+    _check_input_stat(st, name, limit, bound)
+    return st
+
+
+@contextmanager
+def open_input(path: str | Path, what: str, limit: int = MAX_READ_BYTES, *,
+               bound: str = "") -> Iterator[BinaryIO]:
+    """The file `path` (a `what`) opened for reading in binary, after :func:`check_input`.
+
+    It is opened non-blocking, so a FIFO put in its place after the check does not wait for a
+    writer, and checked again on the open descriptor (regular, at most `limit` bytes): what is
+    read is what was checked.  Errors: one :class:`InputError` line naming the file; errors of
+    the ``with`` body are the caller's.
+    """
+    name = _name(path, what)
+    check_input(path, what, limit, bound=bound)
+    flags = (os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0)
+             | getattr(os, "O_BINARY", 0))
+    try:
+        fd = os.open(path, flags)
+    except FileNotFoundError:
+        raise InputError(f"{name} not found") from None
+    except OSError as exc:
+        raise InputError(f"cannot read {name}: {reason(exc)}") from None
+    try:
+        _check_input_stat(os.fstat(fd), name, limit, bound)
+        fh = os.fdopen(fd, "rb")
+    except BaseException:
+        os.close(fd)
+        raise
+    with fh:
+        yield fh
+
+
+def _read_at_most(fh: BinaryIO, name: str, limit: int, bound: str) -> bytes:
+    """The rest of `fh`, at most `limit` bytes (a file grown since its check is refused).
+    Read as its size says, then in chunks of :data:`CHUNK`: nothing is allocated for the
+    limit itself, only for what the file holds."""
+    parts: list[bytes] = []
+    total = 0
+    try:
+        n = min(os.fstat(fh.fileno()).st_size, limit) + 1
+        while chunk := fh.read(n):
+            parts.append(chunk)
+            total += len(chunk)
+            if total > limit:
+                raise InputError(f"cannot read {name}: it has more than {limit:,} bytes "
+                                 f"({bound or 'the most propwhirl reads of such a file'})")
+            n = min(CHUNK, limit + 1 - total)
+    except OSError as exc:
+        raise InputError(f"cannot read {name}: {reason(exc)}") from None
+    return b"".join(parts)
+
+
+def read_bytes(path: str | Path, what: str, limit: int = MAX_READ_BYTES, *,
+               bound: str = "") -> bytes:
+    """The bytes of the file `path` (a `what`): a regular file of at most `limit` bytes
+    (:func:`check_input`, before it is opened), one :class:`InputError` line otherwise."""
+    with open_input(path, what, limit, bound=bound) as fh:
+        return _read_at_most(fh, _name(path, what), limit, bound)
+
+
+def sha256_file(path: str | Path, what: str, limit: int = MAX_READ_BYTES) -> str:
+    """The SHA-256 (hex) of the file `path` (a `what`), read in chunks of :data:`CHUNK`
+    bytes: a regular file of at most `limit` bytes (:func:`check_input`)."""
+    import hashlib
+
+    h = hashlib.sha256()
+    name, seen = _name(path, what), 0
+    with open_input(path, what, limit) as fh:
+        while True:
+            try:
+                chunk = fh.read(CHUNK)
+            except OSError as exc:
+                raise InputError(f"cannot read {name}: {reason(exc)}") from None
+            if not chunk:
+                return h.hexdigest()
+            seen += len(chunk)
+            if seen > limit:
+                raise InputError(f"cannot read {name}: it has more than {limit:,} bytes (the "
+                                 "most propwhirl reads of such a file)")
+            h.update(chunk)
+
+
+def read_text(path: str | Path, what: str, *, empty_ok: bool = False,
+              limit: int = MAX_READ_BYTES) -> str:
     """The UTF-8 text of the file `path` (a `what`, e.g. "analysis file"), with one-line
-    errors naming it: not found, unreadable (the OS's reason), not UTF-8 (the byte), empty
-    (unless `empty_ok`: the caller's parser then says what is missing).
+    errors naming it: not found, not a regular file or more than `limit` bytes
+    (:func:`check_input`, before it is opened), unreadable (the OS's reason), not UTF-8 (the
+    byte), empty (unless `empty_ok`: the caller's parser then says what is missing).
 
     >>> read_text("/nonexistent/a.json", "analysis file")
     Traceback (most recent call last):
@@ -123,12 +281,7 @@ def read_text(path: str | Path, what: str, *, empty_ok: bool = False) -> str:
     """
     path = Path(path)
     article = "an" if what[:1].lower() in "aeiou" else "a"
-    try:
-        data = path.read_bytes()
-    except FileNotFoundError:
-        raise InputError(f"{_name(path, what)} not found") from None
-    except OSError as exc:
-        raise InputError(f"cannot read {_name(path, what)}: {reason(exc)}") from exc
+    data = read_bytes(path, what, limit)
     if not empty_ok and not data.strip():
         raise InputError(f"{shown(path)}: the file is empty, not {article} {what}")
     try:
@@ -193,8 +346,7 @@ def write_with(path: str | Path, fill: Callable[[BinaryIO], None], *, what: str 
     path = Path(path)
     tmp: Path | None = None
     try:
-        if path.is_dir():       # may raise (e.g. "File name too long")
-            raise InputError(f"cannot write {_name(path, what)}: it is a folder")
+        check_output(path, what)    # a folder, a device, a FIFO, a socket: refused
         fd, tmp = _create_temporary(path)
         with os.fdopen(fd, "wb") as fh:
             fill(fh)
@@ -212,6 +364,90 @@ def write_with(path: str | Path, fill: Callable[[BinaryIO], None], *, what: str 
                 pass
     _sync_folder(path.parent)
     return path
+
+
+def check_output(path: str | Path, what: str = "") -> None:
+    """Refuse to write `path` (a `what`) unless it is a regular file or a new path (symbolic
+    links followed): a folder, a device (``/dev/null``, ``/dev/full``), a FIFO or a socket is
+    one :class:`InputError` line, before anything is written.  The atomic write renames a new
+    regular file onto the path: on a device node it would replace the node itself (run as
+    root, ``/dev/null`` would stop being a device), so it is refused rather than written
+    through (a FIFO written through would also wait for a reader without end).
+
+    >>> check_output("/dev/null", "--json")
+    Traceback (most recent call last):
+    ...
+    propwhirl.validate.InputError: cannot write --json '/dev/null': it is a character device, not a regular file (propwhirl writes regular files only)
+    """
+    try:
+        problem = _output_kind(path)
+    except OSError as exc:
+        raise InputError(f"cannot write {_name(path, what)}: {reason(exc)}") from None
+    if problem == _KINDS[stat.S_IFDIR]:
+        raise InputError(f"cannot write {_name(path, what)}: it is a folder")
+    if problem is not None:
+        raise InputError(f"cannot write {_name(path, what)}: it is {problem}, not a regular "
+                         "file (propwhirl writes regular files only)")
+
+
+def _output_kind(path: str | Path) -> str | None:
+    """What the existing `path` is when it is no regular file (:func:`kind`: "a folder", "a
+    character device", ...; symbolic links followed), None for a regular file or a new path;
+    an ``OSError`` other than "not found" is raised."""
+    try:
+        st = os.stat(path)
+    except (FileNotFoundError, NotADirectoryError):
+        return None                              # a new path (its folder is checked apart)
+    return None if stat.S_ISREG(st.st_mode) else kind(st.st_mode)
+
+
+def file_identity(path: str | Path) -> tuple:
+    """One key per file: an existing file's (device, inode) — symbolic and hard links are the
+    file —, else its absolute path with ``.``/``..`` and symbolic links resolved."""
+    try:
+        st = os.stat(path)
+        return ("inode", st.st_dev, st.st_ino)
+    except (OSError, ValueError):
+        return ("path", os.path.normcase(os.path.realpath(os.path.abspath(path))))
+
+
+def same_file(a: str | Path, b: str | Path) -> bool:
+    """Whether the paths `a` and `b` name one file (:func:`file_identity`; also two new paths
+    that resolve alike)."""
+    return file_identity(a) == file_identity(b)
+
+
+def check_apart(outputs: Iterable[tuple[str, str | Path]],
+                inputs: Iterable[tuple[str, str | Path]] = ()) -> None:
+    """Refuse, before any work, two outputs on one file and an output on one of the inputs.
+
+    Parameters
+    ----------
+    outputs : iterable of (label, path)
+        The files to be written, each with how the user gave it (``"--json"``,
+        ``"--out DIR: campaign.json"``); outputs given as None are left out.
+    inputs : iterable of (what, path)
+        The files read (or kept) while the outputs are made, each with what it is (``"the
+        model file MODEL m.toml"``); an input given as None is left out.
+
+    Raises
+    ------
+    InputError
+        ``LABEL1 PATH1 and LABEL2 PATH2 are the same file: give each output its own path``,
+        or ``LABEL PATH is WHAT: give another path`` (paths compared by :func:`same_file`).
+    """
+    taken: dict[tuple, tuple[str, str]] = {}
+    for label, path in sorted((lb, str(p)) for lb, p in outputs if p is not None):
+        twin = taken.setdefault(file_identity(path), (label, path))
+        if twin != (label, path):
+            raise InputError(f"{twin[0]} {twin[1]} and {label} {path} are the same file: give "
+                             "each output its own path")
+    for what, other in inputs:
+        if other is None:
+            continue
+        label, path = taken.get(file_identity(other), (None, None))
+        if label is not None:
+            raise InputError(f"{label} {path} is {what}: give another path")
 
 
 def _write_all(fh: BinaryIO, data: bytes) -> None:
@@ -266,7 +502,8 @@ def check_writable(path: str | Path, *, folder: bool = False, create: bool = Fal
     ------
     InputError
         The folder does not exist (and may not or cannot be created), is not a folder, or a
-        file cannot be created in it; or `path` is an existing folder where a file is meant.
+        file cannot be created in it; or `path` is an existing folder, device, FIFO or socket
+        where a file is meant (:func:`check_output`).
         The message names the path and the reason.
     """
     path = Path(path)
@@ -279,8 +516,12 @@ def check_writable(path: str | Path, *, folder: bool = False, create: bool = Fal
 
 
 def _check_writable(path: Path, target: Path, label: str, folder: bool, create: bool) -> Path:
-    if not folder and path.is_dir():
+    problem = None if folder else _output_kind(path)     # check_output's rule
+    if problem == _KINDS[stat.S_IFDIR]:
         raise InputError(f"{label}: is a folder, not a file")
+    if problem is not None:
+        raise InputError(f"{label}: is {problem}, not a regular file (propwhirl writes "
+                         "regular files only)")
     if not target.is_dir():
         if target.exists():
             raise InputError(f"{label}: {quoted(target)} is not a folder")

@@ -256,3 +256,100 @@ def test_the_exit_codes_of_failed_points_are_documented(capsys, command):
     assert "exit code 2 when every point failed" in " ".join(text.split())
     assert "0 when some failed" in " ".join(text.split())
     assert "every point failed" in cli.__doc__
+
+
+# ------------------------------------------------------------- issue 33, items 1 and 2
+CAMPAIGN = """
+format = "propwhirl-campaign"
+format_version = 1
+model = "{model}"
+[regulation]
+name = "cs25"
+[envelope]
+airspeed = "TAS"
+V_D_m_per_s = 50.0
+altitudes_m = [0.0]
+[[cases]]
+name = "nominal"
+"""
+
+
+@pytest.fixture
+def no_campaign(monkeypatch):
+    """A campaign that starts fails the test (its analyses are the work)."""
+    from propwhirl.studies import campaign
+
+    monkeypatch.setattr(campaign, "run_campaign", lambda *a, **k: pytest.fail("the work started"))
+
+
+@pytest.mark.parametrize("model_name", ["campaign.json", "campaign.csv", "report.html",
+                                        "report.pdf", "campaign.json.partial"])
+def test_certify_never_writes_over_its_model_file(small_file, here, capsys, work, no_campaign,
+                                                   model_name):
+    """Item 1: `certify C.toml --out .` with the model file named campaign.json (or
+    report.html) exited 0, the model replaced by the results and hashed as the model."""
+    (here / model_name).write_bytes(small_file.read_bytes())
+    (here / "C.toml").write_text(CAMPAIGN.format(model=model_name))
+    err = _refused(capsys, work, ["certify", "C.toml", "--out", ".", "--no-pdf"])
+    assert err == (f"propwhirl: error: --out .: {model_name} is the model file of the campaign "
+                   f"(model = '{model_name}'): give another path\n")
+    assert (here / model_name).read_bytes() == small_file.read_bytes()
+
+
+def test_certify_never_writes_over_its_campaign_file(small_file, here, capsys, work,
+                                                     no_campaign):
+    """Item 1: `certify campaign.csv --out .` overwrote the campaign file itself."""
+    text = CAMPAIGN.format(model=small_file.as_posix())
+    (here / "campaign.csv").write_text(text)
+    err = _refused(capsys, work, ["certify", "campaign.csv", "--out", ".", "--no-report"])
+    assert err == ("propwhirl: error: --out .: campaign.csv is the campaign file CAMPAIGN "
+                   "campaign.csv: give another path\n")
+    assert (here / "campaign.csv").read_text() == text
+
+
+def test_certify_without_a_report_may_share_its_names(small_file, here, capsys, work,
+                                                       no_campaign):
+    """--no-report writes no report.html: a model of that name is no output's input."""
+    (here / "report.html").write_bytes(small_file.read_bytes())
+    (here / "C.toml").write_text(CAMPAIGN.format(model="report.html"))
+    with pytest.raises(pytest.fail.Exception, match="the work started"):
+        cli.main(["certify", "C.toml", "--out", ".", "--no-report"])
+
+
+def test_certify_refuses_a_device_among_its_outputs(small_file, here, capsys, work,
+                                                    no_campaign):
+    """Item 2: a device node (our own) where campaign.csv goes: refused before the work."""
+    from helpers.files import char_device, is_char_device
+
+    (here / "C.toml").write_text(CAMPAIGN.format(model=small_file.as_posix()))
+    (here / "r").mkdir()
+    char_device(here / "r" / "campaign.csv")
+    err = _refused(capsys, work, ["certify", "C.toml", "--out", "r", "--no-pdf"])
+    assert err == ("propwhirl: error: cannot write --out r 'r/campaign.csv': it is a character "
+                   "device, not a regular file (propwhirl writes regular files only)\n")
+    assert is_char_device(here / "r" / "campaign.csv")
+
+
+@pytest.mark.parametrize("option", ["--json", "--csv", "--summary-csv", "--plot"])
+def test_an_output_on_a_device_is_refused_before_the_analysis(small_file, here, capsys, work,
+                                                               option):
+    """Item 2, on a device node of our own (never /dev/null itself)."""
+    from helpers.files import char_device, is_char_device
+
+    node = char_device(here / "out.png")
+    err = _refused(capsys, work, ["analyse", str(small_file), option, str(node)])
+    assert err == (f"propwhirl: error: {option} {node}: is a character device, not a regular "
+                   "file (propwhirl writes regular files only)\n")
+    assert is_char_device(node)
+
+
+def test_an_output_on_a_hard_link_of_the_model_is_refused(small_file, here, capsys, work):
+    """Item 1: paths compared as files — a hard link of the model is the model."""
+    import os
+
+    model = here / "m.toml"
+    model.write_bytes(small_file.read_bytes())
+    os.link(model, here / "same.json")
+    err = _refused(capsys, work, ["analyse", str(model), "--json", "same.json"])
+    assert err == (f"propwhirl: error: --json same.json is the model file MODEL {model}: give "
+                   "another path\n")

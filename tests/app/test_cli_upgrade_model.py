@@ -109,3 +109,59 @@ def test_bad_input_is_one_line_and_writes_nothing(case, message, old_file, tmp_p
     err = _one_line_error(capsys, ["upgrade-model", str(old), str(new)])
     assert message in err
     assert not new.exists()
+
+
+# ------------------------------------------------------------- issue 33, items 2 and 3
+@pytest.mark.parametrize("kind", ["device", "fifo", "socket"])
+def test_new_as_a_device_fifo_or_socket_is_refused_and_kept(kind, old_file, tmp_path, capsys,
+                                                            monkeypatch):
+    """Item 2: `upgrade-model v1.toml /dev/null` exited 0 and, as root, the atomic rename put a
+    regular file in place of the device node.  Tested on nodes of our own (never /dev/null):
+    refused in one line before anything is written, the node still what it was."""
+    import os
+    import stat
+
+    from helpers.files import char_device, unix_socket
+
+    from propwhirl import fileio
+
+    new, held = tmp_path / "new.toml", None
+    if kind == "device":
+        char_device(new)
+    elif kind == "fifo":
+        os.mkfifo(new)
+    else:
+        held = unix_socket(new)
+    monkeypatch.setattr(fileio, "_create_temporary", lambda p: pytest.fail("a write began"))
+    try:
+        err = _one_line_error(capsys, ["upgrade-model", str(old_file), str(new)])
+    finally:
+        if held is not None:
+            held.close()
+    what = {"device": "a character device", "fifo": "a FIFO (named pipe)",
+            "socket": "a socket"}[kind]
+    assert err == (f"propwhirl: error: upgrade-model NEW {new}: is {what}, not a regular file "
+                   "(propwhirl writes regular files only)\n")
+    test = {"device": stat.S_ISCHR, "fifo": stat.S_ISFIFO, "socket": stat.S_ISSOCK}[kind]
+    assert test(os.lstat(new).st_mode)
+
+
+@pytest.mark.parametrize("device", ["/dev/zero", "/dev/urandom"])
+def test_old_as_a_device_is_refused_before_it_is_opened(device, tmp_path, capsys, monkeypatch):
+    """Item 3: `upgrade-model /dev/zero out.toml` grew past 4 GB."""
+    from helpers.files import never_opened
+
+    never_opened(monkeypatch, device)
+    err = _one_line_error(capsys, ["upgrade-model", device, str(tmp_path / "out.toml")])
+    assert err == (f"propwhirl: error: cannot read model file {device!r}: it is a character "
+                   "device, not a regular file (propwhirl reads regular files only)\n")
+    assert not (tmp_path / "out.toml").exists()
+
+
+def test_a_hard_link_of_old_is_old(old_file, tmp_path, capsys):
+    import os
+
+    link = tmp_path / "link.toml"
+    os.link(old_file, link)
+    err = _one_line_error(capsys, ["upgrade-model", str(old_file), str(link)])
+    assert f"NEW {link} is the file OLD" in err

@@ -277,3 +277,45 @@ def test_a_failing_print_leaves_the_page_and_a_note(result, tmp_path, monkeypatc
     assert len(notes) == 1 and "report.pdf not written" in notes[0] and "/bin/false" in notes[0]
     with pytest.raises(R.v.InputError):
         R.write_report(result, tmp_path, pdf=True, figures=False)
+
+
+# ----------------------------------------------------------- issue 33, items 1 and 3
+from propwhirl.validate import InputError  # noqa: E402
+
+EXAMPLE_RESULT = (Path(__file__).resolve().parents[2] / "examples" / "certification" / "wingtip"
+                  / "campaign.json")
+
+
+@pytest.fixture(scope="module")
+def example_result() -> C.CampaignResult:
+    """The committed example's result (no campaign run)."""
+    return C.CampaignResult.load(EXAMPLE_RESULT)
+
+
+@pytest.mark.parametrize("device", ["/dev/zero", "/dev/urandom"])
+def test_the_hash_of_a_device_is_refused_before_it_is_opened(example_result, monkeypatch,
+                                                             device):
+    """Item 3: the report's SHA-256 of campaign_file='/dev/zero' grew past 4 GB."""
+    from helpers.files import never_opened
+
+    never_opened(monkeypatch, device)
+    with pytest.raises(InputError) as e:
+        R.report_html(example_result, campaign_file=device, figures=False)
+    assert str(e.value) == (f"cannot read campaign file {device!r}: it is a character device, "
+                            "not a regular file (propwhirl reads regular files only)")
+
+
+@pytest.mark.parametrize("name", [R.HTML_NAME, R.PDF_NAME])
+def test_the_report_is_not_written_over_the_model_file(example_result, tmp_path, monkeypatch,
+                                                       name):
+    """Item 1: the report written onto the model (or campaign) file it names and hashes."""
+    model = tmp_path / name
+    model.write_text("[wing]\n")
+    monkeypatch.setattr(R, "report_html", lambda *a, **k: pytest.fail("the report was drawn"))
+    with pytest.raises(InputError) as e:
+        R.write_report(example_result, tmp_path, model_file=model, pdf=False)
+    label = "report" if name == R.HTML_NAME else "PDF report"
+    assert str(e.value) == (f"{label} {model} is the model file {model}: give another path")
+    with pytest.raises(InputError, match="is the campaign file"):
+        R.write_report(example_result, tmp_path, campaign_file=tmp_path / "." / name, pdf=False)
+    assert model.read_text() == "[wing]\n"

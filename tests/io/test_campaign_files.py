@@ -161,3 +161,31 @@ def test_too_many_analyses_refused_before_work(doc):
     doc["cases"] = [{"name": f"c{i}"} for i in range(MAX_TASKS // 1000 + 1)]
     with pytest.raises(InputError, match="at most"):
         _load(doc)
+
+
+# ------------------------------------------------------------------ issue 33, item 3
+@pytest.mark.parametrize("device", ["/dev/zero", "/dev/urandom"])
+def test_a_device_as_the_model_is_refused_before_it_is_opened(doc, tmp_path, monkeypatch,
+                                                              device):
+    """`model = "/dev/zero"` grew past 4 GB; now one line naming the key and the file."""
+    from helpers.files import never_opened
+
+    doc["model"] = device
+    (tmp_path / "c.toml").write_text(tomli_w.dumps(doc))
+    never_opened(monkeypatch, device)
+    with pytest.raises(InputError) as e:
+        load_campaign(tmp_path / "c.toml")
+    assert str(e.value) == (f"{tmp_path / 'c.toml'}: model = {device!r}: cannot read model file "
+                            f"{device!r}: it is a character device, not a regular file "
+                            "(propwhirl reads regular files only)")
+
+
+def test_a_campaign_file_beyond_the_limit_is_refused_before_reading(tmp_path):
+    from propwhirl import fileio
+
+    path = tmp_path / "c.toml"
+    with open(path, "wb") as fh:
+        fh.truncate(fileio.MAX_TOML_BYTES + 1)          # sparse
+    with pytest.raises(InputError, match=rf"c\.toml': it has {fileio.MAX_TOML_BYTES + 1:,} "
+                                         rf"bytes, more than {fileio.MAX_TOML_BYTES:,}"):
+        load_campaign(path)

@@ -188,3 +188,91 @@ def test_more_modes_than_the_limit_are_refused_before_reading(written, tmp_path)
     with pytest.raises(InputError, match=r"\[modes\] n_modes = 1000000 is invalid: must be an "
                                          r"integer in \[1, 1000\]"):
         load_modal_model(bad)
+
+
+# ----------------------------------------------------------- issue 33, items 1 and 3
+def _modal_with_modes_file(written, tmp_path, file: str):
+    """A copy of the written TOML whose [modes] file is `file` (absolute or relative)."""
+    toml = tmp_path / "m.toml"
+    toml.write_text(written[0].read_text().replace('file = "wingtip.modes.npz"',
+                                                   f'file = "{file}"'))
+    return toml
+
+
+@pytest.mark.parametrize("device", ["/dev/zero", "/dev/urandom"])
+def test_a_device_as_the_modes_file_is_refused_before_it_is_opened(written, tmp_path,
+                                                                    monkeypatch, device):
+    """Item 3: `[modes] file = "/dev/zero"` grew past 4 GB; now one line naming the key."""
+    from helpers.files import never_opened
+
+    toml = _modal_with_modes_file(written, tmp_path, device)
+    never_opened(monkeypatch, device)
+    with pytest.raises(InputError) as e:
+        load_modal_model(toml)
+    assert str(e.value) == (f"{toml}: cannot read [modes] file {device!r}: it is a character "
+                            "device, not a regular file (propwhirl reads regular files only)")
+
+
+def test_a_fifo_as_the_modes_file_is_refused_without_opening_it(written, tmp_path):
+    """Item 3: a FIFO as the modes file waited for a writer for ever."""
+    from helpers.files import FifoWriter
+
+    toml = _modal_with_modes_file(written, tmp_path, "pipe.npz")
+    with FifoWriter(tmp_path / "pipe.npz") as fifo:
+        with pytest.raises(InputError, match=r"\[modes\] file '.*pipe\.npz': it is a FIFO"):
+            load_modal_model(toml)
+        assert not fifo.opened.is_set()
+
+
+def test_a_modes_file_larger_than_its_arrays_is_refused_before_reading(written, tmp_path):
+    toml = _modal_with_modes_file(written, tmp_path, "big.npz")
+    with open(tmp_path / "big.npz", "wb") as fh:
+        fh.truncate(2 ** 32)                           # sparse: 4 GiB of nothing
+    with pytest.raises(InputError, match=r"big\.npz': it has 4,294,967,296 bytes, more than "
+                                         r"[0-9,]+ \(its arrays take at most \(n_modes = 75"):
+        load_modal_model(toml)
+
+
+def test_a_modal_file_linked_to_a_device_is_refused(tmp_path, monkeypatch):
+    """Item 3: a modal TOML that is a symbolic link to /dev/zero."""
+    from helpers.files import never_opened
+
+    from propwhirl.app import cli
+
+    link = tmp_path / "wing.toml"
+    link.symlink_to("/dev/zero")
+    never_opened(monkeypatch, "/dev/zero")
+    with pytest.raises(InputError, match=r"wing\.toml': it is a character device"):
+        load_modal_model(link)
+    assert cli.main(["analyse", str(link)]) == 2
+
+
+def test_write_modes_refuses_the_beam_models_own_file(tmp_path):
+    """Item 1: write_modes(model, "wing.toml") onto the beam model's file replaced it."""
+    from propwhirl import io
+
+    beam = tmp_path / "wing.toml"
+    io.save_model(wingtip_propeller_wing(), beam)
+    before = beam.read_bytes()
+    model = io.load_model(beam)
+    with pytest.raises(InputError) as e:
+        write_modes(model, beam)
+    assert str(e.value).startswith(f"write_modes: path {str(beam)!r} exists and is not a modal "
+                                   "model file")
+    assert beam.read_bytes() == before and not (tmp_path / "wing.modes.npz").exists()
+    toml, npz = write_modes(model, tmp_path / "modal.toml")       # a new path
+    write_modes(model, toml, n_modes=4)                             # its own file again
+    assert load_modal_model(toml).structure.n_modes == 4
+
+
+def test_an_analysis_output_on_the_modes_file_is_refused(written, tmp_path, capsys):
+    """Item 1: the modes file is an input of `analyse` too."""
+    from propwhirl.app import cli
+
+    toml, npz = written
+    before = npz.read_bytes()
+    assert cli.main(["analyse", str(toml), "--json", str(npz)]) == 2
+    err = capsys.readouterr().err
+    assert err == (f"propwhirl: error: --json {npz} is the modes file of MODEL {toml} "
+                   "([modes] file): give another path\n")
+    assert npz.read_bytes() == before

@@ -69,3 +69,53 @@ def test_an_unusable_directory_is_an_input_error(monkeypatch, tmp_path):
     monkeypatch.setenv(dlm_cache.CACHE_ENV, str(blocker / "sub"))
     with pytest.raises(InputError, match="PROPWHIRL_DLM_CACHE = .* is invalid: cannot create"):
         aero()
+
+
+# ------------------------------------------------------------------ issue 33, item 3
+def _entry(tmp_path, monkeypatch):
+    """(the AIC model, the path of its entry at Mach 0, k = 0.3, its key's arguments)."""
+    monkeypatch.setenv(dlm_cache.CACHE_ENV, str(tmp_path))
+    a = aero()
+    args = (a._geometry, 0.0, 0.3 / a.b_ref)
+    return a, dlm_cache._path(tmp_path, *args), args
+
+
+def test_a_fifo_as_a_cache_entry_is_refused_without_opening_it(tmp_path, monkeypatch):
+    """A FIFO as an AIC cache entry waited for a writer for ever: one line naming it."""
+    from helpers.files import FifoWriter
+
+    a, path, _ = _entry(tmp_path, monkeypatch)
+    with FifoWriter(path) as fifo:
+        with pytest.raises(InputError) as e:
+            a.aic(0.0, 0.3)
+        assert not fifo.opened.is_set()
+    from propwhirl.fileio import quoted
+
+    assert str(e.value) == (f"cannot read PROPWHIRL_DLM_CACHE entry {quoted(path)}: it is a FIFO "
+                            "(named pipe), not a regular file (propwhirl reads regular files "
+                            "only)")
+    assert a.evaluations == 0                                # refused before computing
+
+
+def test_a_header_declaring_a_huge_matrix_is_read_first(tmp_path, monkeypatch):
+    """A .npy header declaring (10^6, 10^6) was a MemoryError traceback: the header is checked
+    before anything is allocated; the entry is computed anew and rewritten."""
+    from numpy.lib import format as npf
+
+    a, path, args = _entry(tmp_path, monkeypatch)
+    with open(path, "wb") as fh:
+        npf.write_array_header_1_0(fh, {"descr": "<c16", "fortran_order": False,
+                                        "shape": (10 ** 6, 10 ** 6)})
+        fh.write(b"\0" * 64)
+    n = a.mesh.n
+    assert dlm_cache.load(tmp_path, *args, n) is None
+    Q = a.aic(0.0, 0.3)
+    assert a.evaluations == 1 and np.array_equal(dlm_cache.load(tmp_path, *args, n), Q)
+
+
+def test_an_entry_larger_than_its_matrix_is_refused_before_reading(tmp_path, monkeypatch):
+    a, path, args = _entry(tmp_path, monkeypatch)
+    with open(path, "wb") as fh:
+        fh.truncate(2 ** 32)                                 # sparse: 4 GiB of nothing
+    with pytest.raises(InputError, match="it has 4,294,967,296 bytes, more than"):
+        dlm_cache.load(tmp_path, *args, a.mesh.n)

@@ -244,3 +244,24 @@ def test_wingtip_divergence_at_sea_level_is_not_named_after_a_lag_state():
     assert row.critical_speed == pytest.approx(127.28, abs=0.02)
     assert not row.mode.startswith("lag") and row.mode.startswith("the wing (bending"), row.mode
     assert "at the event; lag " in row.mode          # and where the tracked root came from
+
+
+# ------------------------------------------------------------------ issue 33, item 2
+@pytest.mark.parametrize("write", ["to_csv", "save"])
+def test_the_result_is_not_written_onto_a_device(tmp_path, monkeypatch, write):
+    """`CampaignResult.to_csv` onto a character device exited quietly and, as root, replaced
+    the node: refused in one line before a byte is written (a node of our own)."""
+    from helpers.files import char_device, is_char_device
+
+    from propwhirl import fileio
+    from propwhirl.studies.campaign_result import CampaignResult
+    from propwhirl.validate import InputError
+
+    root = Path(__file__).resolve().parents[2]
+    result = CampaignResult.load(root / "examples" / "certification" / "wingtip" / "campaign.json")
+    node = char_device(tmp_path / "null")
+    monkeypatch.setattr(fileio, "_create_temporary", lambda p: pytest.fail("a write began"))
+    with pytest.raises(InputError, match=r"cannot write .*'.*null': it is a character device, "
+                                         r"not a regular file"):
+        getattr(result, write)(node)
+    assert is_char_device(node)

@@ -482,12 +482,10 @@ def _upgrade_model(args: argparse.Namespace) -> int:
     from propwhirl.app.cli_common import print_notes
 
     old, new = Path(args.old), Path(args.new)
-    if not args.force and (old.resolve() == new.resolve()
-                           or (fileio.exists(old, "upgrade-model OLD") and fileio.exists(new, "upgrade-model NEW")
-                               and os.path.samefile(old, new))):
+    if not args.force and fileio.same_file(old, new):    # resolved, links followed
         raise InputError(f"upgrade-model: NEW {args.new} is the file OLD: give another name "
                          "(or --force to replace OLD)")
-    fileio.check_writable(new, what="upgrade-model NEW")
+    fileio.check_writable(new, what="upgrade-model NEW")   # a regular file or a new path
     notes: list[str] = []
     text = io.dumps(io.load_model(old, notes=notes))  # read and checked whole before writing
     fileio.write_text(new, text, what="model file")

@@ -42,12 +42,13 @@ def _certify(args: argparse.Namespace) -> int:
         raise InputError(f"--pdf: no Chromium found to print {PDF_NAME}: {browser.INSTALL_HINT}"
                          " (or give --no-pdf)")
     spec = load_campaign(args.campaign)
+    json_path, csv_path = out / JSON_NAME, out / CSV_NAME
+    _check_outputs(args, out, spec.model_path)
     campaign = from_spec(spec)                           # every check before any analysis
     try:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
         raise InputError(f"--out {args.out}: cannot make the folder: {fileio.reason(exc)}") from None
-    json_path, csv_path = out / JSON_NAME, out / CSV_NAME
     cp = execution_options.checkpoint(args, json_path)
     result = run_campaign(campaign, **options, checkpoint=cp)
     result.save(json_path)
@@ -62,6 +63,23 @@ def _certify(args: argparse.Namespace) -> int:
     print(f"wrote {', '.join(map(str, [json_path, csv_path, *written]))}")
     execution_options.report_failures([r.error for r in result.rows], "analyses")
     return 0 if result.cleared else 1
+
+
+def _check_outputs(args: argparse.Namespace, out: Path, model_path: str) -> None:
+    """Before any analysis: every file certify writes in `out` — campaign.json, its
+    partial-results file, campaign.csv and (unless --no-report) report.html and report.pdf —
+    is a regular file or a new path (not a device, a FIFO or a socket:
+    :func:`propwhirl.fileio.check_output`) and none is the campaign file or its model file
+    (:func:`propwhirl.fileio.check_apart`: resolved, symbolic links followed)."""
+    names = [JSON_NAME, JSON_NAME + execution_options.PARTIAL_SUFFIX, CSV_NAME]
+    if args.pdf != "none":
+        names += [HTML_NAME, PDF_NAME]
+    outputs = [(f"--out {args.out}:", out / name) for name in names]
+    for label, path in outputs:
+        fileio.check_output(path, label.rstrip(":"))
+    fileio.check_apart(outputs, [(f"the campaign file CAMPAIGN {args.campaign}", args.campaign),
+                                 (f"the model file of the campaign (model = {model_path!r})",
+                                  model_path)])
 
 
 def add_commands(sub) -> None:

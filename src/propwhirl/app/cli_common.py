@@ -3,7 +3,6 @@ the --speeds grid, and the check that every output file can be written before a 
 Used by :mod:`propwhirl.app.cli` and the study commands (:mod:`.cli_studies`, :mod:`.cli_design`)."""
 from __future__ import annotations
 
-import os
 import sys
 from pathlib import Path
 
@@ -66,14 +65,16 @@ def check_outputs(*, model: str | None = None, partial_of: str | None = None,
     """Fail before any computation if the outputs cannot all be written, with one line naming
     the option (``summary_csv`` is ``--summary-csv``) and the path.
 
-    Each output's folder must exist and be writable and the path must not be a folder
+    Each output's folder must exist and be writable and the path must be a regular file or a
+    new one — not a folder, a device, a FIFO or a socket
     (:func:`propwhirl.fileio.check_writable`); ``plot``: the suffix names a format matplotlib
     writes, ``animate``: a ``.gif``, and matplotlib must be installed for either.  No two
-    outputs may be one file (the paths are compared resolved: ``./X`` is ``X``, a symbolic
-    link is its target), nor an output the model file `model` (the MODEL argument, when it is
-    a file), nor the partial-results file kept beside the output of option `partial_of`
-    while a study runs (``X.partial``; with `warm_start` also those of its passes,
-    ``X.partial.coarse`` ...).
+    outputs may be one file, nor an output one of the inputs — the model file `model` (the
+    MODEL argument, when it is a file) and, for a modal model, the modes file it names —, nor
+    the partial-results file kept beside the output of option `partial_of` while a study
+    runs (``X.partial``; with `warm_start` also those of its passes, ``X.partial.coarse``
+    ...): :func:`propwhirl.fileio.check_apart` (paths compared resolved: ``./X`` is ``X``, a
+    symbolic link is its target, a hard link its file).
     """
     given = {_option(o): str(p) for o, p in paths.items() if p is not None}
     for label, path in given.items():
@@ -82,34 +83,33 @@ def check_outputs(*, model: str | None = None, partial_of: str | None = None,
             _check_plot_format(path)
         elif label == "--animate":
             _check_animation(path)
-    taken: dict[str, tuple[str, str]] = {}          # resolved path -> (option, path as given)
-    for label, path in sorted(given.items()):
-        twin = taken.setdefault(_same_file_key(path), (label, path))
-        if twin != (label, path):
-            raise InputError(f"{twin[0]} {twin[1]} and {label} {path} are the same file: give "
-                             "each output its own path")
-    others = []                                      # (path, what it is)
-    if model is not None and Path(model).is_file():
-        others.append((model, f"the model file MODEL {model}"))
+    others = model_inputs(model) if model is not None else []    # (what it is, path)
     owner = given.get(_option(partial_of)) if partial_of is not None else None
     if owner is not None:
         for partial in _partial_files(owner, warm_start):
-            others.append((partial, f"the partial-results file of {_option(partial_of)} {owner} "
-                                    "(kept there while the study runs)"))
-    for other, what in others:
-        label, path = taken.get(_same_file_key(other), (None, None))
-        if label is not None:
-            raise InputError(f"{label} {path} is {what}: give another path")
+            others.append((f"the partial-results file of {_option(partial_of)} {owner} "
+                           "(kept there while the study runs)", partial))
+    fileio.check_apart(given.items(), others)
+
+
+def model_inputs(model: str, label: str = "MODEL") -> list[tuple[str, str | Path]]:
+    """The files a model argument reads, each with what it is, for
+    :func:`propwhirl.fileio.check_apart`: the model file (when `model` is a file, not a case
+    name) and, when it is a modal model file, the modes file its ``[modes] file`` names."""
+    from propwhirl.io.modal_files import modes_path
+
+    if not fileio.exists(model, "model file") or not Path(model).is_file():
+        return []
+    out: list[tuple[str, str | Path]] = [(f"the model file {label} {model}", model)]
+    modes = modes_path(model)
+    if modes is not None:
+        out.append((f"the modes file of {label} {model} ([modes] file)", modes))
+    return out
 
 
 def _option(name: str) -> str:
     """The command-line option of a keyword: ``summary_csv`` -> ``--summary-csv``."""
     return "--" + name.replace("_", "-")
-
-
-def _same_file_key(path: str | Path) -> str:
-    """One string per file: absolute, ``.``/``..`` and symbolic links resolved."""
-    return os.path.normcase(os.path.realpath(os.path.abspath(path)))
 
 
 def _partial_files(output: str, warm_start: bool) -> list[Path]:

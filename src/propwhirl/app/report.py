@@ -25,7 +25,6 @@ from __future__ import annotations
 
 import base64
 import datetime
-import hashlib
 import html
 from collections.abc import Sequence
 from pathlib import Path
@@ -65,13 +64,11 @@ figure { margin: 0; break-inside: avoid; page-break-inside: avoid; }
 """
 
 
-def sha256_file(path: str | Path) -> str:
-    """The SHA-256 of a file's bytes (hex), InputError naming the file when it cannot be
-    read."""
-    try:
-        return hashlib.sha256(Path(path).read_bytes()).hexdigest()
-    except OSError as exc:
-        raise v.InputError(f"{path}: cannot read: {fileio.reason(exc)}") from None
+def sha256_file(path: str | Path, what: str = "file") -> str:
+    """The SHA-256 of a file's bytes (hex): a regular file of at most
+    :data:`propwhirl.fileio.MAX_READ_BYTES` bytes (:func:`propwhirl.fileio.sha256_file`),
+    InputError naming the file (a `what`) otherwise."""
+    return fileio.sha256_file(path, what)
 
 
 def e(x: Any) -> str:
@@ -244,7 +241,8 @@ def report_html(result: Any, *, campaign_file: str | Path | None = None,
     for label, path in (("campaign file", campaign_file), ("model file", model_file)):
         if path is not None:
             files.append((label, f"<code>{e(path)}</code>"))
-            files.append((f"{label} SHA-256", f'<span class="hash">{sha256_file(path)}</span>'))
+            files.append((f"{label} SHA-256",
+                          f'<span class="hash">{sha256_file(path, label)}</span>'))
     rows = [("campaign", e(result.name)), ("model", e(result.model_name)), *files,
             ("envelope", e(_envelope(result.rows))),
             ("regulation", e(result.regulation)),
@@ -331,10 +329,18 @@ def write_report(result: Any, folder: str | Path, *, campaign_file: str | Path |
     """Write ``report.html`` into `folder` and, with `pdf` True (or None and a Chromium found:
     :func:`propwhirl.app.browser.find_chromium`), ``report.pdf`` printed from it; returns the
     paths written.  A print that fails is a note appended to `notes` (the HTML is written;
-    without `notes` the InputError is raised)."""
+    without `notes` the InputError is raised).  Before anything is hashed or drawn, neither
+    report file may be the campaign file or the model file (InputError,
+    :func:`propwhirl.fileio.check_apart`: resolved, symbolic links followed), nor a device, a
+    FIFO or a socket (:func:`propwhirl.fileio.check_output`)."""
     from propwhirl.app import browser
 
     folder = Path(folder)
+    outputs = [("report", folder / HTML_NAME), ("PDF report", folder / PDF_NAME)]
+    for what, path in outputs:
+        fileio.check_output(path, what)
+    fileio.check_apart(outputs, [(f"the campaign file {campaign_file}", campaign_file),
+                                 (f"the model file {model_file}", model_file)])
     page = report_html(result, campaign_file=campaign_file, model_file=model_file, model=model,
                        date=date, figures=figures)
     out = [fileio.write_text(folder / HTML_NAME, page, what="report")]

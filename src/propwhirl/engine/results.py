@@ -14,6 +14,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
+from propwhirl import fileio
 from propwhirl.results import Result, SavedDict, _json_type, _shape_text
 from propwhirl.validate import InputError
 
@@ -514,7 +515,6 @@ def read_npz(path: str | Path, expected: Mapping[str, tuple[tuple[int, ...], Any
     array, its declared shape and the expected one (followed by `mismatch`, e.g. where the
     expected shapes come from); a file that is no zip or no ``.npz`` "cannot read the `what`".
     """
-    import os
     import zipfile
     import zlib
 
@@ -528,13 +528,11 @@ def read_npz(path: str | Path, expected: Mapping[str, tuple[tuple[int, ...], Any
     check_read(sum(n_bytes.values()), f"{where}: its arrays "
                + ", ".join(f"{k} {_array_text(*want[k])}" for k in want))
     need = " and ".join(want)
+    most = sum(n_bytes.values()) + len(want) * NPY_HEADER_MAX + NPZ_OVERHEAD
     try:
-        with open(path, "rb") as fh:
-            size = os.fstat(fh.fileno()).st_size
-            most = sum(n_bytes.values()) + len(want) * NPY_HEADER_MAX + NPZ_OVERHEAD
-            if size > most:
-                raise InputError(f"{where}: {format_bytes(size)} is more than its arrays "
-                                 f"{need} take ({format_bytes(most)} at most)")
+        # a regular file of at most `most` bytes, checked before it is opened
+        with fileio.open_input(path, what, most,
+                               bound=f"its arrays {need} take at most") as fh:
             with zipfile.ZipFile(fh) as z:
                 infos = z.infolist()
                 names = [i.filename for i in infos]
@@ -558,10 +556,10 @@ def read_npz(path: str | Path, expected: Mapping[str, tuple[tuple[int, ...], Any
                         out[key] = _read_npy(member, info.file_size, key, shape, dt, where,
                                              mismatch)
                 return out
-    except InputError:
-        raise
-    except FileNotFoundError:
-        raise InputError(f"{where}: the {what} is not found") from None
+    except InputError as exc:           # fileio's line names the file: `where` only if not
+        msg = str(exc)
+        named = msg.startswith(where) or fileio.quoted(path) in msg
+        raise InputError(msg if named else f"{where}: {msg}") from None
     except OSError as exc:
         raise InputError(f"{where}: cannot read the {what}: {exc.strerror or exc}") from None
     except (ValueError, zipfile.BadZipFile, EOFError, zlib.error, RuntimeError,

@@ -299,5 +299,5 @@ def loads(text: str, source: str = "<string>", base: str | Path = ".") -> Campai
 def load_campaign(path: str | Path) -> CampaignSpec:
     """Read a campaign file (errors as :func:`loads`, naming the path)."""
     path = Path(path)
-    text = fileio.read_text(path, "campaign file", empty_ok=True)
+    text = fileio.read_text(path, "campaign file", empty_ok=True, limit=fileio.MAX_TOML_BYTES)
     return loads(text, str(path), path.parent)

@@ -56,11 +56,14 @@ _HEADER_MAX, _ZIP_OVERHEAD = 4096, 65536
 
 
 def read_arrays(path: Path, expected: dict[str, tuple[tuple[int, ...], np.dtype]],
-                where: str, mismatch: str = "") -> dict[str, np.ndarray]:
-    """The arrays of the ``.npz`` at ``path``, each of the shape and dtype ``expected``:
-    the file's size, its member names, each member's declared size and ``.npy`` header are
-    checked before its data is read (within :func:`propwhirl.limits.memory_limit`); no
-    pickle.  Anything else: one line starting with ``where`` naming the array."""
+                where: str, mismatch: str = "", what: str = "modes file"
+                ) -> dict[str, np.ndarray]:
+    """The arrays of the ``.npz`` at ``path`` (a `what`, e.g. "[modes] file"), each of the
+    shape and dtype ``expected``: the file — a regular file of at most the bytes its arrays
+    take (:func:`propwhirl.fileio.open_input`, before it is opened) —, its member names, each
+    member's declared size and ``.npy`` header are checked before its data is read (within
+    :func:`propwhirl.limits.memory_limit`); no pickle.  Anything else: one line starting with
+    ``where`` naming the array."""
     import zipfile
 
     from numpy.lib import format as npf
@@ -68,13 +71,10 @@ def read_arrays(path: Path, expected: dict[str, tuple[tuple[int, ...], np.dtype]
     n_bytes = {k: int(np.prod(s, dtype=np.int64)) * np.dtype(d).itemsize
                for k, (s, d) in expected.items()}
     limits.check_read(sum(n_bytes.values()), f"{where}: its arrays")
+    most = sum(n_bytes.values()) + len(expected) * _HEADER_MAX + _ZIP_OVERHEAD
     try:
-        with open(path, "rb") as fh:
-            size = path.stat().st_size
-            most = sum(n_bytes.values()) + len(expected) * _HEADER_MAX + _ZIP_OVERHEAD
-            if size > most:
-                raise v.InputError(f"{where}: {size:,} bytes is more than its arrays take "
-                                   f"({most:,} at most{mismatch})")
+        with fileio.open_input(path, what, most, bound=f"its arrays take at most{mismatch}"
+                               ) as fh:
             with zipfile.ZipFile(fh) as z:
                 names = sorted(i.filename for i in z.infolist())
                 if names != sorted(f"{k}.npy" for k in expected):
@@ -102,19 +102,20 @@ def read_arrays(path: Path, expected: dict[str, tuple[tuple[int, ...], np.dtype]
                         out[key] = np.asarray(npf.read_array(member, allow_pickle=False),
                                               dtype=dtype)
                 return out
-    except v.InputError:
-        raise
-    except FileNotFoundError:
-        raise v.InputError(f"{where}: the modes file is not found") from None
+    except v.InputError as exc:     # fileio's line names the file: `where` only if it is not
+        msg = str(exc)
+        named = msg.startswith(where) or fileio.quoted(path) in msg
+        raise v.InputError(msg if named else f"{where}: {msg}") from None
     except (OSError, ValueError, zipfile.BadZipFile, EOFError, RuntimeError) as exc:
         why = " ".join(str(exc).split())[:200]
         raise v.InputError(f"{where}: cannot read the modes file: {why}") from None
 
 
-def load_modes(path: str | Path, n_modes: int, n_grids: int, where: str | None = None
-               ) -> ModalStructure:
-    """The :class:`~propwhirl.model.modal.ModalStructure` of the ``.npz`` at ``path``, whose
-    arrays must have the sizes given (checked before reading); errors name the file."""
+def load_modes(path: str | Path, n_modes: int, n_grids: int, where: str | None = None,
+               what: str = "modes file") -> ModalStructure:
+    """The :class:`~propwhirl.model.modal.ModalStructure` of the ``.npz`` at ``path`` (a
+    `what`), whose arrays must have the sizes given (checked before reading); errors name
+    the file."""
     path = Path(path)
     where = str(path) if where is None else where
     nm = v.integer_at_least("n_modes", n_modes, 1)
@@ -123,15 +124,30 @@ def load_modes(path: str | Path, n_modes: int, n_grids: int, where: str | None =
                 "frequencies_hz": ((nm,), np.float64), "modal_mass": ((nm,), np.float64),
                 "damping_ratio": ((nm,), np.float64), "shapes": ((nm, ng, 6), np.float64)}
     arrays = read_arrays(path, expected, where,
-                         f" (n_modes = {nm}, n_grids = {ng} as the model file states)")
+                         f" (n_modes = {nm}, n_grids = {ng} as the model file states)", what)
     return ModalStructure(**arrays, source=where)
+
+
+def modes_path(path: str | Path) -> Path | None:
+    """The modes file (``.npz``) the modal model file at ``path`` names (``[modes] file``,
+    relative to its folder), None when ``path`` is no readable modal model file or names
+    none: the reader then says why."""
+    try:
+        data = tomllib.loads(fileio.read_text(path, "model file", limit=fileio.MAX_TOML_BYTES))
+    except (v.InputError, tomllib.TOMLDecodeError, RecursionError):
+        return None
+    if not (isinstance(data, dict) and data.get("format") == FORMAT):
+        return None
+    modes = data.get("modes")
+    file = modes.get("file") if isinstance(modes, dict) else None
+    return Path(path).parent / file if isinstance(file, str) and file else None
 
 
 def is_modal_file(path: str | Path) -> bool:
     """Whether the TOML file at ``path`` declares ``format = "propwhirl-modal-model"`` (a file
     that cannot be read or parsed is not: the model-file reader then says why)."""
     try:
-        data = tomllib.loads(fileio.read_text(path, "model file"))
+        data = tomllib.loads(fileio.read_text(path, "model file", limit=fileio.MAX_TOML_BYTES))
     except (v.InputError, tomllib.TOMLDecodeError, RecursionError):
         return False
     return isinstance(data, dict) and data.get("format") == FORMAT
@@ -143,7 +159,7 @@ def load_modal_model(path: str | Path) -> ModalPropellerWing:
     the file, naming the key (and the grid id) as written."""
     path = Path(path)
     src = str(path)
-    text = fileio.read_text(path, "modal model file")
+    text = fileio.read_text(path, "modal model file", limit=fileio.MAX_TOML_BYTES)
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -219,7 +235,7 @@ def _from_dict(data: dict[str, Any], path: Path) -> ModalPropellerWing:
             raise t.bad("propeller", "the key of a [propellers.KEY] table ("
                         + (", ".join(ctx) or "none given") + ")")
     # only now the arrays: the description is whole and consistent
-    structure = load_modes(file, n_modes, n_grids)
+    structure = load_modes(file, n_modes, n_grids, what="[modes] file")
     ids = set(int(i) for i in structure.grid_ids)
     for i, g in enumerate(raw_grids):
         if g not in ids:
@@ -247,6 +263,21 @@ def _keys(cls: type) -> tuple[str, ...]:
     return schema.table_keys(cls)
 
 
+def _check_targets(path: Path, npz: Path) -> None:
+    """:func:`write_modes`' outputs: regular files or new paths, apart, and `path` a new path
+    or a modal model file (no other file is replaced: the model written from may have been
+    read from it)."""
+    outputs = [("write_modes: path", path), ("write_modes: its modes file", npz)]
+    for label, p in outputs:
+        fileio.check_output(p, label)
+    fileio.check_apart(outputs)
+    if fileio.exists(path, "modal model file") and not is_modal_file(path):
+        raise v.InputError(f"write_modes: path {fileio.quoted(path)} exists and is not a modal "
+                           f"model file (format = {FORMAT!r}): write_modes replaces only a "
+                           "modal model file, never another file such as the beam model's "
+                           "own; give another path")
+
+
 # =============================================================================== writing
 def write_modes(model: PropellerWing, path: str | Path, n_modes: int | None = None,
                 mount: str = "own") -> tuple[Path, Path]:
@@ -260,7 +291,12 @@ def write_modes(model: PropellerWing, path: str | Path, n_modes: int | None = No
     node's grid with its own mount (a flexible one's pitch and yaw DOFs and springs, and its
     mass, added by the modal model).  ``mount = "on-grid"`` (way b): the modes of the whole
     structure — wing, propeller masses and mount springs (:meth:`ModalStructure.with_mounts`)
-    — and every propeller "on-grid" at a hub grid of its own."""
+    — and every propeller "on-grid" at a hub grid of its own.
+
+    Before anything is computed, ``path`` must be a new path or a modal model file (one
+    :func:`write_modes` wrote: any other file there — the beam model's own file above all —
+    is refused, not replaced), neither file a device, a FIFO or a socket, and the two not one
+    file (:func:`propwhirl.fileio.check_output`, :func:`propwhirl.fileio.check_apart`)."""
     if not isinstance(model, PropellerWing):
         raise v.InputError(f"write_modes: model is a {type(model).__name__}: only a "
                            "PropellerWing's wing can be written as modes")
@@ -277,6 +313,7 @@ def write_modes(model: PropellerWing, path: str | Path, n_modes: int | None = No
         raise v.InputError(f"write_modes: mount = {mount!r} is invalid: must be 'own' or "
                            "'on-grid'")
     npz = path.with_name(path.name.removesuffix(".toml") + ".modes.npz")
+    _check_targets(path, npz)
     wing = model.wing
     if mount == "own":
         s = ModalStructure.from_wing(wing, n_modes)

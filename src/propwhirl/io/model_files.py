@@ -549,7 +549,8 @@ def load_model(path: str | Path, *, notes: list[str] | None = None) -> Any:
     """Read a TOML model file written by :func:`save_model` (or by hand); errors and `notes`
     (the values assumed for an older format version) as :func:`loads`, naming the path."""
     path = Path(path)
-    return loads(fileio.read_text(path, "model file", empty_ok=True), str(path), notes=notes)
+    return loads(fileio.read_text(path, "model file", empty_ok=True,
+                                 limit=fileio.MAX_TOML_BYTES), str(path), notes=notes)
 
 
 # =============================================================================== writing

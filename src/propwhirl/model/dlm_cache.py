@@ -13,7 +13,10 @@ matrix: this cache's :data:`FORMAT`, PanelAero's version, the panels' corner coo
 (both half-wings, [m], exactly as float64) and the exact Mach number and PanelAero's reduced
 frequency k̄ = ω/U [1/m] (their hexadecimal float forms).  Files are written to a temporary
 name and renamed, so a reader never sees half a file.  A directory that cannot be created or
-written is an InputError before any matrix is computed.
+written is an InputError before any matrix is computed.  An entry is read with bounds: its
+``.npy`` header first (nothing is allocated on the file's word); an entry that is not a regular
+file (a FIFO, a device: never written by the cache) or is larger than its matrix is an
+InputError naming it, refused before it is opened.
 
 **Integrity (a cache never changes an answer).**  Beside each ``aic-<key>.npy`` its checksum,
 ``aic-<key>.sha256``: the SHA-256 (:func:`checksum`) of the matrix's content (little-endian
@@ -53,7 +56,9 @@ from importlib import metadata
 from pathlib import Path
 
 import numpy as np
+from numpy.lib import format as npf
 
+from propwhirl import fileio
 from propwhirl import validate as v
 from propwhirl.limits import printable
 
@@ -70,6 +75,9 @@ CHECKSUM_TAG = b"propwhirl-dlm-aic-checksum/1\0"
 SPOT_CHECK_RTOL = 1e-9
 #: largest checksum file read [bytes] (64 hexadecimal digits and a newline)
 _SUM_BYTES = 128
+#: bytes of a cache file beyond its matrix's: the ``.npy`` magic and header (numpy pads the
+#: header to 64 or 4096 bytes)
+NPY_HEADER_MAX = 4096
 
 
 def cache_dir() -> Path | None:
@@ -154,15 +162,33 @@ def _damaged(path: Path, why: str) -> None:
 def load(directory: Path, geometry: str, mach: float, kbar: float, n: int) -> np.ndarray | None:
     """The cached (n, n) complex AIC at Mach and k̄ [1/m], or None when there is no entry, no
     checksum beside it (an older propwhirl's entry) or a damaged one (a one-line warning:
-    unreadable, not such a matrix, or not matching its checksum; module docstring)."""
+    unreadable, not such a matrix, or not matching its checksum; module docstring).  Its
+    ``.npy`` header is checked before any data is allocated; an entry that is not a regular
+    file (a FIFO, a device: never written by the cache) or larger than such a matrix
+    (n² · 16 bytes + :data:`NPY_HEADER_MAX`) is an InputError naming it
+    (:func:`propwhirl.fileio.open_input`, checked before it is opened)."""
     path = _path(directory, geometry, mach, kbar)
-    digest = _read_sum(path)
-    if digest is None:
-        return None                          # absent, or an entry without checksum: recomputed
-    try:
-        Q = np.load(path, allow_pickle=False)
-    except FileNotFoundError:
+    what = f"{CACHE_ENV} entry"
+    if not fileio.exists(path, what):
         return None
+    digest = _read_sum(path)
+    want = np.dtype(np.complex128)
+    limit = n * n * want.itemsize + NPY_HEADER_MAX
+    try:
+        with fileio.open_input(path, what, limit, bound=f"a {n} x {n} complex AIC and its "
+                               ".npy header; remove the entry") as fh:
+            if digest is None:               # an entry without checksum: computed again
+                return None
+            version = npf.read_magic(fh)
+            read_header = (npf.read_array_header_1_0 if version == (1, 0)
+                           else npf.read_array_header_2_0)
+            shape, _, dtype = read_header(fh)
+            if tuple(shape) != (n, n) or dtype != want:
+                return _damaged(path, f"not a finite {n} x {n} complex matrix")
+            fh.seek(0)
+            Q = npf.read_array(fh, allow_pickle=False)
+    except v.InputError:                    # not a regular file, or too large: named
+        raise
     except (OSError, ValueError, EOFError) as exc:          # EOFError: an empty file
         return _damaged(path, f"unreadable: {type(exc).__name__}")
     if Q.shape != (n, n) or Q.dtype != np.complex128 or not np.all(np.isfinite(Q)):

@@ -135,7 +135,7 @@ def load_references(path: Path | None = None) -> list[Reference]:
     if path is None:
         text = resources.files("propwhirl").joinpath("data/thesis_values.toml").read_text()
     else:
-        text = fileio.read_text(path, "reference values file")
+        text = fileio.read_text(path, "reference values file", limit=fileio.MAX_TOML_BYTES)
     data = tomllib.loads(text)
     fields = Reference.__dataclass_fields__
     return [Reference(**{k: v for k, v in item.items() if k in fields}) for item in data["value"]]
