@@ -52,7 +52,7 @@ from propwhirl.engine.crossings import XTOL, _branch_point_speeds, _critical_poi
 from propwhirl import limits
 from propwhirl.engine.eigensolve import (StateMatrixFn, _call_state_matrix, _displacement_mask,
                                          single_thread_blas)
-from propwhirl.engine.hermite import _CHECK_S, _hermite_coeffs, _hermite_eval
+from propwhirl.engine.hermite import _CHECK_S, hermite_coeffs, hermite_eval
 from propwhirl.engine.linking import _link, _Link
 from propwhirl.engine.nodes import _evaluate_nodes, _Node
 from propwhirl.engine.options import TrackingOptions, _check_speeds
@@ -405,7 +405,7 @@ def _hump_candidates(V: np.ndarray, models, floor: np.ndarray,
         return []
     t_i, k_i = np.nonzero(ok)
     hh = h[t_i, 0]
-    c = _hermite_coeffs(fa[t_i, k_i], fb[t_i, k_i], ga[t_i, k_i], gb[t_i, k_i], hh)
+    c = hermite_coeffs(fa[t_i, k_i], fb[t_i, k_i], ga[t_i, k_i], gb[t_i, k_i], hh)
     A, B, C = 3 * c[3], 2 * c[2], c[1]
     disc = B * B - 4 * A * C
     sq = np.sqrt(np.maximum(disc, 0.0))
@@ -416,7 +416,7 @@ def _hump_candidates(V: np.ndarray, models, floor: np.ndarray,
                         np.broadcast_to(_CHECK_S, (t_i.size, _CHECK_S.size))], axis=1)
     valid = np.isfinite(S) & (S > 0) & (S < 1)
     S = np.where(valid, S, 0.5)
-    p = _hermite_eval(tuple(ci[:, None] for ci in c), S)
+    p = hermite_eval(tuple(ci[:, None] for ci in c), S)
     tol_mid = np.maximum(tola[t_i, k_i], tolb[t_i, k_i])[:, None]
     env = opts.margin * e[t_i, k_i][:, None] * 16 * S ** 2 * (1 - S) ** 2
     viol = (p * sa[t_i, k_i][:, None] < np.maximum(env, 0.0) - tol_mid) & valid
