@@ -246,11 +246,14 @@ def _analyse(args: argparse.Namespace) -> int:
         a = analyse(model, speeds, vgf=True, method=args.method)
     echo(a.summary())
     st = a.sweep.stats
-    if "reduced_states" in st:
+    if "reduced_L" in st:                 # a strip wing's reduced model (analysis/reduced)
         echo(f"  method: reduced ({st['reduced_states']} of {model.dof_map().n_states} states:"
               f" {st['reduced_r']} Ritz vectors, {st['reduced_L']} lag states); "
               f"{a.criticals.stats.get('corrected', 0)} of {len(a.criticals.points)} crossings "
               "converged on the full-order model")
+    elif "reduced_states" in st:           # a DLM wing's modal Roger state space (modal_dlm)
+        echo(f"  method: reduced (the Roger state space on {st['reduced_r']} in-vacuo modes, "
+             f"{st['reduced_states']} states); its crossings converged by the p-k method on Q(k)")
     if V_req is not None:                  # the summary's last line (issue 25.5)
         from propwhirl.analysis.margin import speed_margin
 
