@@ -328,8 +328,9 @@ def _add_analyse(sub) -> None:
                         "auto (default): reduced for a wing, kept where every crossing converged "
                         "on the full order, else dense; its V-g-f table holds the modes below "
                         "the reduction's cut-off (dense: every mode)")
-    p.add_argument("--quiet", action="store_true", help="no progress spinner (there is none "
-                   "either when stderr is not a terminal)")
+    p.add_argument("--quiet", action="store_true", help="no progress on stderr (by default a "
+                   f"spinner on a terminal, else a line every {progress.INTERVAL:g} s; nothing in "
+                   f"the first {progress.DELAY:g} s)")
     p.add_argument("--vd", type=float, default=None, metavar="V", help="design dive speed V_D "
                    "[m/s]: the summary ends with the margin of the critical instability to "
                    "factor x V_D [m/s and %%] and the least damping g = 2 zeta below it (the "
