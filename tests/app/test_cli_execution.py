@@ -1,7 +1,7 @@
 """The study commands' execution options (issue 12, items 5–6) on `propwhirl reproduce`:
 progress on stderr — a bar on a terminal, plain lines on a pipe (issue 37, item 3), never
 with --quiet —, an interrupted run resumed with --resume to the same records, --scheduler on a
-Dask cluster; the spinner of `propwhirl analyse`."""
+Dask cluster; the spinner of `propwhirl analyse` and the count of its doublet-lattice AICs."""
 from __future__ import annotations
 
 import io
@@ -83,6 +83,28 @@ def test_a_pipe_gets_a_line_of_every_count_and_quiet_none():
     assert "within tolerance" in r.stdout
     quiet = run_piped(["reproduce", "--only", *ONLY, "--quiet"])
     assert quiet.returncode == 0 and quiet.stderr == ""
+
+
+def test_analyse_on_a_pipe_counts_its_doublet_lattice_aics(small_dlm_file):
+    """`propwhirl analyse` of a doublet-lattice wing, stderr a pipe: the count of the AICs its
+    Roger fit reads (20 reduced frequencies x 1 Mach column), every one from 0 to 20, with
+    the estimate of the time left, then the elapsed time to `done in`; with --quiet none."""
+    argv = ["analyse", str(small_dlm_file), "--speeds", "100", "290", "10"]
+    r = run_piped(argv)
+    assert r.returncode == 0, r.stderr
+    assert "\r" not in r.stderr
+    lines = progress_lines(r.stderr, "analysing small DLM tip model")
+    counted = [re.search(r": doublet-lattice AICs (\d+) of (\d+) \(", line) for line in lines]
+    counts = [(int(m.group(1)), int(m.group(2))) for m in counted if m]
+    assert {total for _, total in counts} == {20}
+    assert {done for done, _ in counts} == set(range(21))
+    assert any(", est. " in line and " left" in line for line in lines)
+    assert re.fullmatch(r"analysing small DLM tip model: done in \d+ s", lines[-1])
+    assert "critical:" in r.stdout
+    quiet = run_piped(argv + ["--quiet"])
+    assert quiet.returncode == 0, quiet.stderr
+    assert progress_lines(quiet.stderr, "analysing small DLM tip model") == []
+    assert quiet.stdout == r.stdout
 
 
 def test_an_interrupted_reproduction_resumes_to_the_same_records(monkeypatch, tmp_path, capsys):

@@ -21,7 +21,7 @@ names of earlier releases).
 from __future__ import annotations
 
 import json
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, ClassVar
@@ -32,7 +32,7 @@ from propwhirl import fileio
 from propwhirl import validate as v
 from propwhirl.analysis.events import (UNSTABLE_EVENTS, Exclusion, Instability,  # noqa: F401
                                        critical, describe_critical)
-from propwhirl.analysis.modal_dlm import modal_dlm_analysis
+from propwhirl.analysis.modal_dlm import compute_fit_aics, modal_dlm_analysis
 from propwhirl.analysis.modes import InVacuo
 from propwhirl.analysis.naming import mode_content, named_modes, whirl, with_content
 from propwhirl.analysis.participation import (ModeParticipation, branch_point_shape,  # noqa: F401
@@ -475,7 +475,8 @@ def _frequency_zero_events(model: Model, sweep, state_matrix, xtol: float, lift)
 
 @one_blas_thread
 def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
-            options: TrackingOptions | None = None, method: str = "auto") -> ModelAnalysis:
+            options: TrackingOptions | None = None, method: str = "auto",
+            progress: Callable[[int, int], None] | None = None) -> ModelAnalysis:
     """Every instability of `model` over `speeds` [m/s], with tracked, named modes.
 
     Parameters
@@ -515,6 +516,13 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         (:mod:`propwhirl.analysis.modal_dlm`: only critical speeds the p-k has), "dense" the
         Roger state space on every DOF (:mod:`propwhirl.model.dlm_rfa`; modes far beyond the
         fit's reduced frequencies included), "pk" the p-k method on Q(k) itself.
+    progress : callable, optional
+        ``report(done, total)``: a wing with ``aero = "dlm"`` analysed on its Roger state space
+        ("auto", "reduced", "dense") first computes the doublet-lattice AICs its fits at the
+        first speeds read, their number known in advance (the fits' 20 reduced frequencies ×
+        the Mach columns: :func:`~propwhirl.analysis.modal_dlm.compute_fit_aics`), and calls
+        it before the first and after each; nothing else reports.  None (default): silent.
+        The command line passes the stage of its spinner (:mod:`propwhirl.progress`).
 
     Returns
     -------
@@ -544,6 +552,9 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         raise v.InputError(f"vgf = {vgf!r} is invalid: must be True or False")
     if options is not None and not isinstance(options, TrackingOptions):
         raise v.InputError(f"options = {options!r} is invalid: must be a TrackingOptions")
+    if progress is not None and not callable(progress):
+        raise v.InputError(f"progress = {progress!r:.60} is invalid: must be None or a callable "
+                           "report(done, total)")
     chosen = choose_method(model, method)
     # p-k: the strip twin tracks, names and starts the p-k modes; a DLM wing otherwise runs on
     # its own Roger state space (propwhirl.model.dlm_rfa)
@@ -553,6 +564,8 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         and model.wing_aero
     if dlm_rfa:                                # Mach within the tables before any work
         check_speed_mach(model, (grid[0], grid[-1]))
+    if dlm_rfa and progress is not None:       # the AICs of its first speeds, counted
+        compute_fit_aics(model, grid, vgf=bool(vgf), report=progress)
     assembly, in_vacuo = None, None
     dlm_notes: tuple[str, ...] = ()
     if chosen == "reduced":

@@ -242,8 +242,9 @@ def _analyse(args: argparse.Namespace) -> int:
                                                             choose_method(model, args.method))
     if notice:                             # a long one is announced before the work (issue 20.9)
         print(f"propwhirl: estimate: {notice}", file=sys.stderr)
-    with progress.spinner(f"analysing {limits.printable(model.name)}", quiet=args.quiet):
-        a = analyse(model, speeds, vgf=True, method=args.method)
+    with progress.spinner(f"analysing {limits.printable(model.name)}", quiet=args.quiet) as spin:
+        a = analyse(model, speeds, vgf=True, method=args.method,
+                    progress=spin.stage("doublet-lattice AICs"))
     echo(a.summary())
     st = a.sweep.stats
     if "reduced_L" in st:                 # a strip wing's reduced model (analysis/reduced)

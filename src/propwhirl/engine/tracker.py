@@ -65,8 +65,10 @@ from propwhirl.validate import InputError, finite, increasing, integer_at_least,
 ANALYSE_INITIAL_STEP = 50.0
 
 
-def _initial_subset(grid: np.ndarray, step: float | None) -> np.ndarray:
-    """The grid speeds nearest to an even division of [first, last] at spacing ≤ ``step``.
+def initial_speeds(grid: np.ndarray, step: float | None) -> np.ndarray:
+    """The grid speeds [m/s] the sweep evaluates first (its first batch): those nearest to an
+    even division of [first, last] at spacing ≤ ``step`` [m/s] (:func:`analyse`'s
+    ``initial_step``).
 
     Always the first and the last grid speed; the whole grid when ``step`` is None or the grid
     is already at least that coarse.
@@ -298,7 +300,7 @@ def _sweep(fn, grid, n_dof, displacement, labels, mode_labels, opts,
     linking, and the airspeed's own refinements layered on it — bisection at grid speeds or
     where a cluster asks, bracketing of unstable branch points, the Hermite hump check."""
     stats: dict[str, int] = {}
-    first = _initial_subset(grid, initial_step)
+    first = initial_speeds(grid, initial_step)
     # the number of states before any batch: from the labels, else from A at one speed
     n = len(labels) if labels is not None else _call_state_matrix(fn, first[:1], None,
                                                                    None).shape[-1]
