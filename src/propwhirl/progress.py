@@ -1,27 +1,45 @@
-"""Progress on the terminal: a bar for a known number of steps, a spinner for an unknown one.
+"""Progress of long runs on stderr: a bar for a known number of steps, a spinner for an unknown one.
 
-A run longer than about :data:`DELAY` seconds shows its progress on stderr — studies, maps,
-``propwhirl reproduce`` (a bar: points or cases done of the total, elapsed time, rate) and long
-analyses (a spinner with the elapsed time: the number of speeds an analysis evaluates is not
-known in advance).  Nothing is written when the stream is not a terminal (a pipe, a file, a
-notebook's captured stderr, the test suite) or when ``quiet`` is set, so output that is read by
-programs never carries progress text.
+A run longer than about :data:`DELAY` seconds reports its progress on stderr — studies, maps,
+``propwhirl reproduce``, campaigns (a bar: points or cases done of the total) and long analyses
+(a spinner with the elapsed time, and the count of a stage whose length is known, e.g. the
+doublet-lattice AICs of an analysis: ``doublet-lattice AICs 40 of 220, est. 1 min 20 s
+left``).  How it is shown depends on the stream:
 
-The bar is drawn by tqdm when it is installed (``pip install propwhirl[progress]``), else by a
-plain built-in counter (``reproduce: 12/41 (29%) 00:37``) redrawn in place; both appear only
-after :data:`DELAY` seconds, so short runs stay silent.
+* **a terminal**: a bar redrawn in place (tqdm when installed, ``pip install
+  propwhirl[progress]``, else a plain built-in counter ``reproduce: 12/41 (29%) 00:37``), or a
+  spinner ``analysing big wing | 00:12``;
+* **anything else** (a pipe, a log file, a batch job, a notebook's stderr): plain lines
+  (:class:`Lines`), one at most every :data:`INTERVAL` seconds and at least that often while
+  the work runs, each naming what runs, how far it is and an estimate of the time left —
+  ``reproduce: 12 of 41 (29 %), 37 s elapsed, est. 1 min 30 s left`` — and a last line
+  ``... done in 2 min 3 s`` when any was written;
+* nothing with ``quiet`` (``--quiet``) or for a run shorter than :data:`DELAY` (every form
+  waits that long), so short runs and output read by programs stay silent.
 
-Reporters are plain callables ``report(done, total)`` (:data:`ProgressCallback`): the
-execution layer (:mod:`propwhirl.studies.execution`) calls one after every finished point, so a
-caller may pass its own function instead of a bar.  A reporter is also a context manager: on
-exit it clears or ends its line.
+``PROPWHIRL_PROGRESS_DELAY`` and ``PROPWHIRL_PROGRESS_INTERVAL`` (seconds >= 0) override
+:data:`DELAY` and :data:`INTERVAL` (0 and 0: every report shows, as the tests run it).
 
->>> with bar("points", total=3, stream=None) as report:   # no terminal: nothing is drawn
+**Who asks for it.**  The Python API is silent unless asked: every ``progress`` argument is
+None by default; ``progress=True`` of a study (:func:`reporter`) asks for a bar on stderr as
+above, a callable ``report(done, total)`` (:data:`ProgressCallback`) receives the counts
+instead.  The command line asks for it on every long command (the study commands, ``reproduce``,
+``certify``, ``analyse``) unless ``--quiet``.
+
+Reporters are plain callables ``report(done, total)``: the execution layer
+(:mod:`propwhirl.studies.execution`) calls one after every finished point, an analysis after
+every doublet-lattice AIC it computes, so a caller may pass its own function instead of a bar.
+A reporter is also a context manager: on exit it clears or ends its line.  A spinner's
+:meth:`Spinner.stage` is the reporter of a counted stage of its work.
+
+>>> with bar("points", total=3, stream=None) as report:   # no stream: nothing is written
 ...     for k in range(1, 4):
 ...         report(k, 3)
 """
 from __future__ import annotations
 
+import math
+import os
 import sys
 import threading
 import time
@@ -29,13 +47,27 @@ from typing import Callable, Protocol, TextIO
 
 from propwhirl import validate as v
 
-#: Seconds before a bar or spinner appears: runs shorter than this print nothing [s].
+#: Seconds before a bar, spinner or line appears: runs shorter than this print nothing [s].
 DELAY = 2.0
 #: Shortest interval between two redraws of the plain bar and the spinner [s].
 REFRESH = 0.2
+#: Seconds between two progress lines when the stream is not a terminal [s].
+INTERVAL = 10.0
+#: environment variables overriding :data:`DELAY` and :data:`INTERVAL` [s]
+DELAY_ENV = "PROPWHIRL_PROGRESS_DELAY"
+INTERVAL_ENV = "PROPWHIRL_PROGRESS_INTERVAL"
 
 #: A progress reporter: called with (steps done, total steps) after every finished step.
 ProgressCallback = Callable[[int, int], None]
+
+#: Held by a :class:`Lines` reporter's thread while it writes, and by a fork (a study's worker
+#: processes) while it copies the process: a child never inherits the stream's lock held by a
+#: thread that does not exist in it (which would hang the child at its first write to stderr).
+#: A lock of the process, not state of a run: nothing else reads or holds it.
+_WRITING = threading.Lock()
+if hasattr(os, "register_at_fork"):
+    os.register_at_fork(before=_WRITING.acquire, after_in_parent=_WRITING.release,
+                        after_in_child=_WRITING.release)
 
 
 class Reporter(Protocol):
@@ -66,10 +98,63 @@ def _clock(seconds: float) -> str:
     return f"{h:d}:{m:02d}:{s:02d}" if h else f"{m:02d}:{s:02d}"
 
 
+def duration(seconds: float) -> str:
+    """A duration [s] as a line says it: '8 s', '1 min 20 s', '2 min', '2 h 5 min'."""
+    s = max(0, int(round(seconds)))
+    if s < 60:
+        return f"{s} s"
+    m, s = divmod(s, 60)
+    if m < 60:
+        return f"{m} min {s} s" if s else f"{m} min"
+    h, m = divmod(m, 60)
+    return f"{h} h {m} min" if m else f"{h} h"
+
+
+def _seconds(name: str, env: str, default: float, given: float | None, read_env: bool) -> float:
+    """A time setting [s]: `given` if not None (checked >= 0, an error naming `name`), else the
+    environment variable `env` if `read_env` and set (a number of seconds >= 0; an InputError
+    naming it otherwise), else `default`."""
+    if given is not None:
+        return float(v.non_negative(name, given, "s"))
+    text = os.environ.get(env, "").strip() if read_env else ""
+    if not text:
+        return default
+    try:
+        x = float(text)
+    except ValueError:
+        x = math.nan
+    if not (math.isfinite(x) and x >= 0):
+        raise v.InputError(f"{env} = {text!r} is invalid: must be a number of seconds >= 0")
+    return x
+
+
+def timing(delay: float | None = None, interval: float | None = None, *,
+           read_env: bool = True) -> tuple[float, float]:
+    """(delay, interval) [s] of a reporter: the given ones, else ``PROPWHIRL_PROGRESS_DELAY``
+    and ``PROPWHIRL_PROGRESS_INTERVAL`` (when `read_env`), else :data:`DELAY` and
+    :data:`INTERVAL`."""
+    return (_seconds("delay", DELAY_ENV, DELAY, delay, read_env),
+            _seconds("interval", INTERVAL_ENV, INTERVAL, interval, read_env))
+
+
+class _Count:
+    """The count of a (stage of) work: ``what``, steps ``done`` of ``total``, counted since
+    ``start`` [s, monotonic] from ``first`` done then (the estimate's rate counts this run's
+    steps only: a resumed study's points are not)."""
+
+    def __init__(self, what: str, done: int, total: int, now: float) -> None:
+        self.what, self.done, self.total = what, done, total
+        self.start, self.first = now, done
+
+
 class Silent:
-    """The reporter that reports nothing (not a terminal, ``--quiet``)."""
+    """The reporter that reports nothing (``--quiet``, no stream, a progress not asked for)."""
 
     def __call__(self, done: int, total: int) -> None:
+        return None
+
+    def stage(self, what: str) -> None:
+        """No reporter: a stage of silent work reports nothing (None)."""
         return None
 
     def close(self) -> None:
@@ -145,18 +230,23 @@ class TqdmBar:
 
 
 def bar(desc: str, total: int, *, stream: TextIO | None = ..., quiet: bool = False,  # type: ignore[assignment]
-        delay: float | None = None) -> Reporter:
+        delay: float | None = None, interval: float | None = None) -> Reporter:
     """A progress bar of `total` steps labelled `desc` on `stream` (default: ``sys.stderr``).
 
-    Silent (:class:`Silent`) when `quiet` or when `stream` is not a terminal; tqdm's bar when
-    tqdm is installed, else :class:`PlainBar`.  delay [s]: nothing is drawn before (default
-    :data:`DELAY`).
+    On a terminal tqdm's bar when tqdm is installed, else :class:`PlainBar`; on any other
+    stream :class:`Lines`; silent (:class:`Silent`) when `quiet` or `stream` is None.
+    delay [s]: nothing is written before (default :data:`DELAY`, ``PROPWHIRL_PROGRESS_DELAY``);
+    interval [s]: between two lines off a terminal (default :data:`INTERVAL`,
+    ``PROPWHIRL_PROGRESS_INTERVAL``).
     """
     v.integer_at_least("total", total, 0)
     stream = sys.stderr if stream is ... else stream
-    delay = DELAY if delay is None else float(v.non_negative("delay", delay, "s"))
-    if quiet or not is_terminal(stream):
+    silent = quiet or stream is None
+    delay, interval = timing(delay, interval, read_env=not silent)
+    if silent:
         return Silent()
+    if not is_terminal(stream):
+        return Lines(desc, total, stream, delay, interval)
     try:
         import tqdm  # noqa: F401
     except ImportError:
@@ -164,28 +254,181 @@ def bar(desc: str, total: int, *, stream: TextIO | None = ..., quiet: bool = Fal
     return TqdmBar(desc, total, stream, delay)
 
 
-class Spinner:
-    """A spinner for work of unknown length: ``desc ⠋ 12 s`` redrawn in place on `stream`
-    from a background thread every :data:`REFRESH` s, first after `delay` [s]; the line is
-    cleared on close.  Use as a context manager around the work."""
+class _Stages:
+    """What a spinner or a line reporter shows: its label `desc`, the elapsed time and the
+    count of the work (a bar: `total` steps) or of a spinner's current :meth:`stage`."""
+
+    def __init__(self, desc: str, total: int | None) -> None:
+        self.desc = desc
+        self.start = time.monotonic()
+        self._bar = total is not None
+        self._total = 0 if total is None else total
+        self._count: _Count | None = None
+        self._lock = threading.Lock()
+
+    def __call__(self, done: int, total: int) -> None:
+        self._update("", done, total)
+
+    def stage(self, what: str) -> ProgressCallback:
+        """The reporter ``report(done, total)`` of a counted stage of the work, shown as
+        ``what done of total`` with an estimate of the stage's time left until done = total."""
+
+        def report(done: int, total: int) -> None:
+            self._update(what, done, total)
+
+        return report
+
+    def _update(self, what: str, done: int, total: int) -> None:
+        now = time.monotonic()
+        with self._lock:
+            c = self._count
+            if c is None or c.what != what:
+                c = self._count = _Count(what, done, total, now)
+            c.done, c.total = done, total
+            if total > 0 or self._bar:                      # an empty stage: nothing to show
+                self._changed(now)
+            if not self._bar and done >= total:             # the stage is over
+                self._count = None
+
+    def _changed(self, now: float) -> None:
+        """Called with the lock held after every report."""
+
+    def _counted(self, now: float) -> tuple[str, str]:
+        """('AICs 40 of 220 (18 %)', 'est. 1 min 20 s left') of the count, ('', '') without."""
+        c = self._count
+        if c is None:
+            return (f"0 of {self._total} (0 %)", "") if self._bar else ("", "")
+        head = f"{c.what} " if c.what else ""
+        pct = 100.0 * c.done / c.total if c.total else 100.0
+        est = ""
+        if c.first < c.done < c.total:
+            est = f"est. {duration((now - c.start) * (c.total - c.done) / (c.done - c.first))} left"
+        return f"{head}{c.done} of {c.total} ({pct:.0f} %)", est
+
+
+class Lines(_Stages):
+    """Progress as plain lines on a stream that is not a terminal (a pipe, a log file, a batch
+    job, a notebook), for a bar of `total` steps or a spinner (`total` None):
+
+        reproduce: 12 of 41 (29 %), 37 s elapsed, est. 1 min 30 s left
+        analysing Goland: doublet-lattice AICs 40 of 220 (18 %), 25 s elapsed, est. 1 min 50 s left
+        analysing Goland: 2 min 10 s elapsed
+
+    (a spinner shows the count of its current :meth:`stage` while one runs).  The first line
+    after `delay` [s], then one at most every `interval` [s]: on a report, and from a
+    background thread while the reporter is entered as a context manager (so a slow step
+    still shows that the run goes on); on close a last line ``... done in 2 min 3 s`` (or
+    ``stopped after``: an error, or a bar short of its total) when any line was written.  A
+    stream that cannot be written to ends the lines, never the work."""
+
+    def __init__(self, desc: str, total: int | None, stream: TextIO, delay: float,
+                 interval: float) -> None:
+        super().__init__(desc, total)
+        self.stream, self.delay, self.interval = stream, delay, interval
+        self._last: float | None = None               # when the last line was written
+        self._written = False
+        self._broken = False
+        self._stop = threading.Event()
+        self._thread: threading.Thread | None = None
+
+    def _line(self, now: float, end: str | None = None) -> str:
+        count, est = self._counted(now)
+        if end is not None:
+            return f"{self.desc}: {count + ', ' if count else ''}{end} {duration(now - self.start)}"
+        parts = [count] if count else []
+        parts.append(f"{duration(now - self.start)} elapsed")
+        if est:
+            parts.append(est)
+        return f"{self.desc}: {', '.join(parts)}"
+
+    def _write(self, text: str) -> None:
+        if self._broken:
+            return
+        try:
+            with _WRITING:
+                self.stream.write(text + "\n")
+                self.stream.flush()
+        except (OSError, ValueError):                # a closed pipe or stream: no more lines
+            self._broken = True
+            return
+        self._written = True
+
+    def _emit(self, now: float) -> None:
+        """A line now if the delay has passed and the last line is `interval` old (lock held)."""
+        if now - self.start < self.delay:
+            return
+        if self._last is not None and now - self._last < self.interval:
+            return
+        self._last = now
+        self._write(self._line(now))
+
+    def _changed(self, now: float) -> None:
+        self._emit(now)
+
+    def _beat(self) -> None:
+        while True:
+            now = time.monotonic()
+            due = self.start + self.delay if self._last is None else self._last + self.interval
+            if self._stop.wait(max(due - now, REFRESH)):
+                return
+            with self._lock:
+                self._emit(time.monotonic())
+
+    def __enter__(self) -> "Lines":
+        with self._lock:                  # the first line at once when there is no delay
+            self._emit(time.monotonic())
+        if self._thread is None:
+            self._thread = threading.Thread(target=self._beat, name="propwhirl-progress",
+                                            daemon=True)
+            self._thread.start()
+        return self
+
+    def close(self, failed: bool = False) -> None:
+        """Stop the lines; a last one (done in / stopped after) if any was written."""
+        self._stop.set()
+        if self._thread is not None and self._thread is not threading.current_thread():
+            self._thread.join()
+        with self._lock:
+            if self._written:
+                c = self._count
+                unfinished = self._bar and (c is None or c.done < c.total)
+                end = "stopped after" if failed or unfinished else "done in"
+                self._write(self._line(time.monotonic(), end))
+                self._written = False
+
+    def __exit__(self, exc_type: object, *exc: object) -> None:
+        self.close(failed=exc_type is not None)
+
+
+class Spinner(_Stages):
+    """A spinner for work of unknown length: ``desc | 00:12`` redrawn in place on `stream`
+    (a terminal) from a background thread every :data:`REFRESH` s, first after `delay` [s],
+    followed by the count of the current :meth:`stage` while one runs (``doublet-lattice AICs
+    40 of 220 (18 %), est. 1 min 20 s left``); the line is cleared on close.  Use as a context
+    manager around the work."""
 
     FRAMES = "|/-\\"
 
     def __init__(self, desc: str, stream: TextIO, delay: float) -> None:
-        self.desc, self.stream, self.delay = desc, stream, delay
+        super().__init__(desc, None)
+        self.stream, self.delay = stream, delay
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._spin, name="propwhirl-spinner", daemon=True)
         self._width = 0
 
     def _spin(self) -> None:
-        start = time.monotonic()
         if self._stop.wait(self.delay):
             return
         k = 0
         while not self._stop.is_set():
-            text = f"\r{self.desc} {self.FRAMES[k % len(self.FRAMES)]} {_clock(time.monotonic() - start)}"
+            now = time.monotonic()
+            with self._lock:
+                count, est = self._counted(now)
+            text = f"\r{self.desc} {self.FRAMES[k % len(self.FRAMES)]} {_clock(now - self.start)}"
+            if count:
+                text += f" {count}" + (f", {est}" if est else "")
             self._width = max(self._width, len(text))
-            self.stream.write(text)
+            self.stream.write(text.ljust(self._width))
             self.stream.flush()
             k += 1
             self._stop.wait(REFRESH)
@@ -193,9 +436,6 @@ class Spinner:
     def __enter__(self) -> "Spinner":
         self._thread.start()
         return self
-
-    def __call__(self, done: int, total: int) -> None:  # a Reporter too; the count is not shown
-        return None
 
     def close(self) -> None:
         self._stop.set()
@@ -211,20 +451,24 @@ class Spinner:
 
 
 def spinner(desc: str, *, stream: TextIO | None = ..., quiet: bool = False,  # type: ignore[assignment]
-            delay: float | None = None) -> Spinner | Silent:
-    """A :class:`Spinner` labelled `desc` on `stream` (default ``sys.stderr``); silent when
-    `quiet` or not a terminal.  delay [s]: default :data:`DELAY`."""
+            delay: float | None = None, interval: float | None = None) -> Spinner | Lines | Silent:
+    """A spinner labelled `desc` on `stream` (default ``sys.stderr``): a :class:`Spinner` on a
+    terminal, :class:`Lines` on any other stream, silent when `quiet` or `stream` is None.
+    delay, interval [s]: as :func:`bar`."""
     stream = sys.stderr if stream is ... else stream
-    delay = DELAY if delay is None else float(v.non_negative("delay", delay, "s"))
-    if quiet or not is_terminal(stream):
+    silent = quiet or stream is None
+    delay, interval = timing(delay, interval, read_env=not silent)
+    if silent:
         return Silent()
+    if not is_terminal(stream):
+        return Lines(desc, None, stream, delay, interval)
     return Spinner(desc, stream, delay)
 
 
 def reporter(progress: bool | ProgressCallback | None, desc: str, total: int) -> Reporter:
     """The reporter a `progress` argument asks for: None or False → :class:`Silent`; True → a
-    :func:`bar` on stderr (silent when stderr is not a terminal); a callable → itself, wrapped
-    as a context manager."""
+    :func:`bar` on stderr (plain lines when stderr is not a terminal); a callable → itself,
+    wrapped as a context manager."""
     if progress is None or progress is False:
         return Silent()
     if progress is True:

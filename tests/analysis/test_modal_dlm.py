@@ -131,3 +131,33 @@ def test_a_crossing_the_pk_does_not_have_is_noted_not_reported(goland_4x7, monke
     (note,) = [w for w in a.warnings if "is not a crossing of the p-k method" in w]
     assert note.startswith("V = 15") and "(flutter onset of state-space mode" in note
     assert "\n" not in note
+
+
+@pytest.mark.parametrize("vgf, columns", [(True, 6), (False, 5)])
+def test_the_counted_aics_are_those_the_analysis_computes(monkeypatch, vgf, columns):
+    """analyse(model, progress=report) on a wing at Mach V/a (issue 37, item 3): report(done,
+    total) from 0 to a total known before the first AIC — the fit's 20 reduced frequencies in
+    each Mach column of the engine's first speeds (vgf: 140-200 m/s, Mach 0.43-0.61, columns
+    0.40-0.65; else 140, 160 and 200 m/s, columns 0.40-0.50 and 0.60-0.65) — each AIC once;
+    with or without it the analysis computes the same AICs and finds the same events, bit for
+    bit."""
+    from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
+    from propwhirl.model import dlm, dlm_cache
+
+    monkeypatch.delenv(dlm_cache.CACHE_ENV, raising=False)
+    m = wingtip_propeller_wing()
+    m = m.with_(wing=dataclasses.replace(m.wing, n_elements=6, aero="dlm",
+                                         dlm_chordwise_panels=3, dlm_spanwise_panels=7))
+    speeds = np.arange(140.0, 201.0, 20.0)
+    seen: list[tuple[int, int]] = []
+    runs = []
+    for progress in (None, lambda done, total: seen.append((done, total))):
+        dlm._CACHE.pop(dlm._geometry_key(m.wing), None)      # every AIC computed again
+        a = analyse(m, speeds, vgf=vgf, progress=progress)
+        runs.append((a, dlm.dlm_aerodynamics(m.wing).evaluations))
+    (plain, computed), (counted, computed_counted) = runs
+    assert seen == [(k, columns * 20) for k in range(columns * 20 + 1)]
+    assert computed_counted == computed >= columns * 20
+    assert [(e.kind, e.event, e.label, e.V, e.frequency_hz) for e in counted.events] == \
+        [(e.kind, e.event, e.label, e.V, e.frequency_hz) for e in plain.events]
+    assert counted.events and np.array_equal(counted.sweep.eigenvalues, plain.sweep.eigenvalues)

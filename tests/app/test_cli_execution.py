@@ -1,10 +1,13 @@
 """The study commands' execution options (issue 12, items 5–6) on `propwhirl reproduce`:
-progress on a terminal only (and never with --quiet), an interrupted run resumed with --resume
-to the same records, --scheduler on a Dask cluster; the spinner of `propwhirl analyse`."""
+progress on stderr — a bar on a terminal, plain lines on a pipe (issue 37, item 3), never
+with --quiet —, an interrupted run resumed with --resume to the same records, --scheduler on a
+Dask cluster; the spinner of `propwhirl analyse` and the count of its doublet-lattice AICs."""
 from __future__ import annotations
 
 import io
 import json
+import os
+import re
 import subprocess
 import sys
 import textwrap
@@ -42,25 +45,66 @@ def test_a_terminal_shows_the_reproduction_bar_and_quiet_hides_it(monkeypatch, n
     quiet = FakeTTY()
     assert run_with_stderr(monkeypatch, quiet, ["reproduce", "--only", *ONLY, "--quiet"]) == 0
     assert quiet.getvalue() == ""
-    pipe = io.StringIO()                        # not a terminal
+    pipe = io.StringIO()                        # not a terminal: plain lines
     assert run_with_stderr(monkeypatch, pipe, ["reproduce", "--only", *ONLY]) == 0
-    assert pipe.getvalue() == ""
+    lines = pipe.getvalue().splitlines()
+    assert "\r" not in pipe.getvalue()
+    assert lines[0].startswith("reproduce: 0 of 2 (0 %), ")
+    assert lines[-1].startswith("reproduce: 2 of 2 (100 %), done in ")
     assert "within tolerance" in capsys.readouterr().out
 
 
-def test_stderr_is_empty_when_it_is_a_pipe():
-    """A real process whose stderr is a pipe: no progress text (delay 0, so not by brevity)."""
-    code = textwrap.dedent("""
-        import sys
-        import propwhirl.progress as p
-        p.DELAY = 0.0
-        from propwhirl.app.cli import main
-        sys.exit(main(["reproduce", "--only", "t4.1", "t7.2"]))
-    """)
-    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+#: progress at once and at every report (the delay and interval off), so that a quick run
+#: shows every count: the lines are bounded by counts, never by elapsed time
+EVERY_REPORT = {"PROPWHIRL_PROGRESS_DELAY": "0", "PROPWHIRL_PROGRESS_INTERVAL": "0"}
+
+
+def run_piped(argv: list[str]) -> subprocess.CompletedProcess:
+    """`propwhirl ARGV` in a process of its own, stdout and stderr pipes (not terminals)."""
+    env = dict(os.environ, **EVERY_REPORT)
+    return subprocess.run([sys.executable, "-m", "propwhirl", *argv], capture_output=True,
+                          text=True, timeout=600, env=env)
+
+
+def progress_lines(stderr: str, desc: str) -> list[str]:
+    return [line for line in stderr.splitlines() if line.startswith(f"{desc}: ")]
+
+
+def test_a_pipe_gets_a_line_of_every_count_and_quiet_none():
+    """A real process whose stderr is a pipe (issue 37, item 3): `reproduce` writes plain
+    lines — what, how far, the time — of every count 0, 1, 2 of its cases, the last one
+    `done in`; with --quiet none."""
+    r = run_piped(["reproduce", "--only", *ONLY])
     assert r.returncode == 0, r.stderr
-    assert r.stderr == ""
+    lines = progress_lines(r.stderr, "reproduce")
+    assert "\r" not in r.stderr and lines == r.stderr.splitlines()
+    assert {int(re.match(r"reproduce: (\d+) of 2 ", line).group(1)) for line in lines} == {0, 1, 2}
+    assert re.fullmatch(r"reproduce: 2 of 2 \(100 %\), done in \d+ s", lines[-1])
     assert "within tolerance" in r.stdout
+    quiet = run_piped(["reproduce", "--only", *ONLY, "--quiet"])
+    assert quiet.returncode == 0 and quiet.stderr == ""
+
+
+def test_analyse_on_a_pipe_counts_its_doublet_lattice_aics(small_dlm_file):
+    """`propwhirl analyse` of a doublet-lattice wing, stderr a pipe: the count of the AICs its
+    Roger fit reads (20 reduced frequencies x 1 Mach column), every one from 0 to 20, with
+    the estimate of the time left, then the elapsed time to `done in`; with --quiet none."""
+    argv = ["analyse", str(small_dlm_file), "--speeds", "100", "290", "10"]
+    r = run_piped(argv)
+    assert r.returncode == 0, r.stderr
+    assert "\r" not in r.stderr
+    lines = progress_lines(r.stderr, "analysing small DLM tip model")
+    counted = [re.search(r": doublet-lattice AICs (\d+) of (\d+) \(", line) for line in lines]
+    counts = [(int(m.group(1)), int(m.group(2))) for m in counted if m]
+    assert {total for _, total in counts} == {20}
+    assert {done for done, _ in counts} == set(range(21))
+    assert any(", est. " in line and " left" in line for line in lines)
+    assert re.fullmatch(r"analysing small DLM tip model: done in \d+ s", lines[-1])
+    assert "critical:" in r.stdout
+    quiet = run_piped(argv + ["--quiet"])
+    assert quiet.returncode == 0, quiet.stderr
+    assert progress_lines(quiet.stderr, "analysing small DLM tip model") == []
+    assert quiet.stdout == r.stdout
 
 
 def test_an_interrupted_reproduction_resumes_to_the_same_records(monkeypatch, tmp_path, capsys):
@@ -117,7 +161,8 @@ def test_a_scheduler_without_dask_names_the_extra(monkeypatch, capsys):
     assert "pip install propwhirl[distributed]" in capsys.readouterr().err
 
 
-def test_analyse_spins_on_a_terminal_only(monkeypatch, no_delay, tmp_path, capsys):
+def test_analyse_spins_on_a_terminal_and_writes_lines_elsewhere(monkeypatch, no_delay, tmp_path,
+                                                                 capsys):
     from propwhirl import io as pio
     from propwhirl.cases.ch09_baseline import baseline_flight, baseline_propeller, baseline_wing
     from propwhirl.model.systems import Installation, PropellerWing
@@ -133,6 +178,8 @@ def test_analyse_spins_on_a_terminal_only(monkeypatch, no_delay, tmp_path, capsy
     quiet = FakeTTY()
     assert run_with_stderr(monkeypatch, quiet, ["analyse", str(path), "--quiet"]) == 0
     assert "analysing" not in quiet.getvalue()
-    pipe = io.StringIO()
+    pipe = io.StringIO()                        # not a terminal: plain lines
     assert run_with_stderr(monkeypatch, pipe, ["analyse", str(path)]) == 0
-    assert "analysing" not in pipe.getvalue()
+    lines = progress_lines(pipe.getvalue(), "analysing small tip model")
+    assert lines and "\r" not in pipe.getvalue()            # the first line at once (delay 0)
+    assert lines[-1].startswith("analysing small tip model: done in ")

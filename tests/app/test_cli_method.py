@@ -46,3 +46,13 @@ def test_the_pk_method_from_the_command_line(tmp_path, capsys):
     pk = load(tmp_path / "pk.json")
     flutter = [e.V for e in pk.events if e.kind == "flutter" and e.event == "onset"]
     assert flutter and abs(min(flutter) - 159.39) / 159.39 < 0.01
+
+
+def test_the_default_analysis_of_a_dlm_wing_from_the_command_line(small_dlm_file, capsys):
+    """`propwhirl analyse` of a doublet-lattice wing (the modal Roger state space, its crossings
+    the p-k's) prints its method line and exits 0 (it ended in a KeyError after the summary)."""
+    assert main(["analyse", str(small_dlm_file), "--speeds", "100", "290", "10", "--quiet"]) == 0
+    out = capsys.readouterr().out
+    assert "critical:" in out
+    assert "method: reduced (the Roger state space on " in out
+    assert "its crossings converged by the p-k method on Q(k)" in out

@@ -166,7 +166,7 @@ def random_coeffs(seed: int, k: int):
 
 
 def interpolated(coeffs):
-    C = cl._hermite_eval(tuple(c[None, :] for c in coeffs), cl._S[:, None])
+    C = cl.hermite_eval(tuple(c[None, :] for c in coeffs), cl._S[:, None])
     k = C.shape[1]
     comp = np.zeros((cl._S.size, k, k))
     comp[:, 0, :] = -C

@@ -122,6 +122,24 @@ def test_tables_interpolate_and_are_computed_once():
         aero.gaf(0.95, 0.1)
 
 
+def test_fill_computes_the_missing_table_nodes_once_and_counts_them():
+    """DlmAerodynamics.fill (the analysis's counted AICs, issue 37 item 3): each missing node
+    once, in order, reported 0 ... total; nodes already in the table neither computed nor
+    counted; the same values as column_node's."""
+    w = flat_wing(3.0, elastic_axis=0.4, n_elements=4)
+    aero = dlm.DlmAerodynamics(w, n_chord=2, n_span=4)
+    aero.column_node(0.3, 2)                              # already computed
+    seen = []
+    nodes = [(0.3, 1), (0.3, 2), (0.35, 1), (0.3, 1), (0.3, 3)]
+    assert aero.fill(nodes, lambda done, total: seen.append((done, total))) == 3
+    assert seen == [(0, 3), (1, 3), (2, 3), (3, 3)]
+    assert aero.evaluations == 4
+    fresh = dlm.DlmAerodynamics(w, n_chord=2, n_span=4)
+    for mach, ik in nodes:
+        assert np.array_equal(aero.column_node(mach, ik), fresh.column_node(mach, ik))
+    assert aero.evaluations == 4 and aero.fill(nodes) == 0
+
+
 def test_dlm_replaces_only_the_wing_strips():
     """The p-k matrices of a wing with a flexibly mounted propeller and in-plane bending: the
     DLM changes only the wing's bending-torsion block (the propeller's Houbolt-Reed loads and

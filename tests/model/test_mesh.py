@@ -86,3 +86,30 @@ def test_node_positions_are_read_only():
     m = mesh.build(4.8, 4)
     with pytest.raises(ValueError):
         m.node_y[1] = 0.0
+
+
+def test_beam_interpolation_is_the_beam_elements_shape_functions():
+    """mesh.beam_interpolation, the one interpolation of the DLM spline and the modal strips,
+    is the derivation's own element (Hermite bending 7.5–7.6, linear torsion 7.7–7.8) at
+    random points, the nodes and both ends of a non-uniform mesh: each point weighs the two
+    nodes of its element, a node the element starting there."""
+    sp = pytest.importorskip("sympy")
+    from derivations.beam_element import l_e, shape_functions, xi
+
+    N, Tsh = shape_functions()
+    ys = mesh.build(6.0, 5, (1.3, 4.0)).node_y
+    rng = np.random.default_rng(7)
+    y = np.concatenate([rng.uniform(0.0, 6.0, 8), ys])
+    H, P, T = mesh.beam_interpolation(ys, y)
+    assert H.shape == P.shape == T.shape == (y.size, ys.size)
+    for i, yi in enumerate(y):
+        e = min(int(np.searchsorted(ys, yi, side="right")) - 1, ys.size - 2)
+        le = ys[e + 1] - ys[e]
+        at = {xi: 2 * (yi - ys[e]) / le - 1, l_e: le}
+        n = [float(sp.N(f.subs(at))) for f in N]          # h1, φ1, h2, φ2
+        t = [float(sp.N(f.subs(at))) for f in Tsh]        # α1, α2
+        want_H, want_P, want_T = (np.zeros(ys.size) for _ in range(3))
+        want_H[[e, e + 1]], want_P[[e, e + 1]], want_T[[e, e + 1]] = n[0::2], n[1::2], t
+        np.testing.assert_allclose(H[i], want_H, atol=1e-14)
+        np.testing.assert_allclose(P[i], want_P, atol=1e-14)
+        np.testing.assert_allclose(T[i], want_T, atol=1e-14)

@@ -21,6 +21,7 @@ speeds) enter the p-k's matrices, where they respond to the loads quasi-statical
 """
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -31,8 +32,10 @@ from propwhirl.analysis.reduced import LiftedEigenvectors
 from propwhirl.engine import analyse as engine_analyse
 from propwhirl.engine import single_thread_blas
 from propwhirl.engine.results import Analysis, Criticals
-from propwhirl.model.dlm import dlm_aerodynamics
+from propwhirl.engine.tracker import ANALYSE_INITIAL_STEP, initial_speeds
+from propwhirl.model.dlm import MACH_STEP, dlm_aerodynamics, fixed_mach, snap_mach
 from propwhirl.model.dlm_modal import ModalRoger, modal_roger
+from propwhirl.model.dlm_rfa import fit_ks, mach_nodes
 
 
 @dataclass(frozen=True)
@@ -44,6 +47,37 @@ class ModalDlmRun:
     analysis: Analysis
     model: ModalRoger
     notes: tuple[str, ...]
+
+
+def fit_table_nodes(model, speeds) -> list[tuple[float, int]]:
+    """The doublet-lattice table nodes (Mach, k index) that the Roger fits of ``model`` (a wing
+    with ``aero = "dlm"``) at the airspeeds ``speeds`` [m/s] read
+    (:func:`propwhirl.model.dlm_rfa.coefficients`), in the order the fits compute them: every
+    reduced frequency of :func:`~propwhirl.model.dlm_rfa.fit_ks` in the column of the wing's
+    fixed ``dlm_mach``, or in the columns of the Mach nodes around each speed's V/a."""
+    fixed = fixed_mach(model.wing)
+    if fixed is not None:
+        columns = [snap_mach(fixed)]
+    else:
+        nodes: list[int] = []
+        for V in np.atleast_1d(np.asarray(speeds, float)):
+            im, t = mach_nodes(V / model.flight.speed_of_sound)
+            nodes += [im, im + 1] if t > 1e-9 else [im]
+        columns = [snap_mach(im * MACH_STEP) for im in dict.fromkeys(nodes)]
+    return [(mach, ik) for mach in columns for ik in range(fit_ks().size)]
+
+
+def compute_fit_aics(model, grid: np.ndarray, *, vgf: bool,
+                     report: Callable[[int, int], None]) -> int:
+    """Compute the doublet-lattice AICs that the analysis of ``model`` over the speeds
+    ``grid`` [m/s] reads first — those of the Roger fits at the engine's first batch of speeds
+    (every grid speed with ``vgf``, else :func:`~propwhirl.engine.tracker.initial_speeds` at
+    the default initial step), which its tracking would compute anyway — now, counted:
+    ``report(done, total)`` before the first and after each AIC, total known in advance
+    (issue 37 item 3).  The AICs a refinement or a p-k convergence adds later are not counted.
+    Returns how many were computed (those not in the tables yet)."""
+    first = initial_speeds(np.asarray(grid, float), None if vgf else ANALYSE_INITIAL_STEP)
+    return dlm_aerodynamics(model.wing).fill(fit_table_nodes(model, first), report)
 
 
 def full_state(assembly, V: float, p: complex, q: np.ndarray) -> np.ndarray:

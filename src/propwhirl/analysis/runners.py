@@ -31,7 +31,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from propwhirl.analysis.modal_dlm import modal_dlm_analysis
+from propwhirl.analysis.modal_dlm import compute_fit_aics, modal_dlm_analysis
 from propwhirl.analysis.modes import InVacuo
 from propwhirl.analysis.participation import branch_point_shape
 from propwhirl.analysis.reduced import frequency_zero_on_full_order, reduced_engine_analysis
@@ -46,8 +46,9 @@ from propwhirl.model.dlm_rfa import rfa_note
 class Job:
     """What every runner is given: the ``model`` asked for and the ``finite`` model whose modes
     are tracked (the model itself; for the p-k its strip twin), the airspeed ``grid`` [m/s],
-    ``xtol`` [m/s], ``vgf`` (every grid speed), the tracker's ``options``, and ``auto``
-    (the user left the method to the analysis)."""
+    ``xtol`` [m/s], ``vgf`` (every grid speed), the tracker's ``options``, ``auto``
+    (the user left the method to the analysis) and ``progress``, a reporter
+    ``report(done, total)`` of the doublet-lattice AICs computed first, or None."""
 
     model: object
     finite: object
@@ -56,6 +57,7 @@ class Job:
     vgf: bool
     options: object = None
     auto: bool = False
+    progress: Callable[[int, int], None] | None = None
 
     def engine_kwargs(self) -> dict:
         """The engine's options of this job (``initial_step=None``: every grid speed)."""
@@ -185,8 +187,12 @@ RUNNERS: dict[tuple[str, bool], Callable[[Job], Tracked]] = {
 def track(job: Job, chosen: str) -> Tracked:
     """The runner of :data:`RUNNERS` for ``chosen`` (a method of
     :func:`~propwhirl.analysis.reduced.choose_method`) on ``job``'s model; a doublet-lattice
-    wing's Mach numbers checked against its tables first (before any work)."""
+    wing's Mach numbers checked against its tables first (before any work), and with
+    ``job.progress`` the AICs of its first speeds computed first and counted
+    (:func:`~propwhirl.analysis.modal_dlm.compute_fit_aics`)."""
     dlm = chosen != "pk" and is_dlm_wing(job.model)
     if dlm:
         check_speed_mach(job.model, (job.grid[0], job.grid[-1]))
+    if dlm and job.progress is not None:      # the AICs of its first speeds, counted
+        compute_fit_aics(job.model, job.grid, vgf=job.vgf, report=job.progress)
     return RUNNERS[(chosen, dlm)](job)

@@ -21,7 +21,7 @@ names of earlier releases).
 from __future__ import annotations
 
 import json
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, ClassVar
@@ -461,7 +461,8 @@ def _finite_state_from_dict(r: SavedDict, sweep: Sweep) -> FiniteState | None:
 # ----------------------------------------------------------------------------- analyse
 @one_blas_thread
 def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
-            options: TrackingOptions | None = None, method: str = "auto") -> ModelAnalysis:
+            options: TrackingOptions | None = None, method: str = "auto",
+            progress: Callable[[int, int], None] | None = None) -> ModelAnalysis:
     """Every instability of `model` over `speeds` [m/s], with tracked, named modes.
 
     Parameters
@@ -501,6 +502,13 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         (:mod:`propwhirl.analysis.modal_dlm`: only critical speeds the p-k has), "dense" the
         Roger state space on every DOF (:mod:`propwhirl.model.dlm_rfa`; modes far beyond the
         fit's reduced frequencies included), "pk" the p-k method on Q(k) itself.
+    progress : callable, optional
+        ``report(done, total)``: a wing with ``aero = "dlm"`` analysed on its Roger state space
+        ("auto", "reduced", "dense") first computes the doublet-lattice AICs its fits at the
+        first speeds read, their number known in advance (the fits' 20 reduced frequencies ×
+        the Mach columns: :func:`~propwhirl.analysis.modal_dlm.compute_fit_aics`), and calls
+        it before the first and after each; nothing else reports.  None (default): silent.
+        The command line passes the stage of its spinner (:mod:`propwhirl.progress`).
 
     Returns
     -------
@@ -530,11 +538,15 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         raise v.InputError(f"vgf = {vgf!r} is invalid: must be True or False")
     if options is not None and not isinstance(options, TrackingOptions):
         raise v.InputError(f"options = {options!r} is invalid: must be a TrackingOptions")
+    if progress is not None and not callable(progress):
+        raise v.InputError(f"progress = {progress!r:.60} is invalid: must be None or a callable "
+                           "report(done, total)")
     chosen = choose_method(model, method)
     # p-k: the strip twin tracks, names and starts the p-k modes (propwhirl.analysis.runners)
     finite = strip_twin(model) if chosen == "pk" else model
     dm = finite.dof_map()
-    t = track(Job(model, finite, grid, xtol, bool(vgf), options, method == "auto"), chosen)
+    t = track(Job(model, finite, grid, xtol, bool(vgf), options, method == "auto", progress),
+              chosen)
     sw = t.analysis.sweep
     names, thesis_names = named_modes(finite, sw, t.basis, t.in_vacuo)
     sw = sw.relabel(names)

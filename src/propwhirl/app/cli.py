@@ -242,15 +242,19 @@ def _analyse(args: argparse.Namespace) -> int:
                                                             choose_method(model, args.method))
     if notice:                             # a long one is announced before the work (issue 20.9)
         print(f"propwhirl: estimate: {notice}", file=sys.stderr)
-    with progress.spinner(f"analysing {limits.printable(model.name)}", quiet=args.quiet):
-        a = analyse(model, speeds, vgf=True, method=args.method)
+    with progress.spinner(f"analysing {limits.printable(model.name)}", quiet=args.quiet) as spin:
+        a = analyse(model, speeds, vgf=True, method=args.method,
+                    progress=spin.stage("doublet-lattice AICs"))
     echo(a.summary())
     st = a.sweep.stats
-    if "reduced_states" in st:
+    if "reduced_L" in st:                 # a strip wing's reduced model (analysis/reduced)
         echo(f"  method: reduced ({st['reduced_states']} of {model.dof_map().n_states} states:"
               f" {st['reduced_r']} Ritz vectors, {st['reduced_L']} lag states); "
               f"{a.criticals.stats.get('corrected', 0)} of {len(a.criticals.points)} crossings "
               "converged on the full-order model")
+    elif "reduced_states" in st:           # a DLM wing's modal Roger state space (modal_dlm)
+        echo(f"  method: reduced (the Roger state space on {st['reduced_r']} in-vacuo modes, "
+             f"{st['reduced_states']} states); its crossings converged by the p-k method on Q(k)")
     if V_req is not None:                  # the summary's last line (issue 25.5)
         from propwhirl.analysis.margin import speed_margin
 
@@ -325,8 +329,9 @@ def _add_analyse(sub) -> None:
                         "auto (default): reduced for a wing, kept where every crossing converged "
                         "on the full order, else dense; its V-g-f table holds the modes below "
                         "the reduction's cut-off (dense: every mode)")
-    p.add_argument("--quiet", action="store_true", help="no progress spinner (there is none "
-                   "either when stderr is not a terminal)")
+    p.add_argument("--quiet", action="store_true", help="no progress on stderr (by default a "
+                   f"spinner on a terminal, else a line every {progress.INTERVAL:g} s; nothing in "
+                   f"the first {progress.DELAY:g} s)")
     p.add_argument("--vd", type=float, default=None, metavar="V", help="design dive speed V_D "
                    "[m/s]: the summary ends with the margin of the critical instability to "
                    "factor x V_D [m/s and %%] and the least damping g = 2 zeta below it (the "

@@ -21,6 +21,7 @@ from pathlib import Path
 from typing import Any, Iterable
 
 from propwhirl import limits
+from propwhirl import progress
 from propwhirl import validate as v
 from propwhirl.studies.execution import check_scheduler
 from propwhirl.studies.partial import Checkpoint
@@ -44,8 +45,9 @@ def add(parser: argparse.ArgumentParser, *, processes_default: int = 1,
                        "the finished points of the partial-results file beside the output "
                        f"(OUT{PARTIAL_SUFFIX}) and compute only the others (a file written for "
                        "another model, parameters, speeds, method or convention is refused)")
-    g.add_argument("--quiet", action="store_true", help="no progress bar (there is none "
-                   "either when stderr is not a terminal)")
+    g.add_argument("--quiet", action="store_true", help="no progress on stderr (by default a "
+                   f"bar on a terminal, else a line every {progress.INTERVAL:g} s; nothing in "
+                   f"the first {progress.DELAY:g} s)")
 
 
 def run_options(args: argparse.Namespace) -> dict[str, Any]:

@@ -21,7 +21,7 @@ import numpy as np
 from scipy.optimize import linear_sum_assignment
 
 from propwhirl.engine.cluster_tables import ClusterTables, frozen as _frozen, cluster_tables as _tables
-from propwhirl.engine.hermite import _hermite_coeffs, _hermite_eval
+from propwhirl.engine.hermite import hermite_coeffs, hermite_eval
 from propwhirl.engine.nodes import _Node
 from propwhirl.engine.options import TrackingOptions
 
@@ -103,7 +103,7 @@ _ENV = _frozen(16 * _S ** 2 * (1 - _S) ** 2)
 
 def _interpolated_roots(coeffs, s: float) -> np.ndarray:
     """Roots of the cluster polynomial with Hermite-interpolated (real) coefficients at s."""
-    c = _hermite_eval(coeffs, s).real
+    c = hermite_eval(coeffs, s).real
     k = c.size
     comp = np.zeros((k, k))
     comp[0, :] = -c
@@ -275,11 +275,11 @@ def _follow_cluster(ca, dca, cb, dcb, la, lb, h, margin):
     """
     k = la.size
     ca, dca, cb, dcb = ca.real, dca.real, cb.real, dcb.real       # conjugation-closed: real
-    coeffs = _hermite_coeffs(ca, cb, dca, dcb, h)
+    coeffs = hermite_coeffs(ca, cb, dca, dcb, h)
     tab = _tables(k)
     mis = np.abs(cb - ca - 0.5 * (dca + dcb) * h)     # trapezoidal mismatch of each coefficient
     S = _S
-    C = _hermite_eval(coeffs, _S_COL)                                    # (m, k)
+    C = hermite_eval(coeffs, _S_COL)                                    # (m, k)
     comp = np.zeros((S.size, k, k))
     comp[:, 0, :] = -C
     if k > 1:
@@ -341,7 +341,7 @@ def _follow_cluster(ca, dca, cb, dcb, la, lb, h, margin):
             lo, hi = S[m - 1], S[m]
             for _ in range(12):        # the interpolated branch point, inside the sub-step
                 mid = 0.5 * (lo + hi)
-                cm = np.real(_hermite_eval(coeffs, mid))
+                cm = np.real(hermite_eval(coeffs, mid))
                 if _n_real_roots(cm) == n_real:
                     lo = mid
                 else:

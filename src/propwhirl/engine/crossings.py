@@ -30,7 +30,7 @@ import numpy as np
 from propwhirl.engine.eigensolve import (StateMatrixFn, _call_state_matrix,
                                          _eigenvalue_derivative, _eval_mode, _pair_discriminant,
                                          _zero_root, single_thread_blas)
-from propwhirl.engine.hermite import _hermite_coeffs, _hermite_eval
+from propwhirl.engine.hermite import hermite_coeffs, hermite_eval
 from propwhirl.engine.linking import _Link
 from propwhirl.engine.nodes import _Node
 from propwhirl.engine.options import TrackingOptions
@@ -55,7 +55,7 @@ class _Bracket:
 
     def predict(self, V: float) -> complex:
         s = (V - self.Va) / (self.Vb - self.Va)
-        return complex(_hermite_eval(self.coeffs, s))
+        return complex(hermite_eval(self.coeffs, s))
 
     def shape(self, V: float) -> np.ndarray:
         s = float(np.clip((V - self.Va) / (self.Vb - self.Va), 0.0, 1.0))
@@ -140,12 +140,12 @@ class _BranchPoint:
         db = ((b.lam[j] - b.lam[jc]) / 2) ** 2
         ga = (a.lam[i] - a.lam[ic]) * (a.dlam[i] - a.dlam[ic]) / 2
         gb = (b.lam[j] - b.lam[jc]) * (b.dlam[j] - b.dlam[jc]) / 2
-        c = tuple(np.real(x) for x in _hermite_coeffs(da, db, ga, gb, h))
+        c = tuple(np.real(x) for x in hermite_coeffs(da, db, ga, gb, h))
         roots = np.roots([c[3], c[2], c[1], c[0]]) if any(ci != 0 for ci in c[1:]) else []
         roots = [r.real for r in np.atleast_1d(roots) if abs(r.imag) < 1e-12 and 0 < r.real < 1]
         fa, fb = float(np.real(da)), float(np.real(db))
         s0 = roots[0] if roots else (fa / (fa - fb) if fa != fb else 0.5)
-        self.mean = tuple(np.real(x) for x in _hermite_coeffs(
+        self.mean = tuple(np.real(x) for x in hermite_coeffs(
             0.5 * (a.lam[i] + a.lam[ic]), 0.5 * (b.lam[j] + b.lam[jc]),
             0.5 * (a.dlam[i] + a.dlam[ic]), 0.5 * (b.dlam[j] + b.dlam[jc]), h))
         self.Va, self.Vb = a.V, b.V
@@ -170,7 +170,7 @@ class _BranchPoint:
 
     def evaluate(self, V: float, A: np.ndarray) -> tuple[float, bool]:
         Vn = min(self.Q, key=lambda u: abs(u - V))
-        sigma = self.m.get(Vn, float(_hermite_eval(self.mean, (V - self.Va) / (self.Vb - self.Va))))
+        sigma = self.m.get(Vn, float(hermite_eval(self.mean, (V - self.Va) / (self.Vb - self.Va))))
         D, mean, Q, ok = _pair_discriminant(A, self.Q[Vn], sigma)
         if ok:
             self.Q[V], self.m[V] = Q, mean
@@ -250,7 +250,7 @@ class _Crossing:
         la, lb = res.eigenvalues[t0, k], res.eigenvalues[t1, k]
         self.Va, self.Vb = float(res.V[t0]), float(res.V[t1])
         self.direction = "onset" if lb.real > la.real else "recovery"
-        coeffs = _hermite_coeffs(la, lb, res.dlam_dV[t0, k], res.dlam_dV[t1, k],
+        coeffs = hermite_coeffs(la, lb, res.dlam_dV[t0, k], res.dlam_dV[t1, k],
                                  self.Vb - self.Va)
         self.br = _Bracket(self.Va, self.Vb, coeffs, res.eigenvectors[t0, :, k],
                            res.eigenvectors[t1, :, k])
@@ -293,7 +293,7 @@ class _Crossing:
             return None
         p = [lam[t, k] * lam[t, kp] for t in (t0, t1)]
         dp = [dl[t, k] * lam[t, kp] + lam[t, k] * dl[t, kp] for t in (t0, t1)]
-        c = _hermite_coeffs(p[0], p[1], dp[0], dp[1], res.V[t1] - res.V[t0])
+        c = hermite_coeffs(p[0], p[1], dp[0], dp[1], res.V[t1] - res.V[t0])
         return tuple(np.real(ci) for ci in c)
 
     def _nearest(self, V: float):

@@ -41,7 +41,7 @@ import numpy as np
 from scipy.optimize import linear_sum_assignment
 
 from propwhirl.engine.clusters import cluster_continuations
-from propwhirl.engine.hermite import _CHECK_S, _hermite_coeffs, _hermite_eval
+from propwhirl.engine.hermite import _CHECK_S, hermite_coeffs, hermite_eval
 from propwhirl.engine.nodes import _Node
 from propwhirl.engine.options import TrackingOptions
 
@@ -287,8 +287,8 @@ def _approach(a: _Node, b: _Node, perm: np.ndarray, opts: TrackingOptions,
     ref = opts.approach_ratio * np.minimum(np.abs(r0), eb)
     flag = interior & (m < ref)
     # Hermite curves through both samples; only pairs that travel far enough to approach
-    c = _hermite_coeffs(lam[:, None], lb[:, None], d[:, None], b.dlam[perm[up]][:, None], h)
-    path = _hermite_eval(c, _CHECK_S[None, :])                      # (p, 9)
+    c = hermite_coeffs(lam[:, None], lb[:, None], d[:, None], b.dlam[perm[up]][:, None], h)
+    path = hermite_eval(c, _CHECK_S[None, :])                      # (p, 9)
     travel = np.max(np.abs(path - lam[:, None]), axis=1)
     cand = (travel[:, None] + travel[None, :]) > np.abs(r0) - ref
     i, k = _upper_pairs(cand)

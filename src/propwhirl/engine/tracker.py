@@ -52,7 +52,7 @@ from propwhirl.engine.crossings import XTOL, _branch_point_speeds, _critical_poi
 from propwhirl import limits
 from propwhirl.engine.eigensolve import (StateMatrixFn, _call_state_matrix, _displacement_mask,
                                          single_thread_blas)
-from propwhirl.engine.hermite import _CHECK_S, _hermite_coeffs, _hermite_eval
+from propwhirl.engine.hermite import _CHECK_S, hermite_coeffs, hermite_eval
 from propwhirl.engine.linking import _link, _Link
 from propwhirl.engine.nodes import _evaluate_nodes, _Node
 from propwhirl.engine.options import TrackingOptions, _check_speeds
@@ -65,8 +65,10 @@ from propwhirl.validate import InputError, finite, increasing, integer_at_least,
 ANALYSE_INITIAL_STEP = 50.0
 
 
-def _initial_subset(grid: np.ndarray, step: float | None) -> np.ndarray:
-    """The grid speeds nearest to an even division of [first, last] at spacing ≤ ``step``.
+def initial_speeds(grid: np.ndarray, step: float | None) -> np.ndarray:
+    """The grid speeds [m/s] the sweep evaluates first (its first batch): those nearest to an
+    even division of [first, last] at spacing ≤ ``step`` [m/s] (:func:`analyse`'s
+    ``initial_step``).
 
     Always the first and the last grid speed; the whole grid when ``step`` is None or the grid
     is already at least that coarse.
@@ -298,7 +300,7 @@ def _sweep(fn, grid, n_dof, displacement, labels, mode_labels, opts,
     linking, and the airspeed's own refinements layered on it — bisection at grid speeds or
     where a cluster asks, bracketing of unstable branch points, the Hermite hump check."""
     stats: dict[str, int] = {}
-    first = _initial_subset(grid, initial_step)
+    first = initial_speeds(grid, initial_step)
     # the number of states before any batch: from the labels, else from A at one speed
     n = len(labels) if labels is not None else _call_state_matrix(fn, first[:1], None,
                                                                    None).shape[-1]
@@ -405,7 +407,7 @@ def _hump_candidates(V: np.ndarray, models, floor: np.ndarray,
         return []
     t_i, k_i = np.nonzero(ok)
     hh = h[t_i, 0]
-    c = _hermite_coeffs(fa[t_i, k_i], fb[t_i, k_i], ga[t_i, k_i], gb[t_i, k_i], hh)
+    c = hermite_coeffs(fa[t_i, k_i], fb[t_i, k_i], ga[t_i, k_i], gb[t_i, k_i], hh)
     A, B, C = 3 * c[3], 2 * c[2], c[1]
     disc = B * B - 4 * A * C
     sq = np.sqrt(np.maximum(disc, 0.0))
@@ -416,7 +418,7 @@ def _hump_candidates(V: np.ndarray, models, floor: np.ndarray,
                         np.broadcast_to(_CHECK_S, (t_i.size, _CHECK_S.size))], axis=1)
     valid = np.isfinite(S) & (S > 0) & (S < 1)
     S = np.where(valid, S, 0.5)
-    p = _hermite_eval(tuple(ci[:, None] for ci in c), S)
+    p = hermite_eval(tuple(ci[:, None] for ci in c), S)
     tol_mid = np.maximum(tola[t_i, k_i], tolb[t_i, k_i])[:, None]
     env = opts.margin * e[t_i, k_i][:, None] * 16 * S ** 2 * (1 - S) ** 2
     viol = (p * sa[t_i, k_i][:, None] < np.maximum(env, 0.0) - tol_mid) & valid

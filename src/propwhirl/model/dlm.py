@@ -36,6 +36,7 @@ cubic in k only: the AICs of one Mach number).
 from __future__ import annotations
 
 from collections import OrderedDict
+from collections.abc import Callable, Iterable
 from dataclasses import replace
 
 import numpy as np
@@ -196,6 +197,23 @@ class DlmAerodynamics:
         if key not in self._table:
             self._table[key] = self.exact(float(mach), self.k_node(ik))
         return self._table[key]
+
+    def fill(self, nodes: Iterable[tuple[float, int]],
+             report: Callable[[int, int], None] | None = None) -> int:
+        """Compute the table nodes ``nodes`` ((Mach, ik) pairs of :meth:`column_node`) not yet
+        computed, in their order, calling ``report(done, total)`` (total: those missing)
+        before the first and after each; returns how many were computed.  What an analysis
+        calls to report its AICs' progress: the values are :meth:`column_node`'s whatever the
+        order."""
+        todo = [key for key in dict.fromkeys((float(m), int(ik)) for m, ik in nodes)
+                if key not in self._table]
+        if report is not None:
+            report(0, len(todo))
+        for done, (mach, ik) in enumerate(todo, 1):
+            self.column_node(mach, ik)
+            if report is not None:
+                report(done, len(todo))
+        return len(todo)
 
     @property
     def columns(self) -> tuple[float, ...]:

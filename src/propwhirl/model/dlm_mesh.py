@@ -35,9 +35,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.interpolate import CubicHermiteSpline
 
 from propwhirl import limits, validate as v
+from propwhirl.model.mesh import beam_interpolation
 
 #: panels along the chord by default
 DEFAULT_CHORDWISE = 8
@@ -188,18 +188,14 @@ def spline(wing, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     wing's bending–torsion DOFs [h_i, φ_i, α_i]: Z q is the displacement, positive down, of
     each point (z = h(y) + x α(y), eq. 7.1) and S q its chordwise slope ∂z/∂x = α(y), with h
     the cubic Hermite interpolation of (h_i, φ_i) and α the linear one of α_i (the beam
-    element's shape functions, 7.5–7.8).  Points must lie in [0, semi_span]."""
+    element's shape functions, 7.5–7.8: :func:`~propwhirl.model.mesh.beam_interpolation`).
+    Points must lie in [0, semi_span]."""
     ys = wing.node_y
     x, y = points[:, 0], points[:, 1]
     if np.any(y < ys[0] - 1e-9) or np.any(y > ys[-1] + 1e-9):
         raise ValueError("spline: a point lies outside the wing's span")
     nn = ys.size
-    eye = np.eye(nn)
-    zero = np.zeros((nn, nn))
-    # one interpolant per unit node value: the columns of h(y) over h_i and over φ_i
-    Hh = CubicHermiteSpline(ys, eye, zero, axis=0)(y)              # (n, nn)
-    Hp = CubicHermiteSpline(ys, zero, eye, axis=0)(y)
-    A = np.stack([np.interp(y, ys, eye[:, i]) for i in range(nn)], axis=1)
+    Hh, Hp, A = beam_interpolation(ys, y)                          # (n, nn) each
     Z = np.zeros((y.size, 3 * nn))
     S = np.zeros((y.size, 3 * nn))
     Z[:, 0::3], Z[:, 1::3], Z[:, 2::3] = Hh, Hp, x[:, None] * A

@@ -16,6 +16,11 @@ Without stations and without a maximum length the single interval [0, L] gives
 Elements shorter than :data:`MIN_ELEMENT_FRACTION` of the semi-span (stations too close
 together) are refused: they add stiffness entries ~(L/l)³ times the others and no accuracy.
 The total number of elements is bounded by :data:`propwhirl.limits.MAX_ELEMENTS`.
+
+:func:`beam_interpolation` is the beam element's own interpolation between nodes (cubic
+Hermite bending from the nodes' h and ∂h/∂y, linear torsion, eq. 7.5–7.8): the one
+implementation behind the doublet-lattice spline (:func:`propwhirl.model.dlm_mesh.spline`) and
+the modal strips' (:func:`propwhirl.model.modal_structure.strip_interpolation`).
 """
 from __future__ import annotations
 
@@ -147,3 +152,46 @@ def build(semi_span: float, n_elements: int, stations: Sequence[float] = (),
     node_y = np.concatenate(pieces + [np.array([L])])
     node_y.setflags(write=False)
     return Mesh(node_y, tuple(p for p, _ in points))
+
+
+def beam_interpolation(node_y: np.ndarray, y: np.ndarray
+                       ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The beam element's interpolation between nodes, as weights on the nodes' values.
+
+    On the element [y_k, y_k+1] (length L) holding y, at t = (y − y_k)/L ∈ [0, 1]:
+
+        h(y) = H₀₀(t) h_k + L H₁₀(t) φ_k + H₀₁(t) h_k+1 + L H₁₁(t) φ_k+1,
+        α(y) = (1 − t) α_k + t α_k+1,
+
+    with the cubic Hermite basis H₀₀ = 1 − 3t² + 2t³, H₁₀ = t − 2t² + t³, H₀₁ = 3t² − 2t³,
+    H₁₁ = −t² + t³ (the bending shape functions 7.5–7.6 on ξ = 2t − 1, φ = ∂h/∂y) and the
+    linear torsion shapes (7.7–7.8).  A point on a node takes the element starting there (the
+    last node: the last element); t is clipped to [0, 1] (a point a rounding error beyond the
+    end nodes: the end node's value).
+
+    Parameters
+    ----------
+    node_y : numpy.ndarray
+        The nodes' spanwise positions [m] (n_nodes,), strictly increasing, at least two.
+    y : numpy.ndarray
+        The points' spanwise positions [m] (n,).
+
+    Returns
+    -------
+    H, P, T : numpy.ndarray
+        Weights (n, n_nodes) [-, m, -]: h(y) = H @ h_i + P @ φ_i [m] for the node values h_i
+        [m] and slopes φ_i [rad], and α(y) = T @ α_i [rad].
+    """
+    node_y = np.asarray(node_y, dtype=float)
+    y = np.asarray(y, dtype=float)
+    k = np.clip(np.searchsorted(node_y, y, side="right") - 1, 0, node_y.size - 2)
+    L = node_y[k + 1] - node_y[k]
+    t = np.clip((y - node_y[k]) / L, 0.0, 1.0)
+    rows = np.arange(y.size)
+    H = np.zeros((y.size, node_y.size))
+    P = np.zeros((y.size, node_y.size))
+    T = np.zeros((y.size, node_y.size))
+    H[rows, k], P[rows, k] = 1 - 3 * t**2 + 2 * t**3, (t - 2 * t**2 + t**3) * L
+    H[rows, k + 1], P[rows, k + 1] = 3 * t**2 - 2 * t**3, (-t**2 + t**3) * L
+    T[rows, k], T[rows, k + 1] = 1 - t, t
+    return H, P, T

@@ -35,6 +35,7 @@ from scipy.interpolate import CubicSpline
 from propwhirl import validate as v
 from propwhirl.generated import prop_hub
 from propwhirl.model.assembly import LAG_STATES, free_dofs, wing_structure
+from propwhirl.model.mesh import beam_interpolation
 from propwhirl.model.propeller_blocks import propeller_constants
 
 #: Components of a grid's motion in a mode shape, in the order of the last axis of ``shapes``.
@@ -358,7 +359,8 @@ def strip_interpolation(structure: ModalStructure, wing_grids, planform: StripPl
                         twist_spline: str = "linear") -> np.ndarray:
     """T (n_strips, 2, n_grids, 6): each strip's heave h [m] (positive down, at its elastic
     axis) and twist α [rad] (nose up) from the grids' six components (rule in the module
-    docstring: Hermite cubic in y for T_z with R_x as slope, linear for R_y, rigid chord).
+    docstring: Hermite cubic in y for T_z with R_x as slope, linear for R_y, rigid chord; the
+    beam's interpolation :func:`~propwhirl.model.mesh.beam_interpolation`).
 
     ``wing_grids``: ids of the reference-axis grids, strictly increasing in y; every strip
     must lie within their span (an error names the first that does not)."""
@@ -385,20 +387,13 @@ def strip_interpolation(structure: ModalStructure, wing_grids, planform: StripPl
     xg = structure.xyz[idx, 0]
     x_ea = planform.leading_edge_x + planform.elastic_axis * planform.chord
     twist = _twist_weights(yg, ys, twist_spline)          # (n_strips, n_wing_grids)
-    for s, y in enumerate(ys):
-        k = int(np.clip(np.searchsorted(yg, y, side="right") - 1, 0, yg.size - 2))
-        i0, i1 = idx[k], idx[k + 1]
-        L = yg[k + 1] - yg[k]
-        t = float(np.clip((y - yg[k]) / L, 0.0, 1.0))
-        # cubic Hermite basis: value and slope at each end
-        h00, h10 = 1 - 3 * t**2 + 2 * t**3, (t - 2 * t**2 + t**3) * L
-        h01, h11 = 3 * t**2 - 2 * t**3, (-t**2 + t**3) * L
-        lever = x_ea[s] - ((1 - t) * xg[k] + t * xg[k + 1])
-        # h = −(T_z − α · lever), α = R_y splined
-        T[s, 0, i0, 2], T[s, 0, i0, 3] = -h00, -h10
-        T[s, 0, i1, 2], T[s, 0, i1, 3] = -h01, -h11
-        T[s, 0, idx, 4] += twist[s] * lever
-        T[s, 1, idx, 4] = twist[s]
+    # the beam's interpolation: T_z cubic Hermite with R_x its slope, x_ref linear
+    H, P, linear = beam_interpolation(yg, ys)             # (n_strips, n_wing_grids)
+    lever = x_ea - np.sum(linear * xg, axis=1)
+    # h = −(T_z − α · lever), α = R_y splined
+    T[:, 0, idx, 2], T[:, 0, idx, 3] = -H, -P
+    T[:, 0, idx, 4] += twist * lever[:, None]
+    T[:, 1, idx, 4] = twist
     return T
 
 

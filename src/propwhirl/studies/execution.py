@@ -250,9 +250,10 @@ def map_analyses(func: Callable[[Any], Any], tasks: Sequence[Any], processes: in
 
     processes: local worker processes (1: in this process; at most one per CPU);
     client:    a ``dask.distributed.Client`` or a scheduler address: run on that cluster;
-    progress:  None/False (nothing), True (a bar on stderr when it is a terminal,
-               :func:`propwhirl.progress.bar`) or a callable ``report(done, total)`` called
-               after every finished point (and once before the first, with the points resumed);
+    progress:  None/False (nothing), True (a bar on stderr, plain lines when it is not a
+               terminal: :func:`propwhirl.progress.bar`) or a callable ``report(done,
+               total)`` called after every finished point (and once before the first, with
+               the points resumed);
     errors:    "raise" (a failing point stops the run) or "record" (a :class:`TaskError` in
                its place, the others go on);
     checkpoint: keep the finished points in a partial-results file, and resume from it;

@@ -21,6 +21,7 @@ import numpy as np
 
 from propwhirl.app.plots.canvas import (DIVERGENCE_COLOUR, FLUTTER_COLOUR, colours, finish,
                                         new_figure)
+from propwhirl.engine.hermite import hermite_coeffs, hermite_eval
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
@@ -104,22 +105,21 @@ def point_vgf(row: "PointRow", min_damping_g: float | None = None, *,
 def hermite(V: np.ndarray, y: np.ndarray, dy: np.ndarray, valid: np.ndarray,
             n: int = HERMITE_POINTS) -> tuple[np.ndarray, np.ndarray]:
     """The cubic Hermite curve through (V, y) with slopes dy [per m/s], `n` points per step
-    where both ends are `valid`; NaN between (a gap in the drawn line).  A step whose cubic
+    where both ends are `valid` (the engine's model of a step,
+    :func:`propwhirl.engine.hermite.hermite_coeffs`); NaN between (a gap in the drawn line).  A step whose cubic
     leaves the band of its end values widened by their difference and a quarter of the
     curve's whole range is drawn straight: there the slope is near-singular (a branch point) and the cubic would
     invent a peak."""
     xs, ys = [], []
     t = np.linspace(0.0, 1.0, n)
     scale = float(np.ptp(y[valid])) if valid.any() else 0.0
-    h00, h10 = 2 * t**3 - 3 * t**2 + 1, t**3 - 2 * t**2 + t
-    h01, h11 = -2 * t**3 + 3 * t**2, t**3 - t**2
     for j in range(len(V) - 1):
         if not (valid[j] and valid[j + 1]):
             xs.append([np.nan])
             ys.append([np.nan])
             continue
         dV = V[j + 1] - V[j]
-        seg = h00 * y[j] + h10 * dV * dy[j] + h01 * y[j + 1] + h11 * dV * dy[j + 1]
+        seg = hermite_eval(hermite_coeffs(y[j], y[j + 1], dy[j], dy[j + 1], dV), t)
         lo, hi = min(y[j], y[j + 1]), max(y[j], y[j + 1])
         room = (hi - lo) + 0.25 * scale
         if not np.isfinite(seg).all() or seg.min() < lo - room or seg.max() > hi + room:
