@@ -24,7 +24,6 @@ factor · V_D when the model's own ends below it) and reports
 """
 from __future__ import annotations
 
-import csv
 import io
 import math
 from collections.abc import Mapping
@@ -225,7 +224,7 @@ class Clearance(Result):
         """Two tables in one CSV: the instabilities (section "instability") and the minimum
         frequencies (section "minimum"), with the verdict in the first row."""
         buf = io.StringIO()
-        w = csv.writer(buf, lineterminator="\n")
+        w = fileio.csv_writer(buf, lineterminator="\n")
         w.writerow(["model", "V_D [m/s]", "factor", "V_required [m/s]", "cleared"])
         w.writerow([self.model_name, f"{self.V_D:g}", f"{self.factor:g}", f"{self.V_required:.10g}",
                     "yes" if self.cleared else "no"])
