@@ -180,6 +180,32 @@ def increasing(name: str, value, unit: str = "") -> np.ndarray:
     return arr
 
 
+def file_path(name: str, value: Any, what: str = "a file"):
+    """`value` when it is a path: a non-empty ``str`` or an :class:`os.PathLike` of one
+    (``pathlib.Path``); anything else (None, a number, bytes, a list) is an InputError naming
+    `name`, what the path is of (`what`) and the type given.
+
+    >>> file_path("path", None, "a campaign file")
+    Traceback (most recent call last):
+    ...
+    propwhirl.validate.InputError: path = None is invalid: must be the path of a campaign file (a str or os.PathLike), got NoneType
+    """
+    import os
+
+    text = value
+    if isinstance(value, os.PathLike):
+        try:
+            text = os.fspath(value)
+        except TypeError:
+            text = None
+    if not isinstance(text, str) or not text or "\0" in text:
+        got = ("an empty string" if text == "" else "a str with a NUL character"
+               if isinstance(text, str) else type(value).__name__)
+        raise fail(name, value, f"invalid: must be the path of {what} (a str or os.PathLike), "
+                   f"got {got}")
+    return value
+
+
 def is_finite_number(x: Any) -> bool:
     """A real, finite int or float (no bool)."""
     return (isinstance(x, (int, float, np.integer, np.floating))

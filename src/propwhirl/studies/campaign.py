@@ -81,6 +81,44 @@ DELTA_M_C = 0.05
 
 
 # ============================================================================== cases
+#: A case's factors and their ranges: (field, low, high).
+_FACTORS = (("mount_stiffness", 1e-3, 100.0), ("mount_damping", 0.0, 100.0),
+            ("wing_damping", 0.0, 100.0), ("rpm_factor", 0.1, 3.0))
+
+
+def _number_in(name: str, x: Any, low: float, high: float) -> None:
+    """`x` a finite real number in [low, high] (a plain int or float checked at once, as the
+    many cases of a product are; anything else by :func:`propwhirl.validate.in_range`, whose
+    error names `name`)."""
+    if type(x) in (float, int) and low <= x <= high:
+        return
+    v.in_range(name, x, low, high)
+    if not v.is_finite_number(x):                  # an array or list: one number
+        raise v.fail(name, x, f"invalid: must be one number in [{low:g}, {high:g}], got "
+                     f"{type(x).__name__}")
+
+
+def _sequence(where: str, key: str, x: Any, what: str) -> tuple:
+    """`x` (a tuple or list) as a tuple; anything else (a mapping, a string, None ...) is an
+    InputError naming the case and `key`."""
+    if isinstance(x, tuple):
+        return x
+    if isinstance(x, list):
+        return tuple(x)
+    raise v.fail(f"{where}: {key}", x, f"invalid: must be a tuple of {what}, got "
+                 f"{type(x).__name__}")
+
+
+def _pair(where: str, key: str, x: Any, j: int, what: str, text: bool = False) -> tuple:
+    """Entry `j` of `key`: a pair (number, number), or with `text` (non-empty str, number)."""
+    ok = isinstance(x, (tuple, list)) and len(x) == 2 and v.is_finite_number(x[1]) and (
+        isinstance(x[0], str) and bool(x[0].strip()) if text else v.is_finite_number(x[0]))
+    if not ok:
+        raise v.fail(f"{where}: {key}[{j}]", x, f"invalid: must be a pair {what} of "
+                     + ("a path and a finite number" if text else "finite numbers"))
+    return (x[0] if text else float(x[0]), float(x[1]))
+
+
 @dataclass(frozen=True)
 class Case:
     """A named model transformation (one failure case of a campaign).
@@ -125,16 +163,28 @@ class Case:
     failure: bool | None = None
 
     def __post_init__(self) -> None:
-        where = f"case {self.name!r}"
         if not isinstance(self.name, str) or not self.name.strip() or not self.name.isprintable():
             raise v.InputError(f"case name = {v.short_repr(self.name)} is invalid: must be a "
                                "non-empty printable string")
+        where = f"case {self.name!r}"
+        put = lambda k, x: object.__setattr__(self, k, x)  # noqa: E731
+        put("propellers", _sequence(where, "propellers", self.propellers,
+                                    "propeller numbers from 1, e.g. (1, 2)"))
         for i in self.propellers:
             v.integer_at_least(f"{where}: propellers", i, 1)
-        v.in_range(f"{where}: mount_stiffness", self.mount_stiffness, 1e-3, 100.0)
-        v.in_range(f"{where}: mount_damping", self.mount_damping, 0.0, 100.0)
-        v.in_range(f"{where}: wing_damping", self.wing_damping, 0.0, 100.0)
-        v.in_range(f"{where}: rpm_factor", self.rpm_factor, 0.1, 3.0)
+        put("added_masses", tuple(_pair(where, "added_masses", m, j, "(mass [kg], x [m])")
+                                  for j, m in enumerate(_sequence(
+                                      where, "added_masses", self.added_masses,
+                                      "(mass [kg], x [m]) pairs, e.g. ((20.0, -0.5),)"))))
+        put("values", tuple(_pair(where, "values", x, j, "(parameter path, value)", text=True)
+                            for j, x in enumerate(_sequence(
+                                where, "values", self.values,
+                                "(parameter path, value) pairs, e.g. (('wing.EI*', 0.9),)"))))
+        for key, low, high in _FACTORS:
+            _number_in(f"{where}: {key}", getattr(self, key), low, high)
+        if not isinstance(self.reverse_rotation, bool):
+            raise v.fail(f"{where}: reverse_rotation", self.reverse_rotation,
+                         f"invalid: must be True or False, got {type(self.reverse_rotation).__name__}")
         if self.operation not in ("", *OPERATIONS):
             raise v.InputError(f"{where}: operation = {v.short_repr(self.operation)} is invalid: "
                                f"must be one of {', '.join(OPERATIONS)} (feathered or stopped "
@@ -476,14 +526,26 @@ class Campaign:
     xtol: float = 0.01
 
     def __post_init__(self) -> None:
+        for key, kind, what in (("cases", Case, "Case"), ("points", EnvelopePoint,
+                                                          "EnvelopePoint (envelope(...))")):
+            x = getattr(self, key)
+            if not isinstance(x, (tuple, list)) or not all(isinstance(i, kind) for i in x):
+                raise v.fail(key, x, f"invalid: must be a tuple of {what}")
+            object.__setattr__(self, key, tuple(x))
         if not self.cases:
             raise v.InputError("a campaign needs at least one case")
         if not self.points:
             raise v.InputError("a campaign needs at least one envelope point")
-        names = [c.name for c in self.cases]
-        for n in names:
-            if names.count(n) > 1:
-                raise v.InputError(f"case name {n!r} is given twice: every case needs its own name")
+        seen: set[str] = set()
+        for c in self.cases:
+            if c.name in seen:
+                raise v.InputError(f"case name {c.name!r} is given twice: every case needs its "
+                                   "own name")
+            seen.add(c.name)
+        if not isinstance(self.name, str):
+            raise v.fail("name", self.name, f"invalid: must be a str, got {type(self.name).__name__}")
+        for key in ("static_divergence", "low_speed"):
+            v.boolean(key, getattr(self, key))
         v.in_range("factor", self.factor, 1.0, 3.0)
         if self.regulation not in PART25 and any(p.V_line is not None for p in self.points):
             raise v.InputError(f"V_C is invalid with regulation {self.regulation!r}: the "
@@ -548,10 +610,21 @@ def from_spec(spec: Any) -> Campaign:
     (``each_propeller`` expanded, a product of the groups), its envelope points, and every
     case's model at every point built (:func:`tasks`) — so every error comes now, before any
     analysis, one line starting with the file's name and naming the case's table."""
+    missing = [k for k in _SPEC_FIELDS if not hasattr(spec, k)]
+    if missing or not isinstance(getattr(spec, "source", None), str):
+        raise v.fail("spec", spec, "invalid: must be a CampaignSpec, as "
+                     "propwhirl.io.campaign_files.load_campaign(path) or loads(text) read it, "
+                     f"got {type(spec).__name__}")
     try:
         return _from_spec(spec)
     except v.InputError as exc:
         raise v.InputError(f"{spec.source}: {' '.join(str(exc).split())}") from None
+
+
+#: What :func:`from_spec` reads of a ``CampaignSpec`` (:mod:`propwhirl.io.campaign_files`,
+#: above the studies: known here by its fields).
+_SPEC_FIELDS = ("source", "name", "model", "convention", "combine", "regulation", "factor",
+                "min_damping_g", "airspeed", "V_D", "altitudes_m", "M_D", "cases", "V_C", "M_C")
 
 
 def _from_spec(spec: Any) -> Campaign:
@@ -791,6 +864,9 @@ def run_campaign(c: Campaign, *, processes: int = 1, client=None,
     checkpoint: the partial-results file (its fingerprint gets the content of every task:
     a file of another campaign is refused).  A point whose analysis fails is recorded (not
     cleared, its message in ``error``); the others go on."""
+    if not isinstance(c, Campaign):
+        raise v.fail("run_campaign: c", c, "invalid: must be a propwhirl.studies.campaign.Campaign "
+                     f"(from_spec(load_campaign(path)), or Campaign(...)), got {type(c).__name__}")
     todo, keys = tasks(c)
     if checkpoint is not None:
         checkpoint = checkpoint.with_entries(

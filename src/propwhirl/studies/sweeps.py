@@ -341,7 +341,7 @@ class CriticalMap(Result):
     def save(self, path: str | Path) -> Path:
         """Write the map: CSV for a ``.csv`` suffix, else JSON (:meth:`Result.save`;
         atomically)."""
-        path = Path(path)
+        path = Path(v.file_path("path", path, f"the {self.WHAT} to write"))
         if path.suffix.lower() == ".csv":
             self.to_csv(path)
             return path
@@ -351,7 +351,7 @@ class CriticalMap(Result):
     def load(cls, path: str | Path) -> "CriticalMap":
         """Read a map written by :meth:`save` (JSON, checked by :meth:`Result.load`, or CSV
         by its suffix)."""
-        if Path(path).suffix.lower() == ".csv":
+        if Path(v.file_path("path", path, f"a {cls.WHAT}")).suffix.lower() == ".csv":
             return cls.from_csv(fileio.read_text(path, "critical map"), fileio.shown(path))
         return super().load(path)
 
