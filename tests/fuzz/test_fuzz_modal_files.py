@@ -20,11 +20,10 @@ from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
 from propwhirl.io.modal_files import load_modal_model, write_modes
 
 ARRAYS = ("xyz", "frequencies_hz", "modal_mass", "damping_ratio", "shapes")
-NUMBER = st.one_of(
-    st.floats(allow_nan=True, allow_infinity=True),
-    st.sampled_from([0.0, -1.0, 1e-300, -1e-300, 1e300, -1e300, 1e308, 1e200, 1e154, 1e100,
-                     1e30, 1e24, 2e24, 1e15, 1e-9]),
-    st.floats(-1e3, 1e3))
+EXTREMES = [0.0, -1.0, 1e-300, -1e-300, 1e300, -1e300, 1e308, 1e200, 1e154, 1e100, 1e30, 1e24,
+            2e24, 1e15, 1e-9, float("inf"), float("nan")]
+NUMBER = st.one_of(st.floats(allow_nan=True, allow_infinity=True), st.sampled_from(EXTREMES),
+                   st.floats(-1e3, 1e3))
 
 
 @pytest.fixture(scope="module")
@@ -47,6 +46,18 @@ def _check(toml, category: str) -> None:
     if model is not None:
         with held_to_the_rule(f"{category}: state matrix"):
             assert np.isfinite(model.state_matrix(np.array([10.0, 150.0]))).all()
+
+
+@pytest.mark.parametrize("value", EXTREMES)
+@pytest.mark.parametrize("key", ARRAYS)
+def test_every_array_at_every_extreme(written, tmp_path, key, value):
+    """Each array's entry 9 (of the flattened array) at each extreme value, systematically."""
+    text, arrays = written
+    changed = {k: a.copy() for k, a in arrays.items()}
+    changed[key].flat[9] = value
+    np.savez(tmp_path / "w.modes.npz", **changed)
+    (tmp_path / "w.toml").write_text(text)
+    _check(tmp_path / "w.toml", "modal: extremes")
 
 
 @FUZZ

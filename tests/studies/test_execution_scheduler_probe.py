@@ -126,7 +126,8 @@ def test_a_study_given_such_an_address_stops_before_any_point(server):
     assert isinstance(exc, InputError) and "\n" not in str(exc) and done == []
 
 
-@pytest.mark.parametrize("port", ["²", "８７８６", "87a6", "1_000", "+8786", " 8786", "99999", "0"])
+@pytest.mark.parametrize("port", ["²", "８７８６", "87a6", "1_000", "+8786", " 8786", "99999",
+                                  "0"])
 def test_a_port_of_other_than_ascii_digits_is_invalid(port):
     for call in (check_scheduler, connect):
         with pytest.raises(InputError, match=r"is invalid: must be an address such as "
