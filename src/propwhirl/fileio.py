@@ -41,6 +41,7 @@ does not exist or cannot be written to.
 from __future__ import annotations
 
 import os
+import re
 import secrets
 import stat
 from collections.abc import Callable, Iterable, Iterator
@@ -596,20 +597,85 @@ def warn_uncounted(kind: str, where: str) -> None:
                   "count", UserWarning, stacklevel=3)
 
 
+# ----------------------------------------------------------------------------- CSV cells
+#: The first characters that make a spreadsheet read a CSV cell as a formula (OWASP, "CSV
+#: Injection"): ``= + - @``, tab and carriage return; and the single quote that marks a cell
+#: neutralised (:func:`csv_cell`).
+FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
+#: A plain decimal number (``-1.5``, ``+2``, ``-1e-05``): a spreadsheet reads it as a number,
+#: never as a formula, so it is written as it is.
+_CSV_NUMBER = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
+
+
+def csv_cell(x):
+    """A CSV cell as propwhirl writes it: a text cell that a spreadsheet would evaluate — one
+    starting with one of :data:`FORMULA_START` — gets a leading single quote (OWASP's
+    neutralisation: ``=HYPERLINK(...)`` is written ``'=HYPERLINK(...)``), and so does a text
+    starting with a single quote (so :func:`csv_text` reads every text back exactly).  A
+    plain number, given as a number or as its text (``-1.5``, ``-1e-05``), and every other
+    cell are written as they are.
+
+    >>> [csv_cell(x) for x in ("=1+1", "-1+1", "@SUM(A1)", "-1.5", -1.5, "'q", "wing 1")]
+    ["'=1+1", "'-1+1", "'@SUM(A1)", '-1.5', -1.5, "''q", 'wing 1']
+    """
+    if isinstance(x, str) and x[:1] in (*FORMULA_START, "'") \
+            and _CSV_NUMBER.fullmatch(x) is None:
+        return "'" + x
+    return x
+
+
+def csv_text(cell: str) -> str:
+    """The text of a cell written by :func:`csv_cell` (its neutralising quote removed).
+
+    >>> csv_text("'=1+1"), csv_text("-1.5"), csv_text("''q")
+    ('=1+1', '-1.5', "'q")
+    """
+    return cell[1:] if cell.startswith("'") else cell
+
+
+class _NeutralisingWriter:
+    """A :func:`csv.writer` whose every cell goes through :func:`csv_cell`; a row with a
+    carriage return inside a text is written with every cell quoted (the csv module quotes
+    only the line terminator's characters: an unquoted CR would start a new row in a
+    spreadsheet, whose first cell could be a formula)."""
+
+    def __init__(self, fh, **options) -> None:
+        import csv
+
+        self._w = csv.writer(fh, **options)
+        self._quoted = csv.writer(fh, **{**options, "quoting": csv.QUOTE_ALL})
+
+    def writerow(self, row):
+        cells = [csv_cell(x) for x in row]
+        w = self._quoted if any(isinstance(x, str) and "\r" in x for x in cells) else self._w
+        return w.writerow(cells)
+
+    def writerows(self, rows) -> None:
+        for row in rows:
+            self.writerow(row)
+
+
+def csv_writer(fh, **options) -> _NeutralisingWriter:
+    """The one CSV writer of propwhirl: :func:`csv.writer` (`options` as its) with every cell
+    neutralised against spreadsheet formulas (:func:`csv_cell`); the readers of the tables
+    propwhirl reads back undo it with :func:`csv_text`."""
+    return _NeutralisingWriter(fh, **options)
+
+
 def csv_table(columns, units, path: str | Path | None = None, what: str = "table",
               count: bool = False) -> str:
     """A tidy table as CSV: header ``"column [unit]"`` (just ``column`` without a unit), one row
     per entry of the equal-length ``columns`` (a mapping name → sequence, in order); floats as
     the shortest text that reads back exactly, NaN and inf as an empty cell.  Also written to
     ``path`` if given (atomically, :func:`write_text`).  ``units``: name → unit ("" for none).
-    With `count` (a table propwhirl reads back), a first line :func:`count_line` of `what`."""
-    import csv
+    With `count` (a table propwhirl reads back), a first line :func:`count_line` of `what`.
+    Text cells are neutralised against spreadsheet formulas (:func:`csv_cell`)."""
     import io
     import math
 
     names = list(columns)
     buf = io.StringIO()
-    w = csv.writer(buf, lineterminator="\n")
+    w = csv_writer(buf, lineterminator="\n")
     if count:
         buf.write(count_line(what, len(columns[names[0]]) if names else 0) + "\n")
     w.writerow([f"{k} [{units[k]}]" if units.get(k) else k for k in names])

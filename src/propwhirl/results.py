@@ -34,7 +34,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from propwhirl import fileio
-from propwhirl.validate import InputError
+from propwhirl.validate import InputError, file_path
 
 __all__ = ["OLD_FORMAT_KINDS", "Result", "SavedDict", "format_kind", "non_finite_key",
            "read_document"]
@@ -412,6 +412,7 @@ class Result:
         a full disk or a Ctrl-C leaves the old file or none, never a partial one).  A
         non-finite number is an :class:`~propwhirl.validate.InputError` naming its key, and
         nothing is written."""
+        file_path("path", path, f"the {self.WHAT} to write")
         try:
             text = self.to_json()
         except InputError as exc:
@@ -424,6 +425,7 @@ class Result:
         """Re-read a result written by :meth:`save` (or by an older version of propwhirl):
         :func:`read_document`, then :meth:`from_dict`; every error is one line starting with
         the path."""
+        file_path("path", path, f"a {cls.WHAT}")
         doc = read_document(path, cls.WHAT)
         try:
             result = cls.from_dict(doc)

@@ -81,9 +81,18 @@ def _first_index(bad: np.ndarray) -> tuple:
     return tuple(int(i) for i in np.argwhere(bad)[0]) if bad.ndim else ()
 
 
+def _plain(value) -> bool:
+    """A Python float, or an int within int64 (the values numpy keeps as they are): the
+    checks below take these without numpy's machinery, with the same outcome."""
+    t = type(value)
+    return t is float or (t is int and -(1 << 63) <= value < (1 << 63))
+
+
 def real(name: str, value, unit: str = "", path: tuple | None = None) -> np.ndarray:
     """`value` as a float array of real numbers (scalar or array); anything else
     (bool, str, complex, None, dict, objects, ragged lists) is an InputError naming the type."""
+    if _plain(value):                # a plain float or int: at once (a model has hundreds)
+        return np.array(float(value))
     path = (name,) if path is None else path
     if isinstance(value, (bool, np.bool_, str, bytes, complex, np.complexfloating, dict)) \
             or value is None:
@@ -108,6 +117,8 @@ def real(name: str, value, unit: str = "", path: tuple | None = None) -> np.ndar
 
 def finite(name: str, value, unit: str = "", path: tuple | None = None) -> np.ndarray:
     """Return `value` as a float array; raise unless every element is a finite real number."""
+    if _plain(value) and math.isfinite(value):
+        return np.array(float(value))
     arr = real(name, value, unit, path)
     bad = ~np.isfinite(arr)
     if bad.any():
@@ -140,6 +151,10 @@ def in_range(name: str, value, low: float, high: float, unit: str = "",
              low_open: bool = False, high_open: bool = False,
              path: tuple | None = None) -> np.ndarray:
     """Finite and within [low, high] (ends open where asked); the message states the range."""
+    if _plain(value) and math.isfinite(value) and (
+            (low < value if low_open else low <= value)
+            and (value < high if high_open else value <= high)):
+        return np.array(float(value))
     arr = finite(name, value, unit, path)
     bad = (arr <= low if low_open else arr < low) | (arr >= high if high_open else arr > high)
     if bad.any():
@@ -178,6 +193,32 @@ def increasing(name: str, value, unit: str = "") -> np.ndarray:
             f"{_fmt(arr[i + 1].item(), unit)} follows {_fmt(arr[i].item(), unit)}"
         )
     return arr
+
+
+def file_path(name: str, value: Any, what: str = "a file"):
+    """`value` when it is a path: a non-empty ``str`` or an :class:`os.PathLike` of one
+    (``pathlib.Path``); anything else (None, a number, bytes, a list) is an InputError naming
+    `name`, what the path is of (`what`) and the type given.
+
+    >>> file_path("path", None, "a campaign file")
+    Traceback (most recent call last):
+    ...
+    propwhirl.validate.InputError: path = None is invalid: must be the path of a campaign file (a str or os.PathLike), got NoneType
+    """
+    import os
+
+    text = value
+    if isinstance(value, os.PathLike):
+        try:
+            text = os.fspath(value)
+        except TypeError:
+            text = None
+    if not isinstance(text, str) or not text or "\0" in text:
+        got = ("an empty string" if text == "" else "a str with a NUL character"
+               if isinstance(text, str) else type(value).__name__)
+        raise fail(name, value, f"invalid: must be the path of {what} (a str or os.PathLike), "
+                   f"got {got}")
+    return value
 
 
 def is_finite_number(x: Any) -> bool:

@@ -49,8 +49,9 @@ CASE_KEYS = st.fixed_dictionaries({}, optional={
     "added_masses": st.lists(st.fixed_dictionaries({"mass_kg": VALUES, "x_m": VALUES}),
                              max_size=2),
     "values": st.dictionaries(st.sampled_from(["wing.EI*", "wing.GJ", "flight.density",
-                                               "propellers[0].propeller.f_theta", "nope"]),
-                              VALUES, max_size=2)})
+                                               "propellers[0].propeller.f_theta", "nope",
+                                               "wing.mass_per_length*"]),
+                              VALUES | st.sampled_from([1e308, -1e308, 1e300]), max_size=2)})
 
 
 @FUZZ

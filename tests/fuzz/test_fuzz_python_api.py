@@ -79,3 +79,61 @@ def test_analysis_arguments(speeds):
             return                                       # None is the documented default
         a = analyse(model, speeds)
         assert all(math.isfinite(e.V) for e in a.events)
+
+
+# ----------------------------------------------------------------------------- issue 33, item 9
+def _entries():
+    from propwhirl.app.report import report_html
+    from propwhirl.io.campaign_files import load_campaign, loads
+    from propwhirl.io.modal_files import load_modal_model, load_modes
+    from propwhirl.studies.campaign import from_spec, run_campaign
+    from propwhirl.studies.campaign_result import CampaignResult
+
+    return {"load_modal_model(x)": load_modal_model, "load_modes(x, 3, 3)":
+            lambda x: load_modes(x, 3, 3), "load_campaign(x)": load_campaign, "loads(x)": loads,
+            "from_spec(x)": from_spec, "run_campaign(x)": run_campaign,
+            "CampaignResult.load(x)": CampaignResult.load, "report_html(x)": report_html}
+
+
+ENTRIES = _entries()
+WRONG = st.one_of(ANY, st.binary(max_size=6), st.dictionaries(st.text(max_size=3), ANY, max_size=2),
+                  st.sampled_from(["", "\0", ".", "/", "a\0b.toml", "nonexistent.toml"]))
+
+
+@FUZZ
+@given(name=st.sampled_from(sorted(ENTRIES)), value=WRONG)
+def test_api_entry_points_given_any_value(name, value, tmp_path_factory):
+    """A value of any type to the campaign and modal-model entry points: a one-line InputError
+    (none of these values is a file, a spec, a campaign or a result)."""
+    import os
+
+    here = os.getcwd()
+    os.chdir(tmp_path_factory.mktemp("api"))           # relative names find nothing
+    try:
+        with held_to_the_rule(f"python: {name}"):
+            ENTRIES[name](value)
+            raise AssertionError(f"{name} accepted {value!r}")
+    finally:
+        os.chdir(here)
+
+
+CASE_FIELDS = ("propellers", "mount_stiffness", "mount_damping", "wing_damping", "operation",
+               "rpm_factor", "reverse_rotation", "added_masses", "values", "state", "failure")
+CASE_VALUES = st.one_of(
+    ANY, st.lists(ANY, max_size=2), st.lists(st.tuples(ANY, ANY), max_size=2),
+    st.lists(st.tuples(st.sampled_from(["wing.EI*", "wing.GJ", "x", ""]), ANY), max_size=2),
+    st.dictionaries(st.sampled_from(["wing.EI*", "x"]), ANY, max_size=2))
+
+
+@FUZZ
+@given(field=st.sampled_from(CASE_FIELDS), value=CASE_VALUES)
+def test_campaign_case_fields(field, value):
+    """A Case with one field of any type and value: refused when it is made (one line), or
+    made, described and applied to the wingtip model (or refused there, one line)."""
+    from propwhirl.studies.campaign import Case
+
+    with held_to_the_rule("python: Case(...)"):
+        case = Case("fuzz", **{field: value})
+        hash(case)
+        assert isinstance(case.describe(), str)
+        case.apply(_wing_model())

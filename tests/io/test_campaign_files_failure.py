@@ -101,3 +101,22 @@ def test_any_failure_envelope_is_finite_or_one_line(V_C, M_C, alts):
         assert "\n" not in str(exc)
         return
     assert all(math.isfinite(p.V_line) and p.V_line > 0 and p.line_part for p in pts)
+
+
+@pytest.mark.parametrize("path, value", [("wing.mass_per_length*", 1e308), ("wing.EI*", 1e308),
+                                         ("propellers[0].propeller.f_theta*", 1e308)])
+def test_a_scale_beyond_the_floats_is_the_error_alone(path, value):
+    """Issue 33, item 10: a campaign value "wing.mass_per_length*" = 1e308 printed numpy's
+    RuntimeWarning (overflow) before the one-line error; now the error alone, naming the file,
+    the case, the path and what is wrong."""
+    import warnings
+
+    doc = _doc()
+    doc["cases"].append({"name": "heavy", "values": {path: value}})
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(InputError) as e:
+            _load(doc)
+    msg = str(e.value)
+    assert "\n" not in msg and msg.startswith("c.toml: [cases[3]] case 'heavy': ") and path in msg
+    assert "must be finite" in msg or "outside the valid range" in msg, msg

@@ -276,3 +276,41 @@ def test_an_analysis_output_on_the_modes_file_is_refused(written, tmp_path, caps
     assert err == (f"propwhirl: error: --json {npz} is the modes file of MODEL {toml} "
                    "([modes] file): give another path\n")
     assert npz.read_bytes() == before
+
+
+# ----------------------------------------------------------- issue 33, item 10
+@pytest.mark.parametrize("f", [1e300, 1e200, 1e154, 2e24])
+def test_an_overflowing_frequency_is_the_error_alone(tmp_path, f):
+    """Issue 33, item 10: frequencies_hz[9] = 1e300 printed numpy's RuntimeWarning (overflow)
+    before the one-line error; now the file is refused when read, naming the array, the mode
+    and the valid range, and nothing else is printed (warnings are errors here)."""
+    import warnings
+
+    toml, npz = write_modes(wingtip_propeller_wing(), tmp_path / "wingtip.toml")
+    with np.load(npz, allow_pickle=False) as a:
+        freq = a["frequencies_hz"].copy()
+    freq[9] = f
+    _rewrite_npz(npz, frequencies_hz=freq)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(InputError) as e:
+            load_modal_model(toml)
+    msg = str(e.value)
+    assert "\n" not in msg and msg.startswith(str(toml)) and str(npz) in msg, msg
+    assert f"frequencies_hz[9] = {f:.6g} Hz is outside the valid range [1e-3, 1e24] Hz" in msg
+
+
+def test_a_structure_whose_stiffness_overflows_gives_the_state_matrix_error_alone():
+    """A frequency within the range on a huge modal mass: m (2π f)² is inf, which the state
+    matrix's own check names — without numpy's warning before it."""
+    import warnings
+
+    from propwhirl.model.modal_structure import MAX_FREQUENCY_HZ
+
+    s = ModalStructure.from_wing(wingtip_propeller_wing().wing, 3)
+    big = ModalStructure(s.grid_ids, s.xyz, np.r_[s.frequencies_hz[:2], MAX_FREQUENCY_HZ],
+                         np.r_[1.0, 1.0, 1e300], s.damping_ratio, s.shapes)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        M, C, K = big.generalised()
+    assert np.isinf(K[2, 2]) and np.isfinite(M).all()

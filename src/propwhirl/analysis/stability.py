@@ -292,7 +292,7 @@ class ModelAnalysis(Result):
         Ctrl-C leaves the old file or none, never a partial one; the npz is written first).
         JSON without NaN or infinity: a non-finite number is an
         :class:`~propwhirl.validate.InputError` naming the key, and nothing is written."""
-        path = Path(path)
+        path = Path(v.file_path("path", path, f"the {self.WHAT} to write"))
         d = self.to_dict()
         npz = None
         if include_eigenvectors:

@@ -23,7 +23,6 @@ compares the two).
 """
 from __future__ import annotations
 
-import csv
 import io
 import math
 from collections.abc import Mapping, Sequence
@@ -270,7 +269,7 @@ class FlutterSummary(Result):
         """The summary as CSV (header: the names of :data:`COLUMNS`; floats written with
         ``repr``, 1/k empty where k = 0); also written to ``path`` if given (atomically)."""
         buf = io.StringIO()
-        w = csv.writer(buf, lineterminator="\n")
+        w = fileio.csv_writer(buf, lineterminator="\n")
         w.writerow([name for _, name, _ in COLUMNS])
         for i in range(len(self)):
             row = []

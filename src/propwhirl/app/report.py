@@ -203,6 +203,20 @@ def _mesh(model: Any) -> tuple[list[float], list[tuple[int, float | None]]] | No
     return [float(y) for y in node_y], props
 
 
+def _check_arguments(result: Any, campaign_file: Any, model_file: Any, date: Any) -> None:
+    """The report's arguments of the right types, else a one-line InputError naming one."""
+    from propwhirl.studies.campaign_result import CampaignResult
+
+    if not isinstance(result, CampaignResult):
+        raise v.fail("result", result, "invalid: must be a CampaignResult (run_campaign's, or "
+                     f"CampaignResult.load(path)), got {type(result).__name__}")
+    for name, path in (("campaign_file", campaign_file), ("model_file", model_file)):
+        if path is not None:
+            v.file_path(name, path, f"the {name.replace('_', ' ')} (or None)")
+    if date is not None and not isinstance(date, str):
+        raise v.fail("date", date, f"invalid: must be a str or None, got {type(date).__name__}")
+
+
 def report_html(result: Any, *, campaign_file: str | Path | None = None,
                 model_file: str | Path | None = None, model: Any = None,
                 date: str | None = None, figures: bool = True) -> str:
@@ -215,6 +229,7 @@ def report_html(result: Any, *, campaign_file: str | Path | None = None,
     the ``plots`` extra, they are left out too)."""
     import propwhirl
 
+    _check_arguments(result, campaign_file, model_file, date)
     if figures:
         try:
             import matplotlib  # noqa: F401
@@ -335,7 +350,8 @@ def write_report(result: Any, folder: str | Path, *, campaign_file: str | Path |
     FIFO or a socket (:func:`propwhirl.fileio.check_output`)."""
     from propwhirl.app import browser
 
-    folder = Path(folder)
+    _check_arguments(result, campaign_file, model_file, date)
+    folder = Path(v.file_path("folder", folder, "the report's folder"))
     outputs = [("report", folder / HTML_NAME), ("PDF report", folder / PDF_NAME)]
     for what, path in outputs:
         fileio.check_output(path, what)

@@ -281,6 +281,13 @@ def _from_dict(data: dict[str, Any], base: Path, source: str) -> CampaignSpec:
 def loads(text: str, source: str = "<string>", base: str | Path = ".") -> CampaignSpec:
     """The campaign in TOML `text`; its model path is relative to `base`.  Every problem is a
     one-line InputError starting with `source` (module docstring)."""
+    if not isinstance(text, str):
+        raise v.fail("text", text, "invalid: must be the TOML text of a campaign file (a str; "
+                     f"a file: load_campaign(path)), got {type(text).__name__}")
+    if not isinstance(source, str):
+        raise v.fail("source", source, "invalid: must be a str (how errors name the campaign), "
+                     f"got {type(source).__name__}")
+    v.file_path("base", base, "the folder the model path is relative to")
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -298,6 +305,6 @@ def loads(text: str, source: str = "<string>", base: str | Path = ".") -> Campai
 
 def load_campaign(path: str | Path) -> CampaignSpec:
     """Read a campaign file (errors as :func:`loads`, naming the path)."""
-    path = Path(path)
+    path = Path(v.file_path("path", path, "a campaign file (TOML)"))
     text = fileio.read_text(path, "campaign file", empty_ok=True, limit=fileio.MAX_TOML_BYTES)
     return loads(text, str(path), path.parent)

@@ -116,7 +116,9 @@ def load_modes(path: str | Path, n_modes: int, n_grids: int, where: str | None =
     """The :class:`~propwhirl.model.modal.ModalStructure` of the ``.npz`` at ``path`` (a
     `what`), whose arrays must have the sizes given (checked before reading); errors name
     the file."""
-    path = Path(path)
+    path = Path(v.file_path("path", path, "a modes file (.npz)"))
+    if where is not None and not isinstance(where, str):
+        raise v.fail("where", where, "invalid: must be a str (how errors name the file) or None")
     where = str(path) if where is None else where
     nm = v.integer_at_least("n_modes", n_modes, 1)
     ng = v.integer_at_least("n_grids", n_grids, 1)
@@ -157,7 +159,7 @@ def load_modal_model(path: str | Path) -> ModalPropellerWing:
     """The :class:`~propwhirl.model.modal.ModalPropellerWing` of the TOML file at ``path``
     and the ``.npz`` it names (relative to the TOML's folder).  Errors: one line starting with
     the file, naming the key (and the grid id) as written."""
-    path = Path(path)
+    path = Path(v.file_path("path", path, "a modal model file (TOML)"))
     src = str(path)
     text = fileio.read_text(path, "modal model file", limit=fileio.MAX_TOML_BYTES)
     try:

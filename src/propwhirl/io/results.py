@@ -47,7 +47,7 @@ def write_vgf_csv(result, path: str | Path) -> Path:
             raise v.InputError(f"cannot write {fileio.quoted(path)}: column {name} has "
                                "non-finite values")
     buf = io.StringIO()
-    out = csv.writer(buf)
+    out = fileio.csv_writer(buf)
     buf.write(fileio.count_line(KIND, len(table["V"])) + "\r\n")
     out.writerow([c for c, _ in VGF_COLUMNS])
     cols = [table[k] for _, k in VGF_COLUMNS]
@@ -118,7 +118,7 @@ def read_vgf_csv(path: str | Path) -> dict[str, np.ndarray]:
             if key == "label":
                 if not cell.strip():
                     raise v.InputError(f"{where}: line {line}: column {name} is empty")
-                out[key].append(cell)
+                out[key].append(fileio.csv_text(cell))
                 continue
             try:
                 x = int(cell) if key == "mode" else float(cell)

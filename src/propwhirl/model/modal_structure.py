@@ -42,6 +42,10 @@ from propwhirl.model.propeller_blocks import propeller_constants
 COMPONENTS = ("T_x", "T_y", "T_z", "R_x", "R_y", "R_z")
 #: Modes whose frequency is below this [Hz] are rigid-body modes: a cantilever wing has none.
 RIGID_BODY_HZ = 1e-3
+#: Highest natural frequency [Hz]: ω² = (2π f)² ≈ 4e49 1/s², within the rates an analysis
+#: takes (:data:`propwhirl.model.statespace.RATE_LIMIT`, 1e50) and far from overflow — and far
+#: above any structure's (a 200-element beam's highest mode is about 2e6 Hz).
+MAX_FREQUENCY_HZ = 1e24
 #: Most modes and strips of a model (a beam model has at most 3 × limits.MAX_ELEMENTS DOFs
 #: and MAX_ELEMENTS + 1 strips): the analyses' matrices grow with their squares.
 MAX_MODES = 1000
@@ -123,6 +127,13 @@ class ModalStructure:
             where = [int(i) for i in np.flatnonzero(ids == dup)]
             raise v.InputError(f"{src}: grid_ids has grid {dup} twice (at {where}): each grid "
                                "id once")
+        high = np.flatnonzero(f > MAX_FREQUENCY_HZ)
+        if high.size:
+            i = int(high[0])
+            raise v.InputError(
+                f"{src}: frequencies_hz[{i}] = {f[i]:.6g} Hz is outside the valid range "
+                f"[{v.fmt_bound(RIGID_BODY_HZ)}, {v.fmt_bound(MAX_FREQUENCY_HZ)}] Hz (mode "
+                f"{i + 1}): (2π f)² beyond the rates an analysis takes")
         low = np.flatnonzero(f < RIGID_BODY_HZ)
         if low.size:
             i = int(low[0])
@@ -275,7 +286,8 @@ class ModalStructure:
     def generalised(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The generalised M = diag(m_i), C = diag(2 ζ_i m_i ω_i), K = diag(m_i ω_i²)."""
         m, w, z = self.modal_mass, self.omega, self.damping_ratio
-        return np.diag(m), np.diag(2.0 * z * m * w), np.diag(m * w * w)
+        with np.errstate(over="ignore"):   # inf: the state matrix's check names the entry
+            return np.diag(m), np.diag(2.0 * z * m * w), np.diag(m * w * w)
 
 
 def _id_list(ids, limit: int = 8) -> str:

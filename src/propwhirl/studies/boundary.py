@@ -34,7 +34,6 @@ True
 """
 from __future__ import annotations
 
-import csv
 import io
 import math
 from collections.abc import Mapping
@@ -298,7 +297,7 @@ class Boundary(Result):
     def to_csv(self, path: str | Path | None = None) -> str:
         """One row per point: curve (from 1), point, the two parameters, the mode's data."""
         buf = io.StringIO()
-        w = csv.writer(buf, lineterminator="\n")
+        w = fileio.csv_writer(buf, lineterminator="\n")
         keys = sorted({k for inf in self.info for d in inf for k in d})
         heads = ["curve", "point"] + [f"{p} [{u}]" if u else p for p, u in zip(self.parameters, self.units)]
         w.writerow(heads + keys)

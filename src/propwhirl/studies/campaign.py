@@ -17,8 +17,11 @@ A :class:`Campaign` holds
   reversed rotation, added masses, any parameter path of :mod:`propwhirl.studies.paths`),
   applied to the chosen propellers (numbered from 1; all by default).
 
-:func:`run_campaign` builds every (case, point) model first (each bad case or point is a
-one-line InputError before any analysis), then runs one analysis per (case, point) with
+:func:`run_campaign` checks every case and point first (:func:`tasks`: each case's model
+built once, each altitude's flight condition and speed grid once; each bad case or point is a
+one-line InputError before any analysis; a product's combinations are built with their
+analyses, :func:`from_spec`), estimates the campaign's time as the studies do
+(:func:`propwhirl.limits.check_study`), then runs one analysis per (case, point) with
 :func:`propwhirl.studies.execution.map_analyses` (serial, local processes or Dask, a progress
 bar, a partial-results file and resume).  Each point's result (:func:`evaluate_point`) holds
 the critical instability (:func:`propwhirl.studies.critical.critical_instability`: kind, event,
@@ -37,7 +40,7 @@ import dataclasses
 import itertools
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -81,6 +84,45 @@ DELTA_M_C = 0.05
 
 
 # ============================================================================== cases
+#: A case's factors and their ranges: (field, low, high).
+_FACTORS = (("mount_stiffness", 1e-3, 100.0), ("mount_damping", 0.0, 100.0),
+            ("wing_damping", 0.0, 100.0), ("rpm_factor", 0.1, 3.0))
+
+
+def _number_in(case: str, key: str, x: Any, low: float, high: float) -> None:
+    """`x` a finite real number in [low, high] (a plain int or float checked at once, as the
+    many cases of a product are; anything else by :func:`propwhirl.validate.in_range`, whose
+    error names the case and `key`)."""
+    if type(x) in (float, int) and low <= x <= high:
+        return
+    name = f"case {case!r}: {key}"
+    v.in_range(name, x, low, high)
+    if not v.is_finite_number(x):                  # an array or list: one number
+        raise v.fail(name, x, f"invalid: must be one number in [{low:g}, {high:g}], got "
+                     f"{type(x).__name__}")
+
+
+def _sequence(case: str, key: str, x: Any, what: str) -> tuple:
+    """`x` (a tuple or list) as a tuple; anything else (a mapping, a string, None ...) is an
+    InputError naming the case and `key`."""
+    if isinstance(x, tuple):
+        return x
+    if isinstance(x, list):
+        return tuple(x)
+    raise v.fail(f"case {case!r}: {key}", x, f"invalid: must be a tuple of {what}, got "
+                 f"{type(x).__name__}")
+
+
+def _pair(case: str, key: str, x: Any, j: int, what: str, text: bool = False) -> tuple:
+    """Entry `j` of `key`: a pair (number, number), or with `text` (non-empty str, number)."""
+    ok = isinstance(x, (tuple, list)) and len(x) == 2 and v.is_finite_number(x[1]) and (
+        isinstance(x[0], str) and bool(x[0].strip()) if text else v.is_finite_number(x[0]))
+    if not ok:
+        raise v.fail(f"case {case!r}: {key}[{j}]", x, f"invalid: must be a pair {what} of "
+                     + ("a path and a finite number" if text else "finite numbers"))
+    return (x[0] if text else float(x[0]), float(x[1]))
+
+
 @dataclass(frozen=True)
 class Case:
     """A named model transformation (one failure case of a campaign).
@@ -125,26 +167,41 @@ class Case:
     failure: bool | None = None
 
     def __post_init__(self) -> None:
-        where = f"case {self.name!r}"
         if not isinstance(self.name, str) or not self.name.strip() or not self.name.isprintable():
             raise v.InputError(f"case name = {v.short_repr(self.name)} is invalid: must be a "
                                "non-empty printable string")
-        for i in self.propellers:
-            v.integer_at_least(f"{where}: propellers", i, 1)
-        v.in_range(f"{where}: mount_stiffness", self.mount_stiffness, 1e-3, 100.0)
-        v.in_range(f"{where}: mount_damping", self.mount_damping, 0.0, 100.0)
-        v.in_range(f"{where}: wing_damping", self.wing_damping, 0.0, 100.0)
-        v.in_range(f"{where}: rpm_factor", self.rpm_factor, 0.1, 3.0)
+        name = self.name            # the checks cheap when all is well: a product has many
+        props = _sequence(name, "propellers", self.propellers,
+                          "propeller numbers from 1, e.g. (1, 2)")
+        for i in props:
+            if type(i) is not int or i < 1:
+                v.integer_at_least(f"case {name!r}: propellers", i, 1)
+        masses = _sequence(name, "added_masses", self.added_masses,
+                           "(mass [kg], x [m]) pairs, e.g. ((20.0, -0.5),)")
+        masses = tuple(_pair(name, "added_masses", m, j, "(mass [kg], x [m])")
+                       for j, m in enumerate(masses)) if masses else masses
+        values = _sequence(name, "values", self.values,
+                           "(parameter path, value) pairs, e.g. (('wing.EI*', 0.9),)")
+        values = tuple(_pair(name, "values", x, j, "(parameter path, value)", text=True)
+                       for j, x in enumerate(values)) if values else values
+        for key, x in (("propellers", props), ("added_masses", masses), ("values", values)):
+            if x is not getattr(self, key):
+                object.__setattr__(self, key, x)
+        for key, low, high in _FACTORS:
+            _number_in(name, key, getattr(self, key), low, high)
+        if not isinstance(self.reverse_rotation, bool):
+            raise v.fail(f"case {name!r}: reverse_rotation", self.reverse_rotation, "invalid: "
+                         f"must be True or False, got {type(self.reverse_rotation).__name__}")
         if self.operation not in ("", *OPERATIONS):
-            raise v.InputError(f"{where}: operation = {v.short_repr(self.operation)} is invalid: "
-                               f"must be one of {', '.join(OPERATIONS)} (feathered or stopped "
-                               "rotors: state)")
+            raise v.InputError(f"case {name!r}: operation = {v.short_repr(self.operation)} is "
+                               f"invalid: must be one of {', '.join(OPERATIONS)} (feathered or "
+                               "stopped rotors: state)")
         if self.state not in ("", *STATES):
-            raise v.InputError(f"{where}: state = {v.short_repr(self.state)} is invalid: must be "
-                               f"one of {', '.join(STATES)}")
+            raise v.InputError(f"case {name!r}: state = {v.short_repr(self.state)} is invalid: "
+                               f"must be one of {', '.join(STATES)}")
         if self.failure is not None and not isinstance(self.failure, bool):
-            raise v.InputError(f"{where}: failure = {v.short_repr(self.failure)} is invalid: "
-                               "must be true or false")
+            raise v.InputError(f"case {name!r}: failure = {v.short_repr(self.failure)} is "
+                               "invalid: must be true or false")
 
     @property
     def is_failure(self) -> bool:
@@ -211,7 +268,22 @@ class Case:
         except v.InputError as exc:
             raise v.InputError(f"case {self.name!r}: {exc}") from None
 
-    def _apply(self, model: Any) -> Any:
+    def check(self, model: Any) -> None:
+        """What :meth:`apply` refuses without building a model — a propeller the model does
+        not have, overspeed of a propeller that is not constant-speed (one switched to
+        windmilling too) — as its one-line error; the rest (the model's own ranges) only
+        :meth:`apply` finds."""
+        try:
+            for i in self._chosen(model):
+                if self.rpm_factor != 1.0:
+                    prop = model.propellers[i].propeller
+                    self._check_overspeed(i, "fixed-pitch" if self.operation == "windmilling"
+                                          else prop.operation)
+        except v.InputError as exc:
+            raise v.InputError(f"case {self.name!r}: {exc}") from None
+
+    def _chosen(self, model: Any) -> list[int]:
+        """The indices (from 0) of the installations the case transforms."""
         installs = getattr(model, "propellers", None)
         if not isinstance(installs, tuple):
             raise v.InputError("a campaign needs a propeller-wing model (a wing with propellers)")
@@ -220,61 +292,75 @@ class Case:
             if i > n:
                 raise v.InputError(f"propellers = {list(self.propellers)} is invalid: the model "
                                    f"has {n} propeller{'s' * (n != 1)} (numbered 1 to {n})")
-        chosen = [i - 1 for i in self.propellers] or list(range(n))
-        values: dict[str, float] = {}
+        return [i - 1 for i in self.propellers] or list(range(n))
+
+    def _check_overspeed(self, i: int, operation: str) -> None:
+        if operation != "constant-speed":
+            raise v.InputError(f"rpm_factor = {self.rpm_factor:g} is invalid for propeller "
+                               f"{i + 1}: it is a fixed-pitch windmilling propeller, whose "
+                               "rpm follows the airspeed (overspeed needs operation = "
+                               "'constant-speed')")
+
+    def _apply(self, model: Any) -> Any:
+        # each changed object rebuilt once (its own validation runs): the propellers' mounts,
+        # operation, rpm and masses in one Propeller, then the installations, the wing's
+        # damping and the model in one PropellerWing; the parameter paths after the rest
+        chosen = self._chosen(model)
+        new = list(model.propellers)
         for i in chosen:
-            prop = installs[i].propeller
-            base = f"propellers[{i}].propeller"
-            if self.mount_stiffness != 1.0:
-                for f, k in (("f_theta", "K_theta"), ("f_psi", "K_psi")):
-                    if getattr(prop, k, None) is not None:
-                        values[f"{base}.{k}*"] = self.mount_stiffness
-                    else:
-                        values[f"{base}.{f}*"] = math.sqrt(self.mount_stiffness)
-            if self.mount_damping != 1.0:
-                for k in ("damping_theta", "damping_psi"):
-                    values[f"{base}.{k}"] = self.mount_damping * float(getattr(prop, k))
+            inst = new[i]
+            changes: dict[str, Any] = {}
+            prop = self._propeller(inst.propeller, i)
+            if prop is not inst.propeller:
+                changes["propeller"] = prop
+            if self.reverse_rotation:          # the installation's sense, not the shared table
+                changes["rotation"] = -int(inst.sense)
+            if self.state:
+                changes["state"] = self.state
+            if changes:
+                new[i] = dataclasses.replace(inst, **changes)
+        changes = {}
+        if any(a is not b for a, b in zip(new, model.propellers)):
+            changes["propellers"] = tuple(new)
         if self.wing_damping != 1.0:
             mu, lam = model.wing.rayleigh
-            values["wing.rayleigh[0]"] = self.wing_damping * float(mu)
-            values["wing.rayleigh[1]"] = self.wing_damping * float(lam)
-        if values:
-            model = P.set_values(model, values)
-        if (self.operation or self.rpm_factor != 1.0 or self.reverse_rotation or self.added_masses
-                or self.state):
-            new = list(model.propellers)
-            for i in chosen:
-                inst = new[i]
-                changes: dict[str, Any] = {}
-                if self.operation or self.rpm_factor != 1.0 or self.added_masses:
-                    changes["propeller"] = self._propeller(inst.propeller, i)
-                if self.reverse_rotation:      # the installation's sense, not the shared table
-                    changes["rotation"] = -int(inst.sense)
-                if self.state:
-                    changes["state"] = self.state
-                new[i] = dataclasses.replace(inst, **changes)
-            model = dataclasses.replace(model, propellers=tuple(new))
+            changes["wing"] = dataclasses.replace(model.wing, rayleigh=(
+                self.wing_damping * float(mu), self.wing_damping * float(lam)))
+        if changes:
+            model = dataclasses.replace(model, **changes)
         if self.values:
             model = P.set_values(model, dict(self.values))
         return model
 
     def _propeller(self, prop: Any, i: int) -> Any:
+        """Propeller `i` (from 0) transformed: its mounts, operation, rpm and masses (the
+        propeller itself when nothing changes)."""
         from propwhirl.model.propeller import PointMass
 
         changes: dict[str, Any] = {}
+        if self.mount_stiffness != 1.0:     # K x factor, or f x sqrt(factor) where f is given
+            for f, k in (("f_theta", "K_theta"), ("f_psi", "K_psi")):
+                if getattr(prop, k, None) is not None:
+                    changes[k] = float(getattr(prop, k)) * self.mount_stiffness
+                else:
+                    changes[f] = float(getattr(prop, f)) * math.sqrt(self.mount_stiffness)
+        if self.mount_damping != 1.0:
+            for k in ("damping_theta", "damping_psi"):
+                changes[k] = self.mount_damping * float(getattr(prop, k))
         if self.operation == "windmilling" and prop.operation != "fixed-pitch":
             changes.update(operation="fixed-pitch", rpm=None)
         if self.rpm_factor != 1.0:
-            if (changes.get("operation") or prop.operation) != "constant-speed":
-                raise v.InputError(f"rpm_factor = {self.rpm_factor:g} is invalid for propeller "
-                                   f"{i + 1}: it is a fixed-pitch windmilling propeller, whose "
-                                   "rpm follows the airspeed (overspeed needs operation = "
-                                   "'constant-speed')")
+            self._check_overspeed(i, changes.get("operation") or prop.operation)
             changes["rpm"] = float(prop.rpm) * self.rpm_factor
         if self.added_masses:
             changes["masses"] = tuple(prop.masses) + tuple(PointMass(m, x)
                                                            for m, x in self.added_masses)
-        return dataclasses.replace(prop, **changes)
+        if not changes:
+            return prop
+        try:
+            return dataclasses.replace(prop, **changes)
+        except v.InputError as exc:
+            raise v.InputError(f"propeller {i + 1}: {exc}") from None
 
 
 def _acts_on_propellers(c: Case) -> bool:
@@ -474,16 +560,34 @@ class Campaign:
     static_divergence: bool = True
     low_speed: bool = True
     xtol: float = 0.01
+    #: the names of the cases whose model is built with their analyses, not before (the
+    #: combinations of a product: :func:`from_spec`); the others are built by :func:`tasks`
+    _deferred: frozenset = field(default=frozenset(), repr=False, compare=False)
+    #: what :func:`tasks` made once: each case's model (by name), the tasks and their keys
+    #: (not an argument: a campaign made with ``dataclasses.replace`` starts afresh)
+    _made: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
+        for key, kind, what in (("cases", Case, "Case"), ("points", EnvelopePoint,
+                                                          "EnvelopePoint (envelope(...))")):
+            x = getattr(self, key)
+            if not isinstance(x, (tuple, list)) or not all(isinstance(i, kind) for i in x):
+                raise v.fail(key, x, f"invalid: must be a tuple of {what}")
+            object.__setattr__(self, key, tuple(x))
         if not self.cases:
             raise v.InputError("a campaign needs at least one case")
         if not self.points:
             raise v.InputError("a campaign needs at least one envelope point")
-        names = [c.name for c in self.cases]
-        for n in names:
-            if names.count(n) > 1:
-                raise v.InputError(f"case name {n!r} is given twice: every case needs its own name")
+        seen: set[str] = set()
+        for c in self.cases:
+            if c.name in seen:
+                raise v.InputError(f"case name {c.name!r} is given twice: every case needs its "
+                                   "own name")
+            seen.add(c.name)
+        if not isinstance(self.name, str):
+            raise v.fail("name", self.name, f"invalid: must be a str, got {type(self.name).__name__}")
+        for key in ("static_divergence", "low_speed"):
+            v.boolean(key, getattr(self, key))
         v.in_range("factor", self.factor, 1.0, 3.0)
         if self.regulation not in PART25 and any(p.V_line is not None for p in self.points):
             raise v.InputError(f"V_C is invalid with regulation {self.regulation!r}: the "
@@ -545,33 +649,53 @@ def at_altitude(model: Any, altitude_m: float) -> Any:
 def from_spec(spec: Any) -> Campaign:
     """The :class:`Campaign` of a campaign file read by
     :func:`propwhirl.io.campaign_files.load_campaign` (a ``CampaignSpec``): its cases made
-    (``each_propeller`` expanded, a product of the groups), its envelope points, and every
-    case's model at every point built (:func:`tasks`) — so every error comes now, before any
-    analysis, one line starting with the file's name and naming the case's table."""
+    (``each_propeller`` expanded, a product of the groups), its envelope points, every case as
+    written built once and every point's speed grid checked (:func:`tasks`) — so every error
+    comes now, before any analysis, one line starting with the file's name and naming the
+    case's table.  The combinations of a product (of two groups or more) are checked for what
+    needs no model (:meth:`Case.check`) and built with their analyses: one the model refuses
+    as a whole is recorded in its rows, as a sweep's refused point is."""
+    missing = [k for k in _SPEC_FIELDS if not hasattr(spec, k)]
+    if missing or not isinstance(getattr(spec, "source", None), str):
+        raise v.fail("spec", spec, "invalid: must be a CampaignSpec, as "
+                     "propwhirl.io.campaign_files.load_campaign(path) or loads(text) read it, "
+                     f"got {type(spec).__name__}")
     try:
         return _from_spec(spec)
     except v.InputError as exc:
         raise v.InputError(f"{spec.source}: {' '.join(str(exc).split())}") from None
 
 
+#: What :func:`from_spec` reads of a ``CampaignSpec`` (:mod:`propwhirl.io.campaign_files`,
+#: above the studies: known here by its fields).
+_SPEC_FIELDS = ("source", "name", "model", "convention", "combine", "regulation", "factor",
+                "min_damping_g", "airspeed", "V_D", "altitudes_m", "M_D", "cases", "V_C", "M_C")
+
+
 def _from_spec(spec: Any) -> Campaign:
     n = len(spec.model.propellers)
     groups: dict[str, list[Case]] = {}
     cases: list[Case] = []
+    models: dict[str, Any] = {}
     for cs in spec.cases:
         try:
             which = [(i,) for i in (cs.propellers or range(1, n + 1))] if cs.each_propeller \
                 else [cs.propellers]
             made = [Case(f"{cs.name} (propeller {p[0]})" if cs.each_propeller else cs.name, p,
                          **cs.transform) for p in which]
-            for c in made:
-                c.apply(spec.model)
+            for c in made:                 # each case as written, built once and checked
+                models[c.name] = c.apply(spec.model)
         except v.InputError as exc:
             raise v.InputError(f"[{cs.table}] {exc}") from None
         groups.setdefault(cs.group, []).extend(made)
         cases.extend(made)
+    deferred: frozenset = frozenset()
     if spec.combine == "product":
         cases = list(product(list(groups.values())))
+        for c in cases:                    # what a combination is refused for, without a model
+            c.check(spec.model)
+        if len(groups) > 1:                # the combinations: built with their analyses
+            deferred, models = frozenset(c.name for c in cases), {}
     seen: set[str] = set()
     for c in cases:
         if c.name in seen:
@@ -586,41 +710,101 @@ def _from_spec(spec: Any) -> Campaign:
         raise v.InputError(f"[envelope] {exc}") from None
     camp = Campaign(spec.name, spec.model, tuple(cases), points,
                     spec.regulation, spec.factor, spec.min_damping_g,
-                    static_divergence=not thesis, low_speed=not thesis)
-    tasks(camp)          # every case's model at every point, built and checked now
+                    static_divergence=not thesis, low_speed=not thesis, _deferred=deferred)
+    for name, m in models.items():
+        camp._made[("model", name)] = m
+    tasks(camp)          # every case's model and every point's speed grid checked now
     return camp
 
 
 @dataclass(frozen=True)
 class _Task:
-    """One analysis of a campaign: a (case, point) model, its speeds and the requirement."""
+    """One analysis of a campaign: a (case, point), its speeds and the requirement.
 
-    model: Any
+    Its model (:meth:`build`, :attr:`model`) is `source` at the flight condition `flight` of
+    the ISA `altitude_m` — `source` the case's model, built once for all the points; or, for
+    a combination of a product (`case` given), the campaign's model, which `case` transforms
+    when the analysis needs it (so expanding a campaign builds no model per task).  Without
+    `flight`, `source` is the model itself."""
+
+    source: Any
     speeds: np.ndarray
     V_D: float
     V_required: float
     xtol: float
     static_divergence: bool
     low_speed: bool
+    case: Case | None = None
+    flight: FlightCondition | None = None
+    altitude_m: float | None = None
+
+    def build(self) -> tuple[Any, np.ndarray]:
+        """(the model, its speed grid) of this task (an InputError naming the case when a
+        combination is one the model refuses)."""
+        m = self.source if self.case is None else self.case.apply(self.source)
+        if self.flight is None:
+            return m, self.speeds
+        if tuple(m.flight.speed_range) == tuple(self.flight.speed_range):
+            return dataclasses.replace(m, flight=self.flight), self.speeds
+        from propwhirl.studies.clearance import clearance_speeds  # a combination's own range
+
+        m = at_altitude(m, float(self.altitude_m))
+        return m, clearance_speeds(m, self.V_required)
+
+    @property
+    def model(self) -> Any:
+        """The task's model (:meth:`build`)."""
+        return self.build()[0]
+
+
+def _case_model(c: Campaign, case: Case) -> Any:
+    """`case`'s model (the campaign's model transformed), built once per campaign."""
+    key = ("model", case.name)
+    if key not in c._made:
+        c._made[key] = case.apply(c.model)
+    return c._made[key]
 
 
 def tasks(c: Campaign) -> tuple[list[_Task], list[str]]:
-    """Every (case, point) task, case-major, and its key ("case @ altitude"); every model
-    built and every speed grid checked here, before any analysis."""
-    from propwhirl.studies.clearance import clearance_speeds
+    """Every (case, point) task, case-major, and its key ("case @ altitude"), made once per
+    campaign: every case's model built once (a product's combinations: checked without a
+    model, built with their analyses), every point's flight condition once, every speed grid
+    checked once per distinct (speed range, speed of sound, required speed) — the work grows
+    with the cases plus the points, the bookkeeping alone with the tasks; all before any
+    analysis."""
+    from propwhirl.model.validity import has_aerodynamics
+    from propwhirl.studies.clearance import speed_grid
 
+    if "tasks" in c._made:
+        return list(c._made["tasks"]), list(c._made["keys"])
     out, keys = [], []
+    flights: dict[tuple, FlightCondition] = {}
+    grids: dict[tuple, np.ndarray] = {}
+    common = (c.xtol, c.static_divergence, c.low_speed)
     for case in c.cases:
-        model = case.apply(c.model)
+        deferred = case.name in c._deferred
+        source = c.model if deferred else _case_model(c, case)
+        span = tuple(float(x) for x in source.flight.speed_range)
+        aero = True if deferred else has_aerodynamics(source)   # a combination: checked as if
         for p in c.points:
-            m = at_altitude(model, p.altitude_m)
+            fc = flights.get((p.altitude_m, span))
+            if fc is None:
+                fc = flights[p.altitude_m, span] = FlightCondition.from_altitude(
+                    p.altitude_m, speed_range=span)
             V_req, _ = required_speed(c, case, p)
-            try:
-                grid = clearance_speeds(m, V_req)
-            except v.InputError as exc:
-                raise v.InputError(f"case {case.name!r} at {p.altitude_m:g} m: {exc}") from None
-            out.append(_Task(m, grid, p.V_D, V_req, c.xtol, c.static_divergence, c.low_speed))
+            key = (span, aero, float(fc.speed_of_sound), V_req)
+            grid = grids.get(key)
+            if grid is None:
+                try:
+                    grid = grids[key] = speed_grid(span, V_req, fc.speed_of_sound, aero)
+                except v.InputError as exc:
+                    raise v.InputError(f"case {case.name!r} at {p.altitude_m:g} m: {exc}") \
+                        from None
+                grid.flags.writeable = False
+            out.append(_Task(source, grid, p.V_D, V_req, *common,
+                             case if deferred else None, fc, p.altitude_m))
             keys.append(f"{case.name} @ {p.altitude_m!r} m")
+    c._made["tasks"], c._made["keys"] = tuple(out), tuple(keys)
     return out, keys
 
 
@@ -705,8 +889,9 @@ def evaluate_point(task: _Task) -> dict[str, Any]:
     from propwhirl.analysis.stability import analyse
     from propwhirl.studies.critical import critical_instability, wing_divergence_predicate
 
-    a = analyse(task.model, task.speeds, xtol=task.xtol)
-    is_wing = wing_divergence_predicate(task.model, a)
+    model, speeds = task.build()
+    a = analyse(model, speeds, xtol=task.xtol)
+    is_wing = wing_divergence_predicate(model, a)
     e = critical_instability(a, static_divergence=task.static_divergence,
                              low_speed=task.low_speed, is_wing_divergence=is_wing)
     sweep = a.sweep
@@ -726,7 +911,7 @@ def evaluate_point(task: _Task) -> dict[str, Any]:
     if e is not None and e.kind == "divergence" and mode.startswith("lag "):
         found = _event_vector(a, e)       # a real root from a lag state: name it at the event
         if found is not None:
-            mode = real_root_at_the_event(task.model, mode, found[0], found[2])
+            mode = real_root_at_the_event(model, mode, found[0], found[2])
     return {
         "critical_speed": Vc,
         "kind": "none" if e is None else e.kind,
@@ -788,16 +973,28 @@ def run_campaign(c: Campaign, *, processes: int = 1, client=None,
     """Run every (case, point) of `c` (module docstring).
 
     processes, client, progress: :func:`propwhirl.studies.execution.map_analyses`;
-    checkpoint: the partial-results file (its fingerprint gets the content of every task:
-    a file of another campaign is refused).  A point whose analysis fails is recorded (not
-    cleared, its message in ``error``); the others go on."""
+    checkpoint: the partial-results file (its fingerprint gets the content of the model,
+    the cases, the points and the regulation, which decide every task: a file of another
+    campaign is refused).  Before the first analysis the campaign's time and memory are
+    estimated (:func:`propwhirl.limits.check_study`: printed before a long one when `progress`
+    is True; one beyond the study time limit refused).  A point whose analysis fails is
+    recorded (not cleared, its message in ``error``); the others go on."""
+    if not isinstance(c, Campaign):
+        raise v.fail("run_campaign: c", c, "invalid: must be a propwhirl.studies.campaign.Campaign "
+                     f"(from_spec(load_campaign(path)), or Campaign(...)), got {type(c).__name__}")
+    from propwhirl import limits
+    from propwhirl.analysis.reduced import choose_method
+
+    limits.check_study(c.model, len(c.cases) * len(c.points), processes,
+                       method=choose_method(c.model, "auto"), cluster=client is not None,
+                       progress=progress)
     todo, keys = tasks(c)
-    if checkpoint is not None:
+    if checkpoint is not None:   # the tasks follow from these (and the version): one digest
         checkpoint = checkpoint.with_entries(
             study="campaign", convention=c.convention, factor=float(c.factor),
             min_damping_g=c.min_damping_g,
-            tasks=execution.content_digest([(t.model, list(map(float, t.speeds)), t.V_D,
-                                             t.V_required, t.xtol) for t in todo]))
+            tasks=execution.content_digest(["campaign", c.model, list(c.cases),
+                                            list(c.points), c.regulation, c.xtol]))
     results = execution.map_analyses(evaluate_point, todo, processes, client=client,
                                      progress=progress, errors="record", checkpoint=checkpoint,
                                      keys=keys, desc="campaign")

@@ -8,7 +8,6 @@ report's figures of it need (:mod:`propwhirl.app.report`): the V-g-f curves of t
 modes of interest and the critical mode's shape."""
 from __future__ import annotations
 
-import csv
 import io
 import math
 from collections.abc import Mapping
@@ -326,7 +325,7 @@ class CampaignResult(Result):
         """Every row's numbers as CSV (one line per (case, point); shares as
         "propeller:share:whirl" joined with spaces; empty for a missing number)."""
         buf = io.StringIO()
-        w = csv.writer(buf, lineterminator="\n")
+        w = fileio.csv_writer(buf, lineterminator="\n")
         w.writerow(_ROW_KEYS)
         for r in self.rows:
             d = r.to_dict()

@@ -24,7 +24,6 @@ factor · V_D when the model's own ends below it) and reports
 """
 from __future__ import annotations
 
-import csv
 import io
 import math
 from collections.abc import Mapping
@@ -225,7 +224,7 @@ class Clearance(Result):
         """Two tables in one CSV: the instabilities (section "instability") and the minimum
         frequencies (section "minimum"), with the verdict in the first row."""
         buf = io.StringIO()
-        w = csv.writer(buf, lineterminator="\n")
+        w = fileio.csv_writer(buf, lineterminator="\n")
         w.writerow(["model", "V_D [m/s]", "factor", "V_required [m/s]", "cleared"])
         w.writerow([self.model_name, f"{self.V_D:g}", f"{self.factor:g}", f"{self.V_required:.10g}",
                     "yes" if self.cleared else "no"])
@@ -259,16 +258,26 @@ def clearance_speeds(model: Any, V_required: float, speeds=None) -> np.ndarray:
     number the model's aerodynamics refuse (:data:`propwhirl.model.validity.MACH_REFUSED`)
     and hold at most :data:`propwhirl.limits.MAX_SPEEDS` speeds (one-line InputErrors naming
     V_D, factor x V_D and the largest valid value)."""
+    aero, a = validity.has_aerodynamics(model), float(model.flight.speed_of_sound)
     if speeds is not None:
         grid = v.increasing("speeds", speeds, "m/s")
         if grid[-1] <= V_required:
             raise v.InputError(f"speeds end at {grid[-1]:g} m/s: must reach beyond factor V_D = "
                                f"{V_required:.2f} m/s")
-        _check_top_speed(model, float(grid[-1]), V_required, "the speeds' end")
+        _check_top_speed(aero, a, float(grid[-1]), V_required, "the speeds' end")
         return grid
-    lo, hi, step = (float(x) for x in model.flight.speed_range)
+    return speed_grid(model.flight.speed_range, V_required, a, aero)
+
+
+def speed_grid(speed_range, V_required: float, speed_of_sound: float,
+               aerodynamic: bool = True) -> np.ndarray:
+    """:func:`clearance_speeds`' grid [m/s] without its model: the speed range
+    (first, last, step) [m/s] extended to at least 1.05 · V_required, its checks made with the
+    speed of sound [m/s] (and only when the model has `aerodynamic` loads).  A campaign makes
+    its points' grids with it once per distinct range, speed of sound and V_required."""
+    lo, hi, step = (float(x) for x in speed_range)
     hi = max(hi, 1.05 * V_required)
-    _check_top_speed(model, hi, V_required, "1.05 factor x V_D")
+    _check_top_speed(aerodynamic, float(speed_of_sound), hi, V_required, "1.05 factor x V_D")
     count = limits.grid_count(lo, hi, step)
     if not count <= limits.MAX_SPEEDS:
         raise v.InputError(
@@ -279,12 +288,12 @@ def clearance_speeds(model: Any, V_required: float, speeds=None) -> np.ndarray:
     return lo + step * np.arange(n + 1)
 
 
-def _check_top_speed(model: Any, top: float, V_required: float, what: str) -> None:
-    """Refuse analyses to `top` [m/s] (`what`) at a Mach number the model's aerodynamics
-    refuse."""
-    if not validity.has_aerodynamics(model):
+def _check_top_speed(aerodynamic: bool, a: float, top: float, V_required: float,
+                     what: str) -> None:
+    """Refuse analyses to `top` [m/s] (`what`) at a Mach number (speed of sound `a` [m/s])
+    the aerodynamics refuse (none without `aerodynamic` loads)."""
+    if not aerodynamic:
         return
-    a = float(model.flight.speed_of_sound)
     if top / a >= validity.MACH_REFUSED:
         raise v.InputError(
             f"factor x V_D = {V_required:g} m/s is invalid: the analyses go to {what}, "

@@ -32,6 +32,8 @@ The partial-results file, its fingerprint and the point formats are
 from __future__ import annotations
 
 import os
+import re
+import struct
 import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
@@ -124,8 +126,12 @@ def _dask(func: Callable, items: list[tuple[int, Any]], client) -> Iterator[tupl
 #: Schemes of a scheduler address that :func:`connect` opens (tls: with the certificates of
 #: the Dask configuration, ``distributed.comm.tls``; inproc: a cluster of this process).
 SCHEMES = ("tcp", "tls", "inproc")
-#: Longest wait for the scheduler to accept a connection [s] (one attempt).
+#: Longest wait for the scheduler to accept a connection and send its handshake [s] (one
+#: attempt; :func:`connect`).
 CONNECT_TIMEOUT = 5.0
+#: Most bytes the handshake a Dask scheduler sends first may announce (its own is about 60):
+#: a server that announces more, e.g. the text "SSH-2.0-" read as a length, is not one.
+MAX_HANDSHAKE_BYTES = 1 << 16
 
 
 def _address(scheduler: Any) -> tuple[str, str, int]:
@@ -147,8 +153,8 @@ def _address(scheduler: Any) -> tuple[str, str, int]:
     host, colon, port = rest.rpartition(":")
     if host.startswith("[") and host.endswith("]"):
         host = host[1:-1]                                   # [IPv6]:port
-    if not colon or not host or not port.isdigit() or not 1 <= int(port) <= 65535 \
-            or any(c in host for c in "/?#@ "):
+    if not colon or not host or re.fullmatch(r"[0-9]{1,5}", port) is None \
+            or not 1 <= int(port) <= 65535 or any(c in host for c in "/?#@ "):
         raise v.InputError(f"scheduler = {v.short_repr(scheduler)} is invalid: {example} "
                            "(a host and a port in [1, 65535])")
     if scheme == "tls":
@@ -170,16 +176,96 @@ def check_scheduler(scheduler: str) -> None:
     _address(scheduler)
 
 
-def connect(scheduler: str, timeout: float = CONNECT_TIMEOUT):
+def _receive(sock, n: int, deadline: float) -> bytes:
+    """Exactly `n` bytes from `sock` before `deadline` (:func:`time.monotonic`), or fewer when
+    the peer closes the connection; :class:`TimeoutError` past the deadline."""
+    data = b""
+    while len(data) < n:
+        left = deadline - time.monotonic()
+        if left <= 0:
+            raise TimeoutError
+        sock.settimeout(left)
+        chunk = sock.recv(n - len(data))
+        if not chunk:
+            break
+        data += chunk
+    return data
+
+
+def _handshake(data: bytes) -> Any:
+    """The handshake message of a Dask comm (frames packed as ``distributed.protocol``'s
+    ``pack_frames``: a count, the lengths, msgpack), or None when `data` is not one."""
+    try:
+        (count,) = struct.unpack_from("Q", data)
+        if not 1 <= count <= 16:
+            return None
+        lengths = struct.unpack_from(f"{count}Q", data, 8)
+        if 8 * (1 + count) + sum(lengths) != len(data):
+            return None
+        from distributed.protocol.core import loads
+        from distributed.protocol.utils import unpack_frames
+
+        return loads(unpack_frames(data), deserialize=False)
+    except Exception:  # any malformed message: not a scheduler's handshake
+        return None
+
+
+def _probe(scheme: str, host: str, port: int, scheduler: str, timeout: float) -> None:
+    """One connection to the scheduler's port that must, within `timeout` [s] in all, be
+    accepted and receive the handshake a Dask scheduler sends first (its Python version,
+    compression, pickle protocol: at most :data:`MAX_HANDSHAKE_BYTES`); closed again.  An
+    InputError naming the address otherwise — refused or unreachable (at once), silent (a
+    server that waits to be spoken to, e.g. HTTP), or answering something else (an SSH
+    banner): the Dask client would read such an answer as a frame length (exabytes) or wait
+    for it without end."""
+    import socket
+
+    deadline = time.monotonic() + timeout
+    where = f"scheduler = {scheduler!r}"
+    try:
+        sock = socket.create_connection((host, port), timeout=timeout)
+    except (OSError, ValueError) as exc:
+        why = "timed out" if isinstance(exc, TimeoutError) else fileio.reason(exc)
+        raise v.InputError(f"{where}: cannot connect to {host}:{port} ({why})") from None
+    try:
+        if scheme == "tls":
+            from distributed.security import Security
+
+            ctx = Security().get_connection_args("client")["ssl_context"]
+            sock.settimeout(max(deadline - time.monotonic(), 1e-3))
+            sock = ctx.wrap_socket(sock, server_hostname=host)
+        header = _receive(sock, 8, deadline)
+        size = struct.unpack("Q", header)[0] if len(header) == 8 else 0
+        body = _receive(sock, size, deadline) if 16 <= size <= MAX_HANDSHAKE_BYTES else b""
+    except TimeoutError:
+        raise v.InputError(f"{where}: {host}:{port} accepted the connection but sent no Dask "
+                           f"handshake within {timeout:g} s (not a Dask scheduler, or not "
+                           "answering)") from None
+    except (OSError, ValueError) as exc:   # a TLS handshake refused, a reset ...
+        raise v.InputError(f"{where}: {host}:{port} is not a Dask scheduler: "
+                           f"{' '.join(fileio.reason(exc).split())[:120]}") from None
+    finally:
+        sock.close()
+    message = _handshake(header + body) if len(body) == size else None
+    if not (isinstance(message, dict) and "python" in message):
+        seen = (header + body)[:24]
+        raise v.InputError(f"{where}: {host}:{port} answered, but not as a Dask scheduler "
+                           + (f"(its first bytes: {seen!r})" if seen else
+                              "(it closed the connection without a handshake)"))
+
+
+def connect(scheduler: str, timeout: float | None = None):
     """A ``dask.distributed.Client`` of the scheduler at address `scheduler`
     (``tcp://host:8786``; ``tls://`` with the Dask configuration's certificates).
 
-    One attempt: the scheduler's port must accept a connection within `timeout` [s] (else an
-    InputError naming the address and the reason, at once for a refused connection); the
-    client is then made once.  One-line errors too when dask is missing or the address or
-    its scheme is invalid (``ucx://``, ``inproc://`` ...)."""
-    import socket
-
+    One attempt, bounded by `timeout` [s] (default :data:`CONNECT_TIMEOUT`): the scheduler's
+    port must accept a connection and send a Dask scheduler's handshake within it
+    (:func:`_probe`: else an InputError naming the address and the reason — at once for a
+    refused connection, a server answering something else, e.g. an SSH banner or an HTTP
+    error; after `timeout` for one that never answers); the client is then made once.
+    One-line errors too when dask is missing or the address or its scheme is invalid
+    (``ucx://``, ``inproc://`` ..., a port that is not ASCII digits)."""
+    timeout = CONNECT_TIMEOUT if timeout is None else timeout
     v.positive("timeout", timeout, "s")
     Client = _client_class("scheduler")
     scheme, host, port = _address(scheduler)
@@ -196,12 +282,7 @@ def connect(scheduler: str, timeout: float = CONNECT_TIMEOUT):
                                "this process listens there)")
     else:
         address = f"{scheme}://{host if ':' not in host else '[' + host + ']'}:{port}"
-        try:                              # the probe: refused or unreachable fails here, once
-            socket.create_connection((host, port), timeout=timeout).close()
-        except (OSError, ValueError) as exc:
-            why = "timed out" if isinstance(exc, TimeoutError) else fileio.reason(exc)
-            raise v.InputError(f"scheduler = {scheduler!r}: cannot connect to {host}:{port} "
-                               f"({why})") from None
+        _probe(scheme, host, port, scheduler, timeout)  # a Dask scheduler answers, in time
     try:
         return Client(address, timeout=timeout)
     except (OSError, TimeoutError, ValueError, TypeError) as exc:

@@ -259,13 +259,17 @@ class Parameter:
         if old is None or isinstance(old, str):
             raise v.InputError(f"{self.path}: the field is {v.short_repr(old)}: there is no "
                                "value to scale (give a number, or set it without '*')")
+        # a product beyond the floats is inf, which the model's own check names (no
+        # RuntimeWarning before that one-line error)
         if isinstance(old, Distribution):
-            return dataclasses.replace(old, values=tuple(x * np.asarray(old.values)))
+            with np.errstate(over="ignore", invalid="ignore"):
+                return dataclasses.replace(old, values=tuple(x * np.asarray(old.values)))
         if isinstance(old, Scaled):
             return Scaled(old.function, x * old.factor)
         if callable(old):
             return Scaled(old, x)
-        arr = np.asarray(old, dtype=float) * x
+        with np.errstate(over="ignore", invalid="ignore"):
+            arr = np.asarray(old, dtype=float) * x
         return float(arr) if arr.ndim == 0 and not isinstance(old, np.ndarray) else arr
 
 

@@ -316,6 +316,7 @@ class CriticalMap(Result):
             raise v.InputError(f"{where}: line {short[0] + 1 + (count is not None)} has "
                                f"{len(rows[short[0]])} columns, need {len(rows[0])} (truncated?)")
         fileio.check_count(count, len(rows) - 1, "critical map", where)
+        rows[0] = [fileio.csv_text(h) for h in rows[0]]
         heads = [h.split(" [")[0] for h in rows[0]]
         units = {h.split(" [")[0]: (h.split(" [", 1)[1].rstrip("]") if " [" in h else "")
                  for h in rows[0]}
@@ -324,7 +325,7 @@ class CriticalMap(Result):
         if missing or not axes_names:
             raise v.InputError(f"{where}: not a critical-map table (missing columns "
                                f"{missing or 'of parameters'})")
-        data = {h: [r[i] for r in rows[1:]] for i, h in enumerate(heads)}
+        data = {h: [fileio.csv_text(r[i]) for r in rows[1:]] for i, h in enumerate(heads)}
         try:
             axes = tuple(Axis(h, np.array(list(dict.fromkeys(float(x) for x in data[h]))),
                               units[h]) for h in axes_names)
@@ -340,7 +341,7 @@ class CriticalMap(Result):
     def save(self, path: str | Path) -> Path:
         """Write the map: CSV for a ``.csv`` suffix, else JSON (:meth:`Result.save`;
         atomically)."""
-        path = Path(path)
+        path = Path(v.file_path("path", path, f"the {self.WHAT} to write"))
         if path.suffix.lower() == ".csv":
             self.to_csv(path)
             return path
@@ -350,7 +351,7 @@ class CriticalMap(Result):
     def load(cls, path: str | Path) -> "CriticalMap":
         """Read a map written by :meth:`save` (JSON, checked by :meth:`Result.load`, or CSV
         by its suffix)."""
-        if Path(path).suffix.lower() == ".csv":
+        if Path(v.file_path("path", path, f"a {cls.WHAT}")).suffix.lower() == ".csv":
             return cls.from_csv(fileio.read_text(path, "critical map"), fileio.shown(path))
         return super().load(path)
 

@@ -1,7 +1,6 @@
 """The result table of a parametric study: one row per (model, parameter value)."""
 from __future__ import annotations
 
-import csv
 import io
 import math
 from dataclasses import dataclass, field, replace
@@ -130,7 +129,7 @@ class StudyTable(Result):
         """The table as CSV text (header "column [unit]"); also written to `path` if given
         (atomically, :func:`propwhirl.fileio.write_text`: never a partial file)."""
         buf = io.StringIO()
-        w = csv.writer(buf, lineterminator="\n")
+        w = fileio.csv_writer(buf, lineterminator="\n")
         keys = list(self.columns)
         w.writerow([f"{k} [{self.units[k]}]" if self.units.get(k) else k for k in keys])
         for i in range(len(self)):
