@@ -20,7 +20,7 @@ from propwhirl.analysis.modes import InVacuo  # noqa: E402
 from propwhirl.analysis.pk import PKCrossing, pk_crossing  # noqa: E402
 from propwhirl.engine import XTOL  # noqa: E402
 from propwhirl.model import FlightCondition, PropellerWing, Wing  # noqa: E402
-from propwhirl.model.dlm_modal import ModalRoger, modal_roger  # noqa: E402
+from propwhirl.model.aerodynamics.dlm_modal import ModalRoger, modal_roger  # noqa: E402
 
 RHO = 1.02                                   # SHARPy's Goland case (tests/model/test_dlm_goland)
 RANGE = (120.0, 200.0, 10.0)
@@ -142,7 +142,7 @@ def test_the_counted_aics_are_those_the_analysis_computes(monkeypatch, vgf, colu
     with or without it the analysis computes the same AICs and finds the same events, bit for
     bit."""
     from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
-    from propwhirl.model import dlm, dlm_cache
+    from propwhirl.model.aerodynamics import dlm, dlm_cache
 
     monkeypatch.delenv(dlm_cache.CACHE_ENV, raising=False)
     m = wingtip_propeller_wing()

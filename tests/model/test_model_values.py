@@ -12,7 +12,7 @@ import pytest
 import propwhirl
 from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
 from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
-from propwhirl.model.propeller import MeasuredDerivatives, PointMass
+from propwhirl.model.propellers.propeller import MeasuredDerivatives, PointMass
 from propwhirl.model.protocol import Evaluator, Model
 from propwhirl.model.systems import PropellerWingAssembly
 
@@ -25,7 +25,7 @@ def _evaluate(model) -> tuple:
     wing = getattr(model, "wing", None)
     if wing is not None and wing.aero == "dlm":     # no finite-state form: its p-k matrices
         pytest.importorskip("panelaero")
-        from propwhirl.model.frequency_domain import pk_system
+        from propwhirl.model.aerodynamics.frequency_domain import pk_system
         return (tuple(pk_system(model, float(V))(10.0) for V in SPEEDS)[0], model.q_labels(),
                 (), model.dof_map())
     s = model.second_order(SPEEDS)

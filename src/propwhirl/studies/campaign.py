@@ -259,7 +259,7 @@ class Case:
         return model
 
     def _propeller(self, prop: Any, i: int) -> Any:
-        from propwhirl.model.propeller import PointMass
+        from propwhirl.model.propellers.propeller import PointMass
 
         changes: dict[str, Any] = {}
         if self.operation == "windmilling" and prop.operation != "fixed-pitch":

@@ -1,11 +1,11 @@
 """Doublet-lattice panels of a wing's planform and the spline from the beam to them (issue 23).
 
-**Geometry.**  The wing is the straight cantilever of :class:`~propwhirl.model.wing.Wing`: its
+**Geometry.**  The wing is the straight cantilever of :class:`~propwhirl.model.structure.wing.Wing`: its
 elastic axis is the y axis (spanwise, root y = 0 to tip y = semi_span), x points aft along
 the flow, z up.  The planform at y has the chord c(y) = 2 b(y) and the elastic axis at
 a(y) b(y) aft of mid-chord, so the leading edge is at x = −(1 + a) b and the trailing edge at
 x = (1 − a) b; b and a are interpolated linearly between the wing's nodes
-(:meth:`~propwhirl.model.wing.Wing.node_properties`; a linear taper is exact).  The beam is
+(:meth:`~propwhirl.model.structure.wing.Wing.node_properties`; a linear taper is exact).  The beam is
 straight and flat: the panels have no sweep of the elastic axis and no dihedral (a tapered
 planform sweeps the leading and trailing edges, which the DLM takes as it is).  The root
 y = 0 is a plane of symmetry (the other half-wing mirrored: a semi-span wing on a wall or a
@@ -37,7 +37,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from propwhirl import limits, validate as v
-from propwhirl.model.mesh import beam_interpolation
+from propwhirl.model.structure.mesh import beam_interpolation
 
 #: panels along the chord by default
 DEFAULT_CHORDWISE = 8
@@ -188,7 +188,7 @@ def spline(wing, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     wing's bending–torsion DOFs [h_i, φ_i, α_i]: Z q is the displacement, positive down, of
     each point (z = h(y) + x α(y), eq. 7.1) and S q its chordwise slope ∂z/∂x = α(y), with h
     the cubic Hermite interpolation of (h_i, φ_i) and α the linear one of α_i (the beam
-    element's shape functions, 7.5–7.8: :func:`~propwhirl.model.mesh.beam_interpolation`).
+    element's shape functions, 7.5–7.8: :func:`~propwhirl.model.structure.mesh.beam_interpolation`).
     Points must lie in [0, semi_span]."""
     ys = wing.node_y
     x, y = points[:, 0], points[:, 1]

@@ -3,7 +3,7 @@
 A :class:`Wing` is an unswept, possibly tapered beam clamped at the root (y = 0) and free at the
 tip (y = semi_span), discretised into Euler–Bernoulli elements (§7.1): `n_elements` equal ones
 by default, or a mesh whose nodes include given `stations` with elements no longer than
-`max_element_length` (the rule: :mod:`propwhirl.model.mesh`; the mesh is built once, on
+`max_element_length` (the rule: :mod:`propwhirl.model.structure.mesh`; the mesh is built once, on
 construction, and :attr:`Wing.mesh` holds it).  Per-element properties (mass, inertia,
 stiffness, centre of gravity) are evaluated at element mid-span, so a property that changes at a
 station is constant over each element; strip-aerodynamic properties (chord, elastic axis,
@@ -24,10 +24,10 @@ import numpy as np
 
 from propwhirl import limits
 from propwhirl import validate as v
-from propwhirl.model import mesh as meshing
-from propwhirl.model.dlm_mesh import panel_counts
+from propwhirl.model.structure import mesh as meshing
+from propwhirl.model.aerodynamics.dlm_mesh import panel_counts
 from propwhirl.model.fields import check_fields, check_values, spec
-from propwhirl.model.mesh import Mesh
+from propwhirl.model.structure.mesh import Mesh
 
 #: highest Mach number of the doublet-lattice tables: the DLM is a subsonic linear theory
 DLM_MACH_MAX = 0.9
@@ -135,11 +135,11 @@ class Wing:
         default): rigid in its plane, the thesis's model
     aero : "strip" (default: Theodorsen strips at the nodes, finite-state lag states, the
         thesis's model) or "dlm" (doublet-lattice panels of the planform,
-        :mod:`propwhirl.model.dlm`: analysed by its Roger state space,
-        :mod:`propwhirl.model.dlm_rfa`, or by the p-k method with method "pk")
+        :mod:`propwhirl.model.aerodynamics.dlm`: analysed by its Roger state space,
+        :mod:`propwhirl.model.aerodynamics.dlm_rfa`, or by the p-k method with method "pk")
     dlm_chordwise_panels, dlm_spanwise_panels : the doublet-lattice panel counts (aero =
         "dlm"); spanwise None: the fewest with a panel aspect ratio <= 2
-        (:func:`propwhirl.model.dlm_mesh.panel_counts`)
+        (:func:`propwhirl.model.aerodynamics.dlm_mesh.panel_counts`)
     dlm_mach : the Mach number of the doublet-lattice loads (aero = "dlm"): "speed" (the
         default; matched, V/a of each analysed speed: speeds beyond Mach 0.9 refused) or a
         number in [0, 0.9], the same Mach at every speed (non-matched: the usual way of
@@ -251,7 +251,7 @@ class Wing:
     # ------------------------------------------------------------------ discretisation
     @property
     def mesh(self) -> Mesh:
-        """The mesh (:func:`propwhirl.model.mesh.build`), built once on construction."""
+        """The mesh (:func:`propwhirl.model.structure.mesh.build`), built once on construction."""
         return self._mesh
 
     @property
@@ -286,7 +286,7 @@ class Wing:
     def with_stations(self, stations, names=None, paths=None) -> "Wing":
         """This wing with the positions `stations` [m] added to its own stations (one already
         a station, or given twice, is added once); the mesh is rebuilt by the rule of
-        :mod:`propwhirl.model.mesh`.  Errors (outside (0, semi_span], an element too short)
+        :mod:`propwhirl.model.structure.mesh`.  Errors (outside (0, semi_span], an element too short)
         name a position by `names` (default ``stations[i]``) and carry `paths`."""
         own = tuple(self.stations or ())
         names = list(names) if names is not None else [
