@@ -1,7 +1,7 @@
 """Karpel's minimum-state approximation of the doublet-lattice GAFs (issue 23, item 3b: "and
 Karpel's minimum-state if it pays") — a measurement, kept beside its benchmark
 (``benchmarks/dlm_minimum_state.py``), not a runtime option (issue 38, item 6: the runtime's
-default, the modal Roger state space of :mod:`propwhirl.model.aerodynamics.dlm_modal`, already has a few lag
+default, the modal Roger state space of :mod:`propwhirl.model.dlm_modal`, already has a few lag
 states per kept mode, and this fit costs 0.5–1.7 s per Mach and cannot be interpolated in Mach).
 
 On the free wing DOFs (n_w of them) and at one Mach number, the tabulated Q(k)

@@ -50,10 +50,9 @@ ALIASES: dict[str, tuple[tuple[str, tuple[str, ...] | None], ...]] = {
 MOVED: dict[str, str] = {
     f"propwhirl.model.{name}": f"propwhirl.model.{room}.{name}"
     for room, names in {
-        "structure": ("wing", "mesh", "assembly", "modal_structure"),
-        "aerodynamics": ("theodorsen", "frequency_domain", "dlm", "dlm_mesh", "dlm_cache",
-                         "dlm_rfa", "dlm_modal", "validity"),
-        "propellers": ("propeller", "propeller_aero", "propeller_blocks", "derivatives_blade"),
+        "structure": ("wing", "mesh", "assembly"),
+        "aerodynamics": ("theodorsen", "dlm", "dlm_mesh", "dlm_cache", "dlm_rfa", "validity"),
+        "propellers": ("propeller", "propeller_aero", "derivatives_blade"),
     }.items() for name in names}
 
 

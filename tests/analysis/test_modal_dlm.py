@@ -20,7 +20,7 @@ from propwhirl.analysis.modes import InVacuo  # noqa: E402
 from propwhirl.analysis.pk import PKCrossing, pk_crossing  # noqa: E402
 from propwhirl.engine import XTOL  # noqa: E402
 from propwhirl.model import FlightCondition, PropellerWing, Wing  # noqa: E402
-from propwhirl.model.aerodynamics.dlm_modal import ModalRoger, modal_roger  # noqa: E402
+from propwhirl.model.dlm_modal import ModalRoger, modal_roger  # noqa: E402
 
 RHO = 1.02                                   # SHARPy's Goland case (tests/model/test_dlm_goland)
 RANGE = (120.0, 200.0, 10.0)

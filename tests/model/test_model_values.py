@@ -25,7 +25,7 @@ def _evaluate(model) -> tuple:
     wing = getattr(model, "wing", None)
     if wing is not None and wing.aero == "dlm":     # no finite-state form: its p-k matrices
         pytest.importorskip("panelaero")
-        from propwhirl.model.aerodynamics.frequency_domain import pk_system
+        from propwhirl.model.frequency_domain import pk_system
         return (tuple(pk_system(model, float(V))(10.0) for V in SPEEDS)[0], model.q_labels(),
                 (), model.dof_map())
     s = model.second_order(SPEEDS)

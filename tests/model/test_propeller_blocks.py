@@ -3,7 +3,7 @@ import numpy as np
 from hypothesis import given, settings, strategies as st
 
 from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
-from propwhirl.model.propellers.propeller_blocks import _stack_blocks
+from propwhirl.model.propeller_blocks import _stack_blocks
 
 
 @settings(max_examples=30, deadline=None)

@@ -4,7 +4,7 @@ method converges (issue 37, item 1).
 ``analyse(model)`` on a wing with ``aero = "dlm"`` (``method="auto"`` or ``"reduced"``):
 
 1. the engine tracks every mode of the modal Roger state space
-   (:class:`~propwhirl.model.aerodynamics.dlm_modal.ModalRoger`: the in-vacuo modes below the cut-off, the
+   (:class:`~propwhirl.model.dlm_modal.ModalRoger`: the in-vacuo modes below the cut-off, the
    Roger fit's lag states on them) and locates its crossings;
 2. every crossing is converged by the p-k method on the whole structure with the computed
    Q(k, M) at the mode's own k (:func:`propwhirl.analysis.pk.pk_crossing`): its speed,
@@ -34,7 +34,7 @@ from propwhirl.engine import single_thread_blas
 from propwhirl.engine.results import Analysis, Criticals
 from propwhirl.engine.tracker import ANALYSE_INITIAL_STEP, initial_speeds
 from propwhirl.model.aerodynamics.dlm import MACH_STEP, dlm_aerodynamics, fixed_mach, snap_mach
-from propwhirl.model.aerodynamics.dlm_modal import ModalRoger, modal_roger
+from propwhirl.model.dlm_modal import ModalRoger, modal_roger
 from propwhirl.model.aerodynamics.dlm_rfa import fit_ks, mach_nodes
 
 

@@ -12,7 +12,7 @@ longer changes.  The matrices M_a, C_a(k), K_a(k) are the harmonic-motion form o
 loads (7.24–7.27, 7.64–7.66) generated from ``derivations/strip_aero.py``
 (``strip_aero.theodorsen_blocks``); the structure is ``typical_section.blocks``, or a wing's
 own structure and propellers with every strip at its own k = ω b_i / V
-(:func:`propwhirl.model.aerodynamics.frequency_domain.pk_system`; k reported on the root semichord).
+(:func:`propwhirl.model.frequency_domain.pk_system`; k reported on the root semichord).
 
 A wing with ``aero = "dlm"`` has doublet-lattice loads instead of the strips
 (:mod:`propwhirl.model.aerodynamics.dlm`: Q(k, M) of the panels, the propellers' Houbolt–Reed loads
@@ -48,7 +48,7 @@ from propwhirl.engine import mac
 from propwhirl.model.systems import TypicalSection
 from propwhirl.model.aerodynamics.dlm import check_speed_mach, dlm_aerodynamics, fixed_mach, strip_twin
 from propwhirl.model.aerodynamics.dlm_mesh import guideline_note
-from propwhirl.model.aerodynamics.frequency_domain import (
+from propwhirl.model.frequency_domain import (
     K_MIN,
     check_pk_model,
     pk_system,
@@ -129,10 +129,10 @@ class PKSweep:
 
 def pk_matrix(model, V: float, k: float) -> np.ndarray:
     """First-order matrix of the p-k equation at airspeed V [m/s] and reduced frequency k [-]
-    (on the reference semichord, :func:`~propwhirl.model.aerodynamics.frequency_domain.reference_semichord`).
+    (on the reference semichord, :func:`~propwhirl.model.frequency_domain.reference_semichord`).
 
     Its eigenvalues p [1/s] solve (M_s − M_a) p² − C_a(k) p + (K_s − K_a(k)) = 0 with the
-    exact Theodorsen C(k) (eq. 4.31): :func:`propwhirl.model.aerodynamics.frequency_domain.pk_matrices`.
+    exact Theodorsen C(k) (eq. 4.31): :func:`propwhirl.model.frequency_domain.pk_matrices`.
     """
     return _first_order(pk_system(model, V), max(k, K_MIN) * V / reference_semichord(model))
 

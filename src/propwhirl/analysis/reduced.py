@@ -26,7 +26,7 @@ from propwhirl.engine.correction import correct_crossing, full_order_pair
 from propwhirl.engine.results import Analysis, Criticals
 from propwhirl.model.aerodynamics.dlm import require_panelaero
 from propwhirl.model.aerodynamics.dlm_mesh import check_memory
-from propwhirl.model.aerodynamics.frequency_domain import check_section
+from propwhirl.model.frequency_domain import check_section
 from propwhirl.model.reduction import CUTOFF_FACTOR, ReducedModel, reduce
 
 #: models with more states than this were analysed reduced by default (``method="auto"``)

@@ -31,7 +31,7 @@ from propwhirl.io import schema
 from propwhirl.io.model_files import _build, _Table, _toml_error, _Writer
 from propwhirl.model.flight import FlightCondition
 from propwhirl.model.modal import MOUNTS, ModalInstallation, ModalPropellerWing
-from propwhirl.model.structure.modal_structure import MAX_MODES, ModalStructure, StripPlanform, _id_list
+from propwhirl.model.modal_structure import MAX_MODES, ModalStructure, StripPlanform, _id_list
 from propwhirl.model.propellers.propeller import Propeller
 from propwhirl.model.systems import PropellerWing
 

@@ -78,7 +78,7 @@ from propwhirl.model import derivatives_section as _section
 from propwhirl.model.propellers.propeller import MeasuredDerivatives
 from propwhirl.model.propellers.propeller import CROSS_DERIVATIVES
 from propwhirl.model.propellers.propeller_aero import DERIVATIVE_NAMES
-from propwhirl.model.propellers.propeller_blocks import propeller_constants, propeller_values
+from propwhirl.model.propeller_blocks import propeller_constants, propeller_values
 from propwhirl.model.statespace import SecondOrder
 from propwhirl.model.systems import PropellerWing
 from propwhirl import validate as v
@@ -393,7 +393,7 @@ class _Context:
 
     def _local(self, mount: str, struct: dict, aero: dict, arg: str):
         """∂(M, C, K)/∂arg of a propeller's local block, assembled as
-        :func:`~propwhirl.model.propellers.propeller_blocks.propeller_matrices` assembles (M, C, K)."""
+        :func:`~propwhirl.model.propeller_blocks.propeller_matrices` assembles (M, C, K)."""
         z = np.zeros((self.nV, 2, 2))
 
         def g(d: dict, name: str) -> np.ndarray:

@@ -4,7 +4,7 @@ The generated beam element takes, per element, x_α b and ρI_p (with m, EI, GJ,
 the generated strip aerodynamics, per node, b, a and a_c (with C_lα), and a propeller the
 elastic axis a_P b_P at its node (:meth:`~propwhirl.model.structure.wing.Wing.element_properties`,
 :meth:`~propwhirl.model.structure.wing.Wing.node_properties`,
-:func:`~propwhirl.model.propellers.propeller_blocks.propeller_constants`):
+:func:`~propwhirl.model.propeller_blocks.propeller_constants`):
 
     x_α b = (x_cg − x_ea) c                       (elements; chord fractions from the LE)
     ρI_p  = m ((r_g c)² + (x_α b)²)               (with a radius of gyration; else given)

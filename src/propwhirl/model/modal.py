@@ -1,8 +1,8 @@
 """A wing given by its normal modes, with strip aerodynamics and propellers (issue 22, item 2).
 
 :class:`ModalPropellerWing` implements the :class:`~propwhirl.model.protocol.Model` contract
-on a :class:`~propwhirl.model.structure.modal_structure.ModalStructure` (the modes, their frame and sign
-conventions, and the strips' spline are in :mod:`propwhirl.model.structure.modal_structure`), so the
+on a :class:`~propwhirl.model.modal_structure.ModalStructure` (the modes, their frame and sign
+conventions, and the strips' spline are in :mod:`propwhirl.model.modal_structure`), so the
 engine and the analyses work unchanged: its degrees of freedom are the modal coordinates η
 (then θ, ψ of each flexibly mounted propeller), its structure generalised M = diag(m_i),
 K = diag(m_i ω_i²), C = diag(2 ζ_i m_i ω_i).
@@ -10,13 +10,13 @@ K = diag(m_i ω_i²), C = diag(2 ζ_i m_i ω_i).
 **Strip aerodynamics on the modes.**  The wing's strips (the same generated strip
 aerodynamics as a :class:`~propwhirl.model.structure.wing.Wing`'s,
 :func:`propwhirl.model.structure.assembly.strip_aero_blocks`) sit at the stations of a
-:class:`~propwhirl.model.structure.modal_structure.StripPlanform`; with T the spline
-(:func:`~propwhirl.model.structure.modal_structure.strip_interpolation`) the aerodynamic matrices are
+:class:`~propwhirl.model.modal_structure.StripPlanform`; with T the spline
+(:func:`~propwhirl.model.modal_structure.strip_interpolation`) the aerodynamic matrices are
 (TΦ)ᵀ A_strip (TΦ), the lag states' couplings projected the same way.
 
 **Propellers.**  Each sits at a hub grid.  ``mount = "flexible"`` (way a): its own pitch and
 yaw DOFs and springs, as a :class:`~propwhirl.model.systems.PropellerWing`'s, its generated
-block (:mod:`propwhirl.model.propellers.propeller_blocks`, 4×4 on [θ, ψ, h_P, α_P]) coupled through the
+block (:mod:`propwhirl.model.propeller_blocks`, 4×4 on [θ, ψ, h_P, α_P]) coupled through the
 hub grid's heave and twist, h_P = −T_z, α_P = R_y, with a_P b_P the hub grid's x aft of the
 local mid-chord; ``mount = "rigid"``: the 2×2 rigid-mount block on [h_P, α_P] (its mass and
 aerodynamic loads, §9.3.1).  ``mount = "on-grid"`` (way b, Rodden/Čečrdle practice): the
@@ -42,9 +42,9 @@ from propwhirl.model.aerodynamics import validity
 from propwhirl.model.structure.assembly import LAG_STATES, call_blocks, strip_aero_blocks
 from propwhirl.model.base import EvaluatorBase, StateSpaceModel
 from propwhirl.model.flight import FlightCondition
-from propwhirl.model.structure.modal_structure import ModalStructure, StripPlanform, strip_interpolation
+from propwhirl.model.modal_structure import ModalStructure, StripPlanform, strip_interpolation
 from propwhirl.model.propellers.propeller import Propeller
-from propwhirl.model.propellers.propeller_blocks import (propeller_constants_at, propeller_matrices,
+from propwhirl.model.propeller_blocks import (propeller_constants_at, propeller_matrices,
                                              propeller_values)
 from propwhirl.model.protocol import DofMap, PropellerDofs
 from propwhirl.model.statespace import SecondOrder

@@ -92,7 +92,7 @@ def cutoff(assembly, f: np.ndarray, shapes: np.ndarray, M: np.ndarray,
     modes of ``assembly``'s model (frequencies ``f`` [Hz], ``shapes`` over its DOFs, mass
     ``M``) and the cut-off f_c = ``factor`` · f_ref, or ``cutoff_hz`` when given.  The one
     choice of the modes a reduced model keeps (strips: :func:`modal_basis`; doublet lattice:
-    :func:`propwhirl.model.aerodynamics.dlm_modal.modal_roger`)."""
+    :func:`propwhirl.model.dlm_modal.modal_roger`)."""
     v.positive("factor", factor)
     ref = _reference_frequency(assembly, f, shapes, M)
     return ref, (factor * ref if cutoff_hz is None

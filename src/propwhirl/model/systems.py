@@ -31,7 +31,7 @@ that does not depend on the airspeed — the wing structure, each installation's
 DOFs, the labels and DOF map — is a :class:`PropellerWingAssembly` with those named parts,
 built by :meth:`PropellerWing.assembly` (a new one each call) and evaluated at any speeds; an
 analysis builds it once and passes it where the speeds are evaluated.  The physics of one
-propeller's block is :mod:`propwhirl.model.propellers.propeller_blocks` (functions of explicit arguments).
+propeller's block is :mod:`propwhirl.model.propeller_blocks` (functions of explicit arguments).
 """
 from __future__ import annotations
 
@@ -62,7 +62,7 @@ from propwhirl.model.structure.assembly import (
 from propwhirl.generated import beam_element, beam_inplane, prop_rigid
 from propwhirl.model.flight import SPEED_OF_SOUND_8000FT, FlightCondition  # noqa: F401 (re-export)
 from propwhirl.model.propellers.propeller import Propeller
-from propwhirl.model.propellers.propeller_blocks import (propeller_constants, propeller_matrices,
+from propwhirl.model.propeller_blocks import (propeller_constants, propeller_matrices,
                                              propeller_values)
 from propwhirl.model.blocks import BlockSystem, LagBlocks, LocalBlocks
 from propwhirl.model.protocol import DofMap, PropellerDofs
@@ -413,7 +413,7 @@ class InstalledPropeller:
     dofs:        full DOF indices of its local block (read-only; :meth:`PropellerWing.propeller_dofs`);
     dof_labels:  their labels;
     constants:   the speed-independent arguments of its generated blocks
-                 (:func:`~propwhirl.model.propellers.propeller_blocks.propeller_constants`, read-only).
+                 (:func:`~propwhirl.model.propeller_blocks.propeller_constants`, read-only).
     """
 
     number: int
@@ -561,7 +561,7 @@ class PropellerWingAssembly(EvaluatorBase):
     def propeller_values(self, p: InstalledPropeller, V: np.ndarray, omega=None,
                          derivatives: dict | None = None) -> dict:
         """The arguments of installation ``p``'s generated blocks at airspeeds V
-        (:func:`~propwhirl.model.propellers.propeller_blocks.propeller_values`; a new dict)."""
+        (:func:`~propwhirl.model.propeller_blocks.propeller_values`; a new dict)."""
         model, inst = self.model, p.installation
         return propeller_values(p.constants, inst.propeller, V, omega,
                                 rotating=model.rotating, aero=self.propeller_aero(p),

@@ -38,17 +38,12 @@ import numpy as np
 
 from propwhirl import limits, validate as v
 from propwhirl.model.structure.mesh import beam_interpolation
+# the panel counts are the wing's own fields, checked with it (model/structure/wing.py)
+from propwhirl.model.structure.wing import (DEFAULT_CHORDWISE, MAX_ASPECT,  # noqa: F401
+                                           MAX_PANELS, panel_counts)
 
-#: panels along the chord by default
-DEFAULT_CHORDWISE = 8
-#: largest panel aspect ratio (width / chordwise length) of the default spanwise count: half
-#: the usual limit of 4, which the steady lift of low-aspect-ratio wings shows too coarse
-#: (docs/validation.md, "Doublet-lattice aerodynamics")
-MAX_ASPECT = 2.0
 #: the reduced-frequency guideline: panel length < GUIDELINE · V / f (V [m/s], f [Hz])
 GUIDELINE = 0.08
-#: most panels of a half-wing (the mirrored AIC is (2n)² complex numbers per k)
-MAX_PANELS = 2000
 
 
 @dataclass(frozen=True)
@@ -123,26 +118,6 @@ def _planform(wing, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     b = np.interp(y, node["y"], node["b"])
     a = np.interp(y, node["y"], node["a"])
     return -(1.0 + a) * b, (1.0 - a) * b
-
-
-def panel_counts(wing, n_chord: int | None = None, n_span: int | None = None) -> tuple[int, int]:
-    """(n_chord, n_span) of the wing's DLM mesh: the given counts (default the wing's
-    ``dlm_chordwise_panels`` / ``dlm_spanwise_panels``), the spanwise one by default the fewest
-    equal strips no wider than :data:`MAX_ASPECT` times the shortest panel length.
-    InputError for a count < 1 or more than :data:`MAX_PANELS` panels."""
-    n_chord = wing.dlm_chordwise_panels if n_chord is None else n_chord
-    n_chord = v.integer_at_least("dlm_chordwise_panels", n_chord, 1)
-    given = wing.dlm_spanwise_panels if n_span is None else n_span
-    if given is None:
-        c_min = float(np.min(2.0 * wing.node_properties()["b"]))
-        given = int(np.ceil(wing.semi_span * n_chord / (MAX_ASPECT * c_min) - 1e-9))
-    n_span = v.integer_at_least("dlm_spanwise_panels", given, 1)
-    if n_chord * n_span > MAX_PANELS:
-        raise v.InputError(
-            f"dlm_chordwise_panels x dlm_spanwise_panels = {n_chord} x {n_span} = "
-            f"{n_chord * n_span} panels is invalid: must be at most {MAX_PANELS} (give fewer "
-            "panels, or dlm_spanwise_panels explicitly)")
-    return n_chord, n_span
 
 
 def check_memory(wing, n_chord: int | None = None, n_span: int | None = None) -> None:

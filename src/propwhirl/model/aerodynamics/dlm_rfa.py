@@ -164,7 +164,7 @@ def roger_system(dry: SecondOrder, A: np.ndarray, V: np.ndarray, b_ref: float, r
 
     the lag states after the dry system's.  ``Phi`` None: on every DOF, a lag state per wing
     DOF and lag (n_w L of them).  ``Phi`` (n, r): on the modes q = Φη
-    (:mod:`propwhirl.model.aerodynamics.dlm_modal`), Φᵀ(·)Φ of every matrix and lag states x_l = Φ_w z_l,
+    (:mod:`propwhirl.model.dlm_modal`), Φᵀ(·)Φ of every matrix and lag states x_l = Φ_w z_l,
     ż_l = η̇ − (V/b) β_l z_l (r L of them): the Galerkin projection of the first.
     ``lag_labels`` name the Roger lag states, ``q_labels`` the modes (default: the dry
     system's DOFs)."""
@@ -323,7 +323,7 @@ def _is_node(mach: float) -> bool:
 def rfa_note(model, V, modal=None) -> str:
     """What a Roger-state-space doublet-lattice analysis over the speeds V [m/s] used
     (:data:`RFA_NOTE` first): panels, lag roots, fitted k, Mach, the worst fit error; with
-    ``modal`` (a :class:`~propwhirl.model.aerodynamics.dlm_modal.ModalRoger`, the default analysis) the
+    ``modal`` (a :class:`~propwhirl.model.dlm_modal.ModalRoger`, the default analysis) the
     modes it kept and that its crossings are the p-k method's."""
     aero = dlm_aerodynamics(model.wing)
     m = aero.mesh

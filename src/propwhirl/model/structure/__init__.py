@@ -1,2 +1,3 @@
-"""The structure: the beam wing and its mesh, the assembly of its generated element matrices,
-and structures given by their normal modes (issue 38: the model's rooms by their physics)."""
+"""The structure: the beam wing, its spanwise mesh and the assembly of its generated element
+matrices (issue 38: the model's rooms by their physics; a structure given by its normal modes
+is :mod:`propwhirl.model.modal_structure`)."""

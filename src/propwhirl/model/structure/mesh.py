@@ -20,7 +20,7 @@ The total number of elements is bounded by :data:`propwhirl.limits.MAX_ELEMENTS`
 :func:`beam_interpolation` is the beam element's own interpolation between nodes (cubic
 Hermite bending from the nodes' h and ∂h/∂y, linear torsion, eq. 7.5–7.8): the one
 implementation behind the doublet-lattice spline (:func:`propwhirl.model.aerodynamics.dlm_mesh.spline`) and
-the modal strips' (:func:`propwhirl.model.structure.modal_structure.strip_interpolation`).
+the modal strips' (:func:`propwhirl.model.modal_structure.strip_interpolation`).
 """
 from __future__ import annotations
 

@@ -36,7 +36,7 @@ from propwhirl import validate as v
 from propwhirl.generated import prop_hub
 from propwhirl.model.structure.assembly import LAG_STATES, free_dofs, wing_structure
 from propwhirl.model.structure.mesh import beam_interpolation
-from propwhirl.model.propellers.propeller_blocks import propeller_constants
+from propwhirl.model.propeller_blocks import propeller_constants
 
 #: Components of a grid's motion in a mode shape, in the order of the last axis of ``shapes``.
 COMPONENTS = ("T_x", "T_y", "T_z", "R_x", "R_y", "R_z")
