@@ -37,7 +37,7 @@ from threadpoolctl import threadpool_limits
 
 from propwhirl.analysis import analyse
 from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
-from propwhirl.model import dlm, dlm_cache
+from propwhirl.model.aerodynamics import dlm, dlm_cache
 
 SPEEDS = np.arange(120.0, 241.0, 20.0)
 

@@ -32,8 +32,8 @@ from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing  # noqa: E40
 from propwhirl.engine import analyse as engine_analyse  # noqa: E402
 from propwhirl.engine import single_thread_blas  # noqa: E402
 import minimum_state as ms  # noqa: E402
-from propwhirl.model import dlm_rfa  # noqa: E402
-from propwhirl.model.dlm import dlm_aerodynamics  # noqa: E402
+from propwhirl.model.aerodynamics import dlm_rfa  # noqa: E402
+from propwhirl.model.aerodynamics.dlm import dlm_aerodynamics  # noqa: E402
 
 SPEEDS = np.arange(100.0, 291.0, 10.0)
 MACH = 0.5

@@ -13,7 +13,7 @@ Prints (and with ``--markdown`` writes between the ``dlm-rfa`` markers of the pa
 * the fit's error per term: for each pair of DOF kinds (h, φ, α of the free wing nodes: rows
   the loaded DOF, columns the moving one) the largest |Q_fit − Q| over the fitted k and every
   Mach node the speeds use, relative to the largest |Q| of that block; and the error of each
-  node's fit relative to max |Q| (:attr:`propwhirl.model.dlm_rfa.RogerFit.error`);
+  node's fit relative to max |Q| (:attr:`propwhirl.model.aerodynamics.dlm_rfa.RogerFit.error`);
 * the effect on each critical speed: every onset of the state space against the p-k's (V, f,
   differences), the CPU time of each analysis (one BLAS thread) and the AICs each computed.
 """
@@ -33,9 +33,9 @@ from markdown_section import replace_section  # noqa: E402
 
 from propwhirl.analysis import analyse  # noqa: E402
 from propwhirl.io import load_model  # noqa: E402
-from propwhirl.model import dlm_rfa  # noqa: E402
-from propwhirl.model.assembly import free_dofs  # noqa: E402
-from propwhirl.model.dlm import MACH_STEP, dlm_aerodynamics  # noqa: E402
+from propwhirl.model.aerodynamics import dlm_rfa  # noqa: E402
+from propwhirl.model.structure.assembly import free_dofs  # noqa: E402
+from propwhirl.model.aerodynamics.dlm import MACH_STEP, dlm_aerodynamics  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 MODEL = ROOT / "examples" / "wingtip.toml"

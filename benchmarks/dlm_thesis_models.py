@@ -31,9 +31,9 @@ from threadpoolctl import threadpool_limits
 from propwhirl.analysis import analyse
 from propwhirl.analysis.pk import pk_system
 from propwhirl.cases.ch10_other_wings import two_propeller_wing, wingtip_propeller_wing
-from propwhirl.model.assembly import free_dofs, wing_structure
-from propwhirl.model.dlm import dlm_aerodynamics
-from propwhirl.model.dlm_mesh import panel_counts
+from propwhirl.model.structure.assembly import free_dofs, wing_structure
+from propwhirl.model.aerodynamics.dlm import dlm_aerodynamics
+from propwhirl.model.aerodynamics.dlm_mesh import panel_counts
 
 SPEEDS = np.r_[np.arange(100.0, 295.0, 10.0), 296.0]
 COARSE = (4, 12)

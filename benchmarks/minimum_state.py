@@ -5,12 +5,12 @@ default, the modal Roger state space of :mod:`propwhirl.model.dlm_modal`, alread
 states per kept mode, and this fit costs 0.5–1.7 s per Mach and cannot be interpolated in Mach).
 
 On the free wing DOFs (n_w of them) and at one Mach number, the tabulated Q(k)
-(:mod:`propwhirl.model.dlm`) is fitted in p̄ = s b_ref / V (p̄ = ik on the imaginary axis) by
+(:mod:`propwhirl.model.aerodynamics.dlm`) is fitted in p̄ = s b_ref / V (p̄ = ik on the imaginary axis) by
 
     Q(p̄) ≈ A₀ + A₁ p̄ + A₂ p̄² + D (p̄ I − R)⁻¹ E p̄,        R = −diag(β_1 … β_m)
 
 (Karpel 1982; Tiffany & Adams 1988): m aerodynamic states in all, shared by every DOF, instead
-of Roger's L per DOF (:mod:`propwhirl.model.dlm_rfa`: L n_w).  D (n_w, m) and E (m, n_w) are
+of Roger's L per DOF (:mod:`propwhirl.model.aerodynamics.dlm_rfa`: L n_w).  D (n_w, m) and E (m, n_w) are
 found by alternating least squares on the part of Q that the quasi-steady terms cannot fit
 (variable projection: A₀, A₁, A₂ are projected out, then fitted last): with D fixed, E is one
 linear least-squares problem (the same design matrix for every column of Q); with E fixed, D
@@ -21,7 +21,7 @@ radians alike) and unscaled after.  The lag states obey ẋ = (V/b) R x + E q̇_
 wing with ½ρV² D x.
 
 :func:`state_matrix` builds the first-order matrices of a model with such a fit (as
-:func:`propwhirl.model.dlm_rfa.state_matrix` does with Roger's), for the engine; the
+:func:`propwhirl.model.aerodynamics.dlm_rfa.state_matrix` does with Roger's), for the engine; the
 benchmark ``benchmarks/dlm_minimum_state.py`` compares their critical speeds with Roger's and
 the p-k's (docs/validation.md, "Karpel's minimum-state approximation").
 """
@@ -32,10 +32,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.model.assembly import free_dofs
-from propwhirl.model.dlm import check_mach, dlm_aerodynamics, fixed_mach, snap_mach
-from propwhirl.model.dlm_rfa import lstsq_fit as roger_lstsq
-from propwhirl.model.dlm_rfa import fit_ks, quasi_steady
+from propwhirl.model.structure.assembly import free_dofs
+from propwhirl.model.aerodynamics.dlm import check_mach, dlm_aerodynamics, fixed_mach, snap_mach
+from propwhirl.model.aerodynamics.dlm_rfa import lstsq_fit as roger_lstsq
+from propwhirl.model.aerodynamics.dlm_rfa import fit_ks, quasi_steady
 
 #: alternating least-squares sweeps at most (each one E-step and one D-step)
 ITERATIONS = 200
@@ -48,7 +48,7 @@ class MinimumStateFit:
     """A minimum-state approximation: ``A`` (3, n_w, n_w) real (A₀, A₁, A₂), ``D`` (n_w, m),
     ``E`` (m, n_w), ``lags`` β_j (m,), the fitted ``ks``, the Mach number, ``b_ref`` [m], the
     relative ``error`` (max |Q_fit − Q| over the fitted k and entries / max |Q|, as
-    :attr:`propwhirl.model.dlm_rfa.RogerFit.error`) and the alternating sweeps done."""
+    :attr:`propwhirl.model.aerodynamics.dlm_rfa.RogerFit.error`) and the alternating sweeps done."""
 
     A: np.ndarray
     D: np.ndarray
@@ -152,7 +152,7 @@ def fit(Q: np.ndarray, ks, lags, mach: float = 0.0, b_ref: float = 1.0, *,
 def fit_model(model, lags, mach: float | None = None, ks=None, **kw) -> MinimumStateFit:
     """The minimum-state fit of ``model``'s doublet-lattice tables on its free wing DOFs at
     Mach ``mach`` (default its wing's fixed ``dlm_mach``) over ``ks`` (default the runtime's
-    :func:`~propwhirl.model.dlm_rfa.fit_ks`)."""
+    :func:`~propwhirl.model.aerodynamics.dlm_rfa.fit_ks`)."""
     mach = fixed_mach(model.wing) if mach is None else float(mach)
     if mach is None:
         raise v.InputError("the minimum-state fit is at one Mach: give mach or a wing with a "

@@ -11,7 +11,7 @@ from propwhirl import limits
 from propwhirl.analysis.stability import analyse
 from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
 from propwhirl.model import FlightCondition, Wing
-from propwhirl.model.propeller_aero import AeroSettings
+from propwhirl.model.propellers.propeller_aero import AeroSettings
 from propwhirl.validate import InputError
 
 

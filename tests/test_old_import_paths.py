@@ -101,7 +101,7 @@ def test_old_paths_give_the_objects_of_the_new_ones():
     from propwhirl import aero, stability, vibration
     from propwhirl.analysis import vibration as new_vibration
     from propwhirl.engine import analyse
-    from propwhirl.model import propeller_aero
+    from propwhirl.model.propellers import propeller_aero
 
     assert aero.HouboltReedSource is propeller_aero.HouboltReedSource
     assert stability.analyse is analyse
@@ -138,3 +138,18 @@ def test_one_alias_table_and_no_shim_files():
             and not (top / f"{p.split('.')[1]}.py").exists()}
     assert flat <= set(compat.ALIASES)
     assert isinstance(importlib.util.find_spec("propwhirl.mainjob").loader, compat.AliasFinder)
+
+
+@pytest.mark.parametrize("old", sorted(__import__("propwhirl.compat").compat.MOVED))
+def test_a_moved_model_module_is_the_same_module_at_its_old_path(old):
+    """Issue 38, item 1: model/'s modules moved into rooms (structure/, aerodynamics/,
+    propellers/); the old path gives the very module (monkeypatching and module state shared),
+    in a fresh interpreter too."""
+    from propwhirl import compat
+
+    assert importlib.import_module(old) is importlib.import_module(compat.MOVED[old])
+    code = (f"import {old} as a, {compat.MOVED[old]} as b; assert a is b; "
+            f"from {old.rsplit('.', 1)[0]} import {old.rsplit('.', 1)[1]} as c; assert c is b")
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         timeout=120)
+    assert run.returncode == 0, run.stderr

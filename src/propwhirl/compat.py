@@ -1,7 +1,8 @@
 """Old import paths: the one alias table (issue 38, item 5).
 
 The first release (0.1.0) was one flat package; its modules moved into the sub-packages (model/,
-engine/, analysis/, app/, reproduce/).  Users' scripts and notebooks keep importing them at
+engine/, analysis/, app/, reproduce/), and model/'s modules into its rooms (structure/,
+aerodynamics/, propellers/: :data:`MOVED`, the very module at its old path).  Users' scripts and notebooks keep importing them at
 their old paths — ``import propwhirl.vibration``, ``from propwhirl.wing import Wing``,
 ``from propwhirl.cli import main`` — through :data:`ALIASES`: each old module is made, on its
 first import, from the public names of the modules it moved to (what ``from X import *``
@@ -21,10 +22,10 @@ from types import ModuleType
 #: old module → the modules its names come from: (new module, None for its public names, or
 #: the names taken from it)
 ALIASES: dict[str, tuple[tuple[str, tuple[str, ...] | None], ...]] = {
-    "propwhirl.aero": (("propwhirl.model.propeller_aero", None),),
-    "propwhirl.assembly": (("propwhirl.model.assembly", None),),
-    "propwhirl.propeller": (("propwhirl.model.propeller", None),),
-    "propwhirl.wing": (("propwhirl.model.wing", None),),
+    "propwhirl.aero": (("propwhirl.model.propellers.propeller_aero", None),),
+    "propwhirl.assembly": (("propwhirl.model.structure.assembly", None),),
+    "propwhirl.propeller": (("propwhirl.model.propellers.propeller", None),),
+    "propwhirl.wing": (("propwhirl.model.structure.wing", None),),
     "propwhirl.statespace": (("propwhirl.model.statespace", None),),
     "propwhirl.stability": (
         ("propwhirl.analysis.whirl", ("content", "dominant", "orbit_signed_area",
@@ -43,6 +44,18 @@ ALIASES: dict[str, tuple[tuple[str, tuple[str, ...] | None], ...]] = {
 }
 
 
+#: modules moved whole (issue 38, item 1: model/ in rooms named for the physics): the old path
+#: IS the new module (the same object in ``sys.modules``: its state, monkeypatching and
+#: ``isinstance`` shared), not a copy of its names
+MOVED: dict[str, str] = {
+    f"propwhirl.model.{name}": f"propwhirl.model.{room}.{name}"
+    for room, names in {
+        "structure": ("wing", "mesh", "assembly"),
+        "aerodynamics": ("theodorsen", "dlm", "dlm_mesh", "dlm_cache", "dlm_rfa", "validity"),
+        "propellers": ("propeller", "propeller_aero", "derivatives_blade"),
+    }.items() for name in names}
+
+
 def public_names(module: ModuleType) -> list[str]:
     """The names ``from module import *`` binds: ``__all__``, else those without a leading
     underscore."""
@@ -51,10 +64,10 @@ def public_names(module: ModuleType) -> list[str]:
 
 
 class AliasFinder(importlib.abc.MetaPathFinder, importlib.abc.Loader):
-    """Finds and builds the old modules of :data:`ALIASES` (nothing else)."""
+    """Finds and builds the old modules of :data:`ALIASES` and :data:`MOVED` (nothing else)."""
 
     def find_spec(self, fullname, path=None, target=None):
-        if fullname not in ALIASES:
+        if fullname not in ALIASES and fullname not in MOVED:
             return None
         return importlib.util.spec_from_loader(fullname, self)
 
@@ -62,6 +75,9 @@ class AliasFinder(importlib.abc.MetaPathFinder, importlib.abc.Loader):
         return None                                   # the default module object
 
     def exec_module(self, module: ModuleType) -> None:
+        if module.__name__ in MOVED:       # the import system returns what sys.modules holds
+            sys.modules[module.__name__] = importlib.import_module(MOVED[module.__name__])
+            return
         sources = ALIASES[module.__name__]
         for target, names in sources:
             new = importlib.import_module(target)

@@ -1,5 +1,5 @@
 """The doublet-lattice wing in the time domain (issue 23, item 3b): Roger's rational-function
-state space (propwhirl.model.dlm_rfa) assembled by PropellerWing.second_order and analysed by
+state space (propwhirl.model.aerodynamics.dlm_rfa) assembled by PropellerWing.second_order and analysed by
 ``analyse(model)`` ("auto" / "dense"), against the p-k method on the same Q(k)."""
 import dataclasses
 
@@ -16,7 +16,7 @@ from propwhirl.analysis.stability import ModelAnalysis  # noqa: E402
 from propwhirl.engine import XTOL  # noqa: E402
 from propwhirl.cases.ch07_patil import patil_model  # noqa: E402
 from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing  # noqa: E402
-from propwhirl.model import dlm, dlm_cache, dlm_rfa  # noqa: E402
+from propwhirl.model.aerodynamics import dlm, dlm_cache, dlm_rfa  # noqa: E402
 from propwhirl.studies.gradients import CriticalSpeed  # noqa: E402
 from propwhirl.studies.sweeps import sweep  # noqa: E402
 from propwhirl.validate import InputError  # noqa: E402

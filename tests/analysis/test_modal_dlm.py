@@ -142,7 +142,7 @@ def test_the_counted_aics_are_those_the_analysis_computes(monkeypatch, vgf, colu
     with or without it the analysis computes the same AICs and finds the same events, bit for
     bit."""
     from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
-    from propwhirl.model import dlm, dlm_cache
+    from propwhirl.model.aerodynamics import dlm, dlm_cache
 
     monkeypatch.delenv(dlm_cache.CACHE_ENV, raising=False)
     m = wingtip_propeller_wing()

@@ -13,7 +13,7 @@ from propwhirl.analysis import analyse  # noqa: E402
 from propwhirl.analysis.pk import DLM_NOTE, pk_sweep  # noqa: E402
 from propwhirl.analysis.stability import ModelAnalysis  # noqa: E402
 from propwhirl.cases.ch07_patil import patil_model  # noqa: E402
-from propwhirl.model import dlm  # noqa: E402
+from propwhirl.model.aerodynamics import dlm  # noqa: E402
 from propwhirl.validate import InputError  # noqa: E402
 
 SPEEDS = np.arange(20.0, 42.0, 4.0)

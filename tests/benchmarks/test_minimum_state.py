@@ -63,8 +63,8 @@ def test_few_shared_lag_states_give_the_pk_flutter(patil):
     (docs/validation.md); with 2, the fit is worse."""
     from propwhirl.analysis.pk import pk_sweep
     from propwhirl.engine import analyse as engine_analyse
-    from propwhirl.model import dlm_rfa
-    from propwhirl.model.dlm import dlm_aerodynamics
+    from propwhirl.model.aerodynamics import dlm_rfa
+    from propwhirl.model.aerodynamics.dlm import dlm_aerodynamics
 
     speeds = np.arange(20.0, 36.0, 4.0)
     pk = pk_sweep(patil, speeds).critical

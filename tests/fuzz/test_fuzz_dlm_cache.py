@@ -24,8 +24,8 @@ from fuzz.conftest import FUZZ, record
 
 pytest.importorskip("panelaero")
 
-from propwhirl.model import dlm, dlm_cache  # noqa: E402
-from propwhirl.model.wing import Wing  # noqa: E402
+from propwhirl.model.aerodynamics import dlm, dlm_cache  # noqa: E402
+from propwhirl.model.structure.wing import Wing  # noqa: E402
 from propwhirl.validate import InputError  # noqa: E402
 
 MACH, KS = 0.3, (0.3, 0.6)

@@ -11,7 +11,7 @@ from hypothesis import strategies as st
 
 from fuzz.conftest import FUZZ, held_to_the_rule
 from propwhirl import limits
-from propwhirl.model.dlm_mesh import MAX_PANELS
+from propwhirl.model.aerodynamics.dlm_mesh import MAX_PANELS
 
 
 @FUZZ

@@ -152,7 +152,7 @@ def _readers(base_text: str, modal, folder: Path):
     from propwhirl.app import cli
     from propwhirl.app.report import sha256_file
     from propwhirl.io.campaign_files import load_campaign
-    from propwhirl.model import dlm_cache
+    from propwhirl.model.aerodynamics import dlm_cache
     from propwhirl.studies.campaign_result import CampaignResult
 
     modal_text, npz = modal
@@ -346,7 +346,7 @@ def test_any_npy_header_in_a_cache_entry(tmp_path_factory, shape, descr, fortran
     header read before anything is allocated (no MemoryError, no pickle)."""
     from numpy.lib import format as npf
 
-    from propwhirl.model import dlm_cache
+    from propwhirl.model.aerodynamics import dlm_cache
 
     folder = tmp_path_factory.mktemp("aic")
     path = dlm_cache._path(folder, "geometry", 0.0, 0.1)

@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 from fuzz.conftest import FUZZ, held_to_the_rule
 from propwhirl.cases.ch09_baseline import baseline_propeller, isolated_baseline_propeller
 from propwhirl.cases.registry import case_model
-from propwhirl.model import validity
+from propwhirl.model.aerodynamics import validity
 from propwhirl.studies import boundary as B
 from propwhirl.studies import clearance as C
 from propwhirl.studies import paths as P

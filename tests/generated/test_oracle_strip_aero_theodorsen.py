@@ -6,7 +6,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from propwhirl.generated import strip_aero as sa
-from propwhirl.model.theodorsen import theodorsen
+from propwhirl.model.aerodynamics.theodorsen import theodorsen
 
 
 def hand_loads(rho, V, b, a, Cla, ac, k):

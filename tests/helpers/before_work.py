@@ -19,8 +19,8 @@ ENTRY_POINTS = [
     ("propwhirl.studies.boundary", "speed_contour"),
     ("propwhirl.studies.clearance", "clearance"),
     ("propwhirl.reproduce.harness", "run"),
-    ("propwhirl.model.propeller_aero", "windmilling"),
-    ("propwhirl.model.propeller_aero", "constant_speed"),
+    ("propwhirl.model.propellers.propeller_aero", "windmilling"),
+    ("propwhirl.model.propellers.propeller_aero", "constant_speed"),
 ]
 
 

@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 
 from propwhirl import io
 from propwhirl.io import schema
-from propwhirl.model.propeller_aero import AeroSettings, Distribution, HouboltReedSource, PropellerGeometry
+from propwhirl.model.propellers.propeller_aero import AeroSettings, Distribution, HouboltReedSource, PropellerGeometry
 from propwhirl.analysis.stability import analyse
 from propwhirl.cases.ch06_isolated import bennett_bland_propeller
 from propwhirl.cases.ch07_patil import patil_model
@@ -28,10 +28,10 @@ from propwhirl.cases.ch09_baseline import (
 )
 from propwhirl.cases.ch10_other_wings import two_propeller_wing, wingtip_propeller_wing
 from propwhirl.model.systems import FlightCondition, Installation, IsolatedPropeller, PropellerWing
-from propwhirl.model.propeller import MeasuredDerivatives, PointMass
+from propwhirl.model.propellers.propeller import MeasuredDerivatives, PointMass
 from propwhirl.validate import InputError
 from propwhirl.model.fields import spec
-from propwhirl.model.wing import Wing
+from propwhirl.model.structure.wing import Wing
 
 ROOT = Path(__file__).resolve().parents[2]
 SPEEDS = np.array([5.0, 120.0, 300.0])

@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 
 from propwhirl import io
 from propwhirl.io import schema, versions
-from propwhirl.model.propeller import PointMass, Propeller
+from propwhirl.model.propellers.propeller import PointMass, Propeller
 from propwhirl.validate import InputError
 
 DATA = Path(__file__).resolve().parent / "data"
@@ -196,7 +196,7 @@ def test_the_documentation_lists_the_versions_and_the_version_1_values():
 
 
 def test_an_old_default_on_a_field_that_is_not_required_is_caught(monkeypatch):
-    from propwhirl.model.wing import Wing
+    from propwhirl.model.structure.wing import Wing
 
     monkeypatch.setattr(versions, "OLD_DEFAULTS", {1: {(Wing, "n_elements"): 20}})
     with pytest.raises(TypeError, match=r"OLD_DEFAULTS\[1\]: Wing.n_elements is not a field"):

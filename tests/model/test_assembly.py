@@ -4,7 +4,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from propwhirl.model.assembly import wing_structure
+from propwhirl.model.structure.assembly import wing_structure
 from propwhirl.cases.ch07_patil import patil_wing
 from propwhirl.generated import beam_element
 from propwhirl.analysis.vibration import classify_wing_modes

@@ -8,10 +8,10 @@ from hypothesis import strategies as st
 from helpers.derivative_checks import assert_matches_central_differences
 from propwhirl.cases.registry import case_model
 from propwhirl.model import derivatives as D
-from propwhirl.model.propeller import MeasuredDerivatives, PointMass, Propeller
-from propwhirl.model.propeller_aero import DERIVATIVE_NAMES
+from propwhirl.model.propellers.propeller import MeasuredDerivatives, PointMass, Propeller
+from propwhirl.model.propellers.propeller_aero import DERIVATIVE_NAMES
 from propwhirl.model.systems import FlightCondition, Installation, PropellerWing
-from propwhirl.model.wing import Wing
+from propwhirl.model.structure.wing import Wing
 from propwhirl.validate import InputError
 
 V = np.array([40.0, 95.0])

@@ -1,4 +1,4 @@
-"""propwhirl.model.derivatives_blade: the Houbolt–Reed derivatives' exact ∂/∂μ and the chain
+"""propwhirl.model.propellers.derivatives_blade: the Houbolt–Reed derivatives' exact ∂/∂μ and the chain
 rule from blade angle, zero-lift angle and rpm to the system, against central differences of
 the runtime's own quadrature and of ``second_order``."""
 import math
@@ -11,12 +11,12 @@ from hypothesis import strategies as st
 from helpers.derivative_checks import assert_matches_central_differences
 from propwhirl.cases.registry import case_model
 from propwhirl.model import derivatives as D
-from propwhirl.model import derivatives_blade as B
-from propwhirl.model import propeller_aero as pa
-from propwhirl.model.propeller import MeasuredDerivatives, PointMass, Propeller
+from propwhirl.model.propellers import derivatives_blade as B
+from propwhirl.model.propellers import propeller_aero as pa
+from propwhirl.model.propellers.propeller import MeasuredDerivatives, PointMass, Propeller
 from propwhirl.model.systems import FlightCondition, Installation, PropellerWing
-from propwhirl.model.theodorsen import theodorsen
-from propwhirl.model.wing import Wing
+from propwhirl.model.aerodynamics.theodorsen import theodorsen
+from propwhirl.model.structure.wing import Wing
 
 V = np.array([40.0, 95.0])
 

@@ -1,4 +1,4 @@
-"""Doublet-lattice generalised aerodynamic forces (issue 23, stage 2): propwhirl.model.dlm
+"""Doublet-lattice generalised aerodynamic forces (issue 23, stage 2): propwhirl.model.aerodynamics.dlm
 against published lift-curve slopes, Theodorsen's two-dimensional limit and the strips."""
 import dataclasses
 
@@ -9,10 +9,10 @@ pytest.importorskip("panelaero")
 
 from propwhirl.cases.ch07_patil import patil_model  # noqa: E402
 from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing  # noqa: E402
-from propwhirl.model import dlm  # noqa: E402
+from propwhirl.model.aerodynamics import dlm  # noqa: E402
 from propwhirl.model.frequency_domain import K_MIN, _strip, pk_system  # noqa: E402
-from propwhirl.model.theodorsen import theodorsen  # noqa: E402
-from propwhirl.model.wing import Wing  # noqa: E402
+from propwhirl.model.aerodynamics.theodorsen import theodorsen  # noqa: E402
+from propwhirl.model.structure.wing import Wing  # noqa: E402
 from propwhirl.validate import InputError  # noqa: E402
 
 

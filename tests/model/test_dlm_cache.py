@@ -1,11 +1,11 @@
-"""The disk cache of doublet-lattice AICs (issue 23, item 6): propwhirl.model.dlm_cache."""
+"""The disk cache of doublet-lattice AICs (issue 23, item 6): propwhirl.model.aerodynamics.dlm_cache."""
 import numpy as np
 import pytest
 
 pytest.importorskip("panelaero")
 
-from propwhirl.model import dlm, dlm_cache  # noqa: E402
-from propwhirl.model.wing import Wing  # noqa: E402
+from propwhirl.model.aerodynamics import dlm, dlm_cache  # noqa: E402
+from propwhirl.model.structure.wing import Wing  # noqa: E402
 from propwhirl.validate import InputError  # noqa: E402
 
 

@@ -16,8 +16,8 @@ pytest.importorskip("panelaero")
 
 from propwhirl.analysis import analyse  # noqa: E402
 from propwhirl.cases.ch07_patil import patil_model  # noqa: E402
-from propwhirl.model import dlm, dlm_cache  # noqa: E402
-from propwhirl.model.wing import Wing  # noqa: E402
+from propwhirl.model.aerodynamics import dlm, dlm_cache  # noqa: E402
+from propwhirl.model.structure.wing import Wing  # noqa: E402
 from propwhirl.validate import InputError  # noqa: E402
 
 KS = (0.0, 0.3, 0.6)

@@ -1,7 +1,7 @@
 """The Mach number of a doublet-lattice wing (issue 23, item 4): ``dlm_mach = "speed"`` (V/a at
 each analysed speed, matched) or one fixed number for every speed (non-matched), in Python and
 in the model file, used by the p-k method and the Roger state space; and the validity warnings
-of a DLM wing (propwhirl.model.validity)."""
+of a DLM wing (propwhirl.model.aerodynamics.validity)."""
 import dataclasses
 
 import numpy as np
@@ -9,7 +9,7 @@ import pytest
 
 from propwhirl.io import dumps, loads
 from propwhirl.model import FlightCondition, PropellerWing, Wing
-from propwhirl.model import validity
+from propwhirl.model.aerodynamics import validity
 from propwhirl.validate import InputError
 
 SOUND = 100.0       # m/s: Mach numbers of tens of m/s cross several table columns
@@ -72,7 +72,7 @@ def test_fixed_mach_uses_one_column_of_aics():
     tables fill the two Mach columns around each (interpolated linearly), 24 AICs; with
     dlm_mach = 0.2 only the column of Mach 0.2 (the four k nodes around each k)."""
     pytest.importorskip("panelaero")
-    from propwhirl.model import dlm
+    from propwhirl.model.aerodynamics import dlm
 
     def run(model):
         dlm._CACHE.clear()
@@ -95,7 +95,7 @@ def test_off_node_fixed_mach_is_its_own_column():
     """dlm_mach = 0.33 (between the nodes 0.30 and 0.35): Q of the Mach 0.33 AICs, within the
     linear interpolation's error of the nodes' value, and no node column computed."""
     pytest.importorskip("panelaero")
-    from propwhirl.model import dlm
+    from propwhirl.model.aerodynamics import dlm
 
     aero = dlm.DlmAerodynamics(small_wing(dlm_mach=0.33))
     Q = aero.gaf(0.33, 0.25, exact_mach=True)
@@ -109,7 +109,7 @@ def test_off_node_fixed_mach_is_its_own_column():
 def test_fixed_mach_lifts_the_speed_refusal_and_matched_keeps_it():
     pytest.importorskip("panelaero")
     from propwhirl.analysis.pk import pk_sweep
-    from propwhirl.model import dlm
+    from propwhirl.model.aerodynamics import dlm
 
     with pytest.raises(InputError, match="V = 95 m/s"):
         dlm.check_speed_mach(small_model(), [50.0, 95.0])
@@ -122,7 +122,7 @@ def test_roger_state_space_at_a_fixed_mach():
     """The Roger coefficients of a fixed Mach are those of its one column at every speed (the
     matched ones change with V/a), and the analysis note says which Mach."""
     pytest.importorskip("panelaero")
-    from propwhirl.model import dlm, dlm_rfa
+    from propwhirl.model.aerodynamics import dlm, dlm_rfa
 
     dlm._CACHE.clear()
     fixed = small_model(dlm_mach=0.2)

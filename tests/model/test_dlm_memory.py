@@ -12,7 +12,7 @@ pytest.importorskip("panelaero")
 from propwhirl import limits  # noqa: E402
 from propwhirl.analysis import analyse  # noqa: E402
 from propwhirl.cases.ch07_patil import patil_model  # noqa: E402
-from propwhirl.model import dlm, dlm_mesh  # noqa: E402
+from propwhirl.model.aerodynamics import dlm, dlm_mesh  # noqa: E402
 from propwhirl.validate import InputError  # noqa: E402
 
 MESSAGE = ("dlm_chordwise_panels x dlm_spanwise_panels = 20 x 100 = 2,000 panels is invalid: "

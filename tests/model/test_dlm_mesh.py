@@ -1,12 +1,12 @@
 """Doublet-lattice panels and the beam-to-panel spline (issue 23, stage 1):
-propwhirl.model.dlm_mesh against the beam element's own shape functions (derivations/)."""
+propwhirl.model.aerodynamics.dlm_mesh against the beam element's own shape functions (derivations/)."""
 import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from propwhirl.model.dlm_mesh import (GUIDELINE, MAX_ASPECT, guideline_note, panel_counts,
+from propwhirl.model.aerodynamics.dlm_mesh import (GUIDELINE, MAX_ASPECT, guideline_note, panel_counts,
                                       panel_mesh, spline)
-from propwhirl.model.wing import Wing
+from propwhirl.model.structure.wing import Wing
 from propwhirl.validate import InputError
 
 

@@ -15,8 +15,8 @@ import json, warnings
 import numpy as np
 np.seterr(**json.loads(STATE))
 before = np.geterr()
-from propwhirl.model import dlm
-from propwhirl.model.wing import Wing
+from propwhirl.model.aerodynamics import dlm
+from propwhirl.model.structure.wing import Wing
 dlm.require_panelaero()                               # the import alone
 after_import = np.geterr()
 w = Wing(semi_span=2.0, mass_per_length=1.0, EI=1e4, GJ=1e4, radius_of_gyration=0.25,

@@ -1,5 +1,5 @@
 """Roger's rational-function state space of the doublet-lattice loads (issue 23, item 3b):
-propwhirl.model.dlm_rfa against the DLM p-k it approximates."""
+propwhirl.model.aerodynamics.dlm_rfa against the DLM p-k it approximates."""
 import dataclasses
 
 import numpy as np
@@ -10,7 +10,7 @@ pytest.importorskip("panelaero")
 from propwhirl.analysis.pk import pk_sweep  # noqa: E402
 from propwhirl.cases.ch07_patil import patil_model  # noqa: E402
 from propwhirl.engine import analyse as engine_analyse  # noqa: E402
-from propwhirl.model import dlm_rfa  # noqa: E402
+from propwhirl.model.aerodynamics import dlm_rfa  # noqa: E402
 from propwhirl.validate import InputError  # noqa: E402
 
 SPEEDS = np.arange(20.0, 36.0, 4.0)
@@ -27,8 +27,8 @@ def patil():
 def test_fit_reproduces_the_tables(patil):
     fit = dlm_rfa.roger_fit(patil, 0.1, KS)
     assert fit.error < 0.02
-    from propwhirl.model.assembly import free_dofs
-    from propwhirl.model.dlm import dlm_aerodynamics
+    from propwhirl.model.structure.assembly import free_dofs
+    from propwhirl.model.aerodynamics.dlm import dlm_aerodynamics
     keep = free_dofs(patil.wing.n_nodes)
     Q = dlm_aerodynamics(patil.wing).gaf(0.1, 0.33)[np.ix_(keep, keep)]
     assert np.abs(fit(0.33) - Q).max() < 0.02 * np.abs(Q).max()     # between the fitted k

@@ -16,15 +16,15 @@ from hypothesis import strategies as st
 
 from propwhirl.cases.ch09_baseline import baseline_flight, baseline_propeller, baseline_wing
 from propwhirl.model.flight import FlightCondition
-from propwhirl.model.propeller import PointMass, Propeller
-from propwhirl.model.propeller_aero import AeroSettings, PropellerGeometry
+from propwhirl.model.propellers.propeller import PointMass, Propeller
+from propwhirl.model.propellers.propeller_aero import AeroSettings, PropellerGeometry
 from propwhirl.model.systems import (
     Installation,
     IsolatedPropeller,
     PropellerWing,
     TypicalSection,
 )
-from propwhirl.model.wing import Wing
+from propwhirl.model.structure.wing import Wing
 from propwhirl.validate import InputError
 
 

@@ -13,10 +13,10 @@ from hypothesis import strategies as st
 from propwhirl.cases.ch09_baseline import baseline_propeller, baseline_wing
 from propwhirl.model.fields import META_KEY, Range
 from propwhirl.model.flight import FlightCondition
-from propwhirl.model.propeller import MeasuredDerivatives, PointMass, Propeller
-from propwhirl.model.propeller_aero import AeroSettings, Distribution, PropellerGeometry
+from propwhirl.model.propellers.propeller import MeasuredDerivatives, PointMass, Propeller
+from propwhirl.model.propellers.propeller_aero import AeroSettings, Distribution, PropellerGeometry
 from propwhirl.model.systems import Installation, TypicalSection
-from propwhirl.model.wing import Wing
+from propwhirl.model.structure.wing import Wing
 from propwhirl.validate import InputError
 
 FLIGHT = FlightCondition(1.0, 340.0)

@@ -21,8 +21,8 @@ from hypothesis import strategies as st
 
 from propwhirl.analysis.campbell import campbell, operating_rpm_ratio
 from propwhirl.io import dumps, loads
-from propwhirl.model.propeller import MeasuredDerivatives
-from propwhirl.model.propeller_aero import AeroSettings, derivatives, stopped_blades
+from propwhirl.model.propellers.propeller import MeasuredDerivatives
+from propwhirl.model.propellers.propeller_aero import AeroSettings, derivatives, stopped_blades
 from propwhirl.model.systems import Installation
 from propwhirl.validate import InputError
 
@@ -351,7 +351,7 @@ def test_reversing_one_rotor_is_a_mirror_image_without_in_plane_bending():
 def test_tip_mach_warning_names_only_the_turning_rotors():
     """The helical-tip-Mach warning is about turning blades: a feathered rotor's tips move
     with the free stream, a stopped one has no propeller aerodynamics."""
-    from propwhirl.model import validity
+    from propwhirl.model.aerodynamics import validity
 
     for states in (("feathered", "operating"), ("stopped", "operating")):
         m = small_x57(states)

@@ -1,10 +1,10 @@
-"""The mesh rule (model/mesh.py): nodes at 0, the semi-span and every station; each interval
+"""The mesh rule (model/structure/mesh.py): nodes at 0, the semi-span and every station; each interval
 divided evenly under the element length; the uniform n_elements mesh without stations."""
 import numpy as np
 import pytest
 
 from propwhirl import limits
-from propwhirl.model import mesh
+from propwhirl.model.structure import mesh
 from propwhirl.validate import InputError
 
 

@@ -12,7 +12,7 @@ import pytest
 import propwhirl
 from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
 from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
-from propwhirl.model.propeller import MeasuredDerivatives, PointMass
+from propwhirl.model.propellers.propeller import MeasuredDerivatives, PointMass
 from propwhirl.model.protocol import Evaluator, Model
 from propwhirl.model.systems import PropellerWingAssembly
 

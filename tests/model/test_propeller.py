@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 from propwhirl.cases.ch09_baseline import baseline_propeller
-from propwhirl.model.propeller import MeasuredDerivatives, PointMass
+from propwhirl.model.propellers.propeller import MeasuredDerivatives, PointMass
 from propwhirl.validate import InputError
 
 

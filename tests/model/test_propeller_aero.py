@@ -1,4 +1,4 @@
-"""Houbolt–Reed propeller derivatives (propwhirl.model.propeller_aero, thesis chapter 4)."""
+"""Houbolt–Reed propeller derivatives (propwhirl.model.propellers.propeller_aero, thesis chapter 4)."""
 from __future__ import annotations
 
 import json
@@ -12,8 +12,8 @@ from scipy import integrate
 from scipy.special import hankel2, jv, yv
 
 from helpers.work import count_calls, total
-from propwhirl.model import propeller_aero as aero
-from propwhirl.model.propeller_aero import (AeroSettings, DERIVATIVE_NAMES, Distribution, PropellerGeometry,
+from propwhirl.model.propellers import propeller_aero as aero
+from propwhirl.model.propellers.propeller_aero import (AeroSettings, DERIVATIVE_NAMES, Distribution, PropellerGeometry,
                             advance_ratio_from_blade_angle, constant_speed, derivatives,
                             theodorsen, windmilling)
 from propwhirl.app.cli import main

@@ -8,8 +8,8 @@ import pytest
 
 from propwhirl.app.cli import main
 from propwhirl.cases.ch09_baseline import baseline_wing_model, isolated_baseline_propeller
-from propwhirl.model import propeller_aero as aero
-from propwhirl.model import validity
+from propwhirl.model.propellers import propeller_aero as aero
+from propwhirl.model.aerodynamics import validity
 from propwhirl.model.flight import FlightCondition
 from propwhirl.model.systems import TypicalSection
 from propwhirl.validate import InputError

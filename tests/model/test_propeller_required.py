@@ -8,7 +8,7 @@ import dataclasses
 import pytest
 
 from propwhirl.io import schema
-from propwhirl.model.propeller import REQUIRED, MeasuredDerivatives, PointMass, Propeller
+from propwhirl.model.propellers.propeller import REQUIRED, MeasuredDerivatives, PointMass, Propeller
 from propwhirl.validate import InputError
 
 #: A fixed-pitch propeller with Houbolt-Reed derivatives, every required value given.

@@ -13,7 +13,7 @@ import pytest
 
 from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
 from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
-from propwhirl.model.propeller import PointMass
+from propwhirl.model.propellers.propeller import PointMass
 from propwhirl.model.statespace import SecondOrder, StateMatrixError, state_matrix
 from propwhirl.validate import InputError
 

@@ -6,7 +6,7 @@ from propwhirl.cases.ch07_patil import PATIL_DENSITY, patil_wing
 from propwhirl.cases.ch09_baseline import baseline_propeller, baseline_wing, baseline_flight, propeller_wing
 from propwhirl.cases.ch10_other_wings import tip_y, two_propeller_wing, wingtip_propeller_wing
 from propwhirl.model.systems import FlightCondition, Installation, PropellerWing, node_at
-from propwhirl.model.propeller import MeasuredDerivatives
+from propwhirl.model.propellers.propeller import MeasuredDerivatives
 from propwhirl.validate import InputError
 from propwhirl.analysis.vibration import campbell, label_modes
 

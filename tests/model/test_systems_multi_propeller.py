@@ -4,7 +4,7 @@ aerodynamics (the configuration of Table 10.8 / Figure 10.14)."""
 import numpy as np
 import pytest
 
-from propwhirl.model.assembly import free_dofs, wing_aero, wing_structure
+from propwhirl.model.structure.assembly import free_dofs, wing_aero, wing_structure
 from propwhirl.cases.ch10_other_wings import two_propeller_wing
 from propwhirl.generated import prop_flexwing as pf
 

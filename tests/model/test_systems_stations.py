@@ -1,5 +1,5 @@
 """Propellers at any station: PropellerWing makes every installation a node of its wing's mesh
-(model/mesh.py), keeps the thesis's uniform meshes, and converges to the uniform fine mesh."""
+(model/structure/mesh.py), keeps the thesis's uniform meshes, and converges to the uniform fine mesh."""
 from dataclasses import replace
 
 import numpy as np

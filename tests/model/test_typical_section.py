@@ -5,7 +5,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from propwhirl.model.propeller_aero import theodorsen
+from propwhirl.model.propellers.propeller_aero import theodorsen
 from propwhirl.generated import typical_section
 from propwhirl.model.systems import FlightCondition, TypicalSection
 from propwhirl.validate import InputError

@@ -4,7 +4,7 @@ import pytest
 
 from propwhirl.cases.ch09_baseline import baseline_wing
 from propwhirl.validate import InputError
-from propwhirl.model.wing import Wing
+from propwhirl.model.structure.wing import Wing
 
 BASE = dict(semi_span=5.0, mass_per_length=10.0, EI=1e5, GJ=1e5, polar_inertia=1.0, n_elements=4)
 

@@ -8,9 +8,9 @@ import scipy.linalg as sl
 
 from propwhirl.cases.ch07_patil import PATIL_DENSITY, patil_model
 from propwhirl.cases.ch09_baseline import baseline_flight, baseline_propeller, baseline_wing
-from propwhirl.model.assembly import wing_aero, wing_structure
+from propwhirl.model.structure.assembly import wing_aero, wing_structure
 from propwhirl.model.systems import Installation, PropellerWing
-from propwhirl.model.wing import Wing
+from propwhirl.model.structure.wing import Wing
 from propwhirl.validate import InputError
 
 

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from propwhirl.model import propeller_aero as aero
+from propwhirl.model.propellers import propeller_aero as aero
 from propwhirl.reproduce import harness as reproduce
 from propwhirl.cases import ch04_propeller_aero as ch4
 from propwhirl.reproduce import ch04 as reproduce_ch4

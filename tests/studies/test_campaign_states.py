@@ -14,7 +14,7 @@ import tomli_w
 
 from propwhirl.io import load_model
 from propwhirl.io.campaign_files import load_campaign, loads
-from propwhirl.model.propeller import MeasuredDerivatives
+from propwhirl.model.propellers.propeller import MeasuredDerivatives
 from propwhirl.studies import campaign as C
 from propwhirl.studies.campaign import from_spec
 from propwhirl.validate import InputError

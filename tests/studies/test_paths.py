@@ -10,7 +10,7 @@ import pytest
 
 from propwhirl.cases.ch09_baseline import baseline_propeller, isolated_baseline_propeller
 from propwhirl.cases.registry import case_model
-from propwhirl.model.propeller_aero import Distribution
+from propwhirl.model.propellers.propeller_aero import Distribution
 from propwhirl.studies import paths as P
 from propwhirl.validate import InputError
 

@@ -57,7 +57,7 @@ def mode_families(model, labels: tuple[str, ...] | None = None) -> tuple[str, ..
 
 def operating_rpm_ratio(model) -> tuple[float, ...]:
     """Each propeller's rotational speed relative to the first's, from their operation
-    (:meth:`propwhirl.model.propeller.Propeller.rotational_speed`): constant-speed rpm, or
+    (:meth:`propwhirl.model.propellers.propeller.Propeller.rotational_speed`): constant-speed rpm, or
     fixed-pitch windmilling Ω = V/(μR) — a ratio that holds at every airspeed when the
     propellers run in the same operation.  Where it depends on the airspeed (fixed-pitch and
     constant-speed propellers mixed) every ratio is 1 (pass ``rpm_ratio`` to

@@ -33,9 +33,9 @@ from propwhirl.engine import analyse as engine_analyse
 from propwhirl.engine import single_thread_blas
 from propwhirl.engine.results import Analysis, Criticals
 from propwhirl.engine.tracker import ANALYSE_INITIAL_STEP, initial_speeds
-from propwhirl.model.dlm import MACH_STEP, dlm_aerodynamics, fixed_mach, snap_mach
+from propwhirl.model.aerodynamics.dlm import MACH_STEP, dlm_aerodynamics, fixed_mach, snap_mach
 from propwhirl.model.dlm_modal import ModalRoger, modal_roger
-from propwhirl.model.dlm_rfa import fit_ks, mach_nodes
+from propwhirl.model.aerodynamics.dlm_rfa import fit_ks, mach_nodes
 
 
 @dataclass(frozen=True)
@@ -52,8 +52,8 @@ class ModalDlmRun:
 def fit_table_nodes(model, speeds) -> list[tuple[float, int]]:
     """The doublet-lattice table nodes (Mach, k index) that the Roger fits of ``model`` (a wing
     with ``aero = "dlm"``) at the airspeeds ``speeds`` [m/s] read
-    (:func:`propwhirl.model.dlm_rfa.coefficients`), in the order the fits compute them: every
-    reduced frequency of :func:`~propwhirl.model.dlm_rfa.fit_ks` in the column of the wing's
+    (:func:`propwhirl.model.aerodynamics.dlm_rfa.coefficients`), in the order the fits compute them: every
+    reduced frequency of :func:`~propwhirl.model.aerodynamics.dlm_rfa.fit_ks` in the column of the wing's
     fixed ``dlm_mach``, or in the columns of the Mach nodes around each speed's V/a."""
     fixed = fixed_mach(model.wing)
     if fixed is not None:
@@ -83,7 +83,7 @@ def compute_fit_aics(model, grid: np.ndarray, *, vgf: bool,
 def full_state(assembly, V: float, p: complex, q: np.ndarray) -> np.ndarray:
     """The full Roger state [q, q̇, w] (unit norm) of the harmonic motion q e^{pt} of the
     model's DOFs at V [m/s]: q̇ = p q and every lag state w = (p I − Ww)⁻¹ (p Wv + Wq) q, its
-    response to that motion (:func:`propwhirl.model.dlm_rfa.second_order`)."""
+    response to that motion (:func:`propwhirl.model.aerodynamics.dlm_rfa.second_order`)."""
     sys = assembly.second_order(np.array([float(V)]))
     Ww, Wv, Wq = sys.Ww[0], sys.Wv[0], sys.Wq[0]
     w = np.linalg.solve(p * np.eye(Ww.shape[0]) - Ww, (p * Wv + Wq) @ q)

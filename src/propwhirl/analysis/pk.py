@@ -6,7 +6,7 @@ For each aeroelastic mode and airspeed V the p-k equation (NASTRAN's PK method)
 
 is solved by fixed-point iteration on the reduced frequency: the aerodynamic matrices are
 evaluated at the mode's current k with the exact C(k) = F(k) + iG(k) (thesis eq. 4.31,
-:func:`propwhirl.model.theodorsen.theodorsen`), the root of the quadratic eigenproblem nearest
+:func:`propwhirl.model.aerodynamics.theodorsen.theodorsen`), the root of the quadratic eigenproblem nearest
 the mode's current root is taken, and k is updated to that root's own frequency until it no
 longer changes.  The matrices M_a, C_a(k), K_a(k) are the harmonic-motion form of Theodorsen's
 loads (7.24–7.27, 7.64–7.66) generated from ``derivations/strip_aero.py``
@@ -15,11 +15,11 @@ own structure and propellers with every strip at its own k = ω b_i / V
 (:func:`propwhirl.model.frequency_domain.pk_system`; k reported on the root semichord).
 
 A wing with ``aero = "dlm"`` has doublet-lattice loads instead of the strips
-(:mod:`propwhirl.model.dlm`: Q(k, M) of the panels, the propellers' Houbolt–Reed loads
+(:mod:`propwhirl.model.aerodynamics.dlm`: Q(k, M) of the panels, the propellers' Houbolt–Reed loads
 unchanged, Mach V/a of each speed or the wing's fixed ``dlm_mach``) in the same p-k equation
 with M_a = 0, C_a = ½ρV² Im Q / ω, K_a = ½ρV² Re Q; the finite-state model it starts from, tracks and names
 its modes with and reports beside its events is its strip twin
-(:func:`propwhirl.model.dlm.strip_twin`).
+(:func:`propwhirl.model.aerodynamics.dlm.strip_twin`).
 
 The modes to follow start from the finite-state eigenvalues of the model's own state matrix
 (Leishman–Nguyen or Wagner lag states) at the first speed, and are continued speed by speed.
@@ -46,8 +46,8 @@ from propwhirl.analysis.naming import whirl
 from propwhirl.analysis.participation import with_participation
 from propwhirl.engine import mac
 from propwhirl.model.systems import TypicalSection
-from propwhirl.model.dlm import check_speed_mach, dlm_aerodynamics, fixed_mach, strip_twin
-from propwhirl.model.dlm_mesh import guideline_note
+from propwhirl.model.aerodynamics.dlm import check_speed_mach, dlm_aerodynamics, fixed_mach, strip_twin
+from propwhirl.model.aerodynamics.dlm_mesh import guideline_note
 from propwhirl.model.frequency_domain import (
     K_MIN,
     check_pk_model,
@@ -379,7 +379,7 @@ def pk_benignity(model, V: float, p: complex) -> float | None:
 def dlm_notes(model, sweep: PKSweep) -> list[str]:
     """What a doublet-lattice p-k analysis used (:data:`DLM_NOTE` first: panels, Mach, k
     convention) and, when broken, the panel-length guideline at the first speed and the
-    highest followed frequency (:func:`propwhirl.model.dlm_mesh.guideline_note`)."""
+    highest followed frequency (:func:`propwhirl.model.aerodynamics.dlm_mesh.guideline_note`)."""
     aero = dlm_aerodynamics(model.wing)
     m = aero.mesh
     fixed = fixed_mach(model.wing)

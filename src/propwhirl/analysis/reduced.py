@@ -24,8 +24,8 @@ from propwhirl.engine import analyse as engine_analyse
 from propwhirl.engine import single_thread_blas
 from propwhirl.engine.correction import correct_crossing, full_order_pair
 from propwhirl.engine.results import Analysis, Criticals
-from propwhirl.model.dlm import require_panelaero
-from propwhirl.model.dlm_mesh import check_memory
+from propwhirl.model.aerodynamics.dlm import require_panelaero
+from propwhirl.model.aerodynamics.dlm_mesh import check_memory
 from propwhirl.model.frequency_domain import check_section
 from propwhirl.model.reduction import CUTOFF_FACTOR, ReducedModel, reduce
 
@@ -47,7 +47,7 @@ def choose_method(model, method: str) -> str:
     A wing with ``aero = "dlm"`` (doublet-lattice loads): "auto" is "reduced", its modal
     Roger state space with every crossing converged by the p-k method
     (:mod:`propwhirl.analysis.modal_dlm`), "dense" the Roger state space on every DOF
-    (:mod:`propwhirl.model.dlm_rfa`: every structural mode, also those far beyond the fit's
+    (:mod:`propwhirl.model.aerodynamics.dlm_rfa`: every structural mode, also those far beyond the fit's
     reduced frequencies), "pk" the p-k method on Q(k).
 
     Examples

@@ -38,8 +38,8 @@ from propwhirl.analysis.reduced import frequency_zero_on_full_order, reduced_eng
 from propwhirl.engine import analyse as engine_analyse
 from propwhirl.engine import frequency_zero_points
 from propwhirl.engine.results import Analysis
-from propwhirl.model.dlm import check_speed_mach
-from propwhirl.model.dlm_rfa import rfa_note
+from propwhirl.model.aerodynamics.dlm import check_speed_mach
+from propwhirl.model.aerodynamics.dlm_rfa import rfa_note
 
 
 @dataclass(frozen=True)
@@ -75,7 +75,7 @@ class Tracked:
     unconverged: crossings not converged on the full order; notes_first, notes_last: the
     method's notes before and after the analysis's own; extrapolation: the events are to be
     checked against the Roger fit's reduced frequencies
-    (:func:`~propwhirl.model.dlm_rfa.extrapolation_notes`); method: the runner that ran.
+    (:func:`~propwhirl.model.aerodynamics.dlm_rfa.extrapolation_notes`); method: the runner that ran.
     """
 
     analysis: Analysis

@@ -39,8 +39,8 @@ from propwhirl.analysis.participation import (ModeParticipation, branch_point_sh
 from propwhirl.analysis.pk import DLM_NOTE, pk_instabilities
 from propwhirl.analysis.reduced import choose_method
 from propwhirl.analysis.runners import Job, Tracked, track
-from propwhirl.model.dlm import strip_twin
-from propwhirl.model.dlm_rfa import RFA_NOTE, extrapolation_notes
+from propwhirl.model.aerodynamics.dlm import strip_twin
+from propwhirl.model.aerodynamics.dlm_rfa import RFA_NOTE, extrapolation_notes
 from propwhirl.analysis.summary import (FiniteState, FlutterSummary, MethodComparison,
                                         Reference, aero_model_of, compare_methods,
                                         flutter_summary, reference, text_table)
@@ -49,7 +49,7 @@ from propwhirl.engine.eigensolve import one_blas_thread
 from propwhirl.engine.options import check_speeds
 from propwhirl.engine.results import (eigenvectors_npz, eigenvectors_path,  # noqa: F401
                                       read_eigenvectors)
-from propwhirl.model import validity
+from propwhirl.model.aerodynamics import validity
 from propwhirl.model.protocol import DofMap, Model, PropellerDofs
 from propwhirl.results import Result, SavedDict, non_finite_key
 
@@ -86,7 +86,7 @@ class ModelAnalysis(Result):
     content: dict[str, dict[str, float]] = field(default_factory=dict)
     #: what each state of the analysed model is (wing node and DOF, propeller, lag state)
     dof_map: DofMap | None = field(default=None, repr=False)
-    #: results outside the methods' validity, one line each (:mod:`propwhirl.model.validity`:
+    #: results outside the methods' validity, one line each (:mod:`propwhirl.model.aerodynamics.validity`:
     #: Mach above 0.7 or supersonic, supersonic propeller tips); saved and re-read
     warnings: tuple[str, ...] = ()
     #: reference length, density and speed of sound of the flutter summary (saved and re-read)
@@ -142,7 +142,7 @@ class ModelAnalysis(Result):
         """Whether the p-k events come from doublet-lattice wing aerodynamics (the analysis's
         note saying so, :data:`propwhirl.analysis.pk.DLM_NOTE`, is saved with it) or from
         the Roger state space of doublet-lattice wing aerodynamics
-        (:data:`propwhirl.model.dlm_rfa.RFA_NOTE`)."""
+        (:data:`propwhirl.model.aerodynamics.dlm_rfa.RFA_NOTE`)."""
         return any(w.startswith((DLM_NOTE, RFA_NOTE)) for w in self.warnings)
 
     def summary(self) -> str:
@@ -500,7 +500,7 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         Roger state space (the lag states of the rational-function fit of Q(k, V/a)) on the
         in-vacuo modes below a cut-off and converge every crossing by the p-k method on Q(k)
         (:mod:`propwhirl.analysis.modal_dlm`: only critical speeds the p-k has), "dense" the
-        Roger state space on every DOF (:mod:`propwhirl.model.dlm_rfa`; modes far beyond the
+        Roger state space on every DOF (:mod:`propwhirl.model.aerodynamics.dlm_rfa`; modes far beyond the
         fit's reduced frequencies included), "pk" the p-k method on Q(k) itself.
     progress : callable, optional
         ``report(done, total)``: a wing with ``aero = "dlm"`` analysed on its Roger state space

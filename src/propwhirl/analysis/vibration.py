@@ -20,8 +20,8 @@ from propwhirl.analysis.campbell import (CAMPBELL_RPM, FAMILIES, RPM_FORM,  # no
 from propwhirl.analysis.modes import (Modes, _flexible_propellers,  # noqa: F401
                                       _GyroscopicSystem, _track, label_modes, model_modes,
                                       undamped_modes)
-from propwhirl.model.assembly import WING_DOF_NAMES, free_dofs, wing_dof_labels, wing_structure
-from propwhirl.model.wing import Wing
+from propwhirl.model.structure.assembly import WING_DOF_NAMES, free_dofs, wing_dof_labels, wing_structure
+from propwhirl.model.structure.wing import Wing
 
 
 def wing_modes(wing: Wing) -> Modes:

@@ -100,7 +100,7 @@ def _derivatives(args: argparse.Namespace) -> int:
 
     import numpy as np
 
-    from propwhirl.model import propeller_aero as aero
+    from propwhirl.model.propellers import propeller_aero as aero
 
     if args.chord_table:
         chord = aero.Distribution.tabulated(*_pairs("--chord-table", args.chord_table), "chord")

@@ -147,7 +147,7 @@ def event_lines(a: ModelAnalysis, thesis: dict[str, float]) -> list[str]:
                  "propeller's theta-psi orbit\n  at the event; benignity [m/s] = (d zeta/dV)^-1 at "
                  "flutter onsets (eq. 5.13)")
     lines += participation_lines(a.events, "  ")
-    for note in a.warnings:      # the aerodynamics' validity (propwhirl.model.validity)
+    for note in a.warnings:      # the aerodynamics' validity (propwhirl.model.aerodynamics.validity)
         lines.append(f"Warning: {printable(note)}")
     c = a.critical
     if c is None:

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from propwhirl.cases.ch09_baseline import baseline_propeller, inboard_y, propeller_wing
 from propwhirl.cases.ch10_other_wings import two_propeller_wing, wingtip_propeller_wing
-from propwhirl.model.propeller import Propeller
+from propwhirl.model.propellers.propeller import Propeller
 from propwhirl.model.systems import PropellerWing
 
 #: Cruise rotational speed of appendix E [rev/min] (Table 9.3)

@@ -13,7 +13,7 @@ values below were inferred by numerical experiment (docs/validation.md, "Chapter
   0.1823 ft chord, A = R(1 − η0)/0.1823 ft (not recomputed for the doubled chord);
 * hub ratio η0 = 0.22;
 * windmilling advance ratio μ = 0.75 tan(β_0.75R + 3°) (zero lift at the 0.75R section
-  with α_0L = −3°, rule "blade_element" of :func:`propwhirl.model.propeller_aero.advance_ratio_from_blade_angle`).
+  with α_0L = −3°, rule "blade_element" of :func:`propwhirl.model.propellers.propeller_aero.advance_ratio_from_blade_angle`).
 
 Table 4.1's values and the sensitivity of the inference are recomputed in
 :mod:`propwhirl.reproduce.ch04`.
@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from propwhirl.model import propeller_aero as aero
+from propwhirl.model.propellers import propeller_aero as aero
 
 FT = 0.3048  # m per ft
 
@@ -54,7 +54,7 @@ class Table41Assumptions:
                       "eq_4_21": eq. 4.21 with the doubled chord
     taper             c_tip/c_root of a linear chord with c(0.75) = the chord (1: constant)
     zero_lift_deg     α_0L [deg] of the windmilling relation
-    advance_rule      see :func:`propwhirl.model.propeller_aero.advance_ratio_from_blade_angle`
+    advance_rule      see :func:`propwhirl.model.propellers.propeller_aero.advance_ratio_from_blade_angle`
     settings          model switches (default: wake + compressibility + aspect ratio)
     speed_of_sound    [m/s]
     """

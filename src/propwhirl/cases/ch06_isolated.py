@@ -14,8 +14,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from propwhirl.cases.ch04_propeller_aero import BB_RADIUS, FT, RR_SPEED_OF_SOUND, bennett_bland_geometry
-from propwhirl.model import propeller_aero as aero
-from propwhirl.model.propeller import PointMass, Propeller
+from propwhirl.model.propellers import propeller_aero as aero
+from propwhirl.model.propellers.propeller import PointMass, Propeller
 from propwhirl.model.systems import FlightCondition, IsolatedPropeller
 from propwhirl.validate import InputError
 

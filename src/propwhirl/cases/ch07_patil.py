@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from propwhirl.model.systems import FlightCondition, PropellerWing
-from propwhirl.model.wing import LiftSlope, Wing
+from propwhirl.model.structure.wing import LiftSlope, Wing
 
 #: Air density at 20 km used with the Patil wing (Table 7.1) [kg/m³]
 PATIL_DENSITY = 0.0889

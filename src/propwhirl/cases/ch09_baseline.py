@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from propwhirl.model.propeller import PointMass, Propeller
+from propwhirl.model.propellers.propeller import PointMass, Propeller
 from propwhirl.model.systems import (
     SPEED_OF_SOUND_8000FT,
     FlightCondition,
@@ -19,7 +19,7 @@ from propwhirl.model.systems import (
     IsolatedPropeller,
     PropellerWing,
 )
-from propwhirl.model.wing import Wing
+from propwhirl.model.structure.wing import Wing
 
 #: Air density at 8000 ft used throughout chapters 9–11 (Table 9.1) [kg/m³]
 BASELINE_DENSITY = 0.962870

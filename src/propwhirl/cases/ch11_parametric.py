@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from propwhirl.cases.ch09_baseline import baseline_propeller
 from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
-from propwhirl.model.propeller import PointMass, Propeller
+from propwhirl.model.propellers.propeller import PointMass, Propeller
 from propwhirl.model.systems import PropellerWing
 
 

@@ -5,7 +5,7 @@ check), the coefficients of a cluster's characteristic polynomial, a pair's disc
 crossing's prediction this way, on s = (V − V_a)/(V_b − V_a) ∈ [0, 1]; the campaign report
 draws its V-g-f curves between the analysed speeds with them
 (:func:`propwhirl.app.plots.campaign_plot.hermite`).  (The beam element's Hermite shape
-functions along the span are another thing: :func:`propwhirl.model.mesh.beam_interpolation`.)
+functions along the span are another thing: :func:`propwhirl.model.structure.mesh.beam_interpolation`.)
 """
 from __future__ import annotations
 

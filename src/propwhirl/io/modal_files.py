@@ -32,7 +32,7 @@ from propwhirl.io.model_files import _build, _Table, _toml_error, _Writer
 from propwhirl.model.flight import FlightCondition
 from propwhirl.model.modal import MOUNTS, ModalInstallation, ModalPropellerWing
 from propwhirl.model.modal_structure import MAX_MODES, ModalStructure, StripPlanform, _id_list
-from propwhirl.model.propeller import Propeller
+from propwhirl.model.propellers.propeller import Propeller
 from propwhirl.model.systems import PropellerWing
 
 FORMAT = "propwhirl-modal-model"

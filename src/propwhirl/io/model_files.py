@@ -3,7 +3,7 @@
 
 A file holds a :class:`~propwhirl.model.systems.PropellerWing`, an
 :class:`~propwhirl.model.systems.IsolatedPropeller` or a bare
-:class:`~propwhirl.model.propeller.Propeller`.  Reader and writer are driven by the field
+:class:`~propwhirl.model.propellers.propeller.Propeller`.  Reader and writer are driven by the field
 declarations of the model dataclasses (:mod:`propwhirl.io.schema`); every key, unit and
 default is listed in ``docs/model-file.md``.  Reading uses the standard library's ``tomllib``;
 writing uses tomli-w (the optional extra ``pip install propwhirl[toml]``), with the informative
@@ -42,8 +42,8 @@ from propwhirl import fileio
 from propwhirl import validate as v
 from propwhirl.io import alternatives, schema, versions
 from propwhirl.io.schema import DERIVATIVE_SOURCES, FORMAT, FORMAT_VERSION, MODEL_TYPES, Field
-from propwhirl.model.propeller import Propeller
-from propwhirl.model.propeller_aero import Distribution
+from propwhirl.model.propellers.propeller import Propeller
+from propwhirl.model.propellers.propeller_aero import Distribution
 from propwhirl.model.systems import Installation
 
 _MISSING = object()
@@ -51,7 +51,7 @@ _FAILED = object()   # a [propellers.KEY] table that could not be read (its erro
 _NUMBER_HELP = {"spanwise": "give a number or one value per element (evaluate the function at "
                             "wing.element_y)",
                 "number_or_string": "give a number or one of the strings",
-                "distribution": "give a number or a propwhirl.model.propeller_aero.Distribution "
+                "distribution": "give a number or a propwhirl.model.propellers.propeller_aero.Distribution "
                                 "(tabulated)"}
 
 

@@ -20,10 +20,10 @@ from typing import Any
 from propwhirl.io import alternatives, versions
 from propwhirl.io.versions import FORMAT_VERSION, FORMAT_VERSIONS, UNSTATED_VERSION
 from propwhirl.model.fields import META_KEY, REQUIRED_WHEN, FieldSpec, infer_form, literals
-from propwhirl.model.propeller import MeasuredDerivatives, PointMass, Propeller
-from propwhirl.model.propeller_aero import AeroSettings, HouboltReedSource, PropellerGeometry
+from propwhirl.model.propellers.propeller import MeasuredDerivatives, PointMass, Propeller
+from propwhirl.model.propellers.propeller_aero import AeroSettings, HouboltReedSource, PropellerGeometry
 from propwhirl.model.systems import FlightCondition, Installation, IsolatedPropeller, PropellerWing
-from propwhirl.model.wing import Wing
+from propwhirl.model.structure.wing import Wing
 
 FORMAT = "propwhirl-model"  # its versions (written, read, the old ones' defaults): io/versions.py
 

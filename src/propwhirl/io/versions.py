@@ -16,9 +16,9 @@ from typing import Any
 
 from propwhirl import validate as v
 from propwhirl.model.flight import FlightCondition
-from propwhirl.model.propeller import Propeller
-from propwhirl.model.propeller_aero import PropellerGeometry
-from propwhirl.model.wing import Wing
+from propwhirl.model.propellers.propeller import Propeller
+from propwhirl.model.propellers.propeller_aero import PropellerGeometry
+from propwhirl.model.structure.wing import Wing
 
 #: The format version this propwhirl writes.
 FORMAT_VERSION = 2

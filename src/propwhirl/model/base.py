@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.model.assembly import blame_entry
+from propwhirl.model.structure.assembly import blame_entry
 from propwhirl.model.statespace import SecondOrder, StateMatrixError, check_system, state_matrix
 
 
@@ -40,7 +40,7 @@ class EvaluatorBase:
 
     def _explained(self, err: StateMatrixError, V: np.ndarray, options: dict) -> v.InputError:
         """The error prefixed with the model parameter behind the offending entry, if found
-        (:meth:`_contributions` and :func:`propwhirl.model.assembly.blame_entry`)."""
+        (:meth:`_contributions` and :func:`propwhirl.model.structure.assembly.blame_entry`)."""
         t = min(err.index, V.size - 1)
         omega = options.get("omega")
         om = None if omega is None else np.broadcast_to(np.asarray(omega, float), V.shape)[t:t + 1]

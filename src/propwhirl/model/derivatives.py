@@ -28,7 +28,7 @@ Parameters covered (paths as :attr:`Parameter.path`; `wing` is ``model.wing``, t
                                                        the stiffness at fixed inertia)
 ``propellers[j].propeller.f_theta`` / ``f_psi``        mount frequency [Hz], when the propeller
                                                        is given by it: K = I (2π f)², so
-                                                       ∂K/∂f = 2K/f (model/propeller.py)
+                                                       ∂K/∂f = 2K/f (model/propellers/propeller.py)
 ``propellers[j].propeller.damping_theta`` / ``_psi``   mount damping (ζ, or g with ζ = g/2)
 ``propellers[j].propeller.spin_inertia``               I_Ω [kg m²] (rotor mass held fixed)
 ``propellers[j].propeller.rotor.mass`` / ``.x``,       each point mass [kg] and its position [m]:
@@ -54,7 +54,7 @@ Parameters covered (paths as :attr:`Parameter.path`; `wing` is ``model.wing``, t
 ``zero_lift_angle_deg``; ``rpm``                       pitch) or rpm (constant speed): Ω of the
                                                        gyroscopic terms and the Houbolt–Reed
                                                        derivatives through μ
-                                                       (:mod:`~propwhirl.model.derivatives_blade`)
+                                                       (:mod:`~propwhirl.model.propellers.derivatives_blade`)
 =====================================================  ==========================================
 
 Not covered: a chord given as a function of y (no chord paths), an elastic axis or
@@ -71,13 +71,13 @@ from typing import Iterable
 import numpy as np
 
 from propwhirl.generated import beam_element, prop_flexwing
-from propwhirl.model.assembly import LAG_STATES, STRIP_AERO, element_dofs, free_dofs
+from propwhirl.model.structure.assembly import LAG_STATES, STRIP_AERO, element_dofs, free_dofs
 from propwhirl.model.blocks import BlockSystem, LagBlocks, LocalBlocks
-from propwhirl.model import derivatives_blade as _blade
+from propwhirl.model.propellers import derivatives_blade as _blade
 from propwhirl.model import derivatives_section as _section
-from propwhirl.model.propeller import MeasuredDerivatives
-from propwhirl.model.propeller import CROSS_DERIVATIVES
-from propwhirl.model.propeller_aero import DERIVATIVE_NAMES
+from propwhirl.model.propellers.propeller import MeasuredDerivatives
+from propwhirl.model.propellers.propeller import CROSS_DERIVATIVES
+from propwhirl.model.propellers.propeller_aero import DERIVATIVE_NAMES
 from propwhirl.model.propeller_blocks import propeller_constants, propeller_values
 from propwhirl.model.statespace import SecondOrder
 from propwhirl.model.systems import PropellerWing
@@ -92,7 +92,7 @@ class Parameter:
     """One model parameter with exact derivatives: its path, current value, unit, meaning.
 
     kind: "element", "node", "section" (:mod:`propwhirl.model.derivatives_section`),
-    "propeller" or "rotation" (:mod:`propwhirl.model.derivatives_blade`); index: the element,
+    "propeller" or "rotation" (:mod:`propwhirl.model.propellers.derivatives_blade`); index: the element,
     node (−1 for the root and tip chords) or installation."""
 
     path: str
@@ -333,7 +333,7 @@ class _Context:
 
     # ---------------------------------------------------------------- rotation
     def rotation(self, par: Parameter) -> BlockSystem:
-        """Blade angle, zero-lift angle or rpm of a propeller (:mod:`propwhirl.model.derivatives_blade`)."""
+        """Blade angle, zero-lift angle or rpm of a propeller (:mod:`propwhirl.model.propellers.derivatives_blade`)."""
         return self.system((self.propeller_block(par.index, _blade.chain(self, par)),), None)
 
     # ---------------------------------------------------------------- propellers

@@ -2,8 +2,8 @@
 
 The generated beam element takes, per element, x_α b and ρI_p (with m, EI, GJ, the length),
 the generated strip aerodynamics, per node, b, a and a_c (with C_lα), and a propeller the
-elastic axis a_P b_P at its node (:meth:`~propwhirl.model.wing.Wing.element_properties`,
-:meth:`~propwhirl.model.wing.Wing.node_properties`,
+elastic axis a_P b_P at its node (:meth:`~propwhirl.model.structure.wing.Wing.element_properties`,
+:meth:`~propwhirl.model.structure.wing.Wing.node_properties`,
 :func:`~propwhirl.model.propeller_blocks.propeller_constants`):
 
     x_α b = (x_cg − x_ea) c                       (elements; chord fractions from the LE)
@@ -28,7 +28,7 @@ Fields (`wing` = ``model.wing``, the meshed wing; e an element, i a node):
 ``wing.centre_of_gravity[e]``       x_cg of element e [chord]: x_α b, and ρI_p with r_g
 ``wing.elastic_axis[e]``            x_ea of element e [chord]: x_α b, ρI_p with r_g, and a at the
                                     nodes through the linear interpolation between element
-                                    mid-points (:func:`propwhirl.model.wing._node_value`), hence
+                                    mid-points (:func:`propwhirl.model.structure.wing._node_value`), hence
                                     a_P b_P of a propeller there
 ``wing.aerodynamic_centre[e]``      x_ac of element e [chord]: a_c at the nodes (interpolated)
 ``wing.polar_inertia[e]``           ρI_p of element e [kg m] (when the wing gives it)
@@ -50,9 +50,9 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from propwhirl.generated import beam_element
-from propwhirl.model.assembly import LAG_STATES, STRIP_AERO, element_dofs
+from propwhirl.model.structure.assembly import LAG_STATES, STRIP_AERO, element_dofs
 from propwhirl.model.blocks import LagBlocks, LocalBlocks
-from propwhirl.model.wing import Wing
+from propwhirl.model.structure.wing import Wing
 
 #: the per-element fields: (field, unit, meaning)
 _ELEMENT_FIELDS = (("centre_of_gravity", "chord", "centre-of-gravity position"),
@@ -114,7 +114,7 @@ def _element_values(wing: Wing, name: str, props: dict, y: np.ndarray,
 
 def _interpolation(wing: Wing) -> np.ndarray:
     """W (n_nodes, n_elements): node values = W @ element values, the linear interpolation
-    between element mid-points of :func:`propwhirl.model.wing._node_value` (exact: it is linear
+    between element mid-points of :func:`propwhirl.model.structure.wing._node_value` (exact: it is linear
     in the values)."""
     ye, yn = wing.element_y, wing.node_y
     eye = np.eye(ye.size)

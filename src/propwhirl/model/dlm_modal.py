@@ -1,10 +1,10 @@
 """The modal Roger state space of a doublet-lattice wing: what ``analyse(model)`` tracks by
 default on a wing with ``aero = "dlm"`` (issue 37, item 1).
 
-The full Roger state space (:func:`propwhirl.model.dlm_rfa.second_order`) puts the fitted
+The full Roger state space (:func:`propwhirl.model.aerodynamics.dlm_rfa.second_order`) puts the fitted
 doublet-lattice loads on every wing DOF, so every structural mode of the beam carries them —
 also the modes whose reduced frequency k = ω b_ref / V lies far beyond the fit (k ≤
-:data:`~propwhirl.model.dlm_rfa.K_MAX`) and beyond the panels' own validity (the 0.08 V/f
+:data:`~propwhirl.model.aerodynamics.dlm_rfa.K_MAX`) and beyond the panels' own validity (the 0.08 V/f
 guideline: k ≲ n_chordwise / 4).  There the fit extrapolates Q, and the doublet lattice itself
 is no better: on the Goland wing (4 × 7 panels) the computed Q(k) of every mode feeds energy
 into the mode at k = 10 (docs/validation.md, "The modal Roger state space").  Such a mode,
@@ -35,9 +35,9 @@ import numpy as np
 import scipy.linalg as sla
 
 from propwhirl import validate as v
-from propwhirl.model.assembly import free_dofs
-from propwhirl.model.dlm import dlm_aerodynamics
-from propwhirl.model.dlm_rfa import DEFAULT_LAGS, coefficients, fit_ks, roger_system
+from propwhirl.model.structure.assembly import free_dofs
+from propwhirl.model.aerodynamics.dlm import dlm_aerodynamics
+from propwhirl.model.aerodynamics.dlm_rfa import DEFAULT_LAGS, coefficients, fit_ks, roger_system
 from propwhirl.model.reduction import CUTOFF_FACTOR, cutoff
 from propwhirl.model.statespace import SecondOrder, rate_label, state_matrix
 
@@ -129,7 +129,7 @@ class ModalRoger:
         """The modal second-order system at the airspeeds V [m/s] (1-D): Φᵀ(S1, S2, S3)Φ of the
         structure and propellers (wing aerodynamics off) minus the projected Roger terms
         ½ρ b² A₂ʳ, ½ρ V b A₁ʳ, ½ρV² A₀ʳ (Aʳ = Φ_wᵀ A Φ_w, the fit of
-        :func:`~propwhirl.model.dlm_rfa.coefficients` at each speed's Mach), the lag loads
+        :func:`~propwhirl.model.aerodynamics.dlm_rfa.coefficients` at each speed's Mach), the lag loads
         S4 = ½ρV² A_{2+l}ʳ and ż_l = η̇ − (V/b) β_l z_l.  ``omega`` [rad/s] as
         :meth:`~propwhirl.model.systems.PropellerWingAssembly.blocks`."""
         model = self.model

@@ -7,7 +7,7 @@ Q = M_a q̈ + C_a(k) q̇ + K_a(k) q; the matrices are generated from ``derivatio
 (``strip_aero.theodorsen_blocks``), the section's structure from
 ``derivations/typical_section.py``.  On a wing every node's strip has its own
 k_i = ω b_i / V and acts with its tributary width, as the finite-state strips
-(:func:`propwhirl.model.assembly.wing_aero_blocks`); the structure and the propellers
+(:func:`propwhirl.model.structure.assembly.wing_aero_blocks`); the structure and the propellers
 (Houbolt–Reed loads as they are) are the model's own second-order system with the wing
 aerodynamics off.  The p-k solution itself is :mod:`propwhirl.analysis.pk`.
 """
@@ -18,7 +18,7 @@ from dataclasses import replace
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.model.theodorsen import theodorsen
+from propwhirl.model.aerodynamics.theodorsen import theodorsen
 
 #: reduced frequency used for a (numerically) non-oscillatory root: G(k)/k is singular at 0
 K_MIN = 1e-6
@@ -89,15 +89,15 @@ def pk_system(model, V: float):
     the typical section (:func:`section_pk_matrices`) or a PropellerWing (its structure and
     propellers, computed once, every wing strip with the exact Theodorsen loads at its own
     k = ω b_i / V; a wing with ``aero = "dlm"``: the doublet-lattice loads instead,
-    :func:`propwhirl.model.dlm.pk_system_dlm`), on the model's degrees of freedom (its
+    :func:`propwhirl.model.aerodynamics.dlm.pk_system_dlm`), on the model's degrees of freedom (its
     ``dof_map``, without lag states)."""
-    from propwhirl.model.assembly import free_dofs, place
+    from propwhirl.model.structure.assembly import free_dofs, place
     from propwhirl.model.systems import TypicalSection
 
     if isinstance(model, TypicalSection):
         return lambda omega: section_pk_matrices(model, V, omega * model.b / V)
     if model.wing.aero == "dlm":                 # doublet-lattice panels instead of the strips
-        from propwhirl.model.dlm import pk_system_dlm
+        from propwhirl.model.aerodynamics.dlm import pk_system_dlm
         return pk_system_dlm(model, V, K_MIN)
     dry = replace(model, wing_aero=False).second_order(np.array([V]))
     if dry.n_lag:

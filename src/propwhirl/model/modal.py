@@ -8,8 +8,8 @@ engine and the analyses work unchanged: its degrees of freedom are the modal coo
 K = diag(m_i ω_i²), C = diag(2 ζ_i m_i ω_i).
 
 **Strip aerodynamics on the modes.**  The wing's strips (the same generated strip
-aerodynamics as a :class:`~propwhirl.model.wing.Wing`'s,
-:func:`propwhirl.model.assembly.strip_aero_blocks`) sit at the stations of a
+aerodynamics as a :class:`~propwhirl.model.structure.wing.Wing`'s,
+:func:`propwhirl.model.structure.assembly.strip_aero_blocks`) sit at the stations of a
 :class:`~propwhirl.model.modal_structure.StripPlanform`; with T the spline
 (:func:`~propwhirl.model.modal_structure.strip_interpolation`) the aerodynamic matrices are
 (TΦ)ᵀ A_strip (TΦ), the lag states' couplings projected the same way.
@@ -38,12 +38,12 @@ import numpy as np
 from propwhirl import limits
 from propwhirl import validate as v
 from propwhirl.generated import prop_hub
-from propwhirl.model import validity
-from propwhirl.model.assembly import LAG_STATES, call_blocks, strip_aero_blocks
+from propwhirl.model.aerodynamics import validity
+from propwhirl.model.structure.assembly import LAG_STATES, call_blocks, strip_aero_blocks
 from propwhirl.model.base import EvaluatorBase, StateSpaceModel
 from propwhirl.model.flight import FlightCondition
 from propwhirl.model.modal_structure import ModalStructure, StripPlanform, strip_interpolation
-from propwhirl.model.propeller import Propeller
+from propwhirl.model.propellers.propeller import Propeller
 from propwhirl.model.propeller_blocks import (propeller_constants_at, propeller_matrices,
                                              propeller_values)
 from propwhirl.model.protocol import DofMap, PropellerDofs

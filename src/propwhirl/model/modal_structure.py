@@ -34,8 +34,8 @@ from scipy.interpolate import CubicSpline
 
 from propwhirl import validate as v
 from propwhirl.generated import prop_hub
-from propwhirl.model.assembly import LAG_STATES, free_dofs, wing_structure
-from propwhirl.model.mesh import beam_interpolation
+from propwhirl.model.structure.assembly import LAG_STATES, free_dofs, wing_structure
+from propwhirl.model.structure.mesh import beam_interpolation
 from propwhirl.model.propeller_blocks import propeller_constants
 
 #: Components of a grid's motion in a mode shape, in the order of the last axis of ``shapes``.
@@ -157,7 +157,7 @@ class ModalStructure:
 
     @classmethod
     def from_wing(cls, wing, n_modes: int | None = None, first_id: int = 1) -> "ModalStructure":
-        """The in-vacuo modes of a beam :class:`~propwhirl.model.wing.Wing` (its structure
+        """The in-vacuo modes of a beam :class:`~propwhirl.model.structure.wing.Wing` (its structure
         alone, root clamped: 7.9–7.22), the lowest ``n_modes`` (default all), at one grid per
         node (ids ``first_id`` + node, the root's included, on the elastic axis at x = 0,
         y the node's station): T_z = −h, R_x = −∂h/∂y, R_y = α, the rest 0.  Mass-normalised
@@ -344,7 +344,7 @@ class StripPlanform:
 
     @classmethod
     def from_wing(cls, wing, nodes: np.ndarray | None = None) -> "StripPlanform":
-        """The strips of a :class:`~propwhirl.model.wing.Wing` at its nodes (default: every
+        """The strips of a :class:`~propwhirl.model.structure.wing.Wing` at its nodes (default: every
         node but the clamped root), the elastic axis at x = 0 (its nodes' grids' x)."""
         p = wing.node_properties()
         nodes = np.arange(1, wing.n_nodes) if nodes is None else np.asarray(nodes)
@@ -357,7 +357,7 @@ class StripPlanform:
 
     def node_properties(self) -> dict[str, np.ndarray]:
         """The strips as :meth:`Wing.node_properties` gives a wing's nodes: y, width, b, a,
-        ac, Cla (for :func:`~propwhirl.model.assembly.strip_aero_blocks`)."""
+        ac, Cla (for :func:`~propwhirl.model.structure.assembly.strip_aero_blocks`)."""
         return dict(y=self.y, width=self.width, b=0.5 * self.chord,
                     a=2.0 * self.elastic_axis - 1.0, ac=2.0 * self.aerodynamic_centre - 1.0,
                     Cla=self.lift_slope)
@@ -372,7 +372,7 @@ def strip_interpolation(structure: ModalStructure, wing_grids, planform: StripPl
     """T (n_strips, 2, n_grids, 6): each strip's heave h [m] (positive down, at its elastic
     axis) and twist α [rad] (nose up) from the grids' six components (rule in the module
     docstring: Hermite cubic in y for T_z with R_x as slope, linear for R_y, rigid chord; the
-    beam's interpolation :func:`~propwhirl.model.mesh.beam_interpolation`).
+    beam's interpolation :func:`~propwhirl.model.structure.mesh.beam_interpolation`).
 
     ``wing_grids``: ids of the reference-axis grids, strictly increasing in y; every strip
     must lie within their span (an error names the first that does not)."""

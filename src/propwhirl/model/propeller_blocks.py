@@ -15,10 +15,10 @@ from collections.abc import Mapping
 import numpy as np
 
 from propwhirl.generated import prop_flexwing, prop_flexwing_inplane
-from propwhirl.model.assembly import call_blocks
-from propwhirl.model.propeller import CROSS_DERIVATIVES, Propeller
-from propwhirl.model.propeller_aero import stopped_blades
-from propwhirl.model.wing import Wing
+from propwhirl.model.structure.assembly import call_blocks
+from propwhirl.model.propellers.propeller import CROSS_DERIVATIVES, Propeller
+from propwhirl.model.propellers.propeller_aero import stopped_blades
+from propwhirl.model.structure.wing import Wing
 
 
 def design_key(p: Propeller) -> int:
@@ -91,7 +91,7 @@ def installed_derivatives(propeller: Propeller, V: np.ndarray, speed_of_sound: f
     (the eight cross-coupling derivatives negated) when ``rotation`` is opposite to the
     propeller's — measured derivatives too, as they belong to the propeller's own sense;
     "feathered": the stopped, feathered blades of its geometry
-    (:func:`~propwhirl.model.propeller_aero.stopped_blades`, no cross-coupling terms);
+    (:func:`~propwhirl.model.propellers.propeller_aero.stopped_blades`, no cross-coupling terms);
     "stopped": none (an error: a stopped rotor has no aerodynamic loads)."""
     p = propeller
     if state == "feathered":

@@ -8,8 +8,8 @@ from typing import Literal
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.model import validity
-from propwhirl.model.assembly import LAG_STATES, STRIP_AERO, call_blocks
+from propwhirl.model.aerodynamics import validity
+from propwhirl.model.structure.assembly import LAG_STATES, STRIP_AERO, call_blocks
 from propwhirl.model.base import StateSpaceModel
 from propwhirl.model.fields import check_fields, spec
 from propwhirl.model.flight import FlightCondition

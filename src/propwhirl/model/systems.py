@@ -46,8 +46,8 @@ import numpy as np
 from propwhirl import limits
 from propwhirl import validate as v
 from propwhirl.model.fields import check_fields, spec
-from propwhirl.model.mesh import check_station
-from propwhirl.model.assembly import (
+from propwhirl.model.structure.mesh import check_station
+from propwhirl.model.structure.assembly import (
     INPLANE_DOF_NAMES,
     LAG_STATES,
     WING_DOF_NAMES,
@@ -61,16 +61,16 @@ from propwhirl.model.assembly import (
 )
 from propwhirl.generated import beam_element, beam_inplane, prop_rigid
 from propwhirl.model.flight import SPEED_OF_SOUND_8000FT, FlightCondition  # noqa: F401 (re-export)
-from propwhirl.model.propeller import Propeller
+from propwhirl.model.propellers.propeller import Propeller
 from propwhirl.model.propeller_blocks import (propeller_constants, propeller_matrices,
                                              propeller_values)
 from propwhirl.model.blocks import BlockSystem, LagBlocks, LocalBlocks
 from propwhirl.model.protocol import DofMap, PropellerDofs
-from propwhirl.model import dlm_rfa, validity
+from propwhirl.model.aerodynamics import dlm_rfa, validity
 from propwhirl.model.base import EvaluatorBase, StateSpaceModel
 from propwhirl.model.section import TypicalSection  # noqa: F401 (re-export: its former home)
 from propwhirl.model.statespace import SecondOrder
-from propwhirl.model.wing import Wing
+from propwhirl.model.structure.wing import Wing
 
 #: Units of the arguments of the generated propeller blocks, for the error messages.
 PROPELLER_UNITS = dict(
@@ -106,7 +106,7 @@ class Installation:
       X-57's folded high-lift propellers in cruise); the mount, its stiffness and damping and
       every mass stay.
     - "feathered": Ω = 0 and the feathered blades' aerodynamics, the limit Ω → 0 of the
-      Houbolt–Reed blade elements (:func:`~propwhirl.model.propeller_aero.stopped_blades`):
+      Houbolt–Reed blade elements (:func:`~propwhirl.model.propellers.propeller_aero.stopped_blades`):
       each blade is a fin, giving the side forces C_Yψ = −C_Zθ only.  Needs the blade
       geometry (`blade_chord`, `n_blades`, `hub_radius`), also when the propeller's
       derivatives are measured (those are for the turning rotor).
@@ -231,7 +231,7 @@ class PropellerWing(StateSpaceModel):
 
     With no propellers it is the wing model of chapter 7.  ``model.wing`` is the given wing, or,
     when a propeller is off its nodes, that wing with every installation's y added to its
-    stations (so the mesh holds every propeller; rule in :mod:`propwhirl.model.mesh`).
+    stations (so the mesh holds every propeller; rule in :mod:`propwhirl.model.structure.mesh`).
 
     A value: it keeps nothing of its evaluations.  What its matrices need that does not depend
     on the airspeed is built by :meth:`assembly` (a :class:`PropellerWingAssembly`, a new one
@@ -346,7 +346,7 @@ class PropellerWing(StateSpaceModel):
 
         `omega` [rad/s], broadcast to V, overrides every propeller's rotational speed (used for
         Campbell diagrams and rotational-speed studies).  Refuses what the aerodynamics cannot
-        represent (:mod:`propwhirl.model.validity`); a non-finite entry is an InputError naming
+        represent (:mod:`propwhirl.model.aerodynamics.validity`); a non-finite entry is an InputError naming
         the model parameter behind it.  (:meth:`PropellerWingAssembly.second_order` of a new
         :meth:`assembly`.)"""
         return self.assembly().second_order(V, omega)
@@ -369,7 +369,7 @@ class PropellerWing(StateSpaceModel):
         """The states of :meth:`second_order`: the free wing DOFs (node ≥ 1: h, φ, α, eq. 7.20),
         with in-plane bending the in-plane v, χ of nodes ≥ 1, then θ, ψ of each flexibly
         mounted propeller, then the lag states of nodes ≥ 1 (with ``aero = "dlm"`` the Roger
-        lag states, :func:`propwhirl.model.dlm_rfa.lag_labels`)."""
+        lag states, :func:`propwhirl.model.aerodynamics.dlm_rfa.lag_labels`)."""
         nn = self.wing.n_nodes
         keep = free_dofs(nn)
         labels = list(np.asarray(wing_dof_labels(nn), dtype=object)[keep])

@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 
 from propwhirl.cases.ch04_propeller_aero import TABLE_4_1_BETAS, Table41Assumptions, table_4_1_derivatives
-from propwhirl.model import propeller_aero as aero
+from propwhirl.model.propellers import propeller_aero as aero
 from propwhirl.reproduce.harness import load_references, register
 
 

@@ -20,7 +20,7 @@ from propwhirl.cases.ch11_parametric import (
     wingtip_with,
 )
 from propwhirl.generated import prop_flexwing
-from propwhirl.model.propeller import Propeller
+from propwhirl.model.propellers.propeller import Propeller
 from propwhirl.reproduce.harness import ANALYSIS_METHOD, analyse, register
 from propwhirl.studies.parametric import blade_angle_mode_switch
 

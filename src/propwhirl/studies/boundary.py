@@ -47,7 +47,7 @@ from propwhirl import fileio
 from propwhirl import validate as v
 from propwhirl.engine import eigenvalues
 from propwhirl.studies import paths as P
-from propwhirl.model import validity
+from propwhirl.model.aerodynamics import validity
 from propwhirl.results import Result, SavedDict
 from propwhirl.studies.continuation import ContinuationOptions, Counted, point_key, trace
 
@@ -367,7 +367,7 @@ def _check_plane(lower: Sequence[float], upper: Sequence[float],
 
 def _check_speed(model: Any, name: str, V: Any) -> float:
     """`V` [m/s] (argument `name`): > 0 and below the Mach number the model's aerodynamics
-    refuse (:func:`propwhirl.model.validity.check_mach`), checked before any evaluation."""
+    refuse (:func:`propwhirl.model.aerodynamics.validity.check_mach`), checked before any evaluation."""
     V = float(v.positive(name, V, "m/s"))
     flight = getattr(model, "flight", None)
     if flight is not None and validity.has_aerodynamics(model):

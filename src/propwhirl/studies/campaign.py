@@ -335,7 +335,7 @@ class Case:
     def _propeller(self, prop: Any, i: int) -> Any:
         """Propeller `i` (from 0) transformed: its mounts, operation, rpm and masses (the
         propeller itself when nothing changes)."""
-        from propwhirl.model.propeller import PointMass
+        from propwhirl.model.propellers.propeller import PointMass
 
         changes: dict[str, Any] = {}
         if self.mount_stiffness != 1.0:     # K x factor, or f x sqrt(factor) where f is given
@@ -772,7 +772,7 @@ def tasks(c: Campaign) -> tuple[list[_Task], list[str]]:
     checked once per distinct (speed range, speed of sound, required speed) — the work grows
     with the cases plus the points, the bookkeeping alone with the tasks; all before any
     analysis."""
-    from propwhirl.model.validity import has_aerodynamics
+    from propwhirl.model.aerodynamics.validity import has_aerodynamics
     from propwhirl.studies.clearance import speed_grid
 
     if "tasks" in c._made:

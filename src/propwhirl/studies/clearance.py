@@ -37,7 +37,7 @@ from scipy.optimize import brentq
 from propwhirl import fileio, limits
 from propwhirl import validate as v
 from propwhirl.analysis.stability import ModelAnalysis, analyse
-from propwhirl.model import validity
+from propwhirl.model.aerodynamics import validity
 from propwhirl.results import Result, SavedDict
 from propwhirl.studies import paths as P
 from propwhirl.studies.critical import convention, critical_instability, wing_divergence_predicate
@@ -255,7 +255,7 @@ def clearance_speeds(model: Any, V_required: float, speeds=None) -> np.ndarray:
     step) to at least 1.05 · V_required.
 
     Checked before any analysis: the grid must reach beyond V_required, stay below the Mach
-    number the model's aerodynamics refuse (:data:`propwhirl.model.validity.MACH_REFUSED`)
+    number the model's aerodynamics refuse (:data:`propwhirl.model.aerodynamics.validity.MACH_REFUSED`)
     and hold at most :data:`propwhirl.limits.MAX_SPEEDS` speeds (one-line InputErrors naming
     V_D, factor x V_D and the largest valid value)."""
     aero, a = validity.has_aerodynamics(model), float(model.flight.speed_of_sound)

@@ -61,7 +61,7 @@ import numpy as np
 from propwhirl import validate as v
 from propwhirl.analysis.stability import analyse
 from propwhirl.cases.ch09_baseline import baseline_propeller
-from propwhirl.model.propeller import Propeller
+from propwhirl.model.propellers.propeller import Propeller
 from propwhirl.results import Result, SavedDict
 from propwhirl.studies import paths as P
 from propwhirl.studies.critical import (convention, critical_instability, mount_strain_share,  # noqa: F401
@@ -142,7 +142,7 @@ def _base(propeller: Propeller | None) -> Propeller:
     if propeller is None:
         return baseline_propeller()
     if not isinstance(propeller, Propeller):
-        raise v.InputError(f"propeller = {propeller!r} is invalid: must be a propwhirl.model.propeller.Propeller")
+        raise v.InputError(f"propeller = {propeller!r} is invalid: must be a propwhirl.model.propellers.propeller.Propeller")
     return propeller
 
 

@@ -51,7 +51,7 @@ values of a study are checked all at once (:meth:`Parameter.check_values`).
 The scale form ``PATH*`` (listed for the distributed properties, accepted for any number
 given) multiplies the current value of a distributed property — a spanwise
 wing property (a number, one value per element, or a function of y), a radial
-:class:`~propwhirl.model.propeller_aero.Distribution` — or of a number by a factor (1 = the
+:class:`~propwhirl.model.propellers.propeller_aero.Distribution` — or of a number by a factor (1 = the
 model as given).  A scaled function stays picklable (:class:`Scaled`) so that variants can go
 to worker processes.
 """
@@ -67,7 +67,7 @@ import numpy as np
 
 from propwhirl import validate as v
 from propwhirl.model.fields import FieldSpec, Range, declared_fields
-from propwhirl.model.propeller_aero import Distribution
+from propwhirl.model.propellers.propeller_aero import Distribution
 
 #: Fields that exclude each other (class name, field) → the field cleared when it is set.
 ALTERNATIVES: dict[tuple[str, str], str] = {

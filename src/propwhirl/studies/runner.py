@@ -10,7 +10,7 @@ import numpy as np
 from propwhirl import validate as v
 from propwhirl.cases.ch09_baseline import baseline_flight
 from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
-from propwhirl.model.propeller import Propeller
+from propwhirl.model.propellers.propeller import Propeller
 from propwhirl.model.systems import IsolatedPropeller
 from propwhirl.progress import ProgressCallback
 from propwhirl.studies import execution

@@ -1,11 +1,11 @@
 """Doublet-lattice panels of a wing's planform and the spline from the beam to them (issue 23).
 
-**Geometry.**  The wing is the straight cantilever of :class:`~propwhirl.model.wing.Wing`: its
+**Geometry.**  The wing is the straight cantilever of :class:`~propwhirl.model.structure.wing.Wing`: its
 elastic axis is the y axis (spanwise, root y = 0 to tip y = semi_span), x points aft along
 the flow, z up.  The planform at y has the chord c(y) = 2 b(y) and the elastic axis at
 a(y) b(y) aft of mid-chord, so the leading edge is at x = −(1 + a) b and the trailing edge at
 x = (1 − a) b; b and a are interpolated linearly between the wing's nodes
-(:meth:`~propwhirl.model.wing.Wing.node_properties`; a linear taper is exact).  The beam is
+(:meth:`~propwhirl.model.structure.wing.Wing.node_properties`; a linear taper is exact).  The beam is
 straight and flat: the panels have no sweep of the elastic axis and no dihedral (a tapered
 planform sweeps the leading and trailing edges, which the DLM takes as it is).  The root
 y = 0 is a plane of symmetry (the other half-wing mirrored: a semi-span wing on a wall or a
@@ -37,18 +37,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from propwhirl import limits, validate as v
-from propwhirl.model.mesh import beam_interpolation
+from propwhirl.model.structure.mesh import beam_interpolation
+# the panel counts are the wing's own fields, checked with it (model/structure/wing.py)
+from propwhirl.model.structure.wing import (DEFAULT_CHORDWISE, MAX_ASPECT,  # noqa: F401
+                                           MAX_PANELS, panel_counts)
 
-#: panels along the chord by default
-DEFAULT_CHORDWISE = 8
-#: largest panel aspect ratio (width / chordwise length) of the default spanwise count: half
-#: the usual limit of 4, which the steady lift of low-aspect-ratio wings shows too coarse
-#: (docs/validation.md, "Doublet-lattice aerodynamics")
-MAX_ASPECT = 2.0
 #: the reduced-frequency guideline: panel length < GUIDELINE · V / f (V [m/s], f [Hz])
 GUIDELINE = 0.08
-#: most panels of a half-wing (the mirrored AIC is (2n)² complex numbers per k)
-MAX_PANELS = 2000
 
 
 @dataclass(frozen=True)
@@ -125,26 +120,6 @@ def _planform(wing, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return -(1.0 + a) * b, (1.0 - a) * b
 
 
-def panel_counts(wing, n_chord: int | None = None, n_span: int | None = None) -> tuple[int, int]:
-    """(n_chord, n_span) of the wing's DLM mesh: the given counts (default the wing's
-    ``dlm_chordwise_panels`` / ``dlm_spanwise_panels``), the spanwise one by default the fewest
-    equal strips no wider than :data:`MAX_ASPECT` times the shortest panel length.
-    InputError for a count < 1 or more than :data:`MAX_PANELS` panels."""
-    n_chord = wing.dlm_chordwise_panels if n_chord is None else n_chord
-    n_chord = v.integer_at_least("dlm_chordwise_panels", n_chord, 1)
-    given = wing.dlm_spanwise_panels if n_span is None else n_span
-    if given is None:
-        c_min = float(np.min(2.0 * wing.node_properties()["b"]))
-        given = int(np.ceil(wing.semi_span * n_chord / (MAX_ASPECT * c_min) - 1e-9))
-    n_span = v.integer_at_least("dlm_spanwise_panels", given, 1)
-    if n_chord * n_span > MAX_PANELS:
-        raise v.InputError(
-            f"dlm_chordwise_panels x dlm_spanwise_panels = {n_chord} x {n_span} = "
-            f"{n_chord * n_span} panels is invalid: must be at most {MAX_PANELS} (give fewer "
-            "panels, or dlm_spanwise_panels explicitly)")
-    return n_chord, n_span
-
-
 def check_memory(wing, n_chord: int | None = None, n_span: int | None = None) -> None:
     """InputError, before any panel is built, when one AIC of the wing's panels
     (:func:`panel_counts`) would exceed the memory limit (:func:`propwhirl.limits.check_panels`,
@@ -188,7 +163,7 @@ def spline(wing, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     wing's bending–torsion DOFs [h_i, φ_i, α_i]: Z q is the displacement, positive down, of
     each point (z = h(y) + x α(y), eq. 7.1) and S q its chordwise slope ∂z/∂x = α(y), with h
     the cubic Hermite interpolation of (h_i, φ_i) and α the linear one of α_i (the beam
-    element's shape functions, 7.5–7.8: :func:`~propwhirl.model.mesh.beam_interpolation`).
+    element's shape functions, 7.5–7.8: :func:`~propwhirl.model.structure.mesh.beam_interpolation`).
     Points must lie in [0, semi_span]."""
     ys = wing.node_y
     x, y = points[:, 0], points[:, 1]

@@ -30,7 +30,7 @@ import numpy as np
 
 from propwhirl import validate as v
 from propwhirl.model.fields import Entry, check_fields, spec
-from propwhirl.model.propeller_aero import (
+from propwhirl.model.propellers.propeller_aero import (
     DERIVATIVE_NAMES,
     AdvanceRule,
     AeroSettings,
@@ -137,7 +137,7 @@ class Propeller:
     hub_radius : hub radius r0 [m] (η0 = r0/R)
     blade_chord : blade chord [m], a number or a function of η = r/R (Houbolt–Reed input)
     derivatives : a DerivativeSource (e.g. MeasuredDerivatives) — None means Houbolt–Reed
-        (propwhirl.model.propeller_aero) for this propeller's blades with `aero_settings`
+        (propwhirl.model.propellers.propeller_aero) for this propeller's blades with `aero_settings`
     aero_settings : Houbolt–Reed switches (wake, compressibility, aspect ratio, ...);
         the thesis's defaults
     rotation : +1 if the rotor turns counter-clockwise seen from the front (the thesis's

@@ -3,7 +3,7 @@
 A :class:`Wing` is an unswept, possibly tapered beam clamped at the root (y = 0) and free at the
 tip (y = semi_span), discretised into Euler–Bernoulli elements (§7.1): `n_elements` equal ones
 by default, or a mesh whose nodes include given `stations` with elements no longer than
-`max_element_length` (the rule: :mod:`propwhirl.model.mesh`; the mesh is built once, on
+`max_element_length` (the rule: :mod:`propwhirl.model.structure.mesh`; the mesh is built once, on
 construction, and :attr:`Wing.mesh` holds it).  Per-element properties (mass, inertia,
 stiffness, centre of gravity) are evaluated at element mid-span, so a property that changes at a
 station is constant over each element; strip-aerodynamic properties (chord, elastic axis,
@@ -24,10 +24,9 @@ import numpy as np
 
 from propwhirl import limits
 from propwhirl import validate as v
-from propwhirl.model import mesh as meshing
-from propwhirl.model.dlm_mesh import panel_counts
+from propwhirl.model.structure import mesh as meshing
 from propwhirl.model.fields import check_fields, check_values, spec
-from propwhirl.model.mesh import Mesh
+from propwhirl.model.structure.mesh import Mesh
 
 #: highest Mach number of the doublet-lattice tables: the DLM is a subsonic linear theory
 DLM_MACH_MAX = 0.9
@@ -103,6 +102,36 @@ def _spanwise(name: str, value: Spanwise, y: np.ndarray, n_elements: int, unit: 
     return v.finite(name, arr, unit)
 
 
+#: doublet-lattice panels along the chord by default (the wing's ``dlm_chordwise_panels``)
+DEFAULT_CHORDWISE = 8
+#: largest panel aspect ratio (width / chordwise length) of the default spanwise count: half
+#: the usual limit of 4, which the steady lift of low-aspect-ratio wings shows too coarse
+#: (docs/validation.md, "Doublet-lattice aerodynamics")
+MAX_ASPECT = 2.0
+#: most panels of a half-wing (the mirrored AIC is (2n)² complex numbers per k)
+MAX_PANELS = 2000
+
+
+def panel_counts(wing, n_chord: int | None = None, n_span: int | None = None) -> tuple[int, int]:
+    """(n_chord, n_span) of the wing's DLM mesh: the given counts (default the wing's
+    ``dlm_chordwise_panels`` / ``dlm_spanwise_panels``), the spanwise one by default the fewest
+    equal strips no wider than :data:`MAX_ASPECT` times the shortest panel length.
+    InputError for a count < 1 or more than :data:`MAX_PANELS` panels."""
+    n_chord = wing.dlm_chordwise_panels if n_chord is None else n_chord
+    n_chord = v.integer_at_least("dlm_chordwise_panels", n_chord, 1)
+    given = wing.dlm_spanwise_panels if n_span is None else n_span
+    if given is None:
+        c_min = float(np.min(2.0 * wing.node_properties()["b"]))
+        given = int(np.ceil(wing.semi_span * n_chord / (MAX_ASPECT * c_min) - 1e-9))
+    n_span = v.integer_at_least("dlm_spanwise_panels", given, 1)
+    if n_chord * n_span > MAX_PANELS:
+        raise v.InputError(
+            f"dlm_chordwise_panels x dlm_spanwise_panels = {n_chord} x {n_span} = "
+            f"{n_chord * n_span} panels is invalid: must be at most {MAX_PANELS} (give fewer "
+            "panels, or dlm_spanwise_panels explicitly)")
+    return n_chord, n_span
+
+
 @dataclass(frozen=True)
 class Wing:
     """Cantilever wing; SI units, chordwise positions as fractions of chord from the LE.
@@ -135,11 +164,11 @@ class Wing:
         default): rigid in its plane, the thesis's model
     aero : "strip" (default: Theodorsen strips at the nodes, finite-state lag states, the
         thesis's model) or "dlm" (doublet-lattice panels of the planform,
-        :mod:`propwhirl.model.dlm`: analysed by its Roger state space,
-        :mod:`propwhirl.model.dlm_rfa`, or by the p-k method with method "pk")
+        :mod:`propwhirl.model.aerodynamics.dlm`: analysed by its Roger state space,
+        :mod:`propwhirl.model.aerodynamics.dlm_rfa`, or by the p-k method with method "pk")
     dlm_chordwise_panels, dlm_spanwise_panels : the doublet-lattice panel counts (aero =
         "dlm"); spanwise None: the fewest with a panel aspect ratio <= 2
-        (:func:`propwhirl.model.dlm_mesh.panel_counts`)
+        (:func:`panel_counts`)
     dlm_mach : the Mach number of the doublet-lattice loads (aero = "dlm"): "speed" (the
         default; matched, V/a of each analysed speed: speeds beyond Mach 0.9 refused) or a
         number in [0, 0.9], the same Mach at every speed (non-matched: the usual way of
@@ -211,7 +240,7 @@ class Wing:
         "aero", "", "wing aerodynamics: \"strip\" (Theodorsen strips, finite-state lag states; "
         "the thesis's) or \"dlm\" (doublet-lattice panels: Roger state space, or p-k with "
         "method pk; needs the dlm extra)", default="setting"))
-    dlm_chordwise_panels: int = field(default=8, metadata=spec(
+    dlm_chordwise_panels: int = field(default=DEFAULT_CHORDWISE, metadata=spec(
         "dlm_chordwise_panels", "", "doublet-lattice panels along the chord (aero = \"dlm\")",
         default="setting"))
     dlm_mach: Union[float, Literal["speed"]] = field(default="speed", metadata=spec(
@@ -251,7 +280,7 @@ class Wing:
     # ------------------------------------------------------------------ discretisation
     @property
     def mesh(self) -> Mesh:
-        """The mesh (:func:`propwhirl.model.mesh.build`), built once on construction."""
+        """The mesh (:func:`propwhirl.model.structure.mesh.build`), built once on construction."""
         return self._mesh
 
     @property
@@ -286,7 +315,7 @@ class Wing:
     def with_stations(self, stations, names=None, paths=None) -> "Wing":
         """This wing with the positions `stations` [m] added to its own stations (one already
         a station, or given twice, is added once); the mesh is rebuilt by the rule of
-        :mod:`propwhirl.model.mesh`.  Errors (outside (0, semi_span], an element too short)
+        :mod:`propwhirl.model.structure.mesh`.  Errors (outside (0, semi_span], an element too short)
         name a position by `names` (default ``stations[i]``) and carry `paths`."""
         own = tuple(self.stations or ())
         names = list(names) if names is not None else [

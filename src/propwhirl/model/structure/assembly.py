@@ -15,7 +15,7 @@ import functools
 import numpy as np
 
 from propwhirl.generated import beam_element
-from propwhirl.model.wing import Wing
+from propwhirl.model.structure.wing import Wing
 
 WING_DOF_NAMES = ("h", "phi", "alpha")
 #: in-plane DOFs of a node (derivations/beam_inplane.py): displacement v, slope χ = ∂v/∂y
@@ -46,7 +46,7 @@ def wing_structure(wing: Wing) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Global structural mass, damping and stiffness of the free wing (root included).
 
     Mass and stiffness from the generated beam element (7.9–7.15, assembled as in (C.18)),
-    each element with its own length (non-uniform meshes, :mod:`propwhirl.model.mesh`);
+    each element with its own length (non-uniform meshes, :mod:`propwhirl.model.structure.mesh`);
     damping by the Rayleigh model C = μM + λK (7.22).  Shapes (3 n_nodes, 3 n_nodes).
     """
     p = wing.element_properties()

@@ -39,9 +39,9 @@ import numpy as np
 
 from propwhirl import limits
 from propwhirl import validate as v
-from propwhirl.model import validity
+from propwhirl.model.aerodynamics import validity
 from propwhirl.model.fields import check_fields, check_values, spec
-from propwhirl.model.theodorsen import theodorsen
+from propwhirl.model.aerodynamics.theodorsen import theodorsen
 
 #: The sixteen derivatives in the order of eq. 4.25 (F_Z, M_Y, F_Y, M_Z rows).
 DERIVATIVE_NAMES: tuple[str, ...] = (
@@ -475,7 +475,7 @@ def solidity(geometry: PropellerGeometry) -> float:
 
 def validity_warnings(d: PropellerDerivatives) -> tuple[str, ...]:
     """One line per validity bound the operating points of `d` exceed
-    (:func:`propwhirl.model.validity.operating_point_warnings`)."""
+    (:func:`propwhirl.model.aerodynamics.validity.operating_point_warnings`)."""
     return validity.operating_point_warnings(d.airspeed, d.mach, d.advance_ratio)
 
 
@@ -656,7 +656,7 @@ def houbolt_reed_source(propeller, settings: AeroSettings = AeroSettings(),
                         aspect_ratio: float | None = None) -> HouboltReedSource:
     """Derivative source for an object with ``n_blades``, ``radius`` [m], ``hub_radius`` [m]
     and ``blade_chord`` (a number [m], a :class:`Distribution` or a callable of η = r/R),
-    such as :class:`propwhirl.model.propeller.Propeller`.  Thesis settings by default."""
+    such as :class:`propwhirl.model.propellers.propeller.Propeller`.  Thesis settings by default."""
     radius = float(v.positive("radius", propeller.radius, "m"))
     geo = PropellerGeometry(
         n_blades=propeller.n_blades, radius=radius,

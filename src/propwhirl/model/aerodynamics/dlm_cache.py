@@ -2,10 +2,10 @@
 item 4).
 
 With the environment variable ``PROPWHIRL_DLM_CACHE`` set to a directory, every symmetric AIC
-Q_jj (n × n complex, :meth:`propwhirl.model.dlm.DlmAerodynamics.aic`) computed at a Mach number
+Q_jj (n × n complex, :meth:`propwhirl.model.aerodynamics.dlm.DlmAerodynamics.aic`) computed at a Mach number
 and reduced frequency is written there and read back by any later analysis of the same panels,
 instead of being computed again.  Unset or empty (the default): no disk cache (the tables are
-still kept in memory for the session, :func:`propwhirl.model.dlm.dlm_aerodynamics`).
+still kept in memory for the session, :func:`propwhirl.model.aerodynamics.dlm.dlm_aerodynamics`).
 
 A file holds one matrix in NumPy's ``.npy`` format, written and read with
 ``allow_pickle=False`` (no code-carrying format).  Its name is the SHA-256 of what decides the
@@ -31,7 +31,7 @@ to its key.  An entry is used only when its checksum matches; otherwise:
   lost): computed again, silently, and rewritten with one — its content cannot be trusted, and
   verifying it would cost the same computation as replacing it;
 * the **spot check**: the first entry read for each panel geometry (each
-  :class:`~propwhirl.model.dlm.DlmAerodynamics`) is computed again all the same and compared
+  :class:`~propwhirl.model.aerodynamics.dlm.DlmAerodynamics`) is computed again all the same and compared
   (:func:`spot_check`): a difference beyond :data:`SPOT_CHECK_RTOL` with a valid checksum
   means the directory holds matrices this propwhirl did not compute (altered or forged, and
   their checksums rewritten; or computed by another build) — an InputError naming the

@@ -2,7 +2,7 @@
 (issue 23, item 3b).
 
 On the wing's free bending–torsion DOFs and at one Mach number M, the tabulated Q(k, M)
-(:mod:`propwhirl.model.dlm`) is fitted in the nondimensional Laplace variable p̄ = s b_ref / V
+(:mod:`propwhirl.model.aerodynamics.dlm`) is fitted in the nondimensional Laplace variable p̄ = s b_ref / V
 (p̄ = ik on the imaginary axis) by
 
     Q(p̄) ≈ A₀ + A₁ p̄ + A₂ p̄² + Σ_l A_{2+l} p̄ / (p̄ + β_l),        l = 1 … L
@@ -22,16 +22,16 @@ k, relative to max |Q|; :attr:`RogerFit.entry_error` per entry).
 
 **The runtime's state space** (:func:`second_order`, what ``PropellerWing.second_order`` and
 ``analyse(model)`` use on a wing with ``aero = "dlm"``): the Mach number is the wing's
-``dlm_mach``, as the p-k method's (:func:`propwhirl.model.dlm.pk_system_dlm`): by default V / a
+``dlm_mach``, as the p-k method's (:func:`propwhirl.model.aerodynamics.dlm.pk_system_dlm`): by default V / a
 at each analysed speed; a fixed number fits the one table column of that Mach
 (:func:`column_fit`) and uses it at every speed.  Q is fitted
-once at every Mach node of the tables (steps of :data:`~propwhirl.model.dlm.MACH_STEP`) over the
+once at every Mach node of the tables (steps of :data:`~propwhirl.model.aerodynamics.dlm.MACH_STEP`) over the
 table's reduced frequencies 0 … :data:`K_MAX` (:func:`fit_ks`) with the lag roots
 :data:`DEFAULT_LAGS`, and the A's are interpolated linearly in Mach between the two nodes
 around V / a.  The least squares being linear in Q, that is exactly the fit of the tables'
 Q(k, V/a) (linear in Mach too): the state space approximates the very Q the p-k iterates on.
 The fits are data (matrices fitted from Q(k), kept with the geometry's tables,
-:class:`~propwhirl.model.dlm.DlmAerodynamics`), assembled here with the model's structure and
+:class:`~propwhirl.model.aerodynamics.dlm.DlmAerodynamics`), assembled here with the model's structure and
 propellers at each speed.  The lag states are ordered lag by lag: x_1 of every free wing DOF,
 then x_2, …; labelled "node i h lag 1" etc.
 """
@@ -42,8 +42,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.model.assembly import free_dofs, wing_dof_labels
-from propwhirl.model.dlm import (MACH_MAX, MACH_STEP, DlmAerodynamics, check_mach,
+from propwhirl.model.structure.assembly import free_dofs, wing_dof_labels
+from propwhirl.model.aerodynamics.dlm import (MACH_MAX, MACH_STEP, DlmAerodynamics, check_mach,
                                  dlm_aerodynamics, fixed_mach, snap_mach, wing_mach)
 from propwhirl.model.statespace import SecondOrder
 from propwhirl.model.statespace import state_matrix as statespace_matrix
@@ -203,7 +203,7 @@ def roger_system(dry: SecondOrder, A: np.ndarray, V: np.ndarray, b_ref: float, r
 # ----------------------------------------------------------------------------- the runtime's
 def fit_ks(k_max: float = K_MAX) -> np.ndarray:
     """The reduced frequencies of the runtime's fits: the tables' own nodes 0, 0.01, … up to
-    ``k_max`` (:meth:`~propwhirl.model.dlm.DlmAerodynamics.k_node`: no interpolated Q fitted)."""
+    ``k_max`` (:meth:`~propwhirl.model.aerodynamics.dlm.DlmAerodynamics.k_node`: no interpolated Q fitted)."""
     out, i = [0.0], 1
     while DlmAerodynamics.k_node(i) <= k_max * (1 + 1e-12):
         out.append(DlmAerodynamics.k_node(i))
@@ -222,7 +222,7 @@ def node_fit(aero: DlmAerodynamics, im: int, ks: np.ndarray | None = None,
 def column_fit(aero: DlmAerodynamics, mach: float, ks: np.ndarray | None = None,
                lags=DEFAULT_LAGS) -> RogerFit:
     """The Roger fit of ``aero``'s table column of Mach ``mach`` (a Mach node's, or a wing's
-    fixed ``dlm_mach``: :func:`~propwhirl.model.dlm.snap_mach`) as :func:`node_fit`."""
+    fixed ``dlm_mach``: :func:`~propwhirl.model.aerodynamics.dlm.snap_mach`) as :func:`node_fit`."""
     ks = fit_ks() if ks is None else np.asarray(ks, float)
     lags = np.asarray(lags, float)
     mach = snap_mach(mach)
@@ -240,7 +240,7 @@ def column_fit(aero: DlmAerodynamics, mach: float, ks: np.ndarray | None = None,
 
 def mach_nodes(mach: float) -> tuple[int, float]:
     """(im, t): Mach = (im + t) · MACH_STEP, 0 <= t < 1, im the table node below (the top node
-    at :data:`~propwhirl.model.dlm.MACH_MAX`)."""
+    at :data:`~propwhirl.model.aerodynamics.dlm.MACH_MAX`)."""
     x = float(mach) / MACH_STEP
     im = min(int(np.floor(x + 1e-12)), int(round(MACH_MAX / MACH_STEP)))
     return im, x - im

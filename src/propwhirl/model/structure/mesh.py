@@ -1,6 +1,6 @@
 """The spanwise mesh of a wing: node positions from stations and an element length.
 
-The mesh rule (one place, used by :class:`propwhirl.model.wing.Wing`):
+The mesh rule (one place, used by :class:`propwhirl.model.structure.wing.Wing`):
 
 1. The *breakpoints* are the root 0, the semi-span L and every station (positions that must be
    nodes: where a property changes, where the user wants output, every propeller installation
@@ -19,7 +19,7 @@ The total number of elements is bounded by :data:`propwhirl.limits.MAX_ELEMENTS`
 
 :func:`beam_interpolation` is the beam element's own interpolation between nodes (cubic
 Hermite bending from the nodes' h and ∂h/∂y, linear torsion, eq. 7.5–7.8): the one
-implementation behind the doublet-lattice spline (:func:`propwhirl.model.dlm_mesh.spline`) and
+implementation behind the doublet-lattice spline (:func:`propwhirl.model.aerodynamics.dlm_mesh.spline`) and
 the modal strips' (:func:`propwhirl.model.modal_structure.strip_interpolation`).
 """
 from __future__ import annotations

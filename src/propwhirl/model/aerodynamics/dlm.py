@@ -4,7 +4,7 @@ For harmonic motion q(t) = q̂ e^{iωt} at airspeed V and Mach number M, the win
 generalised forces are Q_aero = ½ ρ V² Q(k, M) q̂, with k = ω b_ref / V the reduced frequency
 on the reference semichord (the root semichord, NASTRAN's k = ω c_ref / 2V, as every p-k result
 of propwhirl reports it).  Q is built from the panels and spline of
-:mod:`propwhirl.model.dlm_mesh` and PanelAero's AIC matrix (the ``dlm`` extra,
+:mod:`propwhirl.model.aerodynamics.dlm_mesh` and PanelAero's AIC matrix (the ``dlm`` extra,
 ``panelaero.DLM.calc_Qjjs``: the steady vortex-lattice part plus the oscillatory doublet-lattice
 increment, Rodden's parabolic kernel approximation, the root a plane of symmetry):
 
@@ -13,7 +13,7 @@ increment, Rodden's parabolic kernel approximation, the root a plane of symmetry
     Q(k, M) = −Z_lᵀ diag(A) Q_jj (S_j + i k̄ Z_j)
 
 where Z, S are the spline's displacement (positive down) and chordwise slope
-(:func:`~propwhirl.model.dlm_mesh.spline`) at the collocation points (j) and the force points
+(:func:`~propwhirl.model.aerodynamics.dlm_mesh.spline`) at the collocation points (j) and the force points
 on the doublet lines (l, 1/4 panel chord), A the panel areas and **k̄ = ω / V = k / b_ref
 [1/m] PanelAero's reduced frequency** (its "classical" ω/U, not NASTRAN's ωc/2U: converted
 here, nowhere else).  The minus sign: the generalised load of a force is its work on the
@@ -25,7 +25,7 @@ Q is tabulated lazily on a grid of k (0, then :data:`K_PER_DECADE` points per de
 :data:`K_FIRST`) and of Mach (steps of :data:`MACH_STEP` up to :data:`MACH_MAX`), every entry
 computed once per geometry and kept (:func:`dlm_aerodynamics` keeps the last
 :data:`CACHE_SIZE` geometries in memory; with ``PROPWHIRL_DLM_CACHE`` set, every AIC also on
-disk, :mod:`propwhirl.model.dlm_cache`), and interpolated: cubic (Lagrange through the four
+disk, :mod:`propwhirl.model.aerodynamics.dlm_cache`), and interpolated: cubic (Lagrange through the four
 nearest k) in k, linear in Mach.  The Mach number is the wing's ``dlm_mach``
 (:func:`wing_mach`): by default "speed", V / a of each analysed speed (a matched analysis,
 the Mach interpolated between the table's Mach nodes, the speeds beyond Mach
@@ -42,11 +42,11 @@ from dataclasses import replace
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.model import dlm_cache
-from propwhirl.model.assembly import free_dofs
+from propwhirl.model.aerodynamics import dlm_cache
+from propwhirl.model.structure.assembly import free_dofs
 # the Mach limits the Wing checks its dlm_mach against (they live with the field)
-from propwhirl.model.wing import DLM_MACH_MAX as MACH_MAX, DLM_MATCHED as MATCHED
-from propwhirl.model.dlm_mesh import PanelMesh, panel_mesh, spline
+from propwhirl.model.structure.wing import DLM_MACH_MAX as MACH_MAX, DLM_MATCHED as MATCHED
+from propwhirl.model.aerodynamics.dlm_mesh import PanelMesh, panel_mesh, spline
 
 #: first non-zero reduced frequency of the tables (on the reference semichord)
 K_FIRST = 0.01
@@ -119,7 +119,7 @@ def check_mach(mach: float, V: float | None = None) -> None:
 class DlmAerodynamics:
     """The doublet-lattice GAFs of one wing geometry: panels, spline, lazily filled tables.
 
-    wing: the :class:`~propwhirl.model.wing.Wing`; b_ref [m]: the semichord of k (default the
+    wing: the :class:`~propwhirl.model.structure.wing.Wing`; b_ref [m]: the semichord of k (default the
     root semichord).  :meth:`gaf` is the interpolated Q(k, M) (3 n_nodes, 3 n_nodes) on the
     wing's bending–torsion DOFs (root included), :meth:`exact` the one computed at (k, M).
     ``evaluations`` counts the AIC matrices computed (each an (2n)² complex kernel).
@@ -137,11 +137,11 @@ class DlmAerodynamics:
         self._left = -(Zl.T * self.mesh.area[None, :])
         self._table: dict[tuple[int, int], np.ndarray] = {}
         self.evaluations = 0
-        #: the disk cache (``PROPWHIRL_DLM_CACHE``, :mod:`propwhirl.model.dlm_cache`) or None
+        #: the disk cache (``PROPWHIRL_DLM_CACHE``, :mod:`propwhirl.model.aerodynamics.dlm_cache`) or None
         self.cache = dlm_cache.cache_dir()
         self._geometry = dlm_cache.geometry_key(self.mesh.mirrored().corners)
         self.cache_hits = 0
-        #: rational-function fits of the tables (:func:`propwhirl.model.dlm_rfa.node_fit`)
+        #: rational-function fits of the tables (:func:`propwhirl.model.aerodynamics.dlm_rfa.node_fit`)
         self.fits: dict = {}
 
     # ------------------------------------------------------------------ exact

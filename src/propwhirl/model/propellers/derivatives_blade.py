@@ -2,7 +2,7 @@
 chain rule from a propeller's blade angle, zero-lift angle or rpm to the system.
 
 At an operating point (V, Ω, M = V/a) the Houbolt–Reed derivatives (thesis eq. 4.39–4.42,
-:mod:`propwhirl.model.propeller_aero`) depend on V and Ω only through the advance ratio
+:mod:`propwhirl.model.propellers.propeller_aero`) depend on V and Ω only through the advance ratio
 μ = V/(ΩR) (with M fixed): in η = r/R the blade integrals are
 
     I_n(μ) = N_b/(4 c0) · ∫_{η0}^{1} h_n dη,   h_n = μ^{p_n} η^{q_n} c g F(k) / s,
@@ -37,8 +37,8 @@ import math
 import numpy as np
 from scipy.special import hankel2e
 
-from propwhirl.model.propeller import CROSS_DERIVATIVES, MeasuredDerivatives, Propeller
-from propwhirl.model.propeller_aero import (
+from propwhirl.model.propellers.propeller import CROSS_DERIVATIVES, MeasuredDerivatives, Propeller
+from propwhirl.model.propellers.propeller_aero import (
     _TWO_PI,
     AeroSettings,
     HouboltReedSource,
@@ -47,14 +47,14 @@ from propwhirl.model.propeller_aero import (
     _panels,
     houbolt_reed_source,
 )
-from propwhirl.model.theodorsen import theodorsen
+from propwhirl.model.aerodynamics.theodorsen import theodorsen
 
 _DEG = math.pi / 180.0
 
 
 def theodorsen_derivative(k) -> np.ndarray:
     """C'(k) = dF/dk + i dG/dk of Theodorsen's function (k > 0), module docstring; the
-    small- and large-k expansions of :func:`propwhirl.model.theodorsen.theodorsen` are
+    small- and large-k expansions of :func:`propwhirl.model.aerodynamics.theodorsen.theodorsen` are
     differentiated term by term where that function uses them."""
     k = np.asarray(k, dtype=float)
     out = np.empty(k.shape, dtype=complex)
@@ -140,7 +140,7 @@ def derivatives_and_mu_derivatives(geometry: PropellerGeometry, settings: AeroSe
                                    V, omega, mach) -> tuple[dict, dict]:
     """({name: C}, {name: ∂C/∂μ at fixed M}) of the sixteen Houbolt–Reed derivatives at
     (V [m/s], Ω [rad/s], M) (1-D arrays of one length): the values as
-    :func:`propwhirl.model.propeller_aero.derivatives` gives them (so the two can be compared)
+    :func:`propwhirl.model.propellers.propeller_aero.derivatives` gives them (so the two can be compared)
     and their exact advance-ratio derivatives (module docstring)."""
     V, omega, mach = (np.asarray(x, dtype=float).ravel() for x in (V, omega, mach))
     mu = V / (omega * geometry.radius)

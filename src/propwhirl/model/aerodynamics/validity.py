@@ -10,9 +10,9 @@ anything:
 
 * a free-stream Mach number V/a >= :data:`MACH_REFUSED` (5, the conventional start of
   hypersonic flow) at any analysed speed of a model with aerodynamics on, and in
-  :func:`propwhirl.model.propeller_aero.derivatives`;
+  :func:`propwhirl.model.propellers.propeller_aero.derivatives`;
 * a propeller solidity N_b ∫c dr / (π R²) > 1 (the blades' planform exceeds the disc: they
-  overlap) — :func:`propwhirl.model.propeller_aero.solidity`;
+  overlap) — :func:`propwhirl.model.propellers.propeller_aero.solidity`;
 * a wing (or typical-section) lift-curve slope of 0 at every strip with strip aerodynamics on:
   no circulatory lift, only apparent-mass terms (switch the wing aerodynamics off instead).
 
@@ -28,10 +28,10 @@ Flagged, as one line each in :attr:`propwhirl.analysis.stability.ModelAnalysis.w
 * an analysis that finds no instability while its range extends beyond Mach 0.7 (stability
   there is not established by these methods).
 
-A wing with doublet-lattice aerodynamics (``aero = "dlm"``, :mod:`propwhirl.model.dlm`) is
+A wing with doublet-lattice aerodynamics (``aero = "dlm"``, :mod:`propwhirl.model.aerodynamics.dlm`) is
 compressible (linear subsonic theory, Mach <= 0.9): with ``dlm_mach = "speed"`` its loads are
 at V/a of each speed, speeds beyond Mach 0.9 are refused before any analysis
-(:func:`propwhirl.model.dlm.check_mach`) and the Mach 0.7 warnings above name only the
+(:func:`propwhirl.model.aerodynamics.dlm.check_mach`) and the Mach 0.7 warnings above name only the
 propellers' Prandtl–Glauert correction (none when no propeller has Houbolt–Reed derivatives);
 with a fixed ``dlm_mach`` its loads are at that Mach at every speed, and the events at a V/a
 more than :data:`DLM_MACH_MISMATCH` from it are flagged as non-matched (the first one named).
