@@ -160,6 +160,15 @@ def test_refused_in_one_line_naming_the_card(tmp_path, base, cards, fragments, k
         assert fragment in message, (fragment, message)
 
 
+def test_a_free_field_line_longer_than_nine_fields(tmp_path, base):
+    """pyNastran would drop the fields beyond the ninth (a CONM2's inertia) unsaid."""
+    text = d.text(R).replace("CONM2,302,102,,20.0,0.0,0.0,0.0,\n,0.0,", "CONM2,302,102,,20.0,"
+                             "0.0,0.0,0.0,,0.0,")
+    assert "CONM2,302,102,,20.0,0.0,0.0,0.0,,0.0,0.0,1.5" in text
+    message = refused(tmp_path, text, base)
+    assert "(CONM2 302): 14 free fields on one line, more than nine" in message
+
+
 def test_units_unstated_or_unknown(tmp_path, base):
     text = d.text(R)
     assert "units not stated" in refused(tmp_path, text, base, units=None)

@@ -27,7 +27,7 @@ the Rayleigh damping and, of each propeller, its rotor and aerodynamics (radius,
 operation, rotation, derivatives) — and the pivots and mount stiffness of a rigid mount.
 
 Refused by name, with the reason (never dropped): any other card (shells, solids, CBUSH,
-MPC, CORD1R, ...); a swept, bent or left-hand stick; beam offsets (WA/WB, PBEAM N1/N2) and a
+MPC, CORD1R, ...); a free-field line of more than nine fields (pyNastran drops the rest); a swept, bent or left-hand stick; beam offsets (WA/WB, PBEAM N1/N2) and a
 non-structural mass off the chord line (vertical M1/M2); pin flags; CBEAM warping (SA/SB,
 PBEAM CW); a product of inertia I12 or principal planes neither vertical nor chordwise; a
 tapered element (PBEAM/PBEAML stations that differ); a second load path (two elements or a
@@ -192,7 +192,22 @@ class Deck:
         return _fail(self.where, text)
 
     # ---------------------------------------------------------------- cards
+    def _check_free_field(self) -> None:
+        """A free-field line holds a card's name (or continuation) and at most nine fields:
+        pyNastran drops what follows unsaid, so such a line is refused."""
+        for number, line in enumerate(self.text.splitlines(), 1):
+            if line.startswith("$") or "," not in line[:10]:
+                continue
+            fields = line.split("$")[0].split(",")
+            if len(fields) > 10:
+                name = fields[0].strip().rstrip("*") or "a continuation"
+                ident = fields[1].strip() if fields[0].strip() else ""
+                raise self.fail(f"line {number} ({name}{' ' + ident if ident else ''}): "
+                                f"{len(fields) - 1} free fields on one line, more than nine: "
+                                "continue the card on a line starting with a comma")
+
     def _check_cards(self) -> None:
+        self._check_free_field()
         counts = dict(self.bdf.card_count)
         if "ENDDATA" not in counts:
             raise self.fail("no ENDDATA: the file ends before its bulk data does (truncated?)")
