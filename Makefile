@@ -1,6 +1,9 @@
 # propwhirl — every target sets itself up on a fresh machine (virtual environment in .venv).
 #   make run       main analysis (wingtip-mounted propeller wing), plots in out/
-#   make test      the whole test suite (long checks included: pytest marker `long`)
+#   make test      the whole test suite (long checks included: pytest marker `long`), then
+#                  make test-nastran
+#   make test-nastran  the NASTRAN tests (tests/nastran) in .venv-nastran, an environment of its
+#                  own: pyNastran 1.4.1 needs numpy < 2 (~1 min and ~420 MB to build once)
 #   make test-fast the suite without the `long` checks
 #   make generate  rebuild generated/ from the SymPy derivations
 #   make bench     engine vs the thesis's fixed-grid sweep; rewrites the tables of docs/performance.md
@@ -20,7 +23,7 @@ BIN    := $(VENV)/bin
 export OPENBLAS_NUM_THREADS ?= 1
 export OMP_NUM_THREADS ?= 1
 
-.PHONY: run test test-fast generate bench bench-design bench-map docs report browser clean
+.PHONY: run test test-fast test-nastran generate bench bench-design bench-map docs report browser clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -34,6 +37,19 @@ comma := ,
 # Every extra: make test, the benchmarks and make docs share one set-up (make docs after make
 # test installs nothing again).
 ALL := $(VENV)/.stamp-codegen+data+dlm+docs+tables+test+plots+toml+notebooks+distributed+progress+mdo+report
+
+# The NASTRAN environment: pyNastran 1.4.1 needs numpy < 2, so the `nastran` extra is never one of
+# ALL's (pip would drop the main environment to numpy 1.26); propwhirl, pyNastran and the extras
+# tests/nastran needs, in one pip request (one resolution: numpy 1.26).
+NASTRAN_VENV := .venv-nastran
+NASTRAN_STAMP := $(NASTRAN_VENV)/.stamp-nastran+test+toml+tables+dlm
+
+$(NASTRAN_VENV)/bin/python:
+	$(PYTHON) -m venv $(NASTRAN_VENV)
+
+$(NASTRAN_STAMP): pyproject.toml | $(NASTRAN_VENV)/bin/python
+	$(NASTRAN_VENV)/bin/python -m pip install --quiet --disable-pip-version-check -e ".[nastran,test,toml,tables,dlm]"
+	touch $@
 
 # Chromium and its chromedriver from the distribution (Debian: chromium, chromium-driver) for the
 # report's PDF and its browser test.  Installed with apt-get where we are root; elsewhere a clear
@@ -51,8 +67,12 @@ browser:
 generate: $(VENV)/.stamp-codegen
 	$(BIN)/python -m derivations.generate --out generated
 
-test: $(ALL) browser
+test: $(ALL) browser $(NASTRAN_STAMP)
 	$(BIN)/python -m pytest -q
+	$(NASTRAN_VENV)/bin/python -m pytest -q tests/nastran
+
+test-nastran: $(NASTRAN_STAMP)
+	$(NASTRAN_VENV)/bin/python -m pytest -q tests/nastran
 
 test-fast: $(ALL) browser
 	$(BIN)/python -m pytest -q -m "not long"
@@ -84,4 +104,4 @@ run: $(VENV)/.stamp-data+dlm+plots+tables+toml
 	$(BIN)/propwhirl run --out out
 
 clean:
-	rm -rf $(VENV) out build site src/*.egg-info .pytest_cache .hypothesis
+	rm -rf $(VENV) $(NASTRAN_VENV) out build site src/*.egg-info .pytest_cache .hypothesis

@@ -29,3 +29,22 @@ def test_markers_name_only_existing_make_targets():
     named = set(re.findall(r"`make ([a-z-]+)`", long))
     assert named and named <= targets, (named, targets)
     assert re.search(r"^test-fast:.*\n\t.*-m \"not long\"", makefile, flags=re.M)
+
+
+def test_the_nastran_extra_lives_in_an_environment_of_its_own():
+    """pyNastran needs numpy < 2: the `nastran` extra is in no set of the main environment's
+    stamps (pip would drop it to numpy 1.26), and `make test` runs tests/nastran in
+    .venv-nastran, built by one pip request."""
+    import re
+
+    extras = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"][
+        "optional-dependencies"]
+    assert any(r.replace(" ", "") == "numpy<2" for r in extras["nastran"])
+    makefile = (ROOT / "Makefile").read_text()
+    main_sets = re.findall(r"\$\(VENV\)/\.stamp-([a-z+]+)", makefile)
+    assert main_sets and all("nastran" not in s.split("+") for s in main_sets), main_sets
+    recipe = re.search(r"^\$\(NASTRAN_STAMP\):.*\n((?:\t.*\n)+)", makefile, flags=re.M).group(1)
+    assert recipe.count("pip install") == 1 and "nastran," in recipe
+    test = re.search(r"^test:(.*)\n((?:\t.*\n)+)", makefile, flags=re.M)
+    assert "$(NASTRAN_STAMP)" in test.group(1)
+    assert "$(NASTRAN_VENV)/bin/python -m pytest -q tests/nastran" in test.group(2)

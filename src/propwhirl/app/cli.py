@@ -11,6 +11,8 @@ Commands
   map          critical speed of a model over two parameter paths (contour map)
   case         export a model of the thesis's case library as a TOML model file
   upgrade-model  rewrite a model file of an older format version in the current one
+  import       a beam model from a NASTRAN bulk data file (BDF), completed by a base model file
+  export       a beam model as a NASTRAN SOL 103 deck (BDF)
   boundary     stability boundary in a plane of two parameters (continuation)
   clearance    clearance to factor x V_D (exit code 0 cleared, 1 not cleared)
   sensitivity  sensitivities of the critical speed to the model's parameters, ranked
@@ -581,11 +583,12 @@ def build_parser() -> argparse.ArgumentParser:
     _add_analyse(sub)
     _add_modes(sub)
     _add_campbell(sub)
-    from propwhirl.app import cli_certify, cli_design, cli_studies
+    from propwhirl.app import cli_certify, cli_design, cli_nastran, cli_studies
 
     cli_studies.add_commands(sub)
     _add_case(sub)
     _add_upgrade_model(sub)
+    cli_nastran.add_commands(sub)
     cli_design.add_commands(sub)
     cli_certify.add_commands(sub)
     _add_docs(sub)

@@ -13,8 +13,8 @@ before anything is read (:func:`read_arrays`: no pickle, no allocation on the
 file's word).  Every problem is one line naming the file, the key and
 the id; a file is read whole or not at all.
 
-The NASTRAN routes (BDF/OP2 through pyNastran) are not provided: pyNastran 1.4.1 requires
-numpy < 2.  Any FE code's modes can be written to this format.
+A NASTRAN OP2 reader is not provided: any FE code's modes can be written to this format.  A
+NASTRAN stick model (BDF) is read as a beam model: :mod:`propwhirl.io.nastran_read`.
 """
 from __future__ import annotations
 

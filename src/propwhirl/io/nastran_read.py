@@ -1,0 +1,828 @@
+"""NASTRAN bulk data in: :func:`read_bdf` makes a beam model of a BDF's straight stick.
+
+pyNastran (the optional extra ``nastran``, in an environment of its own: it needs numpy < 2)
+parses the file, without cross-referencing; everything else is here: every card is looked up
+and checked by propwhirl, so that a problem is one line naming the file, the card and its id
+(``wing.bdf: CBAR 12 refers to PBAR 3, which is not in the file``), and a model is returned
+whole or not at all.
+
+What maps to what (docs/modal-structures.md, "NASTRAN bulk data", has the table):
+
+* **the wing** — the GRIDs joined by CBAR/CBEAM elements, one line along the basic +y axis
+  from the clamped root grid (all six components held by SPC/SPC1 or the GRID PS field):
+  ``semi_span`` = the tip's y − the root's y, a node at every grid (``n_elements`` for equal
+  elements, else ``stations`` at every grid and ``max_element_length`` the longest); per
+  element EI = E·I (the vertical plane's I of the orientation vector's planes), GJ = G·J,
+  ``EI_chordwise`` = E·I of the chordwise plane when the stick's T_x and R_z are free (held:
+  the wing is rigid in its plane), ``mass_per_length`` = (ρA + NSM)·WTMASS,
+  ``centre_of_gravity`` = the elastic axis + the mass's chordwise offset (PBEAM M1/M2 of the
+  NSM) / the chord, ``polar_inertia`` = ρ(I1 + I2) + NSI + NSM·offset² (times WTMASS);
+  PBARL/PBEAML of TYPE ROD or TUBE give A, I, J by their closed forms;
+* **the propellers** — :mod:`propwhirl.io.nastran_mounts`: each hub grid (``hubs``, one per
+  installation of ``base``) and the rigid body it belongs to.
+
+What a BDF cannot say comes from ``base``, a propwhirl model: the flight condition, the
+chords, the elastic axis's and aerodynamic centre's chordwise positions, the aerodynamics,
+the Rayleigh damping and, of each propeller, its rotor and aerodynamics (radius, blades,
+operation, rotation, derivatives) — and the pivots and mount stiffness of a rigid mount.
+
+Refused by name, with the reason (never dropped): any other card (shells, solids, CBUSH,
+MPC, CORD1R, ...); a free-field line of more than nine fields (pyNastran drops the rest); a swept, bent or left-hand stick; beam offsets (WA/WB, PBEAM N1/N2) and a
+non-structural mass off the chord line (vertical M1/M2); pin flags; CBEAM warping (SA/SB,
+PBEAM CW); a product of inertia I12 or principal planes neither vertical nor chordwise; a
+tapered element (PBEAM/PBEAML stations that differ); a second load path (two elements or a
+rigid element between stick grids, branches); supports along the span; enforced
+displacements; grids in a displacement frame turned from the basic one (CD); superelements.
+Noted (``notes``): shear flexibility (PBEAM K1/K2 ≠ 0, PBAR K1/K2 given, PBARL/PBEAML, whose
+shear factors NASTRAN computes), which propwhirl's Euler–Bernoulli beam leaves out; the
+stick's free axial motion; MAT1 GE (the wing's damping is the base's Rayleigh damping).
+Solution settings (EIGRL, EIGR, PARAM other than WTMASS) are not model data and are not read.
+"""
+from __future__ import annotations
+
+import contextlib
+import io
+import math
+import re
+import warnings
+from dataclasses import dataclass, replace
+from pathlib import Path
+from typing import Any, Sequence
+
+import numpy as np
+
+from propwhirl import fileio
+from propwhirl import validate as v
+from propwhirl.io import nastran_mounts
+from propwhirl.io.nastran import INSTALL_HINT, UnitSystem, unit_system
+from propwhirl.model.fields import check_values
+from propwhirl.model.mesh import MIN_ELEMENT_FRACTION, tolerance
+from propwhirl.model.systems import PropellerWing
+from propwhirl.model.wing import Wing
+
+#: The cards read (the model), and those that are solution settings (not read).
+MODEL_CARDS = ("GRID", "CORD2R", "CBAR", "CBEAM", "PBAR", "PBARL", "PBEAM", "PBEAML", "MAT1",
+               "CONM2", "RBE2", "RBAR", "CELAS2", "SPC", "SPC1", "SPCADD")
+SETTING_CARDS = ("EIGRL", "EIGR", "PARAM", "ENDDATA")
+#: PBARL/PBEAML section types read (doubly symmetric, closed-form A, I and J).
+SECTION_TYPES = ("ROD", "TUBE")
+#: Cards a user may expect to work, and why they do not (the rest: the generic reason).
+_WHY_NOT = {
+    "CBUSH": "a mount spring is a CELAS2 on a hinge (an RBE2 leaving R_y or R_z free)",
+    "CELAS1": "a mount spring is a CELAS2 (K on the card) on a hinge",
+    "CONM1": "a mass is a CONM2",
+    "CORD1R": "coordinate systems are CORD2R",
+    "CORD2C": "coordinate systems are rectangular (CORD2R)",
+    "CORD2S": "coordinate systems are rectangular (CORD2R)",
+    "MPC": "the nacelle is rigid bodies (RBE2, RBAR) and hinges",
+    "RBE3": "an RBE3 is an interpolation, not a rigid body: use RBE2 or RBAR",
+    "CROD": "the wing is CBAR or CBEAM elements along one line",
+    "CBUSH1D": "a mount spring is a CELAS2 on a hinge",
+}
+#: Cosine above which an axis is along another (principal planes vertical/chordwise).
+_ALIGNED = 1.0 - 1e-9
+#: pyNastran's value of a blank PBAR K1/K2 (infinite shear stiffness).
+_PBAR_K_BLANK = 1e8
+
+
+def _fail(where: str, text: str) -> v.InputError:
+    return v.InputError(f"{where}: {text}")
+
+
+# ============================================================================ parsing
+def _pynastran():
+    """pyNastran's BDF class and its errors, or a one-line InputError naming the extra."""
+    try:
+        from pyNastran.bdf.bdf import BDF
+    except ImportError:
+        raise v.InputError(f"reading a BDF needs pyNastran, which is not installed here: "
+                           f"{INSTALL_HINT}") from None
+    return BDF
+
+
+def require_pynastran() -> None:
+    """Nothing when pyNastran can be imported; else the one-line InputError naming the extra
+    (a command checks this before it reads anything)."""
+    _pynastran()
+
+
+def _parse_error(where: str, exc: Exception) -> v.InputError:
+    """pyNastran's exception as one line naming the file (and the card and id it names)."""
+    text = str(exc)
+    first = text.strip().split("\n")[0].strip() or type(exc).__name__
+    dup = re.search(r"IDs are not unique=\[([^\]]*)\]", text)
+    old = re.search(r"old_\w+=\s*\n\s*([A-Z][A-Z0-9]*)\*?\s", text)
+    if dup:
+        ids = dup.group(1).split(",")[0].strip()
+        card = old.group(1) if old else "a card"
+        return _fail(where, f"{card} {ids} is given twice (ids must be unique)")
+    if "nid=" in text and "old_node=" in text:
+        nid = re.search(r"nid=(\d+)", text)
+        return _fail(where, f"GRID {nid.group(1) if nid else '?'} is given twice (ids must be "
+                            "unique)")
+    card = re.search(r"card=\[\s*'([A-Z0-9*]+)',\s*'([^']*)'", text)
+    if card:
+        return _fail(where, f"{card.group(1).rstrip('*')} {card.group(2).strip()}: {first}")
+    return _fail(where, f"pyNastran could not read it: {type(exc).__name__}: {first}")
+
+
+def _parse(path: Path, where: str, text: str):
+    """The pyNastran BDF of the file (no cross-referencing); its messages kept off the
+    terminal; any problem one InputError naming the file."""
+    BDF = _pynastran()
+    from cpylog import SimpleLogger       # pyNastran's own logger (a dependency of it)
+
+    bulk_only = not re.search(r"^\s*BEGIN\s+BULK", text, re.IGNORECASE | re.MULTILINE)
+    model = BDF(log=SimpleLogger(level="critical"))
+    chatter = io.StringIO()
+    try:
+        with contextlib.redirect_stdout(chatter), contextlib.redirect_stderr(chatter), \
+                warnings.catch_warnings():
+            warnings.simplefilter("ignore")     # its checks of cards: propwhirl makes its own
+            model.read_bdf(str(path), xref=False, punch=bulk_only)
+    except (KeyboardInterrupt, MemoryError):
+        raise
+    except Exception as exc:              # a third-party parser: every failure is the file's
+        raise _parse_error(where, exc) from None
+    return model
+
+
+def _scanned_ids(text: str, name: str) -> list[str]:
+    """The first field (the id) of every card ``name`` in the text (small, large and free
+    field; the file itself, not its includes): only to name a duplicated id."""
+    ids = []
+    for line in text.splitlines():
+        if line.startswith("$"):
+            continue
+        head = line.split(",")[0] if "," in line[:9] else line[:8]
+        if head.strip().upper().rstrip("*") != name:
+            continue
+        if "," in line[:9]:
+            ids.append(line.split(",")[1].strip() if line.count(",") else "")
+        elif head.strip().endswith("*"):
+            ids.append(line[8:24].strip())
+        else:
+            ids.append(line[8:16].strip())
+    return ids
+
+
+# ============================================================================ the deck
+@dataclass(frozen=True)
+class Grid:
+    """A grid point: its id and its position in the basic frame [m]."""
+
+    nid: int
+    xyz: np.ndarray
+
+
+class Deck:
+    """A parsed BDF with propwhirl's lookups and checks: every card looked up by the card
+    that refers to it (a missing one is an error naming both), positions in SI and in the
+    basic frame, the constraints of the chosen SPC set."""
+
+    def __init__(self, bdf, where: str, text: str, units: UnitSystem, notes: list[str]):
+        self.bdf, self.where, self.text, self.u, self.notes = bdf, where, text, units, notes
+        self._frames: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+        self._check_cards()
+        self.wtmass = self._wtmass()
+        self.grids = {nid: self._grid(g) for nid, g in sorted(bdf.nodes.items())}
+        self.constraints = self._constraints()
+
+    def fail(self, text: str) -> v.InputError:
+        return _fail(self.where, text)
+
+    # ---------------------------------------------------------------- cards
+    def _check_free_field(self) -> None:
+        """A free-field line holds a card's name (or continuation) and at most nine fields:
+        pyNastran drops what follows unsaid, so such a line is refused."""
+        for number, line in enumerate(self.text.splitlines(), 1):
+            if line.startswith("$") or "," not in line[:10]:
+                continue
+            fields = line.split("$")[0].split(",")
+            if len(fields) > 10:
+                name = fields[0].strip().rstrip("*") or "a continuation"
+                ident = fields[1].strip() if fields[0].strip() else ""
+                raise self.fail(f"line {number} ({name}{' ' + ident if ident else ''}): "
+                                f"{len(fields) - 1} free fields on one line, more than nine: "
+                                "continue the card on a line starting with a comma")
+
+    def _check_cards(self) -> None:
+        self._check_free_field()
+        counts = dict(self.bdf.card_count)
+        if "ENDDATA" not in counts:
+            raise self.fail("no ENDDATA: the file ends before its bulk data does (truncated?)")
+        for name in counts:
+            if name not in MODEL_CARDS + SETTING_CARDS:
+                first = self._first_id(name)
+                why = _WHY_NOT.get(name, "propwhirl reads a beam stick and its propellers: "
+                                   + ", ".join(MODEL_CARDS) + " (docs/modal-structures.md, "
+                                   "'NASTRAN bulk data')")
+                raise self.fail(f"{name}{f' {first}' if first is not None else ''}: not read: "
+                                f"{why}")
+        stored = {
+            "GRID": len(self.bdf.nodes),
+            "CORD2R": len([c for c in self.bdf.coords.values() if c.cid != 0]),
+            "MAT1": len(self.bdf.materials), "CONM2": len(self.bdf.masses),
+            "EIGRL": len(self.bdf.methods),
+        }
+        for name in ("CBAR", "CBEAM", "CELAS2"):
+            stored[name] = sum(e.type == name for e in self.bdf.elements.values())
+        for name in ("PBAR", "PBARL", "PBEAM", "PBEAML"):
+            stored[name] = sum(p.type == name for p in self.bdf.properties.values())
+        for name in ("RBE2", "RBAR"):
+            stored[name] = sum(e.type == name for e in self.bdf.rigid_elements.values())
+        for name, n in stored.items():
+            if counts.get(name, 0) > n:
+                ids = _scanned_ids(self.text, name)
+                twice = sorted({i for i in ids if ids.count(i) > 1})
+                which = f"{name} {twice[0]}" if twice else f"a {name} id"
+                raise self.fail(f"{which} is given twice (ids must be unique; {counts[name]} "
+                                f"{name} cards, {n} ids)")
+
+    def _first_id(self, name: str):
+        try:
+            cards = self.bdf.get_cards_by_card_types([name], reset_type_to_slot_map=False,
+                                                     stop_on_missing_card=False)
+        except Exception:                 # noqa: BLE001 (only to name an id; the card is refused)
+            return None
+        for card in cards.get(name, []):
+            for attr in ("eid", "pid", "mid", "nid", "cid", "conid", "sid"):
+                if isinstance(getattr(card, attr, None), (int, np.integer)):
+                    return int(getattr(card, attr))
+        return None
+
+    def _wtmass(self) -> float:
+        param = self.bdf.params.get("WTMASS")
+        if param is None:
+            return 1.0
+        value = param.values[0] if param.values else None
+        if not isinstance(value, float) or not math.isfinite(value) or value <= 0.0:
+            raise self.fail(f"PARAM WTMASS = {value!r} is invalid: must be a number > 0 (the "
+                            "factor on every mass)")
+        return float(value)
+
+    def card(self, store: dict, key: int, names: tuple[str, ...], by: str):
+        """The card ``key`` of ``store`` (one of the types ``names``), looked up for the card
+        ``by``; missing or of another type: one line naming both."""
+        card = store.get(key)
+        if card is None:
+            raise self.fail(f"{by} refers to {' or '.join(names)} {key}, which is not in the file")
+        if card.type not in names:
+            raise self.fail(f"{by} refers to {card.type} {key}: must be {' or '.join(names)}")
+        return card
+
+    def grid(self, nid: Any, by: str) -> Grid:
+        if not isinstance(nid, (int, np.integer)) or int(nid) not in self.grids:
+            raise self.fail(f"{by} refers to GRID {nid}, which is not in the file")
+        return self.grids[int(nid)]
+
+    # ---------------------------------------------------------------- frames
+    def frame(self, cid: int, by: str, seen: tuple = ()) -> tuple[np.ndarray, np.ndarray]:
+        """(origin [deck length], rows: the axes' unit vectors) of coordinate system ``cid``
+        in the basic frame; basic = origin + axes.T @ local."""
+        if cid == 0:
+            return np.zeros(3), np.eye(3)
+        if cid in self._frames:
+            return self._frames[cid]
+        coord = self.bdf.coords.get(cid)
+        if coord is None:
+            raise self.fail(f"{by} refers to coordinate system {cid}, which is not in the file")
+        if coord.type != "CORD2R":
+            raise self.fail(f"{coord.type} {cid}: not read: coordinate systems are CORD2R")
+        if cid in seen:
+            raise self.fail(f"CORD2R {cid} is defined through itself (RID {coord.rid})")
+        o, R = self.frame(int(coord.rid), f"CORD2R {cid}", seen + (cid,))
+        a, b, c = (o + R.T @ np.asarray(p, dtype=float) for p in (coord.e1, coord.e2, coord.e3))
+        k = b - a
+        j = np.cross(k, c - a)
+        if not (np.linalg.norm(k) > 0 and np.linalg.norm(j) > 1e-12 * np.linalg.norm(k)
+                * max(np.linalg.norm(c - a), 1e-300)):
+            raise self.fail(f"CORD2R {cid}: its points A, B, C do not define axes (on one line)")
+        k = k / np.linalg.norm(k)
+        j = j / np.linalg.norm(j)
+        axes = np.array([np.cross(j, k), j, k])
+        self._frames[cid] = (a, axes)
+        return a, axes
+
+    def _grid(self, g) -> Grid:
+        by = f"GRID {g.nid}"
+        if getattr(g, "seid", 0):
+            raise self.fail(f"{by}: superelement {g.seid}: not read (one structure per deck)")
+        o, R = self.frame(int(g.cp or 0), by)
+        cd = int(g.cd or 0)
+        if cd > 0:
+            _, axes = self.frame(cd, by)
+            if not np.allclose(axes, np.eye(3), rtol=0.0, atol=1e-12):
+                raise self.fail(f"{by}: CD = {cd} turns its displacement frame from the basic "
+                                "one: propwhirl reads components in the basic directions "
+                                "(give CD = 0, or a CORD2R parallel to the basic frame)")
+        elif cd < 0:
+            raise self.fail(f"{by}: CD = {cd} (a fluid grid): not read")
+        xyz = (o + R.T @ np.asarray(g.xyz, dtype=float)) * self.u.length
+        return Grid(int(g.nid), xyz)
+
+    # ---------------------------------------------------------------- constraints
+    def _spc_set(self) -> int | None:
+        """The SPC set of the case control, or the deck's only one, or None (none at all)."""
+        chosen = set()
+        deck = self.bdf.case_control_deck
+        if deck is not None:
+            for subcase in deck.subcases.values():
+                if "SPC" in subcase.params:
+                    chosen.add(int(subcase.params["SPC"][0]))
+        sets = sorted(set(self.bdf.spcs) | set(self.bdf.spcadds))
+        if len(chosen) > 1:
+            raise self.fail(f"the case control selects SPC {', '.join(map(str, sorted(chosen)))} "
+                            "in different subcases: one structure per deck")
+        if chosen:
+            sid = chosen.pop()
+            if sid not in sets:
+                raise self.fail(f"the case control's SPC = {sid} is not in the file (no SPC, "
+                                "SPC1 or SPCADD with that id)")
+            return sid
+        if len(sets) > 1:
+            raise self.fail(f"SPC sets {', '.join(map(str, sets))} and no case control SPC = "
+                            "selecting one: give the deck's SPC = or keep one set")
+        if sets:
+            self.notes.append(f"{self.where}: SPC set {sets[0]} taken as the constraints "
+                              "(no case control selects one)")
+            return sets[0]
+        return None
+
+    def _constraints(self) -> dict[int, set[int]]:
+        """Each grid's held components (1-6): its PS field and the chosen SPC set."""
+        held: dict[int, set[int]] = {}
+        for nid, g in self.bdf.nodes.items():
+            if g.ps:
+                held.setdefault(int(nid), set()).update(int(c) for c in str(g.ps))
+        sid = self._spc_set()
+        if sid is None:
+            return held
+        sets = [sid] if sid in self.bdf.spcs else []
+        for add in self.bdf.spcadds.get(sid, []):       # an SPCADD: the union of its sets
+            sets += [int(s) for s in add.sets]
+        for s in sets:
+            if s not in self.bdf.spcs:
+                raise self.fail(f"SPCADD {sid} refers to SPC {s}, which is not in the file")
+            for spc in self.bdf.spcs[s]:
+                by = f"{spc.type} {s}"
+                if spc.type == "SPC":
+                    pairs = list(zip(spc.nodes, spc.components, spc.enforced))
+                else:
+                    pairs = [(n, spc.components, 0.0) for n in spc.nodes]
+                for nid, comps, enforced in pairs:
+                    self.grid(nid, by)
+                    if enforced not in (None, 0.0):
+                        raise self.fail(f"{by} enforces {enforced!r} on GRID {nid} (component "
+                                        f"{comps}): an enforced displacement, not a support")
+                    held.setdefault(int(nid), set()).update(int(c) for c in str(comps))
+        return held
+
+
+# ============================================================================ the stick
+@dataclass(frozen=True)
+class Stick:
+    """The wing's stick as read.
+
+    grids: grid ids from the root to the tip; y: their positions along the wing [m] from the
+    root; origin: the root grid's basic position [m]; elements: "CBAR 3" ... per element;
+    sections: per element EI, EI_chordwise, GJ [N m²], m [kg/m], x_cg [m, aft of the axis],
+    polar [kg m]; in_plane: the stick's T_x and R_z are free.
+    """
+
+    grids: tuple[int, ...]
+    y: np.ndarray
+    origin: np.ndarray
+    elements: tuple[str, ...]
+    sections: dict[str, np.ndarray]
+    in_plane: bool
+
+
+def _beams(deck: Deck) -> list:
+    return [e for e in deck.bdf.elements.values() if e.type in ("CBAR", "CBEAM")]
+
+
+def _stick(deck: Deck) -> Stick:
+    beams = _beams(deck)
+    if not beams:
+        raise deck.fail("no CBAR or CBEAM: propwhirl reads a wing as a stick of beam elements")
+    ends = {}
+    for e in beams:
+        a, b = (deck.grid(n, f"{e.type} {e.eid}").nid for n in e.node_ids)
+        if a == b:
+            raise deck.fail(f"{e.type} {e.eid} joins GRID {a} to itself")
+        ends[e.eid] = (a, b)
+    on_stick = {g for pair in ends.values() for g in pair}
+    clamped = [g for g in sorted(on_stick) if deck.constraints.get(g, set()) >= set(range(1, 7))]
+    if not clamped:
+        raise deck.fail("no grid of the stick is clamped (all six components held by SPC, "
+                        "SPC1 or the GRID PS field): propwhirl's wing is a cantilever")
+    if len(clamped) > 1:
+        raise deck.fail(f"GRID {clamped[0]} and GRID {clamped[1]} are both clamped: "
+                        "propwhirl's wing is clamped at its root only")
+    by_grid: dict[int, list[int]] = {}
+    for eid, (a, b) in ends.items():
+        by_grid.setdefault(a, []).append(eid)
+        by_grid.setdefault(b, []).append(eid)
+    for g, eids in sorted(by_grid.items()):
+        if len(eids) > 2 or (g == clamped[0] and len(eids) > 1):
+            names = ", ".join(f"{deck.bdf.elements[e].type} {e}" for e in sorted(eids))
+            raise deck.fail(f"GRID {g} joins {len(eids)} beam elements ({names}): a branch or a "
+                            "second load path; propwhirl's wing is one line of elements from "
+                            "the root")
+    order, elements, seen = [clamped[0]], [], set()
+    while True:
+        nxt = [e for e in by_grid[order[-1]] if e not in seen]
+        if not nxt:
+            break
+        eid = nxt[0]
+        seen.add(eid)
+        a, b = ends[eid]
+        order.append(b if a == order[-1] else a)
+        elements.append(eid)
+    for eid in sorted(set(ends) - seen):
+        e = deck.bdf.elements[eid]
+        raise deck.fail(f"{e.type} {eid} (GRID {ends[eid][0]}-{ends[eid][1]}) is not joined to "
+                        f"the stick that starts at the clamped GRID {clamped[0]}: a second "
+                        "load path or a second structure")
+    pos = np.array([deck.grids[g].xyz for g in order])
+    L = pos[-1, 1] - pos[0, 1]
+    tol = tolerance(abs(L))
+    for g, p, q in zip(order[1:], pos[1:], pos[:-1]):
+        off = p - pos[0]
+        if abs(off[0]) > tol or abs(off[2]) > tol:
+            axis = "x" if abs(off[0]) >= abs(off[2]) else "z"
+            raise deck.fail(f"GRID {g} lies {max(abs(off[0]), abs(off[2])):.6g} m off (in {axis}) "
+                            f"the line along y through the root GRID {order[0]}: a swept or "
+                            "bent stick; propwhirl's wing is straight along the basic y axis")
+        if not p[1] - q[1] > tol:
+            raise deck.fail(f"GRID {g} (y = {p[1]:.6g} m) is not outboard of the grid before "
+                            f"it on the stick (y = {q[1]:.6g} m): the stick must run from the "
+                            "root along +y (a left wing: mirror it)")
+    y = pos[:, 1] - pos[0, 1]
+    names = tuple(f"{deck.bdf.elements[e].type} {e}" for e in elements)
+    for name, dy in zip(names, np.diff(y)):
+        if dy < MIN_ELEMENT_FRACTION * L:
+            raise deck.fail(f"{name} is {dy:.3g} m long, shorter than {MIN_ELEMENT_FRACTION:g} "
+                            f"of the semi-span ({MIN_ELEMENT_FRACTION * L:.3g} m): merge it "
+                            "with a neighbour")
+    in_plane = _stick_constraints(deck, order)
+    sections = _sections(deck, [deck.bdf.elements[e] for e in elements], ends, names)
+    return Stick(tuple(order), y, pos[0], names, sections, in_plane)
+
+
+def _stick_constraints(deck: Deck, order: list[int]) -> bool:
+    """True when the stick bends in its plane (T_x and R_z free along it); refuses supports
+    along the span and a mix; notes a free axial motion."""
+    held = [deck.constraints.get(g, set()) for g in order[1:]]
+    for g, h in zip(order[1:], held):
+        if h & {3, 4, 5}:
+            raise deck.fail(f"GRID {g} (on the stick) holds component(s) "
+                            f"{''.join(map(str, sorted(h & {3, 4, 5})))}: a support along the "
+                            "span; propwhirl's wing is held at its root only")
+    plane = [h & {1, 6} for h in held]
+    if all(p == {1, 6} for p in plane):
+        in_plane = False
+    elif all(not p for p in plane):
+        in_plane = True
+    else:
+        g = next(g for g, p in zip(order[1:], plane) if p != plane[0])
+        raise deck.fail(f"GRID {g}: its in-plane components T_x, R_z (1, 6) are held unlike "
+                        f"GRID {order[1]}'s: hold both on every stick grid (a wing rigid in its "
+                        "plane) or on none (it bends in its plane)")
+    free = [g for g, h in zip(order[1:], held) if 2 not in h]
+    if free:
+        deck.notes.append(f"{deck.where}: the stick's axial motion (T_y, free at {len(free)} "
+                          "grids) is not modelled: propwhirl's beam is rigid along its axis")
+    return in_plane
+
+
+def _tube(dims: Sequence[float], kind: str) -> tuple[float, float, float]:
+    """A, I (= I1 = I2), J of a ROD (radius) or TUBE (outer, inner radius) [deck units]."""
+    ro = float(dims[0])
+    ri = float(dims[1]) if kind == "TUBE" else 0.0
+    area = math.pi * (ro ** 2 - ri ** 2)
+    inertia = math.pi * (ro ** 4 - ri ** 4) / 4.0
+    return area, inertia, 2.0 * inertia
+
+
+def _section(deck: Deck, prop, by: str, shear: list[str]) -> dict[str, float]:
+    """One property card's section in deck units: A, I1, I2, J, NSM, NSI, M1, M2, mid."""
+    name = f"{prop.type} {prop.pid}"
+    if prop.type in ("PBARL", "PBEAML"):
+        kind = prop.beam_type
+        if kind not in SECTION_TYPES:
+            raise deck.fail(f"{name}: TYPE {kind} is not read (its section constants depend on "
+                            "NASTRAN's formulas for it): give the section as PBAR or PBEAM "
+                            f"(A, I1, I2, J), or TYPE {' or '.join(SECTION_TYPES)}")
+        dims = np.atleast_2d(np.asarray(prop.dim, dtype=float))
+        nsm = np.atleast_1d(np.asarray(prop.nsm if prop.nsm is not None else 0.0, dtype=float))
+        if not (np.all(dims == dims[0]) and np.all(nsm == nsm[0])):
+            raise deck.fail(f"{name} changes along its element (tapered): propwhirl's element "
+                            "properties are constant per element (split the element)")
+        if np.any(dims[0] <= 0) or (kind == "TUBE" and not dims[0][1] < dims[0][0]):
+            raise deck.fail(f"{name}: DIM = {dims[0].tolist()} is not a {kind} "
+                            "(positive radii, inner < outer)")
+        area, inertia, J = _tube(dims[0], kind)
+        shear.append(name)
+        return dict(A=area, I1=inertia, I2=inertia, J=J, NSM=float(nsm[0]), NSI=0.0,
+                    M1=0.0, M2=0.0, mid=prop.mid)
+    if prop.type == "PBAR":
+        if prop.i12:
+            raise deck.fail(f"{name}: I12 = {prop.i12!r}: principal axes turned from the "
+                            "element's planes; propwhirl's beam bends vertically and chordwise "
+                            "about principal axes")
+        if prop.k1 != _PBAR_K_BLANK or prop.k2 != _PBAR_K_BLANK:
+            shear.append(name)
+        return dict(A=prop.A, I1=prop.i1, I2=prop.i2, J=prop.j, NSM=prop.nsm or 0.0, NSI=0.0,
+                    M1=0.0, M2=0.0, mid=prop.mid)
+    # PBEAM
+    arrays = {k: np.asarray(getattr(prop, k), dtype=float) for k in
+              ("A", "i1", "i2", "i12", "j", "nsm")}
+    pairs = {"NSI": (prop.nsia, prop.nsib), "M1": (prop.m1a, prop.m1b),
+             "M2": (prop.m2a, prop.m2b)}
+    for k, arr in arrays.items():
+        if not np.all(arr == arr[0]):
+            raise deck.fail(f"{name} changes along its element ({k} {arr.tolist()}: tapered): "
+                            "propwhirl's element properties are constant per element (split "
+                            "the element)")
+    for k, (a, b) in pairs.items():
+        if b is not None and b != a:
+            raise deck.fail(f"{name} changes along its element ({k} {a!r} at end A, {b!r} at "
+                            "end B: tapered): propwhirl's element properties are constant per "
+                            "element")
+    if arrays["i12"][0]:
+        raise deck.fail(f"{name}: I12 = {arrays['i12'][0]!r}: principal axes turned from the "
+                        "element's planes; propwhirl's beam bends vertically and chordwise "
+                        "about principal axes")
+    for label, values in (("CW (warping)", (prop.cwa, prop.cwb)),
+                          ("N1, N2 (the neutral axis off the shear centre)",
+                           (prop.n1a, prop.n2a, prop.n1b, prop.n2b)),
+                          ("S1, S2 (shear relief of a taper)", (prop.s1, prop.s2))):
+        if any(x not in (None, 0.0) for x in values):
+            raise deck.fail(f"{name}: {label} = {[x for x in values]}: not representable by "
+                            "propwhirl's beam (an Euler-Bernoulli beam about its shear "
+                            "centre, without warping)")
+    if prop.k1 or prop.k2:
+        shear.append(name)
+    return dict(A=arrays["A"][0], I1=arrays["i1"][0], I2=arrays["i2"][0], J=arrays["j"][0],
+                NSM=arrays["nsm"][0], NSI=prop.nsia or 0.0, M1=prop.m1a or 0.0,
+                M2=prop.m2a or 0.0, mid=prop.mid)
+
+
+def _axes(deck: Deck, e, a: int, b: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The element's axes (x, y, z) in the basic frame from its grids and orientation."""
+    by = f"{e.type} {e.eid}"
+    pa, pb = deck.grids[a].xyz, deck.grids[b].xyz
+    ex = (pb - pa) / np.linalg.norm(pb - pa)
+    if e.g0 is not None:
+        vec = deck.grid(e.g0, by).xyz - pa
+    elif e.x is not None and not any(x is None for x in e.x):
+        # in GA's displacement frame (OFFT G..) or the basic one (B..): the same, CD checked
+        vec = np.asarray(e.x, dtype=float)
+    else:
+        raise deck.fail(f"{by}: no orientation vector (X1-X3 or G0)")
+    ey = vec - (vec @ ex) * ex
+    if not np.linalg.norm(ey) > 1e-9 * np.linalg.norm(vec):
+        raise deck.fail(f"{by}: its orientation vector lies along the element")
+    ey = ey / np.linalg.norm(ey)
+    return ex, ey, np.cross(ex, ey)
+
+
+def _sections(deck: Deck, elements: list, ends: dict, names: tuple[str, ...]
+              ) -> dict[str, np.ndarray]:
+    """Per element EI, EI_chordwise, GJ [N m²], m [kg/m], x_cg [m], polar [kg m] (SI)."""
+    u, w = deck.u, deck.wtmass
+    out = {k: [] for k in ("EI", "EI_chordwise", "GJ", "m", "x_cg", "polar")}
+    shear: list[str] = []
+    damped: list[str] = []
+    for e, name in zip(elements, names):
+        a, b = ends[e.eid]
+        for label, values in (("WA", e.wa), ("WB", e.wb)):
+            if values is not None and np.any(np.asarray(values, dtype=float) != 0.0):
+                raise deck.fail(f"{name}: offset {label} = {np.asarray(values).tolist()}: the "
+                                "element is off its grids; propwhirl's beam runs through them")
+        for label, flag in (("PA", e.pa), ("PB", e.pb)):
+            if flag not in (None, 0, "", "0"):
+                raise deck.fail(f"{name}: pin flags {label} = {flag}: a released end; "
+                                "propwhirl's beam is continuous")
+        if e.type == "CBEAM":
+            if e.sa or e.sb:
+                raise deck.fail(f"{name}: warping scalar points SA, SB = {e.sa}, {e.sb}: "
+                                "propwhirl's beam has no warping")
+            if getattr(e, "bit", None) not in (None, 0.0):
+                raise deck.fail(f"{name}: BIT = {e.bit!r}: not read")
+        kinds = ("PBAR", "PBARL") if e.type == "CBAR" else ("PBEAM", "PBEAML")
+        prop = deck.card(deck.bdf.properties, e.pid, kinds, name)
+        s = _section(deck, prop, name, shear)
+        pname = f"{prop.type} {prop.pid}"
+        mat = deck.card(deck.bdf.materials, s["mid"], ("MAT1",), pname)
+        mname = f"MAT1 {mat.mid}"
+        E, G, rho = mat.e, mat.g, mat.rho or 0.0
+        if not (isinstance(E, float) and E > 0 and isinstance(G, float) and G > 0):
+            raise deck.fail(f"{mname}: E = {E!r}, G = {G!r}: both must be > 0 (give E and G, "
+                            "or E and NU)")
+        if rho < 0:
+            raise deck.fail(f"{mname}: RHO = {rho!r} is negative")
+        if rho > 0:
+            speed = math.sqrt(E * u.modulus / (rho * u.density * w))
+            if not 100.0 <= speed <= 3e4:
+                raise deck.fail(f"{mname}: E and RHO give a wave speed sqrt(E/RHO) of "
+                                f"{speed:.4g} m/s in {u.name} units (every solid: 100 to "
+                                f"30,000 m/s): the deck is not in {u.name} ({u.description}), "
+                                "or its units are mixed")
+        if mat.ge:
+            damped.append(mname)
+        ex, ey, ez = _axes(deck, e, a, b)
+        I1, I2 = s["I1"], s["I2"]
+        if I1 == I2 or abs(ey[2]) >= _ALIGNED:
+            I_v, I_c = I1, I2
+        elif abs(ez[2]) >= _ALIGNED:
+            I_v, I_c = I2, I1
+        else:
+            angle = math.degrees(math.acos(min(1.0, abs(ey[2]))))
+            raise deck.fail(f"{name}: its orientation vector puts plane 1 at {angle:.3g} deg "
+                            "to the vertical: propwhirl's beam bends in the vertical plane and "
+                            "in the wing's plane (principal planes vertical and chordwise)")
+        offset = s["M1"] * ey + s["M2"] * ez                  # the NSM's c.g. [deck length]
+        if abs(offset[2]) > 1e-12 * np.linalg.norm(offset):
+            raise deck.fail(f"{pname} (on {name}): its non-structural mass's c.g. is "
+                            f"{offset[2] * u.length:.6g} m above the axis (M1, M2 = "
+                            f"{s['M1']!r}, {s['M2']!r}): propwhirl's section has its c.g. on "
+                            "the chord line")
+        x_nsm = offset[0] * u.length
+        m_struct = rho * s["A"] * u.mass_per_length * w
+        nsm = s["NSM"] * u.mass_per_length * w
+        m = m_struct + nsm
+        if not m > 0.0:
+            raise deck.fail(f"{pname} (on {name}): no mass (RHO A + NSM = {m!r} kg/m): a wing "
+                            "element needs mass")
+        out["EI"].append(E * I_v * u.rigidity)
+        out["EI_chordwise"].append(E * I_c * u.rigidity)
+        out["GJ"].append(G * s["J"] * u.rigidity)
+        out["m"].append(m)
+        out["x_cg"].append(nsm * x_nsm / m)
+        polar = (rho * (I1 + I2) * u.inertia_per_length * w
+                 + s["NSI"] * u.inertia_per_length * w + nsm * x_nsm ** 2)
+        if polar == 0.0:
+            raise deck.fail(f"{pname} (on {name}): no polar inertia (RHO = 0, no NSI, the NSM on "
+                            "the axis): propwhirl's wing twists with inertia; give RHO, or a "
+                            "PBEAM with NSI")
+        out["polar"].append(polar)
+    if shear:
+        deck.notes.append(f"{deck.where}: the shear flexibility of {', '.join(sorted(set(shear)))} "
+                          "is left out: propwhirl's beam is Euler-Bernoulli")
+    if damped:
+        deck.notes.append(f"{deck.where}: GE of {', '.join(sorted(set(damped)))} (structural "
+                          "damping) is not read: the wing's damping is the base model's "
+                          "Rayleigh damping")
+    return {k: np.array(x, dtype=float) for k, x in out.items()}
+
+
+# ============================================================================ the model
+def _values(arr: np.ndarray):
+    """A per-element property as the Wing takes it: one number when every element has it."""
+    return float(arr[0]) if np.all(arr == arr[0]) else tuple(float(x) for x in arr)
+
+
+def _spanwise_at(wing: Wing, name: str, n: int) -> np.ndarray:
+    """The wing's ``name`` (elastic_axis, ...) at its element mid-points (a number, one per
+    element or a function of y, as the Wing evaluates it)."""
+    value = getattr(wing, name)
+    if callable(value):
+        return np.asarray(value(wing.element_y), dtype=float)
+    return np.broadcast_to(np.asarray(value, dtype=float), (n,)).copy()
+
+
+def _check_range(deck: Deck, field: str, values: np.ndarray, names: Sequence[str],
+                 what: str, unit: str) -> None:
+    """Each value within the Wing field's valid range, else one line naming the card and the
+    units the deck was read in (a value far out is the wrong units)."""
+    for value, name in zip(values, names):
+        try:
+            check_values(Wing, field, np.array([value]))
+        except v.InputError as exc:
+            reason = exc.reason or str(exc)
+            raise deck.fail(f"{name}: {what} = {value:.6g} {unit} (read in {deck.u.name} "
+                            f"units: {deck.u.description}) is {reason}: are the deck's units "
+                            f"{deck.u.name}, and not mixed?") from None
+
+
+def _wing(deck: Deck, stick: Stick, base_wing: Wing, base: str) -> Wing:
+    y, names = stick.y, stick.elements
+    n, L = len(names), float(y[-1])
+    s = stick.sections
+    _check_range(deck, "EI", s["EI"], names, "EI (E I)", "N m^2")
+    _check_range(deck, "GJ", s["GJ"], names, "GJ (G J)", "N m^2")
+    _check_range(deck, "mass_per_length", s["m"], names, "mass per length", "kg/m")
+    _check_range(deck, "polar_inertia", s["polar"], names, "polar inertia", "kg m")
+    if stick.in_plane:
+        _check_range(deck, "EI_chordwise", s["EI_chordwise"], names, "EI_chordwise (E I)",
+                     "N m^2")
+    for name in ("elastic_axis", "aerodynamic_centre"):
+        value = getattr(base_wing, name)
+        if not callable(value) and np.ndim(value) == 1 and np.size(value) != n:
+            raise v.InputError(f"{base}: its wing's {name} has {np.size(value)} values, one per "
+                               f"element of its own mesh; the BDF's stick has {n} elements: "
+                               "give one number (or a function of y)")
+    uniform = np.allclose(y, np.linspace(0.0, L, n + 1), rtol=0.0, atol=1e-9 * L)
+    mesh = (dict(n_elements=n, stations=None, max_element_length=None) if uniform else
+            dict(n_elements=n, stations=tuple(float(x) for x in y[1:-1]),
+                 max_element_length=float(np.max(np.diff(y)))))
+    structure = dict(semi_span=L, EI=_values(s["EI"]), GJ=_values(s["GJ"]),
+                     mass_per_length=_values(s["m"]), polar_inertia=_values(s["polar"]),
+                     radius_of_gyration=None,
+                     EI_chordwise=_values(s["EI_chordwise"]) if stick.in_plane else None)
+    draft = replace(base_wing, **mesh, **structure, centre_of_gravity=base_wing.elastic_axis)
+    if not np.allclose(draft.node_y, y, rtol=0.0, atol=tolerance(L)):   # the mesh rule's nodes
+        raise deck.fail("its grids do not make a propwhirl mesh (a bug: please report)")
+    ea = _spanwise_at(draft, "elastic_axis", n)
+    chord = draft.chord_at(draft.element_y)
+    cg = ea + s["x_cg"] / chord
+    for value, name, c in zip(cg, names, chord):
+        if not 0.0 <= value <= 1.0:
+            raise deck.fail(f"{name}: its centre of gravity ({value:.6g} of the {c:.6g} m "
+                            "chord of the base model) lies outside the chord")
+    return replace(draft, centre_of_gravity=_values(cg))
+
+
+def _as_model(base, where: str) -> PropellerWing:
+    if base is None:
+        raise _fail(where, "a BDF holds the structure only: give the base model (base=...; "
+                           "--base MODEL.toml) for the flight condition, the chords and "
+                           "aerodynamics, and the propellers' rotors and aerodynamics")
+    if not isinstance(base, PropellerWing):
+        raise _fail(where, f"the base model is a {type(base).__name__}: it must be a wing with "
+                           "propellers (type \"propeller-wing\")")
+    return base
+
+
+def _hub_ids(hubs, base: PropellerWing, where: str) -> tuple[int, ...]:
+    hubs = tuple(hubs or ())
+    for h in hubs:
+        if isinstance(h, (bool, np.bool_)) or not isinstance(h, (int, np.integer)) or h <= 0:
+            raise _fail(where, f"hub grid {h!r} is invalid: grid ids are integers > 0")
+    if len(hubs) != len(base.propellers):
+        raise _fail(where, f"{len(hubs)} hub grid(s) for the base model's "
+                           f"{len(base.propellers)} installation(s): give one hub grid per "
+                           "installation, in its order (--hubs)")
+    if len(set(hubs)) != len(hubs):
+        twice = next(h for h in hubs if hubs.count(h) > 1)
+        raise _fail(where, f"hub GRID {twice} is given twice: one propeller per hub grid")
+    return tuple(int(h) for h in hubs)
+
+
+def read_bdf(path: str | Path, *, units: str | None = None, base=None,
+             hubs: Sequence[int] = (), notes: list[str] | None = None,
+             base_name: str = "the base model") -> PropellerWing:
+    """The beam model of a NASTRAN bulk data file.
+
+    Parameters
+    ----------
+    path : str or Path
+        the BDF (a SOL 103 deck, or bulk data only); INCLUDEs are read
+    units : str
+        the deck's unit system, one of "si" (m, kg, s, N), "mm-t-s" (mm, t, s, N),
+        "in-lbf-s" (in, lbf s²/in, s, lbf): NASTRAN has none, so it must be stated
+    base : PropellerWing
+        what a BDF cannot say (see the module's notes); its structure is replaced by the
+        BDF's: the wing's span, mesh, rigidities, masses and inertias, each installation's
+        position, mount and masses
+    hubs : sequence of int
+        the hub grid of each of ``base``'s installations, in their order (the grid carrying
+        the rotor's CONM2)
+    notes : list of str, optional
+        receives one line per thing of the deck that is not modelled and not an error
+        (shear flexibility, a free axial motion, MAT1 GE)
+    base_name : str
+        how messages name ``base`` (the command line: its file)
+
+    Returns
+    -------
+    PropellerWing
+        ``base`` with the BDF's structure, whole (or an InputError, one line naming the
+        file, the card and its id)
+    """
+    where = fileio.shown(path) if isinstance(path, (str, Path)) else repr(path)
+    u = unit_system(units, where)
+    model = _as_model(base, where)
+    hub_ids = _hub_ids(hubs, model, where)
+    text = fileio.read_text(path, "BDF file")
+    notes_here: list[str] = []
+    deck = Deck(_parse(Path(path), where, text), where, text, u, notes_here)
+    stick = _stick(deck)
+    wing = _wing(deck, stick, model.wing, base_name)
+    mounts = nastran_mounts.read(deck, stick, hub_ids)
+    installations = tuple(nastran_mounts.installation(deck, m, inst, wing, stick)
+                          for m, inst in zip(mounts, model.propellers))
+    try:
+        out = replace(model, wing=wing, propellers=installations)
+    except v.InputError as exc:
+        raise _fail(where, f"the model it makes is invalid: {exc}") from None
+    if notes is not None:
+        notes.extend(notes_here)
+    return out
+
+
+__all__ = ["Deck", "MODEL_CARDS", "SECTION_TYPES", "SETTING_CARDS", "Stick", "read_bdf",
+           "require_pynastran"]
