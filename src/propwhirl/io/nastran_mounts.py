@@ -32,10 +32,10 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.model.mesh import tolerance
-from propwhirl.model.propeller import PointMass
+from propwhirl.model.structure.mesh import tolerance
+from propwhirl.model.propellers.propeller import PointMass
 from propwhirl.model.systems import Installation
-from propwhirl.model.wing import Wing
+from propwhirl.model.structure.wing import Wing
 
 ALL = frozenset(range(1, 7))
 #: The free rotation of a hinge and what it is.

@@ -56,9 +56,9 @@ from propwhirl import validate as v
 from propwhirl.io import nastran_mounts
 from propwhirl.io.nastran import INSTALL_HINT, UnitSystem, unit_system
 from propwhirl.model.fields import check_values
-from propwhirl.model.mesh import MIN_ELEMENT_FRACTION, tolerance
+from propwhirl.model.structure.mesh import MIN_ELEMENT_FRACTION, tolerance
 from propwhirl.model.systems import PropellerWing
-from propwhirl.model.wing import Wing
+from propwhirl.model.structure.wing import Wing
 
 #: The cards read (the model), and those that are solution settings (not read).
 MODEL_CARDS = ("GRID", "CORD2R", "CBAR", "CBEAM", "PBAR", "PBARL", "PBEAM", "PBEAML", "MAT1",

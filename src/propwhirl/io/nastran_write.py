@@ -42,7 +42,7 @@ import numpy as np
 from propwhirl import __version__, fileio
 from propwhirl import validate as v
 from propwhirl.io.nastran import UNIT_SYSTEMS, UnitSystem, unit_system
-from propwhirl.model.propeller import Propeller
+from propwhirl.model.propellers.propeller import Propeller
 from propwhirl.model.systems import Installation, PropellerWing
 
 #: The first id of propeller j's grids and elements is PROPELLER_IDS × (j + 1).
