@@ -196,3 +196,18 @@ def test_events_beyond_the_fitted_k_are_flagged():
     assert note.startswith("V = 2.00 m/s (flutter onset of wing 4): reduced frequency k = 96.2 "
                            "beyond the Roger fit's k <= 1.78")
     assert "\n" not in note
+
+
+def test_the_fit_note_is_of_the_fits_the_analysis_used():
+    """Issue 33, item 8: the fit-quality note reported whatever fits the tables held (the Patil
+    wing's 'worst fit error 0.52 %' became '0.73 %' after an unrelated column_fit call); it
+    is now that of the fits over the analysis's own speeds and reduced frequencies."""
+    m = patil_dlm()
+    for method in ("dense", "auto"):
+        before = analyse(m, speeds=PATIL_SPEEDS, method=method).warnings[0]
+        aero = dlm.dlm_aerodynamics(m.wing)
+        # unrelated fits at the analysis's own Mach nodes (0.05-0.15), over other k (to 5)
+        for mach in (0.05, 0.1, 0.15):
+            dlm_rfa.column_fit(aero, mach, ks=dlm_rfa.fit_ks(5.0))
+        after = analyse(m, speeds=PATIL_SPEEDS, method=method).warnings[0]
+        assert after == before and "worst fit error" in after
