@@ -127,7 +127,9 @@ def test_wingtip_events_close_to_pk():
 
 def test_study_reuses_the_aics_across_variants(monkeypatch):
     """A mount-frequency sweep of three variants (same planform) on the state space computes
-    the AICs of one analysis: one fit per Mach node it spans, each on fit_ks() tables."""
+    the AICs of about one analysis: one fit per Mach node it spans, each on the tracking fit's
+    k (dlm_rfa.tracking_ks), and the AICs the p-k convergence of the crossings adds, all within
+    those columns' tables (at most fit_ks().size each) — not three times the fits' AICs."""
     monkeypatch.delenv(dlm_cache.CACHE_ENV, raising=False)
     m = small_wingtip(3, 9)                                 # a geometry no other test builds
     dlm._CACHE.pop(dlm._geometry_key(m.wing), None)
@@ -137,7 +139,8 @@ def test_study_reuses_the_aics_across_variants(monkeypatch):
     computed = dlm.dlm_aerodynamics(m.wing).evaluations
     nodes = len(dlm_rfa.fits_used(m, speeds))
     assert nodes == 6                                       # Mach 0.40 to 0.65
-    assert computed == nodes * dlm_rfa.fit_ks().size        # 6 Mach nodes x 20 k, not 3 times
+    fits = nodes * dlm_rfa.tracking_ks().size               # 6 Mach nodes x 8 k
+    assert fits <= computed <= nodes * dlm_rfa.fit_ks().size < 3 * fits
 
 
 def test_exact_sensitivities_refused_on_a_dlm_wing():
@@ -193,3 +196,18 @@ def test_events_beyond_the_fitted_k_are_flagged():
     assert note.startswith("V = 2.00 m/s (flutter onset of wing 4): reduced frequency k = 96.2 "
                            "beyond the Roger fit's k <= 1.78")
     assert "\n" not in note
+
+
+def test_the_fit_note_is_of_the_fits_the_analysis_used():
+    """Issue 33, item 8: the fit-quality note reported whatever fits the tables held (the Patil
+    wing's 'worst fit error 0.52 %' became '0.73 %' after an unrelated column_fit call); it
+    is now that of the fits over the analysis's own speeds and reduced frequencies."""
+    m = patil_dlm()
+    for method in ("dense", "auto"):
+        before = analyse(m, speeds=PATIL_SPEEDS, method=method).warnings[0]
+        aero = dlm.dlm_aerodynamics(m.wing)
+        # unrelated fits at the analysis's own Mach nodes (0.05-0.15), over other k (to 5)
+        for mach in (0.05, 0.1, 0.15):
+            dlm_rfa.column_fit(aero, mach, ks=dlm_rfa.fit_ks(5.0))
+        after = analyse(m, speeds=PATIL_SPEEDS, method=method).warnings[0]
+        assert after == before and "worst fit error" in after

@@ -20,6 +20,7 @@ from propwhirl.analysis.modes import InVacuo  # noqa: E402
 from propwhirl.analysis.pk import PKCrossing, pk_crossing  # noqa: E402
 from propwhirl.engine import XTOL  # noqa: E402
 from propwhirl.model import FlightCondition, PropellerWing, Wing  # noqa: E402
+from propwhirl.model.aerodynamics import dlm_rfa  # noqa: E402
 from propwhirl.model.dlm_modal import ModalRoger, modal_roger  # noqa: E402
 
 RHO = 1.02                                   # SHARPy's Goland case (tests/model/test_dlm_goland)
@@ -86,7 +87,8 @@ def test_modal_state_space_with_every_mode_is_the_full_one(goland_4x7):
     R = modal_roger(m, V)
     iv = InVacuo.of(m.assembly().without_aerodynamics())
     _, shapes = sla.eigh(iv.K, iv.M)
-    full = dataclasses.replace(R, Phi=shapes, frequencies_hz=np.zeros(shapes.shape[1]))
+    full = dataclasses.replace(R, Phi=shapes, frequencies_hz=np.zeros(shapes.shape[1]),
+                               ks=tuple(dlm_rfa.fit_ks()))          # the full model's fit
     want = np.sort_complex(np.linalg.eigvals(m.state_matrix(V)[0]))
     got = np.sort_complex(np.linalg.eigvals(full.state_matrix(V)[0]))
     assert got.shape == want.shape
@@ -136,8 +138,8 @@ def test_a_crossing_the_pk_does_not_have_is_noted_not_reported(goland_4x7, monke
 @pytest.mark.parametrize("vgf, columns", [(True, 6), (False, 5)])
 def test_the_counted_aics_are_those_the_analysis_computes(monkeypatch, vgf, columns):
     """analyse(model, progress=report) on a wing at Mach V/a (issue 37, item 3): report(done,
-    total) from 0 to a total known before the first AIC — the fit's 20 reduced frequencies in
-    each Mach column of the engine's first speeds (vgf: 140-200 m/s, Mach 0.43-0.61, columns
+    total) from 0 to a total known before the first AIC — the modal state space's fit's 8
+    reduced frequencies (dlm_rfa.tracking_ks) in each Mach column of the engine's first speeds (vgf: 140-200 m/s, Mach 0.43-0.61, columns
     0.40-0.65; else 140, 160 and 200 m/s, columns 0.40-0.50 and 0.60-0.65) — each AIC once;
     with or without it the analysis computes the same AICs and finds the same events, bit for
     bit."""
@@ -156,8 +158,9 @@ def test_the_counted_aics_are_those_the_analysis_computes(monkeypatch, vgf, colu
         a = analyse(m, speeds, vgf=vgf, progress=progress)
         runs.append((a, dlm.dlm_aerodynamics(m.wing).evaluations))
     (plain, computed), (counted, computed_counted) = runs
-    assert seen == [(k, columns * 20) for k in range(columns * 20 + 1)]
-    assert computed_counted == computed >= columns * 20
+    n = len(dlm_rfa.TRACKING_K_NODES)
+    assert seen == [(k, columns * n) for k in range(columns * n + 1)]
+    assert computed_counted == computed >= columns * n
     assert [(e.kind, e.event, e.label, e.V, e.frequency_hz) for e in counted.events] == \
         [(e.kind, e.event, e.label, e.V, e.frequency_hz) for e in plain.events]
     assert counted.events and np.array_equal(counted.sweep.eigenvalues, plain.sweep.eigenvalues)

@@ -35,7 +35,7 @@ from propwhirl.engine.results import Analysis, Criticals
 from propwhirl.engine.tracker import ANALYSE_INITIAL_STEP, initial_speeds
 from propwhirl.model.aerodynamics.dlm import MACH_STEP, dlm_aerodynamics, fixed_mach, snap_mach
 from propwhirl.model.dlm_modal import ModalRoger, modal_roger
-from propwhirl.model.aerodynamics.dlm_rfa import fit_ks, mach_nodes
+from propwhirl.model.aerodynamics.dlm_rfa import TRACKING_K_NODES, mach_nodes
 
 
 @dataclass(frozen=True)
@@ -53,7 +53,7 @@ def fit_table_nodes(model, speeds) -> list[tuple[float, int]]:
     """The doublet-lattice table nodes (Mach, k index) that the Roger fits of ``model`` (a wing
     with ``aero = "dlm"``) at the airspeeds ``speeds`` [m/s] read
     (:func:`propwhirl.model.aerodynamics.dlm_rfa.coefficients`), in the order the fits compute them: every
-    reduced frequency of :func:`~propwhirl.model.aerodynamics.dlm_rfa.fit_ks` in the column of the wing's
+    reduced frequency of :func:`~propwhirl.model.aerodynamics.dlm_rfa.tracking_ks` in the column of the wing's
     fixed ``dlm_mach``, or in the columns of the Mach nodes around each speed's V/a."""
     fixed = fixed_mach(model.wing)
     if fixed is not None:
@@ -64,7 +64,7 @@ def fit_table_nodes(model, speeds) -> list[tuple[float, int]]:
             im, t = mach_nodes(V / model.flight.speed_of_sound)
             nodes += [im, im + 1] if t > 1e-9 else [im]
         columns = [snap_mach(im * MACH_STEP) for im in dict.fromkeys(nodes)]
-    return [(mach, ik) for mach in columns for ik in range(fit_ks().size)]
+    return [(mach, ik) for mach in columns for ik in TRACKING_K_NODES]
 
 
 def compute_fit_aics(model, grid: np.ndarray, *, vgf: bool,

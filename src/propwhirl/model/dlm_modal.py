@@ -37,7 +37,8 @@ import scipy.linalg as sla
 from propwhirl import validate as v
 from propwhirl.model.structure.assembly import free_dofs
 from propwhirl.model.aerodynamics.dlm import dlm_aerodynamics
-from propwhirl.model.aerodynamics.dlm_rfa import DEFAULT_LAGS, coefficients, fit_ks, roger_system
+from propwhirl.model.aerodynamics.dlm_rfa import (DEFAULT_LAGS, coefficients, fit_ks,
+                                                  roger_system, tracking_ks)
 from propwhirl.model.reduction import CUTOFF_FACTOR, cutoff
 from propwhirl.model.statespace import SecondOrder, rate_label, state_matrix
 
@@ -70,6 +71,8 @@ class ModalRoger:
     #: the labels of the lag states of the model without wing aerodynamics (m₀ of them)
     dry_labels: tuple[str, ...] = ()
     lags: tuple[float, ...] = DEFAULT_LAGS
+    #: the reduced frequencies of its fits (None: :func:`~propwhirl.model.aerodynamics.dlm_rfa.tracking_ks`)
+    ks: tuple[float, ...] | None = None
 
     @property
     def n_dry_lags(self) -> int:
@@ -134,7 +137,8 @@ class ModalRoger:
         :meth:`~propwhirl.model.systems.PropellerWingAssembly.blocks`."""
         model = self.model
         V = np.atleast_1d(v.positive("airspeed V", V, "m/s"))
-        A = coefficients(model, V)                                  # (nV, 3 + L, nw, nw)
+        ks = tracking_ks() if self.ks is None else np.asarray(self.ks, float)
+        A = coefficients(model, V, ks)                              # (nV, 3 + L, nw, nw)
         with np.errstate(all="ignore"):
             dry = self.assembly.with_switches(wing_aero=False).blocks(V, omega).dense()
         labels = self.labels()

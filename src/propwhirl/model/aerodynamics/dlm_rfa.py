@@ -211,6 +211,21 @@ def fit_ks(k_max: float = K_MAX) -> np.ndarray:
     return np.array(out)
 
 
+#: the table nodes (indices of :meth:`~propwhirl.model.aerodynamics.dlm.DlmAerodynamics.k_node`) of the
+#: modal state space's fits (:func:`tracking_ks`): every third node from k = 0.018 and the
+#: top ones, 8 reduced frequencies with k = 0 instead of the full fit's 20 — the state space
+#: only finds and follows the crossings, which the p-k method then converges on Q(k) itself
+#: (:mod:`propwhirl.analysis.modal_dlm`), so it needs fewer AICs
+TRACKING_K_NODES = (0, 3, 6, 9, 12, 15, 17, 19)
+
+
+def tracking_ks() -> np.ndarray:
+    """The reduced frequencies of the modal Roger state space's fits: the table nodes
+    :data:`TRACKING_K_NODES` (0, 0.018, 0.042, 0.1, 0.24, 0.56, 1.0, 1.78), the same top k
+    as :func:`fit_ks`."""
+    return np.array([DlmAerodynamics.k_node(i) for i in TRACKING_K_NODES])
+
+
 def node_fit(aero: DlmAerodynamics, im: int, ks: np.ndarray | None = None,
              lags=DEFAULT_LAGS) -> RogerFit:
     """The Roger fit of ``aero``'s tables at Mach node ``im`` (Mach im · MACH_STEP) on the free
@@ -246,26 +261,28 @@ def mach_nodes(mach: float) -> tuple[int, float]:
     return im, x - im
 
 
-def coefficients(model, V) -> np.ndarray:
+def coefficients(model, V, ks: np.ndarray | None = None) -> np.ndarray:
     """The Roger matrices A (nV, 3 + L, n_w, n_w) of ``model``'s doublet-lattice wing at the
     airspeeds V [m/s]: at Mach V / a, linear in Mach between the fits of the two Mach nodes
     around it (:func:`node_fit`); with a fixed ``dlm_mach``, the one fit of its own column
-    (:func:`column_fit`) at every speed.  InputError when V / a is beyond the tables' Mach."""
+    (:func:`column_fit`) at every speed; fitted over the reduced frequencies ``ks`` (default
+    :func:`fit_ks`; the modal state space's :func:`tracking_ks`).  InputError when V / a is
+    beyond the tables' Mach."""
     V = np.atleast_1d(np.asarray(V, float))
     for Vi in V:
         check_mach(wing_mach(model, Vi), Vi)
     aero = dlm_aerodynamics(model.wing)
     fixed = fixed_mach(model.wing)
     if fixed is not None:
-        A = column_fit(aero, fixed).A
+        A = column_fit(aero, fixed, ks).A
         return np.broadcast_to(A, (V.size,) + A.shape).copy()
     a = model.flight.speed_of_sound
     out = None
     for i, Vi in enumerate(V):
         im, t = mach_nodes(Vi / a)
-        A = node_fit(aero, im).A
+        A = node_fit(aero, im, ks).A
         if t > 1e-9:
-            A = (1 - t) * A + t * node_fit(aero, im + 1).A
+            A = (1 - t) * A + t * node_fit(aero, im + 1, ks).A
         if out is None:
             out = np.empty((V.size,) + A.shape)
         out[i] = A
@@ -300,45 +317,35 @@ def second_order(assembly, V: np.ndarray, omega=None) -> SecondOrder:
                         DEFAULT_LAGS, labels)
 
 
-def fits_used(model, V) -> list[RogerFit]:
-    """The runtime's node fits (:func:`node_fit`) that airspeeds between min(V) and max(V)
-    [m/s] use (computed if not yet), by Mach."""
+def fits_used(model, V, ks: np.ndarray | None = None) -> list[RogerFit]:
+    """The runtime's node fits (:func:`node_fit`, over ``ks``: default :func:`fit_ks`) that
+    airspeeds between min(V) and max(V) [m/s] use (computed if not yet), by Mach."""
     aero = dlm_aerodynamics(model.wing)
     fixed = fixed_mach(model.wing)
     if fixed is not None:
-        return [column_fit(aero, fixed)]
+        return [column_fit(aero, fixed, ks)]
     a = model.flight.speed_of_sound
     V = np.atleast_1d(np.asarray(V, float))
     lo, _ = mach_nodes(V.min() / a)
     hi, t = mach_nodes(V.max() / a)
-    return [node_fit(aero, im) for im in range(lo, hi + (2 if t > 1e-9 else 1))]
+    return [node_fit(aero, im, ks) for im in range(lo, hi + (2 if t > 1e-9 else 1))]
 
-
-def _is_node(mach: float) -> bool:
-    """True when ``mach`` is a Mach node of the tables (im · MACH_STEP)."""
-    x = mach / MACH_STEP
-    return abs(x - round(x)) < 1e-9
 
 
 def rfa_note(model, V, modal=None) -> str:
     """What a Roger-state-space doublet-lattice analysis over the speeds V [m/s] used
-    (:data:`RFA_NOTE` first): panels, lag roots, fitted k, Mach, the worst fit error; with
-    ``modal`` (a :class:`~propwhirl.model.dlm_modal.ModalRoger`, the default analysis) the
-    modes it kept and that its crossings are the p-k method's."""
+    (:data:`RFA_NOTE` first): panels, lag roots, fitted k, Mach, the worst fit error of the
+    fits that analysis used (:func:`fits_used`: those of its speed range and reduced
+    frequencies, whatever else the tables hold); with ``modal`` (a
+    :class:`~propwhirl.model.dlm_modal.ModalRoger`, the default analysis: its fits over
+    :func:`tracking_ks`) the modes it kept and that its crossings are the p-k method's."""
     aero = dlm_aerodynamics(model.wing)
     m = aero.mesh
     V = np.atleast_1d(np.asarray(V, float))
     fixed = fixed_mach(model.wing)
-    if fixed is None:
-        lo, hi = (mach_nodes(x / model.flight.speed_of_sound)[0] for x in (V.min(), V.max()))
-        lo, hi = lo * MACH_STEP - 1e-9, (hi + 1) * MACH_STEP + 1e-9
-        where = "at every Mach node, linear in Mach V/a"
-    else:
-        lo = hi = snap_mach(fixed)
-        where = f"at the fixed Mach {fixed:g} (dlm_mach) for every speed"
-    fits = [f for key, f in aero.fits.items()             # the fits computed: no new AIC
-            if key[0] == "roger" and lo <= key[1] <= hi
-            and (fixed is not None or _is_node(key[1]))] or fits_used(model, V)
+    where = ("at every Mach node, linear in Mach V/a" if fixed is None else
+             f"at the fixed Mach {fixed:g} (dlm_mach) for every speed")
+    fits = fits_used(model, V, None if modal is None else tracking_ks())
     worst = max(fits, key=lambda f: f.error)
     ks = fits[0].ks
     return (f"{RFA_NOTE} panels ({m.n_chord} chordwise x {m.n_span} spanwise on the half-wing), "
