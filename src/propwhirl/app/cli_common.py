@@ -1,5 +1,6 @@
-"""What the command-line modules share: one-line output of user strings, reading a model file,
-the --speeds grid, and the check that every output file can be written before a long run.
+"""What the command-line modules share: one-line output of user strings, reading a model file
+(or a case of the library by name), the --speeds grid, and the check that every output file can
+be written before a long run.
 Used by :mod:`propwhirl.app.cli` and the study commands (:mod:`.cli_studies`, :mod:`.cli_design`)."""
 from __future__ import annotations
 
@@ -8,6 +9,7 @@ from pathlib import Path
 
 from propwhirl import fileio
 from propwhirl import limits
+from propwhirl.cases import registry
 from propwhirl.validate import InputError
 
 
@@ -34,6 +36,17 @@ def load_model(path: str, *, modal: bool = False):
                          "type must be \"propeller-wing\" or \"isolated-propeller\"")
     print_notes(notes)
     return model
+
+
+def model_or_case(text: str):
+    """MODEL of `sweep`, `map`, `boundary`, `clearance` and `sensitivity`: a TOML model file,
+    or the name of a case of the library."""
+    if text in registry.CASES and not fileio.exists(text, "model file"):
+        return registry.case_model(text)
+    if Path(text).suffix.lower() == ".toml" or fileio.exists(text, "model file"):
+        return load_model(text)
+    raise InputError(f"MODEL = {text!r} is invalid: neither a model file (.toml) nor a case "
+                     f"name (one of {', '.join(registry.CASES)})")
 
 
 def print_notes(notes: list[str]) -> None:

@@ -4,13 +4,11 @@ with --json, --csv and --plot.  Part of the command line of :mod:`propwhirl.app.
 from __future__ import annotations
 
 import argparse
-from pathlib import Path
 
 import numpy as np
 
-from propwhirl import fileio
 from propwhirl.app import execution_options
-from propwhirl.app.cli_common import check_outputs, echo, load_model, speed_grid
+from propwhirl.app.cli_common import check_outputs, echo, model_or_case, speed_grid
 from propwhirl.results import Result
 from propwhirl.cases import registry
 from propwhirl.validate import InputError
@@ -20,16 +18,6 @@ from propwhirl.validate import InputError
 MAX_PARAM_VALUES = 1000
 #: Most points of a map (each one analysis).
 MAX_MAP_POINTS = 250_000
-
-
-def _model_or_case(text: str):
-    """MODEL of `sweep`/`map`: a TOML model file, or the name of a case of the library."""
-    if text in registry.CASES and not fileio.exists(text, "model file"):
-        return registry.case_model(text)
-    if Path(text).suffix.lower() == ".toml" or fileio.exists(text, "model file"):
-        return load_model(text)
-    raise InputError(f"MODEL = {text!r} is invalid: neither a model file (.toml) nor a case "
-                     f"name (one of {', '.join(registry.CASES)})")
 
 
 def _param_axis(values: list[str]) -> tuple[str, "object"]:
@@ -164,7 +152,7 @@ def _list_parameters(model) -> int:
 def _sweep(args: argparse.Namespace) -> int:
     from propwhirl.studies import sweeps
 
-    model = _model_or_case(args.model)
+    model = model_or_case(args.model)
     if args.list_params:
         given = [f"--{o}" for o in ("param", "json", "csv", "plot") if getattr(args, o)]
         if given:
@@ -190,7 +178,7 @@ def _sweep(args: argparse.Namespace) -> int:
 def _map(args: argparse.Namespace) -> int:
     from propwhirl.studies import sweeps
 
-    model = _model_or_case(args.model)
+    model = model_or_case(args.model)
     if not args.param or len(args.param) != 2:
         raise InputError(f"map: give --param PATH START STOP N twice (got "
                          f"{len(args.param or [])})")
