@@ -107,7 +107,7 @@ class Parameter:
 def parameters(model: PropellerWing) -> tuple[Parameter, ...]:
     """Every parameter of `model` whose derivatives :func:`derivative_blocks` gives (table in
     the module docstring), in a fixed order: elements, nodes, section fields, propellers."""
-    _check_model(model)
+    check_model(model)
     wing = model.wing
     p = wing.element_properties()
     out = []
@@ -164,7 +164,9 @@ def parameters(model: PropellerWing) -> tuple[Parameter, ...]:
     return tuple(out)
 
 
-def _check_model(model) -> None:
+def check_model(model) -> None:
+    """InputError unless `model` has exact parameter derivatives: a PropellerWing, its wing
+    aerodynamics not the doublet lattice's, without in-plane bending."""
     if not isinstance(model, PropellerWing):
         raise v.InputError(f"model = {type(model).__name__} is invalid: parameter derivatives "
                            "are available for a PropellerWing")
@@ -514,7 +516,7 @@ def derivative_blocks(model: PropellerWing, V, params: Iterable[str | Parameter]
     states, :func:`pencil_derivative` of it ∂(F, E) (``.pencil(t)`` itself holds the pencil's
     constant identity blocks), ``.project(Φ, Q)`` the projected derivatives.
     V [m/s] (array); `omega` [rad/s] as in ``second_order``."""
-    _check_model(model)
+    check_model(model)
     V = np.atleast_1d(v.positive("airspeed V", V, "m/s"))
     pars = _lookup(model, params)
     ctx = _Context(model, V, omega)
@@ -526,7 +528,7 @@ def density_blocks(model: PropellerWing, V, omega=None) -> BlockSystem:
     """∂(blocks)/∂ρ [per kg/m³] of ``model.second_order_blocks(V, omega)`` with respect to
     the air density ``flight.density`` (the layout of :func:`derivative_blocks`): the strip
     and propeller aerodynamic blocks, exact from the generated ∂/∂rho."""
-    _check_model(model)
+    check_model(model)
     V = np.atleast_1d(v.positive("airspeed V", V, "m/s"))
     with np.errstate(all="ignore"):
         return _Context(model, V, omega).density()
