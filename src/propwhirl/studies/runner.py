@@ -14,7 +14,7 @@ from propwhirl.model.propellers.propeller import Propeller
 from propwhirl.model.systems import IsolatedPropeller
 from propwhirl.progress import ProgressCallback
 from propwhirl.studies import execution
-from propwhirl.studies.execution import TaskError, _init_worker  # noqa: F401 (re-exported)
+from propwhirl.studies.execution import TaskError  # noqa: F401 (re-exported)
 from propwhirl.studies.critical import convention
 from propwhirl.studies.table import RESULT_UNITS, StudyTable
 
@@ -37,7 +37,8 @@ def build_model(name: str, propeller: Propeller):
     raise v.InputError(f"model = {name!r} is invalid: must be one of {MODELS}")
 
 
-def _check_models(models: Sequence[str]) -> tuple[str, ...]:
+def check_models(models: Sequence[str]) -> tuple[str, ...]:
+    """`models` (one name or several) as a tuple of distinct names of :data:`MODELS`."""
     if isinstance(models, str):
         models = (models,)
     models = tuple(models)
@@ -51,7 +52,10 @@ def _check_models(models: Sequence[str]) -> tuple[str, ...]:
     return models
 
 
-def _speeds_for(model: str, speeds) -> np.ndarray | None:
+def speeds_for(model: str, speeds) -> np.ndarray | None:
+    """The initial speed grid [m/s] of study model `model`: `speeds` (one grid, or one per
+    model name), else the isolated propeller's :data:`ISOLATED_SPEEDS`, else None (the
+    model's own range)."""
     if isinstance(speeds, Mapping):
         s = speeds.get(model)
     else:
@@ -61,7 +65,8 @@ def _speeds_for(model: str, speeds) -> np.ndarray | None:
     return v.increasing(f"speeds ({model})", s, "m/s")
 
 
-def _grid(name: str, values, unit: str = "", check: Callable[..., np.ndarray] = v.finite) -> np.ndarray:
+def parameter_grid(name: str, values, unit: str = "",
+                   check: Callable[..., np.ndarray] = v.finite) -> np.ndarray:
     """A non-empty 1-D grid of parameter values, each checked with `check`."""
     arr = np.atleast_1d(np.asarray(v.finite(name, values, unit), dtype=float))
     if arr.ndim != 1 or arr.size == 0:
@@ -236,7 +241,7 @@ def propeller_study(name: str, parameter: str, unit: str, parameters: Mapping[st
     """
     from propwhirl.studies.sweeps import run_points
 
-    models = _check_models(models)
+    models = check_models(models)
     keys, checkpoint = study_points(name, parameter, parameters, len(propellers), models, xtol,
                                     static_divergence, low_speed, checkpoint)
     variants, grids = [], []
@@ -246,7 +251,7 @@ def propeller_study(name: str, parameter: str, unit: str, parameters: Mapping[st
                 variants.append(build_model(m, p))
             except v.InputError as exc:              # recorded in its row, the others go on
                 variants.append(exc)
-            grids.append(_speeds_for(m, speeds))
+            grids.append(speeds_for(m, speeds))
     rows = run_points(variants, speeds_each=grids, xtol=xtol, static_divergence=static_divergence,
                       low_speed=low_speed, processes=processes, client=client, progress=progress,
                       checkpoint=checkpoint, keys=keys, desc=name)
