@@ -410,8 +410,7 @@ def _minimum_frequencies(model: Any, searches: list[tuple[int, str]], V_required
     """The searches (propeller index from 0, "f_theta"/"f_psi"), their analyses run in three
     batches (:data:`PHASES`) by :func:`propwhirl.studies.execution.map_analyses`."""
     from propwhirl.studies import execution
-    from propwhirl.studies.runner import STUDY_ROW
-    from propwhirl.studies.sweeps import evaluate
+    from propwhirl.studies.sweeps import STUDY_ROW, evaluate
 
     pars = [_frequency_path(model, n, name) for n, name in searches]
     lo, hi = 0.0, 0.0

@@ -382,6 +382,13 @@ class Checkpoint:
                                f"{fileio.reason(exc)}") from None
 
 
+def check_checkpoint(checkpoint: Any) -> None:
+    """InputError unless `checkpoint` is a :class:`Checkpoint`."""
+    if not isinstance(checkpoint, Checkpoint):
+        raise v.InputError(f"checkpoint = {v.short_repr(checkpoint)} is invalid: must be a "
+                           "propwhirl.studies.execution.Checkpoint")
+
+
 def _parse(text: str, name: str) -> Any:
     """The JSON of a partial-results file, checked to be plain data of bounded depth."""
     try:
