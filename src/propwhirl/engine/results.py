@@ -15,6 +15,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from propwhirl import fileio
+from propwhirl.limits import check_read, format_bytes
 from propwhirl.results import Result, SavedDict, json_type, shape_text
 from propwhirl.validate import InputError
 
@@ -517,8 +518,6 @@ def read_npz(path: str | Path, expected: Mapping[str, tuple[tuple[int, ...], Any
     """
     import zipfile
     import zlib
-
-    from propwhirl.limits import check_read, format_bytes
 
     path = Path(path)
     where = str(path) if where is None else where

@@ -70,7 +70,7 @@ from typing import Iterable
 
 import numpy as np
 
-from propwhirl.generated import beam_element, prop_flexwing
+from propwhirl.generated import beam_element, prop_flexwing, strip_aero
 from propwhirl.model.structure.assembly import LAG_STATES, STRIP_AERO, element_dofs, free_dofs
 from propwhirl.model.blocks import BlockSystem, LagBlocks, LocalBlocks
 from propwhirl.model.propellers import derivatives_blade as _blade
@@ -267,8 +267,6 @@ class _Context:
         group, roles = STRIP_AERO[wing.aero_model]
         group += "_d"
         if self.strip is None:
-            from propwhirl.generated import strip_aero
-
             node = wing.node_properties()
             values = dict(rho=self.model.flight.density, V=self.V[:, None], b=node["b"],
                           a=node["a"], Cla=node["Cla"], ac=node["ac"])

@@ -46,14 +46,18 @@ from propwhirl import validate as v
 from propwhirl.analysis.margin import DAMPING_MODES  # noqa: F401 (re-exported)
 from propwhirl.analysis.margin import least_damping as _least
 from propwhirl.analysis.margin import oscillatory_damping as _damping
+from propwhirl.analysis.naming import real_root_at_the_event
+from propwhirl.analysis.stability import analyse
 from propwhirl.model import atmosphere
 from propwhirl.model.flight import FlightCondition
+from propwhirl.model.propellers.propeller import PointMass
 from propwhirl.progress import ProgressCallback
 from propwhirl.studies import execution
 from propwhirl.studies import paths as P
-from propwhirl.studies.critical import convention
+from propwhirl.studies.critical import convention, critical_instability, wing_divergence_predicate
 from propwhirl.studies.campaign_result import (  # noqa: F401 (re-exported)
     CampaignResult, CaseSummary, PointPlot, PointRow)
+from propwhirl.studies.clearance import clearance_speeds
 
 #: The regulations' speed factors and their sources: name → (factor, source).
 REGULATIONS: dict[str, tuple[float, str]] = {
@@ -259,8 +263,6 @@ class Case:
         return model
 
     def _propeller(self, prop: Any, i: int) -> Any:
-        from propwhirl.model.propellers.propeller import PointMass
-
         changes: dict[str, Any] = {}
         if self.operation == "windmilling" and prop.operation != "fixed-pitch":
             changes.update(operation="fixed-pitch", rpm=None)
@@ -607,8 +609,6 @@ class _Task:
 def tasks(c: Campaign) -> tuple[list[_Task], list[str]]:
     """Every (case, point) task, case-major, and its key ("case @ altitude"); every model
     built and every speed grid checked here, before any analysis."""
-    from propwhirl.studies.clearance import clearance_speeds
-
     out, keys = [], []
     for case in c.cases:
         model = case.apply(c.model)
@@ -701,10 +701,6 @@ def plot_data(a: Any, modes: Sequence[int], e: Any) -> dict[str, Any]:
 
 def evaluate_point(task: _Task) -> dict[str, Any]:
     """Analyse one (case, point) and return its result row (plain JSON: module docstring)."""
-    from propwhirl.analysis.naming import real_root_at_the_event
-    from propwhirl.analysis.stability import analyse
-    from propwhirl.studies.critical import critical_instability, wing_divergence_predicate
-
     a = analyse(task.model, task.speeds, xtol=task.xtol)
     is_wing = wing_divergence_predicate(task.model, a)
     e = critical_instability(a, static_divergence=task.static_divergence,

@@ -29,14 +29,16 @@ import numpy as np
 
 from propwhirl import fileio, limits
 from propwhirl import validate as v
-from propwhirl.analysis.reduced import choose_method
+from propwhirl.analysis.reduced import METHODS, choose_method
 from propwhirl.analysis.stability import ModelAnalysis, analyse
 from propwhirl.analysis.summary import text_table
 from propwhirl.results import Result, SavedDict
 from propwhirl.studies import paths as P
 from propwhirl.studies.critical import (convention, critical_instability, static_divergence_speed,
                                         wing_divergence_predicate)
+from propwhirl.studies.execution import TaskError, map_analyses
 from propwhirl.studies.partial import Checkpoint, PointFormat, check_checkpoint, content_digest
+from propwhirl.studies.warmstart import warm_started_rows
 
 #: Default accuracy of every critical speed of a study [m/s]
 STUDY_XTOL = 0.01
@@ -199,9 +201,6 @@ def run_points(models: Sequence[Any], speeds: Any = None, *, speeds_each: Sequen
     (:func:`propwhirl.analysis.stability.analyse`).  This is the one place where a study's
     analyses go to the pool.
     """
-    from propwhirl.analysis.reduced import METHODS
-    from propwhirl.studies.execution import TaskError, map_analyses
-
     v.positive("xtol", xtol, "m/s")
     if method not in METHODS:
         raise v.InputError(f"method = {method!r} is invalid: must be one of "
@@ -550,8 +549,6 @@ def critical_map(model: Any, axes: Sequence[tuple[str, Any]], *, speeds=None,
                            f"{variants[0]}")
     shape = tuple(len(ax.values) for _, ax in resolved)
     if checkpoint is not None and hasattr(checkpoint, "with_entries"):
-        from propwhirl.studies.partial import content_digest
-
         checkpoint = checkpoint.with_entries(study="critical map", model=content_digest(model),
                                              axes=[ax.to_dict() for _, ax in resolved])
     options = dict(xtol=xtol, static_divergence=static_divergence, low_speed=low_speed,
@@ -559,8 +556,6 @@ def critical_map(model: Any, axes: Sequence[tuple[str, Any]], *, speeds=None,
     if not isinstance(warm_start, (bool, np.bool_)):
         raise v.InputError(f"warm_start = {warm_start!r} is invalid: must be True or False")
     if warm_start and low_speed and len(variants) > 1:
-        from propwhirl.studies.warmstart import warm_started_rows
-
         grid = None if speeds is None else v.increasing("speeds", speeds, "m/s")
         grids = [None if isinstance(m, Exception) else grid if grid is not None
                  else m.flight.speeds() for m in variants]
