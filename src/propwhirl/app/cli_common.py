@@ -9,7 +9,11 @@ from pathlib import Path
 
 from propwhirl import fileio
 from propwhirl import limits
+from propwhirl import validate as v
+from propwhirl.app.execution_options import partial_path
 from propwhirl.cases import registry
+from propwhirl.studies.partial import Checkpoint
+from propwhirl.studies.warmstart import pass_checkpoints
 from propwhirl.validate import InputError
 
 
@@ -23,9 +27,9 @@ def load_model(path: str, *, modal: bool = False):
     """The model of a TOML model file (:func:`propwhirl.io.load_model`), refused with one line
     when the file holds something that is not a model to analyse; with ``modal``, a modal
     model's file too (:func:`propwhirl.io.load_modal_model`: the commands that take them)."""
-    from propwhirl import io
-    from propwhirl.io.modal_files import is_modal_file
-    from propwhirl.model.protocol import Model
+    from propwhirl import io  # lazy: model files
+    from propwhirl.io.modal_files import is_modal_file  # lazy: model files
+    from propwhirl.model.protocol import Model  # lazy: models
 
     if modal and is_modal_file(path):
         return io.load_modal_model(path)
@@ -58,8 +62,6 @@ def print_notes(notes: list[str]) -> None:
 def speed_grid(start: float, stop: float, step: float):
     """Airspeeds START, START+STEP, ... and STOP [m/s] (STOP always included)."""
     import numpy as np
-
-    from propwhirl import validate as v
 
     v.positive("--speeds START", start, "m/s")
     v.positive("--speeds STOP", stop, "m/s")
@@ -109,7 +111,7 @@ def model_inputs(model: str, label: str = "MODEL") -> list[tuple[str, str | Path
     """The files a model argument reads, each with what it is, for
     :func:`propwhirl.fileio.check_apart`: the model file (when `model` is a file, not a case
     name) and, when it is a modal model file, the modes file its ``[modes] file`` names."""
-    from propwhirl.io.modal_files import modes_path
+    from propwhirl.io.modal_files import modes_path  # lazy: model files
 
     if not fileio.exists(model, "model file") or not Path(model).is_file():
         return []
@@ -129,10 +131,6 @@ def _partial_files(output: str, warm_start: bool) -> list[Path]:
     """The partial-results files a study keeps beside `output` while it runs: ``OUT.partial``
     (:func:`propwhirl.app.execution_options.partial_path`) and, warm-started, one per pass
     (:func:`propwhirl.studies.warmstart.pass_checkpoints`: the one place that names them)."""
-    from propwhirl.app.execution_options import partial_path
-    from propwhirl.studies.partial import Checkpoint
-    from propwhirl.studies.warmstart import pass_checkpoints
-
     partial = partial_path(output)
     passes = [Path(c.path) for c in pass_checkpoints(Checkpoint(partial))] if warm_start else []
     return [partial, *passes]

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import argparse
 
+from propwhirl.app import execution_options
 from propwhirl.app.cli_common import check_outputs, echo, model_or_case
 from propwhirl.validate import InputError
 
@@ -24,8 +25,8 @@ MAX_GRID = 60
 
 
 def _boundary(args: argparse.Namespace) -> int:
-    from propwhirl.studies import boundary as B
-    from propwhirl.studies import paths as P
+    from propwhirl.studies import boundary as B  # lazy: studies
+    from propwhirl.studies import paths as P  # lazy: studies
 
     check_outputs(json=args.json, csv=args.csv, plot=args.plot, model=args.model)
     if args.grid != 0 and not 2 <= args.grid <= MAX_GRID:       # before the tracing
@@ -37,7 +38,6 @@ def _boundary(args: argparse.Namespace) -> int:
     if args.oscillatory and args.contour:
         raise InputError("--oscillatory is for the neutral-stability curve, it has no effect "
                          "with --contour: leave one out")
-    from propwhirl.app import execution_options
 
     run = execution_options.run_options(args)      # checked before the tracing
     model = model_or_case(args.model)
@@ -64,7 +64,7 @@ def _boundary(args: argparse.Namespace) -> int:
         b.to_csv(args.csv)
         print(f"wrote {args.csv}")
     if args.plot:
-        from propwhirl.app import plots
+        from propwhirl.app import plots  # lazy: figures
 
         grid = None
         if args.grid:
@@ -105,7 +105,6 @@ def _add_boundary(sub) -> None:
     p.add_argument("--json", metavar="OUT", help="write the boundary as JSON")
     p.add_argument("--csv", metavar="OUT", help="write the boundary's points as CSV")
     p.add_argument("--plot", metavar="PNG", help="plot the boundary over the grid map")
-    from propwhirl.app import execution_options
 
     # the start search's samples and the grid map are batches of independent evaluations
     execution_options.add(p, resume=False)
@@ -113,8 +112,7 @@ def _add_boundary(sub) -> None:
 
 
 def _clearance(args: argparse.Namespace) -> int:
-    from propwhirl.app import execution_options
-    from propwhirl.studies.clearance import clearance, phase_checkpoints
+    from propwhirl.studies.clearance import clearance, phase_checkpoints  # lazy: studies
 
     check_outputs(json=args.json, csv=args.csv, plot=args.plot, model=args.model)
     options = execution_options.run_options(args)
@@ -132,7 +130,7 @@ def _clearance(args: argparse.Namespace) -> int:
         r.to_csv(args.csv)
         print(f"wrote {args.csv}")
     if args.plot:
-        from propwhirl.app import plots
+        from propwhirl.app import plots  # lazy: figures
 
         plots.clearance_plot(r, path=args.plot)
         print(f"wrote {args.plot}")
@@ -143,8 +141,6 @@ def _clearance(args: argparse.Namespace) -> int:
 
 
 def _add_clearance(sub) -> None:
-    from propwhirl.app import execution_options
-
     p = sub.add_parser("clearance", help="clearance to factor x V_D (exit code 0 cleared, 1 not)")
     p.add_argument("model", metavar="MODEL", help="model file (TOML) or case name")
     p.add_argument("--vd", type=float, required=True, metavar="V", help="design dive speed V_D [m/s]")
@@ -167,10 +163,9 @@ def _add_clearance(sub) -> None:
 
 
 def _sensitivity(args: argparse.Namespace) -> int:
-    from propwhirl.analysis.sensitivity import critical_sensitivities, sensitivity_parameters
-    from propwhirl.analysis.stability import analyse
-
-    from propwhirl.app import execution_options
+    from propwhirl.analysis.sensitivity import (critical_sensitivities,  # lazy: analyses
+                                                sensitivity_parameters)
+    from propwhirl.analysis.stability import analyse  # lazy: analyses
 
     check_outputs(json=args.json, plot=args.plot, model=args.model)
     if args.top < 1:
@@ -213,7 +208,7 @@ def _sensitivity(args: argparse.Namespace) -> int:
     echo(cs.format(args.top))
     check = None
     if args.verify:
-        from propwhirl.studies.sensitivity_check import verify_sensitivities
+        from propwhirl.studies.sensitivity_check import verify_sensitivities  # lazy: studies
 
         check = verify_sensitivities(model, a, cs, top=args.top, **run)
         echo("")
@@ -225,7 +220,7 @@ def _sensitivity(args: argparse.Namespace) -> int:
             cs.save(args.json, args.top)
         print(f"wrote {args.json}")
     if args.plot:
-        from propwhirl.app import plots
+        from propwhirl.app import plots  # lazy: figures
 
         plots.spanwise_sensitivity(cs, model, path=args.plot)
         print(f"wrote {args.plot}")
@@ -233,8 +228,8 @@ def _sensitivity(args: argparse.Namespace) -> int:
 
 
 def _add_sensitivity(sub) -> None:
-    from propwhirl.app import execution_options
-    from propwhirl.studies.sensitivity_check import NORMALISED_ATOL, REL_STEP, RTOL
+    from propwhirl.studies.sensitivity_check import (  # lazy: studies, at parser build
+        NORMALISED_ATOL, REL_STEP, RTOL)
 
     p = sub.add_parser("sensitivity", help="sensitivities of the critical speed to the model's "
                        "parameters (exact derivatives, ranked; --verify: checked by central "

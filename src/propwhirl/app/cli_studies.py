@@ -7,6 +7,7 @@ import argparse
 
 import numpy as np
 
+from propwhirl import validate as v
 from propwhirl.app import execution_options
 from propwhirl.app.cli_common import check_outputs, echo, model_or_case, speed_grid
 from propwhirl.results import Result
@@ -23,8 +24,6 @@ MAX_MAP_POINTS = 250_000
 def _param_axis(values: list[str]) -> tuple[str, "object"]:
     """--param PATH START STOP N: the path and N values from START to STOP."""
     import numpy as np
-
-    from propwhirl import validate as v
 
     path, start, stop, n = values
     try:
@@ -133,7 +132,7 @@ PATH_SYNTAX = (
 
 
 def _list_parameters(model) -> int:
-    from propwhirl.studies import paths
+    from propwhirl.studies import paths  # lazy: studies
 
     echo(f"{model.name}: parameter paths (PATH* scales a distribution by a factor)")
     for p in paths.parameters(model):
@@ -150,7 +149,7 @@ def _list_parameters(model) -> int:
 
 
 def _sweep(args: argparse.Namespace) -> int:
-    from propwhirl.studies import sweeps
+    from propwhirl.studies import sweeps  # lazy: studies
 
     model = model_or_case(args.model)
     if args.list_params:
@@ -167,7 +166,7 @@ def _sweep(args: argparse.Namespace) -> int:
     result = sweeps.sweep(model, path, values, **opts)
 
     def plot(r, path):
-        from propwhirl.app import plots
+        from propwhirl.app import plots  # lazy: figures
 
         plots.critical_sweep(r, path=path)
 
@@ -176,7 +175,7 @@ def _sweep(args: argparse.Namespace) -> int:
 
 
 def _map(args: argparse.Namespace) -> int:
-    from propwhirl.studies import sweeps
+    from propwhirl.studies import sweeps  # lazy: studies
 
     model = model_or_case(args.model)
     if not args.param or len(args.param) != 2:
@@ -195,7 +194,7 @@ def _map(args: argparse.Namespace) -> int:
     result = sweeps.map2d(model, first, second, **opts)
 
     def plot(r, path):
-        from propwhirl.app import plots
+        from propwhirl.app import plots  # lazy: figures
 
         plots.critical_map(r, path=path)       # both axes have 2 values or more (checked)
 

@@ -30,8 +30,10 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+import propwhirl
 from propwhirl import fileio
 from propwhirl import validate as v
+from propwhirl.app import browser
 
 #: The report's file names in the output folder.
 HTML_NAME = "report.html"
@@ -88,7 +90,7 @@ def _img(png: bytes, alt: str) -> str:
 
 
 def _figure(fig: Any) -> bytes:
-    from propwhirl.app.plots.campaign_plot import png_bytes
+    from propwhirl.app.plots.campaign_plot import png_bytes  # lazy: figures
 
     try:
         return png_bytes(fig, FIGURE_DPI)
@@ -213,8 +215,6 @@ def report_html(result: Any, *, campaign_file: str | Path | None = None,
     summary and mesh; without it the section says so); date: the report's date (default
     today, UTC); figures: False leaves the figures out (the page says so; without matplotlib,
     the ``plots`` extra, they are left out too)."""
-    import propwhirl
-
     if figures:
         try:
             import matplotlib  # noqa: F401
@@ -223,7 +223,7 @@ def report_html(result: Any, *, campaign_file: str | Path | None = None,
     no_figures = ('<p class="note">Figures left out: install the plots extra (pip install '
                   'propwhirl[plots]) and write the report again.</p>')
     if figures:
-        from propwhirl.app.plots import campaign_plot as cp
+        from propwhirl.app.plots import campaign_plot as cp  # lazy: figures
     date = date or datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     verdict = "CLEARED" if result.cleared else "NOT CLEARED"
     vcls = "pass" if result.cleared else "fail"
@@ -333,8 +333,6 @@ def write_report(result: Any, folder: str | Path, *, campaign_file: str | Path |
     report file may be the campaign file or the model file (InputError,
     :func:`propwhirl.fileio.check_apart`: resolved, symbolic links followed), nor a device, a
     FIFO or a socket (:func:`propwhirl.fileio.check_output`)."""
-    from propwhirl.app import browser
-
     folder = Path(folder)
     outputs = [("report", folder / HTML_NAME), ("PDF report", folder / PDF_NAME)]
     for what, path in outputs:
