@@ -46,7 +46,7 @@ from propwhirl.analysis.reduced import (_reduced_slopes, frequency_zero_on_full_
 from propwhirl.analysis.stability import _frequency_zero_events  # noqa: E402
 from propwhirl.engine import analyse as engine_analyse  # noqa: E402
 from propwhirl.engine.correction import correct_crossing  # noqa: E402
-from propwhirl.engine.nodes import _evaluate_nodes  # noqa: E402
+from propwhirl.engine.nodes import evaluate_nodes  # noqa: E402
 from propwhirl.engine.options import TrackingOptions  # noqa: E402
 from propwhirl.engine.tracker import ANALYSE_INITIAL_STEP, _initial_subset  # noqa: E402
 from propwhirl.engine.crossings import XTOL  # noqa: E402
@@ -101,7 +101,7 @@ def main(argv=None) -> int:
             return reduce(model, grid)
 
         def nodes(Rm):
-            _evaluate_nodes(Rm.state_matrix, first, Rm.n_states, None, opts, {})
+            evaluate_nodes(Rm.state_matrix, first, Rm.n_states, None, opts, {})
 
         def corrections(Rm):
             for V, lam, x, s in crossings:

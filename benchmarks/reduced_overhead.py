@@ -46,11 +46,11 @@ PARTS = [  # (module, function, part): the part of each wrapped function's exclu
     ("propwhirl.model.reduction", "ReducedModel.pencil", "full-order pencil (corrections)"),
     ("propwhirl.engine.tracker", "_sweep", "engine: tracking core, ordering"),
     ("propwhirl.engine.tracker", "_assemble", "engine: tracking core, ordering"),
-    ("propwhirl.engine.nodes", "_evaluate_nodes", "engine: nodes (eig, dλ/dV)"),
-    ("propwhirl.engine.tracker", "_link", "engine: linking"),
+    ("propwhirl.engine.nodes", "evaluate_nodes", "engine: nodes (eig, dλ/dV)"),
+    ("propwhirl.engine.tracker", "link_nodes", "engine: linking"),
     ("propwhirl.engine.linking", "_cluster_continuations", "engine: cluster continuations"),
-    ("propwhirl.engine.tracker", "_branch_point_speeds", "engine: branch-point bracketing"),
-    ("propwhirl.engine.tracker", "_critical_points", "engine: crossings"),
+    ("propwhirl.engine.tracker", "branch_point_speeds", "engine: branch-point bracketing"),
+    ("propwhirl.engine.tracker", "refine_crossings", "engine: crossings"),
     ("propwhirl.analysis.reduced", "correct_crossing", "full-order corrections"),
     ("propwhirl.analysis.stability", "named_modes", "naming (in-vacuo modes, Ω-follow, MAC)"),
     ("propwhirl.analysis.stability", "mode_content", "content (kinetic-energy shares)"),
@@ -117,7 +117,7 @@ for _ in range(REPEATS):
 print(json.dumps({
     "eig": eig, "cpu": t, "states": int(A.shape[0]),
     "nodes": a.sweep.stats["nodes"], "eig_calls": a.sweep.stats["eig"],
-    "links": counts.get("_link", 0) // REPEATS, "cluster_trials": trials[0] // REPEATS,
+    "links": counts.get("link_nodes", 0) // REPEATS, "cluster_trials": trials[0] // REPEATS,
     "parts": {p: s / REPEATS for p, s in acc.items()},
     "events": [[e.kind, e.event, e.label, float(e.V)] for e in a.events]}))
 '''

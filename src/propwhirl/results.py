@@ -48,7 +48,8 @@ OLD_FORMAT_KINDS = {"propwhirl-analysis": "analysis", "propwhirl partial results
                     "propwhirl-model": "model"}
 
 
-def _shape_text(shape: tuple[int, ...]) -> str:
+def shape_text(shape: tuple[int, ...]) -> str:
+    """An array shape as error messages print it: ``(35, 12)``."""
     return str(tuple(int(s) for s in shape))
 
 
@@ -67,7 +68,7 @@ class SavedDict:
     def __init__(self, d: Any, where: str, required: Sequence[str], optional: Sequence[str] = ()):
         self.where = where
         if not isinstance(d, Mapping):
-            raise InputError(f"{_at(where)}must be an object, got {_json_type(d)}")
+            raise InputError(f"{_at(where)}must be an object, got {json_type(d)}")
         missing = [k for k in required if k not in d]
         if missing:
             raise InputError(f"{_at(where)}missing key{'s' * (len(missing) > 1)} "
@@ -99,7 +100,7 @@ class SavedDict:
         entries that are not None must match."""
         raw = self.d[key]
         if not isinstance(raw, list):
-            raise self._fail(key, f"must be a list, got {_json_type(raw)}")
+            raise self._fail(key, f"must be a list, got {json_type(raw)}")
         try:
             arr = np.asarray(raw)
         except (ValueError, TypeError, RecursionError):
@@ -109,7 +110,7 @@ class SavedDict:
             rest = tuple(shape[1:]) if shape is not None else (None,) * (ndim - 1)
             arr = arr.reshape((0,) + tuple(0 if m is None else m for m in rest))
         if arr.ndim != ndim:
-            raise self._fail(key, f"must be {ndim}-dimensional, got shape {_shape_text(arr.shape)}")
+            raise self._fail(key, f"must be {ndim}-dimensional, got shape {shape_text(arr.shape)}")
         if arr.size and arr.dtype.kind not in self._KINDS[kind]:
             raise self._fail(key, f"must hold {self._TYPE_NAMES[kind]} only")
         arr = arr.astype(kind)
@@ -118,7 +119,7 @@ class SavedDict:
         if shape is not None:
             for axis, (got, want) in enumerate(zip(arr.shape, shape)):
                 if want is not None and got != want:
-                    raise self._fail(key, f"shape {_shape_text(arr.shape)}: axis {axis} must "
+                    raise self._fail(key, f"shape {shape_text(arr.shape)}: axis {axis} must "
                                      f"have {want} entries")
         return arr
 
@@ -179,7 +180,7 @@ class SavedDict:
         """The entries of the list `key` with their dotted paths (``key[i]``)."""
         x = self.d[key]
         if not isinstance(x, list):
-            raise self._fail(key, f"must be a list, got {_json_type(x)}")
+            raise self._fail(key, f"must be a list, got {json_type(x)}")
         return [(f"{self.name(key)}[{i}]", y) for i, y in enumerate(x)]
 
     def strings(self, key: str, n: int | None = None) -> tuple[str, ...]:
@@ -212,14 +213,15 @@ def _at(where: str) -> str:
     return f"{where}: " if where else ""
 
 
-def _json_type(x: Any) -> str:
+def json_type(x: Any) -> str:
+    """What a JSON value is, as error messages name it ("an object", "a list", "null", ...)."""
     return {dict: "an object", list: "a list", str: "a string", bool: "a boolean",
             int: "a number", float: "a number", type(None): "null"}.get(type(x), type(x).__name__)
 
 
 def _json_value(x: Any) -> str:
     if isinstance(x, (dict, list)):
-        return _json_type(x)
+        return json_type(x)
     text = repr(x)
     return text if len(text) <= 40 else text[:37] + "..."
 
@@ -343,7 +345,7 @@ class Result:
         at = _at(where)
         want = f"{_article(cls.WHAT)} {cls.WHAT} (format {cls.format_name()!r})"
         if not isinstance(d, Mapping):
-            raise InputError(f"{at}not {want}: must be an object, got {_json_type(d)}")
+            raise InputError(f"{at}not {want}: must be an object, got {json_type(d)}")
         if "format" not in d:
             if cls.UNTAGGED is None:
                 raise InputError(f"{at}not {want}: it has no \"format\" key")

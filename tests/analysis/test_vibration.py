@@ -1,5 +1,5 @@
-"""The tracking over Ω (propwhirl.analysis.modes._track: the engine's tracking core with the
-gyroscopic nodes; importable from propwhirl.analysis.vibration) on systems with known curves.
+"""The tracking over Ω (propwhirl.analysis.modes.track_gyroscopic: the engine's tracking core
+with the gyroscopic nodes) on systems with known curves.
 
 A rotor with equal pitch and yaw stiffness (θ, ψ; unit inertias, gyroscopic coupling g Ω)
 whirls at ω± = √(ω₀² + (gΩ/2)²) ± gΩ/2: a repeated frequency at Ω = 0 that splits at first
@@ -16,12 +16,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from propwhirl.analysis.vibration import _GyroscopicSystem, _track
+from propwhirl.analysis.modes import GyroscopicSystem, track_gyroscopic
 
 W0, WX, G = 2 * np.pi * 5.0, 2 * np.pi * 4.0, 1.0      # [rad/s], [rad/s], [-]
 
 
-def rotor_and_oscillator(coupling: float) -> _GyroscopicSystem:
+def rotor_and_oscillator(coupling: float) -> GyroscopicSystem:
     K = np.diag([W0**2, W0**2, WX**2])
     K[0, 2] = K[2, 0] = coupling
     dG = np.zeros((3, 3))
@@ -33,7 +33,7 @@ def rotor_and_oscillator(coupling: float) -> _GyroscopicSystem:
         return (np.broadcast_to(np.eye(3), (T, 3, 3)), omega[:, None, None] * dG,
                 np.broadcast_to(K, (T, 3, 3)))
 
-    return _GyroscopicSystem(matrices, dG)
+    return GyroscopicSystem(matrices, dG)
 
 
 def exact(Omega):
@@ -43,7 +43,7 @@ def exact(Omega):
 
 def test_uncoupled_modes_cross_and_keep_their_identity():
     Omega = np.linspace(0.0, 30.0, 7)          # backward whirl meets 4 Hz at Ω ≈ 14.1 rad/s
-    tr = _track(rotor_and_oscillator(0.0), Omega)
+    tr = track_gyroscopic(rotor_and_oscillator(0.0), Omega)
     back, fwd = exact(Omega)
     assert not tr.unresolved and tr.resolved.all()
     np.testing.assert_allclose(tr.omega[:, 0], WX, rtol=1e-12)     # the oscillator, flat
@@ -58,11 +58,11 @@ def test_uncoupled_modes_cross_and_keep_their_identity():
 
 def test_coupled_modes_veer_on_their_analytic_branches():
     Omega = np.linspace(0.0, 30.0, 7)
-    tr = _track(rotor_and_oscillator(0.05 * WX**2), Omega)
+    tr = track_gyroscopic(rotor_and_oscillator(0.05 * WX**2), Omega)
     assert not tr.unresolved and tr.resolved.all()
     order = np.argsort(tr.omega, axis=1)
     assert np.all(order == order[0])                              # no crossing
-    fine = _track(rotor_and_oscillator(0.05 * WX**2), np.linspace(0.0, 30.0, 301))
+    fine = track_gyroscopic(rotor_and_oscillator(0.05 * WX**2), np.linspace(0.0, 30.0, 301))
     assert np.min(fine.omega[:, 1] - fine.omega[:, 0]) > 0.5       # a gap [rad/s]
     # the frequencies are the eigenvalues of the system at every speed
     for t, Om in enumerate(Omega):

@@ -9,8 +9,9 @@ import pytest
 from matplotlib.colors import to_rgba
 from PIL import Image
 
+from propwhirl.analysis.modes import GyroscopicSystem
 from propwhirl.analysis.stability import analyse
-from propwhirl.analysis.vibration import _GyroscopicSystem, campbell
+from propwhirl.analysis.vibration import campbell
 from propwhirl.app import cli, plots
 from propwhirl.app.plots import campbell_plot, vgf_plot
 from propwhirl.cases.ch09_baseline import (baseline_flight, baseline_propeller, baseline_wing,
@@ -187,8 +188,8 @@ def test_campbell_per_propeller_rpm(model):
     assert "2P of propeller 2 (at 0.5 n)" in labels
     assert "propeller 1" in fig.axes[0].get_xlabel()
     Om = np.array([0.0, 37.0, 420.0])
-    a = _GyroscopicSystem.of(model).matrices(Om)
-    b = _GyroscopicSystem._per_propeller(model, (1.0, 1.0)).matrices(Om)
+    a = GyroscopicSystem.of(model).matrices(Om)
+    b = GyroscopicSystem._per_propeller(model, (1.0, 1.0)).matrices(Om)
     for x, y in zip(a, b):
         np.testing.assert_allclose(x, y, rtol=1e-12, atol=1e-12 * np.abs(x).max())
     with pytest.raises(InputError, match="rpm_ratio"):

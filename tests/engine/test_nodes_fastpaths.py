@@ -6,20 +6,20 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from propwhirl.engine.eigensolve import _call_state_matrix, _conj_index, _eig_derivative
-from propwhirl.engine.nodes import _evaluate_nodes
+from propwhirl.engine.eigensolve import call_state_matrix, conj_index, eig_derivative
+from propwhirl.engine.nodes import evaluate_nodes
 from propwhirl.engine.options import TrackingOptions
 
 
 def former_nodes(fn, V, opts):
     V = np.asarray(V, dtype=float)
     h = opts.fd_rel * np.maximum(V, 1.0)
-    A_all = _call_state_matrix(fn, np.concatenate([V, V + h]), None, None)
+    A_all = call_state_matrix(fn, np.concatenate([V, V + h]), None, None)
     A, Ah = A_all[: V.size], A_all[V.size:]
     w, X = np.linalg.eig(A)
     w, X = w.astype(complex), X.astype(complex)
-    conj = _conj_index(w)
-    dlam = _eig_derivative(w, X, conj, (Ah - A) / h[:, None, None])
+    conj = conj_index(w)
+    dlam = eig_derivative(w, X, conj, (Ah - A) / h[:, None, None])
     floor = np.maximum(1e-3 * np.median(np.abs(w), axis=1), 1e-12)
     return w, X, dlam, conj, floor
 
@@ -38,7 +38,7 @@ def test_nodes_as_with_copies(seed, n, T, symmetric):
 
     V = np.sort(rng.random(T)) * 100
     opts = TrackingOptions()
-    nodes = _evaluate_nodes(fn, V, None, None, opts, {})
+    nodes = evaluate_nodes(fn, V, None, None, opts, {})
     w, X, dlam, conj, floor = former_nodes(fn, V, opts)
     for t, nd in enumerate(nodes):
         for got, ref in ((nd.lam, w[t]), (nd.X, X[t]), (nd.dlam, dlam[t]), (nd.conj, conj[t])):

@@ -19,7 +19,7 @@ from hypothesis import strategies as st
 from fuzz.conftest import FUZZ, held_to_the_rule
 from propwhirl.studies import execution as X
 from propwhirl.studies.execution import Checkpoint, TaskError
-from propwhirl.studies.runner import STUDY_ROW
+from propwhirl.studies.sweeps import STUDY_ROW
 
 KEYS = [f"propeller.f_psi={x!r}" for x in (4.0, 6.0, 8.0, 10.0)]
 ROWS = {

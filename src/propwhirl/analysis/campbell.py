@@ -18,8 +18,8 @@ import numpy as np
 
 from propwhirl import limits
 from propwhirl import validate as v
-from propwhirl.analysis.modes import (_flexible_propellers, _GyroscopicSystem,  # noqa: F401
-                                     _skew_part, _track, label_modes, model_modes)
+from propwhirl.analysis.modes import (GyroscopicSystem, label_modes, model_modes,  # noqa: F401
+                                     track_gyroscopic)
 from propwhirl.analysis.naming import kinetic_energy_shares
 from propwhirl.results import Result, SavedDict
 
@@ -263,8 +263,8 @@ def campbell(model, rpm=None, *, rpm_ratio=None, max_frequency_hz: float | None 
     v.in_range("mac_min", mac_min, 0.0, 1.0)
     v.positive("min_step", min_step, "rev/min")
     per_rpm = 2.0 * np.pi / 60.0                      # [rad/s per rev/min]
-    tr = _track(_GyroscopicSystem.of(model, ratio), r * per_rpm, mac_min=mac_min,
-                min_step=min_step * per_rpm)
+    tr = track_gyroscopic(GyroscopicSystem.of(model, ratio), r * per_rpm, mac_min=mac_min,
+                          min_step=min_step * per_rpm)
     names = tuple(lab for lab, _ in label_modes(model))
     families = mode_families(model, names)
     keep = np.arange(tr.omega0.size)

@@ -6,7 +6,7 @@
 :func:`label_modes`
     The thesis's names of those modes ("wing n", "backward k", "forward k"), from how each
     frequency moves as the rotors spin up: every mode followed from Ω = 0 to a small spin rate.
-:func:`_track`
+:func:`track_gyroscopic`
     Every mode of the undamped gyroscopic system followed along the rotational speed Ω: the
     tracking over Ω of the Campbell diagram (:func:`propwhirl.analysis.campbell.campbell`) and
     of :func:`label_modes`.  It is the engine's tracking core
@@ -90,7 +90,7 @@ class InVacuo:
                 rotational speed (the rotors' speed enters the gyroscopic damping only);
     q_labels:   the labels of those DOFs;
     gyroscopic: for a wing whose rotors turn, (G(0), ∂G/∂Ω): the skew part of its damping at
-                Ω = 0 and its slope [kg m²] (:class:`_GyroscopicSystem`), from the same
+                Ω = 0 and its slope [kg m²] (:class:`GyroscopicSystem`), from the same
                 evaluation (at Ω = 0 and 1 rad/s); None otherwise.
     """
 
@@ -153,12 +153,12 @@ def label_modes(model, basis: np.ndarray | None = None, modes: Modes | None = No
     Tables 9.8, 10.3, 10.7); its names follow the Campbell diagrams (Figures 9.16, 10.3, 10.11):
     backward modes fall and forward modes rise as the rotor spins up.  Here the frequencies at
     Ω = 0 are compared with those at a small spin rate (one tenth of the lowest mount frequency,
-    so the shifts stay far below the gaps between modes), each mode followed by :func:`_track`
-    (the engine's tracking core, as in the Campbell diagram); with N flexible propellers the N
-    modes that fall most are 'backward k', the N that rise most 'forward k' (k by frequency),
-    the rest 'wing n'.  Stopped and feathered installations (``Installation.state``) do not
-    turn, so their pitch and yaw modes do not split: they count as neither (N is the number of
-    flexibly mounted propellers that turn).
+    so the shifts stay far below the gaps between modes), each mode followed by
+    :func:`track_gyroscopic` (the engine's tracking core, as in the Campbell diagram); with N
+    flexible propellers the N modes that fall most are 'backward k', the N that rise most
+    'forward k' (k by frequency), the rest 'wing n'.  Stopped and feathered installations
+    (``Installation.state``) do not turn, so their pitch and yaw modes do not split: they count
+    as neither (N is the number of flexibly mounted propellers that turn).
     ``basis``: the modes of the Rayleigh–Ritz problem on its columns (:func:`model_modes`);
     ``modes``: those modes if already computed (``model_modes(model, basis)[0]``);
     ``in_vacuo``: the model's structure (:func:`model_modes`).
@@ -176,8 +176,8 @@ def label_modes(model, basis: np.ndarray | None = None, modes: Modes | None = No
         rpm = 0.1 * f_mount * 60.0 / (2.0 * np.pi)
         # 2 nodes resolve every thesis model; near-repeated mount modes (64 equal propellers
         # on a reduced basis) stay unresolved after any number: bounded (issue 20.9)
-        tracks = _track(_GyroscopicSystem.of(model, basis=basis, in_vacuo=in_vacuo),
-                        np.array([0.0, rpm]) * 2.0 * np.pi / 60.0, max_nodes=32)
+        tracks = track_gyroscopic(GyroscopicSystem.of(model, basis=basis, in_vacuo=in_vacuo),
+                                  np.array([0.0, rpm]) * 2.0 * np.pi / 60.0, max_nodes=32)
         delta = tracks.omega[-1] - tracks.omega[0]
         n = len(flex)
         order = np.argsort(delta)
@@ -204,7 +204,7 @@ def _flexible_propellers(model) -> list:
 
 
 @dataclass(frozen=True)
-class _GyroscopicSystem:
+class GyroscopicSystem:
     """M q̈ + G(Ω) q̇ + K q = 0 of a PropellerWing with aerodynamics and dissipation off.
 
     ``matrices(Ω)`` gives the model's (M, G, K) stacks at rotational speeds Ω [rad/s];
@@ -218,7 +218,7 @@ class _GyroscopicSystem:
 
     @classmethod
     def of(cls, model, rpm_ratio: tuple[float, ...] | None = None,
-           basis: np.ndarray | None = None, in_vacuo=None) -> "_GyroscopicSystem":
+           basis: np.ndarray | None = None, in_vacuo=None) -> "GyroscopicSystem":
         """The system of `model`, Ω the first propeller's speed; propeller j spins at
         ``rpm_ratio[j]`` × Ω (default: all at Ω).  ``basis`` (n, r): projected on its columns
         (a reduced model's basis, :mod:`propwhirl.model.reduction`); ``in_vacuo``: the model's
@@ -246,7 +246,7 @@ class _GyroscopicSystem:
         return cls._per_propeller(model, rpm_ratio)
 
     @classmethod
-    def _per_propeller(cls, model, rpm_ratio) -> "_GyroscopicSystem":
+    def _per_propeller(cls, model, rpm_ratio) -> "GyroscopicSystem":
         """Each propeller at its own speed: the model with every propeller turned into a
         constant-speed one at ratio_j × 1 rad/s gives ∂G/∂Ω (the gyroscopic moment I_Ω Ω_j of
         each rotor is linear in its speed), and G(Ω) = G(0) + Ω ∂G/∂Ω."""
@@ -279,7 +279,7 @@ class _GyroscopicSystem:
 
         return cls(matrices, dG)
 
-    def _projected(self, P: np.ndarray) -> "_GyroscopicSystem":
+    def _projected(self, P: np.ndarray) -> "GyroscopicSystem":
         """Pᵀ(M, G, K)P: M and K do not depend on Ω and G is linear in it (I_Ω Ω)."""
         rest = self.at_rest or tuple(X[0] for X in self.matrices(np.array([0.0])))
         M0, G0, K0 = (P.T @ X @ P for X in rest)
@@ -290,7 +290,7 @@ class _GyroscopicSystem:
             shape = (om.shape[0],) + M0.shape
             return np.broadcast_to(M0, shape), G0 + om * dG, np.broadcast_to(K0, shape)
 
-        return _GyroscopicSystem(projected, dG)
+        return GyroscopicSystem(projected, dG)
 
 
 @dataclass(frozen=True)
@@ -319,7 +319,7 @@ def _hermitian_pencil(M, G, K):
     return 0.5 * (H + H.conj().T), 0.5 * (B + B.T)
 
 
-def _evaluate(system: _GyroscopicSystem, Omega: np.ndarray, degenerate_tol: float) -> list[_Node]:
+def _evaluate(system: GyroscopicSystem, Omega: np.ndarray, degenerate_tol: float) -> list[_Node]:
     """Eigen-solutions of ω B z = H(Ω) z at each rotational speed (module docstring)."""
     Ms, Gs, Ks = system.matrices(Omega)
     n = Ms.shape[-1]
@@ -404,9 +404,9 @@ class _Tracks:
     nodes: int = 0
 
 
-def _track(system: _GyroscopicSystem, Omega: np.ndarray, *, mac_min: float = 0.8,
-           min_step: float = 0.01 * 2.0 * np.pi / 60.0, degenerate_tol: float = 1e-8,
-           max_nodes: int | None = None) -> _Tracks:
+def track_gyroscopic(system: GyroscopicSystem, Omega: np.ndarray, *, mac_min: float = 0.8,
+                     min_step: float = 0.01 * 2.0 * np.pi / 60.0, degenerate_tol: float = 1e-8,
+                     max_nodes: int | None = None) -> _Tracks:
     """Follow every mode from Ω = 0 through the increasing speeds ``Omega`` [rad/s] ≥ 0."""
     with single_thread_blas():           # small dense eigenproblems: one BLAS thread is fastest
         return _track_nodes(system, np.asarray(Omega, dtype=float), mac_min, min_step,

@@ -198,7 +198,7 @@ def _check_pair(model, analysis) -> None:
     if not hasattr(model, "second_order_blocks"):
         raise v.InputError(f"model = {type(model).__name__}: sensitivities need the full-order "
                            "pencil of a wing model (PropellerWing); an IsolatedPropeller has none")
-    D._check_model(model)             # e.g. a doublet-lattice wing: no exact derivatives
+    D.check_model(model)              # e.g. a doublet-lattice wing: no exact derivatives
     if not isinstance(analysis, ModelAnalysis):
         raise v.InputError(f"analysis = {v.short_repr(analysis)} is invalid: must be the "
                            "ModelAnalysis of the model (propwhirl.analysis.analyse(model))")

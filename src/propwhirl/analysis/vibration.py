@@ -17,9 +17,7 @@ import numpy as np
 from propwhirl.analysis.campbell import (CAMPBELL_RPM, FAMILIES, RPM_FORM,  # noqa: F401
                                          CampbellResult, campbell, mode_families,
                                          operating_rpm_ratio)
-from propwhirl.analysis.modes import (Modes, _flexible_propellers,  # noqa: F401
-                                      _GyroscopicSystem, _track, label_modes, model_modes,
-                                      undamped_modes)
+from propwhirl.analysis.modes import Modes, label_modes, model_modes, undamped_modes  # noqa: F401
 from propwhirl.model.structure.assembly import WING_DOF_NAMES, free_dofs, wing_dof_labels, wing_structure
 from propwhirl.model.structure.wing import Wing
 

@@ -39,14 +39,15 @@ from propwhirl import documents
 from propwhirl import limits
 from propwhirl import fileio
 from propwhirl import progress
-from propwhirl.app.cli_common import check_outputs, echo, load_model, speed_grid
+from propwhirl import validate as v
+from propwhirl.app import cli_certify, cli_design, cli_nastran, cli_studies, execution_options
+from propwhirl.app.cli_common import check_outputs, echo, load_model, print_notes, speed_grid
 from propwhirl.cases import registry
 from propwhirl.validate import InputError
 
 
 def _reproduce(args: argparse.Namespace) -> int:
-    from propwhirl.app import execution_options
-    from propwhirl.reproduce import harness as reproduce
+    from propwhirl.reproduce import harness as reproduce  # lazy: the reproduction
 
     check_outputs(json=args.json)
     if args.only:                   # a prefix that selects nothing: refused, not an empty table
@@ -68,8 +69,6 @@ def _reproduce(args: argparse.Namespace) -> int:
 
 
 def _add_reproduce(sub) -> None:
-    from propwhirl.app import execution_options
-
     p = sub.add_parser("reproduce", help="recompute the thesis's numbers and compare")
     p.add_argument("--only", nargs="*", metavar="PREFIX", help="id prefixes, e.g. t7.2 t9")
     p.add_argument("--json", metavar="FILE", help="also write the records as JSON (the finished "
@@ -79,7 +78,7 @@ def _add_reproduce(sub) -> None:
 
 
 def _run(args: argparse.Namespace) -> int:
-    from propwhirl.app import run as mainjob
+    from propwhirl.app import run as mainjob  # lazy: the main job
 
     return mainjob.main(Path(args.out))
 
@@ -102,7 +101,7 @@ def _derivatives(args: argparse.Namespace) -> int:
 
     import numpy as np
 
-    from propwhirl.model.propellers import propeller_aero as aero
+    from propwhirl.model.propellers import propeller_aero as aero  # lazy: models
 
     if args.chord_table:
         chord = aero.Distribution.tabulated(*_pairs("--chord-table", args.chord_table), "chord")
@@ -156,9 +155,8 @@ def _derivatives(args: argparse.Namespace) -> int:
 
 def _speed_of_sound(args: argparse.Namespace) -> float:
     """--speed-of-sound, or the ISA value at --altitude-m / --altitude-ft, or the one default."""
-    from propwhirl import validate as v
-    from propwhirl.model import atmosphere
-    from propwhirl.model.flight import DEFAULT_SPEED_OF_SOUND
+    from propwhirl.model import atmosphere  # lazy: models
+    from propwhirl.model.flight import DEFAULT_SPEED_OF_SOUND  # lazy: models
 
     if args.altitude_m is not None:
         v.in_range("--altitude-m", args.altitude_m, atmosphere.MIN_ALTITUDE,
@@ -172,7 +170,7 @@ def _speed_of_sound(args: argparse.Namespace) -> float:
 
 
 def _add_derivatives(sub) -> None:
-    from propwhirl.model.flight import DEFAULT_SPEED_OF_SOUND
+    from propwhirl.model.flight import DEFAULT_SPEED_OF_SOUND  # lazy: models, at parser build
 
     p = sub.add_parser("derivatives", help="Houbolt-Reed propeller aerodynamic derivatives "
                        "(chapter 4) for one propeller and operating point (SI units)")
@@ -220,14 +218,13 @@ def _add_derivatives(sub) -> None:
 
 # ----------------------------------------------------------------------------- model files
 def _analyse(args: argparse.Namespace) -> int:
-    from propwhirl import io
-    from propwhirl.analysis.reduced import choose_method
-    from propwhirl.analysis.stability import analyse
+    from propwhirl import io  # lazy: model files
+    from propwhirl.analysis.reduced import choose_method  # lazy: analyses
+    from propwhirl.analysis.stability import analyse  # lazy: analyses
 
     check_outputs(json=args.json, csv=args.csv, plot=args.plot, summary_csv=args.summary_csv,
                   events_csv=args.events_csv, animate=args.animate, model=args.model)
     if args.plot_modes is not None:          # before the analysis, not when plotting
-        from propwhirl import validate as v
 
         v.integer_at_least("--plot-modes", args.plot_modes, 1)
         if not (args.plot or args.summary):
@@ -237,7 +234,7 @@ def _analyse(args: argparse.Namespace) -> int:
     model = load_model(args.model, modal=True)
     speeds = speed_grid(*args.speeds) if args.speeds else None
     if V_req is not None:                  # the grid reaches beyond factor x V_D, as clearance's
-        from propwhirl.studies.clearance import clearance_speeds
+        from propwhirl.studies.clearance import clearance_speeds  # lazy: studies
 
         speeds = clearance_speeds(model, V_req, speeds)
     notice = None if args.quiet else limits.analysis_notice(model,
@@ -258,7 +255,7 @@ def _analyse(args: argparse.Namespace) -> int:
         echo(f"  method: reduced (the Roger state space on {st['reduced_r']} in-vacuo modes, "
              f"{st['reduced_states']} states); its crossings converged by the p-k method on Q(k)")
     if V_req is not None:                  # the summary's last line (issue 25.5)
-        from propwhirl.analysis.margin import speed_margin
+        from propwhirl.analysis.margin import speed_margin  # lazy: analyses
 
         echo("  " + speed_margin(a, args.vd, args.factor, describe=a.describe).format())
     for note in a.warnings:
@@ -277,12 +274,12 @@ def _analyse(args: argparse.Namespace) -> int:
             write(path)
             print(f"wrote {path}")
     if args.plot:
-        from propwhirl.app import plots
+        from propwhirl.app import plots  # lazy: figures
 
         plots.vgf(a, model, n_modes=args.plot_modes, path=args.plot)
         print(f"wrote {args.plot}")
     if args.animate and a.critical is not None:
-        from propwhirl.app import plots
+        from propwhirl.app import plots  # lazy: figures
 
         print(f"wrote {plots.animate_event(a, a.critical, args.animate)}")
     elif args.animate:
@@ -294,7 +291,7 @@ def _analyse(args: argparse.Namespace) -> int:
 def _analyse_required_speed(args: argparse.Namespace) -> float | None:
     """factor x V_D [m/s] of ``analyse --vd V [--factor F]`` (None without --vd), checked
     before the work: --factor needs --vd."""
-    from propwhirl.analysis.margin import FACTOR_CS25, required_speed
+    from propwhirl.analysis.margin import FACTOR_CS25, required_speed  # lazy: analyses
 
     if args.vd is None:
         if args.factor is not None:
@@ -348,9 +345,8 @@ def _add_analyse(sub) -> None:
 def _modes(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from propwhirl import validate as v
-    from propwhirl.analysis.naming import kinetic_energy_shares
-    from propwhirl.analysis.vibration import label_modes, model_modes
+    from propwhirl.analysis.naming import kinetic_energy_shares  # lazy: analyses
+    from propwhirl.analysis.vibration import label_modes, model_modes  # lazy: analyses
 
     model = load_model(args.model)
     count = v.integer_at_least("--count", args.count, 1)
@@ -363,7 +359,7 @@ def _modes(args: argparse.Namespace) -> int:
     share = kinetic_energy_shares(modes.shapes, M, {g: found.get(g, []) for g in groups})
     many = len(dm.propellers) >= 2
     if many:                         # each propeller's share (its θ, ψ; participation.py)
-        from propwhirl.analysis.participation import participation
+        from propwhirl.analysis.participation import participation  # lazy: analyses
         part = participation(dm, modes.shapes, M, 1j * modes.omega, 0.0)
     echo(f"{model.name}: in-vacuo modes (V = 0, not rotating; kinetic-energy shares"
          + ("; propellers: the three largest propeller shares, numbered from 1)" if many
@@ -402,8 +398,7 @@ def _add_modes(sub) -> None:
 def _campbell(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from propwhirl import validate as v
-    from propwhirl.analysis.vibration import campbell
+    from propwhirl.analysis.vibration import campbell  # lazy: analyses
 
     check_outputs(plot=args.plot, model=args.model)
     model = load_model(args.model)
@@ -440,7 +435,7 @@ def _campbell(args: argparse.Namespace) -> int:
     if not result.resolved.all():
         print(f"  note: mode identity left ambiguous between (RPM) {list(result.unresolved)}")
     if args.plot:
-        from propwhirl.app import plots
+        from propwhirl.app import plots  # lazy: figures
 
         # the result itself: its families (colours) and each propeller's speed (1P/2P lines)
         plots.campbell_diagram(result, n_modes=count,
@@ -462,7 +457,7 @@ def _add_campbell(sub) -> None:
 
 
 def _case(args: argparse.Namespace) -> int:
-    from propwhirl import io
+    from propwhirl import io  # lazy: model files
 
     case = registry.get(args.name)  # an unknown name: one line listing the valid names
     check_outputs(save=args.save)
@@ -485,8 +480,7 @@ def _add_case(sub) -> None:
 
 
 def _upgrade_model(args: argparse.Namespace) -> int:
-    from propwhirl import io
-    from propwhirl.app.cli_common import print_notes
+    from propwhirl import io  # lazy: model files
 
     old, new = Path(args.old), Path(args.new)
     if not args.force and fileio.same_file(old, new):    # resolved, links followed
@@ -583,7 +577,6 @@ def build_parser() -> argparse.ArgumentParser:
     _add_analyse(sub)
     _add_modes(sub)
     _add_campbell(sub)
-    from propwhirl.app import cli_certify, cli_design, cli_nastran, cli_studies
 
     cli_studies.add_commands(sub)
     _add_case(sub)

@@ -30,8 +30,8 @@ CSV_NAME = "campaign.csv"
 
 
 def _certify(args: argparse.Namespace) -> int:
-    from propwhirl.io.campaign_files import load_campaign
-    from propwhirl.studies.campaign import from_spec, run_campaign
+    from propwhirl.io.campaign_files import load_campaign  # lazy: campaign files
+    from propwhirl.studies.campaign import from_spec, run_campaign  # lazy: studies
 
     out = Path(args.out)
     if out.exists() and not out.is_dir():

@@ -1,5 +1,6 @@
-"""What the command-line modules share: one-line output of user strings, reading a model file,
-the --speeds grid, and the check that every output file can be written before a long run.
+"""What the command-line modules share: one-line output of user strings, reading a model file
+(or a case of the library by name), the --speeds grid, and the check that every output file can
+be written before a long run.
 Used by :mod:`propwhirl.app.cli` and the study commands (:mod:`.cli_studies`, :mod:`.cli_design`)."""
 from __future__ import annotations
 
@@ -8,6 +9,11 @@ from pathlib import Path
 
 from propwhirl import fileio
 from propwhirl import limits
+from propwhirl import validate as v
+from propwhirl.app.execution_options import partial_path
+from propwhirl.cases import registry
+from propwhirl.studies.partial import Checkpoint
+from propwhirl.studies.warmstart import pass_checkpoints
 from propwhirl.validate import InputError
 
 
@@ -21,9 +27,9 @@ def load_model(path: str, *, modal: bool = False):
     """The model of a TOML model file (:func:`propwhirl.io.load_model`), refused with one line
     when the file holds something that is not a model to analyse; with ``modal``, a modal
     model's file too (:func:`propwhirl.io.load_modal_model`: the commands that take them)."""
-    from propwhirl import io
-    from propwhirl.io.modal_files import is_modal_file
-    from propwhirl.model.protocol import Model
+    from propwhirl import io  # lazy: model files
+    from propwhirl.io.modal_files import is_modal_file  # lazy: model files
+    from propwhirl.model.protocol import Model  # lazy: models
 
     if modal and is_modal_file(path):
         return io.load_modal_model(path)
@@ -36,6 +42,17 @@ def load_model(path: str, *, modal: bool = False):
     return model
 
 
+def model_or_case(text: str):
+    """MODEL of `sweep`, `map`, `boundary`, `clearance` and `sensitivity`: a TOML model file,
+    or the name of a case of the library."""
+    if text in registry.CASES and not fileio.exists(text, "model file"):
+        return registry.case_model(text)
+    if Path(text).suffix.lower() == ".toml" or fileio.exists(text, "model file"):
+        return load_model(text)
+    raise InputError(f"MODEL = {text!r} is invalid: neither a model file (.toml) nor a case "
+                     f"name (one of {', '.join(registry.CASES)})")
+
+
 def print_notes(notes: list[str]) -> None:
     """Each note on stderr as one line ``propwhirl: note: ...``."""
     for note in notes:
@@ -45,8 +62,6 @@ def print_notes(notes: list[str]) -> None:
 def speed_grid(start: float, stop: float, step: float):
     """Airspeeds START, START+STEP, ... and STOP [m/s] (STOP always included)."""
     import numpy as np
-
-    from propwhirl import validate as v
 
     v.positive("--speeds START", start, "m/s")
     v.positive("--speeds STOP", stop, "m/s")
@@ -96,7 +111,7 @@ def model_inputs(model: str, label: str = "MODEL") -> list[tuple[str, str | Path
     """The files a model argument reads, each with what it is, for
     :func:`propwhirl.fileio.check_apart`: the model file (when `model` is a file, not a case
     name) and, when it is a modal model file, the modes file its ``[modes] file`` names."""
-    from propwhirl.io.modal_files import modes_path
+    from propwhirl.io.modal_files import modes_path  # lazy: model files
 
     if not fileio.exists(model, "model file") or not Path(model).is_file():
         return []
@@ -116,10 +131,6 @@ def _partial_files(output: str, warm_start: bool) -> list[Path]:
     """The partial-results files a study keeps beside `output` while it runs: ``OUT.partial``
     (:func:`propwhirl.app.execution_options.partial_path`) and, warm-started, one per pass
     (:func:`propwhirl.studies.warmstart.pass_checkpoints`: the one place that names them)."""
-    from propwhirl.app.execution_options import partial_path
-    from propwhirl.studies.partial import Checkpoint
-    from propwhirl.studies.warmstart import pass_checkpoints
-
     partial = partial_path(output)
     passes = [Path(c.path) for c in pass_checkpoints(Checkpoint(partial))] if warm_start else []
     return [partial, *passes]

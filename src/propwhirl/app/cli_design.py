@@ -15,8 +15,8 @@ from __future__ import annotations
 
 import argparse
 
-from propwhirl.app.cli_common import check_outputs, echo
-from propwhirl.app.cli_studies import _model_or_case
+from propwhirl.app import execution_options
+from propwhirl.app.cli_common import check_outputs, echo, model_or_case
 from propwhirl.validate import InputError
 
 #: Largest N of the --grid N x N map under a boundary plot (each point an eigen-solution, or
@@ -25,8 +25,8 @@ MAX_GRID = 60
 
 
 def _boundary(args: argparse.Namespace) -> int:
-    from propwhirl.studies import boundary as B
-    from propwhirl.studies import paths as P
+    from propwhirl.studies import boundary as B  # lazy: studies
+    from propwhirl.studies import paths as P  # lazy: studies
 
     check_outputs(json=args.json, csv=args.csv, plot=args.plot, model=args.model)
     if args.grid != 0 and not 2 <= args.grid <= MAX_GRID:       # before the tracing
@@ -38,10 +38,9 @@ def _boundary(args: argparse.Namespace) -> int:
     if args.oscillatory and args.contour:
         raise InputError("--oscillatory is for the neutral-stability curve, it has no effect "
                          "with --contour: leave one out")
-    from propwhirl.app import execution_options
 
     run = execution_options.run_options(args)      # checked before the tracing
-    model = _model_or_case(args.model)
+    model = model_or_case(args.model)
     params = [P.resolve(model, p) for p in args.params]
     current = [p.value(model) for p in params]
     if args.bounds is not None:
@@ -65,7 +64,7 @@ def _boundary(args: argparse.Namespace) -> int:
         b.to_csv(args.csv)
         print(f"wrote {args.csv}")
     if args.plot:
-        from propwhirl.app import plots
+        from propwhirl.app import plots  # lazy: figures
 
         grid = None
         if args.grid:
@@ -106,7 +105,6 @@ def _add_boundary(sub) -> None:
     p.add_argument("--json", metavar="OUT", help="write the boundary as JSON")
     p.add_argument("--csv", metavar="OUT", help="write the boundary's points as CSV")
     p.add_argument("--plot", metavar="PNG", help="plot the boundary over the grid map")
-    from propwhirl.app import execution_options
 
     # the start search's samples and the grid map are batches of independent evaluations
     execution_options.add(p, resume=False)
@@ -114,13 +112,12 @@ def _add_boundary(sub) -> None:
 
 
 def _clearance(args: argparse.Namespace) -> int:
-    from propwhirl.app import execution_options
-    from propwhirl.studies.clearance import clearance, phase_checkpoints
+    from propwhirl.studies.clearance import clearance, phase_checkpoints  # lazy: studies
 
     check_outputs(json=args.json, csv=args.csv, plot=args.plot, model=args.model)
     options = execution_options.run_options(args)
     cp = execution_options.checkpoint(args, args.json)
-    model = _model_or_case(args.model)
+    model = model_or_case(args.model)
     r = clearance(model, args.vd, args.factor, static_divergence=not args.thesis,
                   low_speed=not args.thesis, minimum=not args.no_minimum,
                   frequency_range=tuple(args.frequency_range), propellers=args.propellers,
@@ -133,7 +130,7 @@ def _clearance(args: argparse.Namespace) -> int:
         r.to_csv(args.csv)
         print(f"wrote {args.csv}")
     if args.plot:
-        from propwhirl.app import plots
+        from propwhirl.app import plots  # lazy: figures
 
         plots.clearance_plot(r, path=args.plot)
         print(f"wrote {args.plot}")
@@ -144,8 +141,6 @@ def _clearance(args: argparse.Namespace) -> int:
 
 
 def _add_clearance(sub) -> None:
-    from propwhirl.app import execution_options
-
     p = sub.add_parser("clearance", help="clearance to factor x V_D (exit code 0 cleared, 1 not)")
     p.add_argument("model", metavar="MODEL", help="model file (TOML) or case name")
     p.add_argument("--vd", type=float, required=True, metavar="V", help="design dive speed V_D [m/s]")
@@ -168,10 +163,9 @@ def _add_clearance(sub) -> None:
 
 
 def _sensitivity(args: argparse.Namespace) -> int:
-    from propwhirl.analysis.sensitivity import critical_sensitivities, sensitivity_parameters
-    from propwhirl.analysis.stability import analyse
-
-    from propwhirl.app import execution_options
+    from propwhirl.analysis.sensitivity import (critical_sensitivities,  # lazy: analyses
+                                                sensitivity_parameters)
+    from propwhirl.analysis.stability import analyse  # lazy: analyses
 
     check_outputs(json=args.json, plot=args.plot, model=args.model)
     if args.top < 1:
@@ -182,7 +176,7 @@ def _sensitivity(args: argparse.Namespace) -> int:
         raise InputError(f"{given} is for --verify (the central-difference analyses); the "
                          "sensitivities themselves are one analysis: add --verify or leave "
                          f"{given.split()[0]} out")
-    model = _model_or_case(args.model)
+    model = model_or_case(args.model)
     if not hasattr(model, "second_order_blocks"):
         raise InputError(f"{type(model).__name__}: sensitivities are available for wing models "
                          "(PropellerWing) only")
@@ -214,7 +208,7 @@ def _sensitivity(args: argparse.Namespace) -> int:
     echo(cs.format(args.top))
     check = None
     if args.verify:
-        from propwhirl.studies.sensitivity_check import verify_sensitivities
+        from propwhirl.studies.sensitivity_check import verify_sensitivities  # lazy: studies
 
         check = verify_sensitivities(model, a, cs, top=args.top, **run)
         echo("")
@@ -226,7 +220,7 @@ def _sensitivity(args: argparse.Namespace) -> int:
             cs.save(args.json, args.top)
         print(f"wrote {args.json}")
     if args.plot:
-        from propwhirl.app import plots
+        from propwhirl.app import plots  # lazy: figures
 
         plots.spanwise_sensitivity(cs, model, path=args.plot)
         print(f"wrote {args.plot}")
@@ -234,8 +228,8 @@ def _sensitivity(args: argparse.Namespace) -> int:
 
 
 def _add_sensitivity(sub) -> None:
-    from propwhirl.app import execution_options
-    from propwhirl.studies.sensitivity_check import NORMALISED_ATOL, REL_STEP, RTOL
+    from propwhirl.studies.sensitivity_check import (  # lazy: studies, at parser build
+        NORMALISED_ATOL, REL_STEP, RTOL)
 
     p = sub.add_parser("sensitivity", help="sensitivities of the critical speed to the model's "
                        "parameters (exact derivatives, ranked; --verify: checked by central "

@@ -20,18 +20,23 @@ from __future__ import annotations
 import argparse
 import os
 
-from propwhirl.app.cli_common import check_outputs, echo, load_model, print_notes
-from propwhirl.io.nastran import UNIT_SYSTEMS
+from propwhirl.app.cli_common import (check_outputs, echo, load_model, model_or_case,
+                                       print_notes)
 from propwhirl.validate import InputError
 
-UNITS_HELP = ("the deck's units: " + "; ".join(f"{u.name} ({u.description})"
-                                               for u in UNIT_SYSTEMS.values()))
+
+def units_help() -> str:
+    """The help text of ``--units``: every unit system with its description."""
+    from propwhirl.io.nastran import UNIT_SYSTEMS  # lazy: io loads the model files
+
+    return "the deck's units: " + "; ".join(f"{u.name} ({u.description})"
+                                            for u in UNIT_SYSTEMS.values())
 
 
 def _import(args: argparse.Namespace) -> int:
-    from propwhirl import io
-    from propwhirl.io import nastran_read
-    from propwhirl.model.systems import PropellerWing
+    from propwhirl import io  # lazy: model files, only when the command runs
+    from propwhirl.io import nastran_read  # lazy: model files, only when the command runs
+    from propwhirl.model.systems import PropellerWing  # lazy: the models
 
     nastran_read.require_pynastran()
     check_outputs(out=args.out)
@@ -56,11 +61,10 @@ def _import(args: argparse.Namespace) -> int:
 
 
 def _export(args: argparse.Namespace) -> int:
-    from propwhirl.app.cli_studies import _model_or_case
-    from propwhirl.io import nastran_write
+    from propwhirl.io import nastran_write  # lazy: model files, only when the command runs
 
     check_outputs(out=args.out, model=args.model)
-    model = _model_or_case(args.model)
+    model = model_or_case(args.model)
     deck = nastran_write.write_bdf(model, args.out, args.units)
     hubs = f" --hubs {' '.join(map(str, deck.hubs))}" if deck.hubs else ""
     echo(f"wrote {args.out} (NASTRAN SOL 103 deck, {deck.units} units); read it back with: "
@@ -86,7 +90,7 @@ def add_commands(sub) -> None:
                        description=__doc__.split("\n\n")[2])
     p.add_argument("bdf", metavar="MODEL.bdf", help="the NASTRAN bulk data file")
     p.add_argument("--out", required=True, metavar="MODEL.toml", help="the model file to write")
-    p.add_argument("--units", metavar="UNITS", help=UNITS_HELP + " (required: NASTRAN has none)")
+    p.add_argument("--units", metavar="UNITS", help=units_help() + " (required: NASTRAN has none)")
     p.add_argument("--base", metavar="BASE.toml", help="model file giving what a BDF cannot: "
                    "flight condition, chords and aerodynamics, the propellers' rotors and "
                    "aerodynamics (its structure is replaced by the BDF's)")
@@ -97,5 +101,5 @@ def add_commands(sub) -> None:
                        description=__doc__.split("\n\n")[2])
     p.add_argument("model", metavar="MODEL", help="a model file (.toml) or a case name")
     p.add_argument("--out", required=True, metavar="MODEL.bdf", help="the BDF to write")
-    p.add_argument("--units", default="si", metavar="UNITS", help=UNITS_HELP + " (default si)")
+    p.add_argument("--units", default="si", metavar="UNITS", help=units_help() + " (default si)")
     p.set_defaults(func=_export)

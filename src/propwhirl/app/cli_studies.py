@@ -4,13 +4,12 @@ with --json, --csv and --plot.  Part of the command line of :mod:`propwhirl.app.
 from __future__ import annotations
 
 import argparse
-from pathlib import Path
 
 import numpy as np
 
-from propwhirl import fileio
+from propwhirl import validate as v
 from propwhirl.app import execution_options
-from propwhirl.app.cli_common import check_outputs, echo, load_model, speed_grid
+from propwhirl.app.cli_common import check_outputs, echo, model_or_case, speed_grid
 from propwhirl.results import Result
 from propwhirl.cases import registry
 from propwhirl.validate import InputError
@@ -22,21 +21,9 @@ MAX_PARAM_VALUES = 1000
 MAX_MAP_POINTS = 250_000
 
 
-def _model_or_case(text: str):
-    """MODEL of `sweep`/`map`: a TOML model file, or the name of a case of the library."""
-    if text in registry.CASES and not fileio.exists(text, "model file"):
-        return registry.case_model(text)
-    if Path(text).suffix.lower() == ".toml" or fileio.exists(text, "model file"):
-        return load_model(text)
-    raise InputError(f"MODEL = {text!r} is invalid: neither a model file (.toml) nor a case "
-                     f"name (one of {', '.join(registry.CASES)})")
-
-
 def _param_axis(values: list[str]) -> tuple[str, "object"]:
     """--param PATH START STOP N: the path and N values from START to STOP."""
     import numpy as np
-
-    from propwhirl import validate as v
 
     path, start, stop, n = values
     try:
@@ -145,7 +132,7 @@ PATH_SYNTAX = (
 
 
 def _list_parameters(model) -> int:
-    from propwhirl.studies import paths
+    from propwhirl.studies import paths  # lazy: studies
 
     echo(f"{model.name}: parameter paths (PATH* scales a distribution by a factor)")
     for p in paths.parameters(model):
@@ -162,9 +149,9 @@ def _list_parameters(model) -> int:
 
 
 def _sweep(args: argparse.Namespace) -> int:
-    from propwhirl.studies import sweeps
+    from propwhirl.studies import sweeps  # lazy: studies
 
-    model = _model_or_case(args.model)
+    model = model_or_case(args.model)
     if args.list_params:
         given = [f"--{o}" for o in ("param", "json", "csv", "plot") if getattr(args, o)]
         if given:
@@ -179,7 +166,7 @@ def _sweep(args: argparse.Namespace) -> int:
     result = sweeps.sweep(model, path, values, **opts)
 
     def plot(r, path):
-        from propwhirl.app import plots
+        from propwhirl.app import plots  # lazy: figures
 
         plots.critical_sweep(r, path=path)
 
@@ -188,9 +175,9 @@ def _sweep(args: argparse.Namespace) -> int:
 
 
 def _map(args: argparse.Namespace) -> int:
-    from propwhirl.studies import sweeps
+    from propwhirl.studies import sweeps  # lazy: studies
 
-    model = _model_or_case(args.model)
+    model = model_or_case(args.model)
     if not args.param or len(args.param) != 2:
         raise InputError(f"map: give --param PATH START STOP N twice (got "
                          f"{len(args.param or [])})")
@@ -207,7 +194,7 @@ def _map(args: argparse.Namespace) -> int:
     result = sweeps.map2d(model, first, second, **opts)
 
     def plot(r, path):
-        from propwhirl.app import plots
+        from propwhirl.app import plots  # lazy: figures
 
         plots.critical_map(r, path=path)       # both axes have 2 values or more (checked)
 

@@ -25,6 +25,7 @@ from propwhirl import progress
 from propwhirl import validate as v
 from propwhirl.studies.execution import check_scheduler
 from propwhirl.studies.partial import Checkpoint
+from propwhirl.studies.warmstart import pass_checkpoints
 from propwhirl.validate import InputError
 
 #: Suffix of the partial-results file kept beside a study's output while it runs.
@@ -80,8 +81,6 @@ def checkpoint(args: argparse.Namespace, output: str | Path | None) -> Checkpoin
 def finish(cp: Checkpoint | None) -> None:
     """Remove the partial-results file (and those of a warm-started study's passes) once the
     final output is written."""
-    from propwhirl.studies.warmstart import pass_checkpoints
-
     if cp is not None:
         for c in [cp, *pass_checkpoints(cp)]:
             c.discard()

@@ -30,8 +30,11 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+import propwhirl
 from propwhirl import fileio
 from propwhirl import validate as v
+from propwhirl.app import browser
+from propwhirl.studies.campaign_result import CampaignResult
 
 #: The report's file names in the output folder.
 HTML_NAME = "report.html"
@@ -88,7 +91,7 @@ def _img(png: bytes, alt: str) -> str:
 
 
 def _figure(fig: Any) -> bytes:
-    from propwhirl.app.plots.campaign_plot import png_bytes
+    from propwhirl.app.plots.campaign_plot import png_bytes  # lazy: figures
 
     try:
         return png_bytes(fig, FIGURE_DPI)
@@ -205,8 +208,6 @@ def _mesh(model: Any) -> tuple[list[float], list[tuple[int, float | None]]] | No
 
 def _check_arguments(result: Any, campaign_file: Any, model_file: Any, date: Any) -> None:
     """The report's arguments of the right types, else a one-line InputError naming one."""
-    from propwhirl.studies.campaign_result import CampaignResult
-
     if not isinstance(result, CampaignResult):
         raise v.fail("result", result, "invalid: must be a CampaignResult (run_campaign's, or "
                      f"CampaignResult.load(path)), got {type(result).__name__}")
@@ -227,8 +228,6 @@ def report_html(result: Any, *, campaign_file: str | Path | None = None,
     summary and mesh; without it the section says so); date: the report's date (default
     today, UTC); figures: False leaves the figures out (the page says so; without matplotlib,
     the ``plots`` extra, they are left out too)."""
-    import propwhirl
-
     _check_arguments(result, campaign_file, model_file, date)
     if figures:
         try:
@@ -238,7 +237,7 @@ def report_html(result: Any, *, campaign_file: str | Path | None = None,
     no_figures = ('<p class="note">Figures left out: install the plots extra (pip install '
                   'propwhirl[plots]) and write the report again.</p>')
     if figures:
-        from propwhirl.app.plots import campaign_plot as cp
+        from propwhirl.app.plots import campaign_plot as cp  # lazy: figures
     date = date or datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     verdict = "CLEARED" if result.cleared else "NOT CLEARED"
     vcls = "pass" if result.cleared else "fail"
@@ -348,8 +347,6 @@ def write_report(result: Any, folder: str | Path, *, campaign_file: str | Path |
     report file may be the campaign file or the model file (InputError,
     :func:`propwhirl.fileio.check_apart`: resolved, symbolic links followed), nor a device, a
     FIFO or a socket (:func:`propwhirl.fileio.check_output`)."""
-    from propwhirl.app import browser
-
     _check_arguments(result, campaign_file, model_file, date)
     folder = Path(v.file_path("folder", folder, "the report's folder"))
     outputs = [("report", folder / HTML_NAME), ("PDF report", folder / PDF_NAME)]

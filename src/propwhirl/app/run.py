@@ -34,6 +34,7 @@ from propwhirl.model.flight import FlightCondition
 from propwhirl.model.systems import PropellerWing
 from propwhirl.reproduce.harness import load_references
 from propwhirl.analysis.vibration import label_modes
+from propwhirl.app import plots
 
 #: The named case (propwhirl.cases.registry) this analysis runs: the wingtip-mounted propeller wing.
 MAIN_CASE = "wingtip"
@@ -172,7 +173,6 @@ def write_plots(a: ModelAnalysis, model: PropellerWing, out: Path) -> list[Path]
     if importlib.util.find_spec("matplotlib") is None:
         print("plots skipped: matplotlib is not installed (pip install propwhirl[plots])")
         return []
-    from propwhirl.app import plots
 
     # the model: the curves on a fine speed grid (the analysis's sweep holds the engine's nodes)
     paths = [plots.save(plots.vgf(a, model, n_modes=VGF_MODES), out / "wingtip_vgf.png")]

@@ -11,7 +11,7 @@ part changes sign inside (:func:`cluster_continuations`, step 3 of the linking o
 characteristic polynomial (a pair formed inside a step by roots that were not partners gives
 its Im > 0 member to the smaller id, like two real roots merging).  Accepted clusters also
 report the unstable pairs that turn real inside them (the tracker brackets those branch
-points, :func:`propwhirl.engine.crossings._branch_point_speeds`).
+points, :func:`propwhirl.engine.crossings.branch_point_speeds`).
 """
 from __future__ import annotations
 
@@ -22,7 +22,7 @@ from scipy.optimize import linear_sum_assignment
 
 from propwhirl.engine.cluster_tables import ClusterTables, frozen as _frozen, cluster_tables as _tables
 from propwhirl.engine.hermite import hermite_coeffs, hermite_eval
-from propwhirl.engine.nodes import _Node
+from propwhirl.engine.nodes import Node
 from propwhirl.engine.options import TrackingOptions
 
 
@@ -382,7 +382,7 @@ class ClusterLinks:
     events: tuple[tuple[float, int, int, float], ...]
 
 
-def _first_trials(a: _Node, seed: int, base: set[int], bl: np.ndarray, ra: np.ndarray,
+def _first_trials(a: Node, seed: int, base: set[int], bl: np.ndarray, ra: np.ndarray,
                   rb_perm: np.ndarray, mis: np.ndarray, rel_err: np.ndarray,
                   opts: TrackingOptions) -> list[set[int]]:
     """The row sets first tried from one seed's closure ``base`` (rows ``bl``): the closure
@@ -405,7 +405,7 @@ def _first_trials(a: _Node, seed: int, base: set[int], bl: np.ndarray, ra: np.nd
     return [base | {int(x)} for x in d.argsort()[:3]]
 
 
-def cluster_continuations(a: _Node, b: _Node, perm: np.ndarray, amb: np.ndarray,
+def cluster_continuations(a: Node, b: Node, perm: np.ndarray, amb: np.ndarray,
                           rel_err: np.ndarray, disp: np.ndarray,
                           opts: TrackingOptions) -> ClusterLinks:
     """Follow small clusters of roots as a set where single roots cannot be followed.
@@ -503,7 +503,7 @@ def cluster_continuations(a: _Node, b: _Node, perm: np.ndarray, amb: np.ndarray,
     return ClusterLinks(perm, amb, tuple(out), min(splits) if splits else None, tuple(events))
 
 
-def _try_cluster(a: _Node, b: _Node, rows: np.ndarray, cols: np.ndarray, rel_err: np.ndarray,
+def _try_cluster(a: Node, b: Node, rows: np.ndarray, cols: np.ndarray, rel_err: np.ndarray,
                  disp: np.ndarray, opts: TrackingOptions, h: float):
     """The assignment inside an acceptable cluster (see :func:`cluster_continuations`):
     (q, events of :func:`_follow_cluster`) with b[cols[q[i]]] the continuation of a[rows[i]];

@@ -125,7 +125,7 @@ def full_order_pair(F, E, sigma: float, X0: np.ndarray, max_iter: int = 30
     0).  Converged when the subspace is invariant: ‖FX − EXS‖ ≤ ``RESIDUAL_TOL`` ·
     (‖F‖ + ‖S‖‖E‖) (X orthonormal); None if it is not within ``max_iter`` iterations.  The
     sparse-pencil counterpart of the tracker's dense
-    :func:`propwhirl.engine.eigensolve._pair_discriminant` (a state matrix A of the reduced or
+    :func:`propwhirl.engine.eigensolve.pair_discriminant` (a state matrix A of the reduced or
     small model), for the full order, whose dense A(V) is what a reduced analysis avoids.
 
     Examples

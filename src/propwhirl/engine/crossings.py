@@ -12,11 +12,11 @@
     against sign det A, so whichever root crosses is found even where a pair split inside the
     step); onsets and recoveries; hump modes; benignity (eq. 5.13) from
     dλ/dV = yᴴA'x/(yᴴx) at the crossing; the critical (lowest onset) instability.
-:func:`_branch_point_speeds`
+:func:`branch_point_speeds`
     Called by the sweep loop: an unstable pair turning real (the thesis's "whirl divergence")
     is bracketed by two nodes 0.9·``min_step`` apart around its branch point (root of the
     pair's discriminant, from the 2×2 Ritz matrix of a real subspace iteration,
-    :func:`propwhirl.engine.eigensolve._pair_discriminant`).
+    :func:`propwhirl.engine.eigensolve.pair_discriminant`).
 :func:`frequency_zero_points`
     The same events located to ``xtol`` by bisection on exact eigenvalue counts (the number of
     unstable complex pairs, full ``eigvals``) between the sweep's samples.
@@ -27,12 +27,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from propwhirl.engine.eigensolve import (StateMatrixFn, _call_state_matrix,
-                                         _eigenvalue_derivative, _eval_mode, _pair_discriminant,
-                                         _zero_root, single_thread_blas)
+from propwhirl.engine.eigensolve import (StateMatrixFn, call_state_matrix,
+                                         eigenvalue_derivative, eval_mode, pair_discriminant,
+                                         single_thread_blas, zero_root)
 from propwhirl.engine.hermite import hermite_coeffs, hermite_eval
-from propwhirl.engine.linking import _Link
-from propwhirl.engine.nodes import _Node
+from propwhirl.engine.linking import Link
+from propwhirl.engine.nodes import Node
 from propwhirl.engine.options import TrackingOptions
 from propwhirl.engine.results import CriticalPoint, Criticals, FrequencyZero, Hump, Sweep
 from propwhirl.validate import InputError, positive
@@ -128,13 +128,13 @@ class _RootBracket:
 class _BranchPoint:
     """Location of the branch point inside a step where a pair turns into two real roots.
 
-    Root of the pair's discriminant D(V) (:func:`_pair_discriminant`), analytic and with a
+    Root of the pair's discriminant D(V) (:func:`pair_discriminant`), analytic and with a
     simple zero there; started from its cubic Hermite model (D = ((λ1 − λ2)/2)²,
     D' = (λ1 − λ2)(λ1' − λ2')/2 at both samples), bracketed to ``width`` by
     :class:`_RootBracket`.
     """
 
-    def __init__(self, a: _Node, b: _Node, i: int, ic: int, j: int, jc: int, width: float):
+    def __init__(self, a: Node, b: Node, i: int, ic: int, j: int, jc: int, width: float):
         h = b.V - a.V
         da = ((a.lam[i] - a.lam[ic]) / 2) ** 2
         db = ((b.lam[j] - b.lam[jc]) / 2) ** 2
@@ -155,7 +155,7 @@ class _BranchPoint:
         self.rb = _RootBracket(a.V, b.V, fa, fb, a.V + float(s0) * h, width)
 
     @classmethod
-    def from_estimate(cls, a: _Node, i: int, ic: int, V_est: float, sigma: float, Vb: float,
+    def from_estimate(cls, a: Node, i: int, ic: int, V_est: float, sigma: float, Vb: float,
                       width: float) -> "_BranchPoint":
         """The pair (i, ic) of ``a`` turns real near V_est (double root ≈ sigma) before Vb,
         after which it need not exist any more (a member may merge with another root)."""
@@ -171,14 +171,14 @@ class _BranchPoint:
     def evaluate(self, V: float, A: np.ndarray) -> tuple[float, bool]:
         Vn = min(self.Q, key=lambda u: abs(u - V))
         sigma = self.m.get(Vn, float(hermite_eval(self.mean, (V - self.Va) / (self.Vb - self.Va))))
-        D, mean, Q, ok = _pair_discriminant(A, self.Q[Vn], sigma)
+        D, mean, Q, ok = pair_discriminant(A, self.Q[Vn], sigma)
         if ok:
             self.Q[V], self.m[V] = Q, mean
         return D, ok
 
 
-def _branch_point_speeds(fn, steps: list[tuple[_Node, _Node, _Link]], n: int, labels,
-                         opts: TrackingOptions, stats: dict[str, int]) -> list[float]:
+def branch_point_speeds(fn, steps: list[tuple[Node, Node, Link]], n: int, labels,
+                        opts: TrackingOptions, stats: dict[str, int]) -> list[float]:
     """Speeds bracketing each unstable pair that turns into two real roots inside a step.
 
     The frequency of such a mode falls to zero at the branch point (the thesis's "whirl
@@ -207,7 +207,7 @@ def _branch_point_speeds(fn, steps: list[tuple[_Node, _Node, _Link]], n: int, la
             break
         asks = [(job, v) for job in pending for v in job.rb.proposals()]
         speeds = np.array(sorted({v for _, v in asks}))
-        A = _call_state_matrix(fn, speeds, n, labels)
+        A = call_state_matrix(fn, speeds, n, labels)
         stats["branch_point_evaluations"] = stats.get("branch_point_evaluations", 0) + len(asks)
         for job in pending:
             job.rb.feed({v: job.evaluate(v, A[int(np.searchsorted(speeds, v))])
@@ -347,11 +347,11 @@ class _Crossing:
         near = self._nearest(V)
         if self.kind == "flutter":
             x0 = near[2] if near is not None else self.br.shape(V)
-            lam, x, _ = _eval_mode(A, self._sigma(V), x0, self.res.displacement, 0.5, stats)
+            lam, x, _ = eval_mode(A, self._sigma(V), x0, self.res.displacement, 0.5, stats)
             return float(lam.real), lam, x, True
         real_b = self.res.eigenvalues[self.t1, self.k].imag == 0
         x0 = near[2] if near is not None else (self.br.xb if real_b else self.br.xa)
-        lam, x, ok, sign = _zero_root(A, x0, stats)
+        lam, x, ok, sign = zero_root(A, x0, stats)
         want = np.sign(self.rb.flo) if sign == self.det_a else np.sign(self.rb.fhi)
         if ok and (final or (np.sign(lam.real) == want and lam.real != 0)):
             return float(lam.real), lam, x, True
@@ -388,8 +388,8 @@ class _Crossing:
         if self.kind == "flutter":
             if self.bstep is None:
                 h = self._fd(Vc)
-                dlam = _eigenvalue_derivative(mats[Vc], (mats[Vc + h] - mats[Vc]) / h, lam_c,
-                                              x_c, stats)
+                dlam = eigenvalue_derivative(mats[Vc], (mats[Vc + h] - mats[Vc]) / h, lam_c,
+                                             x_c, stats)
                 dz = _dzeta(lam_c, dlam)
             else:
                 h = self.bstep
@@ -465,7 +465,7 @@ def critical_points(result: Sweep, state_matrix: StateMatrixFn, *, xtol: float =
     if benignity_step is not None:
         positive("benignity_step", benignity_step, "m/s")
     with single_thread_blas():
-        return _critical_points(result, state_matrix, xtol, benignity_step, zero_tol)
+        return refine_crossings(result, state_matrix, xtol, benignity_step, zero_tol)
 
 
 def _det_signs(lam: np.ndarray) -> np.ndarray:
@@ -474,7 +474,10 @@ def _det_signs(lam: np.ndarray) -> np.ndarray:
     return np.where(neg % 2 == 1, -1.0, 1.0)
 
 
-def _critical_points(res: Sweep, fn, xtol, bstep, zero_tol) -> Criticals:
+def refine_crossings(res: Sweep, fn, xtol, bstep, zero_tol) -> Criticals:
+    """The work of :func:`critical_points` (same arguments: ``bstep`` its
+    ``benignity_step``), its arguments checked by the caller and BLAS already at one thread:
+    what the sweep loop calls."""
     if res.eigenvectors is None:
         raise InputError("critical_points needs a Sweep with eigenvectors (to start the "
                          "inverse iterations); this one was saved without them")
@@ -502,7 +505,7 @@ def _critical_points(res: Sweep, fn, xtol, bstep, zero_tol) -> Criticals:
     while pending:
         asks = [(job, v, ev) for job in pending for v, ev in job.requests()]
         speeds = np.array(sorted({v for _, v, _ in asks}))
-        A = _call_state_matrix(fn, speeds, n, res.state_labels)
+        A = call_state_matrix(fn, speeds, n, res.state_labels)
         stats["state_matrix_calls"] = stats.get("state_matrix_calls", 0) + 1
         for job in pending:
             final = job.phase == "final"

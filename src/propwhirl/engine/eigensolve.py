@@ -2,15 +2,15 @@
 
 * :func:`eigen`, :func:`eigenvalues`: stacked eigendecompositions (LAPACK ``geev``);
 * :func:`mac`: the Modal Assurance Criterion, eq. (5.14) in its Hermitian form;
-* dλ/dV of all roots from the left eigenvectors (:func:`_eig_derivative`, a stack, real
-  arithmetic) and of one root (:func:`_eigenvalue_derivative`);
+* dλ/dV of all roots from the left eigenvectors (:func:`eig_derivative`, a stack, real
+  arithmetic) and of one root (:func:`eigenvalue_derivative`);
 * shifted inverse iteration (:func:`_inverse_iteration`) with residual rules scaled by the
   eigenvalue or the rounding floor of A x (:func:`_residual_ok`), the evaluation of one
-  tracked mode (:func:`_eval_mode`, :func:`tracked_eigenvalue`), of the real root nearest
-  zero (:func:`_zero_root`) and of the discriminant of a pair by real subspace iteration
-  (:func:`_pair_discriminant`, analytic through the branch point where the pair turns real);
-* the checked evaluation of a model's ``state_matrix(V)`` (:func:`_call_state_matrix`) and the
-  displacement mask (:func:`_displacement_mask`).
+  tracked mode (:func:`eval_mode`, :func:`tracked_eigenvalue`), of the real root nearest
+  zero (:func:`zero_root`) and of the discriminant of a pair by real subspace iteration
+  (:func:`pair_discriminant`, analytic through the branch point where the pair turns real);
+* the checked evaluation of a model's ``state_matrix(V)`` (:func:`call_state_matrix`) and the
+  displacement mask (:func:`displacement_mask`).
 
 BLAS threads are limited to one inside every solve (a cached :class:`threadpoolctl.ThreadpoolController`).
 Measured on the 2-core development machine: while other jobs loaded it, a 200×200 ``eig``
@@ -112,7 +112,7 @@ def one_blas_thread(func: Callable) -> Callable:
     return limited
 
 
-def _as_square_stack(A, name: str = "A") -> np.ndarray:
+def as_square_stack(A, name: str = "A") -> np.ndarray:
     arr = np.asarray(A)
     if arr.ndim < 2 or arr.shape[-1] != arr.shape[-2]:
         raise InputError(f"{name} must be a square matrix or a stack of them, "
@@ -129,7 +129,7 @@ def eigen(A_stack) -> tuple[np.ndarray, np.ndarray]:
     adjacent with the ``Im > 0`` member first and have exactly conjugate eigenvectors (LAPACK
     ``geev``).  Always returns complex arrays.
     """
-    A = _as_square_stack(A_stack)
+    A = as_square_stack(A_stack)
     with single_thread_blas():
         w, X = np.linalg.eig(A)
     return w.astype(complex), X.astype(complex)
@@ -161,7 +161,7 @@ def eigenvalues(A_stack) -> np.ndarray:
     >>> eigenvalues(np.stack([A, 2 * A])).shape          # a stack of two matrices
     (2, 2)
     """
-    A = _as_square_stack(A_stack)
+    A = as_square_stack(A_stack)
     with single_thread_blas():
         return np.linalg.eigvals(A).astype(complex)
 
@@ -211,8 +211,8 @@ def mac(phi1, phi2) -> np.ndarray:
     return float(out[0, 0]) if vec else out
 
 
-def _call_state_matrix(fn: StateMatrixFn, V: np.ndarray, n: int | None,
-                       labels: Sequence[str] | None) -> np.ndarray:
+def call_state_matrix(fn: StateMatrixFn, V: np.ndarray, n: int | None,
+                      labels: Sequence[str] | None) -> np.ndarray:
     """Evaluate ``fn(V)`` and check shape, realness and finiteness, naming the speed."""
     A = np.asarray(fn(np.asarray(V, dtype=float)))
     if A.ndim != 3 or A.shape[0] != V.size or A.shape[1] != A.shape[2] or (
@@ -238,7 +238,7 @@ def _call_state_matrix(fn: StateMatrixFn, V: np.ndarray, n: int | None,
     return A
 
 
-def _displacement_mask(n: int, n_dof, displacement) -> np.ndarray:
+def displacement_mask(n: int, n_dof, displacement) -> np.ndarray:
     if n_dof is not None and displacement is not None:
         raise InputError("give either n_dof or displacement, not both")
     if displacement is not None:
@@ -258,7 +258,7 @@ def _displacement_mask(n: int, n_dof, displacement) -> np.ndarray:
     return mask
 
 
-def _conj_index(w: np.ndarray) -> np.ndarray:
+def conj_index(w: np.ndarray) -> np.ndarray:
     """Index of each eigenvalue's conjugate (LAPACK puts pairs adjacent, Im > 0 first)."""
     m, n = w.shape
     idx = np.broadcast_to(np.arange(n), (m, n)).copy()
@@ -274,8 +274,8 @@ def _conj_index(w: np.ndarray) -> np.ndarray:
     return idx
 
 
-def _eig_derivative(w: np.ndarray, X: np.ndarray, conj: np.ndarray,
-                    dA: np.ndarray) -> np.ndarray:
+def eig_derivative(w: np.ndarray, X: np.ndarray, conj: np.ndarray,
+                   dA: np.ndarray) -> np.ndarray:
     """dλ_k/dV = y_k A' x_k for a stack (y_k the rows of X⁻¹), only the diagonal formed.
 
     Real arithmetic: with R the real eigenvector basis of LAPACK (columns Re x, Im x for a
@@ -314,8 +314,8 @@ def _eig_derivative(w: np.ndarray, X: np.ndarray, conj: np.ndarray,
     return d
 
 
-def _eigenvalue_derivative(A: np.ndarray, dA: np.ndarray, lam: complex, x: np.ndarray,
-                           stats: dict[str, int]) -> complex:
+def eigenvalue_derivative(A: np.ndarray, dA: np.ndarray, lam: complex, x: np.ndarray,
+                          stats: dict[str, int]) -> complex:
     """dλ/dV = wᵀ A' x / (wᵀ x) at a simple eigenpair (λ, x) of real A; w solves Aᵀ w = λ w
     (the conjugate of the left eigenvector), by two steps of inverse iteration at λ."""
     n = A.shape[0]
@@ -391,8 +391,8 @@ def _inverse_iteration(A: np.ndarray, sigma: complex, x0: np.ndarray, tol: float
     return lam, x, _residual_ok(res, lam, noise, 1e-8, 1e3)
 
 
-def _pair_discriminant(A: np.ndarray, Q0: np.ndarray, sigma: float, maxit: int = 12
-                       ) -> tuple[float, float, np.ndarray, bool]:
+def pair_discriminant(A: np.ndarray, Q0: np.ndarray, sigma: float, maxit: int = 12
+                      ) -> tuple[float, float, np.ndarray, bool]:
     """Discriminant D = ((λ1 − λ2)/2)² and mean (λ1 + λ2)/2 of a pair of eigenvalues of A.
 
     Real subspace (block inverse) iteration with the real shift σ from the real basis
@@ -439,14 +439,14 @@ def tracked_eigenvalue(state_matrix: StateMatrixFn, V: float, guess: complex,
     if Vv.size != 1:
         raise InputError(f"V must be a single speed, got {Vv.size} values")
     with single_thread_blas():
-        A = _call_state_matrix(state_matrix, Vv, None, None)[0]
-        disp = _displacement_mask(A.shape[0], n_dof, displacement)
-        lam, x, _ = _eval_mode(A, complex(guess), np.asarray(shape, dtype=complex), disp,
-                               mac_min, {})
+        A = call_state_matrix(state_matrix, Vv, None, None)[0]
+        disp = displacement_mask(A.shape[0], n_dof, displacement)
+        lam, x, _ = eval_mode(A, complex(guess), np.asarray(shape, dtype=complex), disp,
+                              mac_min, {})
     return lam, x
 
 
-def _eval_mode(A, sigma, x0, disp, mac_min, stats) -> tuple[complex, np.ndarray, bool]:
+def eval_mode(A, sigma, x0, disp, mac_min, stats) -> tuple[complex, np.ndarray, bool]:
     """Tracked-mode evaluation: inverse iteration, verified, full-eig fallback."""
     x0r = x0
     if sigma.imag == 0:        # real root: real arithmetic with the phase-free real vector
@@ -471,8 +471,8 @@ def _real_vector(x: np.ndarray) -> np.ndarray:
     return (x * (np.conj(big) / abs(big))).real if big != 0 else np.ones(x.size)
 
 
-def _zero_root(A: np.ndarray, x0: np.ndarray, stats: dict[str, int]
-               ) -> tuple[complex, np.ndarray, bool, float]:
+def zero_root(A: np.ndarray, x0: np.ndarray, stats: dict[str, int]
+              ) -> tuple[complex, np.ndarray, bool, float]:
     """The real eigenvalue nearest zero (real inverse iteration at shift 0) and sign det A.
 
     Returns (λ, x, converged-and-real, sign det A).  sign det A = (−1)^(number of negative

@@ -9,7 +9,7 @@ import numpy as np
 import scipy.linalg as sla
 from scipy.integrate import solve_ivp
 
-from propwhirl.engine.eigensolve import _as_square_stack, single_thread_blas
+from propwhirl.engine.eigensolve import as_square_stack, single_thread_blas
 from propwhirl.results import Result, SavedDict
 from propwhirl.validate import InputError, finite, in_range, increasing
 
@@ -92,7 +92,7 @@ def time_response(A, x0, t, state_labels: Sequence[str] | None = None, *,
     >>> np.allclose(r["x"], np.cos(2 * r.t))
     True
     """
-    A = _as_square_stack(A, "A")
+    A = as_square_stack(A, "A")
     if A.ndim != 2:
         raise InputError(f"A must be one square matrix, got shape {A.shape}")
     n = A.shape[0]

@@ -30,4 +30,4 @@ def hermite_eval(c, s):
 
 #: interior abscissae (fractions of a step) at which the Hermite models are checked, besides
 #: their stationary points
-_CHECK_S = np.linspace(0.1, 0.9, 9)
+CHECK_S = np.linspace(0.1, 0.9, 9)

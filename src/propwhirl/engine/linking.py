@@ -1,7 +1,7 @@
 """Linking two consecutive speeds: which root at one speed continues which at the next.
 
 The prediction of a branch over a step is trapezoidal, ``λ_b ≈ λ_a + ½(λ'_a + λ'_b) ΔV``
-(λ' = dλ/dV of :mod:`propwhirl.engine.nodes`).  Linking two speeds (:func:`_link`):
+(λ' = dλ/dV of :mod:`propwhirl.engine.nodes`).  Linking two speeds (:func:`link_nodes`):
 
 1. branches whose best candidate by prediction is mutual, close, with a MAC of the
    displacement part (eq. 5.14 in its Hermitian form, :func:`~propwhirl.engine.eigensolve.mac`)
@@ -41,8 +41,8 @@ import numpy as np
 from scipy.optimize import linear_sum_assignment
 
 from propwhirl.engine.clusters import cluster_continuations
-from propwhirl.engine.hermite import _CHECK_S, hermite_coeffs, hermite_eval
-from propwhirl.engine.nodes import _Node
+from propwhirl.engine.hermite import CHECK_S, hermite_coeffs, hermite_eval
+from propwhirl.engine.nodes import Node
 from propwhirl.engine.options import TrackingOptions
 
 
@@ -107,7 +107,7 @@ def _sink(lam: np.ndarray) -> np.ndarray:
     shapes there are arbitrary combinations and no assignment among them is better than
     another, so a shape or distance test would flag every step (and refine it to
     ``min_step`` without end).  Like real roots of one sign (which carry no shape
-    identity, :func:`_link`), they are matched by distance alone and never flagged: which
+    identity, :func:`link_nodes`), they are matched by distance alone and never flagged: which
     of them continues which does not change a sign of Re λ.
     """
     return (lam.real < 0) & (np.abs(lam.imag) <= SINK_IM * np.abs(lam.real))
@@ -130,7 +130,7 @@ def _upper_pairs(cand: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 @dataclass
-class _Link:
+class Link:
     """Assignment raw(a) → raw(b) of one step and what the sweep needs to know about it.
 
     err:   absolute uncertainty of each a-row's continuation [1/s]: the mismatch of its
@@ -152,7 +152,7 @@ class _Link:
     branch_points: tuple[tuple[float, int, int, float], ...] = ()
 
 
-def _link(a: _Node, b: _Node, disp: np.ndarray, opts: TrackingOptions) -> _Link:
+def link_nodes(a: Node, b: Node, disp: np.ndarray, opts: TrackingOptions) -> Link:
     """Optimal assignment raw(a) → raw(b) and whether it is ambiguous (see TrackingOptions).
 
     1. Branches whose best candidate by eigenvalue prediction is mutual, close, with a MAC
@@ -179,7 +179,7 @@ def _link(a: _Node, b: _Node, disp: np.ndarray, opts: TrackingOptions) -> _Link:
     sa, sb = _sink(a.lam), _sink(b.lam)
     if n == 1:
         perm = np.zeros(1, dtype=int)
-        return _Link(perm, bool(dist[0, 0] > opts.dist_max), trap[0, :1].copy())
+        return Link(perm, bool(dist[0, 0] > opts.dist_max), trap[0, :1].copy())
     # 1. direct matches
     j1 = np.argmin(dist, axis=1)
     i1 = np.argmin(dist, axis=0)
@@ -248,11 +248,11 @@ def _link(a: _Node, b: _Node, disp: np.ndarray, opts: TrackingOptions) -> _Link:
     perm, amb, clusters, split_at, events = cl.perm, cl.amb, cl.clusters, cl.split_at, cl.events
     err = trap[ar, perm]
     skip = [i for rows in clusters for i in rows] + list(np.nonzero(sa & sb[perm])[0])
-    return _Link(perm, bool(amb.any() or _approach(a, b, perm, opts, skip)), err,
-                 clusters, split_at, events)
+    return Link(perm, bool(amb.any() or _approach(a, b, perm, opts, skip)), err,
+                clusters, split_at, events)
 
 
-def _approach(a: _Node, b: _Node, perm: np.ndarray, opts: TrackingOptions,
+def _approach(a: Node, b: Node, perm: np.ndarray, opts: TrackingOptions,
               skip: Sequence[int] = ()) -> bool:
     """Do two complex eigenvalues' paths approach each other inside the step?
 
@@ -263,7 +263,7 @@ def _approach(a: _Node, b: _Node, perm: np.ndarray, opts: TrackingOptions,
     or crossing there (a long step can otherwise take a veering for a crossing, the straight
     lines from either end both missing it).  Rows in ``skip`` (clusters followed as a set,
     whose single-root slopes are singular) are left out, and so are pairs repeated (within
-    ``degenerate_tol``, as :func:`_link` treats them) at both ends: identical, uncoupled
+    ``degenerate_tol``, as :func:`link_nodes` treats them) at both ends: identical, uncoupled
     subsystems — the mounts of equal stopped propellers — have one eigenvalue at every speed,
     and the approach of its copies is rounding (it refined every step of such a model to the
     node budget).
@@ -288,7 +288,7 @@ def _approach(a: _Node, b: _Node, perm: np.ndarray, opts: TrackingOptions,
     flag = interior & (m < ref)
     # Hermite curves through both samples; only pairs that travel far enough to approach
     c = hermite_coeffs(lam[:, None], lb[:, None], d[:, None], b.dlam[perm[up]][:, None], h)
-    path = hermite_eval(c, _CHECK_S[None, :])                      # (p, 9)
+    path = hermite_eval(c, CHECK_S[None, :])                      # (p, 9)
     travel = np.max(np.abs(path - lam[:, None]), axis=1)
     cand = (travel[:, None] + travel[None, :]) > np.abs(r0) - ref
     i, k = _upper_pairs(cand)

@@ -14,13 +14,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from propwhirl.engine.eigensolve import (StateMatrixFn, _call_state_matrix, _conj_index,
-                                         _eig_derivative)
+from propwhirl.engine.eigensolve import (StateMatrixFn, call_state_matrix, conj_index,
+                                         eig_derivative)
 from propwhirl.engine.options import TrackingOptions
 
 
 @dataclass
-class _Node:
+class Node:
     """Raw eigen-solution at one speed (LAPACK order)."""
 
     V: float
@@ -36,21 +36,21 @@ class _Node:
         return self.V
 
 
-def _evaluate_nodes(fn: StateMatrixFn, V: np.ndarray, n: int | None,
-                    labels: Sequence[str] | None, opts: TrackingOptions,
-                    stats: dict[str, int]) -> list[_Node]:
+def evaluate_nodes(fn: StateMatrixFn, V: np.ndarray, n: int | None,
+                   labels: Sequence[str] | None, opts: TrackingOptions,
+                   stats: dict[str, int]) -> list[Node]:
     """Full eigen-solutions at the speeds V (one vectorised model call, one stacked eig)."""
     V = np.asarray(V, dtype=float)
     h = opts.fd_rel * np.maximum(V, 1.0)
-    A_all = _call_state_matrix(fn, np.concatenate([V, V + h]), n, labels)
+    A_all = call_state_matrix(fn, np.concatenate([V, V + h]), n, labels)
     A, Ah = A_all[: V.size], A_all[V.size:]
     w, X = np.linalg.eig(A)
     w, X = w.astype(complex, copy=False), X.astype(complex, copy=False)
-    conj = _conj_index(w)
-    dlam = _eig_derivative(w, X, conj, (Ah - A) / h[:, None, None])
+    conj = conj_index(w)
+    dlam = eig_derivative(w, X, conj, (Ah - A) / h[:, None, None])
     mag = np.abs(w)
     floor = np.maximum(1e-3 * np.median(mag, axis=1), 1e-12)
     stats["eig"] = stats.get("eig", 0) + V.size
     stats["state_matrix_calls"] = stats.get("state_matrix_calls", 0) + 1
-    return [_Node(float(V[t]), w[t], X[t], dlam[t], conj[t], float(floor[t]))
+    return [Node(float(V[t]), w[t], X[t], dlam[t], conj[t], float(floor[t]))
             for t in range(V.size)]

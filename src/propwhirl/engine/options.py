@@ -113,4 +113,3 @@ def check_speeds(speeds, name: str = "speeds") -> np.ndarray:
     return V
 
 
-_check_speeds = check_speeds

@@ -17,10 +17,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from propwhirl.engine.nodes import _Node
+from propwhirl.engine.nodes import Node
 
 
-def _initial_order(node: _Node) -> tuple[np.ndarray, np.ndarray, int]:
+def initial_order(node: Node) -> tuple[np.ndarray, np.ndarray, int]:
     """Raw indices in branch order at the first speed, partner ids, number of physical modes."""
     lam = node.lam
     phys = np.nonzero(lam.imag >= 0)[0]
@@ -40,12 +40,12 @@ def _initial_order(node: _Node) -> tuple[np.ndarray, np.ndarray, int]:
     return order, partner, first.size
 
 
-def _order_chain(nodes: list[_Node], perms: list[np.ndarray]) -> np.ndarray:
+def order_chain(nodes: list[Node], perms: list[np.ndarray]) -> np.ndarray:
     """R[t, k] = raw index of branch k at node t, with the real-axis conventions applied."""
     T = len(nodes)
     n = nodes[0].lam.size
     R = np.empty((T, n), dtype=int)
-    R[0] = _initial_order(nodes[0])[0]
+    R[0] = initial_order(nodes[0])[0]
     for t in range(1, T):
         R[t] = perms[t - 1][R[t - 1]]
     for t in range(1, T):
@@ -53,7 +53,7 @@ def _order_chain(nodes: list[_Node], perms: list[np.ndarray]) -> np.ndarray:
     return R
 
 
-def _canonical_events(prev: _Node, cur: _Node, R: np.ndarray, t: int) -> None:
+def _canonical_events(prev: Node, cur: Node, R: np.ndarray, t: int) -> None:
     """Apply the split/merge conventions at node t (swap branch columns of R[t:])."""
     n = R.shape[1]
     inv_prev = np.empty(n, dtype=int)

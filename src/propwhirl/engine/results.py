@@ -15,7 +15,8 @@ from typing import Any, ClassVar
 import numpy as np
 
 from propwhirl import fileio
-from propwhirl.results import Result, SavedDict, _json_type, _shape_text
+from propwhirl.limits import check_read, format_bytes
+from propwhirl.results import Result, SavedDict, json_type, shape_text
 from propwhirl.validate import InputError
 
 
@@ -316,7 +317,7 @@ class Criticals:
         r = SavedDict(d, where, ("points", "humps", "unstable_at_start", "stats"))
         for key in ("points", "humps"):
             if not isinstance(r.raw(key), list):
-                raise InputError(f"{r.name(key)}: must be a list, got {_json_type(r.raw(key))}")
+                raise InputError(f"{r.name(key)}: must be a list, got {json_type(r.raw(key))}")
         humps = []
         for i, h in enumerate(r.raw("humps")):
             hr = SavedDict(h, f"{r.name('humps')}[{i}]", [f.name for f in fields(Hump)])
@@ -438,7 +439,7 @@ _NPZ_METHODS = (0, 8)
 
 
 def _array_text(shape: Sequence[int], dtype: np.dtype) -> str:
-    return f"{_shape_text(shape)} {np.dtype(dtype).name}"
+    return f"{shape_text(shape)} {np.dtype(dtype).name}"
 
 
 def _read_exact(fh, n: int, what: str) -> bytes:
@@ -482,7 +483,7 @@ def _read_npy(fh, size: int, key: str, shape: tuple[int, ...], dtype: np.dtype,
     total = npf.MAGIC_LEN + len(header) + n_bytes
     if size != total:
         raise InputError(f"{where}: array {key} declares {size:,} bytes uncompressed, its "
-                         f"header and shape {_shape_text(shape)} need {total:,}")
+                         f"header and shape {shape_text(shape)} need {total:,}")
     out = np.empty(int(np.prod(shape, dtype=np.int64)), dtype=got)
     view = memoryview(out.view(np.uint8))
     done = 0
@@ -517,8 +518,6 @@ def read_npz(path: str | Path, expected: Mapping[str, tuple[tuple[int, ...], Any
     """
     import zipfile
     import zlib
-
-    from propwhirl.limits import check_read, format_bytes
 
     path = Path(path)
     where = str(path) if where is None else where

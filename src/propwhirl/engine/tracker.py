@@ -21,7 +21,7 @@
     uncertainty (``margin``) — inserts samples where a crossing may hide inside a step
     (:func:`_hump_candidates`), and an unstable pair turning real (the thesis's "whirl
     divergence") is bracketed by two nodes 0.9·``min_step`` apart around its branch point
-    (:func:`propwhirl.engine.crossings._branch_point_speeds`).  Intervals still ambiguous at
+    (:func:`propwhirl.engine.crossings.branch_point_speeds`).  Intervals still ambiguous at
     ``min_step`` (or when the node budget runs out) are listed in ``Sweep.unresolved``.
 
     Memory: before the first evaluation the sweep's need is estimated
@@ -48,15 +48,15 @@ from typing import Any
 
 import numpy as np
 
-from propwhirl.engine.crossings import XTOL, _branch_point_speeds, _critical_points
+from propwhirl.engine.crossings import XTOL, branch_point_speeds, refine_crossings
 from propwhirl import limits
-from propwhirl.engine.eigensolve import (StateMatrixFn, _call_state_matrix, _displacement_mask,
+from propwhirl.engine.eigensolve import (StateMatrixFn, call_state_matrix, displacement_mask,
                                          single_thread_blas)
-from propwhirl.engine.hermite import _CHECK_S, hermite_coeffs, hermite_eval
-from propwhirl.engine.linking import _link, _Link
-from propwhirl.engine.nodes import _evaluate_nodes, _Node
-from propwhirl.engine.options import TrackingOptions, _check_speeds
-from propwhirl.engine.ordering import _initial_order, _order_chain
+from propwhirl.engine.hermite import CHECK_S, hermite_coeffs, hermite_eval
+from propwhirl.engine.linking import Link, link_nodes
+from propwhirl.engine.nodes import Node, evaluate_nodes
+from propwhirl.engine.options import TrackingOptions, check_speeds
+from propwhirl.engine.ordering import initial_order, order_chain
 from propwhirl.engine.results import Analysis, Sweep
 from propwhirl.validate import InputError, finite, increasing, integer_at_least, positive
 
@@ -143,22 +143,22 @@ def sweep(state_matrix: StateMatrixFn, speeds, *, n_dof: int | None = None,
     1.591
     """
     opts = options or TrackingOptions()
-    grid = _check_speeds(speeds)
+    grid = check_speeds(speeds)
     labels = None if state_labels is None else tuple(str(s) for s in state_labels)
     with single_thread_blas():
         return _sweep(state_matrix, grid, n_dof, displacement, labels, mode_labels, opts)
 
 
-def _evaluate(fn, V, n: int, labels, opts: TrackingOptions, stats: dict[str, int]) -> list[_Node]:
-    """:func:`_evaluate_nodes` in batches of at most :func:`propwhirl.limits.batch_size`
+def _evaluate(fn, V, n: int, labels, opts: TrackingOptions, stats: dict[str, int]) -> list[Node]:
+    """:func:`evaluate_nodes` in batches of at most :func:`propwhirl.limits.batch_size`
     speeds (bounds the temporaries of the model and of the eigen-solutions)."""
     V = np.asarray(V, dtype=float)
     b = limits.batch_size(n)
     if V.size <= b:
-        return _evaluate_nodes(fn, V, n, labels, opts, stats)
-    out: list[_Node] = []
+        return evaluate_nodes(fn, V, n, labels, opts, stats)
+    out: list[Node] = []
     for i in range(0, V.size, b):
-        out += _evaluate_nodes(fn, V[i:i + b], n, labels, opts, stats)
+        out += evaluate_nodes(fn, V[i:i + b], n, labels, opts, stats)
     return out
 
 
@@ -302,13 +302,13 @@ def _sweep(fn, grid, n_dof, displacement, labels, mode_labels, opts,
     stats: dict[str, int] = {}
     first = initial_speeds(grid, initial_step)
     # the number of states before any batch: from the labels, else from A at one speed
-    n = len(labels) if labels is not None else _call_state_matrix(fn, first[:1], None,
+    n = len(labels) if labels is not None else call_state_matrix(fn, first[:1], None,
                                                                    None).shape[-1]
     limits.check_sweep(first.size, n)
     given = labels
     if labels is None:
         labels = tuple(f"x{i}" for i in range(n))
-    disp = _displacement_mask(n, n_dof, displacement)
+    disp = displacement_mask(n, n_dof, displacement)
     budget = limits.node_budget(grid.size, first.size, n, opts.max_nodes)
     chain_order: list[np.ndarray] = []
 
@@ -321,7 +321,7 @@ def _sweep(fn, grid, n_dof, displacement, labels, mode_labels, opts,
         return _split_speed(a.V, b.V, grid) if lk.split_at is None else lk.split_at
 
     def bracket(located):
-        found = _branch_point_speeds(fn, located, n, labels, opts, stats)
+        found = branch_point_speeds(fn, located, n, labels, opts, stats)
         stats["branch_point_nodes"] = stats.get("branch_point_nodes", 0) + len(found)
         new_V = []
         for a, b, _ in located:
@@ -331,7 +331,7 @@ def _sweep(fn, grid, n_dof, displacement, labels, mode_labels, opts,
 
     def settle(nodes, links):
         chain = [links[(a.V, b.V)] for a, b in zip(nodes[:-1], nodes[1:])]
-        R = _order_chain(nodes, [lk.perm for lk in chain])
+        R = order_chain(nodes, [lk.perm for lk in chain])
         chain_order[:] = [R]
         if not opts.hump_check:
             return []
@@ -340,12 +340,12 @@ def _sweep(fn, grid, n_dof, displacement, labels, mode_labels, opts,
         new_V = _hump_candidates(V, _step_models(nodes, R, chain, opts.fd_rel), fl, opts)
         stats["hump_refined"] = stats.get("hump_refined", 0) + len(new_V)
         if not new_V:
-            new_V = _branch_point_speeds(fn, list(zip(nodes[:-1], nodes[1:], chain)), n,
-                                         labels, opts, stats)
+            new_V = branch_point_speeds(fn, list(zip(nodes[:-1], nodes[1:], chain)), n,
+                                        labels, opts, stats)
             stats["branch_point_nodes"] = stats.get("branch_point_nodes", 0) + len(new_V)
         return new_V
 
-    nodes, links, refined = follow(evaluate, lambda a, b: _link(a, b, disp, opts), first,
+    nodes, links, refined = follow(evaluate, lambda a, b: link_nodes(a, b, disp, opts), first,
                                     min_step=opts.min_step, budget=budget, split=split,
                                     bracket=bracket, settle=settle)
     stats["refined"] = refined
@@ -370,7 +370,7 @@ def _assemble(nodes, R, grid, labels, disp, mode_labels, unresolved, stats) -> S
                     1.0)
     phase = np.concatenate([ph0[None], ph0[None] * np.cumprod(step, axis=0)], axis=0)
     X *= phase[:, None, :]
-    _, partner, n_phys = _initial_order(nodes[0])
+    _, partner, n_phys = initial_order(nodes[0])
     if mode_labels is None:
         ml = tuple(f"mode {k}" if k < n_phys else f"mode {partner[k]}'" for k in range(n))
     elif callable(mode_labels):
@@ -392,7 +392,7 @@ def _hump_candidates(V: np.ndarray, models, floor: np.ndarray,
     ``models``: the per-step models of :func:`_step_models` (T−1, n) — values and slopes of
     Re λ at both samples, their uncertainty, which branches to check.  Per step and branch
     with Re λ of equal, non-zero sign at both samples: the cubic Hermite model p(s) of Re λ
-    is evaluated at its stationary points and at ``_CHECK_S``; a sample is inserted at the
+    is evaluated at its stationary points and at ``CHECK_S``; a sample is inserted at the
     worst s where sign·p(s) < margin · err · 16 s²(1 − s)² (the model crosses zero, or comes
     closer to it than its uncertainty).  One sample per step.
     """
@@ -415,7 +415,7 @@ def _hump_candidates(V: np.ndarray, models, floor: np.ndarray,
         s1 = np.where(np.abs(A) > 1e-300, (-B + sq) / (2 * A), -C / B)
         s2 = np.where(np.abs(A) > 1e-300, (-B - sq) / (2 * A), -C / B)
     S = np.concatenate([np.stack([s1, s2], axis=1),
-                        np.broadcast_to(_CHECK_S, (t_i.size, _CHECK_S.size))], axis=1)
+                        np.broadcast_to(CHECK_S, (t_i.size, CHECK_S.size))], axis=1)
     valid = np.isfinite(S) & (S > 0) & (S < 1)
     S = np.where(valid, S, 0.5)
     p = hermite_eval(tuple(ci[:, None] for ci in c), S)
@@ -440,14 +440,14 @@ def _hump_candidates(V: np.ndarray, models, floor: np.ndarray,
 EIG_NOISE = 16.0
 
 
-def _step_models(nodes: list[_Node], R: np.ndarray, links: list[_Link],
+def _step_models(nodes: list[Node], R: np.ndarray, links: list[Link],
                  fd_rel: float = 1e-6):
     """Per step and branch: (Re λ_a, Re λ_b, Re λ'_a, Re λ'_b, uncertainty, checked) (T−1, n).
 
     Members of clusters followed as a set over a step (:func:`cluster_continuations`) were
     checked there and are not checked again.
 
-    The uncertainty is the trapezoidal mismatch m of the step (:attr:`_Link.err`, |m|)
+    The uncertainty is the trapezoidal mismatch m of the step (:attr:`Link.err`, |m|)
     without the part of it that is rounding noise, and never less than |Re m| (the mismatch
     of the model of Re λ itself): each λ' is a forward difference over h_fd = ``fd_rel`` ·
     max(V, 1 m/s) of eigenvalues computed to ≈ :data:`EIG_NOISE` · u · max|λ| (u the unit
@@ -528,7 +528,7 @@ def analyse(state_matrix: StateMatrixFn, speeds, *, n_dof: int | None = None,
     True
     """
     opts = options or TrackingOptions()
-    grid = _check_speeds(speeds)
+    grid = check_speeds(speeds)
     positive("xtol", xtol, "m/s")
     if initial_step is not None:
         positive("initial_step", initial_step, "m/s")
@@ -536,5 +536,5 @@ def analyse(state_matrix: StateMatrixFn, speeds, *, n_dof: int | None = None,
     with single_thread_blas():
         sw = _sweep(state_matrix, grid, n_dof, displacement, labels, mode_labels, opts,
                     initial_step)
-        cr = _critical_points(sw, state_matrix, xtol, benignity_step, opts.zero_tol)
+        cr = refine_crossings(sw, state_matrix, xtol, benignity_step, opts.zero_tol)
     return Analysis(sw, cr)

@@ -75,7 +75,7 @@ def keys(cls: type) -> tuple[str, ...]:
 
 def read(cls: type, table: Any, replaced_keys: dict[str, str]) -> tuple[dict[str, Any], set[str]]:
     """(field values, names of the fields they replace) from the alternative keys of `table`
-    (a :class:`propwhirl.io.model_files._Table`); ({}, set()) when it gives none.
+    (a :class:`propwhirl.io.model_files.Table`); ({}, set()) when it gives none.
 
     `replaced_keys` maps the replaced fields to their file keys (for the messages).  Errors
     are InputErrors naming the table and the keys."""

@@ -36,7 +36,7 @@ from typing import Any
 
 from propwhirl import fileio, limits
 from propwhirl import validate as v
-from propwhirl.io.model_files import _Table, _toml_error, load_model
+from propwhirl.io.model_files import Table, load_model, toml_error
 
 #: The format tag and version of a campaign file.
 FORMAT = "propwhirl-campaign"
@@ -71,14 +71,14 @@ FACTOR_RANGES = {"mount_stiffness": (1e-3, 100.0), "mount_damping": (0.0, 100.0)
                  "wing_damping": (0.0, 100.0), "rpm_factor": (0.1, 3.0)}
 
 
-def _number_in(t: _Table, key: str, low: float, high: float, what: str = "") -> float:
+def _number_in(t: Table, key: str, low: float, high: float, what: str = "") -> float:
     x = t.number(key, what)
     if not (math.isfinite(x) and low <= x <= high):
         raise t.bad(key, f"a number in [{low:g}, {high:g}]", what)
     return x
 
 
-def _list_of_numbers(t: _Table, key: str, low: float, high: float) -> list[float]:
+def _list_of_numbers(t: Table, key: str, low: float, high: float) -> list[float]:
     x = t.raw(key)
     if not isinstance(x, list) or not 1 <= len(x) <= MAX_ITEMS or any(
             isinstance(i, bool) or not isinstance(i, (int, float)) or not math.isfinite(i)
@@ -87,7 +87,7 @@ def _list_of_numbers(t: _Table, key: str, low: float, high: float) -> list[float
     return [float(i) for i in x]
 
 
-def _regulation(t: _Table) -> tuple[str, float, float | None]:
+def _regulation(t: Table) -> tuple[str, float, float | None]:
     name = t.string("name", choices=(*REGULATIONS, "explicit"))
     if name == "explicit":
         factor = _number_in(t, "factor", 1.0, 3.0, "the speed factor of regulation 'explicit'")
@@ -99,8 +99,8 @@ def _regulation(t: _Table) -> tuple[str, float, float | None]:
     return name, factor, g
 
 
-def _envelope(t: _Table) -> tuple[str, tuple[float, ...], tuple[float, ...], float | None,
-                                  tuple[float, ...] | None, float | None]:
+def _envelope(t: Table) -> tuple[str, tuple[float, ...], tuple[float, ...], float | None,
+                                 tuple[float, ...] | None, float | None]:
     airspeed = t.string("airspeed", "which airspeed V_D is", AIRSPEEDS)
     if t.has("altitudes_m") == t.has("altitudes_ft"):
         raise v.InputError(f"[{t.where}] give exactly one of altitudes_m, altitudes_ft")
@@ -132,7 +132,7 @@ def _envelope(t: _Table) -> tuple[str, tuple[float, ...], tuple[float, ...], flo
     return airspeed, tuple(vd), tuple(alts), M_D, V_C, M_C
 
 
-def _case(t: _Table, n_propellers: int) -> CaseSpec:
+def _case(t: Table, n_propellers: int) -> CaseSpec:
     name = t.string("name")
     if not name.strip() or not name.isprintable() or len(name) > 200:
         raise t.bad("name", "a non-empty printable name of at most 200 characters")
@@ -166,7 +166,7 @@ def _case(t: _Table, n_propellers: int) -> CaseSpec:
                                         "{ mass_kg = ..., x_m = ... }")
         masses = []
         for i, m in enumerate(x):
-            mt = _Table(m, f"{t.where}.added_masses[{i}]", _MASS)
+            mt = Table(m, f"{t.where}.added_masses[{i}]", _MASS)
             masses.append((_number_in(mt, "mass_kg", 1e-4, 1e5), _number_in(mt, "x_m", -100.0, 100.0)))
         kw["added_masses"] = tuple(masses)
     if t.has("values"):
@@ -223,7 +223,7 @@ class CampaignSpec:
 
 
 def _from_dict(data: dict[str, Any], base: Path, source: str) -> CampaignSpec:
-    top = _Table(data, "", _TOP)
+    top = Table(data, "", _TOP)
     fmt = top.string("format")
     if fmt != FORMAT:
         raise top.bad("format", repr(FORMAT))
@@ -263,7 +263,7 @@ def _from_dict(data: dict[str, Any], base: Path, source: str) -> CampaignSpec:
     specs = []
     groups: dict[str, int] = {}
     for i, d in enumerate(raw):
-        t = _Table(d, f"cases[{i}]", _CASE)
+        t = Table(d, f"cases[{i}]", _CASE)
         c = _case(t, n)
         if combine == "product" and not c.group:
             raise t.missing("group", "every case of combine = 'product' names its group")
@@ -291,7 +291,7 @@ def loads(text: str, source: str = "<string>", base: str | Path = ".") -> Campai
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise v.InputError(f"{source}: not valid TOML: {_toml_error(exc, text)}") from exc
+        raise v.InputError(f"{source}: not valid TOML: {toml_error(exc, text)}") from exc
     except RecursionError:
         raise limits.nesting_error(source) from None
     limits.check_nesting(data, source)

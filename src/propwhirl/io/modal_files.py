@@ -28,10 +28,10 @@ import numpy as np
 from propwhirl import fileio, limits
 from propwhirl import validate as v
 from propwhirl.io import schema
-from propwhirl.io.model_files import _build, _Table, _toml_error, _Writer
+from propwhirl.io.model_files import Table, Writer, from_table, toml_error
 from propwhirl.model.flight import FlightCondition
 from propwhirl.model.modal import MOUNTS, ModalInstallation, ModalPropellerWing
-from propwhirl.model.modal_structure import MAX_MODES, ModalStructure, StripPlanform, _id_list
+from propwhirl.model.modal_structure import MAX_MODES, ModalStructure, StripPlanform, id_list
 from propwhirl.model.propellers.propeller import Propeller
 from propwhirl.model.systems import PropellerWing
 
@@ -165,7 +165,7 @@ def load_modal_model(path: str | Path) -> ModalPropellerWing:
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise _fail(src, f"not valid TOML: {_toml_error(exc, text)}") from None
+        raise _fail(src, f"not valid TOML: {toml_error(exc, text)}") from None
     except RecursionError:
         raise limits.nesting_error(src) from None
     limits.check_nesting(data, src)
@@ -177,8 +177,8 @@ def load_modal_model(path: str | Path) -> ModalPropellerWing:
 
 
 def _from_dict(data: dict[str, Any], path: Path) -> ModalPropellerWing:
-    top = _Table(data, "", ("format", "format_version", "name", "units", "modes", "strips",
-                            "installations", "flight", "switches", "propellers"))
+    top = Table(data, "", ("format", "format_version", "name", "units", "modes", "strips",
+                           "installations", "flight", "switches", "propellers"))
     if top.string("format") != FORMAT:
         raise top.bad("format", repr(FORMAT))
     version = top.integer("format_version")
@@ -215,7 +215,7 @@ def _from_dict(data: dict[str, Any], path: Path) -> ModalPropellerWing:
             raise strips_t.bad(k, f"a list of {n_strips} numbers (one per strip, as y_m)")
     aero_model = (strips_t.string("aero_model", choices=("leishman-nguyen", "wagner"))
                   if strips_t.has("aero_model") else "leishman-nguyen")
-    flight = _build(FlightCondition, top.sub("flight", _keys(FlightCondition)), {})
+    flight = from_table(FlightCondition, top.sub("flight", _keys(FlightCondition)), {})
     switches = {"wing_aero": True, "propeller_aero": True, "rotating": True}
     if top.has("switches"):
         sw = top.sub("switches", tuple(switches))
@@ -225,12 +225,12 @@ def _from_dict(data: dict[str, Any], path: Path) -> ModalPropellerWing:
     props_raw = data.get("propellers", {})
     if not isinstance(props_raw, dict):
         raise top.bad("propellers", "tables [propellers.KEY]")
-    ctx = {k: _build(Propeller, _Table(p, f"propellers.{k}", _keys(Propeller)), {})
+    ctx = {k: from_table(Propeller, Table(p, f"propellers.{k}", _keys(Propeller)), {})
            for k, p in props_raw.items()}
     raw_inst = data.get("installations", [])
     if not isinstance(raw_inst, list):
         raise top.bad("installations", "a list of tables {propeller, grid, mount, aero}")
-    inst_tables = [_Table(t, f"installations[{j}]", ("propeller", "grid", "mount", "aero"))
+    inst_tables = [Table(t, f"installations[{j}]", ("propeller", "grid", "mount", "aero"))
                    for j, t in enumerate(raw_inst)]
     for t in inst_tables:
         if t.string("propeller") not in ctx:
@@ -242,13 +242,13 @@ def _from_dict(data: dict[str, Any], path: Path) -> ModalPropellerWing:
     for i, g in enumerate(raw_grids):
         if g not in ids:
             raise _fail(str(path), f"[modes] wing_grids[{i}] = {g} is not a grid of {file} "
-                        f"(grids {_id_list(structure.grid_ids)})")
+                        f"(grids {id_list(structure.grid_ids)})")
     installations = []
     for j, t in enumerate(inst_tables):
         g = t.integer("grid")
         if g not in ids:
             raise _fail(str(path), f"installations[{j}].grid = {g} is not a grid of {file}: "
-                        f"the modes have no hub grid {g} (grids {_id_list(structure.grid_ids)})")
+                        f"the modes have no hub grid {g} (grids {id_list(structure.grid_ids)})")
         mount = t.string("mount", choices=MOUNTS) if t.has("mount") else "flexible"
         aero = t.boolean("aero") if t.has("aero") else True
         installations.append(ModalInstallation(ctx[t.string("propeller")], g, mount, aero))
@@ -325,7 +325,7 @@ def write_modes(model: PropellerWing, path: str | Path, n_modes: int | None = No
         s, hubs, _ = ModalStructure.with_mounts(model, n_modes)
         grids, mounts = list(hubs), ["on-grid"] * len(hubs)
     planform = StripPlanform.from_wing(wing)
-    w = _Writer()
+    w = Writer()
     installations = [{"propeller": w.propeller_key(inst.propeller), "grid": g, "mount": m,
                       "aero": inst.aero}
                      for inst, g, m in zip(model.propellers, grids, mounts)]

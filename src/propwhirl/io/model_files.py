@@ -90,7 +90,7 @@ def _report(exc: v.InputError) -> None:
         errors.append(text)
 
 
-class _Table:
+class Table:
     """A TOML table being read: known keys only; errors name the table and the key as written."""
 
     def __init__(self, data: Any, where: str, allowed: Iterable[str]):
@@ -164,14 +164,14 @@ class _Table:
             raise self.bad(key, "true or false", what)
         return x
 
-    def sub(self, key: str, allowed: Iterable[str]) -> "_Table":
-        return _Table(self.raw(key), self.name(key), allowed)
+    def sub(self, key: str, allowed: Iterable[str]) -> "Table":
+        return Table(self.raw(key), self.name(key), allowed)
 
 
 _what = schema.what
 
 
-def _required(f: Field, t: _Table | None) -> bool:
+def _required(f: Field, t: Table | None) -> bool:
     """The file must give `f` in table `t` (always, or under the field's condition)."""
     if f.required:
         return True
@@ -183,7 +183,7 @@ def _required(f: Field, t: _Table | None) -> bool:
     return False
 
 
-def _read_scalar(f: Field, t: _Table, key: str) -> Any:
+def _read_scalar(f: Field, t: Table, key: str) -> Any:
     what, form = _what(f), f.form
     if form == "number":
         return t.number(key, what)
@@ -204,7 +204,7 @@ def _read_scalar(f: Field, t: _Table, key: str) -> Any:
     raise AssertionError(form)
 
 
-def _read_distribution(f: Field, t: _Table) -> Any:
+def _read_distribution(f: Field, t: Table) -> Any:
     s = f.spec
     given = [k for k in (s.number_key, s.key) if k and t.has(k)]
     if not given:
@@ -225,14 +225,14 @@ def _read_distribution(f: Field, t: _Table) -> Any:
         return Distribution.tabulated(eta, values, name)
 
 
-def _read_field(f: Field, t: _Table | None, ctx: dict[str, Propeller],
-                parent: _Table | None = None) -> Any:
+def _read_field(f: Field, t: Table | None, ctx: dict[str, Propeller],
+                parent: Table | None = None) -> Any:
     """The value of field `f` from table `t`; _MISSING when optional and not given.
 
     `parent`: the table holding `t` when `t` is a section such as [switches] (None if absent)."""
     s, form = f.spec, f.form
     if form == "flat":
-        return _build(f.item, t, ctx)
+        return from_table(f.item, t, ctx)
     if form == "distribution":
         return _read_distribution(f, t)
     keys = s.key if form == "split" else (s.key,)
@@ -249,7 +249,7 @@ def _read_field(f: Field, t: _Table | None, ctx: dict[str, Propeller],
         return tuple(t.number(k, _what(f, i)) if t.has(k) else f.default[i]
                      for i, k in enumerate(keys))
     if form == "table":
-        return _build(f.item, t.sub(s.key, schema.table_keys(f.item)), ctx)
+        return from_table(f.item, t.sub(s.key, schema.table_keys(f.item)), ctx)
     if form in ("tables", "installations"):
         item = Installation if form == "installations" else f.item
         raw = t.raw(s.key)
@@ -258,8 +258,8 @@ def _read_field(f: Field, t: _Table | None, ctx: dict[str, Propeller],
         out, failed = [], False
         for i, x in enumerate(raw):   # every entry read, its errors reported
             try:
-                out.append(_build(item, _Table(x, f"{t.name(s.key)}[{i}]",
-                                               schema.table_keys(item)), ctx))
+                out.append(from_table(item, Table(x, f"{t.name(s.key)}[{i}]",
+                                                  schema.table_keys(item)), ctx))
             except v.InputError as exc:
                 _report(exc)
                 failed = True
@@ -287,7 +287,7 @@ def _read_field(f: Field, t: _Table | None, ctx: dict[str, Propeller],
             raise _in_file(v.InputError(f"[{t.name(s.key)}] source = {v.short_repr(source)} is "
                                         f"invalid: must be one of {choices}"))
         cls = DERIVATIVE_SOURCES[source]
-        return _build(cls, t.sub(s.key, ("source",) + schema.table_keys(cls)), ctx)
+        return from_table(cls, t.sub(s.key, ("source",) + schema.table_keys(cls)), ctx)
     if form == "groups":
         return _read_groups(t, s.key)
     if form == "reference":
@@ -300,7 +300,7 @@ def _read_field(f: Field, t: _Table | None, ctx: dict[str, Propeller],
     return _read_scalar(f, t, s.key)
 
 
-def _read_groups(t: _Table, key: str) -> dict[str, tuple[int, ...]]:
+def _read_groups(t: Table, key: str) -> dict[str, tuple[int, ...]]:
     """The [groups] table: NAME = [indices of installations, from 0] (checked further by the
     model: :func:`propwhirl.model.systems.check_groups`)."""
     raw = t.raw(key)
@@ -318,7 +318,7 @@ def _read_groups(t: _Table, key: str) -> dict[str, tuple[int, ...]]:
     return out
 
 
-def _old_default(cls: type, f: Field, t: _Table | None) -> Any:
+def _old_default(cls: type, f: Field, t: Table | None) -> Any:
     """The value the file's older format version gives field `f` of `cls` where the file
     omits it and this version requires it (:mod:`propwhirl.io.versions`); else _MISSING."""
     if (t is not None and any(t.has(k) for k in f.keys())) or not _required(f, t):
@@ -327,10 +327,10 @@ def _old_default(cls: type, f: Field, t: _Table | None) -> Any:
                                       f.keys()[0], _MISSING)
 
 
-def _build(cls: type, t: _Table, ctx: dict[str, Propeller]) -> Any:
+def from_table(cls: type, t: Table, ctx: dict[str, Propeller]) -> Any:
     """An instance of schema class `cls` from table `t` (whose keys were checked)."""
     kw: dict[str, Any] = {}
-    sections: dict[str, _Table | None] = {}
+    sections: dict[str, Table | None] = {}
     failed = False          # a key could not be read: its error is reported, cls not built
     try:  # keys standing for other fields (the ISA altitude of [flight]): io/alternatives.py
         given, replaced = alternatives.read(cls, t, {f.name: f.key for f in schema.fields_of(cls)})
@@ -343,7 +343,7 @@ def _build(cls: type, t: _Table, ctx: dict[str, Propeller]) -> Any:
         if f.spec.key is None or f.name in replaced:
             continue
         try:
-            table: _Table | None = t
+            table: Table | None = t
             if f.spec.section is not None:
                 sec = f.spec.section
                 if sec not in sections:
@@ -375,7 +375,7 @@ class _Context:
     """Restate an InputError raised while building an object from table `where` (of class
     `cls`) with the table and the keys as the file writes them."""
 
-    def __init__(self, where: str, cls: type | None = None, table: _Table | None = None):
+    def __init__(self, where: str, cls: type | None = None, table: Table | None = None):
         self.where, self.cls, self.table = where, cls, table
 
     def __enter__(self) -> None:
@@ -427,7 +427,7 @@ def _from_dict(data: dict[str, Any]) -> Any:
     cls = MODEL_TYPES[kind]
     file_keys = ("format", "format_version", "type")
     body = ("name", "propeller") if cls is Propeller else schema.table_keys(cls)
-    top = _Table(data, "", file_keys + body + ("propellers",))
+    top = Table(data, "", file_keys + body + ("propellers",))
     if top.has("format") and top.string("format") != FORMAT:
         raise top.bad("format", repr(FORMAT))
     versions.current().read_version(top)
@@ -438,7 +438,7 @@ def _from_dict(data: dict[str, Any]) -> Any:
     ctx: dict[str, Any] = {}
     for k, p in props_raw.items():   # every table read; a failed one is not referred to again
         try:
-            ctx[k] = _build(Propeller, _Table(p, f"propellers.{k}", keys), {})
+            ctx[k] = from_table(Propeller, Table(p, f"propellers.{k}", keys), {})
         except v.InputError as exc:
             _report(exc)
             ctx[k] = _FAILED
@@ -450,10 +450,11 @@ def _from_dict(data: dict[str, Any]) -> Any:
         ref = next(f for f in schema.fields_of(Installation) if f.form == "reference")
         return _read_field(ref, top, ctx)  # the top-level key "propeller"
     # Cross-field checks of a wing (propellers on nodes, one per node) name the installation.
-    return _build(cls, top, ctx)
+    return from_table(cls, top, ctx)
 
 
-def _toml_error(exc: tomllib.TOMLDecodeError, text: str) -> str:
+def toml_error(exc: tomllib.TOMLDecodeError, text: str) -> str:
+    """tomllib's error with the offending line of `text` quoted (the error names its number)."""
     m = re.search(r"line (\d+)", str(exc))
     lines = text.splitlines()
     if m and 0 < int(m.group(1)) <= len(lines):
@@ -502,7 +503,7 @@ def loads(text: str, source: str = "<string>", *, notes: list[str] | None = None
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise v.InputError(f"{source}: not valid TOML: {_toml_error(exc, text)}") from exc
+        raise v.InputError(f"{source}: not valid TOML: {toml_error(exc, text)}") from exc
     except RecursionError:          # tomllib recurses per level of nested arrays/tables
         raise limits.nesting_error(source) from None
     limits.check_nesting(data, source)
@@ -565,7 +566,7 @@ def _function(where: str, form: str) -> v.InputError:
     return v.InputError(f"{where} is a function and cannot be saved to TOML: {_NUMBER_HELP[form]}")
 
 
-class _Writer:
+class Writer:
     """Encodes schema objects as dicts for tomli-w; numbers distinct propellers p1, p2, ..."""
 
     def __init__(self) -> None:
@@ -666,7 +667,7 @@ def to_dict(model: Any) -> dict[str, Any]:
         raise v.InputError(
             f"cannot save a {type(model).__name__}: model files hold a "
             + ", ".join(c.__name__ for c in MODEL_TYPES.values()))
-    w = _Writer()
+    w = Writer()
     doc: dict[str, Any] = {"format": FORMAT, "format_version": FORMAT_VERSION, "type": kind}
     if isinstance(model, Propeller):
         doc["name"] = model.name

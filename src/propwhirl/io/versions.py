@@ -77,7 +77,7 @@ class Reading:
     assumed: list[tuple[str, str, Any]] = field(default_factory=list)
 
     def read_version(self, top: Any) -> None:
-        """The version of the file whose top-level table is `top` (a model_files._Table);
+        """The version of the file whose top-level table is `top` (a model_files.Table);
         a one-line InputError for a version that is not an integer, unknown or newer."""
         self.stated = top.has("format_version")
         self.version = top.integer("format_version") if self.stated else UNSTATED_VERSION

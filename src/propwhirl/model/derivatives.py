@@ -70,7 +70,7 @@ from typing import Iterable
 
 import numpy as np
 
-from propwhirl.generated import beam_element, prop_flexwing
+from propwhirl.generated import beam_element, prop_flexwing, strip_aero
 from propwhirl.model.structure.assembly import LAG_STATES, STRIP_AERO, element_dofs, free_dofs
 from propwhirl.model.blocks import BlockSystem, LagBlocks, LocalBlocks
 from propwhirl.model.propellers import derivatives_blade as _blade
@@ -107,7 +107,7 @@ class Parameter:
 def parameters(model: PropellerWing) -> tuple[Parameter, ...]:
     """Every parameter of `model` whose derivatives :func:`derivative_blocks` gives (table in
     the module docstring), in a fixed order: elements, nodes, section fields, propellers."""
-    _check_model(model)
+    check_model(model)
     wing = model.wing
     p = wing.element_properties()
     out = []
@@ -164,7 +164,9 @@ def parameters(model: PropellerWing) -> tuple[Parameter, ...]:
     return tuple(out)
 
 
-def _check_model(model) -> None:
+def check_model(model) -> None:
+    """InputError unless `model` has exact parameter derivatives: a PropellerWing, its wing
+    aerodynamics not the doublet lattice's, without in-plane bending."""
     if not isinstance(model, PropellerWing):
         raise v.InputError(f"model = {type(model).__name__} is invalid: parameter derivatives "
                            "are available for a PropellerWing")
@@ -265,8 +267,6 @@ class _Context:
         group, roles = STRIP_AERO[wing.aero_model]
         group += "_d"
         if self.strip is None:
-            from propwhirl.generated import strip_aero
-
             node = wing.node_properties()
             values = dict(rho=self.model.flight.density, V=self.V[:, None], b=node["b"],
                           a=node["a"], Cla=node["Cla"], ac=node["ac"])
@@ -514,7 +514,7 @@ def derivative_blocks(model: PropellerWing, V, params: Iterable[str | Parameter]
     states, :func:`pencil_derivative` of it ∂(F, E) (``.pencil(t)`` itself holds the pencil's
     constant identity blocks), ``.project(Φ, Q)`` the projected derivatives.
     V [m/s] (array); `omega` [rad/s] as in ``second_order``."""
-    _check_model(model)
+    check_model(model)
     V = np.atleast_1d(v.positive("airspeed V", V, "m/s"))
     pars = _lookup(model, params)
     ctx = _Context(model, V, omega)
@@ -526,7 +526,7 @@ def density_blocks(model: PropellerWing, V, omega=None) -> BlockSystem:
     """∂(blocks)/∂ρ [per kg/m³] of ``model.second_order_blocks(V, omega)`` with respect to
     the air density ``flight.density`` (the layout of :func:`derivative_blocks`): the strip
     and propeller aerodynamic blocks, exact from the generated ∂/∂rho."""
-    _check_model(model)
+    check_model(model)
     V = np.atleast_1d(v.positive("airspeed V", V, "m/s"))
     with np.errstate(all="ignore"):
         return _Context(model, V, omega).density()

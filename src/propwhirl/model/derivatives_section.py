@@ -49,7 +49,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from propwhirl.generated import beam_element
+from propwhirl.generated import beam_element, strip_aero
 from propwhirl.model.structure.assembly import LAG_STATES, STRIP_AERO, element_dofs
 from propwhirl.model.blocks import LagBlocks, LocalBlocks
 from propwhirl.model.structure.wing import Wing
@@ -229,8 +229,6 @@ def _strip_blocks(ctx, factors: dict[str, np.ndarray]) -> tuple[LocalBlocks, Lag
     wing = ctx.model.wing
     group, roles = STRIP_AERO[wing.aero_model]
     if ctx.strip is None:
-        from propwhirl.generated import strip_aero
-
         node = wing.node_properties()
         values = dict(rho=ctx.model.flight.density, V=ctx.V[:, None], b=node["b"],
                       a=node["a"], Cla=node["Cla"], ac=node["ac"])

@@ -18,7 +18,11 @@ from dataclasses import replace
 import numpy as np
 
 from propwhirl import validate as v
+from propwhirl.generated import strip_aero, typical_section
+from propwhirl.model.aerodynamics.dlm import pk_system_dlm
 from propwhirl.model.aerodynamics.theodorsen import theodorsen
+from propwhirl.model.structure.assembly import free_dofs, place
+from propwhirl.model.systems import PropellerWing, TypicalSection
 
 #: reduced frequency used for a (numerically) non-oscillatory root: G(k)/k is singular at 0
 K_MIN = 1e-6
@@ -27,8 +31,6 @@ K_MIN = 1e-6
 def check_pk_model(model) -> None:
     """InputError unless `model` is a TypicalSection with its aerodynamics on, or a
     PropellerWing with its wing aerodynamics on."""
-    from propwhirl.model.systems import PropellerWing, TypicalSection
-
     if isinstance(model, TypicalSection) and model.aero:
         return
     if isinstance(model, PropellerWing) and model.wing_aero:
@@ -45,8 +47,6 @@ check_section = check_pk_model
 def reference_semichord(model) -> float:
     """Semichord [m] of the reduced frequency k = ω b / V reported: the section's b, the
     wing's root semichord."""
-    from propwhirl.model.systems import TypicalSection
-
     if isinstance(model, TypicalSection):
         return float(model.b)
     return float(model.wing.node_properties()["b"][0])
@@ -54,8 +54,6 @@ def reference_semichord(model) -> float:
 
 def section_structure(model) -> tuple[np.ndarray, np.ndarray]:
     """Structural mass [kg/m, kg, kg m] and stiffness [h, α] of a typical section."""
-    from propwhirl.generated import typical_section
-
     S = model.m * model.x_alpha * model.b
     I = model.m * (model.r_alpha * model.b) ** 2
     blk = typical_section.blocks(m=model.m, S=S, I_alpha=I, K_h=model.m * model.omega_h**2,
@@ -66,8 +64,6 @@ def section_structure(model) -> tuple[np.ndarray, np.ndarray]:
 def _strip(rho, V, b, a, Cla, ac, omega):
     """Exact-Theodorsen strip matrices (M_a, C_a, K_a) per unit span at frequency ω [rad/s];
     b, a, Cla, ac scalars or arrays (one per strip)."""
-    from propwhirl.generated import strip_aero
-
     k = np.maximum(np.asarray(omega * np.asarray(b, float) / V, float), K_MIN)
     C = theodorsen(k)
     aero = strip_aero.theodorsen_blocks(rho=rho, V=V, b=b, a=a, Cla=Cla, ac=ac, k=k,
@@ -91,13 +87,9 @@ def pk_system(model, V: float):
     k = ω b_i / V; a wing with ``aero = "dlm"``: the doublet-lattice loads instead,
     :func:`propwhirl.model.aerodynamics.dlm.pk_system_dlm`), on the model's degrees of freedom (its
     ``dof_map``, without lag states)."""
-    from propwhirl.model.structure.assembly import free_dofs, place
-    from propwhirl.model.systems import TypicalSection
-
     if isinstance(model, TypicalSection):
         return lambda omega: section_pk_matrices(model, V, omega * model.b / V)
     if model.wing.aero == "dlm":                 # doublet-lattice panels instead of the strips
-        from propwhirl.model.aerodynamics.dlm import pk_system_dlm
         return pk_system_dlm(model, V, K_MIN)
     dry = replace(model, wing_aero=False).second_order(np.array([V]))
     if dry.n_lag:

@@ -270,7 +270,7 @@ class ModalStructure:
         hit = np.flatnonzero(self.grid_ids == grid)
         if not hit.size:
             raise v.InputError(f"{self.source}: {key} = {grid} is not a grid of the modes "
-                               f"(grids {_id_list(self.grid_ids)})")
+                               f"(grids {id_list(self.grid_ids)})")
         return int(hit[0])
 
     def truncated(self, n_modes: int) -> "ModalStructure":
@@ -290,7 +290,8 @@ class ModalStructure:
             return np.diag(m), np.diag(2.0 * z * m * w), np.diag(m * w * w)
 
 
-def _id_list(ids, limit: int = 8) -> str:
+def id_list(ids, limit: int = 8) -> str:
+    """Grid ids as error messages list them: the first `limit`, then ", ..."."""
     ids = [int(i) for i in ids]
     return ", ".join(map(str, ids[:limit])) + (", ..." if len(ids) > limit else "")
 

@@ -8,6 +8,7 @@ from typing import Literal
 import numpy as np
 
 from propwhirl import validate as v
+from propwhirl.generated import strip_aero, typical_section
 from propwhirl.model.aerodynamics import validity
 from propwhirl.model.structure.assembly import LAG_STATES, STRIP_AERO, call_blocks
 from propwhirl.model.base import StateSpaceModel
@@ -82,8 +83,6 @@ class TypicalSection(StateSpaceModel):
         return self._checked(sys, V, {})
 
     def _assemble(self, V: np.ndarray) -> SecondOrder:
-        from propwhirl.generated import strip_aero, typical_section
-
         nV = V.shape[0]
         S = self.m * self.x_alpha * self.b
         I = self.m * (self.r_alpha * self.b) ** 2

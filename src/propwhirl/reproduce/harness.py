@@ -34,6 +34,7 @@ from typing import Any, Callable, ClassVar, Iterable
 
 from propwhirl import fileio
 from propwhirl import documents
+from propwhirl.analysis import stability
 from propwhirl.progress import ProgressCallback
 from propwhirl.results import Result, SavedDict
 from propwhirl.studies import execution
@@ -112,10 +113,8 @@ ANALYSIS_METHOD = "dense"
 def analyse(model, *args, **kwargs):
     """:func:`propwhirl.analysis.stability.analyse` with the reproduction's method
     (:data:`ANALYSIS_METHOD`) unless one is given."""
-    from propwhirl.analysis.stability import analyse as stability_analyse
-
     kwargs.setdefault("method", ANALYSIS_METHOD)
-    return stability_analyse(model, *args, **kwargs)
+    return stability.analyse(model, *args, **kwargs)
 
 
 def register(prefix: str) -> Callable[[CaseFunction], CaseFunction]:
@@ -214,8 +213,6 @@ def _encode_case(result: Any) -> dict[str, Any]:
 def _decode_case(d: Any, where: str, key: str | None = None) -> list:
     """A case's result of a partial-results file, checked: {"prefix": the case (the point's
     `key`), "values": {id starting with the prefix: a finite number or null (NaN)}}."""
-    from propwhirl.engine.results import SavedDict
-
     r = SavedDict(d, where, ("prefix", "values"))
     prefix = r.string("prefix")
     if key is not None and prefix != key:

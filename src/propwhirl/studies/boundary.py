@@ -50,6 +50,8 @@ from propwhirl.studies import paths as P
 from propwhirl.model.aerodynamics import validity
 from propwhirl.results import Result, SavedDict
 from propwhirl.studies.continuation import ContinuationOptions, Counted, point_key, trace
+from propwhirl.studies import sweeps
+from propwhirl.studies.execution import map_analyses
 
 #: A variant of the model at a point of the plane: ``variant(p) -> Model``.
 Variant = Callable[[np.ndarray], Any]
@@ -90,8 +92,6 @@ def _least_stable(task: tuple) -> complex:
 def _batch(func: Callable[[Any], Any], tasks: list, level: Any, desc: str) -> list:
     """``[func(t) for t in tasks]`` on the level's processes or Dask cluster, with its
     progress (:func:`propwhirl.studies.execution.map_analyses`)."""
-    from propwhirl.studies.execution import map_analyses
-
     return map_analyses(func, tasks, level.processes, client=level.client,
                         progress=level.progress, desc=desc)
 
@@ -162,18 +162,14 @@ class CriticalSpeedLevel:
         return Vc - self.V_target
 
     def __call__(self, p: np.ndarray) -> float:
-        from propwhirl.studies.sweeps import evaluate
-
         task = self._task(p)
-        return self._value(p, evaluate(task), task[0])
+        return self._value(p, sweeps.evaluate(task), task[0])
 
     def batch(self, points: Sequence[np.ndarray], desc: str = "boundary points") -> list[float]:
         """g at every point, as one batch of independent analyses (in parallel on
         ``processes`` or the Dask cluster, with progress)."""
-        from propwhirl.studies.sweeps import evaluate
-
         tasks = [self._task(p) for p in points]
-        rows = _batch(evaluate, tasks, self, desc)
+        rows = _batch(sweeps.evaluate, tasks, self, desc)
         return [self._value(p, row, t[0]) for p, row, t in zip(points, rows, tasks)]
 
     def info(self, p: np.ndarray) -> dict[str, Any]:

@@ -45,16 +45,23 @@ from typing import Any
 
 import numpy as np
 
+from propwhirl import limits
 from propwhirl import validate as v
 from propwhirl.analysis.margin import DAMPING_MODES  # noqa: F401 (re-exported)
 from propwhirl.analysis.margin import least_damping as _least
 from propwhirl.analysis.margin import oscillatory_damping as _damping
+from propwhirl.analysis.naming import real_root_at_the_event
+from propwhirl.analysis.reduced import choose_method
+from propwhirl.analysis.stability import analyse
 from propwhirl.model import atmosphere
+from propwhirl.model.aerodynamics.validity import has_aerodynamics
 from propwhirl.model.flight import FlightCondition
+from propwhirl.model.propellers.propeller import PointMass
 from propwhirl.progress import ProgressCallback
 from propwhirl.studies import execution
 from propwhirl.studies import paths as P
-from propwhirl.studies.critical import convention
+from propwhirl.studies.clearance import clearance_speeds, speed_grid
+from propwhirl.studies.critical import convention, critical_instability, wing_divergence_predicate
 from propwhirl.studies.campaign_result import (  # noqa: F401 (re-exported)
     CampaignResult, CaseSummary, PointPlot, PointRow)
 
@@ -335,7 +342,6 @@ class Case:
     def _propeller(self, prop: Any, i: int) -> Any:
         """Propeller `i` (from 0) transformed: its mounts, operation, rpm and masses (the
         propeller itself when nothing changes)."""
-        from propwhirl.model.propellers.propeller import PointMass
 
         changes: dict[str, Any] = {}
         if self.mount_stiffness != 1.0:     # K x factor, or f x sqrt(factor) where f is given
@@ -746,7 +752,6 @@ class _Task:
             return m, self.speeds
         if tuple(m.flight.speed_range) == tuple(self.flight.speed_range):
             return dataclasses.replace(m, flight=self.flight), self.speeds
-        from propwhirl.studies.clearance import clearance_speeds  # a combination's own range
 
         m = at_altitude(m, float(self.altitude_m))
         return m, clearance_speeds(m, self.V_required)
@@ -772,8 +777,6 @@ def tasks(c: Campaign) -> tuple[list[_Task], list[str]]:
     checked once per distinct (speed range, speed of sound, required speed) — the work grows
     with the cases plus the points, the bookkeeping alone with the tasks; all before any
     analysis."""
-    from propwhirl.model.aerodynamics.validity import has_aerodynamics
-    from propwhirl.studies.clearance import speed_grid
 
     if "tasks" in c._made:
         return list(c._made["tasks"]), list(c._made["keys"])
@@ -885,9 +888,6 @@ def plot_data(a: Any, modes: Sequence[int], e: Any) -> dict[str, Any]:
 
 def evaluate_point(task: _Task) -> dict[str, Any]:
     """Analyse one (case, point) and return its result row (plain JSON: module docstring)."""
-    from propwhirl.analysis.naming import real_root_at_the_event
-    from propwhirl.analysis.stability import analyse
-    from propwhirl.studies.critical import critical_instability, wing_divergence_predicate
 
     model, speeds = task.build()
     a = analyse(model, speeds, xtol=task.xtol)
@@ -982,9 +982,6 @@ def run_campaign(c: Campaign, *, processes: int = 1, client=None,
     if not isinstance(c, Campaign):
         raise v.fail("run_campaign: c", c, "invalid: must be a propwhirl.studies.campaign.Campaign "
                      f"(from_spec(load_campaign(path)), or Campaign(...)), got {type(c).__name__}")
-    from propwhirl import limits
-    from propwhirl.analysis.reduced import choose_method
-
     limits.check_study(c.model, len(c.cases) * len(c.points), processes,
                        method=choose_method(c.model, "auto"), cluster=client is not None,
                        progress=progress)

@@ -39,7 +39,9 @@ from propwhirl import validate as v
 from propwhirl.analysis.stability import ModelAnalysis, analyse
 from propwhirl.model.aerodynamics import validity
 from propwhirl.results import Result, SavedDict
+from propwhirl.studies import execution
 from propwhirl.studies import paths as P
+from propwhirl.studies import sweeps
 from propwhirl.studies.critical import convention, critical_instability, wing_divergence_predicate
 
 from propwhirl.analysis.margin import FACTOR_CFR23, FACTOR_CS25, required_speed  # noqa: F401
@@ -385,8 +387,6 @@ def _refine(t: _Refine) -> dict[str, Any]:
     """Brent's method on V_crit(f) − V_required in the bracket, the root rounded up to the
     tolerance and checked (it clears); {frequency, critical_speed (None: none in range),
     analyses}."""
-    from propwhirl.studies.sweeps import evaluate
-
     par = P.resolve(t.model, t.path)
     vcrit = dict(t.known)
     count = [0]
@@ -395,8 +395,8 @@ def _refine(t: _Refine) -> dict[str, Any]:
     def h(f: float) -> float:
         if f not in vcrit:
             count[0] += 1
-            vcrit[f] = evaluate((par.set(t.model, f), t.speeds, t.xtol, t.static_divergence,
-                                 t.low_speed))["critical_speed"]
+            vcrit[f] = sweeps.evaluate((par.set(t.model, f), t.speeds, t.xtol,
+                                        t.static_divergence, t.low_speed))["critical_speed"]
         Vc = vcrit[f]
         return (top if not math.isfinite(Vc) else Vc) - t.V_required
 
@@ -418,10 +418,6 @@ def _minimum_frequencies(model: Any, searches: list[tuple[int, str]], V_required
                          checkpoint=None) -> list[MinimumFrequency]:
     """The searches (propeller index from 0, "f_theta"/"f_psi"), their analyses run in three
     batches (:data:`PHASES`) by :func:`propwhirl.studies.execution.map_analyses`."""
-    from propwhirl.studies import execution
-    from propwhirl.studies.runner import STUDY_ROW
-    from propwhirl.studies.sweeps import evaluate
-
     pars = [_frequency_path(model, n, name) for n, name in searches]
     lo, hi = 0.0, 0.0
     for par in pars:
@@ -443,10 +439,10 @@ def _minimum_frequencies(model: Any, searches: list[tuple[int, str]], V_required
         if not items:
             return
         rows = execution.map_analyses(
-            evaluate, [(pars[i].set(model, x), speeds, xtol, static_divergence, low_speed)
-                       for i, x in items], processes, client=client, progress=progress,
+            sweeps.evaluate, [(pars[i].set(model, x), speeds, xtol, static_divergence, low_speed)
+                              for i, x in items], processes, client=client, progress=progress,
             checkpoint=None if checkpoint is None else
-            _phase_checkpoint(checkpoint, phase).with_entries(STUDY_ROW),
+            _phase_checkpoint(checkpoint, phase).with_entries(sweeps.STUDY_ROW),
             keys=[f"{pars[i].path}={x!r}" for i, x in items],
             desc=f"minimum frequencies ({phase})")
         for (i, x), row in zip(items, rows):

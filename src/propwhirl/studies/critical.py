@@ -7,6 +7,7 @@ from typing import Callable
 
 import numpy as np
 
+from propwhirl.analysis.naming import kinetic_energy_shares
 from propwhirl.analysis.stability import Instability, ModelAnalysis, critical
 
 _WHIRL_PREFIXES = ("backward", "forward")
@@ -53,8 +54,6 @@ def mount_strain_share(model, V: float, q: np.ndarray) -> float:
     (the θ, ψ degrees of freedom of the model's DOF map), K the structural stiffness of `model`
     at V [m/s] without aerodynamics.  1 for a model without wing degrees of freedom (the
     isolated propeller)."""
-    from propwhirl.analysis.naming import kinetic_energy_shares
-
     dm = model.dof_map()
     if not dm.has_wing:
         return 1.0

@@ -66,8 +66,9 @@ from propwhirl.results import Result, SavedDict
 from propwhirl.studies import paths as P
 from propwhirl.studies.critical import (convention, critical_instability, mount_strain_share,  # noqa: F401
                                         static_divergence_speed, wing_divergence_predicate)
-from propwhirl.studies.runner import (ISOLATED_SPEEDS, MODELS, _check_models, _grid,  # noqa: F401
-                                      _speeds_for, build_model, map_analyses, study_points, study_table)
+from propwhirl.studies.runner import (ISOLATED_SPEEDS, MODELS, build_model,  # noqa: F401
+                                      check_models, map_analyses, parameter_grid, speeds_for,
+                                      study_points, study_table)
 from propwhirl.studies.sweeps import run_points
 from propwhirl.studies.table import RESULT_UNITS, StudyTable  # noqa: F401
 
@@ -111,13 +112,13 @@ def propeller_study(name: str, parameter: str, unit: str, parameters: Mapping[st
     variant is invalid or whose analysis fails is recorded, the others go on: its row has kind
     "error", NaN speeds and the message in the column ``error`` ("" elsewhere).
     """
-    models = _check_models(models)
+    models = check_models(models)
     keys, checkpoint = study_points(name, parameter, parameters, len(settings), models, xtol,
                                     static_divergence, low_speed, checkpoint)
     base = _base(propeller)
     variants, grids = [], []
     for m in models:
-        model, grid = build_model(m, base), _speeds_for(m, speeds)
+        model, grid = build_model(m, base), speeds_for(m, speeds)
         prefix = PROPELLER_PATHS[m]
         paths = {k: P.resolve(model, prefix + k) for k in settings[0]}
         for point in settings:
@@ -172,7 +173,7 @@ def nacelle_stiffness(vary: _Vary = "both", frequencies=STIFFNESS_FREQUENCIES, *
     options: see :func:`propeller_study` (static_divergence, low_speed, speeds, xtol, processes).
     """
     _check_vary(vary)
-    f = _grid("frequencies", frequencies, "Hz", v.positive)
+    f = parameter_grid("frequencies", frequencies, "Hz", v.positive)
     v.positive("fixed_frequency", fixed_frequency, "Hz")
     base = _base(propeller)
     ft = f if vary in ("pitch", "both") else np.full_like(f, fixed_frequency)
@@ -202,7 +203,7 @@ def nacelle_damping(vary: _Vary = "both", values=DAMPING_VALUES, *, fixed_value:
     swept values are on the same footing as that baseline.  x-axis: the mean value.
     """
     _check_vary(vary)
-    d = _grid("damping values", values, "", v.non_negative)
+    d = parameter_grid("damping values", values, "", v.non_negative)
     v.non_negative("fixed_value", fixed_value)
     base = _base(propeller)
     reading = base.damping if damping is None else damping
@@ -230,7 +231,7 @@ def motor_mass(masses=MOTOR_MASSES, *, propeller: Propeller | None = None,
     change (it depends on the rotor only, eq. 9.2).  Default models: wingtip, isolated and the
     rigid non-rotating mount, as Figure 11.6.
     """
-    m = _grid("motor masses", masses, "kg", v.positive)
+    m = parameter_grid("motor masses", masses, "kg", v.positive)
     base = _base(propeller)
     if not base.masses:
         raise v.InputError("propeller has no motor-nacelle mass (its `masses` is empty)")
@@ -260,7 +261,7 @@ def pivot_length(variant: Literal["cg", "pivot", "cg+pivot"] = "pivot", shifts=P
     """
     if variant not in ("cg", "pivot", "cg+pivot"):
         raise v.InputError(f"variant = {variant!r} is invalid: must be 'cg', 'pivot' or 'cg+pivot'")
-    s = _grid("shifts", shifts, "m")
+    s = parameter_grid("shifts", shifts, "m")
     base = _base(propeller)
     points: list[dict[str, float]] = []
     for x in s:
@@ -296,7 +297,7 @@ def spin_inertia(rotor_masses=ROTOR_MASSES, *, propeller: Propeller | None = Non
     parameters (as in the thesis).  A base propeller with a given `spin_inertia` is switched to
     eq. 9.2.  x-axis: I_Omega [kg m²]; the column rotor_mass [kg] gives the input.
     """
-    m = _grid("rotor masses", rotor_masses, "kg", v.positive)
+    m = parameter_grid("rotor masses", rotor_masses, "kg", v.positive)
     base = _base(propeller)
     base = replace(base, spin_inertia=None)   # I_Omega from eq. 9.2
     points = [{"rotor.mass": x} for x in m]
@@ -320,7 +321,7 @@ def blade_angle(betas=BLADE_ANGLES, *, propeller: Propeller | None = None,
     J = π tan(β − 3°)); the column advance_ratio gives J.  β must give an inflow angle in
     (0°, 90°).
     """
-    b = _grid("blade angles", betas, "deg")
+    b = parameter_grid("blade angles", betas, "deg")
     base = _base(propeller)
     if base.operation != "fixed-pitch":
         raise v.InputError("the blade-angle study needs a fixed-pitch propeller (operation='fixed-pitch')")

@@ -35,7 +35,7 @@ from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
-from propwhirl import fileio
+from propwhirl import __version__, fileio
 from propwhirl import validate as v
 
 #: Version of the partial-results file layout (2: plain JSON only, a structured fingerprint).
@@ -255,8 +255,6 @@ class Checkpoint:
     def full_fingerprint(self, total: int) -> dict[str, Any]:
         """The fingerprint written to the file: this one, the point kind, the number of
         points and the propwhirl version."""
-        from propwhirl import __version__
-
         return {**self.fingerprint, "points": self.points.name, "total": total,
                 "propwhirl": __version__}
 
@@ -380,6 +378,13 @@ class Checkpoint:
         except OSError as exc:
             raise v.InputError(f"cannot remove partial results file {str(self.path)!r}: "
                                f"{fileio.reason(exc)}") from None
+
+
+def check_checkpoint(checkpoint: Any) -> None:
+    """InputError unless `checkpoint` is a :class:`Checkpoint`."""
+    if not isinstance(checkpoint, Checkpoint):
+        raise v.InputError(f"checkpoint = {v.short_repr(checkpoint)} is invalid: must be a "
+                           "propwhirl.studies.execution.Checkpoint")
 
 
 def _parse(text: str, name: str) -> Any:

@@ -1,8 +1,8 @@
 """Running a parametric study: the study models, one row per analysis (run by
-:mod:`propwhirl.studies.execution`: serial, local processes or Dask; failing points recorded)."""
+:func:`propwhirl.studies.sweeps.run_points`: serial, local processes or Dask; failing points
+recorded)."""
 from __future__ import annotations
 
-import math
 from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
@@ -14,8 +14,10 @@ from propwhirl.model.propellers.propeller import Propeller
 from propwhirl.model.systems import IsolatedPropeller
 from propwhirl.progress import ProgressCallback
 from propwhirl.studies import execution
-from propwhirl.studies.execution import TaskError, _init_worker  # noqa: F401 (re-exported)
+from propwhirl.studies.execution import TaskError  # noqa: F401 (re-exported)
 from propwhirl.studies.critical import convention
+from propwhirl.studies.partial import check_checkpoint
+from propwhirl.studies.sweeps import run_points
 from propwhirl.studies.table import RESULT_UNITS, StudyTable
 
 #: Model names a study can analyse (see :mod:`propwhirl.studies.parametric`).
@@ -37,7 +39,8 @@ def build_model(name: str, propeller: Propeller):
     raise v.InputError(f"model = {name!r} is invalid: must be one of {MODELS}")
 
 
-def _check_models(models: Sequence[str]) -> tuple[str, ...]:
+def check_models(models: Sequence[str]) -> tuple[str, ...]:
+    """`models` (one name or several) as a tuple of distinct names of :data:`MODELS`."""
     if isinstance(models, str):
         models = (models,)
     models = tuple(models)
@@ -51,7 +54,10 @@ def _check_models(models: Sequence[str]) -> tuple[str, ...]:
     return models
 
 
-def _speeds_for(model: str, speeds) -> np.ndarray | None:
+def speeds_for(model: str, speeds) -> np.ndarray | None:
+    """The initial speed grid [m/s] of study model `model`: `speeds` (one grid, or one per
+    model name), else the isolated propeller's :data:`ISOLATED_SPEEDS`, else None (the
+    model's own range)."""
     if isinstance(speeds, Mapping):
         s = speeds.get(model)
     else:
@@ -61,7 +67,8 @@ def _speeds_for(model: str, speeds) -> np.ndarray | None:
     return v.increasing(f"speeds ({model})", s, "m/s")
 
 
-def _grid(name: str, values, unit: str = "", check: Callable[..., np.ndarray] = v.finite) -> np.ndarray:
+def parameter_grid(name: str, values, unit: str = "",
+                   check: Callable[..., np.ndarray] = v.finite) -> np.ndarray:
     """A non-empty 1-D grid of parameter values, each checked with `check`."""
     arr = np.atleast_1d(np.asarray(v.finite(name, values, unit), dtype=float))
     if arr.ndim != 1 or arr.size == 0:
@@ -79,95 +86,6 @@ def map_analyses(func: Callable[[Any], Any], tasks: Sequence[Any], processes: in
     :func:`propwhirl.studies.execution.map_analyses`, which runs it (Dask, progress,
     partial results, failing points)."""
     return execution.map_analyses(func, tasks, processes, **options)
-
-
-# ----------------------------------------------------------------------------- partial results
-#: The entries of a study's result row (:func:`propwhirl.studies.sweeps.evaluate`) as kept in a
-#: partial-results file: numbers that may be NaN (null in the file), a count, and strings
-#: (with their possible values where they are few).
-_ROW_NUMBERS = ("critical_speed", "critical_frequency", "propeller_share", "static_divergence_speed")
-_ROW_STRINGS: dict[str, tuple[str, ...]] = {
-    "critical_mode": (), "content": (), "kind": ("flutter", "divergence", "none"),
-    "event": ("", "onset", "recovery", "frequency-zero", "unstable-at-start"),
-    "whirl": ("", "forward", "backward", "planar")}
-#: Longest name of a mode or content group in a result row [characters].
-_ROW_TEXT = 200
-
-
-def _encode_row(row: Any) -> dict[str, Any]:
-    """A study row as plain JSON: NaN numbers as null (the schema of :func:`_decode_row`)."""
-    if not isinstance(row, Mapping):
-        raise v.InputError(f"a study row must be a dict, got {type(row).__name__}")
-    out = {k: (None if not math.isfinite(float(row[k])) else float(row[k])) for k in _ROW_NUMBERS}
-    out.update({k: str(row[k]) for k in _ROW_STRINGS})
-    out["propeller"] = int(row["propeller"])
-    return _decode_row(out, "row") and out  # a row the reader would refuse is not written
-
-
-def _decode_row(d: Any, where: str, key: str | None = None) -> dict[str, Any]:
-    """A study row of a partial-results file, checked: every key present and no other, the
-    numbers finite and >= 0 or null (NaN), propeller_share in [0, 1], the propeller an index
-    in [0, MAX_PROPELLERS], the strings short and of their kind; and consistent (a critical
-    speed and frequency exactly when the kind is not "none", a share exactly with a
-    propeller)."""
-    from propwhirl.engine.results import SavedDict
-    from propwhirl.limits import MAX_PROPELLERS
-
-    r = SavedDict(d, where, (*_ROW_NUMBERS, *_ROW_STRINGS, "propeller"))
-    row: dict[str, Any] = {}
-    for k in _ROW_NUMBERS:
-        x = r.number(k, optional=True)
-        if x is not None and not (0.0 <= x <= (1.0 if k == "propeller_share" else math.inf)):
-            raise v.InputError(f"{r.name(k)} = {x!r} is invalid: must be "
-                               + ("in [0, 1]" if k == "propeller_share" else ">= 0"))
-        row[k] = math.nan if x is None else x
-    for k, choices in _ROW_STRINGS.items():
-        text = r.string(k, choices)
-        if len(text) > _ROW_TEXT or not text.isprintable():
-            raise v.InputError(f"{r.name(k)}: must be a printable name of at most {_ROW_TEXT} "
-                               "characters")
-        row[k] = text
-    row["propeller"] = r.integer("propeller", 0, MAX_PROPELLERS)
-    found = row["kind"] != "none"
-    if found != math.isfinite(row["critical_speed"]) or \
-            found != math.isfinite(row["critical_frequency"]) or (not found and (
-                row["critical_mode"] or row["event"] or row["propeller"])):
-        raise v.InputError(f"{where}: kind {row['kind']!r} does not match its critical speed, "
-                           "frequency, mode and event")
-    if (row["propeller"] > 0) != math.isfinite(row["propeller_share"]):
-        raise v.InputError(f"{where}: propeller {row['propeller']} does not match its share")
-    return {k: row[k] for k in ("critical_speed", "critical_frequency", "critical_mode", "content",
-                                "kind", "event", "whirl", "propeller", "propeller_share",
-                                "static_divergence_speed")}
-
-
-#: The point format of a study's result rows in a partial-results file.
-STUDY_ROW = execution.PointFormat("study row", _encode_row, _decode_row)
-
-
-def _check_checkpoint(checkpoint: Any) -> None:
-    if not isinstance(checkpoint, execution.Checkpoint):
-        raise v.InputError(f"checkpoint = {v.short_repr(checkpoint)} is invalid: must be a "
-                           "propwhirl.studies.execution.Checkpoint")
-
-
-def row_checkpoint(checkpoint: execution.Checkpoint | None, models: Sequence[Any],
-                   grids: Sequence[Any], *, xtol: float, static_divergence: bool,
-                   low_speed: bool, method: str) -> execution.Checkpoint | None:
-    """The checkpoint of :func:`propwhirl.studies.sweeps.run_points`: the study-row format and
-    the fingerprint entries that decide every row — the speed grids, xtol, method, the
-    convention and, unless the study named its model already (entry "model"), the content of
-    every variant analysed (:func:`propwhirl.studies.execution.content_digest`)."""
-    if checkpoint is None:
-        return None
-    _check_checkpoint(checkpoint)
-    entries: dict[str, Any] = {
-        "speeds": execution.content_digest(list(grids)), "xtol": float(xtol), "method": method,
-        "static_divergence": bool(static_divergence), "low_speed": bool(low_speed)}
-    if "model" not in checkpoint.fingerprint:
-        entries["variants"] = execution.content_digest(
-            [f"{type(m).__name__}: {m}" if isinstance(m, Exception) else m for m in models])
-    return checkpoint.with_entries(STUDY_ROW, **entries)
 
 
 def study_points(name: str, parameter: str, parameters: Mapping[str, np.ndarray], n: int,
@@ -188,7 +106,7 @@ def study_points(name: str, parameter: str, parameters: Mapping[str, np.ndarray]
     keys = [f"{m} " + " ".join(f"{k}={float(np.asarray(col)[j])!r}" for k, col in parameters.items())
             + f" #{j}" for m in models for j in range(n)]
     if checkpoint is not None:
-        _check_checkpoint(checkpoint)
+        check_checkpoint(checkpoint)
         checkpoint = checkpoint.with_entries(
             study=name, parameter=parameter, models=list(models),
             parameters={k: [float(x) for x in np.asarray(col, dtype=float)]
@@ -234,9 +152,7 @@ def propeller_study(name: str, parameter: str, unit: str, parameters: Mapping[st
     A point whose model is invalid or whose analysis fails is recorded, the others go on: its
     row has kind "error", NaN speeds and the message in the column ``error`` ("" elsewhere).
     """
-    from propwhirl.studies.sweeps import run_points
-
-    models = _check_models(models)
+    models = check_models(models)
     keys, checkpoint = study_points(name, parameter, parameters, len(propellers), models, xtol,
                                     static_divergence, low_speed, checkpoint)
     variants, grids = [], []
@@ -246,7 +162,7 @@ def propeller_study(name: str, parameter: str, unit: str, parameters: Mapping[st
                 variants.append(build_model(m, p))
             except v.InputError as exc:              # recorded in its row, the others go on
                 variants.append(exc)
-            grids.append(_speeds_for(m, speeds))
+            grids.append(speeds_for(m, speeds))
     rows = run_points(variants, speeds_each=grids, xtol=xtol, static_divergence=static_divergence,
                       low_speed=low_speed, processes=processes, client=client, progress=progress,
                       checkpoint=checkpoint, keys=keys, desc=name)

@@ -57,6 +57,7 @@ from propwhirl.model import derivatives as D
 from propwhirl.progress import ProgressCallback
 from propwhirl.results import Result, SavedDict
 from propwhirl.studies import paths as P
+from propwhirl.studies.execution import map_analyses
 
 #: δ: the relative step of the central differences (h = δ |p|)
 REL_STEP = 1e-3
@@ -336,8 +337,6 @@ def verify_sensitivities(model: Any, analysis: ModelAnalysis, sensitivities: Cri
     SensitivityVerification
         One check per parameter; ``.passed`` when all pass.
     """
-    from propwhirl.studies.execution import map_analyses
-
     if not isinstance(sensitivities, CriticalSensitivities):
         raise v.InputError(f"sensitivities = {v.short_repr(sensitivities)} is invalid: must be "
                            "a CriticalSensitivities (propwhirl.analysis.critical_sensitivities)")

@@ -29,13 +29,16 @@ import numpy as np
 
 from propwhirl import fileio, limits
 from propwhirl import validate as v
-from propwhirl.analysis.reduced import choose_method
+from propwhirl.analysis.reduced import METHODS, choose_method
 from propwhirl.analysis.stability import ModelAnalysis, analyse
 from propwhirl.analysis.summary import text_table
 from propwhirl.results import Result, SavedDict
 from propwhirl.studies import paths as P
 from propwhirl.studies.critical import (convention, critical_instability, static_divergence_speed,
                                         wing_divergence_predicate)
+from propwhirl.studies.execution import TaskError, map_analyses
+from propwhirl.studies.partial import Checkpoint, PointFormat, check_checkpoint, content_digest
+from propwhirl.studies.warmstart import warm_started_rows
 
 #: Default accuracy of every critical speed of a study [m/s]
 STUDY_XTOL = 0.01
@@ -101,6 +104,86 @@ def error_row(message: str) -> dict[str, Any]:
     return {**row, "kind": "error", "error": str(message)}
 
 
+# ---------------------------------------------------------------- a row in a partial-results file
+#: The entries of a study's result row (:func:`evaluate`) as kept in a partial-results file:
+#: numbers that may be NaN (null in the file), a count, and strings (with their possible
+#: values where they are few).
+_ROW_NUMBERS = ("critical_speed", "critical_frequency", "propeller_share", "static_divergence_speed")
+_ROW_STRINGS: dict[str, tuple[str, ...]] = {
+    "critical_mode": (), "content": (), "kind": ("flutter", "divergence", "none"),
+    "event": ("", "onset", "recovery", "frequency-zero", "unstable-at-start"),
+    "whirl": ("", "forward", "backward", "planar")}
+#: Longest name of a mode or content group in a result row [characters].
+_ROW_TEXT = 200
+
+
+def _encode_row(row: Any) -> dict[str, Any]:
+    """A study row as plain JSON: NaN numbers as null (the schema of :func:`_decode_row`)."""
+    if not isinstance(row, Mapping):
+        raise v.InputError(f"a study row must be a dict, got {type(row).__name__}")
+    out = {k: (None if not math.isfinite(float(row[k])) else float(row[k])) for k in _ROW_NUMBERS}
+    out.update({k: str(row[k]) for k in _ROW_STRINGS})
+    out["propeller"] = int(row["propeller"])
+    return _decode_row(out, "row") and out  # a row the reader would refuse is not written
+
+
+def _decode_row(d: Any, where: str, key: str | None = None) -> dict[str, Any]:
+    """A study row of a partial-results file, checked: every key present and no other, the
+    numbers finite and >= 0 or null (NaN), propeller_share in [0, 1], the propeller an index
+    in [0, MAX_PROPELLERS], the strings short and of their kind; and consistent (a critical
+    speed and frequency exactly when the kind is not "none", a share exactly with a
+    propeller)."""
+    r = SavedDict(d, where, (*_ROW_NUMBERS, *_ROW_STRINGS, "propeller"))
+    row: dict[str, Any] = {}
+    for k in _ROW_NUMBERS:
+        x = r.number(k, optional=True)
+        if x is not None and not (0.0 <= x <= (1.0 if k == "propeller_share" else math.inf)):
+            raise v.InputError(f"{r.name(k)} = {x!r} is invalid: must be "
+                               + ("in [0, 1]" if k == "propeller_share" else ">= 0"))
+        row[k] = math.nan if x is None else x
+    for k, choices in _ROW_STRINGS.items():
+        text = r.string(k, choices)
+        if len(text) > _ROW_TEXT or not text.isprintable():
+            raise v.InputError(f"{r.name(k)}: must be a printable name of at most {_ROW_TEXT} "
+                               "characters")
+        row[k] = text
+    row["propeller"] = r.integer("propeller", 0, limits.MAX_PROPELLERS)
+    found = row["kind"] != "none"
+    if found != math.isfinite(row["critical_speed"]) or \
+            found != math.isfinite(row["critical_frequency"]) or (not found and (
+                row["critical_mode"] or row["event"] or row["propeller"])):
+        raise v.InputError(f"{where}: kind {row['kind']!r} does not match its critical speed, "
+                           "frequency, mode and event")
+    if (row["propeller"] > 0) != math.isfinite(row["propeller_share"]):
+        raise v.InputError(f"{where}: propeller {row['propeller']} does not match its share")
+    return {k: row[k] for k in ("critical_speed", "critical_frequency", "critical_mode", "content",
+                                "kind", "event", "whirl", "propeller", "propeller_share",
+                                "static_divergence_speed")}
+
+
+#: The point format of a study's result rows in a partial-results file.
+STUDY_ROW = PointFormat("study row", _encode_row, _decode_row)
+
+
+def row_checkpoint(checkpoint: Checkpoint | None, models: Sequence[Any],
+                   grids: Sequence[Any], *, xtol: float, static_divergence: bool,
+                   low_speed: bool, method: str) -> Checkpoint | None:
+    """The checkpoint of :func:`run_points`: the study-row format and the fingerprint entries
+    that decide every row — the speed grids, xtol, method, the convention and, unless the
+    study named its model already (entry "model"), the content of every variant analysed
+    (:func:`propwhirl.studies.execution.content_digest`)."""
+    if checkpoint is None:
+        return None
+    check_checkpoint(checkpoint)
+    entries: dict[str, Any] = {
+        "speeds": content_digest(list(grids)), "xtol": float(xtol), "method": method,
+        "static_divergence": bool(static_divergence), "low_speed": bool(low_speed)}
+    if "model" not in checkpoint.fingerprint:
+        entries["variants"] = content_digest(
+            [f"{type(m).__name__}: {m}" if isinstance(m, Exception) else m for m in models])
+    return checkpoint.with_entries(STUDY_ROW, **entries)
+
+
 def run_points(models: Sequence[Any], speeds: Any = None, *, speeds_each: Sequence[Any] | None = None,
                xtol: float = STUDY_XTOL, static_divergence: bool = True, low_speed: bool = True,
                processes: int = 1, client=None, progress=None, checkpoint=None,
@@ -118,10 +201,6 @@ def run_points(models: Sequence[Any], speeds: Any = None, *, speeds_each: Sequen
     (:func:`propwhirl.analysis.stability.analyse`).  This is the one place where a study's
     analyses go to the pool.
     """
-    from propwhirl.analysis.reduced import METHODS
-    from propwhirl.studies.execution import TaskError, map_analyses
-    from propwhirl.studies.runner import row_checkpoint
-
     v.positive("xtol", xtol, "m/s")
     if method not in METHODS:
         raise v.InputError(f"method = {method!r} is invalid: must be one of "
@@ -471,8 +550,6 @@ def critical_map(model: Any, axes: Sequence[tuple[str, Any]], *, speeds=None,
                            f"{variants[0]}")
     shape = tuple(len(ax.values) for _, ax in resolved)
     if checkpoint is not None and hasattr(checkpoint, "with_entries"):
-        from propwhirl.studies.partial import content_digest
-
         checkpoint = checkpoint.with_entries(study="critical map", model=content_digest(model),
                                              axes=[ax.to_dict() for _, ax in resolved])
     options = dict(xtol=xtol, static_divergence=static_divergence, low_speed=low_speed,
@@ -480,8 +557,6 @@ def critical_map(model: Any, axes: Sequence[tuple[str, Any]], *, speeds=None,
     if not isinstance(warm_start, (bool, np.bool_)):
         raise v.InputError(f"warm_start = {warm_start!r} is invalid: must be True or False")
     if warm_start and low_speed and len(variants) > 1:
-        from propwhirl.studies.warmstart import warm_started_rows
-
         grid = None if speeds is None else v.increasing("speeds", speeds, "m/s")
         grids = [None if isinstance(m, Exception) else grid if grid is not None
                  else m.flight.speeds() for m in variants]
@@ -523,4 +598,4 @@ def map2d(model: Any, first: tuple[str, Any], second: tuple[str, Any], **options
 
 
 __all__ = ["sweep", "map2d", "critical_map", "CriticalMap", "Axis", "evaluate", "run_points",
-           "RESULT_UNITS", "STUDY_XTOL"]
+           "RESULT_UNITS", "STUDY_XTOL", "STUDY_ROW", "row_checkpoint"]

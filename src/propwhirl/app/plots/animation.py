@@ -16,7 +16,7 @@ import numpy as np
 
 from propwhirl import fileio
 from propwhirl import validate as v
-from propwhirl.app.plots.mode_plot import (ALPHA_COLOUR, H_COLOUR, ORBIT_COLOUR, _checked_event,
+from propwhirl.app.plots.mode_plot import (ALPHA_COLOUR, H_COLOUR, ORBIT_COLOUR, check_event,
                                            event_eigenvector, event_title, mode_shape,
                                            normalised, orbit, wing_values)
 
@@ -94,7 +94,7 @@ def animate_mode(eigenvector, eigenvalue: complex, dof_map: "DofMap", path: str 
 def animate_event(analysis: "ModelAnalysis", event: "Instability", path: str | Path, *,
                   frames: int = FRAMES, fps: float = FPS, dpi: float = DPI) -> Path:
     """:func:`animate_mode` of an instability of `analysis` (e.g. ``analysis.critical``)."""
-    _checked_event(analysis, event)
+    check_event(analysis, event)
     x, lam, V = event_eigenvector(analysis, event)
     return animate_mode(x, lam, analysis.dof_map, path, frames=frames, fps=fps, dpi=dpi,
                         title=event_title(analysis, event, lam, V))

@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from propwhirl import validate as v
+from propwhirl.analysis.vibration import campbell as campbell_data
 from propwhirl.app.plots.canvas import finish, new_figure
 from propwhirl.app.plots.layout import end_labels, freeze_layout, stack_labels, wrap
 
@@ -45,8 +46,6 @@ def campbell(model, rpm=None, *, rpm_ratio=None, n_modes: int | None = None,
     """Campbell diagram of a PropellerWing or an IsolatedPropeller
     (:func:`propwhirl.analysis.vibration.campbell`, aerodynamics off) drawn by
     :func:`campbell_diagram`; `rpm` [rev/min] and `rpm_ratio` as there."""
-    from propwhirl.analysis.vibration import campbell as campbell_data
-
     c = campbell_data(model, rpm, rpm_ratio=rpm_ratio)
     return campbell_diagram(c, n_modes=n_modes, title=title or f"{model.name}: Campbell diagram",
                             path=path)

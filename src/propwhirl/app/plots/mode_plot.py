@@ -202,7 +202,9 @@ def event_title(analysis: "ModelAnalysis", event: "Instability", lam: complex, V
             f"V = {V:.2f} m/s, f = {abs(lam.imag) / (2 * np.pi):.3f} Hz{whirl}")
 
 
-def _checked_event(analysis: "ModelAnalysis", event: "Instability | None") -> None:
+def check_event(analysis: "ModelAnalysis", event: "Instability | None") -> None:
+    """InputError unless `event` is an instability whose mode shape `analysis` can give (it
+    has a DOF map)."""
     if event is None:
         raise v.InputError("no instability to plot (event is None)")
     if analysis.dof_map is None:
@@ -213,7 +215,7 @@ def _checked_event(analysis: "ModelAnalysis", event: "Instability | None") -> No
 def event_mode_shape(analysis: "ModelAnalysis", event: "Instability", *,
                      path: str | Path | None = None) -> "Figure":
     """:func:`mode_shape` of an instability of `analysis` (e.g. ``analysis.critical``)."""
-    _checked_event(analysis, event)
+    check_event(analysis, event)
     x, lam, V = event_eigenvector(analysis, event)
     part = getattr(event, "participation", None)
     shares = None if part is None else {q.propeller: q.share for q in part.propellers}

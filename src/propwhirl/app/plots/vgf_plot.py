@@ -21,10 +21,12 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from propwhirl import validate as v
+from propwhirl.analysis.naming import mode_names
 from propwhirl.app.plots.canvas import (DIVERGENCE_COLOUR, FLUTTER_COLOUR, finish,
                                         matplotlib_or_error, new_figure)
 from propwhirl.app.plots.layout import (FAMILY_COLOURS, family_shades, freeze_layout, mode_family,
                                         place_labels, wrap, curve_boxes)
+from propwhirl.engine import sweep as engine_sweep
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
@@ -53,9 +55,6 @@ def fine_sweep(analysis: "ModelAnalysis", model: "Model", speeds=None,
     analysis's first to its last speed.  `model` must be the analysed model (its modes must
     carry the analysis's names): otherwise an InputError.
     """
-    from propwhirl.analysis.naming import mode_names
-    from propwhirl.engine import sweep as engine_sweep
-
     sw0 = analysis.sweep
     if speeds is None:
         n = v.integer_at_least("n_speeds", n_speeds, 2)

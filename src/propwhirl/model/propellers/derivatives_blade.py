@@ -39,13 +39,13 @@ from scipy.special import hankel2e
 
 from propwhirl.model.propellers.propeller import CROSS_DERIVATIVES, MeasuredDerivatives, Propeller
 from propwhirl.model.propellers.propeller_aero import (
-    _TWO_PI,
+    TWO_PI,
     AeroSettings,
     HouboltReedSource,
     PropellerGeometry,
-    _nodes,
-    _panels,
     houbolt_reed_source,
+    panel_edges,
+    quadrature_nodes,
 )
 from propwhirl.model.aerodynamics.theodorsen import theodorsen
 
@@ -81,16 +81,17 @@ def integrals_and_mu_derivatives(geometry: PropellerGeometry, settings: AeroSett
     the integrals as ``propeller_aero._integrals`` computes them (same panels and rule) and
     their exact derivatives at fixed M (module docstring) [1/m]."""
     A = geometry.blade_aspect_ratio
-    mr2_max = 1.0 - (_TWO_PI / settings.cutoff_lift_slope) ** 2
+    mr2_max = 1.0 - (TWO_PI / settings.cutoff_lift_slope) ** 2
     m2 = mach ** 2
     with np.errstate(divide="ignore"):
         cut_eta = np.where(m2 > 0, mu * np.sqrt(np.maximum(mr2_max / np.where(m2 > 0, m2, 1.0)
                                                            - 1.0, 0.0)), np.inf)
     mu_, m2_ = mu[:, None], m2[:, None]
-    t, w = _nodes(np.arcsinh(_panels(geometry, cut_eta) / mu_), settings.quadrature_order)
+    t, w = quadrature_nodes(np.arcsinh(panel_edges(geometry, cut_eta) / mu_),
+                            settings.quadrature_order)
     eta = mu_ * np.sinh(t)
     chord = geometry.chord(eta)
-    slope = 1.0 if geometry.lift_slope is None else geometry.lift_slope(eta) / _TWO_PI
+    slope = 1.0 if geometry.lift_slope is None else geometry.lift_slope(eta) / TWO_PI
     raw = m2_ * (1.0 + eta ** 2 / mu_ ** 2)
     mr2 = np.minimum(raw, mr2_max)
     beta = np.sqrt(1.0 - mr2)

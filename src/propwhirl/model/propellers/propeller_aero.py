@@ -51,7 +51,9 @@ DERIVATIVE_NAMES: tuple[str, ...] = (
     "Cn_theta", "Cn_psi", "Cn_q", "Cn_r",
 )
 
-_TWO_PI = 2.0 * math.pi
+#: 2π [1/rad]: the thin-aerofoil lift-curve slope (the blade's default, the cut-off's reference)
+TWO_PI = 2.0 * math.pi
+
 # ----------------------------------------------------------------------------- geometry
 @dataclass(frozen=True)
 class Distribution:
@@ -202,7 +204,7 @@ class PropellerGeometry:
         if isinstance(self.chord, Distribution):
             c = self.chord(edges)
             return float(self.radius * np.sum(0.5 * (c[1:] + c[:-1]) * np.diff(edges)))
-        eta, w = _nodes(edges[None, :], 64)
+        eta, w = quadrature_nodes(edges[None, :], 64)
         return float(self.radius * np.sum(w * self.chord(eta)))
 
     @property
@@ -250,7 +252,7 @@ class AeroSettings:
         default="setting"))
     cutoff_lift_slope: float = field(default=4.0 * math.pi, metadata=spec(
         "cutoff_lift_slope_per_rad", "1/rad", "a_m of the cut-off (eq. 4.23-4.24); omitted: "
-        "4 pi (Rodden-Rose)", default="physical", range=(_TWO_PI, 1e3), ends="(]"))
+        "4 pi (Rodden-Rose)", default="physical", range=(TWO_PI, 1e3), ends="(]"))
     quadrature_order: int = field(default=32, metadata=spec(
         "quadrature_order", "", "Gauss-Legendre points per panel", default="setting"))
 
@@ -317,7 +319,7 @@ class PropellerDerivatives:
 
 
 # ----------------------------------------------------------------------------- numerics
-def _panels(geometry: PropellerGeometry, cut_eta: np.ndarray) -> np.ndarray:
+def panel_edges(geometry: PropellerGeometry, cut_eta: np.ndarray) -> np.ndarray:
     """Panel edges, shape (n_points, n_panels + 1): hub, breaks, cut-off radius, tip.
 
     The cut-off radius (per operating point) is clipped into [η0, 1]; a panel of zero width
@@ -340,7 +342,7 @@ def _gauss_legendre(order: int) -> tuple[np.ndarray, np.ndarray]:
     return x, w
 
 
-def _nodes(edges: np.ndarray, order: int) -> tuple[np.ndarray, np.ndarray]:
+def quadrature_nodes(edges: np.ndarray, order: int) -> tuple[np.ndarray, np.ndarray]:
     """Composite Gauss–Legendre nodes and weights on each row's panels, (n_points, m)."""
     x, w = _gauss_legendre(order)
     a, b = edges[:, :-1, None], edges[:, 1:, None]
@@ -354,7 +356,7 @@ def _lift_factor(geometry: PropellerGeometry, settings: AeroSettings, eta: np.nd
                  mr2: np.ndarray, A: float) -> np.ndarray:
     """g(η) of eq. 4.42: a(η)/(2π) · 1/sqrt(1 − M_r²) · A'/(A' + 2) (4.18–4.20), for the
     sections at η with squared relative Mach numbers ``mr2`` (already cut off, 4.23–4.24)."""
-    slope_ratio = 1.0 if geometry.lift_slope is None else geometry.lift_slope(eta) / _TWO_PI
+    slope_ratio = 1.0 if geometry.lift_slope is None else geometry.lift_slope(eta) / TWO_PI
     beta = np.sqrt(1.0 - mr2)
     pg = 1.0 / beta                                                    # eq. 4.18
     arf = (A * beta) / (A * beta + 2.0) if settings.aspect_ratio_correction else 1.0  # 4.19
@@ -366,7 +368,7 @@ def _integrals(geometry: PropellerGeometry, settings: AeroSettings, mu: np.ndarr
                wake: bool) -> tuple[np.ndarray, ...]:
     """I1, I2, I3, J1, J2, J3 (eq. 4.40–4.42) and the cut-off flag, 1-D over the points."""
     A = geometry.blade_aspect_ratio
-    mr2_max = 1.0 - (_TWO_PI / settings.cutoff_lift_slope) ** 2       # eq. 4.23–4.24
+    mr2_max = 1.0 - (TWO_PI / settings.cutoff_lift_slope) ** 2       # eq. 4.23–4.24
     m2 = mach ** 2
     with np.errstate(divide="ignore"):
         # η where M_r² reaches the cut-off: M²(1 + η²/μ²) = 1 − (a0/a_m)²
@@ -376,8 +378,8 @@ def _integrals(geometry: PropellerGeometry, settings: AeroSettings, mu: np.ndarr
     mu_, om_, V_, m2_ = (x[:, None] for x in (mu, omega, airspeed, m2))
     # Substitution η = μ sinh t: dη/sqrt(μ² + η²) = dt removes the near-singularity of the
     # integrand at η = ±iμ (close to the hub for small μ); Gauss–Legendre in t per panel.
-    t_edges = np.arcsinh(_panels(geometry, cut_eta) / mu_)
-    t, w = _nodes(t_edges, settings.quadrature_order)
+    t_edges = np.arcsinh(panel_edges(geometry, cut_eta) / mu_)
+    t, w = quadrature_nodes(t_edges, settings.quadrature_order)
     eta = mu_ * np.sinh(t)
 
     chord = geometry.chord(eta)
@@ -561,9 +563,9 @@ def stopped_blades(geometry: PropellerGeometry, airspeed, speed_of_sound=None,
         M = np.zeros(V.shape)
     Vf, Mf = (np.ascontiguousarray(x, dtype=float).ravel() for x in (V, M))
     validity.check_propeller(geometry.n_blades, geometry.radius, geometry.blade_area(), Vf, Mf)
-    mr2_max = 1.0 - (_TWO_PI / settings.cutoff_lift_slope) ** 2       # eq. 4.23–4.24
+    mr2_max = 1.0 - (TWO_PI / settings.cutoff_lift_slope) ** 2       # eq. 4.23–4.24
     edges = np.concatenate(([geometry.hub_ratio], geometry.knots, [1.0]))[None, :]
-    eta, w = _nodes(edges, settings.quadrature_order)                 # (1, m)
+    eta, w = quadrature_nodes(edges, settings.quadrature_order)      # (1, m)
     mr2 = np.minimum(Mf[:, None] ** 2, mr2_max)                        # (n, 1): M_r = M
     g = _lift_factor(geometry, settings, eta, mr2, geometry.blade_aspect_ratio)
     cy_psi = geometry.n_blades / geometry.radius * np.sum(w * geometry.chord(eta) * g, axis=1)

@@ -14,7 +14,7 @@ import functools
 
 import numpy as np
 
-from propwhirl.generated import beam_element
+from propwhirl.generated import beam_element, beam_inplane, strip_aero
 from propwhirl.model.structure.wing import Wing
 
 WING_DOF_NAMES = ("h", "phi", "alpha")
@@ -65,8 +65,6 @@ def inplane_structure(wing: Wing) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     node (root included), shapes (2 n_nodes, 2 n_nodes); the generated in-plane element
     (derivations/beam_inplane.py) assembled as the bending one, Rayleigh damping μM + λK with
     the wing's (μ, λ).  The wing must have ``EI_chordwise``."""
-    from propwhirl.generated import beam_inplane
-
     p = wing.inplane_properties()
     if p is None:
         raise ValueError("inplane_structure: the wing has no EI_chordwise")
@@ -148,8 +146,6 @@ def strip_aero_blocks(node: dict[str, np.ndarray], aero_model: str, rho: float,
     mid-chord) and Cla [1/rad] (the keys of :meth:`Wing.node_properties`); ``aero_model`` a key
     of :data:`LAG_STATES`.  The wing's strips, or a modal model's
     (:mod:`propwhirl.model.modal`); "qrows"/"wrows" index the strips in order as nodes."""
-    from propwhirl.generated import strip_aero
-
     nn = len(node["b"])
     k = LAG_STATES[aero_model]
     Vc = np.asarray(V, dtype=float)[:, None]
