@@ -23,7 +23,31 @@ class InputError(ValueError):
     names and indices from the object being built, e.g. ``("EI", 3)`` or
     ``("propellers", 2, "y")``), the offending `value` and the `reason` (the text after
     ``NAME = VALUE [UNIT] is``), so that a file reader can restate them with the key the
-    user wrote.
+    user wrote.  A ``ValueError``.
+
+    Parameters
+    ----------
+    message : str
+        One line: parameter, value (with its unit) and what is valid.
+    path : tuple
+        Field names and indices from the object being built to the value; () when not about
+        one field.
+    value : object, optional
+        The offending value.
+    reason : str, optional
+        The text after ``NAME = VALUE [UNIT] is``.
+
+    Examples
+    --------
+    >>> from propwhirl import InputError, Wing
+    >>> try:
+    ...     Wing(semi_span=6.0, mass_per_length=20.0, EI=-2.0e5, GJ=1.0e5,
+    ...          radius_of_gyration=0.25)
+    ... except InputError as e:
+    ...     print(e)
+    ...     print(e.path, e.value)
+    EI = -200000.0 N m^2 is outside the valid range [1e-3, 1e12] N m^2
+    ('EI',) -200000.0
     """
 
     def __init__(self, message: str, *, path: tuple = (), value: Any = _UNSET,

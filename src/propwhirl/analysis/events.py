@@ -40,17 +40,45 @@ class Instability:
     """One instability event of a tracked mode (the analysis's named event; the engine's raw
     crossing is :class:`~propwhirl.engine.results.CriticalPoint`: the module docstring).
 
-    kind:   "flutter" (oscillatory) or "divergence" (non-oscillatory)
-    event:  "onset" (Re λ becomes positive), "recovery" (becomes negative again; hump modes),
-            "frequency-zero" (an unstable pair turns into real roots: divergence of that mode),
-            "unstable-at-start" (Re λ > 0 already at the first analysed speed, V = that speed)
-    mode, label: tracked mode id and its name (e.g. "forward 1", "wing 2", "lag 1")
-    V [m/s], frequency_hz [Hz] at the event; whirl: "forward"/"backward"/"planar" sense of the
-    θ–ψ orbit of the propeller with the largest θ–ψ motion (None without flexible propellers);
-    benignity [m/s] (eq. 5.13) at flutter onsets; participation: every flexibly mounted
-    propeller's share of the mode's kinetic energy, whirl sense, relative amplitude and
-    position at the event (:mod:`propwhirl.analysis.participation`; None without the mode
-    shape).
+    Attributes
+    ----------
+    kind : {"flutter", "divergence"}
+        "flutter" (oscillatory) or "divergence" (non-oscillatory).
+    event : {"onset", "recovery", "frequency-zero", "unstable-at-start"}
+        "onset" (Re λ becomes positive), "recovery" (becomes negative again; hump modes),
+        "frequency-zero" (an unstable pair turns into real roots: divergence of that mode),
+        "unstable-at-start" (Re λ > 0 already at the first analysed speed, V = that speed).
+    mode : int
+        Tracked mode id.
+    label : str
+        The mode's name (e.g. "forward 1", "wing 2", "lag 1").
+    V : float
+        Speed of the event [m/s].
+    frequency_hz : float
+        Frequency at the event [Hz] (0 for divergence).
+    whirl : {"forward", "backward", "planar"} or None
+        Sense of the θ–ψ orbit of the propeller with the largest θ–ψ motion (None without
+        flexible propellers).
+    benignity : float or None
+        (dζ/dV)⁻¹ [m/s] (eq. 5.13) at flutter onsets (negative: the more negative, the more
+        gradual); None otherwise.
+    participation : ModeParticipation or None
+        Every flexibly mounted propeller's share of the mode's kinetic energy [-], whirl sense,
+        relative amplitude and position [m] at the event
+        (:mod:`propwhirl.analysis.participation`; None without the mode shape).
+
+    Examples
+    --------
+    The first flutter of the wingtip model (§10.1): the forward whirl mode, whirling backward
+    at its onset, 16 % of its kinetic energy in the propeller:
+
+    >>> from propwhirl.analysis import analyse, first_of_kind
+    >>> from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
+    >>> e = first_of_kind(analyse(wingtip_propeller_wing()), "flutter")
+    >>> e.kind, e.event, e.label, round(e.V, 2), round(e.frequency_hz, 2), e.whirl
+    ('flutter', 'onset', 'forward 1', 159.39, 11.25, 'backward')
+    >>> round(e.benignity, 1), e.propeller_text()
+    (-86.8, 'propeller 1 (y = 5.70 m): 16 %, backward whirl; wing 84 %')
     """
 
     kind: str

@@ -129,7 +129,45 @@ class CriticalSensitivities(Result):
     A :class:`~propwhirl.results.Result` of kind "sensitivities" (format
     ``propwhirl.sensitivities/2``, each entry with its scale; version 1 still loads; ``propwhirl sensitivities --json`` writes it): the
     critical point's keys are those of an :class:`~propwhirl.analysis.stability.Instability`
-    (V, frequency_hz, kind, event; mode is its label) and λ, ∂λ/∂V."""
+    (V, frequency_hz, kind, event; mode is its label) and λ, ∂λ/∂V.
+
+    Attributes
+    ----------
+    V : float
+        Speed of the critical point [m/s].
+    frequency_hz : float
+        Its frequency [Hz].
+    kind : {"flutter", "divergence"}
+        Its kind.
+    event : str
+        Its event ("onset" or "recovery").
+    mode : str
+        The mode's label.
+    eigenvalue : complex
+        λ at the point [1/s].
+    dlam_dV : complex
+        ∂λ/∂V there [1/m].
+    sensitivities : tuple of Sensitivity
+        Per parameter: path, value and unit, ∂λ/∂p [1/s per unit], dV_crit/dp [m/s per unit],
+        df/dp [Hz per unit], normalised (scale / V_crit) dV_crit/dp [-]; :meth:`ranked` sorts
+        them by |normalised|.
+
+    Examples
+    --------
+    The wingtip model's first flutter (§10.1) against the pitch-mount frequency and the whole
+    torsional rigidity (the scale form ``wing.GJ*``): 1 % more GJ raises it by 0.30 %.
+
+    >>> from propwhirl.analysis import analyse, critical_sensitivities, first_of_kind
+    >>> from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
+    >>> m = wingtip_propeller_wing()
+    >>> a = analyse(m)
+    >>> cs = critical_sensitivities(m, a, first_of_kind(a, "flutter"),
+    ...                             params=["propellers[0].propeller.f_theta", "wing.GJ*"])
+    >>> cs.kind, cs.mode, round(cs.V, 2), round(cs.frequency_hz, 2)
+    ('flutter', 'forward 1', 159.39, 11.25)
+    >>> [(s.path, round(s.normalised, 2)) for s in cs.ranked()]
+    [('wing.GJ*', 0.3), ('propellers[0].propeller.f_theta', 0.16)]
+    """
 
     V: float
     frequency_hz: float
@@ -294,6 +332,32 @@ def critical_sensitivities(model, analysis, event=None, *, params=None) -> Criti
     """The sensitivities of ``event`` (default ``analysis.critical``) of ``analysis`` (an
     analysis of ``model``, a PropellerWing) for ``params`` (paths of
     :func:`sensitivity_parameters`, checked before any work; default all).
+
+    Exact derivatives of the crossing's eigenvalue (∂λ/∂p from the generated matrices'
+    parameter derivatives), dV_crit/dp = −Re(∂λ/∂p) / Re(∂λ/∂V).
+
+    Parameters
+    ----------
+    model : PropellerWing
+        The analysed model.
+    analysis : ModelAnalysis
+        A fresh analysis of `model` (a re-read one has no eigenvectors of its crossings).
+    event : Instability, optional
+        An onset or recovery of `analysis` (default its critical instability).
+    params : sequence of str, optional
+        Parameter paths (``"propellers[0].propeller.f_theta"``, ``"wing.GJ*"``, ...,
+        :func:`sensitivity_parameters`); default all.
+
+    Returns
+    -------
+    CriticalSensitivities
+        V [m/s], f [Hz], λ [1/s], ∂λ/∂V [1/m] of the point and, per parameter, ∂λ/∂p,
+        dV/dp [m/s per unit], df/dp [Hz per unit] and the normalised sensitivity [-].
+
+    Raises
+    ------
+    InputError
+        An unknown parameter path, no instability, or an event that is not a crossing.
 
     Examples
     --------

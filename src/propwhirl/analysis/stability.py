@@ -64,6 +64,48 @@ class ModelAnalysis(Result):
     A :class:`~propwhirl.results.Result`: :meth:`save` / :meth:`load` write and re-read the
     analysis file (format ``propwhirl.analysis/3``; the files of earlier releases,
     ``"propwhirl-analysis"`` with ``format_version`` 1 or 2 or without a format, still load).
+    :func:`~propwhirl.analysis.analyse` makes it; :attr:`critical` is the critical
+    instability, :meth:`summary` the text report.
+
+    Attributes
+    ----------
+    model_name : str
+        The analysed model's name.
+    sweep : Sweep
+        The tracked eigenvalues λ [1/s] along the speeds V [m/s], modes named.
+    events : tuple of Instability
+        Every instability event, sorted by speed [m/s].
+    criticals : Criticals or None
+        The engine's crossings (with their eigenvectors; None when re-read).
+    content : dict of str to dict of str to float
+        Mode label → share [-] of its kinetic energy at the first speed per group of degrees
+        of freedom ("bending": h, φ; "torsion": α; "pitch", "yaw": propeller θ, ψ; "plunge").
+    dof_map : DofMap or None
+        What each state of the analysed model is (wing node and DOF, propeller, lag state).
+    warnings : tuple of str
+        Results outside the methods' validity, one line each
+        (:mod:`propwhirl.model.aerodynamics.validity`: Mach above 0.7 or supersonic, supersonic
+        propeller tips).
+    reference : Reference or None
+        Reference length [m], density [kg/m³] and speed of sound [m/s] of the flutter summary.
+    finite_state : FiniteState or None
+        With method="pk" (the events are then the p-k method's): the finite-state events of the
+        same tracked modes; None otherwise.
+    thesis_names : dict of str to str
+        Mode name → the thesis's name of the mode ("backward 2") where they differ (several
+        propellers, :func:`propwhirl.analysis.naming.named_modes`): :meth:`first` takes either;
+        not saved.
+
+    Examples
+    --------
+    >>> from propwhirl.analysis import analyse
+    >>> from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
+    >>> a = analyse(wingtip_propeller_wing())
+    >>> [(e.kind, e.event, e.label, round(e.V, 1)) for e in a.events]      # doctest: +NORMALIZE_WHITESPACE
+    [('divergence', 'onset', 'wing 1', 143.2), ('flutter', 'onset', 'forward 1', 159.4),
+     ('flutter', 'onset', 'backward 1', 294.8), ('divergence', 'frequency-zero', 'forward 1', 320.9)]
+    >>> a.critical.label, a.describe("forward 1"), len(a.warnings)
+    ('wing 1', 'forward 1 (yaw)', 2)
     """
 
     KIND: ClassVar[str] = "analysis"
@@ -364,16 +406,28 @@ def load(path: str | Path) -> ModelAnalysis:
     """Re-read an analysis file: :meth:`ModelAnalysis.load` (this function is its alias, the
     name scripts of earlier releases use).
 
+    Parameters
+    ----------
+    path : str or Path
+        The analysis file (JSON) written by :meth:`ModelAnalysis.save`; its eigenvectors are
+        read from the ``.npz`` beside it when it was saved with them.
+
+    Returns
+    -------
+    ModelAnalysis
+        The analysis as saved (its events, sweep and names; no engine crossings).
+
     Examples
     --------
-    >>> import tempfile, pathlib
+    >>> import pathlib, tempfile
     >>> from propwhirl.analysis import analyse, load
     >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
     >>> a = analyse(isolated_baseline_propeller(), speeds=[100.0, 200.0, 250.0])
-    >>> path = pathlib.Path(tempfile.mkdtemp()) / "a.json"
-    >>> _ = a.save(path)
-    >>> load(path).critical == a.critical
-    True
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = a.save(pathlib.Path(folder) / "a.json")
+    ...     again = load(path)
+    >>> again.critical == a.critical, round(again.critical.V, 1)
+    (True, 221.5)
     """
     return ModelAnalysis.load(path)
 
@@ -614,13 +668,63 @@ def _leading(e: Instability) -> str:
 
 
 def speed_and_frequency(event: Instability | None) -> tuple[float, float]:
-    """(V [m/s], f [Hz]) of an event; NaN (reported as not computed) when there is none."""
+    """(V [m/s], f [Hz]) of an event; NaN (reported as not computed) when there is none.
+
+    Parameters
+    ----------
+    event : Instability or None
+        The event.
+
+    Returns
+    -------
+    V : float
+        Its speed [m/s], or NaN.
+    frequency_hz : float
+        Its frequency [Hz], or NaN.
+
+    Examples
+    --------
+    >>> from propwhirl.analysis import analyse, first_of_kind, speed_and_frequency
+    >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+    >>> a = analyse(isolated_baseline_propeller(), speeds=[100.0, 200.0, 250.0])
+    >>> V, f = speed_and_frequency(first_of_kind(a, "flutter"))
+    >>> round(V, 1), round(f, 2)
+    (221.5, 5.01)
+    >>> speed_and_frequency(first_of_kind(a, "divergence"))      # none in this range
+    (nan, nan)
+    """
     if event is None:
         return float("nan"), float("nan")
     return event.V, event.frequency_hz
 
 
 def first_of_kind(a: ModelAnalysis, kind: str, event: str = "onset") -> Instability | None:
-    """The lowest-speed event of a kind ("flutter" or "divergence"), whatever the mode."""
+    """The lowest-speed event of a kind ("flutter" or "divergence"), whatever the mode.
+
+    Parameters
+    ----------
+    a : ModelAnalysis
+        The analysis.
+    kind : {"flutter", "divergence"}
+        The kind of event.
+    event : {"onset", "recovery", "frequency-zero", "unstable-at-start"}
+        The event.
+
+    Returns
+    -------
+    Instability or None
+        The event of that kind at the lowest speed V [m/s]; None if there is none.
+
+    Examples
+    --------
+    >>> from propwhirl.analysis import analyse, first_of_kind
+    >>> from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
+    >>> a = analyse(wingtip_propeller_wing())
+    >>> e = first_of_kind(a, "flutter")
+    >>> e.label, round(e.V, 2)
+    ('forward 1', 159.39)
+    >>> round(first_of_kind(a, "divergence", "frequency-zero").V, 2)
+    320.94
+    """
     hits = [e for e in a.events if e.kind == kind and e.event == event]
     return min(hits, key=lambda e: e.V) if hits else None

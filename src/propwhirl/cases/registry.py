@@ -42,6 +42,15 @@ class NamedCase:
     section : str
         Where the thesis defines it, e.g. ``"section 10.1"`` or ``"Table 7.1"`` (ASCII: the command
         line prints it).
+
+    Examples
+    --------
+    >>> from propwhirl.cases import CASES
+    >>> case = CASES["isolated-propeller"]
+    >>> case.summary
+    'baseline propeller on a rigid wing (section 9.2)'
+    >>> case.model().propeller.radius                    # rotor radius [m]
+    0.762
     """
 
     name: str
@@ -98,5 +107,32 @@ def get(name: str) -> NamedCase:
 
 
 def case_model(name: str, **options: Any) -> PropellerWing | IsolatedPropeller:
-    """The model of the named case `name`, built with `options` (see :meth:`NamedCase.model`)."""
+    """The model of the named case `name`, built with `options` (see :meth:`NamedCase.model`).
+
+    Parameters
+    ----------
+    name : str
+        A name of :data:`CASES` (``"wingtip"``, ``"patil"``, ...).
+    **options
+        Keyword arguments of the case's factory (e.g. ``mount="rigid"``).
+
+    Returns
+    -------
+    PropellerWing or IsolatedPropeller
+        The model (SI units).
+
+    Raises
+    ------
+    InputError
+        An unknown name (the error lists the valid ones).
+
+    Examples
+    --------
+    >>> from propwhirl.cases import case_model
+    >>> m = case_model("wingtip")
+    >>> m.wing.semi_span, [inst.y for inst in m.propellers], m.propellers[0].mount
+    (5.7, [5.7], 'flexible')
+    >>> case_model("wingtip", mount="rigid").propellers[0].mount
+    'rigid'
+    """
     return get(name).model(**options)

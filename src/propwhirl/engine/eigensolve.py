@@ -95,7 +95,23 @@ def _norm(x: np.ndarray) -> np.floating:
 
 
 def single_thread_blas():
-    """Context manager limiting BLAS/OpenMP to one thread (small dense eigenproblems)."""
+    """Context manager limiting BLAS/OpenMP to one thread (small dense eigenproblems).
+
+    Returns
+    -------
+    contextlib.AbstractContextManager
+        Use in a ``with`` statement (threadpoolctl's limiter): the BLAS/OpenMP thread
+        counts are restored on exit.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from propwhirl.engine import eigenvalues, single_thread_blas
+    >>> with single_thread_blas():
+    ...     lam = eigenvalues(np.array([[0.0, 1.0], [-4.0, 0.0]]))
+    >>> np.allclose(lam, [2j, -2j])                     # λ = ±2i [1/s]
+    True
+    """
     return _blas_controller().limit(limits=1)
 
 
@@ -128,6 +144,31 @@ def eigen(A_stack) -> tuple[np.ndarray, np.ndarray]:
     Vectorised over leading axes; BLAS limited to one thread.  Complex-conjugate pairs are
     adjacent with the ``Im > 0`` member first and have exactly conjugate eigenvectors (LAPACK
     ``geev``).  Always returns complex arrays.
+
+    Parameters
+    ----------
+    A_stack : array_like, shape (..., n, n)
+        Real square matrices (e.g. state matrices, eq. 5.4 [1/s]), vectorised over leading
+        axes.
+
+    Returns
+    -------
+    eigenvalues : ndarray, shape (..., n), complex
+        λ [1/s for a state matrix].
+    eigenvectors : ndarray, shape (..., n, n), complex
+        Column j the unit-length right eigenvector of ``eigenvalues[..., j]``.
+
+    Examples
+    --------
+    The oscillator ẍ + 0.4 ẋ + 4 x = 0: λ = −0.2 ± 1.990i, the vectors (1, λ) normalised.
+
+    >>> import numpy as np
+    >>> from propwhirl.engine import eigen
+    >>> lam, X = eigen(np.array([[0.0, 1.0], [-4.0, -0.4]]))
+    >>> np.round(lam, 3).tolist()
+    [(-0.2+1.99j), (-0.2-1.99j)]
+    >>> np.allclose(X[:, 1], X[:, 0].conj()), np.allclose(np.linalg.norm(X, axis=0), 1.0)
+    (True, True)
     """
     A = as_square_stack(A_stack)
     with single_thread_blas():
@@ -434,6 +475,48 @@ def tracked_eigenvalue(state_matrix: StateMatrixFn, V: float, guess: complex,
     ``shape`` is a full-state vector of the mode (e.g. from a nearby speed): it starts the
     shifted inverse iteration and checks identity (MAC ≥ mac_min on the displacement part,
     else a full eigendecomposition picks the best match).
+
+    Parameters
+    ----------
+    state_matrix : callable
+        ``state_matrix(V) -> A``, vectorised over a 1-D array of airspeeds V [m/s], returning
+        real state matrices (len(V), n, n) [1/s].
+    V : float
+        The speed [m/s], > 0.
+    guess : complex
+        Estimate of the eigenvalue [1/s] (the shift).
+    shape : ndarray
+        (n,) full-state vector of the mode.
+    n_dof : int, optional
+        The first `n_dof` states are displacements (or give `displacement`).
+    displacement : array_like of bool, optional
+        Mask of the displacement states; default: all states.
+    mac_min : float
+        Least MAC [-] of the displacement part with `shape` for the iteration's result.
+
+    Returns
+    -------
+    eigenvalue : complex
+        λ [1/s] at V.
+    eigenvector : ndarray
+        (n,) its right eigenvector.
+
+    Examples
+    --------
+    The oscillator ẍ + (0.5 − 0.01 V) ẋ + 100 x = 0 followed from 50 to 60 m/s, where
+    λ = 0.05 + i√(100 − 0.05²):
+
+    >>> import numpy as np
+    >>> from propwhirl.engine import sweep, tracked_eigenvalue
+    >>> def state_matrix(V):
+    ...     A = np.zeros((V.size, 2, 2))
+    ...     A[:, 0, 1], A[:, 1, 0], A[:, 1, 1] = 1.0, -100.0, -(0.5 - 0.01 * V)
+    ...     return A
+    >>> sw = sweep(state_matrix, np.array([40.0, 50.0]), n_dof=1)
+    >>> lam, x = tracked_eigenvalue(state_matrix, 60.0, sw.eigenvalues[-1, 0],
+    ...                             sw.eigenvectors[-1, :, 0], n_dof=1)
+    >>> round(lam.real, 6), round(lam.imag, 4)
+    (0.05, 9.9999)
     """
     Vv = np.atleast_1d(positive("V", V, "m/s")).astype(float)
     if Vv.size != 1:

@@ -20,7 +20,31 @@ class TimeResponse(Result):
 
     A :class:`~propwhirl.results.Result` of kind "time-response" (format
     ``propwhirl.time-response/1``; a dict without a format, as written before it, is
-    version 1): :meth:`save` / :meth:`load`."""
+    version 1): :meth:`save` / :meth:`load`.  ``response["label"]`` is one state's history.
+
+    Attributes
+    ----------
+    t : ndarray
+        (T,) times [s], increasing.
+    x : ndarray
+        (T, n) the states, each in its own unit (displacements [m] or [rad], rates [m/s] or
+        [rad/s], lag states).
+    labels : tuple of str
+        The n state labels.
+
+    Examples
+    --------
+    An undamped oscillator ẍ + 4 x = 0 from x = 1 at rest (:func:`time_response`):
+
+    >>> import numpy as np
+    >>> from propwhirl.engine import time_response
+    >>> r = time_response(np.array([[0.0, 1.0], [-4.0, 0.0]]), [1.0, 0.0],
+    ...                   np.linspace(0.0, 3.0, 31), ["x", "v"])
+    >>> r.x.shape, r.labels
+    ((31, 2), ('x', 'v'))
+    >>> round(float(r["x"][-1]), 4), round(float(np.cos(6.0)), 4)       # x(3 s) = cos 6
+    (0.9602, 0.9602)
+    """
 
     t: np.ndarray
     x: np.ndarray

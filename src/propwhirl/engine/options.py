@@ -17,37 +17,58 @@ SPEEDS_FORM = ("an increasing 1-D array of at least 2 airspeeds > 0 m/s, "
 class TrackingOptions:
     """Tuning of the mode tracker (dimensionless unless stated).
 
-    mac_min:          a match whose MAC is below this is ambiguous (step refined).
-    cost_ratio:       a match whose cost exceeds this fraction of the runner-up's cost is
-                      ambiguous.  Cost = (1 − MAC) + |λ_b − λ_pred| / s, s = max(|λ_a|, floor);
-                      the correct continuation's cost → 0 as the step shrinks, a wrong one's
-                      does not, so a relative test resolves even near-identical shapes.
-                      Between two real roots the cost is the distance term alone.
-    dist_max:         a match farther than this (relative to s) from its prediction is
-                      ambiguous.
-    approach_ratio:   two complex eigenvalues whose predicted paths come closer inside a step
-                      than this fraction of their end separations mark the step ambiguous.
-    min_step:         smallest speed step of the refinement [m/s].
-    fd_rel:           relative finite-difference step for dA/dV (h = fd_rel·max(V, 1 m/s)).
-    degenerate_tol:   eigenvalues closer than this (relative) are treated as repeated.
-    zero_tol:         |Re λ| ≤ zero_tol·max(|λ|, floor) counts as neutral (no sign).
-    max_nodes:        budget of speeds (grid + refinement); None → the first evaluation plus
-                      at most ``limits.MAX_REFINED_NODES`` (2,000), at most 20·len(grid) + 200,
-                      and no more than fit in the memory limit (:func:`propwhirl.limits.node_budget`).
-    hump_check:       insert samples where the cubic Hermite model of Re λ between two samples
-                      of equal sign crosses zero, or comes closer to zero than ``margin`` times
-                      its uncertainty (below).
-    decisive_ratio:   a match whose prediction mismatch is below this fraction of every other
-                      candidate's (below 0.1·dist_max, every other candidate farther than
-                      dist_max) is unambiguous whatever its MAC: the
-                      eigenvalue continuation is unique while the shape may change a lot along V
-                      (e.g. whirl modes at low speed).  0: the MAC is always required.
-    margin:           uncertainty of the Hermite model of a step = the mismatch of the
-                      trapezoidal prediction at the step's end, |λ_b − λ_a − ½(λ'_a + λ'_b) ΔV|
-                      (a third-order error estimate; the cubic's own error is of fourth order),
-                      spread over the step as 16 s²(1 − s)² (zero at the samples, where λ and
-                      λ' are exact).  A branch whose |Re λ| model falls below margin × that
-                      envelope inside the step is sampled there.  0 keeps only the sign test.
+    Parameters
+    ----------
+    mac_min : float
+        A match whose MAC is below this is ambiguous (step refined); in [0, 1].
+    cost_ratio : float
+        A match whose cost exceeds this fraction of the runner-up's cost is ambiguous.
+        Cost = (1 − MAC) + |λ_b − λ_pred| / s, s = max(|λ_a|, floor); the correct
+        continuation's cost → 0 as the step shrinks, a wrong one's does not, so a relative test
+        resolves even near-identical shapes.  Between two real roots the cost is the distance
+        term alone.
+    dist_max : float
+        A match farther than this (relative to s) from its prediction is ambiguous.
+    approach_ratio : float
+        Two complex eigenvalues whose predicted paths come closer inside a step than this
+        fraction of their end separations mark the step ambiguous.
+    min_step : float
+        Smallest speed step of the refinement [m/s].
+    fd_rel : float
+        Relative finite-difference step for dA/dV (h = fd_rel·max(V, 1 m/s)).
+    degenerate_tol : float
+        Eigenvalues closer than this (relative) are treated as repeated.
+    zero_tol : float
+        |Re λ| ≤ zero_tol·max(|λ|, floor) counts as neutral (no sign).
+    max_nodes : int, optional
+        Budget of speeds (grid + refinement); None → the first evaluation plus at most
+        ``limits.MAX_REFINED_NODES`` (2,000), at most 20·len(grid) + 200, and no more than fit
+        in the memory limit (:func:`propwhirl.limits.node_budget`).
+    hump_check : bool
+        Insert samples where the cubic Hermite model of Re λ between two samples of equal sign
+        crosses zero, or comes closer to zero than `margin` times its uncertainty (below).
+    decisive_ratio : float
+        A match whose prediction mismatch is below this fraction of every other candidate's
+        (below 0.1·dist_max, every other candidate farther than dist_max) is unambiguous
+        whatever its MAC: the eigenvalue continuation is unique while the shape may change a
+        lot along V (e.g. whirl modes at low speed).  0: the MAC is always required.
+    margin : float
+        Uncertainty of the Hermite model of a step = the mismatch of the trapezoidal
+        prediction at the step's end, |λ_b − λ_a − ½(λ'_a + λ'_b) ΔV| (a third-order error
+        estimate; the cubic's own error is of fourth order), spread over the step as
+        16 s²(1 − s)² (zero at the samples, where λ and λ' are exact).  A branch whose |Re λ|
+        model falls below margin × that envelope inside the step is sampled there.  0 keeps
+        only the sign test.
+
+    Examples
+    --------
+    A coarser refinement (0.1 m/s steps at the finest) for :func:`~propwhirl.engine.sweep`,
+    :func:`~propwhirl.engine.analyse` or ``propwhirl.analyse(model, options=...)``:
+
+    >>> from propwhirl.engine import TrackingOptions
+    >>> opts = TrackingOptions(min_step=0.1)
+    >>> opts.min_step, opts.mac_min
+    (0.1, 0.8)
     """
 
     mac_min: float = 0.8

@@ -34,25 +34,63 @@ class Sweep:
     """Tracked eigen-solutions along the airspeed.
 
     Column ``k`` of every ``(T, n)`` array is mode (branch) ``k``; ``physical[t, k]`` says whether
-    it is reported at speed ``V[t]`` (Im λ ≥ 0; see the module docstring).
+    it is reported at speed ``V[t]`` (Im λ ≥ 0; see the module docstring).  Frequencies and
+    damping ratios (eq. 5.5): :attr:`frequency_hz`, :attr:`damping_ratio`; tables:
+    :meth:`table`, :meth:`to_dataframe`, :meth:`to_xarray`.
 
-    V:            (T,) speeds [m/s], increasing: the grid plus refinement points (from
-                  :func:`analyse`: a subset of the grid plus refinement points).
-    eigenvalues:  (T, n) complex λ [1/s].
-    eigenvectors: (T, n_states, n) complex (n_states = n for a dense analysis; a reduced one,
-                  :mod:`propwhirl.analysis.reduced`, has fewer modes than states and lifts its
-                  vectors to the full state where read), ``[t, :, k]`` the right eigenvector of mode k, phase
-                  aligned along V (first speed: largest displacement entry real positive);
-                  None when re-read from a dict saved without them.  Memory: T·n²·16 bytes
-                  (100 speeds × 300 states ≈ 144 MB).
-    dlam_dV:      (T, n) complex dλ/dV [1/m].
-    physical:     (T, n) bool.
-    state_labels: the n_states state labels; displacement: (n_states,) bool mask of the displacement states.
-    mode_labels:  n mode labels; partner: (n,) id of the conjugate partner branch (−1 if none).
-    grid:         the speeds asked for [m/s].
-    floor:        (T,) scale floor of |λ| used for relative tolerances [1/s].
-    unresolved:   speed intervals [m/s] left ambiguous at ``min_step`` or the node budget.
-    stats:        counters (eig, state_matrix_calls, nodes, refined).
+    Attributes
+    ----------
+    V : ndarray
+        (T,) speeds [m/s], increasing: the grid plus refinement points (from :func:`analyse`:
+        a subset of the grid plus refinement points).
+    eigenvalues : ndarray
+        (T, n) complex λ [1/s].
+    eigenvectors : ndarray or None
+        (T, n_states, n) complex (n_states = n for a dense analysis; a reduced one,
+        :mod:`propwhirl.analysis.reduced`, has fewer modes than states and lifts its vectors
+        to the full state where read), ``[t, :, k]`` the right eigenvector of mode k, phase
+        aligned along V (first speed: largest displacement entry real positive); None when
+        re-read from a dict saved without them.  Memory: T·n²·16 bytes (100 speeds × 300
+        states ≈ 144 MB).
+    dlam_dV : ndarray
+        (T, n) complex dλ/dV [1/m].
+    physical : ndarray
+        (T, n) bool: mode k reported at V[t].
+    state_labels : tuple of str
+        The n_states state labels.
+    displacement : ndarray
+        (n_states,) bool mask of the displacement states.
+    mode_labels : tuple of str
+        n mode labels.
+    partner : ndarray
+        (n,) id of the conjugate partner branch (−1 if none).
+    grid : ndarray
+        The speeds asked for [m/s].
+    floor : ndarray
+        (T,) scale floor of |λ| used for relative tolerances [1/s].
+    unresolved : tuple of (float, float)
+        Speed intervals [m/s] left ambiguous at ``min_step`` or the node budget.
+    stats : mapping of str to int
+        Counters (eig, state_matrix_calls, nodes, refined, ...).
+
+    Examples
+    --------
+    The oscillator ẍ + (0.5 − 0.01 V) ẋ + 100 x = 0 on 10 speeds: two branches, the conjugate
+    pair, of which mode 0 (Im λ > 0) is the physical one.
+
+    >>> import numpy as np
+    >>> from propwhirl.engine import sweep
+    >>> def state_matrix(V):
+    ...     A = np.zeros((V.size, 2, 2))
+    ...     A[:, 0, 1], A[:, 1, 0], A[:, 1, 1] = 1.0, -100.0, -(0.5 - 0.01 * V)
+    ...     return A
+    >>> sw = sweep(state_matrix, np.arange(10.0, 101.0, 10.0), n_dof=1)
+    >>> sw.V.shape, sw.eigenvalues.shape, sw.eigenvectors.shape
+    ((10,), (10, 2), (10, 2, 2))
+    >>> sw.mode_labels, sw.physical[0].tolist(), sw.partner.tolist()
+    (('mode 0', "mode 0'"), [True, False], [1, 0])
+    >>> round(float(sw.frequency_hz[0, 0]), 3), round(float(sw.damping_ratio[-1, 0]), 3)
+    (1.591, -0.025)
     """
 
     V: np.ndarray
@@ -231,14 +269,47 @@ class CriticalPoint:
     "frequency-zero" for events without a crossing).  The quantities both have carry the same
     names in both dict forms: kind, mode, label, V [m/s], frequency_hz [Hz], benignity [m/s].
 
-    mode, label:   tracked mode id and label.
-    kind:          "flutter" (complex pair, Im λ ≠ 0) or "divergence" (real root through 0).
-    direction:     "onset" (Re λ − → +) or "recovery" (+ → −).
-    V:             crossing speed [m/s] (bracket width ≤ xtol); bracket: (lo, hi) [m/s].
-    frequency_hz:  |Im λ|/2π at V [Hz]; eigenvalue: λ at V [1/s].
-    dzeta_dV:      dζ/dV at V [s/m] (from dλ/dV, or a central difference), None for divergence.
-    benignity:     (dζ/dV)⁻¹ [m/s] (eq. 5.13), signed (negative at an onset); None for divergence.
-    eigenvector:   full-state eigenvector at V (mode shape for plotting).
+    Attributes
+    ----------
+    mode : int
+        Tracked mode id.
+    label : str
+        Its label.
+    kind : {"flutter", "divergence"}
+        "flutter" (complex pair, Im λ ≠ 0) or "divergence" (real root through 0).
+    direction : {"onset", "recovery"}
+        "onset" (Re λ − → +) or "recovery" (+ → −).
+    V : float
+        Crossing speed [m/s] (bracket width ≤ xtol).
+    bracket : tuple of float
+        (lo, hi) [m/s] around V.
+    frequency_hz : float
+        |Im λ|/2π at V [Hz].
+    eigenvalue : complex
+        λ at V [1/s].
+    dzeta_dV : float or None
+        dζ/dV at V [s/m] (from dλ/dV, or a central difference), None for divergence.
+    benignity : float or None
+        (dζ/dV)⁻¹ [m/s] (eq. 5.13), signed (negative at an onset); None for divergence.
+    eigenvector : ndarray
+        Full-state eigenvector at V (mode shape for plotting).
+
+    Examples
+    --------
+    The oscillator ẍ + (0.5 − 0.01 V) ẋ + 100 x = 0 flutters at 50 m/s, 10 rad/s, with
+    dζ/dV = −0.01/(2ω) = −5e-4 s/m:
+
+    >>> import numpy as np
+    >>> from propwhirl.engine import analyse
+    >>> def state_matrix(V):
+    ...     A = np.zeros((V.size, 2, 2))
+    ...     A[:, 0, 1], A[:, 1, 0], A[:, 1, 1] = 1.0, -100.0, -(0.5 - 0.01 * V)
+    ...     return A
+    >>> p = analyse(state_matrix, np.arange(10.0, 101.0, 10.0), n_dof=1).criticals.points[0]
+    >>> p.kind, p.direction, p.label, round(p.V, 2), round(p.frequency_hz, 3)
+    ('flutter', 'onset', 'mode 0', 50.0, 1.592)
+    >>> round(p.benignity), p.eigenvector.shape
+    (-2000, (2,))
     """
 
     mode: int
@@ -277,7 +348,35 @@ class CriticalPoint:
 
 @dataclass(frozen=True)
 class Hump:
-    """A mode that goes unstable at ``V_onset`` and recovers at ``V_recovery`` [m/s]."""
+    """A mode that goes unstable at ``V_onset`` and recovers at ``V_recovery`` [m/s].
+
+    Attributes
+    ----------
+    mode : int
+        Tracked mode id.
+    label : str
+        Its label.
+    kind : {"flutter", "divergence"}
+        Oscillatory or not.
+    V_onset, V_recovery : float
+        Speeds [m/s] where Re λ turns positive and negative again.
+
+    Examples
+    --------
+    An oscillator whose damping −0.0004 (V − 50)(V − 80) [1/s] is negative between 50 and
+    80 m/s:
+
+    >>> import numpy as np
+    >>> from propwhirl.engine import analyse
+    >>> def state_matrix(V):
+    ...     A = np.zeros((V.size, 2, 2))
+    ...     A[:, 0, 1], A[:, 1, 0] = 1.0, -100.0
+    ...     A[:, 1, 1] = -0.0004 * (V - 50.0) * (V - 80.0)
+    ...     return A
+    >>> (h,) = analyse(state_matrix, np.arange(1.0, 201.0, 5.0), n_dof=1).criticals.humps
+    >>> h.kind, round(h.V_onset, 2), round(h.V_recovery, 2)
+    ('flutter', 50.0, 80.0)
+    """
 
     mode: int
     label: str
@@ -288,7 +387,36 @@ class Hump:
 
 @dataclass(frozen=True)
 class Criticals:
-    """All crossings of a sweep (sorted by V), hump modes, modes unstable at the first speed."""
+    """All crossings of a sweep (sorted by V), hump modes, modes unstable at the first speed.
+
+    Attributes
+    ----------
+    points : tuple of CriticalPoint
+        Every crossing of Re λ = 0, sorted by speed [m/s].
+    humps : tuple of Hump
+        The modes that go unstable and recover within the speeds.
+    unstable_at_start : tuple of int
+        Ids of the modes with Re λ > 0 at the first speed.
+    stats : mapping of str to int
+        Counters of the refinement.
+
+    Examples
+    --------
+    The oscillator of :class:`Hump`, unstable between 50 and 80 m/s:
+
+    >>> import numpy as np
+    >>> from propwhirl.engine import analyse
+    >>> def state_matrix(V):
+    ...     A = np.zeros((V.size, 2, 2))
+    ...     A[:, 0, 1], A[:, 1, 0] = 1.0, -100.0
+    ...     A[:, 1, 1] = -0.0004 * (V - 50.0) * (V - 80.0)
+    ...     return A
+    >>> c = analyse(state_matrix, np.arange(1.0, 201.0, 5.0), n_dof=1).criticals
+    >>> [(p.direction, round(p.V, 2)) for p in c.points], c.unstable_at_start
+    ([('onset', 50.0), ('recovery', 80.0)], ())
+    >>> round(c.first_onset.V, 2)
+    50.0
+    """
 
     points: tuple[CriticalPoint, ...]
     humps: tuple[Hump, ...]
@@ -340,10 +468,35 @@ class FrequencyZero:
     The thesis's "whirl divergence" of an already unstable whirl mode (Table 10.4); see
     :func:`propwhirl.engine.crossings.frequency_zero_points`.
 
-    mode, label:   tracked mode id and label.
-    V:             speed of the branch point [m/s] (middle of ``bracket``).
-    bracket:       (lo, hi) [m/s], width ≤ xtol: at lo the number of unstable complex pairs is
-                   the one at the step's start, at hi it is smaller.
+    Attributes
+    ----------
+    mode : int
+        Tracked mode id.
+    label : str
+        Its label.
+    V : float
+        Speed of the branch point [m/s] (middle of `bracket`).
+    bracket : tuple of float
+        (lo, hi) [m/s], width ≤ xtol: at lo the number of unstable complex pairs is the one at
+        the step's start, at hi it is smaller.
+
+    Examples
+    --------
+    A stable oscillator and an unstable pair 1 ± √(V − 30) that turns real at V = 30 m/s:
+
+    >>> import numpy as np
+    >>> from propwhirl.engine import frequency_zero_points, sweep
+    >>> def state_matrix(V):
+    ...     A = np.zeros((V.size, 4, 4))
+    ...     A[:, 0, 0] = A[:, 1, 1] = -0.2
+    ...     A[:, 0, 1], A[:, 1, 0] = 5.0, -5.0
+    ...     A[:, 2, 2] = A[:, 3, 3] = 1.0
+    ...     A[:, 2, 3], A[:, 3, 2] = 1.0, V - 30.0
+    ...     return A
+    >>> sw = sweep(state_matrix, np.arange(1.0, 52.0, 10.0))
+    >>> (p,) = frequency_zero_points(sw, state_matrix)
+    >>> p.mode, p.label, round(p.V, 2)
+    (1, 'mode 1', 30.0)
     """
 
     mode: int
@@ -368,7 +521,31 @@ class Analysis(Result):
 
     A :class:`~propwhirl.results.Result` of kind "engine-analysis" (format
     ``propwhirl.engine-analysis/1``; a dict without a format, as written before it, is
-    version 1).  Its eigenvectors are in the JSON (``include_eigenvectors``)."""
+    version 1).  Its eigenvectors are in the JSON (``include_eigenvectors``).
+
+    Attributes
+    ----------
+    sweep : Sweep
+        The tracked eigen-solutions [λ in 1/s] along the speeds [m/s].
+    criticals : Criticals
+        Its crossings, humps and modes unstable at the first speed.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> import numpy as np
+    >>> from propwhirl.engine import Analysis, analyse
+    >>> def state_matrix(V):     # ẍ + (0.5 − 0.01 V) ẋ + 100 x = 0: flutter at 50 m/s
+    ...     A = np.zeros((V.size, 2, 2))
+    ...     A[:, 0, 1], A[:, 1, 0], A[:, 1, 1] = 1.0, -100.0, -(0.5 - 0.01 * V)
+    ...     return A
+    >>> an = analyse(state_matrix, np.arange(10.0, 101.0, 10.0), n_dof=1)
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = an.save(pathlib.Path(folder) / "engine.json")
+    ...     again = Analysis.load(path)
+    >>> round(again.criticals.first_onset.V, 2), again.sweep.V.size == an.sweep.V.size
+    (50.0, True)
+    """
 
     sweep: Sweep
     criticals: Criticals

@@ -158,7 +158,44 @@ def is_modal_file(path: str | Path) -> bool:
 def load_modal_model(path: str | Path) -> ModalPropellerWing:
     """The :class:`~propwhirl.model.modal.ModalPropellerWing` of the TOML file at ``path``
     and the ``.npz`` it names (relative to the TOML's folder).  Errors: one line starting with
-    the file, naming the key (and the grid id) as written."""
+    the file, naming the key (and the grid id) as written.
+
+    The file format (SI units, stated with each key) is in docs/modal-structures.md.
+
+    Parameters
+    ----------
+    path : str or Path
+        The modal model's TOML description.
+
+    Returns
+    -------
+    ModalPropellerWing
+        The model: its modes (frequencies [Hz], modal masses [kg], damping ratios, shapes at
+        the grids [m, rad]), strips, propellers, flight condition and switches.
+
+    Raises
+    ------
+    InputError
+        An unreadable file or a bad value, one line naming the file and the key.
+
+    Examples
+    --------
+    The wingtip model's six lowest wing modes, written by :func:`write_modes` and read back:
+
+    >>> import pathlib, tempfile
+    >>> from propwhirl.io import load_modal_model, write_modes
+    >>> from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     toml, npz = write_modes(wingtip_propeller_wing(), pathlib.Path(folder) / "m.toml",
+    ...                             n_modes=6)
+    ...     model = load_modal_model(toml)
+    >>> model.structure.n_modes, model.dof_map().q_labels[-2:]
+    (6, ('propeller 1 theta', 'propeller 1 psi'))
+    >>> from propwhirl.analysis import analyse
+    >>> c = analyse(model, speeds=[50.0, 100.0, 150.0, 200.0]).critical
+    >>> c.kind, round(c.V)                          # the beam model's: 143.15 m/s
+    ('divergence', 143)
+    """
     path = Path(v.file_path("path", path, "a modal model file (TOML)"))
     src = str(path)
     text = fileio.read_text(path, "modal model file", limit=fileio.MAX_TOML_BYTES)
@@ -298,7 +335,39 @@ def write_modes(model: PropellerWing, path: str | Path, n_modes: int | None = No
     Before anything is computed, ``path`` must be a new path or a modal model file (one
     :func:`write_modes` wrote: any other file there — the beam model's own file above all —
     is refused, not replaced), neither file a device, a FIFO or a socket, and the two not one
-    file (:func:`propwhirl.fileio.check_output`, :func:`propwhirl.fileio.check_apart`)."""
+    file (:func:`propwhirl.fileio.check_output`, :func:`propwhirl.fileio.check_apart`).
+
+    Parameters
+    ----------
+    model : PropellerWing
+        A beam model (no in-plane bending with ``mount = "on-grid"``).
+    path : str or Path
+        The TOML description to write; the modes go to ``<stem>.modes.npz`` beside it.
+    n_modes : int, optional
+        Keep the lowest `n_modes` modes (default all).
+    mount : {"own", "on-grid"}
+        Way a (the wing's modes, each propeller on its own mount) or way b (the whole
+        structure's modes, propellers rigid on hub grids).
+
+    Returns
+    -------
+    toml : Path
+        The TOML description (`path`).
+    npz : Path
+        The modes (frequencies [Hz], modal masses [kg], damping ratios, shapes [m, rad]).
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> from propwhirl.io import write_modes
+    >>> from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     toml, npz = write_modes(wingtip_propeller_wing(), pathlib.Path(folder) / "m.toml",
+    ...                             n_modes=6)
+    ...     written = sorted(p.name for p in pathlib.Path(folder).iterdir())
+    >>> written, npz.name
+    (['m.modes.npz', 'm.toml'], 'm.modes.npz')
+    """
     if not isinstance(model, PropellerWing):
         raise v.InputError(f"write_modes: model is a {type(model).__name__}: only a "
                            "PropellerWing's wing can be written as modes")

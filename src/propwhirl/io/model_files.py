@@ -477,6 +477,26 @@ def loads(text: str, source: str = "<string>", *, notes: list[str] | None = None
     version built its model (:mod:`propwhirl.io.versions`); one line starting with `source` and
     naming the values assumed for omitted keys is appended to the list `notes`, if given.
 
+    Parameters
+    ----------
+    text : str
+        The TOML text of a model file (SI units, the unit of each quantity the suffix of its
+        key: ``radius_m``, ``f_theta_hz``, ...; docs/model-file.md).
+    source : str
+        How errors and notes name the text (a file's path).
+    notes : list of str, optional
+        Receives one line per older-format assumption.
+
+    Returns
+    -------
+    PropellerWing or IsolatedPropeller or Propeller
+        The model the file's ``type`` names.
+
+    Raises
+    ------
+    InputError
+        Every problem of the file, one line each.
+
     Examples
     --------
     >>> from propwhirl.io import loads
@@ -548,7 +568,38 @@ def _file_errors(source: str, errors: list[str]) -> v.InputError:
 
 def load_model(path: str | Path, *, notes: list[str] | None = None) -> Any:
     """Read a TOML model file written by :func:`save_model` (or by hand); errors and `notes`
-    (the values assumed for an older format version) as :func:`loads`, naming the path."""
+    (the values assumed for an older format version) as :func:`loads`, naming the path.
+
+    Parameters
+    ----------
+    path : str or Path
+        The model file (``.toml``; SI units, the unit of each quantity the suffix of its key,
+        docs/model-file.md).
+    notes : list of str, optional
+        Receives one line per older-format assumption (:func:`loads`).
+
+    Returns
+    -------
+    PropellerWing or IsolatedPropeller or Propeller
+        The model the file describes.
+
+    Raises
+    ------
+    InputError
+        An unreadable file, or every problem of its content, one line each naming the path
+        and the key.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> from propwhirl.io import load_model, save_model
+    >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = save_model(isolated_baseline_propeller(), pathlib.Path(folder) / "p.toml")
+    ...     model = load_model(path)
+    >>> type(model).__name__, model.propeller.radius, model.flight.density
+    ('IsolatedPropeller', 0.762, 0.96287)
+    """
     path = Path(path)
     return loads(fileio.read_text(path, "model file", empty_ok=True,
                                  limit=fileio.MAX_TOML_BYTES), str(path), notes=notes)
@@ -683,6 +734,17 @@ def dumps(model: Any) -> str:
 
     Needs tomli-w (``pip install propwhirl[toml]``).
 
+    Parameters
+    ----------
+    model : PropellerWing or IsolatedPropeller or Propeller
+        The model (every value finite; a wing's chord given as a function of y cannot be
+        saved).
+
+    Returns
+    -------
+    str
+        The model file's text: SI units, the unit of each quantity the suffix of its key.
+
     Examples
     --------
     >>> from propwhirl.io import dumps, loads
@@ -691,6 +753,8 @@ def dumps(model: Any) -> str:
     >>> text = dumps(model)
     >>> loads(text).wing == model.wing
     True
+    >>> [line for line in text.splitlines() if line.startswith("semi_span_m")]
+    ['semi_span_m = 5.7']
     """
     doc = to_dict(model)  # fails first if the model cannot be saved
     try:
@@ -703,15 +767,31 @@ def dumps(model: Any) -> str:
 def save_model(model: Any, path: str | Path) -> Path:
     """Write `model` as a TOML model file; returns the path (needs ``propwhirl[toml]``).
 
+    The file is replaced atomically (:func:`propwhirl.fileio.write_text`).
+
+    Parameters
+    ----------
+    model : PropellerWing or IsolatedPropeller or Propeller
+        The model (as :func:`dumps`).
+    path : str or Path
+        The file to write (``.toml``).
+
+    Returns
+    -------
+    Path
+        `path`.
+
     Examples
     --------
-    >>> import tempfile, pathlib
+    >>> import pathlib, tempfile
     >>> from propwhirl.io import load_model, save_model
     >>> from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
     >>> model = wingtip_propeller_wing()
-    >>> path = save_model(model, pathlib.Path(tempfile.mkdtemp()) / "wingtip.toml")
-    >>> load_model(path) == model
-    True
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = save_model(model, pathlib.Path(folder) / "wingtip.toml")
+    ...     again = load_model(path)
+    >>> path.name, again == model
+    ('wingtip.toml', True)
     """
     text = dumps(model)  # fails before touching the file if the model cannot be saved
     # atomic: a full disk or a Ctrl-C leaves the old file (or none), never a partial one

@@ -802,6 +802,23 @@ def read_bdf(path: str | Path, *, units: str | None = None, base=None,
     PropellerWing
         ``base`` with the BDF's structure, whole (or an InputError, one line naming the
         file, the card and its id)
+
+    Examples
+    --------
+    The wingtip model written as a SOL 103 deck and read back (needs pyNastran, the
+    ``nastran`` extra in an environment of its own: not run here; ``tests/nastran`` runs the
+    same round trip in ``.venv-nastran``):
+
+    >>> import pathlib, tempfile
+    >>> from propwhirl.io import read_bdf, write_bdf
+    >>> from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
+    >>> m = wingtip_propeller_wing()
+    >>> with tempfile.TemporaryDirectory() as folder:          # doctest: +SKIP
+    ...     deck = write_bdf(m, pathlib.Path(folder) / "wingtip.bdf", "si")
+    ...     back = read_bdf(pathlib.Path(folder) / "wingtip.bdf", units="si", base=m,
+    ...                     hubs=deck.hubs)
+    >>> back.wing.element_count == m.wing.element_count        # doctest: +SKIP
+    True
     """
     where = fileio.shown(path) if isinstance(path, (str, Path)) else repr(path)
     u = unit_system(units, where)

@@ -39,7 +39,35 @@ def write_vgf_csv(result, path: str | Path) -> Path:
     docstring).
 
     The file is replaced atomically (:func:`propwhirl.fileio.write_text`): a reader never
-    sees a partial table, not after a full disk, a Ctrl-C or a second writer."""
+    sees a partial table, not after a full disk, a Ctrl-C or a second writer.
+
+    Parameters
+    ----------
+    result : ModelAnalysis or Sweep
+        The analysis (its sweep) or the sweep.
+    path : str or Path
+        The CSV file to write.
+
+    Returns
+    -------
+    Path
+        `path`.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> from propwhirl.analysis import analyse
+    >>> from propwhirl.io import write_vgf_csv
+    >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+    >>> a = analyse(isolated_baseline_propeller(), speeds=[100.0, 200.0, 250.0])
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     lines = write_vgf_csv(a, pathlib.Path(folder) / "vgf.csv").read_text().splitlines()
+    >>> lines[0]                                  # the row count: 3 speeds x 2 modes
+    '# propwhirl V-g-f table: 6 rows'
+    >>> lines[1].split(",")                       # doctest: +NORMALIZE_WHITESPACE
+    ['V_m_per_s', 'mode', 'label', 'frequency_hz', 'damping_ratio', 'real_per_s',
+     'imag_per_s']
+    """
     sweep = getattr(result, "sweep", result)
     table = sweep.table()
     for name, key in VGF_COLUMNS:
@@ -85,6 +113,39 @@ def read_vgf_csv(path: str | Path) -> dict[str, np.ndarray]:
     ζ = −Re λ/|λ|, eq. 5.5: a number cut short is found).  Anything else is an
     :class:`~propwhirl.validate.InputError` naming the file and the line.  A table without the
     count line (written before it) is read with a :class:`UserWarning` (module docstring).
+
+    Parameters
+    ----------
+    path : str or Path
+        The CSV file.
+
+    Returns
+    -------
+    dict of str to ndarray
+        One array per column, a row per speed and physical mode: ``V`` [m/s], ``mode``
+        (id), ``label``, ``frequency_hz`` [Hz], ``damping_ratio`` ζ [-], ``real`` and
+        ``imag`` (Re λ, Im λ [1/s]).
+
+    Raises
+    ------
+    InputError
+        A table that is not one :func:`write_vgf_csv` wrote, naming the file and the line.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> from propwhirl.analysis import analyse
+    >>> from propwhirl.io import read_vgf_csv, write_vgf_csv
+    >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+    >>> a = analyse(isolated_baseline_propeller(), speeds=[100.0, 200.0, 250.0])
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     table = read_vgf_csv(write_vgf_csv(a, pathlib.Path(folder) / "vgf.csv"))
+    >>> list(table)
+    ['V', 'mode', 'label', 'frequency_hz', 'damping_ratio', 'real', 'imag']
+    >>> table["V"][:2].tolist(), table["label"][:2].tolist()
+    ([100.0, 100.0], ['backward', 'forward'])
+    >>> round(float(table["frequency_hz"][0]), 2)              # backward whirl at 100 m/s [Hz]
+    6.25
     """
     path = Path(path)
     text = fileio.read_text(path, "V-g-f table")

@@ -205,7 +205,25 @@ def section_fields(cls: type, section: str) -> tuple[Field, ...]:
 
 
 def model_fields() -> dict[str, tuple[str, ...]]:
-    """Dataclass fields of each saved type, by class name."""
+    """Dataclass fields of each saved type, by class name.
+
+    The units of the fields are the suffixes of their keys in a model file
+    (docs/model-file.md, generated from the same schema).
+
+    Returns
+    -------
+    dict of str to tuple of str
+        Class name (``"Wing"``, ``"Propeller"``, ...) → the names of its dataclass fields.
+
+    Examples
+    --------
+    >>> from propwhirl.io import model_fields
+    >>> fields = model_fields()
+    >>> fields["FlightCondition"]
+    ('density', 'speed_of_sound', 'speed_range')
+    >>> "PropellerWing" in fields and "semi_span" in fields["Wing"]
+    True
+    """
     return {cls.__name__: tuple(f.name for f in dataclasses.fields(cls)) for cls in SCHEMA_CLASSES}
 
 

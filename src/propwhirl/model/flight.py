@@ -32,6 +32,24 @@ class FlightCondition:
     (propwhirl.analysis.stability.analyse refines it); the thesis analyses 0–350 m/s.  The first speed
     must be > 0 (the aerodynamic matrices carry 1/V).  :meth:`from_altitude` builds one from the
     ISA; a model file does the same with ``altitude_m`` or ``altitude_ft`` in ``[flight]``.
+
+    Parameters
+    ----------
+    density : float
+        Air density ρ [kg/m³].
+    speed_of_sound : float
+        Speed of sound a [m/s] (default :data:`DEFAULT_SPEED_OF_SOUND`, 330.80 m/s: ISA at
+        8000 ft, the thesis's altitude).
+    speed_range : tuple of float
+        (first, last, step) [m/s]: the initial grid of the V-g-f sweep, first > 0, last >
+        first (default 1–350 m/s in 10 m/s steps).
+
+    Examples
+    --------
+    >>> from propwhirl.model import FlightCondition
+    >>> fc = FlightCondition(0.96287, speed_range=(10.0, 300.0, 10.0))
+    >>> round(fc.speed_of_sound, 2), fc.speeds()[:3].tolist(), fc.speeds().size
+    (330.8, [10.0, 20.0, 30.0], 30)
     """
 
     density: float = field(metadata=spec("density_kg_per_m3", "kg/m^3", "air density",

@@ -57,10 +57,26 @@ MOUNTS = ("flexible", "rigid", "on-grid")
 class ModalInstallation:
     """A propeller at hub grid ``grid`` of a :class:`ModalPropellerWing`.
 
-    mount: "flexible" (its own pitch and yaw DOFs and springs), "rigid" (the rigid-mount
-    block on the hub grid's heave and twist) or "on-grid" (rigid on the hub grid, its mount
-    and mass in the modes: only its aerodynamic and gyroscopic loads added); aero: its
-    aerodynamic loads on."""
+    Parameters
+    ----------
+    propeller : Propeller
+        The propeller.
+    grid : int
+        Id of its hub grid in the :class:`ModalStructure`.
+    mount : {"flexible", "rigid", "on-grid"}
+        "flexible" (its own pitch and yaw DOFs and springs), "rigid" (the rigid-mount block on
+        the hub grid's heave and twist) or "on-grid" (rigid on the hub grid, its mount and mass
+        in the modes: only its aerodynamic and gyroscopic loads added).
+    aero : bool
+        Its aerodynamic loads on.
+
+    Examples
+    --------
+    >>> from propwhirl.model import ModalInstallation
+    >>> from propwhirl.cases.ch09_baseline import baseline_propeller
+    >>> ModalInstallation(baseline_propeller(), grid=7).mount
+    'flexible'
+    """
 
     propeller: Propeller
     grid: int
@@ -85,12 +101,42 @@ class ModalPropellerWing(StateSpaceModel):
     """A wing given by its normal modes, with strip aerodynamics and propellers at hub grids
     (the module docstring).  Implements the :class:`~propwhirl.model.protocol.Model` contract.
 
-    structure:  the :class:`ModalStructure`;
-    wing_grids: ids of its reference-axis grids, root to tip (the strips' spline);
-    planform:   the :class:`StripPlanform`;
-    flight:     the :class:`~propwhirl.model.flight.FlightCondition`;
-    propellers: :class:`ModalInstallation` s, at most one per hub grid;
-    wing_aero, propeller_aero, rotating: switches as :class:`~propwhirl.model.systems.PropellerWing`'s.
+    Parameters
+    ----------
+    structure : ModalStructure
+        The modes: frequencies [Hz], modal masses [kg], damping ratios, shapes at grids.
+    wing_grids : tuple of int
+        Ids of its reference-axis grids, root to tip (the strips' spline).
+    planform : StripPlanform
+        The aerodynamic strips.
+    flight : FlightCondition
+        Density [kg/m³], speed of sound [m/s] and the airspeed range [m/s].
+    propellers : tuple of ModalInstallation
+        The propellers, at most one per hub grid.
+    wing_aero, propeller_aero, rotating : bool
+        Switches as :class:`~propwhirl.model.systems.PropellerWing`'s: wing aerodynamics,
+        propeller aerodynamics, propellers spinning.
+    name : str
+        Label.
+
+    Examples
+    --------
+    The baseline wing's four lowest modes (6 elements) with the baseline propeller at the tip
+    grid: its divergence where the beam model's is (143 m/s).
+
+    >>> from propwhirl.model import (ModalInstallation, ModalPropellerWing, ModalStructure,
+    ...                              StripPlanform)
+    >>> from propwhirl.cases.ch09_baseline import baseline_flight, baseline_propeller, baseline_wing
+    >>> wing = baseline_wing(n_elements=6)
+    >>> s = ModalStructure.from_wing(wing, n_modes=4)
+    >>> m = ModalPropellerWing(s, tuple(int(g) for g in s.grid_ids), StripPlanform.from_wing(wing),
+    ...                        baseline_flight(), (ModalInstallation(baseline_propeller(), grid=7),))
+    >>> m.dof_map().q_labels
+    ('mode 1', 'mode 2', 'mode 3', 'mode 4', 'propeller 1 theta', 'propeller 1 psi')
+    >>> from propwhirl.analysis import analyse
+    >>> c = analyse(m, speeds=[50.0, 100.0, 150.0, 200.0]).critical
+    >>> c.kind, round(c.V)
+    ('divergence', 143)
     """
 
     structure: ModalStructure

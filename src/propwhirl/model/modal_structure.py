@@ -80,14 +80,35 @@ class ModalStructure:
     """The normal modes of a structure, at named grid points (SI units; frame in the module
     docstring).
 
-    grid_ids:        (n_grids,) distinct positive integer ids;
-    xyz:             (n_grids, 3) grid positions [m] in the wing frame;
-    frequencies_hz:  (n_modes,) natural frequencies [Hz], all above :data:`RIGID_BODY_HZ`;
-    modal_mass:      (n_modes,) generalised masses φᵀ M φ [kg, with φ in m and rad], > 0;
-    damping_ratio:   (n_modes,) modal viscous damping ratios ζ, in [0, 1);
-    shapes:          (n_modes, n_grids, 6) each mode's [T_x, T_y, T_z, R_x, R_y, R_z] at
-                     each grid [m, rad];
-    source:          where it came from (a file's name), for the error messages.
+    Parameters
+    ----------
+    grid_ids : ndarray of int
+        (n_grids,) distinct positive integer ids.
+    xyz : ndarray
+        (n_grids, 3) grid positions [m] in the wing frame (x aft, y outboard, z up).
+    frequencies_hz : ndarray
+        (n_modes,) natural frequencies [Hz], all above :data:`RIGID_BODY_HZ`.
+    modal_mass : ndarray
+        (n_modes,) generalised masses φᵀ M φ [kg, with φ in m and rad], > 0.
+    damping_ratio : ndarray
+        (n_modes,) modal viscous damping ratios ζ [-], in [0, 1).
+    shapes : ndarray
+        (n_modes, n_grids, 6) each mode's [T_x, T_y, T_z, R_x, R_y, R_z] at each grid
+        [m, m, m, rad, rad, rad].
+    source : str
+        Where it came from (a file's name), for the error messages.
+
+    Examples
+    --------
+    A beam wing's own modes (:meth:`from_wing`): one grid per node, mass-normalised.
+
+    >>> from propwhirl.model import ModalStructure
+    >>> from propwhirl.cases.ch09_baseline import baseline_wing
+    >>> s = ModalStructure.from_wing(baseline_wing(n_elements=6), n_modes=4)
+    >>> s.grid_ids.tolist(), s.shapes.shape
+    ([1, 2, 3, 4, 5, 6, 7], (4, 7, 6))
+    >>> [round(float(f), 1) for f in s.frequencies_hz]                  # [Hz]
+    [2.9, 16.7, 18.1, 47.6]
     """
 
     grid_ids: np.ndarray
@@ -300,14 +321,38 @@ def id_list(ids, limit: int = 8) -> str:
 class StripPlanform:
     """The wing's aerodynamic strips: one per spanwise station (arrays of equal length).
 
-    y:                  station of each strip [m], increasing;
-    width:              strip width [m], > 0;
-    chord:              local chord [m], > 0;
-    leading_edge_x:     x of the leading edge [m] in the wing frame (x aft);
-    elastic_axis:       elastic axis, fraction of the chord aft of the leading edge;
-    aerodynamic_centre: aerodynamic centre, fraction of the chord aft of the leading edge;
-    lift_slope:         section C_lα [1/rad], > 0;
-    aero_model:         "leishman-nguyen" (2 lag states per strip) or "wagner" (4).
+    Parameters
+    ----------
+    y : ndarray
+        Station of each strip [m], increasing.
+    width : ndarray
+        Strip width [m], > 0.
+    chord : ndarray
+        Local chord [m], > 0.
+    leading_edge_x : ndarray
+        x of the leading edge [m] in the wing frame (x aft).
+    elastic_axis : ndarray
+        Elastic axis [fraction of the chord aft of the leading edge].
+    aerodynamic_centre : ndarray
+        Aerodynamic centre [fraction of the chord aft of the leading edge].
+    lift_slope : ndarray
+        Section lift-curve slope C_lα [1/rad], > 0.
+    aero_model : {"leishman-nguyen", "wagner"}
+        Unsteady strip aerodynamics: 2 (Leishman–Nguyen) or 4 (Wagner) lag states per strip.
+    source : str
+        Where it came from (a file's name), for the error messages.
+
+    Examples
+    --------
+    A beam wing's strips (:meth:`from_wing`): one at every node but the clamped root.
+
+    >>> from propwhirl.model import StripPlanform
+    >>> from propwhirl.cases.ch09_baseline import baseline_wing
+    >>> p = StripPlanform.from_wing(baseline_wing(n_elements=6))
+    >>> [round(float(y), 2) for y in p.y]
+    [0.95, 1.9, 2.85, 3.8, 4.75, 5.7]
+    >>> [round(float(w), 3) for w in p.width]
+    [0.95, 0.95, 0.95, 0.95, 0.95, 0.475]
     """
 
     y: np.ndarray

@@ -226,7 +226,33 @@ class DofMap:
 
 @runtime_checkable
 class Model(Protocol):
-    """What the analyses need of a model (see the module docstring)."""
+    """What the analyses need of a model (see the module docstring).
+
+    A structural protocol: :class:`~propwhirl.model.systems.PropellerWing`,
+    :class:`~propwhirl.model.systems.IsolatedPropeller`,
+    :class:`~propwhirl.model.section.TypicalSection` and
+    :class:`~propwhirl.model.modal.ModalPropellerWing` meet it, and so does any object with
+    these attributes and the methods ``second_order(V)``, ``state_matrix(V)`` (V: airspeeds
+    [m/s], an array; A(V) of shape (len(V), n, n) [1/s]), ``dof_map()``,
+    ``without_aerodynamics()`` and ``assembly()``.
+
+    Attributes
+    ----------
+    name : str
+        Label, used in reports.
+    flight : FlightCondition
+        Density [kg/m³], speed of sound [m/s] and the airspeed range [m/s].
+
+    Examples
+    --------
+    >>> from propwhirl import Model
+    >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+    >>> m = isolated_baseline_propeller()
+    >>> isinstance(m, Model), isinstance("a wing", Model)
+    (True, False)
+    >>> m.state_matrix([100.0, 200.0]).shape          # two speeds [m/s], 4 states
+    (2, 4, 4)
+    """
 
     name: str
 

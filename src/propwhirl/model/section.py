@@ -22,11 +22,49 @@ from propwhirl.model.statespace import SecondOrder
 class TypicalSection(StateSpaceModel):
     """The 2-DOF pitch–plunge aerofoil on springs with the wing's strip aerodynamics.
 
-    Per unit span (SI): semichord b [m], elastic axis a and centre of gravity offset x_alpha
-    (both in semichords, a from mid-chord, x_α aft of the elastic axis), mass m [kg/m], radius
-    of gyration r_alpha about the elastic axis [semichords], uncoupled frequencies
-    omega_h, omega_alpha [rad/s], lift-curve slope Cla [1/rad], aerodynamic centre ac
-    [semichords from mid-chord], aero_model "leishman-nguyen" or "wagner".
+    Per unit span, SI units; lengths in semichords b where stated.
+
+    Parameters
+    ----------
+    b : float
+        Semichord [m].
+    a : float
+        Elastic axis [semichords aft of mid-chord], in [−1, 1].
+    x_alpha : float
+        Centre of gravity aft of the elastic axis [semichords].
+    r_alpha : float
+        Radius of gyration about the elastic axis [semichords], > |x_alpha|.
+    m : float
+        Mass per unit span [kg/m].
+    omega_h, omega_alpha : float
+        Uncoupled plunge and pitch frequencies [rad/s].
+    flight : FlightCondition
+        Density [kg/m³] and speed of sound [m/s].
+    Cla : float
+        Lift-curve slope C_lα [1/rad] (default 2π).
+    ac : float
+        Aerodynamic centre [semichords from mid-chord] (default −1/2: quarter chord).
+    aero_model : {"leishman-nguyen", "wagner"}
+        Unsteady strip aerodynamics: 2 or 4 lag states.
+    name : str
+        Label.
+    aero : bool
+        Strip aerodynamics on (False: the structural system alone, no lag states).
+
+    Examples
+    --------
+    A section of mass ratio m/(πρb²) = 20 with ω_h/ω_α = 0.4 flutters at U/(bω_α) = 2.2:
+
+    >>> import math
+    >>> from propwhirl.model import FlightCondition, TypicalSection
+    >>> s = TypicalSection(b=1.0, a=-0.2, x_alpha=0.1, r_alpha=0.5, m=20 * math.pi * 1.225,
+    ...                    omega_h=4.0, omega_alpha=10.0, flight=FlightCondition(1.225))
+    >>> s.dof_map().state_labels
+    ('h', 'alpha', 'd/dt h', 'd/dt alpha', 'w1', 'w2')
+    >>> from propwhirl.analysis import analyse
+    >>> c = analyse(s, speeds=[5.0, 10.0, 15.0, 20.0, 25.0, 30.0]).critical
+    >>> c.kind, c.label, round(c.V, 1), round(c.frequency_hz, 2)
+    ('flutter', 'pitch', 22.0, 1.03)
     """
 
     # Not saved in model files (key None): the specs declare the ranges checked on construction.

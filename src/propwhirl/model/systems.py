@@ -94,26 +94,47 @@ class Installation:
 
     :class:`PropellerWing` makes y a node of the mesh (it adds y to the wing's stations).
 
-    `aero=False` switches this propeller's aerodynamic loads off while it still turns; the
-    model-wide `propeller_aero` switch acts on all propellers.
+    Parameters
+    ----------
+    propeller : Propeller
+        The propeller (in a model file: the key of a ``[propellers.KEY]`` table).
+    y : float
+        Spanwise position [m], in (0, semi_span] (made a node of the mesh).
+    mount : {"flexible", "rigid"}
+        "flexible": the propeller's own pitch θ and yaw ψ DOFs on its mount springs; "rigid":
+        its mass and loads on the wing node (§9.3.1).
+    aero : bool
+        False switches this propeller's aerodynamic loads off while it still turns; the
+        model-wide `propeller_aero` switch acts on all propellers.
+    state : {"operating", "feathered", "stopped"}
+        What this installation's rotor does (issue 25, item 3):
 
-    `state` is what this installation's rotor does (issue 25, item 3):
+        - "operating" (default): as its propeller's `operation` says — "fixed-pitch" is the
+          windmilling rotor (Ω = V/(μR), μ from the blade angle), "constant-speed" turns at
+          `rpm`.  Windmilling is that operation, not a separate state.
+        - "stopped": Ω = 0 (no gyroscopic coupling) and no propeller aerodynamic loads (e.g.
+          the X-57's folded high-lift propellers in cruise); the mount, its stiffness and
+          damping and every mass stay.
+        - "feathered": Ω = 0 and the feathered blades' aerodynamics, the limit Ω → 0 of the
+          Houbolt–Reed blade elements
+          (:func:`~propwhirl.model.propellers.propeller_aero.stopped_blades`): each blade is a
+          fin, giving the side forces C_Yψ = −C_Zθ only.  Needs the blade geometry
+          (`blade_chord`, `n_blades`, `hub_radius`), also when the propeller's derivatives are
+          measured (those are for the turning rotor).
+    rotation : {1, -1}, optional
+        +1 counter-clockwise seen from the front, −1 clockwise: overrides the propeller's
+        `rotation` for this installation, so counter-rotating neighbours share one propeller
+        table; None keeps the propeller's.
 
-    - "operating" (default): as its propeller's `operation` says — "fixed-pitch" is the
-      windmilling rotor (Ω = V/(μR), μ from the blade angle), "constant-speed" turns at `rpm`.
-      Windmilling is that operation, not a separate state.
-    - "stopped": Ω = 0 (no gyroscopic coupling) and no propeller aerodynamic loads (e.g. the
-      X-57's folded high-lift propellers in cruise); the mount, its stiffness and damping and
-      every mass stay.
-    - "feathered": Ω = 0 and the feathered blades' aerodynamics, the limit Ω → 0 of the
-      Houbolt–Reed blade elements (:func:`~propwhirl.model.propellers.propeller_aero.stopped_blades`):
-      each blade is a fin, giving the side forces C_Yψ = −C_Zθ only.  Needs the blade
-      geometry (`blade_chord`, `n_blades`, `hub_radius`), also when the propeller's
-      derivatives are measured (those are for the turning rotor).
-
-    `rotation` (+1 counter-clockwise seen from the front, −1 clockwise) overrides the
-    propeller's `rotation` for this installation, so counter-rotating neighbours share one
-    propeller table; None keeps the propeller's.
+    Examples
+    --------
+    >>> from propwhirl.model import Installation
+    >>> from propwhirl.cases.ch09_baseline import baseline_propeller
+    >>> inst = Installation(baseline_propeller(), y=5.7, rotation=-1)
+    >>> inst.sense, inst.spinning, inst.has_aero
+    (-1, True, True)
+    >>> Installation(baseline_propeller(), y=5.7, state="stopped").has_aero
+    False
     """
 
     propeller: Propeller = field(metadata=spec(
@@ -171,6 +192,43 @@ def node_at(wing: Wing, y: float, tol: float = 1e-6, name: str = "propeller posi
 
     Propellers sit on a node (§8.3.3); :class:`PropellerWing` makes its wing's mesh hold them.
     Errors name the position `name` and carry `path` (see :class:`propwhirl.validate.InputError`).
+
+    Parameters
+    ----------
+    wing : Wing
+        The wing whose mesh is searched.
+    y : float
+        Spanwise position [m].
+    tol : float
+        Tolerance [-], relative to max(1 m, semi_span) [m].
+    name : str
+        How errors name the position.
+    path : tuple
+        The error's :attr:`~propwhirl.validate.InputError.path`.
+
+    Returns
+    -------
+    int
+        The node's index (0 is the root; a position at the clamped root is an error).
+
+    Raises
+    ------
+    InputError
+        y outside the wing, at the root, or not at a node (naming the nearest two).
+
+    Examples
+    --------
+    >>> from propwhirl.model import node_at
+    >>> from propwhirl.cases.ch09_baseline import baseline_wing
+    >>> wing = baseline_wing(n_elements=4)                   # nodes every 1.425 m
+    >>> node_at(wing, 2.85)
+    2
+    >>> node_at(wing, 2.0)
+    Traceback (most recent call last):
+    ...
+    propwhirl.validate.InputError: propeller position y = 2.0 m is not a node of the
+    4-element mesh: nearest nodes are 1 (y = 1.425 m) and 2 (y = 2.85 m); add the position
+    to the wing's stations
     """
     ys = wing.node_y
     if y < -tol or y > wing.semi_span + tol:
@@ -236,6 +294,45 @@ class PropellerWing(StateSpaceModel):
     A value: it keeps nothing of its evaluations.  What its matrices need that does not depend
     on the airspeed is built by :meth:`assembly` (a :class:`PropellerWingAssembly`, a new one
     each call); an analysis builds it once and evaluates it at every speed.
+
+    Parameters
+    ----------
+    wing : Wing
+        The wing.
+    flight : FlightCondition
+        Density [kg/m³], speed of sound [m/s] and the airspeed range [m/s].
+    propellers : tuple of Installation
+        The installed propellers, at most one per node (in a model file: ``installations``).
+    wing_aero : bool
+        Strip (or doublet-lattice) aerodynamics of the wing on.
+    propeller_aero : bool
+        Propeller aerodynamic derivatives on (every propeller).
+    rotating : bool
+        Propellers spinning (gyroscopic terms).
+    name : str
+        Label.
+    groups : mapping of str to tuple of int
+        Named groups of installations for parameter paths
+        (``propellers[NAME].propeller.f_theta``): NAME → indices into `propellers`, from 0.
+
+    Examples
+    --------
+    The baseline wing on 4 elements with the baseline propeller at its tip: a propeller between
+    nodes adds a node; the state x = [q, q̇, lag states] at 100 m/s.
+
+    >>> from propwhirl.model import Installation, PropellerWing
+    >>> from propwhirl.cases.ch09_baseline import baseline_flight, baseline_propeller, baseline_wing
+    >>> wing = baseline_wing(n_elements=4)
+    >>> m = PropellerWing(wing, baseline_flight(), (Installation(baseline_propeller(), 5.7),))
+    >>> m.nodes, m.state_matrix([100.0]).shape
+    ((4,), (1, 36, 36))
+    >>> m2 = PropellerWing(wing, baseline_flight(), (Installation(baseline_propeller(), 2.0),))
+    >>> m2.nodes, [round(float(y), 2) for y in m2.wing.node_y]
+    ((2,), [0.0, 1.0, 2.0, 3.23, 4.47, 5.7])
+    >>> from propwhirl.analysis import analyse
+    >>> c = analyse(m, speeds=[50.0, 100.0, 150.0, 200.0]).critical
+    >>> c.kind, c.label, round(c.V)
+    ('divergence', 'wing 1', 143)
     """
 
     wing: Wing = field(metadata=spec("wing", "", "the wing"))
@@ -615,7 +712,36 @@ def _element_contributions(wing: Wing, props: dict, generated: tuple, dof_names,
 
 @dataclass(frozen=True)
 class IsolatedPropeller(StateSpaceModel):
-    """A propeller flexibly mounted on a rigid wing: 2-DOF pitch/yaw whirl (chapter 6, 6.18)."""
+    """A propeller flexibly mounted on a rigid wing: 2-DOF pitch/yaw whirl (chapter 6, 6.18).
+
+    Parameters
+    ----------
+    propeller : Propeller
+        The propeller (in a model file: the key of a ``[propellers.KEY]`` table).
+    flight : FlightCondition
+        Density [kg/m³], speed of sound [m/s] and the airspeed range [m/s].
+    propeller_aero : bool
+        Propeller aerodynamic derivatives on.
+    rotating : bool
+        Propeller spinning (gyroscopic terms).
+    name : str
+        Label.
+
+    Examples
+    --------
+    The baseline propeller of §9.2 (``propwhirl.cases.ch09_baseline.
+    isolated_baseline_propeller()``): backward whirl flutter at 221.5 m/s.
+
+    >>> from propwhirl.model import IsolatedPropeller
+    >>> from propwhirl.cases.ch09_baseline import baseline_flight, baseline_propeller
+    >>> m = IsolatedPropeller(baseline_propeller(), baseline_flight())
+    >>> m.dof_map().q_labels
+    ('propeller 1 theta', 'propeller 1 psi')
+    >>> from propwhirl.analysis import analyse
+    >>> c = analyse(m, speeds=[100.0, 200.0, 250.0]).critical
+    >>> c.kind, c.label, round(c.V, 1), round(c.frequency_hz, 2)
+    ('flutter', 'backward', 221.5, 5.01)
+    """
 
     propeller: Propeller = field(metadata=spec(
         "propeller", "", "key of a [propellers.KEY] table", form="reference"))

@@ -60,7 +60,34 @@ Variant = Callable[[np.ndarray], Any]
 
 
 def path_variant(model: Any, parameters: Sequence[str]) -> tuple[Variant, tuple[P.Parameter, ...]]:
-    """``variant(p)``: `model` with the two parameter paths set to p (and the resolved paths)."""
+    """``variant(p)``: `model` with the two parameter paths set to p (and the resolved paths).
+
+    Parameters
+    ----------
+    model : Model
+        The model.
+    parameters : sequence of str
+        Two parameter paths (:mod:`propwhirl.studies.paths`) that can vary together.
+
+    Returns
+    -------
+    variant : callable
+        ``variant(p) -> model`` with the paths set to p = (p₁, p₂) [their units].
+    parameters : tuple of Parameter
+        The resolved paths (unit, valid range, meaning).
+
+    Examples
+    --------
+    >>> from propwhirl.studies import path_variant
+    >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+    >>> variant, params = path_variant(isolated_baseline_propeller(),
+    ...                                ["propeller.f_theta", "propeller.f_psi"])
+    >>> [p.unit for p in params]
+    ['Hz', 'Hz']
+    >>> m = variant([5.0, 6.0])
+    >>> m.propeller.f_theta, m.propeller.f_psi
+    (5.0, 6.0)
+    """
     if len(parameters) != 2:
         raise v.InputError(f"parameters = {list(parameters)!r} is invalid: give two paths")
     params = tuple(P.resolve(model, p) for p in parameters)

@@ -158,6 +158,44 @@ class Case:
                       failure-case envelope of 25.629(b)(2) under "cs25"/"far25"
                       (:func:`required_speed`); None (default): :attr:`is_failure` decides
                       from the transformation (:data:`FAILURE_KINDS`).
+
+    Parameters
+    ----------
+    name : str
+        The case's name in the report (unique in a campaign).
+    propellers : tuple of int
+        The propellers the propeller transformations act on, numbered from 1 (empty: every
+        propeller).
+    mount_stiffness : float
+        Factor [-] on the pitch and yaw mount stiffness K_θ, K_ψ (a frequency f_θ, f_ψ given
+        instead is multiplied by its square root).
+    mount_damping : float
+        Factor [-] on the mount damping (0: a failed damper).
+    wing_damping : float
+        Factor [-] on the wing's Rayleigh structural damping (μ, λ).
+    operation : {"", "windmilling"}
+        "windmilling": a constant-speed propeller switched to fixed-pitch windmilling; ""
+        keeps the operation.
+    rpm_factor : float
+        Overspeed: the rpm of constant-speed propellers times this [-].
+    reverse_rotation : bool
+        The sense of rotation reversed.
+    added_masses : tuple of (float, float)
+        (mass [kg], x [m]) point masses added on each chosen propeller's shaft.
+    values : tuple of (str, float)
+        (parameter path, value [its unit]) pairs set on the model, after the rest.
+    state : {"", "operating", "feathered", "stopped"}
+        The installations' state; "" keeps each installation's.
+    failure : bool, optional
+        A failure case of 25.629(d) (held to 25.629(b)(2)); None: decided from the
+        transformation.
+
+    Examples
+    --------
+    >>> from propwhirl.studies import Case
+    >>> soft = Case("mounts at 50 %", mount_stiffness=0.5)
+    >>> soft.is_failure, Case("nominal").is_failure
+    (True, False)
     """
 
     name: str
@@ -510,7 +548,39 @@ def envelope(V_D: float | Sequence[float], altitudes_m: Sequence[float], *,
     V–altitude line) as `airspeed` at each ISA altitude [m], limited by M_D · a(h) [m/s]
     when M_D is given; with V_C (an EAS [m/s], one or one per altitude) and optionally M_C,
     each point's failure-case line of 25.629(b)(2)(ii) (:func:`failure_line`) as a true
-    airspeed."""
+    airspeed.
+
+    Parameters
+    ----------
+    V_D : float or sequence of float
+        Design dive speed [m/s] (as `airspeed`), one for all altitudes or one per altitude.
+    altitudes_m : sequence of float
+        ISA altitudes [m].
+    airspeed : {"EAS", "TAS"}
+        What V_D (and V_C) are.
+    M_D : float, optional
+        Design dive Mach number: V_D at most M_D · a(h).
+    V_C : float or sequence of float, optional
+        Design cruise speed, EAS [m/s] (the failure-case line).
+    M_C : float, optional
+        Design cruise Mach number (with V_C).
+
+    Returns
+    -------
+    tuple of EnvelopePoint
+        Per altitude: altitude [m], V_D as a true airspeed [m/s] (what the analyses use), as
+        given, whether M_D limits it, the failure-case line [m/s].
+
+    Examples
+    --------
+    V_D = 100 m/s EAS is 129 m/s true at 5000 m, unless M_D = 0.3 limits it:
+
+    >>> from propwhirl.studies import envelope
+    >>> [round(p.V_D, 1) for p in envelope(100.0, [0.0, 5000.0])]
+    [100.0, 129.0]
+    >>> [(round(p.V_D, 1), p.mach_limited) for p in envelope(100.0, [0.0, 5000.0], M_D=0.3)]
+    [(100.0, False), (96.2, True)]
+    """
     alts = np.atleast_1d(np.asarray(v.finite("altitudes_m", altitudes_m, "m"), dtype=float))
     if alts.ndim != 1 or alts.size == 0:
         raise v.InputError("altitudes_m is invalid: give one or more altitudes")
@@ -554,7 +624,38 @@ class Campaign:
     ("cs25", "far25", "far23" or "explicit"); min_damping_g: the least g = 2ζ required up to
     V_D (None: no damping requirement); static_divergence, low_speed: the convention
     (:func:`propwhirl.studies.critical.critical_instability`); xtol: accuracy of each critical
-    speed [m/s]."""
+    speed [m/s].
+
+    Parameters
+    ----------
+    name : str
+        The campaign's name.
+    model : Model
+        The nominal model.
+    cases : tuple of Case
+        The failure cases (at least one; unique names).
+    points : tuple of EnvelopePoint
+        The envelope points (:func:`envelope`): ISA altitude [m], V_D [m/s].
+    regulation : {"cs25", "far25", "far23", "explicit"}
+        The regulation of `factor`.
+    factor : float
+        The speed factor [-], in [1, 3] (1.15: CS/FAR 25.629).
+    min_damping_g : float, optional
+        The least g = 2ζ [-] required up to V_D (None: no damping requirement).
+    static_divergence, low_speed : bool
+        The convention (:func:`propwhirl.studies.critical.critical_instability`).
+    xtol : float
+        Accuracy of each critical speed [m/s].
+
+    Examples
+    --------
+    >>> from propwhirl.studies import Campaign, Case, envelope
+    >>> from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
+    >>> c = Campaign("demo", wingtip_propeller_wing(), (Case("nominal"),),
+    ...              envelope(100.0, [0.0, 5000.0]))
+    >>> c.factor, c.convention
+    (1.15, 'every instability counts (propwhirl.analysis.critical)')
+    """
 
     name: str
     model: Any
@@ -660,7 +761,54 @@ def from_spec(spec: Any) -> Campaign:
     comes now, before any analysis, one line starting with the file's name and naming the
     case's table.  The combinations of a product (of two groups or more) are checked for what
     needs no model (:meth:`Case.check`) and built with their analyses: one the model refuses
-    as a whole is recorded in its rows, as a sweep's refused point is."""
+    as a whole is recorded in its rows, as a sweep's refused point is.
+
+    Parameters
+    ----------
+    spec : CampaignSpec
+        A campaign file as read (:func:`propwhirl.io.campaign_files.load_campaign` or its
+        ``loads``; docs/campaign.md: V_D [m/s], altitudes [m], ...).
+
+    Returns
+    -------
+    Campaign
+        The campaign, ready for :func:`run_campaign`.
+
+    Raises
+    ------
+    InputError
+        A case that cannot be built at a point, naming the file and the case.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> from propwhirl.io import save_model
+    >>> from propwhirl.io.campaign_files import loads
+    >>> from propwhirl.studies import from_spec
+    >>> from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
+    >>> text = '''
+    ... format = "propwhirl-campaign"
+    ... format_version = 1
+    ... name = "demo"
+    ... model = "wingtip.toml"
+    ... [regulation]
+    ... name = "cs25"
+    ... [envelope]
+    ... airspeed = "EAS"
+    ... V_D_m_per_s = 100.0
+    ... altitudes_m = [0.0, 5000.0]
+    ... [[cases]]
+    ... name = "nominal"
+    ... [[cases]]
+    ... name = "soft mounts"
+    ... mount_stiffness = 0.5
+    ... '''
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     _ = save_model(wingtip_propeller_wing(), pathlib.Path(folder) / "wingtip.toml")
+    ...     c = from_spec(loads(text, base=folder))
+    >>> [case.name for case in c.cases], [round(p.V_D, 1) for p in c.points], c.factor
+    (['nominal', 'soft mounts'], [100.0, 129.0], 1.15)
+    """
     missing = [k for k in _SPEC_FIELDS if not hasattr(spec, k)]
     if missing or not isinstance(getattr(spec, "source", None), str):
         raise v.fail("spec", spec, "invalid: must be a CampaignSpec, as "
@@ -978,7 +1126,46 @@ def run_campaign(c: Campaign, *, processes: int = 1, client=None,
     campaign is refused).  Before the first analysis the campaign's time and memory are
     estimated (:func:`propwhirl.limits.check_study`: printed before a long one when `progress`
     is True; one beyond the study time limit refused).  A point whose analysis fails is
-    recorded (not cleared, its message in ``error``); the others go on."""
+    recorded (not cleared, its message in ``error``); the others go on.
+
+    Parameters
+    ----------
+    c : Campaign
+        The campaign.
+    processes : int
+        Local worker processes.
+    client : dask.distributed.Client or str, optional
+        Run on that cluster (or scheduler address).
+    progress : bool or callable, optional
+        A progress bar (True) or ``report(done, total)``.
+    checkpoint : Checkpoint, optional
+        The partial-results file.
+
+    Returns
+    -------
+    CampaignResult
+        One row per (case, point): verdict, critical speed [m/s], margins [m/s, %], least
+        damping g [-], ...; ``cleared`` when every row clears.
+
+    Examples
+    --------
+    The baseline wing on 4 elements with its tip propeller, 100–200 m/s, the thesis's
+    convention (the wing's divergence left out), V_D = 120 m/s EAS at two altitudes:
+
+    >>> from propwhirl.studies import Campaign, Case, envelope, run_campaign
+    >>> from propwhirl.model import FlightCondition, Installation, PropellerWing
+    >>> from propwhirl.cases.ch09_baseline import baseline_propeller, baseline_wing
+    >>> model = PropellerWing(baseline_wing(n_elements=4),       # 4 elements, 100-200 m/s
+    ...                       FlightCondition(0.96287, speed_range=(100.0, 200.0, 20.0)),
+    ...                       (Installation(baseline_propeller(), 5.7),))
+    >>> c = Campaign("demo", model, (Case("nominal"), Case("soft mounts", mount_stiffness=0.5)),
+    ...              envelope(120.0, [0.0, 3000.0]), static_divergence=False)
+    >>> r = run_campaign(c)
+    >>> r.cleared, len(r.rows), r.analyses
+    (True, 4, 4)
+    >>> [(row.case, row.altitude_m, round(row.critical_speed, 1)) for row in r.rows][:2]
+    [('nominal', 0.0, 145.4), ('nominal', 3000.0, 164.1)]
+    """
     if not isinstance(c, Campaign):
         raise v.fail("run_campaign: c", c, "invalid: must be a propwhirl.studies.campaign.Campaign "
                      f"(from_spec(load_campaign(path)), or Campaign(...)), got {type(c).__name__}")

@@ -232,7 +232,44 @@ class CampaignResult(Result):
     :meth:`save` / :meth:`load`; :meth:`to_csv` the same numbers as a table;
     :meth:`format` the plain-text summary; ``cleared`` decides the exit code of
     ``propwhirl certify``.  Version 2 added each row's ``plot`` (:class:`PointPlot`, the
-    report's figures); version-1 files are read with ``plot`` None."""
+    report's figures); version-1 files are read with ``plot`` None.
+
+    Attributes
+    ----------
+    name : str
+        The campaign's name.
+    model_name : str
+        The model's name.
+    regulation : str
+        "cs25", "far25", "far23" or "explicit".
+    factor : float
+        The speed factor [-].
+    min_damping_g : float or None
+        The least g = 2ζ [-] required up to V_D (None: none).
+    convention : str
+        Which events count as critical.
+    rows : tuple of PointRow
+        Per (case, point): V_D and V_required [m/s], verdict, critical speed [m/s], margins
+        [m/s, %], frequency [Hz], least damping g [-] and dζ/dV [s/m], the figure data.
+    analyses : int
+        The analyses run.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> from propwhirl.studies import Campaign, CampaignResult, Case, envelope, run_campaign
+    >>> from propwhirl.model import FlightCondition, Installation, PropellerWing
+    >>> from propwhirl.cases.ch09_baseline import baseline_propeller, baseline_wing
+    >>> model = PropellerWing(baseline_wing(n_elements=4),       # 4 elements, 100-200 m/s
+    ...                       FlightCondition(0.96287, speed_range=(100.0, 200.0, 20.0)),
+    ...                       (Installation(baseline_propeller(), 5.7),))
+    >>> r = run_campaign(Campaign("demo", model, (Case("nominal"),), envelope(120.0, [0.0]),
+    ...                           static_divergence=False))
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     again = CampaignResult.load(r.save(pathlib.Path(folder) / "campaign.json"))
+    >>> again.cleared, round(again.rows[0].V_required, 1), round(again.rows[0].margin_percent, 1)
+    (True, 138.0, 5.4)
+    """
 
     KIND: ClassVar[str] = "campaign"
     VERSION: ClassVar[int] = 2

@@ -340,6 +340,44 @@ def map_analyses(func: Callable[[Any], Any], tasks: Sequence[Any], processes: in
     checkpoint: keep the finished points in a partial-results file, and resume from it;
     keys:      one string per task naming it in the partial-results file (default: its index);
     desc:      the progress bar's label.
+
+    Parameters
+    ----------
+    func : callable
+        ``func(task)``; on processes or a cluster a module-level function (picklable).
+    tasks : sequence
+        The tasks.
+    processes : int
+        Local worker processes (1: in this process).
+    client : dask.distributed.Client or str, optional
+        Run on that cluster (or scheduler address).
+    progress : bool or callable, optional
+        A progress bar (True) or ``report(done, total)``.
+    errors : {"raise", "record"}
+        A failing point stops the run, or is recorded as a :class:`TaskError`.
+    checkpoint : Checkpoint, optional
+        The partial-results file.
+    keys : sequence of str, optional
+        One string per task naming it in the partial-results file.
+    desc : str
+        The progress bar's label.
+
+    Returns
+    -------
+    list
+        ``func(t)`` of every task, in order (with ``errors="record"``: a
+        :class:`TaskError` in a failed task's place).
+
+    Examples
+    --------
+    >>> from propwhirl.studies import map_analyses
+    >>> map_analyses(abs, [-1.0, 2.0, -3.0])
+    [1.0, 2.0, 3.0]
+    >>> from propwhirl.analysis import analyse
+    >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+    >>> models = [isolated_baseline_propeller(f_psi=f) for f in (6.0, 8.0)]
+    >>> [round(a.critical.V, 1) for a in map_analyses(analyse, models)]
+    [216.2, 257.6]
     """
     v.integer_at_least("processes", processes, 1)
     if errors not in ("raise", "record"):

@@ -329,7 +329,51 @@ def minimum_mount_stiffness(model, vd: float, factor: float = 1.15, *, propeller
     tolerance, and the message says by how much it is short otherwise.  When V_crit at the
     design point is short and its gradient, extrapolated to the bounds, recovers less than
     :data:`REACH_FRACTION` of the shortfall, the critical instability is not this mount's: the
-    result says so after one analysis (exact) or three (fd)."""
+    result says so after one analysis (exact) or three (fd).
+
+    Parameters
+    ----------
+    model : PropellerWing
+        The model (its speed range is the analyses').
+    vd : float
+        Design dive speed V_D [m/s].
+    factor : float
+        Speed factor [-] (1.15: CS/FAR 25.629).
+    propeller : int
+        Index of the propeller in ``model.propellers``, from 0.
+    static_divergence, low_speed : bool
+        The convention (default the thesis's exclusions).
+    lower, upper : float
+        Bounds of each stiffness [-], relative to its design value.
+    gradients : {"exact", "fd"}
+        Exact gradients or SLSQP's finite differences.
+    compare : bool
+        Also run the other method.
+
+    Returns
+    -------
+    OptimisationResult
+        The stiffnesses ``x`` [N m/rad] of ``paths`` (design values ``x0``), V_crit there
+        ``V`` [m/s] against ``target`` [m/s], ``objective`` [-], ``cleared``, ``message``,
+        the ``analyses`` run.
+
+    Examples
+    --------
+    The baseline wing on 4 elements with its tip propeller: to clear 1.15 × 130 m/s its
+    pitch mount may be 0.41 times as stiff, its yaw mount is at its lower bound (3/7)²:
+
+    >>> from propwhirl.studies import minimum_mount_stiffness
+    >>> from propwhirl.model import FlightCondition, Installation, PropellerWing
+    >>> from propwhirl.cases.ch09_baseline import baseline_propeller, baseline_wing
+    >>> model = PropellerWing(baseline_wing(n_elements=4),       # 4 elements, 100-200 m/s
+    ...                       FlightCondition(0.96287, speed_range=(100.0, 200.0, 20.0)),
+    ...                       (Installation(baseline_propeller(), 5.7),))
+    >>> r = minimum_mount_stiffness(model, vd=130.0)
+    >>> r.paths
+    ('propellers[0].propeller.K_theta', 'propellers[0].propeller.K_psi')
+    >>> r.cleared, [round(float(k), 2) for k in r.x / r.x0], round(r.V, 1), r.target
+    (True, [0.41, 0.18], 149.5, 149.5)
+    """
     v.positive("vd", vd, "m/s")
     v.in_range("factor", factor, 1.0, 3.0)      # the regulations' 1.15, 1.2 (as clearance)
     if gradients not in ("exact", "fd"):
@@ -378,6 +422,44 @@ def openmdao_component(model, paths: Sequence[str], *, vd: float, factor: float 
 
     Checked before OpenMDAO sees anything: at least one path, each once, no field with its
     alternative, vd [m/s] > 0, factor in [1, 3] (as :func:`propwhirl.studies.clearance.clearance`).
+
+    Parameters
+    ----------
+    model : Model
+        The model (its speed range is the analyses').
+    paths : sequence of str
+        The input parameter paths (their units are the inputs').
+    vd : float
+        Design dive speed V_D [m/s].
+    factor : float
+        Speed factor [-], in [1, 3].
+    static_divergence, low_speed : bool
+        The convention (:func:`propwhirl.studies.critical.critical_instability`).
+
+    Returns
+    -------
+    openmdao.api.ExplicitComponent
+        Inputs: the paths' values; outputs ``V_crit`` [m/s] and ``margin`` [-].
+
+    Examples
+    --------
+    >>> import openmdao.api as om
+    >>> from propwhirl.studies import openmdao_component
+    >>> from propwhirl.model import FlightCondition, Installation, PropellerWing
+    >>> from propwhirl.cases.ch09_baseline import baseline_propeller, baseline_wing
+    >>> model = PropellerWing(baseline_wing(n_elements=4),       # 4 elements, 100-200 m/s
+    ...                       FlightCondition(0.96287, speed_range=(100.0, 200.0, 20.0)),
+    ...                       (Installation(baseline_propeller(), 5.7),))
+    >>> comp = openmdao_component(model, ["propellers[0].propeller.K_theta"], vd=130.0,
+    ...                           static_divergence=False, low_speed=False)
+    >>> comp.input_names
+    {'propellers[0].propeller.K_theta': 'propellers_0_propeller_K_theta'}
+    >>> prob = om.Problem(reports=False)
+    >>> _ = prob.model.add_subsystem("whirl", comp, promotes=["*"])
+    >>> _ = prob.setup()
+    >>> prob.run_model()
+    >>> round(float(prob.get_val("V_crit")[0]), 1)                     # [m/s]
+    160.3
     """
     try:
         import openmdao.api as om

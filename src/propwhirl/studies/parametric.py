@@ -171,6 +171,40 @@ def nacelle_stiffness(vary: _Vary = "both", frequencies=STIFFNESS_FREQUENCIES, *
     uncoupled mount frequencies (K = I (2π f)², §8.1).  The x-axis column is the mean frequency
     (f_θ + f_ψ)/2 of Figures 11.1–11.2; the columns f_theta, f_psi give both.
     options: see :func:`propeller_study` (static_divergence, low_speed, speeds, xtol, processes).
+
+    Parameters
+    ----------
+    vary : {"yaw", "pitch", "both"}
+        Which mount frequency is swept.
+    frequencies : array_like
+        The swept mount frequencies [Hz].
+    fixed_frequency : float
+        The other mount's frequency [Hz] when one is swept.
+    propeller : Propeller, optional
+        The propeller (default the baseline, Tables 9.3–9.4).
+    models : sequence of str
+        Which models: "wingtip" (§10.1), "isolated" (§9.2), ...
+    **options
+        Those of :func:`propeller_study`: static_divergence, low_speed, speeds [m/s],
+        xtol [m/s], processes, client, progress, checkpoint.
+
+    Returns
+    -------
+    StudyTable
+        One row per (model, frequency): f_theta, f_psi, mean_frequency [Hz], the critical
+        speed [m/s], frequency [Hz], mode, kind, ...
+
+    Examples
+    --------
+    The isolated baseline propeller with both mounts at 6 and 8 Hz:
+
+    >>> from propwhirl.studies import nacelle_stiffness
+    >>> t = nacelle_stiffness("both", [6.0, 8.0], models=("isolated",),
+    ...                       speeds=[100.0, 200.0, 300.0])
+    >>> t.columns["mean_frequency"].tolist(), list(t.columns["kind"])
+    ([6.0, 8.0], ['flutter', 'flutter'])
+    >>> [round(float(V), 1) for V in t.columns["critical_speed"]]          # [m/s]
+    [184.5, 265.7]
     """
     _check_vary(vary)
     f = parameter_grid("frequencies", frequencies, "Hz", v.positive)
@@ -415,6 +449,34 @@ def blade_angle_mode_switch(bracket: tuple[float, float] = (60.0, 80.0), *, xtol
     (scipy.optimize.brentq on the step function), one wingtip analysis per evaluation;
     `bracket` [deg] must have the forward-whirl flutter first at its lower end and the backward
     at its upper end; `xtol` [deg]; method: the analyses' (the reproduction's: "dense").
+
+    Parameters
+    ----------
+    bracket : tuple of float
+        (β_forward, β_backward) [deg].
+    xtol : float
+        Accuracy of the switch angle [deg].
+    propeller : Propeller, optional
+        The propeller (default the baseline).
+    speeds : array_like, optional
+        Initial speed grid [m/s] of the analyses.
+    method : str
+        The analyses' method.
+
+    Returns
+    -------
+    ModeSwitch
+        The switch angle ``beta`` [deg], its final ``bracket`` [deg] and every evaluation
+        (β [deg], V_forward, V_backward [m/s]).
+
+    Examples
+    --------
+    The thesis's bracket 73°–74°, to 0.5°:
+
+    >>> from propwhirl.studies import blade_angle_mode_switch
+    >>> s = blade_angle_mode_switch((73.0, 74.0), xtol=0.5)
+    >>> round(s.beta, 1), len(s.evaluations)
+    (73.4, 4)
     """
     from scipy.optimize import brentq
 

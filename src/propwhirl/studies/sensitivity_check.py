@@ -319,6 +319,8 @@ def verify_sensitivities(model: Any, analysis: ModelAnalysis, sensitivities: Cri
     params : sequence of str, optional
         The paths checked (entries of `sensitivities`); default the `top` ranked ones (all when
         `top` is None).
+    top : int, optional
+        Without `params`: check the `top` entries ranked by |normalised sensitivity|.
     method, speeds, xtol :
         Those of the perturbed analyses (:func:`~propwhirl.analysis.stability.analyse`): give
         the ones `analysis` was made with; default method "auto", the speed grid `analysis`
@@ -336,6 +338,24 @@ def verify_sensitivities(model: Any, analysis: ModelAnalysis, sensitivities: Cri
     -------
     SensitivityVerification
         One check per parameter; ``.passed`` when all pass.
+
+    Examples
+    --------
+    The critical speed of the baseline wing on 4 elements with its tip propeller against the
+    pitch-mount frequency: the exact derivative and the central difference agree.
+
+    >>> from propwhirl.analysis import analyse, critical_sensitivities
+    >>> from propwhirl.studies import verify_sensitivities
+    >>> from propwhirl.model import FlightCondition, Installation, PropellerWing
+    >>> from propwhirl.cases.ch09_baseline import baseline_propeller, baseline_wing
+    >>> model = PropellerWing(baseline_wing(n_elements=4),       # 4 elements, 100-200 m/s
+    ...                       FlightCondition(0.96287, speed_range=(100.0, 200.0, 20.0)),
+    ...                       (Installation(baseline_propeller(), 5.7),))
+    >>> a = analyse(model)
+    >>> cs = critical_sensitivities(model, a, params=["propellers[0].propeller.f_theta"])
+    >>> check = verify_sensitivities(model, a, cs)
+    >>> check.passed, check.analyses
+    (True, 2)
     """
     if not isinstance(sensitivities, CriticalSensitivities):
         raise v.InputError(f"sensitivities = {v.short_repr(sensitivities)} is invalid: must be "

@@ -276,10 +276,37 @@ class CriticalMap(Result):
     ``propwhirl.critical-map/1``); :meth:`save` / :meth:`load` also write and read CSV by the
     file's suffix.
 
-    axes:    the varied parameters (:class:`Axis`), in order
-    columns: the result columns of :data:`RESULT_UNITS`, each an array of shape
-             ``(len(axes[0].values), len(axes[1].values))`` (one axis: a vector)
-    convention: which events count as critical (:func:`propwhirl.studies.critical.convention`)
+    Attributes
+    ----------
+    model_name : str
+        The model's name.
+    axes : tuple of Axis
+        The varied parameters (path, values, unit, the model's own value), in order.
+    columns : mapping of str to ndarray
+        The result columns of :data:`RESULT_UNITS` (critical_speed [m/s],
+        critical_frequency [Hz], critical_mode, kind, whirl, propeller, propeller_share [-],
+        static_divergence_speed [m/s], error, ...), each an array of shape
+        ``(len(axes[0].values), len(axes[1].values))`` (one axis: a vector).
+    convention : str
+        Which events count as critical (:func:`propwhirl.studies.critical.convention`).
+    xtol : float
+        Accuracy of each critical speed [m/s].
+    units : mapping of str to str
+        The unit of each column ("" for text and dimensionless ones).
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> from propwhirl.studies import CriticalMap, sweep
+    >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+    >>> r = sweep(isolated_baseline_propeller(), "propeller.f_psi", [6.0, 8.0],
+    ...           speeds=[100.0, 200.0, 300.0])
+    >>> r.axes[0].label, r.axes[0].design, r.units["critical_speed"]
+    ('propeller.f_psi [Hz]', 7.0, 'm/s')
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     again = CriticalMap.load(r.save(pathlib.Path(folder) / "sweep.csv"))
+    >>> [round(float(V), 1) for V in again.critical_speed]
+    [216.2, 257.6]
     """
 
     model_name: str
@@ -528,7 +555,54 @@ def critical_map(model: Any, axes: Sequence[tuple[str, Any]], *, speeds=None,
     found (:mod:`propwhirl.studies.warmstart`: the same rows to the accuracy xtol; not with
     ``low_speed=False``, where it is ignored); ``method="dense", warm_start=False`` is the
     brute-force reference (every point dense over its whole range); stats: a dict that
-    receives the number of analyses of each pass."""
+    receives the number of analyses of each pass.
+
+    Parameters
+    ----------
+    model : Model
+        The model.
+    axes : sequence of (str, array_like)
+        1 to 3 (parameter path, values [the path's unit]) pairs.
+    speeds : array_like, optional
+        Initial speed grid [m/s] of every analysis (default the model's speed range).
+    xtol : float
+        Accuracy of each critical speed [m/s].
+    static_divergence, low_speed : bool
+        False: the thesis's exclusions (:func:`propwhirl.studies.critical.critical_instability`).
+    processes : int
+        Local worker processes.
+    client : dask.distributed.Client or str, optional
+        Run on that cluster (or scheduler address).
+    progress : bool or callable, optional
+        A progress bar (True) or ``report(done, total)``.
+    checkpoint : Checkpoint, optional
+        Keep the finished points in a partial-results file and resume from it.
+    method : {"auto", "dense", "reduced", "pk"}
+        Each analysis's method.
+    warm_start : bool
+        Analyse most points only up to the speeds their neighbours found.
+    stats : dict, optional
+        Receives the number of analyses of each pass.
+
+    Returns
+    -------
+    CriticalMap
+        The result columns (:data:`RESULT_UNITS`: critical speed [m/s], frequency [Hz], ...)
+        over the outer product of the axes.
+
+    Examples
+    --------
+    Three parameters of the isolated baseline propeller, 2 values each (the second:
+    its pitch-mount damping, g [-]):
+
+    >>> from propwhirl.studies import critical_map
+    >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+    >>> r = critical_map(isolated_baseline_propeller(),
+    ...                  [("propeller.f_theta", [6.0, 8.0]), ("propeller.damping_theta", [0.0, 0.02]),
+    ...                   ("propeller.f_psi", [6.0, 8.0])], speeds=[100.0, 200.0, 300.0])
+    >>> r.shape, [a.label for a in r.axes][:2]
+    ((2, 2, 2), ['propeller.f_theta [Hz]', 'propeller.damping_theta'])
+    """
     if not 1 <= len(axes) <= 3:
         raise v.InputError(f"axes: {len(axes)} given, a study varies 1 to 3 parameters")
     resolved = [_axis(model, p, vals) for p, vals in axes]
@@ -580,20 +654,69 @@ def sweep(model: Any, path: str, values: Any, **options) -> CriticalMap:
     static_divergence and low_speed (False: the thesis's exclusions, see
     :func:`propwhirl.studies.critical.critical_instability`), processes.
 
+    Parameters
+    ----------
+    model : Model
+        The model (any; its paths: :func:`propwhirl.studies.paths.valid_paths`).
+    path : str or tuple of str
+        A parameter path (``"wing.GJ"``, ``"propellers[0].propeller.f_theta"``, the scale
+        form ``"wing.EI*"``), or linked paths taking one value (docs/studies.md).
+    values : array_like
+        The values [the path's unit; a factor for ``PATH*``].
+    **options
+        Those of :func:`critical_map`: speeds [m/s], xtol [m/s], static_divergence,
+        low_speed, processes, client, progress, checkpoint, method, warm_start, stats.
+
+    Returns
+    -------
+    CriticalMap
+        One point per value: the critical speed [m/s], frequency [Hz], mode, kind, ...
+
     Examples
     --------
+    The isolated baseline propeller's backward whirl flutter against its yaw-mount
+    frequency [Hz]:
+
+    >>> from propwhirl.studies import sweep
     >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
     >>> r = sweep(isolated_baseline_propeller(), "propeller.f_psi", [6.0, 8.0],
     ...           speeds=[100.0, 200.0, 300.0])
-    >>> r.shape, list(r.kind)
-    ((2,), ['flutter', 'flutter'])
+    >>> r.shape, list(r.kind), list(r.columns["critical_mode"])
+    ((2,), ['flutter', 'flutter'], ['backward', 'backward'])
+    >>> [round(float(V), 1) for V in r.critical_speed]                 # [m/s]
+    [216.2, 257.6]
     """
     return critical_map(model, [(path, values)], **options)
 
 
 def map2d(model: Any, first: tuple[str, Any], second: tuple[str, Any], **options) -> CriticalMap:
     """The critical speed of `model` over two parameters: ``first = (path, values)`` (rows)
-    and ``second = (path, values)`` (columns); options as :func:`sweep`."""
+    and ``second = (path, values)`` (columns); options as :func:`sweep`.
+
+    Parameters
+    ----------
+    model : Model
+        The model.
+    first, second : tuple of (str, array_like)
+        (parameter path, its values [the path's unit]) of the rows and the columns.
+    **options
+        As :func:`sweep`.
+
+    Returns
+    -------
+    CriticalMap
+        The critical speed [m/s] (and the rest of :data:`RESULT_UNITS`) at every point,
+        arrays of shape (len(first values), len(second values)).
+
+    Examples
+    --------
+    >>> from propwhirl.studies import map2d
+    >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+    >>> r = map2d(isolated_baseline_propeller(), ("propeller.f_theta", [6.0, 8.0]),
+    ...           ("propeller.f_psi", [6.0, 8.0]), speeds=[100.0, 200.0, 300.0])
+    >>> r.shape, [[round(float(V), 1) for V in row] for row in r.critical_speed]
+    ((2, 2), [[184.5, 266.7], [266.7, 265.7]])
+    """
     return critical_map(model, [first, second], **options)
 
 

@@ -33,7 +33,48 @@ def animate_mode(eigenvector, eigenvalue: complex, dof_map: "DofMap", path: str 
                  title: str | None = None) -> Path:
     """Write a GIF of the mode (`frames` per cycle at `fps` frames per second, `dpi` dots per
     inch); returns the path.  Arguments as :func:`~propwhirl.app.plots.mode_shape`, which draws the still
-    figure the frames are made from (the orbits stay as the path, a dot moves on each)."""
+    figure the frames are made from (the orbits stay as the path, a dot moves on each).
+
+    Parameters
+    ----------
+    eigenvector : array_like
+        Full-state or displacement eigenvector (complex).
+    eigenvalue : complex
+        Its eigenvalue λ [1/s].
+    dof_map : DofMap
+        What each state is.
+    path : str or Path
+        The GIF to write.
+    frames : int
+        Frames per cycle.
+    fps : float
+        Frames per second [1/s].
+    dpi : float
+        Dots per inch.
+    title : str, optional
+        Figure title.
+
+    Returns
+    -------
+    Path
+        `path`.
+
+    Examples
+    --------
+    >>> from propwhirl.analysis import analyse
+    >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+    >>> model = isolated_baseline_propeller()
+    >>> a = analyse(model, speeds=[100.0, 200.0, 250.0])
+    >>> import pathlib, tempfile
+    >>> from propwhirl.app.plots import animate_mode, event_eigenvector
+    >>> x, lam, V = event_eigenvector(a, a.critical)
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     gif = animate_mode(x, lam, a.dof_map, pathlib.Path(folder) / "mode.gif",
+    ...                        frames=2, dpi=30)
+    ...     head = gif.read_bytes()[:6]
+    >>> head
+    b'GIF89a'
+    """
     n = v.integer_at_least("frames", frames, 2)
     v.in_range("fps", fps, 0.5, 60.0, "frames/s")
     path = Path(path)
@@ -93,7 +134,43 @@ def animate_mode(eigenvector, eigenvalue: complex, dof_map: "DofMap", path: str 
 
 def animate_event(analysis: "ModelAnalysis", event: "Instability", path: str | Path, *,
                   frames: int = FRAMES, fps: float = FPS, dpi: float = DPI) -> Path:
-    """:func:`animate_mode` of an instability of `analysis` (e.g. ``analysis.critical``)."""
+    """:func:`animate_mode` of an instability of `analysis` (e.g. ``analysis.critical``).
+
+    Parameters
+    ----------
+    analysis : ModelAnalysis
+        The analysis (fresh, or re-read with its eigenvectors).
+    event : Instability
+        One of its events.
+    path : str or Path
+        The GIF to write.
+    frames : int
+        Frames per cycle.
+    fps : float
+        Frames per second [1/s].
+    dpi : float
+        Dots per inch.
+
+    Returns
+    -------
+    Path
+        `path`.
+
+    Examples
+    --------
+    >>> from propwhirl.analysis import analyse
+    >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+    >>> model = isolated_baseline_propeller()
+    >>> a = analyse(model, speeds=[100.0, 200.0, 250.0])
+    >>> import pathlib, tempfile
+    >>> from propwhirl.app.plots import animate_event
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     gif = animate_event(a, a.critical, pathlib.Path(folder) / "critical.gif",
+    ...                         frames=2, dpi=30)
+    ...     size = gif.stat().st_size
+    >>> gif.name, size > 0
+    ('critical.gif', True)
+    """
     check_event(analysis, event)
     x, lam, V = event_eigenvector(analysis, event)
     return animate_mode(x, lam, analysis.dof_map, path, frames=frames, fps=fps, dpi=dpi,

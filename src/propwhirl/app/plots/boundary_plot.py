@@ -44,6 +44,41 @@ def boundary_plot(boundaries: "Boundary | Sequence[Boundary]", grid: "GridMap | 
     (:func:`~propwhirl.studies.boundary.level_of`): filled contours (max Re λ [1/s] for a
     neutral curve, V_crit [m/s] for a contour) and its zero contour dashed;
     design: the model's point (p₁, p₂), marked with a star.
+
+    Parameters
+    ----------
+    boundaries : Boundary or sequence of Boundary
+        Traced boundaries of one plane (:func:`propwhirl.studies.boundary.neutral_curve`,
+        :func:`~propwhirl.studies.boundary.speed_contour`).
+    grid : GridMap, optional
+        The first boundary's level function on a grid of the plane.
+    design : sequence of float, optional
+        The model's point (p₁, p₂) [the parameters' units].
+    title : str, optional
+        Figure title.
+    path : str or Path, optional
+        File to write.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The plane (the parameters in their units) and, with `grid`, a colour bar.
+
+    Examples
+    --------
+    Where the isolated baseline propeller is neutrally stable at 200 m/s in the plane of its
+    mount frequencies [Hz], over a 5 × 5 grid of max Re λ:
+
+    >>> from propwhirl.app.plots import boundary_plot
+    >>> from propwhirl.studies.boundary import grid_map, level_of, neutral_curve
+    >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+    >>> model = isolated_baseline_propeller()
+    >>> plane = ("propeller.f_theta", "propeller.f_psi"), (4.0, 4.0), (10.0, 10.0)
+    >>> b = neutral_curve(model, *plane, V=200.0)
+    >>> grid = grid_map(level_of(b, model), *plane[1:], n=5)
+    >>> fig = boundary_plot(b, grid, design=(7.0, 7.0))
+    >>> fig.axes[0].get_xlabel(), fig.axes[0].get_ylabel()
+    ('propeller.f_theta [Hz]', 'propeller.f_psi [Hz]')
     """
     bs = [boundaries] if not isinstance(boundaries, (list, tuple)) else list(boundaries)
     if not bs:
@@ -159,7 +194,34 @@ def clearance_plot(result: "Clearance", *, analysis: "ModelAnalysis | None" = No
     :data:`FAIL_COLOUR` where it is negative; events the convention leaves out hatched and
     pale), each named by its kind, event, mode and speed and — given the `analysis` the
     clearance was computed from — the propellers that lead the whirl at the event ("propellers
-    4, 2, 1 leading": those with at least half the largest share); the requirement at 0."""
+    4, 2, 1 leading": those with at least half the largest share); the requirement at 0.
+
+    Parameters
+    ----------
+    result : Clearance
+        A clearance (:func:`propwhirl.studies.clearance.clearance`).
+    analysis : ModelAnalysis, optional
+        The analysis the clearance was computed from (the leading propellers).
+    title : str, optional
+        Figure title.
+    path : str or Path, optional
+        File to write.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        One axes: a bar per instability, its margin [%].
+
+    Examples
+    --------
+    >>> from propwhirl.app.plots import clearance_plot
+    >>> from propwhirl.studies.clearance import clearance
+    >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+    >>> c = clearance(isolated_baseline_propeller(), 180.0, minimum=False,
+    ...               speeds=[100.0, 200.0, 250.0])
+    >>> clearance_plot(c).axes[0].get_xlabel()
+    'margin V / (1.15 V_D) - 1 [%]   (V_D = 180 m/s)'
+    """
     from matplotlib.patches import Patch
 
     fig = new_figure(figsize=(8.5, 1.8 + 0.5 * max(len(result.margins), 1)), layout="constrained")

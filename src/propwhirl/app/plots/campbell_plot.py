@@ -45,7 +45,43 @@ def campbell(model, rpm=None, *, rpm_ratio=None, n_modes: int | None = None,
              title: str | None = None, path: str | Path | None = None) -> "Figure":
     """Campbell diagram of a PropellerWing or an IsolatedPropeller
     (:func:`propwhirl.analysis.vibration.campbell`, aerodynamics off) drawn by
-    :func:`campbell_diagram`; `rpm` [rev/min] and `rpm_ratio` as there."""
+    :func:`campbell_diagram`; `rpm` [rev/min] and `rpm_ratio` as there.
+
+    Parameters
+    ----------
+    model : PropellerWing or IsolatedPropeller
+        With at least one flexibly mounted propeller.
+    rpm : array_like, optional
+        Rotational speeds [rev/min] of the first propeller that turns, ≥ 0, increasing
+        (default 0–6000 every 250).
+    rpm_ratio : sequence of float, optional
+        Each propeller's speed relative to the first turning one's (default: as they
+        operate).
+    n_modes : int, optional
+        Draw the lowest n modes (default :func:`default_count`).
+    title : str, optional
+        Figure title (default: the model's name).
+    path : str or Path, optional
+        File to write (PNG, or the format of the suffix).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        One axes: natural frequency f [Hz] against propeller speed n [rpm], the 1P and 2P
+        lines.
+
+    Examples
+    --------
+    The isolated baseline propeller's backward and forward whirl modes split with rpm:
+
+    >>> import numpy as np
+    >>> from propwhirl.app.plots import campbell
+    >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+    >>> fig = campbell(isolated_baseline_propeller(), rpm=np.linspace(0.0, 3000.0, 7))
+    >>> ax = fig.axes[0]
+    >>> ax.get_xlabel(), ax.get_ylabel()
+    ('propeller rotational speed n [rpm]', 'natural frequency f [Hz]')
+    """
     c = campbell_data(model, rpm, rpm_ratio=rpm_ratio)
     return campbell_diagram(c, n_modes=n_modes, title=title or f"{model.name}: Campbell diagram",
                             path=path)
@@ -83,6 +119,23 @@ def campbell_diagram(rpm, frequencies=None, *, n_modes: int | None = None,
         names by :func:`family_of`), each propeller's speed relative to the first's.
     title, path
         Figure title; file to write.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        One axes: f [Hz] against n [rpm], a line per mode, the 1P and 2P lines.
+
+    Examples
+    --------
+    Two modes given as arrays, on an Agg canvas:
+
+    >>> import numpy as np
+    >>> from propwhirl.app.plots import campbell_diagram
+    >>> rpm = np.array([0.0, 1000.0, 2000.0])
+    >>> f = np.array([[5.0, 7.0], [4.5, 7.5], [4.0, 8.0]])          # [Hz]
+    >>> fig = campbell_diagram(rpm, f, names=["backward 1", "forward 1"])
+    >>> [line.get_label() for line in fig.axes[0].get_lines()][-2:]
+    ['1P (f = n/60)', '2P (f = 2n/60)']
     """
     if frequencies is None and hasattr(rpm, "frequency_hz"):
         c: CampbellResult = rpm

@@ -71,7 +71,34 @@ def new_figure(**kwargs) -> "Figure":
 
 def save(fig: "Figure", path: str | Path, dpi: int = 150) -> Path:
     """Write `fig` to `path` (format from the suffix, e.g. .png; PNG without one); returns
-    the path.  The file is replaced atomically (:func:`propwhirl.fileio.write_with`)."""
+    the path.  The file is replaced atomically (:func:`propwhirl.fileio.write_with`).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+    path : str or Path
+        The file; its suffix is the format (.png, .pdf, .svg, ...).
+    dpi : int
+        Dots per inch.
+
+    Returns
+    -------
+    Path
+        `path`.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> import numpy as np
+    >>> from propwhirl.app.plots import campbell_diagram, save
+    >>> fig = campbell_diagram(np.array([0.0, 1000.0]), np.array([[5.0], [5.5]]))
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     png = save(fig, pathlib.Path(folder) / "campbell.png", dpi=30)
+    ...     head = png.read_bytes()[1:4]              # the PNG signature
+    >>> png.name, head
+    ('campbell.png', b'PNG')
+    """
     path = Path(path)
     fmt = path.suffix[1:].lower() or "png"
     supported = fig.canvas.get_supported_filetypes()

@@ -46,6 +46,36 @@ def critical_map(result: "CriticalMap", *, levels: int = 12, title: str | None =
     line; points with no instability in the speed range are grey, cross-hatched; the design
     point (both parameters as in the model, when known) is a white star.  `levels`: number of
     contour levels; written to `path` if given.
+
+    Parameters
+    ----------
+    result : CriticalMap
+        A study of two parameters (:func:`propwhirl.studies.map2d`).
+    levels : int
+        Number of contour levels.
+    title : str, optional
+        Figure title.
+    path : str or Path, optional
+        File to write.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The map (the parameters in their units on the axes) and its colour bar, the critical
+        speed [m/s].
+
+    Examples
+    --------
+    The isolated baseline propeller's pitch- and yaw-mount frequencies, 2 × 2 points:
+
+    >>> from propwhirl.app.plots import critical_map
+    >>> from propwhirl.studies import map2d
+    >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+    >>> r = map2d(isolated_baseline_propeller(), ("propeller.f_theta", [6.0, 8.0]),
+    ...           ("propeller.f_psi", [6.0, 8.0]), speeds=[100.0, 200.0, 300.0])
+    >>> fig = critical_map(r)
+    >>> [ax.get_xlabel() for ax in fig.axes][0], [ax.get_ylabel() for ax in fig.axes]
+    ('propeller.f_theta [Hz]', ['propeller.f_psi [Hz]', 'critical speed [m/s]'])
     """
     if len(result.axes) != 2:
         raise v.InputError(f"a critical-speed map needs two parameters, the result has "
@@ -116,7 +146,33 @@ def critical_sweep(result: "CriticalMap", *, title: str | None = None,
     :func:`propwhirl.studies.sweeps.sweep`): a line through the points, flutter points red,
     divergence points green, the critical mode named where it changes, the design value a
     dotted vertical line, points without instability as grey crosses at the top.  Written to
-    `path` if given."""
+    `path` if given.
+
+    Parameters
+    ----------
+    result : CriticalMap
+        A study of one parameter (:func:`propwhirl.studies.sweep`).
+    title : str, optional
+        Figure title.
+    path : str or Path, optional
+        File to write.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        One axes: the critical speed [m/s] against the parameter [its unit].
+
+    Examples
+    --------
+    >>> from propwhirl.app.plots import critical_sweep
+    >>> from propwhirl.studies import sweep
+    >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+    >>> r = sweep(isolated_baseline_propeller(), "propeller.f_psi", [6.0, 7.0, 8.0],
+    ...           speeds=[100.0, 200.0, 300.0])
+    >>> ax = critical_sweep(r).axes[0]
+    >>> ax.get_xlabel(), ax.get_ylabel()
+    ('propeller.f_psi [Hz]', 'critical speed [m/s]')
+    """
     if len(result.axes) != 1:
         raise v.InputError(f"a critical-speed sweep plot needs one parameter, the result has "
                            f"{len(result.axes)}: use critical_map for two")

@@ -95,6 +95,39 @@ def mode_shape(eigenvector, eigenvalue: complex, dof_map: "DofMap", *,
     above a grid of θ–ψ orbit panels, one per propeller.  The vector is normalised by
     :func:`normalised`.  ``shares``: {propeller number from 1: its share of the mode's kinetic
     energy}, written in the orbit panels' titles (:func:`event_mode_shape` passes the event's).
+
+    Parameters
+    ----------
+    eigenvector : array_like
+        Full-state or displacement eigenvector (complex).
+    eigenvalue : complex
+        Its eigenvalue λ [1/s] (the orbits' whirl sense, the title's frequency).
+    dof_map : DofMap
+        What each state is.
+    title : str, optional
+        Figure title.
+    path : str or Path, optional
+        File to write.
+    shares : dict of int to float, optional
+        {propeller number from 1: its share [-] of the mode's kinetic energy}.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The wing panels (h and α against y [m]; none without a wing) and one θ–ψ orbit
+        panel per flexibly mounted propeller.
+
+    Examples
+    --------
+    >>> from propwhirl.analysis import analyse
+    >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+    >>> model = isolated_baseline_propeller()
+    >>> a = analyse(model, speeds=[100.0, 200.0, 250.0])
+    >>> from propwhirl.app.plots import event_eigenvector, mode_shape
+    >>> x, lam, V = event_eigenvector(a, a.critical)
+    >>> fig = mode_shape(x, lam, a.dof_map)
+    >>> fig.axes[-1].get_title().splitlines()[0]
+    'propeller 1'
     """
     dm = dof_map
     x = normalised(eigenvector, dm)
@@ -180,7 +213,36 @@ def event_eigenvector(analysis: "ModelAnalysis", event: "Instability") -> tuple[
 
     The refined critical point's vector where the analysis has it (onsets and recoveries of
     a fresh analysis); otherwise the tracked mode's vector at the sweep speed nearest the
-    event (frequency-zero events, or analyses re-read with eigenvectors)."""
+    event (frequency-zero events, or analyses re-read with eigenvectors).
+
+    Parameters
+    ----------
+    analysis : ModelAnalysis
+        The analysis.
+    event : Instability
+        One of its events.
+
+    Returns
+    -------
+    eigenvector : ndarray
+        Full-state eigenvector (complex).
+    eigenvalue : complex
+        λ [1/s].
+    V : float
+        The speed of the vector [m/s].
+
+    Examples
+    --------
+    >>> from propwhirl.analysis import analyse
+    >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+    >>> model = isolated_baseline_propeller()
+    >>> a = analyse(model, speeds=[100.0, 200.0, 250.0])
+    >>> from propwhirl.app.plots import event_eigenvector
+    >>> x, lam, V = event_eigenvector(a, a.critical)
+    >>> import math
+    >>> x.shape, round(V, 1), round(abs(lam.imag) / (2 * math.pi), 2)       # V [m/s], f [Hz]
+    ((4,), 221.5, 5.01)
+    """
     crit = analysis.criticals
     if crit is not None:
         for p in crit.points:
@@ -214,7 +276,33 @@ def check_event(analysis: "ModelAnalysis", event: "Instability | None") -> None:
 
 def event_mode_shape(analysis: "ModelAnalysis", event: "Instability", *,
                      path: str | Path | None = None) -> "Figure":
-    """:func:`mode_shape` of an instability of `analysis` (e.g. ``analysis.critical``)."""
+    """:func:`mode_shape` of an instability of `analysis` (e.g. ``analysis.critical``).
+
+    Parameters
+    ----------
+    analysis : ModelAnalysis
+        The analysis (fresh, or re-read with its eigenvectors).
+    event : Instability
+        One of its events.
+    path : str or Path, optional
+        File to write.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        As :func:`mode_shape`, titled with the event, its speed [m/s] and frequency [Hz].
+
+    Examples
+    --------
+    >>> from propwhirl.analysis import analyse
+    >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+    >>> model = isolated_baseline_propeller()
+    >>> a = analyse(model, speeds=[100.0, 200.0, 250.0])
+    >>> from propwhirl.app.plots import event_mode_shape
+    >>> fig = event_mode_shape(a, a.critical)
+    >>> fig.get_suptitle().splitlines()[-1].startswith("V = 221.50 m/s")
+    True
+    """
     check_event(analysis, event)
     x, lam, V = event_eigenvector(analysis, event)
     part = getattr(event, "participation", None)

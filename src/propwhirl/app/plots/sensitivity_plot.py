@@ -28,7 +28,43 @@ _ELEMENT = re.compile(r"^wing\.(\w+)\[(\d+)\]$")
 
 def spanwise_sensitivity(cs, model, *, path: str | Path | None = None) -> "Figure":
     """The normalised sensitivities of ``cs`` (a CriticalSensitivities of ``model``) to the
-    per-element EI, GJ and mass along the span (module docstring).  Written to `path` if given."""
+    per-element EI, GJ and mass along the span (module docstring).  Written to `path` if given.
+
+    Parameters
+    ----------
+    cs : CriticalSensitivities
+        Sensitivities with per-element parameters (``wing.EI[i]``, ``wing.GJ[i]``,
+        ``wing.mass_per_length[i]``).
+    model : PropellerWing
+        The model they are of.
+    path : str or Path, optional
+        File to write.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        A panel per property given: the normalised sensitivity [-] at each element's
+        midpoint y [m].
+
+    Examples
+    --------
+    The baseline wing on 4 elements with the tip propeller: its divergence (143 m/s) is
+    raised by torsional rigidity near the root.
+
+    >>> from propwhirl.analysis import analyse, critical_sensitivities
+    >>> from propwhirl.app.plots import spanwise_sensitivity
+    >>> from propwhirl.model import Installation, PropellerWing
+    >>> from propwhirl.cases.ch09_baseline import baseline_flight, baseline_propeller, baseline_wing
+    >>> m = PropellerWing(baseline_wing(n_elements=4), baseline_flight(),
+    ...                   (Installation(baseline_propeller(), 5.7),))
+    >>> a = analyse(m, speeds=[50.0, 100.0, 150.0, 200.0])
+    >>> cs = critical_sensitivities(m, a, params=[f"wing.GJ[{i}]" for i in range(4)])
+    >>> [round(s.normalised, 2) for s in cs.sensitivities]
+    [0.25, 0.16, 0.06, 0.01]
+    >>> fig = spanwise_sensitivity(cs, m)
+    >>> len(fig.axes), fig.axes[-1].get_xlabel()
+    (1, 'spanwise position y [m] (element midpoints)')
+    """
     ys = np.asarray(model.wing.node_y, dtype=float)
     mid = 0.5 * (ys[:-1] + ys[1:])
     values: dict[str, np.ndarray] = {name: np.full(mid.size, np.nan) for name, _ in PROPERTIES}

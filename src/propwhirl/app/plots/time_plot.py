@@ -23,7 +23,41 @@ def time_history(responses: TimeResponse | Mapping[str, TimeResponse], *,
     `responses`: one TimeResponse or {legend label: TimeResponse} (e.g. one per airspeed);
     the states 'propeller k theta' / 'propeller k psi' of ``propeller`` = k − 1 (the index in
     the model, from 0; labels and the figure number propellers from 1: index 0 is
-    "propeller 1")."""
+    "propeller 1").
+
+    Parameters
+    ----------
+    responses : TimeResponse or mapping of str to TimeResponse
+        The time histories (t [s]; θ, ψ [rad], drawn in degrees), with legend labels.
+    propeller : int
+        Index of the propeller in the model, from 0.
+    title : str, optional
+        Figure title.
+    path : str or Path, optional
+        File to write.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Three axes: θ(t), ψ(t) [deg] against t [s], and the θ–ψ path.
+
+    Examples
+    --------
+    The isolated baseline propeller released from θ = 0.01 rad below and above its flutter
+    speed (221.5 m/s):
+
+    >>> from propwhirl.analysis.response import simulate
+    >>> from propwhirl.app.plots import time_history
+    >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+    >>> model = isolated_baseline_propeller()
+    >>> runs = {f"{V:g} m/s": simulate(model, V, {"propeller 1 theta": 0.01}, duration=2.0,
+    ...                                dt=0.01) for V in (200.0, 240.0)}
+    >>> fig = time_history(runs)
+    >>> [ax.get_ylabel() for ax in fig.axes]
+    ['θ (pitch) [deg]', 'ψ (yaw) [deg]', 'ψ (yaw) [deg]']
+    >>> [line.get_label() for line in fig.axes[0].get_lines()]
+    ['200 m/s', '240 m/s']
+    """
     if isinstance(responses, TimeResponse):
         responses = {"": responses}
     if not responses:

@@ -54,6 +54,33 @@ def fine_sweep(analysis: "ModelAnalysis", model: "Model", speeds=None,
     `speeds`: the grid [m/s] (increasing, > 0); default `n_speeds` speeds evenly from the
     analysis's first to its last speed.  `model` must be the analysed model (its modes must
     carry the analysis's names): otherwise an InputError.
+
+    Parameters
+    ----------
+    analysis : ModelAnalysis
+        The analysis whose mode names the sweep takes.
+    model : Model
+        The analysed model.
+    speeds : array_like, optional
+        The grid [m/s], increasing, > 0.
+    n_speeds : int
+        Number of speeds of the default grid.
+
+    Returns
+    -------
+    Sweep
+        λ [1/s] of every mode along the speeds [m/s] (with refinement points), named.
+
+    Examples
+    --------
+    >>> from propwhirl.analysis import analyse
+    >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+    >>> model = isolated_baseline_propeller()
+    >>> a = analyse(model, speeds=[100.0, 200.0, 250.0])
+    >>> from propwhirl.app.plots import fine_sweep
+    >>> sw = fine_sweep(a, model, n_speeds=11)
+    >>> float(sw.V[0]), float(sw.V[-1]), sw.V.size >= 11, sw.mode_labels[:2]
+    (100.0, 250.0, True, ('backward', 'forward'))
     """
     sw0 = analysis.sweep
     if speeds is None:
@@ -111,6 +138,38 @@ def select_modes(analysis: "ModelAnalysis", n_modes: int | None = None,
     `margin=None`: every candidate (the former behaviour), optionally cut at
     `max_frequency_hz`.  `labels`: exactly these modes.  `n_modes`: at most n, the modes that
     matter first, then by frequency.
+
+    Parameters
+    ----------
+    analysis : ModelAnalysis
+        The analysis (its events decide which modes matter).
+    n_modes : int, optional
+        At most this many modes.
+    labels : sequence of str, optional
+        Exactly these modes (by name).
+    include_lag : bool
+        Aerodynamic lag roots are candidates too.
+    sweep : Sweep, optional
+        The sweep whose mode ids are returned (default the analysis's; e.g.
+        :func:`fine_sweep`'s).
+    margin : float or None
+        Damping-ratio margin ζ [-] (default :data:`DAMPING_MARGIN`); None: every candidate.
+    max_frequency_hz : float, optional
+        Frequency cut-off [Hz] at the first speed.
+
+    Returns
+    -------
+    list of int
+        Mode ids, lowest frequency first.
+
+    Examples
+    --------
+    >>> from propwhirl.analysis import analyse
+    >>> from propwhirl.app.plots import select_modes
+    >>> from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
+    >>> a = analyse(wingtip_propeller_wing())
+    >>> [a.sweep.mode_labels[k] for k in select_modes(a)]
+    ['wing 1', 'backward 1', 'forward 1']
     """
     sw = analysis.sweep if sweep is None else sweep
     phys0 = sw.physical[0]
@@ -200,6 +259,11 @@ def vgf(analysis: "ModelAnalysis", model: "Model | None" = None, *, speeds=None,
         The analysed model: the curves are then computed on a fine grid (:func:`fine_sweep`,
         `speeds` or `n_speeds` speeds; a few seconds for large models).  Without it the
         analysis's own sweep is drawn (coarse unless analysed with ``vgf=True``).
+    speeds : array_like, optional
+        The fine grid [m/s] with `model` (default `n_speeds` speeds evenly over the
+        analysis's range).
+    n_speeds : int
+        Number of speeds of the default fine grid.
     margin : float or None
         Damping margin of :func:`select_modes` (default :data:`DAMPING_MARGIN` = 0.03): modes
         whose ζ falls below it are drawn; None draws every mode.
@@ -215,6 +279,22 @@ def vgf(analysis: "ModelAnalysis", model: "Model | None" = None, *, speeds=None,
     matplotlib.figure.Figure
         Two axes (ζ with the unstable half shaded and a g = 2ζ scale on the right; f), one
         line per mode in each, the instabilities marked and annotated "V m/s, f Hz".
+
+    Examples
+    --------
+    The isolated baseline propeller (§9.2) on 11 speeds; the figure is drawn on an Agg
+    canvas (no window; ``path=`` writes it):
+
+    >>> from propwhirl.analysis import analyse
+    >>> from propwhirl.cases.ch09_baseline import isolated_baseline_propeller
+    >>> model = isolated_baseline_propeller()
+    >>> a = analyse(model, speeds=[100.0, 200.0, 250.0])
+    >>> from propwhirl.app.plots import vgf
+    >>> fig = vgf(a, model, n_speeds=11)
+    >>> [ax.get_ylabel() for ax in fig.axes]
+    ['damping ratio ζ  (ζ < 0: unstable)', 'frequency f [Hz]']
+    >>> fig.axes[1].get_xlabel()
+    'airspeed V [m/s]'
     """
     matplotlib_or_error()
     from matplotlib.lines import Line2D

@@ -77,6 +77,21 @@ class MeasuredDerivatives:
     """User-supplied derivatives (any subset of the 16; the rest are zero), constant in V.
 
     Example: Bennett & Bland's measured set (§6.2, §8.4).  Keys are DERIVATIVE_NAMES.
+
+    Parameters
+    ----------
+    values : mapping of str to float
+        The dimensionless derivatives of eq. 4.25 [-] by name (``"CZ_theta"``, ``"Cm_q"``, ...,
+        :data:`DERIVATIVE_NAMES`), any subset; the rest are zero.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from propwhirl.model import MeasuredDerivatives
+    >>> d = MeasuredDerivatives({"CZ_theta": -0.2, "CY_psi": 0.2})
+    >>> out = d(np.array([50.0, 100.0]), np.array([150.0, 300.0]), 340.0)
+    >>> out["CZ_theta"].tolist(), out["Cm_q"].tolist()
+    ([-0.2, -0.2], [0.0, 0.0])
     """
 
     values: Mapping[str, float] = field(metadata=spec(
@@ -94,7 +109,22 @@ class MeasuredDerivatives:
 
 @dataclass(frozen=True)
 class PointMass:
-    """A concentrated mass [kg] on the propeller shaft at x [m] from the wing mid-chord, aft positive."""
+    """A concentrated mass [kg] on the propeller shaft at x [m] from the wing mid-chord, aft positive.
+
+    Parameters
+    ----------
+    mass : float
+        Mass [kg].
+    x : float
+        Position on the shaft [m], aft of the wing mid-chord (a tractor's masses are ahead: x < 0).
+
+    Examples
+    --------
+    >>> from propwhirl.model import PointMass
+    >>> rotor = PointMass(8.0, -1.16)
+    >>> rotor.mass, rotor.x
+    (8.0, -1.16)
+    """
 
     mass: float = field(metadata=spec("mass_kg", "kg", "mass", range=(1e-4, 1e5)))
     x: float = field(metadata=spec("x_m", "m", "position on the shaft, aft of the wing mid-chord",
@@ -116,35 +146,84 @@ class Propeller:
 
     Parameters
     ----------
-    radius : rotor radius R [m]
-    rotor : rotor (blades + spinner) point mass; its position is the propeller plane (hub)
-    masses : further point masses on the shaft (motor, nacelle, ...)
-    pivot_pitch, pivot_yaw : pivot positions l_θ, l_ψ [m]
-    f_theta, f_psi : uncoupled mount frequencies [Hz]   (or K_theta, K_psi [N m/rad])
-    damping_theta, damping_psi : structural damping values, read according to `damping`
-    damping : "g" (structural coefficient, viscous equivalent c = K g/ω) or "zeta" (ratio)
-    spin_inertia : I_Ω [kg m²]; default M_r R²/3 (9.2)
-    n_blades : number of blades (≥ 3: the method assumes polar symmetry)
-    operation : "fixed-pitch" (windmilling: μ from the blade angle, Ω rises with V) or
-        "constant-speed" (`rpm` fixed)
-    beta_075_deg, zero_lift_angle_deg : blade angle at 0.75 R and zero-lift angle [deg]
-    advance_rule : "thesis_eq_9_1" (μ = tan(β + α_0L), eq. 9.1 as chapters 9–11 use it) or
-        "blade_element" (zero lift at 0.75 R: μ = 0.75 tan(β − α_0L), Table 4.1)
-    inertia : optional measured inertia about the pivots overriding the point-mass values,
-        any of M_P [kg], S_theta_P [kg m], I_theta_P, I_psi_P [kg m²] (e.g. Bennett & Bland's
-        I_Y = I_Z); the point masses still place the propeller plane (the rotor's x)
-    rpm : rotational speed for constant-speed operation [rev/min]
-    hub_radius : hub radius r0 [m] (η0 = r0/R)
-    blade_chord : blade chord [m], a number or a function of η = r/R (Houbolt–Reed input)
-    derivatives : a DerivativeSource (e.g. MeasuredDerivatives) — None means Houbolt–Reed
-        (propwhirl.model.propellers.propeller_aero) for this propeller's blades with `aero_settings`
-    aero_settings : Houbolt–Reed switches (wake, compressibility, aspect ratio, ...);
-        the thesis's defaults
-    rotation : +1 if the rotor turns counter-clockwise seen from the front (the thesis's
-        sense, Figure 6.1), −1 for clockwise: the mirror image about the vertical plane through
-        the shaft (ψ → −ψ), which reverses the gyroscopic terms (Ω → −Ω) and the eight
+    radius : float
+        Rotor radius R [m].
+    rotor : PointMass
+        Rotor (blades + spinner) point mass [kg] at x [m]; its position is the propeller plane
+        (hub).
+    masses : tuple of PointMass
+        Further point masses on the shaft (motor, nacelle, ...).
+    pivot_pitch, pivot_yaw : float
+        Pivot positions l_θ, l_ψ [m] aft of the wing mid-chord.
+    f_theta, f_psi : float, optional
+        Uncoupled mount frequencies [Hz]; or give `K_theta`, `K_psi`.
+    K_theta, K_psi : float, optional
+        Mount stiffnesses [N m/rad]; or give `f_theta`, `f_psi`.
+    damping_theta, damping_psi : float
+        Mount damping values [-], read according to `damping`; 0: undamped (conservative).
+    damping : {"g", "zeta"}
+        "g": structural coefficients (viscous equivalent c = K g/ω, ζ = g/2); "zeta": viscous
+        damping ratios.
+    spin_inertia : float, optional
+        Spin inertia I_Ω [kg m²]; default M_r R²/3 (eq. 9.2).
+    n_blades : int, optional
+        Number of blades (≥ 3: the method assumes polar symmetry).
+    hub_radius : float, optional
+        Hub radius r0 [m] (η0 = r0/R), < `radius`.
+    blade_chord : float or callable, optional
+        Blade chord [m], a number or a function of η = r/R (Houbolt–Reed input).
+    operation : {"fixed-pitch", "constant-speed"}
+        "fixed-pitch" (windmilling: μ from the blade angle, Ω rises with V) or
+        "constant-speed" (`rpm` fixed).
+    beta_075_deg, zero_lift_angle_deg : float, optional
+        Blade angle at 0.75 R and blade-section zero-lift angle [deg] (fixed-pitch operation).
+    advance_rule : {"thesis_eq_9_1", "blade_element"}
+        "thesis_eq_9_1" (μ = tan(β + α_0L), eq. 9.1 as chapters 9–11 use it) or
+        "blade_element" (zero lift at 0.75 R: μ = 0.75 tan(β − α_0L), Table 4.1).
+    inertia : mapping of str to float, optional
+        Measured inertia about the pivots overriding the point-mass values, any of M_P [kg],
+        S_theta_P [kg m], I_theta_P, I_psi_P [kg m²] (e.g. Bennett & Bland's I_Y = I_Z); the
+        point masses still place the propeller plane (the rotor's x).
+    rpm : float, optional
+        Rotational speed of constant-speed operation [rev/min].
+    derivatives : DerivativeSource, optional
+        Aerodynamic derivatives (e.g. :class:`MeasuredDerivatives`); None: Houbolt–Reed
+        (:mod:`propwhirl.model.propellers.propeller_aero`) for this propeller's blades with
+        `aero_settings`.
+    aero_settings : AeroSettings
+        Houbolt–Reed switches (wake, compressibility, aspect ratio, ...); the thesis's
+        defaults.
+    rotation : {1, -1}
+        +1 if the rotor turns counter-clockwise seen from the front (the thesis's sense,
+        Figure 6.1), −1 for clockwise: the mirror image about the vertical plane through the
+        shaft (ψ → −ψ), which reverses the gyroscopic terms (Ω → −Ω) and the eight
         cross-coupling Houbolt–Reed derivatives (C_Zψ, C_Zr, C_mψ, C_mr, C_Yθ, C_Yq, C_nθ,
-        C_nq); user-supplied `derivatives` are taken as given for the actual propeller
+        C_nq); user-supplied `derivatives` are taken as given for the actual propeller.
+    name : str
+        Label.
+
+    Raises
+    ------
+    InputError
+        A missing required value, a value outside its range, or both (or neither) of a
+        frequency and a stiffness of one axis.
+
+    Examples
+    --------
+    The baseline propeller of Tables 9.3–9.4 (also ``propwhirl.cases.ch09_baseline.
+    baseline_propeller()``): windmilling at μ = tan(35° − 3°), its mounts at 7 Hz.
+
+    >>> from propwhirl.model import PointMass, Propeller
+    >>> p = Propeller(radius=0.762, rotor=PointMass(8.0, -1.16), masses=(PointMass(35.0, -0.86),),
+    ...               pivot_pitch=0.0, pivot_yaw=0.0, f_theta=7.0, f_psi=7.0, rotation=1,
+    ...               n_blades=3, hub_radius=0.125, blade_chord=0.094,
+    ...               beta_075_deg=35.0, zero_lift_angle_deg=-3.0)
+    >>> round(p.advance_ratio, 4), round(p.I_Omega, 3)       # μ; I_Ω = M_r R²/3 [kg m²]
+    (0.6249, 1.548)
+    >>> [round(k) for k in p.stiffness()]                    # K_θ, K_ψ [N m/rad]
+    [70899, 70899]
+    >>> round(float(p.spin_rate(100.0)), 1)                  # Ω = V/(μR) [rad/s] at 100 m/s
+    210.0
     """
 
     radius: float = field(metadata=spec("radius_m", "m", "rotor radius R", range=(1e-2, 20.0)))

@@ -136,44 +136,95 @@ def panel_counts(wing, n_chord: int | None = None, n_span: int | None = None) ->
 class Wing:
     """Cantilever wing; SI units, chordwise positions as fractions of chord from the LE.
 
+    A spanwise property (`mass_per_length`, `EI`, `GJ`, `polar_inertia`, `radius_of_gyration`,
+    `elastic_axis`, `centre_of_gravity`, `aerodynamic_centre`, `EI_chordwise`) is a number
+    (uniform), an array with one value per element, or a function of the spanwise position
+    y [m]; element properties are taken at element mid-span, strip properties at the nodes.
+
     Parameters
     ----------
-    semi_span : root-to-tip length [m]
-    root_chord, tip_chord : chord at root and tip [m] (linear taper); `chord` overrides both
-    chord : optional chord as a function of y [m] (tabulated data: use numpy.interp in a lambda)
-    mass_per_length : m_W [kg/m]
-    polar_inertia : ρI_p about the elastic axis [kg m]; or give `radius_of_gyration` instead
-    radius_of_gyration : radius of gyration about the centre of gravity, fraction of chord
-    elastic_axis : elastic-axis position, fraction of chord from LE (0.5 = mid-chord)
-    centre_of_gravity : centre-of-gravity position, fraction of chord from LE
-    EI, GJ : bending and torsional rigidity [N m²]
-    lift_slope : C_lα [1/rad]: a number, "elliptic" (2π√(1−(y/L)²), eq. 7.81) or a function of y
-    aerodynamic_centre : fraction of chord from LE (0.25 = quarter chord, a_c = −1/2)
-    n_elements : number of equal beam elements; with `stations`, the target count (each
-        interval between stations gets ⌈length n_elements / semi_span⌉ equal elements);
-        not used when `max_element_length` is given
-    stations : spanwise positions [m] in (0, semi_span] that must be nodes (where properties
-        change, where output is wanted); a PropellerWing adds its propellers' positions
-    max_element_length : longest element [m]; each interval between stations is divided
-        evenly into the fewest elements not longer than it
-    aero_model : "leishman-nguyen" (2 lag states per node) or "wagner" (4 per node)
-    rayleigh : (μ [1/s], λ [s]) of Rayleigh damping C = μM + λK (eq. 7.22)
-    EI_chordwise : in-plane (chordwise) bending rigidity [N m²]; given, the wing bends in its
-        plane too (in-plane displacement v and slope χ per node, derivations/beam_inplane.py)
-        and the propellers' side force, yaw and gyroscopic moments load it there; None (the
-        default): rigid in its plane, the thesis's model
-    aero : "strip" (default: Theodorsen strips at the nodes, finite-state lag states, the
-        thesis's model) or "dlm" (doublet-lattice panels of the planform,
+    semi_span : float
+        Root-to-tip length [m].
+    mass_per_length : float, array_like or callable
+        Mass per unit span m_W [kg/m].
+    EI, GJ : float, array_like or callable
+        Bending and torsional rigidity [N m²].
+    root_chord, tip_chord : float
+        Chord at the root and at the tip [m] (linear taper; `tip_chord` None: the root chord).
+    chord : callable, optional
+        Chord [m] as a function of y [m], overriding `root_chord` and `tip_chord` (tabulated
+        data: ``numpy.interp`` in a lambda); not saved in model files.
+    polar_inertia : float, array_like or callable, optional
+        ρI_p about the elastic axis [kg m]; or give `radius_of_gyration` instead.
+    radius_of_gyration : float, array_like or callable, optional
+        Radius of gyration about the centre of gravity [fraction of the chord].
+    elastic_axis : float, array_like or callable
+        Elastic-axis position [fraction of the chord from the LE] (0.5: mid-chord).
+    centre_of_gravity : float, array_like or callable
+        Centre-of-gravity position [fraction of the chord from the LE].
+    lift_slope : float, "elliptic" or callable
+        Section lift-curve slope C_lα [1/rad]: a number, "elliptic" (2π√(1−(y/L)²), eq. 7.81)
+        or a function of y [m].
+    aerodynamic_centre : float, array_like or callable
+        Aerodynamic-centre position [fraction of the chord from the LE] (0.25: quarter chord,
+        a_c = −1/2).
+    n_elements : int
+        Number of equal beam elements; with `stations`, the target count (each interval between
+        stations gets ⌈length n_elements / semi_span⌉ equal elements); not used when
+        `max_element_length` is given.
+    stations : tuple of float, optional
+        Spanwise positions [m] in (0, semi_span] that must be nodes (where properties change,
+        where output is wanted); a :class:`~propwhirl.model.systems.PropellerWing` adds its
+        propellers' positions.
+    max_element_length : float, optional
+        Longest element [m]; each interval between stations is divided evenly into the fewest
+        elements not longer than it.
+    aero_model : {"leishman-nguyen", "wagner"}
+        Unsteady strip aerodynamics: 2 (Leishman–Nguyen) or 4 (Wagner) lag states per node.
+    rayleigh : tuple of float
+        (μ [1/s], λ [s]) of Rayleigh damping C = μM + λK (eq. 7.22); (0, 0): undamped.
+    EI_chordwise : float, array_like or callable, optional
+        In-plane (chordwise) bending rigidity [N m²]; given, the wing bends in its plane too
+        (in-plane displacement v and slope χ per node, derivations/beam_inplane.py) and the
+        propellers' side force, yaw and gyroscopic moments load it there; None (the default):
+        rigid in its plane, the thesis's model.
+    aero : {"strip", "dlm"}
+        "strip" (default: Theodorsen strips at the nodes, finite-state lag states, the thesis's
+        model) or "dlm" (doublet-lattice panels of the planform,
         :mod:`propwhirl.model.aerodynamics.dlm`: analysed by its Roger state space,
-        :mod:`propwhirl.model.aerodynamics.dlm_rfa`, or by the p-k method with method "pk")
-    dlm_chordwise_panels, dlm_spanwise_panels : the doublet-lattice panel counts (aero =
-        "dlm"); spanwise None: the fewest with a panel aspect ratio <= 2
-        (:func:`panel_counts`)
-    dlm_mach : the Mach number of the doublet-lattice loads (aero = "dlm"): "speed" (the
-        default; matched, V/a of each analysed speed: speeds beyond Mach 0.9 refused) or a
-        number in [0, 0.9], the same Mach at every speed (non-matched: the usual way of
-        published DLM flutter results, e.g. the Goland wing at Mach 0; one Mach column of
-        AICs instead of one per Mach step crossed)
+        :mod:`propwhirl.model.aerodynamics.dlm_rfa`, or by the p-k method with method "pk").
+    dlm_chordwise_panels, dlm_spanwise_panels : int
+        The doublet-lattice panel counts (aero = "dlm"); spanwise None: the fewest with a panel
+        aspect ratio <= 2 (:func:`panel_counts`).
+    dlm_mach : float or "speed"
+        The Mach number of the doublet-lattice loads (aero = "dlm"): "speed" (the default;
+        matched, V/a of each analysed speed: speeds beyond Mach 0.9 refused) or a number in
+        [0, 0.9], the same Mach at every speed (non-matched: the usual way of published DLM
+        flutter results, e.g. the Goland wing at Mach 0; one Mach column of AICs instead of one
+        per Mach step crossed).
+    name : str
+        Label.
+
+    Raises
+    ------
+    InputError
+        A value outside its range, a missing or doubly given property: one line naming it.
+
+    Examples
+    --------
+    A uniform 6 m wing, its mesh holding a station at 4.5 m, and its first bending frequency
+    against the beam's 1.875² √(EI/m) / (2π L²) = 1.554 Hz:
+
+    >>> import math
+    >>> from propwhirl.model import Wing
+    >>> w = Wing(semi_span=6.0, mass_per_length=20.0, EI=2.0e5, GJ=1.0e5,
+    ...          radius_of_gyration=0.25, n_elements=6, stations=(4.5,))
+    >>> w.element_count, [round(float(y), 2) for y in w.node_y]
+    (7, [0.0, 0.9, 1.8, 2.7, 3.6, 4.5, 5.25, 6.0])
+    >>> from propwhirl.analysis.vibration import classify_wing_modes
+    >>> name, omega = classify_wing_modes(w, 1)[0]
+    >>> name, round(omega / (2 * math.pi), 3)
+    ('bending 1', 1.554)
     """
 
     semi_span: float = field(metadata=spec("semi_span_m", "m", "root-to-tip length",
