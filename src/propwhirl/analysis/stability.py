@@ -593,7 +593,7 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
     sw = an.sweep
     if in_vacuo is None:   # the structural system (in-vacuo modes, kinetic energies), once
         in_vacuo = InVacuo.of(assembly.without_aerodynamics())
-    names, thesis_names = named_modes(finite, sw, basis, in_vacuo)
+    names, thesis_names = named_modes(finite, sw, basis, in_vacuo, assembly)
     sw = sw.relabel(names)
     events, shapes = [], []
     for p in an.criticals.points:

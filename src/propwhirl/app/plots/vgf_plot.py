@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from propwhirl import validate as v
+from propwhirl.analysis.naming import is_lag
 from propwhirl.app.plots.canvas import (DIVERGENCE_COLOUR, FLUTTER_COLOUR, finish,
                                         matplotlib_or_error, new_figure)
 from propwhirl.app.plots.layout import (FAMILY_COLOURS, family_shades, freeze_layout, mode_family,
@@ -69,7 +70,7 @@ def fine_sweep(analysis: "ModelAnalysis", model: "Model", speeds=None,
                       state_labels=dm.state_labels)
     sw = sw.relabel(mode_names(model, sw))
     missing = sorted(set(sw0.mode_labels) - set(sw.mode_labels))
-    named = [lab for lab in sw0.mode_labels if not lab.startswith("lag") and "'" not in lab]
+    named = [lab for lab in sw0.mode_labels if not is_lag(lab) and "'" not in lab]
     if any(lab in missing for lab in named):
         raise v.InputError(f"the model's modes are not the analysis's (missing {missing[:4]}): "
                            "pass the analysed model")
@@ -116,7 +117,7 @@ def select_modes(analysis: "ModelAnalysis", n_modes: int | None = None,
     sw = analysis.sweep if sweep is None else sweep
     phys0 = sw.physical[0]
     ids = [k for k in range(sw.n_modes) if phys0[k]
-           and (include_lag or not sw.mode_labels[k].startswith("lag"))]
+           and (include_lag or not is_lag(sw.mode_labels[k]))]
     f0 = sw.frequency_hz[0]
     if labels is not None:
         unknown = [lab for lab in labels if lab not in sw.mode_labels]
