@@ -1,6 +1,6 @@
 """Aerodynamic lag roots are not modes (issue 37, item 4): which roots are structural is decided
-in one place (``naming.structural_roots``), and names, "(k of n)" counts and contents are of
-the structural modes only — on the Roger state space of a doublet-lattice wing, whose lag
+in one place (``naming.structural_roots``), and names, "(k of n)" counts, contents and events
+are of the structural modes only — on the Roger state space of a doublet-lattice wing, whose lag
 roots split into complex pairs, as on strip models, whose lag roots are real."""
 from __future__ import annotations
 
@@ -12,7 +12,9 @@ import pytest
 
 from propwhirl.analysis.stability import analyse
 from propwhirl.io.model_files import load_model
+from propwhirl.model.flight import FlightCondition
 from propwhirl.model.systems import PropellerWing
+from propwhirl.model.wing import Wing
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 #: the high-lift propellers' whirl flutter near 80 m/s, coarse
@@ -32,6 +34,13 @@ def _x57_dlm() -> PropellerWing:
     wing = replace(m.wing, aero="dlm", dlm_chordwise_panels=3, dlm_spanwise_panels=12,
                    n_elements=12)
     return replace(m, wing=wing)
+
+
+def _goland() -> PropellerWing:
+    """Goland's wing on strips (10 elements, Leishman-Nguyen), density 1.02 kg/m^3."""
+    wing = Wing(semi_span=6.096, root_chord=1.8288, mass_per_length=35.71, polar_inertia=8.64,
+                EI=9.77e6, GJ=0.987e6, elastic_axis=0.33, centre_of_gravity=0.43, n_elements=10)
+    return PropellerWing(wing, FlightCondition(1.02), name="goland")
 
 
 @pytest.fixture(scope="module")
@@ -80,6 +89,21 @@ def test_the_vgf_legend_counts_structural_modes_only(x57_dlm):
         other = [int(t.split(": ")[1].split()[0]) for t in legend
                  if t.startswith(f"{family}: ")]
         assert bold + sum(other) <= structural == 7, (family, legend)
+
+
+@pytest.mark.parametrize("method", ["pk", "dense"])
+def test_goland_divergence_is_named_after_its_structural_mode(method):
+    """Goland's wing on strips diverges at 276.19 m/s (density 1.02) on a real branch that
+    starts as a lag state ("lag 6" at the first speed, the name the event had before); it is
+    named after the structural mode its shape is — wing 1, 95 % of its kinetic energy (the
+    bending the lift drives) — and keeps the id of the branch that crossed."""
+    a = analyse(_goland(), np.arange(10.0, 301.0, 10.0), method=method)
+    (div,) = [e for e in a.events if e.kind == "divergence"]
+    assert div.V == pytest.approx(276.19, abs=0.02)
+    assert div.label == "wing 1" and is_lag(a.sweep.mode_labels[div.mode])
+    assert a.describe(div.label) == "wing 1 (bending)"
+    flutter = [e for e in a.events if e.kind == "flutter"]
+    assert [e.label for e in flutter] == ["wing 2"]
 
 
 def test_on_strips_the_structural_roots_are_the_oscillatory_ones():

@@ -24,6 +24,7 @@ from typing import Any
 import numpy as np
 
 from propwhirl import validate as v
+from propwhirl.analysis.naming import is_lag
 from propwhirl.analysis.participation import ModeParticipation, at_the_event
 from propwhirl.results import SavedDict
 
@@ -44,7 +45,10 @@ class Instability:
     event:  "onset" (Re λ becomes positive), "recovery" (becomes negative again; hump modes),
             "frequency-zero" (an unstable pair turns into real roots: divergence of that mode),
             "unstable-at-start" (Re λ > 0 already at the first analysed speed, V = that speed)
-    mode, label: tracked mode id and its name (e.g. "forward 1", "wing 2", "lag 1")
+    mode, label: tracked mode id and its name (e.g. "forward 1", "wing 2"); the name of a
+            structural mode: a branch that is an aerodynamic lag root at the first speed
+            ("lag 3") is named after the structural mode its shape at the event is
+            (:func:`propwhirl.analysis.naming.event_label`)
     V [m/s], frequency_hz [Hz] at the event; whirl: "forward"/"backward"/"planar" sense of the
     θ–ψ orbit of the propeller with the largest θ–ψ motion (None without flexible propellers);
     benignity [m/s] (eq. 5.13) at flutter onsets; participation: every flexibly mounted
@@ -84,13 +88,16 @@ class Instability:
                   mode_labels: Sequence[str] | None = None) -> "Instability":
         """The event written by :meth:`to_dict`, checked (an InputError naming the key under
         `where`); with `mode_labels` (the sweep's), the mode id must be one of them and the
-        label its name.  whirl, benignity and participation may be absent (older files)."""
+        label its name — or, where that names an aerodynamic lag root, the name of a
+        structural mode of the sweep (:func:`propwhirl.analysis.naming.event_label`).  whirl,
+        benignity and participation may be absent (older files)."""
         r = SavedDict(d, where, ("kind", "event", "mode", "label", "V", "frequency_hz"),
                       ("whirl", "benignity", "participation"))
         high = None if mode_labels is None else len(mode_labels) - 1
         mode = r.integer("mode", 0, high)
         label = r.string("label")
-        if mode_labels is not None and label != mode_labels[mode]:
+        if mode_labels is not None and label != mode_labels[mode] and not (
+                is_lag(mode_labels[mode]) and not is_lag(label) and label in mode_labels):
             raise v.InputError(f"{where}.label = {label!r} is not the name of mode {mode} in "
                                f"the sweep ({mode_labels[mode]!r})")
         part = r.raw("participation") if r.has("participation") else None

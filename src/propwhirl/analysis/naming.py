@@ -31,6 +31,11 @@ speed of a sweep (a tracked mode keeps its name along the sweep):
   beyond a divergence speed: a diverged structural mode, described by its content); the
   hidden conjugate partner of mode "x" is "x'".
 
+An event (flutter, divergence) of a tracked mode that is a lag root at the first speed — with
+lag states a real branch may start as a lag state and turn right, through zero, as the speed
+grows (Goland's divergence on strips) — is named after the structural mode its shape at the
+event is (:func:`event_label`); it keeps the id of the branch that crossed.
+
 Content is the share of a mode's kinetic energy x̂ᴴ M x̂ (M the structural mass, aerodynamics
 off) in each group of :meth:`~propwhirl.model.protocol.DofMap.groups`: "bending" (h, φ),
 "torsion" (wing α), "pitch" (propeller θ or the section's α), "yaw" (ψ), "plunge".
@@ -172,6 +177,33 @@ def structural_roots(model: Model, sw: Sweep, basis: np.ndarray | None = None,
         if not sw.physical[t, k] and sw.partner[k] >= 0:
             out[k] = out[sw.partner[k]]
     return out
+
+
+def event_label(sw: Sweep, names: Sequence[str], mode: int, x: np.ndarray,
+                mass: np.ndarray) -> str:
+    """The name of an event of tracked mode ``mode`` with shape ``x`` (a state or
+    displacement vector, its first ``n_dof`` entries the displacements): ``names[mode]``
+    where that is a structural mode; for an aerodynamic lag root (:func:`is_lag`: e.g. a real
+    branch that starts as a lag state and turns right, through zero, as the speed grows) the
+    name of the structural mode the event's motion is: of the structural modes at the first
+    speed, the one whose displacement shape φ holds the largest share of the kinetic energy of
+    ``x``'s, |φᴴ M x|² / ((φᴴ M φ)(xᴴ M x)) (the MAC, eq. 5.14, in the kinetic-energy inner
+    product of the structural ``mass`` M: bending, torsion and the propellers' motions weighed
+    alike whatever their units).  The event keeps ``mode``, the branch that crossed.
+    ``names[mode]`` when the sweep has no structural mode or no eigenvectors."""
+    if not is_lag(names[mode]) or sw.eigenvectors is None:
+        return names[mode]
+    ids = [k for k in range(sw.n_modes) if sw.physical[0, k] and not is_lag(names[k])]
+    if not ids:
+        return names[mode]
+    n = int(np.count_nonzero(sw.displacement))
+    shapes = np.asarray(sw.eigenvectors[0])[:n][:, ids]
+    q = np.asarray(x)[:n]
+    Mq = mass @ q
+    across = np.abs(shapes.conj().T @ Mq) ** 2
+    norms = np.real(np.sum(shapes.conj() * (mass @ shapes), axis=0)) * np.real(q.conj() @ Mq)
+    macs = np.where(norms > 0, across / np.where(norms > 0, norms, 1.0), 0.0)
+    return names[ids[int(np.argmax(macs))]]
 
 
 def mode_names(model: Model, sw: Sweep, basis: np.ndarray | None = None,

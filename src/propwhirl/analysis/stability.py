@@ -34,7 +34,8 @@ from propwhirl.analysis.events import (UNSTABLE_EVENTS, Exclusion, Instability, 
                                        critical, describe_critical)
 from propwhirl.analysis.modal_dlm import modal_dlm_analysis
 from propwhirl.analysis.modes import InVacuo
-from propwhirl.analysis.naming import mode_content, named_modes, whirl, with_content
+from propwhirl.analysis.naming import (event_label, mode_content, named_modes, whirl,
+                                      with_content)
 from propwhirl.analysis.participation import (ModeParticipation, branch_point_shape,  # noqa: F401
                                               events_csv, events_table, participation_lines,
                                               with_participation)
@@ -598,7 +599,8 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
     events, shapes = [], []
     for p in an.criticals.points:
         sense = whirl(dm, p.eigenvector, p.eigenvalue) if p.kind == "flutter" else None
-        events.append(Instability(p.kind, p.direction, p.mode, names[p.mode], float(p.V),
+        label = event_label(sw, names, p.mode, p.eigenvector, in_vacuo.M)  # a lag: its mode
+        events.append(Instability(p.kind, p.direction, p.mode, label, float(p.V),
                                   float(p.frequency_hz), sense,
                                   None if p.benignity is None else float(p.benignity)))
         shapes.append((p.eigenvector, p.eigenvalue, float(p.V)))
@@ -609,14 +611,15 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
                                   float(abs(lam0.imag) / (2 * np.pi))))
         shapes.append((sw.eigenvectors[0, :, k], lam0, float(sw.V[0])))
     for p, shape in zip(fzero, fzero_shapes):
-        events.append(Instability("divergence", "frequency-zero", p.mode, names[p.mode], p.V, 0.0))
+        label = event_label(sw, names, p.mode, shape[0], in_vacuo.M)
+        events.append(Instability("divergence", "frequency-zero", p.mode, label, p.V, 0.0))
         shapes.append(shape)
     events = with_participation(finite, events, shapes, in_vacuo)
     if chosen == "pk":  # the tracked finite-state modes, their crossings by the exact p-k method
         pk_notes: list[str] = []
         finite_state = tuple(sorted(events, key=lambda e: (e.V, e.mode)))
         events = pk_instabilities(model, sw.eigenvalues[0], names, grid, xtol=xtol,
-                                  notes=pk_notes, sweep=sw)
+                                  notes=pk_notes, sweep=sw, mass=in_vacuo.M)
         unconverged_pk = tuple(pk_notes)
     else:
         unconverged_pk, finite_state = (), None
