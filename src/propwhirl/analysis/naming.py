@@ -297,6 +297,47 @@ def propeller_sets(model: Model) -> list[tuple[int, ...]]:
     return [tuple(g) for g in keys.values()]
 
 
+#: mode families, in the order of the legends (:func:`mode_family`)
+FAMILIES = ("wing bending", "wing torsion", "backward whirl", "forward whirl", "in-plane",
+            "other")
+
+
+def mode_family(label: str, content: Mapping[str, float] | None = None) -> str:
+    """Family of a mode named ``label`` (:data:`FAMILIES`): the one classifier of the V-g-f
+    and Campbell diagrams and the Campbell result.
+
+    "backward"/"forward" in the name (the thesis's "backward 3" or "backward whirl,
+    propellers 1–6 (collective)"): that whirl family; "in-plane" or "edgewise" in it:
+    "in-plane"; an aerodynamic lag root (:func:`is_lag`): "other"; any other mode: "wing
+    torsion" where ``content`` (kinetic-energy shares by group, :func:`mode_content`) has more
+    torsion than bending, "wing bending" where it has bending or the name is a wing mode's
+    ("wing 2": no content, no torsion to tell), otherwise "other".
+
+    Examples
+    --------
+    >>> mode_family("backward whirl, propellers 1–6 (collective)")
+    'backward whirl'
+    >>> mode_family("wing 2", {"bending": 0.2, "torsion": 0.7}), mode_family("wing 2")
+    ('wing torsion', 'wing bending')
+    >>> mode_family("lag 3"), mode_family("plunge")
+    ('other', 'other')
+    """
+    if is_lag(label):
+        return "other"
+    low = label.lower()
+    for word, fam in (("backward", "backward whirl"), ("forward", "forward whirl"),
+                      ("in-plane", "in-plane"), ("edgewise", "in-plane")):
+        if word in low:
+            return fam
+    c = content or {}
+    tors, bend = float(c.get("torsion", 0.0)), float(c.get("bending", 0.0))
+    if tors > bend:
+        return "wing torsion"
+    if bend > 0.0 or low.startswith("wing"):
+        return "wing bending"
+    return "other"
+
+
 def with_content(label: str, content: str) -> str:
     """A mode's name with its dominant content, e.g. "wing 2 (torsion)"; a name that ends in its
     own parenthesis takes the content inside it: "backward whirl, propellers 1–6 (1 of 6;

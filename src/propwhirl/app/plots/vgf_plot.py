@@ -21,10 +21,10 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.analysis.naming import is_lag
+from propwhirl.analysis.naming import is_lag, mode_family
 from propwhirl.app.plots.canvas import (DIVERGENCE_COLOUR, FLUTTER_COLOUR, finish,
                                         matplotlib_or_error, new_figure)
-from propwhirl.app.plots.layout import (FAMILY_COLOURS, family_shades, freeze_layout, mode_family,
+from propwhirl.app.plots.layout import (FAMILY_COLOURS, family_shades, freeze_layout,
                                         place_labels, wrap, curve_boxes)
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -183,7 +183,7 @@ def vgf(analysis: "ModelAnalysis", model: "Model | None" = None, *, speeds=None,
     """V-g-f diagram of an analysis: ζ and f [Hz] against V [m/s] of the modes that matter.
 
     Laid out for many modes: each mode coloured by its family
-    (:func:`~propwhirl.app.plots.layout.mode_family`: wing bending blue, wing torsion purple,
+    (:func:`~propwhirl.analysis.naming.mode_family`: wing bending blue, wing torsion purple,
     backward whirl red, forward whirl green, in-plane orange; shades within a family); the
     modes with an instability in range or whose damping falls below the margin
     (:func:`emphasised_modes`) bold and named in the legend, the others thin and pale; the ζ
