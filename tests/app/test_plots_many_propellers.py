@@ -16,6 +16,7 @@ pytest.importorskip("matplotlib")
 from matplotlib.colors import to_rgba  # noqa: E402
 
 from propwhirl import io  # noqa: E402
+from propwhirl.analysis.naming import mode_family  # noqa: E402
 from propwhirl.analysis.stability import analyse  # noqa: E402
 from propwhirl.analysis.vibration import campbell  # noqa: E402
 from propwhirl.app import plots  # noqa: E402
@@ -145,12 +146,12 @@ def test_long_campbell_names_are_wrapped_and_stacked():
 
 
 def test_mode_family_from_old_and_new_names():
-    assert layout.mode_family("backward 3") == "backward whirl"
-    assert layout.mode_family("forward whirl, propeller 7") == "forward whirl"
-    assert layout.mode_family("wing 2", {"torsion": 0.8, "bending": 0.1}) == "wing torsion"
-    assert layout.mode_family("wing 1", {"bending": 0.9}) == "wing bending"
-    assert layout.mode_family("in-plane whirl, propeller 2") == "in-plane"
-    assert layout.mode_family("plunge") == "other"
+    assert mode_family("backward 3") == "backward whirl"
+    assert mode_family("forward whirl, propeller 7") == "forward whirl"
+    assert mode_family("wing 2", {"torsion": 0.8, "bending": 0.1}) == "wing torsion"
+    assert mode_family("wing 1", {"bending": 0.9}) == "wing bending"
+    assert mode_family("in-plane whirl, propeller 2") == "in-plane"
+    assert mode_family("plunge") == "other"
 
 
 def test_place_labels_keeps_crowded_labels_apart():

@@ -20,7 +20,7 @@ from propwhirl import limits
 from propwhirl import validate as v
 from propwhirl.analysis.modes import (GyroscopicSystem, label_modes, model_modes,  # noqa: F401
                                      track_gyroscopic)
-from propwhirl.analysis.naming import kinetic_energy_shares
+from propwhirl.analysis.naming import FAMILIES, kinetic_energy_shares, mode_family
 from propwhirl.results import Result, SavedDict
 
 #: Default propeller speeds of :func:`campbell`: 0–6000 rev/min every 250 (covers the
@@ -28,31 +28,19 @@ from propwhirl.results import Result, SavedDict
 CAMPBELL_RPM = np.arange(0.0, 6001.0, 250.0)
 
 
-#: mode families of a Campbell diagram
-FAMILIES = ("wing bending", "wing torsion", "backward whirl", "forward whirl")
-
-
 def mode_families(model, labels: tuple[str, ...] | None = None) -> tuple[str, ...]:
-    """Family of each in-vacuo mode (ascending frequency, as :func:`label_modes`): "backward
-    whirl" / "forward whirl" for the modes :func:`label_modes` names so, and for the others
-    "wing torsion" where the wing twist α holds more of the mode's kinetic energy than the
-    bending DOFs (h, φ), else "wing bending" (shares as
-    :func:`propwhirl.analysis.naming.kinetic_energy_shares`)."""
+    """Family of each in-vacuo mode (ascending frequency, as :func:`label_modes`) by
+    :func:`propwhirl.analysis.naming.mode_family` from its name and its kinetic-energy shares
+    (:func:`propwhirl.analysis.naming.kinetic_energy_shares`): "backward whirl" / "forward
+    whirl" for the modes :func:`label_modes` names so, and for the others "wing torsion"
+    where the wing twist α holds more of the mode's kinetic energy than the bending DOFs
+    (h, φ), else "wing bending"."""
     labels = labels if labels is not None else tuple(lab for lab, _ in label_modes(model))
     modes, M = model_modes(model)
     groups = model.without_aerodynamics().dof_map().groups()
     shares = kinetic_energy_shares(modes.shapes, M, groups)
-    zero = np.zeros(modes.shapes.shape[1])
-    out = []
-    for k, lab in enumerate(labels):
-        kind = lab.split(" ")[0]
-        if kind in ("backward", "forward"):
-            out.append(f"{kind} whirl")
-        else:
-            tors = float(shares.get("torsion", zero)[k])
-            bend = float(shares.get("bending", zero)[k])
-            out.append("wing torsion" if tors > bend else "wing bending")
-    return tuple(out)
+    return tuple(mode_family(lab, {g: float(f[k]) for g, f in shares.items()})
+                 for k, lab in enumerate(labels))
 
 
 def operating_rpm_ratio(model) -> tuple[float, ...]:
@@ -97,7 +85,8 @@ class CampbellResult(Result):
     labels:        K mode names at rpm = 0 (:func:`label_modes`: "wing n", "backward k",
                    "forward k").
     families:      K mode families (:func:`mode_families`: "wing bending", "wing torsion",
-                   "backward whirl", "forward whirl").
+                   "backward whirl", "forward whirl"; any of
+                   :data:`propwhirl.analysis.naming.FAMILIES` read).
     rpm_ratio:     each propeller's speed relative to the first's (one per propeller of the
                    model, numbered from 0 in ``model.propellers``).
     slope_hz_per_rpm: (T, K) exact df/d(rpm) [Hz per rev/min] of each curve.

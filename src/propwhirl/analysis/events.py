@@ -24,6 +24,7 @@ from typing import Any
 import numpy as np
 
 from propwhirl import validate as v
+from propwhirl.analysis.naming import is_lag
 from propwhirl.analysis.participation import ModeParticipation, at_the_event
 from propwhirl.results import SavedDict
 
@@ -51,7 +52,9 @@ class Instability:
     mode : int
         Tracked mode id.
     label : str
-        The mode's name (e.g. "forward 1", "wing 2", "lag 1").
+        The mode's name (e.g. "forward 1", "wing 2"): the name of a structural mode — a branch
+        that is an aerodynamic lag root at the first speed ("lag 3") is named after the
+        structural mode its shape at the event is (:func:`propwhirl.analysis.naming.event_label`).
     V : float
         Speed of the event [m/s].
     frequency_hz : float
@@ -112,13 +115,16 @@ class Instability:
                   mode_labels: Sequence[str] | None = None) -> "Instability":
         """The event written by :meth:`to_dict`, checked (an InputError naming the key under
         `where`); with `mode_labels` (the sweep's), the mode id must be one of them and the
-        label its name.  whirl, benignity and participation may be absent (older files)."""
+        label its name — or, where that names an aerodynamic lag root, the name of a
+        structural mode of the sweep (:func:`propwhirl.analysis.naming.event_label`).  whirl,
+        benignity and participation may be absent (older files)."""
         r = SavedDict(d, where, ("kind", "event", "mode", "label", "V", "frequency_hz"),
                       ("whirl", "benignity", "participation"))
         high = None if mode_labels is None else len(mode_labels) - 1
         mode = r.integer("mode", 0, high)
         label = r.string("label")
-        if mode_labels is not None and label != mode_labels[mode]:
+        if mode_labels is not None and label != mode_labels[mode] and not (
+                is_lag(mode_labels[mode]) and not is_lag(label) and label in mode_labels):
             raise v.InputError(f"{where}.label = {label!r} is not the name of mode {mode} in "
                                f"the sweep ({mode_labels[mode]!r})")
         part = r.raw("participation") if r.has("participation") else None

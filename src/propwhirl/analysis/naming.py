@@ -22,10 +22,19 @@ speed of a sweep (a tracked mode keeps its name along the sweep):
   the sense of the θ–ψ orbit; not spinning: "pitch" and "yaw" by increasing frequency;
 * any other model (the typical section): the dominant content group of each mode ("plunge",
   "pitch");
-* real roots are "lag k" (by decreasing real part) — or "static k" where the root is already
-  unstable at the first speed (a range starting beyond a divergence speed: a diverged
-  structural mode, described by its content) — and the hidden
-  conjugate partner of mode "x" is "x'".
+* the aerodynamic lag roots are "lag k" (by decreasing real part): which roots are
+  structural modes and which lag roots is decided in one place, :func:`structural_roots`
+  (the strip models' rule — a lag root is real — with the count of structural modes: the
+  Roger lag roots of a doublet-lattice wing that the coupling splits into complex pairs are
+  lag roots too), and only the structural modes are named, numbered and counted ("(k of n)")
+  as above; a real root already unstable at the first speed is "static k" (a range starting
+  beyond a divergence speed: a diverged structural mode, described by its content); the
+  hidden conjugate partner of mode "x" is "x'".
+
+An event (flutter, divergence) of a tracked mode that is a lag root at the first speed — with
+lag states a real branch may start as a lag state and turn right, through zero, as the speed
+grows (Goland's divergence on strips) — is named after the structural mode its shape at the
+event is (:func:`event_label`); it keeps the id of the branch that crossed.
 
 Content is the share of a mode's kinetic energy x̂ᴴ M x̂ (M the structural mass, aerodynamics
 off) in each group of :meth:`~propwhirl.model.protocol.DofMap.groups`: "bending" (h, φ),
@@ -72,6 +81,131 @@ def _oscillatory(sw: Sweep, t: int = 0) -> list[int]:
             if sw.physical[t, k] and abs(lam[k].imag) > 1e-9 * max(1.0, abs(lam[k]))]
 
 
+#: The name of an aerodynamic lag root starts with this word ("lag 3"; its hidden partner
+#: "lag 3'"): what :func:`structural_roots` decided, as the names carry it (:func:`is_lag`).
+LAG = "lag"
+
+
+def is_lag(label: str) -> bool:
+    """Whether ``label`` names an aerodynamic lag root (:func:`structural_roots`), not a
+    structural mode.
+
+    >>> is_lag("lag 3"), is_lag("lag 3'"), is_lag("wing 2"), is_lag("backward whirl, propeller 7")
+    (True, True, False, False)
+    """
+    return label.split(" ", 1)[0] == LAG
+
+
+def lag_load_share(model: Model, sw: Sweep, t: int = 0, in_vacuo=None,
+                   evaluator=None) -> np.ndarray:
+    """(n_modes,) share of the aerodynamic lag states' loads in the forces on the structure of
+    each root of ``sw`` (a sweep of ``model``) at its speed ``t`` [-].
+
+    A root λ with state x = [q, q̇, w] satisfies (λ² S1 + λ S2 + S3) q = S4 w (the model's
+    second-order system at that speed, :class:`~propwhirl.model.statespace.SecondOrder`): the
+    lag states' load S4 w on the DOFs against the structure's inertial and elastic forces
+    λ² S1 q and S3 q, each measured as ‖f‖ = (fᴴ M⁻¹ f)^½ with the structural mass M
+    (aerodynamics off: the kinetic-energy norm of the acceleration a force gives):
+
+        share = ‖S4 w‖ / (‖λ² S1 q‖ + ‖S3 q‖).
+
+    A structural mode is a resonance of the structure (λ ≈ iω: the inertial and elastic forces
+    nearly cancel, the air perturbs them): share ≪ 1.  An aerodynamic lag root (λ near a lag
+    state's own root, −β V/b, on or near the negative real axis: inertial and elastic forces
+    add) moves the structure only as the lag loads push it: share ≈ 1.  A root that does not
+    move the structure (q = 0): +inf; a model without lag states: 0.  Independent of how the
+    lag states are scaled (w enters only through the load S4 w).  ``in_vacuo``: the model's
+    structure (:func:`named_modes`); ``evaluator``: the model's assembly, if already built
+    (``model.assembly()``: its second-order system at that speed).
+    """
+    iv = in_vacuo_of(model, in_vacuo)
+    dm = model.dof_map()
+    n = dm.n_dof
+    X = np.asarray(sw.eigenvectors[t])
+    lam = np.asarray(sw.eigenvalues[t])
+    if dm.n_lag == 0:
+        return np.zeros(lam.size)
+    s = (model if evaluator is None else evaluator).second_order(np.array([float(sw.V[t])]))
+    q, w = X[:n], X[2 * n:]
+    chol = np.linalg.cholesky(iv.M)
+
+    def norm(f: np.ndarray) -> np.ndarray:
+        return np.linalg.norm(np.linalg.solve(chol, f), axis=0)
+
+    load = norm(s.S4[0] @ w)
+    own = norm(s.S1[0] @ q * lam ** 2) + norm(s.S3[0] @ q)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(own > 0, load / np.where(own > 0, own, 1.0), np.inf)
+
+
+def structural_roots(model: Model, sw: Sweep, basis: np.ndarray | None = None,
+                     in_vacuo=None, t: int = 0, evaluator=None) -> np.ndarray:
+    """Which roots of ``sw`` (a sweep of ``model``) are structural modes at its speed ``t``,
+    and which aerodynamic lag roots: (n_modes,) bool, a hidden conjugate partner as its
+    partner.  The one place this is decided.
+
+    The rule of the strip models: a lag state's root is real (the lag states alone decay,
+    at −β V/b), a structural mode oscillates — so the structural roots are the oscillatory
+    roots and the real roots already unstable (a diverged structural mode; a stable real root
+    is a lag root).  The count completes it: a system of r structural DOFs (the model's, or
+    the columns of a reduced model's ``basis``) has at most r oscillatory modes.  Where the
+    coupling splits equal lag roots into complex pairs — the Roger lag states of a
+    doublet-lattice wing, a set per mode or DOF with the same roots — there are more: the
+    surplus are the pairs whose lag states' loads are the largest share of the forces on the
+    structure (:func:`lag_load_share`; an unstable pair is never one).  On
+    examples/x57_like.toml on 3 x 12 panels at 20 m/s the shares are below 0.035 for the
+    modes and above 0.85 for the lag pairs (modal and full Roger state); strip models have no
+    surplus, and their structural roots stay the oscillatory ones.  ``in_vacuo``,
+    ``evaluator``: as :func:`lag_load_share`.
+    """
+    n = sw.n_modes
+    r = basis.shape[1] if basis is not None else model.dof_map().n_dof
+    lam = sw.eigenvalues[t]
+    out = np.zeros(n, dtype=bool)
+    for k in range(n):
+        if sw.physical[t, k] and (lam[k].real > 0
+                                  or abs(lam[k].imag) > 1e-9 * max(1.0, abs(lam[k]))):
+            out[k] = True
+    osc = [k for k in np.flatnonzero(out) if lam[k].imag != 0]
+    if len(osc) > r:                         # complex lag pairs: the surplus by the lag share
+        share = lag_load_share(model, sw, t, in_vacuo, evaluator)
+        stable = [k for k in osc if lam[k].real <= 0]
+        by_share = sorted(stable, key=lambda k: (-share[k] if np.isfinite(share[k])
+                                                 else -np.inf, k))
+        out[by_share[: len(osc) - r]] = False
+    for k in range(n):
+        if not sw.physical[t, k] and sw.partner[k] >= 0:
+            out[k] = out[sw.partner[k]]
+    return out
+
+
+def event_label(sw: Sweep, names: Sequence[str], mode: int, x: np.ndarray,
+                mass: np.ndarray) -> str:
+    """The name of an event of tracked mode ``mode`` with shape ``x`` (a state or
+    displacement vector, its first ``n_dof`` entries the displacements): ``names[mode]``
+    where that is a structural mode; for an aerodynamic lag root (:func:`is_lag`: e.g. a real
+    branch that starts as a lag state and turns right, through zero, as the speed grows) the
+    name of the structural mode the event's motion is: of the structural modes at the first
+    speed, the one whose displacement shape φ holds the largest share of the kinetic energy of
+    ``x``'s, |φᴴ M x|² / ((φᴴ M φ)(xᴴ M x)) (the MAC, eq. 5.14, in the kinetic-energy inner
+    product of the structural ``mass`` M: bending, torsion and the propellers' motions weighed
+    alike whatever their units).  The event keeps ``mode``, the branch that crossed.
+    ``names[mode]`` when the sweep has no structural mode or no eigenvectors."""
+    if not is_lag(names[mode]) or sw.eigenvectors is None:
+        return names[mode]
+    ids = [k for k in range(sw.n_modes) if sw.physical[0, k] and not is_lag(names[k])]
+    if not ids:
+        return names[mode]
+    n = int(np.count_nonzero(sw.displacement))
+    shapes = np.asarray(sw.eigenvectors[0])[:n][:, ids]
+    q = np.asarray(x)[:n]
+    Mq = mass @ q
+    across = np.abs(shapes.conj().T @ Mq) ** 2
+    norms = np.real(np.sum(shapes.conj() * (mass @ shapes), axis=0)) * np.real(q.conj() @ Mq)
+    macs = np.where(norms > 0, across / np.where(norms > 0, norms, 1.0), 0.0)
+    return names[ids[int(np.argmax(macs))]]
+
+
 def mode_names(model: Model, sw: Sweep, basis: np.ndarray | None = None,
                thesis: bool = False) -> list[str]:
     """Names of the tracked modes of ``sw`` = a sweep of ``model``, decided at its first speed
@@ -84,26 +218,27 @@ def mode_names(model: Model, sw: Sweep, basis: np.ndarray | None = None,
 
 
 def named_modes(model: Model, sw: Sweep, basis: np.ndarray | None = None,
-                in_vacuo=None) -> tuple[list[str], list[str]]:
+                in_vacuo=None, evaluator=None) -> tuple[list[str], list[str]]:
     """(names, the thesis's names) of the tracked modes of ``sw`` (:func:`mode_names`): the
     same lists but with two or more flexibly mounted, spinning propellers.  ``in_vacuo``: the
     model's structure, evaluated once (:class:`~propwhirl.analysis.modes.InVacuo`), or the model
-    without aerodynamics already assembled (:func:`~propwhirl.analysis.modes.model_modes`)."""
+    without aerodynamics already assembled (:func:`~propwhirl.analysis.modes.model_modes`);
+    ``evaluator``: the model's assembly, if already built (:func:`structural_roots`)."""
     dm = model.dof_map()
     n = sw.n_modes
     lam0 = sw.eigenvalues[0]
     X0 = sw.eigenvectors[0]
     names = [f"mode {k}" for k in range(n)]
-    osc = _oscillatory(sw)
-    real = [k for k in range(n) if sw.physical[0, k] and k not in osc]
-    real = sorted(real, key=lambda k: -lam0[k].real)
-    diverged = [k for k in real if lam0[k].real > 0]
-    for i, k in enumerate(diverged):        # unstable real roots: not aerodynamic lags
+    in_vacuo = in_vacuo_of(model, in_vacuo)
+    structural = structural_roots(model, sw, basis, in_vacuo, evaluator=evaluator)
+    osc = [k for k in _oscillatory(sw) if structural[k]]
+    by_real = sorted((k for k in range(n) if sw.physical[0, k] and k not in osc),
+                     key=lambda k: -lam0[k].real)
+    for i, k in enumerate(k for k in by_real if structural[k]):   # diverged: not lag roots
         names[k] = f"static {i + 1}"
-    for i, k in enumerate(k for k in real if k not in diverged):
-        names[k] = f"lag {i + 1}"
+    for i, k in enumerate(k for k in by_real if not structural[k]):
+        names[k] = f"{LAG} {i + 1}"
     if dm.has_wing:
-        in_vacuo = in_vacuo_of(model, in_vacuo)
         modes, _ = model_modes(model, basis, in_vacuo)
         ref = [lab for lab, _ in label_modes(model, basis, modes, in_vacuo)]
         shapes = modes.shapes.astype(complex)
@@ -160,6 +295,47 @@ def propeller_sets(model: Model) -> list[tuple[int, ...]]:
         prop = model.propellers[p.number].propeller if dm.has_wing else model.propeller
         keys.setdefault(f"{prop!r}|{p.rotation}|{p.spinning}", []).append(p.number + 1)
     return [tuple(g) for g in keys.values()]
+
+
+#: mode families, in the order of the legends (:func:`mode_family`)
+FAMILIES = ("wing bending", "wing torsion", "backward whirl", "forward whirl", "in-plane",
+            "other")
+
+
+def mode_family(label: str, content: Mapping[str, float] | None = None) -> str:
+    """Family of a mode named ``label`` (:data:`FAMILIES`): the one classifier of the V-g-f
+    and Campbell diagrams and the Campbell result.
+
+    "backward"/"forward" in the name (the thesis's "backward 3" or "backward whirl,
+    propellers 1–6 (collective)"): that whirl family; "in-plane" or "edgewise" in it:
+    "in-plane"; an aerodynamic lag root (:func:`is_lag`): "other"; any other mode: "wing
+    torsion" where ``content`` (kinetic-energy shares by group, :func:`mode_content`) has more
+    torsion than bending, "wing bending" where it has bending or the name is a wing mode's
+    ("wing 2": no content, no torsion to tell), otherwise "other".
+
+    Examples
+    --------
+    >>> mode_family("backward whirl, propellers 1–6 (collective)")
+    'backward whirl'
+    >>> mode_family("wing 2", {"bending": 0.2, "torsion": 0.7}), mode_family("wing 2")
+    ('wing torsion', 'wing bending')
+    >>> mode_family("lag 3"), mode_family("plunge")
+    ('other', 'other')
+    """
+    if is_lag(label):
+        return "other"
+    low = label.lower()
+    for word, fam in (("backward", "backward whirl"), ("forward", "forward whirl"),
+                      ("in-plane", "in-plane"), ("edgewise", "in-plane")):
+        if word in low:
+            return fam
+    c = content or {}
+    tors, bend = float(c.get("torsion", 0.0)), float(c.get("bending", 0.0))
+    if tors > bend:
+        return "wing torsion"
+    if bend > 0.0 or low.startswith("wing"):
+        return "wing bending"
+    return "other"
 
 
 def with_content(label: str, content: str) -> str:
@@ -278,17 +454,16 @@ def whirl(dm: DofMap, x: np.ndarray, lam: complex) -> str | None:
 
 def mode_content(model: Model, sw: Sweep, names: Sequence[str],
                  in_vacuo=None) -> dict[str, dict[str, float]]:
-    """Kinetic-energy shares of each physical oscillatory mode (and of each real root already
-    unstable) at the first speed of ``sw``, by content group, rounded to 4 digits (shares
-    ≤ 1e-3 left out): {name: {group: share}}.  ``in_vacuo``: the model's structure
+    """Kinetic-energy shares of each structural mode (oscillatory, or a real root already
+    unstable; not the lag roots, :func:`is_lag`) at the first speed of ``sw``, by content
+    group, rounded to 4 digits (shares ≤ 1e-3 left out): {name: {group: share}}.  ``in_vacuo``: the model's structure
     (:func:`named_modes`; its mass, which does not depend on the speed)."""
     iv = in_vacuo_of(model, in_vacuo)
     groups = iv.system.dof_map().groups()
     X = sw.eigenvectors[0][sw.displacement]
     out = {}
     for k in range(sw.n_modes):
-        lam = sw.eigenvalues[0, k]
-        if not sw.physical[0, k] or (lam.imag == 0 and lam.real <= 0):   # not the lag roots
+        if not sw.physical[0, k] or is_lag(names[k]):      # the structural modes only
             continue
         frac = kinetic_energy_shares(X[:, [k]], iv.M, groups)
         out[names[k]] = {g: round(float(f[0]), 4) for g, f in frac.items() if abs(f[0]) > 1e-3}

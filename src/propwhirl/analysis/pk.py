@@ -42,7 +42,8 @@ from scipy.optimize import brentq
 
 from propwhirl import validate as v
 from propwhirl.analysis.events import Instability
-from propwhirl.analysis.naming import whirl
+from propwhirl.analysis.modes import InVacuo
+from propwhirl.analysis.naming import event_label, whirl
 from propwhirl.analysis.participation import with_participation
 from propwhirl.engine import mac
 from propwhirl.model.systems import TypicalSection
@@ -398,20 +399,23 @@ def dlm_notes(model, sweep: PKSweep) -> list[str]:
 
 
 def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: float = XTOL,
-                     notes: list | None = None, sweep=None):
+                     notes: list | None = None, sweep=None, mass: np.ndarray | None = None):
     """The p-k crossings as :class:`~propwhirl.analysis.stability.Instability` events of the
     finite-state analysis's tracked modes (``analyse(model, method="pk")``).
 
     ``start_roots`` are the tracked modes' finite-state eigenvalues [1/s] at ``speeds[0]``
     and ``names`` their labels.  With the finite-state ``sweep`` (its eigenvectors), each
     event's mode is the tracked mode of its p-k mode shape at the event
-    (:func:`tracked_mode`); without it, the tracked mode whose root at the first speed is
-    nearest the root the p-k mode started from.  Events: "onset" / "recovery" of flutter or
-    divergence, and "unstable-at-start" when Re p > 0 at the first speed, each with the
-    whirl sense and the propellers' participation of its p-k mode shape
-    (:mod:`propwhirl.analysis.participation`: the p-k eigenvector's displacements are on
-    the model's own DOFs) and, for flutter crossings, the benignity (dζ/dV)⁻¹ of the p-k
-    root [m/s] (:func:`pk_benignity`).
+    (:func:`tracked_mode`; where that is an aerodynamic lag root at the first speed, named
+    after the structural mode the shape is, :func:`propwhirl.analysis.naming.event_label`,
+    with the structural ``mass`` matrix — default: the finite-state model's); without it,
+    the tracked mode whose root at the first speed is nearest the root the p-k mode started
+    from.
+    Events: "onset" / "recovery" of flutter or divergence, and "unstable-at-start" when
+    Re p > 0 at the first speed, each with the whirl sense and the propellers' participation
+    of its p-k mode shape (:mod:`propwhirl.analysis.participation`: the p-k eigenvector's
+    displacements are on the model's own DOFs) and, for flutter crossings, the benignity
+    (dζ/dV)⁻¹ of the p-k root [m/s] (:func:`pk_benignity`).
     """
     r = pk_sweep(model, speeds, xtol=xtol)
     if notes is not None and strip_twin(model) is not model:
@@ -420,6 +424,8 @@ def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: flo
     n = dm.n_dof
     tracked = [int(np.argmin(np.abs(np.asarray(start_roots) - p))) for p in r.start]
     use_shape = sweep is not None and sweep.eigenvectors is not None
+    if use_shape and mass is None:
+        mass = InVacuo.of(strip_twin(model).without_aerodynamics()).M
     if notes is not None:                     # modes the p-k iteration lost: said, not dropped
         for label, V in r.lost:
             mode = names[tracked[r.labels.index(label)]]
@@ -431,9 +437,10 @@ def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: flo
     def add(kind: str, event: str, j: int, V: float, p0: complex, benign: bool) -> None:
         p, _, x = pk_mode(model, V, p0)
         mode = tracked_mode(sweep, x, p, V) if use_shape else tracked[j]
+        label = event_label(sweep, names, mode, x, mass) if use_shape else names[mode]
         f_hz = 0.0 if kind == "divergence" else float(abs(p.imag) / (2 * np.pi))
         events.append(Instability(
-            kind, event, mode, names[mode], float(V), f_hz,
+            kind, event, mode, label, float(V), f_hz,
             whirl(dm, x[:n], p) if kind == "flutter" else None,
             pk_benignity(model, V, p) if benign else None))
         shapes.append((x[:n], p, float(V)))

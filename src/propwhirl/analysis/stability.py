@@ -32,7 +32,8 @@ from propwhirl import fileio
 from propwhirl import validate as v
 from propwhirl.analysis.events import (UNSTABLE_EVENTS, Exclusion, Instability,  # noqa: F401
                                        critical, describe_critical)
-from propwhirl.analysis.naming import mode_content, named_modes, whirl, with_content
+from propwhirl.analysis.naming import (event_label, mode_content, named_modes, whirl,
+                                      with_content)
 from propwhirl.analysis.participation import (ModeParticipation, branch_point_shape,  # noqa: F401
                                               events_csv, events_table, participation_lines,
                                               with_participation)
@@ -602,7 +603,7 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
     t = track(Job(model, finite, grid, xtol, bool(vgf), options, method == "auto", progress),
               chosen)
     sw = t.analysis.sweep
-    names, thesis_names = named_modes(finite, sw, t.basis, t.in_vacuo)
+    names, thesis_names = named_modes(finite, sw, t.basis, t.in_vacuo, t.assembly)
     sw = sw.relabel(names)
     events = with_participation(finite, *_events(t, sw, names, dm), t.in_vacuo)
     finite_state, pk_notes = None, []
@@ -610,7 +611,7 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         finite_state = FiniteState(aero_model_of(model),
                                    tuple(sorted(events, key=lambda e: (e.V, e.mode))))
         events = pk_instabilities(model, sw.eigenvalues[0], names, grid, xtol=xtol,
-                                  notes=pk_notes, sweep=sw)
+                                  notes=pk_notes, sweep=sw, mass=t.in_vacuo.M)
     events.sort(key=lambda e: (e.V, e.mode))
     notes = validity.analysis_warnings(
         model, (float(sw.V[0]), float(sw.V[-1])),
@@ -636,7 +637,8 @@ def _events(t: Tracked, sw: Sweep, names, dm: DofMap) -> tuple[list, list]:
     events, shapes = [], []
     for p in t.analysis.criticals.points:
         sense = whirl(dm, p.eigenvector, p.eigenvalue) if p.kind == "flutter" else None
-        events.append(Instability(p.kind, p.direction, p.mode, names[p.mode], float(p.V),
+        label = event_label(sw, names, p.mode, p.eigenvector, t.in_vacuo.M)  # a lag: its mode
+        events.append(Instability(p.kind, p.direction, p.mode, label, float(p.V),
                                   float(p.frequency_hz), sense,
                                   None if p.benignity is None else float(p.benignity)))
         shapes.append((p.eigenvector, p.eigenvalue, float(p.V)))
@@ -647,7 +649,8 @@ def _events(t: Tracked, sw: Sweep, names, dm: DofMap) -> tuple[list, list]:
                                   float(abs(lam0.imag) / (2 * np.pi))))
         shapes.append((sw.eigenvectors[0, :, k], lam0, float(sw.V[0])))
     for p, shape in zip(t.fzero, t.fzero_shapes):
-        events.append(Instability("divergence", "frequency-zero", p.mode, names[p.mode], p.V, 0.0))
+        label = event_label(sw, names, p.mode, shape[0], t.in_vacuo.M)
+        events.append(Instability("divergence", "frequency-zero", p.mode, label, p.V, 0.0))
         shapes.append(shape)
     return events, shapes
 

@@ -2,10 +2,10 @@
 result keeps of each analysis (:class:`~propwhirl.studies.campaign_result.PointPlot`), so a
 report can be drawn again from ``campaign.json`` without analysing anything:
 
-* :func:`point_vgf` — ζ and f [Hz] against V [m/s] of the modes of interest at the analysed
-  speeds (the sweep's nodes, marked; cubic Hermite curves between them from the exact
-  slopes, :func:`hermite`), the instabilities marked (flutter red, divergence green,
-  as :mod:`~propwhirl.app.plots.vgf_plot`), V_D and the required speed factor · V_D drawn as
+* :func:`point_vgf` — the V-g-f (drawn by :func:`propwhirl.app.plots.vgf_plot.vgf_figure`,
+  as every V-g-f) of the modes of interest at the analysed speeds (the sweep's nodes,
+  marked; cubic Hermite curves between them from the exact slopes, :func:`hermite`), the
+  instabilities marked and labelled, V_D and the required speed factor · V_D drawn as
   vertical lines, the damping requirement g = 2ζ ≥ g_min as a horizontal line up to V_D;
 * :func:`point_mode_shape` — the critical mode: the wing's h and α along the span (Re x̂ and
   the envelope ±|x̂|) and one θ–ψ orbit per propeller;
@@ -19,8 +19,11 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from propwhirl.app.plots.canvas import (DIVERGENCE_COLOUR, FLUTTER_COLOUR, colours, finish,
-                                        new_figure)
+from propwhirl.analysis.naming import is_lag, mode_family
+from propwhirl.app.plots.canvas import finish, new_figure
+from propwhirl.app.plots import vgf_plot
+from propwhirl.app.plots.vgf_plot import (VgfCurves, VgfEvent, VgfRequirements, damping_fall_of,
+                                          emphasised)
 from propwhirl.engine.hermite import hermite_coeffs, hermite_eval
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -28,78 +31,81 @@ if TYPE_CHECKING:  # pragma: no cover
 
     from propwhirl.studies.campaign_result import PointPlot, PointRow
 
-#: colour of the V_D, required-speed and damping-requirement lines
-REQUIREMENT_COLOUR = "0.15"
-#: the V-g-f's ζ axis spans at most ±this [-] (beyond: the curve leaves the axes)
-ZETA_LIMIT = 0.4
 #: points of the drawn curve per analysed speed step
 HERMITE_POINTS = 12
 
 
 def point_vgf(row: "PointRow", min_damping_g: float | None = None, *,
               title: str | None = None, path: str | Path | None = None) -> "Figure":
-    """V-g-f of one (case, envelope point) of a campaign with its requirements drawn.
+    """V-g-f of one (case, envelope point) of a campaign with its requirements drawn, by
+    :func:`propwhirl.app.plots.vgf_plot.vgf_figure` (every V-g-f's drawing: family colours,
+    the ζ axis around the region that matters, the instabilities marked and labelled).
 
-    `row`: a :class:`~propwhirl.studies.campaign_result.PointRow` with its ``plot``;
-    `min_damping_g`: the campaign's damping requirement (g = 2ζ, drawn as ζ = g/2 up to V_D),
-    None for none."""
+    `row`: a :class:`~propwhirl.studies.campaign_result.PointRow` with its ``plot``: its modes
+    of interest, bold and named in the legend as :func:`propwhirl.app.plots.vgf_plot.vgf`
+    emphasises them (an instability, or a damping that falls below
+    :data:`~propwhirl.app.plots.vgf_plot.DAMPING_MARGIN`; an aerodynamic lag root thin),
+    coloured by family from the name (:func:`propwhirl.analysis.naming.mode_family`: a saved
+    point keeps no content, so a wing mode is "wing bending"), cubic Hermite curves
+    (:func:`hermite`) through the analysed speeds (dots); V_D, the required speed, the
+    critical speed and `min_damping_g`, the campaign's damping requirement (g = 2ζ, drawn
+    as ζ = g/2 up to V_D; None for none)."""
     p: "PointPlot" = row.plot
-    fig = new_figure(figsize=(9.0, 5.6), layout="constrained")
-    ax_z, ax_f = fig.subplots(2, 1, sharex=True)
-    V = p.V
-    cmap = colours(len(p.modes))
-    for k, (name, colour) in enumerate(zip(p.modes, cmap)):
-        osc = p.oscillatory[:, k]
-        for ax, y, dy in ((ax_z, p.zeta[:, k], p.dzeta_dV[:, k]),
-                          (ax_f, p.frequency_hz[:, k], p.dfrequency_dV[:, k])):
-            ax.plot(*hermite(V, y, dy, osc), "-", color=colour, lw=1.4,
-                    label=name if ax is ax_z else None)
-            ax.plot(V[osc], y[osc], ".", ms=3, color=colour)
-    z = np.where(p.oscillatory, p.zeta, np.nan)
-    finite = z[np.isfinite(z)]
-    # the axis from the data, clipped at ZETA_LIMIT: a root near the real axis (|ζ| → 1) would
-    # flatten the curves that decide the clearance
-    lo = max(min(float(finite.min()) if finite.size else 0.0, 0.0), -ZETA_LIMIT)
-    hi = min(max(float(finite.max()) if finite.size else 0.1, 0.0), ZETA_LIMIT)
-    if min_damping_g is not None:
-        hi = max(hi, 0.5 * min_damping_g)
-    span = max(hi - lo, 1e-3)
-    lo, hi = min(lo - 0.08 * span, -0.2 * span), hi + 0.08 * span
-    ax_z.axhspan(lo, 0.0, facecolor=FLUTTER_COLOUR, alpha=0.07, lw=0, zorder=0)
-    ax_z.axhline(0.0, color="0.3", lw=0.8)
-    for ax in (ax_z, ax_f):
-        ax.axvline(row.V_D, color=REQUIREMENT_COLOUR, lw=1.0, ls=":")
-        ax.axvline(row.V_required, color=REQUIREMENT_COLOUR, lw=1.4, ls="--")
-        ax.grid(True, alpha=0.3)
-    ax_z.annotate(f"V_D {row.V_D:.1f} m/s", (row.V_D, 1.0), xycoords=("data", "axes fraction"),
-                  xytext=(-3, -3), textcoords="offset points", ha="right", va="top", fontsize=8)
-    ax_z.annotate(f"required {row.V_required:.1f} m/s", (row.V_required, 1.0),
-                  xycoords=("data", "axes fraction"), xytext=(3, -3),
-                  textcoords="offset points", ha="left", va="top", fontsize=8)
-    if min_damping_g is not None:
-        ax_z.plot([V[0], row.V_D], [0.5 * min_damping_g] * 2, "-", color=REQUIREMENT_COLOUR,
-                  lw=1.4, label=f"required g ≥ {min_damping_g:g} (ζ ≥ {0.5 * min_damping_g:g})")
-    for Ve, fe, kind, event, _mode in p.events:
-        colour = FLUTTER_COLOUR if kind == "flutter" else DIVERGENCE_COLOUR
-        face = "none" if event == "recovery" else colour
-        for ax, y in ((ax_z, 0.0), (ax_f, fe)):
-            ax.plot([Ve], [y], "o", ms=7, mec=colour, mfc=face, mew=1.6, zorder=5)
-    if row.critical_speed is not None:
-        ax_z.annotate(f"V_crit {row.critical_speed:.1f} m/s", (row.critical_speed, 0.0),
-                      xytext=(0, -14), textcoords="offset points", ha="center", va="top",
-                      fontsize=8, color=FLUTTER_COLOUR if row.kind == "flutter"
-                      else DIVERGENCE_COLOUR)
-    ax_z.set_ylim(lo, hi)
-    ax_z.set_ylabel("damping ratio ζ [-]")
-    g_axis = ax_z.secondary_yaxis("right", functions=(lambda z: 2.0 * z, lambda g: 0.5 * g))
-    g_axis.set_ylabel("g = 2ζ [-]")
-    ax_f.set_ylabel("frequency f [Hz]")
-    ax_f.set_xlabel("true airspeed V [m/s]")
-    ax_f.set_ylim(bottom=0.0)
-    ax_f.set_xlim(float(V[0]), float(V[-1]))
-    fig.legend(loc="outside right upper", fontsize=8)
-    ax_z.set_title(title or _wrap(f"{row.case} at {row.altitude_m:g} m: V-g-f"), fontsize=10)
+    V = np.asarray(p.V, dtype=float)
+    osc = np.asarray(p.oscillatory, dtype=bool)
+    Vs, zeta = hermite_columns(V, p.zeta, p.dzeta_dV, osc)
+    _, freq = hermite_columns(V, p.frequency_hz, p.dfrequency_dV, osc)
+    nodes = (V, np.where(osc, p.zeta, np.nan), np.where(osc, p.frequency_hz, np.nan))
+    events = [VgfEvent(kind, event, mode, float(Ve), float(fe))
+              for Ve, fe, kind, event, mode in p.events]
+    bold = emphasised(p.modes, damping_fall_of(nodes[1]), events, (float(V[0]), float(V[-1])))
+    curves = VgfCurves(V=Vs, zeta=zeta, frequency_hz=freq, labels=tuple(p.modes),
+                       names=tuple(p.modes), families=tuple(mode_family(m) for m in p.modes),
+                       bold=tuple(b and not is_lag(m) for b, m in zip(bold, p.modes)),
+                       nodes=nodes)
+    req = VgfRequirements(row.V_D, row.V_required, min_damping_g, row.critical_speed,
+                          row.kind)
+    fig = vgf_plot.vgf_figure(curves, events, requirements=req, label_least_damped=False,
+                     xlabel="true airspeed V [m/s]", figsize=(9.0, 5.6),
+                     title=title or _wrap(f"{row.case} at {row.altitude_m:g} m: V-g-f"))
     return finish(fig, path)
+
+
+def hermite_columns(V: np.ndarray, Y: np.ndarray, dY: np.ndarray, valid: np.ndarray,
+                    n: int = HERMITE_POINTS) -> tuple[np.ndarray, np.ndarray]:
+    """Each column of Y (T, m) as its cubic Hermite curve (:func:`hermite`: slopes dY [per
+    m/s], straight near a branch point) on one grid of `n` points per speed step of V (T,)
+    [m/s]: the grid ((T − 1) n,) and the curves ((T − 1) n, m), NaN on a step whose ends
+    are not both `valid` (T, m)."""
+    V = np.asarray(V, dtype=float)
+    Y, dY, valid = (np.asarray(x) for x in (Y, dY, valid))
+    t = np.linspace(0.0, 1.0, n)
+    grid = np.concatenate([V[j] + t * (V[j + 1] - V[j]) for j in range(len(V) - 1)]) \
+        if len(V) > 1 else V.copy()
+    out = np.full((grid.size, Y.shape[1]), np.nan)
+    for k in range(Y.shape[1]):
+        scale = float(np.ptp(Y[valid[:, k], k])) if valid[:, k].any() else 0.0
+        for j in range(len(V) - 1):
+            if valid[j, k] and valid[j + 1, k]:
+                out[j * n:(j + 1) * n, k] = _hermite_step(V[j], V[j + 1], Y[j, k], Y[j + 1, k],
+                                                          dY[j, k], dY[j + 1, k], t, scale)
+        if len(V) == 1 and valid[0, k]:
+            out[0, k] = Y[0, k]
+    return grid, out
+
+
+def _hermite_step(V0: float, V1: float, y0: float, y1: float, d0: float, d1: float,
+                  t: np.ndarray, scale: float) -> np.ndarray:
+    """The cubic Hermite curve of one speed step at the fractions `t` (the engine's model of a
+    step, :func:`propwhirl.engine.hermite.hermite_coeffs`), straight where it leaves the band
+    of its end values widened by their difference and a quarter of the curve's whole range
+    `scale`."""
+    seg = hermite_eval(hermite_coeffs(y0, y1, d0, d1, V1 - V0), t)
+    lo, hi = min(y0, y1), max(y0, y1)
+    room = (hi - lo) + 0.25 * scale
+    if not np.isfinite(seg).all() or seg.min() < lo - room or seg.max() > hi + room:
+        seg = y0 + t * (y1 - y0)     # near a branch point the slope is singular
+    return seg
 
 
 def hermite(V: np.ndarray, y: np.ndarray, dy: np.ndarray, valid: np.ndarray,
@@ -118,14 +124,8 @@ def hermite(V: np.ndarray, y: np.ndarray, dy: np.ndarray, valid: np.ndarray,
             xs.append([np.nan])
             ys.append([np.nan])
             continue
-        dV = V[j + 1] - V[j]
-        seg = hermite_eval(hermite_coeffs(y[j], y[j + 1], dy[j], dy[j + 1], dV), t)
-        lo, hi = min(y[j], y[j + 1]), max(y[j], y[j + 1])
-        room = (hi - lo) + 0.25 * scale
-        if not np.isfinite(seg).all() or seg.min() < lo - room or seg.max() > hi + room:
-            seg = y[j] + t * (y[j + 1] - y[j])     # near a branch point the slope is singular
-        xs.append(V[j] + t * dV)
-        ys.append(seg)
+        xs.append(V[j] + t * (V[j + 1] - V[j]))
+        ys.append(_hermite_step(V[j], V[j + 1], y[j], y[j + 1], dy[j], dy[j + 1], t, scale))
     if not xs:
         return V[valid], y[valid]
     return np.concatenate(xs), np.concatenate(ys)

@@ -19,26 +19,17 @@ import numpy as np
 from propwhirl import validate as v
 from propwhirl.analysis.vibration import campbell as campbell_data
 from propwhirl.app.plots.canvas import finish, new_figure
-from propwhirl.app.plots.layout import end_labels, freeze_layout, stack_labels, wrap
+from propwhirl.analysis.naming import mode_family
+from propwhirl.app.plots.layout import (FAMILY_COLOURS, end_labels, freeze_layout, stack_labels,
+                                        wrap)
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
 
     from propwhirl.analysis.vibration import CampbellResult
 
-#: colour of each mode family
-FAMILY_COLOURS = {"wing bending": "tab:blue", "wing torsion": "tab:purple",
-                  "backward whirl": "tab:red", "forward whirl": "tab:green", "mode": "0.4"}
 #: line styles of the excitation orders 1P, 2P
 ORDER_STYLES = {1: "--", 2: ":"}
-
-
-def family_of(name: str) -> str:
-    """Family from a mode name of :func:`~propwhirl.analysis.vibration.label_modes` (a wing
-    mode without its shape: "wing bending")."""
-    kind = name.split(" ")[0]
-    return {"backward": "backward whirl", "forward": "forward whirl",
-            "wing": "wing bending"}.get(kind, "mode")
 
 
 def campbell(model, rpm=None, *, rpm_ratio=None, n_modes: int | None = None,
@@ -116,7 +107,8 @@ def campbell_diagram(rpm, frequencies=None, *, n_modes: int | None = None,
         Draw the first n columns (default :func:`default_count`).
     names, families, rpm_ratio
         With arrays: mode names (label each curve), families (colour; default from the
-        names by :func:`family_of`), each propeller's speed relative to the first's.
+        names by :func:`propwhirl.analysis.naming.mode_family`), each propeller's speed
+        relative to the first's.
     title, path
         Figure title; file to write.
 
@@ -147,7 +139,7 @@ def campbell_diagram(rpm, frequencies=None, *, n_modes: int | None = None,
     if f.ndim != 2 or f.shape[0] != r.size:
         raise v.InputError(f"frequencies must have shape (len(rpm), n) = ({r.size}, n), got {f.shape}")
     names = list(names) if names is not None else [f"mode {i + 1}" for i in range(f.shape[1])]
-    families = list(families) if families is not None else [family_of(nm) for nm in names]
+    families = list(families) if families is not None else [mode_family(nm) for nm in names]
     n = (default_count(families, f) if n_modes is None
          else min(v.integer_at_least("n_modes", n_modes, 1), f.shape[1]))
     n = min(n, f.shape[1])

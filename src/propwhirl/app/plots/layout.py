@@ -1,10 +1,9 @@
 """Layout helpers of the figures with many modes: mode families and their colours, label text
 that wraps, and labels placed without collision.
 
-* :func:`mode_family` — the family of a mode ("wing bending", "wing torsion", "backward whirl",
-  "forward whirl", "in-plane", "other") from its name and, for wing modes, its content (the
-  analysis's kinetic-energy shares): the name carries the whirl sense
-  (:mod:`propwhirl.analysis.naming`), the content says bending or torsion.
+* :data:`FAMILY_COLOURS`, :data:`FAMILY_MAPS` — the colour and the hue of each mode family
+  (the families are :func:`propwhirl.analysis.naming.mode_family`'s: from the name — the
+  whirl sense — and the content — bending or torsion), the one table of them.
 * :func:`family_shades` — one hue per family, graded shades within it (the emphasised modes
   of one family stay told apart, their family seen at a glance).
 * :func:`place_labels` — annotations placed greedily, each at the nearest free spot around
@@ -20,16 +19,18 @@ off, so that the axes do not move after the labels were placed.
 from __future__ import annotations
 
 import textwrap
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 
 import numpy as np
 
 from propwhirl.app.plots.canvas import spread_labels
 
-#: families in the order of the legends, with their hue (a matplotlib sequential colormap)
+#: each family (:data:`propwhirl.analysis.naming.FAMILIES`, in the order of the legends)
+#: with its hue (a matplotlib sequential colormap)
 FAMILY_MAPS = {"wing bending": "Blues", "wing torsion": "Purples", "backward whirl": "Reds",
                "forward whirl": "Greens", "in-plane": "Oranges", "other": "Greys"}
-#: the family's own colour (legends, thin lines)
+#: the family's own colour (curves of the Campbell diagram, legends, thin lines): the colours
+#: of every figure's families
 FAMILY_COLOURS = {"wing bending": "tab:blue", "wing torsion": "tab:purple",
                   "backward whirl": "tab:red", "forward whirl": "tab:green",
                   "in-plane": "tab:orange", "other": "0.4"}
@@ -38,36 +39,6 @@ WRAP = 30
 #: cost of moving a label one pixel from its anchor, against the area [px²] of curves it
 #: covers (:func:`place_labels`): about 500 px of leader line for one curve across a label
 DISTANCE_COST = 1.0
-
-
-def mode_family(label: str, content: Mapping[str, float] | None = None) -> str:
-    """Family of a mode named `label` (a name of :func:`propwhirl.analysis.naming.mode_names`,
-    old or new style: "backward 3", "backward whirl, propellers 1–6 (collective)", "wing 2").
-
-    "backward"/"forward" in the name: that whirl family; "in-plane", "lag" or "edgewise":
-    "in-plane"; a wing mode (or any other): "wing torsion" where `content` (kinetic-energy
-    shares by group, :attr:`ModelAnalysis.content`) has more torsion than bending, "wing
-    bending" where it has bending, otherwise "other".
-
-    Examples
-    --------
-    >>> mode_family("backward whirl, propellers 1–6 (collective)")
-    'backward whirl'
-    >>> mode_family("wing 2", {"bending": 0.2, "torsion": 0.7})
-    'wing torsion'
-    """
-    low = label.lower()
-    for word, fam in (("backward", "backward whirl"), ("forward", "forward whirl"),
-                      ("in-plane", "in-plane"), ("edgewise", "in-plane"), ("lag", "in-plane")):
-        if word in low:
-            return fam
-    c = content or {}
-    tors, bend = float(c.get("torsion", 0.0)), float(c.get("bending", 0.0))
-    if tors > bend:
-        return "wing torsion"
-    if bend > 0.0 or low.startswith("wing"):
-        return "wing bending"
-    return "other"
 
 
 def family_shades(families: Sequence[str]) -> list:

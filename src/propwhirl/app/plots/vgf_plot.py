@@ -11,20 +11,26 @@ onset, open at a recovery), each annotated with V and f.  ζ is drawn only where
 oscillatory (a real root has ζ = ±1 by eq. 5.5, which is no damping of a vibration: the
 divergence marker shows where it crosses zero), the ζ axis limits come from the drawn data,
 and the unstable half ζ < 0 is shaded.
+
+:func:`vgf_figure` draws every V-g-f of propwhirl — an analysis's (:func:`vgf`) and a
+campaign point's with its clearance requirements
+(:func:`propwhirl.app.plots.campaign_plot.point_vgf`) — from the curves (:class:`VgfCurves`)
+and the instabilities (:class:`VgfEvent`) each of them reads from its own data.
 """
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.analysis.naming import mode_names
+from propwhirl.analysis.naming import is_lag, mode_family, mode_names
 from propwhirl.app.plots.canvas import (DIVERGENCE_COLOUR, FLUTTER_COLOUR, finish,
                                         matplotlib_or_error, new_figure)
-from propwhirl.app.plots.layout import (FAMILY_COLOURS, family_shades, freeze_layout, mode_family,
+from propwhirl.app.plots.layout import (FAMILY_COLOURS, family_shades, freeze_layout,
                                         place_labels, wrap, curve_boxes)
 from propwhirl.engine import sweep as engine_sweep
 
@@ -95,7 +101,7 @@ def fine_sweep(analysis: "ModelAnalysis", model: "Model", speeds=None,
                       state_labels=dm.state_labels)
     sw = sw.relabel(mode_names(model, sw))
     missing = sorted(set(sw0.mode_labels) - set(sw.mode_labels))
-    named = [lab for lab in sw0.mode_labels if not lab.startswith("lag") and "'" not in lab]
+    named = [lab for lab in sw0.mode_labels if not is_lag(lab) and "'" not in lab]
     if any(lab in missing for lab in named):
         raise v.InputError(f"the model's modes are not the analysis's (missing {missing[:4]}): "
                            "pass the analysed model")
@@ -110,9 +116,13 @@ def _oscillatory(sw: "Sweep") -> np.ndarray:
 def damping_fall(sw: "Sweep") -> np.ndarray:
     """(n, 2): each mode's peak ζ over the range and the lowest ζ after that peak (where
     the root is oscillatory; NaN-free: +inf where never oscillatory)."""
-    z = np.where(_oscillatory(sw), sw.damping_ratio, np.nan)
-    out = np.full((sw.n_modes, 2), np.inf)
-    for k in range(sw.n_modes):
+    return damping_fall_of(np.where(_oscillatory(sw), sw.damping_ratio, np.nan))
+
+
+def damping_fall_of(z: np.ndarray) -> np.ndarray:
+    """:func:`damping_fall` of ζ (T, n), NaN where not oscillatory."""
+    out = np.full((z.shape[1], 2), np.inf)
+    for k in range(z.shape[1]):
         zk = z[:, k]
         if np.isnan(zk).all():
             continue
@@ -174,7 +184,7 @@ def select_modes(analysis: "ModelAnalysis", n_modes: int | None = None,
     sw = analysis.sweep if sweep is None else sweep
     phys0 = sw.physical[0]
     ids = [k for k in range(sw.n_modes) if phys0[k]
-           and (include_lag or not sw.mode_labels[k].startswith("lag"))]
+           and (include_lag or not is_lag(sw.mode_labels[k]))]
     f0 = sw.frequency_hz[0]
     if labels is not None:
         unknown = [lab for lab in labels if lab not in sw.mode_labels]
@@ -221,15 +231,24 @@ def emphasised_modes(analysis: "ModelAnalysis", sw: "Sweep", ids: Sequence[int],
     the analysis in the range of `sw` and those whose ζ, after its peak, falls below `margin`
     (default :data:`DAMPING_MARGIN` when None) by more than margin/2 (:func:`damping_fall`);
     if there are none, the (at most four) least damped modes by that fall."""
+    fall = damping_fall(sw)[list(ids)]
+    keep = emphasised([sw.mode_labels[k] for k in ids], fall, analysis.events,
+                       (float(sw.V[0]), float(sw.V[-1])), margin)
+    return [k for k, bold in zip(ids, keep) if bold]
+
+
+def emphasised(labels: Sequence[str], fall: np.ndarray, events: Sequence,
+                speeds: tuple[float, float],
+                margin: float | None = DAMPING_MARGIN) -> list[bool]:
+    """Which of the modes named `labels` (their :func:`damping_fall` `fall`) a V-g-f over
+    `speeds` [m/s] emphasises (:func:`emphasised_modes`)."""
     m = DAMPING_MARGIN if margin is None else float(margin)
-    V0, V1 = float(sw.V[0]), float(sw.V[-1])
-    with_event = {e.label for e in analysis.events if V0 <= e.V <= V1}
-    fall = damping_fall(sw)
-    out = [k for k in ids if sw.mode_labels[k] in with_event
-           or (fall[k, 1] < m and fall[k, 0] - fall[k, 1] > 0.5 * m)]
+    with_event = {e.label for e in events if speeds[0] <= e.V <= speeds[1]}
+    out = [j for j in range(len(labels)) if labels[j] in with_event
+           or (fall[j, 1] < m and fall[j, 0] - fall[j, 1] > 0.5 * m)]
     if not out:
-        out = sorted(ids, key=lambda k: fall[k, 1] - fall[k, 0])[:4]
-    return [k for k in ids if k in out]
+        out = sorted(range(len(labels)), key=lambda j: fall[j, 1] - fall[j, 0])[:4]
+    return [j in out for j in range(len(labels))]
 
 
 def vgf(analysis: "ModelAnalysis", model: "Model | None" = None, *, speeds=None,
@@ -237,10 +256,11 @@ def vgf(analysis: "ModelAnalysis", model: "Model | None" = None, *, speeds=None,
         max_frequency_hz: float | None = None, n_modes: int | None = None,
         labels: Sequence[str] | None = None, include_lag: bool = False,
         title: str | None = None, path: str | Path | None = None) -> "Figure":
-    """V-g-f diagram of an analysis: ζ and f [Hz] against V [m/s] of the modes that matter.
+    """V-g-f diagram of an analysis: ζ and f [Hz] against V [m/s] of the modes that matter
+    (drawn by :func:`vgf_figure`).
 
     Laid out for many modes: each mode coloured by its family
-    (:func:`~propwhirl.app.plots.layout.mode_family`: wing bending blue, wing torsion purple,
+    (:func:`~propwhirl.analysis.naming.mode_family`: wing bending blue, wing torsion purple,
     backward whirl red, forward whirl green, in-plane orange; shades within a family); the
     modes with an instability in range or whose damping falls below the margin
     (:func:`emphasised_modes`) bold and named in the legend, the others thin and pale; the ζ
@@ -297,63 +317,179 @@ def vgf(analysis: "ModelAnalysis", model: "Model | None" = None, *, speeds=None,
     'airspeed V [m/s]'
     """
     matplotlib_or_error()
-    from matplotlib.lines import Line2D
-
     sw = analysis.sweep if model is None else fine_sweep(analysis, model, speeds, n_speeds)
     ids = select_modes(analysis, n_modes, labels, include_lag, sweep=sw, margin=margin,
                        max_frequency_hz=max_frequency_hz)
     if not ids:
         raise v.InputError("no modes to plot: the selection is empty")
     bold = emphasised_modes(analysis, sw, ids, margin)
-    thin = [k for k in ids if k not in bold]
-    family = {k: mode_family(sw.mode_labels[k], analysis.content.get(sw.mode_labels[k]))
-              for k in ids}
-    order = sorted(bold, key=lambda k: list(FAMILY_COLOURS).index(family[k]))
-    colour = dict(zip(order, family_shades([family[k] for k in order])))
-    thin_order = sorted(thin, key=lambda k: list(FAMILY_COLOURS).index(family[k]))
-    colour.update(zip(thin_order, family_shades([family[k] for k in thin_order])))
+    names = [sw.mode_labels[k] for k in ids]
+    curves = VgfCurves(
+        V=sw.V, zeta=np.where(_oscillatory(sw), sw.damping_ratio, np.nan)[:, ids],
+        frequency_hz=np.where(sw.physical, sw.frequency_hz, np.nan)[:, ids],
+        labels=tuple(names), names=tuple(analysis.describe(n) for n in names),
+        families=tuple(mode_family(n, analysis.content.get(n)) for n in names),
+        bold=tuple(k in bold for k in ids))
+    grid = f"{sw.V.size} speeds" + ("" if model is None else ", fine grid")
+    head = f"{analysis.model_name}: V-g-f ({grid})"
+    if len(head) > 80:
+        head = f"{analysis.model_name}\nV-g-f ({grid})"
+    fig = vgf_figure(curves, [VgfEvent(e.kind, e.event, e.label, e.V, e.frequency_hz)
+                              for e in analysis.events], margin=margin, title=title or head)
+    return finish(fig, path)
 
-    fig = new_figure(figsize=(11.0, 7.5), layout="constrained")
+
+class VgfEvent(NamedTuple):
+    """An instability as a V-g-f marks it: kind ("flutter", "divergence"), event ("onset",
+    "recovery", "frequency-zero", "unstable-at-start"), label (its mode's name), V [m/s] and
+    frequency_hz [Hz] (an analysis's :class:`~propwhirl.analysis.events.Instability` has
+    them all)."""
+
+    kind: str
+    event: str
+    label: str
+    V: float
+    frequency_hz: float
+
+
+@dataclass(frozen=True)
+class VgfCurves:
+    """The curves of a V-g-f, whatever they were read from.
+
+    V:            (S,) increasing airspeeds of the drawn curves [m/s].
+    zeta:         (S, n) damping ratio ζ [-] of each mode where it oscillates, NaN elsewhere.
+    frequency_hz: (S, n) frequency f [Hz] where it is drawn, NaN elsewhere.
+    labels:       n mode names (the events' ``label``).
+    names:        n texts of the legend and the labels (the name with its content,
+                  :meth:`~propwhirl.analysis.stability.ModelAnalysis.describe`).
+    families:     n families (:func:`propwhirl.analysis.naming.mode_family`).
+    bold:         n flags: emphasised (bold, named in the legend, its least damping labelled
+                  when it has no event) or thin, pale and counted by family in the legend.
+    nodes:        the speeds the curves were computed from, drawn as dots: (V (T,) [m/s],
+                  ζ (T, n), f (T, n) [Hz], NaN where not drawn), or None.
+    """
+
+    V: np.ndarray
+    zeta: np.ndarray
+    frequency_hz: np.ndarray
+    labels: tuple[str, ...]
+    names: tuple[str, ...]
+    families: tuple[str, ...]
+    bold: tuple[bool, ...]
+    nodes: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
+
+
+@dataclass(frozen=True)
+class VgfRequirements:
+    """The clearance requirements a V-g-f draws (a campaign point's): the design dive speed
+    V_D and the required speed [m/s] (vertical lines, annotated), the damping requirement
+    g = 2ζ ≥ ``min_damping_g`` up to V_D (a line in the ζ axes, None: none) and the critical
+    speed [m/s] of the kind ``critical_kind`` ("flutter", "divergence"; a ring round its
+    marker at ζ = 0, "V_crit" in the legend; None: none)."""
+
+    V_D: float
+    V_required: float
+    min_damping_g: float | None = None
+    critical_speed: float | None = None
+    critical_kind: str = "flutter"
+
+
+#: colour of the V_D, required-speed and damping-requirement lines
+REQUIREMENT_COLOUR = "0.15"
+
+
+def vgf_figure(curves: VgfCurves, events: Sequence[VgfEvent], *,
+               margin: float | None = DAMPING_MARGIN, title: str = "",
+               requirements: VgfRequirements | None = None, label_least_damped: bool = True,
+               xlabel: str = "airspeed V [m/s]",
+               figsize: tuple[float, float] = (11.0, 7.5)) -> "Figure":
+    """The V-g-f figure: ζ and f [Hz] against V [m/s] of ``curves``, the instabilities of
+    ``events`` marked and labelled — the one drawing of every V-g-f (:func:`vgf`,
+    :func:`propwhirl.app.plots.campaign_plot.point_vgf`).
+
+    Each mode coloured by its family (:data:`~propwhirl.app.plots.layout.FAMILY_COLOURS`,
+    shades within a family: :func:`~propwhirl.app.plots.layout.family_shades`), the bold
+    ones named in the legend, the thin ones counted there by family (an aerodynamic lag root,
+    drawn only when asked for, is no mode of a family: counted apart); the ζ axis around the
+    region that matters (:func:`_zeta_window`, from −0.05 or below to a little above the
+    highest damping of the bold flutter and near-critical modes, at most :data:`ZETA_TOP`;
+    up to the damping requirement), the frequency axis to the bold modes' highest frequency
+    plus a margin; a triangle where a curve leaves the ζ axis.  The events of the drawn
+    modes in range are marked (flutter red, divergence green; filled at an onset, open at a
+    recovery) and labelled "what of which mode, V m/s, f Hz", as is each bold mode's least
+    damping after its peak where it has no event (``label_least_damped``), the labels placed
+    where they collide with no other label, marker or annotation
+    (:func:`~propwhirl.app.plots.layout.place_labels`).  ``requirements``: the clearance's
+    lines (:class:`VgfRequirements`).  ``margin``: the damping margin of the ζ axis (None:
+    :data:`DAMPING_MARGIN`).  Returns the figure, its layout frozen (not yet saved).
+    """
+    matplotlib_or_error()
+    from matplotlib.lines import Line2D
+
+    n = len(curves.labels)
+    cols = list(range(n))
+    bold = [j for j in cols if curves.bold[j]]
+    thin = [j for j in cols if not curves.bold[j]]
+    family = dict(zip(cols, curves.families))
+    order = sorted(bold, key=lambda j: list(FAMILY_COLOURS).index(family[j]))
+    colour = dict(zip(order, family_shades([family[j] for j in order])))
+    thin_order = sorted(thin, key=lambda j: list(FAMILY_COLOURS).index(family[j]))
+    colour.update(zip(thin_order, family_shades([family[j] for j in thin_order])))
+
+    fig = new_figure(figsize=figsize, layout="constrained")
     ax_z, ax_f = fig.subplots(2, 1, sharex=True)
-    V = sw.V
-    zeta, freq, osc = sw.damping_ratio, sw.frequency_hz, _oscillatory(sw)
-    z_all = np.where(osc, zeta, np.nan)
-    f_all = np.where(sw.physical, freq, np.nan)
-    lo, hi = _zeta_window(analysis, sw, bold, z_all, margin)
+    V = np.asarray(curves.V, dtype=float)
+    z_all = np.asarray(curves.zeta, dtype=float)
+    f_all = np.asarray(curves.frequency_hz, dtype=float)
+    lo, hi = _zeta_window(events, curves.labels, bold, z_all, margin)
+    req = requirements
+    if req is not None and req.min_damping_g is not None:
+        hi = max(hi, 0.5 * float(req.min_damping_g) * 1.15)
     drawn: dict[str, object] = {}
-    for k in thin + order:
-        strong = k in bold
-        style = dict(color=colour[k], lw=2.0 if strong else 0.9, alpha=1.0 if strong else 0.45,
+    for j in thin + order:
+        strong = j in bold
+        style = dict(color=colour[j], lw=2.0 if strong else 0.9, alpha=1.0 if strong else 0.45,
                      zorder=3 if strong else 2)
-        ax_z.plot(V, z_all[:, k], "-", label=analysis.describe(sw.mode_labels[k]), **style)
-        ax_f.plot(V, f_all[:, k], "-", **style)
-        _mark_clipping(ax_z, V, z_all[:, k], lo, hi, colour[k], strong)
-        drawn[sw.mode_labels[k]] = colour[k]
+        ax_z.plot(V, z_all[:, j], "-", label=curves.names[j], **style)
+        ax_f.plot(V, f_all[:, j], "-", **style)
+        if curves.nodes is not None:
+            Vn, zn, fn = (np.asarray(x, dtype=float) for x in curves.nodes)
+            for ax, y in ((ax_z, zn[:, j]), (ax_f, fn[:, j])):
+                ok = np.isfinite(y)
+                ax.plot(Vn[ok], y[ok], ".", ms=3, color=colour[j], zorder=style["zorder"])
+        _mark_clipping(ax_z, V, z_all[:, j], lo, hi, colour[j], strong)
+        drawn[curves.labels[j]] = colour[j]
     ax_z.axhspan(lo, 0.0, facecolor=FLUTTER_COLOUR, alpha=0.07, lw=0, zorder=0,
                  label="unstable (ζ < 0)")
     ax_z.axhline(0.0, color="0.3", lw=0.8)
-    events = _mark_events(analysis, drawn, ax_z, ax_f, (float(V[0]), float(V[-1])))
+    marked = _mark_events(events, drawn, ax_z, ax_f, (float(V[0]), float(V[-1])))
+    extra: list[tuple[object, str]] = [] if req is None else _draw_requirements(ax_z, ax_f, V,
+                                                                                req)
     ax_z.set_ylim(lo, hi)
     ax_z.set_ylabel(ZETA_LABEL)
     g_axis = ax_z.secondary_yaxis("right", functions=(lambda z: 2.0 * z, lambda g: 0.5 * g))
     g_axis.set_ylabel("g = 2ζ")
     f_top = np.nanmax(f_all[:, bold]) if np.isfinite(f_all[:, bold]).any() else np.nan
     if not np.isfinite(f_top) or f_top <= 0:
-        f_top = np.nanmax(f_all[:, ids]) if np.isfinite(f_all[:, ids]).any() else 1.0
+        f_top = np.nanmax(f_all[:, cols]) if np.isfinite(f_all[:, cols]).any() else 1.0
     ax_f.set_ylim(0.0, 1.12 * float(f_top) if f_top > 0 else 1.0)
     ax_f.set_ylabel("frequency f [Hz]")
-    ax_f.set_xlabel("airspeed V [m/s]")
+    ax_f.set_xlabel(xlabel)
     ax_f.set_xlim(V[0], V[-1])
     for ax in (ax_z, ax_f):
         ax.grid(True, alpha=0.3)
 
-    handles = [Line2D([], [], color=colour[k], lw=2.0) for k in order]
-    names = [wrap(analysis.describe(sw.mode_labels[k]), LEGEND_WRAP) for k in order]
+    handles = [Line2D([], [], color=colour[j], lw=2.0) for j in order]
+    names = [wrap(curves.names[j], LEGEND_WRAP) for j in order]
+    lags = [j for j in thin if is_lag(curves.labels[j])]
     for fam in FAMILY_COLOURS:
-        n_thin = sum(family[k] == fam for k in thin)
+        n_thin = sum(family[j] == fam for j in thin if j not in lags)
         if n_thin:
             handles.append(Line2D([], [], color=FAMILY_COLOURS[fam], lw=0.9, alpha=0.45))
             names.append(f"{fam}: {n_thin} other mode{'s' if n_thin > 1 else ''}")
+    if lags:
+        handles.append(Line2D([], [], color=FAMILY_COLOURS["other"], lw=0.9, alpha=0.45))
+        names.append(f"aerodynamic lag root{'s' if len(lags) > 1 else ''}: {len(lags)}")
     handles += [ax_z.patches[-1] if ax_z.patches else Line2D([], []),
                 Line2D([], [], ls="", marker="o", mec=FLUTTER_COLOUR, mfc=FLUTTER_COLOUR, ms=8),
                 Line2D([], [], ls="", marker="o", mec=DIVERGENCE_COLOUR, mfc=DIVERGENCE_COLOUR,
@@ -361,15 +497,40 @@ def vgf(analysis: "ModelAnalysis", model: "Model | None" = None, *, speeds=None,
                 Line2D([], [], ls="", marker="v", color="0.3", ms=6)]
     names += ["unstable (ζ < 0)", "flutter onset (open: recovery)",
               "divergence onset", "curve leaves the ζ axis"]
+    handles += [h for h, _ in extra]
+    names += [t for _, t in extra]
     fig.legend(handles, names, loc="outside right upper", fontsize=8)
-    grid = f"{V.size} speeds" + ("" if model is None else ", fine grid")
-    head = f"{analysis.model_name}: V-g-f ({grid})"
-    if len(head) > 80:
-        head = f"{analysis.model_name}\nV-g-f ({grid})"
-    ax_z.set_title(title or head, fontsize=11)
+    ax_z.set_title(title, fontsize=11)
     freeze_layout(fig)
-    _label_events(ax_z, events, analysis, sw, bold, z_all, (lo, hi))
-    return finish(fig, path)
+    _label_events(ax_z, marked, dict(zip(curves.labels, curves.names)), V, curves.labels,
+                  bold if label_least_damped else [], z_all, (lo, hi))
+    return fig
+
+
+def _draw_requirements(ax_z, ax_f, V: np.ndarray,
+                       req: VgfRequirements) -> list[tuple[object, str]]:
+    """The clearance's lines and annotations (:class:`VgfRequirements`); returns the legend
+    entries (handle, text) of the damping requirement and the critical speed."""
+    for ax in (ax_z, ax_f):
+        ax.axvline(req.V_D, color=REQUIREMENT_COLOUR, lw=1.0, ls=":")
+        ax.axvline(req.V_required, color=REQUIREMENT_COLOUR, lw=1.4, ls="--")
+    ax_z.annotate(f"V_D {req.V_D:.1f} m/s", (req.V_D, 1.0), xycoords=("data", "axes fraction"),
+                  xytext=(-3, -3), textcoords="offset points", ha="right", va="top", fontsize=8)
+    ax_z.annotate(f"required {req.V_required:.1f} m/s", (req.V_required, 1.0),
+                  xycoords=("data", "axes fraction"), xytext=(3, -3),
+                  textcoords="offset points", ha="left", va="top", fontsize=8)
+    out = []
+    if req.min_damping_g is not None:
+        g = float(req.min_damping_g)
+        line, = ax_z.plot([float(V[0]), req.V_D], [0.5 * g] * 2, "-", color=REQUIREMENT_COLOUR,
+                          lw=1.4)
+        out.append((line, f"required g ≥ {g:g} (ζ ≥ {0.5 * g:g})"))
+    if req.critical_speed is not None:          # a ring round the critical event's marker
+        colour = FLUTTER_COLOUR if req.critical_kind == "flutter" else DIVERGENCE_COLOUR
+        ring, = ax_z.plot([req.critical_speed], [0.0], "o", ms=14, mfc="none", mec=colour,
+                          mew=1.2, zorder=5)
+        out.append((ring, f"V_crit {req.critical_speed:.1f} m/s ({req.critical_kind})"))
+    return out
 
 
 #: the ζ axis never reaches above this (a mode damped more than this is far from flutter)
@@ -380,18 +541,18 @@ ZETA_BOTTOM = -0.05
 LEGEND_WRAP = 34
 
 
-def _zeta_window(analysis, sw, bold: Sequence[int], z: np.ndarray,
-                 margin: float | None) -> tuple[float, float]:
+def _zeta_window(events: Sequence[VgfEvent], labels: Sequence[str], bold: Sequence[int],
+                 z: np.ndarray, margin: float | None) -> tuple[float, float]:
     """ζ axis limits around the region that matters: the emphasised modes that flutter or
     come near it (not those emphasised only for a divergence: a real root's approach
     stretches ζ towards 1), up to a little above their highest damping before their
     lowest, at most :data:`ZETA_TOP`; below zero to :data:`ZETA_BOTTOM` or 0.8 × the top,
     whichever is lower (room for the labels in the unstable half)."""
     m = DAMPING_MARGIN if margin is None else abs(float(margin))
-    flutter = {e.label for e in analysis.events if e.kind == "flutter"}
-    diverging = {e.label for e in analysis.events if e.kind == "divergence"}
-    rel = [k for k in bold if sw.mode_labels[k] in flutter
-           or sw.mode_labels[k] not in diverging] or list(bold)
+    flutter = {e.label for e in events if e.kind == "flutter"}
+    diverging = {e.label for e in events if e.kind == "divergence"}
+    rel = [k for k in bold if labels[k] in flutter
+           or labels[k] not in diverging] or list(bold)
     zr = z[:, rel]
     finite = zr[np.isfinite(zr)]
     if finite.size == 0:
@@ -415,10 +576,11 @@ def _mark_clipping(ax, V: np.ndarray, z: np.ndarray, lo: float, hi: float, colou
                 clip_on=False, zorder=4)
 
 
-def _mark_events(analysis, drawn: dict, ax_z, ax_f, xlim: tuple[float, float]) -> list:
+def _mark_events(events: Sequence[VgfEvent], drawn: Mapping[str, object], ax_z, ax_f,
+                 xlim: tuple[float, float]) -> list:
     """Markers of the drawn modes' events in range (flutter red, divergence green; filled
     at an onset, open at a recovery); returns those events, onsets first then by speed."""
-    events = [e for e in analysis.events if e.label in drawn and xlim[0] <= e.V <= xlim[1]]
+    events = [e for e in events if e.label in drawn and xlim[0] <= e.V <= xlim[1]]
     for e in events:
         colour = FLUTTER_COLOUR if e.kind == "flutter" else DIVERGENCE_COLOUR
         face = colour if e.event != "recovery" else "none"
@@ -484,13 +646,20 @@ _WHAT = {"onset": "{kind} of {mode}", "recovery": "{kind} recovery of {mode}",
          "unstable-at-start": "{mode} unstable from the start"}
 
 
-def _label_events(ax_z, events, analysis, sw, bold, z: np.ndarray, zlim) -> None:
+def _label_events(ax_z, events, describe: Mapping[str, str], V: np.ndarray,
+                  labels: Sequence[str], bold, z: np.ndarray, zlim) -> None:
     """Label every event in range ("flutter of <mode>", V [m/s], f [Hz]; events of one kind
     within :data:`CROWD` of the speed range of each other in one table-like label, one row
-    per mode) and each emphasised mode without one (its least damping after its peak), no
-    label on another or on a marker (:func:`~propwhirl.app.plots.layout.place_labels`)."""
+    per mode) and each emphasised mode (columns ``bold`` of ``z``, named ``labels``) without
+    one (its least damping after its peak), no label on another, on a marker or on an
+    annotation already there (:func:`~propwhirl.app.plots.layout.place_labels`).
+    ``describe``: the text of each mode's name."""
     anchors, texts, cols, aligns = [], [], [], []
-    span = float(sw.V[-1] - sw.V[0]) or 1.0
+    span = float(V[-1] - V[0]) or 1.0
+
+    def text(label: str) -> str:
+        return describe.get(label, label)
+
     for group in _crowds(events, CROWD * span):
         e = group[0]
         colour = FLUTTER_COLOUR if e.kind == "flutter" else DIVERGENCE_COLOUR
@@ -499,17 +668,17 @@ def _label_events(ax_z, events, analysis, sw, bold, z: np.ndarray, zlim) -> None
         aligns.append("center" if len(group) == 1 else "left")
         if len(group) == 1:
             what = _WHAT.get(e.event, "{kind} " + e.event + " of {mode}").format(
-                kind=e.kind, mode=analysis.describe(e.label))
+                kind=e.kind, mode=text(e.label))
             texts.append(f"{wrap(what)}\n{_where(e)}")
             continue
         head = _WHAT.get(e.event, "{kind} " + e.event + " of {mode}").format(
             kind=e.kind, mode=f"{len(group)} modes")
         texts.append(head + "\n" + "\n".join(_table_rows(
-            [(analysis.describe(g.label), _where(g)) for g in group])))
+            [(text(g.label), _where(g)) for g in group])))
     labelled = {e.label for e in events}
     lo, hi = zlim
     for k in bold:
-        name = sw.mode_labels[k]
+        name = labels[k]
         zk = z[:, k]
         if name in labelled or not np.isfinite(zk).any():
             continue
@@ -517,8 +686,8 @@ def _label_events(ax_z, events, analysis, sw, bold, z: np.ndarray, zlim) -> None
         t = t0 + int(np.nanargmin(zk[t0:]))
         if not lo <= zk[t] <= hi:
             continue
-        anchors.append((float(sw.V[t]), float(zk[t])))
-        texts.append(f"{wrap(analysis.describe(name))}\nζ min {zk[t]:.3f} at {sw.V[t]:.0f} m/s")
+        anchors.append((float(V[t]), float(zk[t])))
+        texts.append(f"{wrap(text(name))}\nζ min {zk[t]:.3f} at {V[t]:.0f} m/s")
         cols.append("0.2")
         aligns.append("center")
     renderer = ax_z.figure.canvas.get_renderer()
@@ -526,6 +695,7 @@ def _label_events(ax_z, events, analysis, sw, bold, z: np.ndarray, zlim) -> None
     for ln in ax_z.get_lines():            # the event markers
         if ln.get_marker() == "o":
             avoid.append(ln.get_window_extent(renderer))
+    avoid += [t.get_window_extent(renderer) for t in ax_z.texts]    # annotations (V_D, ...)
     bold_lines = [ln for ln in ax_z.get_lines() if ln.get_linewidth() >= 2.0
                   and ln.get_linestyle() == "-"]
     place_labels(ax_z, anchors, texts, cols, avoid=avoid, soft=curve_boxes(ax_z, bold_lines),
