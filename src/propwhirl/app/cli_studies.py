@@ -22,12 +22,13 @@ MAX_PARAM_VALUES = 1000
 MAX_MAP_POINTS = 250_000
 
 
-def _model_or_case(text: str):
-    """MODEL of `sweep`/`map`: a TOML model file, or the name of a case of the library."""
+def _model_or_case(text: str, command: str):
+    """MODEL of `command` (`sweep`, `map`, the design commands): a TOML model file (a beam or a
+    modal model's), or the name of a case of the library."""
     if text in registry.CASES and not fileio.exists(text, "model file"):
         return registry.case_model(text)
     if Path(text).suffix.lower() == ".toml" or fileio.exists(text, "model file"):
-        return load_model(text)
+        return load_model(text, command)
     raise InputError(f"MODEL = {text!r} is invalid: neither a model file (.toml) nor a case "
                      f"name (one of {', '.join(registry.CASES)})")
 
@@ -164,7 +165,7 @@ def _list_parameters(model) -> int:
 def _sweep(args: argparse.Namespace) -> int:
     from propwhirl.studies import sweeps
 
-    model = _model_or_case(args.model)
+    model = _model_or_case(args.model, "sweep")
     if args.list_params:
         given = [f"--{o}" for o in ("param", "json", "csv", "plot") if getattr(args, o)]
         if given:
@@ -190,7 +191,7 @@ def _sweep(args: argparse.Namespace) -> int:
 def _map(args: argparse.Namespace) -> int:
     from propwhirl.studies import sweeps
 
-    model = _model_or_case(args.model)
+    model = _model_or_case(args.model, "map")
     if not args.param or len(args.param) != 2:
         raise InputError(f"map: give --param PATH START STOP N twice (got "
                          f"{len(args.param or [])})")

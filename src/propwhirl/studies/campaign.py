@@ -225,6 +225,12 @@ class Case:
         for i in chosen:
             prop = installs[i].propeller
             base = f"propellers[{i}].propeller"
+            mount = getattr(installs[i], "mount", "flexible")
+            if mount != "flexible" and (self.mount_stiffness != 1.0 or self.mount_damping != 1.0):
+                raise v.InputError(f"mount factors are invalid for propeller {i + 1}: its mount "
+                                   f"is {mount!r} (no pitch and yaw springs of its own"
+                                   + ("; a modal model's on-grid mount is in the modes)"
+                                      if mount == "on-grid" else ")"))
             if self.mount_stiffness != 1.0:
                 for f, k in (("f_theta", "K_theta"), ("f_psi", "K_psi")):
                     if getattr(prop, k, None) is not None:
@@ -234,10 +240,14 @@ class Case:
             if self.mount_damping != 1.0:
                 for k in ("damping_theta", "damping_psi"):
                     values[f"{base}.{k}"] = self.mount_damping * float(getattr(prop, k))
-        if self.wing_damping != 1.0:
+        if self.wing_damping != 1.0 and hasattr(model, "wing"):
             mu, lam = model.wing.rayleigh
             values["wing.rayleigh[0]"] = self.wing_damping * float(mu)
             values["wing.rayleigh[1]"] = self.wing_damping * float(lam)
+        elif self.wing_damping != 1.0:     # a modal structure: each mode's damping ratio (the
+            # same factor as on a beam's Rayleigh μ, λ: ζ_i = (μ/ω_i + λ ω_i)/2 is linear in them)
+            for k, z in enumerate(model.structure.damping_ratio):
+                values[f"structure.damping_ratio[{k}]"] = self.wing_damping * float(z)
         if values:
             model = P.set_values(model, values)
         if (self.operation or self.rpm_factor != 1.0 or self.reverse_rotation or self.added_masses
@@ -248,8 +258,15 @@ class Case:
                 changes: dict[str, Any] = {}
                 if self.operation or self.rpm_factor != 1.0 or self.added_masses:
                     changes["propeller"] = self._propeller(inst.propeller, i)
-                if self.reverse_rotation:      # the installation's sense, not the shared table
-                    changes["rotation"] = -int(inst.sense)
+                if self.reverse_rotation and hasattr(inst, "sense"):   # the installation's
+                    changes["rotation"] = -int(inst.sense)      # sense, not the shared table
+                elif self.reverse_rotation:    # a modal model's: its propeller's own
+                    p = changes.get("propeller", inst.propeller)
+                    changes["propeller"] = dataclasses.replace(p, rotation=-int(p.rotation))
+                if self.state and not hasattr(inst, "state"):
+                    raise v.InputError(f"state = {self.state!r} is invalid for propeller "
+                                       f"{i + 1}: a modal model's installations turn always "
+                                       "(no stopped or feathered state)")
                 if self.state:
                     changes["state"] = self.state
                 new[i] = dataclasses.replace(inst, **changes)
