@@ -1,6 +1,6 @@
-"""`propwhirl analyse` takes a modal model's file (issue 22, item 2: "the engine, studies, plots
-and reports work unchanged" — for the command line, the analysis); the commands that do not
-yet take one refuse it in one line before any work."""
+"""`propwhirl analyse` takes a modal model's file (issue 22, item 2); what a modal model cannot
+run (the p-k, the reduced method, the sensitivities) is refused in one line giving the reason
+the model gives (issue 34; the other commands: test_cli_modal_commands.py)."""
 from __future__ import annotations
 
 import json
@@ -31,10 +31,9 @@ def test_analyse_takes_a_modal_model(modal_file, tmp_path, capsys):
 
 
 @pytest.mark.parametrize("argv, says", [
-    (["analyse", "{m}", "--method", "reduced"], "only wing models (PropellerWing) are reduced"),
-    (["analyse", "{m}", "--method", "pk"], "ModalPropellerWing 'wingtip"),
-    (["sweep", "{m}", "--param", "flight.density", "1", "1.2", "2"], "only `propwhirl analyse`"),
-    (["modes", "{m}"], "only `propwhirl analyse` takes modal models"),
+    (["analyse", "{m}", "--method", "reduced"], "a modal model is reduced already"),
+    (["analyse", "{m}", "--method", "pk"], "not projected on modes yet"),
+    (["sensitivity", "{m}"], "propwhirl sensitivity cannot run this model: exact derivatives"),
 ])
 def test_what_does_not_take_a_modal_model_says_so_in_one_line(modal_file, capsys, argv, says):
     assert cli.main([a.format(m=modal_file) for a in argv]) == 2

@@ -52,11 +52,11 @@ def operating_rpm_ratio(model) -> tuple[float, ...]:
     :func:`campbell`).  A stopped or feathered installation (``state``) turns at 0 rpm: its
     ratio is 0, and the ratios are relative to the first propeller that turns (all 0 when
     none does).  An isolated propeller: (1.0,)."""
-    if not model.dof_map().has_wing:
+    if not hasattr(model, "propellers"):                 # an isolated propeller
         props, turning = [model.propeller], [True]
-    else:
+    else:                           # a modal model's installations turn always (no state)
         props = [inst.propeller for inst in model.propellers]
-        turning = [inst.spinning for inst in model.propellers]
+        turning = [getattr(inst, "spinning", True) for inst in model.propellers]
     if not props:
         return ()
     if not any(turning):
@@ -241,7 +241,7 @@ def campbell(model, rpm=None, *, rpm_ratio=None, max_frequency_hz: float | None 
     True
     """
     dm = model.dof_map()
-    if not dm.propellers or not (dm.has_wing or hasattr(model, "propeller")):
+    if not dm.propellers or not (hasattr(model, "propellers") or hasattr(model, "propeller")):
         raise v.InputError("campbell needs a propeller-wing model or an isolated propeller with a "
                            "flexibly mounted propeller (the rotational speed acts through the "
                            "pitch/yaw mounts)")

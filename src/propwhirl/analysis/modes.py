@@ -195,9 +195,10 @@ def label_modes(model, basis: np.ndarray | None = None, modes: Modes | None = No
 
 def _flexible_propellers(model) -> list:
     """The Propeller of each flexibly mounted propeller that turns (DOF-map order; not the
-    stopped or feathered installations) of a PropellerWing or an IsolatedPropeller."""
+    stopped or feathered installations) of a PropellerWing, a modal model or an
+    IsolatedPropeller."""
     dm = model.dof_map()
-    if not dm.has_wing:
+    if not hasattr(model, "propellers"):       # an isolated propeller
         return [model.propeller] if dm.propellers else []
     return [model.propellers[p.number].propeller for p in dm.propellers
             if getattr(model.propellers[p.number], "spinning", True)]
@@ -226,7 +227,8 @@ class GyroscopicSystem:
         gives the matrices at Ω = 0 and ∂G/∂Ω without a new evaluation)."""
         if basis is not None:
             return cls.of(model, rpm_ratio, in_vacuo=in_vacuo)._projected(np.asarray(basis))
-        if model.dof_map().has_wing and (rpm_ratio is None or all(r == 1.0 for r in rpm_ratio)):
+        if hasattr(model, "propellers") and (rpm_ratio is None
+                                             or all(r == 1.0 for r in rpm_ratio)):
             if not model.rotating:
                 quiet = model.with_(wing_aero=False, propeller_aero=False, rotating=True)
             else:
@@ -255,7 +257,7 @@ class GyroscopicSystem:
         def spinning(p, ratio):
             return replace(p, operation="constant-speed", rpm=ratio * unit_rpm)
 
-        if not model.dof_map().has_wing:
+        if not hasattr(model, "propellers"):             # an isolated propeller
             ratio = (1.0,) if rpm_ratio is None else rpm_ratio
             still = model.with_(propeller_aero=False, rotating=False)
             spun = still if ratio[0] == 0 else model.with_(

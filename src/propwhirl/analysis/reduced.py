@@ -27,6 +27,7 @@ from propwhirl.engine.results import Analysis, Criticals
 from propwhirl.model.aerodynamics.dlm import require_panelaero
 from propwhirl.model.aerodynamics.dlm_mesh import check_memory
 from propwhirl.model.frequency_domain import check_section
+from propwhirl.model.protocol import refusal
 from propwhirl.model.reduction import CUTOFF_FACTOR, ReducedModel, reduce
 
 #: models with more states than this were analysed reduced by default (``method="auto"``)
@@ -61,6 +62,9 @@ def choose_method(model, method: str) -> str:
     if method not in METHODS:
         raise v.InputError(f"method = {method!r} is invalid: must be one of "
                            f"{', '.join(repr(m) for m in METHODS)}")
+    why = refusal(model, method) if method in ("pk", "reduced") else None
+    if why is not None:             # the model says why (a modal model: model/modal.py)
+        raise v.InputError(f"method = {method!r} is invalid for this model: {why}")
     dlm = getattr(getattr(model, "wing", None), "aero", "strip") == "dlm" and model.wing_aero
     if dlm:
         require_panelaero()                 # before the finite-state tracking starts

@@ -231,7 +231,7 @@ def _analyse(args: argparse.Namespace) -> int:
             raise InputError(f"--plot-modes {args.plot_modes} needs --plot or --summary (the "
                              "number of modes they show)")
     V_req = _analyse_required_speed(args)
-    model = load_model(args.model, modal=True)
+    model = load_model(args.model, "analyse")
     speeds = speed_grid(*args.speeds) if args.speeds else None
     if V_req is not None:                  # the grid reaches beyond factor x V_D, as clearance's
         from propwhirl.studies.clearance import clearance_speeds  # lazy: studies
@@ -348,13 +348,14 @@ def _modes(args: argparse.Namespace) -> int:
     from propwhirl.analysis.naming import kinetic_energy_shares  # lazy: analyses
     from propwhirl.analysis.vibration import label_modes, model_modes  # lazy: analyses
 
-    model = load_model(args.model)
+    model = load_model(args.model, "modes")
     count = v.integer_at_least("--count", args.count, 1)
     modes, M = model_modes(model)
     dm = model.dof_map()
-    names = label_modes(model) if dm.has_wing else None
-    found = dm.groups()
-    groups = ("bending", "torsion") + (("chordwise",) if "chordwise" in found else ()) + (
+    modal = "modal" in (found := dm.groups())          # a modal structure's coordinates
+    names = label_modes(model) if dm.has_wing or modal else None
+    wing = ("modal",) if modal else ("bending", "torsion")
+    groups = wing + (("chordwise",) if "chordwise" in found else ()) + (
         "pitch", "yaw")                  # chordwise: in-plane bending (wing.EI_chordwise)
     share = kinetic_energy_shares(modes.shapes, M, {g: found.get(g, []) for g in groups})
     many = len(dm.propellers) >= 2
@@ -401,7 +402,7 @@ def _campbell(args: argparse.Namespace) -> int:
     from propwhirl.analysis.vibration import campbell  # lazy: analyses
 
     check_outputs(plot=args.plot, model=args.model)
-    model = load_model(args.model)
+    model = load_model(args.model, "campbell")
     if not model.dof_map().propellers:       # a propeller wing or an isolated propeller
         raise InputError(f"{args.model}: a Campbell diagram needs a flexibly mounted propeller "
                          "(a propeller-wing model or an isolated propeller): this model has "

@@ -23,34 +23,49 @@ def echo(text: str) -> None:
     print("\n".join(limits.printable(line) for line in str(text).split("\n")))
 
 
-def load_model(path: str, *, modal: bool = False):
-    """The model of a TOML model file (:func:`propwhirl.io.load_model`), refused with one line
-    when the file holds something that is not a model to analyse; with ``modal``, a modal
-    model's file too (:func:`propwhirl.io.load_modal_model`: the commands that take them)."""
+def load_model(path: str, command: str = "analyse"):
+    """The model of a TOML model file — a beam model's (:func:`propwhirl.io.load_model`) or a
+    modal model's (:func:`propwhirl.io.load_modal_model`) —, refused with one line when the
+    file holds something that is not a model to analyse, or a model that cannot run
+    `command` (:func:`check_runs`: the model says why)."""
     from propwhirl import io  # lazy: model files
     from propwhirl.io.modal_files import is_modal_file  # lazy: model files
     from propwhirl.model.protocol import Model  # lazy: models
 
-    if modal and is_modal_file(path):
-        return io.load_modal_model(path)
-    notes: list[str] = []  # the values assumed for a file of an older format version
-    model = io.load_model(path, notes=notes)
-    if not isinstance(model, Model):
-        raise InputError(f"{path} holds a {type(model).__name__}, not a model to analyse: "
-                         "type must be \"propeller-wing\" or \"isolated-propeller\"")
-    print_notes(notes)
+    if is_modal_file(path):
+        model = io.load_modal_model(path)
+    else:
+        notes: list[str] = []  # the values assumed for a file of an older format version
+        model = io.load_model(path, notes=notes)
+        if not isinstance(model, Model):
+            raise InputError(f"{path} holds a {type(model).__name__}, not a model to analyse: "
+                             "type must be \"propeller-wing\" or \"isolated-propeller\"")
+        print_notes(notes)
+    check_runs(model, command, path)
     return model
 
 
-def model_or_case(text: str):
-    """MODEL of `sweep`, `map`, `boundary`, `clearance` and `sensitivity`: a TOML model file,
-    or the name of a case of the library."""
+def model_or_case(text: str, command: str = "analyse"):
+    """MODEL of `command` (`sweep`, `map`, `boundary`, `clearance`, `sensitivity`, `export`): a
+    TOML model file (a beam or a modal model's, :func:`load_model`), or the name of a case of
+    the library."""
     if text in registry.CASES and not fileio.exists(text, "model file"):
         return registry.case_model(text)
     if Path(text).suffix.lower() == ".toml" or fileio.exists(text, "model file"):
-        return load_model(text)
+        return load_model(text, command)
     raise InputError(f"MODEL = {text!r} is invalid: neither a model file (.toml) nor a case "
                      f"name (one of {', '.join(registry.CASES)})")
+
+
+def check_runs(model, feature: str, source: str) -> None:
+    """One line when `model` (read from `source`, a file or a case name) cannot run `feature`
+    (a command or method, :data:`propwhirl.model.protocol.FEATURES`), giving the reason the
+    model itself gives (:func:`propwhirl.model.protocol.refusal`)."""
+    from propwhirl.model.protocol import refusal  # lazy: models
+
+    why = refusal(model, feature)
+    if why is not None:
+        raise InputError(f"{source}: propwhirl {feature} cannot run this model: {why}")
 
 
 def print_notes(notes: list[str]) -> None:

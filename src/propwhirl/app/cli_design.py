@@ -40,7 +40,7 @@ def _boundary(args: argparse.Namespace) -> int:
                          "with --contour: leave one out")
 
     run = execution_options.run_options(args)      # checked before the tracing
-    model = model_or_case(args.model)
+    model = model_or_case(args.model, "boundary")
     params = [P.resolve(model, p) for p in args.params]
     current = [p.value(model) for p in params]
     if args.bounds is not None:
@@ -117,7 +117,7 @@ def _clearance(args: argparse.Namespace) -> int:
     check_outputs(json=args.json, csv=args.csv, plot=args.plot, model=args.model)
     options = execution_options.run_options(args)
     cp = execution_options.checkpoint(args, args.json)
-    model = model_or_case(args.model)
+    model = model_or_case(args.model, "clearance")
     r = clearance(model, args.vd, args.factor, static_divergence=not args.thesis,
                   low_speed=not args.thesis, minimum=not args.no_minimum,
                   frequency_range=tuple(args.frequency_range), propellers=args.propellers,
@@ -176,7 +176,7 @@ def _sensitivity(args: argparse.Namespace) -> int:
         raise InputError(f"{given} is for --verify (the central-difference analyses); the "
                          "sensitivities themselves are one analysis: add --verify or leave "
                          f"{given.split()[0]} out")
-    model = model_or_case(args.model)
+    model = model_or_case(args.model, "sensitivity")
     if not hasattr(model, "second_order_blocks"):
         raise InputError(f"{type(model).__name__}: sensitivities are available for wing models "
                          "(PropellerWing) only")

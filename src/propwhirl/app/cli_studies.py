@@ -151,7 +151,7 @@ def _list_parameters(model) -> int:
 def _sweep(args: argparse.Namespace) -> int:
     from propwhirl.studies import sweeps  # lazy: studies
 
-    model = model_or_case(args.model)
+    model = model_or_case(args.model, "sweep")
     if args.list_params:
         given = [f"--{o}" for o in ("param", "json", "csv", "plot") if getattr(args, o)]
         if given:
@@ -177,7 +177,7 @@ def _sweep(args: argparse.Namespace) -> int:
 def _map(args: argparse.Namespace) -> int:
     from propwhirl.studies import sweeps  # lazy: studies
 
-    model = model_or_case(args.model)
+    model = model_or_case(args.model, "map")
     if not args.param or len(args.param) != 2:
         raise InputError(f"map: give --param PATH START STOP N twice (got "
                          f"{len(args.param or [])})")

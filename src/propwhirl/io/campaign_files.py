@@ -36,6 +36,7 @@ from typing import Any
 
 from propwhirl import fileio, limits
 from propwhirl import validate as v
+from propwhirl.io.modal_files import is_modal_file, load_modal_model
 from propwhirl.io.model_files import Table, load_model, toml_error
 
 #: The format tag and version of a campaign file.
@@ -236,8 +237,8 @@ def _from_dict(data: dict[str, Any], base: Path, source: str) -> CampaignSpec:
     path = Path(model_key)
     if not path.is_absolute():
         path = base / path
-    try:
-        model = load_model(path)
+    try:                            # a beam model's file or a modal model's
+        model = load_modal_model(path) if is_modal_file(path) else load_model(path)
     except v.InputError as exc:
         raise v.InputError(f"model = {model_key!r}: {exc}") from None
     n = len(getattr(model, "propellers", ()) if isinstance(getattr(model, "propellers", None),

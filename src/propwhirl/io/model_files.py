@@ -415,8 +415,8 @@ def _from_dict(data: dict[str, Any]) -> Any:
     if data.get("format") == "propwhirl-modal-model":
         raise _in_file(v.InputError(
             'format = "propwhirl-modal-model": this is a modal model: read it with '
-            "propwhirl.io.load_modal_model (on the command line only `propwhirl analyse` takes "
-            "modal models yet)"))
+            "propwhirl.io.load_modal_model (the command line's model commands read it as it "
+            "is)"))
     if "type" not in data:
         raise _in_file(v.InputError("missing key 'type' at the top level (one of "
                                     + ", ".join(f'"{k}"' for k in MODEL_TYPES) + ")"))

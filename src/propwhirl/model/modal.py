@@ -29,7 +29,7 @@ chapter 8's loads through the hub's motion).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from types import MappingProxyType
 from typing import Literal
 
@@ -41,6 +41,7 @@ from propwhirl.generated import prop_hub
 from propwhirl.model.aerodynamics import validity
 from propwhirl.model.structure.assembly import LAG_STATES, call_blocks, strip_aero_blocks
 from propwhirl.model.base import EvaluatorBase, StateSpaceModel
+from propwhirl.model.fields import spec
 from propwhirl.model.flight import FlightCondition
 from propwhirl.model.modal_structure import ModalStructure, StripPlanform, strip_interpolation
 from propwhirl.model.propellers.propeller import Propeller
@@ -51,6 +52,22 @@ from propwhirl.model.statespace import SecondOrder
 
 #: How a propeller sits on its hub grid (module docstring).
 MOUNTS = ("flexible", "rigid", "on-grid")
+
+
+#: What a modal model cannot run, and why (:meth:`ModalPropellerWing.refuses`).
+REFUSALS = {
+    "pk": "the p-k method's exact-Theodorsen strips (model/frequency_domain.py) are built on a "
+          "beam wing's nodes, not projected on modes yet: use the default method (dense)",
+    "reduced": "a modal model is reduced already (one coordinate per mode): the reduced "
+               "method would not pay; use the default method (dense)",
+    "exact-sensitivity": "exact derivatives exist for the beam model's blocks only "
+                         "(model/derivatives.py)",
+    "sensitivity": "exact derivatives exist for the beam model's blocks only "
+                   "(model/derivatives.py) and the central-difference route for modal models "
+                   "is not implemented yet: use `propwhirl sweep` on the parameter path",
+    "upgrade-model": "a modal model file has one format version (1): there is nothing to "
+                     "upgrade",
+}
 
 
 @dataclass(frozen=True)
@@ -78,8 +95,8 @@ class ModalInstallation:
     'flexible'
     """
 
-    propeller: Propeller
-    grid: int
+    propeller: Propeller = field(metadata=spec(None, "", "the propeller", form="reference"))
+    grid: int = field(metadata=spec(None, "", "hub grid id", form="string"))  # not varied
     mount: Literal["flexible", "rigid", "on-grid"] = "flexible"
     aero: bool = True
 
@@ -139,11 +156,15 @@ class ModalPropellerWing(StateSpaceModel):
     ('divergence', 143)
     """
 
-    structure: ModalStructure
+    # what parameter paths reach (studies/paths.py): the modes' frequencies, masses and
+    # damping (structure.frequencies_hz[i], ...), the flight condition and the propellers
+    structure: ModalStructure = field(metadata=spec(None, "", "the modes", form="table"))
     wing_grids: tuple[int, ...]
     planform: StripPlanform
-    flight: FlightCondition
-    propellers: tuple[ModalInstallation, ...] = ()
+    flight: FlightCondition = field(metadata=spec(None, "", "the flight condition",
+                                                  form="table"))
+    propellers: tuple[ModalInstallation, ...] = field(default=(), metadata=spec(
+        None, "", "the propellers at hub grids", form="tables"))
     wing_aero: bool = True
     propeller_aero: bool = True
     rotating: bool = True
@@ -171,6 +192,11 @@ class ModalPropellerWing(StateSpaceModel):
                                    "most one per hub grid)")
             seen[int(inst.grid)] = j
         strip_interpolation(s, self.wing_grids, self.planform)   # checks the grids now
+
+    def refuses(self, feature: str) -> str | None:
+        """Why a modal model cannot run ``feature`` (:func:`propwhirl.model.protocol.refusal`),
+        None when it can: :data:`REFUSALS`."""
+        return REFUSALS.get(feature)
 
     def with_(self, **changes) -> "ModalPropellerWing":
         """A copy with fields replaced (``dataclasses.replace``)."""

@@ -26,7 +26,7 @@ in ``docs/validation.md`` ("Modal structures").
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import scipy.linalg
@@ -34,6 +34,7 @@ from scipy.interpolate import CubicSpline
 
 from propwhirl import validate as v
 from propwhirl.generated import prop_hub
+from propwhirl.model.fields import spec
 from propwhirl.model.structure.assembly import LAG_STATES, free_dofs, wing_structure
 from propwhirl.model.structure.mesh import beam_interpolation
 from propwhirl.model.propeller_blocks import propeller_constants
@@ -113,9 +114,16 @@ class ModalStructure:
 
     grid_ids: np.ndarray
     xyz: np.ndarray
-    frequencies_hz: np.ndarray
-    modal_mass: np.ndarray
-    damping_ratio: np.ndarray
+    # the modes' numbers a parameter path reaches (studies/paths.py: structure.frequencies_hz[0])
+    frequencies_hz: np.ndarray = field(metadata=spec(
+        None, "Hz", "natural frequency of the mode", form="numbers",
+        range=(RIGID_BODY_HZ, 1e6)))
+    modal_mass: np.ndarray = field(metadata=spec(
+        None, "kg", "generalised mass of the mode (phi in m and rad)", form="numbers",
+        range=(0.0, 1e12), ends="(]"))
+    damping_ratio: np.ndarray = field(metadata=spec(
+        None, "", "modal viscous damping ratio of the mode", form="numbers",
+        range=(0.0, 1.0), ends="[)"))
     shapes: np.ndarray
     source: str = "modal structure"
 

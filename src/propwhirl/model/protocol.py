@@ -280,3 +280,20 @@ class Evaluator(Protocol):
     def state_matrix(self, V) -> np.ndarray: ...
 
     def dof_map(self) -> DofMap: ...
+
+
+#: What a command or method may ask of a model (:func:`refusal`): the command-line commands
+#: and the analysis methods that need more than the contract above.
+FEATURES = ("analyse", "modes", "campbell", "sweep", "map", "boundary", "clearance",
+            "certify", "sensitivity", "exact-sensitivity", "pk", "reduced", "upgrade-model")
+
+
+def refusal(model, feature: str) -> str | None:
+    """Why ``model`` cannot run ``feature`` (one of :data:`FEATURES`), as the physical or
+    modelling reason in a few words, or None when it can.  Asked of the model: a model that
+    cannot run everything defines ``refuses(feature)``; the others run every feature the
+    contract allows (the one place a command asks, not the model's type)."""
+    if feature not in FEATURES:
+        raise ValueError(f"feature = {feature!r} is not one of {FEATURES}")
+    ask = getattr(model, "refuses", None)
+    return ask(feature) if callable(ask) else None

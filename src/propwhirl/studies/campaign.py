@@ -354,12 +354,24 @@ class Case:
         new = list(model.propellers)
         for i in chosen:
             inst = new[i]
+            mount = getattr(inst, "mount", "flexible")
+            if mount != "flexible" and (self.mount_stiffness != 1.0 or self.mount_damping != 1.0):
+                raise v.InputError(f"mount factors are invalid for propeller {i + 1}: its mount "
+                                   f"is {mount!r} (no pitch and yaw springs of its own"
+                                   + ("; a modal model's on-grid mount is in the modes)"
+                                      if mount == "on-grid" else ")"))
+            if self.state and not hasattr(inst, "state"):
+                raise v.InputError(f"state = {self.state!r} is invalid for propeller "
+                                   f"{i + 1}: a modal model's installations turn always "
+                                   "(no stopped or feathered state)")
             changes: dict[str, Any] = {}
             prop = self._propeller(inst.propeller, i)
+            if self.reverse_rotation and not hasattr(inst, "sense"):   # a modal model's
+                prop = dataclasses.replace(prop, rotation=-int(prop.rotation))   # propeller's own
             if prop is not inst.propeller:
                 changes["propeller"] = prop
-            if self.reverse_rotation:          # the installation's sense, not the shared table
-                changes["rotation"] = -int(inst.sense)
+            if self.reverse_rotation and hasattr(inst, "sense"):   # the installation's sense,
+                changes["rotation"] = -int(inst.sense)              # not the shared table
             if self.state:
                 changes["state"] = self.state
             if changes:
@@ -367,10 +379,15 @@ class Case:
         changes = {}
         if any(a is not b for a, b in zip(new, model.propellers)):
             changes["propellers"] = tuple(new)
-        if self.wing_damping != 1.0:
+        if self.wing_damping != 1.0 and hasattr(model, "wing"):
             mu, lam = model.wing.rayleigh
             changes["wing"] = dataclasses.replace(model.wing, rayleigh=(
                 self.wing_damping * float(mu), self.wing_damping * float(lam)))
+        elif self.wing_damping != 1.0:     # a modal structure: each mode's damping ratio (the
+            # same factor as on a beam's Rayleigh μ, λ: ζ_i = (μ/ω_i + λ ω_i)/2 is linear in them)
+            s = model.structure
+            changes["structure"] = dataclasses.replace(
+                s, damping_ratio=self.wing_damping * np.asarray(s.damping_ratio, dtype=float))
         if changes:
             model = dataclasses.replace(model, **changes)
         if self.values:

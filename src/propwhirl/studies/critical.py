@@ -53,9 +53,10 @@ def mount_strain_share(model, V: float, q: np.ndarray) -> float:
     """Share of the strain energy qᵀKq of displacement vector `q` in the propeller mount springs
     (the θ, ψ degrees of freedom of the model's DOF map), K the structural stiffness of `model`
     at V [m/s] without aerodynamics.  1 for a model without wing degrees of freedom (the
-    isolated propeller)."""
+    isolated propeller); a modal structure's coordinates are the wing's (its "on-grid"
+    mounts' springs are in the modes: their strain counts as the wing's)."""
     dm = model.dof_map()
-    if not dm.has_wing:
+    if not (dm.has_wing or "modal" in dm.groups()):
         return 1.0
     s = model.without_aerodynamics().second_order(np.array([float(V)]))
     x = np.asarray(q)[: s.n_dof, None]

@@ -147,7 +147,12 @@ def point_mode_shape(row: "PointRow", *, title: str | None = None,
     ax = fig.add_subplot(grid[0, :])
     y = np.asarray(sh["y"], dtype=float)
     ax_a = ax.twinx()
+    if not y.size:          # no wing node DOFs (a modal model: its coordinates are modes)
+        ax.text(0.5, 0.5, "the wing's h and α are not drawn: the model's coordinates are "
+                "its modes", transform=ax.transAxes, ha="center", va="center", fontsize=8)
     for axis, key, name, colour in ((ax, "h", "plunge h", "C0"), (ax_a, "alpha", "twist α", "C3")):
+        if not y.size:
+            break
         vals = np.asarray(sh[key], dtype=complex)
         env = np.abs(vals)
         axis.fill_between(y, -env, env, color=colour, alpha=0.12, lw=0)
