@@ -49,9 +49,8 @@ from propwhirl.engine import eigenvalues
 from propwhirl.studies import paths as P
 from propwhirl.model.aerodynamics import validity
 from propwhirl.results import Result, SavedDict
+from propwhirl.studies import execution, sweeps
 from propwhirl.studies.continuation import ContinuationOptions, Counted, point_key, trace
-from propwhirl.studies import sweeps
-from propwhirl.studies.execution import map_analyses
 
 #: A variant of the model at a point of the plane: ``variant(p) -> Model``.
 Variant = Callable[[np.ndarray], Any]
@@ -119,8 +118,8 @@ def _least_stable(task: tuple) -> complex:
 def _batch(func: Callable[[Any], Any], tasks: list, level: Any, desc: str) -> list:
     """``[func(t) for t in tasks]`` on the level's processes or Dask cluster, with its
     progress (:func:`propwhirl.studies.execution.map_analyses`)."""
-    return map_analyses(func, tasks, level.processes, client=level.client,
-                        progress=level.progress, desc=desc)
+    return execution.map_analyses(func, tasks, level.processes, client=level.client,
+                                  progress=level.progress, desc=desc)
 
 
 @dataclass

@@ -56,8 +56,8 @@ from propwhirl.engine import XTOL
 from propwhirl.model import derivatives as D
 from propwhirl.progress import ProgressCallback
 from propwhirl.results import Result, SavedDict
+from propwhirl.studies import execution
 from propwhirl.studies import paths as P
-from propwhirl.studies.execution import map_analyses
 
 #: δ: the relative step of the central differences (h = δ |p|)
 REL_STEP = 1e-3
@@ -395,8 +395,8 @@ def verify_sensitivities(model: Any, analysis: ModelAnalysis, sensitivities: Cri
             tasks.append(_Run(model, s.path, s.value + sign * h, grid, method, float(xtol),
                               cs.kind, cs.event, cs.mode, cs.V))
             keys.append(f"{s.path}{tag}")
-    runs = map_analyses(_run, tasks, processes, client=client, progress=progress,
-                        errors="record", keys=keys, desc="sensitivity checks")
+    runs = execution.map_analyses(_run, tasks, processes, client=client, progress=progress,
+                                  errors="record", keys=keys, desc="sensitivity checks")
     checks = tuple(_check_row(s, cs.V, step_of(s, rel_step), runs[2 * k], runs[2 * k + 1],
                               cs.mode, rtol, atol) for k, s in enumerate(chosen))
     checked = replace(cs, sensitivities=tuple(chosen))

@@ -36,7 +36,8 @@ from propwhirl.results import Result, SavedDict
 from propwhirl.studies import paths as P
 from propwhirl.studies.critical import (convention, critical_instability, static_divergence_speed,
                                         wing_divergence_predicate)
-from propwhirl.studies.execution import TaskError, map_analyses
+from propwhirl.studies import execution
+from propwhirl.studies.execution import TaskError
 from propwhirl.studies.partial import Checkpoint, PointFormat, check_checkpoint, content_digest
 from propwhirl.studies.warmstart import warm_started_rows
 
@@ -220,9 +221,9 @@ def run_points(models: Sequence[Any], speeds: Any = None, *, speeds_each: Sequen
              for i in run]
     checkpoint = row_checkpoint(checkpoint, models, grids, xtol=xtol, method=method,
                                 static_divergence=static_divergence, low_speed=low_speed)
-    results = map_analyses(evaluate, tasks, processes, client=client, progress=progress,
-                           errors="record", checkpoint=checkpoint, keys=[names[i] for i in run],
-                           desc=desc)
+    results = execution.map_analyses(evaluate, tasks, processes, client=client, progress=progress,
+                                     errors="record", checkpoint=checkpoint,
+                                     keys=[names[i] for i in run], desc=desc)
     rows: list[dict[str, Any]] = [error_row(f"{type(m).__name__}: {m}")
                                   if isinstance(m, Exception) else {} for m in models]
     for i, r in zip(run, results):
