@@ -130,8 +130,10 @@ def test_sigint_exits_130_with_one_line_and_no_partial_output(small_file, tmp_pa
 
 @pytest.mark.skipif(not Path("/proc/self/maps").exists(), reason="needs Linux /proc")
 def test_sigint_to_the_real_command(tmp_path):
-    """`python -m propwhirl analyse` (no patches) interrupted while it computes: once scipy's
-    compiled modules are loaded (the engine's import, inside main), send SIGINT."""
+    """`python -m propwhirl analyse` (no patches) interrupted once scipy's compiled modules are
+    loaded: while the command line loads (its imports at module level since issue 38 item 4;
+    `python -m propwhirl` catches it there too) or while it computes, SIGINT gives the one
+    line and 130."""
     model = tmp_path / "m.toml"
     assert cli.main(["case", "wingtip", "--save", str(model)]) == 0
     out = tmp_path / "out"
