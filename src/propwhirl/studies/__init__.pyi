@@ -4,7 +4,7 @@
 from propwhirl.studies.boundary import path_variant as path_variant
 from propwhirl.studies.campaign import Campaign as Campaign
 from propwhirl.studies.campaign import Case as Case
-from propwhirl.studies.campaign import envelope as envelope
+from propwhirl.studies.flight_envelope import envelope as envelope
 from propwhirl.studies.campaign import from_spec as from_spec
 from propwhirl.studies.campaign import run_campaign as run_campaign
 from propwhirl.studies.campaign_result import CampaignResult as CampaignResult
