@@ -105,6 +105,39 @@ def test_hump_mode_both_crossings_and_benignity():
     assert blind.criticals.points == ()
 
 
+@pytest.mark.parametrize("grid", [[20.0, 50.0, 80.0, 110.0, 140.0], [20.0, 50.0, 80.0, 110.0],
+                                  [10.0, 50.0, 200.0]])
+def test_hump_whose_crossings_fall_on_grid_speeds(grid):
+    """A hump whose onset (and recovery) land exactly on grid speeds: Re λ is zero there, so
+    those samples have no sign of their own (−, 0, 0, −).  The unstable band 50–80 m/s was
+    reported as no instability at all; the hump check now takes the sign of a zero sample
+    from its neighbours and sees the hump from the slopes."""
+    def state_matrix(V):
+        A = np.zeros((np.size(V), 2, 2))
+        A[:, 0, 1] = 1.0
+        A[:, 1, 0] = -100.0
+        A[:, 1, 1] = 1e-3 * (np.asarray(V) - 50.0) * (80.0 - np.asarray(V))  # ζ < 0 on 50–80
+        return A
+    an = analyse(state_matrix, np.array(grid), n_dof=1, xtol=1e-3)
+    (hump,) = an.criticals.humps
+    assert hump.V_onset == pytest.approx(50.0, abs=1e-3)
+    assert hump.V_recovery == pytest.approx(80.0, abs=1e-3)
+    assert an.criticals.first_onset.V == pytest.approx(50.0, abs=1e-3)
+
+
+def test_undamped_branch_is_not_refined():
+    """A branch with Re λ = 0 at every speed (an undamped mode without aerodynamics) has no
+    signed sample: the hump check leaves it alone (no samples added for it)."""
+    def state_matrix(V):
+        A = np.zeros((np.size(V), 2, 2))
+        A[:, 0, 1] = 1.0
+        A[:, 1, 0] = -100.0 - np.asarray(V)
+        return A
+    an = analyse(state_matrix, np.arange(10.0, 101.0, 10.0), n_dof=1)
+    assert an.criticals.points == ()
+    assert an.sweep.stats.get("hump_refined", 0) == 0
+
+
 def test_benignity_by_central_difference_on_request(section_analysis):
     """With ``benignity_step`` the benignity is a central difference of ζ (as the thesis),
     agreeing with the default, from dλ/dV at the crossing."""

@@ -391,10 +391,17 @@ def _hump_candidates(V: np.ndarray, models, floor: np.ndarray,
 
     ``models``: the per-step models of :func:`_step_models` (T−1, n) — values and slopes of
     Re λ at both samples, their uncertainty, which branches to check.  Per step and branch
-    with Re λ of equal, non-zero sign at both samples: the cubic Hermite model p(s) of Re λ
-    is evaluated at its stationary points and at ``CHECK_S``; a sample is inserted at the
-    worst s where sign·p(s) < margin · err · 16 s²(1 − s)² (the model crosses zero, or comes
+    with Re λ of equal sign at both samples: the cubic Hermite model p(s) of Re λ is
+    evaluated at its stationary points and at ``CHECK_S``; a sample is inserted at the worst
+    s where sign·p(s) < margin · err · 16 s²(1 − s)² (the model crosses zero, or comes
     closer to it than its uncertainty).  One sample per step.
+
+    A sample where Re λ is zero within ``zero_tol`` (a grid speed that lands on a crossing)
+    has no sign of its own: the step takes the sign of its other end, or, both ends zero,
+    that of the branch's nearest signed sample — so a hump whose onset and recovery both
+    fall on samples (Re λ: −, 0, 0, −) is still seen from the slopes at its ends.  A branch
+    with no signed sample (Re λ zero throughout: an undamped mode without aerodynamics) is
+    not checked.
     """
     fa, fb, ga, gb, e, phys = models
     h = np.diff(V)[:, None]
@@ -402,6 +409,8 @@ def _hump_candidates(V: np.ndarray, models, floor: np.ndarray,
     tolb = opts.zero_tol * np.maximum(np.abs(fb), floor[1:, None])
     sa = np.where(np.abs(fa) <= tola, 0, np.sign(fa))
     sb = np.where(np.abs(fb) <= tolb, 0, np.sign(fb))
+    sa = np.where(sa == 0, np.where(sb != 0, sb, _nearest_sign(sa, sb)), sa)
+    sb = np.where(sb == 0, sa, sb)
     ok = phys & (sa == sb) & (sa != 0) & (h >= 2 * opts.min_step)
     if not ok.any():
         return []
@@ -432,6 +441,21 @@ def _hump_candidates(V: np.ndarray, models, floor: np.ndarray,
             s = float(np.clip(S[r, j], 0.05, 0.95))
             out[t] = (V[t] + s * (V[t + 1] - V[t]), float(score[j]))
     return sorted(v for v, _ in out.values())
+
+
+def _nearest_sign(sa: np.ndarray, sb: np.ndarray) -> np.ndarray:
+    """Per step (T−1, n): the sign of the branch's nearest signed sample before the step,
+    else after it (0 when the branch has none); ``sa``/``sb`` the signs (−1, 0, 1) of the
+    samples at the steps' starts and ends."""
+    s = np.concatenate([sa, sb[-1:]])                  # (T, n): every sample's sign
+    T = s.shape[0]
+    rows = np.arange(T)[:, None]
+    last = np.maximum.accumulate(np.where(s != 0, rows, -1), axis=0)        # at or before
+    nxt = np.minimum.accumulate(np.where(s != 0, rows, T)[::-1], axis=0)[::-1]  # at or after
+    cols = np.arange(s.shape[1])[None, :]
+    before = np.where(last >= 0, s[np.clip(last, 0, T - 1), cols], 0)[:-1]
+    after = np.where(nxt < T, s[np.clip(nxt, 0, T - 1), cols], 0)[1:]
+    return np.where(before != 0, before, after)
 
 
 #: rounding noise of a computed eigenvalue, in units of the unit roundoff times the largest
