@@ -36,6 +36,8 @@ from typing import Any
 
 from propwhirl import fileio, limits
 from propwhirl import validate as v
+from propwhirl.certification import (AIRSPEEDS, CASE_FACTORS, EXPLICIT, FACTOR_RANGE, OPERATIONS,
+                                     PART25, REGULATIONS, STATES)
 from propwhirl.io.modal_files import is_modal_file, load_modal_model
 from propwhirl.io.model_files import Table, load_model, toml_error
 
@@ -46,15 +48,6 @@ FORMAT_VERSION = 1
 MAX_TASKS = 10_000
 #: Most altitudes, cases (before expansion), added masses or values of one case.
 MAX_ITEMS = 1000
-#: The regulations' speed factors (those of :data:`propwhirl.studies.campaign.REGULATIONS`).
-REGULATIONS = {"cs25": 1.15, "far25": 1.15, "far23": 1.2}
-#: The regulations whose failure cases are held to the envelope of 25.629(b)(2).
-PART25 = ("cs25", "far25")
-#: The airspeeds V_D can be given as; the operations a case can switch a propeller to.
-AIRSPEEDS = ("EAS", "TAS")
-OPERATIONS = ("windmilling",)
-#: The installation states a case can set (those of :data:`propwhirl.studies.campaign.STATES`).
-STATES = ("operating", "feathered", "stopped")
 #: Feet to metres.
 FT = 0.3048
 
@@ -67,9 +60,8 @@ _CASE = ("name", "group", "propellers", "each_propeller", "mount_stiffness", "mo
          "wing_damping", "operation", "state", "rpm_factor", "reverse_rotation", "added_masses",
          "values", "failure")
 _MASS = ("mass_kg", "x_m")
-#: Ranges of the case factors: key → (low, high).
-FACTOR_RANGES = {"mount_stiffness": (1e-3, 100.0), "mount_damping": (0.0, 100.0),
-                 "wing_damping": (0.0, 100.0), "rpm_factor": (0.1, 3.0)}
+#: Ranges of the case factors: key → (low, high) (:data:`propwhirl.certification.CASE_FACTORS`).
+FACTOR_RANGES = CASE_FACTORS
 
 
 def _number_in(t: Table, key: str, low: float, high: float, what: str = "") -> float:
@@ -89,11 +81,11 @@ def _list_of_numbers(t: Table, key: str, low: float, high: float) -> list[float]
 
 
 def _regulation(t: Table) -> tuple[str, float, float | None]:
-    name = t.string("name", choices=(*REGULATIONS, "explicit"))
-    if name == "explicit":
-        factor = _number_in(t, "factor", 1.0, 3.0, "the speed factor of regulation 'explicit'")
+    name = t.string("name", choices=(*REGULATIONS, EXPLICIT))
+    if name == EXPLICIT:
+        factor = _number_in(t, "factor", *FACTOR_RANGE, "the speed factor of regulation 'explicit'")
     else:
-        factor = REGULATIONS[name]
+        factor = REGULATIONS[name].factor
         if t.has("factor") and t.data["factor"] != factor:
             raise t.bad("factor", f"{factor:g} with name = {name!r} (or give name = 'explicit')")
     g = _number_in(t, "min_damping_g", 0.0, 1.0) if t.has("min_damping_g") else None
