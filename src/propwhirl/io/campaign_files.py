@@ -135,7 +135,8 @@ CASE = TableSpec("[[cases]]", "Each case is a named transformation of the model;
     Key("reverse_rotation", "boolean", "`true`: the sense of rotation reversed, on each chosen "
         "installation (its `rotation`; propellers sharing a `[propellers.KEY]` table are "
         "reversed one by one). Without in-plane bending (`wing.EI_chordwise`) nothing of the "
-        "wing moves sideways and reversing a rotor is the mirror image ψ → −ψ of its yaw: the "
+        "wing moves sideways and reversing a rotor is the mirror image ψ → −ψ of its yaw: "
+        "the "
         "same eigenvalues, V_crit and margins (only the whirl senses named in the results "
         "change sides); the sense matters with in-plane bending, which couples the yaw to the "
         "wing", default=OMITTED),

@@ -5,9 +5,9 @@ A :class:`Campaign` holds
 
 * the model (any propeller-wing model; :func:`propwhirl.io.load_model`);
 * the regulation's speed factor (:data:`propwhirl.certification.REGULATIONS`: CS 25.629 and
-  14 CFR 25.629 1.15, 14 CFR 23.629 1.2, or an explicit factor) and, optionally, a damping requirement: the structural
-  damping coefficient g = 2ζ of every oscillatory mode at least ``min_damping_g`` at every
-  speed up to V_D;
+  14 CFR 25.629 1.15, 14 CFR 23.629 1.2, or an explicit factor) and, optionally, a damping
+  requirement: the structural damping coefficient g = 2ζ of every oscillatory mode at least
+  ``min_damping_g`` at every speed up to V_D;
 * the envelope: :class:`EnvelopePoint` s, each an ISA altitude with its V_D as a true
   airspeed [m/s] (:func:`envelope`: V_D given as EAS is converted with the ISA density,
   V_TAS = V_EAS · sqrt(ρ0 / ρ(h)); an M_D limits it to M_D · a(h)).  The analyses'
@@ -48,8 +48,8 @@ import numpy as np
 from propwhirl import limits
 from propwhirl import validate as v
 from propwhirl.certification import (  # noqa: F401 (REGULATIONS, regulation_factor re-exported)
-    CASE_FACTORS, FACTOR_CS25, FACTOR_RANGE, OPERATIONS, PART25, REGULATIONS, STATES, regulation_factor,
-    required_speed)
+    CASE_FACTORS, FACTOR_CS25, FACTOR_RANGE, OPERATIONS, PART25, REGULATIONS, STATES,
+    regulation_factor, required_speed)
 from propwhirl.analysis.margin import DAMPING_MODES  # noqa: F401 (re-exported)
 from propwhirl.analysis.margin import least_damping as _least
 from propwhirl.analysis.margin import oscillatory_damping as _damping
