@@ -26,7 +26,6 @@ import re
 from dataclasses import dataclass
 from typing import Any, Callable, Mapping
 
-from propwhirl import validate as v
 from propwhirl.io.model_files import Table
 
 #: The default of a key the file must give.
