@@ -7,12 +7,14 @@ point's with its requirements and the analysed speeds as dots, with and without 
 requirement — are reduced to their artists' data (every line's points, colour, width, alpha,
 marker, z-order and label; the shaded spans; every text and label with its position; the
 legend's entries; the axes' limits and labels) and compared with the fingerprint recorded by
-the code before the split (``data/vgf_fingerprint.json``, numbers to 9 significant digits).
-``PROPWHIRL_RECORD_VGF=1`` rewrites it (only when the drawing is meant to change).
+the code before the split (``data/vgf_fingerprint.json``, numbers to 9 significant digits; a
+line's points by their count and SHA-256).  ``PROPWHIRL_RECORD_VGF=1`` rewrites it (only when
+the drawing is meant to change, or matplotlib's text metrics do).
 """
 from __future__ import annotations
 
 import dataclasses
+import hashlib
 import json
 import os
 from pathlib import Path
@@ -41,6 +43,13 @@ def _num(x) -> object:
     return [None if not np.isfinite(t) else float(f"{t:.9g}") for t in a]
 
 
+def _points(x) -> dict:
+    """A line's coordinates: their count and the SHA-256 of their 9-digit text."""
+    values = _num(x)
+    return {"n": len(values),
+            "sha256": hashlib.sha256(json.dumps(values).encode()).hexdigest()}
+
+
 def _colour(c) -> list:
     return _num(to_rgba(c)) if c is not None and not (isinstance(c, str) and c == "none") \
         else ["none"]
@@ -51,7 +60,7 @@ def fingerprint(fig) -> dict:
     fig.canvas.draw()
     axes = []
     for ax in fig.axes:
-        lines = [{"x": _num(ln.get_xdata()), "y": _num(ln.get_ydata()),
+        lines = [{"x": _points(ln.get_xdata()), "y": _points(ln.get_ydata()),
                   "colour": _colour(ln.get_color()), "lw": ln.get_linewidth(),
                   "ls": ln.get_linestyle(), "alpha": ln.get_alpha(),
                   "marker": str(ln.get_marker()), "ms": ln.get_markersize(),
@@ -98,7 +107,8 @@ def figures() -> dict:
 def test_the_vgf_figures_are_drawn_as_before(figures):
     if os.environ.get("PROPWHIRL_RECORD_VGF") == "1":
         RECORD.parent.mkdir(exist_ok=True)
-        RECORD.write_text(json.dumps(figures, indent=0, sort_keys=True, ensure_ascii=False))
+        RECORD.write_text(json.dumps(figures, indent=1, sort_keys=True, ensure_ascii=False)
+                          + "\n")
     recorded = json.loads(RECORD.read_text())
     assert set(recorded) == set(figures)
     for name, fp in figures.items():
