@@ -92,15 +92,15 @@ def test_required_speed_and_rule_of_each_regulation(model):
     pts = C.envelope(100.0, [0.0, 9000.0], airspeed="TAS", V_C=80.0, M_C=0.4)
     nominal, failed = C.Case("nominal"), C.Case("damper", mount_damping=0.0)
     c = C.Campaign("c", model, (nominal, failed), pts, "cs25", 1.15)
-    assert C.required_speed(c, nominal, pts[0]) == (pytest.approx(115.0), "25.629(b)(1) 1.15 V_D")
-    assert C.required_speed(c, failed, pts[0]) == (100.0, "25.629(b)(2)(i) V_D")  # 92 EAS < V_D
-    V, rule = C.required_speed(c, failed, pts[1])       # 0.45 a(9000 m) = 136.5 m/s TAS > V_D
+    assert c.required_speed(nominal, pts[0]) == (pytest.approx(115.0), "25.629(b)(1) 1.15 V_D")
+    assert c.required_speed(failed, pts[0]) == (100.0, "25.629(b)(2)(i) V_D")  # 92 EAS < V_D
+    V, rule = c.required_speed(failed, pts[1])       # 0.45 a(9000 m) = 136.5 m/s TAS > V_D
     assert rule == "25.629(b)(2)(ii) M_C + 0.05" and V == pytest.approx(0.45 * 303.79, rel=1e-3)
     # Part 23 and explicit factors: every case, failure or not, at the factor times V_D
     pts23 = C.envelope(100.0, [0.0], airspeed="TAS")
     for reg, f, rule in (("far23", 1.2, "23.629 1.2 V_D"), ("explicit", 1.25, "1.25 V_D")):
         c = C.Campaign("c", model, (nominal, failed), pts23, reg, f)
-        assert C.required_speed(c, failed, pts23[0]) == (pytest.approx(100.0 * f), rule)
+        assert c.required_speed(failed, pts23[0]) == (pytest.approx(100.0 * f), rule)
     with pytest.raises(InputError, match="V_C is invalid with regulation 'far23'"):
         C.Campaign("c", model, (failed,), pts, "far23", 1.2)
 
@@ -150,3 +150,22 @@ def test_failure_case_clears_at_V_D_but_not_at_115_V_D(model, tmp_path):
     (row,) = r.rows
     assert row.rule == "25.629(b)(2)(ii) 1.15 V_C" and not row.cleared
     assert row.V_required == pytest.approx(1.02 * vcrit, rel=1e-4)
+
+
+def test_one_required_speed_and_one_regulation_table():
+    """Issue 38 item 2: the required speed and the regulations are defined once
+    (propwhirl.certification); the margin, the clearance, the campaign and the campaign files
+    use that one."""
+    from propwhirl import certification
+    from propwhirl.analysis import margin
+    from propwhirl.io import campaign_files
+    from propwhirl.studies import clearance
+    assert margin.required_speed is clearance.required_speed is C.required_speed \
+        is certification.required_speed
+    assert C.REGULATIONS is certification.REGULATIONS
+    assert campaign_files.FACTOR_RANGES is certification.CASE_FACTORS
+    assert certification.required_speed(130.0) == (pytest.approx(149.5), "1.15 V_D")
+    assert certification.required_speed(130.0, 1.2, "far23", failure=True) == (
+        pytest.approx(156.0), "23.629 1.2 V_D")
+    with pytest.raises(InputError, match=r"^--vd = -1\.0 m/s is invalid: must be > 0$"):
+        certification.required_speed(-1.0, vd_name="--vd")

@@ -133,7 +133,7 @@ def test_the_tasks_are_those_of_building_every_model(product):
         for p in camp.points:
             t = next(it)
             m = C.at_altitude(case.apply(camp.model), p.altitude_m)
-            V_req, _ = C.required_speed(camp, case, p)
+            V_req, _ = camp.required_speed(case, p)
             model, speeds = t.model, t.speeds
             assert content_digest(model) == content_digest(m)
             assert t.V_required == V_req and list(speeds) == list(clearance_speeds(m, V_req))

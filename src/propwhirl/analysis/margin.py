@@ -1,11 +1,12 @@
 """The margin of an analysis to a required speed factor · V_D: the one place that decides it.
 
 The requirement of CS/FAR 25.629 (factor 1.15) and 14 CFR 23.629 (factor 1.2): no aeroelastic
-instability at speeds up to the required speed ``factor · V_D``.  :func:`required_speed`
-checks V_D and the factor; :func:`speed_margin` gives the critical instability's margin
-V_crit − factor · V_D [m/s] and V_crit / (factor · V_D) − 1, and the least damping
-g = 2ζ of the oscillatory modes (those with an event and the :data:`DAMPING_MODES` of lowest
-frequency) at the sweep's speeds up to the required speed, with its mode and speed.
+instability at speeds up to the required speed ``factor · V_D``
+(:func:`propwhirl.certification.required_speed`, the one definition, checks V_D and the
+factor); :func:`speed_margin` gives the critical instability's margin V_crit − factor · V_D
+[m/s] and V_crit / (factor · V_D) − 1, and the least damping g = 2ζ of the oscillatory modes
+(those with an event and the :data:`DAMPING_MODES` of lowest frequency) at the sweep's speeds
+up to the required speed, with its mode and speed.
 
 Used by ``propwhirl analyse --vd``, :func:`propwhirl.studies.clearance.clearance` and the
 campaign (:mod:`propwhirl.studies.campaign`), so all three give the same numbers.
@@ -18,25 +19,12 @@ from typing import Any
 
 import numpy as np
 
-from propwhirl import validate as v
+from propwhirl.certification import (  # noqa: F401 (re-exported: their old home)
+    FACTOR_CFR23, FACTOR_CS25, FACTOR_RANGE, required_speed)
 
-#: The factors of the regulations [-]: CS/FAR 25.629 and 14 CFR 23.629.
-FACTOR_CS25 = 1.15
-FACTOR_CFR23 = 1.2
-#: The range of an explicit speed factor [-].
-FACTOR_RANGE = (1.0, 3.0)
 #: The damping results consider the modes with an event and this many oscillatory modes of
 #: lowest frequency (:meth:`propwhirl.analysis.stability.ModelAnalysis.modes_of_interest`).
 DAMPING_MODES = 8
-
-
-def required_speed(V_D: Any, factor: Any = FACTOR_CS25, *, vd_name: str = "V_D",
-                   factor_name: str = "factor") -> float:
-    """factor · V_D [m/s], V_D [m/s] > 0 and factor in :data:`FACTOR_RANGE` checked (a one-line
-    InputError naming `vd_name` / `factor_name`, e.g. the CLI's options)."""
-    v.positive(vd_name, V_D, "m/s")
-    v.in_range(factor_name, factor, *FACTOR_RANGE)
-    return float(factor) * float(V_D)
 
 
 def oscillatory_damping(sweep: Any, modes: Sequence[int]) -> tuple[np.ndarray, np.ndarray]:
@@ -118,7 +106,7 @@ def speed_margin(a: Any, V_D: float, factor: float = FACTOR_CS25, critical: Any 
     """The margin of analysis `a` (:class:`propwhirl.analysis.stability.ModelAnalysis`) to
     ``factor · V_D`` [m/s] (module docstring).  `critical`: the critical instability (default
     ``a.critical``, the one definition; None: none); `describe` names a mode label."""
-    V_req = required_speed(V_D, factor)
+    V_req, _ = required_speed(V_D, factor)
     crit = a.critical if isinstance(critical, str) and critical == "default" else critical
     sweep = a.sweep
     V = np.asarray(sweep.V, dtype=float)

@@ -43,6 +43,7 @@ from propwhirl import validate as v
 from propwhirl.app import cli_certify, cli_design, cli_nastran, cli_studies, execution_options
 from propwhirl.app.cli_common import check_outputs, echo, load_model, print_notes, speed_grid
 from propwhirl.cases import registry
+from propwhirl.certification import FACTOR_CFR23, FACTOR_CS25, FACTOR_RANGE, required_speed
 from propwhirl.validate import InputError
 
 
@@ -291,7 +292,6 @@ def _analyse(args: argparse.Namespace) -> int:
 def _analyse_required_speed(args: argparse.Namespace) -> float | None:
     """factor x V_D [m/s] of ``analyse --vd V [--factor F]`` (None without --vd), checked
     before the work: --factor needs --vd."""
-    from propwhirl.analysis.margin import FACTOR_CS25, required_speed  # lazy: analyses
 
     if args.vd is None:
         if args.factor is not None:
@@ -300,7 +300,7 @@ def _analyse_required_speed(args: argparse.Namespace) -> float | None:
         return None
     if args.factor is None:
         args.factor = FACTOR_CS25
-    return required_speed(args.vd, args.factor, vd_name="--vd", factor_name="--factor")
+    return required_speed(args.vd, args.factor, vd_name="--vd", factor_name="--factor")[0]
 
 
 def _add_analyse(sub) -> None:
@@ -337,8 +337,9 @@ def _add_analyse(sub) -> None:
                    "speeds reach beyond factor x V_D); the exit code stays 0: `propwhirl "
                    "clearance` and `propwhirl certify` give the pass/fail exit code")
     p.add_argument("--factor", type=float, default=None, metavar="F", help="the required "
-                   "speed's factor on --vd, in [1, 3]: 1.15 (CS/FAR 25.629, default) or 1.2 "
-                   "(14 CFR 23.629); only with --vd")
+                   f"speed's factor on --vd, in [{FACTOR_RANGE[0]:g}, {FACTOR_RANGE[1]:g}]: "
+                   f"{FACTOR_CS25:g} (CS/FAR 25.629, default) or {FACTOR_CFR23:g} (14 CFR "
+                   "23.629); only with --vd")
     p.set_defaults(func=_analyse)
 
 

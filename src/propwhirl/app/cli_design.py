@@ -17,6 +17,7 @@ import argparse
 
 from propwhirl.app import execution_options
 from propwhirl.app.cli_common import check_outputs, echo, model_or_case
+from propwhirl.certification import FACTOR_CFR23, FACTOR_CS25
 from propwhirl.validate import InputError
 
 #: Largest N of the --grid N x N map under a boundary plot (each point an eigen-solution, or
@@ -144,8 +145,8 @@ def _add_clearance(sub) -> None:
     p = sub.add_parser("clearance", help="clearance to factor x V_D (exit code 0 cleared, 1 not)")
     p.add_argument("model", metavar="MODEL", help="model file (TOML) or case name")
     p.add_argument("--vd", type=float, required=True, metavar="V", help="design dive speed V_D [m/s]")
-    p.add_argument("--factor", type=float, default=1.15, help="1.15 (CS/FAR 25.629, default) "
-                   "or 1.2 (14 CFR 23.629)")
+    p.add_argument("--factor", type=float, default=FACTOR_CS25, help=f"{FACTOR_CS25:g} (CS/FAR "
+                   f"25.629, default) or {FACTOR_CFR23:g} (14 CFR 23.629)")
     p.add_argument("--frequency-range", nargs=2, type=float, default=(1.0, 30.0),
                    metavar=("LO", "HI"), help="range of the minimum mount frequencies [Hz] "
                    "(default 1 30)")

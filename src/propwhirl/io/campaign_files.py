@@ -12,6 +12,14 @@ analysis (:func:`~propwhirl.studies.campaign.from_spec` builds the model of ever
 envelope point before the first analysis; its errors start with the file's name and name the
 case's table too).
 
+The keys are declared once (:mod:`propwhirl.io.tables`): the top-level, ``[regulation]`` and
+``[envelope]`` keys as the metadata of the :class:`CampaignSpec` field each fills, a case's in
+:data:`CASE`; :func:`propwhirl.io.tables.read` reads them and ``docs/campaign.md``'s key tables
+are generated from them (:func:`docs_parts`).  A new key is one declaration: e.g. a damping
+requirement's basis in ``[regulation]`` is one more ``CampaignSpec`` field,
+``basis: str = spec_field("regulation", Key("basis", "string", "...", choices=(...),
+default="..."))``.
+
 Layout::
 
     format = "propwhirl-campaign"
@@ -28,6 +36,7 @@ Layout::
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 import tomllib
 from dataclasses import dataclass, field
@@ -36,8 +45,11 @@ from typing import Any
 
 from propwhirl import fileio, limits
 from propwhirl import validate as v
+from propwhirl.certification import (AIRSPEEDS, CASE_FACTORS, EXPLICIT, FACTOR_RANGE, OPERATIONS,
+                                     PART25, REGULATIONS, STATES)
 from propwhirl.io.modal_files import is_modal_file, load_modal_model
 from propwhirl.io.model_files import Table, load_model, toml_error
+from propwhirl.io.tables import OMITTED, Key, TableSpec, Values, markdown, read
 
 #: The format tag and version of a campaign file.
 FORMAT = "propwhirl-campaign"
@@ -46,140 +58,105 @@ FORMAT_VERSION = 1
 MAX_TASKS = 10_000
 #: Most altitudes, cases (before expansion), added masses or values of one case.
 MAX_ITEMS = 1000
-#: The regulations' speed factors (those of :data:`propwhirl.studies.campaign.REGULATIONS`).
-REGULATIONS = {"cs25": 1.15, "far25": 1.15, "far23": 1.2}
-#: The regulations whose failure cases are held to the envelope of 25.629(b)(2).
-PART25 = ("cs25", "far25")
-#: The airspeeds V_D can be given as; the operations a case can switch a propeller to.
-AIRSPEEDS = ("EAS", "TAS")
-OPERATIONS = ("windmilling",)
-#: The installation states a case can set (those of :data:`propwhirl.studies.campaign.STATES`).
-STATES = ("operating", "feathered", "stopped")
 #: Feet to metres.
 FT = 0.3048
-
-_TOP = ("format", "format_version", "name", "model", "convention", "combine", "regulation",
-        "envelope", "cases")
-_REGULATION = ("name", "factor", "min_damping_g")
-_ENVELOPE = ("airspeed", "V_D_m_per_s", "M_D", "V_C_m_per_s", "M_C", "altitudes_m",
-             "altitudes_ft")
-_CASE = ("name", "group", "propellers", "each_propeller", "mount_stiffness", "mount_damping",
-         "wing_damping", "operation", "state", "rpm_factor", "reverse_rotation", "added_masses",
-         "values", "failure")
-_MASS = ("mass_kg", "x_m")
-#: Ranges of the case factors: key → (low, high).
-FACTOR_RANGES = {"mount_stiffness": (1e-3, 100.0), "mount_damping": (0.0, 100.0),
-                 "wing_damping": (0.0, 100.0), "rpm_factor": (0.1, 3.0)}
+#: Ranges of the case factors: key → (low, high) (:data:`propwhirl.certification.CASE_FACTORS`).
+FACTOR_RANGES = CASE_FACTORS
+#: The valid altitudes [m] (the ISA's range).
+ALTITUDES_M = (-5000.0, 32000.0)
+#: The valid design speeds V_D and V_C [m/s].
+SPEEDS = (1.0, 1000.0)
+#: The valid design Mach numbers M_D and M_C.
+MACHS = (0.01, 0.95)
 
 
-def _number_in(t: Table, key: str, low: float, high: float, what: str = "") -> float:
-    x = t.number(key, what)
-    if not (math.isfinite(x) and low <= x <= high):
-        raise t.bad(key, f"a number in [{low:g}, {high:g}]", what)
-    return x
+# =============================================================================== the keys
+#: The keys of the metadata of a :class:`CampaignSpec` field: its table ("" the top level)
+#: and its keys in the file.
+TABLE, KEYS = "campaign table", "campaign keys"
 
 
-def _list_of_numbers(t: Table, key: str, low: float, high: float) -> list[float]:
-    x = t.raw(key)
-    if not isinstance(x, list) or not 1 <= len(x) <= MAX_ITEMS or any(
-            isinstance(i, bool) or not isinstance(i, (int, float)) or not math.isfinite(i)
-            or not low <= i <= high for i in x):
-        raise t.bad(key, f"a list of 1 to {MAX_ITEMS} numbers in [{low:g}, {high:g}]")
-    return [float(i) for i in x]
+def spec_field(table: str, *keys: Key, **kw: Any) -> Any:
+    """A :class:`CampaignSpec` field read from `keys` of `table` ("", "regulation",
+    "envelope"): the field holds the first key's value (checked and defaulted by its
+    declaration), unless :func:`_from_dict` ties several keys together."""
+    return field(metadata={TABLE: table, KEYS: keys}, **kw)
 
 
-def _regulation(t: Table) -> tuple[str, float, float | None]:
-    name = t.string("name", choices=(*REGULATIONS, "explicit"))
-    if name == "explicit":
-        factor = _number_in(t, "factor", 1.0, 3.0, "the speed factor of regulation 'explicit'")
-    else:
-        factor = REGULATIONS[name]
-        if t.has("factor") and t.data["factor"] != factor:
-            raise t.bad("factor", f"{factor:g} with name = {name!r} (or give name = 'explicit')")
-    g = _number_in(t, "min_damping_g", 0.0, 1.0) if t.has("min_damping_g") else None
-    return name, factor, g
+MASS = TableSpec("cases[i].added_masses[j]", "A mass added on each chosen propeller's shaft.", (
+    Key("mass_kg", "number", "the mass", "kg", (1e-4, 1e5)),
+    Key("x_m", "number", "its position on the shaft, from the wing mid-chord, positive aft (as "
+        "a propeller's masses, docs/model-file.md)", "m", (-100.0, 100.0)),
+))
 
+_FACTOR_DOCS = {
+    "mount_stiffness": "factor on the pitch and yaw mount stiffness K_θ, K_ψ (a mount given by "
+                       "frequencies has f_θ, f_ψ times its square root): 0.5 is a mount "
+                       "degraded to 50 %",
+    "mount_damping": "factor on `damping_theta` and `damping_psi`: 0 is a failed damper",
+    "wing_damping": "factor on the wing's Rayleigh structural damping (μ, λ)",
+    "rpm_factor": "overspeed: rpm times this; constant-speed propellers only (a windmilling "
+                  "propeller's rotational speed follows the airspeed: refused)",
+}
 
-def _envelope(t: Table) -> tuple[str, tuple[float, ...], tuple[float, ...], float | None,
-                                 tuple[float, ...] | None, float | None]:
-    airspeed = t.string("airspeed", "which airspeed V_D is", AIRSPEEDS)
-    if t.has("altitudes_m") == t.has("altitudes_ft"):
-        raise v.InputError(f"[{t.where}] give exactly one of altitudes_m, altitudes_ft")
-    if t.has("altitudes_m"):
-        alts = _list_of_numbers(t, "altitudes_m", -5000.0, 32000.0)
-    else:
-        alts = [h * FT for h in _list_of_numbers(t, "altitudes_ft", -5000.0 / FT, 32000.0 / FT)]
-    raw = t.raw("V_D_m_per_s", "the design dive speed [m/s]")
-    if isinstance(raw, list):
-        vd = _list_of_numbers(t, "V_D_m_per_s", 1.0, 1000.0)
-        if len(vd) != len(alts):
-            raise t.bad("V_D_m_per_s", f"one speed, or one per altitude ({len(alts)})")
-    else:
-        vd = [_number_in(t, "V_D_m_per_s", 1.0, 1000.0)]
-    M_D = _number_in(t, "M_D", 0.01, 0.95) if t.has("M_D") else None
-    V_C: tuple[float, ...] | None = None
-    if t.has("V_C_m_per_s"):
-        if isinstance(t.raw("V_C_m_per_s"), list):
-            V_C = tuple(_list_of_numbers(t, "V_C_m_per_s", 1.0, 1000.0))
-            if len(V_C) != len(alts):
-                raise t.bad("V_C_m_per_s", f"one speed, or one per altitude ({len(alts)})")
-        else:
-            V_C = (_number_in(t, "V_C_m_per_s", 1.0, 1000.0,
-                              "the design cruise speed, an equivalent airspeed [m/s]"),)
-    M_C = _number_in(t, "M_C", 0.01, 0.95) if t.has("M_C") else None
-    if M_C is not None and V_C is None:
-        raise t.missing("V_C_m_per_s", "M_C needs V_C (the failure-case envelope of "
-                                       "25.629(b)(2)(ii))")
-    return airspeed, tuple(vd), tuple(alts), M_D, V_C, M_C
-
-
-def _case(t: Table, n_propellers: int) -> CaseSpec:
-    name = t.string("name")
-    if not name.strip() or not name.isprintable() or len(name) > 200:
-        raise t.bad("name", "a non-empty printable name of at most 200 characters")
-    group = t.string("group") if t.has("group") else ""
-    kw: dict[str, Any] = {}
-    for key, (lo, hi) in FACTOR_RANGES.items():
-        if t.has(key):
-            kw[key] = _number_in(t, key, lo, hi)
-    if t.has("operation"):
-        kw["operation"] = t.string("operation", "a constant-speed propeller switched to "
-                                   "windmilling; feathered or stopped rotors: state", OPERATIONS)
-    if t.has("state"):
-        kw["state"] = t.string("state", "the chosen installations' state: feathered (Omega = 0, "
-                               "the feathered blades' side forces), stopped (Omega = 0, no "
-                               "propeller aerodynamics) or operating", STATES)
-    if t.has("reverse_rotation"):
-        kw["reverse_rotation"] = t.boolean("reverse_rotation")
-    props: tuple[int, ...] = ()
-    if t.has("propellers"):
-        x = t.raw("propellers")
-        if (not isinstance(x, list) or not x or len(set(map(str, x))) != len(x)
-                or any(isinstance(i, bool) or not isinstance(i, int) or not 1 <= i <= n_propellers
-                       for i in x)):
-            raise t.bad("propellers", f"a list of distinct propeller numbers in [1, "
-                                      f"{n_propellers}] (the model's propellers, from 1)")
-        props = tuple(x)
-    if t.has("added_masses"):
-        x = t.raw("added_masses")
-        if not isinstance(x, list) or not 1 <= len(x) <= MAX_ITEMS:
-            raise t.bad("added_masses", f"a list of 1 to {MAX_ITEMS} tables "
-                                        "{ mass_kg = ..., x_m = ... }")
-        masses = []
-        for i, m in enumerate(x):
-            mt = Table(m, f"{t.where}.added_masses[{i}]", _MASS)
-            masses.append((_number_in(mt, "mass_kg", 1e-4, 1e5), _number_in(mt, "x_m", -100.0, 100.0)))
-        kw["added_masses"] = tuple(masses)
-    if t.has("values"):
-        vt = t.sub("values", [k for k in (t.data["values"] if isinstance(t.data["values"], dict)
-                                          else ())])
-        if not 1 <= len(vt.data) <= MAX_ITEMS:
-            raise t.bad("values", f"a table of 1 to {MAX_ITEMS} \"path\" = number entries")
-        kw["values"] = tuple((k, vt.number(k, "a parameter path's value")) for k in vt.data)
-    if t.has("failure"):
-        kw["failure"] = t.boolean("failure")
-    each = t.boolean("each_propeller") if t.has("each_propeller") else False
-    return CaseSpec(t.where, name, group, props, each, kw)
+#: A ``[[cases]]`` table: the case's own keys (name, group, propellers, each_propeller) and
+#: the transformations it sets (every other key: a :class:`~propwhirl.studies.campaign.Case`
+#: field of that name).
+CASE = TableSpec("[[cases]]", "Each case is a named transformation of the model; a case "
+                 "without transformations is the nominal model.", (
+    Key("name", "string", "the case's name, unique in the campaign (after expansion); "
+        "printable, at most 200 characters"),
+    Key("group", "string", "with `combine = \"product\"`: the group the case belongs to "
+        "(required there)", default=OMITTED),
+    Key("propellers", "integers", "the propellers the transformations act on, numbered from 1 "
+        "(default: every propeller together)", range=(1, "the model's propellers"),
+        default=OMITTED, distinct=True, must="a list of distinct propeller numbers in "
+        "[1, {high}] (the model's propellers, from 1)"),
+    Key("each_propeller", "boolean", "`true`: one case per propeller of `propellers` (or of "
+        "the model), one at a time: \"... (propeller 1)\", ...", default=False),
+    *(Key(name, "number", _FACTOR_DOCS[name], range=CASE_FACTORS[name], default=OMITTED)
+      for name in ("mount_stiffness", "mount_damping", "wing_damping")),
+    Key("operation", "string", "`\"windmilling\"`: a constant-speed propeller switched to "
+        "fixed-pitch windmilling at its blade angle (a fixed-pitch propeller already "
+        "windmills: unchanged)", choices=OPERATIONS, default=OMITTED,
+        what="a constant-speed propeller switched to windmilling; feathered or stopped rotors: "
+             "state"),
+    Key("state", "string", "the chosen installations' `state` (docs/model-file.md, "
+        "`installations[i]`): `\"feathered\"` — the rotor stopped (Ω = 0, no gyroscopic "
+        "coupling) with its blades along the free stream: the blades act as fins, the Ω → 0 "
+        "limit of the Houbolt–Reed blade elements (side forces C_Yψ = −C_Zθ only; needs the "
+        "propeller's blade geometry); `\"stopped\"` — Ω = 0 and no propeller aerodynamic loads "
+        "(folded blades); `\"operating\"` — turning as its propeller's operation says. The "
+        "mount and the masses stay in every state", choices=STATES, default=OMITTED,
+        what="the chosen installations' state: feathered (Omega = 0, the feathered blades' "
+             "side forces), stopped (Omega = 0, no propeller aerodynamics) or operating"),
+    Key("rpm_factor", "number", _FACTOR_DOCS["rpm_factor"], range=CASE_FACTORS["rpm_factor"],
+        default=OMITTED),
+    Key("reverse_rotation", "boolean", "`true`: the sense of rotation reversed, on each chosen "
+        "installation (its `rotation`; propellers sharing a `[propellers.KEY]` table are "
+        "reversed one by one). Without in-plane bending (`wing.EI_chordwise`) nothing of the "
+        "wing moves sideways and reversing a rotor is the mirror image ψ → −ψ of its yaw: "
+        "the "
+        "same eigenvalues, V_crit and margins (only the whirl senses named in the results "
+        "change sides); the sense matters with in-plane bending, which couples the yaw to the "
+        "wing", default=OMITTED),
+    Key("added_masses", "tables", "masses added on each chosen propeller's shaft (a battery or "
+        "fuel case in the nacelle): `{ mass_kg = ..., x_m = ... }` each", table=MASS,
+        items=(1, MAX_ITEMS), default=OMITTED),
+    Key("values", "mapping", "`\"parameter path\" = number` set on the model after the rest "
+        "(any path of `propwhirl.studies.paths`, e.g. `\"wing.mass_per_length*\" = 1.1` for "
+        "fuel in the wing, `\"wing.rayleigh[0]\" = 0.0`)", items=(1, MAX_ITEMS),
+        default=OMITTED, what="a parameter path's value",
+        must="a table of {fewest} to {most} \"path\" = number entries"),
+    Key("failure", "boolean", "`true`: a failure condition of 25.629(d), held to 25.629(b)(2) "
+        "under `cs25`/`far25` (above); `false`: not; omitted: from its transformations (a "
+        "degraded mount or damper, a feathered or stopped rotor, overspeed)", default=OMITTED),
+))
+#: The keys of a case that are the case's own, not a transformation.
+CASE_OWN = ("name", "group", "propellers", "each_propeller")
+#: How a transformation's value goes to its Case field (the others as read).
+_TRANSFORM = {"added_masses": lambda ms: tuple((m["mass_kg"], m["x_m"]) for m in ms),
+              "values": lambda d: tuple(d.items())}
 
 
 @dataclass(frozen=True)
@@ -203,37 +180,155 @@ class CampaignSpec:
     regulation, factor, min_damping_g (None: none), airspeed ("EAS"/"TAS"), V_D [m/s] (one,
     or one per altitude), altitudes_m [m], M_D (None: none), cases, V_C [m/s EAS] (one, or
     one per altitude; None: none) and M_C (None: none): the failure-case envelope of
-    25.629(b)(2)(ii)."""
+    25.629(b)(2)(ii).  Each field read from the file declares its keys (:func:`spec_field`):
+    the file's documentation is generated from them."""
 
     source: str
-    name: str
+    name: str = spec_field("", Key(
+        "name", "string", "the campaign's name in the report (default: the file's name)",
+        default=OMITTED))
     model: Any
-    model_path: str
-    convention: str
-    combine: str
-    regulation: str
-    factor: float
-    min_damping_g: float | None
-    airspeed: str
-    V_D: tuple[float, ...]
-    altitudes_m: tuple[float, ...]
-    M_D: float | None
-    cases: tuple[CaseSpec, ...]
-    V_C: tuple[float, ...] | None = None
-    M_C: float | None = None
+    model_path: str = spec_field("", Key(
+        "model", "string", "a propeller-wing model file ([Model files](model-file.md), or a "
+        "modal model's, [modal structures](modal-structures.md)), relative to the campaign file; "
+        "its `[flight]` density and speed of sound are replaced by the ISA at each altitude, its "
+        "speed grid (first speed and step) is kept and extended beyond factor · V_D",
+        what="the model file, relative to the campaign file"))
+    convention: str = spec_field("", Key(
+        "convention", "string", "`\"propwhirl\"`: every instability counts (`propwhirl "
+        "analyse`'s critical instability); `\"thesis\"`: the thesis's exclusions (the wing's "
+        "static divergence and recovering low-speed instabilities left out)",
+        choices=("propwhirl", "thesis"), default="propwhirl"))
+    combine: str = spec_field("", Key(
+        "combine", "string", "`\"list\"`: the cases as given; `\"product\"`: every combination "
+        "of one case from each `group` (names joined with \" + \", factors multiplied)",
+        choices=("list", "product"), default="list"))
+    regulation: str = spec_field("regulation", Key(
+        "name", "string", "the regulation (the table below): its speed factor on V_D and, "
+        "under `cs25` and `far25`, the failure cases' envelope",
+        choices=(*REGULATIONS, EXPLICIT)))
+    factor: float = spec_field("regulation", Key(
+        "factor", "number", "with `name = \"explicit\"` only (required there): the speed "
+        "factor on V_D", range=FACTOR_RANGE, default=OMITTED,
+        what="the speed factor of regulation 'explicit'"))
+    min_damping_g: float | None = spec_field("regulation", Key(
+        "min_damping_g", "number", "every oscillatory mode must have a structural damping "
+        "coefficient g = 2ζ of at least this at every analysed speed up to V_D (below); "
+        "omitted: damping is reported, not judged", range=(0.0, 1.0), default=OMITTED))
+    airspeed: str = spec_field("envelope", Key(
+        "airspeed", "string", "which airspeed `V_D_m_per_s` is. An EAS is converted with the "
+        "ISA density at each altitude, V_TAS = V_EAS · sqrt(ρ0 / ρ(h)), ρ0 = 1.225 kg/m³; the "
+        "analyses' speeds are true airspeeds (`FlightCondition`)", choices=AIRSPEEDS,
+        what="which airspeed V_D is"))
+    V_D: tuple[float, ...] = spec_field("envelope", Key(
+        "V_D_m_per_s", "number_or_numbers", "the design dive speed V_D: one number for every "
+        "altitude, or one per altitude (a V–altitude line)", "m/s", SPEEDS,
+        items=(1, MAX_ITEMS), missing="the design dive speed [m/s]"))
+    altitudes_m: tuple[float, ...] = spec_field("envelope", Key(
+        "altitudes_m", "numbers", "the ISA (geopotential) altitudes: exactly one of "
+        "`altitudes_m`, `altitudes_ft`", "m", ALTITUDES_M, items=(1, MAX_ITEMS),
+        default=OMITTED), Key(
+        "altitudes_ft", "numbers", "the same in feet (instead of `altitudes_m`)", "ft",
+        (ALTITUDES_M[0] / FT, ALTITUDES_M[1] / FT), items=(1, MAX_ITEMS), default=OMITTED))
+    M_D: float | None = spec_field("envelope", Key(
+        "M_D", "number", "the design dive Mach number: V_D at each altitude is at most "
+        "M_D · a(h) (the row says `mach_limited`)", range=MACHS, default=OMITTED))
+    cases: tuple[CaseSpec, ...] = spec_field("", Key(
+        "cases", "tables", "the cases: one `[[cases]]` table each (below)", table=CASE,
+        items=(1, MAX_ITEMS), must="{fewest} to {most} [[cases]] tables",
+        missing="one [[cases]] table per case"))
+    V_C: tuple[float, ...] | None = spec_field("envelope", Key(
+        "V_C_m_per_s", "number_or_numbers", "`cs25`, `far25` only: the design cruise speed "
+        "V_C, always an **equivalent** airspeed (the words of 25.629(b)(2)(ii)), one number or "
+        "one per altitude (linear between the altitudes, constant beyond): the failure cases' "
+        "envelope (above)", "m/s", SPEEDS, default=OMITTED, items=(1, MAX_ITEMS),
+        what="the design cruise speed, an equivalent airspeed [m/s]"), default=None)
+    M_C: float | None = spec_field("envelope", Key(
+        "M_C", "number", "with `V_C_m_per_s`: the design cruise Mach number; an M_C whose "
+        "line is below 1.15 V_C already at −5000 m is an error", range=MACHS,
+        default=OMITTED), default=None)
 
 
-def _from_dict(data: dict[str, Any], base: Path, source: str) -> CampaignSpec:
-    top = Table(data, "", _TOP)
-    fmt = top.string("format")
-    if fmt != FORMAT:
-        raise top.bad("format", repr(FORMAT))
-    version = top.integer("format_version")
-    if version != FORMAT_VERSION:
-        raise top.bad("format_version", f"{FORMAT_VERSION} (this propwhirl reads campaign files "
-                                        f"of version {FORMAT_VERSION})")
-    name = top.string("name") if top.has("name") else Path(source).stem
-    model_key = top.string("model", "the model file, relative to the campaign file")
+def _table(name: str, title: str, text: str, first: tuple[Key, ...] = (),
+           last: tuple[Key, ...] = (), spec: type | None = None) -> TableSpec:
+    """The table `name` of a campaign file: `first`, the keys of the fields of `spec`
+    (:class:`CampaignSpec`) in it (in field order), `last`."""
+    keys = [k for f in dataclasses.fields(spec or CampaignSpec) if f.metadata.get(TABLE) == name
+            for k in f.metadata[KEYS]]
+    return TableSpec(title, text, first + tuple(k for k in keys if k.key != "cases") + last)
+
+
+REGULATION = _table("regulation", "[regulation]", "The regulation the campaign clears to.")
+ENVELOPE = _table("envelope", "[envelope]", "The envelope points: ISA altitudes and V_D there.")
+#: The top level of a campaign file.
+TOP = _table("", "Top level", "A whirl-flutter clearance campaign.", (
+    Key("format", "string", "the file format", choices=(FORMAT,), must=repr(FORMAT)),
+    Key("format_version", "integer", f"this propwhirl reads version {FORMAT_VERSION}",
+        range=(FORMAT_VERSION, FORMAT_VERSION), must=f"{FORMAT_VERSION} (this propwhirl reads "
+        f"campaign files of version {FORMAT_VERSION})"),
+), (Key("regulation", "table", "the regulation: `[regulation]`", table=REGULATION),
+    Key("envelope", "table", "the flight envelope: `[envelope]`", table=ENVELOPE),
+    CampaignSpec.__dataclass_fields__["cases"].metadata[KEYS][0]))
+
+
+# =============================================================================== reading
+def _regulation(r: Values) -> tuple[str, float]:
+    """The regulation and its factor: an explicit one's own, a named one's (a factor given
+    with it must be that)."""
+    name, t = r["name"], r.table
+    if name == EXPLICIT:
+        if r["factor"] is None:
+            raise t.missing("factor", REGULATION["factor"].what)
+        return name, r["factor"]
+    factor = REGULATIONS[name].factor
+    if r["factor"] is not None and r["factor"] != factor:
+        raise t.bad("factor", f"{factor:g} with name = {name!r} (or give name = 'explicit')")
+    return name, factor
+
+
+def _per_altitude(e: Values, key: str, n: int) -> tuple[float, ...] | None:
+    """A speed of the envelope: one (a tuple of one) or one per altitude (`n`)."""
+    x = e[key]
+    if x is None or not isinstance(x, list):
+        return None if x is None else (x,)
+    if len(x) != n:
+        raise e.table.bad(key, f"one speed, or one per altitude ({n})")
+    return tuple(x)
+
+
+def _envelope(e: Values) -> dict[str, Any]:
+    """The [envelope]'s CampaignSpec fields: exactly one altitude key, V_D and V_C one or one
+    per altitude, M_C only with V_C."""
+    t = e.table
+    if (e["altitudes_m"] is None) == (e["altitudes_ft"] is None):
+        raise v.InputError(f"[{t.where}] give exactly one of altitudes_m, altitudes_ft")
+    alts = e["altitudes_m"] or [h * FT for h in e["altitudes_ft"]]
+    V_C = _per_altitude(e, "V_C_m_per_s", len(alts))
+    if e["M_C"] is not None and V_C is None:
+        raise t.missing("V_C_m_per_s", "M_C needs V_C (the failure-case envelope of "
+                                       "25.629(b)(2)(ii))")
+    return dict(airspeed=e["airspeed"], V_D=_per_altitude(e, "V_D_m_per_s", len(alts)),
+                altitudes_m=tuple(alts), M_D=e["M_D"], V_C=V_C, M_C=e["M_C"])
+
+
+def _case(c: Values, combine: str) -> CaseSpec:
+    """A [[cases]] table's CaseSpec: its own keys and the transformations it gives."""
+    t = c.table
+    name = c["name"]
+    if not name.strip() or not name.isprintable() or len(name) > 200:
+        raise t.bad("name", "a non-empty printable name of at most 200 characters")
+    if combine == "product" and not c["group"]:
+        raise t.missing("group", "every case of combine = 'product' names its group")
+    transform = {k.key: _TRANSFORM.get(k.key, lambda x: x)(c[k.key]) for k in CASE.keys
+                 if k.key not in CASE_OWN and t.has(k.key)}
+    return CaseSpec(t.where, name, c["group"] or "", tuple(c["propellers"] or ()),
+                    c["each_propeller"], transform)
+
+
+def _load(top: Values, base: Path) -> tuple[Any, Path, int]:
+    """The campaign's model (a beam or a modal model's file), its path and its number of
+    propellers (at least one)."""
+    model_key = top["model"]
     path = Path(model_key)
     if not path.is_absolute():
         path = base / path
@@ -244,39 +339,58 @@ def _from_dict(data: dict[str, Any], base: Path, source: str) -> CampaignSpec:
     n = len(getattr(model, "propellers", ()) if isinstance(getattr(model, "propellers", None),
                                                            tuple) else ())
     if n == 0:
-        raise top.bad("model", "a propeller-wing model with at least one propeller "
-                               f"({str(path)!r} holds a {type(model).__name__} without any)")
-    conv = top.string("convention", choices=("propwhirl", "thesis")) \
-        if top.has("convention") else "propwhirl"
-    combine = top.string("combine", choices=("list", "product")) \
-        if top.has("combine") else "list"
-    regulation, factor, g = _regulation(top.sub("regulation", _REGULATION))
-    env = top.sub("envelope", _ENVELOPE)
-    airspeed, vd, alts, M_D, V_C, M_C = _envelope(env)
-    if V_C is not None and regulation not in PART25:
-        raise env.bad("V_C_m_per_s", f"absent with [regulation] name = {regulation!r}: the "
-                      "failure-case envelope (V_C, M_C) is that of 25.629(b)(2) (cs25, far25); "
-                      f"under {regulation!r} every case, failure or not, is held to "
-                      f"{factor:g} V_D")
-    raw = top.raw("cases", "one [[cases]] table per case")
-    if not isinstance(raw, list) or not 1 <= len(raw) <= MAX_ITEMS:
-        raise top.bad("cases", f"1 to {MAX_ITEMS} [[cases]] tables")
-    specs = []
+        raise top.table.bad("model", "a propeller-wing model with at least one propeller "
+                                     f"({str(path)!r} holds a {type(model).__name__} without "
+                                     "any)")
+    return model, path, n
+
+
+def _from_dict(data: dict[str, Any], base: Path, source: str) -> CampaignSpec:
+    top = read(Table(data, "", TOP.names), TOP, only=lambda k: k.key != "cases")
+    regulation, factor = _regulation(top["regulation"])
+    env = _envelope(top["envelope"])
+    if env["V_C"] is not None and regulation not in PART25:
+        raise top["envelope"].table.bad(
+            "V_C_m_per_s", f"absent with [regulation] name = {regulation!r}: the failure-case "
+            "envelope (V_C, M_C) is that of 25.629(b)(2) (cs25, far25); under "
+            f"{regulation!r} every case, failure or not, is held to {factor:g} V_D")
+    model, path, n = _load(top, base)
+    cases = [_case(c, top["combine"]) for c in read(
+        top.table, TOP, {"the model's propellers": n}, only=lambda k: k.key == "cases")["cases"]]
     groups: dict[str, int] = {}
-    for i, d in enumerate(raw):
-        t = Table(d, f"cases[{i}]", _CASE)
-        c = _case(t, n)
-        if combine == "product" and not c.group:
-            raise t.missing("group", "every case of combine = 'product' names its group")
+    for c in cases:
         groups[c.group] = groups.get(c.group, 0) + (len(c.propellers) or n if c.each_propeller
                                                     else 1)
-        specs.append(c)
-    count = math.prod(groups.values()) if combine == "product" else sum(groups.values())
+    count = math.prod(groups.values()) if top["combine"] == "product" else sum(groups.values())
+    alts = env["altitudes_m"]
     if count * len(alts) > MAX_TASKS:
         raise v.InputError(f"the cases ({count}) x altitudes ({len(alts)}) make "
                            f"{count * len(alts)} analyses, at most {MAX_TASKS}")
-    return CampaignSpec(source, name, model, str(path), conv, combine, regulation, factor, g,
-                        airspeed, vd, alts, M_D, tuple(specs), V_C, M_C)
+    read_tables = {"": top, "regulation": top["regulation"], "envelope": top["envelope"]}
+    values = {f.name: read_tables[f.metadata[TABLE]][f.metadata[KEYS][0].key]
+              for f in dataclasses.fields(CampaignSpec)
+              if KEYS in f.metadata and f.metadata[KEYS][0].key in read_tables[f.metadata[TABLE]]}
+    values.update(env, source=source, name=top["name"] or Path(source).stem, model=model,
+                  model_path=str(path), regulation=regulation, factor=factor, cases=tuple(cases))
+    return CampaignSpec(**values)      # a field of its key's value, unless tied above
+
+
+def _regulations_table() -> str:
+    """The regulations a campaign names (:data:`propwhirl.certification.REGULATIONS`)."""
+    rows = [f"| `{name}` | {r.factor:g} | {r.source} |\n" for name, r in REGULATIONS.items()]
+    low, high = FACTOR_RANGE
+    rows.append(f"| `{EXPLICIT}` | `factor` in [{low:g}, {high:g}] | whatever your "
+                "certification basis says |\n")
+    return "| `name` | speed factor | source |\n|---|---|---|\n" + "".join(rows)
+
+
+def docs_parts() -> dict[str, str]:
+    """The generated parts of docs/campaign.md: every table's keys (:data:`TOP`,
+    :data:`REGULATION`, :data:`ENVELOPE`, :data:`CASE`, :data:`MASS`) and the regulations."""
+    return {"campaign top": markdown(TOP), "campaign regulation": markdown(REGULATION),
+            "campaign regulations": _regulations_table(),
+            "campaign envelope": markdown(ENVELOPE), "campaign cases": markdown(CASE),
+            "campaign added masses": markdown(MASS)}
 
 
 def loads(text: str, source: str = "<string>", base: str | Path = ".") -> CampaignSpec:

@@ -29,8 +29,9 @@ from propwhirl import fileio, limits
 from propwhirl import validate as v
 from propwhirl.io import schema
 from propwhirl.io.model_files import Table, Writer, from_table, toml_error
+from propwhirl.io.tables import OMITTED, Key, TableSpec, markdown, read
 from propwhirl.model.flight import FlightCondition
-from propwhirl.model.modal import MOUNTS, ModalInstallation, ModalPropellerWing
+from propwhirl.model.modal import MOUNTS, ModalInstallation, ModalPropellerWing, check_hub_grids
 from propwhirl.model.modal_structure import MAX_MODES, ModalStructure, StripPlanform, id_list
 from propwhirl.model.propellers.propeller import Propeller
 from propwhirl.model.systems import PropellerWing
@@ -213,93 +214,118 @@ def load_modal_model(path: str | Path) -> ModalPropellerWing:
         raise v.InputError(msg if msg.startswith(src) else f"{src}: {msg}") from None
 
 
+#: What each unit is of.
+_UNIT_OF = {"length": "lengths, positions and translations", "mass": "masses",
+            "time": "times", "angle": "angles, rotations and slopes",
+            "frequency": "frequencies"}
+_SI = ("propwhirl reads SI units only (convert the modes and the strips to "
+       + ", ".join(UNITS.values()) + ")")
+UNITS_TABLE = TableSpec("[units]", "Every unit stated; SI only.", tuple(
+    Key(k, "string", f"the unit of {_UNIT_OF[k]}", choices=(u,), must=f'"{u}": {_SI}',
+        missing=f'every unit must be stated; propwhirl reads SI: {k} = "{u}"')
+    for k, u in UNITS.items()))
+MODES_TABLE = TableSpec("[modes]", "The modes file and its sizes, checked before it is read.", (
+    Key("file", "string", "the modes (`.npz`, the arrays above), relative to this file"),
+    Key("n_modes", "integer", "the number of modes in the file", range=(1, MAX_MODES)),
+    Key("n_grids", "integer", "the number of grids in the file", range=(1, None)),
+    Key("wing_grids", "integers", "the reference-axis grids the strips are splined to, root to "
+        "tip (ids of the modes file)", items=(2, None),
+        must="a list of two or more grid ids (integers)"),
+))
+STRIPS_TABLE = TableSpec("[strips]", "One entry per strip in each list, all lists of the same "
+                         "length.", (
+    *(Key(k, "numbers", doc) for k, doc in (
+        ("y_m", "stations y [m], increasing, within the wing grids' span"),
+        ("width_m", "strip widths [m]"),
+        ("chord_m", "chords [m]"),
+        ("leading_edge_x_m", "x of the leading edge in the wing frame [m]"),
+        ("elastic_axis", "the elastic axis, a fraction of the chord aft of the leading edge"),
+        ("aerodynamic_centre", "the aerodynamic centre, a fraction of the chord aft of the "
+         "leading edge"),
+        ("lift_slope_per_rad", "lift-curve slopes [1/rad]"))),
+    Key("aero_model", "string", "the strips' unsteady aerodynamics (lag states)",
+        choices=("leishman-nguyen", "wagner"), default="leishman-nguyen"),
+))
+SWITCHES_TABLE = TableSpec("[switches]", "Model switches.", tuple(
+    Key(k, "boolean", doc, default=True) for k, doc in (
+        ("wing_aero", "the strips' aerodynamics"),
+        ("propeller_aero", "the propellers' aerodynamics"),
+        ("rotating", "the rotors' gyroscopic coupling"))))
+INSTALLATION = TableSpec("installations[i]", "A propeller at a hub grid.", (
+    Key("propeller", "string", "the key of a `[propellers.KEY]` table"),
+    Key("grid", "integer", "its hub grid (an id of the modes file)"),
+    Key("mount", "string", "`\"flexible\"`, `\"rigid\"` (way a: the propeller's own mount) or "
+        "`\"on-grid\"` (way b: rigid on the grid, the mount in the modes)", choices=MOUNTS,
+        default="flexible"),
+    Key("aero", "boolean", "its aerodynamic loads", default=True),
+))
+#: The top level of a modal model's description.
+TOP = TableSpec("Top level", "A modal propeller-wing: the modes' description.", (
+    Key("format", "string", "the file format", choices=(FORMAT,), must=repr(FORMAT)),
+    Key("format_version", "integer", f"this propwhirl reads version {FORMAT_VERSION}",
+        range=(FORMAT_VERSION, FORMAT_VERSION),
+        must=f"{FORMAT_VERSION} (this propwhirl reads version {FORMAT_VERSION} of {FORMAT})"),
+    Key("name", "string", "the model's name", default="modal propeller-wing"),
+    Key("units", "table", "the units: `[units]`", table=UNITS_TABLE,
+        missing="the units must be stated: [units] "
+                + ", ".join(f'{k} = "{u}"' for k, u in UNITS.items())),
+    Key("modes", "table", "the modes file: `[modes]`", table=MODES_TABLE),
+    Key("strips", "table", "the strips: `[strips]`", table=STRIPS_TABLE),
+    Key("flight", "model table", "the flight condition, as in a model file "
+        "([Model files](model-file.md), `[flight]`)"),
+    Key("switches", "table", "model switches: `[switches]`", table=SWITCHES_TABLE,
+        default=OMITTED),
+    Key("propellers", "model tables", "the propellers, one table `[propellers.KEY]` each, as in "
+        "a model file ([Model files](model-file.md))", default=OMITTED),
+    Key("installations", "tables", "the propellers at hub grids, one table each: "
+        "`installations[i]`", table=INSTALLATION, default=OMITTED,
+        must="a list of tables {{propeller, grid, mount, aero}}"),
+))
+
+
 def _from_dict(data: dict[str, Any], path: Path) -> ModalPropellerWing:
-    top = Table(data, "", ("format", "format_version", "name", "units", "modes", "strips",
-                           "installations", "flight", "switches", "propellers"))
-    if top.string("format") != FORMAT:
-        raise top.bad("format", repr(FORMAT))
-    version = top.integer("format_version")
-    if version != FORMAT_VERSION:
-        raise top.bad("format_version", f"{FORMAT_VERSION} (this propwhirl reads version "
-                      f"{FORMAT_VERSION} of {FORMAT})")
-    name = top.string("name") if top.has("name") else "modal propeller-wing"
-    if not top.has("units"):
-        raise top.missing("units", "the units must be stated: [units] "
-                          + ", ".join(f'{k} = "{u}"' for k, u in UNITS.items()))
-    units = top.sub("units", tuple(UNITS))
-    for key, unit in UNITS.items():
-        if not units.has(key):
-            raise units.missing(key, f"every unit must be stated; propwhirl reads SI: "
-                                f'{key} = "{unit}"')
-        if units.string(key) != unit:
-            raise units.bad(key, f'"{unit}": propwhirl reads SI units only (convert the modes '
-                            "and the strips to " + ", ".join(UNITS.values()) + ")")
-    modes = top.sub("modes", ("file", "n_modes", "n_grids", "wing_grids"))
-    file = path.parent / modes.string("file")
-    n_modes, n_grids = modes.integer("n_modes"), modes.integer("n_grids")
-    for key, n, most in (("n_modes", n_modes, MAX_MODES), ("n_grids", n_grids, None)):
-        if n < 1 or (most is not None and n > most):
-            raise modes.bad(key, f"an integer in [1, {most}]" if most else "an integer >= 1")
-    raw_grids = modes.raw("wing_grids")
-    if (not isinstance(raw_grids, list) or len(raw_grids) < 2
-            or any(isinstance(g, bool) or not isinstance(g, int) for g in raw_grids)):
-        raise modes.bad("wing_grids", "a list of two or more grid ids (integers)")
-    strips_t = top.sub("strips", ("aero_model",) + tuple(k for k, _ in STRIP_KEYS))
-    values = {f: strips_t.numbers(k) for k, f in STRIP_KEYS}
+    """The model of a description read by its schema (:data:`TOP`; the keys that tie
+    together checked after: the strips' lengths, a propeller's key, the grids in the modes)."""
+    top = read(Table(data, "", TOP.names), TOP)
+    modes, strips = top["modes"], top["strips"]
+    file = path.parent / modes["file"]
+    values = {f: strips[k] for k, f in STRIP_KEYS}
     n_strips = len(values["y"])
     for k, f in STRIP_KEYS:
         if len(values[f]) != n_strips:
-            raise strips_t.bad(k, f"a list of {n_strips} numbers (one per strip, as y_m)")
-    aero_model = (strips_t.string("aero_model", choices=("leishman-nguyen", "wagner"))
-                  if strips_t.has("aero_model") else "leishman-nguyen")
-    flight = from_table(FlightCondition, top.sub("flight", _keys(FlightCondition)), {})
-    switches = {"wing_aero": True, "propeller_aero": True, "rotating": True}
-    if top.has("switches"):
-        sw = top.sub("switches", tuple(switches))
-        for k in switches:
-            if sw.has(k):
-                switches[k] = sw.boolean(k)
-    props_raw = data.get("propellers", {})
-    if not isinstance(props_raw, dict):
-        raise top.bad("propellers", "tables [propellers.KEY]")
-    ctx = {k: from_table(Propeller, Table(p, f"propellers.{k}", _keys(Propeller)), {})
-           for k, p in props_raw.items()}
-    raw_inst = data.get("installations", [])
-    if not isinstance(raw_inst, list):
-        raise top.bad("installations", "a list of tables {propeller, grid, mount, aero}")
-    inst_tables = [Table(t, f"installations[{j}]", ("propeller", "grid", "mount", "aero"))
-                   for j, t in enumerate(raw_inst)]
-    for t in inst_tables:
-        if t.string("propeller") not in ctx:
-            raise t.bad("propeller", "the key of a [propellers.KEY] table ("
-                        + (", ".join(ctx) or "none given") + ")")
+            raise strips.table.bad(k, f"a list of {n_strips} numbers (one per strip, as y_m)")
+    flight = from_table(FlightCondition, Table(top["flight"], "flight",
+                                               schema.table_keys(FlightCondition)), {})
+    ctx = {k: from_table(Propeller, Table(p, f"propellers.{k}", schema.table_keys(Propeller)),
+                         {}) for k, p in (top["propellers"] or {}).items()}
+    installations = top["installations"] or []
+    for t in installations:
+        if t["propeller"] not in ctx:
+            raise t.table.bad("propeller", "the key of a [propellers.KEY] table ("
+                              + (", ".join(ctx) or "none given") + ")")
     # only now the arrays: the description is whole and consistent
-    structure = load_modes(file, n_modes, n_grids, what="[modes] file")
+    structure = load_modes(file, modes["n_modes"], modes["n_grids"], what="[modes] file")
     ids = set(int(i) for i in structure.grid_ids)
-    for i, g in enumerate(raw_grids):
+    for i, g in enumerate(modes["wing_grids"]):
         if g not in ids:
             raise _fail(str(path), f"[modes] wing_grids[{i}] = {g} is not a grid of {file} "
                         f"(grids {id_list(structure.grid_ids)})")
-    installations = []
-    for j, t in enumerate(inst_tables):
-        g = t.integer("grid")
-        if g not in ids:
-            raise _fail(str(path), f"installations[{j}].grid = {g} is not a grid of {file}: "
-                        f"the modes have no hub grid {g} (grids {id_list(structure.grid_ids)})")
-        mount = t.string("mount", choices=MOUNTS) if t.has("mount") else "flexible"
-        aero = t.boolean("aero") if t.has("aero") else True
-        installations.append(ModalInstallation(ctx[t.string("propeller")], g, mount, aero))
+    check_hub_grids(structure, [t["grid"] for t in installations], "installations")
     planform = StripPlanform(**{f: np.array(x) for f, x in values.items()},
-                             aero_model=aero_model, source=f"{path} [strips]")
-    try:
-        return ModalPropellerWing(structure, tuple(raw_grids), planform, flight,
-                                  tuple(installations), name=name, **switches)
-    except v.InputError as exc:     # the model's own names → the file's keys
-        raise v.InputError(str(exc).replace("propellers[", "installations[")) from None
+                             aero_model=strips["aero_model"], source=f"{path} [strips]")
+    switches = {k: top["switches"][k] for k in SWITCHES_TABLE.names}
+    return ModalPropellerWing(
+        structure, tuple(modes["wing_grids"]), planform, flight,
+        tuple(ModalInstallation(ctx[t["propeller"]], t["grid"], t["mount"], t["aero"])
+              for t in installations), name=top["name"], **switches)
 
 
-def _keys(cls: type) -> tuple[str, ...]:
-    return schema.table_keys(cls)
+def docs_parts() -> dict[str, str]:
+    """The generated parts of docs/modal-structures.md: the description's key tables."""
+    return {f"modal {name}": markdown(spec) for name, spec in (
+        ("top", TOP), ("units", UNITS_TABLE), ("modes", MODES_TABLE),
+        ("strips", STRIPS_TABLE), ("switches", SWITCHES_TABLE),
+        ("installations", INSTALLATION))}
 
 
 def _check_targets(path: Path, npz: Path) -> None:

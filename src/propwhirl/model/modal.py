@@ -43,7 +43,8 @@ from propwhirl.model.structure.assembly import LAG_STATES, call_blocks, strip_ae
 from propwhirl.model.base import EvaluatorBase, StateSpaceModel
 from propwhirl.model.fields import spec
 from propwhirl.model.flight import FlightCondition
-from propwhirl.model.modal_structure import ModalStructure, StripPlanform, strip_interpolation
+from propwhirl.model.modal_structure import (ModalStructure, StripPlanform, id_list,
+                                            strip_interpolation)
 from propwhirl.model.propellers.propeller import Propeller
 from propwhirl.model.propeller_blocks import (propeller_constants_at, propeller_matrices,
                                              propeller_values)
@@ -113,6 +114,27 @@ class ModalInstallation:
         v.boolean("aero", self.aero)
 
 
+def check_hub_grids(structure: ModalStructure, grids, name: str = "propellers") -> None:
+    """Each of the hub grids `grids` (one per installation) a grid of the modes, moving in some
+    mode, and carrying at most one installation; else an InputError naming ``name[j].grid``
+    (``propellers[j]`` of a :class:`ModalPropellerWing`; a modal model file's reader names
+    its ``installations[j]``)."""
+    s = structure
+    seen: dict[int, int] = {}
+    for j, g in enumerate(grids):
+        hit = np.flatnonzero(s.grid_ids == int(g))
+        if not hit.size:
+            raise v.InputError(f"{name}[{j}].grid = {g} is not a grid of {s.source}: the modes "
+                               f"have no hub grid {g} (grids {id_list(s.grid_ids)})")
+        if not np.any(s.shapes[:, int(hit[0]), :]):
+            raise v.InputError(f"{s.source}: {name}[{j}].grid = {g} does not move in any mode: "
+                               "the modes do not include the hub grid")
+        if int(g) in seen:
+            raise v.InputError(f"{name}[{j}].grid = {g} is invalid: {name}[{seen[int(g)]}] is "
+                               "on it already (at most one per hub grid)")
+        seen[int(g)] = j
+
+
 @dataclass(frozen=True, eq=False)
 class ModalPropellerWing(StateSpaceModel):
     """A wing given by its normal modes, with strip aerodynamics and propellers at hub grids
@@ -180,17 +202,7 @@ class ModalPropellerWing(StateSpaceModel):
         object.__setattr__(self, "propellers", tuple(self.propellers))
         limits.check_propellers(len(self.propellers))
         s = self.structure
-        seen: dict[int, int] = {}
-        for j, inst in enumerate(self.propellers):
-            i = s.index(int(inst.grid), f"propellers[{j}].grid")
-            if not np.any(s.shapes[:, i, :]):
-                raise v.InputError(f"{s.source}: propellers[{j}].grid = {inst.grid} does not "
-                                   "move in any mode: the modes do not include the hub grid")
-            if int(inst.grid) in seen:
-                raise v.InputError(f"propellers[{j}].grid = {inst.grid} is invalid: "
-                                   f"propellers[{seen[int(inst.grid)]}] is on it already (at "
-                                   "most one per hub grid)")
-            seen[int(inst.grid)] = j
+        check_hub_grids(s, [inst.grid for inst in self.propellers])
         strip_interpolation(s, self.wing_grids, self.planform)   # checks the grids now
 
     def refuses(self, feature: str) -> str | None:

@@ -4,10 +4,10 @@ the verdict of a regulation for every (case, envelope point).
 A :class:`Campaign` holds
 
 * the model (any propeller-wing model; :func:`propwhirl.io.load_model`);
-* the regulation's speed factor (:data:`REGULATIONS`: CS 25.629 and 14 CFR 25.629 1.15, 14 CFR
-  23.629 1.2, or an explicit factor) and, optionally, a damping requirement: the structural
-  damping coefficient g = 2ζ of every oscillatory mode at least ``min_damping_g`` at every
-  speed up to V_D;
+* the regulation's speed factor (:data:`propwhirl.certification.REGULATIONS`: CS 25.629 and
+  14 CFR 25.629 1.15, 14 CFR 23.629 1.2, or an explicit factor) and, optionally, a damping
+  requirement: the structural damping coefficient g = 2ζ of every oscillatory mode at least
+  ``min_damping_g`` at every speed up to V_D;
 * the envelope: :class:`EnvelopePoint` s, each an ISA altitude with its V_D as a true
   airspeed [m/s] (:func:`envelope`: V_D given as EAS is converted with the ISA density,
   V_TAS = V_EAS · sqrt(ρ0 / ρ(h)); an M_D limits it to M_D · a(h)).  The analyses'
@@ -26,8 +26,8 @@ analyses, :func:`from_spec`), estimates the campaign's time as the studies do
 bar, a partial-results file and resume).  Each point's result (:func:`evaluate_point`) holds
 the critical instability (:func:`propwhirl.studies.critical.critical_instability`: kind, event,
 mode, frequency, whirl sense, every propeller's share), V_crit, the required speed and its rule
-(:func:`required_speed`: factor · V_D, or for a failure case of CS/14 CFR 25.629(b)(2) the
-greater of V_D and the 1.15 V_C / M_C + 0.05 line, :func:`failure_line`),
+(:meth:`Campaign.required_speed`: factor · V_D, or for a failure case of CS/14 CFR
+25.629(b)(2) the greater of V_D and the 1.15 V_C / M_C + 0.05 line, :func:`failure_line`),
 the margin V_crit − V_required [m/s] and [%], the least damping g = 2ζ of the oscillatory
 modes (those with an event and the :data:`DAMPING_MODES` of lowest frequency) up to the required speed and up to V_D (with mode and speed), and the slope dζ/dV [s/m]
 of the least damped mode at the required speed ("rapid loss of stability").  A point clears
@@ -47,6 +47,9 @@ import numpy as np
 
 from propwhirl import limits
 from propwhirl import validate as v
+from propwhirl.certification import (  # noqa: F401 (REGULATIONS, regulation_factor re-exported)
+    CASE_FACTORS, FACTOR_CS25, FACTOR_RANGE, OPERATIONS, PART25, REGULATIONS, STATES,
+    regulation_factor, required_speed)
 from propwhirl.analysis.margin import DAMPING_MODES  # noqa: F401 (re-exported)
 from propwhirl.analysis.margin import least_damping as _least
 from propwhirl.analysis.margin import oscillatory_damping as _damping
@@ -67,31 +70,13 @@ from propwhirl.studies.flight_envelope import (  # noqa: F401 (re-exported)
 from propwhirl.studies.campaign_result import (  # noqa: F401 (re-exported)
     CampaignResult, CaseSummary, PointPlot, PointRow)
 
-#: The regulations' speed factors and their sources: name → (factor, source).
-REGULATIONS: dict[str, tuple[float, str]] = {
-    "cs25": (1.15, "CS 25.629(b)(1): aeroelastic stability up to 1.15 V_D/M_D (EASA CS-25)"),
-    "far25": (1.15, "14 CFR 25.629(b)(1): aeroelastic stability up to 1.15 V_D/M_D"),
-    "far23": (1.2, "14 CFR 23.629 (amendments up to 23-63; now 14 CFR 23.2245 with its means "
-                   "of compliance) and AC 23.629-1B: free from flutter up to 1.2 V_D by analysis"),
-}
-#: Operations a case can switch a propeller to.
-OPERATIONS = ("windmilling",)
-#: States a case can put an installation in (:class:`propwhirl.model.systems.Installation`).
-STATES = ("operating", "feathered", "stopped")
 #: The transformations that make a case a failure condition of 25.629(d) unless it says
 #: ``failure = false`` (:attr:`Case.is_failure`), with the paragraph of 25.629(d).
 FAILURE_KINDS = ("mount_stiffness < 1: (d)(4), (d)(5)", "mount_damping < 1: (d)(2)",
                  "state feathered or stopped: (d)(6)", "rpm_factor > 1: (d)(7)")
-#: The regulations whose failure cases are held to the envelope of 25.629(b)(2).
-PART25 = ("cs25", "far25")
 
 
 # ============================================================================== cases
-#: A case's factors and their ranges: (field, low, high).
-_FACTORS = (("mount_stiffness", 1e-3, 100.0), ("mount_damping", 0.0, 100.0),
-            ("wing_damping", 0.0, 100.0), ("rpm_factor", 0.1, 3.0))
-
-
 def _number_in(case: str, key: str, x: Any, low: float, high: float) -> None:
     """`x` a finite real number in [low, high] (a plain int or float checked at once, as the
     many cases of a product are; anything else by :func:`propwhirl.validate.in_range`, whose
@@ -152,8 +137,8 @@ class Case:
                       (:func:`propwhirl.studies.paths.set_values`), after the rest;
     failure:          a failure, malfunction or adverse condition of 25.629(d), held to the
                       failure-case envelope of 25.629(b)(2) under "cs25"/"far25"
-                      (:func:`required_speed`); None (default): :attr:`is_failure` decides
-                      from the transformation (:data:`FAILURE_KINDS`).
+                      (:meth:`Campaign.required_speed`); None (default): :attr:`is_failure`
+                      decides from the transformation (:data:`FAILURE_KINDS`).
 
     Parameters
     ----------
@@ -228,7 +213,7 @@ class Case:
         for key, x in (("propellers", props), ("added_masses", masses), ("values", values)):
             if x is not getattr(self, key):
                 object.__setattr__(self, key, x)
-        for key, low, high in _FACTORS:
+        for key, (low, high) in CASE_FACTORS.items():
             _number_in(name, key, getattr(self, key), low, high)
         if not isinstance(self.reverse_rotation, bool):
             raise v.fail(f"case {name!r}: reverse_rotation", self.reverse_rotation, "invalid: "
@@ -442,11 +427,11 @@ def product(groups: Sequence[Sequence[Case]]) -> tuple[Case, ...]:
 class Campaign:
     """Everything a campaign runs (module docstring).
 
-    factor: the speed factor [-] (:data:`REGULATIONS` or explicit); regulation: its name
-    ("cs25", "far25", "far23" or "explicit"); min_damping_g: the least g = 2ζ required up to
-    V_D (None: no damping requirement); static_divergence, low_speed: the convention
-    (:func:`propwhirl.studies.critical.critical_instability`); xtol: accuracy of each critical
-    speed [m/s].
+    factor: the speed factor [-] (:data:`~propwhirl.certification.REGULATIONS` or explicit);
+    regulation: its name ("cs25", "far25", "far23" or "explicit"); min_damping_g: the least
+    g = 2ζ required up to V_D (None: no damping requirement); static_divergence, low_speed: the
+    convention (:func:`propwhirl.studies.critical.critical_instability`); xtol: accuracy of
+    each critical speed [m/s].
 
     Parameters
     ----------
@@ -484,7 +469,7 @@ class Campaign:
     cases: tuple[Case, ...]
     points: tuple[EnvelopePoint, ...]
     regulation: str = "cs25"
-    factor: float = 1.15
+    factor: float = FACTOR_CS25
     min_damping_g: float | None = None
     static_divergence: bool = True
     low_speed: bool = True
@@ -517,7 +502,7 @@ class Campaign:
             raise v.fail("name", self.name, f"invalid: must be a str, got {type(self.name).__name__}")
         for key in ("static_divergence", "low_speed"):
             v.boolean(key, getattr(self, key))
-        v.in_range("factor", self.factor, 1.0, 3.0)
+        v.in_range("factor", self.factor, *FACTOR_RANGE)
         if self.regulation not in PART25 and any(p.V_line is not None for p in self.points):
             raise v.InputError(f"V_C is invalid with regulation {self.regulation!r}: the "
                                "failure-case envelope (V_C, M_C) is 25.629(b)(2)'s (cs25, far25); "
@@ -531,42 +516,16 @@ class Campaign:
     def convention(self) -> str:
         return convention(self.static_divergence, self.low_speed)
 
-
-def required_speed(c: Campaign, case: Case, p: EnvelopePoint) -> tuple[float, str]:
-    """The speed [m/s, TAS] case `case` must clear at point `p` of campaign `c`, and the rule
-    that sets it:
-
-    * a case that is not a failure (:attr:`Case.is_failure`), and every case under "far23" or
-      "explicit" (14 CFR 23.629 and AC 23.629-1B hold failure cases to the same 1.2 V_D): the
-      factor times V_D ("25.629(b)(1) 1.15 V_D", "23.629 1.2 V_D", "1.25 V_D");
-    * a failure case under "cs25"/"far25" (25.629(b)(2)): the greater of V_D (with its M_D
-      limit; "25.629(b)(2)(i) V_D") and the point's line of (b)(2)(ii)
-      (:func:`failure_line`; "25.629(b)(2)(ii) 1.15 V_C", "... V_C-M_C line",
-      "... M_C + 0.05"); without V_C, V_D."""
-    if c.regulation not in PART25 or not case.is_failure:
-        where = {"cs25": "25.629(b)(1) ", "far25": "25.629(b)(1) ",
-                 "far23": "23.629 "}.get(c.regulation, "")
-        return c.factor * p.V_D, f"{where}{c.factor:g} V_D"
-    if p.V_line is not None and p.V_line > p.V_D:
-        return p.V_line, f"25.629(b)(2)(ii) {p.line_part}"
-    return p.V_D, "25.629(b)(2)(i) " + ("M_D" if p.mach_limited else "V_D")
-
-
-def regulation_factor(regulation: str, factor: float | None = None) -> float:
-    """The speed factor of `regulation` ("cs25", "far25", "far23"; or "explicit" with
-    `factor`)."""
-    if regulation == "explicit":
-        if factor is None:
-            raise v.InputError("regulation 'explicit' needs a factor")
-        return float(v.in_range("factor", factor, 1.0, 3.0))
-    if regulation not in REGULATIONS:
-        raise v.InputError(f"regulation = {v.short_repr(regulation)} is invalid: must be one of "
-                           f"{', '.join(REGULATIONS)}, explicit")
-    if factor is not None and float(factor) != REGULATIONS[regulation][0]:
-        raise v.InputError(f"factor = {factor!r} is invalid with regulation {regulation!r}, whose "
-                           f"factor is {REGULATIONS[regulation][0]:g}: give regulation = "
-                           "'explicit' for another factor")
-    return REGULATIONS[regulation][0]
+    def required_speed(self, case: Case, p: EnvelopePoint) -> tuple[float, str]:
+        """The speed [m/s, TAS] `case` must clear at point `p`, and the rule that sets it:
+        :func:`propwhirl.certification.required_speed` (the one definition) of the point's V_D,
+        the campaign's factor and regulation, whether the case is a failure
+        (:attr:`Case.is_failure`) and the point's failure-case line (:func:`failure_line`):
+        "25.629(b)(1) 1.15 V_D", "23.629 1.2 V_D", "1.25 V_D", "25.629(b)(2)(i) V_D",
+        "25.629(b)(2)(ii) 1.15 V_C", ...)."""
+        return required_speed(p.V_D, self.factor, self.regulation, failure=case.is_failure,
+                              V_line=p.V_line, line_part=p.line_part,
+                              mach_limited=p.mach_limited)
 
 
 def at_altitude(model: Any, altitude_m: float) -> Any:
@@ -764,7 +723,7 @@ def tasks(c: Campaign) -> tuple[list[_Task], list[str]]:
             if fc is None:
                 fc = flights[p.altitude_m, span] = FlightCondition.from_altitude(
                     p.altitude_m, speed_range=span)
-            V_req, _ = required_speed(c, case, p)
+            V_req, _ = c.required_speed(case, p)
             key = (span, aero, float(fc.speed_of_sound), V_req)
             grid = grids.get(key)
             if grid is None:
@@ -903,7 +862,7 @@ def evaluate_point(task: _Task) -> dict[str, Any]:
 def _row(c: Campaign, case: Case, p: EnvelopePoint, r: Any) -> PointRow:
     """The :class:`PointRow` of one point's result `r` (a dict of :func:`evaluate_point` or a
     TaskError)."""
-    V_req, rule = required_speed(c, case, p)
+    V_req, rule = c.required_speed(case, p)
     base = dict(case=case.name, description=case.describe(), altitude_m=p.altitude_m,
                 airspeed=p.airspeed, V_D_given=p.V_D_given, V_D=p.V_D,
                 mach_limited=p.mach_limited, V_required=V_req, rule=rule)

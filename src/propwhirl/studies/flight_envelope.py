@@ -14,10 +14,9 @@ from typing import Any
 import numpy as np
 
 from propwhirl import validate as v
+from propwhirl.certification import AIRSPEEDS, FACTOR_VC_FAILURE  # noqa: F401 (re-exported)
 from propwhirl.model import atmosphere
 
-#: The airspeeds V_D can be given as: equivalent or true airspeed.
-AIRSPEEDS = ("EAS", "TAS")
 #: Sea-level ISA density ρ0 [kg/m³] (the reference of an equivalent airspeed).
 RHO0 = float(atmosphere.density(0.0))
 #: The Mach number added to M_C above the lowest V_C/M_C intersection in 25.629(b)(2)(ii).
@@ -110,27 +109,28 @@ def failure_line(altitudes_m: Sequence[float], V_C: float | Sequence[float],
     def V_C_at(h: float) -> float:
         return float(np.interp(h, at, vc))
 
+    k, vc_part = FACTOR_VC_FAILURE, f"{FACTOR_VC_FAILURE:g} V_C"     # 1.15 V_C
     if M_C is None:
-        return [(1.15 * V_C_at(h), "1.15 V_C") for h in alts]
-    h1 = _crossing(lambda h: mach_eas(M_C, h) - 1.15 * V_C_at(h))
+        return [(k * V_C_at(h), vc_part) for h in alts]
+    h1 = _crossing(lambda h: mach_eas(M_C, h) - k * V_C_at(h))
     h2 = _crossing(lambda h: mach_eas(M_C, h) - V_C_at(h))
     if h1 == -math.inf:
         raise v.InputError(f"M_C = {M_C:g} is invalid with V_C = {vc.min():g} m/s (EAS): its "
-                           "line is below 1.15 V_C "
+                           f"line is below {vc_part} "
                            f"already at {atmosphere.MIN_ALTITUDE:g} m (M_C is the cruise Mach "
                            "number above the V_C/M_C intersection)")
     if h1 is None:                            # the M_C line never reaches 1.15 V_C
-        return [(1.15 * V_C_at(h), "1.15 V_C") for h in alts]
+        return [(k * V_C_at(h), vc_part) for h in alts]
     if h2 is None:
         raise v.InputError(f"M_C = {M_C:g} is invalid with V_C = {vc.min():g} m/s (EAS): "
-                           "1.15 V_C meets its line at "
+                           f"{vc_part} meets its line at "
                            f"{h1:.0f} m but V_C does not below {atmosphere.MAX_ALTITUDE:g} m")
     top = mach_eas(M_C + DELTA_M_C, h2)
-    start = 1.15 * V_C_at(h1)
+    start = k * V_C_at(h1)
     out = []
     for h in alts:
         if h <= h1:
-            out.append((1.15 * V_C_at(h), "1.15 V_C"))
+            out.append((k * V_C_at(h), vc_part))
         elif h <= h2:
             w = (h - h1) / (h2 - h1) if h2 > h1 else 1.0
             out.append((float(start + w * (top - start)), "V_C-M_C line"))

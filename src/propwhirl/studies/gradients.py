@@ -26,6 +26,7 @@ from typing import Any, ClassVar, Sequence
 import numpy as np
 
 from propwhirl import validate as v
+from propwhirl.certification import FACTOR_CS25, required_speed
 from propwhirl.analysis.sensitivity import critical_sensitivities
 from propwhirl.analysis.stability import analyse
 from propwhirl.model import derivatives as D
@@ -309,7 +310,7 @@ def _optimise(f: "CriticalSpeed", method: str, target: float, lower: float, uppe
     return x, V, msg
 
 
-def minimum_mount_stiffness(model, vd: float, factor: float = 1.15, *, propeller: int = 0,
+def minimum_mount_stiffness(model, vd: float, factor: float = FACTOR_CS25, *, propeller: int = 0,
                             static_divergence: bool = False, low_speed: bool = False,
                             lower: float = LOWER_BOUND, upper: float = UPPER_BOUND,
                             gradients: str = "exact",
@@ -374,8 +375,7 @@ def minimum_mount_stiffness(model, vd: float, factor: float = 1.15, *, propeller
     >>> r.cleared, [round(float(k), 2) for k in r.x / r.x0], round(r.V, 1), r.target
     (True, [0.41, 0.18], 149.5, 149.5)
     """
-    v.positive("vd", vd, "m/s")
-    v.in_range("factor", factor, 1.0, 3.0)      # the regulations' 1.15, 1.2 (as clearance)
+    target, _ = required_speed(vd, factor, vd_name="vd")    # factor · V_D, as clearance's
     if gradients not in ("exact", "fd"):
         raise v.InputError(f"gradients = {v.short_repr(gradients)} is invalid: must be "
                            "'exact' or 'fd'")
@@ -389,7 +389,6 @@ def minimum_mount_stiffness(model, vd: float, factor: float = 1.15, *, propeller
     v.in_range("upper", upper, 1.0, 1e3)
     pre = f"propellers[{propeller}].propeller."
     paths = (pre + "K_theta", pre + "K_psi")
-    target = factor * vd
     runs = {}
     for method in ((gradients, "fd" if gradients == "exact" else "exact") if compare
                    else (gradients,)):
@@ -412,7 +411,7 @@ def openmdao_name(path: str) -> str:
     return path.replace(".", "_").replace("[", "_").replace("]", "")
 
 
-def openmdao_component(model, paths: Sequence[str], *, vd: float, factor: float = 1.15,
+def openmdao_component(model, paths: Sequence[str], *, vd: float, factor: float = FACTOR_CS25,
                        static_divergence: bool = True, low_speed: bool = True):
     """An OpenMDAO ``ExplicitComponent``: inputs the parameter ``paths`` (named by
     :func:`openmdao_name`; ``comp.input_names`` maps each path to its name; each path's value),
@@ -466,7 +465,7 @@ def openmdao_component(model, paths: Sequence[str], *, vd: float, factor: float 
     except ImportError:
         raise ImportError("the OpenMDAO component needs openmdao: pip install "
                           "propwhirl[mdo]") from None
-    target = float(v.in_range("factor", factor, 1.0, 3.0)) * float(v.positive("vd", vd, "m/s"))
+    target, _ = required_speed(vd, factor, vd_name="vd")
     f = CriticalSpeed(model, paths, static_divergence, low_speed)
     names = [openmdao_name(p) for p in f.paths]
     clash = [(p, q) for i, (p, n) in enumerate(zip(f.paths, names))

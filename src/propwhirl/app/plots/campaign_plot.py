@@ -111,23 +111,18 @@ def _hermite_step(V0: float, V1: float, y0: float, y1: float, d0: float, d1: flo
 def hermite(V: np.ndarray, y: np.ndarray, dy: np.ndarray, valid: np.ndarray,
             n: int = HERMITE_POINTS) -> tuple[np.ndarray, np.ndarray]:
     """The cubic Hermite curve through (V, y) with slopes dy [per m/s], `n` points per step
-    where both ends are `valid` (the engine's model of a step,
-    :func:`propwhirl.engine.hermite.hermite_coeffs`); NaN between (a gap in the drawn line).  A step whose cubic
-    leaves the band of its end values widened by their difference and a quarter of the
-    curve's whole range is drawn straight: there the slope is near-singular (a branch point) and the cubic would
-    invent a peak."""
-    xs, ys = [], []
-    t = np.linspace(0.0, 1.0, n)
-    scale = float(np.ptp(y[valid])) if valid.any() else 0.0
-    for j in range(len(V) - 1):
-        if not (valid[j] and valid[j + 1]):
-            xs.append([np.nan])
-            ys.append([np.nan])
-            continue
-        xs.append(V[j] + t * (V[j + 1] - V[j]))
-        ys.append(_hermite_step(V[j], V[j + 1], y[j], y[j + 1], dy[j], dy[j + 1], t, scale))
-    if not xs:
+    where both ends are `valid` (:func:`hermite_columns` of the one curve: the engine's model
+    of a step, :func:`propwhirl.engine.hermite.hermite_coeffs`); one NaN between (a gap in the
+    drawn line).  A step whose cubic leaves the band of its end values widened by their
+    difference and a quarter of the curve's whole range is drawn straight: there the slope
+    is near-singular (a branch point) and the cubic would invent a peak."""
+    V, y, dy, valid = (np.asarray(x) for x in (V, y, dy, valid))
+    if len(V) < 2:
         return V[valid], y[valid]
+    grid, curve = hermite_columns(V, y[:, None], dy[:, None], valid[:, None], n)
+    steps = range(len(V) - 1)
+    xs = [grid[j * n:(j + 1) * n] if valid[j] and valid[j + 1] else [np.nan] for j in steps]
+    ys = [curve[j * n:(j + 1) * n, 0] if valid[j] and valid[j + 1] else [np.nan] for j in steps]
     return np.concatenate(xs), np.concatenate(ys)
 
 

@@ -424,51 +424,102 @@ def vgf_figure(curves: VgfCurves, events: Sequence[VgfEvent], *,
     :data:`DAMPING_MARGIN`).  Returns the figure, its layout frozen (not yet saved).
     """
     matplotlib_or_error()
-    from matplotlib.lines import Line2D
-
-    n = len(curves.labels)
-    cols = list(range(n))
-    bold = [j for j in cols if curves.bold[j]]
-    thin = [j for j in cols if not curves.bold[j]]
-    family = dict(zip(cols, curves.families))
-    order = sorted(bold, key=lambda j: list(FAMILY_COLOURS).index(family[j]))
-    colour = dict(zip(order, family_shades([family[j] for j in order])))
-    thin_order = sorted(thin, key=lambda j: list(FAMILY_COLOURS).index(family[j]))
-    colour.update(zip(thin_order, family_shades([family[j] for j in thin_order])))
-
+    style = _curve_styles(curves)
     fig = new_figure(figsize=figsize, layout="constrained")
     ax_z, ax_f = fig.subplots(2, 1, sharex=True)
     V = np.asarray(curves.V, dtype=float)
     z_all = np.asarray(curves.zeta, dtype=float)
     f_all = np.asarray(curves.frequency_hz, dtype=float)
-    lo, hi = _zeta_window(events, curves.labels, bold, z_all, margin)
-    req = requirements
+    zlim = _zeta_limits(events, curves.labels, style.bold, z_all, margin, requirements)
+    drawn = _draw_curves(ax_z, ax_f, curves, style, zlim)
+    ax_z.axhspan(zlim[0], 0.0, facecolor=FLUTTER_COLOUR, alpha=0.07, lw=0, zorder=0,
+                 label="unstable (ζ < 0)")
+    ax_z.axhline(0.0, color="0.3", lw=0.8)
+    marked = _mark_events(events, drawn, ax_z, ax_f, (float(V[0]), float(V[-1])))
+    extra = [] if requirements is None else _draw_requirements(ax_z, ax_f, V, requirements)
+    _set_axes(ax_z, ax_f, V, f_all, style, zlim, xlabel)
+    handles, names = _legend_entries(ax_z, curves, style, extra)
+    fig.legend(handles, names, loc="outside right upper", fontsize=8)
+    ax_z.set_title(title, fontsize=11)
+    freeze_layout(fig)
+    _label_events(ax_z, marked, dict(zip(curves.labels, curves.names)), V, curves.labels,
+                  style.bold if label_least_damped else [], z_all, zlim)
+    return fig
+
+
+class _Styles(NamedTuple):
+    """How :func:`vgf_figure` draws the columns of its curves: bold and thin (their
+    indices), the bold ones in the order of :data:`FAMILY_COLOURS` (``order``), each
+    column's family and colour (shades within a family: bold and thin shaded apart)."""
+
+    bold: list[int]
+    thin: list[int]
+    order: list[int]
+    family: dict[int, str]
+    colour: dict[int, object]
+
+
+def _curve_styles(curves: VgfCurves) -> _Styles:
+    """The :class:`_Styles` of ``curves`` (their ``bold`` flags and ``families``)."""
+    cols = list(range(len(curves.labels)))
+    bold = [j for j in cols if curves.bold[j]]
+    thin = [j for j in cols if not curves.bold[j]]
+    family = dict(zip(cols, curves.families))
+    rank = list(FAMILY_COLOURS).index
+    order = sorted(bold, key=lambda j: rank(family[j]))
+    colour = dict(zip(order, family_shades([family[j] for j in order])))
+    thin_order = sorted(thin, key=lambda j: rank(family[j]))
+    colour.update(zip(thin_order, family_shades([family[j] for j in thin_order])))
+    return _Styles(bold, thin, order, family, colour)
+
+
+def _zeta_limits(events: Sequence[VgfEvent], labels: Sequence[str], bold: Sequence[int],
+                 z: np.ndarray, margin: float | None,
+                 req: VgfRequirements | None) -> tuple[float, float]:
+    """The ζ axis's limits: :func:`_zeta_window`, raised to show a damping requirement
+    (half its g, with room above)."""
+    lo, hi = _zeta_window(events, labels, bold, z, margin)
     if req is not None and req.min_damping_g is not None:
         hi = max(hi, 0.5 * float(req.min_damping_g) * 1.15)
+    return lo, hi
+
+
+def _draw_curves(ax_z, ax_f, curves: VgfCurves, style: _Styles,
+                 zlim: tuple[float, float]) -> dict[str, object]:
+    """Each mode's ζ and f against V (thin ones first, then the bold in family order), the
+    speeds they were computed from as dots (``curves.nodes``), a triangle where a ζ curve
+    leaves `zlim`; returns the drawn modes' colours by label."""
+    V = np.asarray(curves.V, dtype=float)
+    z_all = np.asarray(curves.zeta, dtype=float)
+    f_all = np.asarray(curves.frequency_hz, dtype=float)
     drawn: dict[str, object] = {}
-    for j in thin + order:
-        strong = j in bold
-        style = dict(color=colour[j], lw=2.0 if strong else 0.9, alpha=1.0 if strong else 0.45,
-                     zorder=3 if strong else 2)
-        ax_z.plot(V, z_all[:, j], "-", label=curves.names[j], **style)
-        ax_f.plot(V, f_all[:, j], "-", **style)
+    for j in style.thin + style.order:
+        strong = j in style.bold
+        colour = style.colour[j]
+        kw = dict(color=colour, lw=2.0 if strong else 0.9, alpha=1.0 if strong else 0.45,
+                  zorder=3 if strong else 2)
+        ax_z.plot(V, z_all[:, j], "-", label=curves.names[j], **kw)
+        ax_f.plot(V, f_all[:, j], "-", **kw)
         if curves.nodes is not None:
             Vn, zn, fn = (np.asarray(x, dtype=float) for x in curves.nodes)
             for ax, y in ((ax_z, zn[:, j]), (ax_f, fn[:, j])):
                 ok = np.isfinite(y)
-                ax.plot(Vn[ok], y[ok], ".", ms=3, color=colour[j], zorder=style["zorder"])
-        _mark_clipping(ax_z, V, z_all[:, j], lo, hi, colour[j], strong)
-        drawn[curves.labels[j]] = colour[j]
-    ax_z.axhspan(lo, 0.0, facecolor=FLUTTER_COLOUR, alpha=0.07, lw=0, zorder=0,
-                 label="unstable (ζ < 0)")
-    ax_z.axhline(0.0, color="0.3", lw=0.8)
-    marked = _mark_events(events, drawn, ax_z, ax_f, (float(V[0]), float(V[-1])))
-    extra: list[tuple[object, str]] = [] if req is None else _draw_requirements(ax_z, ax_f, V,
-                                                                                req)
-    ax_z.set_ylim(lo, hi)
+                ax.plot(Vn[ok], y[ok], ".", ms=3, color=colour, zorder=kw["zorder"])
+        _mark_clipping(ax_z, V, z_all[:, j], *zlim, colour, strong)
+        drawn[curves.labels[j]] = colour
+    return drawn
+
+
+def _set_axes(ax_z, ax_f, V: np.ndarray, f_all: np.ndarray, style: _Styles,
+              zlim: tuple[float, float], xlabel: str) -> None:
+    """Limits, labels and grids: ζ in `zlim` with a g = 2ζ scale on the right, f [Hz] from 0
+    to a little above the bold modes' highest frequency (every mode's when the bold ones
+    have none), V [m/s] over the curves' range."""
+    ax_z.set_ylim(*zlim)
     ax_z.set_ylabel(ZETA_LABEL)
     g_axis = ax_z.secondary_yaxis("right", functions=(lambda z: 2.0 * z, lambda g: 0.5 * g))
     g_axis.set_ylabel("g = 2ζ")
+    bold, cols = style.bold, list(style.family)
     f_top = np.nanmax(f_all[:, bold]) if np.isfinite(f_all[:, bold]).any() else np.nan
     if not np.isfinite(f_top) or f_top <= 0:
         f_top = np.nanmax(f_all[:, cols]) if np.isfinite(f_all[:, cols]).any() else 1.0
@@ -479,11 +530,20 @@ def vgf_figure(curves: VgfCurves, events: Sequence[VgfEvent], *,
     for ax in (ax_z, ax_f):
         ax.grid(True, alpha=0.3)
 
-    handles = [Line2D([], [], color=colour[j], lw=2.0) for j in order]
-    names = [wrap(curves.names[j], LEGEND_WRAP) for j in order]
-    lags = [j for j in thin if is_lag(curves.labels[j])]
+
+def _legend_entries(ax_z, curves: VgfCurves, style: _Styles,
+                    extra: Sequence[tuple[object, str]]) -> tuple[list, list[str]]:
+    """The legend's handles and texts: each bold mode by name, the thin ones counted by
+    family (the aerodynamic lag roots apart), the unstable half, the markers, then the
+    requirements' entries `extra`."""
+    from matplotlib.lines import Line2D
+
+    family = style.family
+    handles = [Line2D([], [], color=style.colour[j], lw=2.0) for j in style.order]
+    names = [wrap(curves.names[j], LEGEND_WRAP) for j in style.order]
+    lags = [j for j in style.thin if is_lag(curves.labels[j])]
     for fam in FAMILY_COLOURS:
-        n_thin = sum(family[j] == fam for j in thin if j not in lags)
+        n_thin = sum(family[j] == fam for j in style.thin if j not in lags)
         if n_thin:
             handles.append(Line2D([], [], color=FAMILY_COLOURS[fam], lw=0.9, alpha=0.45))
             names.append(f"{fam}: {n_thin} other mode{'s' if n_thin > 1 else ''}")
@@ -499,12 +559,7 @@ def vgf_figure(curves: VgfCurves, events: Sequence[VgfEvent], *,
               "divergence onset", "curve leaves the ζ axis"]
     handles += [h for h, _ in extra]
     names += [t for _, t in extra]
-    fig.legend(handles, names, loc="outside right upper", fontsize=8)
-    ax_z.set_title(title, fontsize=11)
-    freeze_layout(fig)
-    _label_events(ax_z, marked, dict(zip(curves.labels, curves.names)), V, curves.labels,
-                  bold if label_least_damped else [], z_all, (lo, hi))
-    return fig
+    return handles, names
 
 
 def _draw_requirements(ax_z, ax_f, V: np.ndarray,
@@ -654,52 +709,69 @@ def _label_events(ax_z, events, describe: Mapping[str, str], V: np.ndarray,
     one (its least damping after its peak), no label on another, on a marker or on an
     annotation already there (:func:`~propwhirl.app.plots.layout.place_labels`).
     ``describe``: the text of each mode's name."""
-    anchors, texts, cols, aligns = [], [], [], []
     span = float(V[-1] - V[0]) or 1.0
+    labelled = {e.label for e in events}
+    rows = _event_labels(events, describe, CROWD * span) + _least_damping_labels(
+        [k for k in bold if labels[k] not in labelled], describe, V, labels, z, zlim)
+    anchors, texts, cols, aligns = (list(x) for x in zip(*rows)) if rows else ([], [], [], [])
+    avoid, soft = _obstacles(ax_z)
+    place_labels(ax_z, anchors, texts, cols, avoid=avoid, soft=soft, prefer="below",
+                 gid=LABEL_GID, aligns=aligns)
 
-    def text(label: str) -> str:
-        return describe.get(label, label)
 
-    for group in _crowds(events, CROWD * span):
+#: A label to place: its anchor (V [m/s], ζ), text, colour and horizontal alignment.
+_Label = tuple[tuple[float, float], str, object, str]
+
+
+def _event_labels(events, describe: Mapping[str, str], gap: float) -> list[_Label]:
+    """One label per crowd of events (:func:`_crowds` within `gap` [m/s]) at ζ = 0: "flutter
+    onset of <mode>" and where for one event, a table of its modes for several."""
+    out: list[_Label] = []
+    for group in _crowds(events, gap):
         e = group[0]
         colour = FLUTTER_COLOUR if e.kind == "flutter" else DIVERGENCE_COLOUR
-        anchors.append((e.V, 0.0))
-        cols.append(colour)
-        aligns.append("center" if len(group) == 1 else "left")
         if len(group) == 1:
             what = _WHAT.get(e.event, "{kind} " + e.event + " of {mode}").format(
-                kind=e.kind, mode=text(e.label))
-            texts.append(f"{wrap(what)}\n{_where(e)}")
+                kind=e.kind, mode=describe.get(e.label, e.label))
+            out.append(((e.V, 0.0), f"{wrap(what)}\n{_where(e)}", colour, "center"))
             continue
         head = _WHAT.get(e.event, "{kind} " + e.event + " of {mode}").format(
             kind=e.kind, mode=f"{len(group)} modes")
-        texts.append(head + "\n" + "\n".join(_table_rows(
-            [(text(g.label), _where(g)) for g in group])))
-    labelled = {e.label for e in events}
+        out.append(((e.V, 0.0), head + "\n" + "\n".join(_table_rows(
+            [(describe.get(g.label, g.label), _where(g)) for g in group])), colour, "left"))
+    return out
+
+
+def _least_damping_labels(columns: Sequence[int], describe: Mapping[str, str], V: np.ndarray,
+                          labels: Sequence[str], z: np.ndarray, zlim) -> list[_Label]:
+    """A label at the least damping after its peak of each of the `columns` of `z` (the
+    emphasised modes without an event) that lies in the ζ window `zlim`."""
+    out: list[_Label] = []
     lo, hi = zlim
-    for k in bold:
-        name = labels[k]
+    for k in columns:
         zk = z[:, k]
-        if name in labelled or not np.isfinite(zk).any():
+        if not np.isfinite(zk).any():
             continue
         t0 = int(np.nanargmax(zk))
         t = t0 + int(np.nanargmin(zk[t0:]))
         if not lo <= zk[t] <= hi:
             continue
-        anchors.append((float(V[t]), float(zk[t])))
-        texts.append(f"{wrap(text(name))}\nζ min {zk[t]:.3f} at {V[t]:.0f} m/s")
-        cols.append("0.2")
-        aligns.append("center")
+        name = describe.get(labels[k], labels[k])
+        out.append(((float(V[t]), float(zk[t])),
+                    f"{wrap(name)}\nζ min {zk[t]:.3f} at {V[t]:.0f} m/s", "0.2", "center"))
+    return out
+
+
+def _obstacles(ax_z) -> tuple[list, list]:
+    """What a label may not cover (the event markers, the annotations already there: V_D,
+    ...) and what it should rather not (the bold curves' boxes), in display units."""
     renderer = ax_z.figure.canvas.get_renderer()
-    avoid = []
-    for ln in ax_z.get_lines():            # the event markers
-        if ln.get_marker() == "o":
-            avoid.append(ln.get_window_extent(renderer))
-    avoid += [t.get_window_extent(renderer) for t in ax_z.texts]    # annotations (V_D, ...)
+    avoid = [ln.get_window_extent(renderer) for ln in ax_z.get_lines()
+             if ln.get_marker() == "o"]
+    avoid += [t.get_window_extent(renderer) for t in ax_z.texts]
     bold_lines = [ln for ln in ax_z.get_lines() if ln.get_linewidth() >= 2.0
                   and ln.get_linestyle() == "-"]
-    place_labels(ax_z, anchors, texts, cols, avoid=avoid, soft=curve_boxes(ax_z, bold_lines),
-                 prefer="below", gid=LABEL_GID, aligns=aligns)
+    return avoid, curve_boxes(ax_z, bold_lines)
 
 
 #: ``gid`` of the labels of the V-g-f and Campbell diagrams (tests find them by it)
