@@ -152,7 +152,7 @@ def test_failure_case_clears_at_V_D_but_not_at_115_V_D(model, tmp_path):
     assert row.V_required == pytest.approx(1.02 * vcrit, rel=1e-4)
 
 
-def test_one_required_speed_and_one_regulation_table():
+def test_one_required_speed_and_one_regulation_table(model):
     """Issue 38 item 2: the required speed and the regulations are defined once
     (propwhirl.certification); the margin, the clearance, the campaign and the campaign files
     use that one."""
@@ -160,8 +160,15 @@ def test_one_required_speed_and_one_regulation_table():
     from propwhirl.analysis import margin
     from propwhirl.io import campaign_files
     from propwhirl.studies import clearance
-    assert margin.required_speed is clearance.required_speed is C.required_speed \
-        is certification.required_speed
+    # the old names keep their old returns, through the one definition: the speed alone
+    # (analysis.margin, studies.clearance) and the campaign's (speed, rule) of a case at a point
+    assert margin.required_speed is clearance.required_speed
+    assert margin.required_speed(130.0, 1.2) == certification.required_speed(130.0, 1.2)[0]
+    (p,) = C.envelope(100.0, [0.0], airspeed="TAS")
+    nominal = C.Case("nominal")
+    c = C.Campaign("c", model, (nominal,), (p,), "cs25", 1.15)
+    assert C.required_speed(c, nominal, p) == c.required_speed(nominal, p) \
+        == (pytest.approx(115.0), "25.629(b)(1) 1.15 V_D")
     assert C.REGULATIONS is certification.REGULATIONS
     assert campaign_files.FACTOR_RANGES is certification.CASE_FACTORS
     assert certification.required_speed(130.0) == (pytest.approx(149.5), "1.15 V_D")

@@ -19,12 +19,26 @@ from typing import Any
 
 import numpy as np
 
+from propwhirl import certification
 from propwhirl.certification import (  # noqa: F401 (re-exported: their old home)
-    FACTOR_CFR23, FACTOR_CS25, FACTOR_RANGE, required_speed)
+    FACTOR_CFR23, FACTOR_CS25, FACTOR_RANGE)
 
 #: The damping results consider the modes with an event and this many oscillatory modes of
 #: lowest frequency (:meth:`propwhirl.analysis.stability.ModelAnalysis.modes_of_interest`).
 DAMPING_MODES = 8
+
+
+def required_speed(V_D: Any, factor: Any = FACTOR_CS25, *, vd_name: str = "V_D",
+                   factor_name: str = "factor") -> float:
+    """factor · V_D [m/s]: the speed of :func:`propwhirl.certification.required_speed` (the
+    one definition, which checks V_D > 0 and the factor in :data:`FACTOR_RANGE` and also
+    gives its rule) without the rule, as this name has always returned it.
+
+    >>> required_speed(100.0, 1.2)
+    120.0
+    """
+    return certification.required_speed(V_D, factor, vd_name=vd_name,
+                                         factor_name=factor_name)[0]
 
 
 def oscillatory_damping(sweep: Any, modes: Sequence[int]) -> tuple[np.ndarray, np.ndarray]:

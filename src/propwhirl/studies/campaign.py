@@ -45,11 +45,11 @@ from typing import Any
 
 import numpy as np
 
-from propwhirl import limits
+from propwhirl import certification, limits
 from propwhirl import validate as v
 from propwhirl.certification import (  # noqa: F401 (REGULATIONS, regulation_factor re-exported)
     CASE_FACTORS, FACTOR_CS25, FACTOR_RANGE, OPERATIONS, PART25, REGULATIONS, STATES,
-    regulation_factor, required_speed)
+    regulation_factor)
 from propwhirl.analysis.margin import DAMPING_MODES  # noqa: F401 (re-exported)
 from propwhirl.analysis.margin import least_damping as _least
 from propwhirl.analysis.margin import oscillatory_damping as _damping
@@ -523,9 +523,15 @@ class Campaign:
         (:attr:`Case.is_failure`) and the point's failure-case line (:func:`failure_line`):
         "25.629(b)(1) 1.15 V_D", "23.629 1.2 V_D", "1.25 V_D", "25.629(b)(2)(i) V_D",
         "25.629(b)(2)(ii) 1.15 V_C", ...)."""
-        return required_speed(p.V_D, self.factor, self.regulation, failure=case.is_failure,
-                              V_line=p.V_line, line_part=p.line_part,
-                              mach_limited=p.mach_limited)
+        return certification.required_speed(
+            p.V_D, self.factor, self.regulation, failure=case.is_failure, V_line=p.V_line,
+            line_part=p.line_part, mach_limited=p.mach_limited)
+
+
+def required_speed(c: Campaign, case: Case, p: EnvelopePoint) -> tuple[float, str]:
+    """The speed [m/s, TAS] case `case` must clear at point `p` of campaign `c`, and the rule
+    that sets it: :meth:`Campaign.required_speed` (kept for callers of this function)."""
+    return c.required_speed(case, p)
 
 
 def at_altitude(model: Any, altitude_m: float) -> Any:

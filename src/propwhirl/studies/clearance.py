@@ -44,7 +44,8 @@ from propwhirl.studies import paths as P
 from propwhirl.studies import sweeps
 from propwhirl.studies.critical import convention, critical_instability, wing_divergence_predicate
 
-from propwhirl.certification import FACTOR_CFR23, FACTOR_CS25, required_speed  # noqa: F401
+from propwhirl.analysis.margin import required_speed  # noqa: F401 (re-exported)
+from propwhirl.certification import FACTOR_CFR23, FACTOR_CS25  # noqa: F401
 
 
 
@@ -582,7 +583,7 @@ def clearance(model: Any, V_D: float, factor: float = FACTOR_CS25, *, speeds=Non
         ``checkpoint.path`` per phase, :func:`phase_checkpoints`, resumed with
         ``resume=True``).  The model's own analysis runs in this process.
     """
-    V_req, _ = required_speed(V_D, factor)
+    V_req = required_speed(V_D, factor)
     grid = clearance_speeds(model, V_req, speeds)
     chosen = _check_propellers(model, propellers)
     v.integer_at_least("processes", processes, 1)
