@@ -114,6 +114,11 @@ def test_matched_mach_beyond_the_limit_is_refused_in_one_line():
     with pytest.raises(InputError, match=r"Mach 0\.9[0-9]* .*strip_mach") as exc:
         m.state_matrix(np.array([100.0, 0.95 * a]))
     assert "\n" not in str(exc.value)
+    for run in (lambda: analyse(m, speeds=np.arange(100.0, 320.0, 10.0)),
+                lambda: pk_sweep(m, np.arange(100.0, 320.0, 10.0))):
+        with pytest.raises(InputError, match=r"V = 310 m/s is Mach 0\.937") as exc:
+            run()                                    # before any work: the top speed named
+        assert "\n" not in str(exc.value)
     with pytest.raises(InputError, match="speed of sound"):
         wing_aero(pg_wing("speed"), RHO, np.array([100.0]))   # matched needs a
 

@@ -41,6 +41,7 @@ from propwhirl.analysis.participation import (ModeParticipation, branch_point_sh
 from propwhirl.analysis.pk import DLM_NOTE, pk_instabilities
 from propwhirl.analysis.reduced import choose_method
 from propwhirl.analysis.runners import Job, Tracked, track
+from propwhirl.model.aerodynamics import compressibility
 from propwhirl.model.aerodynamics.dlm import strip_twin
 from propwhirl.model.aerodynamics.dlm_rfa import RFA_NOTE, extrapolation_notes
 from propwhirl.analysis.summary import (FiniteState, FlutterSummary, MethodComparison,
@@ -608,6 +609,7 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
     if progress is not None and not callable(progress):
         raise v.InputError(f"progress = {progress!r:.60} is invalid: must be None or a callable "
                            "report(done, total)")
+    compressibility.check_speeds(model, grid)   # matched Prandtl-Glauert strips: Mach <= 0.9
     chosen = choose_method(model, method)
     # p-k: the strip twin tracks, names and starts the p-k modes (propwhirl.analysis.runners)
     finite = strip_twin(model) if chosen == "pk" else model

@@ -92,3 +92,15 @@ def lift_slopes(cla: np.ndarray, factor: np.ndarray | None) -> np.ndarray:
     if factor is None:
         return cla
     return np.asarray(factor, dtype=float)[:, None] * np.asarray(cla, dtype=float)[None, :]
+
+
+def check_speeds(model, V) -> None:
+    """InputError (one line), before any analysis, when ``model``'s wing has Prandtl–Glauert
+    strips matched to V/a and one of the airspeeds V [m/s] is beyond Mach :data:`MACH_MAX`;
+    nothing for any other model."""
+    wing = getattr(model, "wing", None)
+    if wing is None or not getattr(model, "wing_aero", False) or not is_compressible(wing) \
+            or getattr(wing, "aero", "strip") != "strip":
+        return
+    strip_mach(wing, V, model.flight.speed_of_sound)
+
