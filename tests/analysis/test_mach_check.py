@@ -104,3 +104,25 @@ def test_fixed_strip_mach_far_from_the_events_is_flagged_non_matched():
     matched = m.with_(wing=dataclasses.replace(m.wing, compressibility="prandtl-glauert"))
     b = analyse(matched, speeds=np.arange(100.0, 200.0, 5.0))
     assert not [w for w in b.warnings if "non-matched" in w or "compressibility" in w]
+
+
+def test_pk_analysis_is_checked_by_the_pk_on_the_twin():
+    """method="pk": each onset recomputed by the p-k on the Prandtl-Glauert twin, equal to
+    the whole compressible p-k analysis's onset (wingtip, 8000 ft: 143.15 -> 137.31,
+    160.55 -> 152.68 m/s computed)."""
+    m = wingtip_propeller_wing()
+    speeds = np.arange(100.0, 231.0, 10.0)
+    a = analyse(m, speeds=speeds, method="pk")
+    comp = analyse(m.with_(wing=dataclasses.replace(m.wing, compressibility="prandtl-glauert")),
+                   speeds=speeds, method="pk")
+    lines = compressibility_lines(a)
+    onsets = [e for e in a.events if e.event == "onset"]
+    assert len(onsets) == 2 and len(lines) == 2
+    for e, line in zip(onsets, lines):
+        assert line.startswith(f"V = {e.V:.2f} m/s ({e.kind} onset of {e.label})")
+        twin = float(line.split("with compressible strips it is at ")[1].split(" m/s")[0])
+        same = [c for c in comp.events if c.kind == e.kind and c.event == "onset"
+                and c.label == e.label]
+        assert same and abs(twin - same[0].V) <= 0.05
+    assert not compressibility_lines(analyse(m, speeds=speeds, method="pk",
+                                             compressibility_check=False))

@@ -21,8 +21,11 @@ strip aerodynamics is recomputed on its Prandtl–Glauert twin (the same model w
   way: a mode this near instability whose damping moves that much with Mach is not known to
   the strips' accuracy).
 
+A p-k analysis (``method="pk"``) has its onsets and recoveries recomputed by the p-k itself on
+the twin (:func:`pk_warnings`).
+
 Cost: one sparse factorisation per pencil, a few pencils per event (no second analysis).  Not
-checked (no full-order eigenvector, or already compressible): the p-k method's events, a
+checked (already compressible, or no root to start from): a
 doublet-lattice wing, a wing with ``compressibility = "prandtl-glauert"``, modal models,
 "unstable-at-start" and "frequency-zero" events, speeds beyond the twin's Mach 0.9 (the Mach 0.7
 warning covers them).
@@ -34,6 +37,7 @@ from dataclasses import replace
 import numpy as np
 
 from propwhirl import validate as v
+from propwhirl.analysis.pk import pk_crossing, pk_root
 from propwhirl.engine.correction import full_order_root, real_direction
 from propwhirl.model.aerodynamics import compressibility as pg
 from propwhirl.model.aerodynamics.validity import MACH_COMPRESSIBLE
@@ -163,6 +167,36 @@ def _slope(sweep, mode: int, V: float) -> float | None:
     return float(d[int(np.argmin(np.abs(sweep.V - V))), mode].real)
 
 
+def _event_line(e, Vc: float | None, a: float) -> str | None:
+    """The warning of event ``e`` (an :class:`Instability`) whose crossing with compressible
+    strips is at ``Vc`` [m/s] (None: not found near it), or None when it moves by less than
+    :data:`SHIFT_WARN`."""
+    M = e.V / a
+    factor = float(1.0 / pg.beta(M))
+    head = (f"V = {e.V:.2f} m/s ({e.kind} {e.event} of {e.label}) is Mach {M:.2f}, where "
+            f"compressibility raises the strips' lift slope by {100 * (factor - 1):.0f} % "
+            "(Prandtl-Glauert)")
+    if Vc is None:
+        if factor - 1 >= 2 * SHIFT_WARN and M <= MACH_COMPRESSIBLE:   # else flagged already
+            return (f"{head}; with compressible strips this crossing was not found near it "
+                    "(it may move far, or a hump close): analyse with the wing's "
+                    "compressibility = \"prandtl-glauert\"")
+        return None
+    shift = Vc / e.V - 1
+    if abs(shift) < SHIFT_WARN:
+        return None
+    side = "unconservative" if Vc < e.V else "conservative"
+    return (f"{head}: with compressible strips it is at {Vc:.2f} m/s ({100 * shift:+.1f} %; "
+            f"the incompressible strips are {side} here); set the wing's compressibility = "
+            "\"prandtl-glauert\"")
+
+
+def _checked(e, a: float) -> bool:
+    """Whether event ``e`` is recomputed: an onset or recovery at a Mach in
+    [:data:`MACH_FLOOR`, the twin's :data:`~propwhirl.model.aerodynamics.compressibility.MACH_MAX`]."""
+    return e.event in ("onset", "recovery") and MACH_FLOOR <= e.V / a <= pg.MACH_MAX
+
+
 def event_warnings(model, events, points, top: float, comp, sweep=None) -> list[str]:
     """Warnings for the onsets and recoveries ``events`` (:class:`Instability`) whose crossing
     ``points`` (the engine's, with eigenvectors) move by :data:`SHIFT_WARN` or more on the
@@ -171,7 +205,7 @@ def event_warnings(model, events, points, top: float, comp, sweep=None) -> list[
     a = float(model.flight.speed_of_sound)
     out = []
     for e in events:
-        if e.event not in ("onset", "recovery") or not MACH_FLOOR <= e.V / a <= pg.MACH_MAX:
+        if not _checked(e, a):
             continue
         p = next((q for q in points if q.mode == e.mode
                   and abs(q.V - e.V) <= 1e-9 * max(1.0, abs(e.V))), None)
@@ -183,24 +217,37 @@ def event_warnings(model, events, points, top: float, comp, sweep=None) -> list[
         Vc = crossing(comp, float(p.V), lam0, x0, min(top, pg.MACH_MAX * a),
                       None if sweep is None else _slope(sweep, e.mode, e.V),
                       1 if e.event == "onset" else -1)
-        M = e.V / a
-        factor = float(1.0 / pg.beta(M))
-        head = (f"V = {e.V:.2f} m/s ({e.kind} {e.event} of {e.label}) is Mach {M:.2f}, where "
-                f"compressibility raises the strips' lift slope by {100 * (factor - 1):.0f} % "
-                "(Prandtl-Glauert)")
-        if Vc is None:
-            if factor - 1 >= 2 * SHIFT_WARN and M <= MACH_COMPRESSIBLE:   # else flagged already
-                out.append(f"{head}; with compressible strips this crossing was not found "
-                           "near it (it may move far, or a hump close): analyse with the "
-                           "wing's compressibility = \"prandtl-glauert\"")
-            continue
-        shift = Vc / e.V - 1
-        if abs(shift) >= SHIFT_WARN:
-            side = "unconservative" if Vc < e.V else "conservative"
-            out.append(f"{head}: with compressible strips it is at {Vc:.2f} m/s "
-                       f"({100 * shift:+.1f} %; the incompressible strips are {side} here); "
-                       "set the wing's compressibility = \"prandtl-glauert\"")
+        line = _event_line(e, Vc, a)
+        if line is not None:
+            out.append(line)
     return out
+
+
+def pk_warnings(model, events, top: float) -> tuple[str, ...]:
+    """:func:`event_warnings` of a p-k analysis (``analyse(method="pk")``): each onset and
+    recovery's crossing on the twin by :func:`propwhirl.analysis.pk.pk_crossing` (the twin's
+    p-k root at the event's speed and frequency, a bracket widened around it, Brent's
+    method), in the event's direction."""
+    if not applies(model):
+        return ()
+    a = float(model.flight.speed_of_sound)
+    comp = twin(model)
+    hi = min(top, pg.MACH_MAX * a)
+    out = []
+    for e in events:
+        if not _checked(e, a) or e.V > hi:
+            continue
+        omega = 2 * np.pi * e.frequency_hz
+        try:
+            p0, _ = pk_root(comp, e.V, complex(0.0, omega) if omega > 0 else 0j)
+            c = pk_crossing(comp, e.V, p0, lo=0.5 * e.V, hi=hi)
+        except RuntimeError:            # the k iteration did not converge: not found
+            c = None
+        Vc = c.V if c is not None and c.direction == e.event else None
+        line = _event_line(e, Vc, a)
+        if line is not None:
+            out.append(line)
+    return tuple(out)
 
 
 def hump_warnings(model, sweep, events, top: float, comp) -> list[str]:

@@ -635,6 +635,8 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         notes = tuple(notes) + mach_check.warnings(
             model, events, t.analysis.criticals.points if t.analysis.criticals else (), sw,
             t.assembly)
+    elif compressibility_check:  # the p-k's events, by the p-k on the Prandtl-Glauert twin
+        notes = tuple(notes) + mach_check.pk_warnings(model, events, float(sw.V[-1]))
     notes = t.notes_first + tuple(notes) + tuple(
         f"V = {p.V:.2f} m/s ({p.kind} {p.direction} of {names[p.mode]}): not converged on the "
         "full-order model; the speed is the reduced model's (run method='dense' to check)"
