@@ -101,6 +101,9 @@ CHANGES = [
     (("wing",), dict(aero="dlm", dlm_chordwise_panels=2, dlm_spanwise_panels=6), True),
     (("wing",), dict(dlm_chordwise_panels=4), False),      # strip aerodynamics: not used
     (("wing",), dict(dlm_mach=0.3), False),                # strip aerodynamics: not used
+    (("wing",), dict(compressibility="prandtl-glauert"), True),
+    (("wing",), dict(compressibility="prandtl-glauert", strip_mach=0.3), True),
+    (("wing",), dict(strip_mach=0.3), False),              # incompressible strips: not used
     (("wing",), dict(name="another wing"), False),
     (("flight",), dict(density=0.5), True),
     (("flight",), dict(speed_of_sound=300.0), True),

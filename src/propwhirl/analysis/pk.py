@@ -47,6 +47,7 @@ from propwhirl.analysis.naming import event_label, whirl
 from propwhirl.analysis.participation import with_participation
 from propwhirl.engine import mac
 from propwhirl.model.systems import TypicalSection
+from propwhirl.model.aerodynamics import compressibility
 from propwhirl.model.aerodynamics.dlm import check_speed_mach, dlm_aerodynamics, fixed_mach, strip_twin
 from propwhirl.model.aerodynamics.dlm_mesh import guideline_note
 from propwhirl.model.frequency_domain import (
@@ -268,6 +269,7 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None) -
         raise v.InputError(f"speeds = {speeds!r:.60} is invalid: must be at least two "
                            "increasing airspeeds > 0 [m/s]")
     v.positive("xtol", xtol, "m/s")
+    compressibility.check_speeds(model, V)      # matched Prandtl-Glauert strips: Mach <= 0.9
     if strip_twin(model) is not model:  # doublet-lattice tables: every Mach subsonic, first
         check_speed_mach(model, V)
     if n_modes is None:

@@ -32,6 +32,7 @@ from propwhirl import fileio
 from propwhirl import validate as v
 from propwhirl.analysis.events import (UNSTABLE_EVENTS, Exclusion, Instability,  # noqa: F401
                                        critical, describe_critical)
+from propwhirl.analysis import mach_check
 from propwhirl.analysis.naming import (event_label, mode_content, named_modes, whirl,
                                       with_content)
 from propwhirl.analysis.participation import (ModeParticipation, branch_point_shape,  # noqa: F401
@@ -40,6 +41,7 @@ from propwhirl.analysis.participation import (ModeParticipation, branch_point_sh
 from propwhirl.analysis.pk import DLM_NOTE, pk_instabilities
 from propwhirl.analysis.reduced import choose_method
 from propwhirl.analysis.runners import Job, Tracked, track
+from propwhirl.model.aerodynamics import compressibility
 from propwhirl.model.aerodynamics.dlm import strip_twin
 from propwhirl.model.aerodynamics.dlm_rfa import RFA_NOTE, extrapolation_notes
 from propwhirl.analysis.summary import (FiniteState, FlutterSummary, MethodComparison,
@@ -106,7 +108,9 @@ class ModelAnalysis(Result):
     [('divergence', 'onset', 'wing 1', 143.2), ('flutter', 'onset', 'forward 1', 159.4),
      ('flutter', 'onset', 'backward 1', 294.8), ('divergence', 'frequency-zero', 'forward 1', 320.9)]
     >>> a.critical.label, a.describe("forward 1"), len(a.warnings)
-    ('wing 1', 'forward 1 (yaw)', 2)
+    ('wing 1', 'forward 1 (yaw)', 4)
+    >>> print(a.warnings[2])                 # compressibility below Mach 0.7 (issue 37)
+    V = 143.15 m/s (divergence onset of wing 1) is Mach 0.43, where compressibility raises the strips' lift slope by 11 % (Prandtl-Glauert): with compressible strips it is at 137.31 m/s (-4.1 %; the incompressible strips are unconservative here); set the wing's compressibility = "prandtl-glauert"
     """
 
     KIND: ClassVar[str] = "analysis"
@@ -517,7 +521,8 @@ def _finite_state_from_dict(r: SavedDict, sweep: Sweep) -> FiniteState | None:
 @one_blas_thread
 def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
             options: TrackingOptions | None = None, method: str = "auto",
-            progress: Callable[[int, int], None] | None = None) -> ModelAnalysis:
+            progress: Callable[[int, int], None] | None = None,
+            compressibility_check: bool = True) -> ModelAnalysis:
     """Every instability of `model` over `speeds` [m/s], with tracked, named modes.
 
     Parameters
@@ -564,6 +569,11 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         the Mach columns: :func:`~propwhirl.analysis.modal_dlm.compute_fit_aics`), and calls
         it before the first and after each; nothing else reports.  None (default): silent.
         The command line passes the stage of its spinner (:mod:`propwhirl.progress`).
+    compressibility_check : bool, optional
+        True (default): each onset and recovery of a wing with incompressible strips at Mach
+        ≥ 0.2, and each near-neutral hump, recomputed from its own root with Prandtl–Glauert
+        strips (a few sparse pencils per event, :mod:`propwhirl.analysis.mach_check`), a
+        warning when it moves by 2 % or more.  The studies, which keep no warnings, pass False.
 
     Returns
     -------
@@ -591,11 +601,15 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
     v.positive("xtol", xtol, "m/s")
     if not isinstance(vgf, (bool, np.bool_)):
         raise v.InputError(f"vgf = {vgf!r} is invalid: must be True or False")
+    if not isinstance(compressibility_check, (bool, np.bool_)):
+        raise v.InputError(f"compressibility_check = {compressibility_check!r:.40} is invalid: "
+                           "must be True or False")
     if options is not None and not isinstance(options, TrackingOptions):
         raise v.InputError(f"options = {options!r} is invalid: must be a TrackingOptions")
     if progress is not None and not callable(progress):
         raise v.InputError(f"progress = {progress!r:.60} is invalid: must be None or a callable "
                            "report(done, total)")
+    compressibility.check_speeds(model, grid)   # matched Prandtl-Glauert strips: Mach <= 0.9
     chosen = choose_method(model, method)
     # p-k: the strip twin tracks, names and starts the p-k modes (propwhirl.analysis.runners)
     finite = strip_twin(model) if chosen == "pk" else model
@@ -617,6 +631,12 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         model, (float(sw.V[0]), float(sw.V[-1])),
         [(e.V, f"{e.kind} {e.event} of {e.label}") for e in events],
         any(e.event in UNSTABLE_EVENTS for e in events))
+    if chosen != "pk" and compressibility_check:   # each event's move, from its own root
+        notes = tuple(notes) + mach_check.warnings(
+            model, events, t.analysis.criticals.points if t.analysis.criticals else (), sw,
+            t.assembly)
+    elif compressibility_check:  # the p-k's events, by the p-k on the Prandtl-Glauert twin
+        notes = tuple(notes) + mach_check.pk_warnings(model, events, float(sw.V[-1]))
     notes = t.notes_first + tuple(notes) + tuple(
         f"V = {p.V:.2f} m/s ({p.kind} {p.direction} of {names[p.mode]}): not converged on the "
         "full-order model; the speed is the reduced model's (run method='dense' to check)"

@@ -70,7 +70,7 @@ from typing import Iterable
 
 import numpy as np
 
-from propwhirl.generated import beam_element, prop_flexwing, strip_aero
+from propwhirl.generated import beam_element, prop_flexwing
 from propwhirl.model.structure.assembly import LAG_STATES, STRIP_AERO, element_dofs, free_dofs
 from propwhirl.model.blocks import BlockSystem, LagBlocks, LocalBlocks
 from propwhirl.model.propellers import derivatives_blade as _blade
@@ -264,14 +264,8 @@ class _Context:
         """∂/∂arg (a generated argument of the strip aerodynamics: "Cla", "rho") of the strip
         blocks of `nodes`, with the widths and signs of the assembly."""
         wing = self.model.wing
-        group, roles = STRIP_AERO[wing.aero_model]
-        group += "_d"
-        if self.strip is None:
-            node = wing.node_properties()
-            values = dict(rho=self.model.flight.density, V=self.V[:, None], b=node["b"],
-                          a=node["a"], Cla=node["Cla"], ac=node["ac"])
-            self.strip = (getattr(strip_aero, group)(**values), node["width"])
-        d, width = self.strip
+        _, roles = STRIP_AERO[wing.aero_model]
+        d, width, scale = _section.strip_partials(self)
         k = LAG_STATES[wing.aero_model]
         shape = {"M": (2, 2), "C": (2, 2), "K": (2, 2), "W0": (2, k), "Ww": (k, k),
                  "Wv": (k, 2), "Wq": (k, 2)}
@@ -280,7 +274,10 @@ class _Context:
             x = d[roles[role]].get(arg) if role in roles else None
             if x is None:
                 return np.zeros((self.nV, nodes.size) + shape[role])
-            return np.broadcast_to(x, (self.nV, wing.n_nodes) + shape[role])[:, nodes]
+            x = np.broadcast_to(x, (self.nV, wing.n_nodes) + shape[role])[:, nodes]
+            if arg == "Cla" and scale is not None:   # ∂(C_lα/β)/∂C_lα = 1/β
+                x = scale[:, None, None, None] * x
+            return x
 
         w = width[nodes][None, :, None, None]
         qrows = 3 * nodes[:, None] + np.array([0, 2])[None, :]

@@ -50,6 +50,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from propwhirl.generated import beam_element, strip_aero
+from propwhirl.model.aerodynamics.compressibility import lift_slope_factor, lift_slopes
 from propwhirl.model.structure.assembly import LAG_STATES, STRIP_AERO, element_dofs
 from propwhirl.model.blocks import LagBlocks, LocalBlocks
 from propwhirl.model.structure.wing import Wing
@@ -224,16 +225,28 @@ def wing_blocks(ctx, ch: SectionChain) -> tuple[list[LocalBlocks], LagBlocks | N
     return groups, lag
 
 
+def strip_partials(ctx) -> tuple[dict, np.ndarray, np.ndarray | None]:
+    """(the generated ∂/∂(arguments) of the strip blocks at ``ctx``'s speeds, the strips'
+    widths [m], the compressibility factor 1/β (nV,) of the lift-curve slope or None), computed
+    once per context.  With ``compressibility = "prandtl-glauert"`` the strips' slope argument
+    is C_lα/β (:mod:`propwhirl.model.aerodynamics.compressibility`), so ∂/∂C_lα of the wing's
+    own slope is 1/β times the generated ∂/∂Cla."""
+    if ctx.strip is None:
+        wing = ctx.model.wing
+        group, _ = STRIP_AERO[wing.aero_model]
+        node = wing.node_properties()
+        factor = lift_slope_factor(wing, ctx.V, ctx.model.flight.speed_of_sound)
+        values = dict(rho=ctx.model.flight.density, V=ctx.V[:, None], b=node["b"],
+                      a=node["a"], Cla=lift_slopes(node["Cla"], factor), ac=node["ac"])
+        ctx.strip = (getattr(strip_aero, group + "_d")(**values), node["width"], factor)
+    return ctx.strip
+
+
 def _strip_blocks(ctx, factors: dict[str, np.ndarray]) -> tuple[LocalBlocks, LagBlocks]:
     """Σ_arg factors[arg][i] ∂(strip blocks of node i)/∂arg over the touched nodes i ≥ 1."""
     wing = ctx.model.wing
-    group, roles = STRIP_AERO[wing.aero_model]
-    if ctx.strip is None:
-        node = wing.node_properties()
-        values = dict(rho=ctx.model.flight.density, V=ctx.V[:, None], b=node["b"],
-                      a=node["a"], Cla=node["Cla"], ac=node["ac"])
-        ctx.strip = (getattr(strip_aero, group + "_d")(**values), node["width"])
-    d, width = ctx.strip
+    _, roles = STRIP_AERO[wing.aero_model]
+    d, width, scale = strip_partials(ctx)
     k, nn = LAG_STATES[wing.aero_model], wing.n_nodes
     nodes = np.flatnonzero(np.any([np.asarray(f) != 0.0 for f in factors.values()], axis=0))
     nodes = nodes[nodes >= 1]
@@ -247,6 +260,8 @@ def _strip_blocks(ctx, factors: dict[str, np.ndarray]) -> tuple[LocalBlocks, Lag
                 x = d[roles[role]].get(arg)
                 if x is not None:
                     x = np.broadcast_to(x, (ctx.nV, nn) + shape[role])[:, nodes]
+                    if arg == "Cla" and scale is not None:    # ∂(C_lα/β)/∂C_lα = 1/β
+                        x = scale[:, None, None, None] * x
                     out = out + f[nodes][None, :, None, None] * x
         return out
 

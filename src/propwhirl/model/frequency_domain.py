@@ -7,7 +7,9 @@ Q = M_a q̈ + C_a(k) q̇ + K_a(k) q; the matrices are generated from ``derivatio
 (``strip_aero.theodorsen_blocks``), the section's structure from
 ``derivations/typical_section.py``.  On a wing every node's strip has its own
 k_i = ω b_i / V and acts with its tributary width, as the finite-state strips
-(:func:`propwhirl.model.structure.assembly.wing_aero_blocks`); the structure and the propellers
+(:func:`propwhirl.model.structure.assembly.wing_aero_blocks`; with the wing's
+``compressibility = "prandtl-glauert"`` each slope C_lα/β at the speed's Mach,
+:mod:`propwhirl.model.aerodynamics.compressibility`); the structure and the propellers
 (Houbolt–Reed loads as they are) are the model's own second-order system with the wing
 aerodynamics off.  The p-k solution itself is :mod:`propwhirl.analysis.pk`.
 """
@@ -19,6 +21,7 @@ import numpy as np
 
 from propwhirl import validate as v
 from propwhirl.generated import strip_aero, typical_section
+from propwhirl.model.aerodynamics.compressibility import lift_slope_factor, lift_slopes
 from propwhirl.model.aerodynamics.dlm import pk_system_dlm
 from propwhirl.model.aerodynamics.theodorsen import theodorsen
 from propwhirl.model.structure.assembly import free_dofs, place
@@ -96,6 +99,8 @@ def pk_system(model, V: float):
         raise v.InputError(f"model = {model.name!r} is invalid for the p-k method: its "
                            "propeller aerodynamics has lag states")
     node = model.wing.node_properties()
+    factor = lift_slope_factor(model.wing, V, model.flight.speed_of_sound)  # None: incompressible
+    cla = node["Cla"] if factor is None else lift_slopes(node["Cla"], factor)[0]
     nn = model.wing.n_nodes
     width = node["width"][:, None, None]
     qrows = 3 * np.arange(nn)[:, None] + np.array([0, 2])[None, :]   # h_i, α_i
@@ -103,8 +108,7 @@ def pk_system(model, V: float):
     structure = (dry.S1[0], dry.S2[0], dry.S3[0])
 
     def matrices(omega: float):
-        strips = _strip(model.flight.density, V, node["b"], node["a"], node["Cla"],
-                        node["ac"], omega)
+        strips = _strip(model.flight.density, V, node["b"], node["a"], cla, node["ac"], omega)
         out = []
         for S, A in zip(structure, strips):
             X = np.array(S, dtype=float)

@@ -635,7 +635,8 @@ class PropellerWingAssembly(EvaluatorBase):
                     f"model {model.name!r}: wing aero = 'dlm' has no local (block) form; its "
                     "Roger state space is dense (second_order, method = 'dense' or 'auto') or "
                     "analyse it with method = 'pk', or set aero = 'strip'")
-            aero = wing_aero_blocks(wing, model.flight.density, V)
+            aero = wing_aero_blocks(wing, model.flight.density, V,
+                                    model.flight.speed_of_sound)
             groups.append(LocalBlocks("wing strips", aero["qrows"], -aero["Ma"], -aero["Ca"],
                                       -aero["Ka"]))
             m, w_labels = aero["m"], aero["labels"]

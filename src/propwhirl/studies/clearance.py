@@ -306,7 +306,7 @@ def _check_top_speed(aerodynamic: bool, a: float, top: float, V_required: float,
 
 
 def _analysis_critical(model, speeds, xtol, static_div, low_speed):
-    a = analyse(model, speeds, xtol=xtol)
+    a = analyse(model, speeds, xtol=xtol, compressibility_check=False)  # no warnings kept
     is_wing = wing_divergence_predicate(model, a)
     crit = critical_instability(a, static_divergence=static_div, low_speed=low_speed,
                                 is_wing_divergence=is_wing)

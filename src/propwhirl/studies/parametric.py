@@ -432,7 +432,7 @@ def whirl_flutter_speeds(beta: float, propeller: Propeller | None = None, speeds
     analysis's (:func:`propwhirl.analysis.stability.analyse`)."""
     base = _base(propeller)
     model = P.set_value(build_model("wingtip", base), PROPELLER_PATHS["wingtip"] + "beta_075_deg", beta)
-    a = analyse(model, speeds, xtol=xtol, method=method)
+    a = analyse(model, speeds, xtol=xtol, method=method, compressibility_check=False)
     fw, bw = a.first("forward 1", "flutter"), a.first("backward 1", "flutter")
     return (float("nan") if fw is None else fw.V), (float("nan") if bw is None else bw.V)
 

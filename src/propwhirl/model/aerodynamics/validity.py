@@ -1,7 +1,8 @@
 """Validity of the aerodynamic methods: what propwhirl refuses and what it flags (one place).
 
 Both aerodynamic methods are subsonic: the wing's strip theory (Theodorsen, Wagner,
-Leishman–Nguyen; §7.2, §7.5) is incompressible, and the Houbolt–Reed propeller derivatives
+Leishman–Nguyen; §7.2, §7.5) is incompressible (or carries the Prandtl–Glauert lift slope,
+:mod:`propwhirl.model.aerodynamics.compressibility`), and the Houbolt–Reed propeller derivatives
 (chapter 4) carry a first-order Prandtl–Glauert correction whose singularity at a section Mach
 number of 1 is clipped by the Rodden–Rose cut-off (eq. 4.23–4.24).
 
@@ -36,6 +37,12 @@ propellers' Prandtl–Glauert correction (none when no propeller has Houbolt–R
 with a fixed ``dlm_mach`` its loads are at that Mach at every speed, and the events at a V/a
 more than :data:`DLM_MACH_MISMATCH` from it are flagged as non-matched (the first one named).
 
+A wing with strip aerodynamics below Mach 0.7 is checked by the analysis itself
+(:mod:`propwhirl.analysis.mach_check`, issue 37): each event recomputed on its Prandtl–Glauert
+twin, flagged when compressibility moves it by 2 % or more.  A wing with
+``compressibility = "prandtl-glauert"`` and a fixed ``strip_mach`` has its events at a V/a more
+than :data:`DLM_MACH_MISMATCH` from it flagged as non-matched, as the doublet lattice's.
+
 Free-stream Mach numbers between 1 and 5 are computed and flagged, not refused, because the
 thesis itself goes there: its 0–350 m/s range at 8000 ft ends at Mach 1.06, §9.2 reports a
 constant-speed whirl-flutter speed of 428 m/s (Mach 1.29) and the chapter-11 isolated
@@ -49,6 +56,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from propwhirl import validate as v
+from propwhirl.model.aerodynamics import compressibility as pg
 
 #: Free-stream Mach number from which nothing is computed (hypersonic flow).
 MACH_REFUSED = 5.0
@@ -196,7 +204,10 @@ def analysis_warnings(model, speed_range: tuple[float, float],
     strip = (getattr(model, "wing_aero", False) or getattr(model, "aero", False) is True) \
         and dlm is None
     high = [(V, d) for V, d in ev if V / a > MACH_COMPRESSIBLE]
-    what = [w for w, on in (("the incompressible strip aerodynamics", strip),
+    wing = getattr(model, "wing", None)
+    strip_name = ("the Prandtl-Glauert strip aerodynamics" if pg.is_compressible(wing)
+                  else "the incompressible strip aerodynamics")
+    what = [w for w, on in ((strip_name, strip),
                             ("the Prandtl-Glauert correction of the propeller derivatives",
                              bool(houbolt_reed_propellers(model)))) if on]
     if not what and dlm is None:
@@ -243,6 +254,17 @@ def analysis_warnings(model, speed_range: tuple[float, float],
             f"wing's loads are at the fixed Mach {dlm:g} (dlm_mach) at every speed: a "
             f"non-matched analysis (the compressibility of the wing's loads is Mach {dlm:g}'s); "
             "set dlm_mach = \"speed\" for V/a")
+    fixed = getattr(wing, "strip_mach", pg.MATCHED)
+    far = [] if not (strip and pg.is_compressible(wing)) or isinstance(fixed, str) else [
+        (V, d) for V, d in ev if abs(V / a - float(fixed)) > DLM_MACH_MISMATCH]
+    if far:
+        V0, d0 = far[0]
+        n = len(far) - 1
+        more = f" ({n} more such event{'s' if n > 1 else ''} above it)" if n else ""
+        out.append(
+            f"V = {V0:.2f} m/s ({d0}) is Mach {V0 / a:.2f}{more}, but the wing's "
+            f"Prandtl-Glauert strips are at the fixed Mach {float(fixed):g} (strip_mach) at "
+            "every speed: a non-matched analysis; set strip_mach = \"speed\" for V/a")
     last = float(speed_range[1])
     if not unstable and last / a > MACH_COMPRESSIBLE and what:
         which = ("the subsonic aerodynamics are" if dlm is None else   # a DLM wing: the rest

@@ -14,7 +14,13 @@ import functools
 
 import numpy as np
 
+from propwhirl import validate as v
 from propwhirl.generated import beam_element, beam_inplane, strip_aero
+from propwhirl.model.aerodynamics.compressibility import (
+    is_compressible,
+    lift_slope_factor,
+    lift_slopes,
+)
 from propwhirl.model.structure.wing import Wing
 
 WING_DOF_NAMES = ("h", "phi", "alpha")
@@ -125,7 +131,8 @@ def call_blocks(module, name: str, shape: tuple[int, ...], **values) -> dict[str
             for k, x in out.items()}
 
 
-def wing_aero_blocks(wing: Wing, rho: float, V: np.ndarray) -> dict[str, np.ndarray | tuple[str, ...]]:
+def wing_aero_blocks(wing: Wing, rho: float, V: np.ndarray, speed_of_sound: float | None = None
+                     ) -> dict[str, np.ndarray | tuple[str, ...]]:
     """Strip-aerodynamic blocks of every node (root included), before placement.
 
     The section loads of the generated strip-aerodynamics module (per unit span, §7.2, §7.5)
@@ -135,21 +142,41 @@ def wing_aero_blocks(wing: Wing, rho: float, V: np.ndarray) -> dict[str, np.ndar
     Q_W = Ma q̈ + Ca q̇ + Ka q + W0 w; "W0" (nV, nn, 2, k); "Ww" (nV, nn, k, k); "Wv", "Wq"
     (nV, nn, k, 2) of ẇ = Ww w + Wv q̇ + Wq q; "qrows" (nn, 2) and "wrows" (nn, k), the global
     indices of each node's [h, α] and lag states; "m" the number of lag states; "labels".
+    With the wing's ``compressibility = "prandtl-glauert"`` every slope is C_lα/β at the Mach
+    of its ``strip_mach`` (V / ``speed_of_sound`` [m/s] when matched):
+    :mod:`propwhirl.model.aerodynamics.compressibility`.
     """
-    return strip_aero_blocks(wing.node_properties(), wing.aero_model, rho, V)
+    factor = lift_slope_factor(wing, V, _speed_of_sound(wing, speed_of_sound))
+    return strip_aero_blocks(wing.node_properties(), wing.aero_model, rho, V, factor)
+
+
+def _speed_of_sound(wing, speed_of_sound: float | None) -> float:
+    """The speed of sound [m/s] a matched Prandtl–Glauert wing needs (NaN when not needed)."""
+    if speed_of_sound is None:
+        if is_compressible(wing) and isinstance(wing.strip_mach, str):
+            raise v.InputError(
+                f"wing {wing.name!r}: compressibility = \"prandtl-glauert\" with strip_mach = "
+                "\"speed\" needs the flight's speed of sound (pass speed_of_sound [m/s])")
+        return float("nan")
+    return float(speed_of_sound)
 
 
 def strip_aero_blocks(node: dict[str, np.ndarray], aero_model: str, rho: float,
-                      V: np.ndarray) -> dict[str, np.ndarray | tuple[str, ...]]:
+                      V: np.ndarray, factor: np.ndarray | None = None
+                      ) -> dict[str, np.ndarray | tuple[str, ...]]:
     """:func:`wing_aero_blocks` of any strips: ``node`` holds per strip its width [m], b
     (semichord) [m], a and ac (elastic axis and aerodynamic centre, semichords aft of
     mid-chord) and Cla [1/rad] (the keys of :meth:`Wing.node_properties`); ``aero_model`` a key
     of :data:`LAG_STATES`.  The wing's strips, or a modal model's
-    (:mod:`propwhirl.model.modal`); "qrows"/"wrows" index the strips in order as nodes."""
+    (:mod:`propwhirl.model.modal`); "qrows"/"wrows" index the strips in order as nodes.
+    ``factor`` (nV,): the lift-curve slopes' compressibility factor 1/β at each speed
+    (:func:`~propwhirl.model.aerodynamics.compressibility.lift_slope_factor`), None: the
+    slopes as given."""
     nn = len(node["b"])
     k = LAG_STATES[aero_model]
     Vc = np.asarray(V, dtype=float)[:, None]
-    values = dict(rho=rho, V=Vc, b=node["b"], a=node["a"], Cla=node["Cla"], ac=node["ac"])
+    values = dict(rho=rho, V=Vc, b=node["b"], a=node["a"], Cla=lift_slopes(node["Cla"], factor),
+                  ac=node["ac"])
     shape = (Vc.shape[0], nn)
     width = node["width"][None, :, None, None]
     group, names = STRIP_AERO[aero_model]
@@ -176,14 +203,15 @@ def _strip_layout(nn: int, k: int) -> tuple[np.ndarray, np.ndarray, tuple[str, .
     return qrows, wrows, tuple(f"node {i} w{j + 1}" for i in range(nn) for j in range(k))
 
 
-def wing_aero(wing: Wing, rho: float, V: np.ndarray) -> dict[str, np.ndarray | tuple[str, ...]]:
+def wing_aero(wing: Wing, rho: float, V: np.ndarray, speed_of_sound: float | None = None
+              ) -> dict[str, np.ndarray | tuple[str, ...]]:
     """Global strip-aerodynamic matrices of the wing over all nodes (root included).
 
     :func:`wing_aero_blocks` placed: Ma, Ca, Ka (nV, 3N, 3N) with
     Q_W = Ma q̈ + Ca q̇ + Ka q + W0 w, the state equation ẇ = Ww w + Wv q̇ + Wq q, and the
-    lag-state labels.
+    lag-state labels (``speed_of_sound`` [m/s]: for a matched Prandtl–Glauert wing).
     """
-    b = wing_aero_blocks(wing, rho, V)
+    b = wing_aero_blocks(wing, rho, V, speed_of_sound)
     nq, m, qrows, wrows = 3 * wing.n_nodes, b["m"], b["qrows"], b["wrows"]
     return {
         "Ma": place(b["Ma"], qrows, qrows, (nq, nq)),

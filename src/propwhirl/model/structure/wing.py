@@ -38,6 +38,12 @@ DLM_MATCHED = "speed"
 def check_dlm_mach(value) -> None:
     """InputError unless ``value`` (a wing's ``dlm_mach``) is "speed" or a number in
     [0, :data:`DLM_MACH_MAX`]."""
+    check_mach_setting("dlm_mach", value)
+
+
+def check_mach_setting(name: str, value) -> None:
+    """InputError unless ``value`` (a wing's Mach setting ``name``: ``dlm_mach``,
+    ``strip_mach``) is "speed" or a number in [0, :data:`DLM_MACH_MAX`]."""
     if isinstance(value, str):
         ok = value == DLM_MATCHED
     else:
@@ -48,10 +54,10 @@ def check_dlm_mach(value) -> None:
         return
     if isinstance(value, (int, float, np.integer, np.floating)) and np.isfinite(value) \
             and not isinstance(value, (bool, np.bool_)):
-        raise v.InputError(f"dlm_mach = {value!r:.40} is outside the valid range "
+        raise v.InputError(f"{name} = {value!r:.40} is outside the valid range "
                            f"[0, {DLM_MACH_MAX:g}] (one Mach for every speed; or "
                            f"\"{DLM_MATCHED}\": Mach V/a at each analysed speed)")
-    raise v.InputError(f"dlm_mach = {value!r:.40} is invalid: must be \"{DLM_MATCHED}\" "
+    raise v.InputError(f"{name} = {value!r:.40} is invalid: must be \"{DLM_MATCHED}\" "
                        f"(Mach V/a at each analysed speed) or a number in "
                        f"[0, {DLM_MACH_MAX:g}] (one Mach for every speed)")
 
@@ -202,6 +208,14 @@ class Wing:
         [0, 0.9], the same Mach at every speed (non-matched: the usual way of published DLM
         flutter results, e.g. the Goland wing at Mach 0; one Mach column of AICs instead of one
         per Mach step crossed).
+    compressibility : {"none", "prandtl-glauert"}
+        Compressibility of the strip aerodynamics (aero = "strip"): "none" (the default,
+        incompressible: the thesis's model) or "prandtl-glauert" (every strip's lift-curve
+        slope divided by β = √(1 − M²) at the Mach of `strip_mach`,
+        :mod:`propwhirl.model.aerodynamics.compressibility`).
+    strip_mach : float or "speed"
+        The Mach number of the Prandtl–Glauert strips, as `dlm_mach`: "speed" (the default;
+        V/a of each analysed speed, up to Mach 0.9) or one number in [0, 0.9] for every speed.
     name : str
         Label.
 
@@ -303,12 +317,26 @@ class Wing:
         "dlm_spanwise_panels", "", "doublet-lattice panels along the semi-span (aero = "
         "\"dlm\"); omitted: the fewest with a panel aspect ratio (width / length) <= 2",
         default="none"))
+    compressibility: Literal["none", "prandtl-glauert"] = field(default="none", metadata=spec(
+        "compressibility", "", "compressibility of the strip aerodynamics: \"none\" "
+        "(incompressible, the thesis's) or \"prandtl-glauert\" (lift-curve slope C_l_alpha / "
+        "sqrt(1 - M^2) at the Mach of strip_mach)", default="setting"))
+    strip_mach: Union[float, Literal["speed"]] = field(default="speed", metadata=spec(
+        "strip_mach", "", "Mach number of the Prandtl-Glauert strips (compressibility = "
+        "\"prandtl-glauert\"), as dlm_mach: \"speed\" (matched: V/a at each analysed speed, "
+        "up to Mach 0.9) or one number for every speed", default="setting",
+        form="number_or_string", range=(0.0, DLM_MACH_MAX)))
     name: str = field(default="wing", metadata=spec("name", "", "label", default="setting"))
     _mesh: Mesh | None = field(default=None, init=False, repr=False, compare=False, metadata=spec(
         None, "", "the mesh (derived from the fields above)", default="none", form="derived"))
 
     def __post_init__(self) -> None:
         check_dlm_mach(self.dlm_mach)  # before check_fields: its own one-line message
+        check_mach_setting("strip_mach", self.strip_mach)
+        if self.compressibility not in ("none", "prandtl-glauert"):
+            raise v.InputError(f"compressibility = {self.compressibility!r:.40} is invalid: must "
+                               "be \"none\" (incompressible strips) or \"prandtl-glauert\" "
+                               "(lift-curve slope / sqrt(1 - M^2))")
         check_fields(self)  # types and the declared ranges of every field
         v.integer_at_least("n_elements", self.n_elements, 1)
         limits.check_elements(self.n_elements)
