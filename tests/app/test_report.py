@@ -319,3 +319,27 @@ def test_the_report_is_not_written_over_the_model_file(example_result, tmp_path,
     with pytest.raises(InputError, match="is the campaign file"):
         R.write_report(example_result, tmp_path, campaign_file=tmp_path / "." / name, pdf=False)
     assert model.read_text() == "[wing]\n"
+
+
+# ------------------------------------------------------- issue 38 item 7: the page's template
+def test_every_value_of_the_template_is_escaped_once():
+    """The page is string.Template blocks filled by render(): a value is escaped exactly once
+    (a fragment render made is kept), a `$` in a value is text, every block's names filled."""
+    cell = R.render("cell", tag="td", attrs=R.attrs(class_='a"b'), text="<x> & $name")
+    assert cell == '<td class="a&quot;b">&lt;x&gt; &amp; $name</td>'
+    row = R.render("row", attrs=R.Html(""), cells=R.join([cell, "<y>"], ""))
+    assert row == f"<tr>{cell}&lt;y&gt;</tr>"          # the fragment kept, the text escaped
+    assert R.e(R.e("<")) == "&lt;"                     # escaped once, not twice
+    with pytest.raises(KeyError):
+        R.render("cell", tag="td", attrs=R.Html(""))   # a name left unfilled is an error
+    blocks = R._blocks()
+    assert {"page", "case", "figure", "image", "note", "table", "head", "row", "cell"} <= set(
+        blocks)
+
+
+def test_the_template_is_package_data():
+    import tomllib
+
+    pyproject = tomllib.loads((Path(__file__).resolve().parents[2] / "pyproject.toml")
+                              .read_text())
+    assert "app/templates/*.html" in pyproject["tool"]["setuptools"]["package-data"]["propwhirl"]

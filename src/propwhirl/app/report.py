@@ -16,8 +16,13 @@ The page (:func:`report_html`) holds, in order:
   shape.
 
 Figures are PNG images inside the page (``data:`` URIs: the page is one file, nothing is
-fetched); every number has its unit in its column's heading or beside it; every string from
-the campaign or the model file is escaped (:func:`html.escape`).  Drawn from the
+fetched); every number has its unit in its column's heading or beside it.  The page's markup is
+a template, ``templates/report.html`` (package data): blocks of the standard library's
+:class:`string.Template` filled by :func:`render`, which passes every value through the one
+escaping function :func:`e` (:func:`html.escape`, quotes too) unless it is a fragment
+:func:`render` made itself (:class:`Html`) — so every string from the campaign or the model
+file reaches the page escaped.  (Not jinja2: it is the code generator's extra, and ``propwhirl
+certify`` writes the report with the runtime dependencies alone.)  Drawn from the
 :class:`~propwhirl.studies.campaign_result.CampaignResult` alone (``campaign.json``), so a report
 can be made again without analysing; the model's summary and mesh need the model.
 """
@@ -25,7 +30,11 @@ from __future__ import annotations
 
 import base64
 import datetime
+import functools
 import html
+import importlib.resources
+import re
+import string
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -41,30 +50,47 @@ HTML_NAME = "report.html"
 PDF_NAME = "report.pdf"
 #: Resolution of the embedded figures [dots per inch].
 FIGURE_DPI = 72
+#: The page's markup: blocks of string.Template (templates/report.html, package data).
+TEMPLATE = "templates/report.html"
 
-_CSS = """
-body { font-family: "DejaVu Sans", Arial, sans-serif; font-size: 10.5pt; color: #111;
-       max-width: 1000px; margin: 1.5em auto; padding: 0 1em; }
-h1 { font-size: 1.6em; margin-bottom: 0.2em; } h2 { font-size: 1.3em; margin-top: 1.6em;
-border-bottom: 1px solid #999; } h3 { font-size: 1.1em; }
-table { border-collapse: collapse; margin: 0.6em 0; } th, td { border: 1px solid #bbb;
-padding: 2px 6px; } th { background: #eee; text-align: left; } td.num { text-align: right;
-font-variant-numeric: tabular-nums; white-space: nowrap; }
-table.summary { font-size: 9pt; }
-td.pass, span.pass, p.pass { color: #0a6d1d; font-weight: bold; }
-td.fail, span.fail, p.fail { color: #b00000; font-weight: bold; }
-tr.fail td { background: #fdecec; }
-.verdict { font-size: 1.3em; padding: 0.3em 0.6em; border: 2px solid; display: inline-block; }
-code, .hash { font-family: "DejaVu Sans Mono", monospace; font-size: 0.9em;
-word-break: break-all; }
-img { max-width: 100%; height: auto; display: block; margin: 0.5em 0; }
-section.case { page-break-before: always; break-before: page; }
-.note { color: #444; font-size: 0.9em; }
-figure { margin: 0; break-inside: avoid; page-break-inside: avoid; }
-@page { size: A4; margin: 12mm; }
-@media print { figure img { max-height: 100mm; width: auto; max-width: 100%; }
-               body { max-width: none; margin: 0; } }
-"""
+
+class Html(str):
+    """Markup that is already safe: a fragment :func:`render` made (its values escaped).
+    Every other value put into the page goes through :func:`e`."""
+
+    __slots__ = ()
+
+
+def e(x: Any) -> Html:
+    """`x` as escaped HTML text (quotes too), the page's one escaping function: a fragment
+    :func:`render` made (:class:`Html`) is kept, anything else is ``html.escape(str(x))``."""
+    return x if isinstance(x, Html) else Html(html.escape(str(x), quote=True))
+
+
+@functools.cache
+def _blocks() -> dict[str, string.Template]:
+    """The blocks of :data:`TEMPLATE` by name (``<!-- block: NAME -->`` up to the next)."""
+    text = importlib.resources.files("propwhirl.app").joinpath(TEMPLATE).read_text("utf-8")
+    parts = re.split(r"^<!-- block: (\w+) -->\n", text, flags=re.M)
+    return {name: string.Template(body.rstrip("\n")) for name, body in
+            zip(parts[1::2], parts[2::2])}
+
+
+def render(block: str, **values: Any) -> Html:
+    """Block `block` of the page's template with every value escaped (:func:`e`)."""
+    return Html(_blocks()[block].substitute({k: e(x) for k, x in values.items()}))
+
+
+def join(parts: Sequence[Any], sep: str = "\n") -> Html:
+    """The parts, each escaped (:func:`e`), joined."""
+    return Html(sep.join(e(x) for x in parts))
+
+
+def attrs(**values: Any) -> Html:
+    """HTML attributes ``' name="value"'`` (values escaped; None and "" left out; a trailing
+    underscore dropped: ``class_``; ``data_case`` is ``data-case``)."""
+    return Html("".join(f' {k.rstrip("_").replace("_", "-")}="{e(x)}"'
+                        for k, x in values.items() if x is not None and x != ""))
 
 
 def sha256_file(path: str | Path, what: str = "file") -> str:
@@ -74,20 +100,15 @@ def sha256_file(path: str | Path, what: str = "file") -> str:
     return fileio.sha256_file(path, what)
 
 
-def e(x: Any) -> str:
-    """`x` as escaped HTML text (quotes too)."""
-    return html.escape(str(x), quote=True)
-
-
 def _num(x: float | None, fmt: str, unit: str = "") -> str:
     if x is None:
         return "–"
     return format(x, fmt) + (f" {unit}" if unit else "")
 
 
-def _img(png: bytes, alt: str) -> str:
-    return (f'<img alt="{e(alt)}" src="data:image/png;base64,'
-            f'{base64.b64encode(png).decode("ascii")}">')
+def _img(png: bytes, alt: str) -> Html:
+    return render("image", alt=alt,
+                  src="data:image/png;base64," + base64.b64encode(png).decode("ascii"))
 
 
 def _figure(fig: Any) -> bytes:
@@ -99,22 +120,24 @@ def _figure(fig: Any) -> bytes:
         fig.clear()
 
 
-def _table(head: Sequence[str], rows: Sequence[Sequence[str]], cls: str = "",
-           row_attrs: Sequence[str] | None = None) -> str:
-    """A table of already-escaped cells; `head` plain text (escaped here)."""
-    out = [f'<table class="{cls}">' if cls else "<table>"]
-    if any(head):
-        out.append("<thead><tr>" + "".join(f"<th>{e(h)}</th>" for h in head) + "</tr></thead>")
-    out.append("<tbody>")
-    for i, r in enumerate(rows):
-        attrs = "" if row_attrs is None else " " + row_attrs[i]
-        out.append(f"<tr{attrs}>" + "".join(r) + "</tr>")
-    out.append("</tbody></table>")
-    return "\n".join(out)
+def _td(x: Any, cls: str = "") -> Html:
+    """A table cell: `x` escaped (a fragment kept)."""
+    return render("cell", tag="td", attrs=attrs(class_=cls), text=x)
 
 
-def _td(x: str, cls: str = "") -> str:
-    return f'<td class="{cls}">{x}</td>' if cls else f"<td>{x}</td>"
+def _th(x: Any) -> Html:
+    return render("cell", tag="th", attrs=Html(""), text=x)
+
+
+def _table(head: Sequence[str], rows: Sequence[Sequence[Html]], cls: str = "",
+           row_attrs: Sequence[Html] | None = None) -> Html:
+    """A table of cells (:func:`_td`, :func:`_th`); `head` plain text (no head when all
+    empty)."""
+    return render("table", attrs=attrs(class_=cls),
+                  head=render("head", cells=join([_th(h) for h in head], "")) if any(head)
+                  else Html(""),
+                  rows=join([render("row", attrs=Html("") if row_attrs is None else row_attrs[i],
+                                    cells=join(r, "")) for i, r in enumerate(rows)]))
 
 
 def _critical(r: Any) -> str:
@@ -148,20 +171,24 @@ def _envelope(rows: Sequence[Any]) -> str:
     return text + (f"; limited by M_D at {', '.join(limited)} m" if limited else "")
 
 
+def _verdict(cleared: bool) -> Html:
+    return _td("pass" if cleared else "FAIL", "pass" if cleared else "fail")
+
+
 #: The summary table's columns: (heading with its unit, the cell of a row).
 SUMMARY_COLUMNS = (
-    ("case", lambda r: _td(e(r.case))),
+    ("case", lambda r: _td(r.case)),
     ("altitude [m]", lambda r: _td(_num(r.altitude_m, ".0f"), "num")),
     ("V_D (TAS) [m/s]", lambda r: _td(_num(r.V_D, ".2f"), "num")),
-    ("rule", lambda r: _td(e(r.rule or "–"))),
+    ("rule", lambda r: _td(r.rule or "–")),
     ("V_required [m/s]", lambda r: _td(_num(r.V_required, ".2f"), "num")),
     ("V_crit [m/s]", lambda r: _td(_num(r.critical_speed, ".2f"), "num")),
     ("margin [m/s]", lambda r: _td(_num(r.margin_m_per_s, "+.2f"), "num")),
     ("margin [%]", lambda r: _td(_num(r.margin_percent, "+.2f"), "num")),
     ("least g = 2ζ to V_req [-]", lambda r: _td(_num(r.least_g, ".4f"), "num")),
     ("dζ/dV at V_req [s/m]", lambda r: _td(_num(r.dzeta_dV_at_required, "+.2e"), "num")),
-    ("critical instability", lambda r: _td(e(_critical(r)))),
-    ("verdict", lambda r: _td("pass" if r.cleared else "FAIL", "pass" if r.cleared else "fail")),
+    ("critical instability", lambda r: _td(_critical(r))),
+    ("verdict", lambda r: _verdict(r.cleared)),
 )
 
 
@@ -218,11 +245,13 @@ def _check_arguments(result: Any, campaign_file: Any, model_file: Any, date: Any
         raise v.fail("date", date, f"invalid: must be a str or None, got {type(date).__name__}")
 
 
+
 def report_html(result: Any, *, campaign_file: str | Path | None = None,
                 model_file: str | Path | None = None, model: Any = None,
                 date: str | None = None, figures: bool = True) -> str:
     """The report page of a :class:`~propwhirl.studies.campaign_result.CampaignResult` (module
-    docstring).
+    docstring): the blocks of :data:`TEMPLATE` filled by :func:`render`, which escapes every
+    value.
 
     campaign_file, model_file: the files (named and hashed); model: the campaign's model (its
     summary and mesh; without it the section says so); date: the report's date (default
@@ -234,106 +263,114 @@ def report_html(result: Any, *, campaign_file: str | Path | None = None,
             import matplotlib  # noqa: F401
         except ImportError:
             figures = False
-    no_figures = ('<p class="note">Figures left out: install the plots extra (pip install '
-                  'propwhirl[plots]) and write the report again.</p>')
-    if figures:
-        from propwhirl.app.plots import campaign_plot as cp  # lazy: figures
     date = date or datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
-    verdict = "CLEARED" if result.cleared else "NOT CLEARED"
-    vcls = "pass" if result.cleared else "fail"
-    parts = ["<!DOCTYPE html>", '<html lang="en"><head><meta charset="utf-8">',
-             f"<title>{e(result.name)}: whirl-flutter clearance report</title>",
-             f"<style>{_CSS}</style></head><body>",
-             f"<h1>{e(result.name)}</h1>",
-             "<p>Whirl-flutter clearance report of <code>propwhirl certify</code>.</p>",
-             f'<p class="verdict {vcls}" id="verdict">{verdict}</p>']
     summaries = result.cases()
-    n_ok = sum(s.cleared for s in summaries)
+    page = render(
+        "page", name=result.name, title="whirl-flutter clearance report",
+        subtitle=Html("Whirl-flutter clearance report of <code>propwhirl certify</code>."),
+        verdict_class="pass" if result.cleared else "fail",
+        verdict="CLEARED" if result.cleared else "NOT CLEARED",
+        campaign=_campaign_table(result, campaign_file, model_file, date, summaries),
+        model=_model_section(result, model, figures),
+        summary=_table([h for h, _ in SUMMARY_COLUMNS],
+                       [[cell(r) for _, cell in SUMMARY_COLUMNS] for r in result.rows],
+                       "summary",
+                       [attrs(class_=f"point {'pass' if r.cleared else 'fail'}",
+                              data_case=r.case, data_altitude=repr(r.altitude_m))
+                        for r in result.rows]),
+        cases=join([_case_section(result, i, s, figures)
+                    for i, s in enumerate(summaries, start=1)]))
+    return page + "\n"
+
+
+def _campaign_table(result: Any, campaign_file: Any, model_file: Any, date: str,
+                    summaries: Sequence[Any]) -> Html:
+    """The campaign's table: its files and hashes, envelope, regulation, requirements, ..."""
     g = ("none (damping reported, not judged)" if result.min_damping_g is None else
          f"g = 2ζ ≥ {result.min_damping_g:g} [-] for every oscillatory mode up to V_D")
-    files = []
+    files: list[tuple[str, Any]] = []
     for label, path in (("campaign file", campaign_file), ("model file", model_file)):
         if path is not None:
-            files.append((label, f"<code>{e(path)}</code>"))
-            files.append((f"{label} SHA-256",
-                          f'<span class="hash">{sha256_file(path, label)}</span>'))
-    rows = [("campaign", e(result.name)), ("model", e(result.model_name)), *files,
-            ("envelope", e(_envelope(result.rows))),
-            ("regulation", e(result.regulation)),
-            ("required speed", f"{result.factor:g} × V_D (true airspeed)" + (
-                "; failure cases (25.629(b)(2)): the greater of V_D (M_D) and the 1.15 V_C / "
-                "M_C + 0.05 line, each row's rule" if any(r.rule.startswith("25.629(b)(2)")
-                                                         for r in result.rows) else "")),
-            ("damping requirement", e(g)), ("convention", e(result.convention)),
-            ("cases cleared", f"{n_ok} of {len(summaries)}"),
+            files.append((label, render("cell", tag="code", attrs=Html(""), text=path)))
+            files.append((f"{label} SHA-256", render("cell", tag="span",
+                                                     attrs=attrs(class_="hash"),
+                                                     text=sha256_file(path, label))))
+    required = f"{result.factor:g} × V_D (true airspeed)" + (
+        "; failure cases (25.629(b)(2)): the greater of V_D (M_D) and the 1.15 V_C / "
+        "M_C + 0.05 line, each row's rule" if any(r.rule.startswith("25.629(b)(2)")
+                                                 for r in result.rows) else "")
+    rows = [("campaign", result.name), ("model", result.model_name), *files,
+            ("envelope", _envelope(result.rows)), ("regulation", result.regulation),
+            ("required speed", required), ("damping requirement", g),
+            ("convention", result.convention),
+            ("cases cleared", f"{sum(s.cleared for s in summaries)} of {len(summaries)}"),
             ("analyses", str(result.analyses)),
-            ("software", f"propwhirl {e(propwhirl.__version__)}"), ("date", e(date))]
-    parts += ["<h2>Campaign</h2>", _table(("", ""), [(f"<th>{k}</th>", _td(x)) for k, x in rows],
-                                          "campaign")]
-    parts.append("<h2>Model</h2>")
+            ("software", f"propwhirl {propwhirl.__version__}"), ("date", date)]
+    return _table(("", ""), [(_th(k), _td(x)) for k, x in rows], "campaign")
+
+
+def _model_section(result: Any, model: Any, figures: bool) -> Html:
+    """The model: its summary table and its mesh (a figure), or a note without the model."""
     if model is None:
-        parts.append('<p class="note">The model was not given to the report: see the model '
-                     "file above.</p>")
-    else:
-        parts.append(_table(("quantity", "value"),
-                            [(_td(e(k)), _td(e(x))) for k, x in model_summary(model)], "model"))
-        mesh = _mesh(model)
-        if figures and mesh is not None:
-            parts.append(_img(_figure(cp.mesh_plot(*mesh, title="mesh")),
-                              f"mesh of {result.model_name}"))
-    parts.append("<h2>Summary</h2>")
-    parts.append('<p class="note">Every case at every altitude. Speeds are true airspeeds; '
-                 "margin = V_crit − V_required and 100 (V_crit / V_required − 1); least g: of the "
-                 "oscillatory modes up to the required speed. Every number of this report, and "
-                 "every altitude's: campaign.json and campaign.csv beside it.</p>")
-    parts.append(_table([h for h, _ in SUMMARY_COLUMNS],
-                        [[cell(r) for _, cell in SUMMARY_COLUMNS] for r in result.rows],
-                        "summary",
-                        [f'class="point {"pass" if r.cleared else "fail"}" data-case="{e(r.case)}" '
-                         f'data-altitude="{r.altitude_m!r}"' for r in result.rows]))
-    for i, s in enumerate(summaries, start=1):
-        r = s.worst
-        rows_c = [x for x in result.rows if x.case == s.case]
-        parts.append(f'<section class="case" id="case-{i}"><h2>Case {i}: {e(s.case)} — '
-                     f'<span class="{"pass" if s.cleared else "fail"}">'
-                     f'{"cleared" if s.cleared else "NOT cleared"}</span></h2>')
-        parts.append(f"<p>Transformation: {e(r.description)}.</p>")
-        margin = ("no counted instability up to " + _num(r.analysed_to, ".2f", "m/s")
-                  if r.critical_speed is None else
-                  f"V_crit = {r.critical_speed:.2f} m/s, required {r.V_required:.2f} m/s"
-                  + (f" ({r.rule})" if r.rule else "") + ": margin "
-                  f"{r.margin_m_per_s:+.2f} m/s ({r.margin_percent:+.2f} %)")
-        parts.append(f"<p>Least margin at {r.altitude_m:g} m: {e(margin)}; critical: "
-                     f"{e(_critical(r))}" + (f"; not cleared: {e(r.reason)}" if r.reason else "")
-                     + ".</p>")
-        parts.append(_table(("altitude [m]", "V_required [m/s]", "V_crit [m/s]", "margin [m/s]",
-                             "margin [%]", "least g to V_D [-]", "verdict"),
-                            [(_td(_num(x.altitude_m, ".0f"), "num"),
-                              _td(_num(x.V_required, ".2f"), "num"),
-                              _td(_num(x.critical_speed, ".2f"), "num"),
-                              _td(_num(x.margin_m_per_s, "+.2f"), "num"),
-                              _td(_num(x.margin_percent, "+.2f"), "num"),
-                              _td(_num(x.least_g_to_V_D, ".4f"), "num"),
-                              _td("pass" if x.cleared else "FAIL",
-                                  "pass" if x.cleared else "fail")) for x in rows_c], "margins"))
-        if not figures:
-            parts.append(no_figures)
-        elif r.plot is None:
-            parts.append('<p class="note">No figures: ' + ("the analysis failed." if r.error else
-                         "the result file was written without them (propwhirl.campaign/1).")
-                         + "</p>")
-        else:
-            parts.append(f"<figure><h3>V-g-f at {r.altitude_m:g} m</h3>")
-            parts.append(_img(_figure(cp.point_vgf(r, result.min_damping_g)),
-                              f"V-g-f of {s.case} at {r.altitude_m:g} m") + "</figure>")
-            shape = cp.point_mode_shape(r)
-            if shape is not None:
-                parts.append(f"<figure><h3>Critical mode at {r.altitude_m:g} m</h3>")
-                parts.append(_img(_figure(shape), f"critical mode of {s.case} at "
-                                  f"{r.altitude_m:g} m") + "</figure>")
-        parts.append("</section>")
-    parts.append("</body></html>")
-    return "\n".join(parts) + "\n"
+        return render("note", text="The model was not given to the report: see the model file "
+                      "above.")
+    parts = [_table(("quantity", "value"), [(_td(k), _td(x)) for k, x in model_summary(model)],
+                    "model")]
+    mesh = _mesh(model)
+    if figures and mesh is not None:
+        from propwhirl.app.plots import campaign_plot as cp  # lazy: figures
+
+        parts.append(_img(_figure(cp.mesh_plot(*mesh, title="mesh")),
+                          f"mesh of {result.model_name}"))
+    return join(parts)
+
+
+def _case_section(result: Any, i: int, s: Any, figures: bool) -> Html:
+    """Case `i` (its summary `s`): its transformation, least margin, margins at every altitude
+    and, at its least-margin altitude, the V-g-f and the critical mode."""
+    r = s.worst
+    margin = ("no counted instability up to " + _num(r.analysed_to, ".2f", "m/s")
+              if r.critical_speed is None else
+              f"V_crit = {r.critical_speed:.2f} m/s, required {r.V_required:.2f} m/s"
+              + (f" ({r.rule})" if r.rule else "") + ": margin "
+              f"{r.margin_m_per_s:+.2f} m/s ({r.margin_percent:+.2f} %)")
+    margins = _table(("altitude [m]", "V_required [m/s]", "V_crit [m/s]", "margin [m/s]",
+                      "margin [%]", "least g to V_D [-]", "verdict"),
+                     [(_td(_num(x.altitude_m, ".0f"), "num"),
+                       _td(_num(x.V_required, ".2f"), "num"),
+                       _td(_num(x.critical_speed, ".2f"), "num"),
+                       _td(_num(x.margin_m_per_s, "+.2f"), "num"),
+                       _td(_num(x.margin_percent, "+.2f"), "num"),
+                       _td(_num(x.least_g_to_V_D, ".4f"), "num"),
+                       _verdict(x.cleared)) for x in result.rows if x.case == s.case],
+                     "margins")
+    return render("case", number=i, case=s.case, verdict_class="pass" if s.cleared else "fail",
+                  verdict="cleared" if s.cleared else "NOT cleared", description=r.description,
+                  altitude=f"{r.altitude_m:g}", margin=margin, critical=_critical(r),
+                  reason=f"; not cleared: {r.reason}" if r.reason else "", margins=margins,
+                  figures=_case_figures(r, s, result.min_damping_g, figures))
+
+
+def _case_figures(r: Any, s: Any, min_damping_g: float | None, figures: bool) -> Html:
+    """The V-g-f and the critical mode of row `r` (a note where there are none)."""
+    if not figures:
+        return render("note", text="Figures left out: install the plots extra (pip install "
+                      "propwhirl[plots]) and write the report again.")
+    if r.plot is None:
+        return render("note", text="No figures: " + (
+            "the analysis failed." if r.error else
+            "the result file was written without them (propwhirl.campaign/1)."))
+    from propwhirl.app.plots import campaign_plot as cp  # lazy: figures
+
+    out = [render("figure", heading=f"V-g-f at {r.altitude_m:g} m",
+                  image=_img(_figure(cp.point_vgf(r, min_damping_g)),
+                             f"V-g-f of {s.case} at {r.altitude_m:g} m"))]
+    shape = cp.point_mode_shape(r)
+    if shape is not None:
+        out.append(render("figure", heading=f"Critical mode at {r.altitude_m:g} m",
+                          image=_img(_figure(shape), f"critical mode of {s.case} at "
+                                     f"{r.altitude_m:g} m")))
+    return join(out)
 
 
 def write_report(result: Any, folder: str | Path, *, campaign_file: str | Path | None = None,
