@@ -145,3 +145,33 @@ def test_tip_mach_warning_once_listing_propellers(plain):
     tips = [ln for ln in err.splitlines() if "helical tip Mach" in ln]
     assert len(tips) == 1, err
     assert "propellers 1, 2:" in tips[0]
+
+
+def test_the_least_damping_line_says_which_damping_and_from_where(two_file, analysed):
+    """Issue 35 item 2: the line names the total damping (structural included) and the first
+    analysed speed, and gives the aerodynamic increment above each mode's damping there,
+    checked mode by mode against the analysis."""
+    import numpy as np
+
+    from propwhirl.analysis.margin import DAMPING_MODES, oscillatory_damping
+    from propwhirl.analysis.stability import analyse
+    from propwhirl.studies.clearance import clearance_speeds
+
+    last = analysed[0].strip().splitlines()[-1]
+    model = io.load_model(two_file)
+    V_req = 1.15 * 130
+    a = analyse(model, clearance_speeds(model, V_req), vgf=True)
+    V = a.sweep.V
+    assert f"least total damping (structural included) from {V[0]:.2f} m/s (the first " \
+           "analysed speed)" in last
+    zeta, _ = oscillatory_damping(a.sweep, a.modes_of_interest(DAMPING_MODES))
+    best = np.inf
+    for k in range(zeta.shape[1]):
+        ok = np.flatnonzero(np.isfinite(zeta[:, k]))
+        for t in ok:
+            if V[t] <= V_req * (1 + 1e-12):
+                best = min(best, 2 * (zeta[t, k] - zeta[ok[0], k]))
+    m = re.search(rf"aerodynamic increment above each mode's damping at {V[0]:.2f} m/s: least "
+                  rf"({NUMBER}) \(", last)
+    assert m, last
+    assert float(m.group(1)) == pytest.approx(best, abs=6e-5)

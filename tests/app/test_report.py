@@ -28,6 +28,7 @@ model = "{model}"
 [regulation]
 name = "cs25"
 min_damping_g = 0.0001
+damping = {{ applies_to = "total", source = "a <i>test</i> reading" }}
 [envelope]
 airspeed = "TAS"
 V_D_m_per_s = 40.0
@@ -196,6 +197,8 @@ def test_the_files_hashes_and_the_version_are_named(certified, small_file):
     assert digest in text and campaign in text
     assert f"propwhirl {__version__}" in text
     assert "1.15 × V_D" in text and "g = 2ζ ≥ 0.0001" in text
+    assert "of the total damping (structural damping included)" in text
+    assert "(a &lt;i&gt;test&lt;/i&gt; reading)" in text    # the file's source, escaped
     assert "V_D 40 m/s TAS at 0, 3000 m" in text
 
 

@@ -287,7 +287,9 @@ def _campaign_table(result: Any, campaign_file: Any, model_file: Any, date: str,
                     summaries: Sequence[Any]) -> Html:
     """The campaign's table: its files and hashes, envelope, regulation, requirements, ..."""
     g = ("none (damping reported, not judged)" if result.min_damping_g is None else
-         f"g = 2ζ ≥ {result.min_damping_g:g} [-] for every oscillatory mode up to V_D")
+         result.damping_text or f"g = 2ζ ≥ {result.min_damping_g:g} [-] of the total damping "
+         "of every oscillatory mode of interest up to V_D (a result file before the reading "
+         "was recorded)")
     files: list[tuple[str, Any]] = []
     for label, path in (("campaign file", campaign_file), ("model file", model_file)):
         if path is not None:

@@ -60,7 +60,7 @@ FT = 0.3048
 
 _TOP = ("format", "format_version", "name", "model", "convention", "combine", "regulation",
         "envelope", "cases")
-_REGULATION = ("name", "factor", "min_damping_g")
+_REGULATION = ("name", "factor", "min_damping_g", "damping")
 _ENVELOPE = ("airspeed", "V_D_m_per_s", "M_D", "V_C_m_per_s", "M_C", "altitudes_m",
              "altitudes_ft")
 _CASE = ("name", "group", "propellers", "each_propeller", "mount_stiffness", "mount_damping",
@@ -98,6 +98,39 @@ def _regulation(t: Table) -> tuple[str, float, float | None]:
             raise t.bad("factor", f"{factor:g} with name = {name!r} (or give name = 'explicit')")
     g = _number_in(t, "min_damping_g", 0.0, 1.0) if t.has("min_damping_g") else None
     return name, factor, g
+
+
+# ---- issue 35 item 2: [regulation] damping, the damping requirement's reading (one key) ----
+#: Its keys, and the choices of two of them (those of propwhirl.analysis.damping_requirement).
+_DAMPING = ("applies_to", "above_m_per_s", "modes", "source")
+DAMPING_APPLIES_TO = ("total", "aerodynamic")
+DAMPING_MODES = ("all", "critical")
+
+
+def _damping(t: Table, g: float | None) -> dict[str, Any] | None:
+    """[regulation] damping = {applies_to, above_m_per_s, modes, source}: which damping the
+    min_damping_g requirement applies to; required with min_damping_g, refused without it."""
+    if g is None:
+        if t.has("damping"):
+            raise t.bad("damping", "absent without min_damping_g (it says how min_damping_g is "
+                        "read)")
+        return None
+    if not t.has("damping"):
+        raise t.missing("damping", 'min_damping_g needs it: damping = { applies_to = "total" '
+                        'or "aerodynamic", source = "MIL-A-8870C 3.1.1" (or your practice), '
+                        'above_m_per_s = 0.0, modes = "all" or "critical" } (docs/campaign.md)')
+    d = t.sub("damping", _DAMPING)
+    out: dict[str, Any] = {"applies_to": d.string(
+        "applies_to", "total: structural damping included; aerodynamic: the increment above it",
+        DAMPING_APPLIES_TO)}
+    out["above_m_per_s"] = _number_in(d, "above_m_per_s", 0.0, 1000.0) \
+        if d.has("above_m_per_s") else 0.0
+    out["modes"] = d.string("modes", "", DAMPING_MODES) if d.has("modes") else "all"
+    out["source"] = d.string("source", "where this reading of the requirement comes from")
+    if not out["source"].strip() or not out["source"].isprintable() or len(out["source"]) > 200:
+        raise d.bad("source", "a non-empty printable text of at most 200 characters")
+    return out
+# ---- end of issue 35 item 2 ----
 
 
 def _envelope(t: Table) -> tuple[str, tuple[float, ...], tuple[float, ...], float | None,
@@ -221,6 +254,9 @@ class CampaignSpec:
     cases: tuple[CaseSpec, ...]
     V_C: tuple[float, ...] | None = None
     M_C: float | None = None
+    #: [regulation] damping: how min_damping_g is read ({applies_to, above_m_per_s, modes,
+    #: source}; None without min_damping_g)
+    damping: dict[str, Any] | None = None
 
 
 def _from_dict(data: dict[str, Any], base: Path, source: str) -> CampaignSpec:
@@ -250,7 +286,9 @@ def _from_dict(data: dict[str, Any], base: Path, source: str) -> CampaignSpec:
         if top.has("convention") else "propwhirl"
     combine = top.string("combine", choices=("list", "product")) \
         if top.has("combine") else "list"
-    regulation, factor, g = _regulation(top.sub("regulation", _REGULATION))
+    reg = top.sub("regulation", _REGULATION)
+    regulation, factor, g = _regulation(reg)
+    damping = _damping(reg, g)
     env = top.sub("envelope", _ENVELOPE)
     airspeed, vd, alts, M_D, V_C, M_C = _envelope(env)
     if V_C is not None and regulation not in PART25:
@@ -276,7 +314,7 @@ def _from_dict(data: dict[str, Any], base: Path, source: str) -> CampaignSpec:
         raise v.InputError(f"the cases ({count}) x altitudes ({len(alts)}) make "
                            f"{count * len(alts)} analyses, at most {MAX_TASKS}")
     return CampaignSpec(source, name, model, str(path), conv, combine, regulation, factor, g,
-                        airspeed, vd, alts, M_D, tuple(specs), V_C, M_C)
+                        airspeed, vd, alts, M_D, tuple(specs), V_C, M_C, damping)
 
 
 def loads(text: str, source: str = "<string>", base: str | Path = ".") -> CampaignSpec:
