@@ -10,6 +10,7 @@ from __future__ import annotations
 import hashlib
 import html.parser
 import json
+import re
 from pathlib import Path
 
 import numpy as np
@@ -346,3 +347,57 @@ def test_the_template_is_package_data():
     pyproject = tomllib.loads((Path(__file__).resolve().parents[2] / "pyproject.toml")
                               .read_text())
     assert "app/templates/*.html" in pyproject["tool"]["setuptools"]["package-data"]["propwhirl"]
+
+
+# ------------------------------------------- issue 35 item 1: a verdict with its reason
+FAILING = """
+format = "propwhirl-campaign"
+format_version = 1
+name = "fails"
+model = "{model}"
+[regulation]
+name = "cs25"
+min_damping_g = 0.03
+damping = {{ applies_to = "total", source = "MIL-A-8870C 3.1.1" }}
+[envelope]
+airspeed = "TAS"
+V_D_m_per_s = 130.0
+altitudes_m = [0.0, 3000.0]
+[[cases]]
+name = "nominal"
+"""
+
+
+@pytest.fixture(scope="module")
+def failing(small_file, tmp_path_factory) -> Path:
+    """A campaign that fails: 1.15 V_D above the wing's divergence at sea level, and a
+    damping requirement of g >= 0.03 (total) the model does not meet."""
+    folder = tmp_path_factory.mktemp("failing")
+    path = folder / "c.toml"
+    path.write_text(FAILING.format(model=Path(small_file).as_posix()))
+    assert cli.main(["certify", str(path), "--out", str(folder / "out"), "--quiet",
+                     "--no-pdf"]) == 1
+    return folder / "out"
+
+
+def test_every_fail_carries_its_reason_and_the_summary_says_what_decided(failing):
+    result = C.CampaignResult.load(failing / "campaign.json")
+    text = (failing / "report.html").read_text()
+    page = _Page()
+    page.feed(text)
+    fails = [(t["class"], c[2]) for t in page.tables for row in t["rows"] for c in row
+             if c[1] == "fail"]
+    assert len(fails) >= 2 * len(result.rows)          # the summary's and the case's tables
+    for table, cell in fails:
+        assert cell.startswith("FAIL") and len(cell) > len("FAIL") + 10, (table, cell)
+        assert "damping: total g = " in cell or "speed: " in cell, cell
+    # which requirement decided, with how many points fail it
+    decided = dict(result.decided_by())
+    assert decided["the damping requirement"] == len(result.rows)
+    speed = sum("speed" in r.failed for r in result.rows)
+    assert speed >= 1 and decided["no instability up to the required speed"] == speed
+    assert re.search(r"<li><b>the damping requirement</b>: 2 points</li>", text)
+    assert "Decided by (of the 2 points analysed" in text
+    last = result.format().splitlines()[-1]
+    assert "NOT CLEARED (failed: " in last and "the damping requirement: 2 of 2 points" in last
+    assert f"no instability up to the required speed: {speed} of 2 points" in last

@@ -171,8 +171,12 @@ def _envelope(rows: Sequence[Any]) -> str:
     return text + (f"; limited by M_D at {', '.join(limited)} m" if limited else "")
 
 
-def _verdict(cleared: bool) -> Html:
-    return _td("pass" if cleared else "FAIL", "pass" if cleared else "fail")
+def _verdict(r: Any) -> Html:
+    """A row's verdict cell: "pass", or "FAIL" with its reason beside it (every requirement it
+    fails: :attr:`~propwhirl.studies.campaign_result.PointRow.reason`)."""
+    if r.cleared:
+        return _td("pass", "pass")
+    return _td(render("verdict", reason=r.reason or "no reason recorded"), "fail")
 
 
 #: The summary table's columns: (heading with its unit, the cell of a row).
@@ -188,7 +192,7 @@ SUMMARY_COLUMNS = (
     ("least g = 2ζ to V_req [-]", lambda r: _td(_num(r.least_g, ".4f"), "num")),
     ("dζ/dV at V_req [s/m]", lambda r: _td(_num(r.dzeta_dV_at_required, "+.2e"), "num")),
     ("critical instability", lambda r: _td(_critical(r))),
-    ("verdict", lambda r: _verdict(r.cleared)),
+    ("verdict (the requirement that fails)", _verdict),
 )
 
 
@@ -270,6 +274,7 @@ def report_html(result: Any, *, campaign_file: str | Path | None = None,
         subtitle=Html("Whirl-flutter clearance report of <code>propwhirl certify</code>."),
         verdict_class="pass" if result.cleared else "fail",
         verdict="CLEARED" if result.cleared else "NOT CLEARED",
+        decided=_decided(result),
         campaign=_campaign_table(result, campaign_file, model_file, date, summaries),
         model=_model_section(result, model, figures),
         summary=_table([h for h, _ in SUMMARY_COLUMNS],
@@ -281,6 +286,16 @@ def report_html(result: Any, *, campaign_file: str | Path | None = None,
         cases=join([_case_section(result, i, s, figures)
                     for i, s in enumerate(summaries, start=1)]))
     return page + "\n"
+
+
+def _decided(result: Any) -> Html:
+    """Which requirement decided the verdict: every requirement the failing points fail, with
+    their number (nothing when the campaign clears)."""
+    found = result.decided_by()
+    if not found:
+        return Html("")
+    return render("decided", total=len(result.rows), items=join(
+        [render("decided_item", what=what, count=n) for what, n in found], ""))
 
 
 def _campaign_table(result: Any, campaign_file: Any, model_file: Any, date: str,
@@ -337,14 +352,14 @@ def _case_section(result: Any, i: int, s: Any, figures: bool) -> Html:
               + (f" ({r.rule})" if r.rule else "") + ": margin "
               f"{r.margin_m_per_s:+.2f} m/s ({r.margin_percent:+.2f} %)")
     margins = _table(("altitude [m]", "V_required [m/s]", "V_crit [m/s]", "margin [m/s]",
-                      "margin [%]", "least g to V_D [-]", "verdict"),
+                      "margin [%]", "least g to V_D [-]", "verdict (the requirement that fails)"),
                      [(_td(_num(x.altitude_m, ".0f"), "num"),
                        _td(_num(x.V_required, ".2f"), "num"),
                        _td(_num(x.critical_speed, ".2f"), "num"),
                        _td(_num(x.margin_m_per_s, "+.2f"), "num"),
                        _td(_num(x.margin_percent, "+.2f"), "num"),
                        _td(_num(x.least_g_to_V_D, ".4f"), "num"),
-                       _verdict(x.cleared)) for x in result.rows if x.case == s.case],
+                       _verdict(x)) for x in result.rows if x.case == s.case],
                      "margins")
     return render("case", number=i, case=s.case, verdict_class="pass" if s.cleared else "fail",
                   verdict="cleared" if s.cleared else "NOT cleared", description=r.description,

@@ -333,6 +333,16 @@ class CampaignResult(Result):
         return [CaseSummary(name, all(r.cleared for r in rows), min(rows, key=key),
                             sum(not r.cleared for r in rows)) for name, rows in out.items()]
 
+    def decided_by(self) -> list[tuple[str, int]]:
+        """Which requirements the failing rows fail: (the requirement in words,
+        :data:`REQUIREMENTS`; the number of (case, point) rows that fail it), most first;
+        empty when every row clears."""
+        counts: dict[str, int] = {}
+        for r in self.rows:
+            for key in r.failed:
+                counts[key] = counts.get(key, 0) + 1
+        return [(REQUIREMENTS[k], n) for k, n in sorted(counts.items(), key=lambda kv: -kv[1])]
+
     def format(self) -> str:
         """The plain-text summary table: one line per case (its worst envelope point)."""
         g = "" if self.min_damping_g is None else (
@@ -369,8 +379,10 @@ class CampaignResult(Result):
                          f"  {crit}" + (f" ({r.reason})" if r.reason and not r.error else ""))
         n_ok = sum(s.cleared for s in summaries)
         lines.append("(each case's least-margin altitude; every altitude: the CSV)")
+        decided = "; ".join(f"{what}: {n} of {len(self.rows)} points"
+                            for what, n in self.decided_by())
         lines.append(f"{n_ok} of {len(summaries)} cases cleared; {self.analyses} analyses: "
-                     + ("CLEARED" if self.cleared else "NOT CLEARED"))
+                     + ("CLEARED" if self.cleared else f"NOT CLEARED (failed: {decided})"))
         return "\n".join(lines)
 
     def encode(self) -> dict[str, Any]:
