@@ -91,6 +91,7 @@ def test_the_report_in_a_browser(certified, tmp_path):
     assert len(images) == 1 + len(result.cases()) + with_shape
     assert all(ok and width > 0 for ok, width, _ in images), images
     assert "<b>campaign</b>" in title          # shown as text, not markup
+    assert "flutter, whirl-flutter and divergence" in title     # what is judged
     # every (case, altitude) row, in the campaign's order, with its verdict
     assert [(c, float(a)) for c, a, _, _ in rows] == [(c, a) for c in CASES for a in ALTITUDES]
     assert all(n == len(R.SUMMARY_COLUMNS) for _, _, n, _ in rows)
@@ -188,7 +189,7 @@ def test_every_user_string_is_escaped_and_every_number_has_its_unit(certified, r
     for t in page.tables:                            # the per-case margin tables too
         if t["class"] == "margins":
             assert all("[" in c[2] for c in t["rows"][0][:-1])
-    assert all(src.startswith("data:image/png;base64,") for src in page.images)
+    assert all(src.startswith("data:image/svg+xml;base64,") for src in page.images)
 
 
 def test_the_files_hashes_and_the_version_are_named(certified, small_file):
@@ -401,3 +402,116 @@ def test_every_fail_carries_its_reason_and_the_summary_says_what_decided(failing
     last = result.format().splitlines()[-1]
     assert "NOT CLEARED (failed: " in last and "the damping requirement: 2 of 2 points" in last
     assert f"no instability up to the required speed: {speed} of 2 points" in last
+
+
+# ------------------------------------------------- issue 35 item 3: figures a reader can read
+def test_the_figures_are_vector_in_the_page_and_in_the_pdf(certified):
+    """Every figure of the page is SVG; the printed PDF holds no raster image below 200 dpi
+    (its figures are vector paths and text)."""
+    _browser_or_skip()
+    import pypdfium2 as pdfium
+    import pypdfium2.raw as pdfium_c
+
+    page = _Page()
+    page.feed((certified / "report.html").read_text())
+    assert page.images and all(s.startswith("data:image/svg+xml;base64,") for s in page.images)
+    pdf = pdfium.PdfDocument(str(certified / "report.pdf"))
+    try:
+        paths = 0
+        for i in range(len(pdf)):
+            for obj in pdf[i].get_objects(max_depth=8):
+                if obj.type == pdfium_c.FPDF_PAGEOBJ_IMAGE:
+                    m = obj.get_metadata()
+                    assert min(m.horizontal_dpi, m.vertical_dpi) >= 200, (i, m)
+                paths += obj.type == pdfium_c.FPDF_PAGEOBJ_PATH
+        assert paths > 500 * len(CASES)                  # the figures' curves, as paths
+    finally:
+        pdf.close()
+
+
+def test_no_table_row_is_split_across_pdf_pages(result, tmp_path):
+    """A summary of 60 rows, each with a reason of 3 to 12 lines, printed: the first and last
+    words of a row's cells are on the same page; the header repeats on each page; on
+    the printed width the summary table fits the page."""
+    _browser_or_skip()
+    import dataclasses
+
+    import pypdfium2 as pdfium
+
+    row = result.rows[0]
+    rows = tuple(dataclasses.replace(
+        row, case=f"row {i:03d}", cleared=False, kind="flutter", event="onset",
+        mode=f"top{i:03d} a mode whose name takes a few lines bot{i:03d}",
+        reason=f"begin{i:03d} " + "a reason long enough to take several lines of its cell in "
+        "the printed table; " * (1 + i % 4) + f"end{i:03d}") for i in range(60))
+    big = dataclasses.replace(result, rows=rows)
+    R.write_report(big, tmp_path, pdf=True, figures=False, date="2026-01-01")
+    pdf = pdfium.PdfDocument(str(tmp_path / "report.pdf"))
+    try:
+        texts = [pdf[i].get_textpage().get_text_range() for i in range(len(pdf))]
+    finally:
+        pdf.close()
+    compact = [re.sub(r"\s+", "", t) for t in texts]    # (pdfium splits Chromium's runs)
+    compact = compact[:next(p for p, t in enumerate(compact) if "Case1:" in t)]  # summary
+    pages_with_rows = 0
+    for i in range(60):       # the first and last words of its cells, on one page
+        pages = {word: [p for p, t in enumerate(compact) if word in t] for word in (
+            f"row{i:03d}", f"top{i:03d}", f"bot{i:03d}", f"begin{i:03d}", f"end{i:03d}")}
+        assert all(len(p) == 1 and p == pages[f"row{i:03d}"] for p in pages.values()), (
+            i, pages)
+    for t in compact:
+        if "row0" in t:
+            pages_with_rows += 1
+            assert "V_required" in t                     # the header on every page
+    assert pages_with_rows >= 2                          # the table does span pages
+    d = browser.webdriver(800, 900)
+    try:
+        d.execute_cdp_cmd("Emulation.setEmulatedMedia", {"media": "print"})
+        d.set_window_size(703 + 16, 900)                 # A4 less 2 x 12 mm, at 96 px/inch
+        d.get((tmp_path / "report.html").resolve().as_uri())
+        right, body = d.execute_script(
+            "return [document.querySelector('table.summary').getBoundingClientRect().right,"
+            " document.body.getBoundingClientRect().right]")
+    finally:
+        d.quit()
+    assert right <= body + 0.5, (right, body)
+
+
+def test_the_damping_axis_is_the_band_that_decides():
+    """Six whirl modes near zeta = 0.01 and one wing mode at 0.2: the axis ends at 0.05 (not
+    0.23), the wing mode is marked where it leaves (a triangle on the top edge), the
+    requirement's line lies inside the band."""
+    from propwhirl.app.plots.campaign_plot import BAND_TOP, deciding_band
+
+    V = np.linspace(5.0, 150.0, 30)
+    zeta = np.column_stack([0.01 + 0.0001 * k - 1e-4 * V for k in range(6)]
+                           + [np.full(V.size, 0.2)])
+    lo, hi = deciding_band(V, zeta, 120.0, 0.03)
+    assert hi == pytest.approx(BAND_TOP) and lo == pytest.approx(-0.05)
+    assert lo < 0.0 < 0.015 < hi                        # zero and the requirement inside
+    assert deciding_band(V, zeta, 120.0, 0.06)[1] == pytest.approx(0.09)   # 3 x zeta_req
+    high = np.column_stack([zeta[:, -1], 0.1 + 0.0 * V])     # the least damped tops out at 0.1
+    assert deciding_band(V, high, 120.0, None)[1] == pytest.approx(0.115)
+
+
+def test_a_curve_above_the_band_is_marked(result):
+    """The campaign's V-g-f draws on the band that decides; a curve that starts above it gets
+    a triangle at its first speed on the top edge."""
+    from propwhirl.app.plots import campaign_plot as cp
+
+    row = result.rows[0]
+    fig = cp.point_vgf(row, 0.0001)
+    try:
+        ax = fig.axes[0]
+        lo, hi = ax.get_ylim()
+        osc = np.asarray(row.plot.oscillatory)
+        z = np.where(osc, row.plot.zeta, np.nan)
+        assert (lo, hi) == pytest.approx(cp.deciding_band(row.plot.V, z, row.V_required,
+                                                          0.0001))
+        above = [k for k in range(z.shape[1]) if np.isfinite(z[:, k]).any()
+                 and z[np.flatnonzero(np.isfinite(z[:, k]))[0], k] > hi]
+        tops = [ln for ln in ax.lines if ln.get_marker() == "^"
+                and np.allclose(ln.get_ydata(), hi)]
+        assert len(tops) >= len(above)
+    finally:
+        fig.clear()

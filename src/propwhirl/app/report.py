@@ -10,14 +10,17 @@ The page (:func:`report_html`) holds, in order:
   and rotation) and its mesh (a figure);
 * the summary table: one row per (case, altitude) — V_D, the required speed, V_crit, the margin
   in m/s and %, the least g, dζ/dV at the required speed, the critical instability and the
-  verdict (pass / FAIL);
+  verdict (pass, or FAIL with its reason);
 * per case: its transformation, its margin at every altitude, and at its least-margin altitude
   the V-g-f (V_D, the required speed and the damping requirement drawn) and the critical mode's
   shape.
 
-Figures are PNG images inside the page (``data:`` URIs: the page is one file, nothing is
-fetched); every number has its unit in its column's heading or beside it.  The page's markup is
-a template, ``templates/report.html`` (package data): blocks of the standard library's
+Figures are SVG images inside the page (``data:`` URIs: the page is one file, nothing is
+fetched; vector, so sharp at every zoom and vector in the printed PDF; each V-g-f's damping
+axis on the band that decides, :func:`propwhirl.app.plots.campaign_plot.deciding_band`); no
+table row is split across a printed page; every number has its unit in its column's heading
+or beside it; every FAIL carries its reason, and the verdict which requirements decided it.
+The page's markup is a template, ``templates/report.html`` (package data): blocks of the standard library's
 :class:`string.Template` filled by :func:`render`, which passes every value through the one
 escaping function :func:`e` (:func:`html.escape`, quotes too) unless it is a fragment
 :func:`render` made itself (:class:`Html`) — so every string from the campaign or the model
@@ -48,8 +51,8 @@ from propwhirl.studies.campaign_result import CampaignResult
 #: The report's file names in the output folder.
 HTML_NAME = "report.html"
 PDF_NAME = "report.pdf"
-#: Resolution of the embedded figures [dots per inch].
-FIGURE_DPI = 72
+#: The report's title: what it judges.
+TITLE = "flutter, whirl-flutter and divergence clearance report"
 #: The page's markup: blocks of string.Template (templates/report.html, package data).
 TEMPLATE = "templates/report.html"
 
@@ -106,16 +109,18 @@ def _num(x: float | None, fmt: str, unit: str = "") -> str:
     return format(x, fmt) + (f" {unit}" if unit else "")
 
 
-def _img(png: bytes, alt: str) -> Html:
+def _img(svg: bytes, alt: str) -> Html:
+    """A figure as a vector image inside the page (SVG in a ``data:`` URI: sharp at every
+    zoom, and vector in the printed PDF)."""
     return render("image", alt=alt,
-                  src="data:image/png;base64," + base64.b64encode(png).decode("ascii"))
+                  src="data:image/svg+xml;base64," + base64.b64encode(svg).decode("ascii"))
 
 
 def _figure(fig: Any) -> bytes:
-    from propwhirl.app.plots.campaign_plot import png_bytes  # lazy: figures
+    from propwhirl.app.plots.campaign_plot import svg_bytes  # lazy: figures
 
     try:
-        return png_bytes(fig, FIGURE_DPI)
+        return svg_bytes(fig)
     finally:
         fig.clear()
 
@@ -270,8 +275,9 @@ def report_html(result: Any, *, campaign_file: str | Path | None = None,
     date = date or datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     summaries = result.cases()
     page = render(
-        "page", name=result.name, title="whirl-flutter clearance report",
-        subtitle=Html("Whirl-flutter clearance report of <code>propwhirl certify</code>."),
+        "page", name=result.name, title=TITLE,
+        subtitle=Html("Aeroelastic clearance — flutter, propeller whirl flutter and "
+                      "divergence — of <code>propwhirl certify</code>."),
         verdict_class="pass" if result.cleared else "fail",
         verdict="CLEARED" if result.cleared else "NOT CLEARED",
         decided=_decided(result),

@@ -66,9 +66,36 @@ def point_vgf(row: "PointRow", min_damping_g: float | None = None, *,
     req = VgfRequirements(row.V_D, row.V_required, min_damping_g, row.critical_speed,
                           row.kind)
     fig = vgf_plot.vgf_figure(curves, events, requirements=req, label_least_damped=False,
-                     xlabel="true airspeed V [m/s]", figsize=(9.0, 5.6),
-                     title=title or _wrap(f"{row.case} at {row.altitude_m:g} m: V-g-f"))
+                              xlabel="true airspeed V [m/s]", figsize=(9.0, 5.6),
+                              title=title or _wrap(f"{row.case} at {row.altitude_m:g} m: V-g-f"),
+                              zeta_limits=deciding_band(V, nodes[1], row.V_required,
+                                                        min_damping_g))
     return finish(fig, path)
+
+
+#: The band that decides never reaches below this ζ [-] above zero (a whirl mode with the
+#: mounts' structural damping g = 0.02 sits at ζ = 0.01: legible in it).
+BAND_TOP = 0.05
+
+
+def deciding_band(V: np.ndarray, zeta: np.ndarray, V_required: float,
+                  min_damping_g: float | None) -> tuple[float, float]:
+    """The ζ axis (lo, hi) of a campaign's V-g-f on the band that decides (issue 35, item 3):
+    up to the greatest of :data:`BAND_TOP`, three times the damping requirement ζ = g/2 and
+    1.15 × the least damped mode's highest ζ up to the required speed (that mode's whole
+    curve), at most :data:`~propwhirl.app.plots.vgf_plot.ZETA_TOP`; below zero to half of it
+    (at least :data:`~propwhirl.app.plots.vgf_plot.ZETA_BOTTOM`).  A mode damped far more —
+    one wing mode at ζ = 0.2 — leaves it, marked by a triangle, instead of squeezing the
+    modes that decide into a thin band.  `zeta` (T, n) NaN where a mode is not oscillatory;
+    V (T,) [m/s]."""
+    z = np.where((np.asarray(V, dtype=float) <= V_required * (1 + 1e-12))[:, None],
+                 np.asarray(zeta, dtype=float), np.nan)
+    peaks = np.nanmax(np.where(np.isfinite(z), z, -np.inf), axis=0) if z.size else np.array([])
+    peaks = peaks[np.isfinite(peaks)]
+    least = float(peaks.min()) if peaks.size else 0.0
+    top = max(BAND_TOP, 1.5 * (min_damping_g or 0.0), 1.15 * least)
+    top = min(top, vgf_plot.ZETA_TOP)
+    return min(vgf_plot.ZETA_BOTTOM, -0.5 * top), top
 
 
 def hermite_columns(V: np.ndarray, Y: np.ndarray, dY: np.ndarray, valid: np.ndarray,
@@ -234,6 +261,16 @@ def _wrap(text: str, width: int = 90) -> str:
     import textwrap
 
     return "\n".join(textwrap.wrap(text, width)) or text
+
+
+def svg_bytes(fig: Any) -> bytes:
+    """The figure as SVG bytes (a vector image for a data: URI; text as paths, so it looks
+    the same without the fonts)."""
+    import io
+
+    buf = io.BytesIO()
+    fig.savefig(buf, format="svg", metadata={"Date": None})
+    return buf.getvalue()
 
 
 def png_bytes(fig: Any, dpi: int = 80) -> bytes:

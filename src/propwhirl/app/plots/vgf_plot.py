@@ -402,7 +402,8 @@ def vgf_figure(curves: VgfCurves, events: Sequence[VgfEvent], *,
                margin: float | None = DAMPING_MARGIN, title: str = "",
                requirements: VgfRequirements | None = None, label_least_damped: bool = True,
                xlabel: str = "airspeed V [m/s]",
-               figsize: tuple[float, float] = (11.0, 7.5)) -> "Figure":
+               figsize: tuple[float, float] = (11.0, 7.5),
+               zeta_limits: tuple[float, float] | None = None) -> "Figure":
     """The V-g-f figure: ζ and f [Hz] against V [m/s] of ``curves``, the instabilities of
     ``events`` marked and labelled — the one drawing of every V-g-f (:func:`vgf`,
     :func:`propwhirl.app.plots.campaign_plot.point_vgf`).
@@ -421,7 +422,9 @@ def vgf_figure(curves: VgfCurves, events: Sequence[VgfEvent], *,
     where they collide with no other label, marker or annotation
     (:func:`~propwhirl.app.plots.layout.place_labels`).  ``requirements``: the clearance's
     lines (:class:`VgfRequirements`).  ``margin``: the damping margin of the ζ axis (None:
-    :data:`DAMPING_MARGIN`).  Returns the figure, its layout frozen (not yet saved).
+    :data:`DAMPING_MARGIN`).  ``zeta_limits``: the ζ axis (lo, hi) instead (a campaign's
+    band that decides: :func:`propwhirl.app.plots.campaign_plot.deciding_band`).  Returns the
+    figure, its layout frozen (not yet saved).
     """
     matplotlib_or_error()
     from matplotlib.lines import Line2D
@@ -445,6 +448,8 @@ def vgf_figure(curves: VgfCurves, events: Sequence[VgfEvent], *,
     req = requirements
     if req is not None and req.min_damping_g is not None:
         hi = max(hi, 0.5 * float(req.min_damping_g) * 1.15)
+    if zeta_limits is not None:
+        lo, hi = (float(x) for x in zeta_limits)
     drawn: dict[str, object] = {}
     for j in thin + order:
         strong = j in bold
@@ -566,8 +571,14 @@ def _zeta_window(events: Sequence[VgfEvent], labels: Sequence[str], bold: Sequen
 def _mark_clipping(ax, V: np.ndarray, z: np.ndarray, lo: float, hi: float, colour,
                    strong: bool) -> None:
     """A triangle where curve `z` leaves the ζ window [lo, hi] (▲ at the top, ▼ at the
-    bottom), at the crossing speed on the axis edge."""
+    bottom), at the crossing speed on the axis edge; a curve that starts outside it, at its
+    first speed."""
     inside = np.isfinite(z) & (z >= lo) & (z <= hi)
+    finite = np.flatnonzero(np.isfinite(z))
+    if finite.size and not inside[finite[0]]:
+        edge = hi if z[finite[0]] > hi else lo
+        ax.plot([V[finite[0]]], [edge], "^" if edge == hi else "v", color=colour,
+                ms=7 if strong else 4.5, alpha=1.0 if strong else 0.6, clip_on=False, zorder=4)
     for i in np.flatnonzero(inside[:-1] & ~inside[1:] & np.isfinite(z[1:])):
         edge = hi if z[i + 1] > hi else lo
         t = (edge - z[i]) / (z[i + 1] - z[i]) if z[i + 1] != z[i] else 0.0
