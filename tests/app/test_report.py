@@ -19,6 +19,7 @@ import pytest
 from propwhirl import __version__
 from propwhirl.app import browser, cli
 from propwhirl.app import report as R
+from propwhirl.app import report_model as RM
 from propwhirl.studies import campaign as C
 
 CAMPAIGN = """
@@ -86,9 +87,10 @@ def test_the_report_in_a_browser(certified, tmp_path):
         assert d.save_screenshot(str(shot))
     finally:
         d.quit()
-    # every figure loads: the mesh, and per case its V-g-f and critical mode
+    # every figure loads: the wing's EI, GJ and mass, the mesh, and per case its V-g-f and
+    # critical mode
     with_shape = sum(1 for s in result.cases() if s.worst.plot and s.worst.plot.shape)
-    assert len(images) == 1 + len(result.cases()) + with_shape
+    assert len(images) == 2 + len(result.cases()) + with_shape   # EI/GJ/m, the mesh
     assert all(ok and width > 0 for ok, width, _ in images), images
     assert "<b>campaign</b>" in title          # shown as text, not markup
     assert "flutter, whirl-flutter and divergence" in title     # what is judged
@@ -515,3 +517,50 @@ def test_a_curve_above_the_band_is_marked(result):
         assert len(tops) >= len(above)
     finally:
         fig.clear()
+
+
+# ------------------------------------------------ issue 35 item 4: what was analysed
+def test_the_model_section_holds_the_structural_data(certified, small_file):
+    """The mounts (masses, inertias, stiffness, frequencies, damping), the wing's EI, GJ and
+    mass along the span (a figure), the in-vacuo modes (as `propwhirl modes` prints them),
+    the aerodynamics, the method and the mesh: each against the model itself."""
+    from propwhirl.analysis.vibration import label_modes
+    from propwhirl.io import load_model
+
+    model = load_model(small_file)
+    text = (certified / "report.html").read_text()
+    page = _Page()
+    page.feed(text)
+    tables = {t["class"]: t for t in page.tables}
+    props = tables["propellers"]["rows"]
+    assert [c[2] for c in props[0]] == list(RM.PROPELLER_HEAD)
+    p = model.propellers[0].propeller
+    cells = dict(zip(RM.PROPELLER_HEAD, (c[2] for c in props[1])))
+    Kt, Kp = p.stiffness()
+    inertia = p.pivot_inertia()
+    assert cells["K_θ, K_ψ [N m/rad]"] == f"{Kt:.4g}, {Kp:.4g}"
+    f = np.sqrt(Kt / inertia["I_theta_P"]) / (2 * np.pi)
+    assert cells["f_θ, f_ψ [Hz]"].startswith(f"{f:.3f}")
+    if p.f_theta is not None:
+        assert f == pytest.approx(p.f_theta, rel=1e-9)      # the file's frequency, back
+    assert cells["mount damping"] == f"g = {p.damping_theta:g}, {p.damping_psi:g}"
+    assert cells["masses [kg]"].endswith(f"= {inertia['M_P']:g}")
+    modes = tables["modes"]["rows"][1:]
+    expected = label_modes(model)[:len(modes)]
+    assert len(modes) == RM.IN_VACUO_COUNT
+    assert [(c[0][2], c[1][2]) for c in modes] == [(n, f"{fr:.3f}") for n, fr in expected]
+    for row in modes:                                     # shares of one mode sum to 100 %
+        assert sum(float(c[2]) for c in row[2:]) == pytest.approx(100.0, abs=2.5)
+    summary = dict((c[0][2], c[1][2]) for c in tables["model"]["rows"][1:])
+    assert "strip theory" in summary["wing aerodynamics"]
+    assert summary["analysis method"].startswith("analyse(method='auto') → ")
+    assert "EI, GJ and mass of" in text and "mesh of" in text
+
+
+def test_unstable_at_start_is_explained(result):
+    import dataclasses
+
+    row = dataclasses.replace(result.rows[0], kind="flutter", event="unstable-at-start",
+                              mode="backward 1", critical_speed=5.0)
+    assert R._critical(row).startswith("flutter of backward 1: unstable already at the first "
+                                       "analysed speed (5.00 m/s), its damping negative there")

@@ -150,6 +150,11 @@ def _critical(r: Any) -> str:
         return "analysis failed: " + r.error
     if r.kind == "none":
         return "none up to " + _num(r.analysed_to, ".1f", "m/s")
+    if r.event == "unstable-at-start":
+        return (f"{r.kind} of {r.mode}: unstable already at the first analysed speed "
+                f"({_num(r.critical_speed, '.2f', 'm/s')}), its damping negative there, so "
+                "its onset lies below the analysed range (the speed grid's start: "
+                "unstable-at-start)")
     out = f"{r.kind} {r.event} of {r.mode}"
     if r.kind == "flutter" and r.frequency_hz is not None:
         out += f" at {r.frequency_hz:.2f} Hz"
@@ -199,37 +204,6 @@ SUMMARY_COLUMNS = (
     ("critical instability", lambda r: _td(_critical(r))),
     ("verdict (the requirement that fails)", _verdict),
 )
-
-
-def model_summary(model: Any) -> list[tuple[str, str]]:
-    """(quantity with unit, value) pairs describing a propeller-wing model (escaped later)."""
-    out = [("name", str(getattr(model, "name", "")))]
-    wing = getattr(model, "wing", None)
-    if wing is not None:
-        for label, attr, fmt in (("semi-span [m]", "semi_span", ".4g"),
-                                 ("elements", "element_count", "d"), ("nodes", "n_nodes", "d"),
-                                 ("aerodynamics", "aero", "s")):
-            x = getattr(wing, attr, None)
-            if x is not None:
-                out.append((label, format(x, fmt)))
-    props = getattr(model, "propellers", ()) or ()
-    out.append(("propellers", str(len(props))))
-    for i, inst in enumerate(props, start=1):
-        p = getattr(inst, "propeller", inst)
-        y = getattr(inst, "y", None)
-        bits = [] if y is None else [f"y = {float(y):.4g} m"]
-        op = getattr(p, "operation", None)
-        if op:
-            bits.append(str(op))
-        rpm = getattr(p, "rpm", None)
-        if rpm is not None:
-            bits.append(f"{float(rpm):.0f} rpm")
-        rot = getattr(p, "rotation", None)
-        if rot is not None:
-            bits.append("counter-clockwise from the front" if int(rot) > 0 else
-                        "clockwise from the front")
-        out.append((f"propeller {i}", ", ".join(bits)))
-    return out
 
 
 def _mesh(model: Any) -> tuple[list[float], list[tuple[int, float | None]]] | None:
@@ -333,18 +307,46 @@ def _campaign_table(result: Any, campaign_file: Any, model_file: Any, date: str,
 
 
 def _model_section(result: Any, model: Any, figures: bool) -> Html:
-    """The model: its summary table and its mesh (a figure), or a note without the model."""
+    """The model (:mod:`propwhirl.app.report_model`): its summary, its propellers' mounts, its
+    wing's EI, GJ and mass along the span and its mesh (figures), its in-vacuo modes; or a
+    note without the model."""
     if model is None:
         return render("note", text="The model was not given to the report: see the model file "
                       "above.")
-    parts = [_table(("quantity", "value"), [(_td(k), _td(x)) for k, x in model_summary(model)],
+    from propwhirl.app import report_model as rm  # lazy: analyses (the CLI loads no model)
+
+    parts = [_table(("quantity", "value"), [(_td(k), _td(x)) for k, x in rm.model_summary(model)],
                     "model")]
+    rows = rm.propeller_table(model)
+    if rows:
+        parts.append(render("heading", text="Propellers and their mounts"))
+        parts.append(render("note", text="Masses on each shaft (rotor first) and their sum "
+                            "M_P; inertias about the pitch and yaw pivots; the mount's stiffness "
+                            "and the uncoupled frequencies f = √(K / I) / 2π; its structural "
+                            "damping as the model file gives it (g = 2ζ, or ζ)."))
+        parts.append(_table(rm.PROPELLER_HEAD, [[_td(x) for x in r] for r in rows],
+                            "propellers"))
     mesh = _mesh(model)
-    if figures and mesh is not None:
+    wing = rm.wing_properties(model)
+    if figures and (mesh is not None or wing is not None):
         from propwhirl.app.plots import campaign_plot as cp  # lazy: figures
 
-        parts.append(_img(_figure(cp.mesh_plot(*mesh, title="mesh")),
-                          f"mesh of {result.model_name}"))
+        if wing is not None:
+            parts.append(render("figure", heading="Stiffness and mass along the span",
+                                image=_img(_figure(cp.wing_properties_plot(
+                                    wing["y"], wing["m"], wing["EI"], wing["GJ"],
+                                    mesh[1] if mesh else [])),
+                                    f"EI, GJ and mass of {result.model_name}")))
+        if mesh is not None:
+            parts.append(_img(_figure(cp.mesh_plot(*mesh, title="mesh")),
+                              f"mesh of {result.model_name}"))
+    head, modes = rm.in_vacuo_modes(model)
+    parts.append(render("heading", text=f"In-vacuo modes (the first {len(modes)})"))
+    parts.append(render("note", text="V = 0, rotors not turning, no aerodynamics: each mode's "
+                        "frequency and the shares of its kinetic energy (bending, torsion of the "
+                        "wing; pitch, yaw of the propellers)."))
+    parts.append(_table(head, [[_td(r[0]), *(_td(x, "num") for x in r[1:])] for r in modes],
+                        "modes"))
     return join(parts)
 
 

@@ -9,7 +9,8 @@ report can be drawn again from ``campaign.json`` without analysing anything:
   vertical lines, the damping requirement g = 2ζ ≥ g_min as a horizontal line up to V_D;
 * :func:`point_mode_shape` — the critical mode: the wing's h and α along the span (Re x̂ and
   the envelope ±|x̂|) and one θ–ψ orbit per propeller;
-* :func:`mesh_plot` — the wing's nodes along the span and the propeller stations.
+* :func:`mesh_plot` — the wing's nodes along the span and the propeller stations;
+* :func:`wing_properties_plot` — EI, GJ and the mass per length along the span.
 """
 from __future__ import annotations
 
@@ -254,6 +255,36 @@ def mesh_plot(node_y: Sequence[float], propellers: Sequence[tuple[int, float | N
     ax.legend(fontsize=8, loc="lower right")
     if title:
         ax.set_title(title, fontsize=10)
+    return finish(fig, path)
+
+
+def wing_properties_plot(y: Sequence[float], m: Sequence[float], EI: Sequence[float],
+                         GJ: Sequence[float], propellers: Sequence[tuple[int, float | None]],
+                         *, path: str | Path | None = None) -> "Figure":
+    """The wing's structural data along the span y [m] (each element's value at its
+    mid-span, drawn as steps over the element): EI and GJ [N m²] and the mass per length
+    m [kg/m]; the propeller stations, `propellers` as (number from 1, y [m] or None)."""
+    y = np.asarray(y, dtype=float)
+    fig = new_figure(figsize=(9.0, 2.8), layout="constrained")
+    ax_k, ax_m = fig.subplots(1, 2)
+    ax_k.step(y, EI, where="mid", color="C0", lw=1.8, label="EI (bending)")
+    ax_k.step(y, GJ, where="mid", color="C3", lw=1.8, label="GJ (torsion)")
+    ax_k.set_ylabel("rigidity [N m²]")
+    ax_k.set_yscale("log")
+    ax_m.step(y, m, where="mid", color="0.2", lw=1.8, label="m (mass per length)")
+    ax_m.set_ylabel("mass per length [kg/m]")
+    ax_m.set_ylim(0.0, 1.15 * float(np.max(m)) if len(y) else 1.0)
+    for ax in (ax_k, ax_m):
+        for number, yp in propellers:
+            if yp is not None:
+                ax.axvline(yp, color="C2", lw=0.8, ls="--")
+                ax.annotate(f"P{number}", (yp, 1.0), xycoords=("data", "axes fraction"),
+                            xytext=(0, 2), textcoords="offset points", ha="center",
+                            va="bottom", fontsize=8, color="C2")
+        ax.set_xlabel("spanwise position y [m]")
+        ax.set_xlim(0.0, float(y[-1]) * 1.02 if len(y) else 1.0)
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8, loc="lower left")
     return finish(fig, path)
 
 
