@@ -175,3 +175,41 @@ def test_the_least_damping_line_says_which_damping_and_from_where(two_file, anal
                   rf"({NUMBER}) \(", last)
     assert m, last
     assert float(m.group(1)) == pytest.approx(best, abs=6e-5)
+
+
+def test_vd_plot_draws_both_lines_and_reuses_the_analysis(two_file, tmp_path, monkeypatch):
+    """Issue 35 item 5: ``analyse --vd 130 --plot`` draws V_D and 1.15 V_D (read from the
+    figure's artists: vertical lines in both axes) and draws the analysis's own sweep — no
+    second sweep on a finer grid (fine_sweep is not called)."""
+    pytest.importorskip("matplotlib")
+    import numpy as np
+
+    from propwhirl.app import plots
+    from propwhirl.app.plots import vgf_plot
+
+    def no_second_sweep(*a, **k):
+        raise AssertionError("the plot swept again")
+
+    monkeypatch.setattr(vgf_plot, "fine_sweep", no_second_sweep)
+    drawn = []
+    original = plots.vgf
+
+    def keep(*a, **k):
+        drawn.append(original(*a, **k))
+        return drawn[-1]
+
+    monkeypatch.setattr(plots, "vgf", keep)
+    out, err, rc = _run("analyse", str(two_file), "--vd", "130", "--plot",
+                        str(tmp_path / "v.png"), "--quiet")
+    assert rc == 0, err
+    assert (tmp_path / "v.png").stat().st_size > 0
+    (fig,) = drawn
+    for ax in fig.axes[:2]:
+        vertical = {round(float(ln.get_xdata()[0]), 6) for ln in ax.lines
+                    if len(ln.get_xdata()) == 2 and ln.get_xdata()[0] == ln.get_xdata()[1]}
+        assert {130.0, round(1.15 * 130.0, 6)} <= vertical, vertical
+    texts = [t.get_text() for t in fig.axes[0].texts]
+    assert "V_D 130.0 m/s" in texts and "required 149.5 m/s" in texts
+    # the curves pass through the analysis's own speeds (its nodes drawn as dots)
+    dots = [ln for ln in fig.axes[0].lines if ln.get_marker() == "."]
+    assert dots and all(np.all(np.diff(ln.get_xdata()) > 0) for ln in dots)

@@ -276,7 +276,11 @@ def _analyse(args: argparse.Namespace) -> int:
     if args.plot:
         from propwhirl.app import plots  # lazy: figures
 
-        plots.vgf(a, model, n_modes=args.plot_modes, path=args.plot)
+        req = None if V_req is None else plots.VgfRequirements(args.vd, V_req)
+        # the analysis's own speeds (analysed with vgf=True), Hermite curves between them: no
+        # second sweep (issue 35 item 5: it tripled the run time)
+        plots.vgf(a, None, n_modes=args.plot_modes, path=args.plot, requirements=req,
+                  hermite=True)
         print(f"wrote {args.plot}")
     if args.animate and a.critical is not None:
         from propwhirl.app import plots  # lazy: figures
@@ -316,7 +320,9 @@ def _add_analyse(sub) -> None:
     p.add_argument("--summary-csv", metavar="OUT", help="write the flutter summary of every mode")
     p.add_argument("--events-csv", metavar="OUT", help="write the events with each propeller's "
                    "participation as CSV")
-    p.add_argument("--plot", metavar="PNG", help="write the V-g-f plot")
+    p.add_argument("--plot", metavar="PNG", help="write the V-g-f plot: the analysis's own "
+                   "speeds (dots) and cubic Hermite curves between them from the exact slopes, "
+                   "no second sweep; with --vd, V_D and factor x V_D drawn")
     p.add_argument("--plot-modes", type=int, default=None, metavar="N",
                    help="at most N >= 1 modes in the plot (default: the modes that matter) and "
                         "the lowest N in --summary (default 8); only with --plot or --summary")

@@ -23,17 +23,14 @@ import numpy as np
 from propwhirl.analysis.naming import is_lag, mode_family
 from propwhirl.app.plots.canvas import finish, new_figure
 from propwhirl.app.plots import vgf_plot
-from propwhirl.app.plots.vgf_plot import (VgfCurves, VgfEvent, VgfRequirements, damping_fall_of,
-                                          emphasised)
-from propwhirl.engine.hermite import hermite_coeffs, hermite_eval
+from propwhirl.app.plots.vgf_plot import (HERMITE_POINTS, VgfCurves, VgfEvent, VgfRequirements,
+                                          damping_fall_of, emphasised, hermite_columns,
+                                          hermite_step)
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
 
     from propwhirl.studies.campaign_result import PointPlot, PointRow
-
-#: points of the drawn curve per analysed speed step
-HERMITE_POINTS = 12
 
 
 def point_vgf(row: "PointRow", min_damping_g: float | None = None, *,
@@ -99,43 +96,6 @@ def deciding_band(V: np.ndarray, zeta: np.ndarray, V_required: float,
     return min(vgf_plot.ZETA_BOTTOM, -0.5 * top), top
 
 
-def hermite_columns(V: np.ndarray, Y: np.ndarray, dY: np.ndarray, valid: np.ndarray,
-                    n: int = HERMITE_POINTS) -> tuple[np.ndarray, np.ndarray]:
-    """Each column of Y (T, m) as its cubic Hermite curve (:func:`hermite`: slopes dY [per
-    m/s], straight near a branch point) on one grid of `n` points per speed step of V (T,)
-    [m/s]: the grid ((T − 1) n,) and the curves ((T − 1) n, m), NaN on a step whose ends
-    are not both `valid` (T, m)."""
-    V = np.asarray(V, dtype=float)
-    Y, dY, valid = (np.asarray(x) for x in (Y, dY, valid))
-    t = np.linspace(0.0, 1.0, n)
-    grid = np.concatenate([V[j] + t * (V[j + 1] - V[j]) for j in range(len(V) - 1)]) \
-        if len(V) > 1 else V.copy()
-    out = np.full((grid.size, Y.shape[1]), np.nan)
-    for k in range(Y.shape[1]):
-        scale = float(np.ptp(Y[valid[:, k], k])) if valid[:, k].any() else 0.0
-        for j in range(len(V) - 1):
-            if valid[j, k] and valid[j + 1, k]:
-                out[j * n:(j + 1) * n, k] = _hermite_step(V[j], V[j + 1], Y[j, k], Y[j + 1, k],
-                                                          dY[j, k], dY[j + 1, k], t, scale)
-        if len(V) == 1 and valid[0, k]:
-            out[0, k] = Y[0, k]
-    return grid, out
-
-
-def _hermite_step(V0: float, V1: float, y0: float, y1: float, d0: float, d1: float,
-                  t: np.ndarray, scale: float) -> np.ndarray:
-    """The cubic Hermite curve of one speed step at the fractions `t` (the engine's model of a
-    step, :func:`propwhirl.engine.hermite.hermite_coeffs`), straight where it leaves the band
-    of its end values widened by their difference and a quarter of the curve's whole range
-    `scale`."""
-    seg = hermite_eval(hermite_coeffs(y0, y1, d0, d1, V1 - V0), t)
-    lo, hi = min(y0, y1), max(y0, y1)
-    room = (hi - lo) + 0.25 * scale
-    if not np.isfinite(seg).all() or seg.min() < lo - room or seg.max() > hi + room:
-        seg = y0 + t * (y1 - y0)     # near a branch point the slope is singular
-    return seg
-
-
 def hermite(V: np.ndarray, y: np.ndarray, dy: np.ndarray, valid: np.ndarray,
             n: int = HERMITE_POINTS) -> tuple[np.ndarray, np.ndarray]:
     """The cubic Hermite curve through (V, y) with slopes dy [per m/s], `n` points per step
@@ -153,7 +113,7 @@ def hermite(V: np.ndarray, y: np.ndarray, dy: np.ndarray, valid: np.ndarray,
             ys.append([np.nan])
             continue
         xs.append(V[j] + t * (V[j + 1] - V[j]))
-        ys.append(_hermite_step(V[j], V[j + 1], y[j], y[j + 1], dy[j], dy[j + 1], t, scale))
+        ys.append(hermite_step(V[j], V[j + 1], y[j], y[j + 1], dy[j], dy[j + 1], t, scale))
     if not xs:
         return V[valid], y[valid]
     return np.concatenate(xs), np.concatenate(ys)

@@ -33,6 +33,7 @@ from propwhirl.app.plots.canvas import (DIVERGENCE_COLOUR, FLUTTER_COLOUR, finis
 from propwhirl.app.plots.layout import (FAMILY_COLOURS, family_shades, freeze_layout,
                                         place_labels, wrap, curve_boxes)
 from propwhirl.engine import sweep as engine_sweep
+from propwhirl.engine.hermite import hermite_coeffs, hermite_eval
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
@@ -51,6 +52,47 @@ FINE_SPEEDS = 101
 ZETA_LABEL = "damping ratio ζ  (ζ < 0: unstable)"
 #: |Im λ| / |λ| below this: a real root (no frequency; ζ not drawn)
 _REAL = 1e-9
+
+
+#: points of the drawn curve per analysed speed step
+HERMITE_POINTS = 12
+
+
+def hermite_columns(V: np.ndarray, Y: np.ndarray, dY: np.ndarray, valid: np.ndarray,
+                    n: int = HERMITE_POINTS) -> tuple[np.ndarray, np.ndarray]:
+    """Each column of Y (T, m) as its cubic Hermite curve (:func:`hermite`: slopes dY [per
+    m/s], straight near a branch point) on one grid of `n` points per speed step of V (T,)
+    [m/s]: the grid ((T − 1) n,) and the curves ((T − 1) n, m), NaN on a step whose ends
+    are not both `valid` (T, m)."""
+    V = np.asarray(V, dtype=float)
+    Y, dY, valid = (np.asarray(x) for x in (Y, dY, valid))
+    t = np.linspace(0.0, 1.0, n)
+    grid = np.concatenate([V[j] + t * (V[j + 1] - V[j]) for j in range(len(V) - 1)]) \
+        if len(V) > 1 else V.copy()
+    out = np.full((grid.size, Y.shape[1]), np.nan)
+    for k in range(Y.shape[1]):
+        scale = float(np.ptp(Y[valid[:, k], k])) if valid[:, k].any() else 0.0
+        for j in range(len(V) - 1):
+            if valid[j, k] and valid[j + 1, k]:
+                out[j * n:(j + 1) * n, k] = hermite_step(V[j], V[j + 1], Y[j, k], Y[j + 1, k],
+                                                          dY[j, k], dY[j + 1, k], t, scale)
+        if len(V) == 1 and valid[0, k]:
+            out[0, k] = Y[0, k]
+    return grid, out
+
+
+def hermite_step(V0: float, V1: float, y0: float, y1: float, d0: float, d1: float,
+                  t: np.ndarray, scale: float) -> np.ndarray:
+    """The cubic Hermite curve of one speed step at the fractions `t` (the engine's model of a
+    step, :func:`propwhirl.engine.hermite.hermite_coeffs`), straight where it leaves the band
+    of its end values widened by their difference and a quarter of the curve's whole range
+    `scale`."""
+    seg = hermite_eval(hermite_coeffs(y0, y1, d0, d1, V1 - V0), t)
+    lo, hi = min(y0, y1), max(y0, y1)
+    room = (hi - lo) + 0.25 * scale
+    if not np.isfinite(seg).all() or seg.min() < lo - room or seg.max() > hi + room:
+        seg = y0 + t * (y1 - y0)     # near a branch point the slope is singular
+    return seg
 
 
 def fine_sweep(analysis: "ModelAnalysis", model: "Model", speeds=None,
@@ -255,7 +297,8 @@ def vgf(analysis: "ModelAnalysis", model: "Model | None" = None, *, speeds=None,
         n_speeds: int = FINE_SPEEDS, margin: float | None = DAMPING_MARGIN,
         max_frequency_hz: float | None = None, n_modes: int | None = None,
         labels: Sequence[str] | None = None, include_lag: bool = False,
-        title: str | None = None, path: str | Path | None = None) -> "Figure":
+        title: str | None = None, path: str | Path | None = None,
+        requirements: "VgfRequirements | None" = None, hermite: bool = False) -> "Figure":
     """V-g-f diagram of an analysis: ζ and f [Hz] against V [m/s] of the modes that matter
     (drawn by :func:`vgf_figure`).
 
@@ -293,6 +336,14 @@ def vgf(analysis: "ModelAnalysis", model: "Model | None" = None, *, speeds=None,
         As in :func:`select_modes`.
     title, path
         Figure title; file to write (PNG, or the format of the suffix).
+    requirements : VgfRequirements, optional
+        The clearance's lines: V_D, the required speed (``analyse --vd``), a damping
+        requirement.
+    hermite : bool
+        Without `model`: draw the analysis's own sweep as cubic Hermite curves through its
+        speeds (dots), from the exact slopes dλ/dV (:func:`hermite_columns`, as a campaign's
+        V-g-f) — no second sweep; the curves are exact at the analysed speeds and the
+        crossings are the analysis's refined ones.
 
     Returns
     -------
@@ -324,18 +375,36 @@ def vgf(analysis: "ModelAnalysis", model: "Model | None" = None, *, speeds=None,
         raise v.InputError("no modes to plot: the selection is empty")
     bold = emphasised_modes(analysis, sw, ids, margin)
     names = [sw.mode_labels[k] for k in ids]
+    V = np.asarray(sw.V, dtype=float)
+    zeta = np.where(_oscillatory(sw), sw.damping_ratio, np.nan)[:, ids]
+    freq = np.where(sw.physical, sw.frequency_hz, np.nan)[:, ids]
+    nodes = None
+    if hermite and model is None:          # the analysis's own speeds, smooth between them
+        dlam = np.asarray(sw.dlam_dV)[:, ids]
+        lam = np.asarray(sw.eigenvalues)[:, ids]
+        mag = np.where(np.abs(lam) > 0, np.abs(lam), 1.0)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            dmag = (lam.real * dlam.real + lam.imag * dlam.imag) / mag
+            dzeta = -(dlam.real * mag - lam.real * dmag) / mag**2
+        valid = np.isfinite(zeta) & np.isfinite(dzeta)
+        nodes = (V, zeta, freq)
+        Vs, zeta_s = hermite_columns(V, np.nan_to_num(zeta), np.nan_to_num(dzeta), valid)
+        _, freq_s = hermite_columns(V, np.nan_to_num(freq), np.nan_to_num(dlam.imag / (2 * np.pi)),
+                                    valid & np.isfinite(freq))
+        V, zeta, freq = Vs, zeta_s, freq_s
     curves = VgfCurves(
-        V=sw.V, zeta=np.where(_oscillatory(sw), sw.damping_ratio, np.nan)[:, ids],
-        frequency_hz=np.where(sw.physical, sw.frequency_hz, np.nan)[:, ids],
+        V=V, zeta=zeta, frequency_hz=freq,
         labels=tuple(names), names=tuple(analysis.describe(n) for n in names),
         families=tuple(mode_family(n, analysis.content.get(n)) for n in names),
-        bold=tuple(k in bold for k in ids))
-    grid = f"{sw.V.size} speeds" + ("" if model is None else ", fine grid")
+        bold=tuple(k in bold for k in ids), nodes=nodes)
+    grid = f"{sw.V.size} speeds" + ("" if model is None else ", fine grid") + (
+        ", the analysis's own" if nodes is not None else "")
     head = f"{analysis.model_name}: V-g-f ({grid})"
     if len(head) > 80:
         head = f"{analysis.model_name}\nV-g-f ({grid})"
     fig = vgf_figure(curves, [VgfEvent(e.kind, e.event, e.label, e.V, e.frequency_hz)
-                              for e in analysis.events], margin=margin, title=title or head)
+                              for e in analysis.events], margin=margin, title=title or head,
+                     requirements=requirements)
     return finish(fig, path)
 
 
