@@ -213,3 +213,16 @@ def test_vd_plot_draws_both_lines_and_reuses_the_analysis(two_file, tmp_path, mo
     # the curves pass through the analysis's own speeds (its nodes drawn as dots)
     dots = [ln for ln in fig.axes[0].lines if ln.get_marker() == "."]
     assert dots and all(np.all(np.diff(ln.get_xdata()) > 0) for ln in dots)
+
+
+def test_plot_shape_writes_the_critical_mode(two_file, tmp_path):
+    """Issue 35 item 8: the critical mode's shape from the command line (--plot-modes is a
+    count); refused before the work without a format matplotlib writes."""
+    pytest.importorskip("matplotlib")
+    out, err, rc = _run("analyse", str(two_file), "--plot-shape", str(tmp_path / "s.png"),
+                        "--quiet")
+    assert rc == 0, err
+    assert f"wrote {tmp_path / 's.png'}" in out and (tmp_path / "s.png").stat().st_size > 1000
+    out, err, rc = _run("analyse", str(two_file), "--plot-shape", str(tmp_path / "s.xyz"),
+                        "--quiet")
+    assert rc == 2 and "--plot-shape" in err and len(err.strip().splitlines()) == 1
