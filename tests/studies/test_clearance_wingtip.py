@@ -126,3 +126,16 @@ def test_the_minimum_frequency_says_what_decides_it(model, thesis, failed):
     assert none.status == "none in range" and none.kind == "divergence"
     text = dataclasses.replace(failed, minimum=(none,)).format()
     assert f"; fails by divergence of {none.mode} (at the range's top)" in text
+
+
+def test_a_progress_callback_sees_one_count_over_the_minimum_search(model):
+    """Issue 35 item 8: the three phases of the minimum-frequency search (top, scan, refine)
+    were three counts (8, then 24, then 0 of the four-propeller wing); now one, whose total
+    never falls and which ends done."""
+    seen = []
+    clearance(model, 100.0, frequency_range=(3.0, 12.0), n_scan=3,
+              progress=lambda done, total: seen.append((done, total)))
+    totals = [t for _, t in seen]
+    dones = [d for d, _ in seen]
+    assert totals[0] == 2 * (3 + 1) and totals == sorted(totals)
+    assert dones == sorted(dones) and seen[-1][0] == seen[-1][1]

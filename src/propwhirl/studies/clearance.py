@@ -38,6 +38,7 @@ from propwhirl import fileio, limits
 from propwhirl import validate as v
 from propwhirl.analysis.stability import ModelAnalysis, analyse
 from propwhirl.model.aerodynamics import validity
+from propwhirl.progress import Cumulative
 from propwhirl.results import Result, SavedDict
 from propwhirl.studies import execution
 from propwhirl.studies import paths as P
@@ -448,12 +449,20 @@ def _minimum_frequencies(model: Any, searches: list[tuple[int, str]], V_required
             frequency_tol=float(frequency_tol), paths=[p.path for p in pars],
             convention=convention(static_divergence, low_speed))
 
+    # a callable sees one count over the three phases, against their most from the start
+    passes = (Cumulative(progress, len(pars) * (n_scan + 1))
+              if callable(progress) and not isinstance(progress, (bool, np.bool_)) else None)
+
+    def phase_progress():
+        return progress if passes is None else passes.stage()
+
     def batch(items: list[tuple[int, float]], phase: str) -> None:
         if not items:
             return
         rows = execution.map_analyses(
             sweeps.evaluate, [(pars[i].set(model, x), speeds, xtol, static_divergence, low_speed)
-                              for i, x in items], processes, client=client, progress=progress,
+                              for i, x in items], processes, client=client,
+            progress=phase_progress(),
             checkpoint=None if checkpoint is None else
             _phase_checkpoint(checkpoint, phase).with_entries(sweeps.STUDY_ROW),
             keys=[f"{pars[i].path}={x!r}" for i, x in items],
@@ -489,11 +498,13 @@ def _minimum_frequencies(model: Any, searches: list[tuple[int, str]], V_required
                           (grid[plan[i][1] - 1], grid[plan[i][1]]),
                           tuple(vcrit[i].items()), float(frequency_tol), float(xtol),
                           bool(static_divergence), bool(low_speed)) for i in refine],
-        processes, client=client, progress=progress,
+        processes, client=client, progress=phase_progress(),
         checkpoint=None if checkpoint is None or not refine else
         _phase_checkpoint(checkpoint, "refine"),
         keys=[pars[i].path for i in refine], desc="minimum frequencies (refine)")
     done = dict(zip(refine, refined))
+    if passes is not None and passes.done < passes.total:    # phases that needed fewer
+        progress(passes.total, passes.total)
     out = []
     for i, ((number, name), par) in enumerate(zip(searches, pars)):
         status, k = plan[i]
