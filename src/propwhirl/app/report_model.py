@@ -131,8 +131,11 @@ def propeller_table(model: Any) -> list[tuple[str, ...]]:
                    f"ζ = {p.damping_theta:g}, {p.damping_psi:g}")
         rot = getattr(inst, "rotation", None) or getattr(p, "rotation", None)
         op = p.operation + (f", {p.rpm:g} rpm" if p.rpm is not None else "")
-        rows.append((str(i), f"{float(inst.y):.4g}", str(getattr(inst, "mount", "")),
-                     str(getattr(inst, "state", "")),
+        y = getattr(inst, "y", None)
+        grid = getattr(inst, "grid", None)       # a modal model's hub grid
+        rows.append((str(i), f"{float(y):.4g}" if y is not None else
+                     "–" if grid is None else f"grid {grid}",
+                     str(getattr(inst, "mount", "")), str(getattr(inst, "state", "operating")),
                      f"{masses} = {inertia['M_P']:g}", f"{It:.4g}, {Ip:.4g}",
                      f"{Kt:.4g}, {Kp:.4g}", f"{ft:.3f}, {fp:.3f}", damping,
                      f"{p.radius:g}", op,
@@ -156,7 +159,10 @@ def in_vacuo_modes(model: Any, count: int = IN_VACUO_COUNT
                    ) -> tuple[tuple[str, ...], list[tuple[str, ...]]]:
     """The first `count` in-vacuo modes (V = 0, not rotating; as ``propwhirl modes``):
     headings and rows (mode, f [Hz], each group's share of the kinetic energy)."""
-    modes, M = model_modes(model)
+    try:
+        modes, M = model_modes(model)
+    except v.InputError as exc:          # said in the table's place, not raised
+        return ("in-vacuo modes",), [(f"not computed: {exc}",)]
     dm = model.dof_map()
     found = dm.groups()
     modal = "modal" in found
