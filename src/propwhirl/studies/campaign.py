@@ -469,6 +469,10 @@ class Campaign:
         The convention (:func:`propwhirl.studies.critical.critical_instability`).
     xtol : float
         Accuracy of each critical speed [m/s].
+    damping : DampingRequirement, optional
+        How the damping requirement is read (which damping, above which speed [m/s], which
+        modes, its source; :mod:`propwhirl.analysis.damping_requirement`); None with
+        `min_damping_g`: the total damping of every mode of interest up to V_D.
 
     Examples
     --------

@@ -280,6 +280,12 @@ class CampaignResult(Result):
         [m/s, %], frequency [Hz], least damping g [-] and dζ/dV [s/m], the figure data.
     analyses : int
         The analyses run.
+    damping : dict or None
+        The damping requirement's reading as the campaign gave it: min_damping_g [-],
+        applies_to ("total", "aerodynamic"), above_m_per_s [m/s], modes ("all",
+        "critical"), source (None: not given).
+    damping_text : str
+        The requirement in words, as the report prints it ("" without one).
 
     Examples
     --------

@@ -454,7 +454,30 @@ class VgfRequirements:
     V_D and the required speed [m/s] (vertical lines, annotated), the damping requirement
     g = 2ζ ≥ ``min_damping_g`` up to V_D (a line in the ζ axes, None: none) and the critical
     speed [m/s] of the kind ``critical_kind`` ("flutter", "divergence"; a ring round its
-    marker at ζ = 0, "V_crit" in the legend; None: none)."""
+    marker at ζ = 0, "V_crit" in the legend; None: none).
+
+    Parameters
+    ----------
+    V_D : float
+        The design dive speed [m/s] (a dotted vertical line).
+    V_required : float
+        The required speed [m/s], e.g. 1.15 V_D (a dashed vertical line).
+    min_damping_g : float, optional
+        The damping requirement g = 2ζ [-], drawn as ζ = g/2 up to V_D.
+    critical_speed : float, optional
+        The critical speed [m/s] (a ring at ζ = 0).
+    critical_kind : str
+        Its kind, "flutter" or "divergence".
+
+    Examples
+    --------
+    ``propwhirl analyse --vd 90 --plot`` draws V_D and 1.15 V_D:
+
+    >>> from propwhirl.app.plots import VgfRequirements
+    >>> r = VgfRequirements(90.0, 1.15 * 90.0)
+    >>> round(r.V_required, 2), r.min_damping_g
+    (103.5, None)
+    """
 
     V_D: float
     V_required: float
