@@ -14,7 +14,7 @@ def test_every_package_directory_is_installed():
     }
     assert found <= listed, f"not installed: {sorted(found - listed)}"
     assert "propwhirl.generated" in listed and cfg["package-dir"]["propwhirl.generated"] == "generated"
-    assert cfg["package-data"]["propwhirl"] == ["data/*.toml"]
+    assert cfg["package-data"]["propwhirl"] == ["data/*.toml", "app/templates/*.html"]
 
 
 def test_markers_name_only_existing_make_targets():

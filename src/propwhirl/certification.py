@@ -59,6 +59,11 @@ EXPLICIT = "explicit"
 #: The regulations whose failure cases are held to the envelope of 25.629(b)(2).
 PART25 = tuple(name for name, r in REGULATIONS.items() if r.part25)
 
+#: What a damping requirement (g ≥ min_damping_g) can apply to: the total damping, or the
+#: aerodynamic increment above each mode's damping at the lowest analysed speed; and to which
+#: modes (:mod:`propwhirl.analysis.damping_requirement` judges it).
+DAMPING_APPLIES_TO = ("total", "aerodynamic")
+DAMPING_MODES = ("all", "critical")
 #: The airspeeds V_D can be given as: equivalent or true airspeed.
 AIRSPEEDS = ("EAS", "TAS")
 #: Operations a campaign's case can switch a propeller to.

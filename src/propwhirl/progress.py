@@ -60,6 +60,39 @@ INTERVAL_ENV = "PROPWHIRL_PROGRESS_INTERVAL"
 #: A progress reporter: called with (steps done, total steps) after every finished step.
 ProgressCallback = Callable[[int, int], None]
 
+class Cumulative:
+    """One ``report(done, total)`` over a study's passes (issue 35 item 8: a warm-started map
+    reported 4 of 4, then 0 of 21): each pass's callback (:meth:`stage`) adds its count to
+    those of the passes before it, against the whole study's `total` announced from the
+    start (raised only when a pass goes beyond it, e.g. a warm start's re-analyses).
+
+    Examples
+    --------
+    >>> seen = []
+    >>> c = Cumulative(lambda d, t: seen.append((d, t)), 25)
+    >>> first, second = c.stage(), None
+    >>> first(0, 4); first(4, 4)
+    >>> second = c.stage()
+    >>> second(0, 21); second(21, 21)
+    >>> seen
+    [(0, 25), (4, 25), (4, 25), (25, 25)]
+    """
+
+    def __init__(self, report: ProgressCallback, total: int) -> None:
+        self.report, self.total, self.done = report, int(total), 0
+
+    def stage(self) -> ProgressCallback:
+        """The callback of the next pass (it starts where the last one ended)."""
+        start = self.done
+
+        def step(done: int, total: int) -> None:
+            self.done = start + int(done)
+            self.total = max(self.total, start + int(total))
+            self.report(self.done, self.total)
+
+        return step
+
+
 #: Held by a :class:`Lines` reporter's thread while it writes, and by a fork (a study's worker
 #: processes) while it copies the process: a child never inherits the stream's lock held by a
 #: thread that does not exist in it (which would hang the child at its first write to stderr).

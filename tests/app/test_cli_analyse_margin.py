@@ -145,3 +145,84 @@ def test_tip_mach_warning_once_listing_propellers(plain):
     tips = [ln for ln in err.splitlines() if "helical tip Mach" in ln]
     assert len(tips) == 1, err
     assert "propellers 1, 2:" in tips[0]
+
+
+def test_the_least_damping_line_says_which_damping_and_from_where(two_file, analysed):
+    """Issue 35 item 2: the line names the total damping (structural included) and the first
+    analysed speed, and gives the aerodynamic increment above each mode's damping there,
+    checked mode by mode against the analysis."""
+    import numpy as np
+
+    from propwhirl.analysis.margin import DAMPING_MODES, oscillatory_damping
+    from propwhirl.analysis.stability import analyse
+    from propwhirl.studies.clearance import clearance_speeds
+
+    last = analysed[0].strip().splitlines()[-1]
+    model = io.load_model(two_file)
+    V_req = 1.15 * 130
+    a = analyse(model, clearance_speeds(model, V_req), vgf=True)
+    V = a.sweep.V
+    assert f"least total damping (structural included) from {V[0]:.2f} m/s (the first " \
+           "analysed speed)" in last
+    zeta, _ = oscillatory_damping(a.sweep, a.modes_of_interest(DAMPING_MODES))
+    best = np.inf
+    for k in range(zeta.shape[1]):
+        ok = np.flatnonzero(np.isfinite(zeta[:, k]))
+        for t in ok:
+            if V[t] <= V_req * (1 + 1e-12):
+                best = min(best, 2 * (zeta[t, k] - zeta[ok[0], k]))
+    m = re.search(rf"aerodynamic increment above each mode's damping at {V[0]:.2f} m/s: least "
+                  rf"({NUMBER}) \(", last)
+    assert m, last
+    assert float(m.group(1)) == pytest.approx(best, abs=6e-5)
+
+
+def test_vd_plot_draws_both_lines_and_reuses_the_analysis(two_file, tmp_path, monkeypatch):
+    """Issue 35 item 5: ``analyse --vd 130 --plot`` draws V_D and 1.15 V_D (read from the
+    figure's artists: vertical lines in both axes) and draws the analysis's own sweep — no
+    second sweep on a finer grid (fine_sweep is not called)."""
+    pytest.importorskip("matplotlib")
+    import numpy as np
+
+    from propwhirl.app import plots
+    from propwhirl.app.plots import vgf_plot
+
+    def no_second_sweep(*a, **k):
+        raise AssertionError("the plot swept again")
+
+    monkeypatch.setattr(vgf_plot, "fine_sweep", no_second_sweep)
+    drawn = []
+    original = plots.vgf
+
+    def keep(*a, **k):
+        drawn.append(original(*a, **k))
+        return drawn[-1]
+
+    monkeypatch.setattr(plots, "vgf", keep)
+    out, err, rc = _run("analyse", str(two_file), "--vd", "130", "--plot",
+                        str(tmp_path / "v.png"), "--quiet")
+    assert rc == 0, err
+    assert (tmp_path / "v.png").stat().st_size > 0
+    (fig,) = drawn
+    for ax in fig.axes[:2]:
+        vertical = {round(float(ln.get_xdata()[0]), 6) for ln in ax.lines
+                    if len(ln.get_xdata()) == 2 and ln.get_xdata()[0] == ln.get_xdata()[1]}
+        assert {130.0, round(1.15 * 130.0, 6)} <= vertical, vertical
+    texts = [t.get_text() for t in fig.axes[0].texts]
+    assert "V_D 130.0 m/s" in texts and "required 149.5 m/s" in texts
+    # the curves pass through the analysis's own speeds (its nodes drawn as dots)
+    dots = [ln for ln in fig.axes[0].lines if ln.get_marker() == "."]
+    assert dots and all(np.all(np.diff(ln.get_xdata()) > 0) for ln in dots)
+
+
+def test_plot_shape_writes_the_critical_mode(two_file, tmp_path):
+    """Issue 35 item 8: the critical mode's shape from the command line (--plot-modes is a
+    count); refused before the work without a format matplotlib writes."""
+    pytest.importorskip("matplotlib")
+    out, err, rc = _run("analyse", str(two_file), "--plot-shape", str(tmp_path / "s.png"),
+                        "--quiet")
+    assert rc == 0, err
+    assert f"wrote {tmp_path / 's.png'}" in out and (tmp_path / "s.png").stat().st_size > 1000
+    out, err, rc = _run("analyse", str(two_file), "--plot-shape", str(tmp_path / "s.xyz"),
+                        "--quiet")
+    assert rc == 2 and "--plot-shape" in err and len(err.strip().splitlines()) == 1

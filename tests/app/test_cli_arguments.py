@@ -64,3 +64,16 @@ def test_model_name_with_escape_sequences_is_printed_escaped(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "\x1b" not in out and "\x07" not in out and "\x9b" not in out
     assert out.splitlines()[0].startswith("evil\\x1b[2J\\x1b]0;pwn\\x07\\x9b31m: in-vacuo modes")
+
+
+def test_no_help_shows_docstring_markup(capsys):
+    """Issue 35 item 8: ``certify --help`` started with ``:mod:`` and double back-quotes; no
+    command's help shows reST markup."""
+    import argparse
+
+    parser = cli.build_parser()
+    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    assert {"certify", "import", "export", "analyse"} <= set(sub.choices)
+    for name, p in sub.choices.items():
+        text = p.format_help()
+        assert ":mod:" not in text and ":func:" not in text and "``" not in text, name

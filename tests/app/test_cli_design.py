@@ -14,7 +14,10 @@ def test_boundary_of_a_case_writes_json_csv_and_plot(tmp_path, capsys):
                      "--plot", f"{out}.png"])
     text = capsys.readouterr().out
     assert code == 0
-    assert "neutral-stability curve at V = 220 m/s" in text and "ends: bounds, bounds" in text
+    assert "neutral-stability curve at V = 220 m/s" in text
+    assert "1 branch, every sign change of a 6 x 6 grid map on one of them" in text
+    assert ("ends at (3, 6.281): the plane's edge propeller.f_theta = lower and at (6.281, 3): "
+            "the plane's edge propeller.f_psi = lower") in text
     assert "grid map 6 x 6 (36 eigen-solutions)" in text
     d = json.loads((tmp_path / "b.json").read_text())
     assert d["kind"] == "neutral-stability" and len(d["curves"]) == 1

@@ -29,7 +29,10 @@ def test_boundary_plot_has_the_curve_the_grid_and_the_design_point(tmp_path):
     labels = [l.get_label() for l in ax.get_lines()]
     assert any(l.startswith("neutral stability at V = 150 m/s") for l in labels)
     assert "design point" in labels and "start (bracketing search)" in labels
-    assert "boundary read off the grid (linear interpolation)" in labels
+    assert ("max Re λ = 0 read off the grid (linear interpolation: within a cell of the traced "
+            "curve)") in labels
+    note = " ".join(fig.get_supxlabel().split())       # the grey band explained (issue 35.6)
+    assert "the pale band is where it is near zero" in note and "grid" in note
     assert [t.get_text() for t in ax.texts] == ["unstable", "stable"]
     assert len(fig.axes) == 2                      # the colour bar
     assert (tmp_path / "b.png").stat().st_size > 1000

@@ -11,6 +11,7 @@ import pytest
 import tomli_w
 
 from propwhirl.io.campaign_files import MAX_TASKS, load_campaign, loads
+from propwhirl.studies import campaign as C
 from propwhirl.studies.campaign import from_spec
 from propwhirl.validate import InputError
 
@@ -144,9 +145,12 @@ def test_product_of_groups(doc):
 
 
 def test_far23_and_explicit_factor_and_tas(doc):
-    doc["regulation"] = {"name": "far23", "min_damping_g": 0.03}
+    doc["regulation"] = {"name": "far23", "min_damping_g": 0.03,
+                         "damping": {"applies_to": "total", "source": "company practice"}}
     c = _load(doc)
     assert c.factor == 1.2 and c.min_damping_g == 0.03
+    assert c.damping_requirement == C.DampingRequirement(0.03, "total", 0.0, "all",
+                                                         "company practice")
     doc["regulation"] = {"name": "explicit", "factor": 1.25}
     assert _load(doc).factor == 1.25
     doc["envelope"] = {"airspeed": "TAS", "V_D_m_per_s": [100.0, 110.0],
@@ -189,3 +193,55 @@ def test_a_campaign_file_beyond_the_limit_is_refused_before_reading(tmp_path):
     with pytest.raises(InputError, match=rf"c\.toml': it has {fileio.MAX_TOML_BYTES + 1:,} "
                                          rf"bytes, more than {fileio.MAX_TOML_BYTES:,}"):
         load_campaign(path)
+
+
+# ----------------------------------------------- issue 35 item 2: [regulation] damping
+def test_the_damping_reading_is_chosen_in_the_file_with_its_source(doc):
+    doc["regulation"] = {"name": "cs25", "min_damping_g": 0.03, "damping": {
+        "applies_to": "aerodynamic", "above_m_per_s": 20.0, "modes": "critical",
+        "source": "MIL-A-8870C 3.1.1"}}
+    req = _load(doc).damping_requirement
+    assert (req.g_min, req.applies_to, req.above_m_per_s, req.modes, req.source) == (
+        0.03, "aerodynamic", 20.0, "critical", "MIL-A-8870C 3.1.1")
+    assert "aerodynamic increment" in req.describe() and "MIL-A-8870C" in req.describe()
+
+
+def test_a_file_without_the_damping_reading_keeps_its_old_one(doc):
+    """A file written before [regulation] damping existed keeps loading with the reading it
+    had (the total damping of every mode at every analysed speed); the report says the
+    reading was not stated."""
+    doc["regulation"] = {"name": "cs25", "min_damping_g": 0.03}
+    camp = _load(doc)
+    assert camp.damping is None
+    req = camp.damping_requirement
+    assert (req.g_min, req.applies_to, req.above_m_per_s, req.modes, req.source) == (
+        0.03, "total", 0.0, "all", "")
+    assert req.describe().endswith("(its source not given)")
+
+
+@pytest.mark.parametrize("damping, words", [
+    ({"applies_to": "structural", "source": "x"},
+     ["[regulation.damping] applies_to = 'structural'", "total, aerodynamic"]),
+    ({"applies_to": "total"}, ["missing key 'source' in [regulation.damping]"]),
+    ({"applies_to": "total", "source": " "}, ["[regulation.damping] source", "non-empty"]),
+    ({"applies_to": "total", "source": "x", "above_m_per_s": -1.0},
+     ["[regulation.damping] above_m_per_s = -1.0", "[0, 1000]"]),
+    ({"applies_to": "total", "source": "x", "modes": "some"},
+     ["[regulation.damping] modes = 'some'", "all, critical"]),
+])
+def test_a_bad_damping_reading_is_one_line(doc, damping, words):
+    doc["regulation"] = {"name": "cs25", "min_damping_g": 0.03}
+    if damping is not _DELETE:
+        doc["regulation"]["damping"] = damping
+    with pytest.raises(InputError) as e:
+        _load(doc)
+    assert len(str(e.value).splitlines()) == 1
+    for w in words:
+        assert w in str(e.value), str(e.value)
+
+
+def test_a_damping_reading_without_a_requirement_is_refused(doc):
+    doc["regulation"] = {"name": "cs25", "damping": {"applies_to": "total", "source": "x"}}
+    with pytest.raises(InputError, match=r"\[regulation\] damping = .* absent without "
+                                         "min_damping_g"):
+        _load(doc)

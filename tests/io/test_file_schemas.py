@@ -55,7 +55,7 @@ def test_a_new_campaign_key_is_one_declaration():
     documented with nothing else written."""
     Spec = _spec_with_a_basis()
     reg = CF._table("regulation", "[regulation]", "", spec=Spec)
-    assert reg.names == ("name", "factor", "min_damping_g", "basis")
+    assert reg.names == ("name", "factor", "min_damping_g", "damping", "basis")
     assert tables.read(Table({"name": "cs25", "basis": "zeta"}, "regulation", reg.names),
                        reg)["basis"] == "zeta"
     assert tables.read(Table({"name": "cs25"}, "regulation", reg.names), reg)["basis"] == "g"

@@ -265,3 +265,51 @@ def test_the_result_is_not_written_onto_a_device(tmp_path, monkeypatch, write):
                                          r"not a regular file"):
         getattr(result, write)(node)
     assert is_char_device(node)
+
+
+# --------------------------------------------- issue 35 item 2: which damping is judged
+def test_the_damping_reading_decides_what_is_judged(model):
+    """total: 2 zeta of every mode up to V_D (the least is least_g_to_V_D); aerodynamic: the
+    increment above each mode's damping at the lowest analysed speed; above: only the speeds
+    from it; critical: only the modes that flutter.  Each checked against the row's own
+    curves, mode by mode."""
+    def run(**kw):
+        req = C.DampingRequirement(0.03, source="test", **kw)
+        (row,) = C.run_campaign(_campaign(model, [C.Case("nominal")], 100.0,
+                                          damping=req)).rows
+        return row
+
+    total = run()
+    assert total.damping_g == pytest.approx(total.least_g_to_V_D, abs=1e-12)
+    assert not total.cleared and total.failed == ("damping",)
+    assert total.reason.startswith("damping: total g = ")
+    p = total.plot
+    V_D = total.V_D
+    best = math.inf
+    for k in range(len(p.modes)):                      # the aerodynamic increment, mode by mode
+        rows = np.flatnonzero(p.oscillatory[:, k])
+        if rows.size == 0:
+            continue
+        for t in rows:
+            if 40.0 <= p.V[t] <= V_D * (1 + 1e-12):
+                best = min(best, 2.0 * (p.zeta[t, k] - p.zeta[rows[0], k]))
+    aero = run(applies_to="aerodynamic", above_m_per_s=40.0)
+    assert aero.damping_g == pytest.approx(best, abs=1e-12)
+    assert aero.damping_g_V >= 40.0 and aero.damping_g_V <= V_D
+    assert aero.cleared == bool(best >= 0.03)
+    assert ("required from 40 m/s" in aero.reason) is (not aero.cleared)
+    critical = run(modes="critical")
+    flutters = {ev[4] for ev in p.events if ev[2] == "flutter"}
+    assert (critical.damping_g is None) is (not flutters)
+    if critical.damping_g is not None:
+        assert critical.damping_g_mode in flutters
+
+
+def test_a_damping_requirement_given_twice_must_agree(model):
+    with pytest.raises(InputError, match="differs from the damping requirement"):
+        _campaign(model, [C.Case("nominal")], 100.0, min_damping_g=0.02,
+                  damping=C.DampingRequirement(0.03))
+    c = _campaign(model, [C.Case("nominal")], 100.0, damping=C.DampingRequirement(0.03))
+    assert c.min_damping_g == 0.03
+    with pytest.raises(InputError, match="applies_to"):
+        C.DampingRequirement(0.03, "structural")

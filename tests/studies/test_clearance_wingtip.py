@@ -1,6 +1,7 @@
 """Clearance of the wingtip model (§10.1): pass/fail logic, margins, minimum mount frequency."""
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -98,3 +99,43 @@ def test_files(failed, tmp_path):
     assert d["cleared"] is False and d["critical"]["mode"] == "wing 1"
     text = failed.to_csv(tmp_path / "c.csv")
     assert text.splitlines()[1].endswith(",no") and "instability,divergence,onset,wing 1" in text
+
+
+def test_the_minimum_frequency_says_what_decides_it(model, thesis, failed):
+    """Issue 35 item 7: each minimum names the instability that sets it (kind, mode, speed):
+    the critical instability of the model at that frequency, as an analysis of it finds;
+    where none clears, the one at the range's top; and the text says it."""
+    from propwhirl.studies import sweeps
+
+    speeds = clearance_speeds(model, thesis.V_required)
+    q = minimum_frequency(model, 0, "f_theta", thesis.V_required, speeds,
+                          frequency_range=(3.0, 9.0), n_scan=3, frequency_tol=0.01,
+                          static_divergence=False, low_speed=False)
+    par = P.resolve(model, "propellers[0].propeller.f_theta")
+    row = sweeps.evaluate((par.set(model, q.frequency), speeds, 0.01, False, False))
+    assert (q.kind, q.mode) == (row["kind"], row["critical_mode"]) and q.kind == "flutter"
+    assert q.critical_speed == pytest.approx(row["critical_speed"], abs=0.02)
+    r = dataclasses.replace(thesis, minimum=(q,))
+    line = [x for x in r.format().splitlines() if "minimum pitch" in x][0]
+    assert f"; set by flutter of {q.mode} at {q.critical_speed:.2f} m/s" in line
+    again = type(r).from_dict(r.to_dict())
+    assert again.minimum[0].kind == q.kind and again.minimum[0].mode == q.mode
+    none = minimum_frequency(model, 0, "f_psi", failed.V_required,
+                             clearance_speeds(model, failed.V_required),
+                             frequency_range=(3.0, 12.0))
+    assert none.status == "none in range" and none.kind == "divergence"
+    text = dataclasses.replace(failed, minimum=(none,)).format()
+    assert f"; fails by divergence of {none.mode} (at the range's top)" in text
+
+
+def test_a_progress_callback_sees_one_count_over_the_minimum_search(model):
+    """Issue 35 item 8: the three phases of the minimum-frequency search (top, scan, refine)
+    were three counts (8, then 24, then 0 of the four-propeller wing); now one, whose total
+    never falls and which ends done."""
+    seen = []
+    clearance(model, 100.0, frequency_range=(3.0, 12.0), n_scan=3,
+              progress=lambda done, total: seen.append((done, total)))
+    totals = [t for _, t in seen]
+    dones = [d for d, _ in seen]
+    assert totals[0] == 2 * (3 + 1) and totals == sorted(totals)
+    assert dones == sorted(dones) and seen[-1][0] == seen[-1][1]

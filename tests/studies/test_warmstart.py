@@ -142,9 +142,9 @@ def test_an_interrupted_warm_map_resumes_to_the_same_result(tmp_path, cold_and_w
     cp = Checkpoint(tmp_path / "map.json.partial", interval=0.0)
     calls = []
 
-    def stop_in_fine_pass(done, total):
+    def stop_in_fine_pass(done, total):      # one count over the passes (issue 35 item 8)
         calls.append((done, total))
-        if total == 21 and done == 5:
+        if total == 25 and done == 4 + 5:
             raise KeyboardInterrupt
 
     with pytest.raises(Interrupted):
@@ -152,14 +152,12 @@ def test_an_interrupted_warm_map_resumes_to_the_same_result(tmp_path, cold_and_w
                      progress=stop_in_fine_pass)
     coarse, fine, again = (c.path for c in pass_checkpoints(cp))
     assert coarse.exists() and fine.exists() and not again.exists()
-    first = {}
-
-    def record(done, total):
-        first.setdefault(total, done)
-
+    seen = []
     resumed = critical_map(small_wing(), AXES, speeds=SPEEDS,
-                           checkpoint=Checkpoint(cp.path, resume=True), progress=record)
-    assert first == {4: 4, 21: 5}       # the coarse pass and 5 fine points were not redone
+                           checkpoint=Checkpoint(cp.path, resume=True),
+                           progress=lambda done, total: seen.append((done, total)))
+    assert seen[0] == (4, 25)           # the coarse pass was not redone
+    assert min(d for d, _ in seen[1:]) == 4 + 5     # nor the 5 fine points done
     for col, x in warm.columns.items():
         assert np.array_equal(x, resumed.columns[col], equal_nan=x.dtype.kind == "f"), col
 
@@ -181,3 +179,17 @@ def test_cells_whose_corners_have_no_wing_divergence_are_not_clipped():
     assert stats["clipped"] == 0 and stats["again"] == 0
     assert stats["coarse"] + stats["fine"] == 15
     assert_same_rows(warm, cold)
+
+
+def test_a_progress_callback_sees_one_count_over_the_passes():
+    """Issue 35 item 8: a callable saw (4, 4) for the coarse pass, then (0, 21): the total
+    jumped mid-run. Now one count over the passes against every point from the start."""
+    seen = []
+    stats = {}
+    critical_map(small_wing(), AXES, speeds=SPEEDS, stats=stats,
+                 progress=lambda done, total: seen.append((done, total)))
+    assert stats["coarse"] < 25 and seen
+    totals = [t for _, t in seen]
+    assert totals[0] == 25 and totals == sorted(totals)                 # never falls back
+    dones = [d for d, _ in seen]
+    assert dones == sorted(dones) and seen[-1] == (25 + stats["again"], 25 + stats["again"])

@@ -22,6 +22,8 @@ import numpy as np
 from propwhirl import certification
 from propwhirl.certification import (  # noqa: F401 (re-exported: their old home)
     FACTOR_CFR23, FACTOR_CS25, FACTOR_RANGE)
+from propwhirl import validate as v
+from propwhirl.analysis.damping_requirement import judged_damping
 
 #: The damping results consider the modes with an event and this many oscillatory modes of
 #: lowest frequency (:meth:`propwhirl.analysis.stability.ModelAnalysis.modes_of_interest`).
@@ -85,6 +87,13 @@ class SpeedMargin:
     least_g: float | None
     least_g_V: float | None
     least_g_mode: str
+    #: the first analysed speed [m/s] and the least aerodynamic increment of g above each
+    #: mode's damping there (:func:`propwhirl.analysis.damping_requirement.judged_damping`),
+    #: its speed [m/s] and mode (issue 35 item 2: which damping the line reads)
+    first_V: float | None = None
+    aero_g: float | None = None
+    aero_g_V: float | None = None
+    aero_g_mode: str = ""
 
     @property
     def margin_m_per_s(self) -> float | None:
@@ -107,11 +116,17 @@ class SpeedMargin:
         else:
             crit = (f"{self.critical} at {self.critical_speed:.2f} m/s, margin "
                     f"{self.margin_m_per_s:+.2f} m/s ({100 * self.margin:+.1f} %)")
+        start = "" if self.first_V is None else (f" from {self.first_V:.2f} m/s (the first "
+                                                  "analysed speed)")
         if self.least_g is None:
             least = "no oscillatory mode below it"
         else:
-            least = (f"least damping below it g = 2 zeta = {self.least_g:.4f} "
-                     f"({self.least_g_mode} at {self.least_g_V:.2f} m/s)")
+            least = (f"least total damping (structural included){start} to it g = 2 zeta = "
+                     f"{self.least_g:.4f} ({self.least_g_mode} at {self.least_g_V:.2f} m/s)")
+            if self.aero_g is not None:
+                least += (f"; its aerodynamic increment above each mode's damping at "
+                          f"{self.first_V:.2f} m/s: least {self.aero_g:+.4f} "
+                          f"({self.aero_g_mode}, {self.aero_g_V:.2f} m/s)")
         return head + crit + "; " + least
 
 
@@ -120,15 +135,17 @@ def speed_margin(a: Any, V_D: float, factor: float = FACTOR_CS25, critical: Any 
     """The margin of analysis `a` (:class:`propwhirl.analysis.stability.ModelAnalysis`) to
     ``factor · V_D`` [m/s] (module docstring).  `critical`: the critical instability (default
     ``a.critical``, the one definition; None: none); `describe` names a mode label."""
-    V_req, _ = required_speed(V_D, factor)
+    V_req = required_speed(V_D, factor)
     crit = a.critical if isinstance(critical, str) and critical == "default" else critical
     sweep = a.sweep
     V = np.asarray(sweep.V, dtype=float)
     labels = tuple(sweep.mode_labels)
     zeta, _ = oscillatory_damping(sweep, a.modes_of_interest(DAMPING_MODES))
     least = least_damping(zeta, V, V_req, labels)
+    aero = judged_damping(V, zeta, np.isfinite(zeta), labels, (), V_req, "aerodynamic")
     return SpeedMargin(
         float(V_D), float(factor), V_req, float(V[-1]),
         "" if crit is None else f"{crit.kind} ({crit.event}) of {describe(crit.label)}",
         None if crit is None else float(crit.V),
-        None if least["zeta"] is None else 2.0 * least["zeta"], least["V"], least["mode"])
+        None if least["zeta"] is None else 2.0 * least["zeta"], least["V"], least["mode"],
+        float(V[0]), aero["g"], aero["V"], aero["mode"])

@@ -224,7 +224,8 @@ def _analyse(args: argparse.Namespace) -> int:
     from propwhirl.analysis.stability import analyse  # lazy: analyses
 
     check_outputs(json=args.json, csv=args.csv, plot=args.plot, summary_csv=args.summary_csv,
-                  events_csv=args.events_csv, animate=args.animate, model=args.model)
+                  events_csv=args.events_csv, animate=args.animate, plot_shape=args.plot_shape,
+                  model=args.model)
     if args.plot_modes is not None:          # before the analysis, not when plotting
 
         v.integer_at_least("--plot-modes", args.plot_modes, 1)
@@ -277,8 +278,20 @@ def _analyse(args: argparse.Namespace) -> int:
     if args.plot:
         from propwhirl.app import plots  # lazy: figures
 
-        plots.vgf(a, model, n_modes=args.plot_modes, path=args.plot)
+        req = None if V_req is None else plots.VgfRequirements(args.vd, V_req)
+        # the analysis's own speeds (analysed with vgf=True), Hermite curves between them: no
+        # second sweep (issue 35 item 5: it tripled the run time)
+        plots.vgf(a, None, n_modes=args.plot_modes, path=args.plot, requirements=req,
+                  hermite=True)
         print(f"wrote {args.plot}")
+    if args.plot_shape and a.critical is not None:    # the critical mode's shape
+        from propwhirl.app import plots  # lazy: figures
+
+        plots.event_mode_shape(a, a.critical, path=args.plot_shape)
+        print(f"wrote {args.plot_shape}")
+    elif args.plot_shape:
+        print(f"propwhirl: warning: no instability in the speed range: --plot-shape "
+              f"{args.plot_shape} not written", file=sys.stderr)
     if args.animate and a.critical is not None:
         from propwhirl.app import plots  # lazy: figures
 
@@ -316,10 +329,16 @@ def _add_analyse(sub) -> None:
     p.add_argument("--summary-csv", metavar="OUT", help="write the flutter summary of every mode")
     p.add_argument("--events-csv", metavar="OUT", help="write the events with each propeller's "
                    "participation as CSV")
-    p.add_argument("--plot", metavar="PNG", help="write the V-g-f plot")
+    p.add_argument("--plot", metavar="PNG", help="write the V-g-f plot: the analysis's own "
+                   "speeds (dots) and cubic Hermite curves between them from the exact slopes, "
+                   "no second sweep; with --vd, V_D and factor x V_D drawn")
     p.add_argument("--plot-modes", type=int, default=None, metavar="N",
                    help="at most N >= 1 modes in the plot (default: the modes that matter) and "
-                        "the lowest N in --summary (default 8); only with --plot or --summary")
+                        "the lowest N in --summary (default 8); only with --plot or --summary "
+                        "(a count: the critical mode's shape is --plot-shape)")
+    p.add_argument("--plot-shape", metavar="PNG", help="write the critical mode's shape: the "
+                   "wing's h and alpha along the span and each propeller's theta-psi orbit "
+                   "(plots.event_mode_shape; --plot-modes is a count of V-g-f curves, not shapes)")
     p.add_argument("--animate", metavar="GIF", help="write a GIF of the critical mode")
     p.add_argument("--method", choices=("auto", "dense", "reduced", "pk"), default="auto",
                    help="dense: every root of the full-order model (the reference); reduced: "

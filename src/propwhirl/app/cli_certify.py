@@ -15,6 +15,13 @@ finished analyses are kept in ``REPORT/campaign.json.partial``; ``--resume`` con
 """
 from __future__ import annotations
 
+#: What ``propwhirl certify --help`` says first (plain text: no docstring markup).
+DESCRIPTION = ("Run a flutter, whirl-flutter and divergence clearance campaign (CAMPAIGN, a "
+               "TOML file: docs/campaign.md) over its flight envelope and write into --out "
+               "campaign.json, campaign.csv (every number), report.html and report.pdf (the "
+               "report). Exit code 0 when every case clears, 1 when one does not, 2 for bad "
+               "input (nothing analysed).")
+
 import argparse
 from pathlib import Path
 
@@ -86,7 +93,7 @@ def add_commands(sub) -> None:
     """Register ``certify`` on the CLI's subparsers."""
     p = sub.add_parser("certify", help="whirl-flutter clearance campaign: every case over its "
                        "envelope (exit code 0 all cleared, 1 not, 2 bad input)",
-                       description=__doc__.split("\n\n")[0])
+                       description=DESCRIPTION)
     p.add_argument("campaign", metavar="CAMPAIGN", help="campaign file (TOML, docs/campaign.md)")
     p.add_argument("--out", required=True, metavar="DIR", help=f"report folder: {JSON_NAME}, "
                    f"{CSV_NAME}, {HTML_NAME} and {PDF_NAME} (made if missing)")

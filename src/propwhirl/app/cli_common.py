@@ -4,6 +4,7 @@ be written before a long run.
 Used by :mod:`propwhirl.app.cli` and the study commands (:mod:`.cli_studies`, :mod:`.cli_design`)."""
 from __future__ import annotations
 
+import re
 import sys
 from pathlib import Path
 
@@ -15,6 +16,13 @@ from propwhirl.cases import registry
 from propwhirl.studies.partial import Checkpoint
 from propwhirl.studies.warmstart import pass_checkpoints
 from propwhirl.validate import InputError
+
+
+def plain(text: str) -> str:
+    """A docstring's text for ``--help``: its reST markup dropped (``:func:`x``` and
+    ```x``` as x; a ``~`` before a dotted name keeps its last part)."""
+    text = re.sub(r":[a-z]+:`~?([^`]+)`", lambda m: m.group(1), text)
+    return text.replace("``", "")
 
 
 def echo(text: str) -> None:
@@ -109,8 +117,8 @@ def check_outputs(*, model: str | None = None, partial_of: str | None = None,
     given = {_option(o): str(p) for o, p in paths.items() if p is not None}
     for label, path in given.items():
         fileio.check_writable(path, what=label)
-        if label == "--plot":
-            _check_plot_format(path)
+        if label in ("--plot", "--plot-shape"):
+            _check_plot_format(path, label)
         elif label == "--animate":
             _check_animation(path)
     others = model_inputs(model) if model is not None else []    # (what it is, path)
@@ -151,15 +159,15 @@ def _partial_files(output: str, warm_start: bool) -> list[Path]:
     return [partial, *passes]
 
 
-def _check_plot_format(path: str) -> None:
+def _check_plot_format(path: str, option: str = "--plot") -> None:
     """A plot's suffix names a format matplotlib writes (checked before computing)."""
-    _need_matplotlib("--plot")
+    _need_matplotlib(option)
     from matplotlib.backend_bases import FigureCanvasBase
 
     fmt = Path(path).suffix[1:].lower() or "png"
     supported = FigureCanvasBase.get_supported_filetypes()
     if fmt not in supported:
-        raise InputError(f"--plot {path}: format {fmt!r} is not supported "
+        raise InputError(f"{option} {path}: format {fmt!r} is not supported "
                          f"(suffixes: {', '.join(sorted(supported))})")
 
 

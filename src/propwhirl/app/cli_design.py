@@ -23,6 +23,8 @@ from propwhirl.validate import InputError
 #: Largest N of the --grid N x N map under a boundary plot (each point an eigen-solution, or
 #: with --contour an analysis).
 MAX_GRID = 60
+#: N of the grid map with --plot when --grid is not given.
+DEFAULT_GRID = 12
 
 
 def _boundary(args: argparse.Namespace) -> int:
@@ -30,6 +32,8 @@ def _boundary(args: argparse.Namespace) -> int:
     from propwhirl.studies import paths as P  # lazy: studies
 
     check_outputs(json=args.json, csv=args.csv, plot=args.plot, model=args.model)
+    if args.grid is None:                  # a plot's map (and every branch) by default
+        args.grid = DEFAULT_GRID if args.plot else 0
     if args.grid != 0 and not 2 <= args.grid <= MAX_GRID:       # before the tracing
         raise InputError(f"--grid = {args.grid} is invalid: must be 0 (none) or in "
                          f"[2, {MAX_GRID}]")
@@ -57,7 +61,16 @@ def _boundary(args: argparse.Namespace) -> int:
     else:
         b = B.neutral_curve(model, args.params, lower, upper, args.speed,
                             oscillatory=args.oscillatory, **run)
+    grid = None
+    if args.grid:                          # every branch: seeded from the grid's zero set
+        grid = B.grid_map(B.level_of(b, model, **run), lower, upper, args.grid)
+        b = B.add_branches(b, model, grid, **run)
     echo(b.format())
+    if grid is not None:
+        d1, d2 = B.grid_agreement(b, grid)
+        print(f"grid map {args.grid} x {args.grid} ({grid.evaluations} {b.evaluation_name}): "
+              f"traced points within {d1:.2f} cells of the grid's boundary, grid's boundary "
+              f"within {d2:.2f} cells of the traced curves")
     if args.json:
         b.save(args.json)
         print(f"wrote {args.json}")
@@ -67,14 +80,6 @@ def _boundary(args: argparse.Namespace) -> int:
     if args.plot:
         from propwhirl.app import plots  # lazy: figures
 
-        grid = None
-        if args.grid:
-            v_n = args.grid
-            grid = B.grid_map(B.level_of(b, model, **run), lower, upper, v_n)
-            d1, d2 = B.grid_agreement(b, grid)
-            print(f"grid map {v_n} x {v_n} ({grid.evaluations} {b.evaluation_name}): traced points "
-                  f"within {d1:.2f} cells of the grid's boundary, grid's boundary within "
-                  f"{d2:.2f} cells of the traced curve")
         design = current if all(x is not None for x in current) else None
         plots.boundary_plot(b, grid, design=design, path=args.plot)
         print(f"wrote {args.plot}")
@@ -100,9 +105,11 @@ def _add_boundary(sub) -> None:
     p.add_argument("--thesis", action="store_true", help="with --contour: the thesis's "
                    "convention (wing static divergence and recovering low-speed instabilities "
                    "left out)")
-    p.add_argument("--grid", type=int, default=12, metavar="N",
-                   help=f"with --plot: an N x N grid map under the curve (0: none, else "
-                   f"2 to {MAX_GRID}; default 12)")
+    p.add_argument("--grid", type=int, default=None, metavar="N",
+                   help=f"an N x N grid map of the plane (0: none, else 2 to {MAX_GRID}; "
+                   f"default {DEFAULT_GRID} with --plot, none without): every branch its zero "
+                   "set shows is traced (the start lines alone can miss one), and --plot "
+                   "draws it under the curves")
     p.add_argument("--json", metavar="OUT", help="write the boundary as JSON")
     p.add_argument("--csv", metavar="OUT", help="write the boundary's points as CSV")
     p.add_argument("--plot", metavar="PNG", help="plot the boundary over the grid map")

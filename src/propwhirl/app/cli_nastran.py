@@ -20,7 +20,7 @@ from __future__ import annotations
 import argparse
 import os
 
-from propwhirl.app.cli_common import (check_outputs, echo, load_model, model_or_case,
+from propwhirl.app.cli_common import (check_outputs, echo, load_model, model_or_case, plain,
                                        print_notes)
 from propwhirl.validate import InputError
 
@@ -87,7 +87,7 @@ def add_commands(sub) -> None:
     """Register ``import`` and ``export`` on the CLI's subparsers."""
     p = sub.add_parser("import", help="a beam model from a NASTRAN BDF (a straight stick, its "
                        "propellers' masses and mounts), completed by a base model file",
-                       description=__doc__.split("\n\n")[2])
+                       description=plain(__doc__.split("\n\n")[2]))
     p.add_argument("bdf", metavar="MODEL.bdf", help="the NASTRAN bulk data file")
     p.add_argument("--out", required=True, metavar="MODEL.toml", help="the model file to write")
     p.add_argument("--units", metavar="UNITS", help=units_help() + " (required: NASTRAN has none)")
@@ -98,7 +98,7 @@ def add_commands(sub) -> None:
                    "BASE's installations, in their order (the grid with the rotor's CONM2)")
     p.set_defaults(func=_import)
     p = sub.add_parser("export", help="a beam model as a NASTRAN SOL 103 deck (BDF)",
-                       description=__doc__.split("\n\n")[2])
+                       description=plain(__doc__.split("\n\n")[2]))
     p.add_argument("model", metavar="MODEL", help="a model file (.toml) or a case name")
     p.add_argument("--out", required=True, metavar="MODEL.bdf", help="the BDF to write")
     p.add_argument("--units", default="si", metavar="UNITS", help=units_help() + " (default si)")

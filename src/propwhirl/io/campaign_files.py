@@ -45,7 +45,8 @@ from typing import Any
 
 from propwhirl import fileio, limits
 from propwhirl import validate as v
-from propwhirl.certification import (AIRSPEEDS, CASE_FACTORS, EXPLICIT, FACTOR_RANGE, OPERATIONS,
+from propwhirl.certification import (AIRSPEEDS, CASE_FACTORS, DAMPING_APPLIES_TO, DAMPING_MODES,
+                                     EXPLICIT, FACTOR_RANGE, OPERATIONS,
                                      PART25, REGULATIONS, STATES)
 from propwhirl.io.modal_files import is_modal_file, load_modal_model
 from propwhirl.io.model_files import Table, load_model, toml_error
@@ -173,6 +174,25 @@ class CaseSpec:
     transform: dict[str, Any] = field(default_factory=dict)
 
 
+#: ``[regulation] damping``: how ``min_damping_g`` is read (issue 35 item 2; the choices those
+#: of :mod:`propwhirl.analysis.damping_requirement`).
+DAMPING = TableSpec("[regulation] damping", "How the damping requirement is read.", (
+    Key("applies_to", "string", "`\"total\"`: the damping of the aeroelastic system, "
+        "structural damping included (the V-g-f's g; a mount with g = 0.02 fails g ≥ 0.03 at "
+        "the first speed); `\"aerodynamic\"`: the increment the air adds above the structural "
+        "damping, 2 (ζ(V) − ζ(V_0)) of each mode, V_0 the lowest analysed speed (the NASTRAN V-g "
+        "reading)", choices=DAMPING_APPLIES_TO,
+        what="total: structural damping included; aerodynamic: the increment above it"),
+    Key("above_m_per_s", "number", "the requirement applies from this speed up to V_D",
+        "m/s", (0.0, 1000.0), default=0.0),
+    Key("modes", "string", "`\"all\"`: every oscillatory mode of interest; `\"critical\"`: "
+        "the modes with an instability in the analysed range", choices=DAMPING_MODES, default="all"),
+    Key("source", "string", "where this reading comes from (MIL-A-8870C 3.1.1, AC 25.629-1B, "
+        "company practice): printed in the report; printable, at most 200 characters",
+        what="where this reading of the requirement comes from"),
+))
+
+
 @dataclass(frozen=True)
 class CampaignSpec:
     """A campaign file, checked (module docstring): source (the file's name), name, model
@@ -247,6 +267,12 @@ class CampaignSpec:
         "M_C", "number", "with `V_C_m_per_s`: the design cruise Mach number; an M_C whose "
         "line is below 1.15 V_C already at −5000 m is an error", range=MACHS,
         default=OMITTED), default=None)
+    damping: dict[str, Any] | None = spec_field("regulation", Key(
+        "damping", "table", "with `min_damping_g`: how it is read — which damping, from which "
+        "speed, which modes, and where that reading comes from: `{ applies_to = ..., source = "
+        "... }` (below). Omitted: the total damping of every mode of interest at every analysed "
+        "speed (the reading of files written before this key; the report says it was not "
+        "stated)", table=DAMPING, default=OMITTED), default=None)
 
 
 def _table(name: str, title: str, text: str, first: tuple[Key, ...] = (),
@@ -284,6 +310,21 @@ def _regulation(r: Values) -> tuple[str, float]:
     if r["factor"] is not None and r["factor"] != factor:
         raise t.bad("factor", f"{factor:g} with name = {name!r} (or give name = 'explicit')")
     return name, factor
+
+
+def _damping(r: Values) -> dict[str, Any] | None:
+    """[regulation] damping as a dict (None when omitted): only with min_damping_g; its
+    source a non-empty printable text of at most 200 characters."""
+    d = r["damping"]
+    if d is None:
+        return None
+    if r["min_damping_g"] is None:
+        raise r.table.bad("damping", "absent without min_damping_g (it says how min_damping_g "
+                                     "is read)")
+    src = d["source"]
+    if not src.strip() or not src.isprintable() or len(src) > 200:
+        raise d.table.bad("source", "a non-empty printable text of at most 200 characters")
+    return dict(d)
 
 
 def _per_altitude(e: Values, key: str, n: int) -> tuple[float, ...] | None:
@@ -348,6 +389,7 @@ def _load(top: Values, base: Path) -> tuple[Any, Path, int]:
 def _from_dict(data: dict[str, Any], base: Path, source: str) -> CampaignSpec:
     top = read(Table(data, "", TOP.names), TOP, only=lambda k: k.key != "cases")
     regulation, factor = _regulation(top["regulation"])
+    damping = _damping(top["regulation"])
     env = _envelope(top["envelope"])
     if env["V_C"] is not None and regulation not in PART25:
         raise top["envelope"].table.bad(
@@ -371,7 +413,8 @@ def _from_dict(data: dict[str, Any], base: Path, source: str) -> CampaignSpec:
               for f in dataclasses.fields(CampaignSpec)
               if KEYS in f.metadata and f.metadata[KEYS][0].key in read_tables[f.metadata[TABLE]]}
     values.update(env, source=source, name=top["name"] or Path(source).stem, model=model,
-                  model_path=str(path), regulation=regulation, factor=factor, cases=tuple(cases))
+                  model_path=str(path), regulation=regulation, factor=factor, cases=tuple(cases),
+                  damping=damping)
     return CampaignSpec(**values)      # a field of its key's value, unless tied above
 
 
@@ -390,7 +433,7 @@ def docs_parts() -> dict[str, str]:
     return {"campaign top": markdown(TOP), "campaign regulation": markdown(REGULATION),
             "campaign regulations": _regulations_table(),
             "campaign envelope": markdown(ENVELOPE), "campaign cases": markdown(CASE),
-            "campaign added masses": markdown(MASS)}
+            "campaign added masses": markdown(MASS), "campaign damping": markdown(DAMPING)}
 
 
 def loads(text: str, source: str = "<string>", base: str | Path = ".") -> CampaignSpec:

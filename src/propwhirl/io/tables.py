@@ -255,7 +255,7 @@ def read(t: Table, spec: TableSpec, bounds: Mapping[str, float] | None = None,
             out[k.key] = read_key(t, k, bounds)
         elif _is(k.default, REQUIRED):
             raise t.missing(k.key, k.what if k.missing is None else k.missing)
-        elif k.form == "table":          # an omitted table: its keys' defaults
+        elif k.form == "table" and not _is(k.default, OMITTED):  # omitted: its keys' defaults
             out[k.key] = read(Table({}, t.name(k.key), k.table.names), k.table, bounds)
         else:
             out[k.key] = None if _is(k.default, OMITTED) else k.default

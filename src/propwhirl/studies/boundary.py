@@ -34,6 +34,7 @@ True
 """
 from __future__ import annotations
 
+import dataclasses
 import io
 import math
 from collections.abc import Mapping
@@ -259,8 +260,18 @@ class Boundary(Result):
         if not self.curves:
             lines.append("  no boundary: no sign change on the start search lines "
                          "(the plane is stable or unstable throughout them)")
+        n = len(self.curves)
+        if n:
+            seeded = self.settings.get("seeded_from_grid")
+            lines.append(f"  {n} branch{'es' if n > 1 else ''}, "
+                         + (f"every sign change of a {seeded} grid map on one of them"
+                            if seeded else "from the start search lines only "
+                            "(a branch they miss is not here: a grid map seeds every branch, "
+                            "`propwhirl boundary --grid N`)"))
         for i, (c, closed, stops) in enumerate(zip(self.curves, self.closed, self.stops)):
-            end = "closed" if closed else "ends: " + ", ".join(stops)
+            end = "closed" if closed else "ends " + " and ".join(
+                f"at ({p[0]:.4g}, {p[1]:.4g}): {self._end(p, why)}"
+                for p, why in zip((c[0], c[-1]), stops))
             lines.append(f"  curve {i + 1}: {len(c)} points, {end}")
             for p, inf in zip(c[:: max(1, len(c) // 12)], self.info[i][:: max(1, len(c) // 12)]):
                 extra = f"  f = {inf['frequency_hz']:.3f} Hz" if "frequency_hz" in inf else ""
@@ -268,6 +279,16 @@ class Boundary(Result):
                     extra += f"  {inf['kind']} of {inf['mode']}"
                 lines.append(f"    {p[0]:10.4f} {p[1]:10.4f}{extra}")
         return "\n".join(lines)
+
+    def _end(self, p: np.ndarray, why: str) -> str:
+        """Why a curve ends at `p`: on which edge of the plane ("bounds"), or the reason."""
+        if why != "bounds":
+            return why
+        edges = [f"{name} = {'lower' if k == 0 else 'upper'}"
+                 for j, name in enumerate(self.parameters)
+                 for k, edge in enumerate((self.lower[j], self.upper[j]))
+                 if abs(p[j] - edge) <= 1e-6 * max(1.0, abs(self.upper[j] - self.lower[j]))]
+        return "the plane's edge " + (" and ".join(edges) if edges else "")
 
     def encode(self) -> dict[str, Any]:
         def clean(x: Any) -> Any:
@@ -496,6 +517,80 @@ def speed_contour(model: Any, parameters: Sequence[str], lower: Sequence[float],
                    getattr(model, "name", ""),
                    {"static_divergence": bool(static_divergence), "low_speed": bool(low_speed),
                     "xtol": xtol})
+
+
+# ======================================================================= every branch
+def grid_seeds(grid: "GridMap") -> list[tuple[np.ndarray, np.ndarray]]:
+    """The grid's zero set as seeds of :func:`propwhirl.studies.continuation.trace`: every
+    edge between neighbouring grid points across which the level changes sign (a zero at
+    one end counts), as a pair of points in the plane's units, ordered along x then y."""
+    X, Y, g = grid.x, grid.y, grid.values
+    out = []
+    for axis in (0, 1):
+        a = g[:-1, :] if axis == 0 else g[:, :-1]
+        b = g[1:, :] if axis == 0 else g[:, 1:]
+        i, j = np.nonzero((a * b < 0) | ((a == 0) ^ (b == 0)))
+        for ii, jj in zip(i, j):
+            p = np.array([X[ii], Y[jj]])
+            q = np.array([X[ii + 1], Y[jj]]) if axis == 0 else np.array([X[ii], Y[jj + 1]])
+            out.append((p, q))
+    return out
+
+
+def add_branches(boundary: "Boundary", model: Any, grid: "GridMap",
+                 variant: Variant | None = None, *, processes: int = 1, client=None,
+                 progress=None) -> "Boundary":
+    """`boundary` with every branch of its level set that a grid map of the same level
+    (:func:`grid_map` of :func:`level_of`) shows and the tracing from the search lines missed
+    (issue 35, item 6): each sign change of the grid (:func:`grid_seeds`) farther than one
+    grid cell's diagonal from the curves traced so far starts another curve, traced as the
+    first (its zero found on the grid edge; the grid's values reused, not evaluated again).
+    An L-shaped boundary whose corner stops the corrector, or an island between the search
+    lines, gets all its branches.  The evaluations of the new branches are added to the
+    boundary's (the grid's own are the grid's); ``settings["seeded_from_grid"]`` says the
+    grid's size.
+
+    Parameters
+    ----------
+    boundary : Boundary
+        A traced boundary (:func:`neutral_curve`, :func:`speed_contour`).
+    model : Model
+        Its model (or `variant`, as there).
+    grid : GridMap
+        Its level function on a grid of its plane.
+    processes, client, progress : optional
+        As :func:`neutral_curve`.
+
+    Returns
+    -------
+    Boundary
+        Its curves, then the new ones (their starts appended to ``starts``).
+    """
+    if not isinstance(grid, GridMap):
+        raise v.fail("grid", grid, "invalid: must be a GridMap (grid_map(level_of(boundary, "
+                     f"model), lower, upper, n)), got {type(grid).__name__}")
+    lo, hi = np.array(boundary.lower), np.array(boundary.upper)
+    if not (np.isclose(grid.x[0], lo[0]) and np.isclose(grid.x[-1], hi[0])
+            and np.isclose(grid.y[0], lo[1]) and np.isclose(grid.y[-1], hi[1])):
+        raise v.InputError("grid is of another plane than the boundary: give the grid map of "
+                           f"its bounds {list(boundary.lower)} to {list(boundary.upper)}")
+    level = level_of(boundary, model, variant, processes=processes, client=client,
+                     progress=progress)
+    counted = Counted(level)
+    counted.remember([np.array([a, b]) for a in grid.x for b in grid.y], grid.values.ravel())
+    spacing = float(np.hypot(1.0 / (len(grid.x) - 1), 1.0 / (len(grid.y) - 1)))
+    options = (ContinuationOptions() if boundary.kind == "neutral-stability"
+               else ContinuationOptions(tol=2e-4))
+    tr = trace(counted, lo, hi, options=options, seeds=grid_seeds(grid), seed_spacing=spacing,
+               known=boundary.curves, search=False)
+    info = tuple(tuple(level.info(p) for p in b.points) for b in tr.branches)
+    starts = np.vstack([boundary.starts.reshape(-1, 2), tr.starts])
+    settings = dict(boundary.settings, seeded_from_grid=f"{len(grid.x)} x {len(grid.y)}")
+    return dataclasses.replace(
+        boundary, curves=boundary.curves + tuple(b.points for b in tr.branches),
+        closed=boundary.closed + tuple(b.closed for b in tr.branches),
+        stops=boundary.stops + tuple(b.stops for b in tr.branches), info=boundary.info + info,
+        evaluations=boundary.evaluations + counted.calls, starts=starts, settings=settings)
 
 
 # ============================================================================ grid check

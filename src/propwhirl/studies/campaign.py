@@ -50,6 +50,7 @@ from propwhirl import validate as v
 from propwhirl.certification import (  # noqa: F401 (REGULATIONS, regulation_factor re-exported)
     CASE_FACTORS, FACTOR_CS25, FACTOR_RANGE, OPERATIONS, PART25, REGULATIONS, STATES,
     regulation_factor)
+from propwhirl.analysis.damping_requirement import DampingRequirement, judged_damping
 from propwhirl.analysis.margin import DAMPING_MODES  # noqa: F401 (re-exported)
 from propwhirl.analysis.margin import least_damping as _least
 from propwhirl.analysis.margin import oscillatory_damping as _damping
@@ -453,6 +454,10 @@ class Campaign:
         The convention (:func:`propwhirl.studies.critical.critical_instability`).
     xtol : float
         Accuracy of each critical speed [m/s].
+    damping : DampingRequirement, optional
+        How the damping requirement is read (which damping, above which speed [m/s], which
+        modes, its source; :mod:`propwhirl.analysis.damping_requirement`); None with
+        `min_damping_g`: the total damping of every mode of interest up to V_D.
 
     Examples
     --------
@@ -474,6 +479,10 @@ class Campaign:
     static_divergence: bool = True
     low_speed: bool = True
     xtol: float = 0.01
+    #: how the damping requirement is read (:class:`DampingRequirement`: which damping, above
+    #: which speed, which modes, its source); None with `min_damping_g`: the total damping of
+    #: every mode of interest at every analysed speed up to V_D, its source not given
+    damping: DampingRequirement | None = None
     #: the names of the cases whose model is built with their analyses, not before (the
     #: combinations of a product: :func:`from_spec`); the others are built by :func:`tasks`
     _deferred: frozenset = field(default=frozenset(), repr=False, compare=False)
@@ -510,6 +519,16 @@ class Campaign:
                                f"{self.factor:g} V_D")
         if self.min_damping_g is not None:
             v.in_range("min_damping_g", self.min_damping_g, 0.0, 1.0)
+        if self.damping is not None:
+            if not isinstance(self.damping, DampingRequirement):
+                raise v.fail("damping", self.damping, "invalid: must be a DampingRequirement "
+                             "or None")
+            if self.min_damping_g is None:
+                object.__setattr__(self, "min_damping_g", self.damping.g_min)
+            elif self.min_damping_g != self.damping.g_min:
+                raise v.InputError(f"min_damping_g = {self.min_damping_g!r} differs from the "
+                                   f"damping requirement's g_min = {self.damping.g_min!r}: "
+                                   "give one")
         v.positive("xtol", self.xtol, "m/s")
 
     @property
@@ -526,6 +545,14 @@ class Campaign:
         return certification.required_speed(
             p.V_D, self.factor, self.regulation, failure=case.is_failure, V_line=p.V_line,
             line_part=p.line_part, mach_limited=p.mach_limited)
+
+    @property
+    def damping_requirement(self) -> DampingRequirement | None:
+        """The damping requirement as judged (`damping`, or with `min_damping_g` alone the
+        total damping of every mode at every speed up to V_D); None without one."""
+        if self.min_damping_g is None:
+            return None
+        return self.damping or DampingRequirement(self.min_damping_g)
 
 
 def required_speed(c: Campaign, case: Case, p: EnvelopePoint) -> tuple[float, str]:
@@ -649,9 +676,12 @@ def _from_spec(spec: Any) -> Campaign:
                           V_C=spec.V_C, M_C=spec.M_C)
     except v.InputError as exc:
         raise v.InputError(f"[envelope] {exc}") from None
+    damping = getattr(spec, "damping", None)     # [regulation] damping = {...}
     camp = Campaign(spec.name, spec.model, tuple(cases), points,
                     spec.regulation, spec.factor, spec.min_damping_g,
-                    static_divergence=not thesis, low_speed=not thesis, _deferred=deferred)
+                    static_divergence=not thesis, low_speed=not thesis, _deferred=deferred,
+                    damping=None if damping is None else DampingRequirement(
+                        spec.min_damping_g, **damping))
     for name, m in models.items():
         camp._made[("model", name)] = m
     tasks(camp)          # every case's model and every point's speed grid checked now
@@ -873,7 +903,8 @@ def _row(c: Campaign, case: Case, p: EnvelopePoint, r: Any) -> PointRow:
                 airspeed=p.airspeed, V_D_given=p.V_D_given, V_D=p.V_D,
                 mach_limited=p.mach_limited, V_required=V_req, rule=rule)
     if isinstance(r, execution.TaskError):
-        return PointRow(**base, cleared=False, reason="analysis failed", critical_speed=None,
+        return PointRow(**base, cleared=False, reason="analysis failed",
+                        critical_speed=None,
                         margin_m_per_s=None, margin_percent=None, kind="error", event="",
                         mode="", frequency_hz=None, whirl="", propeller_shares=(),
                         analysed_to=None, least_g=None, least_g_V=None, least_g_mode="",
@@ -883,11 +914,21 @@ def _row(c: Campaign, case: Case, p: EnvelopePoint, r: Any) -> PointRow:
     g = (lambda z: None if z is None else 2.0 * z)
     reasons = []
     if Vc is not None and not Vc > V_req:
-        reasons.append(f"{r['kind']} of {r['mode']} at {Vc:.2f} m/s <= {V_req:.2f} m/s")
+        reasons.append(f"speed: {r['kind']} of {r['mode']} at {Vc:.2f} m/s <= {V_req:.2f} m/s"
+                       + (f" ({rule})" if rule else ""))
     least_vd = g(r["least_zeta_to_V_D"])
-    if c.min_damping_g is not None and (least_vd is None or least_vd < c.min_damping_g):
-        reasons.append("g = " + ("?" if least_vd is None else f"{least_vd:.4f}")
-                       + f" < {c.min_damping_g:g} below V_D ({r['least_zeta_to_V_D_mode']})")
+    plot = None if r.get("plot") is None else PointPlot.from_dict(r["plot"])
+    req = c.damping_requirement
+    judged = {"g": None, "V": None, "mode": ""}
+    if req is not None and plot is not None:
+        judged = judged_damping(plot.V, plot.zeta, plot.oscillatory, plot.modes,
+                                [ev[4] for ev in plot.events if ev[2] == "flutter"], p.V_D,
+                                req.applies_to, req.above_m_per_s, req.modes)
+    if req is not None and (judged["g"] is None or judged["g"] < req.g_min):
+        reasons.append(f"damping: {req.applies_to} g = " + (
+            f"{judged['g']:.4f} < {req.g_min:g} at {judged['V']:.2f} m/s ({judged['mode']})"
+            if judged["g"] is not None else f"? < {req.g_min:g}: no judged mode up to V_D")
+            + (f", required from {req.above_m_per_s:g} m/s" if req.above_m_per_s > 0 else ""))
     return PointRow(
         **base, cleared=not reasons, reason="; ".join(reasons), critical_speed=Vc,
         margin_m_per_s=None if Vc is None else Vc - V_req,
@@ -899,7 +940,8 @@ def _row(c: Campaign, case: Case, p: EnvelopePoint, r: Any) -> PointRow:
         least_g_mode=r["least_zeta_mode"], least_g_to_V_D=least_vd,
         least_g_to_V_D_mode=r["least_zeta_to_V_D_mode"], g_at_required=g(r["zeta_at_required"]),
         dzeta_dV_at_required=r["dzeta_dV_at_required"], mode_at_required=r["mode_at_required"],
-        error="", plot=None if r.get("plot") is None else PointPlot.from_dict(r["plot"]))
+        error="", plot=plot, damping_g=judged["g"], damping_g_V=judged["V"],
+        damping_g_mode=judged["mode"])
 
 
 def run_campaign(c: Campaign, *, processes: int = 1, client=None,
@@ -971,5 +1013,8 @@ def run_campaign(c: Campaign, *, processes: int = 1, client=None,
                                      keys=keys, desc="campaign")
     it = iter(results)
     rows = tuple(_row(c, case, p, next(it)) for case in c.cases for p in c.points)
+    req = c.damping_requirement
     return CampaignResult(c.name, str(getattr(c.model, "name", "")), c.regulation,
-                          float(c.factor), c.min_damping_g, c.convention, rows, len(todo))
+                          float(c.factor), c.min_damping_g, c.convention, rows, len(todo),
+                          damping=None if c.damping is None else c.damping.to_dict(),
+                          damping_text="" if req is None else req.describe())

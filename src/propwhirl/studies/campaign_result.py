@@ -27,12 +27,16 @@ _ROW_KEYS = ("case", "description", "altitude_m", "airspeed", "V_D_given", "V_D"
              "margin_percent", "kind", "event", "mode", "frequency_hz", "whirl",
              "propeller_shares", "analysed_to", "least_g", "least_g_V", "least_g_mode",
              "least_g_to_V_D", "least_g_to_V_D_mode", "g_at_required", "dzeta_dV_at_required",
-             "mode_at_required", "error")
+             "mode_at_required", "error", "damping_g", "damping_g_V", "damping_g_mode")
 _ROW_NUMBERS = ("critical_speed", "margin_m_per_s", "margin_percent", "frequency_hz",
                 "analysed_to", "least_g", "least_g_V", "least_g_to_V_D", "g_at_required",
                 "dzeta_dV_at_required")
-#: Row keys that files written before them lack (read as "").
-_ROW_LATER = ("rule",)
+#: Row keys that files written before them lack (read as "" or None).
+_ROW_LATER = ("rule", "damping_g", "damping_g_V", "damping_g_mode")
+_ROW_LATER_NUMBERS = ("damping_g", "damping_g_V")
+#: The requirements a row can fail, by the start of its reason's parts (:attr:`PointRow.failed`).
+REQUIREMENTS = {"speed": "no instability up to the required speed",
+                "damping": "the damping requirement", "analysis": "the analysis failed"}
 _ROW_STRINGS = ("case", "description", "airspeed", "reason", "kind", "event", "mode", "whirl",
                 "least_g_mode", "least_g_to_V_D_mode", "mode_at_required", "error")
 
@@ -140,8 +144,12 @@ class PointRow:
     V_D (the damping requirement's range); g_at_required and dzeta_dV_at_required [s/m]: the
     least damped mode at V_required and the slope of its ζ; propeller_shares:
     [[propeller, share, whirl], ...] of the critical mode; reason: why it does not clear ("" when
-    it does); error: the message of an analysis that failed; plot: what the report draws
-    (:class:`PointPlot`; None in files of version 1 and for a failed analysis)."""
+    it does: "; "-separated parts, each starting with the requirement it fails, "speed: ...",
+    "damping: ...", or "analysis failed"); error: the message of an analysis that failed; plot:
+    what the report draws (:class:`PointPlot`; None in files of version 1 and for a failed
+    analysis); damping_g, damping_g_V [m/s], damping_g_mode: the least g the campaign's
+    damping requirement judges (its damping, speeds and modes:
+    :class:`propwhirl.analysis.damping_requirement.DampingRequirement`; None without one)."""
 
     case: str
     description: str
@@ -174,6 +182,22 @@ class PointRow:
     error: str
     plot: PointPlot | None = None
     rule: str = ""
+    damping_g: float | None = None
+    damping_g_V: float | None = None
+    damping_g_mode: str = ""
+
+    @property
+    def failed(self) -> tuple[str, ...]:
+        """The requirements this row fails (keys of :data:`REQUIREMENTS`), from its reason:
+        "speed", "damping", "analysis" (files written before the prefixes: a part starting
+        "g = " is the damping's, any other the speed's)."""
+        out = []
+        for part in filter(None, self.reason.split("; ")):
+            key = ("analysis" if part.startswith("analysis failed") else
+                   "damping" if part.startswith(("damping", "g = ")) else "speed")
+            if key not in out:
+                out.append(key)
+        return tuple(out)
 
     def to_dict(self) -> dict[str, Any]:
         """The row's numbers (the CSV's columns) and, under "plot", its figures' data."""
@@ -194,7 +218,10 @@ class PointRow:
         for k in _ROW_STRINGS:
             vals[k] = r.string(k)
         for k in _ROW_LATER:
-            vals[k] = r.string(k) if r.has(k) else ""
+            if k in _ROW_LATER_NUMBERS:
+                vals[k] = r.number(k, optional=True) if r.has(k) else None
+            else:
+                vals[k] = r.string(k) if r.has(k) else ""
         for k in ("altitude_m", "V_D_given", "V_D", "V_required"):
             vals[k] = r.number(k)
         for k in ("mach_limited", "cleared"):
@@ -253,6 +280,12 @@ class CampaignResult(Result):
         [m/s, %], frequency [Hz], least damping g [-] and dζ/dV [s/m], the figure data.
     analyses : int
         The analyses run.
+    damping : dict or None
+        The damping requirement's reading as the campaign gave it: min_damping_g [-],
+        applies_to ("total", "aerodynamic"), above_m_per_s [m/s], modes ("all",
+        "critical"), source (None: not given).
+    damping_text : str
+        The requirement in words, as the report prints it ("" without one).
 
     Examples
     --------
@@ -284,6 +317,10 @@ class CampaignResult(Result):
     convention: str
     rows: tuple[PointRow, ...]
     analyses: int = 0
+    #: the damping requirement's reading as the campaign file gave it ({"min_damping_g",
+    #: "applies_to", "above_m_per_s", "modes", "source"}; None: not given) and in words
+    damping: dict[str, Any] | None = None
+    damping_text: str = ""
 
     @property
     def cleared(self) -> bool:
@@ -302,9 +339,24 @@ class CampaignResult(Result):
         return [CaseSummary(name, all(r.cleared for r in rows), min(rows, key=key),
                             sum(not r.cleared for r in rows)) for name, rows in out.items()]
 
+    def decided_by(self) -> list[tuple[str, int]]:
+        """Which requirements the failing rows fail: (the requirement in words,
+        :data:`REQUIREMENTS`; the number of (case, point) rows that fail it), most first;
+        empty when every row clears."""
+        counts: dict[str, int] = {}
+        for r in self.rows:
+            for key in r.failed:
+                counts[key] = counts.get(key, 0) + 1
+        return [(REQUIREMENTS[k], n) for k, n in sorted(counts.items(), key=lambda kv: -kv[1])]
+
     def format(self) -> str:
         """The plain-text summary table: one line per case (its worst envelope point)."""
-        g = "" if self.min_damping_g is None else f"; g >= {self.min_damping_g:g} up to V_D"
+        g = "" if self.min_damping_g is None else (
+            f"; g >= {self.min_damping_g:g} up to V_D" + (
+                "" if self.damping is None else
+                f" ({self.damping['applies_to']} damping"
+                + (f" from {self.damping['above_m_per_s']:g} m/s" if self.damping[
+                    "above_m_per_s"] else "") + f", {self.damping['source']})"))
         head = (f"{self.name}: {self.model_name}: clearance to {self.factor:g} V_D "
                 f"({self.regulation}{g}); {self.convention}")
         if any(r.rule.startswith("25.629(b)(2)") for r in self.rows):
@@ -333,8 +385,10 @@ class CampaignResult(Result):
                          f"  {crit}" + (f" ({r.reason})" if r.reason and not r.error else ""))
         n_ok = sum(s.cleared for s in summaries)
         lines.append("(each case's least-margin altitude; every altitude: the CSV)")
+        decided = "; ".join(f"{what}: {n} of {len(self.rows)} points"
+                            for what, n in self.decided_by())
         lines.append(f"{n_ok} of {len(summaries)} cases cleared; {self.analyses} analyses: "
-                     + ("CLEARED" if self.cleared else "NOT CLEARED"))
+                     + ("CLEARED" if self.cleared else f"NOT CLEARED (failed: {decided})"))
         return "\n".join(lines)
 
     def encode(self) -> dict[str, Any]:
@@ -343,17 +397,20 @@ class CampaignResult(Result):
                 "convention": self.convention, "cleared": self.cleared,
                 "cases": [{"case": s.case, "cleared": s.cleared, "failing_points": s.failing}
                           for s in self.cases()],
-                "rows": [r.to_dict() for r in self.rows], "analyses": self.analyses}
+                "rows": [r.to_dict() for r in self.rows], "analyses": self.analyses,
+                "damping": self.damping, "damping_text": self.damping_text}
 
     @classmethod
     def decode(cls, d: Mapping[str, Any], version: int, where: str = "") -> "CampaignResult":
         r = SavedDict(d, where, ("name", "model_name", "regulation", "factor", "min_damping_g",
-                                 "convention", "cleared", "cases", "rows", "analyses"))
+                                 "convention", "cleared", "cases", "rows", "analyses"),
+                      ("damping", "damping_text"))
         out = cls(r.string("name"), r.string("model_name"), r.string("regulation"),
                   r.number("factor"), r.number("min_damping_g", optional=True),
                   r.string("convention"),
                   tuple(PointRow.from_dict(x, w) for w, x in r.items("rows")),
-                  r.integer("analyses", 0))
+                  r.integer("analyses", 0), _damping(r),
+                  r.string("damping_text") if r.has("damping_text") else "")
         if r.boolean("cleared") != out.cleared:
             raise v.InputError(f"{r.name('cleared')}: does not match the rows' verdicts")
         return out
@@ -374,3 +431,13 @@ class CampaignResult(Result):
         if path is not None:
             fileio.write_text(path, text, what="campaign table")
         return text
+
+
+def _damping(r: SavedDict) -> dict[str, Any] | None:
+    """The saved damping requirement's reading (None: not given, or a file before it)."""
+    if not r.has("damping") or r.raw("damping") is None:
+        return None
+    s = r.sub("damping", ("min_damping_g", "applies_to", "above_m_per_s", "modes", "source"))
+    return {"min_damping_g": s.number("min_damping_g"), "applies_to": s.string("applies_to"),
+            "above_m_per_s": s.number("above_m_per_s"), "modes": s.string("modes"),
+            "source": s.string("source")}

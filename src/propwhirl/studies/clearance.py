@@ -38,6 +38,7 @@ from propwhirl import fileio, limits
 from propwhirl import validate as v
 from propwhirl.analysis.stability import ModelAnalysis, analyse
 from propwhirl.model.aerodynamics import validity
+from propwhirl.progress import Cumulative
 from propwhirl.results import Result, SavedDict
 from propwhirl.studies import execution
 from propwhirl.studies import paths as P
@@ -99,7 +100,11 @@ class MinimumFrequency:
     not a single minimum, and not a margin);
     critical_speed: V_crit [m/s] at `frequency` (the check; NaN: no instability in range);
     range [Hz]; note: e.g. samples below the minimum that clear too (not monotone);
-    analyses: analyses it took.
+    analyses: analyses it took; kind, mode: what decides it (issue 35 item 7) — the critical
+    instability at `frequency` ("found", "not monotone": the one that sets the minimum, its
+    speed `critical_speed` just above the required speed; "at or below the range": at the
+    range's bottom), or at the range's top ("none in range": the one even the top frequency
+    does not clear); "" in files written before them, "none" for no instability in range.
     """
 
     propeller: int
@@ -112,6 +117,8 @@ class MinimumFrequency:
     range: tuple[float, float]
     note: str
     analyses: int
+    kind: str = ""
+    mode: str = ""
 
     def to_dict(self) -> dict[str, Any]:
         """The fields (a non-finite number as None)."""
@@ -120,14 +127,15 @@ class MinimumFrequency:
     @classmethod
     def from_dict(cls, d: Any, where: str = "minimum") -> "MinimumFrequency":
         """The entry written by :meth:`to_dict`, checked (a null critical speed as NaN)."""
-        r = SavedDict(d, where, [f.name for f in fields(cls)])
+        later = ("kind", "mode")                 # written since issue 35 item 7
+        r = SavedDict(d, where, [f.name for f in fields(cls) if f.name not in later], later)
         lo, hi = r.array("range", shape=(2,))
         return cls(r.integer("propeller", 1), r.string("parameter", ("f_theta", "f_psi")),
                    r.string("path"), r.number("current", optional=True),
                    r.number("frequency", optional=True),
                    r.string("status", STATUSES),
                    r.number_or_nan("critical_speed"), (float(lo), float(hi)), r.string("note"),
-                   r.integer("analyses", 0))
+                   r.integer("analyses", 0), *(r.string(k) if r.has(k) else "" for k in later))
 
 
 @dataclass(frozen=True)
@@ -190,7 +198,7 @@ class Clearance(Result):
             else:
                 text = f"none in {rng}{cur}: even {q.range[1]:g} Hz does not clear"
             lines.append(f"  propeller {q.propeller} minimum {name}: {text}"
-                         + (f"; {q.note}" if q.note else ""))
+                         + _decided(q) + (f"; {q.note}" if q.note else ""))
         lines.append(f"  {self.analyses} analyses")
         return "\n".join(lines)
 
@@ -236,13 +244,14 @@ class Clearance(Result):
             w.writerow(["instability", m.kind, m.event, m.mode, f"{m.V:.10g}", f"{m.frequency_hz:.10g}",
                         f"{m.margin:.10g}", "yes" if m.counted else "no"])
         w.writerow(["section", "propeller", "parameter", "status", "frequency [Hz]", "current [Hz]",
-                    "critical_speed [m/s]", "range_low [Hz]", "range_high [Hz]", "note"])
+                    "critical_speed [m/s]", "range_low [Hz]", "range_high [Hz]", "note",
+                    "decided_by_kind", "decided_by_mode"])
         for q in self.minimum:
             w.writerow(["minimum", q.propeller, q.parameter, q.status,
                         "" if q.frequency is None else f"{q.frequency:.10g}",
                         "" if q.current is None else f"{q.current:.10g}",
                         "" if not math.isfinite(q.critical_speed) else f"{q.critical_speed:.10g}",
-                        f"{q.range[0]:g}", f"{q.range[1]:g}", q.note])
+                        f"{q.range[0]:g}", f"{q.range[1]:g}", q.note, q.kind, q.mode])
         text = buf.getvalue()
         if path is not None:
             fileio.write_text(path, text, what="clearance table")
@@ -390,14 +399,16 @@ def _refine(t: _Refine) -> dict[str, Any]:
     analyses}."""
     par = P.resolve(t.model, t.path)
     vcrit = dict(t.known)
+    rows: dict[float, dict[str, Any]] = {}
     count = [0]
     top = float(t.speeds[-1])
 
     def h(f: float) -> float:
         if f not in vcrit:
             count[0] += 1
-            vcrit[f] = sweeps.evaluate((par.set(t.model, f), t.speeds, t.xtol,
-                                        t.static_divergence, t.low_speed))["critical_speed"]
+            rows[f] = sweeps.evaluate((par.set(t.model, f), t.speeds, t.xtol,
+                                       t.static_divergence, t.low_speed))
+            vcrit[f] = rows[f]["critical_speed"]
         Vc = vcrit[f]
         return (top if not math.isfinite(Vc) else Vc) - t.V_required
 
@@ -408,8 +419,10 @@ def _refine(t: _Refine) -> dict[str, Any]:
     while h(freq) <= 0 and freq < hi:     # the check: the reported frequency clears
         freq = min(freq + tol, hi)
     Vc = vcrit[freq]
+    row = rows.get(freq, {})
     return {"frequency": float(freq), "critical_speed": None if not math.isfinite(Vc) else Vc,
-            "analyses": count[0]}
+            "analyses": count[0], "kind": row.get("kind", ""),
+            "mode": row.get("critical_mode", "")}
 
 
 def _minimum_frequencies(model: Any, searches: list[tuple[int, str]], V_required: float,
@@ -428,6 +441,7 @@ def _minimum_frequencies(model: Any, searches: list[tuple[int, str]], V_required
     grid = [float(x) for x in f]
     vcrit: list[dict[float, float]] = [{} for _ in pars]
     modes: list[dict[float, str]] = [{} for _ in pars]
+    kinds: list[dict[float, str]] = [{} for _ in pars]
     if checkpoint is not None:
         checkpoint = checkpoint.with_entries(
             study="clearance minimum frequencies", model=execution.content_digest(model),
@@ -436,12 +450,20 @@ def _minimum_frequencies(model: Any, searches: list[tuple[int, str]], V_required
             frequency_tol=float(frequency_tol), paths=[p.path for p in pars],
             convention=convention(static_divergence, low_speed))
 
+    # a callable sees one count over the three phases, against their most from the start
+    passes = (Cumulative(progress, len(pars) * (n_scan + 1))
+              if callable(progress) and not isinstance(progress, (bool, np.bool_)) else None)
+
+    def phase_progress():
+        return progress if passes is None else passes.stage()
+
     def batch(items: list[tuple[int, float]], phase: str) -> None:
         if not items:
             return
         rows = execution.map_analyses(
             sweeps.evaluate, [(pars[i].set(model, x), speeds, xtol, static_divergence, low_speed)
-                              for i, x in items], processes, client=client, progress=progress,
+                              for i, x in items], processes, client=client,
+            progress=phase_progress(),
             checkpoint=None if checkpoint is None else
             _phase_checkpoint(checkpoint, phase).with_entries(sweeps.STUDY_ROW),
             keys=[f"{pars[i].path}={x!r}" for i, x in items],
@@ -449,6 +471,7 @@ def _minimum_frequencies(model: Any, searches: list[tuple[int, str]], V_required
         for (i, x), row in zip(items, rows):
             vcrit[i][x] = row["critical_speed"]
             modes[i][x] = row["critical_mode"]
+            kinds[i][x] = row["kind"]
 
     def clears(i: int, x: float) -> bool:
         Vc = vcrit[i][x]
@@ -476,23 +499,29 @@ def _minimum_frequencies(model: Any, searches: list[tuple[int, str]], V_required
                           (grid[plan[i][1] - 1], grid[plan[i][1]]),
                           tuple(vcrit[i].items()), float(frequency_tol), float(xtol),
                           bool(static_divergence), bool(low_speed)) for i in refine],
-        processes, client=client, progress=progress,
+        processes, client=client, progress=phase_progress(),
         checkpoint=None if checkpoint is None or not refine else
         _phase_checkpoint(checkpoint, "refine"),
         keys=[pars[i].path for i in refine], desc="minimum frequencies (refine)")
     done = dict(zip(refine, refined))
+    if passes is not None and passes.done < passes.total:    # phases that needed fewer
+        progress(passes.total, passes.total)
     out = []
     for i, ((number, name), par) in enumerate(zip(searches, pars)):
         status, k = plan[i]
         count = len(vcrit[i])
         note, freq, Vc = "", None, math.nan
+        kind, mode = kinds[i].get(hi, ""), modes[i].get(hi, "")   # none in range: at the top
         if status == "at or below the range":
             freq, Vc = lo, vcrit[i][lo]
+            kind, mode = kinds[i][lo], modes[i][lo]
         elif status in ("found", "not monotone"):
             r = done[i]
             freq = r["frequency"]
             Vc = math.nan if r["critical_speed"] is None else r["critical_speed"]
             count += r["analyses"]
+            kind, mode = ((r["kind"], r["mode"]) if r.get("kind") else
+                          (kinds[i].get(freq, ""), modes[i].get(freq, "")))
         if status == "not monotone":
             good = [x for x in grid[:k - 1] if clears(i, x)]
             bad = [x for x in grid[:k] if not clears(i, x)]
@@ -506,8 +535,23 @@ def _minimum_frequencies(model: Any, searches: list[tuple[int, str]], V_required
                     f"{' -> '.join(seq)}); {freq:.3f} Hz is the lowest frequency above which "
                     "every sample clears, not a margin")
         out.append(MinimumFrequency(number + 1, name, par.path, par.value(model), freq, status,
-                                    float(Vc), (lo, hi), note, count))
+                                    float(Vc), (lo, hi), note, count, kind, mode))
     return out
+
+
+def _decided(q: MinimumFrequency) -> str:
+    """'; set by flutter of backward 1 (at 149.62 m/s)': what decides a minimum frequency
+    (its kind and mode; "" when unknown)."""
+    if not q.kind:
+        return ""
+    if q.kind == "none":
+        return "; no instability in the analysed range there"
+    where = ("at the range's top" if q.status == "none in range" else
+             "at the range's bottom" if q.status == "at or below the range" else "")
+    speed = (f" at {q.critical_speed:.2f} m/s" if math.isfinite(q.critical_speed) and
+             q.status != "none in range" else "")
+    verb = "fails by" if q.status == "none in range" else "set by"
+    return f"; {verb} {q.kind} of {q.mode}{speed}" + (f" ({where})" if where else "")
 
 
 def _hz(xs: list[float]) -> str:

@@ -66,6 +66,12 @@ class Counted:
             self._memo[key] = value
         return self._memo[key]
 
+    def remember(self, points: Sequence[np.ndarray], values: Sequence[float]) -> None:
+        """Values of g already known at the points (a grid map of the same g): kept in the
+        memo, not counted as evaluations."""
+        for p, value in zip(points, values):
+            self._memo.setdefault(point_key(p), float(value))
+
     def prefetch(self, points: Sequence[np.ndarray]) -> None:
         """Evaluate g at the points not yet in the memo at once: by ``g.batch(points)`` (a list
         of values; e.g. the level functions of :mod:`propwhirl.studies.boundary`, which run
@@ -102,7 +108,8 @@ class Branch:
 @dataclass(frozen=True)
 class Trace:
     """The curves found (one per start bracket not lying on an already traced curve) and the
-    number of evaluations of g they took (start search included)."""
+    number of evaluations of g they took (start search included); starts: the search lines'
+    zeros and the seeds' zeros that started a curve."""
 
     branches: tuple[Branch, ...]
     evaluations: int
@@ -322,6 +329,8 @@ def default_lines() -> list[tuple[np.ndarray, np.ndarray]]:
 
 def _near_curve(u: np.ndarray, branches: list[np.ndarray], dist: float) -> bool:
     for pts in branches:
+        if len(pts) == 1 and float(np.hypot(*(pts[0] - u))) < dist:
+            return True
         for a, b in zip(pts[:-1], pts[1:]):
             ab = b - a
             x = float(np.clip(np.dot(u - a, ab) / max(np.dot(ab, ab), 1e-30), 0.0, 1.0))
@@ -332,7 +341,10 @@ def _near_curve(u: np.ndarray, branches: list[np.ndarray], dist: float) -> bool:
 
 def trace(g: LevelFunction, lower: Sequence[float], upper: Sequence[float], *,
           line: tuple[Sequence[float], Sequence[float]] | None = None,
-          options: ContinuationOptions = ContinuationOptions()) -> Trace:
+          options: ContinuationOptions = ContinuationOptions(),
+          seeds: Sequence[tuple[Sequence[float], Sequence[float]]] = (),
+          seed_spacing: float = 0.0, known: Sequence[np.ndarray] = (),
+          search: bool = True) -> Trace:
     """The curves g(p) = 0 in the rectangle ``lower ≤ p ≤ upper`` (module docstring).
 
     Parameters
@@ -344,12 +356,27 @@ def trace(g: LevelFunction, lower: Sequence[float], upper: Sequence[float], *,
     line : pair of points, optional
         The start search line (in the plane's units); default: :func:`default_lines`.
     options : ContinuationOptions
+    seeds : sequence of point pairs, optional
+        Segments (a, b) in the plane's units across which g changes sign — the edges of a
+        grid map's zero set (:func:`propwhirl.studies.boundary.grid_seeds`): after the
+        curves met by the search lines, each segment farther than `seed_spacing` from every
+        curve traced so far starts another (its zero found on the segment), so a branch the
+        search lines miss — the second arm of an L-shaped boundary, whose corner stops the
+        corrector, or an island — is traced too.
+    seed_spacing : float
+        The grid's cell diagonal in coordinates scaled to the rectangle (1 = its side): a
+        seed this close to a traced curve belongs to it.
+    known : sequence of (N, 2) arrays
+        Curves traced before (the plane's units): no start near them is traced again.
+    search : bool
+        Search the lines for starts (False: the seeds only, as when branches are added to
+        curves traced before).
 
     Returns
     -------
     Trace
-        One :class:`Branch` per curve met by the search line (none: no sign change of g on the
-        search lines — g has one sign there), points in the plane's units.
+        One :class:`Branch` per curve met by the search line or a seed (none: no sign change
+        of g on the search lines nor a seed), points in the plane's units.
     """
     lo = np.asarray(v.finite("lower", lower), dtype=float)
     hi = np.asarray(v.finite("upper", upper), dtype=float)
@@ -368,11 +395,15 @@ def trace(g: LevelFunction, lower: Sequence[float], upper: Sequence[float], *,
     else:
         a, b = (np.asarray(v.finite("line", x), dtype=float) for x in line)
         lines = [((a - lo) / (hi - lo), (b - lo) / (hi - lo))]
-    starts = tr.starts(lines)
+    starts = tr.starts(lines) if search else []
     branches: list[Branch] = []
-    traced: list[np.ndarray] = []
-    for u0 in starts:
-        if _near_curve(u0, traced, max(2 * options.min_step, 0.1 * options.max_step)):
+    traced: list[np.ndarray] = [(np.asarray(c, dtype=float) - lo) / (hi - lo) for c in known]
+    scaled = [tuple((np.asarray(x, dtype=float) - lo) / (hi - lo) for x in pair)
+              for pair in seeds]
+    near = max(2 * options.min_step, 0.1 * options.max_step)
+    seeded: list[np.ndarray] = []
+    for u0, is_seed in _starts_then_seeds(tr, starts, scaled, traced, float(seed_spacing)):
+        if _near_curve(u0, traced, near):
             continue
         grad = tr.gradient(u0)
         norm = float(np.hypot(*grad))
@@ -387,6 +418,29 @@ def trace(g: LevelFunction, lower: Sequence[float], upper: Sequence[float], *,
             pts, stops = back[::-1] + fwd[1:], (why_b, why_f)
         arr = np.array(pts)
         traced.append(arr)
+        if is_seed and len(arr) < 2:       # a seed at a corner the corrector cannot leave
+            continue
+        if is_seed:
+            seeded.append(u0)
         branches.append(Branch(lo + arr * (hi - lo), stops == ("closed",), stops))
     return Trace(tuple(branches), counted.calls,
-                 np.array([lo + u * (hi - lo) for u in starts]).reshape(-1, 2))
+                 np.array([lo + u * (hi - lo) for u in [*starts, *seeded]]).reshape(-1, 2))
+
+
+def _starts_then_seeds(tr: _Tracer, starts: list[np.ndarray], seeds: list[tuple],
+                       traced: list[np.ndarray], spacing: float):
+    """The search lines' start points, then each seed segment's zero — a segment whose
+    middle lies within `spacing` of a curve traced by then is skipped before any evaluation
+    (`traced` grows while this is consumed); each with whether it is a seed's."""
+    for u in starts:
+        yield u, False
+    for a, b in seeds:
+        if _near_curve(0.5 * (a + b), traced, spacing):
+            continue
+        fa, fb = tr.f(a), tr.f(b)
+        if fa == 0.0 or fb == 0.0:
+            yield (a if fa == 0.0 else b), True
+        elif fa * fb < 0:
+            x = brentq(lambda x: tr.f(a + x * (b - a)), 0.0, 1.0,
+                       xtol=tr.o.tol / max(float(np.hypot(*(b - a))), 1e-12))
+            yield a + x * (b - a), True

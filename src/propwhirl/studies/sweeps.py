@@ -39,6 +39,7 @@ from propwhirl.studies.critical import (convention, critical_instability, static
 from propwhirl.studies import execution
 from propwhirl.studies.execution import TaskError
 from propwhirl.studies.partial import Checkpoint, PointFormat, check_checkpoint, content_digest
+from propwhirl.progress import Cumulative
 from propwhirl.studies.warmstart import warm_started_rows
 
 #: Default accuracy of every critical speed of a study [m/s]
@@ -636,9 +637,14 @@ def critical_map(model: Any, axes: Sequence[tuple[str, Any]], *, speeds=None,
         grid = None if speeds is None else v.increasing("speeds", speeds, "m/s")
         grids = [None if isinstance(m, Exception) else grid if grid is not None
                  else m.flight.speeds() for m in variants]
-        rows = warm_started_rows(variants, keys, shape, grids,
-                                 lambda ms, **kw: run_points(ms, **options, **kw),
-                                 checkpoint=checkpoint, stats=stats)
+        passes = None       # a callable's count over the passes, against every point
+        if callable(progress) and not isinstance(progress, (bool, np.bool_)):
+            passes = Cumulative(progress, len(variants))
+        rows = warm_started_rows(
+            variants, keys, shape, grids,
+            lambda ms, **kw: run_points(ms, **{**options, **(
+                {} if passes is None else {"progress": passes.stage()})}, **kw),
+            checkpoint=checkpoint, stats=stats)
     else:
         rows = run_points(variants, speeds, checkpoint=checkpoint, keys=keys, **options)
         if stats is not None:

@@ -33,10 +33,11 @@ from propwhirl.app.plots.map_plot import critical_map, critical_sweep
 from propwhirl.app.plots.mode_plot import event_eigenvector, event_mode_shape, mode_shape
 from propwhirl.app.plots.sensitivity_plot import spanwise_sensitivity
 from propwhirl.app.plots.time_plot import time_history
-from propwhirl.app.plots.vgf_plot import DAMPING_MARGIN, fine_sweep, select_modes, vgf
+from propwhirl.app.plots.vgf_plot import (DAMPING_MARGIN, VgfRequirements, fine_sweep,
+                                          select_modes, vgf)
 
 __all__ = [
-    "vgf", "select_modes", "fine_sweep", "campbell", "campbell_diagram", "mode_shape",
+    "vgf", "VgfRequirements", "select_modes", "fine_sweep", "campbell", "campbell_diagram", "mode_shape",
     "event_mode_shape", "event_eigenvector", "animate_mode", "animate_event", "time_history",
     "critical_map", "critical_sweep", "boundary_plot", "clearance_plot", "spanwise_sensitivity",
     "save",

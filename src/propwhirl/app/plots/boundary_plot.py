@@ -84,7 +84,7 @@ def boundary_plot(boundaries: "Boundary | Sequence[Boundary]", grid: "GridMap | 
     if not bs:
         raise v.InputError("boundaries is empty: give at least one Boundary")
     first = bs[0]
-    fig = new_figure(figsize=(7.5, 6.0), layout="constrained")
+    fig = new_figure(figsize=(7.5, 8.0), layout="constrained")
     ax = fig.subplots()
     if grid is not None:
         X, Y = np.meshgrid(grid.x, grid.y, indexing="ij")
@@ -106,16 +106,34 @@ def boundary_plot(boundaries: "Boundary | Sequence[Boundary]", grid: "GridMap | 
         if np.nanmin(grid.values) < 0 < np.nanmax(grid.values):
             ax.contour(X, Y, grid.values, levels=[0.0], colors="dimgrey", linestyles="--",
                        linewidths=1.5)
-            ax.plot([], [], "--", color="dimgrey", lw=1.5, label="boundary read off the grid "
-                    "(linear interpolation)")
+            what = ("max Re λ = 0" if first.kind == "neutral-stability"
+                    else f"V_crit = {first.speed:g} m/s")
+            ax.plot([], [], "--", color="dimgrey", lw=1.5, label=f"{what} read off the grid "
+                    "(linear interpolation: within a cell of the traced curve)")
+        dx, dy = float(grid.x[1] - grid.x[0]), float(grid.y[1] - grid.y[0])
+        u1, u2 = (f" {u}" if u else "" for u in first.units)
+        fig.supxlabel(wrap(
+            f"Colours: the level on a {len(grid.x)} x {len(grid.y)} grid (cells {dx:.3g}{u1} x "
+            f"{dy:.3g}{u2}), smoothed between its points; the pale band is where it is near "
+            "zero, the grey dashed line its zero read off the grid — both are the grid's "
+            "reading, within a cell of the boundary. The thick line is the boundary traced by "
+            "continuation, to its tolerance; each branch numbered.", 110), fontsize=7,
+            color="0.25")
     for i, b in enumerate(bs):
         c = _CURVE_COLOURS[i % len(_CURVE_COLOURS)]
         style = dict(lw=4.0, ms=6) if i == 0 else dict(lw=1.5, ms=3.0)  # coinciding curves stay visible
         for k, pts in enumerate(b.curves):
             closed = k < len(b.closed) and bool(b.closed[k]) and len(pts) > 2
             pts = np.vstack([pts, pts[:1]]) if closed else pts       # a closed curve drawn closed
+            n = len(b.curves)
             ax.plot(pts[:, 0], pts[:, 1], "-o", color=c, **style,
-                    label=f"{_curve_label(b)} ({b.evaluations} {b.evaluation_name})" if k == 0 else None)
+                    label=f"{_curve_label(b)}: {n} branch{'es' if n > 1 else ''} "
+                    f"({b.evaluations} {b.evaluation_name})" if k == 0 else None)
+            if n > 1 and i == 0:             # each branch numbered, as the text names it
+                mid = pts[len(pts) // 2]
+                ax.annotate(str(k + 1), mid, xytext=(6, 6), textcoords="offset points",
+                            fontsize=10, weight="bold", color=c,
+                            bbox=dict(boxstyle="circle,pad=0.2", fc="white", ec=c))
         if len(b.starts):
             ax.plot(b.starts[:, 0], b.starts[:, 1], "s", color=c, mfc="none", ms=9,
                     label="start (bracketing search)" if i == 0 else None)
@@ -128,7 +146,7 @@ def boundary_plot(boundaries: "Boundary | Sequence[Boundary]", grid: "GridMap | 
     ax.set_ylabel(f"{first.parameters[1]} [{first.units[1]}]" if first.units[1] else first.parameters[1])
     if grid is not None:
         _sides(ax, grid, first)
-    ax.legend(fontsize=8, loc="lower right", framealpha=0.9)
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.1), framealpha=0.9)
     ax.grid(True, alpha=0.3)
     ax.set_title(title or f"{first.model_name}: stability boundary", fontsize=10)
     return finish(fig, path)

@@ -9,7 +9,8 @@ report can be drawn again from ``campaign.json`` without analysing anything:
   vertical lines, the damping requirement g = 2ζ ≥ g_min as a horizontal line up to V_D;
 * :func:`point_mode_shape` — the critical mode: the wing's h and α along the span (Re x̂ and
   the envelope ±|x̂|) and one θ–ψ orbit per propeller;
-* :func:`mesh_plot` — the wing's nodes along the span and the propeller stations.
+* :func:`mesh_plot` — the wing's nodes along the span and the propeller stations;
+* :func:`wing_properties_plot` — EI, GJ and the mass per length along the span.
 """
 from __future__ import annotations
 
@@ -22,17 +23,14 @@ import numpy as np
 from propwhirl.analysis.naming import is_lag, mode_family
 from propwhirl.app.plots.canvas import finish, new_figure
 from propwhirl.app.plots import vgf_plot
-from propwhirl.app.plots.vgf_plot import (VgfCurves, VgfEvent, VgfRequirements, damping_fall_of,
-                                          emphasised)
-from propwhirl.engine.hermite import hermite_coeffs, hermite_eval
+from propwhirl.app.plots.vgf_plot import (HERMITE_POINTS, VgfCurves, VgfEvent, VgfRequirements,
+                                          damping_fall_of, emphasised, hermite_columns,
+                                          hermite_step)
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
 
     from propwhirl.studies.campaign_result import PointPlot, PointRow
-
-#: points of the drawn curve per analysed speed step
-HERMITE_POINTS = 12
 
 
 def point_vgf(row: "PointRow", min_damping_g: float | None = None, *,
@@ -66,46 +64,36 @@ def point_vgf(row: "PointRow", min_damping_g: float | None = None, *,
     req = VgfRequirements(row.V_D, row.V_required, min_damping_g, row.critical_speed,
                           row.kind)
     fig = vgf_plot.vgf_figure(curves, events, requirements=req, label_least_damped=False,
-                     xlabel="true airspeed V [m/s]", figsize=(9.0, 5.6),
-                     title=title or _wrap(f"{row.case} at {row.altitude_m:g} m: V-g-f"))
+                              xlabel="true airspeed V [m/s]", figsize=(9.0, 5.6),
+                              title=title or _wrap(f"{row.case} at {row.altitude_m:g} m: V-g-f"),
+                              zeta_limits=deciding_band(V, nodes[1], row.V_required,
+                                                        min_damping_g))
     return finish(fig, path)
 
 
-def hermite_columns(V: np.ndarray, Y: np.ndarray, dY: np.ndarray, valid: np.ndarray,
-                    n: int = HERMITE_POINTS) -> tuple[np.ndarray, np.ndarray]:
-    """Each column of Y (T, m) as its cubic Hermite curve (:func:`hermite`: slopes dY [per
-    m/s], straight near a branch point) on one grid of `n` points per speed step of V (T,)
-    [m/s]: the grid ((T − 1) n,) and the curves ((T − 1) n, m), NaN on a step whose ends
-    are not both `valid` (T, m)."""
-    V = np.asarray(V, dtype=float)
-    Y, dY, valid = (np.asarray(x) for x in (Y, dY, valid))
-    t = np.linspace(0.0, 1.0, n)
-    grid = np.concatenate([V[j] + t * (V[j + 1] - V[j]) for j in range(len(V) - 1)]) \
-        if len(V) > 1 else V.copy()
-    out = np.full((grid.size, Y.shape[1]), np.nan)
-    for k in range(Y.shape[1]):
-        scale = float(np.ptp(Y[valid[:, k], k])) if valid[:, k].any() else 0.0
-        for j in range(len(V) - 1):
-            if valid[j, k] and valid[j + 1, k]:
-                out[j * n:(j + 1) * n, k] = _hermite_step(V[j], V[j + 1], Y[j, k], Y[j + 1, k],
-                                                          dY[j, k], dY[j + 1, k], t, scale)
-        if len(V) == 1 and valid[0, k]:
-            out[0, k] = Y[0, k]
-    return grid, out
+#: The band that decides never reaches below this ζ [-] above zero (a whirl mode with the
+#: mounts' structural damping g = 0.02 sits at ζ = 0.01: legible in it).
+BAND_TOP = 0.05
 
 
-def _hermite_step(V0: float, V1: float, y0: float, y1: float, d0: float, d1: float,
-                  t: np.ndarray, scale: float) -> np.ndarray:
-    """The cubic Hermite curve of one speed step at the fractions `t` (the engine's model of a
-    step, :func:`propwhirl.engine.hermite.hermite_coeffs`), straight where it leaves the band
-    of its end values widened by their difference and a quarter of the curve's whole range
-    `scale`."""
-    seg = hermite_eval(hermite_coeffs(y0, y1, d0, d1, V1 - V0), t)
-    lo, hi = min(y0, y1), max(y0, y1)
-    room = (hi - lo) + 0.25 * scale
-    if not np.isfinite(seg).all() or seg.min() < lo - room or seg.max() > hi + room:
-        seg = y0 + t * (y1 - y0)     # near a branch point the slope is singular
-    return seg
+def deciding_band(V: np.ndarray, zeta: np.ndarray, V_required: float,
+                  min_damping_g: float | None) -> tuple[float, float]:
+    """The ζ axis (lo, hi) of a campaign's V-g-f on the band that decides (issue 35, item 3):
+    up to the greatest of :data:`BAND_TOP`, three times the damping requirement ζ = g/2 and
+    1.15 × the least damped mode's highest ζ up to the required speed (that mode's whole
+    curve), at most :data:`~propwhirl.app.plots.vgf_plot.ZETA_TOP`; below zero to half of it
+    (at least :data:`~propwhirl.app.plots.vgf_plot.ZETA_BOTTOM`).  A mode damped far more —
+    one wing mode at ζ = 0.2 — leaves it, marked by a triangle, instead of squeezing the
+    modes that decide into a thin band.  `zeta` (T, n) NaN where a mode is not oscillatory;
+    V (T,) [m/s]."""
+    z = np.where((np.asarray(V, dtype=float) <= V_required * (1 + 1e-12))[:, None],
+                 np.asarray(zeta, dtype=float), np.nan)
+    peaks = np.nanmax(np.where(np.isfinite(z), z, -np.inf), axis=0) if z.size else np.array([])
+    peaks = peaks[np.isfinite(peaks)]
+    least = float(peaks.min()) if peaks.size else 0.0
+    top = max(BAND_TOP, 1.5 * (min_damping_g or 0.0), 1.15 * least)
+    top = min(top, vgf_plot.ZETA_TOP)
+    return min(vgf_plot.ZETA_BOTTOM, -0.5 * top), top
 
 
 def hermite(V: np.ndarray, y: np.ndarray, dy: np.ndarray, valid: np.ndarray,
@@ -225,10 +213,50 @@ def mesh_plot(node_y: Sequence[float], propellers: Sequence[tuple[int, float | N
     return finish(fig, path)
 
 
+def wing_properties_plot(y: Sequence[float], m: Sequence[float], EI: Sequence[float],
+                         GJ: Sequence[float], propellers: Sequence[tuple[int, float | None]],
+                         *, path: str | Path | None = None) -> "Figure":
+    """The wing's structural data along the span y [m] (each element's value at its
+    mid-span, drawn as steps over the element): EI and GJ [N m²] and the mass per length
+    m [kg/m]; the propeller stations, `propellers` as (number from 1, y [m] or None)."""
+    y = np.asarray(y, dtype=float)
+    fig = new_figure(figsize=(9.0, 2.8), layout="constrained")
+    ax_k, ax_m = fig.subplots(1, 2)
+    ax_k.step(y, EI, where="mid", color="C0", lw=1.8, label="EI (bending)")
+    ax_k.step(y, GJ, where="mid", color="C3", lw=1.8, label="GJ (torsion)")
+    ax_k.set_ylabel("rigidity [N m²]")
+    ax_k.set_yscale("log")
+    ax_m.step(y, m, where="mid", color="0.2", lw=1.8, label="m (mass per length)")
+    ax_m.set_ylabel("mass per length [kg/m]")
+    ax_m.set_ylim(0.0, 1.15 * float(np.max(m)) if len(y) else 1.0)
+    for ax in (ax_k, ax_m):
+        for number, yp in propellers:
+            if yp is not None:
+                ax.axvline(yp, color="C2", lw=0.8, ls="--")
+                ax.annotate(f"P{number}", (yp, 1.0), xycoords=("data", "axes fraction"),
+                            xytext=(0, 2), textcoords="offset points", ha="center",
+                            va="bottom", fontsize=8, color="C2")
+        ax.set_xlabel("spanwise position y [m]")
+        ax.set_xlim(0.0, float(y[-1]) * 1.02 if len(y) else 1.0)
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8, loc="lower left")
+    return finish(fig, path)
+
+
 def _wrap(text: str, width: int = 90) -> str:
     import textwrap
 
     return "\n".join(textwrap.wrap(text, width)) or text
+
+
+def svg_bytes(fig: Any) -> bytes:
+    """The figure as SVG bytes (a vector image for a data: URI; text as paths, so it looks
+    the same without the fonts)."""
+    import io
+
+    buf = io.BytesIO()
+    fig.savefig(buf, format="svg", metadata={"Date": None})
+    return buf.getvalue()
 
 
 def png_bytes(fig: Any, dpi: int = 80) -> bytes:

@@ -33,6 +33,7 @@ from propwhirl.app.plots.canvas import (DIVERGENCE_COLOUR, FLUTTER_COLOUR, finis
 from propwhirl.app.plots.layout import (FAMILY_COLOURS, family_shades, freeze_layout,
                                         place_labels, wrap, curve_boxes)
 from propwhirl.engine import sweep as engine_sweep
+from propwhirl.engine.hermite import hermite_coeffs, hermite_eval
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
@@ -51,6 +52,47 @@ FINE_SPEEDS = 101
 ZETA_LABEL = "damping ratio ζ  (ζ < 0: unstable)"
 #: |Im λ| / |λ| below this: a real root (no frequency; ζ not drawn)
 _REAL = 1e-9
+
+
+#: points of the drawn curve per analysed speed step
+HERMITE_POINTS = 12
+
+
+def hermite_columns(V: np.ndarray, Y: np.ndarray, dY: np.ndarray, valid: np.ndarray,
+                    n: int = HERMITE_POINTS) -> tuple[np.ndarray, np.ndarray]:
+    """Each column of Y (T, m) as its cubic Hermite curve (:func:`hermite`: slopes dY [per
+    m/s], straight near a branch point) on one grid of `n` points per speed step of V (T,)
+    [m/s]: the grid ((T − 1) n,) and the curves ((T − 1) n, m), NaN on a step whose ends
+    are not both `valid` (T, m)."""
+    V = np.asarray(V, dtype=float)
+    Y, dY, valid = (np.asarray(x) for x in (Y, dY, valid))
+    t = np.linspace(0.0, 1.0, n)
+    grid = np.concatenate([V[j] + t * (V[j + 1] - V[j]) for j in range(len(V) - 1)]) \
+        if len(V) > 1 else V.copy()
+    out = np.full((grid.size, Y.shape[1]), np.nan)
+    for k in range(Y.shape[1]):
+        scale = float(np.ptp(Y[valid[:, k], k])) if valid[:, k].any() else 0.0
+        for j in range(len(V) - 1):
+            if valid[j, k] and valid[j + 1, k]:
+                out[j * n:(j + 1) * n, k] = hermite_step(V[j], V[j + 1], Y[j, k], Y[j + 1, k],
+                                                          dY[j, k], dY[j + 1, k], t, scale)
+        if len(V) == 1 and valid[0, k]:
+            out[0, k] = Y[0, k]
+    return grid, out
+
+
+def hermite_step(V0: float, V1: float, y0: float, y1: float, d0: float, d1: float,
+                  t: np.ndarray, scale: float) -> np.ndarray:
+    """The cubic Hermite curve of one speed step at the fractions `t` (the engine's model of a
+    step, :func:`propwhirl.engine.hermite.hermite_coeffs`), straight where it leaves the band
+    of its end values widened by their difference and a quarter of the curve's whole range
+    `scale`."""
+    seg = hermite_eval(hermite_coeffs(y0, y1, d0, d1, V1 - V0), t)
+    lo, hi = min(y0, y1), max(y0, y1)
+    room = (hi - lo) + 0.25 * scale
+    if not np.isfinite(seg).all() or seg.min() < lo - room or seg.max() > hi + room:
+        seg = y0 + t * (y1 - y0)     # near a branch point the slope is singular
+    return seg
 
 
 def fine_sweep(analysis: "ModelAnalysis", model: "Model", speeds=None,
@@ -255,7 +297,8 @@ def vgf(analysis: "ModelAnalysis", model: "Model | None" = None, *, speeds=None,
         n_speeds: int = FINE_SPEEDS, margin: float | None = DAMPING_MARGIN,
         max_frequency_hz: float | None = None, n_modes: int | None = None,
         labels: Sequence[str] | None = None, include_lag: bool = False,
-        title: str | None = None, path: str | Path | None = None) -> "Figure":
+        title: str | None = None, path: str | Path | None = None,
+        requirements: "VgfRequirements | None" = None, hermite: bool = False) -> "Figure":
     """V-g-f diagram of an analysis: ζ and f [Hz] against V [m/s] of the modes that matter
     (drawn by :func:`vgf_figure`).
 
@@ -293,6 +336,14 @@ def vgf(analysis: "ModelAnalysis", model: "Model | None" = None, *, speeds=None,
         As in :func:`select_modes`.
     title, path
         Figure title; file to write (PNG, or the format of the suffix).
+    requirements : VgfRequirements, optional
+        The clearance's lines: V_D, the required speed (``analyse --vd``), a damping
+        requirement.
+    hermite : bool
+        Without `model`: draw the analysis's own sweep as cubic Hermite curves through its
+        speeds (dots), from the exact slopes dλ/dV (:func:`hermite_columns`, as a campaign's
+        V-g-f) — no second sweep; the curves are exact at the analysed speeds and the
+        crossings are the analysis's refined ones.
 
     Returns
     -------
@@ -324,18 +375,36 @@ def vgf(analysis: "ModelAnalysis", model: "Model | None" = None, *, speeds=None,
         raise v.InputError("no modes to plot: the selection is empty")
     bold = emphasised_modes(analysis, sw, ids, margin)
     names = [sw.mode_labels[k] for k in ids]
+    V = np.asarray(sw.V, dtype=float)
+    zeta = np.where(_oscillatory(sw), sw.damping_ratio, np.nan)[:, ids]
+    freq = np.where(sw.physical, sw.frequency_hz, np.nan)[:, ids]
+    nodes = None
+    if hermite and model is None:          # the analysis's own speeds, smooth between them
+        dlam = np.asarray(sw.dlam_dV)[:, ids]
+        lam = np.asarray(sw.eigenvalues)[:, ids]
+        mag = np.where(np.abs(lam) > 0, np.abs(lam), 1.0)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            dmag = (lam.real * dlam.real + lam.imag * dlam.imag) / mag
+            dzeta = -(dlam.real * mag - lam.real * dmag) / mag**2
+        valid = np.isfinite(zeta) & np.isfinite(dzeta)
+        nodes = (V, zeta, freq)
+        Vs, zeta_s = hermite_columns(V, np.nan_to_num(zeta), np.nan_to_num(dzeta), valid)
+        _, freq_s = hermite_columns(V, np.nan_to_num(freq), np.nan_to_num(dlam.imag / (2 * np.pi)),
+                                    valid & np.isfinite(freq))
+        V, zeta, freq = Vs, zeta_s, freq_s
     curves = VgfCurves(
-        V=sw.V, zeta=np.where(_oscillatory(sw), sw.damping_ratio, np.nan)[:, ids],
-        frequency_hz=np.where(sw.physical, sw.frequency_hz, np.nan)[:, ids],
+        V=V, zeta=zeta, frequency_hz=freq,
         labels=tuple(names), names=tuple(analysis.describe(n) for n in names),
         families=tuple(mode_family(n, analysis.content.get(n)) for n in names),
-        bold=tuple(k in bold for k in ids))
-    grid = f"{sw.V.size} speeds" + ("" if model is None else ", fine grid")
+        bold=tuple(k in bold for k in ids), nodes=nodes)
+    grid = f"{sw.V.size} speeds" + ("" if model is None else ", fine grid") + (
+        ", the analysis's own" if nodes is not None else "")
     head = f"{analysis.model_name}: V-g-f ({grid})"
     if len(head) > 80:
         head = f"{analysis.model_name}\nV-g-f ({grid})"
     fig = vgf_figure(curves, [VgfEvent(e.kind, e.event, e.label, e.V, e.frequency_hz)
-                              for e in analysis.events], margin=margin, title=title or head)
+                              for e in analysis.events], margin=margin, title=title or head,
+                     requirements=requirements)
     return finish(fig, path)
 
 
@@ -385,7 +454,30 @@ class VgfRequirements:
     V_D and the required speed [m/s] (vertical lines, annotated), the damping requirement
     g = 2ζ ≥ ``min_damping_g`` up to V_D (a line in the ζ axes, None: none) and the critical
     speed [m/s] of the kind ``critical_kind`` ("flutter", "divergence"; a ring round its
-    marker at ζ = 0, "V_crit" in the legend; None: none)."""
+    marker at ζ = 0, "V_crit" in the legend; None: none).
+
+    Parameters
+    ----------
+    V_D : float
+        The design dive speed [m/s] (a dotted vertical line).
+    V_required : float
+        The required speed [m/s], e.g. 1.15 V_D (a dashed vertical line).
+    min_damping_g : float, optional
+        The damping requirement g = 2ζ [-], drawn as ζ = g/2 up to V_D.
+    critical_speed : float, optional
+        The critical speed [m/s] (a ring at ζ = 0).
+    critical_kind : str
+        Its kind, "flutter" or "divergence".
+
+    Examples
+    --------
+    ``propwhirl analyse --vd 90 --plot`` draws V_D and 1.15 V_D:
+
+    >>> from propwhirl.app.plots import VgfRequirements
+    >>> r = VgfRequirements(90.0, 1.15 * 90.0)
+    >>> round(r.V_required, 2), r.min_damping_g
+    (103.5, None)
+    """
 
     V_D: float
     V_required: float
@@ -402,7 +494,8 @@ def vgf_figure(curves: VgfCurves, events: Sequence[VgfEvent], *,
                margin: float | None = DAMPING_MARGIN, title: str = "",
                requirements: VgfRequirements | None = None, label_least_damped: bool = True,
                xlabel: str = "airspeed V [m/s]",
-               figsize: tuple[float, float] = (11.0, 7.5)) -> "Figure":
+               figsize: tuple[float, float] = (11.0, 7.5),
+               zeta_limits: tuple[float, float] | None = None) -> "Figure":
     """The V-g-f figure: ζ and f [Hz] against V [m/s] of ``curves``, the instabilities of
     ``events`` marked and labelled — the one drawing of every V-g-f (:func:`vgf`,
     :func:`propwhirl.app.plots.campaign_plot.point_vgf`).
@@ -421,7 +514,9 @@ def vgf_figure(curves: VgfCurves, events: Sequence[VgfEvent], *,
     where they collide with no other label, marker or annotation
     (:func:`~propwhirl.app.plots.layout.place_labels`).  ``requirements``: the clearance's
     lines (:class:`VgfRequirements`).  ``margin``: the damping margin of the ζ axis (None:
-    :data:`DAMPING_MARGIN`).  Returns the figure, its layout frozen (not yet saved).
+    :data:`DAMPING_MARGIN`).  ``zeta_limits``: the ζ axis (lo, hi) instead (a campaign's
+    band that decides: :func:`propwhirl.app.plots.campaign_plot.deciding_band`).  Returns the
+    figure, its layout frozen (not yet saved).
     """
     matplotlib_or_error()
     style = _curve_styles(curves)
@@ -430,7 +525,8 @@ def vgf_figure(curves: VgfCurves, events: Sequence[VgfEvent], *,
     V = np.asarray(curves.V, dtype=float)
     z_all = np.asarray(curves.zeta, dtype=float)
     f_all = np.asarray(curves.frequency_hz, dtype=float)
-    zlim = _zeta_limits(events, curves.labels, style.bold, z_all, margin, requirements)
+    zlim = (_zeta_limits(events, curves.labels, style.bold, z_all, margin, requirements)
+            if zeta_limits is None else tuple(float(x) for x in zeta_limits))
     drawn = _draw_curves(ax_z, ax_f, curves, style, zlim)
     ax_z.axhspan(zlim[0], 0.0, facecolor=FLUTTER_COLOUR, alpha=0.07, lw=0, zorder=0,
                  label="unstable (ζ < 0)")
@@ -621,8 +717,14 @@ def _zeta_window(events: Sequence[VgfEvent], labels: Sequence[str], bold: Sequen
 def _mark_clipping(ax, V: np.ndarray, z: np.ndarray, lo: float, hi: float, colour,
                    strong: bool) -> None:
     """A triangle where curve `z` leaves the ζ window [lo, hi] (▲ at the top, ▼ at the
-    bottom), at the crossing speed on the axis edge."""
+    bottom), at the crossing speed on the axis edge; a curve that starts outside it, at its
+    first speed."""
     inside = np.isfinite(z) & (z >= lo) & (z <= hi)
+    finite = np.flatnonzero(np.isfinite(z))
+    if finite.size and not inside[finite[0]]:
+        edge = hi if z[finite[0]] > hi else lo
+        ax.plot([V[finite[0]]], [edge], "^" if edge == hi else "v", color=colour,
+                ms=7 if strong else 4.5, alpha=1.0 if strong else 0.6, clip_on=False, zorder=4)
     for i in np.flatnonzero(inside[:-1] & ~inside[1:] & np.isfinite(z[1:])):
         edge = hi if z[i + 1] > hi else lo
         t = (edge - z[i]) / (z[i + 1] - z[i]) if z[i + 1] != z[i] else 0.0
