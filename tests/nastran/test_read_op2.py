@@ -288,3 +288,9 @@ def test_not_an_op2_and_a_device_are_one_line(tmp_path):
         _read(path)
     with pytest.raises(InputError, match=r"/dev/zero.*not a regular file"):
         _read("/dev/zero")
+    big = tmp_path / "big.op2"
+    with open(big, "wb") as fh:                 # sparse: no disk space taken
+        fh.truncate(3 * 2 ** 30)
+    with pytest.raises(InputError, match=r"big\.op2.*more than 2,147,483,648 \(propwhirl reads "
+                                         r"OP2s of at most 2 GiB\)"):
+        _read(big)

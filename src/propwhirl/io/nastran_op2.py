@@ -64,6 +64,10 @@ from propwhirl.model.systems import PropellerWing
 #: Default frequency [Hz] below which a free structure's modes are rigid-body modes: far above
 #: a FE solution's numerical zeros (~1e-4 Hz), far below any aircraft's elastic modes (> 1 Hz).
 RIGID_BODY_HZ_FREE = 0.1
+#: Largest OP2 read [bytes]: pyNastran reads the whole file into memory; a SOL 103 OP2 of a
+#: whole aircraft's eigenvectors (10⁵ grids × 6 × 200 modes in single precision: 0.5 GB) fits,
+#: a /dev/zero or a results database of every load case is refused before it is opened.
+MAX_OP2_BYTES = 2 * 2 ** 30
 #: Most rigid-body modes a free structure has (three translations, three rotations).
 MAX_RIGID_BODY_MODES = 6
 #: How ``mount`` places the base's propellers on their hub grids.
@@ -351,7 +355,8 @@ def read_op2(path: str | Path, *, units: str | None = None, base=None,
         n_modes = v.integer_at_least("n_modes", n_modes, 1)
     if free:
         rigid_body_hz = float(v.positive("rigid_body_hz", rigid_body_hz, "Hz"))
-    fileio.check_input(path, "OP2 file")
+    fileio.check_input(path, "OP2 file", MAX_OP2_BYTES,
+                       bound=f"propwhirl reads OP2s of at most {MAX_OP2_BYTES // 2 ** 30} GiB")
     op2 = _read(Path(path), where)
     table = _subcase(op2, subcase, where)
     here: list[str] = []
@@ -428,4 +433,4 @@ def read_op2(path: str | Path, *, units: str | None = None, base=None,
     return model
 
 
-__all__ = ["MAX_RIGID_BODY_MODES", "MOUNT_CHOICES", "RIGID_BODY_HZ_FREE", "read_op2"]
+__all__ = ["MAX_OP2_BYTES", "MAX_RIGID_BODY_MODES", "MOUNT_CHOICES", "RIGID_BODY_HZ_FREE", "read_op2"]
