@@ -40,7 +40,8 @@ from modal_convergence import match, name  # noqa: E402
 
 from helpers.op2_files import free_free_modes, write_op2, write_op2_arrays  # noqa: E402
 from propwhirl.analysis.stability import analyse  # noqa: E402
-from propwhirl.cases.ch10_other_wings import two_propeller_wing, wingtip_propeller_wing  # noqa: E402
+from propwhirl.cases.ch10_other_wings import (two_propeller_wing,  # noqa: E402
+                                              wingtip_propeller_wing)
 from propwhirl.engine import single_thread_blas  # noqa: E402
 from propwhirl.io.nastran_op2 import read_op2  # noqa: E402
 from propwhirl.io.nastran_read import read_bdf  # noqa: E402

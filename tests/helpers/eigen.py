@@ -5,9 +5,10 @@ The two are the same system in other coordinates, so their eigenvalues agree to 
 to the rounding of each eigenvalue as LAPACK computes it, which differs between platforms
 (numpy 1.26 / 2.x, OpenBLAS builds): an error of about eps·‖A‖·κ (κ the eigenvalue's
 condition number) in absolute terms.  ‖A‖ is set by the stiffest modes (≈ 2e11 for the
-thesis's wings: eps‖A‖ ≈ 4e-5 rad/s), so a root near zero — the divergence root just past the
-divergence speed, |λ| ≈ 1 rad/s — is accurate in absolute, not relative terms: measured
-4.9e-7 rad/s on numpy 2.4, and 1.89e-6 relative to max(1, |λ|) was seen on numpy 1.26
+thesis's wings: eps‖A‖ ≈ 4e-5 rad/s), so a root near zero — the divergence root just past
+the divergence speed, |λ| ≈ 1 rad/s — is accurate in absolute, not relative terms: measured
+6e-7 rad/s on numpy 2.4 (4.9e-7 relative to max(1, |λ|)), and 1.89e-6 relative to
+max(1, |λ|) was seen on numpy 1.26
 (issue 36, item 2).  So each distance is relative to max(|λ|, :data:`EIGEN_FLOOR`).
 """
 from __future__ import annotations

@@ -294,3 +294,38 @@ def test_not_an_op2_and_a_device_are_one_line(tmp_path):
     with pytest.raises(InputError, match=r"big\.op2.*more than 2,147,483,648 \(propwhirl reads "
                                          r"OP2s of at most 2 GiB\)"):
         _read(big)
+
+
+def test_the_generalised_masses_of_an_eigenvalue_table_are_used(tmp_path, monkeypatch):
+    """An OP2 of NASTRAN has its eigenvalue table (LAMA); pyNastran 1.4.1 writes none, so the
+    table is added to the OP2 as read: its generalised masses (deck units) × mass unit ×
+    length unit² are the modal masses, and a mode missing from it is refused."""
+    from pyNastran.op2.tables.lama_eigenvalues.lama_objects import RealEigenvalues
+
+    from propwhirl.io import nastran_op2
+
+    s = _structure()
+    path = write_op2(s, tmp_path / "lama.op2", "mm-t-s")
+    real_read = nastran_op2._read
+
+    def with_lama(masses):
+        def read(p, where):
+            op2 = real_read(p, where)
+            table = RealEigenvalues("", "LAMA", len(masses))
+            table.mode[:] = np.arange(1, len(masses) + 1)
+            table.generalized_mass[:] = masses
+            op2.eigenvalues[""] = table
+            return op2
+        return read
+
+    monkeypatch.setattr(nastran_op2, "_read", with_lama([2.0] * 5))
+    m = read_op2(path, units="mm-t-s", base=WINGTIP, hubs=[26], wing_grids=list(s.grid_ids),
+                 mount="own")                               # no mass_normalised needed
+    u = UNIT_SYSTEMS["mm-t-s"]
+    np.testing.assert_allclose(m.structure.modal_mass, 2.0 * u.mass * u.length ** 2,
+                               rtol=1e-7)                    # LAMA is single precision
+    monkeypatch.setattr(nastran_op2, "_read", with_lama([1.0] * 4))
+    with pytest.raises(InputError, match=r"lama\.op2: mode 5 has an eigenvector but no line "
+                                         r"in the eigenvalue table \(LAMA\)"):
+        read_op2(path, units="mm-t-s", base=WINGTIP, hubs=[26], wing_grids=list(s.grid_ids),
+                 mount="own")

@@ -433,4 +433,5 @@ def read_op2(path: str | Path, *, units: str | None = None, base=None,
     return model
 
 
-__all__ = ["MAX_OP2_BYTES", "MAX_RIGID_BODY_MODES", "MOUNT_CHOICES", "RIGID_BODY_HZ_FREE", "read_op2"]
+__all__ = ["MAX_OP2_BYTES", "MAX_RIGID_BODY_MODES", "MOUNT_CHOICES", "RIGID_BODY_HZ_FREE",
+           "read_op2"]
