@@ -107,3 +107,37 @@ def test_sweep_and_map_name_the_same_point_alike(tmp_path):
     (swept,) = _critical_modes(tmp_path / "s.csv").values()
     (mapped,) = _critical_modes(tmp_path / "m.csv").values()
     assert swept == mapped == "forward 1"
+
+
+def test_names_do_not_depend_on_the_basis_lapack_gives_a_repeated_frequency(monkeypatch):
+    """The six high-lift propellers' yaw modes of examples/x57_like.toml share one in-vacuo
+    frequency (12 Hz, equal to 1e-12): LAPACK returns any basis of that subspace, and numpy
+    1.26's gave the critical mode the thesis name "forward 2" where numpy 2's gave
+    "backward 3" (issue 36, item 2).  Any other orthonormal basis of the repeated subspaces
+    gives the same names now (naming._matched: the group matched as a subspace)."""
+    import dataclasses
+
+    from propwhirl.analysis import modes as modes_module
+    from propwhirl.analysis import naming
+
+    model = _x57()
+    before = analyse(model, speeds=X57_SPEEDS)
+    real = naming.model_modes
+    rng = np.random.default_rng(36)
+
+    def turned(*args, **kwargs):
+        m, mass = real(*args, **kwargs)
+        groups = modes_module.repeated_groups(m.omega)
+        assert [g.size for g in groups] == [6]
+        shapes = m.shapes.copy()
+        for g in groups:                   # another mass-orthonormal basis of the subspace
+            q, _ = np.linalg.qr(rng.standard_normal((g.size, g.size)))
+            shapes[:, g] = shapes[:, g] @ q
+        return dataclasses.replace(m, shapes=shapes), mass
+
+    monkeypatch.setattr(naming, "model_modes", turned)
+    for _ in range(3):
+        after = analyse(model, speeds=X57_SPEEDS)
+        assert after.thesis_names == before.thesis_names
+        assert after.sweep.mode_labels == before.sweep.mode_labels
+    assert before.thesis_names[before.critical.label] == "backward 3"

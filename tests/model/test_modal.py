@@ -13,6 +13,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.optimize import linear_sum_assignment
 
+from helpers.eigen import matched_gap
 from propwhirl import InputError
 from propwhirl.analysis.stability import analyse
 from propwhirl.cases.ch10_other_wings import two_propeller_wing, wingtip_propeller_wing
@@ -32,14 +33,6 @@ def modal_of(full, n_modes=None):
     return ModalPropellerWing(s, tuple(int(g) for g in s.grid_ids), StripPlanform.from_wing(w),
                               full.flight, inst, full.wing_aero, full.propeller_aero,
                               full.rotating)
-
-
-def matched_gap(a, b):
-    """Largest relative distance between the eigenvalues of a and b, optimally paired."""
-    ea, eb = np.linalg.eigvals(a), np.linalg.eigvals(b)
-    d = np.abs(ea[:, None] - eb[None, :]) / np.maximum(1.0, np.abs(ea))[:, None]
-    r, c = linear_sum_assignment(d)
-    return float(d[r, c].max())
 
 
 MODELS = {"bare wing": lambda: wingtip_propeller_wing().with_(propellers=()),

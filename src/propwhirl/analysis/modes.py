@@ -53,6 +53,35 @@ from propwhirl import validate as v
 from propwhirl.engine import follow, single_thread_blas
 
 
+#: Relative gap below which two in-vacuo frequencies are one repeated frequency (ω_j − ω_i ≤
+#: REPEATED_TOL · max(ω_j, 1 rad/s)): far above LAPACK's rounding of a repeated eigenvalue
+#: (~1e-15 relative), far below any two distinct modes of a model (identical propellers'
+#: yaw modes that the wing does not couple are equal to 1e-12; the closest distinct pair of
+#: examples/x57_like.toml differs by 6e-4).  Within such a group the eigenvectors LAPACK
+#: returns are any basis of the subspace, so nothing may depend on them one by one
+#: (:func:`repeated_groups`).
+REPEATED_TOL = 1e-8
+
+
+def repeated_groups(omega: np.ndarray, tol: float = REPEATED_TOL) -> list[np.ndarray]:
+    """The groups (index arrays, two or more) of repeated values in ascending ``omega``
+    [rad/s]: consecutive values within ``tol`` · max(|ω|, 1) of the group's first.
+
+    >>> [g.tolist() for g in repeated_groups(np.array([1.0, 2.0, 2.0 + 1e-12, 3.0]))]
+    [[1, 2]]
+    """
+    w = np.asarray(omega, dtype=float)
+    out, i = [], 0
+    while i < w.size:
+        j = i + 1
+        while j < w.size and w[j] - w[i] <= tol * max(abs(w[j]), 1.0):
+            j += 1
+        if j - i > 1:
+            out.append(np.arange(i, j))
+        i = j
+    return out
+
+
 @dataclass(frozen=True)
 class Modes:
     """Undamped modes: angular frequencies ω [rad/s], mass-normalised shapes (columns)."""
@@ -156,7 +185,12 @@ def label_modes(model, basis: np.ndarray | None = None, modes: Modes | None = No
     so the shifts stay far below the gaps between modes), each mode followed by
     :func:`track_gyroscopic` (the engine's tracking core, as in the Campbell diagram); with N
     flexible propellers the N modes that fall most are 'backward k', the N that rise most
-    'forward k' (k by frequency), the rest 'wing n'.  Stopped and feathered installations
+    'forward k' (k by frequency), the rest 'wing n'.  A repeated frequency
+    (:func:`repeated_groups`: identical propellers whose yaw the wing does not couple) has no
+    shape per mode, only a subspace; its names are listed in the order of their frequencies
+    just above Ω = 0 (the falling ones first), which does not depend on the basis LAPACK
+    returns, and :func:`propwhirl.analysis.naming.named_modes` matches such a group as a
+    subspace.  Stopped and feathered installations
     (``Installation.state``) do not turn, so their pitch and yaw modes do not split: they count
     as neither (N is the number of flexibly mounted propellers that turn).
     ``basis``: the modes of the Rayleigh–Ritz problem on its columns (:func:`model_modes`);
@@ -185,6 +219,11 @@ def label_modes(model, basis: np.ndarray | None = None, modes: Modes | None = No
             kinds[i] = "backward"
         for i in order[::-1][:n]:
             kinds[i] = "forward"
+        for g in repeated_groups(modes.omega):      # by their frequency just above Ω = 0
+            by_slope = g[np.argsort(delta[g], kind="stable")]
+            kinds_g = [kinds[i] for i in by_slope]
+            for i, kind in zip(g, kinds_g):
+                kinds[i] = kind
     counters = {"backward": 0, "forward": 0, "wing": 0}
     out = []
     for kind, f in zip(kinds, f0):
@@ -407,7 +446,8 @@ class _Tracks:
 
 
 def track_gyroscopic(system: GyroscopicSystem, Omega: np.ndarray, *, mac_min: float = 0.8,
-                     min_step: float = 0.01 * 2.0 * np.pi / 60.0, degenerate_tol: float = 1e-8,
+                     min_step: float = 0.01 * 2.0 * np.pi / 60.0,
+                     degenerate_tol: float = REPEATED_TOL,
                      max_nodes: int | None = None) -> _Tracks:
     """Follow every mode from Ω = 0 through the increasing speeds ``Omega`` [rad/s] ≥ 0."""
     with single_thread_blas():           # small dense eigenproblems: one BLAS thread is fastest

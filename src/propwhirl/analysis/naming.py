@@ -47,7 +47,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
-from propwhirl.analysis.modes import in_vacuo_of, label_modes, model_modes
+from propwhirl.analysis.modes import in_vacuo_of, label_modes, model_modes, repeated_groups
 from propwhirl.analysis.participation import mode_participation
 from propwhirl.analysis.whirl import whirl_sense
 from propwhirl.engine import Sweep, mac
@@ -241,11 +241,8 @@ def named_modes(model: Model, sw: Sweep, basis: np.ndarray | None = None,
     if dm.has_wing:
         modes, _ = model_modes(model, basis, in_vacuo)
         ref = [lab for lab, _ in label_modes(model, basis, modes, in_vacuo)]
-        shapes = modes.shapes.astype(complex)
-        M = mac(X0[sw.displacement][:, osc][:, :, None], shapes[:, None, :])
-        rows, cols = linear_sum_assignment(-M)
-        for r, c in zip(rows, cols):
-            names[osc[r]] = ref[c]
+        for k, lab in _matched(X0[sw.displacement][:, osc], lam0[osc], modes, ref):
+            names[osc[k]] = lab
         if len(_spinning_flexible(dm)) >= 2:
             whirls = [k for k in osc if not names[k].startswith("wing")]
             thesis_names = list(names)
@@ -271,6 +268,39 @@ def named_modes(model: Model, sw: Sweep, basis: np.ndarray | None = None,
             names[k] = max(e, key=lambda g: e[g])
     names = _partners(sw, names)
     return names, names
+
+
+def _matched(X: np.ndarray, lam: np.ndarray, modes, ref: Sequence[str]
+             ) -> list[tuple[int, str]]:
+    """(column of ``X``, name) pairs: the oscillatory modes ``X`` (displacements, one per
+    column; eigenvalues ``lam``) matched one to one to the in-vacuo ``modes`` named ``ref``
+    (:func:`~propwhirl.analysis.modes.label_modes`) by an optimal assignment of the MAC.
+
+    A repeated in-vacuo frequency (:func:`~propwhirl.analysis.modes.repeated_groups`) is a
+    subspace whose basis LAPACK picks by rounding, so it is matched as a subspace: each of its
+    columns scores a mode by the share of the mode in the subspace (‖Qᴴx‖² / ‖x‖², Q an
+    orthonormal basis of it: the same whatever the basis), and the names of the group go to
+    the modes assigned to it in one fixed order — the modes by increasing frequency |Im λ|
+    (their index on a tie), the names in label_modes' order (by frequency just above Ω = 0).
+    The names of near-identical propellers' modes thus do not flip with the rounding of the
+    platform's LAPACK (issue 36, item 2).
+    """
+    shapes = modes.shapes.astype(complex)
+    M = mac(X[:, :, None], shapes[:, None, :])
+    groups = repeated_groups(modes.omega)
+    norms = np.sum(np.abs(X) ** 2, axis=0)
+    for g in groups:
+        Q, _ = np.linalg.qr(shapes[:, g])
+        share = np.sum(np.abs(Q.conj().T @ X) ** 2, axis=0) / np.where(norms > 0, norms, 1.0)
+        M[:, g] = share[:, None]
+    rows, cols = linear_sum_assignment(-M)
+    out = dict(zip(cols.tolist(), rows.tolist()))          # in-vacuo column -> mode
+    for g in groups:
+        members = [int(c) for c in g if int(c) in out]
+        ks = sorted((out[c] for c in members), key=lambda k: (abs(lam[k].imag), k))
+        for c, k in zip(sorted(members), ks):
+            out[c] = k
+    return [(k, ref[c]) for c, k in out.items()]
 
 
 def _partners(sw: Sweep, names: list[str]) -> list[str]:

@@ -11,7 +11,8 @@ Commands
   map          critical speed of a model over two parameter paths (contour map)
   case         export a model of the thesis's case library as a TOML model file
   upgrade-model  rewrite a model file of an older format version in the current one
-  import       a beam model from a NASTRAN bulk data file (BDF), completed by a base model file
+  import       a beam model from a NASTRAN bulk data file (BDF), or a modal model from an OP2's
+               modes, completed by a base model file
   export       a beam model as a NASTRAN SOL 103 deck (BDF)
   boundary     stability boundary in a plane of two parameters (continuation)
   clearance    clearance to factor x V_D (exit code 0 cleared, 1 not cleared)

@@ -13,7 +13,8 @@ before anything is read (:func:`read_arrays`: no pickle, no allocation on the
 file's word).  Every problem is one line naming the file, the key and
 the id; a file is read whole or not at all.
 
-A NASTRAN OP2 reader is not provided: any FE code's modes can be written to this format.  A
+A NASTRAN SOL 103 OP2 is read into this format by :mod:`propwhirl.io.nastran_op2` (and
+written by :func:`save_modal_model`); any other FE code's modes can be written to it.  A
 NASTRAN stick model (BDF) is read as a beam model: :mod:`propwhirl.io.nastran_read`.
 """
 from __future__ import annotations
@@ -442,6 +443,81 @@ def write_modes(model: PropellerWing, path: str | Path, n_modes: int | None = No
                                    else np.float64) for k in ARRAYS})
     fileio.write_bytes(npz, buf.getvalue(), what="modes file")
     header = (f"# propwhirl modal model: the modes of {model.name!r}'s wing, in {npz.name}\n"
+              "# (docs/modal-structures.md: frame x aft, y outboard, z up; SI units)\n")
+    fileio.write_text(path, header + tomli_w.dumps(doc), what="modal model file")
+    return path, npz
+
+
+def save_modal_model(model: ModalPropellerWing, path: str | Path) -> tuple[Path, Path]:
+    """Write a :class:`~propwhirl.model.modal.ModalPropellerWing` (its modes, wing grids,
+    strips, installations, flight condition, switches and propellers) as a modal model file:
+    the modes to ``<stem>.modes.npz`` beside ``path``, the TOML description to ``path``, in
+    the format :func:`load_modal_model` reads (docs/modal-structures.md).  The targets are
+    checked as :func:`write_modes` checks them (a new path or a modal model file; regular
+    files; apart).  Needs tomli-w.
+
+    Parameters
+    ----------
+    model : ModalPropellerWing
+        The modal model (e.g. :func:`propwhirl.io.nastran_op2.read_op2`'s).
+    path : str or Path
+        The TOML description to write.
+
+    Returns
+    -------
+    toml : Path
+        The TOML description (`path`).
+    npz : Path
+        The modes (frequencies [Hz], modal masses [kg], damping ratios, shapes [m, rad]).
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> from propwhirl.io import load_modal_model, write_modes
+    >>> from propwhirl.io.modal_files import save_modal_model
+    >>> from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     toml, _ = write_modes(wingtip_propeller_wing(), pathlib.Path(folder) / "a.toml",
+    ...                           n_modes=6)
+    ...     model = load_modal_model(toml)
+    ...     again, _ = save_modal_model(model, pathlib.Path(folder) / "b.toml")
+    ...     back = load_modal_model(again)
+    >>> bool((back.structure.shapes == model.structure.shapes).all()), back.wing_grids[:3]
+    (True, (1, 2, 3))
+    """
+    if not isinstance(model, ModalPropellerWing):
+        raise v.InputError(f"save_modal_model: model is a {type(model).__name__}: it must be "
+                           "a ModalPropellerWing (a beam model: write_modes)")
+    try:
+        import tomli_w
+    except ImportError:
+        raise v.InputError("writing a modal model file needs tomli-w: "
+                           "pip install propwhirl[toml]") from None
+    path = Path(path)
+    npz = path.with_name(path.name.removesuffix(".toml") + ".modes.npz")
+    _check_targets(path, npz)
+    s, planform = model.structure, model.planform
+    w = Writer()
+    installations = [{"propeller": w.propeller_key(inst.propeller), "grid": int(inst.grid),
+                      "mount": inst.mount, "aero": inst.aero} for inst in model.propellers]
+    doc: dict[str, Any] = {
+        "format": FORMAT, "format_version": FORMAT_VERSION, "name": model.name,
+        "installations": installations,
+        "units": dict(UNITS),
+        "modes": {"file": npz.name, "n_modes": s.n_modes, "n_grids": int(s.grid_ids.size),
+                  "wing_grids": [int(g) for g in model.wing_grids]},
+        "strips": {"aero_model": planform.aero_model,
+                   **{k: [float(x) for x in getattr(planform, f)] for k, f in STRIP_KEYS}},
+        "flight": w.encode(model.flight, "flight"),
+        "switches": {"wing_aero": model.wing_aero, "propeller_aero": model.propeller_aero,
+                     "rotating": model.rotating},
+        "propellers": w.propellers,
+    }
+    buf = io.BytesIO()
+    np.savez(buf, **{k: np.asarray(getattr(s, k), dtype=np.int64 if k == "grid_ids"
+                                   else np.float64) for k in ARRAYS})
+    fileio.write_bytes(npz, buf.getvalue(), what="modes file")
+    header = (f"# propwhirl modal model {model.name!r}: its modes in {npz.name}\n"
               "# (docs/modal-structures.md: frame x aft, y outboard, z up; SI units)\n")
     fileio.write_text(path, header + tomli_w.dumps(doc), what="modal model file")
     return path, npz

@@ -167,6 +167,20 @@ def _scanned_ids(text: str, name: str) -> list[str]:
 
 
 # ============================================================================ the deck
+def cord2r_axes(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> np.ndarray | None:
+    """The axes (rows: unit vectors x, y, z in the basic frame) of a CORD2R through its
+    points A (origin), B (on +z) and C (in the xz plane), all in the basic frame; None when
+    the three points lie on one line (no axes)."""
+    k = b - a
+    j = np.cross(k, c - a)
+    if not (np.linalg.norm(k) > 0 and np.linalg.norm(j) > 1e-12 * np.linalg.norm(k)
+            * max(np.linalg.norm(c - a), 1e-300)):
+        return None
+    k = k / np.linalg.norm(k)
+    j = j / np.linalg.norm(j)
+    return np.array([np.cross(j, k), j, k])
+
+
 @dataclass(frozen=True)
 class Grid:
     """A grid point: its id and its position in the basic frame [m]."""
@@ -293,14 +307,9 @@ class Deck:
             raise self.fail(f"CORD2R {cid} is defined through itself (RID {coord.rid})")
         o, R = self.frame(int(coord.rid), f"CORD2R {cid}", seen + (cid,))
         a, b, c = (o + R.T @ np.asarray(p, dtype=float) for p in (coord.e1, coord.e2, coord.e3))
-        k = b - a
-        j = np.cross(k, c - a)
-        if not (np.linalg.norm(k) > 0 and np.linalg.norm(j) > 1e-12 * np.linalg.norm(k)
-                * max(np.linalg.norm(c - a), 1e-300)):
+        axes = cord2r_axes(a, b, c)
+        if axes is None:
             raise self.fail(f"CORD2R {cid}: its points A, B, C do not define axes (on one line)")
-        k = k / np.linalg.norm(k)
-        j = j / np.linalg.norm(j)
-        axes = np.array([np.cross(j, k), j, k])
         self._frames[cid] = (a, axes)
         return a, axes
 
@@ -757,7 +766,9 @@ def _as_model(base, where: str) -> PropellerWing:
     return base
 
 
-def _hub_ids(hubs, base: PropellerWing, where: str) -> tuple[int, ...]:
+def hub_ids(hubs, base: PropellerWing, where: str) -> tuple[int, ...]:
+    """The hub grid ids ``hubs``, one per installation of ``base`` and distinct; else one
+    line starting with ``where`` (the file)."""
     hubs = tuple(hubs or ())
     for h in hubs:
         if isinstance(h, (bool, np.bool_)) or not isinstance(h, (int, np.integer)) or h <= 0:
@@ -823,13 +834,13 @@ def read_bdf(path: str | Path, *, units: str | None = None, base=None,
     where = fileio.shown(path) if isinstance(path, (str, Path)) else repr(path)
     u = unit_system(units, where)
     model = _as_model(base, where)
-    hub_ids = _hub_ids(hubs, model, where)
+    hub_grids = hub_ids(hubs, model, where)
     text = fileio.read_text(path, "BDF file")
     notes_here: list[str] = []
     deck = Deck(_parse(Path(path), where, text), where, text, u, notes_here)
     stick = _stick(deck)
     wing = _wing(deck, stick, model.wing, base_name)
-    mounts = nastran_mounts.read(deck, stick, hub_ids)
+    mounts = nastran_mounts.read(deck, stick, hub_grids)
     installations = tuple(nastran_mounts.installation(deck, m, inst, wing, stick)
                           for m, inst in zip(mounts, model.propellers))
     try:
@@ -841,5 +852,5 @@ def read_bdf(path: str | Path, *, units: str | None = None, base=None,
     return out
 
 
-__all__ = ["Deck", "MODEL_CARDS", "SECTION_TYPES", "SETTING_CARDS", "Stick", "read_bdf",
-           "require_pynastran"]
+__all__ = ["Deck", "MODEL_CARDS", "SECTION_TYPES", "SETTING_CARDS", "Stick", "cord2r_axes",
+           "hub_ids", "read_bdf", "require_pynastran"]

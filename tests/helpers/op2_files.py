@@ -1,0 +1,122 @@
+"""Writing OP2 files of a propwhirl structure's modes for the tests (pyNastran's writer): the
+eigenvectors (OUGV1, table code 7, MSC format) with their eigenvalues, and the grids (GEOM1).
+
+pyNastran 1.4.1 writes no eigenvalue table (LAMA: ``skipping table=LAMA``), so the OP2s here
+hold mass-normalised eigenvectors (read with ``mass_normalised=True``), and it writes the
+eigenvectors and the grids in single precision, as NASTRAN's OP2s are.
+"""
+from __future__ import annotations
+
+import contextlib
+import io
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+from propwhirl.io.nastran import UNIT_SYSTEMS
+from propwhirl.model.modal_structure import ModalStructure
+
+
+def write_op2(s: ModalStructure, path: Path, units: str = "si", **options) -> Path:
+    """``s`` (mass-normalised, SI) as a SOL 103 OP2 in ``units``: :func:`write_op2_arrays`."""
+    assert np.allclose(s.modal_mass, 1.0), "mass-normalised modes only"
+    return write_op2_arrays(path, s.grid_ids, s.xyz, (2.0 * np.pi * s.frequencies_hz) ** 2,
+                            s.shapes, units, **options)
+
+
+def write_op2_arrays(path: Path, grid_ids, xyz, eigenvalues, shapes, units: str = "si", *,
+                     geometry: bool = True, subcases=(1,), cd: dict[int, tuple] | None = None,
+                     scalar_points=()) -> Path:
+    """Mass-normalised modes (SI: ``shapes`` (n_modes, n_grids, 6) [m, rad] with φᵀMφ = 1 kg,
+    ``eigenvalues`` ω² [1/s²], possibly ≈ 0 for rigid-body modes) as a SOL 103 OP2 in
+    ``units``: the deck's mass-normalised eigenvectors (translations / length unit, then
+    every component × √(mass unit × length unit²): φᵀMφ = 1 in the deck's units), the
+    grids' positions (/ length unit).  ``cd``: grid id -> (cid, A, B, C) a CORD2R (basic)
+    its components are given in; ``scalar_points``: SPOINT ids added with zero motion."""
+    from pyNastran.op2.op2_geom import OP2Geom
+    from pyNastran.op2.tables.oug.oug_eigenvectors import RealEigenvectorArray
+
+    from propwhirl.io.nastran_read import cord2r_axes
+
+    u = UNIT_SYSTEMS[units]
+    shapes = np.array(shapes, dtype=float)
+    n_modes = shapes.shape[0]
+    shapes[:, :, :3] /= u.length
+    shapes *= np.sqrt(u.mass * u.length ** 2)
+    cd = cd or {}
+    op2 = OP2Geom(debug=None, log=None)
+    op2.set_as_msc()
+    ids = [int(i) for i in grid_ids]
+    for i, gid in enumerate(ids):
+        if gid in cd:                     # components in the CORD2R's axes: v_local = R v
+            _, a, b, c = cd[gid]
+            R = cord2r_axes(*(np.asarray(p, dtype=float) for p in (a, b, c)))
+            shapes[:, i, :3] = shapes[:, i, :3] @ R.T
+            shapes[:, i, 3:] = shapes[:, i, 3:] @ R.T
+    gridtype = [(gid, 1) for gid in ids] + [(int(p), 2) for p in scalar_points]
+    data = np.concatenate([shapes, np.zeros((n_modes, len(scalar_points), 6))], axis=1)
+    eig = np.asarray(eigenvalues, dtype=float)
+    modes = np.arange(1, n_modes + 1)
+    for sc in subcases:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            ev = RealEigenvectorArray.add_modal_case(
+                "OUGV1", np.array(gridtype), data, sc, modes, eig,
+                np.sqrt(np.abs(eig)) / (2 * np.pi), is_sort1=True, is_msc=True)
+        ev.table_code = 7
+        op2.eigenvectors[sc] = ev
+    if geometry:
+        for gid, (cid, a, b, c) in cd.items():
+            if cid not in op2.coords:
+                op2.add_cord2r(cid, list(a), list(b), list(c))
+        for i, gid in enumerate(ids):
+            op2.add_grid(gid, list(np.asarray(xyz[i], dtype=float) / u.length),
+                         cd=cd[gid][0] if gid in cd else 0)
+    chatter = io.StringIO()
+    with contextlib.redirect_stdout(chatter), contextlib.redirect_stderr(chatter), \
+            warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        op2.write_op2(str(path), nastran_format="msc")
+    return Path(path)
+
+
+#: Root components a free structure's root leaves free, by case: the whole aircraft's wing
+#: (heave, roll, pitch), a half aircraft's symmetric (heave, pitch) and antisymmetric (roll).
+FREE_ROOTS = {"free": (0, 1, 2), "symmetric": (0, 2), "antisymmetric": (1,)}
+
+
+def free_free_modes(wing, body_mass: float, body_roll_inertia: float,
+                    body_pitch_inertia: float, free: str = "free"):
+    """The modes of a beam wing whose root, instead of being clamped, carries a rigid body
+    (a fuselage: mass [kg] on the root's heave, roll inertia [kg m²] on its bending slope φ,
+    pitch inertia [kg m²] on its twist α) and is free in the components of
+    ``FREE_ROOTS[free]`` (the others held): the beam's own element matrices
+    (:func:`propwhirl.model.structure.assembly.wing_structure`), every mode mass-normalised,
+    the rigid-body ones at ω² ≈ 0.  Returns (grid ids, xyz [m], ω² [1/s²], shapes
+    (n_modes, n_grids, 6) [m, rad] in the wing frame: T_z = −h, R_x = −φ, R_y = α)."""
+    import scipy.linalg
+
+    from propwhirl.model.structure.assembly import wing_structure
+
+    M, _, K = wing_structure(wing)
+    M = np.array(M, dtype=float)
+    M[0, 0] += body_mass
+    M[1, 1] += body_roll_inertia
+    M[2, 2] += body_pitch_inertia
+    keep = np.array([i for i in range(M.shape[0]) if i >= 3 or i in FREE_ROOTS[free]])
+    w2, X = scipy.linalg.eigh(K[np.ix_(keep, keep)], M[np.ix_(keep, keep)])
+    n = w2.size
+    full = np.zeros((M.shape[0], n))
+    full[keep] = X
+    for k in range(n):                           # a sign convention: largest entry positive
+        i = int(np.argmax(np.abs(full[:, k])))
+        full[:, k] *= np.sign(full[i, k])
+    nodal = full.reshape(wing.n_nodes, 3, n)
+    shapes = np.zeros((n, wing.n_nodes, 6))
+    shapes[:, :, 2] = -nodal[:, 0].T
+    shapes[:, :, 3] = -nodal[:, 1].T
+    shapes[:, :, 4] = nodal[:, 2].T
+    xyz = np.zeros((wing.n_nodes, 3))
+    xyz[:, 1] = wing.node_y
+    return 1 + np.arange(wing.n_nodes), xyz, w2, shapes
