@@ -25,7 +25,7 @@ def test_analyse_takes_a_modal_model(modal_file, tmp_path, capsys):
     assert cli.main(["analyse", str(modal_file), "--json", str(out), "--quiet"]) == 0
     printed = capsys.readouterr().out
     expected = analyse(load_modal_model(modal_file)).critical
-    assert f"critical: divergence of mode 1 (modal) at {expected.V:.2f} m/s" in printed
+    assert f"critical: divergence of wing 1 at {expected.V:.2f} m/s" in printed   # issue 34.4
     saved = json.loads(out.read_text())
     assert saved["model_name"].endswith("(modal)") and saved["format"] == "propwhirl.analysis/3"
 

@@ -47,7 +47,7 @@ from propwhirl.model.modal_structure import ModalStructure, StripPlanform, strip
 from propwhirl.model.propellers.propeller import Propeller
 from propwhirl.model.propeller_blocks import (propeller_constants_at, propeller_matrices,
                                              propeller_values)
-from propwhirl.model.protocol import DofMap, PropellerDofs
+from propwhirl.model.protocol import DofMap, HubDofs, PropellerDofs
 from propwhirl.model.statespace import SecondOrder
 
 #: How a propeller sits on its hub grid (module docstring).
@@ -245,7 +245,33 @@ class ModalPropellerWing(StateSpaceModel):
             w_labels = tuple(f"strip {s + 1} w{r + 1}" for s in range(self.planform.y.size)
                              for r in range(k))
         return DofMap(tuple(labels), tuple(kinds), tuple(node), tuple(prop), w_labels,
-                      (-1,) * len(w_labels), tuple(props))
+                      (-1,) * len(w_labels), tuple(props), hubs=self._hubs(len(labels)))
+
+    def _hubs(self, n_dof: int) -> tuple[HubDofs, ...]:
+        """The on-grid propellers' pitch and yaw as rows over q (:class:`HubDofs`): the hub
+        grid's rotations θ_H = R_y, ψ_H = −R_z less the wing's at the hub's spanwise station
+        (the wing grids' R_y, R_z interpolated linearly in y, held beyond the ends) — the
+        propeller's rotation on its mount, a flexible mount's θ and ψ (θ_H = θ + α_P,
+        ψ_H = ψ + χ_P: derivations/prop_hub.py); J the propeller's pivot inertias."""
+        s, out = self.structure, []
+        wing = np.array([s.index(g) for g in self.wing_grids])
+        yw = s.xyz[wing, 1]
+        order = np.argsort(yw, kind="stable")
+        for j, inst in enumerate(self.propellers):
+            if inst.mount != "on-grid":
+                continue
+            g = s.index(inst.grid)
+            y = float(s.xyz[g, 1])
+            # linear-interpolation weights of the wing grids at y (one per grid)
+            weights = np.array([np.interp(y, yw[order], e[order]) for e in np.eye(wing.size)])
+            rel = s.shapes[:, g, :] - np.einsum("w,mwc->mc", weights, s.shapes[:, wing, :])
+            pitch, yaw = np.zeros(n_dof), np.zeros(n_dof)
+            pitch[: s.n_modes], yaw[: s.n_modes] = rel[:, 4], -rel[:, 5]
+            inertia = inst.propeller.pivot_inertia()
+            out.append(HubDofs(j, tuple(pitch.tolist()), tuple(yaw.tolist()),
+                               (float(inertia["I_theta_P"]), float(inertia["I_psi_P"])),
+                               inst.propeller.rotation, self.rotating, y))
+        return tuple(out)
 
 
 @dataclass(frozen=True, eq=False)

@@ -98,6 +98,64 @@ class PropellerDofs:
 
 
 @dataclass(frozen=True)
+class HubDofs:
+    """The pitch and yaw on its mount of a propeller without degrees of freedom of its own: a
+    modal structure's propeller whose mount is in the modes (``mount = "on-grid"``,
+    :mod:`propwhirl.model.modal`), its pitch and yaw a combination of the coordinates q.
+
+    number:   the propeller's index in its model, 0-based (as :class:`PropellerDofs`).
+    pitch:    (n_dof,) θ [rad] per unit of each q: the hub grid's nose-up rotation relative to
+              the wing's at the hub's spanwise station.
+    yaw:      (n_dof,) ψ [rad] per unit of each q: the hub grid's yaw (the thesis's ψ sense)
+              relative to the wing's there.
+    inertia:  (I_θ, I_ψ) [kg m²]: the propeller's moments of inertia about its pivots (the
+              kinetic energy of its pitch and yaw, as a flexible mount's θ–θ and ψ–ψ masses).
+    rotation, spinning, y: as :class:`PropellerDofs`.
+    """
+
+    number: int
+    pitch: tuple[float, ...]
+    yaw: tuple[float, ...]
+    inertia: tuple[float, float]
+    rotation: int
+    spinning: bool
+    y: float | None
+
+
+@dataclass(frozen=True)
+class PropellerMotion:
+    """One propeller's pitch θ and yaw ψ on its mount as rows over q, whichever way the model
+    holds them (:meth:`DofMap.whirling`): its own DOFs (``dofs`` = their indices in q, rows the
+    unit rows there) or a combination of q (``dofs`` None, ``inertia`` its pitch and yaw
+    moments of inertia [kg m²]).  number, rotation, spinning, y: as :class:`PropellerDofs`."""
+
+    number: int
+    rows: np.ndarray
+    rotation: int
+    spinning: bool
+    y: float | None
+    dofs: tuple[int, int] | None = None
+    inertia: tuple[float, float] | None = None
+
+    def pitch_yaw(self, x: np.ndarray) -> np.ndarray:
+        """(θ̂, ψ̂) of shapes ``x`` ((n,) or (n, m), their first ``n_dof`` rows the
+        displacements q): (2,) or (2, m)."""
+        x = np.asarray(x)
+        return self.rows @ x[: self.rows.shape[1]]
+
+    def energy(self, x: np.ndarray, M: np.ndarray) -> np.ndarray:
+        """The kinetic energy measure ûᴴ J û of its pitch and yaw û = (θ̂, ψ̂) in shapes ``x``
+        ((n_dof, m) displacements), J its own DOFs' block of the mass matrices ``M`` ((m,
+        n_dof, n_dof)) or diag(``inertia``): (m,) [kg m² rad² per unit shape²]."""
+        u = self.pitch_yaw(x)
+        if self.dofs is not None:
+            ix = np.asarray(self.dofs)
+            J = M[:, ix][:, :, ix]
+            return np.real(np.einsum("ik,kij,jk->k", u.conj(), J, u))
+        return np.real(self.inertia[0] * np.abs(u[0]) ** 2 + self.inertia[1] * np.abs(u[1]) ** 2)
+
+
+@dataclass(frozen=True)
 class DofMap:
     """What every state of a model is.  The state is x = [q, q̇, w] (eq. 5.3, D.27).
 
@@ -110,6 +168,8 @@ class DofMap:
     propellers:  the flexibly mounted propellers' pitch/yaw DOFs.
     node_y:      spanwise position [m] of every wing node, the clamped root (node 0)
                  included; empty without a wing.
+    hubs:        the propellers whose pitch and yaw on their mounts are combinations of q
+                 (a modal structure's "on-grid" mounts, :class:`HubDofs`).
     """
 
     q_labels: tuple[str, ...]
@@ -120,9 +180,15 @@ class DofMap:
     w_node: tuple[int, ...] = ()
     propellers: tuple[PropellerDofs, ...] = ()
     node_y: tuple[float, ...] = ()
+    hubs: tuple[HubDofs, ...] = ()
 
     def __post_init__(self) -> None:
         n = len(self.q_labels)
+        for h in self.hubs:
+            if len(h.pitch) != n or len(h.yaw) != n:
+                raise v.InputError(f"DofMap.hubs: propeller {h.number + 1}'s pitch and yaw "
+                                   f"rows have {len(h.pitch)} and {len(h.yaw)} entries, need "
+                                   f"one per degree of freedom ({n})")
         for name in ("q_kinds", "q_node", "q_propeller"):
             if len(getattr(self, name)) != n:
                 raise v.InputError(f"DofMap.{name} has {len(getattr(self, name))} entries, "
@@ -181,6 +247,32 @@ class DofMap:
         """Whether the model has wing degrees of freedom (h, φ, α at nodes)."""
         return any(n >= 0 for n in self.q_node)
 
+    @property
+    def has_structure(self) -> bool:
+        """Whether the model has a wing structure: wing DOFs at nodes, or the modal
+        coordinates of a modal structure (kind "eta")."""
+        return self.has_wing or "eta" in self.q_kinds
+
+    def whirling(self) -> tuple[PropellerMotion, ...]:
+        """Every propeller whose pitch and yaw on its mount the model has, by number: the
+        flexibly mounted ones (their own θ, ψ DOFs, :attr:`propellers`) and the
+        :attr:`hubs` (a combination of q).  The one view of "which propeller moves how" that
+        participation and names read."""
+        n = self.n_dof
+        out = []
+        for p in self.propellers:
+            rows = np.zeros((2, n))
+            rows[0, p.theta], rows[1, p.psi] = 1.0, 1.0
+            rows.flags.writeable = False
+            out.append(PropellerMotion(p.number, rows, p.rotation, p.spinning, p.y,
+                                       dofs=(p.theta, p.psi)))
+        for h in self.hubs:
+            rows = np.array([h.pitch, h.yaw], dtype=float)
+            rows.flags.writeable = False
+            out.append(PropellerMotion(h.number, rows, h.rotation, h.spinning, h.y,
+                                       inertia=tuple(h.inertia)))
+        return tuple(sorted(out, key=lambda m: m.number))
+
     def wing_dof(self, node: int, kind: str) -> int | None:
         """Index in q of DOF ``kind`` ("h", "phi", "alpha") of wing node ``node``; None if that
         DOF is not a state (the clamped root)."""
@@ -205,6 +297,9 @@ class DofMap:
         d = {f: list(getattr(self, f)) for f in ("q_labels", "q_kinds", "q_node", "q_propeller",
                                                  "w_labels", "w_node", "node_y")}
         d["propellers"] = [vars(p).copy() for p in self.propellers]
+        if self.hubs:                                 # (absent: every older map)
+            d["hubs"] = [{k: list(x) if isinstance(x, tuple) else x for k, x in vars(h).items()}
+                         for h in self.hubs]
         return d
 
     @classmethod
@@ -212,7 +307,10 @@ class DofMap:
         """The map written by :meth:`to_dict`."""
         kw = {f: tuple(d[f]) for f in ("q_labels", "q_kinds", "q_node", "q_propeller",
                                        "w_labels", "w_node", "node_y")}
-        return cls(**kw, propellers=tuple(PropellerDofs(**p) for p in d["propellers"]))
+        hubs = tuple(HubDofs(**{k: tuple(x) if isinstance(x, list) else x for k, x in h.items()})
+                     for h in d.get("hubs", ()))
+        return cls(**kw, propellers=tuple(PropellerDofs(**p) for p in d["propellers"]),
+                   hubs=hubs)
 
     def propeller(self, number: int) -> PropellerDofs:
         """The pitch/yaw DOFs of propeller ``number`` (an error if it has none)."""
