@@ -32,8 +32,6 @@ def test_analyse_takes_a_modal_model(modal_file, tmp_path, capsys):
 
 @pytest.mark.parametrize("argv, says", [
     (["analyse", "{m}", "--method", "reduced"], "a modal model is reduced already"),
-    (["analyse", "{m}", "--method", "pk"], "not projected on modes yet"),
-    (["sensitivity", "{m}"], "propwhirl sensitivity cannot run this model: exact derivatives"),
 ])
 def test_what_does_not_take_a_modal_model_says_so_in_one_line(modal_file, capsys, argv, says):
     assert cli.main([a.format(m=modal_file) for a in argv]) == 2

@@ -21,6 +21,7 @@ from propwhirl import validate as v
 from propwhirl.generated import strip_aero, typical_section
 from propwhirl.model.aerodynamics.dlm import pk_system_dlm
 from propwhirl.model.aerodynamics.theodorsen import theodorsen
+from propwhirl.model.modal import ModalPropellerWing
 from propwhirl.model.structure.assembly import free_dofs, place
 from propwhirl.model.systems import PropellerWing, TypicalSection
 
@@ -30,14 +31,14 @@ K_MIN = 1e-6
 
 def check_pk_model(model) -> None:
     """InputError unless `model` is a TypicalSection with its aerodynamics on, or a
-    PropellerWing with its wing aerodynamics on."""
+    PropellerWing or a ModalPropellerWing with its wing aerodynamics on."""
     if isinstance(model, TypicalSection) and model.aero:
         return
-    if isinstance(model, PropellerWing) and model.wing_aero:
+    if isinstance(model, (PropellerWing, ModalPropellerWing)) and model.wing_aero:
         return
     raise v.InputError(f"model = {type(model).__name__} {getattr(model, 'name', '')!r} is invalid "
                        "for the p-k method: must be a TypicalSection with aero = True or a "
-                       "PropellerWing with wing_aero = True")
+                       "PropellerWing or ModalPropellerWing with wing_aero = True")
 
 
 #: kept for the typical-section-only callers
@@ -49,6 +50,8 @@ def reference_semichord(model) -> float:
     wing's root semichord."""
     if isinstance(model, TypicalSection):
         return float(model.b)
+    if isinstance(model, ModalPropellerWing):       # its first (root) strip's
+        return float(0.5 * model.planform.chord[0])
     return float(model.wing.node_properties()["b"][0])
 
 
@@ -89,6 +92,8 @@ def pk_system(model, V: float):
     ``dof_map``, without lag states)."""
     if isinstance(model, TypicalSection):
         return lambda omega: section_pk_matrices(model, V, omega * model.b / V)
+    if isinstance(model, ModalPropellerWing):
+        return modal_pk_system(model, V)
     if model.wing.aero == "dlm":                 # doublet-lattice panels instead of the strips
         return pk_system_dlm(model, V, K_MIN)
     dry = replace(model, wing_aero=False).second_order(np.array([V]))
@@ -112,6 +117,31 @@ def pk_system(model, V: float):
                                                (3 * nn, 3 * nn))[np.ix_(keep, keep)]
             out.append(X)
         return tuple(out)
+
+    return matrices
+
+
+def modal_pk_system(model: ModalPropellerWing, V: float):
+    """ω ↦ (M, C, K) of the p-k equation of a modal model at V [m/s]: its modes and
+    propellers as they are (:meth:`ModalAssembly.second_order` with the wing aerodynamics
+    off), every strip with the exact Theodorsen loads at its own k = ω b_s / V projected on
+    the coordinates as the finite-state strips are, (TΦ)ᵀ A_s (TΦ)
+    (:mod:`propwhirl.model.modal`)."""
+    assembly = model.with_(wing_aero=False).assembly()
+    dry = assembly.second_order(np.array([V]))
+    if dry.n_lag:
+        raise v.InputError(f"model = {model.name!r} is invalid for the p-k method: its "
+                           "propeller aerodynamics has lag states")
+    node = model.planform.node_properties()
+    width = node["width"][:, None, None]
+    P = assembly.strips                                   # (n_strips, 2, n_dof): [h, α] of q
+    structure = (dry.S1[0], dry.S2[0], dry.S3[0])
+
+    def matrices(omega: float):
+        strips = _strip(model.flight.density, V, node["b"], node["a"], node["Cla"],
+                        node["ac"], omega)
+        return tuple(S - np.einsum("sim,sij,sjn->mn", P, width * A, P)
+                     for S, A in zip(structure, strips))
 
     return matrices
 

@@ -56,15 +56,11 @@ MOUNTS = ("flexible", "rigid", "on-grid")
 
 #: What a modal model cannot run, and why (:meth:`ModalPropellerWing.refuses`).
 REFUSALS = {
-    "pk": "the p-k method's exact-Theodorsen strips (model/frequency_domain.py) are built on a "
-          "beam wing's nodes, not projected on modes yet: use the default method (dense)",
     "reduced": "a modal model is reduced already (one coordinate per mode): the reduced "
                "method would not pay; use the default method (dense)",
     "exact-sensitivity": "exact derivatives exist for the beam model's blocks only "
-                         "(model/derivatives.py)",
-    "sensitivity": "exact derivatives exist for the beam model's blocks only "
-                   "(model/derivatives.py) and the central-difference route for modal models "
-                   "is not implemented yet: use `propwhirl sweep` on the parameter path",
+                         "(model/derivatives.py): a modal model's sensitivities are central "
+                         "differences of its state matrix",
     "upgrade-model": "a modal model file has one format version (1): there is nothing to "
                      "upgrade",
 }

@@ -49,7 +49,7 @@ import numpy as np
 
 from propwhirl import validate as v
 from propwhirl.analysis.sensitivity import (DENSITY, FACTORS, CriticalSensitivities,
-                                            Sensitivity)
+                                            Sensitivity, exact)
 from propwhirl.analysis.stability import ModelAnalysis, analyse
 from propwhirl.analysis.summary import text_table
 from propwhirl.engine import XTOL
@@ -76,7 +76,7 @@ def set_parameter(model: Any, path: str, value: float) -> Any:
     the factors and the density through the studies' paths, every other parameter as the
     derivatives name it (:func:`propwhirl.model.derivatives.with_value`).  An unknown path is
     an InputError."""
-    if path in FACTORS or path == DENSITY:
+    if path in FACTORS or path == DENSITY or not exact(model):   # a modal model's: paths
         return P.set_value(model, path, value)
     return D.with_value(model, path, value)
 
