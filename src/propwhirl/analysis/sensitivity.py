@@ -52,7 +52,7 @@ from propwhirl.analysis.stability import ModelAnalysis
 from propwhirl.analysis.summary import text_table
 from propwhirl.engine.correction import full_order_root, real_direction
 from propwhirl.model import derivatives as D
-from propwhirl.model.protocol import refusal
+from propwhirl.model.protocol import capabilities, refusal
 from propwhirl.results import Result, SavedDict
 
 #: relative step of the central difference ∂/∂V of the pencil
@@ -250,10 +250,11 @@ class CriticalSensitivities(Result):
 
 
 def exact(model) -> bool:
-    """Whether ``model`` has exact parameter derivatives (the model contract:
-    :func:`~propwhirl.model.protocol.refusal` of "exact-sensitivity"); the others' sensitivities
-    are central differences (:func:`difference_sensitivities`)."""
-    return refusal(model, "exact-sensitivity") is None
+    """Whether ``model``'s sensitivities are not central differences (the model contract:
+    :attr:`~propwhirl.model.protocol.Capabilities.derivatives` is not "central difference":
+    exact, or none — refused where they are asked for); central differences:
+    :func:`difference_sensitivities`."""
+    return capabilities(model).derivatives != "central difference"
 
 
 def _check_pair(model, analysis) -> None:

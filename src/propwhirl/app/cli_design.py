@@ -176,10 +176,7 @@ def _sensitivity(args: argparse.Namespace) -> int:
         raise InputError(f"{given} is for --verify (the central-difference analyses); the "
                          "sensitivities themselves are one analysis: add --verify or leave "
                          f"{given.split()[0]} out")
-    model = model_or_case(args.model, "sensitivity")
-    if exact(model) and not hasattr(model, "second_order_blocks"):
-        raise InputError(f"{type(model).__name__}: sensitivities are available for wing models "
-                         "(PropellerWing, ModalPropellerWing) only")
+    model = model_or_case(args.model, "sensitivity")      # the model says when it has none
     if args.plot and not exact(model):
         raise InputError("--plot draws the per-element sensitivities of a beam wing's EI, GJ "
                          "and m: a modal model has none (its parameters are its modes'; "

@@ -47,23 +47,11 @@ from propwhirl.model.modal_structure import ModalStructure, StripPlanform, strip
 from propwhirl.model.propellers.propeller import Propeller
 from propwhirl.model.propeller_blocks import (propeller_constants_at, propeller_matrices,
                                              propeller_values)
-from propwhirl.model.protocol import DofMap, HubDofs, PropellerDofs
+from propwhirl.model.protocol import REASONS, Capabilities, DofMap, HubDofs, PropellerDofs
 from propwhirl.model.statespace import SecondOrder
 
 #: How a propeller sits on its hub grid (module docstring).
 MOUNTS = ("flexible", "rigid", "on-grid")
-
-
-#: What a modal model cannot run, and why (:meth:`ModalPropellerWing.refuses`).
-REFUSALS = {
-    "reduced": "a modal model is reduced already (one coordinate per mode): the reduced "
-               "method would not pay; use the default method (dense)",
-    "exact-sensitivity": "exact derivatives exist for the beam model's blocks only "
-                         "(model/derivatives.py): a modal model's sensitivities are central "
-                         "differences of its state matrix",
-    "upgrade-model": "a modal model file has one format version (1): there is nothing to "
-                     "upgrade",
-}
 
 
 @dataclass(frozen=True)
@@ -189,10 +177,24 @@ class ModalPropellerWing(StateSpaceModel):
             seen[int(inst.grid)] = j
         strip_interpolation(s, self.wing_grids, self.planform)   # checks the grids now
 
-    def refuses(self, feature: str) -> str | None:
-        """Why a modal model cannot run ``feature`` (:func:`propwhirl.model.protocol.refusal`),
-        None when it can: :data:`REFUSALS`."""
-        return REFUSALS.get(feature)
+    def capabilities(self) -> Capabilities:
+        """What this model can do (:class:`~propwhirl.model.protocol.Capabilities`): its
+        structure the modes, strip aerodynamics on its strips, sensitivities by central
+        differences, every command but the reduced method (it is reduced already), a NASTRAN
+        deck and a file upgrade; a Campbell diagram needs a propeller that whirls (own mount
+        or hub grid)."""
+        why = {"reduced": REASONS["modal-reduced"], "exact-sensitivity": REASONS["modal-exact"],
+               "export": REASONS["modal-export"], "upgrade-model": REASONS["modal-upgrade"]}
+        if not self.wing_aero:
+            why["pk"] = REASONS["no-wing-aero-pk"]
+        if not self.dof_map().whirling():
+            why["campbell"] = REASONS["no-whirl"]
+        mounts = {inst.mount for inst in self.propellers} - {"rigid"}
+        props = ("both" if mounts == {"flexible", "on-grid"} else "own mounts"
+                 if mounts == {"flexible"} else "hub grids" if mounts else "none")
+        return Capabilities("modal propeller-wing", "modes",
+                            "strip" if self.wing_aero else "none", "central difference",
+                            props, tuple(why.items()))
 
     def with_(self, **changes) -> "ModalPropellerWing":
         """A copy with fields replaced (``dataclasses.replace``)."""

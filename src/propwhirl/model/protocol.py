@@ -381,17 +381,154 @@ class Evaluator(Protocol):
 
 
 #: What a command or method may ask of a model (:func:`refusal`): the command-line commands
-#: and the analysis methods that need more than the contract above.
-FEATURES = ("analyse", "modes", "campbell", "sweep", "map", "boundary", "clearance",
-            "certify", "sensitivity", "exact-sensitivity", "pk", "reduced", "upgrade-model")
+#: and the analysis methods that need more than the contract above ("dense", "reduced",
+#: "pk": the methods of ``analyse(model, method=...)``; "exact-sensitivity": the generated
+#: parameter derivatives).
+COMMANDS = ("analyse", "modes", "campbell", "sweep", "map", "boundary", "clearance",
+            "certify", "sensitivity", "export", "upgrade-model")
+METHODS = ("dense", "reduced", "pk")
+FEATURES = COMMANDS + METHODS + ("exact-sensitivity",)
+
+#: Where a model's structure comes from (:attr:`Capabilities.structure`).
+STRUCTURES = {
+    "beam": "Euler-Bernoulli beam elements from section properties (EI, GJ, m along the span)",
+    "modes": "normal modes from any finite-element code (frequencies, modal masses, damping, "
+             "shapes at grids)",
+    "section": "a typical section (plunge and pitch springs)",
+    "rigid": "a rigid wing: the propeller's mount is the only structure",
+}
+#: The wing aerodynamics a model may have (:attr:`Capabilities.aerodynamics`): what the
+#: finite-state methods (dense, reduced) and the p-k method each use.
+AERODYNAMICS = {
+    "strip": ("finite-state strips", "exact-Theodorsen strips"),
+    "doublet lattice": ("doublet lattice, Roger state space", "doublet lattice, Q(k, Mach)"),
+    "none": ("no wing aerodynamics", "no wing aerodynamics"),
+}
+
+
+@dataclass(frozen=True)
+class Capabilities:
+    """What a model can do: the contract's one statement of it, read by every command and
+    method (:func:`capabilities`, :func:`refusal`) instead of the model's type.
+
+    kind:         what people call it ("beam propeller-wing", "modal propeller-wing", ...).
+    structure:    a key of :data:`STRUCTURES`.
+    aerodynamics: a key of :data:`AERODYNAMICS` (the wing's; the propellers' Houbolt-Reed
+                  loads are in every model with propellers).
+    derivatives:  "exact" (generated parameter derivatives), "central difference" (of the
+                  state matrix) or "none": how ``propwhirl sensitivity`` differentiates.
+    propellers:   "own mounts" (θ, ψ DOFs), "hub grids" (mounts in the modes), "both",
+                  or "none".
+    refusals:     {feature of :data:`FEATURES`: why it cannot run, the physical or modelling
+                  reason in a few words}; every other feature runs.
+    """
+
+    kind: str
+    structure: str
+    aerodynamics: str
+    derivatives: str
+    propellers: str
+    refusals: tuple[tuple[str, str], ...] = ()
+
+    def __post_init__(self) -> None:
+        if self.structure not in STRUCTURES:
+            raise ValueError(f"structure = {self.structure!r}: not one of {tuple(STRUCTURES)}")
+        if self.aerodynamics not in AERODYNAMICS:
+            raise ValueError(f"aerodynamics = {self.aerodynamics!r}: not one of "
+                             f"{tuple(AERODYNAMICS)}")
+        bad = [f for f, _ in self.refusals if f not in FEATURES]
+        if bad:
+            raise ValueError(f"refusals of unknown features {bad}; valid: {FEATURES}")
+
+    def refusal(self, feature: str) -> str | None:
+        """Why ``feature`` cannot run, or None when it can."""
+        if feature not in FEATURES:
+            raise ValueError(f"feature = {feature!r} is not one of {FEATURES}")
+        return dict(self.refusals).get(feature)
+
+    def supports(self, feature: str) -> bool:
+        """Whether ``feature`` runs on the model."""
+        return self.refusal(feature) is None
+
+    @property
+    def methods(self) -> tuple[str, ...]:
+        """The analysis methods that run (of :data:`METHODS`)."""
+        return tuple(m for m in METHODS if self.supports(m))
+
+    def aerodynamics_of(self, method: str) -> str:
+        """The wing aerodynamics the method uses: the finite-state form (dense, reduced) or
+        the frequency-domain one (pk), :data:`AERODYNAMICS`."""
+        return AERODYNAMICS[self.aerodynamics][1 if method == "pk" else 0]
+
+
+#: The refusals' reasons, one sentence each: the physical or modelling reason a model of a
+#: kind cannot run a feature (the models' :meth:`capabilities` pick theirs from here, so the
+#: capability table, docs/capabilities.md, lists them from one place).
+REASONS = {
+    "modal-reduced": "a modal model is reduced already (one coordinate per mode): the reduced "
+                     "method would not pay; use the default method (dense)",
+    "modal-exact": "exact derivatives exist for the beam model's generated blocks only "
+                   "(model/derivatives.py): a modal model's sensitivities are central "
+                   "differences of its state matrix",
+    "modal-export": "a NASTRAN deck is written of a beam model (its elements and sections): a "
+                    "modal model's structure is its modes, which came from a finite-element "
+                    "model already",
+    "modal-upgrade": "a modal model file has one format version (1): there is nothing to "
+                     "upgrade",
+    "no-whirl": "no propeller whirls on a mount: the rotational speed acts on the modes only "
+                "through the propellers' pitch and yaw (the wing's own modes: propwhirl modes)",
+    "dlm-derivatives": "the doublet-lattice (Roger) blocks have no parameter derivatives: use "
+                       "`propwhirl sweep` on the parameter path (the critical speed against it)",
+    "inplane-derivatives": "in-plane bending (EI_chordwise) has no generated parameter "
+                           "derivatives: use `propwhirl sweep` on the parameter path",
+    "no-wing-aero-pk": "the p-k method iterates the wing's unsteady aerodynamics on the "
+                       "frequency, and the wing aerodynamics are off: the dense method is exact",
+    "rigid-pk": "the p-k method iterates the wing's unsteady aerodynamics on the frequency: an "
+                "isolated propeller has none (its Houbolt-Reed loads are quasi-steady), the "
+                "dense method is exact",
+    "rigid-reduced": "an isolated propeller has two degrees of freedom: there is nothing to "
+                     "reduce; use the default method (dense)",
+    "rigid-sensitivity": "the parameter derivatives are generated for wing models' blocks: an "
+                         "isolated propeller on a rigid wing has none; use `propwhirl sweep` "
+                         "on the parameter path",
+    "rigid-export": "a NASTRAN deck is written of a beam model (a wing with propellers): an "
+                    "isolated propeller on a rigid wing is not a beam model",
+    "no-propeller-campaign": "a clearance campaign's cases act on a propeller-wing's installed "
+                             "propellers (mount failures, rotation, their states): this wing "
+                             "has none",
+    "rigid-campaign": "a clearance campaign is flown by a propeller-wing (its cases vary the "
+                      "wing's damping and its installed propellers): an isolated propeller on "
+                      "a rigid wing has no wing",
+    "section-file": "a typical section has no model file: analyse it with the Python API "
+                    "(propwhirl.analysis.analyse)",
+    "section-reduced": "a typical section has two degrees of freedom: there is nothing to "
+                       "reduce; use the default method (dense)",
+    "own-class-reduced": "the reduced method projects the model's blocks "
+                         "(second_order_blocks), which a model of its own class does not have",
+    "own-class-pk": "the p-k method needs the model's frequency-domain aerodynamics, which a "
+                    "model of its own class does not give",
+    "own-class-sensitivity": "the parameter derivatives are generated for propwhirl's wing "
+                             "model's blocks only",
+}
+
+
+def capabilities(model) -> Capabilities:
+    """What ``model`` can do (:class:`Capabilities`): ``model.capabilities()``; a model that
+    does not state it (any other object meeting :class:`Model`, e.g. one of a user's own
+    class) is refused nothing here: what it lacks fails where it is needed."""
+    ask = getattr(model, "capabilities", None)
+    if callable(ask):
+        return ask()
+    why = {"pk": REASONS["own-class-pk"], "sensitivity": REASONS["own-class-sensitivity"],
+           "exact-sensitivity": REASONS["own-class-sensitivity"]}
+    if not hasattr(model, "second_order_blocks"):
+        why["reduced"] = REASONS["own-class-reduced"]
+    return Capabilities(type(model).__name__, "section", "none", "none", "none",
+                        tuple(why.items()))
 
 
 def refusal(model, feature: str) -> str | None:
     """Why ``model`` cannot run ``feature`` (one of :data:`FEATURES`), as the physical or
-    modelling reason in a few words, or None when it can.  Asked of the model: a model that
-    cannot run everything defines ``refuses(feature)``; the others run every feature the
-    contract allows (the one place a command asks, not the model's type)."""
-    if feature not in FEATURES:
-        raise ValueError(f"feature = {feature!r} is not one of {FEATURES}")
-    ask = getattr(model, "refuses", None)
-    return ask(feature) if callable(ask) else None
+    modelling reason in a few words, or None when it can: :func:`capabilities` of the model
+    (the one place a command or method asks, not the model's type)."""
+    return capabilities(model).refusal(feature)
