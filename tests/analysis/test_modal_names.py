@@ -19,7 +19,8 @@ SPEEDS = np.arange(10.0, 301.0, 10.0)
 
 @pytest.fixture(scope="module")
 def six(tmp_path_factory):
-    """(beam analysis, on-grid modal analysis, own-mount modal analysis, on-grid model)."""
+    """(beam analysis, on-grid modal analysis, own-mount modal analysis, on-grid model, the
+    folder of the modal files)."""
     d = tmp_path_factory.mktemp("six")
     w = baseline_wing(25)
     beam = propeller_wing(tuple(float(w.node_y[i]) for i in (5, 9, 13, 17, 21, 25)), name="six")
@@ -29,7 +30,7 @@ def six(tmp_path_factory):
         write_modes(beam, d / f"{mount}.toml", mount=mount)
         models.append(load_modal_model(d / f"{mount}.toml"))
         out.append(analyse(models[-1], speeds=SPEEDS))
-    return (*out, models[0])
+    return (*out, models[0], d)
 
 
 def _leading(e):
@@ -37,14 +38,14 @@ def _leading(e):
 
 
 def test_on_grid_hubs_are_in_the_dof_map(six):
-    *_, on_grid = six
+    *_, on_grid, _ = six
     dm = on_grid.dof_map()
     assert dm.propellers == () and [h.number for h in dm.hubs] == list(range(6))
     assert [p.number for p in dm.whirling()] == list(range(6)) and dm.has_structure
 
 
 def test_on_grid_events_are_named_as_the_beam_models(six):
-    beam, grid, _, _ = six
+    beam, grid, *_ = six
     whirls = [e for e in beam.events if e.kind == "flutter"]
     assert len(whirls) >= 3
     assert [e.label for e in grid.events] == [e.label for e in beam.events]
@@ -59,7 +60,7 @@ def test_on_grid_events_are_named_as_the_beam_models(six):
 
 
 def test_own_mounts_give_the_beam_models_names_and_shares(six):
-    beam, _, own, _ = six
+    beam, _, own, *_ = six
     assert [e.label for e in own.events] == [e.label for e in beam.events]
     for eb, eo in zip(beam.events, own.events):
         assert _leading(eo) == _leading(eb)
@@ -76,7 +77,7 @@ def test_no_two_different_events_share_a_name(six, which):
 
 
 def test_the_events_table_names_each_propeller(six):
-    _, grid, _, _ = six
+    _, grid, *_ = six
     t = events_table(grid.events)
     flutter = t["kind"] == "flutter"
     assert set(t["propeller"][flutter]) == set(range(1, 7))
@@ -86,7 +87,30 @@ def test_the_events_table_names_each_propeller(six):
 
 
 def test_hubs_survive_a_saved_analysis(six):
-    _, grid, _, _ = six
+    _, grid, *_ = six
     again = ModelAnalysis.from_dict(grid.to_dict())
     assert again.dof_map == grid.dof_map
     assert [e.participation for e in again.events] == [e.participation for e in grid.events]
+
+
+def test_certify_on_the_modal_wing_names_the_whirling_propellers(six, capsys):
+    """The issue's 'done when': `propwhirl certify` on the six-propeller write_modes wing
+    (mounts in the modes): its critical event (the thesis convention: the whirl flutter) is
+    named by its propellers and carries each one's share (on main: 'mode 7', no shares)."""
+    import json
+
+    from propwhirl.app import cli
+
+    d = six[-1]
+    (d / "c.toml").write_text('format = "propwhirl-campaign"\nformat_version = 1\n'
+                              'model = "on-grid.toml"\nconvention = "thesis"\n'
+                              '[regulation]\nname = "cs25"\n[envelope]\nairspeed = "EAS"\n'
+                              'V_D_m_per_s = 150.0\naltitudes_m = [0.0]\n'
+                              '[[cases]]\nname = "nominal"\n')
+    assert cli.main(["certify", str(d / "c.toml"), "--out", str(d / "out"), "--no-report",
+                     "--quiet"]) in (0, 1)
+    capsys.readouterr()
+    (row,) = json.loads((d / "out" / "campaign.json").read_text())["rows"]
+    assert row["kind"] == "flutter" and row["mode"].startswith("backward whirl, propellers 1–6")
+    shares = {n: s for n, s, _ in row["propeller_shares"]}
+    assert set(shares) == set(range(1, 7)) and max(shares.values()) > 0.15
