@@ -130,3 +130,13 @@ def test_the_boundary_of_a_modal_model_is_the_beam_models(files, capsys, tmp_pat
     assert rows[0].shape[0] >= 5 and rows[0].shape == rows[1].shape
     np.testing.assert_allclose(rows[1], rows[0], atol=1e-6, rtol=0)
     assert 7.0 < rows[0][:, 0].min() < rows[0][:, 0].max() < 7.5     # f_θ on the curve [Hz]
+
+
+def test_verify_checks_a_modal_models_central_differences(files, capsys):
+    """--verify re-analyses the modal model at p ± h through the studies' paths and finds the
+    state-matrix difference within tolerance (the column says what it checks)."""
+    _, modal = files
+    argv = ["sensitivity", modal, "--param", "structure.frequencies_hz[1]", "--verify"]
+    assert cli.main([str(a) for a in argv]) == 0
+    out = capsys.readouterr().out
+    assert "dV/dp (diff. of A)" in out and "all 1 within tolerance" in out

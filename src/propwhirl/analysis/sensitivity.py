@@ -262,15 +262,15 @@ def _check_pair(model, analysis) -> None:
     full-order pencil: only a PropellerWing has one; a model the contract gives central
     differences instead is let through) and an analysis that is not a ModelAnalysis of a model
     of this size."""
-    why = refusal(model, "sensitivity")
-    if why is not None:
-        raise v.InputError(f"model = {type(model).__name__}: no sensitivities: {why}")
-    if exact(model):
+    if exact(model):                  # the exact route's own checks name the values
         if not hasattr(model, "second_order_blocks"):
             raise v.InputError(f"model = {type(model).__name__}: sensitivities need the "
                                "full-order pencil of a wing model (PropellerWing); an "
                                "IsolatedPropeller has none")
         D.check_model(model)          # e.g. a doublet-lattice wing: no exact derivatives
+    why = refusal(model, "sensitivity")
+    if why is not None:
+        raise v.InputError(f"model = {type(model).__name__}: no sensitivities: {why}")
     if not isinstance(analysis, ModelAnalysis):
         raise v.InputError(f"analysis = {v.short_repr(analysis)} is invalid: must be the "
                            "ModelAnalysis of the model (propwhirl.analysis.analyse(model))")
