@@ -475,7 +475,7 @@ REASONS = {
                     "model already",
     "modal-upgrade": "a modal model file has one format version (1): there is nothing to "
                      "upgrade",
-    "no-whirl": "no propeller whirls on a mount (a flexibly mounted one, or a modal "
+    "no-whirl": "a Campbell diagram needs a flexibly mounted propeller (or a modal "
                 "structure's on its hub grid): the rotational speed acts on the modes only "
                 "through the propellers' pitch and yaw (the wing's own modes: propwhirl modes)",
     "dlm-derivatives": "the doublet-lattice (Roger) blocks have no parameter derivatives: use "
