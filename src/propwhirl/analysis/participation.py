@@ -28,8 +28,10 @@ wing's frequency-zero event.)  The groups are
   "on-grid"``: :class:`~propwhirl.model.protocol.HubDofs`): its pitch and yaw on the mount,
   û = R q̂ (the hub grid's rotations less the wing's there), its energy ûᴴ J û with J =
   diag(I_θ, I_ψ), its pivot inertias; that energy is inside the modes' and is taken out of
-  the wing's (the coupling of its pitch with its node's motion, which a flexible mount's
-  partition leaves out, stays the wing's here);
+  the wing's, and so is the coupling 2 Re(ûᴴ C ŵ) of its pitch and yaw with the wing's heave
+  and twist ŵ under the hub (C: a flexible mount's θψ–hα mass block), which a flexible mount's
+  partition leaves out: on the same structure the shares are a flexible mount's (to 1e-3 on
+  the six-propeller wing of tests/analysis/test_modal_names.py);
 * **wing**: every wing DOF (h, φ, α of every free node), the inertia the propellers add at
   their nodes included;
 * **other**: any other structural DOF (the typical section's plunge and pitch).
@@ -266,9 +268,11 @@ def participation(dm: DofMap, X, M, eigenvalues, V) -> Participation:
     for g, ix in groups.items():                   # q̂_Jᴴ M_JJ q̂_J of every mode at once
         qJ = q[ix]
         own[g] = np.real(np.einsum("ik,kij,jk->k", qJ.conj(), Ms[:, ix][:, :, ix], qJ))
-    # a hub's pitch and yaw (no DOFs of its own) move inside the modes: their energy is
-    # taken out of the wing's (what is left of it, never below 0)
-    hub = sum((own[f"p{j}"] for j, p in enumerate(props) if p.dofs is None), np.zeros(m))
+    # a hub's pitch and yaw (no DOFs of its own) move inside the modes: their energy, and
+    # its coupling with the wing's motion under the hub (which a flexible mount's partition
+    # gives to no group), are taken out of the wing's (what is left, never below 0)
+    hub = sum((own[f"p{j}"] + p.coupling_energy(q) for j, p in enumerate(props)
+               if p.dofs is None), np.zeros(m))
     own["wing"] = np.maximum(own["wing"] - hub, 0.0)
     total = sum(own.values())
     sh = {g: np.divide(e, total, out=np.zeros_like(e), where=total > 0) for g, e in own.items()}

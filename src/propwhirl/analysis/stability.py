@@ -500,7 +500,8 @@ def _hubs_from(r: SavedDict, n_dof: int) -> tuple[HubDofs, ...]:
     out = []
     for i, h in enumerate(r.raw("hubs")):
         hr = SavedDict(h, f"dof_map.hubs[{i}]", ("number", "pitch", "yaw", "inertia",
-                                                 "rotation", "spinning", "y"))
+                                                 "rotation", "spinning", "y"),
+                       ("heave", "twist", "coupling"))
         spinning = hr.raw("spinning")
         if not isinstance(spinning, bool):
             raise v.InputError(f"{hr.name('spinning')}: must be true or false")
@@ -510,11 +511,15 @@ def _hubs_from(r: SavedDict, n_dof: int) -> tuple[HubDofs, ...]:
                         ("inertia", inertia, 2)):
             if a.shape != (n,):
                 raise v.InputError(f"{hr.name(k)}: must be a list of {n} numbers")
+        wing = [tuple(float(x) for x in hr.array(k, shape=(n_dof,))) if hr.has(k) else ()
+                for k in ("heave", "twist")]
+        coupling = (tuple(tuple(float(c) for c in r) for r in hr.array(
+            "coupling", ndim=2, shape=(2, 2))) if hr.has("coupling") else ())
         out.append(HubDofs(hr.integer("number", 0), tuple(float(x) for x in rows[0]),
                            tuple(float(x) for x in rows[1]),
                            (float(inertia[0]), float(inertia[1])),
                            hr.integer("rotation", -1, 1), spinning,
-                           hr.number("y", optional=True)))
+                           hr.number("y", optional=True), *wing, coupling))
     return tuple(out)
 
 

@@ -262,13 +262,18 @@ class ModalPropellerWing(StateSpaceModel):
             y = float(s.xyz[g, 1])
             # linear-interpolation weights of the wing grids at y (one per grid)
             weights = np.array([np.interp(y, yw[order], e[order]) for e in np.eye(wing.size)])
-            rel = s.shapes[:, g, :] - np.einsum("w,mwc->mc", weights, s.shapes[:, wing, :])
-            pitch, yaw = np.zeros(n_dof), np.zeros(n_dof)
+            under = np.einsum("w,mwc->mc", weights, s.shapes[:, wing, :])
+            rel = s.shapes[:, g, :] - under
+            pitch, yaw, heave, twist = (np.zeros(n_dof) for _ in range(4))
             pitch[: s.n_modes], yaw[: s.n_modes] = rel[:, 4], -rel[:, 5]
-            inertia = inst.propeller.pivot_inertia()
+            heave[: s.n_modes], twist[: s.n_modes] = -under[:, 2], under[:, 4]
+            B = _mount_mass(inst.propeller, float(np.dot(weights, s.xyz[wing, 0]))
+                            - self.planform.mid_chord_x(y), self.flight.density)
             out.append(HubDofs(j, tuple(pitch.tolist()), tuple(yaw.tolist()),
-                               (float(inertia["I_theta_P"]), float(inertia["I_psi_P"])),
-                               inst.propeller.rotation, self.rotating, y))
+                               (float(B[0, 0]), float(B[1, 1])),
+                               inst.propeller.rotation, self.rotating, y,
+                               tuple(heave.tolist()), tuple(twist.tolist()),
+                               tuple(tuple(float(c) for c in r) for r in B[:2, 2:])))
         return tuple(out)
 
 
@@ -386,6 +391,19 @@ class ModalAssembly(EvaluatorBase):
         for s in range(ns):
             Ww[:, s * k:(s + 1) * k, s * k:(s + 1) * k] = a["Ww"][:, s]
         return SecondOrder(*S, S4, Ww, Wv, Wq, self.states.q_labels, self.states.w_labels)
+
+
+def _mount_mass(propeller: Propeller, ea: float, density: float) -> np.ndarray:
+    """The 4×4 mass block [kg, kg m, kg m²] over [θ, ψ, h_P, α_P] the propeller would have on
+    a flexible mount at a wing point ``ea`` [m] aft of the mid-chord (the generated
+    :func:`~propwhirl.model.propeller_blocks.propeller_matrices`): its pivot inertias and the
+    coupling of its pitch and yaw with the point's heave and twist (for the participation of
+    an on-grid propeller, :class:`~propwhirl.model.protocol.HubDofs`)."""
+    c = propeller_constants_at(propeller, ea, density)
+    vals = propeller_values(c, propeller, np.array([1.0]), None, rotating=False, aero=False,
+                            speed_of_sound=1.0)
+    return np.asarray(propeller_matrices(vals, mount="flexible", in_plane=False,
+                                         aero=False)[0][0], dtype=float)
 
 
 def _on_grid_matrices(values: dict, aero: bool, nV: int):

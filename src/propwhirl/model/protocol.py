@@ -111,6 +111,12 @@ class HubDofs:
     inertia:  (I_θ, I_ψ) [kg m²]: the propeller's moments of inertia about its pivots (the
               kinetic energy of its pitch and yaw, as a flexible mount's θ–θ and ψ–ψ masses).
     rotation, spinning, y: as :class:`PropellerDofs`.
+    heave, twist: (n_dof,) the wing's h_P [m] (down) and α_P [rad] (nose up) under the hub
+              per unit of each q; empty: not given.
+    coupling: the 2×2 mass coupling [kg m, kg m²] of (θ, ψ) with (h_P, α_P) — a flexible
+              mount's θψ–hα block: the energy 2 Re(ûᴴ coupling ŵ) of the propeller's pitch
+              and yaw moving with its wing point, which a flexible mount's share leaves to
+              no one (:mod:`propwhirl.analysis.participation`); empty: none.
     """
 
     number: int
@@ -120,6 +126,9 @@ class HubDofs:
     rotation: int
     spinning: bool
     y: float | None
+    heave: tuple[float, ...] = ()
+    twist: tuple[float, ...] = ()
+    coupling: tuple[tuple[float, float], tuple[float, float]] | tuple = ()
 
 
 @dataclass(frozen=True)
@@ -136,6 +145,8 @@ class PropellerMotion:
     y: float | None
     dofs: tuple[int, int] | None = None
     inertia: tuple[float, float] | None = None
+    wing_rows: np.ndarray | None = None
+    coupling: np.ndarray | None = None
 
     def pitch_yaw(self, x: np.ndarray) -> np.ndarray:
         """(θ̂, ψ̂) of shapes ``x`` ((n,) or (n, m), their first ``n_dof`` rows the
@@ -153,6 +164,16 @@ class PropellerMotion:
             J = M[:, ix][:, :, ix]
             return np.real(np.einsum("ik,kij,jk->k", u.conj(), J, u))
         return np.real(self.inertia[0] * np.abs(u[0]) ** 2 + self.inertia[1] * np.abs(u[1]) ** 2)
+
+    def coupling_energy(self, x: np.ndarray) -> np.ndarray:
+        """2 Re(ûᴴ C ŵ) [as :meth:`energy`] of a hub's pitch and yaw û with the wing's heave
+        and twist ŵ under it (C its ``coupling``): the part of the modes' kinetic energy a
+        flexible mount's partition gives to no group; 0 for own DOFs or without coupling."""
+        x = np.asarray(x)
+        if self.coupling is None or self.wing_rows is None:
+            return np.zeros(x.shape[1:] if x.ndim > 1 else ())
+        u, w = self.pitch_yaw(x), self.wing_rows @ x[: self.rows.shape[1]]
+        return 2.0 * np.real(np.einsum("i...,ij,j...->...", u.conj(), self.coupling, w))
 
 
 @dataclass(frozen=True)
@@ -185,7 +206,8 @@ class DofMap:
     def __post_init__(self) -> None:
         n = len(self.q_labels)
         for h in self.hubs:
-            if len(h.pitch) != n or len(h.yaw) != n:
+            if len(h.pitch) != n or len(h.yaw) != n or len(h.heave) not in (0, n) \
+                    or len(h.twist) != len(h.heave):
                 raise v.InputError(f"DofMap.hubs: propeller {h.number + 1}'s pitch and yaw "
                                    f"rows have {len(h.pitch)} and {len(h.yaw)} entries, need "
                                    f"one per degree of freedom ({n})")
@@ -269,8 +291,10 @@ class DofMap:
         for h in self.hubs:
             rows = np.array([h.pitch, h.yaw], dtype=float)
             rows.flags.writeable = False
+            wing = np.array([h.heave, h.twist], dtype=float) if h.heave else None
+            C = np.array(h.coupling, dtype=float) if h.coupling else None
             out.append(PropellerMotion(h.number, rows, h.rotation, h.spinning, h.y,
-                                       inertia=tuple(h.inertia)))
+                                       inertia=tuple(h.inertia), wing_rows=wing, coupling=C))
         return tuple(sorted(out, key=lambda m: m.number))
 
     def wing_dof(self, node: int, kind: str) -> int | None:
@@ -298,7 +322,8 @@ class DofMap:
                                                  "w_labels", "w_node", "node_y")}
         d["propellers"] = [vars(p).copy() for p in self.propellers]
         if self.hubs:                                 # (absent: every older map)
-            d["hubs"] = [{k: list(x) if isinstance(x, tuple) else x for k, x in vars(h).items()}
+            d["hubs"] = [{k: ([list(r) for r in x] if k == "coupling" else list(x))
+                          if isinstance(x, tuple) else x for k, x in vars(h).items()}
                          for h in self.hubs]
         return d
 
@@ -307,7 +332,8 @@ class DofMap:
         """The map written by :meth:`to_dict`."""
         kw = {f: tuple(d[f]) for f in ("q_labels", "q_kinds", "q_node", "q_propeller",
                                        "w_labels", "w_node", "node_y")}
-        hubs = tuple(HubDofs(**{k: tuple(x) if isinstance(x, list) else x for k, x in h.items()})
+        hubs = tuple(HubDofs(**{k: (tuple(map(tuple, x)) if k == "coupling" else tuple(x))
+                                if isinstance(x, list) else x for k, x in h.items()})
                      for h in d.get("hubs", ()))
         return cls(**kw, propellers=tuple(PropellerDofs(**p) for p in d["propellers"]),
                    hubs=hubs)
