@@ -84,7 +84,7 @@ def test_method_is_checked_and_auto_reduces_every_wing():
     assert choose_method(isolated_baseline_propeller(), "auto") == "dense"
     with pytest.raises(InputError, match="method = 'sparse' is invalid"):
         analyse(small, method="sparse")
-    with pytest.raises(InputError, match="only wing models"):
+    with pytest.raises(InputError, match="an isolated propeller has two degrees of freedom: there is nothing to reduce"):
         analyse(isolated_baseline_propeller(), method="reduced")
 
 

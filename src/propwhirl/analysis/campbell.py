@@ -21,6 +21,7 @@ from propwhirl import validate as v
 from propwhirl.analysis.modes import (GyroscopicSystem, label_modes, model_modes,  # noqa: F401
                                      track_gyroscopic)
 from propwhirl.analysis.naming import FAMILIES, kinetic_energy_shares, mode_family
+from propwhirl.model.protocol import refusal
 from propwhirl.results import Result, SavedDict
 
 #: Default propeller speeds of :func:`campbell`: 0–6000 rev/min every 250 (covers the
@@ -240,11 +241,11 @@ def campbell(model, rpm=None, *, rpm_ratio=None, max_frequency_hz: float | None 
     >>> bool(c.curve("backward 1")[-1] < c.curve("backward 1")[0] < c.curve("forward 1")[-1])
     True
     """
-    dm = model.dof_map()
-    if not dm.propellers or not (hasattr(model, "propellers") or hasattr(model, "propeller")):
-        raise v.InputError("campbell needs a propeller-wing model or an isolated propeller with a "
-                           "flexibly mounted propeller (the rotational speed acts through the "
-                           "pitch/yaw mounts)")
+    why = refusal(model, "campbell")          # the model contract says when it cannot
+    if why is not None or not model.dof_map().whirling():
+        raise v.InputError("campbell needs a model with a propeller that whirls on its mount "
+                           f"(the rotational speed acts through the pitch/yaw mounts): {why or ''}"
+                           .rstrip(": "))
     r = CAMPBELL_RPM.copy() if rpm is None else _check_rpm(rpm)
     ratio = operating_rpm_ratio(model) if rpm_ratio is None else _check_ratio(model, rpm_ratio)
     if max_frequency_hz is not None:

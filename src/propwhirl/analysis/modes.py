@@ -205,8 +205,12 @@ def label_modes(model, basis: np.ndarray | None = None, modes: Modes | None = No
     kinds = ["wing"] * f0.size
     flex = _flexible_propellers(model)
     if flex:
+        own = [p for p, on_grid in flex if not on_grid]
         f_mount = min(min(p.stiffness()[0] / p.pivot_inertia()["I_theta_P"],
-                          p.stiffness()[1] / p.pivot_inertia()["I_psi_P"]) for p in flex) ** 0.5
+                          p.stiffness()[1] / p.pivot_inertia()["I_psi_P"])
+                      for p in own) ** 0.5 if own else np.inf
+        if len(own) < len(flex):     # mounts in the modes: their lowest frequency bounds them
+            f_mount = min(f_mount, float(np.min(modes.omega[modes.omega > 0], initial=np.inf)))
         rpm = 0.1 * f_mount * 60.0 / (2.0 * np.pi)
         # 2 nodes resolve every thesis model; near-repeated mount modes (64 equal propellers
         # on a reduced basis) stay unresolved after any number: bounded (issue 20.9)
@@ -232,14 +236,15 @@ def label_modes(model, basis: np.ndarray | None = None, modes: Modes | None = No
     return out
 
 
-def _flexible_propellers(model) -> list:
-    """The Propeller of each flexibly mounted propeller that turns (DOF-map order; not the
-    stopped or feathered installations) of a PropellerWing, a modal model or an
-    IsolatedPropeller."""
+def _flexible_propellers(model) -> list[tuple]:
+    """(Propeller, on its hub grid) of each propeller that whirls on its mount and turns (by
+    number, :meth:`~propwhirl.model.protocol.DofMap.whirling`: flexibly mounted, or a modal
+    structure's on-grid one — its mount in the modes —; not the stopped or feathered
+    installations) of a PropellerWing, a modal model or an IsolatedPropeller."""
     dm = model.dof_map()
     if not hasattr(model, "propellers"):       # an isolated propeller
-        return [model.propeller] if dm.propellers else []
-    return [model.propellers[p.number].propeller for p in dm.propellers
+        return [(model.propeller, False)] if dm.propellers else []
+    return [(model.propellers[p.number].propeller, p.dofs is None) for p in dm.whirling()
             if getattr(model.propellers[p.number], "spinning", True)]
 
 

@@ -4,7 +4,10 @@ Everything here reads what a state is from the model's :class:`~propwhirl.model.
 (``model.dof_map()``), never from its class or its labels.  Modes are named once, at the first
 speed of a sweep (a tracked mode keeps its name along the sweep):
 
-* models with wing degrees of freedom (propeller–wing models, chapters 7–11): each oscillatory
+* models with a wing structure (propeller–wing models, chapters 7–11, and modal models —
+  :attr:`~propwhirl.model.protocol.DofMap.has_structure`: wing DOFs or modal coordinates; the
+  propellers that whirl are :meth:`~propwhirl.model.protocol.DofMap.whirling`'s, own mounts'
+  θ, ψ or the hub grids of mounts in the modes): each oscillatory
   mode is matched, by an optimal one-to-one MAC assignment on the displacement part, to the
   in-vacuo modes named by :func:`propwhirl.analysis.modes.label_modes` ("wing n",
   "backward k", "forward k": the thesis's names, kept for models with one flexibly mounted
@@ -238,7 +241,7 @@ def named_modes(model: Model, sw: Sweep, basis: np.ndarray | None = None,
         names[k] = f"static {i + 1}"
     for i, k in enumerate(k for k in by_real if not structural[k]):
         names[k] = f"{LAG} {i + 1}"
-    if dm.has_wing:
+    if dm.has_structure:             # a wing: of nodes, or of modes (a modal structure)
         modes, _ = model_modes(model, basis, in_vacuo)
         ref = [lab for lab, _ in label_modes(model, basis, modes, in_vacuo)]
         for k, lab in _matched(X0[sw.displacement][:, osc], lam0[osc], modes, ref):
@@ -249,9 +252,6 @@ def named_modes(model: Model, sw: Sweep, basis: np.ndarray | None = None,
             names = propeller_names(model, sw, names, whirls, in_vacuo)
             return _partners(sw, names), _partners(sw, thesis_names)
 
-    elif "eta" in dm.q_kinds:       # a modal structure: its largest coordinate ("mode 3", ...)
-        for k in osc:
-            names[k] = dm.q_labels[int(np.argmax(np.abs(X0[: dm.n_dof, k])))]
     elif dm.propellers:
         p = dm.propellers[0]
         order = sorted(osc, key=lambda k: abs(lam0[k].imag))
@@ -312,17 +312,21 @@ def _partners(sw: Sweep, names: list[str]) -> list[str]:
 
 
 def _spinning_flexible(dm: DofMap) -> list:
-    return [p for p in dm.propellers if p.spinning]
+    """The propellers that whirl on their mounts and spin (:meth:`DofMap.whirling`: own
+    pitch and yaw DOFs, or a modal structure's hub grid)."""
+    return [p for p in dm.whirling() if p.spinning]
 
 
 def propeller_sets(model: Model) -> list[tuple[int, ...]]:
-    """The flexibly mounted propellers (numbered from 1, DOF-map order) in sets of identical
+    """The propellers that whirl on their mounts (numbered from 1, by number: flexibly mounted,
+    or a modal structure's on its hub grid, :meth:`DofMap.whirling`) in sets of identical
     installations: the same propeller (every field of its table) and the same sense of
     rotation; the positions along the span may differ.  Sets in order of their first member."""
     dm = model.dof_map()
     keys: dict[str, list[int]] = {}
-    for p in dm.propellers:
-        prop = model.propellers[p.number].propeller if dm.has_wing else model.propeller
+    for p in dm.whirling():
+        prop = (model.propellers[p.number].propeller if hasattr(model, "propellers")
+                else model.propeller)
         keys.setdefault(f"{prop!r}|{p.rotation}|{p.spinning}", []).append(p.number + 1)
     return [tuple(g) for g in keys.values()]
 
@@ -436,7 +440,8 @@ def propeller_names(model: Model, sw: Sweep, names: Sequence[str],
                               in_vacuo)
     sets = propeller_sets(model)
     col = {int(n): j for j, n in enumerate(part.number)}
-    by_number = {p.number + 1: p for p in dm.propellers}
+    by_number = {p.number + 1: p for p in dm.whirling()}
+    q0 = X0[: dm.n_dof]
     found = {}
     for i, k in enumerate(whirls):
         share = {s: sum(float(part.share[col[n], i]) for n in s) for s in sets}
@@ -448,7 +453,7 @@ def propeller_names(model: Model, sw: Sweep, names: Sequence[str],
                 votes[w] += float(part.share[col[n], i])
         thesis_kind = names[k].split()[0]
         sense = max(votes, key=lambda w: votes[w]) if any(votes.values()) else thesis_kind
-        x = np.array([[X0[by_number[n].theta, k], X0[by_number[n].psi, k]] for n in best])
+        x = np.array([by_number[n].pitch_yaw(q0[:, k]) for n in best])
         mags = np.linalg.norm(x, axis=1)
         coherent = (len(best) > 1 and mags.sum() > 0
                     and np.linalg.norm(x.sum(axis=0)) >= COLLECTIVE_COHERENCE * mags.sum())
@@ -475,11 +480,12 @@ def whirl(dm: DofMap, x: np.ndarray, lam: complex) -> str | None:
     motion in the full-state vector ``x`` at eigenvalue ``lam``, relative to that propeller's
     own sense of rotation; None without spinning flexibly mounted propellers or for a real root.
     """
-    props = [p for p in dm.propellers if p.spinning]
+    props = _spinning_flexible(dm)
     if not props or abs(lam.imag) == 0:
         return None
-    p = max(props, key=lambda p: abs(x[p.theta]) ** 2 + abs(x[p.psi]) ** 2)
-    return whirl_sense(x[p.theta], x[p.psi], p.rotation, lam)
+    u = {p.number: p.pitch_yaw(x) for p in props}
+    p = max(props, key=lambda p: abs(u[p.number][0]) ** 2 + abs(u[p.number][1]) ** 2)
+    return whirl_sense(u[p.number][0], u[p.number][1], p.rotation, lam)
 
 
 def mode_content(model: Model, sw: Sweep, names: Sequence[str],

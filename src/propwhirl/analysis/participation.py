@@ -24,6 +24,14 @@ wing's frequency-zero event.)  The groups are
   much it whirls.  The kinetic energy of the propeller's mass carried along by the wing node
   it sits on (that node's h, φ, α) is the *wing's*: a rigidly mounted propeller has no θ, ψ
   and so a whirl share of 0;
+* **propeller j on a hub grid** (a modal structure's mount in the modes, ``mount =
+  "on-grid"``: :class:`~propwhirl.model.protocol.HubDofs`): its pitch and yaw on the mount,
+  û = R q̂ (the hub grid's rotations less the wing's there), its energy ûᴴ J û with J =
+  diag(I_θ, I_ψ), its pivot inertias; that energy is inside the modes' and is taken out of
+  the wing's, and so is the coupling 2 Re(ûᴴ C ŵ) of its pitch and yaw with the wing's heave
+  and twist ŵ under the hub (C: a flexible mount's θψ–hα mass block), which a flexible mount's
+  partition leaves out: on the same structure the shares are a flexible mount's (to 1e-3 on
+  the six-propeller wing of tests/analysis/test_modal_names.py);
 * **wing**: every wing DOF (h, φ, α of every free node), the inertia the propellers add at
   their nodes included;
 * **other**: any other structural DOF (the typical section's plunge and pitch).
@@ -248,24 +256,30 @@ def participation(dm: DofMap, X, M, eigenvalues, V) -> Participation:
     M = np.asarray(M, dtype=float)
     if M.shape[-2:] != (dm.n_dof, dm.n_dof):
         raise v.InputError(f"mass matrix of shape {M.shape}, need ({dm.n_dof}, {dm.n_dof})")
-    props = dm.propellers
-    groups: dict[str, np.ndarray] = {f"p{j}": np.array([p.theta, p.psi])
-                                     for j, p in enumerate(props)}
+    props = dm.whirling()
     wing = np.array([i for i, (n, k) in enumerate(zip(dm.q_node, dm.q_kinds))
                      if n >= 0 or k == "eta"], dtype=int)        # a modal structure's modes too
-    used = set(wing.tolist()) | {i for p in props for i in (p.theta, p.psi)}
-    groups["wing"] = wing
-    groups["other"] = np.array(sorted(set(range(dm.n_dof)) - used), dtype=int)
+    used = set(wing.tolist()) | {i for p in props if p.dofs for i in p.dofs}
+    groups = {"wing": wing,
+              "other": np.array(sorted(set(range(dm.n_dof)) - used), dtype=int)}
     Ms = np.broadcast_to(M, (m, dm.n_dof, dm.n_dof))
-    own = {}
+    own = {f"p{j}": p.energy(q, Ms)                # its own DOFs' block, or its inertia
+           for j, p in enumerate(props)}
     for g, ix in groups.items():                   # q̂_Jᴴ M_JJ q̂_J of every mode at once
         qJ = q[ix]
         own[g] = np.real(np.einsum("ik,kij,jk->k", qJ.conj(), Ms[:, ix][:, :, ix], qJ))
+    # a hub's pitch and yaw (no DOFs of its own) move inside the modes: their energy, and
+    # its coupling with the wing's motion under the hub (which a flexible mount's partition
+    # gives to no group), are taken out of the wing's (what is left, never below 0)
+    hub = sum((own[f"p{j}"] + p.coupling_energy(q) for j, p in enumerate(props)
+               if p.dofs is None), np.zeros(m))
+    own["wing"] = np.maximum(own["wing"] - hub, 0.0)
     total = sum(own.values())
     sh = {g: np.divide(e, total, out=np.zeros_like(e), where=total > 0) for g, e in own.items()}
     P = len(props)
     share = np.array([sh[f"p{j}"] for j in range(P)]).reshape(P, m)
-    amp = np.array([np.hypot(np.abs(q[p.theta]), np.abs(q[p.psi])) for p in props]).reshape(P, m)
+    u = np.array([p.pitch_yaw(q) for p in props]).reshape(P, 2, m)     # (θ̂, ψ̂) of each
+    amp = np.hypot(np.abs(u[:, 0]), np.abs(u[:, 1]))
     top = amp.max(axis=0, initial=0.0)
     rel = np.divide(amp, top, out=np.zeros_like(amp), where=top > 0)
     whirl = np.full((P, m), None, dtype=object)
@@ -274,7 +288,7 @@ def participation(dm: DofMap, X, M, eigenvalues, V) -> Participation:
             continue
         for k in range(m):
             if lam[k].imag != 0:
-                whirl[j, k] = whirl_sense(q[p.theta, k], q[p.psi, k], p.rotation, lam[k])
+                whirl[j, k] = whirl_sense(u[j, 0, k], u[j, 1, k], p.rotation, lam[k])
     return Participation(
         V=Vs, number=np.array([p.number + 1 for p in props], dtype=int),
         y=np.array([np.nan if p.y is None else p.y for p in props], dtype=float),

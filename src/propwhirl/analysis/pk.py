@@ -46,8 +46,8 @@ from propwhirl.analysis.modes import InVacuo
 from propwhirl.analysis.naming import event_label, whirl
 from propwhirl.analysis.participation import with_participation
 from propwhirl.engine import mac
-from propwhirl.model.systems import TypicalSection
 from propwhirl.model.aerodynamics import compressibility
+from propwhirl.model.protocol import capabilities
 from propwhirl.model.aerodynamics.dlm import check_speed_mach, dlm_aerodynamics, fixed_mach, strip_twin
 from propwhirl.model.aerodynamics.dlm_mesh import guideline_note
 from propwhirl.model.frequency_domain import (
@@ -72,7 +72,7 @@ DLM_NOTE = "p-k aerodynamics: doublet-lattice"
 
 
 def _is_section(model) -> bool:
-    return isinstance(model, TypicalSection)
+    return capabilities(model).structure == "section"
 
 
 @dataclass(frozen=True)
@@ -247,6 +247,8 @@ def pk_crossing(model, V0: float, p0: complex, *, lo: float, hi: float,
             def decay(x: float) -> float:
                 return pk_root(model, x, start)[0].real
 
+            if (decay(b) > 0) == (pa.real > 0):   # continued from a, another root at b:
+                continue                          # not this root's bracket (was a traceback)
             V = brentq(decay, a, b, xtol=xtol)
             p, k = pk_root(model, V, start)
             return PKCrossing(float(V), p, float(k), "onset" if pa.real < 0 else "recovery")

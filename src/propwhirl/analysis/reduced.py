@@ -26,8 +26,7 @@ from propwhirl.engine.correction import correct_crossing, full_order_pair
 from propwhirl.engine.results import Analysis, Criticals
 from propwhirl.model.aerodynamics.dlm import require_panelaero
 from propwhirl.model.aerodynamics.dlm_mesh import check_memory
-from propwhirl.model.frequency_domain import check_section
-from propwhirl.model.protocol import refusal
+from propwhirl.model.protocol import capabilities
 from propwhirl.model.reduction import CUTOFF_FACTOR, ReducedModel, reduce
 
 #: models with more states than this were analysed reduced by default (``method="auto"``)
@@ -62,24 +61,20 @@ def choose_method(model, method: str) -> str:
     if method not in METHODS:
         raise v.InputError(f"method = {method!r} is invalid: must be one of "
                            f"{', '.join(repr(m) for m in METHODS)}")
-    why = refusal(model, method) if method in ("pk", "reduced") else None
-    if why is not None:             # the model says why (a modal model: model/modal.py)
+    can = capabilities(model)       # the model says what it runs, and why not
+    why = can.refusal(method) if method != "auto" else None
+    if why is not None:
         raise v.InputError(f"method = {method!r} is invalid for this model: {why}")
-    dlm = getattr(getattr(model, "wing", None), "aero", "strip") == "dlm" and model.wing_aero
+    dlm = can.aerodynamics == "doublet lattice"
     if dlm:
         require_panelaero()                 # before the finite-state tracking starts
         check_memory(model.wing)            # one AIC of its panels within the memory limit
     if method == "pk":
-        check_section(model)
         return "pk"
     if dlm:                 # the modal Roger state space, its crossings the p-k's
         return "dense" if method == "dense" else "reduced"
-    reducible = hasattr(model, "second_order_blocks")
-    if method == "reduced" and not reducible:
-        raise v.InputError(f"method = 'reduced' is invalid for a {type(model).__name__}: "
-                           "only wing models (PropellerWing) are reduced; use 'dense'")
     if method == "auto":
-        return "reduced" if reducible else "dense"
+        return "reduced" if can.supports("reduced") else "dense"
     return method
 
 

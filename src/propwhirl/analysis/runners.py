@@ -40,6 +40,7 @@ from propwhirl.engine import frequency_zero_points
 from propwhirl.engine.results import Analysis
 from propwhirl.model.aerodynamics.dlm import check_speed_mach
 from propwhirl.model.aerodynamics.dlm_rfa import rfa_note
+from propwhirl.model.protocol import capabilities
 
 
 @dataclass(frozen=True)
@@ -94,9 +95,9 @@ class Tracked:
 
 
 def is_dlm_wing(model) -> bool:
-    """Whether ``model`` is a wing with doublet-lattice loads on (the one test of it here)."""
-    wing = getattr(model, "wing", None)
-    return getattr(wing, "aero", "") == "dlm" and bool(getattr(model, "wing_aero", False))
+    """Whether ``model``'s wing has doublet-lattice loads on (the one test of it here: the
+    model contract's :attr:`~propwhirl.model.protocol.Capabilities.aerodynamics`)."""
+    return capabilities(model).aerodynamics == "doublet lattice"
 
 
 def frequency_zero_events(model, sweep, state_matrix, xtol: float, lift):

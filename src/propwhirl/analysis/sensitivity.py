@@ -43,6 +43,7 @@ from pathlib import Path
 from typing import Any, ClassVar
 
 import numpy as np
+import scipy.linalg
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
@@ -51,10 +52,16 @@ from propwhirl.analysis.stability import ModelAnalysis
 from propwhirl.analysis.summary import text_table
 from propwhirl.engine.correction import full_order_root, real_direction
 from propwhirl.model import derivatives as D
+from propwhirl.model.protocol import capabilities, refusal
 from propwhirl.results import Result, SavedDict
 
 #: relative step of the central difference ∂/∂V of the pencil
 DV_STEP = 1e-5
+#: relative step h/|p| of the central differences ∂A/∂p of a model without exact
+#: derivatives (:func:`difference_sensitivities`; h = DIFF_STEP in p's unit for p = 0)
+DIFF_STEP = 1e-4
+#: how a sensitivity's ∂λ/∂p was computed (:attr:`Sensitivity.derivative`)
+DERIVATIVES = ("exact", "central difference", "forward difference")
 #: largest |λ_model − λ_analysis| / max(1, |λ|) of the same root: the analysis's crossing
 #: refined again on the model it came from differs by at most about 1e-6 (every case, every
 #: method); a model whose mount frequency differs by 1.5 % by 3e-3
@@ -78,6 +85,9 @@ class Sensitivity:
     normalised: float
     scale: float | None = None
     scale_of: str = ""
+    #: how ∂λ/∂p was computed: "exact" (the generated parameter derivatives) or
+    #: "central difference" (of the state matrix, :func:`difference_sensitivities`)
+    derivative: str = "exact"
 
     @property
     def per(self) -> str:
@@ -94,14 +104,15 @@ class Sensitivity:
         return {"path": self.path, "value": self.value, "unit": self.unit, "doc": self.doc,
                 "dlam_dp": _complex_dict(self.dlam_dp), "dV_dp": self.dV_dp,
                 "df_dp": self.df_dp, "normalised": self.normalised, "scale": self.scale,
-                "scale_of": self.scale_of}
+                "scale_of": self.scale_of,
+                **({} if self.derivative == "exact" else {"derivative": self.derivative})}
 
     @classmethod
     def from_dict(cls, d: Any, where: str = "sensitivity") -> "Sensitivity":
         """The entry written by :meth:`to_dict`, checked (InputError naming the key); entries
         of version 1 files have no scale (normalised by the value)."""
         r = SavedDict(d, where, ("path", "value", "unit", "doc", "dlam_dp", "dV_dp", "df_dp",
-                                 "normalised"), ("scale", "scale_of"))
+                                 "normalised"), ("scale", "scale_of", "derivative"))
         scale = r.number("scale", optional=True) if r.has("scale") else None
         if scale is not None and scale <= 0:
             raise v.InputError(f"{r.name('scale')} = {scale!r} is invalid: must be > 0 "
@@ -109,7 +120,8 @@ class Sensitivity:
         return cls(r.string("path"), r.number("value"), r.string("unit"), r.string("doc"),
                    _complex_of(r, "dlam_dp"), r.number("dV_dp"), r.number("df_dp"),
                    r.number("normalised"), scale,
-                   r.string("scale_of") if r.has("scale_of") else "")
+                   r.string("scale_of") if r.has("scale_of") else "",
+                   r.string("derivative", DERIVATIVES) if r.has("derivative") else "exact")
 
 
 def _complex_dict(z: complex) -> dict[str, float]:
@@ -223,20 +235,42 @@ class CriticalSensitivities(Result):
         head = (f"{self.kind} {self.event} of {self.mode} at V = {self.V:.2f} m/s, "
                 f"f = {self.frequency_hz:.3f} Hz: sensitivities (normalised: % of V_crit per "
                 "% of the parameter's value, or of the scale shown for a position)")
+        shown = self.ranked(top)
         rows = [[s.path, f"{s.value:.6g}", s.unit, f"{s.dV_dp:.6g}", f"{s.normalised:+.4f}",
-                 s.per] for s in self.ranked(top)]
-        return head + "\n" + text_table(rows, ["parameter", "value", "unit",
-                                               "dV/dp [m/s per unit]", "normalised", "per"],
-                                        "lrlrrl")
+                 s.per] for s in shown]
+        heads, align = ["parameter", "value", "unit", "dV/dp [m/s per unit]", "normalised",
+                        "per"], "lrlrrl"
+        if any(s.derivative != "exact" for s in shown):   # say which route gave each
+            rows = [r + [s.derivative] for r, s in zip(rows, shown)]
+            heads, align = heads + ["derivative"], align + "l"
+            head += ("\nderivative: 'central difference' = ∂A/∂p by a central difference of "
+                     f"the state matrix (relative step {DIFF_STEP:g}) in the exact "
+                     "eigenvalue perturbation yᴴ ∂A/∂p x / yᴴx; 'exact' = generated derivatives")
+        return head + "\n" + text_table(rows, heads, align)
+
+
+def exact(model) -> bool:
+    """Whether ``model``'s sensitivities are not central differences (the model contract:
+    :attr:`~propwhirl.model.protocol.Capabilities.derivatives` is not "central difference":
+    exact, or none — refused where they are asked for); central differences:
+    :func:`difference_sensitivities`."""
+    return capabilities(model).derivatives != "central difference"
 
 
 def _check_pair(model, analysis) -> None:
-    """Refuse, before any matrix is built, a model without the full-order pencil (only a
-    PropellerWing has one) and an analysis that is not a ModelAnalysis of a model of this size."""
-    if not hasattr(model, "second_order_blocks"):
-        raise v.InputError(f"model = {type(model).__name__}: sensitivities need the full-order "
-                           "pencil of a wing model (PropellerWing); an IsolatedPropeller has none")
-    D.check_model(model)              # e.g. a doublet-lattice wing: no exact derivatives
+    """Refuse, before any matrix is built, a model without sensitivities (exact ones need the
+    full-order pencil: only a PropellerWing has one; a model the contract gives central
+    differences instead is let through) and an analysis that is not a ModelAnalysis of a model
+    of this size."""
+    if exact(model):                  # the exact route's own checks name the values
+        if not hasattr(model, "second_order_blocks"):
+            raise v.InputError(f"model = {type(model).__name__}: sensitivities need the "
+                               "full-order pencil of a wing model (PropellerWing); an "
+                               "IsolatedPropeller has none")
+        D.check_model(model)          # e.g. a doublet-lattice wing: no exact derivatives
+    why = refusal(model, "sensitivity")
+    if why is not None:
+        raise v.InputError(f"model = {type(model).__name__}: no sensitivities: {why}")
     if not isinstance(analysis, ModelAnalysis):
         raise v.InputError(f"analysis = {v.short_repr(analysis)} is invalid: must be the "
                            "ModelAnalysis of the model (propwhirl.analysis.analyse(model))")
@@ -278,7 +312,10 @@ def sensitivity_parameters(model) -> tuple[D.Parameter, ...]:
     """Every parameter :func:`critical_sensitivities` covers for ``model`` (a PropellerWing):
     those of :func:`propwhirl.model.derivatives.parameters`, then the whole-distribution
     factors :data:`FACTORS` (value 1, kind "factor") and ``flight.density`` [kg/m³] (kind
-    "flight")."""
+    "flight").  A model without exact derivatives (a modal model): its
+    :func:`difference_parameters`."""
+    if not exact(model):
+        return difference_parameters(model)
     base = D.parameters(model)
     out = list(base)
     for path, name in FACTORS.items():
@@ -376,18 +413,10 @@ def critical_sensitivities(model, analysis, event=None, *, params=None) -> Criti
     """
     _check_pair(model, analysis)
     pars = _resolve(model, params)
-    e = analysis.critical if event is None else event
-    if e is None:
-        raise v.InputError("no instability in the analysed range: no critical speed to "
-                           "differentiate")
-    if e.event not in ("onset", "recovery"):
-        raise v.InputError(f"the {e.event} event of {e.label} at {e.V:.2f} m/s is not a crossing "
-                           "of the imaginary axis: its speed has no derivative (choose an onset)")
-    point = next((p for p in analysis.criticals.points
-                  if p.mode == e.mode and abs(p.V - e.V) <= 1e-9 * max(1.0, abs(e.V))), None)
-    if point is None:
-        raise v.InputError("the analysis has no refined crossing for this event (re-read "
-                           "analyses have no eigenvectors of their crossings)")
+    e = _crossing(analysis, event)
+    point = _point(analysis, e)
+    if not exact(model):
+        return difference_sensitivities(model, e, point, pars)
     V = float(point.V)
     F, E = model.second_order_blocks(np.array([V])).pencil(0)
     real = e.kind == "divergence"
@@ -440,3 +469,139 @@ def critical_sensitivities(model, analysis, event=None, *, params=None) -> Criti
                                scale, what))
     return CriticalSensitivities(V, abs(float(np.imag(lam))) / (2 * np.pi), e.kind, e.event,
                                  e.label, complex(lam), complex(dlam_dV), tuple(out))
+
+
+def _crossing(analysis, event):
+    """``event`` (default the analysis's critical one), checked to be a crossing."""
+    e = analysis.critical if event is None else event
+    if e is None:
+        raise v.InputError("no instability in the analysed range: no critical speed to "
+                           "differentiate")
+    if e.event not in ("onset", "recovery"):
+        raise v.InputError(f"the {e.event} event of {e.label} at {e.V:.2f} m/s is not a crossing "
+                           "of the imaginary axis: its speed has no derivative (choose an onset)")
+    return e
+
+
+def _point(analysis, e):
+    """The refined crossing of event ``e`` (its eigenvalue and eigenvector)."""
+    point = next((p for p in analysis.criticals.points
+                  if p.mode == e.mode and abs(p.V - e.V) <= 1e-9 * max(1.0, abs(e.V))), None)
+    if point is None:
+        raise v.InputError("the analysis has no refined crossing for this event (re-read "
+                           "analyses have no eigenvectors of their crossings)")
+    return point
+
+
+# ------------------------------------------------------------- without exact derivatives
+def difference_parameters(model) -> tuple[D.Parameter, ...]:
+    """The parameters of a modal model (:class:`~propwhirl.model.modal.ModalPropellerWing`)
+    whose sensitivities :func:`difference_sensitivities` gives, each a parameter path of the
+    studies (:mod:`propwhirl.studies.paths`): every mode's frequency
+    ``structure.frequencies_hz[i]`` [Hz], modal mass ``structure.modal_mass[i]`` [kg] and
+    damping ratio ``structure.damping_ratio[i]`` (kind "modal", index the mode from 0); each
+    flexibly mounted propeller's mount stiffness (``f_theta``/``f_psi`` [Hz], or
+    ``K_theta``/``K_psi`` [N m/rad], whichever the propeller gives) and damping
+    (``damping_theta``, ``damping_psi``), and every turning propeller's spin inertia
+    ``spin_inertia`` [kg m²] (kind "propeller", index the installation) — an on-grid
+    mount's springs and mass are in the modes —; ``flight.density`` [kg/m³] (kind "flight")."""
+    s = model.structure
+    out = []
+    for name, unit, doc in (("frequencies_hz", "Hz", "natural frequency"),
+                            ("modal_mass", "kg", "modal mass"),
+                            ("damping_ratio", "", "modal damping ratio")):
+        for i in range(s.n_modes):
+            out.append(D.Parameter(f"structure.{name}[{i}]", "modal", i, name,
+                                   float(getattr(s, name)[i]), unit, f"{doc} of mode {i + 1}"))
+    for j, inst in enumerate(model.propellers):
+        prop, pre = inst.propeller, f"propellers[{j}].propeller."
+        if inst.mount == "flexible":
+            for ax in ("theta", "psi"):
+                f = getattr(prop, f"f_{ax}")
+                name, unit = (f"f_{ax}", "Hz") if f is not None else (f"K_{ax}", "N m/rad")
+                out.append(D.Parameter(pre + name, "propeller", j, name,
+                                       float(getattr(prop, name)), unit, f"{ax} mount "
+                                       + ("frequency" if f is not None else "stiffness")))
+                out.append(D.Parameter(pre + f"damping_{ax}", "propeller", j, f"damping_{ax}",
+                                       float(getattr(prop, f"damping_{ax}")), "",
+                                       f"{ax} mount damping ({prop.damping})"))
+        if model.rotating:
+            out.append(D.Parameter(pre + "spin_inertia", "propeller", j, "spin_inertia",
+                                   float(prop.I_Omega), "kg m^2", "spin inertia I_Omega"))
+    out.append(D.Parameter(DENSITY, "flight", -1, "density", float(model.flight.density),
+                           "kg/m^3", "air density"))
+    return tuple(out)
+
+
+def with_difference_value(model, p: D.Parameter, value: float):
+    """``model`` with parameter ``p`` (of :func:`difference_parameters`) set to ``value``
+    [its unit] (``dataclasses.replace``; the model's own checks apply: a value outside a
+    field's range is an InputError)."""
+    if p.kind == "modal":
+        arr = np.array(getattr(model.structure, p.name), dtype=float)
+        arr[p.index] = value
+        return model.with_(structure=replace(model.structure, **{p.name: arr}))
+    if p.kind == "flight":
+        return model.with_(flight=replace(model.flight, density=float(value)))
+    installs = list(model.propellers)
+    inst = installs[p.index]
+    installs[p.index] = replace(inst, propeller=replace(inst.propeller, **{p.name: float(value)}))
+    return model.with_(propellers=tuple(installs))
+
+
+def _eigenpair(A: np.ndarray, lam0: complex) -> tuple[complex, np.ndarray, np.ndarray]:
+    """(λ, x, y): the eigenvalue of A nearest ``lam0`` and its right and left eigenvectors
+    (yᴴ A = λ yᴴ)."""
+    lam, Y, X = scipy.linalg.eig(A, left=True, right=True)
+    i = int(np.argmin(np.abs(lam - lam0)))
+    return complex(lam[i]), X[:, i], Y[:, i]
+
+
+def difference_sensitivities(model, e, point, pars) -> CriticalSensitivities:
+    """The sensitivities of crossing ``e`` (its refined ``point``) of a model without exact
+    derivatives, for the parameters ``pars`` (:func:`difference_parameters`).
+
+    The same first-order perturbation as the exact route, on the state matrix A(V) of the
+    model's first-order state: ∂λ/∂p = yᴴ (∂A/∂p) x / (yᴴ x), with x, y the right and left
+    eigenvectors of A at the crossing and ∂A/∂p the central difference
+    (A(p + h) − A(p − h)) / 2h, h = :data:`DIFF_STEP` |p| (DIFF_STEP in p's unit for p = 0);
+    where p − h is outside the parameter's range (a damping ratio of 0) the second-order
+    forward difference (−3 A(p) + 4 A(p + h) − A(p + 2h)) / 2h.  Truncation O(h²): the
+    relative error of ∂λ/∂p is ~1e-8, far below the crossings' accuracy.  ∂λ/∂V likewise
+    (step :data:`DV_STEP` V).  Each :class:`Sensitivity` says which difference it is."""
+    V = float(point.V)
+    A0 = model.state_matrix(np.array([V]))[0]
+    lam, x, y = _eigenpair(A0, complex(point.eigenvalue))
+    if abs(lam - point.eigenvalue) > SAME_ROOT * max(1.0, abs(lam)):
+        raise v.InputError(
+            f"the analysis is not of this model: at V = {V:.2f} m/s its {e.label} root is "
+            f"{point.eigenvalue:.6g} 1/s, the model's nearest root {lam:.6g} 1/s (analyse the "
+            "model itself, then ask for its sensitivities)")
+    denom = np.vdot(y, x)
+
+    def dlam(dA: np.ndarray) -> complex:
+        return complex(np.vdot(y, dA @ x) / denom)
+
+    hV = DV_STEP * V
+    Ap, Am = model.state_matrix(np.array([V + hV, V - hV]))
+    dlam_dV = dlam((Ap - Am) / (2 * hV))
+    real = e.kind == "divergence"
+    sgn = 1.0 if np.imag(lam) >= 0 else -1.0
+    out = []
+    for p in pars:
+        h = DIFF_STEP * (abs(p.value) if p.value != 0 else 1.0)
+        up = with_difference_value(model, p, p.value + h).state_matrix(np.array([V]))[0]
+        try:
+            down = with_difference_value(model, p, p.value - h).state_matrix(np.array([V]))[0]
+            dA, how = (up - down) / (2 * h), "central difference"
+        except v.InputError:              # p − h outside its range: one-sided, second order
+            up2 = with_difference_value(model, p, p.value + 2 * h).state_matrix(
+                np.array([V]))[0]
+            dA, how = (-3 * A0 + 4 * up - up2) / (2 * h), "forward difference"
+        d = dlam(dA)
+        dV = -d.real / dlam_dV.real
+        df = 0.0 if real else sgn * (d.imag + dlam_dV.imag * dV) / (2 * np.pi)
+        out.append(Sensitivity(p.path, p.value, p.unit, p.doc, d, float(dV), float(df),
+                               float(p.value / V * dV), None, "", how))
+    return CriticalSensitivities(V, abs(float(np.imag(lam))) / (2 * np.pi), e.kind, e.event,
+                                 e.label, lam, dlam_dV, tuple(out))

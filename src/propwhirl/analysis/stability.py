@@ -53,7 +53,7 @@ from propwhirl.engine.options import check_speeds
 from propwhirl.engine.results import (eigenvectors_npz, eigenvectors_path,  # noqa: F401
                                       read_eigenvectors)
 from propwhirl.model.aerodynamics import validity
-from propwhirl.model.protocol import DofMap, Model, PropellerDofs
+from propwhirl.model.protocol import DofMap, HubDofs, Model, PropellerDofs
 from propwhirl.results import Result, SavedDict, non_finite_key
 
 #: Default airspeed grid of the thesis's analyses (0–350 m/s; the engine refines it) [m/s]
@@ -158,7 +158,9 @@ class ModelAnalysis(Result):
         """'label (dominant content)', e.g. 'wing 2 (torsion)'
         (:func:`~propwhirl.analysis.naming.with_content`)."""
         c = self.content.get(label)
-        return with_content(label, max(c, key=lambda g: c[g])) if c else label
+        top = max(c, key=lambda g: c[g]) if c else ""
+        # a modal structure's coordinates ("modal") say nothing of what moves: no content
+        return with_content(label, top) if top and top != "modal" else label
 
     @property
     def onsets(self) -> list[Instability]:
@@ -458,7 +460,7 @@ def _dof_map_from_dict(d: Any, sweep: Sweep) -> DofMap:
     """The DOF map of an analysis file, checked against the sweep's states."""
     keys = ("q_labels", "q_kinds", "q_node", "q_propeller", "w_labels", "w_node", "node_y",
             "propellers")
-    r = SavedDict(d, "dof_map", keys)
+    r = SavedDict(d, "dof_map", keys, ("hubs",))
     n_dof = len(r.strings("q_labels"))
     props = r.raw("propellers")
     if not isinstance(props, list):
@@ -480,7 +482,8 @@ def _dof_map_from_dict(d: Any, sweep: Sweep) -> DofMap:
               q_propeller=tuple(int(k) for k in r.array("q_propeller", int)),
               w_labels=r.strings("w_labels"),
               w_node=tuple(int(k) for k in r.array("w_node", int)),
-              propellers=tuple(dofs), node_y=tuple(float(y) for y in r.array("node_y")))
+              propellers=tuple(dofs), node_y=tuple(float(y) for y in r.array("node_y")),
+              hubs=_hubs_from(r, n_dof))
     try:
         dm = DofMap(**kw)
     except v.InputError as exc:
@@ -489,6 +492,39 @@ def _dof_map_from_dict(d: Any, sweep: Sweep) -> DofMap:
         raise v.InputError(f"dof_map: its {dm.n_states} states do not match the sweep's "
                            f"{len(sweep.state_labels)} state labels")
     return dm
+
+
+def _hubs_from(r: SavedDict, n_dof: int) -> tuple[HubDofs, ...]:
+    """The DOF map's hubs (key "hubs": a modal structure's on-grid propellers; absent in
+    every other map), checked."""
+    if not r.has("hubs"):
+        return ()
+    if not isinstance(r.raw("hubs"), list):
+        raise v.InputError("dof_map.hubs: must be a list")
+    out = []
+    for i, h in enumerate(r.raw("hubs")):
+        hr = SavedDict(h, f"dof_map.hubs[{i}]", ("number", "pitch", "yaw", "inertia",
+                                                 "rotation", "spinning", "y"),
+                       ("heave", "twist", "coupling"))
+        spinning = hr.raw("spinning")
+        if not isinstance(spinning, bool):
+            raise v.InputError(f"{hr.name('spinning')}: must be true or false")
+        rows = [hr.array(k) for k in ("pitch", "yaw")]
+        inertia = hr.array("inertia")
+        for k, a, n in (("pitch", rows[0], n_dof), ("yaw", rows[1], n_dof),
+                        ("inertia", inertia, 2)):
+            if a.shape != (n,):
+                raise v.InputError(f"{hr.name(k)}: must be a list of {n} numbers")
+        wing = [tuple(float(x) for x in hr.array(k, shape=(n_dof,))) if hr.has(k) else ()
+                for k in ("heave", "twist")]
+        coupling = (tuple(tuple(float(c) for c in r) for r in hr.array(
+            "coupling", ndim=2, shape=(2, 2))) if hr.has("coupling") else ())
+        out.append(HubDofs(hr.integer("number", 0), tuple(float(x) for x in rows[0]),
+                           tuple(float(x) for x in rows[1]),
+                           (float(inertia[0]), float(inertia[1])),
+                           hr.integer("rotation", -1, 1), spinning,
+                           hr.number("y", optional=True), *wing, coupling))
+    return tuple(out)
 
 
 def _content_from_dict(d: Any, sweep: Sweep) -> dict[str, dict[str, float]]:

@@ -357,7 +357,7 @@ AERO_NAMES = {"leishman-nguyen": "Leishman-Nguyen", "wagner": "Wagner"}
 def aero_model_of(model) -> str:
     """The finite-state aerodynamics of a typical section or a wing (``aero_model``:
     "leishman-nguyen" or "wagner")."""
-    owner = getattr(model, "wing", model)
+    owner = getattr(model, "wing", getattr(model, "planform", model))   # a modal model's strips
     return str(getattr(owner, "aero_model"))
 
 

@@ -423,11 +423,7 @@ def _campbell(args: argparse.Namespace) -> int:
     from propwhirl.analysis.vibration import campbell  # lazy: analyses
 
     check_outputs(plot=args.plot, model=args.model)
-    model = load_model(args.model, "campbell")
-    if not model.dof_map().propellers:       # a propeller wing or an isolated propeller
-        raise InputError(f"{args.model}: a Campbell diagram needs a flexibly mounted propeller "
-                         "(a propeller-wing model or an isolated propeller): this model has "
-                         "no propeller pitch/yaw degrees of freedom")
+    model = load_model(args.model, "campbell")   # the model says when it has no whirl
     lo, hi, n = args.rpm
     v.in_range("--rpm START", lo, 0.0, limits.MAX_RPM, "rev/min")
     v.in_range("--rpm STOP", hi, 0.0, limits.MAX_RPM, "rev/min")
@@ -509,6 +505,10 @@ def _upgrade_model(args: argparse.Namespace) -> int:
         raise InputError(f"upgrade-model: NEW {args.new} is the file OLD: give another name "
                          "(or --force to replace OLD)")
     fileio.check_writable(new, what="upgrade-model NEW")   # a regular file or a new path
+    from propwhirl.io.modal_files import is_modal_file  # lazy: model files
+
+    if is_modal_file(old):                 # the model says why it has nothing to upgrade
+        load_model(str(old), "upgrade-model")
     notes: list[str] = []
     text = io.dumps(io.load_model(old, notes=notes))  # read and checked whole before writing
     fileio.write_text(new, text, what="model file")

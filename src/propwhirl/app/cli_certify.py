@@ -27,13 +27,36 @@ from pathlib import Path
 
 from propwhirl import fileio
 from propwhirl.app import browser, execution_options
-from propwhirl.app.cli_common import echo, print_notes
+from propwhirl.app.cli_common import check_runs, echo, print_notes
 from propwhirl.app.report import HTML_NAME, PDF_NAME, write_report
 from propwhirl.validate import InputError
 
 #: The files written in the --out folder.
 JSON_NAME = "campaign.json"
 CSV_NAME = "campaign.csv"
+
+
+def _ask_the_model(campaign: str) -> None:
+    """The campaign's model asked, before the campaign is read, whether it runs a campaign
+    (the model contract, :func:`~propwhirl.app.cli_common.check_runs`): its reason in one
+    line.  Anything that keeps the model from being read here (a bad campaign file, no such
+    model) is left to :func:`~propwhirl.io.campaign_files.load_campaign`, which says it."""
+    import tomllib
+
+    from propwhirl import io  # lazy: model files
+    from propwhirl.io.modal_files import is_modal_file  # lazy: model files
+
+    try:
+        text = fileio.read_text(campaign, "campaign file", empty_ok=True,
+                                limit=fileio.MAX_TOML_BYTES)
+        key = tomllib.loads(text).get("model")
+        if not isinstance(key, str):
+            return
+        path = Path(key) if Path(key).is_absolute() else Path(campaign).parent / key
+        model = io.load_modal_model(path) if is_modal_file(path) else io.load_model(path)
+    except (InputError, tomllib.TOMLDecodeError, OSError, ValueError):
+        return
+    check_runs(model, "certify", campaign)
 
 
 def _certify(args: argparse.Namespace) -> int:
@@ -48,6 +71,7 @@ def _certify(args: argparse.Namespace) -> int:
     if args.pdf is True and browser.find_chromium() is None:
         raise InputError(f"--pdf: no Chromium found to print {PDF_NAME}: {browser.INSTALL_HINT}"
                          " (or give --no-pdf)")
+    _ask_the_model(args.campaign)
     spec = load_campaign(args.campaign)
     json_path, csv_path = out / JSON_NAME, out / CSV_NAME
     _check_outputs(args, out, spec.model_path)

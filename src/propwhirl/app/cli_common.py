@@ -58,7 +58,9 @@ def model_or_case(text: str, command: str = "analyse"):
     TOML model file (a beam or a modal model's, :func:`load_model`), or the name of a case of
     the library."""
     if text in registry.CASES and not fileio.exists(text, "model file"):
-        return registry.case_model(text)
+        model = registry.case_model(text)
+        check_runs(model, command, text)
+        return model
     if Path(text).suffix.lower() == ".toml" or fileio.exists(text, "model file"):
         return load_model(text, command)
     raise InputError(f"MODEL = {text!r} is invalid: neither a model file (.toml) nor a case "

@@ -172,7 +172,7 @@ def _add_clearance(sub) -> None:
 
 def _sensitivity(args: argparse.Namespace) -> int:
     from propwhirl.analysis.sensitivity import (critical_sensitivities,  # lazy: analyses
-                                                sensitivity_parameters)
+                                                exact, sensitivity_parameters)
     from propwhirl.analysis.stability import analyse  # lazy: analyses
 
     check_outputs(json=args.json, plot=args.plot, model=args.model)
@@ -184,10 +184,11 @@ def _sensitivity(args: argparse.Namespace) -> int:
         raise InputError(f"{given} is for --verify (the central-difference analyses); the "
                          "sensitivities themselves are one analysis: add --verify or leave "
                          f"{given.split()[0]} out")
-    model = model_or_case(args.model, "sensitivity")
-    if not hasattr(model, "second_order_blocks"):
-        raise InputError(f"{type(model).__name__}: sensitivities are available for wing models "
-                         "(PropellerWing) only")
+    model = model_or_case(args.model, "sensitivity")      # the model says when it has none
+    if args.plot and not exact(model):
+        raise InputError("--plot draws the per-element sensitivities of a beam wing's EI, GJ "
+                         "and m: a modal model has none (its parameters are its modes'; "
+                         "leave --plot out)")
     known = sensitivity_parameters(model)
     if args.list:
         echo("\n".join(f"{p.path}  [{p.unit or 'factor'}]  {p.doc}" for p in known))

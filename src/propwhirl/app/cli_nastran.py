@@ -123,7 +123,7 @@ def _export(args: argparse.Namespace) -> int:
     from propwhirl.io import nastran_write  # lazy: model files, only when the command runs
 
     check_outputs(out=args.out, model=args.model)
-    model = model_or_case(args.model)
+    model = model_or_case(args.model, "export")
     deck = nastran_write.write_bdf(model, args.out, args.units)
     hubs = f" --hubs {' '.join(map(str, deck.hubs))}" if deck.hubs else ""
     echo(f"wrote {args.out} (NASTRAN SOL 103 deck, {deck.units} units); read it back with: "

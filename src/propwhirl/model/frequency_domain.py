@@ -24,23 +24,21 @@ from propwhirl.generated import strip_aero, typical_section
 from propwhirl.model.aerodynamics.compressibility import lift_slope_factor, lift_slopes
 from propwhirl.model.aerodynamics.dlm import pk_system_dlm
 from propwhirl.model.aerodynamics.theodorsen import theodorsen
+from propwhirl.model.protocol import capabilities, refusal
 from propwhirl.model.structure.assembly import free_dofs, place
-from propwhirl.model.systems import PropellerWing, TypicalSection
 
 #: reduced frequency used for a (numerically) non-oscillatory root: G(k)/k is singular at 0
 K_MIN = 1e-6
 
 
 def check_pk_model(model) -> None:
-    """InputError unless `model` is a TypicalSection with its aerodynamics on, or a
-    PropellerWing with its wing aerodynamics on."""
-    if isinstance(model, TypicalSection) and model.aero:
-        return
-    if isinstance(model, PropellerWing) and model.wing_aero:
-        return
-    raise v.InputError(f"model = {type(model).__name__} {getattr(model, 'name', '')!r} is invalid "
-                       "for the p-k method: must be a TypicalSection with aero = True or a "
-                       "PropellerWing with wing_aero = True")
+    """InputError unless the model contract says `model` runs the p-k method
+    (:func:`~propwhirl.model.protocol.refusal`: a typical section with its aerodynamics on, a
+    beam or modal propeller-wing with its wing aerodynamics on), with the model's reason."""
+    why = refusal(model, "pk")
+    if why is not None:
+        raise v.InputError(f"model = {type(model).__name__} {getattr(model, 'name', '')!r} is "
+                           f"invalid for the p-k method: {why}")
 
 
 #: kept for the typical-section-only callers
@@ -50,8 +48,11 @@ check_section = check_pk_model
 def reference_semichord(model) -> float:
     """Semichord [m] of the reduced frequency k = ω b / V reported: the section's b, the
     wing's root semichord."""
-    if isinstance(model, TypicalSection):
+    structure = capabilities(model).structure       # the model contract says which it is
+    if structure == "section":
         return float(model.b)
+    if structure == "modes":                        # its first (root) strip's
+        return float(0.5 * model.planform.chord[0])
     return float(model.wing.node_properties()["b"][0])
 
 
@@ -90,9 +91,12 @@ def pk_system(model, V: float):
     k = ω b_i / V; a wing with ``aero = "dlm"``: the doublet-lattice loads instead,
     :func:`propwhirl.model.aerodynamics.dlm.pk_system_dlm`), on the model's degrees of freedom (its
     ``dof_map``, without lag states)."""
-    if isinstance(model, TypicalSection):
+    can = capabilities(model)                       # the model contract says which it is
+    if can.structure == "section":
         return lambda omega: section_pk_matrices(model, V, omega * model.b / V)
-    if model.wing.aero == "dlm":                 # doublet-lattice panels instead of the strips
+    if can.structure == "modes":
+        return modal_pk_system(model, V)
+    if can.aerodynamics == "doublet lattice":     # panels instead of the strips
         return pk_system_dlm(model, V, K_MIN)
     dry = replace(model, wing_aero=False).second_order(np.array([V]))
     if dry.n_lag:
@@ -116,6 +120,31 @@ def pk_system(model, V: float):
                                                (3 * nn, 3 * nn))[np.ix_(keep, keep)]
             out.append(X)
         return tuple(out)
+
+    return matrices
+
+
+def modal_pk_system(model, V: float):
+    """ω ↦ (M, C, K) of the p-k equation of a modal model at V [m/s]: its modes and
+    propellers as they are (:meth:`ModalAssembly.second_order` with the wing aerodynamics
+    off), every strip with the exact Theodorsen loads at its own k = ω b_s / V projected on
+    the coordinates as the finite-state strips are, (TΦ)ᵀ A_s (TΦ)
+    (:mod:`propwhirl.model.modal`)."""
+    assembly = model.with_(wing_aero=False).assembly()
+    dry = assembly.second_order(np.array([V]))
+    if dry.n_lag:
+        raise v.InputError(f"model = {model.name!r} is invalid for the p-k method: its "
+                           "propeller aerodynamics has lag states")
+    node = model.planform.node_properties()
+    width = node["width"][:, None, None]
+    P = assembly.strips                                   # (n_strips, 2, n_dof): [h, α] of q
+    structure = (dry.S1[0], dry.S2[0], dry.S3[0])
+
+    def matrices(omega: float):
+        strips = _strip(model.flight.density, V, node["b"], node["a"], node["Cla"],
+                        node["ac"], omega)
+        return tuple(S - np.einsum("sim,sij,sjn->mn", P, width * A, P)
+                     for S, A in zip(structure, strips))
 
     return matrices
 

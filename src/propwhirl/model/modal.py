@@ -48,27 +48,11 @@ from propwhirl.model.modal_structure import (ModalStructure, StripPlanform, id_l
 from propwhirl.model.propellers.propeller import Propeller
 from propwhirl.model.propeller_blocks import (propeller_constants_at, propeller_matrices,
                                              propeller_values)
-from propwhirl.model.protocol import DofMap, PropellerDofs
+from propwhirl.model.protocol import REASONS, Capabilities, DofMap, HubDofs, PropellerDofs
 from propwhirl.model.statespace import SecondOrder
 
 #: How a propeller sits on its hub grid (module docstring).
 MOUNTS = ("flexible", "rigid", "on-grid")
-
-
-#: What a modal model cannot run, and why (:meth:`ModalPropellerWing.refuses`).
-REFUSALS = {
-    "pk": "the p-k method's exact-Theodorsen strips (model/frequency_domain.py) are built on a "
-          "beam wing's nodes, not projected on modes yet: use the default method (dense)",
-    "reduced": "a modal model is reduced already (one coordinate per mode): the reduced "
-               "method would not pay; use the default method (dense)",
-    "exact-sensitivity": "exact derivatives exist for the beam model's blocks only "
-                         "(model/derivatives.py)",
-    "sensitivity": "exact derivatives exist for the beam model's blocks only "
-                   "(model/derivatives.py) and the central-difference route for modal models "
-                   "is not implemented yet: use `propwhirl sweep` on the parameter path",
-    "upgrade-model": "a modal model file has one format version (1): there is nothing to "
-                     "upgrade",
-}
 
 
 @dataclass(frozen=True)
@@ -205,10 +189,24 @@ class ModalPropellerWing(StateSpaceModel):
         check_hub_grids(s, [inst.grid for inst in self.propellers])
         strip_interpolation(s, self.wing_grids, self.planform)   # checks the grids now
 
-    def refuses(self, feature: str) -> str | None:
-        """Why a modal model cannot run ``feature`` (:func:`propwhirl.model.protocol.refusal`),
-        None when it can: :data:`REFUSALS`."""
-        return REFUSALS.get(feature)
+    def capabilities(self) -> Capabilities:
+        """What this model can do (:class:`~propwhirl.model.protocol.Capabilities`): its
+        structure the modes, strip aerodynamics on its strips, sensitivities by central
+        differences, every command but the reduced method (it is reduced already), a NASTRAN
+        deck and a file upgrade; a Campbell diagram needs a propeller that whirls (own mount
+        or hub grid)."""
+        why = {"reduced": REASONS["modal-reduced"], "exact-sensitivity": REASONS["modal-exact"],
+               "export": REASONS["modal-export"], "upgrade-model": REASONS["modal-upgrade"]}
+        if not self.wing_aero:
+            why["pk"] = REASONS["no-wing-aero-pk"]
+        if not self.dof_map().whirling():
+            why["campbell"] = REASONS["no-whirl"]
+        mounts = {inst.mount for inst in self.propellers} - {"rigid"}
+        props = ("both" if mounts == {"flexible", "on-grid"} else "own mounts"
+                 if mounts == {"flexible"} else "hub grids" if mounts else "none")
+        return Capabilities("modal propeller-wing", "modes",
+                            "strip" if self.wing_aero else "none", "central difference",
+                            props, tuple(why.items()))
 
     def with_(self, **changes) -> "ModalPropellerWing":
         """A copy with fields replaced (``dataclasses.replace``)."""
@@ -257,7 +255,38 @@ class ModalPropellerWing(StateSpaceModel):
             w_labels = tuple(f"strip {s + 1} w{r + 1}" for s in range(self.planform.y.size)
                              for r in range(k))
         return DofMap(tuple(labels), tuple(kinds), tuple(node), tuple(prop), w_labels,
-                      (-1,) * len(w_labels), tuple(props))
+                      (-1,) * len(w_labels), tuple(props), hubs=self._hubs(len(labels)))
+
+    def _hubs(self, n_dof: int) -> tuple[HubDofs, ...]:
+        """The on-grid propellers' pitch and yaw as rows over q (:class:`HubDofs`): the hub
+        grid's rotations θ_H = R_y, ψ_H = −R_z less the wing's at the hub's spanwise station
+        (the wing grids' R_y, R_z interpolated linearly in y, held beyond the ends) — the
+        propeller's rotation on its mount, a flexible mount's θ and ψ (θ_H = θ + α_P,
+        ψ_H = ψ + χ_P: derivations/prop_hub.py); J the propeller's pivot inertias."""
+        s, out = self.structure, []
+        wing = np.array([s.index(g) for g in self.wing_grids])
+        yw = s.xyz[wing, 1]
+        order = np.argsort(yw, kind="stable")
+        for j, inst in enumerate(self.propellers):
+            if inst.mount != "on-grid":
+                continue
+            g = s.index(inst.grid)
+            y = float(s.xyz[g, 1])
+            # linear-interpolation weights of the wing grids at y (one per grid)
+            weights = np.array([np.interp(y, yw[order], e[order]) for e in np.eye(wing.size)])
+            under = np.einsum("w,mwc->mc", weights, s.shapes[:, wing, :])
+            rel = s.shapes[:, g, :] - under
+            pitch, yaw, heave, twist = (np.zeros(n_dof) for _ in range(4))
+            pitch[: s.n_modes], yaw[: s.n_modes] = rel[:, 4], -rel[:, 5]
+            heave[: s.n_modes], twist[: s.n_modes] = -under[:, 2], under[:, 4]
+            B = _mount_mass(inst.propeller, float(np.dot(weights, s.xyz[wing, 0]))
+                            - self.planform.mid_chord_x(y), self.flight.density)
+            out.append(HubDofs(j, tuple(pitch.tolist()), tuple(yaw.tolist()),
+                               (float(B[0, 0]), float(B[1, 1])),
+                               inst.propeller.rotation, self.rotating, y,
+                               tuple(heave.tolist()), tuple(twist.tolist()),
+                               tuple(tuple(float(c) for c in r) for r in B[:2, 2:])))
+        return tuple(out)
 
 
 @dataclass(frozen=True, eq=False)
@@ -374,6 +403,19 @@ class ModalAssembly(EvaluatorBase):
         for s in range(ns):
             Ww[:, s * k:(s + 1) * k, s * k:(s + 1) * k] = a["Ww"][:, s]
         return SecondOrder(*S, S4, Ww, Wv, Wq, self.states.q_labels, self.states.w_labels)
+
+
+def _mount_mass(propeller: Propeller, ea: float, density: float) -> np.ndarray:
+    """The 4×4 mass block [kg, kg m, kg m²] over [θ, ψ, h_P, α_P] the propeller would have on
+    a flexible mount at a wing point ``ea`` [m] aft of the mid-chord (the generated
+    :func:`~propwhirl.model.propeller_blocks.propeller_matrices`): its pivot inertias and the
+    coupling of its pitch and yaw with the point's heave and twist (for the participation of
+    an on-grid propeller, :class:`~propwhirl.model.protocol.HubDofs`)."""
+    c = propeller_constants_at(propeller, ea, density)
+    vals = propeller_values(c, propeller, np.array([1.0]), None, rotating=False, aero=False,
+                            speed_of_sound=1.0)
+    return np.asarray(propeller_matrices(vals, mount="flexible", in_plane=False,
+                                         aero=False)[0][0], dtype=float)
 
 
 def _on_grid_matrices(values: dict, aero: bool, nV: int):

@@ -10,6 +10,7 @@ import numpy as np
 from propwhirl import validate as v
 from propwhirl.generated import strip_aero, typical_section
 from propwhirl.model.aerodynamics import validity
+from propwhirl.model.protocol import COMMANDS, REASONS, Capabilities
 from propwhirl.model.structure.assembly import LAG_STATES, STRIP_AERO, call_blocks
 from propwhirl.model.base import StateSpaceModel
 from propwhirl.model.fields import check_fields, spec
@@ -145,6 +146,19 @@ class TypicalSection(StateSpaceModel):
     def without_aerodynamics(self) -> "TypicalSection":
         """The same section with its strip aerodynamics off (no lag states)."""
         return replace(self, aero=False)
+
+    def capabilities(self) -> Capabilities:
+        """What this model can do (:class:`~propwhirl.model.protocol.Capabilities`): the
+        Python API's analysis, dense or p-k (with its aerodynamics on); no model file holds a
+        typical section, so no command runs it."""
+        why = {f: REASONS["section-file"] for f in COMMANDS if f != "analyse"}
+        why["analyse"] = REASONS["section-file"]
+        why["reduced"] = REASONS["section-reduced"]
+        why["sensitivity"] = why["exact-sensitivity"] = REASONS["section-file"]
+        if not self.aero:
+            why["pk"] = REASONS["no-wing-aero-pk"]
+        return Capabilities("typical section", "section", "strip" if self.aero else "none",
+                            "none", "none", tuple(why.items()))
 
     def dof_map(self) -> DofMap:
         """Plunge h [m] and pitch α [rad] (and rates), then the lag states w1…wk."""

@@ -65,7 +65,7 @@ from propwhirl.model.propellers.propeller import Propeller
 from propwhirl.model.propeller_blocks import (propeller_constants, propeller_matrices,
                                              propeller_values)
 from propwhirl.model.blocks import BlockSystem, LagBlocks, LocalBlocks
-from propwhirl.model.protocol import DofMap, PropellerDofs
+from propwhirl.model.protocol import REASONS, Capabilities, DofMap, PropellerDofs
 from propwhirl.model.aerodynamics import dlm_rfa, validity
 from propwhirl.model.base import EvaluatorBase, StateSpaceModel
 from propwhirl.model.section import TypicalSection  # noqa: F401 (re-export: its former home)
@@ -462,6 +462,27 @@ class PropellerWing(StateSpaceModel):
         """The same wing and propellers with wing and propeller aerodynamics off."""
         return self.with_(wing_aero=False, propeller_aero=False)
 
+    def capabilities(self) -> Capabilities:
+        """What this model can do (:class:`~propwhirl.model.protocol.Capabilities`): a beam
+        structure, strip or doublet-lattice wing aerodynamics, exact parameter derivatives
+        (but on doublet-lattice or in-plane blocks), every command; a Campbell diagram needs
+        a flexibly mounted propeller, the p-k method the wing aerodynamics."""
+        dlm = self.wing_aero and self.wing.aero == "dlm"
+        aero = "doublet lattice" if dlm else ("strip" if self.wing_aero else "none")
+        why: dict[str, str] = {}
+        if dlm or self.wing.in_plane:
+            key = "dlm-derivatives" if dlm else "inplane-derivatives"
+            why["sensitivity"] = why["exact-sensitivity"] = REASONS[key]
+        if not self.wing_aero:
+            why["pk"] = REASONS["no-wing-aero-pk"]
+        if not self.flexible:
+            why["campbell"] = REASONS["no-whirl"]
+        if not self.propellers:
+            why["certify"] = REASONS["no-propeller-campaign"]
+        return Capabilities("beam propeller-wing", "beam", aero,
+                            "none" if "sensitivity" in why else "exact",
+                            "own mounts" if self.flexible else "none", tuple(why.items()))
+
     def dof_map(self) -> DofMap:
         """The states of :meth:`second_order`: the free wing DOFs (node ≥ 1: h, φ, α, eq. 7.20),
         with in-plane bending the in-plane v, χ of nodes ≥ 1, then θ, ψ of each flexibly
@@ -812,6 +833,17 @@ class IsolatedPropeller(StateSpaceModel):
     def without_aerodynamics(self) -> "IsolatedPropeller":
         """The same propeller with its aerodynamic derivatives off."""
         return replace(self, propeller_aero=False)
+
+    def capabilities(self) -> Capabilities:
+        """What this model can do (:class:`~propwhirl.model.protocol.Capabilities`): a
+        propeller on its mount on a rigid wing — the dense method and the commands of a
+        model file; no wing: no p-k, reduced method, sensitivities or NASTRAN deck."""
+        why = {"pk": REASONS["rigid-pk"], "reduced": REASONS["rigid-reduced"],
+               "sensitivity": REASONS["rigid-sensitivity"],
+               "exact-sensitivity": REASONS["rigid-sensitivity"],
+               "export": REASONS["rigid-export"], "certify": REASONS["rigid-campaign"]}
+        return Capabilities("isolated propeller", "rigid", "none", "none", "own mounts",
+                            tuple(why.items()))
 
     def dof_map(self) -> DofMap:
         """Two states θ, ψ of the propeller (6.18) and their rates; no lag states."""

@@ -817,15 +817,15 @@ def _critical_shape(a: Any, e: Any) -> dict[str, Any] | None:
         return None
     x, lam, Ve = found
     x = np.asarray(x, dtype=complex).ravel()[: dm.n_dof]
-    shown = [i for i, k in enumerate(dm.q_kinds) if k in ("h", "alpha", "theta", "psi")]
-    if not shown or not np.abs(x[shown]).max() > 0:
+    motions = dm.whirling()              # own θ, ψ DOFs, or a modal structure's hub grids
+    shown = x[[i for i, k in enumerate(dm.q_kinds) if k in ("h", "alpha", "theta", "psi")]]
+    shown = np.concatenate([shown, *(p.pitch_yaw(x) for p in motions if p.dofs is None)])
+    if not shown.size or not np.abs(shown).max() > 0:
         return None
-    x = x / x[shown[int(np.argmax(np.abs(x[shown])))]]
-
+    x = x / shown[int(np.argmax(np.abs(shown)))]
     return {"V": Ve, "eigenvalue": lam, "y": np.asarray(dm.node_y, dtype=float),
             "h": dm.wing_values(x, "h"), "alpha": dm.wing_values(x, "alpha"),
-            "propellers": [(p.number + 1, p.y, x[p.theta], x[p.psi])
-                           for p in sorted(dm.propellers, key=lambda p: p.number)]}
+            "propellers": [(p.number + 1, p.y, *p.pitch_yaw(x)) for p in motions]}
 
 
 def plot_data(a: Any, modes: Sequence[int], e: Any) -> dict[str, Any]:

@@ -89,7 +89,7 @@ def animate_mode(eigenvector, eigenvalue: complex, dof_map: "DofMap", path: str 
     sign = 1.0 if lam.imag >= 0 else -1.0
     phases = 2.0 * np.pi * np.arange(n) / n
     movers = []                                      # (artist, update(phase))
-    props = sorted(dm.propellers, key=lambda p: p.number)
+    props = dm.whirling()
     axes = fig.axes
     wing = [ax for ax in axes if ax.get_title(loc="left") == "wing"]
     if wing:
@@ -103,7 +103,7 @@ def animate_mode(eigenvector, eigenvalue: complex, dof_map: "DofMap", path: str 
                            line.set_ydata((vals * np.exp(1j * sign * ph)).real)))
     orbit_axes = [ax for ax in axes if ax.get_title().startswith("propeller")]
     for ax, p in zip(orbit_axes, props):
-        th, ps = x[p.theta], x[p.psi]
+        th, ps = p.pitch_yaw(x)
         (dot,) = ax.plot([th.real], [ps.real], "o", color="k", ms=7, zorder=6)
         (spoke,) = ax.plot([0.0, th.real], [0.0, ps.real], "-", color="k", lw=1.0)
 

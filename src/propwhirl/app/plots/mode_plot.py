@@ -34,21 +34,24 @@ H_COLOUR, ALPHA_COLOUR, ORBIT_COLOUR = "C0", "C3", "C2"
 
 def normalised(eigenvector, dof_map: "DofMap") -> np.ndarray:
     """The displacement part of `eigenvector` (full-state or displacements) scaled so that its
-    largest h, α, θ or ψ entry is 1 and real."""
+    largest h, α, θ or ψ entry is 1 and real (θ and ψ also of a modal structure's hub grids,
+    :meth:`~propwhirl.model.protocol.DofMap.whirling`)."""
     x = np.asarray(eigenvector, dtype=complex).ravel()
     dm = dof_map
     if x.size not in (dm.n_dof, dm.n_states):
         raise v.InputError(f"eigenvector has {x.size} entries: need {dm.n_dof} (displacements) "
                            f"or {dm.n_states} (states) for this model")
     shown = [i for i, k in enumerate(dm.q_kinds) if k in ("h", "alpha", "theta", "psi")]
-    if not shown:
+    if not shown and not dm.hubs:
         raise v.InputError("the model has no wing node (h, alpha) or propeller (theta, psi) "
                            "states: nothing to plot")
     x = x[: dm.n_dof]
-    ref = shown[int(np.argmax(np.abs(x[shown])))]
-    if abs(x[ref]) == 0:
+    vals = np.concatenate([x[shown], *(p.pitch_yaw(x) for p in dm.whirling()
+                                       if p.dofs is None)])
+    ref = vals[int(np.argmax(np.abs(vals)))]
+    if abs(ref) == 0:
         raise v.InputError("the eigenvector is zero in every plotted state")
-    return x / x[ref]
+    return x / ref
 
 
 def wing_values(x: np.ndarray, dof_map: "DofMap", key: str) -> np.ndarray:
@@ -59,7 +62,7 @@ def wing_values(x: np.ndarray, dof_map: "DofMap", key: str) -> np.ndarray:
 
 def propeller_amplitudes(x: np.ndarray, dof_map: "DofMap") -> dict[int, float]:
     """{propeller number: √(|θ̂|² + |ψ̂|²) / the largest of them}."""
-    amp = {p.number: float(np.hypot(abs(x[p.theta]), abs(x[p.psi]))) for p in dof_map.propellers}
+    amp = {p.number: float(np.hypot(*np.abs(p.pitch_yaw(x)))) for p in dof_map.whirling()}
     top = max(amp.values(), default=0.0)
     return {j: (a / top if top > 0 else 0.0) for j, a in amp.items()}
 
@@ -71,17 +74,19 @@ def propeller_title(p, x: np.ndarray, lam: complex, amplitude: float | None = No
     (:mod:`propwhirl.analysis.participation`), shown when given."""
     where = f" (y = {p.y:.3g} m)" if p.y is not None else ""
     part = "" if share is None else f": {100 * share:.0f} %"
-    sense = (f"{whirl_sense(x[p.theta], x[p.psi], p.rotation, lam)} whirl"
+    sense = (f"{whirl_sense(*p.pitch_yaw(x), p.rotation, lam)} whirl"
              if complex(lam).imag != 0 else "planar (real root)")
     amp = "" if amplitude is None else f", amplitude {amplitude:.2f}"
     return f"propeller {p.number + 1}{where}{part}\n{sense}{amp}"
 
 
 def orbit(x: np.ndarray, p, lam: complex, n: int = 181) -> tuple[np.ndarray, np.ndarray]:
-    """θ(t), ψ(t) over one cycle, ωt from 0 to 2π (eq. 5.11 without the decay)."""
+    """θ(t), ψ(t) over one cycle, ωt from 0 to 2π (eq. 5.11 without the decay); ``p`` a
+    :class:`~propwhirl.model.protocol.PropellerMotion`."""
     phase = np.linspace(0.0, 2.0 * np.pi, n)
     rot = np.exp(1j * (1.0 if complex(lam).imag >= 0 else -1.0) * phase)
-    return (x[p.theta] * rot).real, (x[p.psi] * rot).real
+    th, ps = p.pitch_yaw(x)
+    return (th * rot).real, (ps * rot).real
 
 
 def mode_shape(eigenvector, eigenvalue: complex, dof_map: "DofMap", *,
@@ -133,7 +138,7 @@ def mode_shape(eigenvector, eigenvalue: complex, dof_map: "DofMap", *,
     x = normalised(eigenvector, dm)
     lam = complex(eigenvalue)
     has_wing = any(n >= 0 for n in dm.q_node) and len(dm.node_y) > 0
-    props = sorted(dm.propellers, key=lambda p: p.number)
+    props = dm.whirling()
     ncol = min(ORBIT_COLUMNS, max(len(props), 1))
     nrow = -(-len(props) // ncol) if props else 0
     rows = ([2.2] if has_wing else []) + [2.0] * nrow
