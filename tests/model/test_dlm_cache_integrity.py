@@ -176,9 +176,9 @@ def patil_dlm():
 
 
 def flutter(m):
-    dlm._CACHE.pop(dlm._geometry_key(m.wing), None)   # a new session: the disk is read
-    a = analyse(m, speeds=SPEEDS)
-    return [(e.kind, e.event, e.label, e.V) for e in a.events], dlm.dlm_aerodynamics(m.wing)
+    tables = dlm.DlmTables()                           # a new session: the disk is read
+    a = analyse(m, speeds=SPEEDS, dlm_tables=tables)
+    return [(e.kind, e.event, e.label, e.V) for e in a.events], tables.aero(m.wing)
 
 
 @pytest.mark.parametrize("how", ["doubled", "zeroed", "truncated"])
@@ -216,7 +216,8 @@ def test_a_forged_cache_refuses_the_analysis(monkeypatch, tmp_path):
     flutter(m)
     for path in tmp_path.glob("aic-*.npy"):
         forge(path, 2 * np.load(path))
+    tables = dlm.DlmTables()
     with pytest.raises(InputError, match=r"^PROPWHIRL_DLM_CACHE = .* is invalid: aic-[0-9a-f]+"
                                          r"\.npy differs from the AIC computed again"):
-        flutter(m)
-    assert dlm.dlm_aerodynamics(m.wing).evaluations == 1
+        analyse(m, speeds=SPEEDS, dlm_tables=tables)
+    assert tables.aero(m.wing).evaluations == 1

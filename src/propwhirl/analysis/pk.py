@@ -32,6 +32,10 @@ In ``analyse(model, method="pk")`` (:func:`pk_instabilities`) each crossing's p-
 (:func:`pk_mode`; its displacements on the model's own DOFs) names the tracked finite-state
 mode it is (:func:`tracked_mode`, by MAC) and gives the event's whirl sense and propeller
 participation; the benignity is the slope of the p-k damping ratio at the crossing.
+
+On a doublet-lattice wing every function reads Q(k, M) from ``tables``, the analysis's
+:class:`~propwhirl.model.aerodynamics.dlm.DlmTables` (None: new ones for that call — give the
+analysis's to reuse its AICs).
 """
 from __future__ import annotations
 
@@ -47,7 +51,8 @@ from propwhirl.analysis.naming import event_label, whirl
 from propwhirl.analysis.participation import with_participation
 from propwhirl.engine import mac
 from propwhirl.model.systems import TypicalSection
-from propwhirl.model.aerodynamics.dlm import check_speed_mach, dlm_aerodynamics, fixed_mach, strip_twin
+from propwhirl.model.aerodynamics.dlm import (DlmTables, check_speed_mach, check_tables,
+                                              dlm_aerodynamics, fixed_mach, strip_twin)
 from propwhirl.model.aerodynamics.dlm_mesh import guideline_note
 from propwhirl.model.frequency_domain import (
     K_MIN,
@@ -128,14 +133,15 @@ class PKSweep:
         return onsets[0] if onsets else None
 
 
-def pk_matrix(model, V: float, k: float) -> np.ndarray:
+def pk_matrix(model, V: float, k: float, tables: DlmTables | None = None) -> np.ndarray:
     """First-order matrix of the p-k equation at airspeed V [m/s] and reduced frequency k [-]
     (on the reference semichord, :func:`~propwhirl.model.frequency_domain.reference_semichord`).
 
     Its eigenvalues p [1/s] solve (M_s − M_a) p² − C_a(k) p + (K_s − K_a(k)) = 0 with the
     exact Theodorsen C(k) (eq. 4.31): :func:`propwhirl.model.frequency_domain.pk_matrices`.
     """
-    return _first_order(pk_system(model, V), max(k, K_MIN) * V / reference_semichord(model))
+    return _first_order(pk_system(model, V, tables),
+                        max(k, K_MIN) * V / reference_semichord(model))
 
 
 def _first_order(system, omega: float) -> np.ndarray:
@@ -149,7 +155,7 @@ def _first_order(system, omega: float) -> np.ndarray:
 
 
 def pk_root(model, V: float, p0: complex, *, ktol: float = KTOL, maxiter: int = 200,
-            system=None) -> tuple[complex, float]:
+            system=None, tables: DlmTables | None = None) -> tuple[complex, float]:
     """The p-k root [1/s] of the mode nearest ``p0`` at airspeed V [m/s], and its k [-].
 
     Fixed-point iteration k ← Im p · b / V (b: the reference semichord) with the root of
@@ -158,7 +164,7 @@ def pk_root(model, V: float, p0: complex, *, ktol: float = KTOL, maxiter: int = 
     in ``maxiter`` iterations.  ``system``: :func:`pk_system` of (model, V) if already built.
     """
     b = reference_semichord(model)
-    system = pk_system(model, V) if system is None else system
+    system = pk_system(model, V, tables) if system is None else system
     p = complex(p0)
     k = abs(p.imag) * b / V
     relax, last = 1.0, 0.0
@@ -179,13 +185,14 @@ def pk_root(model, V: float, p0: complex, *, ktol: float = KTOL, maxiter: int = 
     raise RuntimeError(f"p-k iteration did not converge at V = {V} m/s (k = {k})")
 
 
-def pk_mode(model, V: float, p0: complex, *, system=None) -> tuple[complex, float, np.ndarray]:
+def pk_mode(model, V: float, p0: complex, *, system=None,
+            tables: DlmTables | None = None) -> tuple[complex, float, np.ndarray]:
     """The p-k root [1/s] nearest ``p0`` at V [m/s] (:func:`pk_root`), its k [-] and its
     eigenvector: the first-order state (q̂, p q̂) on the model's degrees of freedom (the
     first ``dof_map().n_dof`` entries are the displacement shape q̂, the same DOFs as the
     finite-state model's, which adds only its lag states after them), scaled to unit norm."""
     b = reference_semichord(model)
-    system = pk_system(model, V) if system is None else system
+    system = pk_system(model, V, tables) if system is None else system
     p, k = pk_root(model, V, p0, system=system)
     lam, X = np.linalg.eig(_first_order(system, max(k, K_MIN) * V / b))
     i = int(np.argmin(np.abs(lam - p)))
@@ -225,7 +232,7 @@ class PKCrossing:
 
 
 def pk_crossing(model, V0: float, p0: complex, *, lo: float, hi: float,
-                xtol: float = XTOL) -> PKCrossing | None:
+                xtol: float = XTOL, tables: DlmTables | None = None) -> PKCrossing | None:
     """The p-k crossing (Re p = 0) of the mode whose root is near ``p0`` [1/s] at V0 [m/s]:
     a bracket around V0 of half-width :data:`CROSSING_SPREAD` × V0 (widened in turn, within
     [``lo``, ``hi``] [m/s]) where the p-k root continued from ``p0`` changes sign, refined by
@@ -233,33 +240,36 @@ def pk_crossing(model, V0: float, p0: complex, *, lo: float, hi: float,
     bracket (the p-k has no crossing there); RuntimeError when the k iteration does not
     converge.  What the default analysis of a doublet-lattice wing converges its modal Roger
     state space's crossings with (:mod:`propwhirl.analysis.modal_dlm`)."""
+    tables = check_tables(tables) if strip_twin(model) is not model else None
     V0 = float(np.clip(V0, lo, hi))
     guess = {"lo": complex(p0), "hi": complex(p0)}
     for s in CROSSING_SPREAD:
         a, b = max(lo, V0 * (1 - s)), min(hi, V0 * (1 + s))
-        pa, _ = pk_root(model, a, guess["lo"])
-        pb, _ = pk_root(model, b, guess["hi"])
+        pa, _ = pk_root(model, a, guess["lo"], tables=tables)
+        pb, _ = pk_root(model, b, guess["hi"], tables=tables)
         guess["lo"], guess["hi"] = pa, pb
         if pa.real != 0 and pb.real != 0 and (pa.real > 0) != (pb.real > 0):
             start = pa
 
             def decay(x: float) -> float:
-                return pk_root(model, x, start)[0].real
+                return pk_root(model, x, start, tables=tables)[0].real
 
             V = brentq(decay, a, b, xtol=xtol)
-            p, k = pk_root(model, V, start)
+            p, k = pk_root(model, V, start, tables=tables)
             return PKCrossing(float(V), p, float(k), "onset" if pa.real < 0 else "recovery")
         if a <= lo and b >= hi:
             break
     return None
 
 
-def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None) -> PKSweep:
+def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
+             tables: DlmTables | None = None) -> PKSweep:
     """p-k roots of the modes of a typical section or a wing over ``speeds`` [m/s] and their
     flutter and divergence crossings (Re p = 0, refined by Brent's method to ``xtol`` [m/s]).
 
     ``n_modes``: how many in-vacuo modes (lowest frequencies first) to follow; default every
-    mode of a typical section, the lowest :data:`WING_MODES` of a wing.
+    mode of a typical section, the lowest :data:`WING_MODES` of a wing.  ``tables``: a
+    doublet-lattice wing's (the analysis's; None: new ones for this sweep).
     """
     check_pk_model(model)
     V = np.asarray(speeds, dtype=float)
@@ -270,6 +280,7 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None) -
     v.positive("xtol", xtol, "m/s")
     if strip_twin(model) is not model:  # doublet-lattice tables: every Mach subsonic, first
         check_speed_mach(model, V)
+        tables = check_tables(tables)
     if n_modes is None:
         n_modes = None if _is_section(model) else WING_MODES
     elif not isinstance(n_modes, (int, np.integer)) or n_modes < 1:
@@ -281,7 +292,7 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None) -
     p = start.copy()
     lost: list[tuple[str, float]] = []
     for i, Vi in enumerate(V):
-        system = pk_system(model, Vi)  # the structure and propellers once per speed
+        system = pk_system(model, Vi, tables)  # the structure and propellers once per speed
         for j in range(start.size):
             if not np.isfinite(p[j]):
                 ks[i, j] = np.nan
@@ -303,12 +314,12 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None) -
 
             def decay(x: float) -> float:
                 # continue from the bracket's left root (a near root keeps the same mode)
-                p, _ = pk_root(model, x, guess[0])
+                p, _ = pk_root(model, x, guess[0], tables=tables)
                 return p.real
 
             try:
                 Vf = brentq(decay, V[i], V[i + 1], xtol=xtol)
-                p, k = pk_root(model, Vf, roots[i, j])
+                p, k = pk_root(model, Vf, roots[i, j], tables=tables)
             except RuntimeError:
                 lost.append((labels[j], float(V[i])))
                 continue
@@ -328,11 +339,11 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None) -
     return PKSweep(V, roots, ks, labels, tuple(events), start, tuple(lost))
 
 
-def pk_flutter(model, speeds, *, xtol: float = XTOL,
-               n_modes: int | None = None) -> tuple[PKFlutter, ...]:
+def pk_flutter(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
+               tables: DlmTables | None = None) -> tuple[PKFlutter, ...]:
     """The p-k flutter and divergence crossings of a typical section or a wing over ``speeds``
     [m/s], sorted by speed (exact Theodorsen aerodynamics; see :func:`pk_sweep`)."""
-    return pk_sweep(model, speeds, xtol=xtol, n_modes=n_modes).flutter
+    return pk_sweep(model, speeds, xtol=xtol, n_modes=n_modes, tables=tables).flutter
 
 
 def tracked_mode(sweep, x: np.ndarray, p: complex, V: float) -> int:
@@ -364,24 +375,25 @@ MAC_BAND = 0.9
 BENIGNITY_STEP = 0.1
 
 
-def pk_benignity(model, V: float, p: complex) -> float | None:
+def pk_benignity(model, V: float, p: complex,
+                 tables: DlmTables | None = None) -> float | None:
     """(dζ/dV)⁻¹ [m/s] (eq. 5.13) of the p-k root through ``p`` at V, ζ = −Re p/|p| (eq. 5.5),
     by a central difference of :data:`BENIGNITY_STEP`; None if dζ/dV is 0 or a root is lost."""
     h = BENIGNITY_STEP
     try:
-        lo, _ = pk_root(model, V - h, p)
-        hi, _ = pk_root(model, V + h, p)
+        lo, _ = pk_root(model, V - h, p, tables=tables)
+        hi, _ = pk_root(model, V + h, p, tables=tables)
     except RuntimeError:
         return None
     dz = (-hi.real / abs(hi) + lo.real / abs(lo)) / (2 * h)
     return 1.0 / dz if dz != 0 else None
 
 
-def dlm_notes(model, sweep: PKSweep) -> list[str]:
+def dlm_notes(model, sweep: PKSweep, tables: DlmTables | None = None) -> list[str]:
     """What a doublet-lattice p-k analysis used (:data:`DLM_NOTE` first: panels, Mach, k
     convention) and, when broken, the panel-length guideline at the first speed and the
     highest followed frequency (:func:`propwhirl.model.aerodynamics.dlm_mesh.guideline_note`)."""
-    aero = dlm_aerodynamics(model.wing)
+    aero = dlm_aerodynamics(model.wing, tables)
     m = aero.mesh
     fixed = fixed_mach(model.wing)
     mach = ("Mach V/a at each speed" if fixed is None
@@ -399,7 +411,8 @@ def dlm_notes(model, sweep: PKSweep) -> list[str]:
 
 
 def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: float = XTOL,
-                     notes: list | None = None, sweep=None, mass: np.ndarray | None = None):
+                     notes: list | None = None, sweep=None, mass: np.ndarray | None = None,
+                     tables: DlmTables | None = None):
     """The p-k crossings as :class:`~propwhirl.analysis.stability.Instability` events of the
     finite-state analysis's tracked modes (``analyse(model, method="pk")``).
 
@@ -415,11 +428,14 @@ def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: flo
     Re p > 0 at the first speed, each with the whirl sense and the propellers' participation
     of its p-k mode shape (:mod:`propwhirl.analysis.participation`: the p-k eigenvector's
     displacements are on the model's own DOFs) and, for flutter crossings, the benignity
-    (dζ/dV)⁻¹ of the p-k root [m/s] (:func:`pk_benignity`).
+    (dζ/dV)⁻¹ of the p-k root [m/s] (:func:`pk_benignity`).  ``tables``: a doublet-lattice
+    wing's (the analysis's; None: new ones).
     """
-    r = pk_sweep(model, speeds, xtol=xtol)
-    if notes is not None and strip_twin(model) is not model:
-        notes.extend(dlm_notes(model, r))
+    dlm = strip_twin(model) is not model
+    tables = check_tables(tables) if dlm else None
+    r = pk_sweep(model, speeds, xtol=xtol, tables=tables)
+    if notes is not None and dlm:
+        notes.extend(dlm_notes(model, r, tables))
     dm = model.dof_map()
     n = dm.n_dof
     tracked = [int(np.argmin(np.abs(np.asarray(start_roots) - p))) for p in r.start]
@@ -435,14 +451,14 @@ def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: flo
     events, shapes = [], []
 
     def add(kind: str, event: str, j: int, V: float, p0: complex, benign: bool) -> None:
-        p, _, x = pk_mode(model, V, p0)
+        p, _, x = pk_mode(model, V, p0, tables=tables)
         mode = tracked_mode(sweep, x, p, V) if use_shape else tracked[j]
         label = event_label(sweep, names, mode, x, mass) if use_shape else names[mode]
         f_hz = 0.0 if kind == "divergence" else float(abs(p.imag) / (2 * np.pi))
         events.append(Instability(
             kind, event, mode, label, float(V), f_hz,
             whirl(dm, x[:n], p) if kind == "flutter" else None,
-            pk_benignity(model, V, p) if benign else None))
+            pk_benignity(model, V, p, tables) if benign else None))
         shapes.append((x[:n], p, float(V)))
 
     for j, p0 in enumerate(r.roots[0]):

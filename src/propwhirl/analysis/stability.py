@@ -40,7 +40,7 @@ from propwhirl.analysis.participation import (ModeParticipation, branch_point_sh
 from propwhirl.analysis.pk import DLM_NOTE, pk_instabilities
 from propwhirl.analysis.reduced import choose_method
 from propwhirl.analysis.runners import Job, Tracked, track
-from propwhirl.model.aerodynamics.dlm import strip_twin
+from propwhirl.model.aerodynamics.dlm import DlmTables, check_tables, strip_twin
 from propwhirl.model.aerodynamics.dlm_rfa import RFA_NOTE, extrapolation_notes
 from propwhirl.analysis.summary import (FiniteState, FlutterSummary, MethodComparison,
                                         Reference, aero_model_of, compare_methods,
@@ -517,7 +517,8 @@ def _finite_state_from_dict(r: SavedDict, sweep: Sweep) -> FiniteState | None:
 @one_blas_thread
 def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
             options: TrackingOptions | None = None, method: str = "auto",
-            progress: Callable[[int, int], None] | None = None) -> ModelAnalysis:
+            progress: Callable[[int, int], None] | None = None,
+            dlm_tables: DlmTables | None = None) -> ModelAnalysis:
     """Every instability of `model` over `speeds` [m/s], with tracked, named modes.
 
     Parameters
@@ -564,6 +565,11 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         the Mach columns: :func:`~propwhirl.analysis.modal_dlm.compute_fit_aics`), and calls
         it before the first and after each; nothing else reports.  None (default): silent.
         The command line passes the stage of its spinner (:mod:`propwhirl.progress`).
+    dlm_tables : DlmTables, optional
+        A wing with ``aero = "dlm"``: the doublet-lattice tables (AICs' Q(k, M) and their fits,
+        :class:`~propwhirl.model.aerodynamics.dlm.DlmTables`) this analysis reads and fills.
+        None (default): new ones, this analysis's own; a study passes one to all its analyses
+        so that the variants of one planform compute their AICs once.
 
     Returns
     -------
@@ -596,12 +602,13 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
     if progress is not None and not callable(progress):
         raise v.InputError(f"progress = {progress!r:.60} is invalid: must be None or a callable "
                            "report(done, total)")
+    tables = check_tables(dlm_tables)
     chosen = choose_method(model, method)
     # p-k: the strip twin tracks, names and starts the p-k modes (propwhirl.analysis.runners)
     finite = strip_twin(model) if chosen == "pk" else model
     dm = finite.dof_map()
-    t = track(Job(model, finite, grid, xtol, bool(vgf), options, method == "auto", progress),
-              chosen)
+    t = track(Job(model, finite, grid, xtol, bool(vgf), options, method == "auto", progress,
+                  tables), chosen)
     sw = t.analysis.sweep
     names, thesis_names = named_modes(finite, sw, t.basis, t.in_vacuo, t.assembly)
     sw = sw.relabel(names)
@@ -611,7 +618,7 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         finite_state = FiniteState(aero_model_of(model),
                                    tuple(sorted(events, key=lambda e: (e.V, e.mode))))
         events = pk_instabilities(model, sw.eigenvalues[0], names, grid, xtol=xtol,
-                                  notes=pk_notes, sweep=sw, mass=t.in_vacuo.M)
+                                  notes=pk_notes, sweep=sw, mass=t.in_vacuo.M, tables=tables)
     events.sort(key=lambda e: (e.V, e.mode))
     notes = validity.analysis_warnings(
         model, (float(sw.V[0]), float(sw.V[-1])),

@@ -23,9 +23,9 @@ replaces only the wing's strip aerodynamics).
 
 Q is tabulated lazily on a grid of k (0, then :data:`K_PER_DECADE` points per decade from
 :data:`K_FIRST`) and of Mach (steps of :data:`MACH_STEP` up to :data:`MACH_MAX`), every entry
-computed once per geometry and kept (:func:`dlm_aerodynamics` keeps the last
-:data:`CACHE_SIZE` geometries in memory; with ``PROPWHIRL_DLM_CACHE`` set, every AIC also on
-disk, :mod:`propwhirl.model.aerodynamics.dlm_cache`), and interpolated: cubic (Lagrange through the four
+computed once per geometry and kept in the analysis's :class:`DlmTables` (the last
+:data:`CACHE_SIZE` geometries; nothing at module level; with ``PROPWHIRL_DLM_CACHE`` set,
+every AIC also on disk, :mod:`propwhirl.model.aerodynamics.dlm_cache`), and interpolated: cubic (Lagrange through the four
 nearest k) in k, linear in Mach.  The Mach number is the wing's ``dlm_mach``
 (:func:`wing_mach`): by default "speed", V / a of each analysed speed (a matched analysis,
 the Mach interpolated between the table's Mach nodes, the speeds beyond Mach
@@ -55,7 +55,7 @@ K_FIRST = 0.01
 K_PER_DECADE = 8
 #: Mach step of the tables (linear interpolation between them)
 MACH_STEP = 0.05
-#: geometries whose tables :func:`dlm_aerodynamics` keeps
+#: geometries whose tables a :class:`DlmTables` keeps (by default)
 CACHE_SIZE = 4
 
 
@@ -141,8 +141,7 @@ class DlmAerodynamics:
         self.cache = dlm_cache.cache_dir()
         self._geometry = dlm_cache.geometry_key(self.mesh.mirrored().corners)
         self.cache_hits = 0
-        #: rational-function fits of the tables (:func:`propwhirl.model.aerodynamics.dlm_rfa.node_fit`)
-        self.fits: dict = {}
+        self._fits: dict = {}
 
     # ------------------------------------------------------------------ exact
     def aic(self, mach: float, k: float) -> np.ndarray:
@@ -178,6 +177,14 @@ class DlmAerodynamics:
         kbar = float(k) / self.b_ref
         Qjj = self.aic(mach, k)
         return self._left @ (Qjj @ (self._Sj + 1j * kbar * self._Zj))
+
+    def fitted(self, key: tuple, make: Callable[[], object]):
+        """The rational-function fit of these tables named ``key``
+        (:func:`propwhirl.model.aerodynamics.dlm_rfa.column_fit`), ``make()`` on first use and
+        kept with the tables (data of this geometry's Q, as its table nodes are)."""
+        if key not in self._fits:
+            self._fits[key] = make()
+        return self._fits[key]
 
     # ------------------------------------------------------------------ tables
     @staticmethod
@@ -251,42 +258,95 @@ class DlmAerodynamics:
         return Q
 
 
-_CACHE: "OrderedDict[tuple, DlmAerodynamics]" = OrderedDict()
-
-
-def _geometry_key(wing) -> tuple:
+def geometry_key(wing) -> tuple:
+    """What a wing's doublet-lattice tables depend on (its nodes' y, b, a and panel counts):
+    two wings with the same key share their tables in a :class:`DlmTables`."""
     node = wing.node_properties()
     return (tuple(np.round(node["y"], 12)), tuple(np.round(node["b"], 12)),
             tuple(np.round(node["a"], 12)), wing.dlm_chordwise_panels, wing.dlm_spanwise_panels)
 
 
-def dlm_aerodynamics(wing) -> DlmAerodynamics:
-    """The :class:`DlmAerodynamics` of ``wing`` (its panel counts, root semichord), shared by
-    every wing of the same geometry: its tables fill once per analysis and are kept for the
-    last :data:`CACHE_SIZE` geometries."""
-    key = _geometry_key(wing)
-    if key in _CACHE:
-        _CACHE.move_to_end(key)
-        return _CACHE[key]
-    aero = DlmAerodynamics(wing)
-    _CACHE[key] = aero
-    while len(_CACHE) > CACHE_SIZE:
-        _CACHE.popitem(last=False)
-    return aero
+class DlmTables:
+    """The doublet-lattice tables an analysis owns (issue 33 item 8): per wing geometry
+    (:func:`geometry_key`) its :class:`DlmAerodynamics` — the AICs' Q(k, M) table nodes and the
+    rational-function fits of them — for the last ``size`` geometries used.
+
+    ``analyse(model)`` creates one (or uses the one it is given, ``dlm_tables=``) and passes it
+    wherever its doublet-lattice loads are evaluated (the model's assembly, the p-k method);
+    a study passes one to all its analyses, so the variants of one planform compute their AICs
+    once.  Nothing is kept at module level: two analyses with different tables share no entry.
+    Pickled (a study's tables sent to a worker process) it travels empty: each process fills
+    its own; ``PROPWHIRL_DLM_CACHE`` shares the AICs across processes
+    (:mod:`propwhirl.model.aerodynamics.dlm_cache`).
+
+    Examples
+    --------
+    >>> tables = DlmTables()
+    >>> len(tables)
+    0
+    """
+
+    def __init__(self, size: int = CACHE_SIZE):
+        self.size = v.integer_at_least("size", size, 1)
+        self._aero: "OrderedDict[tuple, DlmAerodynamics]" = OrderedDict()
+
+    def __len__(self) -> int:
+        """Geometries held."""
+        return len(self._aero)
+
+    def __contains__(self, wing) -> bool:
+        """Whether the tables of ``wing``'s geometry are held."""
+        return geometry_key(wing) in self._aero
+
+    def __reduce__(self):
+        return (DlmTables, (self.size,))           # sent to another process: empty
+
+    def __repr__(self) -> str:
+        return f"DlmTables({len(self)} of at most {self.size} geometries)"
+
+    def aero(self, wing) -> DlmAerodynamics:
+        """The :class:`DlmAerodynamics` of ``wing``'s geometry (its panel counts, root
+        semichord), created on first use; the least recently used geometry is dropped beyond
+        :attr:`size`."""
+        key = geometry_key(wing)
+        if key in self._aero:
+            self._aero.move_to_end(key)
+            return self._aero[key]
+        aero = DlmAerodynamics(wing)
+        self._aero[key] = aero
+        while len(self._aero) > self.size:
+            self._aero.popitem(last=False)
+        return aero
 
 
-def pk_system_dlm(model, V: float, k_min: float):
+def check_tables(tables) -> DlmTables:
+    """``tables`` when it is a :class:`DlmTables`, a new one when None, else an InputError."""
+    if tables is None:
+        return DlmTables()
+    if not isinstance(tables, DlmTables):
+        raise v.InputError(f"dlm_tables = {tables!r:.60} is invalid: must be None or a "
+                           "propwhirl.model.aerodynamics.dlm.DlmTables")
+    return tables
+
+
+def dlm_aerodynamics(wing, tables: DlmTables | None = None) -> DlmAerodynamics:
+    """The :class:`DlmAerodynamics` of ``wing`` in ``tables`` (shared by every wing of the
+    same geometry there); without tables a new one, filled by its caller alone."""
+    return DlmAerodynamics(wing) if tables is None else tables.aero(wing)
+
+
+def pk_system_dlm(model, V: float, k_min: float, tables: DlmTables | None = None):
     """ω ↦ (M, C, K) of the p-k equation of a PropellerWing with doublet-lattice wing
     aerodynamics at airspeed V [m/s]: its structure and propellers (the model's own second-order
     system with the wing aerodynamics off), minus the DLM loads in the p-k form
     K_a = ½ρV² Re Q(k, M), C_a = ½ρV² Im Q(k, M) / ω (exact at p = iω), k = ω b_ref / V
     (raised to ``k_min``), M the wing's Mach at this speed (:func:`wing_mach`: V / a, or its
-    fixed ``dlm_mach``)."""
+    fixed ``dlm_mach``), Q read from ``tables`` (the analysis's; None: new ones)."""
     mach = wing_mach(model, V)
     exact = fixed_mach(model.wing) is not None
     check_mach(mach, V)
     dry = replace(model, wing_aero=False).second_order(np.array([V]))
-    aero = dlm_aerodynamics(model.wing)
+    aero = dlm_aerodynamics(model.wing, tables)
     keep = free_dofs(model.wing.n_nodes)
     q = 0.5 * model.flight.density * V ** 2
     structure = (dry.S1[0], dry.S2[0], dry.S3[0])
