@@ -128,9 +128,11 @@ def test_wingtip_events_close_to_pk():
 
 def test_study_reuses_the_aics_across_variants(monkeypatch):
     """A mount-frequency sweep of three variants (same planform) on the state space computes
-    the AICs of about one analysis: one fit per Mach node it spans, each on the tracking fit's
-    k (dlm_rfa.tracking_ks), and the AICs the p-k convergence of the crossings adds, all within
-    those columns' tables (at most fit_ks().size each) — not three times the fits' AICs."""
+    the table AICs of about one analysis: one fit per Mach node it spans, each on the tracking
+    fit's k (dlm_rfa.tracking_ks), and the AICs the p-k convergence of the crossings adds, all
+    within those columns' tables (at most fit_ks().size each) — not three times the fits'
+    AICs.  Each crossing is then converged with the AICs at its own Mach (issue 37 item 5):
+    columns of their own, a few k nodes each (the cubic's four around the crossing's k)."""
     monkeypatch.delenv(dlm_cache.CACHE_ENV, raising=False)
     m = small_wingtip(3, 9)
     speeds = np.arange(140.0, 201.0, 20.0)
@@ -145,11 +147,19 @@ def test_study_reuses_the_aics_across_variants(monkeypatch):
     assert list(r.kind) == ["divergence"] * 3
     (tables,) = made
     assert len(seen) == 3 and all(t is tables for t in seen)
-    computed = tables.aero(m.wing).evaluations
+    aero = tables.aero(m.wing)
+    on_node = [key for key in aero.table_nodes
+               if abs(key[0] / dlm.MACH_STEP - round(key[0] / dlm.MACH_STEP)) < 1e-9]
+    own = [key for key in aero.table_nodes if key not in on_node]
+    assert aero.evaluations == len(on_node) + len(own)
     nodes = len(dlm_rfa.fits_used(m, speeds))
     assert nodes == 6                                       # Mach 0.40 to 0.65
     fits = nodes * dlm_rfa.tracking_ks().size               # 6 Mach nodes x 8 k
-    assert fits <= computed <= nodes * dlm_rfa.fit_ks().size < 3 * fits
+    assert fits <= len(on_node) <= nodes * dlm_rfa.fit_ks().size < 3 * fits
+    per_column = {}
+    for mach, _ in own:
+        per_column[mach] = per_column.get(mach, 0) + 1
+    assert own and max(per_column.values()) <= 5
 
 
 def test_exact_sensitivities_refused_on_a_dlm_wing():

@@ -133,7 +133,7 @@ def modal_dlm_analysis(model, grid: np.ndarray, *, displacement, state_labels, o
                              f"{min(hi, (1 + CROSSING_SPREAD[-1]) * pt.V):.2f} m/s): not "
                              "reported")
                 continue
-            p, k, x = pk_mode(model, c.V, c.p, tables=tables)
+            p, k, x = pk_mode(model, c.V, c.p, tables=tables, exact_mach=True)
             p = p if p.imag >= 0 else p.conjugate()
             flutter = pt.kind == "flutter"
             half = 0.5 * (pt.bracket[1] - pt.bracket[0])

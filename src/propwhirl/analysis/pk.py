@@ -24,7 +24,9 @@ its modes with and reports beside its events is its strip twin
 The modes to follow start from the finite-state eigenvalues of the model's own state matrix
 (Leishman–Nguyen or Wagner lag states) at the first speed, and are continued speed by speed.
 The flutter speed of a mode is where its p-k decay rate Re p crosses zero from below, refined by
-Brent's method to ``xtol`` (0.01 m/s by default).  The p-k root is exact (Theodorsen's C at the
+Brent's method to ``xtol`` (0.01 m/s by default); on a Mach-matched doublet-lattice wing then
+converged with the AICs at the crossing's own Mach (:func:`matched_crossing`).  The p-k root is
+exact (Theodorsen's C at the
 mode's frequency) only at Re p = 0, i.e. at the flutter point; elsewhere its damping is the
 usual p-k approximation.
 
@@ -155,16 +157,19 @@ def _first_order(system, omega: float) -> np.ndarray:
 
 
 def pk_root(model, V: float, p0: complex, *, ktol: float = KTOL, maxiter: int = 200,
-            system=None, tables: DlmTables | None = None) -> tuple[complex, float]:
+            system=None, tables: DlmTables | None = None,
+            exact_mach: bool = False) -> tuple[complex, float]:
     """The p-k root [1/s] of the mode nearest ``p0`` at airspeed V [m/s], and its k [-].
 
     Fixed-point iteration k ← Im p · b / V (b: the reference semichord) with the root of
     :func:`pk_matrix` nearest the previous one, under-relaxed (halving the step, down to
     1/64) while the steps oscillate without shrinking; raises RuntimeError when k does not converge
-    in ``maxiter`` iterations.  ``system``: :func:`pk_system` of (model, V) if already built.
+    in ``maxiter`` iterations.  ``system``: :func:`pk_system` of (model, V) if already built
+    (else built with ``tables`` and ``exact_mach``: a doublet-lattice wing's Q from the AICs at
+    its Mach at V itself).
     """
     b = reference_semichord(model)
-    system = pk_system(model, V, tables) if system is None else system
+    system = pk_system(model, V, tables, exact_mach) if system is None else system
     p = complex(p0)
     k = abs(p.imag) * b / V
     relax, last = 1.0, 0.0
@@ -185,14 +190,14 @@ def pk_root(model, V: float, p0: complex, *, ktol: float = KTOL, maxiter: int = 
     raise RuntimeError(f"p-k iteration did not converge at V = {V} m/s (k = {k})")
 
 
-def pk_mode(model, V: float, p0: complex, *, system=None,
-            tables: DlmTables | None = None) -> tuple[complex, float, np.ndarray]:
+def pk_mode(model, V: float, p0: complex, *, system=None, tables: DlmTables | None = None,
+            exact_mach: bool = False) -> tuple[complex, float, np.ndarray]:
     """The p-k root [1/s] nearest ``p0`` at V [m/s] (:func:`pk_root`), its k [-] and its
     eigenvector: the first-order state (q̂, p q̂) on the model's degrees of freedom (the
     first ``dof_map().n_dof`` entries are the displacement shape q̂, the same DOFs as the
     finite-state model's, which adds only its lag states after them), scaled to unit norm."""
     b = reference_semichord(model)
-    system = pk_system(model, V, tables) if system is None else system
+    system = pk_system(model, V, tables, exact_mach) if system is None else system
     p, k = pk_root(model, V, p0, system=system)
     lam, X = np.linalg.eig(_first_order(system, max(k, K_MIN) * V / b))
     i = int(np.argmin(np.abs(lam - p)))
@@ -213,6 +218,46 @@ def _start_roots(model, V: float, n_modes: int | None) -> tuple[np.ndarray, tupl
     labels = tuple(f"mode {j + 1} ({w.imag / (2 * np.pi):.4g} Hz in vacuo)"
                    for j, w in enumerate(vac))
     return start, labels
+
+
+#: secant steps :func:`matched_crossing` takes at most
+MATCHED_STEPS = 12
+
+
+def matched_crossing(model, V0: float, p0: complex, slope: float, *, lo: float, hi: float,
+                     xtol: float = XTOL,
+                     tables: DlmTables | None = None) -> tuple[float, complex, float] | None:
+    """The crossing Re p = 0 of a Mach-matched doublet-lattice wing with Q from the AICs at the
+    exact Mach V/a of every speed tried (issue 37 item 5), from the crossing ``V0`` [m/s] (root
+    ``p0`` [1/s]) found on the tables' Mach interpolation, whose ``slope`` d Re p/dV [1/s per
+    m/s] starts the secant method: (V [m/s], p, k), V within ``xtol`` / 10 of the root (the
+    last secant step: a fixed-Mach analysis at V/a moves its onset by (dV/dM)/a times that,
+    ~9 on the wingtip wing's near-neutral whirl hump), or None when the secant leaves [``lo``, ``hi``], meets a flat Re p or
+    takes more than :data:`MATCHED_STEPS` steps (the caller keeps V0).
+
+    Between the tables' Mach nodes (0.05 apart) Q is linear in Mach, within ~5e-4 of max |Q| of
+    the AICs at that Mach (Mach 0.6-0.66); a near-neutral whirl mode (a damping hump just
+    touching zero) turns that into metres per second of onset.  At the exact Mach, the onset
+    is the one the same wing has with its ``dlm_mach`` fixed at the onset's own V/a (tested).
+    """
+    if not np.isfinite(slope) or slope == 0.0:
+        return None
+    V, guess = float(V0), complex(p0)
+    prev = None                                  # (V, Re p) of the previous exact point
+    for _ in range(MATCHED_STEPS):
+        try:
+            p, k = pk_root(model, V, guess, tables=tables, exact_mach=True)
+        except RuntimeError:
+            return None
+        if prev is not None and p.real != prev[1]:
+            slope = (p.real - prev[1]) / (V - prev[0])        # the secant's
+        step = 0.0 if p.real == 0.0 else -p.real / slope
+        if abs(step) <= 0.1 * xtol:
+            return V, p, float(k)
+        if not (np.isfinite(step) and lo <= V + step <= hi):
+            return None
+        prev, guess, V = (V, p.real), p, V + step
+    return None
 
 
 #: half-widths of the brackets :func:`pk_crossing` tries around a finite-state crossing, as
@@ -256,6 +301,11 @@ def pk_crossing(model, V0: float, p0: complex, *, lo: float, hi: float,
 
             V = brentq(decay, a, b, xtol=xtol)
             p, k = pk_root(model, V, start, tables=tables)
+            if tables is not None and fixed_mach(model.wing) is None:
+                exact = matched_crossing(model, V, p, (pb.real - pa.real) / (b - a), lo=lo,
+                                         hi=hi, xtol=xtol, tables=tables)
+                if exact is not None:
+                    V, p, k = exact
             return PKCrossing(float(V), p, float(k), "onset" if pa.real < 0 else "recovery")
         if a <= lo and b >= hi:
             break
@@ -278,9 +328,11 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
         raise v.InputError(f"speeds = {speeds!r:.60} is invalid: must be at least two "
                            "increasing airspeeds > 0 [m/s]")
     v.positive("xtol", xtol, "m/s")
+    matched = False
     if strip_twin(model) is not model:  # doublet-lattice tables: every Mach subsonic, first
         check_speed_mach(model, V)
         tables = check_tables(tables)
+        matched = fixed_mach(model.wing) is None
     if n_modes is None:
         n_modes = None if _is_section(model) else WING_MODES
     elif not isinstance(n_modes, (int, np.integer)) or n_modes < 1:
@@ -323,6 +375,13 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
             except RuntimeError:
                 lost.append((labels[j], float(V[i])))
                 continue
+            if matched:                    # converged with the AICs at its own Mach
+                exact = matched_crossing(model, Vf, p,
+                                         (sigma[i + 1] - sigma[i]) / (V[i + 1] - V[i]),
+                                         lo=float(V[0]), hi=float(V[-1]), xtol=xtol,
+                                         tables=tables)
+                if exact is not None:
+                    Vf, p, k = exact
             static = abs(p.imag) <= STATIC * vacuum[j]
             events.append(PKFlutter(j, labels[j], float(Vf), 0.0 if static else float(abs(p.imag)),
                                     0.0 if static else float(k),
@@ -451,7 +510,8 @@ def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: flo
     events, shapes = [], []
 
     def add(kind: str, event: str, j: int, V: float, p0: complex, benign: bool) -> None:
-        p, _, x = pk_mode(model, V, p0, tables=tables)
+        # a crossing's shape at its own Mach's AICs, as it was converged (matched_crossing)
+        p, _, x = pk_mode(model, V, p0, tables=tables, exact_mach=event != "unstable-at-start")
         mode = tracked_mode(sweep, x, p, V) if use_shape else tracked[j]
         label = event_label(sweep, names, mode, x, mass) if use_shape else names[mode]
         f_hz = 0.0 if kind == "divergence" else float(abs(p.imag) / (2 * np.pi))

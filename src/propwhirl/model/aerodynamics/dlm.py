@@ -223,6 +223,12 @@ class DlmAerodynamics:
         return len(todo)
 
     @property
+    def table_nodes(self) -> tuple[tuple[float, int], ...]:
+        """The (Mach, k index) of every Q computed so far (:meth:`column_node`), in the order
+        computed."""
+        return tuple(self._table)
+
+    @property
     def columns(self) -> tuple[float, ...]:
         """The Mach numbers of the table columns computed so far, ascending."""
         return tuple(sorted({m for m, _ in self._table}))
@@ -335,15 +341,19 @@ def dlm_aerodynamics(wing, tables: DlmTables | None = None) -> DlmAerodynamics:
     return DlmAerodynamics(wing) if tables is None else tables.aero(wing)
 
 
-def pk_system_dlm(model, V: float, k_min: float, tables: DlmTables | None = None):
+def pk_system_dlm(model, V: float, k_min: float, tables: DlmTables | None = None,
+                  exact_mach: bool = False):
     """ω ↦ (M, C, K) of the p-k equation of a PropellerWing with doublet-lattice wing
     aerodynamics at airspeed V [m/s]: its structure and propellers (the model's own second-order
     system with the wing aerodynamics off), minus the DLM loads in the p-k form
     K_a = ½ρV² Re Q(k, M), C_a = ½ρV² Im Q(k, M) / ω (exact at p = iω), k = ω b_ref / V
     (raised to ``k_min``), M the wing's Mach at this speed (:func:`wing_mach`: V / a, or its
-    fixed ``dlm_mach``), Q read from ``tables`` (the analysis's; None: new ones)."""
+    fixed ``dlm_mach``), Q read from ``tables`` (the analysis's; None: new ones).  Q is
+    interpolated in Mach between the table's Mach nodes (linear), or with ``exact_mach`` (and
+    always at a fixed ``dlm_mach``) from the AICs of this very Mach, cubic in k only: what a
+    matched crossing is converged with (:func:`propwhirl.analysis.pk.pk_crossing`)."""
     mach = wing_mach(model, V)
-    exact = fixed_mach(model.wing) is not None
+    exact = exact_mach or fixed_mach(model.wing) is not None
     check_mach(mach, V)
     dry = replace(model, wing_aero=False).second_order(np.array([V]))
     aero = dlm_aerodynamics(model.wing, tables)
