@@ -2,14 +2,15 @@
 
 Between the tables' Mach nodes (0.05 apart) Q is linear in Mach, ~5e-4 of max |Q| from the AICs
 at that Mach (Mach 0.6-0.66); on a near-neutral whirl hump that moved the wingtip wing's
-forward-whirl onset by metres per second. Every matched crossing is now converged with the
-AICs at its own Mach (``pk.matched_crossing``), so the same wing with ``dlm_mach`` fixed at the
-onset's V/a has its onset at the same speed.
+forward-whirl onset by metres per second. Every matched crossing is now converged with Q at its
+own Mach (``pk.matched_crossing``: the fine columns 0.001 apart around it, within 2e-7 of max
+|Q| of that Mach's AICs at Mach 0.6), so the same wing with ``dlm_mach`` fixed at the onset's
+V/a has its onset at the same speed.
 
 Tolerance, 2 xtol (0.02 m/s): the fixed-Mach onset is Brent's, within xtol of its root; the
 matched one within xtol / 10 of its own (the secant's last step), and a fixed-Mach analysis at
 V/a moves by (dV/dM)/a times that error — ~9 on the forward-whirl hump (5.2 m/s per 0.0016 of
-Mach), so at most 0.9 xtol. Measured: <= 0.0015 m/s (before: -0.027 m/s for the divergence,
+Mach), so at most 0.9 xtol; the fine columns' 2e-7 of Q, ~0.002 m/s on that hump. Measured: <= 0.0015 m/s (before: -0.027 m/s for the divergence,
 -5.2 m/s for the forward whirl, p-k)."""
 import dataclasses
 
@@ -63,8 +64,8 @@ def test_matched_crossing_is_a_root_at_the_exact_mach(wing):
     a = analyse(wing, SPEEDS, method="pk", dlm_tables=tables)
     (e,) = [x for x in a.events if x.label == "forward 1" and x.event == "onset"]
     p0 = complex(0.0, 2 * np.pi * e.frequency_hz)
-    p_lo, _ = pk_root(wing, e.V - 1.0, p0, tables=tables, exact_mach=True)
-    p_hi, _ = pk_root(wing, e.V + 1.0, p0, tables=tables, exact_mach=True)
+    p_lo, _ = pk_root(wing, e.V - 1.0, p0, tables=tables, own_mach=True)
+    p_hi, _ = pk_root(wing, e.V + 1.0, p0, tables=tables, own_mach=True)
     assert p_lo.real < 0 < p_hi.real                       # a crossing within 1 m/s of e.V
     slope = (p_hi.real - p_lo.real) / 2.0
     V, p, _ = matched_crossing(wing, e.V + 0.5, p0, slope, lo=SPEEDS[0], hi=SPEEDS[-1],

@@ -104,3 +104,33 @@ def test_bad_tables_are_one_line_errors(bad):
         analyse(patil_dlm(), SPEEDS, dlm_tables=bad)
     with pytest.raises(InputError, match=r"^size = 0 is invalid"):
         dlm.DlmTables(size=0)
+
+
+def test_a_big_fill_on_processes_gives_the_same_table(monkeypatch):
+    """DlmAerodynamics.fill on two worker processes (issue 37 item 2: the thresholds lowered
+    to this small wing) computes every missing node once, counts it, reports each, and gives
+    the table nodes bit for bit as computed in this process."""
+    pytest.importorskip("panelaero")
+    from propwhirl.model.aerodynamics import dlm_cache
+    from propwhirl.model.structure.wing import Wing
+
+    monkeypatch.delenv(dlm_cache.CACHE_ENV, raising=False)
+    monkeypatch.setattr(dlm, "PARALLEL_AICS", 2)
+    monkeypatch.setattr(dlm, "PARALLEL_PANELS", 1)
+    w = Wing(semi_span=3.0, mass_per_length=1.0, EI=1e4, GJ=1e4, radius_of_gyration=0.25,
+             n_elements=4, aero="dlm", dlm_chordwise_panels=2, dlm_spanwise_panels=4)
+    nodes = [(0.3, 1), (0.3, 5), (0.35, 9), (0.0, 0)]
+    par, seq = dlm.DlmAerodynamics(w), dlm.DlmAerodynamics(w)
+    par.column_node(0.3, 5)                               # already there: not again
+    seen = []
+    assert par.fill(nodes, lambda d, t: seen.append((d, t)), processes=2) == 3
+    assert seen == [(0, 3), (1, 3), (2, 3), (3, 3)] and par.evaluations == 4
+    for mach, ik in nodes:
+        assert np.array_equal(par.column_node(mach, ik), seq.column_node(mach, ik))
+    assert par.evaluations == 4
+
+
+def test_tables_processes():
+    assert dlm.DlmTables(processes=1).processes == 1
+    assert 1 <= dlm.DlmTables().processes <= 2
+    assert pickle.loads(pickle.dumps(dlm.DlmTables(processes=1))).processes == 1

@@ -69,16 +69,19 @@ def fit_table_nodes(model, speeds) -> list[tuple[float, int]]:
 
 
 def compute_fit_aics(model, grid: np.ndarray, *, vgf: bool,
-                     report: Callable[[int, int], None], tables: DlmTables) -> int:
+                     report: Callable[[int, int], None] | None, tables: DlmTables) -> int:
     """Compute the doublet-lattice AICs that the analysis of ``model`` over the speeds
     ``grid`` [m/s] reads first — those of the Roger fits at the engine's first batch of speeds
     (every grid speed with ``vgf``, else :func:`~propwhirl.engine.tracker.initial_speeds` at
     the default initial step), which its tracking would compute anyway — now, counted:
     ``report(done, total)`` before the first and after each AIC, total known in advance
-    (issue 37 item 3).  The AICs a refinement or a p-k convergence adds later are not counted.
+    (issue 37 item 3; ``report`` None: silent).  The AICs a refinement or a p-k convergence
+    adds later are not counted.  A big batch runs on ``tables.processes`` worker processes
+    (:meth:`~propwhirl.model.aerodynamics.dlm.DlmAerodynamics.fill`: the same numbers).
     Returns how many were computed (those not in ``tables``, the analysis's, yet)."""
     first = initial_speeds(np.asarray(grid, float), None if vgf else ANALYSE_INITIAL_STEP)
-    return dlm_aerodynamics(model.wing, tables).fill(fit_table_nodes(model, first), report)
+    return dlm_aerodynamics(model.wing, tables).fill(fit_table_nodes(model, first), report,
+                                                     tables.processes)
 
 
 def full_state(assembly, V: float, p: complex, q: np.ndarray) -> np.ndarray:
@@ -133,7 +136,7 @@ def modal_dlm_analysis(model, grid: np.ndarray, *, displacement, state_labels, o
                              f"{min(hi, (1 + CROSSING_SPREAD[-1]) * pt.V):.2f} m/s): not "
                              "reported")
                 continue
-            p, k, x = pk_mode(model, c.V, c.p, tables=tables, exact_mach=True)
+            p, k, x = pk_mode(model, c.V, c.p, tables=tables, own_mach=True)
             p = p if p.imag >= 0 else p.conjugate()
             flutter = pt.kind == "flutter"
             half = 0.5 * (pt.bracket[1] - pt.bracket[0])

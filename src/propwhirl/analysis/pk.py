@@ -158,18 +158,18 @@ def _first_order(system, omega: float) -> np.ndarray:
 
 def pk_root(model, V: float, p0: complex, *, ktol: float = KTOL, maxiter: int = 200,
             system=None, tables: DlmTables | None = None,
-            exact_mach: bool = False) -> tuple[complex, float]:
+            own_mach: bool = False) -> tuple[complex, float]:
     """The p-k root [1/s] of the mode nearest ``p0`` at airspeed V [m/s], and its k [-].
 
     Fixed-point iteration k ← Im p · b / V (b: the reference semichord) with the root of
     :func:`pk_matrix` nearest the previous one, under-relaxed (halving the step, down to
     1/64) while the steps oscillate without shrinking; raises RuntimeError when k does not converge
     in ``maxiter`` iterations.  ``system``: :func:`pk_system` of (model, V) if already built
-    (else built with ``tables`` and ``exact_mach``: a doublet-lattice wing's Q from the AICs at
+    (else built with ``tables`` and ``own_mach``: a doublet-lattice wing's Q from the AICs at
     its Mach at V itself).
     """
     b = reference_semichord(model)
-    system = pk_system(model, V, tables, exact_mach) if system is None else system
+    system = pk_system(model, V, tables, own_mach) if system is None else system
     p = complex(p0)
     k = abs(p.imag) * b / V
     relax, last = 1.0, 0.0
@@ -191,13 +191,13 @@ def pk_root(model, V: float, p0: complex, *, ktol: float = KTOL, maxiter: int = 
 
 
 def pk_mode(model, V: float, p0: complex, *, system=None, tables: DlmTables | None = None,
-            exact_mach: bool = False) -> tuple[complex, float, np.ndarray]:
+            own_mach: bool = False) -> tuple[complex, float, np.ndarray]:
     """The p-k root [1/s] nearest ``p0`` at V [m/s] (:func:`pk_root`), its k [-] and its
     eigenvector: the first-order state (q̂, p q̂) on the model's degrees of freedom (the
     first ``dof_map().n_dof`` entries are the displacement shape q̂, the same DOFs as the
     finite-state model's, which adds only its lag states after them), scaled to unit norm."""
     b = reference_semichord(model)
-    system = pk_system(model, V, tables, exact_mach) if system is None else system
+    system = pk_system(model, V, tables, own_mach) if system is None else system
     p, k = pk_root(model, V, p0, system=system)
     lam, X = np.linalg.eig(_first_order(system, max(k, K_MIN) * V / b))
     i = int(np.argmin(np.abs(lam - p)))
@@ -220,6 +220,28 @@ def _start_roots(model, V: float, n_modes: int | None) -> tuple[np.ndarray, tupl
     return start, labels
 
 
+def _brent_between(model, a: float, b: float, pa: complex, pb: complex, xtol: float,
+                   tables) -> tuple[float, complex, float]:
+    """Brent's method on Re p between the speeds a < b [m/s] whose p-k roots ``pa`` and
+    ``pb`` [1/s] have opposite signs of Re p, each speed's root continued from the root
+    interpolated linearly between them (so that both ends are the roots the bracket was
+    found with, not another mode's a far start jumps to): (V, p, k).  RuntimeError when a
+    root does not converge or the ends' roots lose their signs."""
+
+    def guess(x: float) -> complex:
+        return pa + (pb - pa) * (x - a) / (b - a)
+
+    def decay(x: float) -> float:
+        return pk_root(model, x, guess(x), tables=tables)[0].real
+
+    try:
+        V = brentq(decay, a, b, xtol=xtol)
+    except ValueError:             # the ends' roots re-solved lost their signs: not a bracket
+        raise RuntimeError(f"p-k bracket [{a}, {b}] m/s lost its sign change") from None
+    p, k = pk_root(model, V, guess(V), tables=tables)
+    return float(V), p, float(k)
+
+
 #: secant steps :func:`matched_crossing` takes at most
 MATCHED_STEPS = 12
 
@@ -227,8 +249,10 @@ MATCHED_STEPS = 12
 def matched_crossing(model, V0: float, p0: complex, slope: float, *, lo: float, hi: float,
                      xtol: float = XTOL,
                      tables: DlmTables | None = None) -> tuple[float, complex, float] | None:
-    """The crossing Re p = 0 of a Mach-matched doublet-lattice wing with Q from the AICs at the
-    exact Mach V/a of every speed tried (issue 37 item 5), from the crossing ``V0`` [m/s] (root
+    """The crossing Re p = 0 of a Mach-matched doublet-lattice wing with Q at the Mach V/a of
+    every speed tried (issue 37 item 5): from the AICs of the fine columns
+    (:data:`~propwhirl.model.aerodynamics.dlm.MACH_FINE` = 0.001 apart) around it, within 2e-7
+    of max |Q| of that Mach's own AICs at Mach 0.6, from the crossing ``V0`` [m/s] (root
     ``p0`` [1/s]) found on the tables' Mach interpolation, whose ``slope`` d Re p/dV [1/s per
     m/s] starts the secant method: (V [m/s], p, k), V within ``xtol`` / 10 of the root (the
     last secant step: a fixed-Mach analysis at V/a moves its onset by (dV/dM)/a times that,
@@ -237,7 +261,7 @@ def matched_crossing(model, V0: float, p0: complex, slope: float, *, lo: float, 
 
     Between the tables' Mach nodes (0.05 apart) Q is linear in Mach, within ~5e-4 of max |Q| of
     the AICs at that Mach (Mach 0.6-0.66); a near-neutral whirl mode (a damping hump just
-    touching zero) turns that into metres per second of onset.  At the exact Mach, the onset
+    touching zero) turns that into metres per second of onset.  At its own Mach, the onset
     is the one the same wing has with its ``dlm_mach`` fixed at the onset's own V/a (tested).
     """
     if not np.isfinite(slope) or slope == 0.0:
@@ -246,7 +270,7 @@ def matched_crossing(model, V0: float, p0: complex, slope: float, *, lo: float, 
     prev = None                                  # (V, Re p) of the previous exact point
     for _ in range(MATCHED_STEPS):
         try:
-            p, k = pk_root(model, V, guess, tables=tables, exact_mach=True)
+            p, k = pk_root(model, V, guess, tables=tables, own_mach=True)
         except RuntimeError:
             return None
         if prev is not None and p.real != prev[1]:
@@ -294,13 +318,7 @@ def pk_crossing(model, V0: float, p0: complex, *, lo: float, hi: float,
         pb, _ = pk_root(model, b, guess["hi"], tables=tables)
         guess["lo"], guess["hi"] = pa, pb
         if pa.real != 0 and pb.real != 0 and (pa.real > 0) != (pb.real > 0):
-            start = pa
-
-            def decay(x: float) -> float:
-                return pk_root(model, x, start, tables=tables)[0].real
-
-            V = brentq(decay, a, b, xtol=xtol)
-            p, k = pk_root(model, V, start, tables=tables)
+            V, p, k = _brent_between(model, a, b, pa, pb, xtol, tables)
             if tables is not None and fixed_mach(model.wing) is None:
                 exact = matched_crossing(model, V, p, (pb.real - pa.real) / (b - a), lo=lo,
                                          hi=hi, xtol=xtol, tables=tables)
@@ -372,6 +390,13 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
             try:
                 Vf = brentq(decay, V[i], V[i + 1], xtol=xtol)
                 p, k = pk_root(model, Vf, roots[i, j], tables=tables)
+            except ValueError:   # the right end, continued from the left root, is another
+                try:             # mode's: each speed from the root between the ends'
+                    Vf, p, k = _brent_between(model, float(V[i]), float(V[i + 1]),
+                                              roots[i, j], roots[i + 1, j], xtol, tables)
+                except RuntimeError:
+                    lost.append((labels[j], float(V[i])))
+                    continue
             except RuntimeError:
                 lost.append((labels[j], float(V[i])))
                 continue
@@ -511,7 +536,7 @@ def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: flo
 
     def add(kind: str, event: str, j: int, V: float, p0: complex, benign: bool) -> None:
         # a crossing's shape at its own Mach's AICs, as it was converged (matched_crossing)
-        p, _, x = pk_mode(model, V, p0, tables=tables, exact_mach=event != "unstable-at-start")
+        p, _, x = pk_mode(model, V, p0, tables=tables, own_mach=event != "unstable-at-start")
         mode = tracked_mode(sweep, x, p, V) if use_shape else tracked[j]
         label = event_label(sweep, names, mode, x, mass) if use_shape else names[mode]
         f_hz = 0.0 if kind == "divergence" else float(abs(p.imag) / (2 * np.pi))

@@ -27,7 +27,7 @@ method             model           runner
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -39,7 +39,7 @@ from propwhirl.engine import analyse as engine_analyse
 from propwhirl.engine import frequency_zero_points
 from propwhirl.engine.results import Analysis
 from propwhirl.model.aerodynamics.dlm import DlmTables, check_speed_mach
-from propwhirl.model.aerodynamics.dlm_rfa import rfa_note
+from propwhirl.model.aerodynamics.dlm_rfa import rfa_note, tracking_ks
 
 
 @dataclass(frozen=True)
@@ -164,6 +164,8 @@ def run_modal_dlm(job: Job) -> Tracked:
     """A doublet-lattice wing's modal Roger state space, its crossings the p-k's
     (:mod:`propwhirl.analysis.modal_dlm`)."""
     assembly, in_vacuo = _structure(job)
+    # the full Roger state the modal one lifts to (names, shapes): the same fits, no others
+    assembly = replace(assembly, dlm_fit_ks=tuple(float(k) for k in tracking_ks()))
     dm = job.finite.dof_map()
     run = modal_dlm_analysis(job.model, job.grid, displacement=dm.displacement,
                              state_labels=dm.state_labels, options=job.options, xtol=job.xtol,
@@ -196,13 +198,13 @@ RUNNERS: dict[tuple[str, bool], Callable[[Job], Tracked]] = {
 def track(job: Job, chosen: str) -> Tracked:
     """The runner of :data:`RUNNERS` for ``chosen`` (a method of
     :func:`~propwhirl.analysis.reduced.choose_method`) on ``job``'s model; a doublet-lattice
-    wing's Mach numbers checked against its tables first (before any work), and with
-    ``job.progress`` the AICs of its first speeds computed first and counted
-    (:func:`~propwhirl.analysis.modal_dlm.compute_fit_aics`)."""
+    wing's Mach numbers checked against its tables first (before any work), and the AICs of
+    its first speeds computed first, counted with ``job.progress`` and a big batch on worker
+    processes (:func:`~propwhirl.analysis.modal_dlm.compute_fit_aics`)."""
     dlm = chosen != "pk" and is_dlm_wing(job.model)
     if dlm:
         check_speed_mach(job.model, (job.grid[0], job.grid[-1]))
-    if dlm and job.progress is not None:      # the AICs of its first speeds, counted
+    if dlm:            # the AICs of its first speeds first: counted, on processes if many
         compute_fit_aics(job.model, job.grid, vgf=job.vgf, report=job.progress,
                          tables=job.tables)
     return RUNNERS[(chosen, dlm)](job)

@@ -80,20 +80,20 @@ def section_pk_matrices(model, V: float, k: float) -> tuple[np.ndarray, np.ndarr
     return Ms - Ma, -Ca, Ks - Ka
 
 
-def pk_system(model, V: float, tables: DlmTables | None = None, exact_mach: bool = False):
+def pk_system(model, V: float, tables: DlmTables | None = None, own_mach: bool = False):
     """ω ↦ (M, C, K) of the p-k equation of `model` at airspeed V [m/s] and frequency ω [rad/s]:
     the typical section (:func:`section_pk_matrices`) or a PropellerWing (its structure and
     propellers, computed once, every wing strip with the exact Theodorsen loads at its own
     k = ω b_i / V; a wing with ``aero = "dlm"``: the doublet-lattice loads instead,
     :func:`propwhirl.model.aerodynamics.dlm.pk_system_dlm`), on the model's degrees of freedom (its
     ``dof_map``, without lag states).  ``tables``: the analysis's doublet-lattice tables
-    (:class:`~propwhirl.model.aerodynamics.dlm.DlmTables`; None: new ones); ``exact_mach``:
+    (:class:`~propwhirl.model.aerodynamics.dlm.DlmTables`; None: new ones); ``own_mach``:
     a doublet-lattice wing's Q from the AICs at its Mach at V itself, not interpolated between
     the tables' Mach nodes (:func:`~propwhirl.model.aerodynamics.dlm.pk_system_dlm`)."""
     if isinstance(model, TypicalSection):
         return lambda omega: section_pk_matrices(model, V, omega * model.b / V)
     if model.wing.aero == "dlm":                 # doublet-lattice panels instead of the strips
-        return pk_system_dlm(model, V, K_MIN, tables, exact_mach)
+        return pk_system_dlm(model, V, K_MIN, tables, own_mach)
     dry = replace(model, wing_aero=False).second_order(np.array([V]))
     if dry.n_lag:
         raise v.InputError(f"model = {model.name!r} is invalid for the p-k method: its "

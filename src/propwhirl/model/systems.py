@@ -540,7 +540,11 @@ class PropellerWingAssembly(EvaluatorBase):
     states:     the model's :class:`~propwhirl.model.protocol.DofMap` (:meth:`dof_map`);
     dlm_tables: a wing with ``aero = "dlm"``: the doublet-lattice tables its evaluations read
                 and fill (:class:`~propwhirl.model.aerodynamics.dlm.DlmTables`, the analysis's),
-                else None.
+                else None;
+    dlm_fit_ks: the reduced frequencies of its Roger fits (None: the full state space's
+                :func:`~propwhirl.model.aerodynamics.dlm_rfa.fit_ks`; the default analysis's
+                modal state space lifts to the full one with its own,
+                :func:`~propwhirl.model.aerodynamics.dlm_rfa.tracking_ks`).
 
     Nothing is computed after construction and nothing is kept of an evaluation but the
     doublet-lattice table nodes and fits in ``dlm_tables`` (each computed once, the same
@@ -554,6 +558,7 @@ class PropellerWingAssembly(EvaluatorBase):
     keep_q: np.ndarray
     states: DofMap
     dlm_tables: DlmTables | None = None
+    dlm_fit_ks: tuple[float, ...] | None = None
 
     @classmethod
     def build(cls, model: PropellerWing,

@@ -55,6 +55,12 @@ K_FIRST = 0.01
 K_PER_DECADE = 8
 #: Mach step of the tables (linear interpolation between them)
 MACH_STEP = 0.05
+#: Mach step of the fine columns a matched crossing is converged on (:meth:`DlmAerodynamics.gaf`
+#: with ``fine``): linear between them Q is within 2e-7 of max |Q| of the AICs at that very
+#: Mach at Mach 0.6 (k 0-1.5), 1.6e-5 at worst (Mach 0.89, k = 1.5; the error falls as the
+#: step squared: 6.5e-5 at 0.002; 5e-4 at 0.6 and 2.5e-2 at 0.89 with the tables' 0.05), and
+#: crossings within 0.001 of Mach of each other share their columns
+MACH_FINE = 0.001
 #: geometries whose tables a :class:`DlmTables` keeps (by default)
 CACHE_SIZE = 4
 
@@ -72,6 +78,24 @@ def _panelaero():
     finally:
         np.seterr(**saved)
     return DLM
+
+
+def symmetric_aic(grid: dict, n: int, mach: float, kbar: float) -> np.ndarray:
+    """PanelAero's AIC of the mirrored ``grid`` (both half-wings, the right one last, ``n``
+    panels each) at ``mach`` and k̄ = ω/U ``kbar`` [1/m], folded to the symmetric one of the
+    half-wing, Q_RR + Q_RL (n, n) complex (:meth:`DlmAerodynamics.aic`): a function of its
+    arguments alone, so that worker processes compute it (:meth:`DlmAerodynamics.fill`)."""
+    DLM = _panelaero()
+    with np.errstate(all="ignore"):
+        Q = DLM.calc_Qjj(grid, float(mach), float(kbar))
+    return Q[n:, n:] + Q[n:, :n]
+
+
+#: a fill of at least this many AICs of at least :data:`PARALLEL_PANELS` panels (half-wing)
+#: runs on worker processes (:meth:`DlmAerodynamics.fill`): below, starting them costs more
+#: than it saves
+PARALLEL_AICS = 16
+PARALLEL_PANELS = 150
 
 
 def require_panelaero() -> None:
@@ -159,11 +183,13 @@ class DlmAerodynamics:
             if cached is not None and self.cache_hits:   # the first one read: spot-checked
                 self.cache_hits += 1
                 return cached
-        DLM = _panelaero()
-        with np.errstate(all="ignore"):
-            Q = DLM.calc_Qjj(self.grid, float(mach), float(k) / self.b_ref)
+        Q = symmetric_aic(self.grid, n, mach, float(k) / self.b_ref)
         self.evaluations += 1
-        Q = Q[n:, n:] + Q[n:, :n]
+        return self._computed(mach, k, Q, cached)
+
+    def _computed(self, mach: float, k: float, Q: np.ndarray, cached) -> np.ndarray:
+        """Q computed at (mach, k): compared with the cache's entry read (the spot check) or
+        written to the cache."""
         if cached is not None:                 # InputError when they differ (dlm_cache)
             dlm_cache.spot_check(self.cache, self._geometry, mach, float(k) / self.b_ref,
                                  cached, Q)
@@ -172,10 +198,11 @@ class DlmAerodynamics:
             dlm_cache.store(self.cache, self._geometry, mach, float(k) / self.b_ref, Q)
         return Q
 
-    def exact(self, mach: float, k: float) -> np.ndarray:
-        """Q(k, M) (3 n_nodes, 3 n_nodes) complex computed at k [-] and Mach (no table)."""
+    def exact(self, mach: float, k: float, Qjj: np.ndarray | None = None) -> np.ndarray:
+        """Q(k, M) (3 n_nodes, 3 n_nodes) complex computed at k [-] and Mach (no table), from
+        the AIC ``Qjj`` when given (computed elsewhere: :meth:`fill`)."""
         kbar = float(k) / self.b_ref
-        Qjj = self.aic(mach, k)
+        Qjj = self.aic(mach, k) if Qjj is None else Qjj
         return self._left @ (Qjj @ (self._Sj + 1j * kbar * self._Zj))
 
     def fitted(self, key: tuple, make: Callable[[], object]):
@@ -206,21 +233,56 @@ class DlmAerodynamics:
         return self._table[key]
 
     def fill(self, nodes: Iterable[tuple[float, int]],
-             report: Callable[[int, int], None] | None = None) -> int:
+             report: Callable[[int, int], None] | None = None, processes: int = 1) -> int:
         """Compute the table nodes ``nodes`` ((Mach, ik) pairs of :meth:`column_node`) not yet
         computed, in their order, calling ``report(done, total)`` (total: those missing)
         before the first and after each; returns how many were computed.  What an analysis
         calls to report its AICs' progress: the values are :meth:`column_node`'s whatever the
-        order."""
+        order.  ``processes`` > 1: the AICs not in the disk cache computed on that many worker
+        processes (:func:`symmetric_aic`, the same numbers) when there are at least
+        :data:`PARALLEL_AICS` of them on at least :data:`PARALLEL_PANELS` panels."""
         todo = [key for key in dict.fromkeys((float(m), int(ik)) for m, ik in nodes)
                 if key not in self._table]
         if report is not None:
             report(0, len(todo))
-        for done, (mach, ik) in enumerate(todo, 1):
+        done = 0
+        if processes > 1 and self.mesh.n >= PARALLEL_PANELS:
+            done = self._fill_on_processes(todo, report, processes)
+        for mach, ik in todo[done:]:
             self.column_node(mach, ik)
+            done += 1
             if report is not None:
                 report(done, len(todo))
         return len(todo)
+
+    def _fill_on_processes(self, todo: list[tuple[float, int]], report, processes: int) -> int:
+        """The nodes of ``todo`` whose AIC the disk cache does not hold, their AICs on worker
+        processes (in ``todo``'s order, as they finish), put in the table; the others are left
+        to :meth:`column_node`.  Returns how many of ``todo`` (a prefix once reordered: the
+        computed ones first) are done."""
+        from concurrent.futures import ProcessPoolExecutor   # lazy: only for big tables
+        import multiprocessing
+
+        n = self.mesh.n
+        mine = [(m, ik) for m, ik in todo
+                if self.cache is None or dlm_cache.load(
+                    self.cache, self._geometry, m, self.k_node(ik) / self.b_ref, n) is None]
+        if len(mine) < PARALLEL_AICS:
+            return 0
+        rest = [key for key in todo if key not in set(mine)]
+        todo[:] = mine + rest
+        ctx = multiprocessing.get_context("fork" if "fork" in
+                                          multiprocessing.get_all_start_methods() else None)
+        with ProcessPoolExecutor(max_workers=processes, mp_context=ctx) as pool:
+            futures = [pool.submit(symmetric_aic, self.grid, n, m, self.k_node(ik) / self.b_ref)
+                       for m, ik in mine]
+            for done, ((mach, ik), fut) in enumerate(zip(mine, futures), 1):
+                Q = self._computed(mach, self.k_node(ik), fut.result(), None)
+                self.evaluations += 1
+                self._table[(mach, ik)] = self.exact(mach, self.k_node(ik), Q)
+                if report is not None:
+                    report(done, len(todo))
+        return len(mine)
 
     @property
     def table_nodes(self) -> tuple[tuple[float, int], ...]:
@@ -247,14 +309,25 @@ class DlmAerodynamics:
             out += w * self.column_node(mach, j)
         return out
 
-    def gaf(self, mach: float, k: float, *, exact_mach: bool = False) -> np.ndarray:
+    def gaf(self, mach: float, k: float, *, exact_mach: bool = False,
+            fine: bool = False) -> np.ndarray:
         """Q(k, M) interpolated from the tables (cubic in k, linear in Mach) [-]; with
         ``exact_mach`` (a wing's fixed ``dlm_mach``) from the column of that very Mach
-        (:func:`snap_mach`), cubic in k only: one Mach's AICs, none of its neighbours'."""
+        (:func:`snap_mach`), cubic in k only: one Mach's AICs, none of its neighbours'; with
+        ``fine`` linear in Mach between the columns :data:`MACH_FINE` apart around it (a
+        matched crossing's own Mach, its error there)."""
         check_mach(mach)
         k = max(float(k), 0.0)
         if exact_mach:
             return self._in_k(0, k, mach=snap_mach(mach))
+        if fine:
+            x = float(mach) / MACH_FINE
+            i = int(np.floor(x + 1e-9))
+            t = x - i
+            Q = self._in_k(0, k, mach=snap_mach(i * MACH_FINE))
+            if t > 1e-9:
+                Q = (1 - t) * Q + t * self._in_k(0, k, mach=snap_mach((i + 1) * MACH_FINE))
+            return Q
         x = mach / MACH_STEP
         im = min(int(np.floor(x + 1e-12)), int(round(MACH_MAX / MACH_STEP)))
         t = x - im
@@ -283,7 +356,10 @@ class DlmTables:
     once.  Nothing is kept at module level: two analyses with different tables share no entry.
     Pickled (a study's tables sent to a worker process) it travels empty: each process fills
     its own; ``PROPWHIRL_DLM_CACHE`` shares the AICs across processes
-    (:mod:`propwhirl.model.aerodynamics.dlm_cache`).
+    (:mod:`propwhirl.model.aerodynamics.dlm_cache`).  ``processes``: worker processes an
+    analysis may compute a big first batch of AICs on (:meth:`DlmAerodynamics.fill`); None
+    (default): two where the machine has two cores and this is not itself a worker process
+    (a study's pool), else one.
 
     Examples
     --------
@@ -292,9 +368,21 @@ class DlmTables:
     0
     """
 
-    def __init__(self, size: int = CACHE_SIZE):
+    def __init__(self, size: int = CACHE_SIZE, processes: int | None = None):
         self.size = v.integer_at_least("size", size, 1)
+        self._processes = None if processes is None else v.integer_at_least(
+            "processes", processes, 1)
         self._aero: "OrderedDict[tuple, DlmAerodynamics]" = OrderedDict()
+
+    @property
+    def processes(self) -> int:
+        """Worker processes for a big fill (class docstring)."""
+        if self._processes is not None:
+            return self._processes
+        import multiprocessing   # lazy: only asked before a fill
+        import os
+        main = multiprocessing.parent_process() is None
+        return min(2, os.cpu_count() or 1) if main else 1
 
     def __len__(self) -> int:
         """Geometries held."""
@@ -305,7 +393,7 @@ class DlmTables:
         return geometry_key(wing) in self._aero
 
     def __reduce__(self):
-        return (DlmTables, (self.size,))           # sent to another process: empty
+        return (DlmTables, (self.size, self._processes))     # to another process: empty
 
     def __repr__(self) -> str:
         return f"DlmTables({len(self)} of at most {self.size} geometries)"
@@ -342,18 +430,19 @@ def dlm_aerodynamics(wing, tables: DlmTables | None = None) -> DlmAerodynamics:
 
 
 def pk_system_dlm(model, V: float, k_min: float, tables: DlmTables | None = None,
-                  exact_mach: bool = False):
+                  own_mach: bool = False):
     """ω ↦ (M, C, K) of the p-k equation of a PropellerWing with doublet-lattice wing
     aerodynamics at airspeed V [m/s]: its structure and propellers (the model's own second-order
     system with the wing aerodynamics off), minus the DLM loads in the p-k form
     K_a = ½ρV² Re Q(k, M), C_a = ½ρV² Im Q(k, M) / ω (exact at p = iω), k = ω b_ref / V
     (raised to ``k_min``), M the wing's Mach at this speed (:func:`wing_mach`: V / a, or its
     fixed ``dlm_mach``), Q read from ``tables`` (the analysis's; None: new ones).  Q is
-    interpolated in Mach between the table's Mach nodes (linear), or with ``exact_mach`` (and
-    always at a fixed ``dlm_mach``) from the AICs of this very Mach, cubic in k only: what a
-    matched crossing is converged with (:func:`propwhirl.analysis.pk.pk_crossing`)."""
+    interpolated in Mach between the table's Mach nodes (linear), or with ``own_mach`` between
+    the fine columns :data:`MACH_FINE` apart around this Mach (what a matched crossing is
+    converged with, :func:`propwhirl.analysis.pk.matched_crossing`); at a fixed ``dlm_mach``
+    always from the AICs of that very Mach, cubic in k only."""
     mach = wing_mach(model, V)
-    exact = exact_mach or fixed_mach(model.wing) is not None
+    exact = fixed_mach(model.wing) is not None
     check_mach(mach, V)
     dry = replace(model, wing_aero=False).second_order(np.array([V]))
     aero = dlm_aerodynamics(model.wing, tables)
@@ -364,7 +453,7 @@ def pk_system_dlm(model, V: float, k_min: float, tables: DlmTables | None = None
 
     def matrices(omega: float):
         k = max(float(omega) * b / V, k_min)
-        Q = q * aero.gaf(mach, k, exact_mach=exact)[np.ix_(keep, keep)]
+        Q = q * aero.gaf(mach, k, exact_mach=exact, fine=own_mach)[np.ix_(keep, keep)]
         M, C, K = (np.array(X, dtype=float) for X in structure)
         n = keep.size
         C[:n, :n] -= Q.imag / (k * V / b)

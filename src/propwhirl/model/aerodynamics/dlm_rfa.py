@@ -320,10 +320,12 @@ def second_order(assembly, V: np.ndarray, omega=None) -> SecondOrder:
     unchanged at the hubs), and on the free wing DOFs the Roger terms of :func:`coefficients`
     (:func:`roger_system`), the lag states after any the structure and propellers have.
     ``omega`` [rad/s] as :meth:`~propwhirl.model.systems.PropellerWingAssembly.blocks`; the
-    fits from the assembly's tables (``assembly.dlm_tables``, the analysis's)."""
+    fits from the assembly's tables (``assembly.dlm_tables``, the analysis's) over its
+    ``dlm_fit_ks`` (None: :func:`fit_ks`)."""
     model = assembly.model
     V = np.atleast_1d(np.asarray(V, float))
-    A = coefficients(model, V, tables=assembly.dlm_tables)
+    ks = None if assembly.dlm_fit_ks is None else np.asarray(assembly.dlm_fit_ks, float)
+    A = coefficients(model, V, ks, tables=assembly.dlm_tables)
     dry = assembly.with_switches(wing_aero=False).blocks(V, omega).dense()
     labels, _ = lag_labels(model, DEFAULT_LAGS)
     return roger_system(dry, A, V, b_ref(model.wing), model.flight.density, DEFAULT_LAGS,
