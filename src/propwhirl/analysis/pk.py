@@ -25,10 +25,9 @@ The modes to follow start from the finite-state eigenvalues of the model's own s
 (Leishman–Nguyen or Wagner lag states) at the first speed, and are continued speed by speed.
 The flutter speed of a mode is where its p-k decay rate Re p crosses zero from below, refined by
 Brent's method to ``xtol`` (0.01 m/s by default); on a Mach-matched doublet-lattice wing then
-converged with the AICs at the crossing's own Mach (:func:`matched_crossing`).  The p-k root is
-exact (Theodorsen's C at the
-mode's frequency) only at Re p = 0, i.e. at the flutter point; elsewhere its damping is the
-usual p-k approximation.
+converged with Q at the crossing's own Mach (:func:`matched_crossing`).  The p-k root is exact
+(Theodorsen's C at the mode's frequency) only at Re p = 0, i.e. at the flutter point;
+elsewhere its damping is the usual p-k approximation.
 
 In ``analyse(model, method="pk")`` (:func:`pk_instabilities`) each crossing's p-k eigenvector
 (:func:`pk_mode`; its displacements on the model's own DOFs) names the tracked finite-state
@@ -165,8 +164,8 @@ def pk_root(model, V: float, p0: complex, *, ktol: float = KTOL, maxiter: int = 
     :func:`pk_matrix` nearest the previous one, under-relaxed (halving the step, down to
     1/64) while the steps oscillate without shrinking; raises RuntimeError when k does not converge
     in ``maxiter`` iterations.  ``system``: :func:`pk_system` of (model, V) if already built
-    (else built with ``tables`` and ``own_mach``: a doublet-lattice wing's Q from the AICs at
-    its Mach at V itself).
+    (else built with ``tables`` and ``own_mach``: a Mach-matched doublet-lattice wing's Q at
+    its own Mach V/a, :func:`matched_crossing`, not between the tables' Mach nodes).
     """
     b = reference_semichord(model)
     system = pk_system(model, V, tables, own_mach) if system is None else system
@@ -256,8 +255,9 @@ def matched_crossing(model, V0: float, p0: complex, slope: float, *, lo: float, 
     ``p0`` [1/s]) found on the tables' Mach interpolation, whose ``slope`` d Re p/dV [1/s per
     m/s] starts the secant method: (V [m/s], p, k), V within ``xtol`` / 10 of the root (the
     last secant step: a fixed-Mach analysis at V/a moves its onset by (dV/dM)/a times that,
-    ~9 on the wingtip wing's near-neutral whirl hump), or None when the secant leaves [``lo``, ``hi``], meets a flat Re p or
-    takes more than :data:`MATCHED_STEPS` steps (the caller keeps V0).
+    ~9 on the wingtip wing's near-neutral whirl hump), or None when the secant leaves
+    [``lo``, ``hi``], meets a flat Re p or takes more than :data:`MATCHED_STEPS` steps (the
+    caller keeps V0).
 
     Between the tables' Mach nodes (0.05 apart) Q is linear in Mach, within ~5e-4 of max |Q| of
     the AICs at that Mach (Mach 0.6-0.66); a near-neutral whirl mode (a damping hump just

@@ -88,8 +88,9 @@ def pk_system(model, V: float, tables: DlmTables | None = None, own_mach: bool =
     :func:`propwhirl.model.aerodynamics.dlm.pk_system_dlm`), on the model's degrees of freedom (its
     ``dof_map``, without lag states).  ``tables``: the analysis's doublet-lattice tables
     (:class:`~propwhirl.model.aerodynamics.dlm.DlmTables`; None: new ones); ``own_mach``:
-    a doublet-lattice wing's Q from the AICs at its Mach at V itself, not interpolated between
-    the tables' Mach nodes (:func:`~propwhirl.model.aerodynamics.dlm.pk_system_dlm`)."""
+    a Mach-matched doublet-lattice wing's Q at its own Mach V/a (the fine columns around it),
+    not between the tables' Mach nodes
+    (:func:`~propwhirl.model.aerodynamics.dlm.pk_system_dlm`)."""
     if isinstance(model, TypicalSection):
         return lambda omega: section_pk_matrices(model, V, omega * model.b / V)
     if model.wing.aero == "dlm":                 # doublet-lattice panels instead of the strips
