@@ -96,11 +96,12 @@ def measure(case: str, method: str) -> dict:
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
-def table(rows: list[dict]) -> str:
+def table(rows: list[dict], load_before: float | None = None) -> str:
     load = os.getloadavg()[0]
+    loads = f"{load:.1f}" if load_before is None else f"{load_before:.1f} before, {load:.1f} after"
     lines = [f"Measured by `benchmarks/dlm_speed.py` (each case a fresh interpreter, first run, "
              f"no AIC cache, one BLAS thread; {os.cpu_count()} cores, load average "
-             f"{load:.1f} at the end). CPU: the analysis's process plus any worker processes "
+             f"{loads}). CPU: the analysis's process plus any worker processes "
              "it started. NASTRAN-95: " + ("measured side by side." if nastran_available()
                                            else "not installed here (the optional "
                                                 "`nastran95` package), column empty."),
@@ -131,14 +132,14 @@ def main() -> None:
         return
     cases = [c for c in CASES if not (args.quick and c == "goland16x28")
              and (args.only is None or c in args.only.split(","))]
-    rows = []
+    rows, before = [], os.getloadavg()[0]
     for case in cases:
         for method in ("auto", "pk"):
             rows.append(measure(case, method))
             print(json.dumps(rows[-1]), flush=True)
     if args.json:
         args.json.write_text(json.dumps(rows, indent=1))
-    text = table(rows)
+    text = table(rows, before)
     print(text)
     if args.markdown:
         from markdown_section import replace_section
