@@ -134,3 +134,21 @@ def test_tables_processes():
     assert dlm.DlmTables(processes=1).processes == 1
     assert 1 <= dlm.DlmTables().processes <= 2
     assert pickle.loads(pickle.dumps(dlm.DlmTables(processes=1))).processes == 1
+
+
+def test_the_steady_part_once_per_mach_gives_panelaeros_aic_bit_for_bit():
+    """DlmAerodynamics.aic keeps PanelAero's steady (VLM) part of its last Mach (issue 37 item
+    2: 8 % of a DLM analysis was that part computed again at every k): the same bits as
+    PanelAero's calc_Qjj folded to the symmetric half-wing, at k = 0 and not, across Machs."""
+    pytest.importorskip("panelaero")
+    from panelaero import DLM
+    from propwhirl.model.structure.wing import Wing
+
+    w = Wing(semi_span=3.0, mass_per_length=1.0, EI=1e4, GJ=1e4, radius_of_gyration=0.25,
+             n_elements=4, aero="dlm", dlm_chordwise_panels=3, dlm_spanwise_panels=5)
+    aero = dlm.DlmAerodynamics(w)
+    n = aero.mesh.n
+    for mach, k in ((0.0, 0.0), (0.3, 0.0), (0.3, 0.4), (0.3, 1.2), (0.65, 0.05), (0.3, 0.7)):
+        with np.errstate(all="ignore"):                   # PanelAero's own, called raw
+            Q = DLM.calc_Qjj(aero.grid, mach, k / aero.b_ref)
+        assert np.array_equal(aero.aic(mach, k), Q[n:, n:] + Q[n:, :n])

@@ -35,6 +35,7 @@ cubic in k only: the AICs of one Mach number).
 """
 from __future__ import annotations
 
+import copy
 from collections import OrderedDict
 from collections.abc import Callable, Iterable
 from dataclasses import replace
@@ -80,14 +81,32 @@ def _panelaero():
     return DLM
 
 
-def symmetric_aic(grid: dict, n: int, mach: float, kbar: float) -> np.ndarray:
+def steady_aic(grid: dict, mach: float) -> np.ndarray:
+    """PanelAero's steady vortex-lattice part of the AIC of ``grid`` at ``mach`` (the same
+    at every k of one Mach: :meth:`DlmAerodynamics.aic` keeps it for its Mach column)."""
+    DLM = _panelaero()
+    with np.errstate(all="ignore"):
+        return DLM.VLM.calc_Ajj(aerogrid=copy.deepcopy(grid), Ma=float(mach))[0]
+
+
+def symmetric_aic(grid: dict, n: int, mach: float, kbar: float,
+                  steady: np.ndarray | None = None) -> np.ndarray:
     """PanelAero's AIC of the mirrored ``grid`` (both half-wings, the right one last, ``n``
     panels each) at ``mach`` and k̄ = ω/U ``kbar`` [1/m], folded to the symmetric one of the
     half-wing, Q_RR + Q_RL (n, n) complex (:meth:`DlmAerodynamics.aic`): a function of its
-    arguments alone, so that worker processes compute it (:meth:`DlmAerodynamics.fill`)."""
+    arguments alone, so that worker processes compute it (:meth:`DlmAerodynamics.fill`).
+    PanelAero's ``calc_Qjj`` step by step (the same operations, the same bits), its steady
+    part ``steady`` (:func:`steady_aic` of this Mach) when already computed."""
     DLM = _panelaero()
+    kbar = float(kbar)
     with np.errstate(all="ignore"):
-        Q = DLM.calc_Qjj(grid, float(mach), float(kbar))
+        A_vlm = steady_aic(grid, mach) if steady is None else steady
+        if kbar == 0.0:
+            A_dlm = np.zeros((grid["n"], grid["n"]))
+        else:
+            A_dlm = DLM.calc_Ajj(aerogrid=copy.deepcopy(grid), Ma=float(mach), k=kbar,
+                                 method="parabolic")
+        Q = -np.linalg.inv(A_vlm + A_dlm)
     return Q[n:, n:] + Q[n:, :n]
 
 
@@ -166,6 +185,8 @@ class DlmAerodynamics:
         self._geometry = dlm_cache.geometry_key(self.mesh.mirrored().corners)
         self.cache_hits = 0
         self._fits: dict = {}
+        #: (Mach, PanelAero's steady AIC part there) of the last Mach computed
+        self._steady: tuple[float, np.ndarray] | None = None
 
     # ------------------------------------------------------------------ exact
     def aic(self, mach: float, k: float) -> np.ndarray:
@@ -183,7 +204,9 @@ class DlmAerodynamics:
             if cached is not None and self.cache_hits:   # the first one read: spot-checked
                 self.cache_hits += 1
                 return cached
-        Q = symmetric_aic(self.grid, n, mach, float(k) / self.b_ref)
+        if self._steady is None or self._steady[0] != float(mach):   # once per Mach column
+            self._steady = (float(mach), steady_aic(self.grid, mach))
+        Q = symmetric_aic(self.grid, n, mach, float(k) / self.b_ref, self._steady[1])
         self.evaluations += 1
         return self._computed(mach, k, Q, cached)
 
