@@ -59,12 +59,12 @@ def cpu(f, rounds: int) -> float:
 
 def analysis(m, *, spot_check: bool = True) -> tuple[float, int, int]:
     """CPU [s] of analyse(m) in a new session of its panels, its AICs computed and read."""
-    dlm._CACHE.pop(dlm._geometry_key(m.wing), None)
-    aero = dlm.dlm_aerodynamics(m.wing)
+    tables = dlm.DlmTables()                 # a new session's tables
+    aero = tables.aero(m.wing)
     if not spot_check:
         aero.cache_hits = 1                  # the first entry read then counts as trusted
     t = time.process_time()
-    analyse(m, speeds=SPEEDS)
+    analyse(m, speeds=SPEEDS, dlm_tables=tables)
     return time.process_time() - t, aero.evaluations, aero.cache_hits - (not spot_check)
 
 

@@ -33,7 +33,7 @@ from propwhirl.engine import analyse as engine_analyse  # noqa: E402
 from propwhirl.engine import single_thread_blas  # noqa: E402
 import minimum_state as ms  # noqa: E402
 from propwhirl.model.aerodynamics import dlm_rfa  # noqa: E402
-from propwhirl.model.aerodynamics.dlm import dlm_aerodynamics  # noqa: E402
+from propwhirl.model.aerodynamics.dlm import DlmTables, dlm_aerodynamics  # noqa: E402
 
 SPEEDS = np.arange(100.0, 291.0, 10.0)
 MACH = 0.5
@@ -75,8 +75,9 @@ def main() -> None:
     with single_thread_blas():
         m = model()
         n = m.dof_map().n_dof
-        aero = dlm_aerodynamics(m.wing)
-        pk = pk_sweep(m, SPEEDS).flutter
+        tables = DlmTables()
+        aero = dlm_aerodynamics(m.wing, tables)
+        pk = pk_sweep(m, SPEEDS, tables=tables).flutter
         pk_on = [(e.kind, e.V, e.frequency_hz) for e in pk if e.event == "onset"]
         t = time.process_time()
         roger = dlm_rfa.column_fit(aero, MACH)
@@ -98,7 +99,7 @@ def main() -> None:
             f"{100 * roger.error:.2f}", r_on, f"{1e3 * r_eig:.1f}", f"{t_roger:.2f}")
         for mm, lags in LAG_SETS.items():
             t = time.process_time()
-            f = ms.fit_model(m, lags)
+            f = ms.fit_model(m, lags, tables=tables)
             cpu = time.process_time() - t
             on, eig = onsets(lambda V: ms.state_matrix(m, f, V), n, 2 * n + mm)
             row(f"minimum state, m = {mm} ({f.sweeps} sweeps)", mm, 2 * n + mm,

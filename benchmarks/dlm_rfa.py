@@ -35,7 +35,7 @@ from propwhirl.analysis import analyse  # noqa: E402
 from propwhirl.io import load_model  # noqa: E402
 from propwhirl.model.aerodynamics import dlm_rfa  # noqa: E402
 from propwhirl.model.structure.assembly import free_dofs  # noqa: E402
-from propwhirl.model.aerodynamics.dlm import MACH_STEP, dlm_aerodynamics  # noqa: E402
+from propwhirl.model.aerodynamics.dlm import MACH_STEP, DlmTables, dlm_aerodynamics  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 MODEL = ROOT / "examples" / "wingtip.toml"
@@ -52,9 +52,9 @@ def dlm_model(panels: tuple[int, int]):
                                             dlm_spanwise_panels=panels[1]))
 
 
-def block_errors(model, fits) -> np.ndarray:
+def block_errors(model, fits, tables) -> np.ndarray:
     """(3, 3) worst |Q_fit − Q| / max |Q| of each DOF-kind block over the fits' k and nodes."""
-    aero = dlm_aerodynamics(model.wing)
+    aero = dlm_aerodynamics(model.wing, tables)
     keep = free_dofs(model.wing.n_nodes)
     kind = np.array([KINDS.index(["h", "phi", "alpha"][i % 3]) for i in keep])
     out = np.zeros((3, 3))
@@ -76,18 +76,19 @@ def onsets(a) -> list:
 
 def run(panels: tuple[int, int]) -> str:
     model = dlm_model(panels)
-    aero = dlm_aerodynamics(model.wing)
+    tables = DlmTables()                      # both analyses' tables: the p-k reuses the AICs
+    aero = dlm_aerodynamics(model.wing, tables)
     a_sound = model.flight.speed_of_sound
     n0 = aero.evaluations
     t = time.process_time()
-    rfa = analyse(model, speeds=SPEEDS)
+    rfa = analyse(model, speeds=SPEEDS, dlm_tables=tables)
     cpu_rfa, aic_rfa = time.process_time() - t, aero.evaluations - n0
     n0 = aero.evaluations
     t = time.process_time()
-    pk = analyse(model, speeds=SPEEDS, method="pk")
+    pk = analyse(model, speeds=SPEEDS, method="pk", dlm_tables=tables)
     cpu_pk, aic_pk = time.process_time() - t, aero.evaluations - n0
-    fits = dlm_rfa.fits_used(model, SPEEDS)
-    errs = block_errors(model, fits)
+    fits = dlm_rfa.fits_used(model, SPEEDS, tables=tables)
+    errs = block_errors(model, fits, tables)
     lines = [f"Wingtip model (`examples/wingtip.toml`, {model.wing.n_nodes - 1} elements) with "
              f"`aero = \"dlm\"`, {panels[0]} × {panels[1]} panels, speeds {SPEEDS[0]:g}–"
              f"{SPEEDS[-1]:g} m/s; {model.dof_map().n_states} states "

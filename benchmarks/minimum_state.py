@@ -149,17 +149,19 @@ def fit(Q: np.ndarray, ks, lags, mach: float = 0.0, b_ref: float = 1.0, *,
     return MinimumStateFit(A, D, E, lags, ks, float(mach), float(b_ref), error, sweeps)
 
 
-def fit_model(model, lags, mach: float | None = None, ks=None, **kw) -> MinimumStateFit:
+def fit_model(model, lags, mach: float | None = None, ks=None, tables=None,
+              **kw) -> MinimumStateFit:
     """The minimum-state fit of ``model``'s doublet-lattice tables on its free wing DOFs at
     Mach ``mach`` (default its wing's fixed ``dlm_mach``) over ``ks`` (default the runtime's
-    :func:`~propwhirl.model.aerodynamics.dlm_rfa.fit_ks`)."""
+    :func:`~propwhirl.model.aerodynamics.dlm_rfa.fit_ks`), read from ``tables`` (a
+    :class:`~propwhirl.model.aerodynamics.dlm.DlmTables`; None: new ones)."""
     mach = fixed_mach(model.wing) if mach is None else float(mach)
     if mach is None:
         raise v.InputError("the minimum-state fit is at one Mach: give mach or a wing with a "
                            "fixed dlm_mach")
     check_mach(mach)
     ks = fit_ks() if ks is None else np.asarray(ks, float)
-    aero = dlm_aerodynamics(model.wing)
+    aero = dlm_aerodynamics(model.wing, tables)
     keep = free_dofs(model.wing.n_nodes)
     mach = snap_mach(mach)
     Q = np.stack([aero.gaf(mach, k, exact_mach=True)[np.ix_(keep, keep)] for k in ks])

@@ -18,6 +18,7 @@ from propwhirl.cases.ch07_patil import patil_model  # noqa: E402
 from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing  # noqa: E402
 from propwhirl.model.aerodynamics import dlm, dlm_cache, dlm_rfa  # noqa: E402
 from propwhirl.studies.gradients import CriticalSpeed  # noqa: E402
+from propwhirl.studies import sweeps as sweeps_module  # noqa: E402
 from propwhirl.studies.sweeps import sweep  # noqa: E402
 from propwhirl.validate import InputError  # noqa: E402
 
@@ -127,20 +128,41 @@ def test_wingtip_events_close_to_pk():
 
 def test_study_reuses_the_aics_across_variants(monkeypatch):
     """A mount-frequency sweep of three variants (same planform) on the state space computes
-    the AICs of about one analysis: one fit per Mach node it spans, each on the tracking fit's
-    k (dlm_rfa.tracking_ks), and the AICs the p-k convergence of the crossings adds, all within
-    those columns' tables (at most fit_ks().size each) — not three times the fits' AICs."""
+    the table AICs of about one analysis: one fit per Mach node it spans, each on the tracking
+    fit's k (dlm_rfa.tracking_ks), and the AICs the p-k convergence of the crossings adds, all
+    within those columns' tables (at most fit_ks().size each) — not three times the fits'
+    AICs.  Each crossing is then converged at its own Mach (issue 37 item 5): on the fine
+    columns 0.001 of Mach apart around it, the cubic's four k nodes around the crossing's k
+    (two crossings share the column at Mach 0.46 here: eight)."""
     monkeypatch.delenv(dlm_cache.CACHE_ENV, raising=False)
-    m = small_wingtip(3, 9)                                 # a geometry no other test builds
-    dlm._CACHE.pop(dlm._geometry_key(m.wing), None)
+    m = small_wingtip(3, 9)
     speeds = np.arange(140.0, 201.0, 20.0)
+    made = []                              # the study's tables: the one DlmTables it makes
+    monkeypatch.setattr(sweeps_module, "DlmTables",
+                        lambda: made.append(dlm.DlmTables()) or made[-1])
+    seen = []                              # and the tables each of its analyses was given
+    real = sweeps_module.analyse
+    monkeypatch.setattr(sweeps_module, "analyse",
+                        lambda *a, **kw: seen.append(kw["dlm_tables"]) or real(*a, **kw))
     r = sweep(m, "propellers[0].propeller.f_theta", [4.0, 5.5, 7.0], speeds=speeds)
     assert list(r.kind) == ["divergence"] * 3
-    computed = dlm.dlm_aerodynamics(m.wing).evaluations
+    (tables,) = made
+    assert len(seen) == 3 and all(t is tables for t in seen)
+    aero = tables.aero(m.wing)
+    on_node = [key for key in aero.table_nodes
+               if abs(key[0] / dlm.MACH_STEP - round(key[0] / dlm.MACH_STEP)) < 1e-9]
+    own = [key for key in aero.table_nodes if key not in on_node]
+    assert aero.evaluations == len(on_node) + len(own)
     nodes = len(dlm_rfa.fits_used(m, speeds))
     assert nodes == 6                                       # Mach 0.40 to 0.65
     fits = nodes * dlm_rfa.tracking_ks().size               # 6 Mach nodes x 8 k
-    assert fits <= computed <= nodes * dlm_rfa.fit_ks().size < 3 * fits
+    assert fits <= len(on_node) <= nodes * dlm_rfa.fit_ks().size < 3 * fits
+    per_column = {}
+    for mach, _ in own:
+        per_column[mach] = per_column.get(mach, 0) + 1
+    assert own and max(per_column.values()) <= 8
+    fine = np.array(sorted(per_column)) / dlm.MACH_FINE
+    assert np.allclose(fine, np.round(fine), rtol=0, atol=1e-6)
 
 
 def test_exact_sensitivities_refused_on_a_dlm_wing():
@@ -154,13 +176,12 @@ def test_exact_sensitivities_refused_on_a_dlm_wing():
 
 
 def test_mach_beyond_the_tables_refused_before_any_aic():
-    m = patil_dlm(3, 11)                                    # a geometry no other test builds
-    key = dlm._geometry_key(m.wing)
-    dlm._CACHE.pop(key, None)
+    m = patil_dlm(3, 11)
+    tables = dlm.DlmTables()
     top = 0.95 * m.flight.speed_of_sound
     with pytest.raises(InputError, match=r"Mach = 0.95 \(V = .* m/s\) is invalid for aero = 'dlm'"):
-        analyse(m, speeds=[10.0, 20.0, top])
-    assert key not in dlm._CACHE
+        analyse(m, speeds=[10.0, 20.0, top], dlm_tables=tables)
+    assert len(tables) == 0
 
 
 @settings(max_examples=12, deadline=None, derandomize=True)
@@ -179,7 +200,7 @@ def test_any_speed_gives_a_finite_state_matrix_or_one_line_error(V):
     assert np.all(np.isfinite(A))
     dm = m.dof_map()
     lagdiag = np.diag(A)[2 * dm.n_dof:]
-    b = dlm.dlm_aerodynamics(m.wing).b_ref
+    b = dlm.DlmAerodynamics(m.wing).b_ref
     want = -np.repeat(np.asarray(dlm_rfa.DEFAULT_LAGS) * V / b, 3 * (m.wing.n_nodes - 1))
     assert np.allclose(lagdiag, want)
 
@@ -204,10 +225,11 @@ def test_the_fit_note_is_of_the_fits_the_analysis_used():
     is now that of the fits over the analysis's own speeds and reduced frequencies."""
     m = patil_dlm()
     for method in ("dense", "auto"):
-        before = analyse(m, speeds=PATIL_SPEEDS, method=method).warnings[0]
-        aero = dlm.dlm_aerodynamics(m.wing)
+        tables = dlm.DlmTables()
+        before = analyse(m, speeds=PATIL_SPEEDS, method=method, dlm_tables=tables).warnings[0]
+        aero = tables.aero(m.wing)
         # unrelated fits at the analysis's own Mach nodes (0.05-0.15), over other k (to 5)
         for mach in (0.05, 0.1, 0.15):
             dlm_rfa.column_fit(aero, mach, ks=dlm_rfa.fit_ks(5.0))
-        after = analyse(m, speeds=PATIL_SPEEDS, method=method).warnings[0]
+        after = analyse(m, speeds=PATIL_SPEEDS, method=method, dlm_tables=tables).warnings[0]
         assert after == before and "worst fit error" in after

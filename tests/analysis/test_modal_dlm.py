@@ -154,9 +154,9 @@ def test_the_counted_aics_are_those_the_analysis_computes(monkeypatch, vgf, colu
     seen: list[tuple[int, int]] = []
     runs = []
     for progress in (None, lambda done, total: seen.append((done, total))):
-        dlm._CACHE.pop(dlm._geometry_key(m.wing), None)      # every AIC computed again
-        a = analyse(m, speeds, vgf=vgf, progress=progress)
-        runs.append((a, dlm.dlm_aerodynamics(m.wing).evaluations))
+        tables = dlm.DlmTables()                              # every AIC computed again
+        a = analyse(m, speeds, vgf=vgf, progress=progress, dlm_tables=tables)
+        runs.append((a, tables.aero(m.wing).evaluations))
     (plain, computed), (counted, computed_counted) = runs
     n = len(dlm_rfa.TRACKING_K_NODES)
     assert seen == [(k, columns * n) for k in range(columns * n + 1)]

@@ -63,12 +63,11 @@ def test_dlm_refused_where_it_has_no_block_form():
 
 def test_supersonic_speeds_refused_before_any_panel_work():
     m = patil_dlm(3, 17)                                   # a geometry no other test builds
-    key = dlm._geometry_key(m.wing)
-    dlm._CACHE.pop(key, None)
+    tables = dlm.DlmTables()
     top = 0.95 * m.flight.speed_of_sound
     with pytest.raises(InputError, match=r"Mach = 0.95 \(V = .* m/s\) is invalid for aero = 'dlm'"):
-        pk_sweep(m, [10.0, 20.0, top])
-    assert key not in dlm._CACHE                          # no panels, no AIC built
+        pk_sweep(m, [10.0, 20.0, top], tables=tables)
+    assert m.wing not in tables and len(tables) == 0     # no panels, no AIC built
 
 
 def test_missing_panelaero_is_said_before_any_work(monkeypatch):

@@ -64,13 +64,14 @@ def test_few_shared_lag_states_give_the_pk_flutter(patil):
     from propwhirl.analysis.pk import pk_sweep
     from propwhirl.engine import analyse as engine_analyse
     from propwhirl.model.aerodynamics import dlm_rfa
-    from propwhirl.model.aerodynamics.dlm import dlm_aerodynamics
+    from propwhirl.model.aerodynamics.dlm import DlmTables
 
+    tables = DlmTables()                  # one set of AICs for the p-k and the fits
     speeds = np.arange(20.0, 36.0, 4.0)
-    pk = pk_sweep(patil, speeds).critical
-    f = ms.fit_model(patil, np.geomspace(0.05, 3.0, 12))
+    pk = pk_sweep(patil, speeds, tables=tables).critical
+    f = ms.fit_model(patil, np.geomspace(0.05, 3.0, 12), tables=tables)
     assert f.error < 0.015
-    assert ms.fit_model(patil, (0.2, 1.0)).error > f.error
+    assert ms.fit_model(patil, (0.2, 1.0), tables=tables).error > f.error
     n = patil.dof_map().n_dof
     A = ms.state_matrix(patil, f, [25.0])[0]
     assert A.shape == (2 * n + 12,) * 2
@@ -86,7 +87,7 @@ def test_few_shared_lag_states_give_the_pk_flutter(patil):
         return out[0]
 
     mine = flutter(lambda V: ms.state_matrix(patil, f, V), 2 * n + 12)
-    roger_fit = dlm_rfa.column_fit(dlm_aerodynamics(patil.wing), 0.1)
+    roger_fit = dlm_rfa.column_fit(tables.aero(patil.wing), 0.1)
     roger = flutter(lambda V: dlm_rfa.state_matrix(patil, roger_fit, V), 2 * n + 4 * 30)
     assert mine.V == pytest.approx(pk.V, rel=0.015)
     assert mine.frequency_hz == pytest.approx(pk.frequency_hz, rel=0.02)

@@ -75,10 +75,10 @@ def test_fixed_mach_uses_one_column_of_aics():
     from propwhirl.model.aerodynamics import dlm
 
     def run(model):
-        dlm._CACHE.clear()
+        tables = dlm.DlmTables()
         for V in (12.0, 33.0, 47.0):
-            dlm.pk_system_dlm(model, V, 1e-3)(2 * np.pi * 3.0)       # k = 0.4-0.08
-        return dlm.dlm_aerodynamics(model.wing)
+            dlm.pk_system_dlm(model, V, 1e-3, tables)(2 * np.pi * 3.0)   # k = 0.4-0.08
+        return tables.aero(model.wing)
 
     matched = run(small_model())
     fixed = run(small_model(dlm_mach=0.2))
@@ -124,13 +124,13 @@ def test_roger_state_space_at_a_fixed_mach():
     pytest.importorskip("panelaero")
     from propwhirl.model.aerodynamics import dlm, dlm_rfa
 
-    dlm._CACHE.clear()
+    tables = dlm.DlmTables()
     fixed = small_model(dlm_mach=0.2)
     V = np.array([10.0, 30.0, 60.0])
-    A = dlm_rfa.coefficients(fixed, V)
+    A = dlm_rfa.coefficients(fixed, V, tables=tables)
     assert np.array_equal(A[0], A[1]) and np.array_equal(A[0], A[2])
+    assert tables.aero(fixed.wing).columns == (pytest.approx(0.2),)
     assert np.array_equal(A[1], dlm_rfa.coefficients(small_model(), np.array([20.0]))[0])
-    assert dlm.dlm_aerodynamics(fixed.wing).columns == (pytest.approx(0.2),)
     matched = dlm_rfa.coefficients(small_model(), V)
     assert not np.allclose(matched[0], matched[2])
     note = dlm_rfa.rfa_note(fixed, V)

@@ -33,9 +33,10 @@ from propwhirl.engine import analyse as engine_analyse
 from propwhirl.engine import single_thread_blas
 from propwhirl.engine.results import Analysis, Criticals
 from propwhirl.engine.tracker import ANALYSE_INITIAL_STEP, initial_speeds
-from propwhirl.model.aerodynamics.dlm import MACH_STEP, dlm_aerodynamics, fixed_mach, snap_mach
+from propwhirl.model.aerodynamics.dlm import (MACH_STEP, DlmTables, dlm_aerodynamics,
+                                              fixed_mach, snap_mach)
 from propwhirl.model.dlm_modal import ModalRoger, modal_roger
-from propwhirl.model.aerodynamics.dlm_rfa import TRACKING_K_NODES, mach_nodes
+from propwhirl.model.aerodynamics.dlm_rfa import TRACKING_K_NODES, b_ref, mach_nodes
 
 
 @dataclass(frozen=True)
@@ -68,16 +69,19 @@ def fit_table_nodes(model, speeds) -> list[tuple[float, int]]:
 
 
 def compute_fit_aics(model, grid: np.ndarray, *, vgf: bool,
-                     report: Callable[[int, int], None]) -> int:
+                     report: Callable[[int, int], None] | None, tables: DlmTables) -> int:
     """Compute the doublet-lattice AICs that the analysis of ``model`` over the speeds
     ``grid`` [m/s] reads first — those of the Roger fits at the engine's first batch of speeds
     (every grid speed with ``vgf``, else :func:`~propwhirl.engine.tracker.initial_speeds` at
     the default initial step), which its tracking would compute anyway — now, counted:
     ``report(done, total)`` before the first and after each AIC, total known in advance
-    (issue 37 item 3).  The AICs a refinement or a p-k convergence adds later are not counted.
-    Returns how many were computed (those not in the tables yet)."""
+    (issue 37 item 3; ``report`` None: silent).  The AICs a refinement or a p-k convergence
+    adds later are not counted.  A big batch runs on ``tables.processes`` worker processes
+    (:meth:`~propwhirl.model.aerodynamics.dlm.DlmAerodynamics.fill`: the same numbers).
+    Returns how many were computed (those not in ``tables``, the analysis's, yet)."""
     first = initial_speeds(np.asarray(grid, float), None if vgf else ANALYSE_INITIAL_STEP)
-    return dlm_aerodynamics(model.wing).fill(fit_table_nodes(model, first), report)
+    return dlm_aerodynamics(model.wing, tables).fill(fit_table_nodes(model, first), report,
+                                                     tables.processes)
 
 
 def full_state(assembly, V: float, p: complex, q: np.ndarray) -> np.ndarray:
@@ -97,22 +101,25 @@ def modal_dlm_analysis(model, grid: np.ndarray, *, displacement, state_labels, o
     """The engine on the modal Roger state space of ``model``, its crossings converged by the
     p-k method (module docstring) over the airspeeds ``grid`` [m/s], to ``xtol`` [m/s].
     ``displacement`` and ``state_labels``: the model's full state's (its DOF map);
-    ``assembly`` and ``structure`` (M, K): the model's, if already built.  BLAS at one
+    ``assembly`` and ``structure`` (M, K): the model's, if already built (the assembly holds
+    the analysis's doublet-lattice tables, which the p-k convergence reads too).  BLAS at one
     thread."""
     with single_thread_blas():
         R = modal_roger(model, grid, assembly=assembly, structure=structure)
+        tables = R.assembly.dlm_tables
         an = engine_analyse(R.state_matrix, grid, displacement=R.displacement,
                             state_labels=R.labels(), options=options, xtol=xtol,
                             **({"initial_step": None} if vgf else {}))
         lift = R.lift
         n = R.Phi.shape[0]
         lo, hi = float(grid[0]), float(grid[-1])
-        b_ref = dlm_aerodynamics(model.wing).b_ref
+        b = b_ref(model.wing)
         points, notes = [], []
         for pt in an.criticals.points:
             what = f"{pt.kind} {pt.direction} of state-space mode {pt.mode + 1}"
             try:
-                c = pk_crossing(model, pt.V, pt.eigenvalue, lo=lo, hi=hi, xtol=xtol)
+                c = pk_crossing(model, pt.V, pt.eigenvalue, lo=lo, hi=hi, xtol=xtol,
+                                tables=tables)
             except RuntimeError:
                 x0 = lift @ pt.eigenvector
                 points.append(replace(pt, eigenvector=x0 / np.linalg.norm(x0)))
@@ -121,7 +128,7 @@ def modal_dlm_analysis(model, grid: np.ndarray, *, displacement, state_labels, o
                              "method = 'pk')")
                 continue
             if c is None:
-                k = 2 * np.pi * pt.frequency_hz * b_ref / pt.V
+                k = 2 * np.pi * pt.frequency_hz * b / pt.V
                 notes.append(f"V = {pt.V:.2f} m/s ({what}, {pt.frequency_hz:.4g} Hz, k = "
                              f"{k:.3g}) of the Roger state space is not a crossing of the p-k "
                              "method on Q(k) (its root keeps its sign from "
@@ -129,11 +136,11 @@ def modal_dlm_analysis(model, grid: np.ndarray, *, displacement, state_labels, o
                              f"{min(hi, (1 + CROSSING_SPREAD[-1]) * pt.V):.2f} m/s): not "
                              "reported")
                 continue
-            p, k, x = pk_mode(model, c.V, c.p)
+            p, k, x = pk_mode(model, c.V, c.p, tables=tables, own_mach=True)
             p = p if p.imag >= 0 else p.conjugate()
             flutter = pt.kind == "flutter"
             half = 0.5 * (pt.bracket[1] - pt.bracket[0])
-            bz = pk_benignity(model, c.V, p) if flutter else None
+            bz = pk_benignity(model, c.V, p, tables) if flutter else None
             points.append(replace(
                 pt, V=c.V, bracket=(c.V - half, c.V + half), direction=c.direction,
                 eigenvalue=p, frequency_hz=float(abs(p.imag) / (2 * np.pi)) if flutter else 0.0,
@@ -143,7 +150,7 @@ def modal_dlm_analysis(model, grid: np.ndarray, *, displacement, state_labels, o
         for k in an.criticals.unstable_at_start:
             lam0 = complex(an.sweep.eigenvalues[0, k])
             try:
-                p, _ = pk_root(model, lo, lam0)
+                p, _ = pk_root(model, lo, lam0, tables=tables)
             except RuntimeError:
                 start.append(k)
                 continue

@@ -24,14 +24,19 @@ its modes with and reports beside its events is its strip twin
 The modes to follow start from the finite-state eigenvalues of the model's own state matrix
 (Leishman–Nguyen or Wagner lag states) at the first speed, and are continued speed by speed.
 The flutter speed of a mode is where its p-k decay rate Re p crosses zero from below, refined by
-Brent's method to ``xtol`` (0.01 m/s by default).  The p-k root is exact (Theodorsen's C at the
-mode's frequency) only at Re p = 0, i.e. at the flutter point; elsewhere its damping is the
-usual p-k approximation.
+Brent's method to ``xtol`` (0.01 m/s by default); on a Mach-matched doublet-lattice wing then
+converged with Q at the crossing's own Mach (:func:`matched_crossing`).  The p-k root is exact
+(Theodorsen's C at the mode's frequency) only at Re p = 0, i.e. at the flutter point;
+elsewhere its damping is the usual p-k approximation.
 
 In ``analyse(model, method="pk")`` (:func:`pk_instabilities`) each crossing's p-k eigenvector
 (:func:`pk_mode`; its displacements on the model's own DOFs) names the tracked finite-state
 mode it is (:func:`tracked_mode`, by MAC) and gives the event's whirl sense and propeller
 participation; the benignity is the slope of the p-k damping ratio at the crossing.
+
+On a doublet-lattice wing every function reads Q(k, M) from ``tables``, the analysis's
+:class:`~propwhirl.model.aerodynamics.dlm.DlmTables` (None: new ones for that call — give the
+analysis's to reuse its AICs).
 """
 from __future__ import annotations
 
@@ -48,7 +53,8 @@ from propwhirl.analysis.participation import with_participation
 from propwhirl.engine import mac
 from propwhirl.model.aerodynamics import compressibility
 from propwhirl.model.protocol import capabilities
-from propwhirl.model.aerodynamics.dlm import check_speed_mach, dlm_aerodynamics, fixed_mach, strip_twin
+from propwhirl.model.aerodynamics.dlm import (DlmTables, check_speed_mach, check_tables,
+                                              dlm_aerodynamics, fixed_mach, strip_twin)
 from propwhirl.model.aerodynamics.dlm_mesh import guideline_note
 from propwhirl.model.frequency_domain import (
     K_MIN,
@@ -129,14 +135,15 @@ class PKSweep:
         return onsets[0] if onsets else None
 
 
-def pk_matrix(model, V: float, k: float) -> np.ndarray:
+def pk_matrix(model, V: float, k: float, tables: DlmTables | None = None) -> np.ndarray:
     """First-order matrix of the p-k equation at airspeed V [m/s] and reduced frequency k [-]
     (on the reference semichord, :func:`~propwhirl.model.frequency_domain.reference_semichord`).
 
     Its eigenvalues p [1/s] solve (M_s − M_a) p² − C_a(k) p + (K_s − K_a(k)) = 0 with the
     exact Theodorsen C(k) (eq. 4.31): :func:`propwhirl.model.frequency_domain.pk_matrices`.
     """
-    return _first_order(pk_system(model, V), max(k, K_MIN) * V / reference_semichord(model))
+    return _first_order(pk_system(model, V, tables),
+                        max(k, K_MIN) * V / reference_semichord(model))
 
 
 def _first_order(system, omega: float) -> np.ndarray:
@@ -150,16 +157,19 @@ def _first_order(system, omega: float) -> np.ndarray:
 
 
 def pk_root(model, V: float, p0: complex, *, ktol: float = KTOL, maxiter: int = 200,
-            system=None) -> tuple[complex, float]:
+            system=None, tables: DlmTables | None = None,
+            own_mach: bool = False) -> tuple[complex, float]:
     """The p-k root [1/s] of the mode nearest ``p0`` at airspeed V [m/s], and its k [-].
 
     Fixed-point iteration k ← Im p · b / V (b: the reference semichord) with the root of
     :func:`pk_matrix` nearest the previous one, under-relaxed (halving the step, down to
     1/64) while the steps oscillate without shrinking; raises RuntimeError when k does not converge
-    in ``maxiter`` iterations.  ``system``: :func:`pk_system` of (model, V) if already built.
+    in ``maxiter`` iterations.  ``system``: :func:`pk_system` of (model, V) if already built
+    (else built with ``tables`` and ``own_mach``: a Mach-matched doublet-lattice wing's Q at
+    its own Mach V/a, :func:`matched_crossing`, not between the tables' Mach nodes).
     """
     b = reference_semichord(model)
-    system = pk_system(model, V) if system is None else system
+    system = pk_system(model, V, tables, own_mach) if system is None else system
     p = complex(p0)
     k = abs(p.imag) * b / V
     relax, last = 1.0, 0.0
@@ -180,13 +190,14 @@ def pk_root(model, V: float, p0: complex, *, ktol: float = KTOL, maxiter: int = 
     raise RuntimeError(f"p-k iteration did not converge at V = {V} m/s (k = {k})")
 
 
-def pk_mode(model, V: float, p0: complex, *, system=None) -> tuple[complex, float, np.ndarray]:
+def pk_mode(model, V: float, p0: complex, *, system=None, tables: DlmTables | None = None,
+            own_mach: bool = False) -> tuple[complex, float, np.ndarray]:
     """The p-k root [1/s] nearest ``p0`` at V [m/s] (:func:`pk_root`), its k [-] and its
     eigenvector: the first-order state (q̂, p q̂) on the model's degrees of freedom (the
     first ``dof_map().n_dof`` entries are the displacement shape q̂, the same DOFs as the
     finite-state model's, which adds only its lag states after them), scaled to unit norm."""
     b = reference_semichord(model)
-    system = pk_system(model, V) if system is None else system
+    system = pk_system(model, V, tables, own_mach) if system is None else system
     p, k = pk_root(model, V, p0, system=system)
     lam, X = np.linalg.eig(_first_order(system, max(k, K_MIN) * V / b))
     i = int(np.argmin(np.abs(lam - p)))
@@ -209,6 +220,71 @@ def _start_roots(model, V: float, n_modes: int | None) -> tuple[np.ndarray, tupl
     return start, labels
 
 
+def _brent_between(model, a: float, b: float, pa: complex, pb: complex, xtol: float,
+                   tables) -> tuple[float, complex, float]:
+    """Brent's method on Re p between the speeds a < b [m/s] whose p-k roots ``pa`` and
+    ``pb`` [1/s] have opposite signs of Re p, each speed's root continued from the root
+    interpolated linearly between them (so that both ends are the roots the bracket was
+    found with, not another mode's a far start jumps to): (V, p, k).  RuntimeError when a
+    root does not converge or the ends' roots lose their signs."""
+
+    def guess(x: float) -> complex:
+        return pa + (pb - pa) * (x - a) / (b - a)
+
+    def decay(x: float) -> float:
+        return pk_root(model, x, guess(x), tables=tables)[0].real
+
+    try:
+        V = brentq(decay, a, b, xtol=xtol)
+    except ValueError:             # the ends' roots re-solved lost their signs: not a bracket
+        raise RuntimeError(f"p-k bracket [{a}, {b}] m/s lost its sign change") from None
+    p, k = pk_root(model, V, guess(V), tables=tables)
+    return float(V), p, float(k)
+
+
+#: secant steps :func:`matched_crossing` takes at most
+MATCHED_STEPS = 12
+
+
+def matched_crossing(model, V0: float, p0: complex, slope: float, *, lo: float, hi: float,
+                     xtol: float = XTOL,
+                     tables: DlmTables | None = None) -> tuple[float, complex, float] | None:
+    """The crossing Re p = 0 of a Mach-matched doublet-lattice wing with Q at the Mach V/a of
+    every speed tried (issue 37 item 5): from the AICs of the fine columns
+    (:data:`~propwhirl.model.aerodynamics.dlm.MACH_FINE` = 0.001 apart) around it, within 2e-7
+    of max |Q| of that Mach's own AICs at Mach 0.6, from the crossing ``V0`` [m/s] (root
+    ``p0`` [1/s]) found on the tables' Mach interpolation, whose ``slope`` d Re p/dV [1/s per
+    m/s] starts the secant method: (V [m/s], p, k), V within ``xtol`` / 10 of the root (the
+    last secant step: a fixed-Mach analysis at V/a moves its onset by (dV/dM)/a times that,
+    ~9 on the wingtip wing's near-neutral whirl hump), or None when the secant leaves
+    [``lo``, ``hi``], meets a flat Re p or takes more than :data:`MATCHED_STEPS` steps (the
+    caller keeps V0).
+
+    Between the tables' Mach nodes (0.05 apart) Q is linear in Mach, within ~5e-4 of max |Q| of
+    the AICs at that Mach (Mach 0.6-0.66); a near-neutral whirl mode (a damping hump just
+    touching zero) turns that into metres per second of onset.  At its own Mach, the onset
+    is the one the same wing has with its ``dlm_mach`` fixed at the onset's own V/a (tested).
+    """
+    if not np.isfinite(slope) or slope == 0.0:
+        return None
+    V, guess = float(V0), complex(p0)
+    prev = None                                  # (V, Re p) of the previous exact point
+    for _ in range(MATCHED_STEPS):
+        try:
+            p, k = pk_root(model, V, guess, tables=tables, own_mach=True)
+        except RuntimeError:
+            return None
+        if prev is not None and p.real != prev[1]:
+            slope = (p.real - prev[1]) / (V - prev[0])        # the secant's
+        step = 0.0 if p.real == 0.0 else -p.real / slope
+        if abs(step) <= 0.1 * xtol:
+            return V, p, float(k)
+        if not (np.isfinite(step) and lo <= V + step <= hi):
+            return None
+        prev, guess, V = (V, p.real), p, V + step
+    return None
+
+
 #: half-widths of the brackets :func:`pk_crossing` tries around a finite-state crossing, as
 #: fractions of its speed (the Roger fit's crossings lie within ~1 % of the p-k's)
 CROSSING_SPREAD = (0.01, 0.02, 0.04, 0.08, 0.16)
@@ -226,7 +302,7 @@ class PKCrossing:
 
 
 def pk_crossing(model, V0: float, p0: complex, *, lo: float, hi: float,
-                xtol: float = XTOL) -> PKCrossing | None:
+                xtol: float = XTOL, tables: DlmTables | None = None) -> PKCrossing | None:
     """The p-k crossing (Re p = 0) of the mode whose root is near ``p0`` [1/s] at V0 [m/s]:
     a bracket around V0 of half-width :data:`CROSSING_SPREAD` × V0 (widened in turn, within
     [``lo``, ``hi``] [m/s]) where the p-k root continued from ``p0`` changes sign, refined by
@@ -234,35 +310,38 @@ def pk_crossing(model, V0: float, p0: complex, *, lo: float, hi: float,
     bracket (the p-k has no crossing there); RuntimeError when the k iteration does not
     converge.  What the default analysis of a doublet-lattice wing converges its modal Roger
     state space's crossings with (:mod:`propwhirl.analysis.modal_dlm`)."""
+    tables = check_tables(tables) if strip_twin(model) is not model else None
     V0 = float(np.clip(V0, lo, hi))
     guess = {"lo": complex(p0), "hi": complex(p0)}
     for s in CROSSING_SPREAD:
         a, b = max(lo, V0 * (1 - s)), min(hi, V0 * (1 + s))
-        pa, _ = pk_root(model, a, guess["lo"])
-        pb, _ = pk_root(model, b, guess["hi"])
+        pa, _ = pk_root(model, a, guess["lo"], tables=tables)
+        pb, _ = pk_root(model, b, guess["hi"], tables=tables)
         guess["lo"], guess["hi"] = pa, pb
         if pa.real != 0 and pb.real != 0 and (pa.real > 0) != (pb.real > 0):
-            start = pa
-
-            def decay(x: float) -> float:
-                return pk_root(model, x, start)[0].real
-
-            if (decay(b) > 0) == (pa.real > 0):   # continued from a, another root at b:
-                continue                          # not this root's bracket (was a traceback)
-            V = brentq(decay, a, b, xtol=xtol)
-            p, k = pk_root(model, V, start)
+            try:
+                V, p, k = _brent_between(model, a, b, pa, pb, xtol, tables)
+            except RuntimeError:          # continued from a, another root at b: not this
+                continue                  # root's bracket (was a traceback); a wider one
+            if tables is not None and fixed_mach(model.wing) is None:
+                exact = matched_crossing(model, V, p, (pb.real - pa.real) / (b - a), lo=lo,
+                                         hi=hi, xtol=xtol, tables=tables)
+                if exact is not None:
+                    V, p, k = exact
             return PKCrossing(float(V), p, float(k), "onset" if pa.real < 0 else "recovery")
         if a <= lo and b >= hi:
             break
     return None
 
 
-def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None) -> PKSweep:
+def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
+             tables: DlmTables | None = None) -> PKSweep:
     """p-k roots of the modes of a typical section or a wing over ``speeds`` [m/s] and their
     flutter and divergence crossings (Re p = 0, refined by Brent's method to ``xtol`` [m/s]).
 
     ``n_modes``: how many in-vacuo modes (lowest frequencies first) to follow; default every
-    mode of a typical section, the lowest :data:`WING_MODES` of a wing.
+    mode of a typical section, the lowest :data:`WING_MODES` of a wing.  ``tables``: a
+    doublet-lattice wing's (the analysis's; None: new ones for this sweep).
     """
     check_pk_model(model)
     V = np.asarray(speeds, dtype=float)
@@ -272,8 +351,11 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None) -
                            "increasing airspeeds > 0 [m/s]")
     v.positive("xtol", xtol, "m/s")
     compressibility.check_speeds(model, V)      # matched Prandtl-Glauert strips: Mach <= 0.9
+    matched = False
     if strip_twin(model) is not model:  # doublet-lattice tables: every Mach subsonic, first
         check_speed_mach(model, V)
+        tables = check_tables(tables)
+        matched = fixed_mach(model.wing) is None
     if n_modes is None:
         n_modes = None if _is_section(model) else WING_MODES
     elif not isinstance(n_modes, (int, np.integer)) or n_modes < 1:
@@ -285,7 +367,7 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None) -
     p = start.copy()
     lost: list[tuple[str, float]] = []
     for i, Vi in enumerate(V):
-        system = pk_system(model, Vi)  # the structure and propellers once per speed
+        system = pk_system(model, Vi, tables)  # the structure and propellers once per speed
         for j in range(start.size):
             if not np.isfinite(p[j]):
                 ks[i, j] = np.nan
@@ -307,15 +389,29 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None) -
 
             def decay(x: float) -> float:
                 # continue from the bracket's left root (a near root keeps the same mode)
-                p, _ = pk_root(model, x, guess[0])
+                p, _ = pk_root(model, x, guess[0], tables=tables)
                 return p.real
 
             try:
                 Vf = brentq(decay, V[i], V[i + 1], xtol=xtol)
-                p, k = pk_root(model, Vf, roots[i, j])
+                p, k = pk_root(model, Vf, roots[i, j], tables=tables)
+            except ValueError:   # the right end, continued from the left root, is another
+                try:             # mode's: each speed from the root between the ends'
+                    Vf, p, k = _brent_between(model, float(V[i]), float(V[i + 1]),
+                                              roots[i, j], roots[i + 1, j], xtol, tables)
+                except RuntimeError:
+                    lost.append((labels[j], float(V[i])))
+                    continue
             except RuntimeError:
                 lost.append((labels[j], float(V[i])))
                 continue
+            if matched:                    # converged with the AICs at its own Mach
+                exact = matched_crossing(model, Vf, p,
+                                         (sigma[i + 1] - sigma[i]) / (V[i + 1] - V[i]),
+                                         lo=float(V[0]), hi=float(V[-1]), xtol=xtol,
+                                         tables=tables)
+                if exact is not None:
+                    Vf, p, k = exact
             static = abs(p.imag) <= STATIC * vacuum[j]
             events.append(PKFlutter(j, labels[j], float(Vf), 0.0 if static else float(abs(p.imag)),
                                     0.0 if static else float(k),
@@ -332,11 +428,11 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None) -
     return PKSweep(V, roots, ks, labels, tuple(events), start, tuple(lost))
 
 
-def pk_flutter(model, speeds, *, xtol: float = XTOL,
-               n_modes: int | None = None) -> tuple[PKFlutter, ...]:
+def pk_flutter(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
+               tables: DlmTables | None = None) -> tuple[PKFlutter, ...]:
     """The p-k flutter and divergence crossings of a typical section or a wing over ``speeds``
     [m/s], sorted by speed (exact Theodorsen aerodynamics; see :func:`pk_sweep`)."""
-    return pk_sweep(model, speeds, xtol=xtol, n_modes=n_modes).flutter
+    return pk_sweep(model, speeds, xtol=xtol, n_modes=n_modes, tables=tables).flutter
 
 
 def tracked_mode(sweep, x: np.ndarray, p: complex, V: float) -> int:
@@ -368,24 +464,25 @@ MAC_BAND = 0.9
 BENIGNITY_STEP = 0.1
 
 
-def pk_benignity(model, V: float, p: complex) -> float | None:
+def pk_benignity(model, V: float, p: complex,
+                 tables: DlmTables | None = None) -> float | None:
     """(dζ/dV)⁻¹ [m/s] (eq. 5.13) of the p-k root through ``p`` at V, ζ = −Re p/|p| (eq. 5.5),
     by a central difference of :data:`BENIGNITY_STEP`; None if dζ/dV is 0 or a root is lost."""
     h = BENIGNITY_STEP
     try:
-        lo, _ = pk_root(model, V - h, p)
-        hi, _ = pk_root(model, V + h, p)
+        lo, _ = pk_root(model, V - h, p, tables=tables)
+        hi, _ = pk_root(model, V + h, p, tables=tables)
     except RuntimeError:
         return None
     dz = (-hi.real / abs(hi) + lo.real / abs(lo)) / (2 * h)
     return 1.0 / dz if dz != 0 else None
 
 
-def dlm_notes(model, sweep: PKSweep) -> list[str]:
+def dlm_notes(model, sweep: PKSweep, tables: DlmTables | None = None) -> list[str]:
     """What a doublet-lattice p-k analysis used (:data:`DLM_NOTE` first: panels, Mach, k
     convention) and, when broken, the panel-length guideline at the first speed and the
     highest followed frequency (:func:`propwhirl.model.aerodynamics.dlm_mesh.guideline_note`)."""
-    aero = dlm_aerodynamics(model.wing)
+    aero = dlm_aerodynamics(model.wing, tables)
     m = aero.mesh
     fixed = fixed_mach(model.wing)
     mach = ("Mach V/a at each speed" if fixed is None
@@ -403,7 +500,8 @@ def dlm_notes(model, sweep: PKSweep) -> list[str]:
 
 
 def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: float = XTOL,
-                     notes: list | None = None, sweep=None, mass: np.ndarray | None = None):
+                     notes: list | None = None, sweep=None, mass: np.ndarray | None = None,
+                     tables: DlmTables | None = None):
     """The p-k crossings as :class:`~propwhirl.analysis.stability.Instability` events of the
     finite-state analysis's tracked modes (``analyse(model, method="pk")``).
 
@@ -419,11 +517,14 @@ def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: flo
     Re p > 0 at the first speed, each with the whirl sense and the propellers' participation
     of its p-k mode shape (:mod:`propwhirl.analysis.participation`: the p-k eigenvector's
     displacements are on the model's own DOFs) and, for flutter crossings, the benignity
-    (dζ/dV)⁻¹ of the p-k root [m/s] (:func:`pk_benignity`).
+    (dζ/dV)⁻¹ of the p-k root [m/s] (:func:`pk_benignity`).  ``tables``: a doublet-lattice
+    wing's (the analysis's; None: new ones).
     """
-    r = pk_sweep(model, speeds, xtol=xtol)
-    if notes is not None and strip_twin(model) is not model:
-        notes.extend(dlm_notes(model, r))
+    dlm = strip_twin(model) is not model
+    tables = check_tables(tables) if dlm else None
+    r = pk_sweep(model, speeds, xtol=xtol, tables=tables)
+    if notes is not None and dlm:
+        notes.extend(dlm_notes(model, r, tables))
     dm = model.dof_map()
     n = dm.n_dof
     tracked = [int(np.argmin(np.abs(np.asarray(start_roots) - p))) for p in r.start]
@@ -439,14 +540,15 @@ def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: flo
     events, shapes = [], []
 
     def add(kind: str, event: str, j: int, V: float, p0: complex, benign: bool) -> None:
-        p, _, x = pk_mode(model, V, p0)
+        # a crossing's shape at its own Mach's AICs, as it was converged (matched_crossing)
+        p, _, x = pk_mode(model, V, p0, tables=tables, own_mach=event != "unstable-at-start")
         mode = tracked_mode(sweep, x, p, V) if use_shape else tracked[j]
         label = event_label(sweep, names, mode, x, mass) if use_shape else names[mode]
         f_hz = 0.0 if kind == "divergence" else float(abs(p.imag) / (2 * np.pi))
         events.append(Instability(
             kind, event, mode, label, float(V), f_hz,
             whirl(dm, x[:n], p) if kind == "flutter" else None,
-            pk_benignity(model, V, p) if benign else None))
+            pk_benignity(model, V, p, tables) if benign else None))
         shapes.append((x[:n], p, float(V)))
 
     for j, p0 in enumerate(r.roots[0]):

@@ -27,7 +27,7 @@ method             model           runner
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -38,8 +38,8 @@ from propwhirl.analysis.reduced import frequency_zero_on_full_order, reduced_eng
 from propwhirl.engine import analyse as engine_analyse
 from propwhirl.engine import frequency_zero_points
 from propwhirl.engine.results import Analysis
-from propwhirl.model.aerodynamics.dlm import check_speed_mach
-from propwhirl.model.aerodynamics.dlm_rfa import rfa_note
+from propwhirl.model.aerodynamics.dlm import DlmTables, check_speed_mach
+from propwhirl.model.aerodynamics.dlm_rfa import rfa_note, tracking_ks
 from propwhirl.model.protocol import capabilities
 
 
@@ -48,8 +48,10 @@ class Job:
     """What every runner is given: the ``model`` asked for and the ``finite`` model whose modes
     are tracked (the model itself; for the p-k its strip twin), the airspeed ``grid`` [m/s],
     ``xtol`` [m/s], ``vgf`` (every grid speed), the tracker's ``options``, ``auto``
-    (the user left the method to the analysis) and ``progress``, a reporter
-    ``report(done, total)`` of the doublet-lattice AICs computed first, or None."""
+    (the user left the method to the analysis), ``progress``, a reporter
+    ``report(done, total)`` of the doublet-lattice AICs computed first, or None, and
+    ``tables``: the analysis's doublet-lattice tables (a wing with ``aero = "dlm"``; the
+    model's assembly and the p-k read and fill them)."""
 
     model: object
     finite: object
@@ -59,6 +61,7 @@ class Job:
     options: object = None
     auto: bool = False
     progress: Callable[[int, int], None] | None = None
+    tables: DlmTables | None = None
 
     def engine_kwargs(self) -> dict:
         """The engine's options of this job (``initial_step=None``: every grid speed)."""
@@ -112,8 +115,12 @@ def frequency_zero_events(model, sweep, state_matrix, xtol: float, lift):
 
 
 def _structure(job: Job, assembly=None) -> tuple[object, InVacuo]:
-    """The model's assembly and its structure without aerodynamics, each built once."""
-    assembly = job.finite.assembly() if assembly is None else assembly
+    """The model's assembly (a doublet-lattice wing's with the job's tables) and its
+    structure without aerodynamics, each built once."""
+    if assembly is None:
+        dlm = getattr(getattr(job.finite, "wing", None), "aero", "") == "dlm"
+        assembly = (job.finite.assembly(dlm_tables=job.tables) if dlm else
+                    job.finite.assembly())
     return assembly, InVacuo.of(assembly.without_aerodynamics())
 
 
@@ -129,7 +136,8 @@ def run_dense(job: Job, assembly=None, in_vacuo: InVacuo | None = None) -> Track
     dlm = is_dlm_wing(job.finite)
     return Tracked(an, assembly.state_matrix, assembly, in_vacuo, "dense", fzero=fzero,
                    fzero_shapes=shapes,
-                   notes_first=(rfa_note(job.model, job.grid),) if dlm else (),
+                   notes_first=(rfa_note(job.model, job.grid, tables=job.tables),) if dlm
+                   else (),
                    extrapolation=dlm)
 
 
@@ -157,6 +165,8 @@ def run_modal_dlm(job: Job) -> Tracked:
     """A doublet-lattice wing's modal Roger state space, its crossings the p-k's
     (:mod:`propwhirl.analysis.modal_dlm`)."""
     assembly, in_vacuo = _structure(job)
+    # the full Roger state the modal one lifts to (names, shapes): the same fits, no others
+    assembly = replace(assembly, dlm_fit_ks=tuple(float(k) for k in tracking_ks()))
     dm = job.finite.dof_map()
     run = modal_dlm_analysis(job.model, job.grid, displacement=dm.displacement,
                              state_labels=dm.state_labels, options=job.options, xtol=job.xtol,
@@ -165,7 +175,8 @@ def run_modal_dlm(job: Job) -> Tracked:
     fzero, shapes = frequency_zero_events(job.finite, run.analysis.sweep, R.state_matrix,
                                           job.xtol, R.lift)
     return Tracked(run.analysis, R.state_matrix, assembly, in_vacuo, "modal-dlm", R.dof_basis,
-                   R.lift, fzero, shapes, notes_first=(rfa_note(job.model, job.grid, R),),
+                   R.lift, fzero, shapes,
+                   notes_first=(rfa_note(job.model, job.grid, R, job.tables),),
                    notes_last=run.notes)
 
 
@@ -188,12 +199,13 @@ RUNNERS: dict[tuple[str, bool], Callable[[Job], Tracked]] = {
 def track(job: Job, chosen: str) -> Tracked:
     """The runner of :data:`RUNNERS` for ``chosen`` (a method of
     :func:`~propwhirl.analysis.reduced.choose_method`) on ``job``'s model; a doublet-lattice
-    wing's Mach numbers checked against its tables first (before any work), and with
-    ``job.progress`` the AICs of its first speeds computed first and counted
-    (:func:`~propwhirl.analysis.modal_dlm.compute_fit_aics`)."""
+    wing's Mach numbers checked against its tables first (before any work), and the AICs of
+    its first speeds computed first, counted with ``job.progress`` and a big batch on worker
+    processes (:func:`~propwhirl.analysis.modal_dlm.compute_fit_aics`)."""
     dlm = chosen != "pk" and is_dlm_wing(job.model)
     if dlm:
         check_speed_mach(job.model, (job.grid[0], job.grid[-1]))
-    if dlm and job.progress is not None:      # the AICs of its first speeds, counted
-        compute_fit_aics(job.model, job.grid, vgf=job.vgf, report=job.progress)
+    if dlm:            # the AICs of its first speeds first: counted, on processes if many
+        compute_fit_aics(job.model, job.grid, vgf=job.vgf, report=job.progress,
+                         tables=job.tables)
     return RUNNERS[(chosen, dlm)](job)

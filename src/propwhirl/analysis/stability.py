@@ -42,7 +42,7 @@ from propwhirl.analysis.pk import DLM_NOTE, pk_instabilities
 from propwhirl.analysis.reduced import choose_method
 from propwhirl.analysis.runners import Job, Tracked, track
 from propwhirl.model.aerodynamics import compressibility
-from propwhirl.model.aerodynamics.dlm import strip_twin
+from propwhirl.model.aerodynamics.dlm import DlmTables, check_tables, strip_twin
 from propwhirl.model.aerodynamics.dlm_rfa import RFA_NOTE, extrapolation_notes
 from propwhirl.analysis.summary import (FiniteState, FlutterSummary, MethodComparison,
                                         Reference, aero_model_of, compare_methods,
@@ -558,7 +558,8 @@ def _finite_state_from_dict(r: SavedDict, sweep: Sweep) -> FiniteState | None:
 def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
             options: TrackingOptions | None = None, method: str = "auto",
             progress: Callable[[int, int], None] | None = None,
-            compressibility_check: bool = True) -> ModelAnalysis:
+            compressibility_check: bool = True,
+            dlm_tables: DlmTables | None = None) -> ModelAnalysis:
     """Every instability of `model` over `speeds` [m/s], with tracked, named modes.
 
     Parameters
@@ -610,6 +611,11 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         ≥ 0.2, and each near-neutral hump, recomputed from its own root with Prandtl–Glauert
         strips (a few sparse pencils per event, :mod:`propwhirl.analysis.mach_check`), a
         warning when it moves by 2 % or more.  The studies, which keep no warnings, pass False.
+    dlm_tables : DlmTables, optional
+        A wing with ``aero = "dlm"``: the doublet-lattice tables (AICs' Q(k, M) and their fits,
+        :class:`~propwhirl.model.aerodynamics.dlm.DlmTables`) this analysis reads and fills.
+        None (default): new ones, this analysis's own; a study passes one to all its analyses
+        so that the variants of one planform compute their AICs once.
 
     Returns
     -------
@@ -646,12 +652,13 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         raise v.InputError(f"progress = {progress!r:.60} is invalid: must be None or a callable "
                            "report(done, total)")
     compressibility.check_speeds(model, grid)   # matched Prandtl-Glauert strips: Mach <= 0.9
+    tables = check_tables(dlm_tables)
     chosen = choose_method(model, method)
     # p-k: the strip twin tracks, names and starts the p-k modes (propwhirl.analysis.runners)
     finite = strip_twin(model) if chosen == "pk" else model
     dm = finite.dof_map()
-    t = track(Job(model, finite, grid, xtol, bool(vgf), options, method == "auto", progress),
-              chosen)
+    t = track(Job(model, finite, grid, xtol, bool(vgf), options, method == "auto", progress,
+                  tables), chosen)
     sw = t.analysis.sweep
     names, thesis_names = named_modes(finite, sw, t.basis, t.in_vacuo, t.assembly)
     sw = sw.relabel(names)
@@ -661,7 +668,7 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
         finite_state = FiniteState(aero_model_of(model),
                                    tuple(sorted(events, key=lambda e: (e.V, e.mode))))
         events = pk_instabilities(model, sw.eigenvalues[0], names, grid, xtol=xtol,
-                                  notes=pk_notes, sweep=sw, mass=t.in_vacuo.M)
+                                  notes=pk_notes, sweep=sw, mass=t.in_vacuo.M, tables=tables)
     events.sort(key=lambda e: (e.V, e.mode))
     notes = validity.analysis_warnings(
         model, (float(sw.V[0]), float(sw.V[-1])),

@@ -36,8 +36,7 @@ import scipy.linalg as sla
 
 from propwhirl import validate as v
 from propwhirl.model.structure.assembly import free_dofs
-from propwhirl.model.aerodynamics.dlm import dlm_aerodynamics
-from propwhirl.model.aerodynamics.dlm_rfa import (DEFAULT_LAGS, coefficients, fit_ks,
+from propwhirl.model.aerodynamics.dlm_rfa import (DEFAULT_LAGS, b_ref, coefficients, fit_ks,
                                                   roger_system, tracking_ks)
 from propwhirl.model.reduction import CUTOFF_FACTOR, cutoff
 from propwhirl.model.statespace import SecondOrder, rate_label, state_matrix
@@ -52,7 +51,8 @@ class ModalRoger:
     """The Roger state space of a doublet-lattice wing on its in-vacuo modes below a cut-off.
 
     ``assembly``: the model's :class:`~propwhirl.model.systems.PropellerWingAssembly` (built
-    once per analysis); ``Phi`` (n, r): the kept in-vacuo modes over the model's DOFs
+    once per analysis, with the analysis's doublet-lattice tables, ``assembly.dlm_tables``);
+    ``Phi`` (n, r): the kept in-vacuo modes over the model's DOFs
     (M-orthonormal); ``frequencies_hz`` (r,) theirs [Hz]; ``cutoff_hz`` f_c and
     ``reference_hz`` f_ref [Hz] (:func:`~propwhirl.model.reduction.cutoff`); ``in_vacuo_hz``
     every in-vacuo frequency [Hz]; ``n_w`` the free wing DOFs the doublet lattice loads (the
@@ -138,11 +138,11 @@ class ModalRoger:
         model = self.model
         V = np.atleast_1d(v.positive("airspeed V", V, "m/s"))
         ks = tracking_ks() if self.ks is None else np.asarray(self.ks, float)
-        A = coefficients(model, V, ks)                              # (nV, 3 + L, nw, nw)
+        A = coefficients(model, V, ks, self.assembly.dlm_tables)    # (nV, 3 + L, nw, nw)
         with np.errstate(all="ignore"):
             dry = self.assembly.with_switches(wing_aero=False).blocks(V, omega).dense()
         labels = self.labels()
-        return roger_system(dry, A, V, dlm_aerodynamics(model.wing).b_ref, model.flight.density,
+        return roger_system(dry, A, V, b_ref(model.wing), model.flight.density,
                             self.lags, labels[2 * self.r + self.n_dry_lags:], self.Phi,
                             labels[:self.r])
 
@@ -192,7 +192,7 @@ def modal_roger(model, speeds, *, assembly=None,
     w2, shapes = sla.eigh(K, M)
     f_all = np.sqrt(np.abs(w2)) / (2 * np.pi)
     ref, fc = cutoff(assembly, f_all, shapes, M, factor)
-    fit_hz = fit_ks()[-1] * V.max() / (2 * np.pi * dlm_aerodynamics(model.wing).b_ref)
+    fit_hz = fit_ks()[-1] * V.max() / (2 * np.pi * b_ref(model.wing))
     fc = min(fc, fit_hz)
     n_keep = max(int(np.sum(f_all <= fc)), min(MIN_MODES, f_all.size))
     with np.errstate(all="ignore"):

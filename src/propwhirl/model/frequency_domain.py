@@ -22,7 +22,7 @@ import numpy as np
 from propwhirl import validate as v
 from propwhirl.generated import strip_aero, typical_section
 from propwhirl.model.aerodynamics.compressibility import lift_slope_factor, lift_slopes
-from propwhirl.model.aerodynamics.dlm import pk_system_dlm
+from propwhirl.model.aerodynamics.dlm import DlmTables, pk_system_dlm
 from propwhirl.model.aerodynamics.theodorsen import theodorsen
 from propwhirl.model.protocol import capabilities, refusal
 from propwhirl.model.structure.assembly import free_dofs, place
@@ -84,20 +84,24 @@ def section_pk_matrices(model, V: float, k: float) -> tuple[np.ndarray, np.ndarr
     return Ms - Ma, -Ca, Ks - Ka
 
 
-def pk_system(model, V: float):
+def pk_system(model, V: float, tables: DlmTables | None = None, own_mach: bool = False):
     """ω ↦ (M, C, K) of the p-k equation of `model` at airspeed V [m/s] and frequency ω [rad/s]:
     the typical section (:func:`section_pk_matrices`) or a PropellerWing (its structure and
     propellers, computed once, every wing strip with the exact Theodorsen loads at its own
     k = ω b_i / V; a wing with ``aero = "dlm"``: the doublet-lattice loads instead,
     :func:`propwhirl.model.aerodynamics.dlm.pk_system_dlm`), on the model's degrees of freedom (its
-    ``dof_map``, without lag states)."""
+    ``dof_map``, without lag states).  ``tables``: the analysis's doublet-lattice tables
+    (:class:`~propwhirl.model.aerodynamics.dlm.DlmTables`; None: new ones); ``own_mach``:
+    a Mach-matched doublet-lattice wing's Q at its own Mach V/a (the fine columns around it),
+    not between the tables' Mach nodes
+    (:func:`~propwhirl.model.aerodynamics.dlm.pk_system_dlm`)."""
     can = capabilities(model)                       # the model contract says which it is
     if can.structure == "section":
         return lambda omega: section_pk_matrices(model, V, omega * model.b / V)
     if can.structure == "modes":
         return modal_pk_system(model, V)
     if can.aerodynamics == "doublet lattice":     # panels instead of the strips
-        return pk_system_dlm(model, V, K_MIN)
+        return pk_system_dlm(model, V, K_MIN, tables, own_mach)
     dry = replace(model, wing_aero=False).second_order(np.array([V]))
     if dry.n_lag:
         raise v.InputError(f"model = {model.name!r} is invalid for the p-k method: its "
@@ -149,6 +153,7 @@ def modal_pk_system(model, V: float):
     return matrices
 
 
-def pk_matrices(model, V: float, omega: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def pk_matrices(model, V: float, omega: float,
+                tables: DlmTables | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(M, C, K) of the p-k equation of `model` at V [m/s] and ω [rad/s] (:func:`pk_system`)."""
-    return pk_system(model, V)(omega)
+    return pk_system(model, V, tables)(omega)

@@ -67,6 +67,7 @@ from propwhirl.model.propeller_blocks import (propeller_constants, propeller_mat
 from propwhirl.model.blocks import BlockSystem, LagBlocks, LocalBlocks
 from propwhirl.model.protocol import REASONS, Capabilities, DofMap, PropellerDofs
 from propwhirl.model.aerodynamics import dlm_rfa, validity
+from propwhirl.model.aerodynamics.dlm import DlmTables, check_tables
 from propwhirl.model.base import EvaluatorBase, StateSpaceModel
 from propwhirl.model.section import TypicalSection  # noqa: F401 (re-export: its former home)
 from propwhirl.model.statespace import SecondOrder
@@ -431,12 +432,15 @@ class PropellerWing(StateSpaceModel):
         return np.array(idx), labels
 
     # ------------------------------------------------------------------ system
-    def assembly(self) -> "PropellerWingAssembly":
+    def assembly(self, dlm_tables: DlmTables | None = None) -> "PropellerWingAssembly":
         """What the matrices need that does not depend on the airspeed (the wing structure,
         each installation's constants, the DOF layout), built now: a new
         :class:`PropellerWingAssembly` each call.  An analysis builds it once and evaluates it
-        at every speed (:meth:`PropellerWingAssembly.blocks`)."""
-        return PropellerWingAssembly.build(self)
+        at every speed (:meth:`PropellerWingAssembly.blocks`).  ``dlm_tables``: the
+        doublet-lattice tables its evaluations read and fill (a wing with ``aero = "dlm"``:
+        the analysis's :class:`~propwhirl.model.aerodynamics.dlm.DlmTables`; None: new ones,
+        this assembly's own)."""
+        return PropellerWingAssembly.build(self, dlm_tables)
 
     def second_order(self, V, omega=None) -> SecondOrder:
         """The reduced second-order system (root removed) at airspeeds V [m/s] (array).
@@ -554,10 +558,18 @@ class PropellerWingAssembly(EvaluatorBase):
     propellers: one :class:`InstalledPropeller` per installation;
     q_labels:   labels of the full DOFs (root included);
     keep_q:     the kept DOFs (root removed, 7.59);
-    states:     the model's :class:`~propwhirl.model.protocol.DofMap` (:meth:`dof_map`).
+    states:     the model's :class:`~propwhirl.model.protocol.DofMap` (:meth:`dof_map`);
+    dlm_tables: a wing with ``aero = "dlm"``: the doublet-lattice tables its evaluations read
+                and fill (:class:`~propwhirl.model.aerodynamics.dlm.DlmTables`, the analysis's),
+                else None;
+    dlm_fit_ks: the reduced frequencies of its Roger fits (None: the full state space's
+                :func:`~propwhirl.model.aerodynamics.dlm_rfa.fit_ks`; the default analysis's
+                modal state space lifts to the full one with its own,
+                :func:`~propwhirl.model.aerodynamics.dlm_rfa.tracking_ks`).
 
-    Nothing is computed after construction and nothing is kept of an evaluation: the same
-    speeds give the same matrices every time.
+    Nothing is computed after construction and nothing is kept of an evaluation but the
+    doublet-lattice table nodes and fits in ``dlm_tables`` (each computed once, the same
+    whenever read): the same speeds give the same matrices every time.
     """
 
     model: PropellerWing
@@ -566,11 +578,15 @@ class PropellerWingAssembly(EvaluatorBase):
     q_labels: tuple[str, ...]
     keep_q: np.ndarray
     states: DofMap
+    dlm_tables: DlmTables | None = None
+    dlm_fit_ks: tuple[float, ...] | None = None
 
     @classmethod
-    def build(cls, model: PropellerWing) -> "PropellerWingAssembly":
+    def build(cls, model: PropellerWing,
+              dlm_tables: DlmTables | None = None) -> "PropellerWingAssembly":
         """The assembly of ``model``: its wing structure, each installation's constants and
-        DOFs, the labels and the DOF map."""
+        DOFs, the labels and the DOF map; a wing with ``aero = "dlm"``: its doublet-lattice
+        tables ``dlm_tables`` (None: new ones)."""
         wing = model.wing
         nqw = 3 * wing.n_nodes
         nqi = 2 * wing.n_nodes if wing.in_plane else 0     # in-plane [v_i, χ_i] after them
@@ -595,7 +611,9 @@ class PropellerWingAssembly(EvaluatorBase):
             props.append(InstalledPropeller(j, inst, idx, labels, MappingProxyType(const)))
         keep_q = np.concatenate([free_dofs(wing.n_nodes), np.arange(nqw + 2 if nqi else nqw, n)])
         keep_q.flags.writeable = False
-        return cls(model, mats, tuple(props), model.q_labels(), keep_q, model.dof_map())
+        tables = check_tables(dlm_tables) if wing.aero == "dlm" else None
+        return cls(model, mats, tuple(props), model.q_labels(), keep_q, model.dof_map(),
+                   tables)
 
     def with_switches(self, **switches) -> "PropellerWingAssembly":
         """The assembly of the model with switches changed (``wing_aero``, ``propeller_aero``,

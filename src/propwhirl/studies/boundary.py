@@ -49,6 +49,7 @@ from propwhirl import validate as v
 from propwhirl.engine import eigenvalues
 from propwhirl.studies import paths as P
 from propwhirl.model.aerodynamics import validity
+from propwhirl.model.aerodynamics.dlm import DlmTables
 from propwhirl.results import Result, SavedDict
 from propwhirl.studies import execution, sweeps
 from propwhirl.studies.continuation import ContinuationOptions, Counted, point_key, trace
@@ -173,12 +174,15 @@ class CriticalSpeedLevel:
     static_divergence: bool = True
     low_speed: bool = True
     rows: dict = field(default_factory=dict, repr=False)
+    #: the doublet-lattice tables of this level's analyses (one set of AICs per planform)
+    tables: DlmTables = field(default_factory=DlmTables, repr=False)
     processes: int = 1
     client: Any = None
     progress: Any = None
 
     def _task(self, p: np.ndarray) -> tuple:
-        return (self.variant(p), self.speeds, self.xtol, self.static_divergence, self.low_speed)
+        return (self.variant(p), self.speeds, self.xtol, self.static_divergence, self.low_speed,
+                "auto", self.tables)
 
     def _value(self, p: np.ndarray, row: dict[str, Any], model: Any) -> float:
         self.rows[point_key(p)] = row

@@ -58,6 +58,7 @@ from propwhirl.analysis.naming import real_root_at_the_event
 from propwhirl.analysis.reduced import choose_method
 from propwhirl.analysis.stability import analyse
 from propwhirl.model import atmosphere
+from propwhirl.model.aerodynamics.dlm import DlmTables
 from propwhirl.model.aerodynamics.validity import has_aerodynamics
 from propwhirl.model.flight import FlightCondition
 from propwhirl.model.propellers.propeller import PointMass
@@ -696,7 +697,8 @@ class _Task:
     the ISA `altitude_m` — `source` the case's model, built once for all the points; or, for
     a combination of a product (`case` given), the campaign's model, which `case` transforms
     when the analysis needs it (so expanding a campaign builds no model per task).  Without
-    `flight`, `source` is the model itself."""
+    `flight`, `source` is the model itself.  `tables`: the campaign's doublet-lattice tables,
+    shared by its analyses (one set of AICs per planform; sent to a worker process empty)."""
 
     source: Any
     speeds: np.ndarray
@@ -708,6 +710,7 @@ class _Task:
     case: Case | None = None
     flight: FlightCondition | None = None
     altitude_m: float | None = None
+    tables: DlmTables | None = field(default=None, compare=False, repr=False)
 
     def build(self) -> tuple[Any, np.ndarray]:
         """(the model, its speed grid) of this task (an InputError naming the case when a
@@ -749,6 +752,7 @@ def tasks(c: Campaign) -> tuple[list[_Task], list[str]]:
     flights: dict[tuple, FlightCondition] = {}
     grids: dict[tuple, np.ndarray] = {}
     common = (c.xtol, c.static_divergence, c.low_speed)
+    tables = DlmTables()                      # the campaign's: one set of AICs per planform
     for case in c.cases:
         deferred = case.name in c._deferred
         source = c.model if deferred else _case_model(c, case)
@@ -770,7 +774,7 @@ def tasks(c: Campaign) -> tuple[list[_Task], list[str]]:
                         from None
                 grid.flags.writeable = False
             out.append(_Task(source, grid, p.V_D, V_req, *common,
-                             case if deferred else None, fc, p.altitude_m))
+                             case if deferred else None, fc, p.altitude_m, tables))
             keys.append(f"{case.name} @ {p.altitude_m!r} m")
     c._made["tasks"], c._made["keys"] = tuple(out), tuple(keys)
     return out, keys
@@ -852,10 +856,12 @@ def plot_data(a: Any, modes: Sequence[int], e: Any) -> dict[str, Any]:
 
 
 def evaluate_point(task: _Task) -> dict[str, Any]:
-    """Analyse one (case, point) and return its result row (plain JSON: module docstring)."""
+    """Analyse one (case, point) and return its result row (plain JSON: module docstring),
+    with the campaign's doublet-lattice tables (``task.tables``)."""
 
     model, speeds = task.build()
-    a = analyse(model, speeds, xtol=task.xtol, compressibility_check=False)  # no warnings kept
+    a = analyse(model, speeds, xtol=task.xtol, compressibility_check=False,  # no warnings kept
+                dlm_tables=task.tables)
     is_wing = wing_divergence_predicate(model, a)
     e = critical_instability(a, static_divergence=task.static_divergence,
                              low_speed=task.low_speed, is_wing_divergence=is_wing)

@@ -38,6 +38,7 @@ from propwhirl import fileio, limits
 from propwhirl import validate as v
 from propwhirl.analysis.stability import ModelAnalysis, analyse
 from propwhirl.model.aerodynamics import validity
+from propwhirl.model.aerodynamics.dlm import DlmTables
 from propwhirl.progress import Cumulative
 from propwhirl.results import Result, SavedDict
 from propwhirl.studies import execution
@@ -402,12 +403,13 @@ def _refine(t: _Refine) -> dict[str, Any]:
     rows: dict[float, dict[str, Any]] = {}
     count = [0]
     top = float(t.speeds[-1])
+    tables = DlmTables()                      # one search's doublet-lattice tables
 
     def h(f: float) -> float:
         if f not in vcrit:
             count[0] += 1
             rows[f] = sweeps.evaluate((par.set(t.model, f), t.speeds, t.xtol,
-                                       t.static_divergence, t.low_speed))
+                                       t.static_divergence, t.low_speed, "auto", tables))
             vcrit[f] = rows[f]["critical_speed"]
         Vc = vcrit[f]
         return (top if not math.isfinite(Vc) else Vc) - t.V_required
@@ -439,6 +441,7 @@ def _minimum_frequencies(model: Any, searches: list[tuple[int, str]], V_required
     f = np.geomspace(lo, hi, n_scan)
     f[-1] = hi
     grid = [float(x) for x in f]
+    tables = DlmTables()                      # the searches' doublet-lattice tables
     vcrit: list[dict[float, float]] = [{} for _ in pars]
     modes: list[dict[float, str]] = [{} for _ in pars]
     kinds: list[dict[float, str]] = [{} for _ in pars]
@@ -461,7 +464,8 @@ def _minimum_frequencies(model: Any, searches: list[tuple[int, str]], V_required
         if not items:
             return
         rows = execution.map_analyses(
-            sweeps.evaluate, [(pars[i].set(model, x), speeds, xtol, static_divergence, low_speed)
+            sweeps.evaluate, [(pars[i].set(model, x), speeds, xtol, static_divergence, low_speed,
+                               "auto", tables)
                               for i, x in items], processes, client=client,
             progress=phase_progress(),
             checkpoint=None if checkpoint is None else

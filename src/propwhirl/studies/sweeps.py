@@ -32,6 +32,7 @@ from propwhirl import validate as v
 from propwhirl.analysis.reduced import METHODS, choose_method
 from propwhirl.analysis.stability import ModelAnalysis, analyse
 from propwhirl.analysis.summary import text_table
+from propwhirl.model.aerodynamics.dlm import DlmTables
 from propwhirl.results import Result, SavedDict
 from propwhirl.studies import paths as P
 from propwhirl.studies.critical import (convention, critical_instability, static_divergence_speed,
@@ -68,9 +69,12 @@ def _dominant_content(a: ModelAnalysis, label: str) -> str:
 def evaluate(task: tuple) -> dict[str, Any]:
     """Analyse one model and return its result row (small: no sweep is sent back).
 
-    task: (model, speeds [m/s] or None, xtol [m/s], static_divergence, low_speed[, method]) —
-    see :func:`propwhirl.studies.critical.critical_instability` for the two flags; method: that
-    of :func:`propwhirl.analysis.stability.analyse` (default "auto").
+    task: (model, speeds [m/s] or None, xtol [m/s], static_divergence, low_speed[, method[,
+    tables]]) — see :func:`propwhirl.studies.critical.critical_instability` for the two
+    flags; method: that of :func:`propwhirl.analysis.stability.analyse` (default "auto");
+    tables: the study's :class:`~propwhirl.model.aerodynamics.dlm.DlmTables`, shared by its
+    analyses so that the variants of one doublet-lattice planform compute their AICs once
+    (default: the analysis's own; sent to a worker process, a task's tables arrive empty).
     """
     return _evaluate(task)     # (a model keeps nothing of its analysis: no memory per point)
 
@@ -78,7 +82,8 @@ def evaluate(task: tuple) -> dict[str, Any]:
 def _evaluate(task: tuple) -> dict[str, Any]:
     model, speeds, xtol, static_div, low_speed, *rest = task
     a = analyse(model, speeds, xtol=xtol, method=rest[0] if rest else "auto",
-                compressibility_check=False)        # a point keeps no warnings
+                compressibility_check=False,         # a point keeps no warnings
+                dlm_tables=rest[1] if len(rest) > 1 else None)
     is_wing = wing_divergence_predicate(model, a)
     e = critical_instability(a, static_divergence=static_div, low_speed=low_speed,
                              is_wing_divergence=is_wing)
@@ -191,7 +196,8 @@ def run_points(models: Sequence[Any], speeds: Any = None, *, speeds_each: Sequen
                xtol: float = STUDY_XTOL, static_divergence: bool = True, low_speed: bool = True,
                processes: int = 1, client=None, progress=None, checkpoint=None,
                keys: Sequence[str] | None = None, desc: str = "points",
-               method: str = "auto") -> list[dict[str, Any]]:
+               method: str = "auto",
+               dlm_tables: DlmTables | None = None) -> list[dict[str, Any]]:
     """One result row (:func:`evaluate`) per model, in order, each with an ``error`` entry
     ("" for an analysed point).
 
@@ -201,8 +207,9 @@ def run_points(models: Sequence[Any], speeds: Any = None, *, speeds_each: Sequen
     others go on.  client, progress, checkpoint, keys, desc: as
     :func:`propwhirl.studies.execution.map_analyses` (a Dask cluster, a progress bar, a
     partial-results file to resume from); method: each analysis's
-    (:func:`propwhirl.analysis.stability.analyse`).  This is the one place where a study's
-    analyses go to the pool.
+    (:func:`propwhirl.analysis.stability.analyse`); dlm_tables: the study's doublet-lattice
+    tables, shared by its analyses (None: new ones for this call).
+    This is the one place where a study's analyses go to the pool.
     """
     v.positive("xtol", xtol, "m/s")
     if method not in METHODS:
@@ -219,11 +226,13 @@ def run_points(models: Sequence[Any], speeds: Any = None, *, speeds_each: Sequen
         grids = [grid] * len(models)
     names = list(keys) if keys is not None else [str(i) for i in range(len(models))]
     run = [i for i, m in enumerate(models) if not isinstance(m, Exception)]
-    tasks = [(models[i], grids[i], xtol, bool(static_divergence), bool(low_speed), method)
-             for i in run]
+    tables = DlmTables() if dlm_tables is None else dlm_tables
+    tasks = [(models[i], grids[i], xtol, bool(static_divergence), bool(low_speed), method,
+              tables) for i in run]
     checkpoint = row_checkpoint(checkpoint, models, grids, xtol=xtol, method=method,
                                 static_divergence=static_divergence, low_speed=low_speed)
-    results = execution.map_analyses(evaluate, tasks, processes, client=client, progress=progress,
+    results = execution.map_analyses(evaluate, tasks, processes, client=client,
+                                     progress=progress,
                                      errors="record", checkpoint=checkpoint,
                                      keys=[names[i] for i in run], desc=desc)
     rows: list[dict[str, Any]] = [error_row(f"{type(m).__name__}: {m}")
@@ -630,7 +639,8 @@ def critical_map(model: Any, axes: Sequence[tuple[str, Any]], *, speeds=None,
         checkpoint = checkpoint.with_entries(study="critical map", model=content_digest(model),
                                              axes=[ax.to_dict() for _, ax in resolved])
     options = dict(xtol=xtol, static_divergence=static_divergence, low_speed=low_speed,
-                   processes=processes, client=client, progress=progress, method=method)
+                   processes=processes, client=client, progress=progress, method=method,
+                   dlm_tables=DlmTables())   # every pass's analyses: one set of AICs
     if not isinstance(warm_start, (bool, np.bool_)):
         raise v.InputError(f"warm_start = {warm_start!r} is invalid: must be True or False")
     if warm_start and low_speed and len(variants) > 1:

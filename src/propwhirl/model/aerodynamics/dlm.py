@@ -23,9 +23,9 @@ replaces only the wing's strip aerodynamics).
 
 Q is tabulated lazily on a grid of k (0, then :data:`K_PER_DECADE` points per decade from
 :data:`K_FIRST`) and of Mach (steps of :data:`MACH_STEP` up to :data:`MACH_MAX`), every entry
-computed once per geometry and kept (:func:`dlm_aerodynamics` keeps the last
-:data:`CACHE_SIZE` geometries in memory; with ``PROPWHIRL_DLM_CACHE`` set, every AIC also on
-disk, :mod:`propwhirl.model.aerodynamics.dlm_cache`), and interpolated: cubic (Lagrange through the four
+computed once per geometry and kept in the analysis's :class:`DlmTables` (the last
+:data:`CACHE_SIZE` geometries; nothing at module level; with ``PROPWHIRL_DLM_CACHE`` set,
+every AIC also on disk, :mod:`propwhirl.model.aerodynamics.dlm_cache`), and interpolated: cubic (Lagrange through the four
 nearest k) in k, linear in Mach.  The Mach number is the wing's ``dlm_mach``
 (:func:`wing_mach`): by default "speed", V / a of each analysed speed (a matched analysis,
 the Mach interpolated between the table's Mach nodes, the speeds beyond Mach
@@ -35,6 +35,7 @@ cubic in k only: the AICs of one Mach number).
 """
 from __future__ import annotations
 
+import copy
 from collections import OrderedDict
 from collections.abc import Callable, Iterable
 from dataclasses import replace
@@ -55,7 +56,13 @@ K_FIRST = 0.01
 K_PER_DECADE = 8
 #: Mach step of the tables (linear interpolation between them)
 MACH_STEP = 0.05
-#: geometries whose tables :func:`dlm_aerodynamics` keeps
+#: Mach step of the fine columns a matched crossing is converged on (:meth:`DlmAerodynamics.gaf`
+#: with ``fine``): linear between them Q is within 2e-7 of max |Q| of the AICs at that very
+#: Mach at Mach 0.6 (k 0-1.5), 1.6e-5 at worst (Mach 0.89, k = 1.5; the error falls as the
+#: step squared: 6.5e-5 at 0.002; 5e-4 at 0.6 and 2.5e-2 at 0.89 with the tables' 0.05), and
+#: crossings within 0.001 of Mach of each other share their columns
+MACH_FINE = 0.001
+#: geometries whose tables a :class:`DlmTables` keeps (by default)
 CACHE_SIZE = 4
 
 
@@ -72,6 +79,42 @@ def _panelaero():
     finally:
         np.seterr(**saved)
     return DLM
+
+
+def steady_aic(grid: dict, mach: float) -> np.ndarray:
+    """PanelAero's steady vortex-lattice part of the AIC of ``grid`` at ``mach`` (the same
+    at every k of one Mach: :meth:`DlmAerodynamics.aic` keeps it for its Mach column)."""
+    DLM = _panelaero()
+    with np.errstate(all="ignore"):
+        return DLM.VLM.calc_Ajj(aerogrid=copy.deepcopy(grid), Ma=float(mach))[0]
+
+
+def symmetric_aic(grid: dict, n: int, mach: float, kbar: float,
+                  steady: np.ndarray | None = None) -> np.ndarray:
+    """PanelAero's AIC of the mirrored ``grid`` (both half-wings, the right one last, ``n``
+    panels each) at ``mach`` and k̄ = ω/U ``kbar`` [1/m], folded to the symmetric one of the
+    half-wing, Q_RR + Q_RL (n, n) complex (:meth:`DlmAerodynamics.aic`): a function of its
+    arguments alone, so that worker processes compute it (:meth:`DlmAerodynamics.fill`).
+    PanelAero's ``calc_Qjj`` step by step (the same operations, the same bits), its steady
+    part ``steady`` (:func:`steady_aic` of this Mach) when already computed."""
+    DLM = _panelaero()
+    kbar = float(kbar)
+    with np.errstate(all="ignore"):
+        A_vlm = steady_aic(grid, mach) if steady is None else steady
+        if kbar == 0.0:
+            A_dlm = np.zeros((grid["n"], grid["n"]))
+        else:
+            A_dlm = DLM.calc_Ajj(aerogrid=copy.deepcopy(grid), Ma=float(mach), k=kbar,
+                                 method="parabolic")
+        Q = -np.linalg.inv(A_vlm + A_dlm)
+    return Q[n:, n:] + Q[n:, :n]
+
+
+#: a fill of at least this many AICs of at least :data:`PARALLEL_PANELS` panels (half-wing)
+#: runs on worker processes (:meth:`DlmAerodynamics.fill`): below, starting them costs more
+#: than it saves
+PARALLEL_AICS = 16
+PARALLEL_PANELS = 150
 
 
 def require_panelaero() -> None:
@@ -141,8 +184,9 @@ class DlmAerodynamics:
         self.cache = dlm_cache.cache_dir()
         self._geometry = dlm_cache.geometry_key(self.mesh.mirrored().corners)
         self.cache_hits = 0
-        #: rational-function fits of the tables (:func:`propwhirl.model.aerodynamics.dlm_rfa.node_fit`)
-        self.fits: dict = {}
+        self._fits: dict = {}
+        #: (Mach, PanelAero's steady AIC part there) of the last Mach computed
+        self._steady: tuple[float, np.ndarray] | None = None
 
     # ------------------------------------------------------------------ exact
     def aic(self, mach: float, k: float) -> np.ndarray:
@@ -160,11 +204,15 @@ class DlmAerodynamics:
             if cached is not None and self.cache_hits:   # the first one read: spot-checked
                 self.cache_hits += 1
                 return cached
-        DLM = _panelaero()
-        with np.errstate(all="ignore"):
-            Q = DLM.calc_Qjj(self.grid, float(mach), float(k) / self.b_ref)
+        if self._steady is None or self._steady[0] != float(mach):   # once per Mach column
+            self._steady = (float(mach), steady_aic(self.grid, mach))
+        Q = symmetric_aic(self.grid, n, mach, float(k) / self.b_ref, self._steady[1])
         self.evaluations += 1
-        Q = Q[n:, n:] + Q[n:, :n]
+        return self._computed(mach, k, Q, cached)
+
+    def _computed(self, mach: float, k: float, Q: np.ndarray, cached) -> np.ndarray:
+        """Q computed at (mach, k): compared with the cache's entry read (the spot check) or
+        written to the cache."""
         if cached is not None:                 # InputError when they differ (dlm_cache)
             dlm_cache.spot_check(self.cache, self._geometry, mach, float(k) / self.b_ref,
                                  cached, Q)
@@ -173,11 +221,20 @@ class DlmAerodynamics:
             dlm_cache.store(self.cache, self._geometry, mach, float(k) / self.b_ref, Q)
         return Q
 
-    def exact(self, mach: float, k: float) -> np.ndarray:
-        """Q(k, M) (3 n_nodes, 3 n_nodes) complex computed at k [-] and Mach (no table)."""
+    def exact(self, mach: float, k: float, Qjj: np.ndarray | None = None) -> np.ndarray:
+        """Q(k, M) (3 n_nodes, 3 n_nodes) complex computed at k [-] and Mach (no table), from
+        the AIC ``Qjj`` when given (computed elsewhere: :meth:`fill`)."""
         kbar = float(k) / self.b_ref
-        Qjj = self.aic(mach, k)
+        Qjj = self.aic(mach, k) if Qjj is None else Qjj
         return self._left @ (Qjj @ (self._Sj + 1j * kbar * self._Zj))
+
+    def fitted(self, key: tuple, make: Callable[[], object]):
+        """The rational-function fit of these tables named ``key``
+        (:func:`propwhirl.model.aerodynamics.dlm_rfa.column_fit`), ``make()`` on first use and
+        kept with the tables (data of this geometry's Q, as its table nodes are)."""
+        if key not in self._fits:
+            self._fits[key] = make()
+        return self._fits[key]
 
     # ------------------------------------------------------------------ tables
     @staticmethod
@@ -199,21 +256,62 @@ class DlmAerodynamics:
         return self._table[key]
 
     def fill(self, nodes: Iterable[tuple[float, int]],
-             report: Callable[[int, int], None] | None = None) -> int:
+             report: Callable[[int, int], None] | None = None, processes: int = 1) -> int:
         """Compute the table nodes ``nodes`` ((Mach, ik) pairs of :meth:`column_node`) not yet
         computed, in their order, calling ``report(done, total)`` (total: those missing)
         before the first and after each; returns how many were computed.  What an analysis
         calls to report its AICs' progress: the values are :meth:`column_node`'s whatever the
-        order."""
+        order.  ``processes`` > 1: the AICs not in the disk cache computed on that many worker
+        processes (:func:`symmetric_aic`, the same numbers) when there are at least
+        :data:`PARALLEL_AICS` of them on at least :data:`PARALLEL_PANELS` panels."""
         todo = [key for key in dict.fromkeys((float(m), int(ik)) for m, ik in nodes)
                 if key not in self._table]
         if report is not None:
             report(0, len(todo))
-        for done, (mach, ik) in enumerate(todo, 1):
+        done = 0
+        if processes > 1 and self.mesh.n >= PARALLEL_PANELS:
+            done = self._fill_on_processes(todo, report, processes)
+        for mach, ik in todo[done:]:
             self.column_node(mach, ik)
+            done += 1
             if report is not None:
                 report(done, len(todo))
         return len(todo)
+
+    def _fill_on_processes(self, todo: list[tuple[float, int]], report, processes: int) -> int:
+        """The nodes of ``todo`` whose AIC the disk cache does not hold, their AICs on worker
+        processes (in ``todo``'s order, as they finish), put in the table; the others are left
+        to :meth:`column_node`.  Returns how many of ``todo`` (a prefix once reordered: the
+        computed ones first) are done."""
+        from concurrent.futures import ProcessPoolExecutor   # lazy: only for big tables
+        import multiprocessing
+
+        n = self.mesh.n
+        mine = [(m, ik) for m, ik in todo
+                if self.cache is None or dlm_cache.load(
+                    self.cache, self._geometry, m, self.k_node(ik) / self.b_ref, n) is None]
+        if len(mine) < PARALLEL_AICS:
+            return 0
+        rest = [key for key in todo if key not in set(mine)]
+        todo[:] = mine + rest
+        ctx = multiprocessing.get_context("fork" if "fork" in
+                                          multiprocessing.get_all_start_methods() else None)
+        with ProcessPoolExecutor(max_workers=processes, mp_context=ctx) as pool:
+            futures = [pool.submit(symmetric_aic, self.grid, n, m, self.k_node(ik) / self.b_ref)
+                       for m, ik in mine]
+            for done, ((mach, ik), fut) in enumerate(zip(mine, futures), 1):
+                Q = self._computed(mach, self.k_node(ik), fut.result(), None)
+                self.evaluations += 1
+                self._table[(mach, ik)] = self.exact(mach, self.k_node(ik), Q)
+                if report is not None:
+                    report(done, len(todo))
+        return len(mine)
+
+    @property
+    def table_nodes(self) -> tuple[tuple[float, int], ...]:
+        """The (Mach, k index) of every Q computed so far (:meth:`column_node`), in the order
+        computed."""
+        return tuple(self._table)
 
     @property
     def columns(self) -> tuple[float, ...]:
@@ -234,14 +332,25 @@ class DlmAerodynamics:
             out += w * self.column_node(mach, j)
         return out
 
-    def gaf(self, mach: float, k: float, *, exact_mach: bool = False) -> np.ndarray:
+    def gaf(self, mach: float, k: float, *, exact_mach: bool = False,
+            fine: bool = False) -> np.ndarray:
         """Q(k, M) interpolated from the tables (cubic in k, linear in Mach) [-]; with
         ``exact_mach`` (a wing's fixed ``dlm_mach``) from the column of that very Mach
-        (:func:`snap_mach`), cubic in k only: one Mach's AICs, none of its neighbours'."""
+        (:func:`snap_mach`), cubic in k only: one Mach's AICs, none of its neighbours'; with
+        ``fine`` linear in Mach between the columns :data:`MACH_FINE` apart around it (a
+        matched crossing's own Mach, its error there)."""
         check_mach(mach)
         k = max(float(k), 0.0)
         if exact_mach:
             return self._in_k(0, k, mach=snap_mach(mach))
+        if fine:
+            x = float(mach) / MACH_FINE
+            i = int(np.floor(x + 1e-9))
+            t = x - i
+            Q = self._in_k(0, k, mach=snap_mach(i * MACH_FINE))
+            if t > 1e-9:
+                Q = (1 - t) * Q + t * self._in_k(0, k, mach=snap_mach((i + 1) * MACH_FINE))
+            return Q
         x = mach / MACH_STEP
         im = min(int(np.floor(x + 1e-12)), int(round(MACH_MAX / MACH_STEP)))
         t = x - im
@@ -251,42 +360,115 @@ class DlmAerodynamics:
         return Q
 
 
-_CACHE: "OrderedDict[tuple, DlmAerodynamics]" = OrderedDict()
-
-
-def _geometry_key(wing) -> tuple:
+def geometry_key(wing) -> tuple:
+    """What a wing's doublet-lattice tables depend on (its nodes' y, b, a and panel counts):
+    two wings with the same key share their tables in a :class:`DlmTables`."""
     node = wing.node_properties()
     return (tuple(np.round(node["y"], 12)), tuple(np.round(node["b"], 12)),
             tuple(np.round(node["a"], 12)), wing.dlm_chordwise_panels, wing.dlm_spanwise_panels)
 
 
-def dlm_aerodynamics(wing) -> DlmAerodynamics:
-    """The :class:`DlmAerodynamics` of ``wing`` (its panel counts, root semichord), shared by
-    every wing of the same geometry: its tables fill once per analysis and are kept for the
-    last :data:`CACHE_SIZE` geometries."""
-    key = _geometry_key(wing)
-    if key in _CACHE:
-        _CACHE.move_to_end(key)
-        return _CACHE[key]
-    aero = DlmAerodynamics(wing)
-    _CACHE[key] = aero
-    while len(_CACHE) > CACHE_SIZE:
-        _CACHE.popitem(last=False)
-    return aero
+class DlmTables:
+    """The doublet-lattice tables an analysis owns (issue 33 item 8): per wing geometry
+    (:func:`geometry_key`) its :class:`DlmAerodynamics` — the AICs' Q(k, M) table nodes and the
+    rational-function fits of them — for the last ``size`` geometries used.
+
+    ``analyse(model)`` creates one (or uses the one it is given, ``dlm_tables=``) and passes it
+    wherever its doublet-lattice loads are evaluated (the model's assembly, the p-k method);
+    a study passes one to all its analyses, so the variants of one planform compute their AICs
+    once.  Nothing is kept at module level: two analyses with different tables share no entry.
+    Pickled (a study's tables sent to a worker process) it travels empty: each process fills
+    its own; ``PROPWHIRL_DLM_CACHE`` shares the AICs across processes
+    (:mod:`propwhirl.model.aerodynamics.dlm_cache`).  ``processes``: worker processes an
+    analysis may compute a big first batch of AICs on (:meth:`DlmAerodynamics.fill`); None
+    (default): two where the machine has two cores and this is not itself a worker process
+    (a study's pool), else one.
+
+    Examples
+    --------
+    >>> tables = DlmTables()
+    >>> len(tables)
+    0
+    """
+
+    def __init__(self, size: int = CACHE_SIZE, processes: int | None = None):
+        self.size = v.integer_at_least("size", size, 1)
+        self._processes = None if processes is None else v.integer_at_least(
+            "processes", processes, 1)
+        self._aero: "OrderedDict[tuple, DlmAerodynamics]" = OrderedDict()
+
+    @property
+    def processes(self) -> int:
+        """Worker processes for a big fill (class docstring)."""
+        if self._processes is not None:
+            return self._processes
+        import multiprocessing   # lazy: only asked before a fill
+        import os
+        main = multiprocessing.parent_process() is None
+        return min(2, os.cpu_count() or 1) if main else 1
+
+    def __len__(self) -> int:
+        """Geometries held."""
+        return len(self._aero)
+
+    def __contains__(self, wing) -> bool:
+        """Whether the tables of ``wing``'s geometry are held."""
+        return geometry_key(wing) in self._aero
+
+    def __reduce__(self):
+        return (DlmTables, (self.size, self._processes))     # to another process: empty
+
+    def __repr__(self) -> str:
+        return f"DlmTables({len(self)} of at most {self.size} geometries)"
+
+    def aero(self, wing) -> DlmAerodynamics:
+        """The :class:`DlmAerodynamics` of ``wing``'s geometry (its panel counts, root
+        semichord), created on first use; the least recently used geometry is dropped beyond
+        :attr:`size`."""
+        key = geometry_key(wing)
+        if key in self._aero:
+            self._aero.move_to_end(key)
+            return self._aero[key]
+        aero = DlmAerodynamics(wing)
+        self._aero[key] = aero
+        while len(self._aero) > self.size:
+            self._aero.popitem(last=False)
+        return aero
 
 
-def pk_system_dlm(model, V: float, k_min: float):
+def check_tables(tables) -> DlmTables:
+    """``tables`` when it is a :class:`DlmTables`, a new one when None, else an InputError."""
+    if tables is None:
+        return DlmTables()
+    if not isinstance(tables, DlmTables):
+        raise v.InputError(f"dlm_tables = {tables!r:.60} is invalid: must be None or a "
+                           "propwhirl.model.aerodynamics.dlm.DlmTables")
+    return tables
+
+
+def dlm_aerodynamics(wing, tables: DlmTables | None = None) -> DlmAerodynamics:
+    """The :class:`DlmAerodynamics` of ``wing`` in ``tables`` (shared by every wing of the
+    same geometry there); without tables a new one, filled by its caller alone."""
+    return DlmAerodynamics(wing) if tables is None else tables.aero(wing)
+
+
+def pk_system_dlm(model, V: float, k_min: float, tables: DlmTables | None = None,
+                  own_mach: bool = False):
     """ω ↦ (M, C, K) of the p-k equation of a PropellerWing with doublet-lattice wing
     aerodynamics at airspeed V [m/s]: its structure and propellers (the model's own second-order
     system with the wing aerodynamics off), minus the DLM loads in the p-k form
     K_a = ½ρV² Re Q(k, M), C_a = ½ρV² Im Q(k, M) / ω (exact at p = iω), k = ω b_ref / V
     (raised to ``k_min``), M the wing's Mach at this speed (:func:`wing_mach`: V / a, or its
-    fixed ``dlm_mach``)."""
+    fixed ``dlm_mach``), Q read from ``tables`` (the analysis's; None: new ones).  Q is
+    interpolated in Mach between the table's Mach nodes (linear), or with ``own_mach`` between
+    the fine columns :data:`MACH_FINE` apart around this Mach (what a matched crossing is
+    converged with, :func:`propwhirl.analysis.pk.matched_crossing`); at a fixed ``dlm_mach``
+    always from the AICs of that very Mach, cubic in k only."""
     mach = wing_mach(model, V)
     exact = fixed_mach(model.wing) is not None
     check_mach(mach, V)
     dry = replace(model, wing_aero=False).second_order(np.array([V]))
-    aero = dlm_aerodynamics(model.wing)
+    aero = dlm_aerodynamics(model.wing, tables)
     keep = free_dofs(model.wing.n_nodes)
     q = 0.5 * model.flight.density * V ** 2
     structure = (dry.S1[0], dry.S2[0], dry.S3[0])
@@ -294,7 +476,7 @@ def pk_system_dlm(model, V: float, k_min: float):
 
     def matrices(omega: float):
         k = max(float(omega) * b / V, k_min)
-        Q = q * aero.gaf(mach, k, exact_mach=exact)[np.ix_(keep, keep)]
+        Q = q * aero.gaf(mach, k, exact_mach=exact, fine=own_mach)[np.ix_(keep, keep)]
         M, C, K = (np.array(X, dtype=float) for X in structure)
         n = keep.size
         C[:n, :n] -= Q.imag / (k * V / b)

@@ -5,7 +5,8 @@ With the environment variable ``PROPWHIRL_DLM_CACHE`` set to a directory, every 
 Q_jj (n × n complex, :meth:`propwhirl.model.aerodynamics.dlm.DlmAerodynamics.aic`) computed at a Mach number
 and reduced frequency is written there and read back by any later analysis of the same panels,
 instead of being computed again.  Unset or empty (the default): no disk cache (the tables are
-still kept in memory for the session, :func:`propwhirl.model.aerodynamics.dlm.dlm_aerodynamics`).
+still kept in memory by the analysis that owns them,
+:class:`propwhirl.model.aerodynamics.dlm.DlmTables`).
 
 A file holds one matrix in NumPy's ``.npy`` format, written and read with
 ``allow_pickle=False`` (no code-carrying format).  Its name is the SHA-256 of what decides the

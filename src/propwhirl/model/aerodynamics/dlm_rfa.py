@@ -31,7 +31,8 @@ table's reduced frequencies 0 … :data:`K_MAX` (:func:`fit_ks`) with the lag ro
 around V / a.  The least squares being linear in Q, that is exactly the fit of the tables'
 Q(k, V/a) (linear in Mach too): the state space approximates the very Q the p-k iterates on.
 The fits are data (matrices fitted from Q(k), kept with the geometry's tables,
-:class:`~propwhirl.model.aerodynamics.dlm.DlmAerodynamics`), assembled here with the model's structure and
+:meth:`~propwhirl.model.aerodynamics.dlm.DlmAerodynamics.fitted`, in the analysis's
+:class:`~propwhirl.model.aerodynamics.dlm.DlmTables`), assembled here with the model's structure and
 propellers at each speed.  The lag states are ordered lag by lag: x_1 of every free wing DOF,
 then x_2, …; labelled "node i h lag 1" etc.
 """
@@ -43,8 +44,9 @@ import numpy as np
 
 from propwhirl import validate as v
 from propwhirl.model.structure.assembly import free_dofs, wing_dof_labels
-from propwhirl.model.aerodynamics.dlm import (MACH_MAX, MACH_STEP, DlmAerodynamics, check_mach,
-                                 dlm_aerodynamics, fixed_mach, snap_mach, wing_mach)
+from propwhirl.model.aerodynamics.dlm import (MACH_MAX, MACH_STEP, DlmAerodynamics, DlmTables,
+                                              check_mach, dlm_aerodynamics, fixed_mach,
+                                              snap_mach, wing_mach)
 from propwhirl.model.statespace import SecondOrder
 from propwhirl.model.statespace import state_matrix as statespace_matrix
 
@@ -83,10 +85,12 @@ class RogerFit:
         return np.tensordot(_basis(np.array([k]), self.lags)[0], self.A, axes=1)
 
 
-def roger_fit(model, mach: float, ks, lags=DEFAULT_LAGS) -> RogerFit:
+def roger_fit(model, mach: float, ks, lags=DEFAULT_LAGS,
+              tables: DlmTables | None = None) -> RogerFit:
     """The Roger fit of ``model``'s doublet-lattice Q(k, mach) on its free wing DOFs over the
     reduced frequencies ``ks`` (at least 3 + len(lags) of them, >= 0) with lag roots
-    ``lags`` (> 0, distinct).  InputError for bad arguments, before any AIC is computed."""
+    ``lags`` (> 0, distinct), Q from ``tables`` (None: new ones).  InputError for bad
+    arguments, before any AIC is computed."""
     if getattr(getattr(model, "wing", None), "aero", None) != "dlm":
         raise v.InputError(f"model = {getattr(model, 'name', model)!r:.60} is invalid for the "
                            "Roger fit: needs a wing with aero = 'dlm'")
@@ -98,7 +102,7 @@ def roger_fit(model, mach: float, ks, lags=DEFAULT_LAGS) -> RogerFit:
     if np.any(ks < 0) or np.unique(ks).size < 3 + lags.size:
         raise v.InputError(f"ks has {np.unique(ks).size} distinct reduced frequencies >= 0: "
                            f"the fit needs at least {3 + lags.size}")
-    aero = dlm_aerodynamics(model.wing)
+    aero = dlm_aerodynamics(model.wing, tables)
     keep = free_dofs(model.wing.n_nodes)
     Q = np.stack([aero.gaf(mach, k)[np.ix_(keep, keep)] for k in ks])      # (m, n_w, n_w)
     return lstsq_fit(Q, ks, lags, float(mach), aero.b_ref)
@@ -201,6 +205,12 @@ def roger_system(dry: SecondOrder, A: np.ndarray, V: np.ndarray, b_ref: float, r
 
 
 # ----------------------------------------------------------------------------- the runtime's
+def b_ref(wing) -> float:
+    """The reference semichord [m] of the doublet-lattice k (the root semichord, as
+    :class:`~propwhirl.model.aerodynamics.dlm.DlmAerodynamics` has it), without any table."""
+    return float(wing.node_properties()["b"][0])
+
+
 def fit_ks(k_max: float = K_MAX) -> np.ndarray:
     """The reduced frequencies of the runtime's fits: the tables' own nodes 0, 0.01, … up to
     ``k_max`` (:meth:`~propwhirl.model.aerodynamics.dlm.DlmAerodynamics.k_node`: no interpolated Q fitted)."""
@@ -230,7 +240,7 @@ def node_fit(aero: DlmAerodynamics, im: int, ks: np.ndarray | None = None,
              lags=DEFAULT_LAGS) -> RogerFit:
     """The Roger fit of ``aero``'s tables at Mach node ``im`` (Mach im · MACH_STEP) on the free
     wing DOFs (root removed), over ``ks`` (default :func:`fit_ks`) with ``lags``; computed once
-    per geometry and kept with its tables (``aero.fits``)."""
+    per geometry and kept with its tables (:meth:`~propwhirl.model.aerodynamics.dlm.DlmAerodynamics.fitted`)."""
     return column_fit(aero, im * MACH_STEP, ks, lags)
 
 
@@ -241,16 +251,17 @@ def column_fit(aero: DlmAerodynamics, mach: float, ks: np.ndarray | None = None,
     ks = fit_ks() if ks is None else np.asarray(ks, float)
     lags = np.asarray(lags, float)
     mach = snap_mach(mach)
-    key = ("roger", mach, ks.tobytes(), lags.tobytes())
-    if key not in aero.fits:
+
+    def make() -> RogerFit:
         keep = free_dofs(aero.n_nodes)
         nodes = {aero.k_node(i): i for i in range(len(ks) + 64)}
         if any(k not in nodes for k in ks):          # not the tables' own k: interpolated
             Q = np.stack([aero.gaf(mach, k, exact_mach=True)[np.ix_(keep, keep)] for k in ks])
         else:                                        # the table nodes themselves, no more
             Q = np.stack([aero.column_node(mach, nodes[k])[np.ix_(keep, keep)] for k in ks])
-        aero.fits[key] = lstsq_fit(Q, ks, lags, mach, aero.b_ref)
-    return aero.fits[key]
+        return lstsq_fit(Q, ks, lags, mach, aero.b_ref)
+
+    return aero.fitted(("roger", mach, ks.tobytes(), lags.tobytes()), make)
 
 
 def mach_nodes(mach: float) -> tuple[int, float]:
@@ -261,17 +272,18 @@ def mach_nodes(mach: float) -> tuple[int, float]:
     return im, x - im
 
 
-def coefficients(model, V, ks: np.ndarray | None = None) -> np.ndarray:
+def coefficients(model, V, ks: np.ndarray | None = None,
+                 tables: DlmTables | None = None) -> np.ndarray:
     """The Roger matrices A (nV, 3 + L, n_w, n_w) of ``model``'s doublet-lattice wing at the
     airspeeds V [m/s]: at Mach V / a, linear in Mach between the fits of the two Mach nodes
     around it (:func:`node_fit`); with a fixed ``dlm_mach``, the one fit of its own column
     (:func:`column_fit`) at every speed; fitted over the reduced frequencies ``ks`` (default
-    :func:`fit_ks`; the modal state space's :func:`tracking_ks`).  InputError when V / a is
-    beyond the tables' Mach."""
+    :func:`fit_ks`; the modal state space's :func:`tracking_ks`), from ``tables`` (the
+    analysis's; None: new ones).  InputError when V / a is beyond the tables' Mach."""
     V = np.atleast_1d(np.asarray(V, float))
     for Vi in V:
         check_mach(wing_mach(model, Vi), Vi)
-    aero = dlm_aerodynamics(model.wing)
+    aero = dlm_aerodynamics(model.wing, tables)
     fixed = fixed_mach(model.wing)
     if fixed is not None:
         A = column_fit(aero, fixed, ks).A
@@ -307,20 +319,25 @@ def second_order(assembly, V: np.ndarray, omega=None) -> SecondOrder:
     and propellers (the ``assembly``'s blocks with the wing aerodynamics off, Houbolt–Reed loads
     unchanged at the hubs), and on the free wing DOFs the Roger terms of :func:`coefficients`
     (:func:`roger_system`), the lag states after any the structure and propellers have.
-    ``omega`` [rad/s] as :meth:`~propwhirl.model.systems.PropellerWingAssembly.blocks`."""
+    ``omega`` [rad/s] as :meth:`~propwhirl.model.systems.PropellerWingAssembly.blocks`; the
+    fits from the assembly's tables (``assembly.dlm_tables``, the analysis's) over its
+    ``dlm_fit_ks`` (None: :func:`fit_ks`)."""
     model = assembly.model
     V = np.atleast_1d(np.asarray(V, float))
-    A = coefficients(model, V)
+    ks = None if assembly.dlm_fit_ks is None else np.asarray(assembly.dlm_fit_ks, float)
+    A = coefficients(model, V, ks, tables=assembly.dlm_tables)
     dry = assembly.with_switches(wing_aero=False).blocks(V, omega).dense()
     labels, _ = lag_labels(model, DEFAULT_LAGS)
-    return roger_system(dry, A, V, dlm_aerodynamics(model.wing).b_ref, model.flight.density,
-                        DEFAULT_LAGS, labels)
+    return roger_system(dry, A, V, b_ref(model.wing), model.flight.density, DEFAULT_LAGS,
+                        labels)
 
 
-def fits_used(model, V, ks: np.ndarray | None = None) -> list[RogerFit]:
+def fits_used(model, V, ks: np.ndarray | None = None,
+              tables: DlmTables | None = None) -> list[RogerFit]:
     """The runtime's node fits (:func:`node_fit`, over ``ks``: default :func:`fit_ks`) that
-    airspeeds between min(V) and max(V) [m/s] use (computed if not yet), by Mach."""
-    aero = dlm_aerodynamics(model.wing)
+    airspeeds between min(V) and max(V) [m/s] use (computed if not yet, in ``tables``: the
+    analysis's), by Mach."""
+    aero = dlm_aerodynamics(model.wing, tables)
     fixed = fixed_mach(model.wing)
     if fixed is not None:
         return [column_fit(aero, fixed, ks)]
@@ -332,20 +349,21 @@ def fits_used(model, V, ks: np.ndarray | None = None) -> list[RogerFit]:
 
 
 
-def rfa_note(model, V, modal=None) -> str:
+def rfa_note(model, V, modal=None, tables: DlmTables | None = None) -> str:
     """What a Roger-state-space doublet-lattice analysis over the speeds V [m/s] used
     (:data:`RFA_NOTE` first): panels, lag roots, fitted k, Mach, the worst fit error of the
     fits that analysis used (:func:`fits_used`: those of its speed range and reduced
     frequencies, whatever else the tables hold); with ``modal`` (a
     :class:`~propwhirl.model.dlm_modal.ModalRoger`, the default analysis: its fits over
-    :func:`tracking_ks`) the modes it kept and that its crossings are the p-k method's."""
-    aero = dlm_aerodynamics(model.wing)
+    :func:`tracking_ks`) the modes it kept and that its crossings are the p-k method's;
+    ``tables``: the analysis's (the fits it used)."""
+    aero = dlm_aerodynamics(model.wing, tables)
     m = aero.mesh
     V = np.atleast_1d(np.asarray(V, float))
     fixed = fixed_mach(model.wing)
     where = ("at every Mach node, linear in Mach V/a" if fixed is None else
              f"at the fixed Mach {fixed:g} (dlm_mach) for every speed")
-    fits = fits_used(model, V, None if modal is None else tracking_ks())
+    fits = fits_used(model, V, None if modal is None else tracking_ks(), tables)
     worst = max(fits, key=lambda f: f.error)
     ks = fits[0].ks
     return (f"{RFA_NOTE} panels ({m.n_chord} chordwise x {m.n_span} spanwise on the half-wing), "
@@ -366,7 +384,7 @@ def extrapolation_notes(model, events) -> list[str]:
     there the Roger state space extrapolates Q (at low speeds a structural mode's k is large
     and its small aerodynamic damping can change sign), so the event is to be checked by the
     p-k method or by analysing from higher speeds."""
-    b = dlm_aerodynamics(model.wing).b_ref
+    b = b_ref(model.wing)
     top = float(fit_ks()[-1])
     out = []
     for e in events:
