@@ -15,6 +15,12 @@ repository root (writes the tables into docs/validation.md, "NASTRAN in and out"
      instability of the beam model, and the fewest modes from which all stay within 0.5 %;
      and the same with the OP2 route's default damping (the base wing's Rayleigh damping
      alone: the mount dampers are not in it).
+(6c) **A mount as a beam element**: each model written as a deck (SI) and each flexible
+     mount's two CELAS2 hinges replaced by one massless mount beam of length L forward of its
+     wing grid (E I / L = the springs' K; ``tests/helpers/bdf_decks.with_mount_beams``), read
+     back: every instability against the spring model with its pivots at the beams'
+     mid-points (the same model: the difference is rounding) and against the model itself
+     (pivots at the wing grid: the beam's mid-point moves them forward by L/2).
 (4)  **Free structures**: the wingtip model's wing on a body (a fuselage) instead of a clamp —
      free in heave, roll and pitch, or a half aircraft's symmetric (heave, pitch) or
      antisymmetric (roll) freedoms — its free structure's modes written as an OP2 and read with
@@ -27,6 +33,7 @@ import argparse
 import sys
 import tempfile
 import time
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -38,6 +45,7 @@ sys.path.insert(0, str(ROOT / "tests"))
 from markdown_section import replace_section  # noqa: E402
 from modal_convergence import match, name  # noqa: E402
 
+from helpers.bdf_decks import with_mount_beams  # noqa: E402
 from helpers.op2_files import free_free_modes, write_op2, write_op2_arrays  # noqa: E402
 from propwhirl.analysis.stability import analyse  # noqa: E402
 from propwhirl.cases.ch10_other_wings import (two_propeller_wing,  # noqa: E402
@@ -50,6 +58,7 @@ from propwhirl.model.modal import ModalStructure  # noqa: E402
 from propwhirl.model.structure.assembly import wing_structure  # noqa: E402
 
 BEGIN, END = "<!-- nastran-evidence:begin -->", "<!-- nastran-evidence:end -->"
+BEAM_LENGTHS = (0.2, 0.1, 0.05, 0.02)
 MODES = (4, 5, 6, 8, 10, 12, 16, 20, 30, None)
 MODELS = (("wingtip (§10.1)", wingtip_propeller_wing), ("two-propeller (§10.2)",
                                                         two_propeller_wing))
@@ -160,6 +169,42 @@ def free_table(folder: Path) -> str:
     return "\n".join(lines)
 
 
+def springs_at(model, shifts):
+    """``model`` with its mounts' stiffness as K (not a frequency) and both pivots of each
+    moved by its shift [m] (tests/nastran/test_mount_beam.py has the same)."""
+    out = []
+    for inst, shift in zip(model.propellers, shifts):
+        p = inst.propeller
+        K_theta, K_psi = p.stiffness()
+        out.append(replace(inst, propeller=replace(
+            p, pivot_pitch=p.pivot_pitch + shift, pivot_yaw=p.pivot_yaw + shift,
+            K_theta=K_theta, K_psi=K_psi, f_theta=None, f_psi=None)))
+    return model.with_(propellers=tuple(out))
+
+
+def mount_beam_table(folder: Path) -> str:
+    lines = ["| model | mount beam L [m] | instabilities of the spring model, pivots at the "
+             "beams' mid-points [m/s] | ΔV of the beam deck read back [m/s] | ΔV/V against "
+             "the model itself (its pivots at the wing grid, L/2 aft of the mid-point) [%] |", "|---|---|---|---|---|"]
+    for label, build in MODELS:
+        full = build()
+        ref_own = analyse(full).events
+        deck = write_bdf(full, folder / "springs.bdf", "si")
+        for length in BEAM_LENGTHS:
+            text, shifts = with_mount_beams(deck, length)
+            path = folder / "beams.bdf"
+            path.write_text(text)
+            beams = read_bdf(path, units="si", base=full, hubs=deck.hubs)
+            got = analyse(beams).events
+            ref = analyse(springs_at(full, shifts)).events
+            dv = [None if d is None else d * e.V / 100 for d, e in zip(match(ref, got), ref)]
+            lines.append(f"| {label} | {length:g} | " + ", ".join(name(e) for e in ref) + " | "
+                         + ", ".join("—" if d is None else f"{d:+.1e}" for d in dv) + " | "
+                         + ", ".join(f"{name(e)}: " + ("—" if d is None else f"{d:+.2f}")
+                                     for d, e in zip(match(ref_own, got), ref_own)) + " |")
+    return "\n".join(lines)
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--markdown", type=Path, help="write the tables into this page")
@@ -172,6 +217,11 @@ def main(argv=None) -> int:
             "speed after `write_bdf` then `read_bdf` (the engine's crossing tolerance is "
             "0.01 m/s):\n\n" + bdf_table(folder),
             "**(6b) Modes through an OP2**\n\n" + op2_table(folder),
+            "**(6c) A mount as a beam element** — each flexible mount's two hinges (CELAS2) "
+            "replaced by one massless mount beam of length L forward of its wing grid "
+            "(E I / L = K), read back, against the spring model with its pivots at the beams' "
+            "mid-points (the crossing tolerance is 0.01 m/s) and against the model itself:"
+            "\n\n" + mount_beam_table(folder),
             "**(4) Free structures** — the wingtip model's wing on a body instead of a clamp "
             "(κ: the body's mass, roll and pitch inertia over the wing's own), its elastic "
             "modes through an OP2 (`free=True`), against the clamped wing:\n\n"

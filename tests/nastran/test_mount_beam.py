@@ -11,7 +11,7 @@ what propwhirl's mount leaves out (a note says so, with its numbers).  So the de
 beam and the deck with two CELAS2 hinges at the mid-point are the same propwhirl model, and
 their critical speeds agree to the engine's crossing tolerance (0.01 m/s); the translational
 compliance left out is small for a stiff short beam (here L = 0.1 m: the mount's translation
-frequency sqrt(12 E I / L³ / m) is sqrt(12 I_theta / (m L²)) ≈ 20 to 40 times its pitch
+frequency sqrt(12 E I / L³ / m) is sqrt(12 I_theta / (m L²)) ≈ 24 times its pitch
 frequency), and is not measured here: that needs an FE solution with the beam itself.
 """
 from __future__ import annotations
