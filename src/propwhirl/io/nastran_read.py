@@ -106,7 +106,35 @@ def require_pynastran() -> None:
     _pynastran()
 
 
-def _parse_error(where: str, exc: Exception) -> v.InputError:
+#: Cards whose first field shares one id space (NASTRAN: element ids unique across all
+#: elements, rigid and mass elements included; property ids across properties).
+ID_SPACES = (("CBAR", "CBEAM", "CELAS2", "CONM2", "RBE2", "RBAR"),
+             ("PBAR", "PBARL", "PBEAM", "PBEAML"), ("MAT1",), ("GRID",), ("CORD2R",),
+             ("EIGRL", "EIGR"))
+
+
+def _sharing(file_text: str, ident: str, family: tuple[str, ...]) -> list[str]:
+    """The cards of ``family`` in the file whose id is ``ident`` ("CBAR 1", "CELAS2 1")."""
+    return [f"{name} {ident}" for name in family
+            for i in _scanned_ids(file_text, name) if i == ident]
+
+
+def _given_twice(where: str, file_text: str, ident: str, hint: str | None) -> v.InputError:
+    """The one line for an id given twice: the cards that share it, named."""
+    for family in ID_SPACES:
+        if hint is not None and hint not in family:
+            continue
+        cards = _sharing(file_text, ident, family)
+        if len(cards) > 1:
+            if len(set(cards)) == 1:
+                return _fail(where, f"{cards[0]} is given twice (ids must be unique)")
+            kind = "element ids" if family == ID_SPACES[0] else "ids"
+            return _fail(where, f"{' and '.join(sorted(set(cards)))} share one id ({kind} must "
+                                f"be unique among {', '.join(family)})")
+    return _fail(where, f"{hint or 'a card'} {ident} is given twice (ids must be unique)")
+
+
+def _parse_error(where: str, exc: Exception, file_text: str = "") -> v.InputError:
     """pyNastran's exception as one line naming the file (and the card and id it names)."""
     text = str(exc)
     first = text.strip().split("\n")[0].strip() or type(exc).__name__
@@ -114,8 +142,10 @@ def _parse_error(where: str, exc: Exception) -> v.InputError:
     old = re.search(r"old_\w+=\s*\n\s*([A-Z][A-Z0-9]*)\*?\s", text)
     if dup:
         ids = dup.group(1).split(",")[0].strip()
-        card = old.group(1) if old else "a card"
-        return _fail(where, f"{card} {ids} is given twice (ids must be unique)")
+        return _given_twice(where, file_text, ids, old.group(1) if old else None)
+    bare = re.fullmatch(r"(eid|sid|pid|mid|cid)=(\d+)", first)
+    if isinstance(exc, AssertionError) and bare:      # pyNastran's assert on a second card
+        return _given_twice(where, file_text, bare.group(2), None)
     if "nid=" in text and "old_node=" in text:
         nid = re.search(r"nid=(\d+)", text)
         return _fail(where, f"GRID {nid.group(1) if nid else '?'} is given twice (ids must be "
@@ -143,7 +173,7 @@ def _parse(path: Path, where: str, text: str):
     except (KeyboardInterrupt, MemoryError):
         raise
     except Exception as exc:              # a third-party parser: every failure is the file's
-        raise _parse_error(where, exc) from None
+        raise _parse_error(where, exc, text) from None
     return model
 
 
@@ -245,6 +275,14 @@ class Deck:
             stored[name] = sum(p.type == name for p in self.bdf.properties.values())
         for name in ("RBE2", "RBAR"):
             stored[name] = sum(e.type == name for e in self.bdf.rigid_elements.values())
+        seen: dict[int, str] = {}
+        for store in (self.bdf.elements, self.bdf.rigid_elements, self.bdf.masses):
+            for eid, card in sorted(store.items()):
+                name = f"{card.type} {eid}"
+                if eid in seen:
+                    raise self.fail(f"{seen[eid]} and {name} share one id (element ids must "
+                                    f"be unique among {', '.join(ID_SPACES[0])})")
+                seen[eid] = name
         for name, n in stored.items():
             if counts.get(name, 0) > n:
                 ids = _scanned_ids(self.text, name)
