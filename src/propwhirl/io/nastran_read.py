@@ -453,8 +453,25 @@ def _beams(deck: Deck) -> list:
 def _stick(deck: Deck, hubs: tuple[int, ...] = ()) -> Stick:
     beams = _beams(deck)
     bodies = nastran_mounts.rigid_body_grids(deck, hubs) if hubs else set()
-    mounting = [e for e in beams if {int(n) for n in e.node_ids if n} & bodies
-                and _chordwise(deck, e)]
+    touching = [e for e in beams if {int(n) for n in e.node_ids if n} & bodies]
+    mounting = [e for e in touching if _chordwise(deck, e)]
+    stick_grids = {int(n) for e in beams if e not in touching for n in e.node_ids if n}
+    for e in touching:                    # a vertical beam from the stick to a hub's body
+        ends = [int(n) for n in e.node_ids if n]
+        if e in mounting or not all(g in deck.grids for g in ends):
+            continue
+        on = [g for g in ends if g in stick_grids]
+        if len(on) != 1:
+            continue
+        off = next(g for g in ends if g != on[0])
+        d = deck.grids[off].xyz - deck.grids[on[0]].xyz
+        if abs(d[2]) > max(abs(d[0]), abs(d[1])):
+            raise deck.fail(f"{e.type} {e.eid} (GRID {on[0]}-{off}) joins a propeller's rigid "
+                            f"body {abs(d[2]):.6g} m {'below' if d[2] < 0 else 'above'} the "
+                            "stick to it: a pylon; propwhirl's beam model carries a propeller "
+                            "on the wing's chord line (rigid, on hinges or a chordwise mount "
+                            "beam): give the FE model's modes instead (an OP2 of it: propwhirl "
+                            "import MODEL.op2 --mount on-grid)")
     beams = [e for e in beams if e not in mounting]
     if not beams:
         raise deck.fail("no CBAR or CBEAM: propwhirl reads a wing as a stick of beam elements")
