@@ -160,3 +160,21 @@ def test_the_pylon_model_on_the_command_line_to_a_campaign_and_its_report(tmp_pa
     assert all(np.isfinite(speeds)) and code == (0 if all(r["cleared"] for r in rows) else 1)
     html = (out / "report.html").read_text()
     assert "two propellers on pylons" in html and "pylons.toml" in html
+
+
+def test_a_swept_grid_line_is_noted(tmp_path, base):
+    """Issue 36 item 6e: the OP2 route splines the strips to a swept FE wing; their
+    aerodynamics carries no sweep, and the import says so (the unswept deck says nothing)."""
+    ids, xyz, w2, shapes = frame_fe.modes(DECK, 20)
+    notes: list[str] = []
+    op2 = write_op2_arrays(tmp_path / "straight.op2", ids, xyz, w2, shapes, "si")
+    read_op2(op2, units="si", base=base, hubs=list(HUBS), wing_grids=list(WING_GRIDS),
+             mount="on-grid", mass_normalised=True, notes=notes)
+    assert not any("swept" in n for n in notes), notes
+    swept = xyz.copy()
+    swept[:, 0] += np.tan(np.radians(20.0)) * swept[:, 1]
+    op2 = write_op2_arrays(tmp_path / "swept.op2", ids, swept, w2, shapes, "si")
+    read_op2(op2, units="si", base=base, hubs=list(HUBS), wing_grids=list(WING_GRIDS),
+             mount="on-grid", mass_normalised=True, notes=notes)
+    (note,) = [n for n in notes if "swept" in n]
+    assert "swept by 20.0 deg" in note and "not modelled" in note
