@@ -26,6 +26,11 @@ HUB_X, NACELLE_X, PITCH_X, YAW_X = -0.7, -0.2, -0.1, -0.3
 ROTOR, NACELLE = 10.0, 20.0                      # kg
 SPIN, I22, I33 = 2.0, 1.5, 2.5                   # kg m^2
 K_THETA, K_PSI, GE_THETA, GE_PSI = 5.0e4, 6.0e4, 0.02, 0.04   # N m/rad, -
+#: The mount beam (``standard("beam")``): CBAR 7 from the tip GRID 5 forward to GRID 115 at
+#: basic x BEAM_X [m], PBAR 11 of MAT1 21 (massless, GE = GE_THETA) with E I / L = K_THETA in
+#: its vertical plane and K_PSI in its chordwise one.
+BEAM_X = STICK_X - 0.1
+BEAM_L = STICK_X - BEAM_X
 
 
 @dataclass(frozen=True)
@@ -68,8 +73,8 @@ def beams(cards: list[list]) -> list[list]:
 
 
 def standard(mount: str = "rigid") -> list[list]:
-    """The cards of the standard deck: stick, PBAR, MAT1, the propeller (``mount`` "rigid"
-    or "flexible"), the root's SPC1 1, EIGRL."""
+    """The cards of the standard deck: stick, PBAR, MAT1, the propeller (``mount`` "rigid",
+    "flexible" or "beam": a mount beam, CBAR 7), the root's SPC1 1, EIGRL."""
     cards = [grid(k + 1, STICK_X, y, STICK_Z, None if k == 0 else "2") for k, y in enumerate(Y)]
     cards += [["CBAR", k + 1, 10, k + 1, k + 2, 0.0, 0.0, 1.0] for k in range(4)]
     cards += [["PBAR", 10, 20, Q(A, "area"), Q(I1, "moment_of_area"), Q(I2, "moment_of_area"),
@@ -80,6 +85,16 @@ def standard(mount: str = "rigid") -> list[list]:
               ["SPC1", 1, "123456", 1], ["EIGRL", 1, None, None, 10]]
     if mount == "rigid":
         cards.append(["RBE2", 201, 5, "123456", 101, 102])
+        return cards
+    if mount == "beam":
+        i_v, i_c = K_THETA * BEAM_L / E, K_PSI * BEAM_L / E
+        cards += [grid(115, BEAM_X, 2.0, STICK_Z),
+                  ["CBAR", 7, 11, 5, 115, 0.0, 0.0, 1.0],
+                  ["PBAR", 11, 21, Q(A, "area"), Q(i_v, "moment_of_area"),
+                   Q(i_c, "moment_of_area"), Q(J, "moment_of_area")],
+                  ["MAT1", 21, Q(E, "modulus"), Q(G, "modulus"), None, None, None, None,
+                   GE_THETA],
+                  ["RBE2", 201, 115, "123456", 101, 102]]
         return cards
     cards += [grid(111, PITCH_X, 2.0, STICK_Z), grid(112, PITCH_X, 2.0, STICK_Z),
               grid(113, YAW_X, 2.0, STICK_Z), grid(114, YAW_X, 2.0, STICK_Z),
@@ -136,3 +151,55 @@ def text(cards: list[list], units: str = "si", *, control: bool = True, wtmass: 
     params = f"PARAM,WTMASS,{wtmass!r}\n" if wtmass is not None else ""
     body = "".join(card_lines(c, u) for c in cards)
     return head + params + body + ("ENDDATA\n" if enddata else "")
+
+
+def with_mount_beams(deck, length: float) -> tuple[str, list[float]]:
+    """A deck written by ``write_bdf`` (SI) with each propeller's two hinges (RBE2 + CELAS2
+    pitch, then yaw) replaced by one mount beam: a massless CBAR of ``length`` [m] from the
+    wing grid forward (−x) to a new grid that carries the propeller's rigid body, with
+    E I / L = the pitch and yaw CELAS2's K in its vertical and chordwise planes and the
+    pitch spring's GE on its MAT1 (a unit material, E = G = 1).  Returns the bulk data text
+    and each mount beam's mid-point shift [m] (−length/2: where the spring model's pivots
+    must be to be the same model)."""
+    from propwhirl.io.nastran_write import Card, card_text
+    assert deck.units == "si", deck.units
+    cards = list(deck.cards)
+    grids = {c.fields[0]: c for c in cards if c.name == "GRID"}
+    rbe2 = [c for c in cards if c.name == "RBE2"]
+    springs = [c for c in cards if c.name == "CELAS2"]
+    hinge_grids, dropped, added, shifts = set(), set(), [], []
+    for k, hub in enumerate(deck.hubs):
+        # the chain: wing -> 1 (rigid), 1 -> 2 (pitch hinge), 2 -> 3 (rigid), 3 -> 4 (yaw
+        # hinge), 4 -> the body (rigid, its last RBE2)
+        last = next(c for c in rbe2 if hub in c.fields[3:])
+        chain = [last]
+        while True:
+            before = [c for c in rbe2 if chain[-1].fields[1] in c.fields[3:]]
+            if not before:
+                break
+            chain.append(before[0])
+        chain = chain[::-1]                            # wing -> ... -> body
+        assert len(chain) == 5, [c.fields for c in chain]
+        wing = chain[0].fields[1]
+        pitch = next(s for s in springs if s.fields[2:5:2] == (chain[1].fields[1],
+                                                               chain[1].fields[3]))
+        yaw = next(s for s in springs if s.fields[2:5:2] == (chain[3].fields[1],
+                                                             chain[3].fields[3]))
+        for c in chain[:-1]:
+            dropped.add(("RBE2", c.fields[0]))
+            hinge_grids |= {c.fields[1], c.fields[3]} - {wing}
+        dropped |= {("CELAS2", pitch.fields[0]), ("CELAS2", yaw.fields[0])}
+        x, y, z = grids[wing].fields[2:5]
+        new, eid = 9000 + 10 * k, 9000 + 10 * k
+        added += [Card("GRID", (new, None, x - length, y, z)),
+                  Card("CBAR", (eid, eid, wing, new, 0.0, 0.0, 1.0)),
+                  Card("PBAR", (eid, eid, 1.0, pitch.fields[1] * length,
+                                yaw.fields[1] * length, 1.0)),
+                  Card("MAT1", (eid, 1.0, 1.0, None, None, None, None, pitch.fields[6])),
+                  Card("RBE2", (last.fields[0], new, "123456", *last.fields[3:]))]
+        dropped.add(("RBE2", last.fields[0]))
+        shifts.append(-length / 2)
+    kept = [c for c in cards if (c.name, c.fields[0]) not in dropped
+            and not (c.name == "GRID" and c.fields[0] in hinge_grids)]
+    text = "".join(card_text(c) for c in kept + added) + "ENDDATA\n"
+    return text, shifts

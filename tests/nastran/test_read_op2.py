@@ -272,13 +272,16 @@ def test_an_op2_without_geometry_is_refused(tmp_path):
         _read(path)
 
 
-@pytest.mark.parametrize("keep", [0.3, 0.6, 0.9])
+@pytest.mark.parametrize("keep", [0.05, 0.3, 0.6, 0.9, 0.99])
 def test_a_truncated_op2_is_one_line(tmp_path, keep):
     path = write_op2(_structure(), tmp_path / "cut.op2")
     data = path.read_bytes()
     path.write_bytes(data[: int(keep * len(data))])
-    with pytest.raises(InputError, match=r"cut\.op2: "):
+    with pytest.raises(InputError) as info:
         _read(path)
+    message = str(info.value)
+    assert "\n" not in message, message
+    assert message.startswith(f"{path}: cannot read the OP2 (truncated, or not an OP2"), message
 
 
 def test_not_an_op2_and_a_device_are_one_line(tmp_path):
@@ -329,3 +332,34 @@ def test_the_generalised_masses_of_an_eigenvalue_table_are_used(tmp_path, monkey
                                          r"in the eigenvalue table \(LAMA\)"):
         read_op2(path, units="mm-t-s", base=WINGTIP, hubs=[26], wing_grids=list(s.grid_ids),
                  mount="own")
+
+
+@pytest.mark.parametrize("written, read_as", [("mm-t-s", "si"), ("si", "mm-t-s"),
+                                              ("mm-t-s", "in-lbf-s")])
+def test_an_op2_read_in_other_units_than_its_own_is_one_line(tmp_path, written, read_as):
+    """Issue 36, item 7: an OP2 read in the wrong unit system is refused (its wing grids span
+    25.4 to 1000 times the base's wing), naming the grids and the units, before a 5.7 km
+    wing is analysed; through the command line nothing is written."""
+    s = ModalStructure.from_wing(WINGTIP.wing)
+    path = write_op2(s, tmp_path / "wing.op2", written)
+    hubs = [1 + n for n in WINGTIP.nodes]
+    with pytest.raises(InputError) as info:
+        read_op2(path, units=read_as, base=WINGTIP, hubs=hubs, wing_grids=list(s.grid_ids),
+                 mount="own", mass_normalised=True)
+    message = str(info.value)
+    assert "\n" not in message and message.startswith(f"{path}: wing GRID 1 to GRID 26 span")
+    assert f"are the OP2's units {read_as}, and not mixed?" in message
+
+
+def test_the_command_line_writes_nothing_for_an_op2_in_other_units(tmp_path, capsys):
+    base = tmp_path / "base.toml"
+    assert cli.main(["case", "wingtip", "--save", str(base)]) == 0
+    s = ModalStructure.from_wing(WINGTIP.wing, n_modes=6)
+    op2 = write_op2(s, tmp_path / "wing.op2", "mm-t-s")
+    out = tmp_path / "modal.toml"
+    capsys.readouterr()
+    err = _one_line(capsys, ["import", str(op2), "--out", str(out), "--base", str(base),
+                             "--mass-normalised", "--mount", "own", "--units", "si",
+                             "--hubs", "26", "--wing-grids", *map(str, s.grid_ids)])
+    assert "are the OP2's units si" in err
+    assert not out.exists() and not (tmp_path / "modal.modes.npz").exists()

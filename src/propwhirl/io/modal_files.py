@@ -345,6 +345,35 @@ def _check_targets(path: Path, npz: Path) -> None:
 
 
 # =============================================================================== writing
+def _write_modal_file(path: Path, npz: Path, header: str, dumps, *, name: str, structure,
+                      planform, installations, wing_grids, flight, switches) -> None:
+    """The modal model file (TOML at ``path``, ``header`` first) and its modes (``npz``), the
+    one document :func:`write_modes` and :func:`save_modal_model` write; ``installations``
+    holds (installation, grid, mount) and ``switches`` (wing_aero, propeller_aero,
+    rotating); ``dumps`` is tomli-w's (the callers check the extra and the targets)."""
+    s = structure
+    w = Writer()
+    rows = [{"propeller": w.propeller_key(inst.propeller), "grid": int(g), "mount": m,
+             "aero": inst.aero} for inst, g, m in installations]
+    doc: dict[str, Any] = {
+        "format": FORMAT, "format_version": FORMAT_VERSION, "name": name,
+        "installations": rows,
+        "units": dict(UNITS),
+        "modes": {"file": npz.name, "n_modes": s.n_modes, "n_grids": int(s.grid_ids.size),
+                  "wing_grids": [int(g) for g in wing_grids]},
+        "strips": {"aero_model": planform.aero_model,
+                   **{k: [float(x) for x in getattr(planform, f)] for k, f in STRIP_KEYS}},
+        "flight": w.encode(flight, "flight"),
+        "switches": dict(zip(("wing_aero", "propeller_aero", "rotating"), switches)),
+        "propellers": w.propellers,
+    }
+    buf = io.BytesIO()
+    np.savez(buf, **{k: np.asarray(getattr(s, k), dtype=np.int64 if k == "grid_ids"
+                                   else np.float64) for k in ARRAYS})
+    fileio.write_bytes(npz, buf.getvalue(), what="modes file")
+    fileio.write_text(path, header + dumps(doc), what="modal model file")
+
+
 def write_modes(model: PropellerWing, path: str | Path, n_modes: int | None = None,
                 mount: str = "own") -> tuple[Path, Path]:
     """Write ``model`` as a modal model: modes to ``<stem>.modes.npz`` beside ``path``, the
@@ -420,31 +449,15 @@ def write_modes(model: PropellerWing, path: str | Path, n_modes: int | None = No
     else:
         s, hubs, _ = ModalStructure.with_mounts(model, n_modes)
         grids, mounts = list(hubs), ["on-grid"] * len(hubs)
-    planform = StripPlanform.from_wing(wing)
-    w = Writer()
-    installations = [{"propeller": w.propeller_key(inst.propeller), "grid": g, "mount": m,
-                      "aero": inst.aero}
-                     for inst, g, m in zip(model.propellers, grids, mounts)]
-    doc: dict[str, Any] = {
-        "format": FORMAT, "format_version": FORMAT_VERSION, "name": f"{model.name} (modal)",
-        "installations": installations,
-        "units": dict(UNITS),
-        "modes": {"file": npz.name, "n_modes": s.n_modes, "n_grids": int(s.grid_ids.size),
-                  "wing_grids": [int(g) for g in s.grid_ids[:wing.n_nodes]]},
-        "strips": {"aero_model": planform.aero_model,
-                   **{k: [float(x) for x in getattr(planform, f)] for k, f in STRIP_KEYS}},
-        "flight": w.encode(model.flight, "flight"),
-        "switches": {"wing_aero": model.wing_aero, "propeller_aero": model.propeller_aero,
-                     "rotating": model.rotating},
-        "propellers": w.propellers,
-    }
-    buf = io.BytesIO()
-    np.savez(buf, **{k: np.asarray(getattr(s, k), dtype=np.int64 if k == "grid_ids"
-                                   else np.float64) for k in ARRAYS})
-    fileio.write_bytes(npz, buf.getvalue(), what="modes file")
     header = (f"# propwhirl modal model: the modes of {model.name!r}'s wing, in {npz.name}\n"
               "# (docs/modal-structures.md: frame x aft, y outboard, z up; SI units)\n")
-    fileio.write_text(path, header + tomli_w.dumps(doc), what="modal model file")
+    _write_modal_file(path, npz, header, tomli_w.dumps, name=f"{model.name} (modal)",
+                      structure=s,
+                      planform=StripPlanform.from_wing(wing),
+                      installations=[(inst, g, m) for inst, g, m in
+                                     zip(model.propellers, grids, mounts)],
+                      wing_grids=s.grid_ids[:wing.n_nodes], flight=model.flight,
+                      switches=(model.wing_aero, model.propeller_aero, model.rotating))
     return path, npz
 
 
@@ -496,28 +509,13 @@ def save_modal_model(model: ModalPropellerWing, path: str | Path) -> tuple[Path,
     path = Path(path)
     npz = path.with_name(path.name.removesuffix(".toml") + ".modes.npz")
     _check_targets(path, npz)
-    s, planform = model.structure, model.planform
-    w = Writer()
-    installations = [{"propeller": w.propeller_key(inst.propeller), "grid": int(inst.grid),
-                      "mount": inst.mount, "aero": inst.aero} for inst in model.propellers]
-    doc: dict[str, Any] = {
-        "format": FORMAT, "format_version": FORMAT_VERSION, "name": model.name,
-        "installations": installations,
-        "units": dict(UNITS),
-        "modes": {"file": npz.name, "n_modes": s.n_modes, "n_grids": int(s.grid_ids.size),
-                  "wing_grids": [int(g) for g in model.wing_grids]},
-        "strips": {"aero_model": planform.aero_model,
-                   **{k: [float(x) for x in getattr(planform, f)] for k, f in STRIP_KEYS}},
-        "flight": w.encode(model.flight, "flight"),
-        "switches": {"wing_aero": model.wing_aero, "propeller_aero": model.propeller_aero,
-                     "rotating": model.rotating},
-        "propellers": w.propellers,
-    }
-    buf = io.BytesIO()
-    np.savez(buf, **{k: np.asarray(getattr(s, k), dtype=np.int64 if k == "grid_ids"
-                                   else np.float64) for k in ARRAYS})
-    fileio.write_bytes(npz, buf.getvalue(), what="modes file")
     header = (f"# propwhirl modal model {model.name!r}: its modes in {npz.name}\n"
               "# (docs/modal-structures.md: frame x aft, y outboard, z up; SI units)\n")
-    fileio.write_text(path, header + tomli_w.dumps(doc), what="modal model file")
+    _write_modal_file(path, npz, header, tomli_w.dumps, name=model.name,
+                      structure=model.structure,
+                      planform=model.planform,
+                      installations=[(inst, int(inst.grid), inst.mount)
+                                     for inst in model.propellers],
+                      wing_grids=model.wing_grids, flight=model.flight,
+                      switches=(model.wing_aero, model.propeller_aero, model.rotating))
     return path, npz

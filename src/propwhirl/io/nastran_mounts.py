@@ -10,7 +10,15 @@ elements that hold all six components.  Its mount is one of two patterns:
   is a rigid element between two coincident grids that leaves one rotation free (RBE2 CM =
   12346 or 12345; RBAR CMB likewise) and the CELAS2 spring between the same grids on that
   component: K → K_theta or K_psi [N m/rad], GE → the structural damping g (damping_theta,
-  damping_psi), the grids' x → the pivot (pivot_pitch, pivot_yaw).
+  damping_psi), the grids' x → the pivot (pivot_pitch, pivot_yaw);
+* **flexible, a mount beam** — the body reaches a stick grid through one short massless
+  CBAR/CBEAM along the shaft (:class:`MountBeam`, read by the BDF reader): K_theta = E I/L of
+  its vertical plane, K_psi = E I/L of its chordwise plane, both pivots at its mid-point, GE of
+  its MAT1 → damping_theta = damping_psi.  A beam's end flexibility, moved to its mid-point,
+  is a rotational compliance L/(E I) and a translational one L³/(12 E I) that do not couple
+  (the cantilever's tip flexibility L³/3, L²/2, L over E I, its force moved by L/2): the
+  rotation is the spring model's, the translation and the beam's torsion (G J/L, about the
+  shaft) are left out (noted), which a stiff short beam makes small.
 
 Its masses are the CONM2 on the body's grids, each a point mass on the shaft: the one on the
 hub grid is the rotor (its c.g. the propeller plane, its I11 the spin inertia I_Omega), the
@@ -81,6 +89,23 @@ class Mass:
     @property
     def x(self) -> float:
         return self.cg[0]
+
+
+@dataclass(frozen=True)
+class MountBeam:
+    """A CBAR/CBEAM read as a propeller's mount: its card, end grids ``a``, ``b``, length
+    L [m], the basic x of its mid-point [m], E I of its vertical and chordwise planes [N m²],
+    G J [N m²] and its MAT1's GE."""
+
+    card: str
+    a: int
+    b: int
+    length: float
+    x_mid: float
+    EI_vertical: float
+    EI_chordwise: float
+    GJ: float
+    ge: float
 
 
 @dataclass(frozen=True)
@@ -158,6 +183,17 @@ class _Bodies:
         for g in grids:
             out.setdefault(self.find(g), set()).add(g)
         return out
+
+
+def rigid_body_grids(deck, hubs) -> set[int]:
+    """Every grid joined to one of the ``hubs`` by rigid elements holding all six components
+    (the propellers' rigid bodies): a beam element touching one is a mount beam."""
+    bodies = _Bodies()
+    for link in _links(deck):
+        if link.free is None:
+            bodies.join(link.a, link.b)
+    roots = {bodies.find(h) for h in hubs}
+    return {g for g in bodies.parent if bodies.find(g) in roots} | set(hubs)
 
 
 def _hinges(deck, links: list[Link], tol: float) -> list[Hinge]:
@@ -285,7 +321,7 @@ def read(deck, stick, hubs: tuple[int, ...]) -> list[Mount]:
         on = groups[body] & stick_grids
         return next(iter(on)) if on else None
 
-    mounts, claimed, consumed = [], set(), set()
+    mounts, claimed, consumed, used_beams = [], set(), set(), set()
     for i, hub in enumerate(hubs):
         who = f"hub GRID {hub} (installation {i + 1})"
         if hub not in deck.grids:
@@ -295,10 +331,31 @@ def read(deck, stick, hubs: tuple[int, ...]) -> list[Mount]:
         b0 = body_of[hub]
         w = wing_grid(b0)
         pitch = yaw = None
+        on_beams = [mb for mb in stick.mount_beams if {mb.a, mb.b} & groups[b0]]
         if w is not None:
-            if at.get(b0):
+            if at.get(b0) or on_beams:
+                other_mount = at[b0][0].link.card if at.get(b0) else on_beams[0].card
                 raise deck.fail(f"{who} is rigid on wing GRID {w} and its body also has the "
-                                f"hinge of {at[b0][0].link.card}: two mounts in one")
+                                f"mount {other_mount}: two mounts in one")
+            chain = [b0]
+        elif on_beams:
+            if at.get(b0) or len(on_beams) > 1:
+                cards = [mb.card for mb in on_beams] + [h.link.card for h in at.get(b0, [])]
+                raise deck.fail(f"{who}: its body has the mounts {', '.join(cards)}: a propeller "
+                                "is mounted through one mount beam, or two hinges in a row")
+            mb = on_beams[0]
+            if {mb.a, mb.b} <= groups[b0]:
+                raise deck.fail(f"{mb.card} joins two grids of {who}'s rigid body")
+            w = mb.b if mb.a in groups[b0] else mb.a
+            if w not in stick_grids:
+                raise deck.fail(f"{who}: its mount beam {mb.card} reaches GRID {w}, not a grid "
+                                "of the wing's stick: a mount beam joins the propeller's rigid "
+                                "body to a stick grid")
+            pitch, yaw = (Hinge(Link(mb.card, w, mb.b if w == mb.a else mb.a, free), mb.card,
+                                K, mb.ge, mb.x_mid)
+                          for free, K in ((5, mb.EI_vertical / mb.length),
+                                          (6, mb.EI_chordwise / mb.length)))
+            used_beams.add(mb.card)
             chain = [b0]
         else:
             h0 = at.get(b0, [])
@@ -370,6 +427,10 @@ def read(deck, stick, hubs: tuple[int, ...]) -> list[Mount]:
         for b in chain:
             claimed |= groups[b] - stick_grids
         mounts.append(Mount(hub, w, stick.grids.index(w), tuple(props), pitch, yaw))
+    for mb in stick.mount_beams:
+        if mb.card not in used_beams:
+            raise deck.fail(f"{mb.card} (GRID {mb.a}-{mb.b}) is off the stick and mounts no "
+                            "named hub: name its propeller's hub grid (--hubs), or remove it")
     _shared(deck, mounts, hubs, body_of)
     _leftovers(deck, stick, masses, consumed, used_grids, claimed, links)
     return mounts
@@ -455,4 +516,5 @@ def installation(deck, mount: Mount, inst: Installation, wing: Wing, stick) -> I
     return replace(inst, propeller=propeller, y=float(stick.y[mount.node]), mount=mount_kind)
 
 
-__all__ = ["Hinge", "Link", "Mass", "Mount", "installation", "read"]
+__all__ = ["Hinge", "Link", "Mass", "Mount", "MountBeam", "installation", "read",
+           "rigid_body_grids"]

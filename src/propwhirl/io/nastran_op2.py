@@ -199,6 +199,47 @@ def _grids_arg(name: str, grids, where: str) -> tuple[int, ...]:
     return tuple(int(g) for g in grids)
 
 
+def _check_span(xyz: np.ndarray, wing_idx: list[int], wing_ids: tuple[int, ...], base,
+                u, where: str, notes: list[str]) -> None:
+    """The wing grids' span (root to tip, in SI as read in the stated units) against the base
+    wing's semi-span, whose strips they carry: off by a factor of 2 or more is refused as
+    units not the OP2's (the unit systems' lengths differ by 25.4 or more: no modelling
+    difference is that large), more than 1 % noted."""
+    span = float(xyz[wing_idx[-1], 1] - xyz[wing_idx[0], 1])
+    if not span > 0.0:
+        return                       # the model's check names the grids out of order
+    L = float(base.wing.semi_span)
+    text = (f"wing GRID {wing_ids[0]} to GRID {wing_ids[-1]} span {span:.6g} m (read in "
+            f"{u.name} units: {u.description}), the base model's wing {L:.6g} m")
+    if not 0.5 <= span / L <= 2.0:
+        raise _fail(where, f"{text}: are the OP2's units {u.name}, and not mixed?")
+    if abs(span / L - 1.0) > 0.01:
+        notes.append(f"{where}: {text}: the strips are the base's, splined to the grids")
+
+
+#: Sweep [deg] of the wing grids' line beyond which an OP2 import notes that the strips carry
+#: no sweep: a tapered wing's elastic axis leans a few degrees without being a swept wing.
+SWEEP_NOTE_DEG = 5.0
+
+
+def _check_sweep(xyz: np.ndarray, wing_idx: list[int], wing_ids: tuple[int, ...], where: str,
+                 notes: list[str]) -> None:
+    """A note when the wing grids' line (x against y, least squares) is swept by more than
+    :data:`SWEEP_NOTE_DEG`: the strips are splined to the swept grids, so their kinematics
+    follow the structure, but their aerodynamics is that of an unswept wing (no cos Λ of
+    the normal flow, no sweep in the lift slope): the analysis does not model the sweep."""
+    y, x = xyz[wing_idx, 1], xyz[wing_idx, 0]
+    if len(wing_idx) < 2 or not float(np.ptp(y)) > 0.0:
+        return
+    sweep = float(np.degrees(np.arctan(np.polyfit(y, x, 1)[0])))
+    if abs(sweep) > SWEEP_NOTE_DEG:
+        notes.append(f"{where}: the wing grids GRID {wing_ids[0]} to GRID {wing_ids[-1]} are "
+                     f"swept by {sweep:.1f} deg (more than {SWEEP_NOTE_DEG:g}): the strips "
+                     "follow the swept structure but their aerodynamics is an unswept wing's "
+                     "(no sweep in the normal flow or the lift slope), so the sweep's "
+                     "aerodynamic effect is not modelled")
+
+
 def _in_modes(ids: np.ndarray, grid: int, what: str, where: str) -> int:
     hit = np.flatnonzero(ids == grid)
     if not hit.size:
@@ -383,6 +424,8 @@ def read_op2(path: str | Path, *, units: str | None = None, base=None,
     hub_idx = [_in_modes(ids, h, "hub", where) for h in hubs]
     wing_idx = [_in_modes(ids, g, "wing", where) for g in wing_ids]
     xyz, turned = _geometry(op2, ids, where, u)
+    _check_span(xyz, wing_idx, wing_ids, base, u, where, here)
+    _check_sweep(xyz, wing_idx, wing_ids, where, here)
     for i, axes in enumerate(turned):                    # components in the basic frame
         if axes is not None:
             data[:, i, :3] = data[:, i, :3] @ axes

@@ -106,7 +106,35 @@ def require_pynastran() -> None:
     _pynastran()
 
 
-def _parse_error(where: str, exc: Exception) -> v.InputError:
+#: Cards whose first field shares one id space (NASTRAN: element ids unique across all
+#: elements, rigid and mass elements included; property ids across properties).
+ID_SPACES = (("CBAR", "CBEAM", "CELAS2", "CONM2", "RBE2", "RBAR"),
+             ("PBAR", "PBARL", "PBEAM", "PBEAML"), ("MAT1",), ("GRID",), ("CORD2R",),
+             ("EIGRL", "EIGR"))
+
+
+def _sharing(file_text: str, ident: str, family: tuple[str, ...]) -> list[str]:
+    """The cards of ``family`` in the file whose id is ``ident`` ("CBAR 1", "CELAS2 1")."""
+    return [f"{name} {ident}" for name in family
+            for i in _scanned_ids(file_text, name) if i == ident]
+
+
+def _given_twice(where: str, file_text: str, ident: str, hint: str | None) -> v.InputError:
+    """The one line for an id given twice: the cards that share it, named."""
+    for family in ID_SPACES:
+        if hint is not None and hint not in family:
+            continue
+        cards = _sharing(file_text, ident, family)
+        if len(cards) > 1:
+            if len(set(cards)) == 1:
+                return _fail(where, f"{cards[0]} is given twice (ids must be unique)")
+            kind = "element ids" if family == ID_SPACES[0] else "ids"
+            return _fail(where, f"{' and '.join(sorted(set(cards)))} share one id ({kind} must "
+                                f"be unique among {', '.join(family)})")
+    return _fail(where, f"{hint or 'a card'} {ident} is given twice (ids must be unique)")
+
+
+def _parse_error(where: str, exc: Exception, file_text: str = "") -> v.InputError:
     """pyNastran's exception as one line naming the file (and the card and id it names)."""
     text = str(exc)
     first = text.strip().split("\n")[0].strip() or type(exc).__name__
@@ -114,8 +142,10 @@ def _parse_error(where: str, exc: Exception) -> v.InputError:
     old = re.search(r"old_\w+=\s*\n\s*([A-Z][A-Z0-9]*)\*?\s", text)
     if dup:
         ids = dup.group(1).split(",")[0].strip()
-        card = old.group(1) if old else "a card"
-        return _fail(where, f"{card} {ids} is given twice (ids must be unique)")
+        return _given_twice(where, file_text, ids, old.group(1) if old else None)
+    bare = re.fullmatch(r"(eid|sid|pid|mid|cid)=(\d+)", first)
+    if isinstance(exc, AssertionError) and bare:      # pyNastran's assert on a second card
+        return _given_twice(where, file_text, bare.group(2), None)
     if "nid=" in text and "old_node=" in text:
         nid = re.search(r"nid=(\d+)", text)
         return _fail(where, f"GRID {nid.group(1) if nid else '?'} is given twice (ids must be "
@@ -143,7 +173,7 @@ def _parse(path: Path, where: str, text: str):
     except (KeyboardInterrupt, MemoryError):
         raise
     except Exception as exc:              # a third-party parser: every failure is the file's
-        raise _parse_error(where, exc) from None
+        raise _parse_error(where, exc, text) from None
     return model
 
 
@@ -245,6 +275,14 @@ class Deck:
             stored[name] = sum(p.type == name for p in self.bdf.properties.values())
         for name in ("RBE2", "RBAR"):
             stored[name] = sum(e.type == name for e in self.bdf.rigid_elements.values())
+        seen: dict[int, str] = {}
+        for store in (self.bdf.elements, self.bdf.rigid_elements, self.bdf.masses):
+            for eid, card in sorted(store.items()):
+                name = f"{card.type} {eid}"
+                if eid in seen:
+                    raise self.fail(f"{seen[eid]} and {name} share one id (element ids must "
+                                    f"be unique among {', '.join(ID_SPACES[0])})")
+                seen[eid] = name
         for name, n in stored.items():
             if counts.get(name, 0) > n:
                 ids = _scanned_ids(self.text, name)
@@ -405,14 +443,36 @@ class Stick:
     elements: tuple[str, ...]
     sections: dict[str, np.ndarray]
     in_plane: bool
+    mount_beams: tuple[nastran_mounts.MountBeam, ...] = ()
 
 
 def _beams(deck: Deck) -> list:
     return [e for e in deck.bdf.elements.values() if e.type in ("CBAR", "CBEAM")]
 
 
-def _stick(deck: Deck) -> Stick:
+def _stick(deck: Deck, hubs: tuple[int, ...] = ()) -> Stick:
     beams = _beams(deck)
+    bodies = nastran_mounts.rigid_body_grids(deck, hubs) if hubs else set()
+    touching = [e for e in beams if {int(n) for n in e.node_ids if n} & bodies]
+    mounting = [e for e in touching if _chordwise(deck, e)]
+    stick_grids = {int(n) for e in beams if e not in touching for n in e.node_ids if n}
+    for e in touching:                    # a vertical beam from the stick to a hub's body
+        ends = [int(n) for n in e.node_ids if n]
+        if e in mounting or not all(g in deck.grids for g in ends):
+            continue
+        on = [g for g in ends if g in stick_grids]
+        if len(on) != 1:
+            continue
+        off = next(g for g in ends if g != on[0])
+        d = deck.grids[off].xyz - deck.grids[on[0]].xyz
+        if abs(d[2]) > max(abs(d[0]), abs(d[1])):
+            raise deck.fail(f"{e.type} {e.eid} (GRID {on[0]}-{off}) joins a propeller's rigid "
+                            f"body {abs(d[2]):.6g} m {'below' if d[2] < 0 else 'above'} the "
+                            "stick to it: a pylon; propwhirl's beam model carries a propeller "
+                            "on the wing's chord line (rigid, on hinges or a chordwise mount "
+                            "beam): give the FE model's modes instead (an OP2 of it: propwhirl "
+                            "import MODEL.op2 --mount on-grid)")
+    beams = [e for e in beams if e not in mounting]
     if not beams:
         raise deck.fail("no CBAR or CBEAM: propwhirl reads a wing as a stick of beam elements")
     ends = {}
@@ -477,7 +537,42 @@ def _stick(deck: Deck) -> Stick:
                             "with a neighbour")
     in_plane = _stick_constraints(deck, order)
     sections = _sections(deck, [deck.bdf.elements[e] for e in elements], ends, names)
-    return Stick(tuple(order), y, pos[0], names, sections, in_plane)
+    mount_beams = tuple(_mount_beam(deck, e) for e in mounting)
+    return Stick(tuple(order), y, pos[0], names, sections, in_plane, mount_beams)
+
+
+def _chordwise(deck: Deck, e) -> bool:
+    """True when the beam element runs more along x than along y and z (not a stick's)."""
+    ends = [deck.grids.get(int(n)) if n else None for n in e.node_ids]
+    if any(g is None for g in ends):
+        return False                      # a missing grid: refused with the stick's elements
+    d = np.abs(ends[1].xyz - ends[0].xyz)
+    return bool(d[0] > d[1] and d[0] > d[2])
+
+
+def _mount_beam(deck: Deck, e) -> nastran_mounts.MountBeam:
+    """A CBAR/CBEAM joining a propeller's rigid body to the stick (one end on the body, more
+    along x than along y or z), as a mount: its E I per
+    plane over its length (the rotational stiffnesses about its mid-point); massless, plain
+    (no offsets, pins or warping), along the basic x axis (the shaft)."""
+    name = f"{e.type} {e.eid}"
+    a, b = (deck.grid(n, name).nid for n in e.node_ids)
+    if a == b:
+        raise deck.fail(f"{name} joins GRID {a} to itself")
+    pa, pb = deck.grids[a].xyz, deck.grids[b].xyz
+    d = pb - pa
+    length = float(np.linalg.norm(d))
+    if abs(d[0]) < _ALIGNED * length:
+        raise deck.fail(f"{name} (a propeller's mount beam, GRID {a}-{b}) does not lie along "
+                        "the basic x axis: propwhirl's mount beam lies on the shaft, "
+                        "chordwise")
+    s = _sections_of(deck, e, name, (a, b))
+    deck.notes.append(f"{deck.where}: {name} is read as a mount: K_theta = {s['EI']/length:.6g}, "
+                      f"K_psi = {s['EI_chordwise']/length:.6g} N m/rad (E I / L) about its "
+                      f"mid-point; its translational compliance L^3/(12 E I) and its torsion "
+                      f"(G J / L = {s['GJ']/length:.6g} N m/rad, about the shaft) are left out")
+    return nastran_mounts.MountBeam(name, a, b, length, float(0.5 * (pa[0] + pb[0])),
+                                    s["EI"], s["EI_chordwise"], s["GJ"], s["ge"])
 
 
 def _stick_constraints(deck: Deck, order: list[int]) -> bool:
@@ -598,86 +693,98 @@ def _axes(deck: Deck, e, a: int, b: int) -> tuple[np.ndarray, np.ndarray, np.nda
     return ex, ey, np.cross(ex, ey)
 
 
+def _element(deck: Deck, e, name: str, ends: tuple[int, int], shear: list[str],
+             damped: list[str]) -> dict:
+    """One CBAR/CBEAM's section in SI: EI (vertical plane), EI_chordwise, GJ [N m²],
+    m [kg/m], x_cg [m], polar [kg m], GE, and its property's name (checks of the element,
+    its property and material; shear and GE noted in ``shear``, ``damped``)."""
+    u, w = deck.u, deck.wtmass
+    a, b = ends
+    for label, values in (("WA", e.wa), ("WB", e.wb)):
+        if values is not None and np.any(np.asarray(values, dtype=float) != 0.0):
+            raise deck.fail(f"{name}: offset {label} = {np.asarray(values).tolist()}: the "
+                            "element is off its grids; propwhirl's beam runs through them")
+    for label, flag in (("PA", e.pa), ("PB", e.pb)):
+        if flag not in (None, 0, "", "0"):
+            raise deck.fail(f"{name}: pin flags {label} = {flag}: a released end; "
+                            "propwhirl's beam is continuous")
+    if e.type == "CBEAM":
+        if e.sa or e.sb:
+            raise deck.fail(f"{name}: warping scalar points SA, SB = {e.sa}, {e.sb}: "
+                            "propwhirl's beam has no warping")
+        if getattr(e, "bit", None) not in (None, 0.0):
+            raise deck.fail(f"{name}: BIT = {e.bit!r}: not read")
+    kinds = ("PBAR", "PBARL") if e.type == "CBAR" else ("PBEAM", "PBEAML")
+    prop = deck.card(deck.bdf.properties, e.pid, kinds, name)
+    s = _section(deck, prop, name, shear)
+    pname = f"{prop.type} {prop.pid}"
+    mat = deck.card(deck.bdf.materials, s["mid"], ("MAT1",), pname)
+    mname = f"MAT1 {mat.mid}"
+    E, G, rho = mat.e, mat.g, mat.rho or 0.0
+    if not (isinstance(E, float) and E > 0 and isinstance(G, float) and G > 0):
+        raise deck.fail(f"{mname}: E = {E!r}, G = {G!r}: both must be > 0 (give E and G, "
+                        "or E and NU)")
+    if rho < 0:
+        raise deck.fail(f"{mname}: RHO = {rho!r} is negative")
+    if rho > 0:
+        speed = math.sqrt(E * u.modulus / (rho * u.density * w))
+        if not 100.0 <= speed <= 3e4:
+            raise deck.fail(f"{mname}: E and RHO give a wave speed sqrt(E/RHO) of "
+                            f"{speed:.4g} m/s in {u.name} units (every solid: 100 to "
+                            f"30,000 m/s): the deck is not in {u.name} ({u.description}), "
+                            "or its units are mixed")
+    if mat.ge:
+        damped.append(mname)
+    ex, ey, ez = _axes(deck, e, a, b)
+    I1, I2 = s["I1"], s["I2"]
+    if I1 == I2 or abs(ey[2]) >= _ALIGNED:
+        I_v, I_c = I1, I2
+    elif abs(ez[2]) >= _ALIGNED:
+        I_v, I_c = I2, I1
+    else:
+        angle = math.degrees(math.acos(min(1.0, abs(ey[2]))))
+        raise deck.fail(f"{name}: its orientation vector puts plane 1 at {angle:.3g} deg "
+                        "to the vertical: propwhirl's beam bends in the vertical plane and "
+                        "in the wing's plane (principal planes vertical and chordwise)")
+    offset = s["M1"] * ey + s["M2"] * ez                  # the NSM's c.g. [deck length]
+    if abs(offset[2]) > 1e-12 * np.linalg.norm(offset):
+        raise deck.fail(f"{pname} (on {name}): its non-structural mass's c.g. is "
+                        f"{offset[2] * u.length:.6g} m above the axis (M1, M2 = "
+                        f"{s['M1']!r}, {s['M2']!r}): propwhirl's section has its c.g. on "
+                        "the chord line")
+    x_nsm = offset[0] * u.length
+    m_struct = rho * s["A"] * u.mass_per_length * w
+    nsm = s["NSM"] * u.mass_per_length * w
+    m = m_struct + nsm
+    polar = (rho * (I1 + I2) * u.inertia_per_length * w
+             + s["NSI"] * u.inertia_per_length * w + nsm * x_nsm ** 2)
+    return dict(EI=E * I_v * u.rigidity, EI_chordwise=E * I_c * u.rigidity,
+                GJ=G * s["J"] * u.rigidity, m=m, x_cg=nsm * x_nsm / m if m else 0.0,
+                polar=polar, ge=float(mat.ge or 0.0), pname=pname)
+
+
 def _sections(deck: Deck, elements: list, ends: dict, names: tuple[str, ...]
               ) -> dict[str, np.ndarray]:
     """Per element EI, EI_chordwise, GJ [N m²], m [kg/m], x_cg [m], polar [kg m] (SI)."""
-    u, w = deck.u, deck.wtmass
     out = {k: [] for k in ("EI", "EI_chordwise", "GJ", "m", "x_cg", "polar")}
     shear: list[str] = []
     damped: list[str] = []
     for e, name in zip(elements, names):
-        a, b = ends[e.eid]
-        for label, values in (("WA", e.wa), ("WB", e.wb)):
-            if values is not None and np.any(np.asarray(values, dtype=float) != 0.0):
-                raise deck.fail(f"{name}: offset {label} = {np.asarray(values).tolist()}: the "
-                                "element is off its grids; propwhirl's beam runs through them")
-        for label, flag in (("PA", e.pa), ("PB", e.pb)):
-            if flag not in (None, 0, "", "0"):
-                raise deck.fail(f"{name}: pin flags {label} = {flag}: a released end; "
-                                "propwhirl's beam is continuous")
-        if e.type == "CBEAM":
-            if e.sa or e.sb:
-                raise deck.fail(f"{name}: warping scalar points SA, SB = {e.sa}, {e.sb}: "
-                                "propwhirl's beam has no warping")
-            if getattr(e, "bit", None) not in (None, 0.0):
-                raise deck.fail(f"{name}: BIT = {e.bit!r}: not read")
-        kinds = ("PBAR", "PBARL") if e.type == "CBAR" else ("PBEAM", "PBEAML")
-        prop = deck.card(deck.bdf.properties, e.pid, kinds, name)
-        s = _section(deck, prop, name, shear)
-        pname = f"{prop.type} {prop.pid}"
-        mat = deck.card(deck.bdf.materials, s["mid"], ("MAT1",), pname)
-        mname = f"MAT1 {mat.mid}"
-        E, G, rho = mat.e, mat.g, mat.rho or 0.0
-        if not (isinstance(E, float) and E > 0 and isinstance(G, float) and G > 0):
-            raise deck.fail(f"{mname}: E = {E!r}, G = {G!r}: both must be > 0 (give E and G, "
-                            "or E and NU)")
-        if rho < 0:
-            raise deck.fail(f"{mname}: RHO = {rho!r} is negative")
-        if rho > 0:
-            speed = math.sqrt(E * u.modulus / (rho * u.density * w))
-            if not 100.0 <= speed <= 3e4:
-                raise deck.fail(f"{mname}: E and RHO give a wave speed sqrt(E/RHO) of "
-                                f"{speed:.4g} m/s in {u.name} units (every solid: 100 to "
-                                f"30,000 m/s): the deck is not in {u.name} ({u.description}), "
-                                "or its units are mixed")
-        if mat.ge:
-            damped.append(mname)
-        ex, ey, ez = _axes(deck, e, a, b)
-        I1, I2 = s["I1"], s["I2"]
-        if I1 == I2 or abs(ey[2]) >= _ALIGNED:
-            I_v, I_c = I1, I2
-        elif abs(ez[2]) >= _ALIGNED:
-            I_v, I_c = I2, I1
-        else:
-            angle = math.degrees(math.acos(min(1.0, abs(ey[2]))))
-            raise deck.fail(f"{name}: its orientation vector puts plane 1 at {angle:.3g} deg "
-                            "to the vertical: propwhirl's beam bends in the vertical plane and "
-                            "in the wing's plane (principal planes vertical and chordwise)")
-        offset = s["M1"] * ey + s["M2"] * ez                  # the NSM's c.g. [deck length]
-        if abs(offset[2]) > 1e-12 * np.linalg.norm(offset):
-            raise deck.fail(f"{pname} (on {name}): its non-structural mass's c.g. is "
-                            f"{offset[2] * u.length:.6g} m above the axis (M1, M2 = "
-                            f"{s['M1']!r}, {s['M2']!r}): propwhirl's section has its c.g. on "
-                            "the chord line")
-        x_nsm = offset[0] * u.length
-        m_struct = rho * s["A"] * u.mass_per_length * w
-        nsm = s["NSM"] * u.mass_per_length * w
-        m = m_struct + nsm
-        if not m > 0.0:
-            raise deck.fail(f"{pname} (on {name}): no mass (RHO A + NSM = {m!r} kg/m): a wing "
-                            "element needs mass")
-        out["EI"].append(E * I_v * u.rigidity)
-        out["EI_chordwise"].append(E * I_c * u.rigidity)
-        out["GJ"].append(G * s["J"] * u.rigidity)
-        out["m"].append(m)
-        out["x_cg"].append(nsm * x_nsm / m)
-        polar = (rho * (I1 + I2) * u.inertia_per_length * w
-                 + s["NSI"] * u.inertia_per_length * w + nsm * x_nsm ** 2)
-        if polar == 0.0:
-            raise deck.fail(f"{pname} (on {name}): no polar inertia (RHO = 0, no NSI, the NSM on "
-                            "the axis): propwhirl's wing twists with inertia; give RHO, or a "
-                            "PBEAM with NSI")
-        out["polar"].append(polar)
+        s = _element(deck, e, name, ends[e.eid], shear, damped)
+        if not s["m"] > 0.0:
+            raise deck.fail(f"{s['pname']} (on {name}): no mass (RHO A + NSM = {s['m']!r} "
+                            "kg/m): a wing element needs mass")
+        if s["polar"] == 0.0:
+            raise deck.fail(f"{s['pname']} (on {name}): no polar inertia (RHO = 0, no NSI, the "
+                            "NSM on the axis): propwhirl's wing twists with inertia; give RHO, "
+                            "or a PBEAM with NSI")
+        for k in out:
+            out[k].append(s[k])
+    _note_sections(deck, shear, damped)
+    return {k: np.array(x, dtype=float) for k, x in out.items()}
+
+
+def _note_sections(deck: Deck, shear: list[str], damped: list[str]) -> None:
     if shear:
         deck.notes.append(f"{deck.where}: the shear flexibility of {', '.join(sorted(set(shear)))} "
                           "is left out: propwhirl's beam is Euler-Bernoulli")
@@ -685,7 +792,22 @@ def _sections(deck: Deck, elements: list, ends: dict, names: tuple[str, ...]
         deck.notes.append(f"{deck.where}: GE of {', '.join(sorted(set(damped)))} (structural "
                           "damping) is not read: the wing's damping is the base model's "
                           "Rayleigh damping")
-    return {k: np.array(x, dtype=float) for k, x in out.items()}
+
+
+def _sections_of(deck: Deck, e, name: str, ends: tuple[int, int]) -> dict:
+    """A mount beam's section (SI): it must be massless (propwhirl's mount is); its MAT1's
+    GE is the mount's damping (read, so not noted)."""
+    shear: list[str] = []
+    s = _element(deck, e, name, ends, shear, [])
+    if s["m"] != 0.0 or s["polar"] != 0.0:
+        raise deck.fail(f"{s['pname']} (on {name}, a propeller's mount beam): it has mass (RHO A "
+                        f"+ NSM = {s['m']:.6g} kg/m, or NSI): propwhirl's mount is massless; "
+                        "give its MAT1 RHO = 0 and put the nacelle's mass on CONM2")
+    if not 0.0 <= s["ge"] <= 2.0:
+        raise deck.fail(f"{name}: the GE of its MAT1 ({s['ge']!r}) is outside the valid range "
+                        "[0, 2] of a mount's structural damping g")
+    _note_sections(deck, shear, [])
+    return s
 
 
 # ============================================================================ the model
@@ -838,7 +960,7 @@ def read_bdf(path: str | Path, *, units: str | None = None, base=None,
     text = fileio.read_text(path, "BDF file")
     notes_here: list[str] = []
     deck = Deck(_parse(Path(path), where, text), where, text, u, notes_here)
-    stick = _stick(deck)
+    stick = _stick(deck, hub_grids)
     wing = _wing(deck, stick, model.wing, base_name)
     mounts = nastran_mounts.read(deck, stick, hub_grids)
     installations = tuple(nastran_mounts.installation(deck, m, inst, wing, stick)
