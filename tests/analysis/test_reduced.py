@@ -247,7 +247,8 @@ def test_an_analysis_assembles_its_model_once(monkeypatch):
     built = []
     real = PropellerWingAssembly.build.__func__
     monkeypatch.setattr(PropellerWingAssembly, "build",
-                        classmethod(lambda cls, m: built.append(m.name) or real(cls, m)))
+                        classmethod(lambda cls, m, *tables: built.append(m.name)
+                                    or real(cls, m, *tables)))
     m = wingtip_propeller_wing()
     for method in ("auto", "dense"):
         built.clear()
