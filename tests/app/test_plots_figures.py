@@ -6,6 +6,8 @@ import io
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st_
 from matplotlib.colors import to_rgba
 from PIL import Image
 
@@ -15,6 +17,7 @@ from propwhirl.analysis.vibration import campbell
 from propwhirl.app import cli, plots
 from propwhirl.app.plots import campbell_plot, vgf_plot
 from propwhirl.cases.ch09_baseline import (baseline_flight, baseline_propeller, baseline_wing,
+                                           propeller_wing,
                                            isolated_baseline_propeller)
 from propwhirl.model.protocol import DofMap, PropellerDofs
 from propwhirl.model.systems import Installation, PropellerWing
@@ -171,6 +174,33 @@ def test_campbell_families_labels_and_excitation_lines(model):
     assert not any(_boxes_overlap(a, b) for i, a in enumerate(boxes) for b in boxes[i + 1:])
     legend = [t.get_text() for t in ax.get_legend().get_texts()]
     assert "backward whirl" in legend and "forward whirl" in legend
+
+
+def test_campbell_end_labels_of_six_propellers_do_not_overlap():
+    """Issue 35 item 8: six propellers' close backward and forward whirl ends (the baseline
+    wing with propellers at nodes 5-25): 6 overlapping pairs of end labels before, when the
+    label stacking oscillated between two groupings and stopped; none now."""
+    from propwhirl.app.plots.layout import label_boxes
+    w = baseline_wing(25)
+    six = propeller_wing(tuple(float(w.node_y[i]) for i in (5, 9, 13, 17, 21, 25)), name="six")
+    fig = plots.campbell_diagram(campbell(six, np.linspace(0.0, 6000.0, 25)))
+    fig.canvas.draw()
+    boxes = label_boxes(fig)
+    assert len(boxes) >= 12
+    assert not any(_boxes_overlap(a, b) for i, a in enumerate(boxes) for b in boxes[i + 1:])
+
+
+@given(st_.lists(st_.floats(0.0, 100.0), min_size=1, max_size=30), st_.floats(0.1, 10.0))
+@settings(max_examples=200, deadline=None)
+def test_spread_labels_keeps_every_gap_and_the_order(y, gap):
+    """Any curve ends: positions at least `gap` apart in the order of the ends (the stacking
+    the Campbell diagram and the V-g-f use), and each pool of labels centred on its ends."""
+    from propwhirl.app.plots.canvas import spread_labels
+    p = spread_labels(y, gap, lo=-1e9, hi=1e9)
+    order = np.argsort(y, kind="stable")
+    ps = np.asarray(p)[order]
+    assert np.all(np.diff(ps) >= gap - 1e-9 * max(1.0, gap))
+    assert abs(np.mean(p) - np.mean(y)) <= 1e-9 * max(1.0, float(np.max(np.abs(y))))
 
 
 def test_campbell_per_propeller_rpm(model):

@@ -133,6 +133,12 @@ def spread_labels(y: list[float], gap: float, lo: float, hi: float) -> list[floa
     """Label positions near `y` (data units), at least `gap` apart, inside [lo, hi], order
     kept: the labels of curves ending close together do not overlap.
 
+    The positions p closest to `y` in least squares with p_(k+1) − p_k ≥ gap (sorted by y):
+    with q_k = p_k − k·gap the constraint is q non-decreasing, and pooling adjacent
+    violators (each pool of labels centred on the mean of its curves' ends) gives q in one
+    pass.  (Re-centring clusters in turns, as before, could oscillate between two
+    groupings and stop with labels overlapping: six propellers' Campbell diagram.)
+
     Examples
     --------
     >>> spread_labels([1.0, 1.1, 5.0], gap=0.5, lo=0.0, hi=10.0)
@@ -140,28 +146,20 @@ def spread_labels(y: list[float], gap: float, lo: float, hi: float) -> list[floa
     """
     if not y:
         return []
-    order = sorted(range(len(y)), key=lambda i: y[i])
-    pos = [float(y[i]) for i in order]
-    for _ in range(len(pos) + 1):        # push apart, then re-centre each touching cluster
-        moved = False
-        clusters = [[0]]
-        for i in range(1, len(pos)):
-            (clusters[-1].append(i) if pos[i] - pos[clusters[-1][-1]] < gap - 1e-12
-             else clusters.append([i]))
-        for c in clusters:
-            if len(c) < 2:
-                continue
-            want = sum(float(y[order[i]]) for i in c) / len(c)
-            start = want - 0.5 * gap * (len(c) - 1)
-            for j, i in enumerate(c):
-                new = start + j * gap
-                moved |= abs(new - pos[i]) > 1e-12
-                pos[i] = new
-        if not moved:
-            break
+    n = len(y)
+    order = sorted(range(n), key=lambda i: y[i])
+    pools: list[list[float]] = []                     # [mean of q, count] of each pool
+    for k, i in enumerate(order):
+        pools.append([float(y[i]) - k * gap, 1.0])
+        while len(pools) > 1 and pools[-2][0] > pools[-1][0]:
+            m2, c2 = pools.pop()
+            m1, c1 = pools.pop()
+            pools.append([(m1 * c1 + m2 * c2) / (c1 + c2), c1 + c2])
+    q = [m for m, c in pools for _ in range(int(c))]
+    pos = [q[k] + k * gap for k in range(n)]
     shift = max(0.0, lo - pos[0]) - max(0.0, pos[-1] - hi)
     pos = [round(p + shift, 12) for p in pos]
-    out = [0.0] * len(y)
+    out = [0.0] * n
     for k, i in enumerate(order):
         out[i] = pos[k]
     return out
