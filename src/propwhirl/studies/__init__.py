@@ -30,7 +30,7 @@ _EXPORTS = {
     "path_variant": "propwhirl.studies.boundary",
     "nacelle_stiffness": "propwhirl.studies.parametric",
     "blade_angle_mode_switch": "propwhirl.studies.parametric",
-    "Case": "propwhirl.studies.campaign", "envelope": "propwhirl.studies.flight_envelope",
+    "Case": "propwhirl.studies.campaign_cases", "envelope": "propwhirl.studies.flight_envelope",
     "Campaign": "propwhirl.studies.campaign", "from_spec": "propwhirl.studies.campaign",
     "run_campaign": "propwhirl.studies.campaign",
     "CampaignResult": "propwhirl.studies.campaign_result",

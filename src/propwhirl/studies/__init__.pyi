@@ -3,7 +3,7 @@
 # module loads no other.  Keep in step with _EXPORTS there (tests/test_doctests.py checks).
 from propwhirl.studies.boundary import path_variant as path_variant
 from propwhirl.studies.campaign import Campaign as Campaign
-from propwhirl.studies.campaign import Case as Case
+from propwhirl.studies.campaign_cases import Case as Case
 from propwhirl.studies.flight_envelope import envelope as envelope
 from propwhirl.studies.campaign import from_spec as from_spec
 from propwhirl.studies.campaign import run_campaign as run_campaign
