@@ -56,6 +56,7 @@ from propwhirl import fileio
 from propwhirl import validate as v
 from propwhirl.io.nastran import INSTALL_HINT, UnitSystem, unit_system
 from propwhirl.io import nastran_read
+from propwhirl.io.nastran_deck import fail
 from propwhirl.model.modal import ModalInstallation, ModalPropellerWing
 from propwhirl.model.modal_structure import (MAX_MODES, RIGID_BODY_HZ, ModalStructure,
                                              StripPlanform, id_list)
@@ -78,10 +79,6 @@ _SINGLE = 4.0 * float(np.finfo(np.float32).eps)
 _GRID_TYPE = 1
 
 
-def _fail(where: str, text: str) -> v.InputError:
-    return v.InputError(f"{where}: {text}")
-
-
 def _read(path: Path, where: str):
     """pyNastran's OP2 (results and geometry) of the file, its messages off the terminal;
     any failure (a truncated or foreign file) one line naming the file."""
@@ -101,7 +98,7 @@ def _read(path: Path, where: str):
         raise
     except Exception as exc:              # a third-party parser: every failure is the file's
         first = (str(exc).strip().split("\n")[0].strip() or type(exc).__name__)[:200]
-        raise _fail(where, f"cannot read the OP2 (truncated, or not an OP2 of NASTRAN's "
+        raise fail(where, f"cannot read the OP2 (truncated, or not an OP2 of NASTRAN's "
                            f"MSC/NX format): {type(exc).__name__}: {first}") from None
 
 
@@ -109,16 +106,16 @@ def _subcase(op2, subcase: int | None, where: str):
     """The eigenvector table of the subcase asked, or of the only one."""
     vectors = getattr(op2, "eigenvectors", {}) or {}
     if not vectors:
-        raise _fail(where, "holds no real eigenvectors (OUGV1): write the OP2 of a SOL 103 "
+        raise fail(where, "holds no real eigenvectors (OUGV1): write the OP2 of a SOL 103 "
                            "(normal modes) with DISPLACEMENT(PLOT) = ALL")
     keys = sorted(vectors)
     if subcase is None:
         if len(keys) > 1:
-            raise _fail(where, f"holds the eigenvectors of subcases {keys}: choose one "
+            raise fail(where, f"holds the eigenvectors of subcases {keys}: choose one "
                                "(--subcase; Python: subcase=...)")
         return vectors[keys[0]]
     if subcase not in vectors:
-        raise _fail(where, f"subcase {subcase} is not in the file (its eigenvectors: subcases "
+        raise fail(where, f"subcase {subcase} is not in the file (its eigenvectors: subcases "
                            f"{keys})")
     return vectors[subcase]
 
@@ -129,17 +126,17 @@ def _frame(op2, cid: int, by: str, where: str, u: UnitSystem):
         return np.zeros(3), np.eye(3)
     coord = op2.coords.get(cid)
     if coord is None:
-        raise _fail(where, f"{by} refers to coordinate system {cid}, which is not in the OP2's "
+        raise fail(where, f"{by} refers to coordinate system {cid}, which is not in the OP2's "
                            "geometry")
     if coord.type != "CORD2R":
-        raise _fail(where, f"{coord.type} {cid}: not read: coordinate systems are CORD2R")
+        raise fail(where, f"{coord.type} {cid}: not read: coordinate systems are CORD2R")
     if int(coord.rid or 0) != 0:
-        raise _fail(where, f"CORD2R {cid} is given in CORD2R {coord.rid}: the OP2 route reads "
+        raise fail(where, f"CORD2R {cid} is given in CORD2R {coord.rid}: the OP2 route reads "
                            "coordinate systems given in the basic one (RID = 0)")
     a, b, c = (np.asarray(p, dtype=float) for p in (coord.e1, coord.e2, coord.e3))
     axes = nastran_read.cord2r_axes(a, b, c)
     if axes is None:
-        raise _fail(where, f"CORD2R {cid}: its points A, B, C do not define axes (on one line)")
+        raise fail(where, f"CORD2R {cid}: its points A, B, C do not define axes (on one line)")
     return a * u.length, axes
 
 
@@ -148,21 +145,21 @@ def _geometry(op2, ids: np.ndarray, where: str, u: UnitSystem
     """Every grid's basic position [m] and its displacement frame's axes (None: basic)."""
     nodes = getattr(op2, "nodes", {}) or {}
     if not nodes:
-        raise _fail(where, "holds no grid geometry (GEOM1): write the OP2 with PARAM,POST,-1 "
+        raise fail(where, "holds no grid geometry (GEOM1): write the OP2 with PARAM,POST,-1 "
                            "so that it has the grids' positions")
     xyz = np.zeros((ids.size, 3))
     turned: list[np.ndarray | None] = []
     for i, nid in enumerate(ids):
         g = nodes.get(int(nid))
         if g is None:
-            raise _fail(where, f"GRID {nid} has eigenvector components but no position in the "
+            raise fail(where, f"GRID {nid} has eigenvector components but no position in the "
                                "OP2's geometry (GEOM1)")
         by = f"GRID {nid}"
         o, R = _frame(op2, int(g.cp or 0), by, where, u)
         xyz[i] = o + R.T @ (np.asarray(g.xyz, dtype=float) * u.length)
         cd = int(g.cd or 0)
         if cd < 0:
-            raise _fail(where, f"{by}: CD = {cd} (a fluid grid): not read")
+            raise fail(where, f"{by}: CD = {cd} (a fluid grid): not read")
         axes = _frame(op2, cd, by, where, u)[1] if cd else None
         turned.append(None if axes is None or np.allclose(axes, np.eye(3), rtol=0.0,
                                                           atol=1e-12) else axes)
@@ -180,11 +177,11 @@ def _generalised_masses(op2, n: int, modes: np.ndarray, mass_normalised: bool,
         by_mode = {int(m): float(g) for m, g in zip(t.mode, t.generalized_mass)}
         missing = [int(m) for m in modes if int(m) not in by_mode]
         if missing:
-            raise _fail(where, f"mode {missing[0]} has an eigenvector but no line in the "
+            raise fail(where, f"mode {missing[0]} has an eigenvector but no line in the "
                                "eigenvalue table (LAMA)")
         return np.array([by_mode[int(m)] for m in modes])
     if not mass_normalised:
-        raise _fail(where, "holds no eigenvalue table (LAMA): the generalised masses are not "
+        raise fail(where, "holds no eigenvalue table (LAMA): the generalised masses are not "
                            "known; if the eigenvectors are mass-normalised (EIGRL NORM=MASS, "
                            "NASTRAN's default) say so (--mass-normalised; Python: "
                            "mass_normalised=True)")
@@ -195,7 +192,7 @@ def _grids_arg(name: str, grids, where: str) -> tuple[int, ...]:
     grids = tuple(grids or ())
     for g in grids:
         if isinstance(g, (bool, np.bool_)) or not isinstance(g, (int, np.integer)) or g <= 0:
-            raise _fail(where, f"{name} grid {g!r} is invalid: grid ids are integers > 0")
+            raise fail(where, f"{name} grid {g!r} is invalid: grid ids are integers > 0")
     return tuple(int(g) for g in grids)
 
 
@@ -212,7 +209,7 @@ def _check_span(xyz: np.ndarray, wing_idx: list[int], wing_ids: tuple[int, ...],
     text = (f"wing GRID {wing_ids[0]} to GRID {wing_ids[-1]} span {span:.6g} m (read in "
             f"{u.name} units: {u.description}), the base model's wing {L:.6g} m")
     if not 0.5 <= span / L <= 2.0:
-        raise _fail(where, f"{text}: are the OP2's units {u.name}, and not mixed?")
+        raise fail(where, f"{text}: are the OP2's units {u.name}, and not mixed?")
     if abs(span / L - 1.0) > 0.01:
         notes.append(f"{where}: {text}: the strips are the base's, splined to the grids")
 
@@ -243,7 +240,7 @@ def _check_sweep(xyz: np.ndarray, wing_idx: list[int], wing_ids: tuple[int, ...]
 def _in_modes(ids: np.ndarray, grid: int, what: str, where: str) -> int:
     hit = np.flatnonzero(ids == grid)
     if not hit.size:
-        raise _fail(where, f"{what} GRID {grid} is not in the modes (the eigenvectors' grids: "
+        raise fail(where, f"{what} GRID {grid} is not in the modes (the eigenvectors' grids: "
                            f"{id_list(ids)})")
     return int(hit[0])
 
@@ -257,7 +254,7 @@ def _kept_modes(freq: np.ndarray, modes: np.ndarray, free: bool, rigid_body_hz: 
         low = np.flatnonzero(freq < RIGID_BODY_HZ)
         if low.size:
             i = int(low[0])
-            raise _fail(where, f"mode {int(modes[i])} ({freq[i]:.3g} Hz) is a rigid-body mode: "
+            raise fail(where, f"mode {int(modes[i])} ({freq[i]:.3g} Hz) is a rigid-body mode: "
                                "a clamped structure has none; if the structure is free (a "
                                "whole or half aircraft) say so (--free; Python: free=True): its "
                                f"rigid-body modes, below {RIGID_BODY_HZ_FREE:g} Hz "
@@ -265,7 +262,7 @@ def _kept_modes(freq: np.ndarray, modes: np.ndarray, free: bool, rigid_body_hz: 
         return np.arange(freq.size)
     rigid = np.flatnonzero(freq < rigid_body_hz)
     if rigid.size > MAX_RIGID_BODY_MODES:
-        raise _fail(where, f"{rigid.size} modes below {rigid_body_hz:g} Hz (modes "
+        raise fail(where, f"{rigid.size} modes below {rigid_body_hz:g} Hz (modes "
                            f"{id_list(modes[rigid])}): a free body has at most "
                            f"{MAX_RIGID_BODY_MODES} rigid-body modes; the others are a "
                            "mechanism of the FE model (or lower --rigid-below)")
@@ -289,12 +286,12 @@ def _damping(damping, base: PropellerWing, omega: np.ndarray, where: str) -> np.
             isinstance(x, (int, float, np.floating, np.integer))
             and not isinstance(x, (bool, np.bool_)) for x in damping) else None
         if z is None or z.shape != omega.shape or not np.all((z >= 0) & (z < 1)):
-            raise _fail(where, f"damping has {len(damping)} values: give one modal damping "
+            raise fail(where, f"damping has {len(damping)} values: give one modal damping "
                                f"ratio in [0, 1) per mode kept ({omega.size})")
         return z
     if (isinstance(damping, (bool, np.bool_)) or not isinstance(damping, (int, float))
             or not 0.0 <= float(damping) < 1.0):
-        raise _fail(where, f"damping = {v.short_repr(damping)} is invalid: must be 'rayleigh' "
+        raise fail(where, f"damping = {v.short_repr(damping)} is invalid: must be 'rayleigh' "
                            "(the base wing's) or a modal damping ratio in [0, 1)")
     return np.full(omega.size, float(damping))
 
@@ -376,22 +373,22 @@ def read_op2(path: str | Path, *, units: str | None = None, base=None,
     where = fileio.shown(path) if isinstance(path, (str, Path)) else repr(path)
     u = unit_system(units, where)
     if not isinstance(base, PropellerWing):
-        raise _fail(where, "an OP2 holds the modes only: give the base model (a wing with "
+        raise fail(where, "an OP2 holds the modes only: give the base model (a wing with "
                            "propellers, type \"propeller-wing\"; --base MODEL.toml) for the "
                            "strips, the flight condition and the propellers"
                     if base is None else f"the base model is a {type(base).__name__}: it "
                     "must be a wing with propellers (type \"propeller-wing\")")
     if mount not in MOUNT_CHOICES:
-        raise _fail(where, f"mount = {v.short_repr(mount)} is invalid: must be one of "
+        raise fail(where, f"mount = {v.short_repr(mount)} is invalid: must be one of "
                            f"{', '.join(MOUNT_CHOICES)}")
     hubs = nastran_read.hub_ids(hubs, base, where)
     wing_ids = _grids_arg("wing", wing_grids, where)
     if len(wing_ids) < 2:
-        raise _fail(where, "give the wing's reference-axis grids, root to tip, two or more "
+        raise fail(where, "give the wing's reference-axis grids, root to tip, two or more "
                            "(--wing-grids; Python: wing_grids=...)")
     if len(set(wing_ids)) != len(wing_ids):
         twice = next(g for g in wing_ids if wing_ids.count(g) > 1)
-        raise _fail(where, f"wing GRID {twice} is given twice")
+        raise fail(where, f"wing GRID {twice} is given twice")
     if n_modes is not None:
         n_modes = v.integer_at_least("n_modes", n_modes, 1)
     if free:
@@ -406,7 +403,7 @@ def read_op2(path: str | Path, *, units: str | None = None, base=None,
     all_ids = np.asarray(table.node_gridtype)[:, 0].astype(np.int64)
     data = np.asarray(table.data, dtype=float)
     if data.ndim != 3 or data.shape[1:] != (all_ids.size, 6) or data.shape[0] == 0:
-        raise _fail(where, f"its eigenvector table has shape {data.shape}, expected (modes, "
+        raise fail(where, f"its eigenvector table has shape {data.shape}, expected (modes, "
                            f"{all_ids.size} points, 6)")
     keep_points = kinds == _GRID_TYPE
     if not keep_points.all():
@@ -416,10 +413,10 @@ def read_op2(path: str | Path, *, units: str | None = None, base=None,
     modes = np.asarray(getattr(table, "modes", np.arange(1, data.shape[0] + 1)), dtype=int)
     eigns = np.asarray(getattr(table, "eigns", []), dtype=float)
     if eigns.size != data.shape[0] or not np.all(np.isfinite(eigns)):
-        raise _fail(where, "its eigenvectors lack their eigenvalues (one per mode)")
+        raise fail(where, "its eigenvectors lack their eigenvalues (one per mode)")
     if not np.all(np.isfinite(data)):
         i = np.argwhere(~np.isfinite(data))[0]
-        raise _fail(where, f"mode {int(modes[i[0]])}: GRID {int(ids[i[1]])} component "
+        raise fail(where, f"mode {int(modes[i[0]])}: GRID {int(ids[i[1]])} component "
                            f"{int(i[2]) + 1} is not finite")
     hub_idx = [_in_modes(ids, h, "hub", where) for h in hubs]
     wing_idx = [_in_modes(ids, g, "wing", where) for g in wing_ids]
@@ -435,17 +432,17 @@ def read_op2(path: str | Path, *, units: str | None = None, base=None,
     kept = _kept_modes(freq, modes, free, rigid_body_hz, where, here)
     if n_modes is not None:
         if n_modes > kept.size:
-            raise _fail(where, f"n_modes = {n_modes} is invalid: the OP2 has {kept.size} "
+            raise fail(where, f"n_modes = {n_modes} is invalid: the OP2 has {kept.size} "
                                f"{'elastic ' if free else ''}modes")
         kept = kept[:n_modes]
     if kept.size > MAX_MODES:
-        raise _fail(where, f"{kept.size} modes is too many: at most {MAX_MODES} (keep the "
+        raise fail(where, f"{kept.size} modes is too many: at most {MAX_MODES} (keep the "
                            "lowest: --modes)")
     if kept.size == 0:
-        raise _fail(where, "no elastic mode left")
+        raise fail(where, "no elastic mode left")
     bad = [int(modes[k]) for k in kept if not gm[k] > 0]
     if bad:
-        raise _fail(where, f"mode {bad[0]}: generalised mass {gm[list(modes).index(bad[0])]:g} "
+        raise fail(where, f"mode {bad[0]}: generalised mass {gm[list(modes).index(bad[0])]:g} "
                            "is invalid: must be > 0")
     shapes = data[kept].copy()
     shapes[:, :, :3] *= u.length
@@ -453,7 +450,7 @@ def read_op2(path: str | Path, *, units: str | None = None, base=None,
     structure_src = f"{where} (subcase {table.isubcase})"
     for j, h in enumerate(hub_idx):
         if not np.any(shapes[:, h, :]):
-            raise _fail(where, f"hub GRID {hubs[j]} does not move in any mode kept: the "
+            raise fail(where, f"hub GRID {hubs[j]} does not move in any mode kept: the "
                                "modes do not include the hub grid")
     try:
         s = ModalStructure(grid_ids=ids, xyz=xyz, frequencies_hz=f,
