@@ -92,10 +92,23 @@ class ModalInstallation:
         if isinstance(self.grid, bool) or not isinstance(self.grid, (int, np.integer)):
             raise v.InputError(f"grid = {v.short_repr(self.grid)} is invalid: must be a grid "
                                "id (an integer)")
-        if self.mount not in MOUNTS:
-            raise v.InputError(f"mount = {self.mount!r} is invalid: must be one of "
+        if not (isinstance(self.mount, str) and self.mount in MOUNTS):
+            raise v.InputError(f"mount = {v.short_repr(self.mount)} is invalid: must be one of "
                                + ", ".join(map(repr, MOUNTS)))
         v.boolean("aero", self.aero)
+
+
+def _grid_ids(name: str, grids) -> tuple[int, ...]:
+    """``grids`` as a tuple of grid ids; an InputError naming ``name`` unless it is a sequence
+    (or 1-D integer array) of integers."""
+    arr = np.asarray(grids, dtype=object) if isinstance(grids, (tuple, list, np.ndarray)) \
+        else None
+    if arr is None or arr.ndim != 1 or not all(
+            isinstance(g, (int, np.integer)) and not isinstance(g, (bool, np.bool_))
+            for g in arr):
+        raise v.InputError(f"{name} = {v.short_repr(grids)} is invalid: must be a sequence of "
+                           "grid ids (integers)")
+    return tuple(int(g) for g in arr)
 
 
 def check_hub_grids(structure: ModalStructure, grids, name: str = "propellers") -> None:
@@ -182,8 +195,19 @@ class ModalPropellerWing(StateSpaceModel):
         if not isinstance(self.flight, FlightCondition):
             raise v.InputError(f"flight = {v.short_repr(self.flight)} is invalid: must be a "
                                "FlightCondition")
-        object.__setattr__(self, "wing_grids", tuple(int(g) for g in self.wing_grids))
-        object.__setattr__(self, "propellers", tuple(self.propellers))
+        if not isinstance(self.structure, ModalStructure):
+            raise v.InputError(f"structure = {v.short_repr(self.structure)} is invalid: must be "
+                               "a ModalStructure (the modes: load_modes or read_op2)")
+        if not isinstance(self.planform, StripPlanform):
+            raise v.InputError(f"planform = {v.short_repr(self.planform)} is invalid: must be "
+                               "a StripPlanform (the aerodynamic strips)")
+        object.__setattr__(self, "wing_grids", _grid_ids("wing_grids", self.wing_grids))
+        props = self.propellers
+        if isinstance(props, (str, bytes)) or not isinstance(props, (tuple, list)) \
+                or not all(isinstance(p, ModalInstallation) for p in props):
+            raise v.InputError(f"propellers = {v.short_repr(props)} is invalid: must be a "
+                               "sequence of ModalInstallation (one per propeller)")
+        object.__setattr__(self, "propellers", tuple(props))
         limits.check_propellers(len(self.propellers))
         s = self.structure
         check_hub_grids(s, [inst.grid for inst in self.propellers])

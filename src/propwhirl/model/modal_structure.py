@@ -57,11 +57,16 @@ def _array(source: str, key: str, value, shape: tuple, dtype=float) -> np.ndarra
     """`value` as a read-only copy of `shape` (-1: any length) and dtype, finite; else a
     one-line error naming `source` and `key`."""
     try:
-        arr = None if isinstance(value, (str, bytes)) else np.array(value, dtype=dtype, copy=True)
+        raw = None if isinstance(value, (str, bytes)) else np.asarray(value)
+    except (TypeError, ValueError, OverflowError):
+        raw = None
+    if raw is not None and raw.dtype.kind in "bcmMUSV":   # never cast to a number silently
+        raise v.InputError(f"{source}: {key} has dtype {raw.dtype}, must be real numbers")
+    try:
+        arr = None if raw is None else np.array(value, dtype=dtype, copy=True)
     except (TypeError, ValueError, OverflowError):
         arr = None
     if arr is not None and np.dtype(dtype).kind == "i":
-        raw = np.asarray(value)
         if raw.dtype.kind not in "iu" or not np.array_equal(raw, arr):
             raise v.InputError(f"{source}: {key} has dtype {raw.dtype}, must be integers")
     if arr is None or arr.ndim != len(shape) or any(
@@ -392,8 +397,9 @@ class StripPlanform:
             if np.any(x <= 0):
                 i = int(np.argmax(x <= 0))
                 raise v.InputError(f"{src}: {k}[{i}] = {x[i]:.6g} is invalid: must be > 0")
-        if self.aero_model not in LAG_STATES:
-            raise v.InputError(f"{src}: aero_model = {self.aero_model!r} is invalid: must be "
+        if not (isinstance(self.aero_model, str) and self.aero_model in LAG_STATES):
+            raise v.InputError(f"{src}: aero_model = {v.short_repr(self.aero_model)} is "
+                               "invalid: must be "
                                f"one of {', '.join(map(repr, LAG_STATES))}")
 
     @classmethod

@@ -170,11 +170,11 @@ class Case:
         if not isinstance(self.reverse_rotation, bool):
             raise v.fail(f"case {name!r}: reverse_rotation", self.reverse_rotation, "invalid: "
                          f"must be True or False, got {type(self.reverse_rotation).__name__}")
-        if self.operation not in ("", *OPERATIONS):
+        if not (isinstance(self.operation, str) and self.operation in ("", *OPERATIONS)):
             raise v.InputError(f"case {name!r}: operation = {v.short_repr(self.operation)} is "
                                f"invalid: must be one of {', '.join(OPERATIONS)} (feathered or "
                                "stopped rotors: state)")
-        if self.state not in ("", *STATES):
+        if not (isinstance(self.state, str) and self.state in ("", *STATES)):
             raise v.InputError(f"case {name!r}: state = {v.short_repr(self.state)} is invalid: "
                                f"must be one of {', '.join(STATES)}")
         if self.failure is not None and not isinstance(self.failure, bool):

@@ -333,7 +333,8 @@ class Wing:
     def __post_init__(self) -> None:
         check_dlm_mach(self.dlm_mach)  # before check_fields: its own one-line message
         check_mach_setting("strip_mach", self.strip_mach)
-        if self.compressibility not in ("none", "prandtl-glauert"):
+        if not (isinstance(self.compressibility, str)
+                and self.compressibility in ("none", "prandtl-glauert")):
             raise v.InputError(f"compressibility = {self.compressibility!r:.40} is invalid: must "
                                "be \"none\" (incompressible strips) or \"prandtl-glauert\" "
                                "(lift-curve slope / sqrt(1 - M^2))")
