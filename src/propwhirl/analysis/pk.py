@@ -43,7 +43,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
+from scipy.optimize import brentq, linear_sum_assignment
 
 from propwhirl import validate as v
 from propwhirl.analysis.events import Instability
@@ -207,14 +207,22 @@ def pk_mode(model, V: float, p0: complex, *, system=None, tables: DlmTables | No
 
 def _start_roots(model, V: float, n_modes: int | None) -> tuple[np.ndarray, tuple[str, ...]]:
     """The finite-state eigenvalues at V [m/s] of the model's oscillatory modes (one per
-    in-vacuo mode, the lowest `n_modes`, nearest its in-vacuo root), and the modes' labels."""
+    in-vacuo mode, the lowest `n_modes`), and the modes' labels.
+
+    Each in-vacuo root gets its own finite-state root: the one-to-one assignment of least
+    total relative distance |p − ω|/|ω| (Hungarian method), not each root's nearest — two
+    close modes (the wingtip wing's 16.68 and 18.06 Hz) would otherwise both start from the
+    root at 17.96 Hz and the other mode, the one that flutters, would never be followed."""
     model = strip_twin(model)           # a doublet-lattice wing starts from its strips
     vac = np.linalg.eigvals(model.without_aerodynamics().state_matrix(np.array([V]))[0])
     vac = vac[vac.imag > 0]
     vac = vac[np.argsort(vac.imag)][:n_modes]
     fs = np.linalg.eigvals(model.state_matrix(np.array([V]))[0])
     fs = fs[fs.imag > 0]
-    start = np.array([fs[np.argmin(np.abs(fs - w))] for w in vac])
+    cost = np.abs(fs[None, :] - vac[:, None]) / np.abs(vac)[:, None]
+    rows, cols = linear_sum_assignment(cost)       # rows: every in-vacuo mode (fewer than fs)
+    vac = vac[rows]
+    start = fs[cols]
     labels = tuple(f"mode {j + 1} ({w.imag / (2 * np.pi):.4g} Hz in vacuo)"
                    for j, w in enumerate(vac))
     return start, labels
