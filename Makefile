@@ -108,14 +108,15 @@ bench-map: $(ALL)
 # Python >= 3.12, the main environment is 3.11, so an environment of its own with a 3.12
 # interpreter (PYTHON312=...; default pyenv's newest 3.12, else python3.12 on the PATH), propwhirl
 # and the extras the benchmark needs.  Never part of make test.  BENCH_N95_ARGS e.g. "--quick"
-# or "--only goland4x7,goland8x14".
+# or "--only goland4x7,goland8x14".  There .venv-bench312/bin/python -m pytest
+# tests/benchmarks/test_nastran95_decks.py also runs its NASTRAN-95 check (skipped elsewhere).
 BENCH312 := .venv-bench312
 PYTHON312 ?= $(or $(lastword $(sort $(wildcard $(HOME)/.pyenv/versions/3.12*/bin/python))),$(shell command -v python3.12))
 $(BENCH312)/.stamp-bench: pyproject.toml
 	@test -n "$(PYTHON312)" || { echo "make bench-nastran95 needs a Python >= 3.12 interpreter \
 	(pyenv install 3.12, or PYTHON312=/path/to/python3.12): nastran95 requires it"; exit 1; }
 	test -x $(BENCH312)/bin/python || $(PYTHON312) -m venv $(BENCH312)
-	$(BENCH312)/bin/python -m pip install --quiet --disable-pip-version-check -e ".[dlm,tables,toml,nastran95]"
+	$(BENCH312)/bin/python -m pip install --quiet --disable-pip-version-check -e ".[dlm,tables,toml,test,nastran95]"
 	touch $@
 
 bench-nastran95: $(BENCH312)/.stamp-bench

@@ -9,9 +9,10 @@ What the deck holds:
 
 * **the structure as its modes** (modal coordinates): the lowest ``n_modes`` in-vacuo modes of
   propwhirl's own structural matrices (the wing's M and K on its free DOFs, the same the p-k
-  uses), mass-normalised, each a scalar point (``SPOINT``) with a unit mass (``CMASS2``) and
-  the stiffness ω_i² (``CELAS2``).  NASTRAN's eigenvalue analysis (``EIGR``, Givens) of these
-  finds the same frequencies and unit mode shapes: NASTRAN-95 has no beam element with a
+  uses), mass-normalised, each a scalar point (``SPOINT``) with the mass 1/s_i² (``CMASS2``)
+  and the stiffness ω_i²/s_i² (``CELAS2``), s_i the mode's largest spline coefficient (so that
+  the ``SPLINE3`` coefficients, small fields only, keep six digits).  NASTRAN's eigenvalue
+  analysis (``EIGR``, Givens) of these finds the same frequencies and mode shapes: NASTRAN-95 has no beam element with a
   mass offset (no CBEAM; ``propwhirl export``'s SOL 103 deck uses one), and its DMIG
   matrices (K2PP, M2PP) enter AERO 10 only after its modes are found, so modal coordinates are
   the one way to give it propwhirl's structure exactly.
