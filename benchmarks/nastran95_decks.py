@@ -204,14 +204,22 @@ def k_nodes(model, speeds, modes: Modes, extra: int = 1) -> np.ndarray:
 
 
 def deck(model, speeds, *, mach: float, n_modes: int = 6, panels: tuple[int, int] | None = None,
-         strips: int | None = None, ks=None, title: str = "PROPWHIRL MODEL") -> str:
+         strips: int | str | None = None, ks=None, title: str = "PROPWHIRL MODEL") -> str:
     """The NASTRAN-95 deck (AERO 10, PK) of ``model``'s wing alone: ``panels`` = (chordwise,
     spanwise) doublet-lattice boxes (default the wing's own counts), or ``strips`` equal strips
-    of Theodorsen strip theory; one ``mach``; velocities ``speeds`` [m/s]; the AICs at ``ks``
+    of Theodorsen strip theory (``"nodes"``: one strip per beam node, edges half-way between
+    the nodes, as propwhirl's strips); one ``mach``; velocities ``speeds`` [m/s]; the AICs at ``ks``
     (default :func:`k_nodes`); ``n_modes`` in-vacuo modes."""
     wing = model.wing
     modes = structural_modes(model, n_modes)
     speeds = np.asarray(speeds, float)
+    if isinstance(strips, str) and strips == "nodes":
+        # one strip per beam node, as propwhirl's strips (its loads lumped at the nodes): the
+        # division points half-way between the nodes
+        y = wing.node_y / wing.semi_span
+        edges = np.concatenate([[0.0], 0.5 * (y[1:] + y[:-1]), [1.0]])
+    elif strips is not None:
+        edges = np.linspace(0.0, 1.0, int(strips) + 1)
     ks = k_nodes(model, speeds, modes) if ks is None else np.asarray(ks, float)
     node = wing.node_properties()
     b_root = float(node["b"][0])
@@ -224,10 +232,10 @@ def deck(model, speeds, *, mach: float, n_modes: int = 6, panels: tuple[int, int
         mesh = panel_mesh(wing, *(panels or (None, None)))
         points = mesh.points(0.5)                       # the box centres (NASTRAN's APD1)
     else:
-        ys = (np.arange(strips) + 0.5) * wing.semi_span / strips
+        ys = 0.5 * (edges[1:] + edges[:-1]) * wing.semi_span
         bs = np.interp(ys, node["y"], node["b"])
         aa = np.interp(ys, node["y"], node["a"])        # quarter chords (NASTRAN's APD4)
-        points = np.stack([-(1.0 + aa) * bs + 0.5 * bs, ys, np.zeros(strips)], axis=1)
+        points = np.stack([-(1.0 + aa) * bs + 0.5 * bs, ys, np.zeros(ys.size)], axis=1)
     t3, r2 = _spline_rows(model, modes, points)
     scale = np.maximum(np.abs(t3).max(axis=0), np.abs(r2).max(axis=0))
     for i, (w, s) in enumerate(zip(modes.omega, scale), 1):
@@ -248,8 +256,13 @@ def deck(model, speeds, *, mach: float, n_modes: int = 6, panels: tuple[int, int
         c.add("CAERO1", CAERO_ID, 1, 0, mesh.n_span, mesh.n_chord, None, None, 1, *corners)
         c.add("PAERO1", 1)
     else:
-        c.add("CAERO4", CAERO_ID, 1, 0, int(strips), None, None, None, None, *corners)
-        c.add("PAERO4", 1, 0, 0, 0, 0, *([0.0, 0.0, 0.0] * int(strips)), small=True)
+        n_strips = edges.size - 1
+        if isinstance(strips, str):
+            c.add("CAERO4", CAERO_ID, 1, 0, None, 50, None, None, None, *corners)
+            c.add("AEFACT", 50, *[float(e) for e in edges], small=True)
+        else:
+            c.add("CAERO4", CAERO_ID, 1, 0, n_strips, None, None, None, None, *corners)
+        c.add("PAERO4", 1, 0, 0, 0, 0, *([0.0, 0.0, 0.0] * n_strips), small=True)
     eid = 100000
     for p in range(points.shape[0]):
         for comp, row in ((3, t3[p]), (5, r2[p])):
