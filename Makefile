@@ -13,6 +13,9 @@
 #                      table of docs/performance.md
 #   make bench-design  design-size models (reduced vs dense, size scaling, memory); rewrites its
 #                  table of docs/performance.md (a few minutes)
+#   make bench-nastran95  propwhirl and NASTRAN-95 side by side on issue 37's cases (CPU, critical
+#                  speeds) in .venv-bench312: nastran95 needs Python >= 3.12 (pyenv's); rewrites
+#                  its table of docs/performance.md
 #   make docs      the documentation site in site/ (mkdocs, strict: a warning fails; the test suite builds it too)
 #   make report    the example certification report in examples/certification/wingtip/ (HTML,
 #                  its numbers, a screenshot, the PDF's pages as PNG); CAMPAIGN=... REPORT_DIR=...
@@ -25,7 +28,8 @@ BIN    := $(VENV)/bin
 export OPENBLAS_NUM_THREADS ?= 1
 export OMP_NUM_THREADS ?= 1
 
-.PHONY: run test test-fast test-nastran generate bench bench-design bench-map docs report browser clean
+.PHONY: run test test-fast test-nastran generate bench bench-design bench-map bench-nastran95 docs report \
+	browser clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -100,6 +104,25 @@ bench-design: $(ALL)
 bench-map: $(ALL)
 	$(BIN)/python benchmarks/map_speed.py --markdown $(BENCH_MD) $(BENCH_MAP_ARGS)
 
+# NASTRAN-95 side by side (benchmarks/nastran95_side_by_side.py): the nastran95 package needs
+# Python >= 3.12, the main environment is 3.11, so an environment of its own with a 3.12
+# interpreter (PYTHON312=...; default pyenv's newest 3.12, else python3.12 on the PATH), propwhirl
+# and the extras the benchmark needs.  Never part of make test.  BENCH_N95_ARGS e.g. "--quick"
+# or "--only goland4x7,goland8x14".  There .venv-bench312/bin/python -m pytest
+# tests/benchmarks/test_nastran95_decks.py also runs its NASTRAN-95 check (skipped elsewhere).
+BENCH312 := .venv-bench312
+PYTHON312 ?= $(or $(lastword $(sort $(wildcard $(HOME)/.pyenv/versions/3.12*/bin/python))),$(shell command -v python3.12))
+$(BENCH312)/.stamp-bench: pyproject.toml
+	@test -n "$(PYTHON312)" || { echo "make bench-nastran95 needs a Python >= 3.12 interpreter \
+	(pyenv install 3.12, or PYTHON312=/path/to/python3.12): nastran95 requires it"; exit 1; }
+	test -x $(BENCH312)/bin/python || $(PYTHON312) -m venv $(BENCH312)
+	$(BENCH312)/bin/python -m pip install --quiet --disable-pip-version-check -e ".[dlm,tables,toml,test,nastran95]"
+	touch $@
+
+bench-nastran95: $(BENCH312)/.stamp-bench
+	OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 $(BENCH312)/bin/python \
+	  benchmarks/nastran95_side_by_side.py --markdown $(BENCH_MD) $(BENCH_N95_ARGS)
+
 # Material for MkDocs prints an end-of-life banner on every build; NO_MKDOCS_2_WARNING silences it.
 docs: $(ALL)
 	NO_MKDOCS_2_WARNING=1 $(BIN)/mkdocs build --strict -d site
@@ -114,4 +137,4 @@ run: $(VENV)/.stamp-data+dlm+plots+tables+toml
 	$(BIN)/propwhirl run --out out
 
 clean:
-	rm -rf $(VENV) $(NASTRAN_VENV) out build site src/*.egg-info .pytest_cache .hypothesis
+	rm -rf $(VENV) $(NASTRAN_VENV) $(BENCH312) out build site src/*.egg-info .pytest_cache .hypothesis
