@@ -5,8 +5,11 @@ generalised forces are Q_aero = ½ ρ V² Q(k, M) q̂, with k = ω b_ref / V the
 on the reference semichord (the root semichord, NASTRAN's k = ω c_ref / 2V, as every p-k result
 of propwhirl reports it).  Q is built from the panels and spline of
 :mod:`propwhirl.model.aerodynamics.dlm_mesh` and PanelAero's AIC matrix (the ``dlm`` extra,
-``panelaero.DLM.calc_Qjjs``: the steady vortex-lattice part plus the oscillatory doublet-lattice
-increment, Rodden's parabolic kernel approximation, the root a plane of symmetry):
+``panelaero.DLM.calc_Qjj``: the steady vortex-lattice part plus the oscillatory doublet-lattice
+increment, Rodden's parabolic kernel approximation, the root a plane of symmetry) — on a
+planar mesh its equations evaluated on the half-wing's rows only, the parts every k shares
+once per Mach column (:class:`Kernel`, :mod:`propwhirl.model.aerodynamics.dlm_kernel`:
+PanelAero's AIC to round-off, ~15x faster):
 
     w_j = S_j q̂ + i k̄ Z_j q̂            normalised normal wash at the collocation points (3/4)
     c_p = Q_jj(k̄, M) w                    pressure coefficients (lift positive up)
