@@ -374,7 +374,8 @@ class DlmAerodynamics:
                                             [self.k_node(ik) / self.b_ref for ik in iks],
                                             self.planar))
                        for m, iks in columns.items()]
-            for mach, iks, fut in futures:
+            for i, (mach, iks, fut) in enumerate(futures):
+                futures[i] = None             # its AICs released once in the table (n² each)
                 for ik, Qjj in zip(iks, fut.result()):
                     Q = self._computed(mach, self.k_node(ik), Qjj, None)
                     self.evaluations += 1
