@@ -142,7 +142,8 @@ def side_by_side(pairs: list[tuple[dict, dict]], label: str, load: tuple[float, 
             return "none" if c is None else f"{c[2]:.4f}"
         lines.append(f"| {CASES[a['case']]} | {a['method']} | {b['process_cpu_s']:.1f} | "
                      f"{a['process_cpu_s']:.1f} | {b['process_cpu_s'] / a['process_cpu_s']:.1f}x | "
-                     f"{b['peak_rss_mb']:.0f} | {a['peak_rss_mb']:.0f} | {b['aics']} / {a['aics']} | "
+                     f"{b['peak_rss_mb']:.0f} | {a['peak_rss_mb']:.0f} | "
+                     f"{b['aics']} / {a['aics']} | "
                      f"{crit(b)} → {crit(a)} |")
     moved = [abs(x[2] - y[2]) for b, a in pairs for x, y in zip(b.get("onsets", []),
                                                               a.get("onsets", []))]

@@ -107,19 +107,19 @@ def fold(A: np.ndarray, n: int) -> np.ndarray:
 class Kernel:
     """What the symmetric AICs of one Mach column share, computed once: the folded steady
     vortex-lattice part (PanelAero's, the right half-wing's rows:
-    :func:`~propwhirl.model.aerodynamics.dlm_kernel.steady_rows`) and, on a planar mesh, the k-independent parts of the doublet-lattice
-    kernel on the right half-wing's rows
+    :func:`~propwhirl.model.aerodynamics.dlm_kernel.steady_rows`) and, on a planar mesh, the
+    k-independent parts of the doublet-lattice kernel on the right half-wing's rows
     (:class:`~propwhirl.model.aerodynamics.dlm_kernel.PlanarKernel`); on a non-planar mesh
     PanelAero's ``calc_Ajj`` of the whole mirrored wing at each k.  :meth:`aic` is the symmetric
     AIC Q_RR + Q_RL (n, n) complex at k̄ = ω/U [1/m]."""
 
     def __init__(self, grid: dict, n: int, mach: float, planar: bool):
-        from propwhirl.model.aerodynamics.dlm_kernel import PlanarKernel
         self.grid, self.n, self.mach = grid, n, float(mach)
         with np.errstate(all="ignore"):        # PanelAero's VLM, the right half-wing's rows
             self.steady = fold(dlm_kernel.steady_rows(grid, self.mach, slice(n, None)), n)
         with np.errstate(all="ignore"):
-            self.planar = PlanarKernel(grid, self.mach, slice(n, None)) if planar else None
+            self.planar = (dlm_kernel.PlanarKernel(grid, self.mach, slice(n, None)) if planar
+                           else None)
 
     def aic(self, kbar: float) -> np.ndarray:
         kbar = float(kbar)
