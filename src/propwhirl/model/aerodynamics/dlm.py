@@ -139,9 +139,12 @@ def symmetric_aics(grid: dict, n: int, mach: float, kbars, planar: bool) -> list
     """The symmetric AICs Q_RR + Q_RL (n, n) complex of the mirrored ``grid`` (both
     half-wings, the right one last, ``n`` panels each) at ``mach`` and each k̄ = ω/U of
     ``kbars`` [1/m] (:class:`Kernel`: one Mach column's shared parts once): a function of its
-    arguments alone, so that worker processes compute it (:meth:`DlmAerodynamics.fill`)."""
-    kernel = Kernel(grid, n, mach, planar)
-    return [kernel.aic(kb) for kb in kbars]
+    arguments alone, so that worker processes compute it (:meth:`DlmAerodynamics.fill`), with
+    one BLAS thread each (two workers on two cores: no oversubscription)."""
+    from threadpoolctl import threadpool_limits   # lazy: only in a worker process
+    with threadpool_limits(limits=1, user_api="blas"):
+        kernel = Kernel(grid, n, mach, planar)
+        return [kernel.aic(kb) for kb in kbars]
 
 
 def symmetric_aic(grid: dict, n: int, mach: float, kbar: float,
