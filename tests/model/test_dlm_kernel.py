@@ -145,3 +145,29 @@ def test_the_answer_moves_by_round_off_only():
     for a, b in zip(new, old):
         assert a.V == pytest.approx(b.V, abs=1e-6) and a.frequency == pytest.approx(b.frequency,
                                                                                    rel=1e-9)
+
+
+def swept(grid, tan_sweep=0.6):
+    """``grid`` with every point moved aft by ``tan_sweep`` |y| (a swept planar wing, both
+    halves)."""
+    g = copy.deepcopy(grid)
+    for key in ("offset_l", "offset_k", "offset_j", "offset_P1", "offset_P3"):
+        g[key][:, 0] = g[key][:, 0] + tan_sweep * np.abs(g[key][:, 1])
+    return g
+
+
+def test_a_swept_planar_mesh_is_panelaeros_to_round_off():
+    """The sweep enters through tan Λ of each doublet line (x − e tan Λ, R, u₁): a planar
+    wing swept back 31° (e.g. a planform of another shape than the beam's) still within
+    round-off of PanelAero's whole kernel folded."""
+    from panelaero import DLM
+    aero = dlm.DlmAerodynamics(wing(dlm_chordwise_panels=4, dlm_spanwise_panels=6))
+    n = aero.mesh.n
+    g = swept(aero.grid)
+    assert dlm_kernel.is_planar(g, slice(n, None))
+    for mach, kbar in ((0.0, 0.0), (0.4, 0.3), (0.8, 2.0)):
+        with np.errstate(all="ignore"):
+            Q = DLM.calc_Qjj(copy.deepcopy(g), mach, kbar)
+        ref = Q[n:, n:] + Q[n:, :n]
+        got = dlm.Kernel(g, n, mach, planar=True).aic(kbar)
+        assert np.abs(got - ref).max() <= ROUND_OFF * np.abs(ref).max()
