@@ -130,18 +130,22 @@ def side_by_side(pairs: list[tuple[dict, dict]], label: str, load: tuple[float, 
     lines = [f"Measured by `benchmarks/dlm_speed.py --before` (each case a fresh interpreter, "
              f"first run, no AIC cache, one BLAS thread; before and after alternately in one run; "
              f"{os.cpu_count()} cores shared with other sessions, load average {load[0]:.1f} "
-             f"before, {load[1]:.1f} after). Before: {label}. CPU: the whole process plus its "
-             "AIC worker processes (`resource.getrusage`, self + children); peak RSS: the "
-             "largest of the process and its workers.", "",
-             "| case | method | CPU before [s] | CPU after [s] | ratio | peak RSS before [MB] "
+             f"before, {load[1]:.1f} after). Before: {label}. CPU: the whole process (start-up "
+             "included) plus its AIC worker processes (`resource.getrusage`, self + children); "
+             "`analyse`: `time.process_time()` around the call plus the workers' CPU; peak "
+             "RSS: the largest of the process and its workers.", "",
+             "| case | method | CPU before [s] | CPU after [s] | ratio | `analyse` before [s] "
+             "| `analyse` after [s] | peak RSS before [MB] "
              "| after [MB] | AICs before / after | critical before → after [m/s] |",
-             "|---|---|---:|---:|---:|---:|---:|---|---|"]
+             "|---|---|---:|---:|---:|---:|---:|---:|---:|---|---|"]
     for b, a in pairs:
         def crit(r):
             c = r["critical"]
             return "none" if c is None else f"{c[2]:.4f}"
         lines.append(f"| {CASES[a['case']]} | {a['method']} | {b['process_cpu_s']:.1f} | "
                      f"{a['process_cpu_s']:.1f} | {b['process_cpu_s'] / a['process_cpu_s']:.1f}x | "
+                     f"{b['cpu_s'] + b['children_cpu_s']:.1f} | "
+                     f"{a['cpu_s'] + a['children_cpu_s']:.1f} | "
                      f"{b['peak_rss_mb']:.0f} | {a['peak_rss_mb']:.0f} | "
                      f"{b['aics']} / {a['aics']} | "
                      f"{crit(b)} → {crit(a)} |")
@@ -193,7 +197,20 @@ def main() -> None:
     p.add_argument("--before-label", default="the source tree given with --before")
     p.add_argument("--methods", default="auto,pk", help="comma-separated (default auto,pk)")
     p.add_argument("--skip", default="", help="comma-separated case:method pairs not measured")
+    p.add_argument("--from-json", type=Path, metavar="FILE",
+                   help="write the before/after table of a --before run's --json FILE again "
+                        "(no measurement; with --load BEFORE,AFTER as then measured)")
+    p.add_argument("--load", default="nan,nan", help="with --from-json: the load averages")
     args = p.parse_args()
+    if args.from_json is not None:
+        pairs = [tuple(x) for x in json.loads(args.from_json.read_text())]
+        lo, hi = (float(x) for x in args.load.split(","))
+        text = side_by_side(pairs, args.before_label, (lo, hi))
+        print(text)
+        if args.markdown:
+            from markdown_section import replace_section
+            replace_section(args.markdown, text, BEGIN, END, TITLE)
+        return
     if args.case:
         print(json.dumps(run_case(args.case, args.method)))
         return
