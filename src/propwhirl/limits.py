@@ -30,6 +30,10 @@ Memory of a doublet-lattice AIC (:func:`aic_bytes`, :func:`check_panels`)
     entry of (2n)².  Measured on 200–1200 mirrored panels at k > 0 (planar wing): 480 bytes
     per entry (tracemalloc peak), 485–502 (growth of the process's peak RSS); at k = 0, 280.
     2,000 panels (``dlm_mesh.MAX_PANELS``): ≈ 7.6 GiB.  Checked before any panel is built.
+    Since issue 37 item 2 a planar mesh takes propwhirl's kernel on the half-wing's rows
+    (``model.aerodynamics.dlm_kernel``): a new Mach column with the kernels kept, 331 bytes
+    per entry of (2n)² (tests/model/test_dlm_memory.py); the estimate stays PanelAero's, the
+    path a non-planar mesh takes.
 
 Arrays read from a file (:func:`check_read`)
     The bytes the file's description says its arrays hold (e.g. an eigenvector ``.npz``: the

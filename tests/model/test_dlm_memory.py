@@ -28,7 +28,8 @@ def patil(nc, ns):
 
 @pytest.fixture
 def no_aic(monkeypatch):
-    """PanelAero's AIC replaced by a counter that fails the test when called."""
+    """Every AIC path replaced by a counter that fails the test when called: propwhirl's kernel
+    of a Mach column (``dlm.Kernel``) and PanelAero's own."""
     from panelaero import DLM
 
     calls = []
@@ -38,6 +39,8 @@ def no_aic(monkeypatch):
         raise AssertionError("an AIC was computed")
 
     monkeypatch.setattr(DLM, "calc_Qjj", counted)
+    monkeypatch.setattr(DLM, "calc_Ajj", counted)
+    monkeypatch.setattr(dlm.Kernel, "__init__", counted)
     return calls
 
 
@@ -73,16 +76,29 @@ def test_a_small_limit_names_what_fits(monkeypatch):
 
 
 def test_the_estimate_bounds_the_measured_memory(monkeypatch):
-    """tracemalloc's peak of one AIC at k > 0 (120 panels, 240 mirrored): within the estimate
-    and above 80 % of it (measured 480 of 512 bytes per entry)."""
+    """tracemalloc's peak (120 panels, 240 mirrored): PanelAero's whole kernel at k > 0 (the
+    non-planar path, ``dlm.Kernel(planar=False)``) within the estimate and above 80 % of it
+    (measured 481 of 512 bytes per entry); the planar path over four Mach columns (the kernels
+    kept, a new one built, its AICs) within it too (measured 331)."""
     monkeypatch.delenv("PROPWHIRL_DLM_CACHE", raising=False)
     a = dlm.DlmAerodynamics(patil(4, 30).wing)
     a.aic(0.3, 0.0)                                    # PanelAero imported, k = 0 warmed
+    need = limits.aic_bytes(a.mesh.n)
+    whole = dlm.Kernel(a.grid, a.mesh.n, 0.3, planar=False)
     tracemalloc.start()
     try:
-        a.aic(0.3, 0.4)
+        whole.aic(0.4 / a.b_ref)
         peak = tracemalloc.get_traced_memory()[1]
     finally:
         tracemalloc.stop()
-    need = limits.aic_bytes(a.mesh.n)
     assert 0.8 * need < peak <= need
+    del whole
+    tracemalloc.start()
+    try:
+        for mach in (0.2, 0.4, 0.5, 0.6):
+            a.aic(mach, 0.4)
+            a.aic(mach, 0.0)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak <= need

@@ -30,6 +30,7 @@ from propwhirl.certification import FACTOR_CS25, required_speed
 from propwhirl.analysis.sensitivity import critical_sensitivities
 from propwhirl.analysis.stability import analyse
 from propwhirl.model import derivatives as D
+from propwhirl.model.aerodynamics.dlm import DlmTables
 from propwhirl.results import Result, SavedDict
 from propwhirl.studies.critical import critical_instability, wing_divergence_predicate
 from propwhirl.studies.paths import ALTERNATIVES
@@ -94,6 +95,9 @@ class CriticalSpeed:
     static_divergence: bool = True
     low_speed: bool = True
     analyses: int = 0
+    #: the doublet-lattice tables every analysis of the variants reads and fills (one set of
+    #: AICs per planform, as the other studies share theirs)
+    tables: DlmTables = field(default_factory=DlmTables, repr=False)
     #: the design point (the paths' values in the model) and their units, from the model
     x0: np.ndarray = field(init=False, repr=False)
     units: tuple[str, ...] = field(init=False, repr=False)
@@ -121,7 +125,7 @@ class CriticalSpeed:
         if key in self._cache:
             return self._cache[key]
         m = self.variant(x)
-        a = analyse(m)
+        a = analyse(m, dlm_tables=self.tables)
         self.analyses += 1
         e = critical_instability(a, static_divergence=self.static_divergence,
                                  low_speed=self.low_speed,

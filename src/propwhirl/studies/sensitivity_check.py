@@ -54,6 +54,7 @@ from propwhirl.analysis.stability import ModelAnalysis, analyse
 from propwhirl.analysis.summary import text_table
 from propwhirl.engine import XTOL
 from propwhirl.model import derivatives as D
+from propwhirl.model.aerodynamics.dlm import DlmTables
 from propwhirl.progress import ProgressCallback
 from propwhirl.results import Result, SavedDict
 from propwhirl.studies import execution
@@ -97,6 +98,9 @@ class _Run:
     event: str
     label: str
     V: float
+    #: the batch's doublet-lattice tables (one set of AICs for every variant of a planform in
+    #: this process; sent to a worker process, they arrive empty)
+    tables: DlmTables | None = None
 
 
 def same_event(analysis: ModelAnalysis, kind: str, event: str, label: str,
@@ -118,7 +122,7 @@ def same_event(analysis: ModelAnalysis, kind: str, event: str, label: str,
 def _run(t: _Run) -> dict[str, Any]:
     """Analyse the variant, return {"V": speed [m/s] or None, "label", "changed"}."""
     a = analyse(set_parameter(t.model, t.path, t.value), t.speeds, xtol=t.xtol, method=t.method,
-                compressibility_check=False)
+                compressibility_check=False, dlm_tables=t.tables)
     got = same_event(a, t.kind, t.event, t.label, t.V)
     if got is None:
         return {"V": None, "label": "", "changed": True}
@@ -394,11 +398,12 @@ def verify_sensitivities(model: Any, analysis: ModelAnalysis, sensitivities: Cri
         chosen = [by_path[p] for p in dict.fromkeys(params)]
     cs = sensitivities
     tasks, keys = [], []
+    tables = DlmTables()                 # every variant's analyses: one set of AICs
     for s in chosen:
         h = step_of(s, rel_step)
         for sign, tag in ((1.0, "+"), (-1.0, "-")):
             tasks.append(_Run(model, s.path, s.value + sign * h, grid, method, float(xtol),
-                              cs.kind, cs.event, cs.mode, cs.V))
+                              cs.kind, cs.event, cs.mode, cs.V, tables))
             keys.append(f"{s.path}{tag}")
     runs = execution.map_analyses(_run, tasks, processes, client=client, progress=progress,
                                   errors="record", keys=keys, desc="sensitivity checks")

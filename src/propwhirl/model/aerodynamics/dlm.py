@@ -5,8 +5,11 @@ generalised forces are Q_aero = ½ ρ V² Q(k, M) q̂, with k = ω b_ref / V the
 on the reference semichord (the root semichord, NASTRAN's k = ω c_ref / 2V, as every p-k result
 of propwhirl reports it).  Q is built from the panels and spline of
 :mod:`propwhirl.model.aerodynamics.dlm_mesh` and PanelAero's AIC matrix (the ``dlm`` extra,
-``panelaero.DLM.calc_Qjjs``: the steady vortex-lattice part plus the oscillatory doublet-lattice
-increment, Rodden's parabolic kernel approximation, the root a plane of symmetry):
+``panelaero.DLM.calc_Qjj``: the steady vortex-lattice part plus the oscillatory doublet-lattice
+increment, Rodden's parabolic kernel approximation, the root a plane of symmetry) — on a
+planar mesh its equations evaluated on the half-wing's rows only, the parts every k shares
+once per Mach column (:class:`Kernel`, :mod:`propwhirl.model.aerodynamics.dlm_kernel`:
+PanelAero's AIC to round-off, ~15x faster):
 
     w_j = S_j q̂ + i k̄ Z_j q̂            normalised normal wash at the collocation points (3/4)
     c_p = Q_jj(k̄, M) w                    pressure coefficients (lift positive up)
@@ -43,7 +46,7 @@ from dataclasses import replace
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.model.aerodynamics import dlm_cache
+from propwhirl.model.aerodynamics import dlm_cache, dlm_kernel
 from propwhirl.model.structure.assembly import free_dofs
 # the Mach limits the Wing checks its dlm_mach against (they live with the field)
 from propwhirl.model.structure.wing import DLM_MACH_MAX as MACH_MAX, DLM_MATCHED as MATCHED
@@ -64,6 +67,8 @@ MACH_STEP = 0.05
 MACH_FINE = 0.001
 #: geometries whose tables a :class:`DlmTables` keeps (by default)
 CACHE_SIZE = 4
+#: Mach columns whose :class:`Kernel` (the parts every k shares) a geometry keeps
+KERNELS = 2
 
 
 def _panelaero():
@@ -89,14 +94,67 @@ def steady_aic(grid: dict, mach: float) -> np.ndarray:
         return DLM.VLM.calc_Ajj(aerogrid=copy.deepcopy(grid), Ma=float(mach))[0]
 
 
+def fold(A: np.ndarray, n: int) -> np.ndarray:
+    """The right half-wing's rows of a normalwash matrix of the mirrored wing (the right
+    half-wing last, ``n`` panels each), folded onto the half-wing: A_RR + A_RL (n, n).  With
+    A = [[D, E], [E, D]] (the left panel p the mirror image of the right one),
+    Q_RR + Q_RL = −(A_RR + A_RL)⁻¹: the symmetric AIC from half the kernel and an n × n
+    inverse.  ``A`` may hold only those rows (n, 2n)."""
+    R = A[-n:]
+    return R[:, n:] + R[:, :n]
+
+
+class Kernel:
+    """What the symmetric AICs of one Mach column share, computed once: the folded steady
+    vortex-lattice part (PanelAero's, the right half-wing's rows:
+    :func:`~propwhirl.model.aerodynamics.dlm_kernel.steady_rows`) and, on a planar mesh, the
+    k-independent parts of the doublet-lattice kernel on the right half-wing's rows
+    (:class:`~propwhirl.model.aerodynamics.dlm_kernel.PlanarKernel`); on a non-planar mesh
+    PanelAero's ``calc_Ajj`` of the whole mirrored wing at each k.  :meth:`aic` is the symmetric
+    AIC Q_RR + Q_RL (n, n) complex at k̄ = ω/U [1/m]."""
+
+    def __init__(self, grid: dict, n: int, mach: float, planar: bool):
+        self.grid, self.n, self.mach = grid, n, float(mach)
+        with np.errstate(all="ignore"):        # PanelAero's VLM, the right half-wing's rows
+            self.steady = fold(dlm_kernel.steady_rows(grid, self.mach, slice(n, None)), n)
+        with np.errstate(all="ignore"):
+            self.planar = (dlm_kernel.PlanarKernel(grid, self.mach, slice(n, None)) if planar
+                           else None)
+
+    def aic(self, kbar: float) -> np.ndarray:
+        kbar = float(kbar)
+        with np.errstate(all="ignore"):
+            if kbar == 0.0:
+                A = self.steady
+            elif self.planar is not None:
+                A = self.steady + fold(self.planar.increment(kbar), self.n)
+            else:
+                D = _panelaero().calc_Ajj(aerogrid=copy.deepcopy(self.grid), Ma=self.mach,
+                                          k=kbar, method="parabolic")
+                A = self.steady + fold(D, self.n)
+            return -np.linalg.inv(A)
+
+
+def symmetric_aics(grid: dict, n: int, mach: float, kbars, planar: bool) -> list[np.ndarray]:
+    """The symmetric AICs Q_RR + Q_RL (n, n) complex of the mirrored ``grid`` (both
+    half-wings, the right one last, ``n`` panels each) at ``mach`` and each k̄ = ω/U of
+    ``kbars`` [1/m] (:class:`Kernel`: one Mach column's shared parts once): a function of its
+    arguments alone, so that worker processes compute it (:meth:`DlmAerodynamics.fill`), with
+    one BLAS thread each (two workers on two cores: no oversubscription)."""
+    from threadpoolctl import threadpool_limits   # lazy: only in a worker process
+    with threadpool_limits(limits=1, user_api="blas"):
+        kernel = Kernel(grid, n, mach, planar)
+        return [kernel.aic(kb) for kb in kbars]
+
+
 def symmetric_aic(grid: dict, n: int, mach: float, kbar: float,
                   steady: np.ndarray | None = None) -> np.ndarray:
     """PanelAero's AIC of the mirrored ``grid`` (both half-wings, the right one last, ``n``
     panels each) at ``mach`` and k̄ = ω/U ``kbar`` [1/m], folded to the symmetric one of the
-    half-wing, Q_RR + Q_RL (n, n) complex (:meth:`DlmAerodynamics.aic`): a function of its
-    arguments alone, so that worker processes compute it (:meth:`DlmAerodynamics.fill`).
-    PanelAero's ``calc_Qjj`` step by step (the same operations, the same bits), its steady
-    part ``steady`` (:func:`steady_aic` of this Mach) when already computed."""
+    half-wing, Q_RR + Q_RL (n, n) complex, the way PanelAero's ``calc_Qjj`` computes it: the
+    whole (2n)² kernel and its inverse (the reference :class:`Kernel` is checked against,
+    tests/model/test_dlm_kernel.py), its steady part ``steady`` (:func:`steady_aic` of this
+    Mach) when already computed."""
     DLM = _panelaero()
     kbar = float(kbar)
     with np.errstate(all="ignore"):
@@ -185,8 +243,10 @@ class DlmAerodynamics:
         self._geometry = dlm_cache.geometry_key(self.mesh.mirrored().corners)
         self.cache_hits = 0
         self._fits: dict = {}
-        #: (Mach, PanelAero's steady AIC part there) of the last Mach computed
-        self._steady: tuple[float, np.ndarray] | None = None
+        #: whether the mesh is planar (:func:`~propwhirl.model.aerodynamics.dlm_kernel.is_planar`)
+        self.planar = dlm_kernel.is_planar(self.grid, slice(self.mesh.n, None))
+        #: the :class:`Kernel` of the last :data:`KERNELS` Mach columns computed
+        self._kernels: "OrderedDict[float, Kernel]" = OrderedDict()
 
     # ------------------------------------------------------------------ exact
     def aic(self, mach: float, k: float) -> np.ndarray:
@@ -204,11 +264,22 @@ class DlmAerodynamics:
             if cached is not None and self.cache_hits:   # the first one read: spot-checked
                 self.cache_hits += 1
                 return cached
-        if self._steady is None or self._steady[0] != float(mach):   # once per Mach column
-            self._steady = (float(mach), steady_aic(self.grid, mach))
-        Q = symmetric_aic(self.grid, n, mach, float(k) / self.b_ref, self._steady[1])
+        Q = self.kernel(mach).aic(float(k) / self.b_ref)
         self.evaluations += 1
         return self._computed(mach, k, Q, cached)
+
+    def kernel(self, mach: float) -> "Kernel":
+        """The :class:`Kernel` of the Mach column ``mach`` (its parts shared by every k),
+        built on first use; the last :data:`KERNELS` kept (a matched p-k reads two columns in
+        turn)."""
+        mach = float(mach)
+        if mach in self._kernels:
+            self._kernels.move_to_end(mach)
+        else:
+            self._kernels[mach] = Kernel(self.grid, self.mesh.n, mach, self.planar)
+            while len(self._kernels) > KERNELS:
+                self._kernels.popitem(last=False)
+        return self._kernels[mach]
 
     def _computed(self, mach: float, k: float, Q: np.ndarray, cached) -> np.ndarray:
         """Q computed at (mach, k): compared with the cache's entry read (the spot check) or
@@ -293,18 +364,28 @@ class DlmAerodynamics:
         if len(mine) < PARALLEL_AICS:
             return 0
         rest = [key for key in todo if key not in set(mine)]
-        todo[:] = mine + rest
         ctx = multiprocessing.get_context("fork" if "fork" in
                                           multiprocessing.get_all_start_methods() else None)
+        columns: dict[float, list[int]] = {}
+        for m, ik in mine:                        # one task per Mach column: its kernel once
+            columns.setdefault(m, []).append(ik)
+        mine[:] = [(m, ik) for m, iks in columns.items() for ik in iks]
+        todo[:] = mine + rest
+        done = 0
         with ProcessPoolExecutor(max_workers=processes, mp_context=ctx) as pool:
-            futures = [pool.submit(symmetric_aic, self.grid, n, m, self.k_node(ik) / self.b_ref)
-                       for m, ik in mine]
-            for done, ((mach, ik), fut) in enumerate(zip(mine, futures), 1):
-                Q = self._computed(mach, self.k_node(ik), fut.result(), None)
-                self.evaluations += 1
-                self._table[(mach, ik)] = self.exact(mach, self.k_node(ik), Q)
-                if report is not None:
-                    report(done, len(todo))
+            futures = [(m, iks, pool.submit(symmetric_aics, self.grid, n, m,
+                                            [self.k_node(ik) / self.b_ref for ik in iks],
+                                            self.planar))
+                       for m, iks in columns.items()]
+            for i, (mach, iks, fut) in enumerate(futures):
+                futures[i] = None             # its AICs released once in the table (n² each)
+                for ik, Qjj in zip(iks, fut.result()):
+                    Q = self._computed(mach, self.k_node(ik), Qjj, None)
+                    self.evaluations += 1
+                    self._table[(mach, ik)] = self.exact(mach, self.k_node(ik), Q)
+                    done += 1
+                    if report is not None:
+                        report(done, len(todo))
         return len(mine)
 
     @property

@@ -179,8 +179,10 @@ def roger_system(dry: SecondOrder, A: np.ndarray, V: np.ndarray, b_ref: float, r
     G = Tw if Phi is None else np.eye(T.shape[1])                     # ż_l = G η̇ − …: B G = Tw
     nV, r, c, L = V.size, T.shape[1], B.shape[1], len(lags)
     full = Phi is None
-    Ap = A[:, :3] if full else np.einsum("ia,vkij,jb->vkab", Tw, A[:, :3], Tw)
-    Al = A[:, 3:] if full else np.einsum("ia,vkij,jc->vkac", Tw, A[:, 3:], B)
+    # Φ_wᵀ A Φ_w by matrix products (a three-operand einsum without a contraction path is
+    # ~100x slower: 12 % of a design-size analysis)
+    Ap = A[:, :3] if full else Tw.T @ A[:, :3] @ Tw
+    Al = A[:, 3:] if full else Tw.T @ A[:, 3:] @ B
     q = (0.5 * rho * V**2)[:, None, None]
     S1, S2, S3 = ((np.array(X, float) for X in (dry.S1, dry.S2, dry.S3)) if full else
                   (T.T @ X @ T for X in (dry.S1, dry.S2, dry.S3)))
