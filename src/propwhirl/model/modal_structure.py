@@ -468,6 +468,13 @@ def axis_spline(structure: ModalStructure, wing_grids, x: np.ndarray, y: np.ndar
     * across the chord the streamwise section is rigid, attached to the axis at the same y:
       z = −(T_z − R_y (x − x_ref(y))), x_ref the grids' x linear in y, ∂z/∂x = R_y.
 
+    Its measured error (docs/modal-structures.md, "Doublet lattice on the modes"): with a
+    grid at every node of a beam model, the panels' GAFs on the modes equal the beam's
+    projected ones to 5e-16 of max |Q|; on the wingtip wing (24 elements) with 13, 9, 7 and 5
+    grids the six lowest modes' GAFs are within 3.5, 12, 18 and 40 % (mostly the linear twist
+    of the torsion modes) and the doublet-lattice critical speeds within 0.21, 0.49, 0.96 and
+    2.4 %.
+
     ``wing_grids`` strictly increasing in y, at least 2; ``outside(i, lo, hi)``: the one-line
     message for point i outside the grids' span [lo, hi] [m] (default a generic one)."""
     src = structure.source
