@@ -230,7 +230,7 @@ class ModalPropellerWing(StateSpaceModel):
                  if mounts == {"flexible"} else "hub grids" if mounts else "none")
         return Capabilities("modal propeller-wing", "modes",
                             "strip" if self.wing_aero else "none", "central difference",
-                            props, tuple(why.items()))
+                            props, tuple(why.items()), "modal")
 
     def with_(self, **changes) -> "ModalPropellerWing":
         """A copy with fields replaced (``dataclasses.replace``)."""

@@ -469,23 +469,28 @@ class PropellerWing(StateSpaceModel):
     def capabilities(self) -> Capabilities:
         """What this model can do (:class:`~propwhirl.model.protocol.Capabilities`): a beam
         structure, strip or doublet-lattice wing aerodynamics, exact parameter derivatives
-        (but on doublet-lattice or in-plane blocks), every command; a Campbell diagram needs
-        a flexibly mounted propeller, the p-k method the wing aerodynamics."""
+        (a doublet-lattice wing's: central differences; none on in-plane blocks), every
+        command; a Campbell diagram needs a flexibly mounted propeller, the p-k method the
+        wing aerodynamics."""
         dlm = self.wing_aero and self.wing.aero == "dlm"
         aero = "doublet lattice" if dlm else ("strip" if self.wing_aero else "none")
         why: dict[str, str] = {}
-        if dlm or self.wing.in_plane:
-            key = "dlm-derivatives" if dlm else "inplane-derivatives"
-            why["sensitivity"] = why["exact-sensitivity"] = REASONS[key]
+        if self.wing.in_plane:
+            why["sensitivity"] = why["exact-sensitivity"] = REASONS["inplane-derivatives"]
+        elif dlm:
+            why["exact-sensitivity"] = REASONS["dlm-exact"]
         if not self.wing_aero:
             why["pk"] = REASONS["no-wing-aero-pk"]
         if not self.flexible:
             why["campbell"] = REASONS["no-whirl"]
         if not self.propellers:
             why["certify"] = REASONS["no-propeller-campaign"]
-        return Capabilities("beam propeller-wing", "beam", aero,
-                            "none" if "sensitivity" in why else "exact",
-                            "own mounts" if self.flexible else "none", tuple(why.items()))
+        derivatives = ("none" if "sensitivity" in why else
+                       "central difference" if dlm else "exact")
+        params = "none" if "sensitivity" in why else "doublet lattice" if dlm else "beam"
+        return Capabilities("beam propeller-wing", "beam", aero, derivatives,
+                            "own mounts" if self.flexible else "none", tuple(why.items()),
+                            params)
 
     def dof_map(self) -> DofMap:
         """The states of :meth:`second_order`: the free wing DOFs (node ≥ 1: h, φ, α, eq. 7.20),
