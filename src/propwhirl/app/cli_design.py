@@ -16,7 +16,7 @@ from __future__ import annotations
 import argparse
 
 from propwhirl.app import execution_options
-from propwhirl.app.cli_common import check_outputs, echo, model_or_case
+from propwhirl.app.cli_common import check_outputs, echo, lazy, model_or_case
 from propwhirl.certification import FACTOR_CFR23, FACTOR_CS25
 from propwhirl.validate import InputError
 
@@ -240,9 +240,9 @@ def _sensitivity(args: argparse.Namespace) -> int:
 
 
 def _add_sensitivity(sub) -> None:
-    from propwhirl.studies.sensitivity_check import (  # lazy: studies, at parser build
-        NORMALISED_ATOL, REL_STEP, RTOL)
-
+    check = "propwhirl.studies.sensitivity_check"   # its constants, read when printed
+    REL_STEP, RTOL, NORMALISED_ATOL = (lazy(check, name, "g")
+                                       for name in ("REL_STEP", "RTOL", "NORMALISED_ATOL"))
     p = sub.add_parser("sensitivity", help="sensitivities of the critical speed to the model's "
                        "parameters (exact derivatives, or central differences where the model "
                        "has none, said which; ranked; --verify: checked by central differences "
@@ -265,10 +265,10 @@ def _add_sensitivity(sub) -> None:
     p.add_argument("--verify", action="store_true",
                    help="check each sensitivity shown (the --top N, of the --param ones if "
                    "given) against the central difference of the critical speed: the model "
-                   f"analysed at p(1 +- {REL_STEP:g}) with the same method and speeds, the same "
+                   f"analysed at p(1 +- {REL_STEP}) with the same method and speeds, the same "
                    "event (kind and mode) found in both; 2 analyses per parameter, in one batch "
                    "(--processes, --scheduler, progress). A check is flagged when "
-                   f"|exact - FD| > {RTOL:g} |FD| + {NORMALISED_ATOL:g} in normalised units, or "
+                   f"|exact - FD| > {RTOL} |FD| + {NORMALISED_ATOL} in normalised units, or "
                    "the critical mode changed, or a variant failed; the exit code is then 1 "
                    "(0 when all pass)")
     # the verification's analyses are one batch of independent analyses
