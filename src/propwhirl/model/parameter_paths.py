@@ -18,6 +18,8 @@ parameters                         list (derivative)
                                    ``flight.density`` ("exact")
 "doublet lattice"                  :func:`dlm_parameters`: the same without those the
                                    panels' geometry or the strips hold ("central difference")
+"in-plane" (EI_chordwise)          :func:`inplane_parameters`: the beam's ("central
+                                   difference")
 "modal"                            :func:`modal_parameters`: each mode's frequency, modal
                                    mass and damping, the own mounts, the spin inertias and
                                    ``flight.density`` ("central difference")
@@ -87,6 +89,16 @@ def dlm_parameters(model: PropellerWing) -> tuple[D.Parameter, ...]:
     return tuple(keep) + tuple(_extras(model, "central difference"))
 
 
+def inplane_parameters(model: PropellerWing) -> tuple[D.Parameter, ...]:
+    """A strip wing with in-plane bending (``EI_chordwise``): the paths of
+    :func:`beam_parameters`, each by central differences of its state matrix (its analyses'
+    crossings are roots of the full order: :func:`propwhirl.analysis.sensitivity.
+    difference_sensitivities`); the generated derivatives have no in-plane blocks."""
+    cd = "central difference"
+    return (tuple(replace(p, derivative=cd) for p in D.parameters(model, check=False))
+            + tuple(_extras(model, cd)))
+
+
 def modal_parameters(model) -> tuple[D.Parameter, ...]:
     """The parameters of a modal model (:class:`~propwhirl.model.modal.ModalPropellerWing`),
     their derivatives central differences of its state matrix, each a parameter path of the
@@ -131,7 +143,8 @@ def modal_parameters(model) -> tuple[D.Parameter, ...]:
 #: :attr:`Capabilities.parameters <propwhirl.model.protocol.Capabilities.parameters>` → the
 #: function listing them ("none": no list)
 PARAMETER_LISTS: dict[str, Callable[..., tuple[D.Parameter, ...]]] = {
-    "beam": beam_parameters, "doublet lattice": dlm_parameters, "modal": modal_parameters}
+    "beam": beam_parameters, "doublet lattice": dlm_parameters,
+    "in-plane": inplane_parameters, "modal": modal_parameters}
 
 
 def parameter_paths(model) -> tuple[D.Parameter, ...]:
@@ -194,5 +207,5 @@ def with_parameter(model, p: D.Parameter, value: float):
 
 
 __all__ = ["DENSITY", "DLM_SECTION_FIELDS", "FACTORS", "PARAMETER_LISTS", "beam_parameters",
-           "dlm_parameters", "modal_parameters", "parameter_families", "parameter_paths",
+           "dlm_parameters", "inplane_parameters", "modal_parameters", "parameter_families", "parameter_paths",
            "with_parameter"]

@@ -433,6 +433,8 @@ PARAMETER_SETS = {
             "air density, all exact",
     "doublet lattice": "a doublet-lattice wing's: the beam's but those of the strips and of "
                        "the panels' geometry, by central differences",
+    "in-plane": "a strip wing with in-plane bending: the beam's paths, by central "
+                "differences of its state matrix",
     "modal": "each mode's frequency, modal mass and damping, the own mounts, the spin "
              "inertias and the air density, by central differences",
     "none": "no sensitivities",
@@ -531,7 +533,8 @@ REASONS = {
                  "derivatives: a doublet-lattice wing's sensitivities are central differences "
                  "of its critical eigenvalue, the AICs computed once for all",
     "inplane-derivatives": "in-plane bending (EI_chordwise) has no generated parameter "
-                           "derivatives: use `propwhirl sweep` on the parameter path",
+                           "derivatives: a wing with it has sensitivities by central "
+                           "differences of its state matrix",
     "no-wing-aero-pk": "the p-k method iterates the wing's unsteady aerodynamics on the "
                        "frequency, and the wing aerodynamics are off: the dense method is exact",
     "rigid-pk": "the p-k method iterates the wing's unsteady aerodynamics on the frequency: an "

@@ -469,25 +469,24 @@ class PropellerWing(StateSpaceModel):
     def capabilities(self) -> Capabilities:
         """What this model can do (:class:`~propwhirl.model.protocol.Capabilities`): a beam
         structure, strip or doublet-lattice wing aerodynamics, exact parameter derivatives
-        (a doublet-lattice wing's: central differences; none on in-plane blocks), every
+        (a doublet-lattice wing's and in-plane bending's: central differences), every
         command; a Campbell diagram needs a flexibly mounted propeller, the p-k method the
         wing aerodynamics."""
         dlm = self.wing_aero and self.wing.aero == "dlm"
         aero = "doublet lattice" if dlm else ("strip" if self.wing_aero else "none")
         why: dict[str, str] = {}
-        if self.wing.in_plane:
-            why["sensitivity"] = why["exact-sensitivity"] = REASONS["inplane-derivatives"]
-        elif dlm:
+        if dlm:
             why["exact-sensitivity"] = REASONS["dlm-exact"]
+        elif self.wing.in_plane:
+            why["exact-sensitivity"] = REASONS["inplane-derivatives"]
         if not self.wing_aero:
             why["pk"] = REASONS["no-wing-aero-pk"]
         if not self.flexible:
             why["campbell"] = REASONS["no-whirl"]
         if not self.propellers:
             why["certify"] = REASONS["no-propeller-campaign"]
-        derivatives = ("none" if "sensitivity" in why else
-                       "central difference" if dlm else "exact")
-        params = "none" if "sensitivity" in why else "doublet lattice" if dlm else "beam"
+        derivatives = "central difference" if dlm or self.wing.in_plane else "exact"
+        params = "doublet lattice" if dlm else "in-plane" if self.wing.in_plane else "beam"
         return Capabilities("beam propeller-wing", "beam", aero, derivatives,
                             "own mounts" if self.flexible else "none", tuple(why.items()),
                             params)
