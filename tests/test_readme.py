@@ -119,3 +119,32 @@ def test_make_run_installs_what_the_python_example_needs():
     (code,) = _blocks(_section("Using it"), "python")
     needs = {"data": "to_dataframe(", "plots": "plots.", "tables": "summary()"}
     assert {extra for extra, use in needs.items() if use in code} <= extras
+
+
+def test_modal_route_examples_run(tmp_path):
+    """"Modal structures through a campaign" (issue 34): the Python block writes the modal
+    model file from a copy of the repository's examples, then the commands run as written;
+    the analysis and the campaign's critical events name the propellers that whirl."""
+    import shutil
+
+    root = Path(__file__).resolve().parent.parent
+    shutil.copytree(root / "examples", tmp_path / "examples",
+                    ignore=shutil.ignore_patterns("certification", "*.ipynb", "figures",
+                                                  "four_propeller_modal.*"))
+    section = _section("Modal structures through a campaign")
+    (code,) = _blocks(section, "python")
+    res = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, capture_output=True,
+                         text=True, timeout=600)
+    assert res.returncode == 0, res.stderr
+    assert (tmp_path / "examples" / "four_propeller_modal.modes.npz").stat().st_size > 0
+    (block,) = _blocks(section, "sh")
+    cmds = _commands(block)
+    assert [c[:2] for c in cmds] == [["propwhirl", "analyse"], ["propwhirl", "certify"]]
+    analysed, certified = (_run(argv, tmp_path) for argv in cmds)
+    assert "(modal)" in analysed.stdout and "backward whirl, propellers 1–4" in analysed.stdout
+    assert "CLEARED" in certified.stdout and "NOT CLEARED" not in certified.stdout
+    for j in range(1, 5):       # each mount at 50 %: the critical event names its propeller
+        row = next(ln for ln in certified.stdout.splitlines()
+                   if ln.startswith(f"mount stiffness at 50 % (propeller {j})"))
+        assert f"whirl, propeller {j}" in row, row
+    assert (tmp_path / "modal_report" / "report.html").stat().st_size > 0

@@ -93,7 +93,7 @@ def test_the_cli_computes_only_the_params_asked_for(flutter, monkeypatch, capsys
 
     m, a, _, _ = flutter
     calls = []
-    monkeypatch.setattr(stability, "analyse", lambda model: calls.append(1) or a)
+    monkeypatch.setattr(stability, "analyse", lambda model, **kw: calls.append(1) or a)
     assert main(["sensitivity", "wingtip", "--param", "wing.EI"]) == 2
     err = capsys.readouterr().err.strip()
     assert "--param 'wing.EI' is invalid" in err and "propwhirl sensitivity wingtip --list" in err

@@ -116,3 +116,22 @@ def test_the_typical_section_refuses_each_command_as_the_table_says():
     assert a.events
     with pytest.raises(v.InputError, match="full-order pencil"):   # the exact route's check
         critical_sensitivities(section, a)
+
+
+def test_each_samples_parameter_paths_say_its_derivatives():
+    """Item 1: the parameter paths and their derivatives are the contract's — every path's
+    derivative is the model's stated one, a model without sensitivities lists none, and the
+    page's parameter table is made of them."""
+    from propwhirl.model.parameter_paths import parameter_paths
+    from propwhirl.model.protocol import DERIVATIVE_ROUTES
+
+    page = ct.page()
+    for (key, row, fams), (_, _, _, c) in zip(ct.sample_parameters(), ct.sample_capabilities()):
+        model = dict((k, b) for k, _, _, b in ct.SAMPLES)[key]()
+        paths = parameter_paths(model)
+        assert sum(n for _, _, n in fams) == len(paths), key
+        if not c.supports("sensitivity"):
+            assert not paths and c.derivatives == "none", key
+            continue
+        assert {p.derivative for p in paths} == {c.derivatives} <= set(DERIVATIVE_ROUTES), key
+        assert f"| {row} | {c.derivatives} | `" in page, key

@@ -113,7 +113,8 @@ def test_the_sensitivity_command_on_a_modal_model(files, capsys, tmp_path):
     cs = CriticalSensitivities.load(tmp_path / "s.json")
     assert {s.derivative for s in cs.sensitivities} == {"central difference"}
     listed = _run(capsys, "sensitivity", modal, "--list").splitlines()
-    assert "structure.frequencies_hz[0]  [Hz]  natural frequency of mode 1" in listed
+    assert ("structure.frequencies_hz[0]  [Hz]  natural frequency of mode 1  (central "
+            "difference)") in listed
     assert any(ln.startswith(PROP + "f_theta") for ln in listed)
     assert cli.main(["sensitivity", str(modal), "--plot", str(tmp_path / "p.png")]) == 2
     err = capsys.readouterr().err

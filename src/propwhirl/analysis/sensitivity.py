@@ -31,6 +31,14 @@ them all.  All sensitivities of one point need one sparse factorisation for
 the two eigenvectors, two pencil evaluations for ∂/∂V and one sparse product per parameter —
 less than one analysis (measured in the tests).
 
+A model without exact derivatives says so in its capabilities, and each of its parameter
+paths (:func:`propwhirl.model.parameter_paths.parameter_paths`) carries how its derivative is
+computed: a modal model's are central differences of its state matrix in the same eigenvalue
+perturbation (:func:`difference_sensitivities`); a doublet-lattice wing's central differences
+of its crossing's p-k root (:func:`dlm_sensitivities`: the default method converges its
+crossings by the p-k), every perturbed model reading the analysis's doublet-lattice tables, so
+its AICs are computed once for all the parameters.  Each :class:`Sensitivity` says which.
+
 Only crossings have these derivatives: "unstable-at-start" and "frequency-zero" events (a branch
 point, where λ is not differentiable) are refused with an error saying so.
 """
@@ -48,10 +56,14 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from propwhirl import validate as v
+from propwhirl.analysis.pk import pk_root
 from propwhirl.analysis.stability import ModelAnalysis
 from propwhirl.analysis.summary import text_table
 from propwhirl.engine.correction import full_order_root, real_direction
 from propwhirl.model import derivatives as D
+from propwhirl.model.aerodynamics.dlm import DlmTables, check_tables
+from propwhirl.model.parameter_paths import (DENSITY, FACTORS, modal_parameters,  # noqa: F401
+                                             parameter_paths, with_parameter)
 from propwhirl.model.protocol import capabilities, refusal
 from propwhirl.results import Result, SavedDict
 
@@ -60,8 +72,14 @@ DV_STEP = 1e-5
 #: relative step h/|p| of the central differences ∂A/∂p of a model without exact
 #: derivatives (:func:`difference_sensitivities`; h = DIFF_STEP in p's unit for p = 0)
 DIFF_STEP = 1e-4
-#: how a sensitivity's ∂λ/∂p was computed (:attr:`Sensitivity.derivative`)
-DERIVATIVES = ("exact", "central difference", "forward difference")
+#: how a sensitivity's ∂λ/∂p was computed (:attr:`Sensitivity.derivative`): the exact route,
+#: differences of the state matrix (a modal model; a doublet-lattice wing's dense analysis)
+#: or of the p-k root (a doublet-lattice wing's crossings by the p-k, the default method)
+DERIVATIVES = ("exact", "central difference", "forward difference", "central difference (p-k)",
+               "forward difference (p-k)")
+#: the p-k roots of a doublet-lattice wing's central differences are converged to this
+#: relative k (the analyses' KTOL is 1e-7: too coarse for a difference over 1e-4 |p|)
+ROOT_KTOL = 1e-12
 #: largest |λ_model − λ_analysis| / max(1, |λ|) of the same root: the analysis's crossing
 #: refined again on the model it came from differs by at most about 1e-6 (every case, every
 #: method); a model whose mount frequency differs by 1.5 % by 3e-3
@@ -240,12 +258,20 @@ class CriticalSensitivities(Result):
                  s.per] for s in shown]
         heads, align = ["parameter", "value", "unit", "dV/dp [m/s per unit]", "normalised",
                         "per"], "lrlrrl"
-        if any(s.derivative != "exact" for s in shown):   # say which route gave each
+        routes = {s.derivative for s in shown}
+        if routes - {"exact"}:                             # say which route gave each
             rows = [r + [s.derivative] for r, s in zip(rows, shown)]
             heads, align = heads + ["derivative"], align + "l"
-            head += ("\nderivative: 'central difference' = ∂A/∂p by a central difference of "
-                     f"the state matrix (relative step {DIFF_STEP:g}) in the exact "
-                     "eigenvalue perturbation yᴴ ∂A/∂p x / yᴴx; 'exact' = generated derivatives")
+            if routes & {"central difference", "forward difference"}:
+                head += ("\nderivative: 'central difference' = ∂A/∂p by a central difference "
+                         f"of the state matrix (relative step {DIFF_STEP:g}) in the exact "
+                         "eigenvalue perturbation yᴴ ∂A/∂p x / yᴴx")
+            if routes & {"central difference (p-k)", "forward difference (p-k)"}:
+                head += ("\nderivative: 'central difference (p-k)' = ∂λ/∂p = (λ(p + h) − "
+                         f"λ(p − h)) / 2h of the crossing's p-k root (h = {DIFF_STEP:g} |p|, "
+                         "the doublet-lattice AICs computed once for all)")
+            if "exact" in routes:
+                head += "; 'exact' = generated derivatives"
         return head + "\n" + text_table(rows, heads, align)
 
 
@@ -299,32 +325,14 @@ def _left_vector(F, E, lam: complex, y0: np.ndarray) -> np.ndarray:
     return y
 
 
-#: the whole-distribution factors (the studies' scale form, :mod:`propwhirl.studies.paths`):
-#: path → the per-element parameter name of :func:`propwhirl.model.derivatives.parameters`
-FACTORS = {"wing.EI*": "EI", "wing.GJ*": "GJ", "wing.mass_per_length*": "mass_per_length"}
-#: the air density's path (``flight.density`` [kg/m³])
-DENSITY = "flight.density"
-_FACTOR_DOCS = {"EI": "bending rigidity", "GJ": "torsional rigidity",
-                "mass_per_length": "mass per unit span"}
-
-
 def sensitivity_parameters(model) -> tuple[D.Parameter, ...]:
-    """Every parameter :func:`critical_sensitivities` covers for ``model`` (a PropellerWing):
-    those of :func:`propwhirl.model.derivatives.parameters`, then the whole-distribution
-    factors :data:`FACTORS` (value 1, kind "factor") and ``flight.density`` [kg/m³] (kind
-    "flight").  A model without exact derivatives (a modal model): its
-    :func:`difference_parameters`."""
-    if not exact(model):
-        return difference_parameters(model)
-    base = D.parameters(model)
-    out = list(base)
-    for path, name in FACTORS.items():
-        out.append(D.Parameter(path, "factor", -1, name, 1.0, "",
-                               f"factor on the whole {_FACTOR_DOCS[name]} distribution "
-                               f"(every element; 1 = as given)"))
-    out.append(D.Parameter(DENSITY, "flight", -1, "density", float(model.flight.density),
-                           "kg/m^3", "air density"))
-    return tuple(out)
+    """Every parameter :func:`critical_sensitivities` covers for ``model``, each with how its
+    derivative is computed: the model contract's
+    :func:`~propwhirl.model.parameter_paths.parameter_paths` (a strip wing's exact parameters —
+    those of :func:`propwhirl.model.derivatives.parameters`, the whole-distribution factors
+    :data:`FACTORS` and ``flight.density`` —, a doublet-lattice wing's and a modal model's by
+    central differences, :mod:`propwhirl.model.parameter_paths`)."""
+    return parameter_paths(model)
 
 
 def scale_of(model, p: D.Parameter) -> tuple[float | None, str]:
@@ -365,7 +373,8 @@ def _resolve(model, params) -> list[D.Parameter]:
     return out
 
 
-def critical_sensitivities(model, analysis, event=None, *, params=None) -> CriticalSensitivities:
+def critical_sensitivities(model, analysis, event=None, *, params=None,
+                           dlm_tables: DlmTables | None = None) -> CriticalSensitivities:
     """The sensitivities of ``event`` (default ``analysis.critical``) of ``analysis`` (an
     analysis of ``model``, a PropellerWing) for ``params`` (paths of
     :func:`sensitivity_parameters`, checked before any work; default all).
@@ -384,6 +393,10 @@ def critical_sensitivities(model, analysis, event=None, *, params=None) -> Criti
     params : sequence of str, optional
         Parameter paths (``"propellers[0].propeller.f_theta"``, ``"wing.GJ*"``, ...,
         :func:`sensitivity_parameters`); default all.
+    dlm_tables : DlmTables, optional
+        A doublet-lattice wing's tables (the analysis's: ``analyse(model, dlm_tables=...)``),
+        which every perturbed model reads (its AICs computed once for all parameters); None:
+        new ones.
 
     Returns
     -------
@@ -416,6 +429,8 @@ def critical_sensitivities(model, analysis, event=None, *, params=None) -> Criti
     e = _crossing(analysis, event)
     point = _point(analysis, e)
     if not exact(model):
+        if capabilities(model).aerodynamics == "doublet lattice":
+            return dlm_sensitivities(model, e, point, pars, check_tables(dlm_tables))
         return difference_sensitivities(model, e, point, pars)
     V = float(point.V)
     F, E = model.second_order_blocks(np.array([V])).pencil(0)
@@ -496,57 +511,15 @@ def _point(analysis, e):
 # ------------------------------------------------------------- without exact derivatives
 def difference_parameters(model) -> tuple[D.Parameter, ...]:
     """The parameters of a modal model (:class:`~propwhirl.model.modal.ModalPropellerWing`)
-    whose sensitivities :func:`difference_sensitivities` gives, each a parameter path of the
-    studies (:mod:`propwhirl.studies.paths`): every mode's frequency
-    ``structure.frequencies_hz[i]`` [Hz], modal mass ``structure.modal_mass[i]`` [kg] and
-    damping ratio ``structure.damping_ratio[i]`` (kind "modal", index the mode from 0); each
-    flexibly mounted propeller's mount stiffness (``f_theta``/``f_psi`` [Hz], or
-    ``K_theta``/``K_psi`` [N m/rad], whichever the propeller gives) and damping
-    (``damping_theta``, ``damping_psi``), and every turning propeller's spin inertia
-    ``spin_inertia`` [kg m²] (kind "propeller", index the installation) — an on-grid
-    mount's springs and mass are in the modes —; ``flight.density`` [kg/m³] (kind "flight")."""
-    s = model.structure
-    out = []
-    for name, unit, doc in (("frequencies_hz", "Hz", "natural frequency"),
-                            ("modal_mass", "kg", "modal mass"),
-                            ("damping_ratio", "", "modal damping ratio")):
-        for i in range(s.n_modes):
-            out.append(D.Parameter(f"structure.{name}[{i}]", "modal", i, name,
-                                   float(getattr(s, name)[i]), unit, f"{doc} of mode {i + 1}"))
-    for j, inst in enumerate(model.propellers):
-        prop, pre = inst.propeller, f"propellers[{j}].propeller."
-        if inst.mount == "flexible":
-            for ax in ("theta", "psi"):
-                f = getattr(prop, f"f_{ax}")
-                name, unit = (f"f_{ax}", "Hz") if f is not None else (f"K_{ax}", "N m/rad")
-                out.append(D.Parameter(pre + name, "propeller", j, name,
-                                       float(getattr(prop, name)), unit, f"{ax} mount "
-                                       + ("frequency" if f is not None else "stiffness")))
-                out.append(D.Parameter(pre + f"damping_{ax}", "propeller", j, f"damping_{ax}",
-                                       float(getattr(prop, f"damping_{ax}")), "",
-                                       f"{ax} mount damping ({prop.damping})"))
-        if model.rotating:
-            out.append(D.Parameter(pre + "spin_inertia", "propeller", j, "spin_inertia",
-                                   float(prop.I_Omega), "kg m^2", "spin inertia I_Omega"))
-    out.append(D.Parameter(DENSITY, "flight", -1, "density", float(model.flight.density),
-                           "kg/m^3", "air density"))
-    return tuple(out)
+    whose sensitivities :func:`difference_sensitivities` gives: its ``parameter_paths()``,
+    :func:`propwhirl.model.parameter_paths.modal_parameters` (kept here by its former name)."""
+    return modal_parameters(model)
 
 
 def with_difference_value(model, p: D.Parameter, value: float):
-    """``model`` with parameter ``p`` (of :func:`difference_parameters`) set to ``value``
-    [its unit] (``dataclasses.replace``; the model's own checks apply: a value outside a
-    field's range is an InputError)."""
-    if p.kind == "modal":
-        arr = np.array(getattr(model.structure, p.name), dtype=float)
-        arr[p.index] = value
-        return model.with_(structure=replace(model.structure, **{p.name: arr}))
-    if p.kind == "flight":
-        return model.with_(flight=replace(model.flight, density=float(value)))
-    installs = list(model.propellers)
-    inst = installs[p.index]
-    installs[p.index] = replace(inst, propeller=replace(inst.propeller, **{p.name: float(value)}))
-    return model.with_(propellers=tuple(installs))
+    """``model`` with parameter ``p`` set to ``value`` [its unit]:
+    :func:`propwhirl.model.parameter_paths.with_parameter` (kept here by its former name)."""
+    return with_parameter(model, p, value)
 
 
 def _eigenpair(A: np.ndarray, lam0: complex) -> tuple[complex, np.ndarray, np.ndarray]:
@@ -557,7 +530,7 @@ def _eigenpair(A: np.ndarray, lam0: complex) -> tuple[complex, np.ndarray, np.nd
     return complex(lam[i]), X[:, i], Y[:, i]
 
 
-def difference_sensitivities(model, e, point, pars) -> CriticalSensitivities:
+def difference_sensitivities(model, e, point, pars, state_matrix=None) -> CriticalSensitivities:
     """The sensitivities of crossing ``e`` (its refined ``point``) of a model without exact
     derivatives, for the parameters ``pars`` (:func:`difference_parameters`).
 
@@ -568,9 +541,14 @@ def difference_sensitivities(model, e, point, pars) -> CriticalSensitivities:
     where p − h is outside the parameter's range (a damping ratio of 0) the second-order
     forward difference (−3 A(p) + 4 A(p + h) − A(p + 2h)) / 2h.  Truncation O(h²): the
     relative error of ∂λ/∂p is ~1e-8, far below the crossings' accuracy.  ∂λ/∂V likewise
-    (step :data:`DV_STEP` V).  Each :class:`Sensitivity` says which difference it is."""
+    (step :data:`DV_STEP` V).  Each :class:`Sensitivity` says which difference it is.
+    ``state_matrix(model, V)``: A of a model at the speeds V (default ``model.state_matrix``;
+    a doublet-lattice wing's from its tables)."""
+    if state_matrix is None:
+        def state_matrix(m, speeds):
+            return m.state_matrix(speeds)
     V = float(point.V)
-    A0 = model.state_matrix(np.array([V]))[0]
+    A0 = state_matrix(model, np.array([V]))[0]
     lam, x, y = _eigenpair(A0, complex(point.eigenvalue))
     if abs(lam - point.eigenvalue) > SAME_ROOT * max(1.0, abs(lam)):
         raise v.InputError(
@@ -583,25 +561,80 @@ def difference_sensitivities(model, e, point, pars) -> CriticalSensitivities:
         return complex(np.vdot(y, dA @ x) / denom)
 
     hV = DV_STEP * V
-    Ap, Am = model.state_matrix(np.array([V + hV, V - hV]))
+    Ap, Am = state_matrix(model, np.array([V + hV, V - hV]))
     dlam_dV = dlam((Ap - Am) / (2 * hV))
     real = e.kind == "divergence"
     sgn = 1.0 if np.imag(lam) >= 0 else -1.0
     out = []
     for p in pars:
         h = DIFF_STEP * (abs(p.value) if p.value != 0 else 1.0)
-        up = with_difference_value(model, p, p.value + h).state_matrix(np.array([V]))[0]
+        up = state_matrix(with_parameter(model, p, p.value + h), np.array([V]))[0]
         try:
-            down = with_difference_value(model, p, p.value - h).state_matrix(np.array([V]))[0]
+            down = state_matrix(with_parameter(model, p, p.value - h), np.array([V]))[0]
             dA, how = (up - down) / (2 * h), "central difference"
         except v.InputError:              # p − h outside its range: one-sided, second order
-            up2 = with_difference_value(model, p, p.value + 2 * h).state_matrix(
-                np.array([V]))[0]
+            up2 = state_matrix(with_parameter(model, p, p.value + 2 * h), np.array([V]))[0]
             dA, how = (-3 * A0 + 4 * up - up2) / (2 * h), "forward difference"
-        d = dlam(dA)
-        dV = -d.real / dlam_dV.real
-        df = 0.0 if real else sgn * (d.imag + dlam_dV.imag * dV) / (2 * np.pi)
-        out.append(Sensitivity(p.path, p.value, p.unit, p.doc, d, float(dV), float(df),
-                               float(p.value / V * dV), None, "", how))
+        out.append(_entry(model, p, dlam(dA), dlam_dV, V, real, sgn, how))
     return CriticalSensitivities(V, abs(float(np.imag(lam))) / (2 * np.pi), e.kind, e.event,
                                  e.label, lam, dlam_dV, tuple(out))
+
+
+def _entry(model, p: D.Parameter, d: complex, dlam_dV: complex, V: float, real: bool,
+           sgn: float, how: str) -> Sensitivity:
+    """The :class:`Sensitivity` of ``p`` from its ∂λ/∂p ``d`` and the point's ∂λ/∂V."""
+    dV = -d.real / dlam_dV.real
+    df = 0.0 if real else sgn * (d.imag + dlam_dV.imag * dV) / (2 * np.pi)
+    scale, what = scale_of(model, p)
+    return Sensitivity(p.path, p.value, p.unit, p.doc, complex(d), float(dV), float(df),
+                       float((p.value if scale is None else scale) / V * dV), scale, what, how)
+
+
+def dlm_sensitivities(model, e, point, pars, tables: DlmTables) -> CriticalSensitivities:
+    """The sensitivities of crossing ``e`` (its refined ``point``) of a doublet-lattice wing,
+    for ``pars`` (:func:`propwhirl.model.parameter_paths.dlm_parameters`), by central
+    differences, every perturbed model reading ``tables`` (the same panels: the AICs computed
+    once for all).
+
+    The default method converges a doublet-lattice wing's crossings by the p-k
+    (:mod:`propwhirl.analysis.modal_dlm`): the point's root is then the p-k root λ(V, p) at
+    V, whose derivatives are central differences of the root converged again (to
+    :data:`ROOT_KTOL`) at p ± h, h = :data:`DIFF_STEP` |p| (a parameter at the lower end of
+    its range: the second-order forward difference), and at V ± :data:`DV_STEP` V;
+    dV_crit/dp = −Re(∂λ/∂p) / Re(∂λ/∂V) as on the exact route.  A dense analysis's point is
+    a root of the Roger state space: :func:`difference_sensitivities` on its state matrix,
+    read from the same tables."""
+    V = float(point.V)
+    lam0 = complex(point.eigenvalue)
+
+    def root(m, speed: float, start: complex) -> complex:
+        return complex(pk_root(m, speed, start, ktol=ROOT_KTOL, tables=tables,
+                               own_mach=True)[0])
+
+    try:
+        lam = root(model, V, lam0)
+    except RuntimeError:
+        lam = None
+    if lam is None or abs(lam - lam0) > SAME_ROOT * max(1.0, abs(lam)):
+        def roger(m, speeds):                  # the dense analysis: its Roger state space
+            return m.assembly(dlm_tables=tables).state_matrix(speeds)
+        return difference_sensitivities(model, e, point, pars, roger)
+    real = e.kind == "divergence"
+    if real:
+        lam = complex(lam.real, 0.0)
+    hV = DV_STEP * V
+    dlam_dV = (root(model, V + hV, lam) - root(model, V - hV, lam)) / (2 * hV)
+    sgn = 1.0 if np.imag(lam) >= 0 else -1.0
+    out = []
+    for p in pars:
+        h = DIFF_STEP * (abs(p.value) if p.value != 0 else 1.0)
+        up = root(with_parameter(model, p, p.value + h), V, lam)
+        try:
+            down = root(with_parameter(model, p, p.value - h), V, lam)
+            d, how = (up - down) / (2 * h), "central difference (p-k)"
+        except v.InputError:              # p − h outside its range: one-sided, second order
+            up2 = root(with_parameter(model, p, p.value + 2 * h), V, lam)
+            d, how = (-3 * lam + 4 * up - up2) / (2 * h), "forward difference (p-k)"
+        out.append(_entry(model, p, d, dlam_dV, V, real, sgn, how))
+    return CriticalSensitivities(V, abs(float(np.imag(lam))) / (2 * np.pi), e.kind, e.event,
+                                 e.label, lam, complex(dlam_dV), tuple(out))

@@ -24,7 +24,9 @@ from propwhirl.model import (FlightCondition, Installation, ModalInstallation,
                              ModalPropellerWing, ModalStructure, PropellerWing, StripPlanform,
                              TypicalSection)
 from propwhirl.model.aerodynamics.planform import Planform
-from propwhirl.model.protocol import COMMANDS, METHODS, STRUCTURES, Capabilities, capabilities
+from propwhirl.model.parameter_paths import parameter_families
+from propwhirl.model.protocol import (COMMANDS, DERIVATIVE_ROUTES, METHODS, STRUCTURES,
+                                     Capabilities, capabilities)
 
 
 def _beam(aero: str = "strip", propellers: bool = True):
@@ -87,6 +89,27 @@ def sample_capabilities() -> list[tuple[str, str, str, Capabilities]]:
     return [(key, row, where, capabilities(build())) for key, row, where, build in SAMPLES]
 
 
+def sample_parameters() -> list[tuple[str, str, tuple[tuple[str, str, int], ...]]]:
+    """(key, row, (family, derivative, number of paths) ...) of every sample: the model
+    contract's :func:`~propwhirl.model.parameter_paths.parameter_families`."""
+    return [(key, row, parameter_families(build())) for key, row, _, build in SAMPLES]
+
+
+def _parameter_rows(reasons: dict[str, int]) -> list[str]:
+    """The table of each sample's parameter families, one row per derivative route."""
+    out = ["| model | derivative | parameter paths (number of each in the sample) |",
+           "|---|---|---|"]
+    for (key, row, fams), (_, _, _, c) in zip(sample_parameters(), sample_capabilities()):
+        if not fams:
+            out.append(f"| {row} | — | {_cell(c, 'sensitivity', reasons, 'none')} |")
+            continue
+        for route in DERIVATIVE_ROUTES:
+            cells = [f"`{f}` ({n})" if n > 1 else f"`{f}`" for f, d, n in fams if d == route]
+            if cells:
+                out.append(f"| {row} | {route} | {', '.join(cells)} |")
+    return out
+
+
 def _cell(c: Capabilities, feature: str, reasons: dict[str, int], yes: str = "yes") -> str:
     why = c.refusal(feature)
     if why is None:
@@ -137,6 +160,13 @@ def page() -> str:
             "|---|" + "---|" * len(COMMANDS)]
     for _, row, _, c in rows:
         out.append(f"| {row} | " + " | ".join(_cell(c, f, reasons) for f in COMMANDS) + " |")
+    out += ["", "## Parameters and their derivatives (`propwhirl sensitivity`)", "",
+            "Each model lists the parameters it has sensitivities for and how each one's "
+            "derivative is computed (`propwhirl.model.parameter_paths.parameter_paths(model)`, from its capabilities' `parameters`; "
+            "`propwhirl sensitivity MODEL --list`), by family (`[i]`: an element, node, "
+            "propeller or mode index from 0). "
+            + " ".join(f"*{route}*: {how}." for route, how in DERIVATIVE_ROUTES.items()), ""]
+    out += _parameter_rows(reasons)
     out += ["", "## Reasons", ""]
     out += [f"- **R{n}**: {why}." for why, n in reasons.items()]
     out += ["", "Finite-state strips: Theodorsen's strip theory with the Leishman-Nguyen or "

@@ -42,7 +42,8 @@ from propwhirl import fileio
 from propwhirl import progress
 from propwhirl import validate as v
 from propwhirl.app import cli_certify, cli_design, cli_nastran, cli_studies, execution_options
-from propwhirl.app.cli_common import check_outputs, echo, load_model, print_notes, speed_grid
+from propwhirl.app.cli_common import (LazyHelpFormatter, check_outputs, echo, lazy, load_model,
+                                      print_notes, speed_grid)
 from propwhirl.cases import registry
 from propwhirl.certification import FACTOR_CFR23, FACTOR_CS25, FACTOR_RANGE, required_speed
 from propwhirl.validate import InputError
@@ -172,8 +173,6 @@ def _speed_of_sound(args: argparse.Namespace) -> float:
 
 
 def _add_derivatives(sub) -> None:
-    from propwhirl.model.flight import DEFAULT_SPEED_OF_SOUND  # lazy: models, at parser build
-
     p = sub.add_parser("derivatives", help="Houbolt-Reed propeller aerodynamic derivatives "
                        "(chapter 4) for one propeller and operating point (SI units)")
     g = p.add_argument_group("propeller")
@@ -201,8 +200,9 @@ def _add_derivatives(sub) -> None:
                    default="thesis_eq_9_1", help="beta -> advance ratio relation (default: eq. 9.1 "
                    "mu = tan(beta + alpha_0L); blade_element: mu = 0.75 tan(beta - alpha_0L))")
     air = o.add_mutually_exclusive_group()
-    air.add_argument("--speed-of-sound", type=float, help=f"[m/s] (default "
-                     f"{DEFAULT_SPEED_OF_SOUND:.2f}, ISA at 8000 ft: propwhirl's one default)")
+    air.add_argument("--speed-of-sound", type=float, help="[m/s] (default "
+                     + lazy("propwhirl.model.flight", "DEFAULT_SPEED_OF_SOUND", ".2f")
+                     + ", ISA at 8000 ft: propwhirl's one default)")
     air.add_argument("--altitude-m", type=float, metavar="M",
                      help="ISA altitude [m]: the standard atmosphere's speed of sound")
     air.add_argument("--altitude-ft", type=float, metavar="FT", help="ISA altitude [ft]")
@@ -572,6 +572,10 @@ def version() -> str:
 class _Parser(argparse.ArgumentParser):
     """argparse with the project's error style: a usage error is one line naming the command
     and pointing to its --help (exit code 2, through :func:`main`), not the usage text."""
+
+    def __init__(self, *args, **kwargs):
+        kwargs.setdefault("formatter_class", LazyHelpFormatter)   # the subcommands' too
+        super().__init__(*args, **kwargs)
 
     def error(self, message: str):  # noqa: D102 (argparse's hook)
         raise InputError(f"{self.prog}: {message} (see `{self.prog} --help`)")

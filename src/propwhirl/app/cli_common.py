@@ -4,6 +4,8 @@ be written before a long run.
 Used by :mod:`propwhirl.app.cli` and the study commands (:mod:`.cli_studies`, :mod:`.cli_design`)."""
 from __future__ import annotations
 
+import argparse
+import importlib
 import re
 import sys
 from pathlib import Path
@@ -16,6 +18,33 @@ from propwhirl.cases import registry
 from propwhirl.studies.partial import Checkpoint
 from propwhirl.studies.warmstart import pass_checkpoints
 from propwhirl.validate import InputError
+
+
+#: a value named in a help text, read when the help is printed: ``«module:name»`` or
+#: ``«module:name:format»`` (a callable is called)
+_LAZY = re.compile(r"«([\w.]+):(\w+)(?::([^»]*))?»")
+
+
+def lazy(module: str, name: str, spec: str = "") -> str:
+    """A placeholder for ``module.name`` (formatted with ``spec``) in a help text, replaced
+    by :class:`LazyHelpFormatter` when the help is printed: building the parser imports
+    nothing for it (``propwhirl --help`` does not import the model package for a default
+    named in one command's help)."""
+    return f"«{module}:{name}{':' + spec if spec else ''}»"
+
+
+def _expand(match: re.Match) -> str:
+    value = getattr(importlib.import_module(match.group(1)), match.group(2))
+    return format(value() if callable(value) else value, match.group(3) or "")
+
+
+class LazyHelpFormatter(argparse.HelpFormatter):
+    """argparse's formatter, with the :func:`lazy` placeholders of a help text replaced by
+    their values (imported then)."""
+
+    def _get_help_string(self, action: argparse.Action) -> str | None:
+        text = super()._get_help_string(action)
+        return _LAZY.sub(_expand, text) if text and "«" in text else text
 
 
 def plain(text: str) -> str:

@@ -16,7 +16,7 @@ from __future__ import annotations
 import argparse
 
 from propwhirl.app import execution_options
-from propwhirl.app.cli_common import check_outputs, echo, model_or_case
+from propwhirl.app.cli_common import check_outputs, echo, lazy, model_or_case
 from propwhirl.certification import FACTOR_CFR23, FACTOR_CS25
 from propwhirl.validate import InputError
 
@@ -171,9 +171,10 @@ def _add_clearance(sub) -> None:
 
 
 def _sensitivity(args: argparse.Namespace) -> int:
-    from propwhirl.analysis.sensitivity import (critical_sensitivities,  # lazy: analyses
-                                                exact, sensitivity_parameters)
+    from propwhirl.analysis.sensitivity import critical_sensitivities  # lazy: analyses
     from propwhirl.analysis.stability import analyse  # lazy: analyses
+    from propwhirl.model.aerodynamics.dlm import DlmTables  # lazy: the model package
+    from propwhirl.model.parameter_paths import parameter_paths  # lazy: the model package
 
     check_outputs(json=args.json, plot=args.plot, model=args.model)
     if args.top < 1:
@@ -185,13 +186,15 @@ def _sensitivity(args: argparse.Namespace) -> int:
                          "sensitivities themselves are one analysis: add --verify or leave "
                          f"{given.split()[0]} out")
     model = model_or_case(args.model, "sensitivity")      # the model says when it has none
-    if args.plot and not exact(model):
+    known = parameter_paths(model)                         # the model contract's paths
+    spanwise = ("wing.EI[", "wing.GJ[", "wing.mass_per_length[")
+    if args.plot and not any(p.path.startswith(spanwise) for p in known):
         raise InputError("--plot draws the per-element sensitivities of a beam wing's EI, GJ "
                          "and m: a modal model has none (its parameters are its modes'; "
                          "leave --plot out)")
-    known = sensitivity_parameters(model)
     if args.list:
-        echo("\n".join(f"{p.path}  [{p.unit or 'factor'}]  {p.doc}" for p in known))
+        echo("\n".join(f"{p.path}  [{p.unit or 'factor'}]  {p.doc}  ({p.derivative})"
+                        for p in known))
         return 0
     params = None
     if args.param:
@@ -202,24 +205,24 @@ def _sensitivity(args: argparse.Namespace) -> int:
                              f"this model (`propwhirl sensitivity {args.model} --list` lists "
                              f"the {len(paths)} valid paths)")
         params = list(dict.fromkeys(args.param))
-        spanwise = ("wing.EI[", "wing.GJ[", "wing.mass_per_length[")
         if args.plot and not any(q.startswith(spanwise) for q in params):
             raise InputError("--plot draws the per-element sensitivities of EI, GJ and m: "
                              "leave out --param, or add paths such as --param 'wing.GJ[0]'")
-    a = analyse(model)
+    tables = DlmTables()          # a doublet-lattice wing's AICs: once for every analysis
+    a = analyse(model, dlm_tables=tables)
     event = a.critical
     if args.kind is not None:
         cands = [e for e in a.events if e.kind == args.kind and e.event == "onset"]
         if not cands:
             raise InputError(f"no {args.kind} onset in the analysed range")
         event = min(cands, key=lambda e: e.V)
-    cs = critical_sensitivities(model, a, event, params=params)
+    cs = critical_sensitivities(model, a, event, params=params, dlm_tables=tables)
     echo(cs.format(args.top))
     check = None
     if args.verify:
         from propwhirl.studies.sensitivity_check import verify_sensitivities  # lazy: studies
 
-        check = verify_sensitivities(model, a, cs, top=args.top, **run)
+        check = verify_sensitivities(model, a, cs, top=args.top, dlm_tables=tables, **run)
         echo("")
         echo(check.format())
     if args.json:
@@ -237,12 +240,13 @@ def _sensitivity(args: argparse.Namespace) -> int:
 
 
 def _add_sensitivity(sub) -> None:
-    from propwhirl.studies.sensitivity_check import (  # lazy: studies, at parser build
-        NORMALISED_ATOL, REL_STEP, RTOL)
-
+    check = "propwhirl.studies.sensitivity_check"   # its constants, read when printed
+    REL_STEP, RTOL, NORMALISED_ATOL = (lazy(check, name, "g")
+                                       for name in ("REL_STEP", "RTOL", "NORMALISED_ATOL"))
     p = sub.add_parser("sensitivity", help="sensitivities of the critical speed to the model's "
-                       "parameters (exact derivatives, ranked; --verify: checked by central "
-                       "differences, exit code 1 when one is flagged)")
+                       "parameters (exact derivatives, or central differences where the model "
+                       "has none, said which; ranked; --verify: checked by central differences "
+                       "of re-analyses, exit code 1 when one is flagged)")
     p.add_argument("model", metavar="MODEL", help="a model file (.toml) or a case name")
     p.add_argument("--top", type=int, default=10, metavar="N",
                    help="the N parameters of largest normalised sensitivity (default 10)")
@@ -256,14 +260,15 @@ def _add_sensitivity(sub) -> None:
                    help="compute only this parameter's sensitivity (repeat for more; "
                    "--list shows the valid paths)")
     p.add_argument("--list", action="store_true",
-                   help="list the parameter paths with derivatives of the model and stop")
+                   help="list the model's parameter paths, each with how its derivative is "
+                   "computed, and stop")
     p.add_argument("--verify", action="store_true",
                    help="check each sensitivity shown (the --top N, of the --param ones if "
                    "given) against the central difference of the critical speed: the model "
-                   f"analysed at p(1 +- {REL_STEP:g}) with the same method and speeds, the same "
+                   f"analysed at p(1 +- {REL_STEP}) with the same method and speeds, the same "
                    "event (kind and mode) found in both; 2 analyses per parameter, in one batch "
                    "(--processes, --scheduler, progress). A check is flagged when "
-                   f"|exact - FD| > {RTOL:g} |FD| + {NORMALISED_ATOL:g} in normalised units, or "
+                   f"|exact - FD| > {RTOL} |FD| + {NORMALISED_ATOL} in normalised units, or "
                    "the critical mode changed, or a variant failed; the exit code is then 1 "
                    "(0 when all pass)")
     # the verification's analyses are one batch of independent analyses

@@ -27,7 +27,7 @@ from __future__ import annotations
 import argparse
 import os
 
-from propwhirl.app.cli_common import (check_outputs, echo, load_model, model_or_case, plain,
+from propwhirl.app.cli_common import (check_outputs, echo, lazy, load_model, model_or_case, plain,
                                        print_notes)
 from propwhirl.validate import InputError
 
@@ -151,7 +151,8 @@ def add_commands(sub) -> None:
     p.add_argument("bdf", metavar="MODEL.bdf", help="the NASTRAN bulk data file, or an OP2 "
                    "(MODES.op2: a SOL 103's eigenvectors and grids)")
     p.add_argument("--out", required=True, metavar="MODEL.toml", help="the model file to write")
-    p.add_argument("--units", metavar="UNITS", help=units_help() + " (required: NASTRAN has none)")
+    p.add_argument("--units", metavar="UNITS", help=lazy(__name__, "units_help")
+                   + " (required: NASTRAN has none)")
     p.add_argument("--base", metavar="BASE.toml", help="model file giving what a BDF cannot: "
                    "flight condition, chords and aerodynamics, the propellers' rotors and "
                    "aerodynamics (its structure is replaced by the BDF's)")
@@ -179,5 +180,6 @@ def add_commands(sub) -> None:
                        description=plain(__doc__.split("\n\n")[2]))
     p.add_argument("model", metavar="MODEL", help="a model file (.toml) or a case name")
     p.add_argument("--out", required=True, metavar="MODEL.bdf", help="the BDF to write")
-    p.add_argument("--units", default="si", metavar="UNITS", help=units_help() + " (default si)")
+    p.add_argument("--units", default="si", metavar="UNITS", help=lazy(__name__, "units_help")
+                   + " (default si)")
     p.set_defaults(func=_export)

@@ -89,11 +89,15 @@ _AXES = ("theta", "psi")
 
 @dataclass(frozen=True)
 class Parameter:
-    """One model parameter with exact derivatives: its path, current value, unit, meaning.
+    """One model parameter: its path, current value, unit, meaning and how its derivative is
+    computed.
 
     kind: "element", "node", "section" (:mod:`propwhirl.model.derivatives_section`),
-    "propeller" or "rotation" (:mod:`propwhirl.model.propellers.derivatives_blade`); index: the element,
-    node (−1 for the root and tip chords) or installation."""
+    "propeller" or "rotation" (:mod:`propwhirl.model.propellers.derivatives_blade`); and, in
+    a model's ``parameter_paths()`` (:mod:`propwhirl.model.parameter_paths`), "factor",
+    "flight" or "modal"; index: the element, node (−1 for the root and tip chords),
+    installation or mode.  derivative: "exact" (the generated derivatives of this module) or
+    "central difference" (:data:`propwhirl.model.protocol.DERIVATIVE_ROUTES`)."""
 
     path: str
     kind: str
@@ -102,12 +106,19 @@ class Parameter:
     value: float
     unit: str
     doc: str
+    derivative: str = "exact"
 
 
-def parameters(model: PropellerWing) -> tuple[Parameter, ...]:
+def parameters(model: PropellerWing, check: bool = True) -> tuple[Parameter, ...]:
     """Every parameter of `model` whose derivatives :func:`derivative_blocks` gives (table in
-    the module docstring), in a fixed order: elements, nodes, section fields, propellers."""
-    check_model(model)
+    the module docstring), in a fixed order: elements, nodes, section fields, propellers.
+    ``check=False``: the same paths of a wing without exact derivatives (a doublet-lattice
+    wing's, for finite differences: :func:`with_value`), a PropellerWing all the same."""
+    if check:
+        check_model(model)
+    elif not isinstance(model, PropellerWing):
+        raise v.InputError(f"model = {type(model).__name__} is invalid: parameter paths are "
+                           "listed here for a PropellerWing")
     wing = model.wing
     p = wing.element_properties()
     out = []
@@ -182,8 +193,9 @@ def check_model(model) -> None:
             "wing.EI_chordwise, or use finite differences)")
 
 
-def _lookup(model: PropellerWing, params: Iterable[str | Parameter] | None) -> list[Parameter]:
-    known = {p.path: p for p in parameters(model)}
+def _lookup(model: PropellerWing, params: Iterable[str | Parameter] | None,
+            check: bool = True) -> list[Parameter]:
+    known = {p.path: p for p in parameters(model, check)}
     if params is None:
         return list(known.values())
     out = []
@@ -558,8 +570,10 @@ def with_value(model: PropellerWing, path: str, value: float) -> PropellerWing:
     """`model` with the parameter `path` (of :func:`parameters`) set to `value`, everything
     else unchanged (``dataclasses.replace`` of the wing or of installation j's propeller; a
     per-element value becomes a per-element array of the property, a nodal lift slope a
-    function of y equal to the old one at every other node)."""
-    (par,) = _lookup(model, [path])
+    function of y equal to the old one at every other node).  A wing without exact
+    derivatives (a doublet-lattice wing's) is set the same way: it is for finite
+    differences."""
+    (par,) = _lookup(model, [path], check=False)
     wing = model.wing
     value = float(value)
     if par.kind == "element":

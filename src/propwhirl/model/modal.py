@@ -329,7 +329,7 @@ class ModalPropellerWing(StateSpaceModel):
                "export": REASONS["modal-export"], "upgrade-model": REASONS["modal-upgrade"]}
         if dlm:     # "reduced": the modal Roger state space (its modes below a cut-off)
             del why["reduced"]
-            why["sensitivity"] = why["exact-sensitivity"] = REASONS["dlm-derivatives"]
+            why["sensitivity"] = why["exact-sensitivity"] = REASONS["modal-dlm-derivatives"]
         if not self.wing_aero:
             why["pk"] = REASONS["no-wing-aero-pk"]
         if not self.dof_map().whirling():
@@ -340,7 +340,7 @@ class ModalPropellerWing(StateSpaceModel):
         return Capabilities("modal propeller-wing", "modes",
                             "doublet lattice" if dlm else "strip" if self.wing_aero else "none",
                             "none" if dlm else "central difference", props,
-                            tuple(why.items()))
+                            tuple(why.items()), "none" if dlm else "modal")
 
     def with_(self, **changes) -> "ModalPropellerWing":
         """A copy with fields replaced (``dataclasses.replace``)."""

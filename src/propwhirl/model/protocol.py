@@ -358,7 +358,10 @@ class Model(Protocol):
     :class:`~propwhirl.model.modal.ModalPropellerWing` meet it, and so does any object with
     these attributes and the methods ``second_order(V)``, ``state_matrix(V)`` (V: airspeeds
     [m/s], an array; A(V) of shape (len(V), n, n) [1/s]), ``dof_map()``,
-    ``without_aerodynamics()`` and ``assembly()``.
+    ``without_aerodynamics()`` and ``assembly()``.  Optional: ``capabilities()`` (what it
+    supports, :func:`capabilities`; its ``parameters`` names the model's parameter paths,
+    listed with how each one's derivative is computed by
+    :func:`propwhirl.model.parameter_paths.parameter_paths`).
 
     Attributes
     ----------
@@ -423,6 +426,19 @@ STRUCTURES = {
     "section": "a typical section (plunge and pitch springs)",
     "rigid": "a rigid wing: the propeller's mount is the only structure",
 }
+#: The parameter paths a model may have sensitivities for (:attr:`Capabilities.parameters`;
+#: the lists: :mod:`propwhirl.model.parameter_paths`).
+PARAMETER_SETS = {
+    "beam": "a strip wing's generated-block parameters, the distributions' factors and the "
+            "air density, all exact",
+    "doublet lattice": "a doublet-lattice wing's: the beam's but those of the strips and of "
+                       "the panels' geometry, by central differences",
+    "in-plane": "a strip wing with in-plane bending: the beam's paths, by central "
+                "differences of its state matrix",
+    "modal": "each mode's frequency, modal mass and damping, the own mounts, the spin "
+             "inertias and the air density, by central differences",
+    "none": "no sensitivities",
+}
 #: The wing aerodynamics a model may have (:attr:`Capabilities.aerodynamics`): what the
 #: finite-state methods (dense, reduced) and the p-k method each use.
 AERODYNAMICS = {
@@ -442,7 +458,12 @@ class Capabilities:
     aerodynamics: a key of :data:`AERODYNAMICS` (the wing's; the propellers' Houbolt-Reed
                   loads are in every model with propellers).
     derivatives:  "exact" (generated parameter derivatives), "central difference" (of the
-                  state matrix) or "none": how ``propwhirl sensitivity`` differentiates.
+                  state matrix or of the critical eigenvalue) or "none": how ``propwhirl
+                  sensitivity`` differentiates.
+    parameters:   a key of :data:`PARAMETER_SETS`: which parameter paths the model has
+                  sensitivities for (listed, each with its ``derivative`` of
+                  :data:`DERIVATIVE_ROUTES`, by
+                  :func:`propwhirl.model.parameter_paths.parameter_paths`).
     propellers:   "own mounts" (θ, ψ DOFs), "hub grids" (mounts in the modes), "both",
                   or "none".
     refusals:     {feature of :data:`FEATURES`: why it cannot run, the physical or modelling
@@ -455,6 +476,7 @@ class Capabilities:
     derivatives: str
     propellers: str
     refusals: tuple[tuple[str, str], ...] = ()
+    parameters: str = "none"
 
     def __post_init__(self) -> None:
         if self.structure not in STRUCTURES:
@@ -462,6 +484,9 @@ class Capabilities:
         if self.aerodynamics not in AERODYNAMICS:
             raise ValueError(f"aerodynamics = {self.aerodynamics!r}: not one of "
                              f"{tuple(AERODYNAMICS)}")
+        if self.parameters not in PARAMETER_SETS:
+            raise ValueError(f"parameters = {self.parameters!r}: not one of "
+                             f"{tuple(PARAMETER_SETS)}")
         bad = [f for f, _ in self.refusals if f not in FEATURES]
         if bad:
             raise ValueError(f"refusals of unknown features {bad}; valid: {FEATURES}")
@@ -493,6 +518,10 @@ class Capabilities:
 REASONS = {
     "modal-reduced": "a modal model is reduced already (one coordinate per mode): the reduced "
                      "method would not pay; use the default method (dense)",
+    "modal-dlm-derivatives": "a modal model's doublet-lattice loads have no parameter "
+                             "derivatives (its parameters are the modes', not the panels' "
+                             "beam): use `propwhirl sweep` on the parameter path (the critical "
+                             "speed against it)",
     "modal-exact": "exact derivatives exist for the beam model's generated blocks only "
                    "(model/derivatives.py): a modal model's sensitivities are central "
                    "differences of its state matrix",
@@ -504,10 +533,12 @@ REASONS = {
     "no-whirl": "a Campbell diagram needs a flexibly mounted propeller (or a modal "
                 "structure's on its hub grid): the rotational speed acts on the modes only "
                 "through the propellers' pitch and yaw (the wing's own modes: propwhirl modes)",
-    "dlm-derivatives": "the doublet-lattice (Roger) blocks have no parameter derivatives: use "
-                       "`propwhirl sweep` on the parameter path (the critical speed against it)",
+    "dlm-exact": "the doublet-lattice (Roger) blocks have no generated parameter "
+                 "derivatives: a doublet-lattice wing's sensitivities are central differences "
+                 "of its critical eigenvalue, the AICs computed once for all",
     "inplane-derivatives": "in-plane bending (EI_chordwise) has no generated parameter "
-                           "derivatives: use `propwhirl sweep` on the parameter path",
+                           "derivatives: a wing with it has sensitivities by central "
+                           "differences of its state matrix",
     "no-wing-aero-pk": "the p-k method iterates the wing's unsteady aerodynamics on the "
                        "frequency, and the wing aerodynamics are off: the dense method is exact",
     "rigid-pk": "the p-k method iterates the wing's unsteady aerodynamics on the frequency: an "
@@ -536,6 +567,17 @@ REASONS = {
                     "model of its own class does not give",
     "own-class-sensitivity": "the parameter derivatives are generated for propwhirl's wing "
                              "model's blocks only",
+}
+
+
+#: How a parameter's derivative is computed (each path's ``derivative`` in
+#: :func:`propwhirl.model.parameter_paths.parameter_paths`; :attr:`Capabilities.derivatives`
+#: adds "none").
+DERIVATIVE_ROUTES = {
+    "exact": "the generated parameter derivatives of the beam model's blocks "
+             "(model/derivatives.py) in the eigenvalue perturbation",
+    "central difference": "central differences of the state matrix (or, on a doublet-lattice "
+                          "wing, of the p-k root) at p ± h in the eigenvalue perturbation",
 }
 
 

@@ -469,23 +469,27 @@ class PropellerWing(StateSpaceModel):
     def capabilities(self) -> Capabilities:
         """What this model can do (:class:`~propwhirl.model.protocol.Capabilities`): a beam
         structure, strip or doublet-lattice wing aerodynamics, exact parameter derivatives
-        (but on doublet-lattice or in-plane blocks), every command; a Campbell diagram needs
-        a flexibly mounted propeller, the p-k method the wing aerodynamics."""
+        (a doublet-lattice wing's and in-plane bending's: central differences), every
+        command; a Campbell diagram needs a flexibly mounted propeller, the p-k method the
+        wing aerodynamics."""
         dlm = self.wing_aero and self.wing.aero == "dlm"
         aero = "doublet lattice" if dlm else ("strip" if self.wing_aero else "none")
         why: dict[str, str] = {}
-        if dlm or self.wing.in_plane:
-            key = "dlm-derivatives" if dlm else "inplane-derivatives"
-            why["sensitivity"] = why["exact-sensitivity"] = REASONS[key]
+        if dlm:
+            why["exact-sensitivity"] = REASONS["dlm-exact"]
+        elif self.wing.in_plane:
+            why["exact-sensitivity"] = REASONS["inplane-derivatives"]
         if not self.wing_aero:
             why["pk"] = REASONS["no-wing-aero-pk"]
         if not self.flexible:
             why["campbell"] = REASONS["no-whirl"]
         if not self.propellers:
             why["certify"] = REASONS["no-propeller-campaign"]
-        return Capabilities("beam propeller-wing", "beam", aero,
-                            "none" if "sensitivity" in why else "exact",
-                            "own mounts" if self.flexible else "none", tuple(why.items()))
+        derivatives = "central difference" if dlm or self.wing.in_plane else "exact"
+        params = "doublet lattice" if dlm else "in-plane" if self.wing.in_plane else "beam"
+        return Capabilities("beam propeller-wing", "beam", aero, derivatives,
+                            "own mounts" if self.flexible else "none", tuple(why.items()),
+                            params)
 
     def dof_map(self) -> DofMap:
         """The states of :meth:`second_order`: the free wing DOFs (node ≥ 1: h, φ, α, eq. 7.20),

@@ -31,6 +31,8 @@ from propwhirl.analysis.sensitivity import critical_sensitivities
 from propwhirl.analysis.stability import analyse
 from propwhirl.model import derivatives as D
 from propwhirl.model.aerodynamics.dlm import DlmTables
+from propwhirl.model.parameter_paths import parameter_paths
+from propwhirl.model.protocol import capabilities
 from propwhirl.results import Result, SavedDict
 from propwhirl.studies.critical import critical_instability, wing_divergence_predicate
 from propwhirl.studies.paths import ALTERNATIVES
@@ -106,10 +108,15 @@ class CriticalSpeed:
 
     def __post_init__(self) -> None:
         self.paths = _checked_paths(self.paths)
-        known = {p.path: p for p in D.parameters(self.model)}
+        # the model contract's paths with exact derivatives of the blocks (the factors and
+        # the density have exact sensitivities but no blocks to differentiate here)
+        known = {p.path: p for p in parameter_paths(self.model)
+                 if p.derivative == "exact" and p.kind not in ("factor", "flight")}
         bad = [p for p in self.paths if p not in known]
         if bad:
-            raise v.InputError(f"paths {bad} have no exact derivatives: choose among "
+            why = capabilities(self.model).refusal("exact-sensitivity")
+            raise v.InputError(f"paths {bad} have no exact derivatives"
+                               + (f" ({why})" if why else "") + ": choose among "
                                "propwhirl.model.derivatives.parameters(model)")
         self.x0 = np.array([known[p].value for p in self.paths])
         self.units = tuple(known[p].unit for p in self.paths)

@@ -48,13 +48,13 @@ from typing import Any, ClassVar
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.analysis.sensitivity import (DENSITY, FACTORS, CriticalSensitivities,
-                                            Sensitivity, exact)
+from propwhirl.analysis.sensitivity import CriticalSensitivities, Sensitivity
 from propwhirl.analysis.stability import ModelAnalysis, analyse
 from propwhirl.analysis.summary import text_table
 from propwhirl.engine import XTOL
 from propwhirl.model import derivatives as D
 from propwhirl.model.aerodynamics.dlm import DlmTables
+from propwhirl.model.parameter_paths import parameter_paths
 from propwhirl.progress import ProgressCallback
 from propwhirl.results import Result, SavedDict
 from propwhirl.studies import execution
@@ -75,10 +75,17 @@ def set_parameter(model: Any, path: str, value: float) -> Any:
     """`model` with the sensitivity parameter `path` (of
     :func:`~propwhirl.analysis.sensitivity.sensitivity_parameters`) set to `value` [its unit]:
     the factors and the density through the studies' paths, every other parameter as the
-    derivatives name it (:func:`propwhirl.model.derivatives.with_value`).  An unknown path is
-    an InputError."""
-    if path in FACTORS or path == DENSITY or not exact(model):   # a modal model's: paths
-        return P.set_value(model, path, value)
+    derivatives name it (:func:`propwhirl.model.derivatives.with_value`).  The path must be
+    one of the model contract's (:func:`propwhirl.model.parameter_paths.parameter_paths`): another
+    is an InputError."""
+    known = {p.path: p for p in parameter_paths(model)}
+    if path not in known:
+        raise v.InputError(f"parameter = {v.short_repr(path)} is invalid: not a parameter with "
+                           "sensitivities of this model (propwhirl.model.protocol."
+                           "parameter_paths(model) lists them)")
+    p = known[path]
+    if p.kind in ("factor", "flight", "modal") or not hasattr(model, "second_order_blocks"):
+        return P.set_value(model, path, value)          # a modal model's: the studies' paths
     return D.with_value(model, path, value)
 
 
@@ -265,9 +272,11 @@ class SensitivityVerification(Result):
                          "-" if rel is None else f"{rel:+.1e}",
                          c.status + (f" ({c.note})" if c.note else "")])
         # a model without exact derivatives: the sensitivities checked are central
-        # differences of its state matrix (analysis/sensitivity.py), not exact ones
-        derived = ("dV/dp exact" if all(x.derivative == "exact" for x in cs.sensitivities)
-                   else "dV/dp (diff. of A)")
+        # differences of its state matrix or, on a doublet-lattice wing's p-k crossing, of
+        # the p-k root (analysis/sensitivity.py), not exact ones
+        routes = {x.derivative for x in cs.sensitivities}
+        derived = ("dV/dp exact" if routes == {"exact"} else "dV/dp (diff. of p-k root)"
+                   if any(r.endswith("(p-k)") for r in routes) else "dV/dp (diff. of A)")
         table = text_table(rows, ["parameter", "value", "unit", "step", derived,
                                   "dV/dp FD", "rel. diff.", "check"], "lrlrrrrl")
         bad = self.failed
@@ -313,8 +322,8 @@ def verify_sensitivities(model: Any, analysis: ModelAnalysis, sensitivities: Cri
                          speeds=None, xtol: float = XTOL, rel_step: float = REL_STEP,
                          rtol: float = RTOL, atol: float = NORMALISED_ATOL,
                          processes: int = 1, client=None,
-                         progress: bool | ProgressCallback | None = None
-                         ) -> SensitivityVerification:
+                         progress: bool | ProgressCallback | None = None,
+                         dlm_tables: DlmTables | None = None) -> SensitivityVerification:
     """Check the exact dV_crit/dp of `sensitivities` (of `analysis`, an analysis of `model`)
     against central differences of the critical speed (the module docstring).
 
@@ -342,6 +351,10 @@ def verify_sensitivities(model: Any, analysis: ModelAnalysis, sensitivities: Cri
     processes, client, progress :
         How the 2N analyses run, in one batch
         (:func:`propwhirl.studies.execution.map_analyses`).
+    dlm_tables : DlmTables, optional
+        A doublet-lattice wing's tables (the analysis's), read by every perturbed analysis in
+        this process (the variants have the model's panels: no AIC computed again); None:
+        new ones for the batch.  Worker processes fill their own.
 
     Returns
     -------
@@ -397,8 +410,8 @@ def verify_sensitivities(model: Any, analysis: ModelAnalysis, sensitivities: Cri
                                "sensitivities given")
         chosen = [by_path[p] for p in dict.fromkeys(params)]
     cs = sensitivities
+    tables = DlmTables() if dlm_tables is None else dlm_tables
     tasks, keys = [], []
-    tables = DlmTables()                 # every variant's analyses: one set of AICs
     for s in chosen:
         h = step_of(s, rel_step)
         for sign, tag in ((1.0, "+"), (-1.0, "-")):
