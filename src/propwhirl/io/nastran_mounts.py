@@ -479,7 +479,8 @@ def installation(deck, mount: Mount, inst: Installation, wing: Wing, stick) -> I
     stiffness and damping (the base propeller's damping kind kept: GE is g = 2 zeta)."""
     nodes = wing.node_properties()
     a_b = float(nodes["a"][mount.node] * nodes["b"][mount.node])
-    x0 = float(stick.origin[0])
+    # the stick's x at the propeller's wing grid (a swept stick's grids move aft outboard)
+    x0 = float(stick.positions[mount.node][0] if stick.sweep else stick.origin[0])
     who = f"hub GRID {mount.hub}"
 
     def aft(x_basic: float) -> float:          # aft of the mid-chord at the propeller's node

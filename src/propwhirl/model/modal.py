@@ -43,8 +43,8 @@ from propwhirl.model.structure.assembly import LAG_STATES, call_blocks, strip_ae
 from propwhirl.model.base import EvaluatorBase, StateSpaceModel
 from propwhirl.model.fields import spec
 from propwhirl.model.flight import FlightCondition
-from propwhirl.model.modal_structure import (ModalStructure, StripPlanform, id_list,
-                                            strip_interpolation)
+from propwhirl.model.modal_structure import (ModalStructure, StripPlanform, check_strip_sweep,
+                                            id_list, strip_interpolation)
 from propwhirl.model.propellers.propeller import Propeller
 from propwhirl.model.propeller_blocks import (propeller_constants_at, propeller_matrices,
                                              propeller_values)
@@ -151,7 +151,10 @@ class ModalPropellerWing(StateSpaceModel):
         The propellers, at most one per hub grid.
     wing_aero, propeller_aero, rotating : bool
         Switches as :class:`~propwhirl.model.systems.PropellerWing`'s: wing aerodynamics,
-        propeller aerodynamics, propellers spinning.
+        propeller aerodynamics, propellers spinning.  The wing aerodynamics are strips, an
+        unswept wing's: a reference axis (the wing grids' line) swept by more than
+        :data:`~propwhirl.model.modal_structure.STRIP_SWEEP_LIMIT_DEG` is refused with them
+        (:func:`~propwhirl.model.modal_structure.check_strip_sweep`), not without them.
     name : str
         Label.
 
@@ -212,6 +215,8 @@ class ModalPropellerWing(StateSpaceModel):
         s = self.structure
         check_hub_grids(s, [inst.grid for inst in self.propellers])
         strip_interpolation(s, self.wing_grids, self.planform)   # checks the grids now
+        if self.wing_aero:                    # the strips: an unswept wing's aerodynamics
+            check_strip_sweep(s, self.wing_grids)
 
     def capabilities(self) -> Capabilities:
         """What this model can do (:class:`~propwhirl.model.protocol.Capabilities`): its
