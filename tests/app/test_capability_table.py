@@ -52,9 +52,10 @@ def files(tmp_path_factory):
     for key in ("beam", "dlm", "wing", "isolated"):
         out[key] = d / f"{key}.toml"
         save_model(samples[key](), out[key])
-    for key, mount in (("modal", "own"), ("on-grid", "on-grid")):
+    for key, beam, mount in (("modal", "beam", "own"), ("on-grid", "beam", "on-grid"),
+                             ("modal-dlm", "dlm", "own")):
         out[key] = d / f"{key}.toml"
-        write_modes(samples["beam"](), out[key], 6, mount=mount)
+        write_modes(samples[beam](), out[key], 6, mount=mount)
     for key, f in out.items():
         (d / f"camp-{key}.toml").write_text(CAMPAIGN.format(model=f.name))
     return d, out

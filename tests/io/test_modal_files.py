@@ -314,3 +314,59 @@ def test_a_structure_whose_stiffness_overflows_gives_the_state_matrix_error_alon
         warnings.simplefilter("error")
         M, C, K = big.generalised()
     assert np.isinf(K[2, 2]) and np.isfinite(M).all()
+
+
+def _dlm_beam():
+    from dataclasses import replace
+    m = wingtip_propeller_wing()
+    return m.with_(wing=replace(m.wing, n_elements=6, aero="dlm", dlm_chordwise_panels=3,
+                                dlm_spanwise_panels=5, dlm_mach=0.2))
+
+
+def test_a_doublet_lattice_model_round_trips_with_its_planform(tmp_path):
+    """write_modes of a beam DLM model writes aero and its [dlm] planform (the beam's own
+    panels) and Mach; save_modal_model keeps them; a file without them keeps the strips."""
+    from propwhirl.io.modal_files import save_modal_model
+    from propwhirl.model.aerodynamics.planform import Planform
+    b = _dlm_beam()
+    toml, _ = write_modes(b, tmp_path / "dlm.toml")
+    m = load_modal_model(toml)
+    assert (m.aero, m.dlm_mach) == ("dlm", 0.2)
+    assert np.array_equal(m.dlm_planform.mesh().corners,
+                          Planform.from_wing(b.wing).mesh().corners)
+    again = load_modal_model(save_modal_model(m, tmp_path / "again.toml")[0])
+    assert (again.aero, again.dlm_mach, again.dlm_planform.counts()) == ("dlm", 0.2, (3, 5))
+    assert np.array_equal(again.dlm_planform.leading_edge, m.dlm_planform.leading_edge)
+    plain, _ = write_modes(wingtip_propeller_wing(), tmp_path / "plain.toml")
+    assert "[dlm]" not in plain.read_text() and load_modal_model(plain).aero == "strip"
+
+
+@pytest.mark.parametrize("edit, words", [
+    (("leading_edge_y_m = [\n    0.0,", "leading_edge_y_m = [\n    -1.0,"),
+     ["[dlm]: leading_edge[0] y = -1 m", ">= 0"]),
+    (("    5.7,\n]\nleading_edge_z_m", "    9.0,\n]\nleading_edge_z_m"),
+     ["[dlm]: leading_edge[5] y = 9 m is outside the wing grids' span"]),
+    (("chord_m = [\n    1.25,", "chord_m = [\n    1.25,\n    1.0,"),
+     ["[dlm] chord_m", "one per station"]),
+    (("chordwise_panels = 3", "chordwise_panels = 0"), ["[dlm] chordwise_panels"]),
+    (("mach = 0.2", "mach = 1.5"), ["[dlm] mach"]),
+    (('aero = "dlm"', 'aero = "vlm"'), ["aero", "vlm"]),
+])
+def test_a_bad_planform_is_one_line_naming_the_key(tmp_path, edit, words):
+    toml, _ = write_modes(_dlm_beam(), tmp_path / "dlm.toml")
+    _edit(toml, *edit)
+    with pytest.raises(InputError) as e:
+        load_modal_model(toml)
+    msg = str(e.value)
+    assert "\n" not in msg and msg.startswith(str(toml)), msg
+    for w in words:
+        assert w in msg, (w, msg)
+
+
+def test_aero_dlm_without_a_planform_is_refused(tmp_path):
+    toml, _ = write_modes(_dlm_beam(), tmp_path / "dlm.toml")
+    text = toml.read_text()
+    toml.write_text(text[:text.index("[dlm]")])
+    with pytest.raises(InputError, match=r'aero = "dlm" needs the \[dlm\] table') as e:
+        load_modal_model(toml)
+    assert "\n" not in str(e.value)

@@ -56,7 +56,7 @@ def fit_table_nodes(model, speeds) -> list[tuple[float, int]]:
     (:func:`propwhirl.model.aerodynamics.dlm_rfa.coefficients`), in the order the fits compute them: every
     reduced frequency of :func:`~propwhirl.model.aerodynamics.dlm_rfa.tracking_ks` in the column of the wing's
     fixed ``dlm_mach``, or in the columns of the Mach nodes around each speed's V/a."""
-    fixed = fixed_mach(model.wing)
+    fixed = fixed_mach(getattr(model, "wing", model))
     if fixed is not None:
         columns = [snap_mach(fixed)]
     else:
@@ -80,7 +80,7 @@ def compute_fit_aics(model, grid: np.ndarray, *, vgf: bool,
     (:meth:`~propwhirl.model.aerodynamics.dlm.DlmAerodynamics.fill`: the same numbers).
     Returns how many were computed (those not in ``tables``, the analysis's, yet)."""
     first = initial_speeds(np.asarray(grid, float), None if vgf else ANALYSE_INITIAL_STEP)
-    return dlm_aerodynamics(model.wing, tables).fill(fit_table_nodes(model, first), report,
+    return dlm_aerodynamics(model, tables).fill(fit_table_nodes(model, first), report,
                                                      tables.processes)
 
 
@@ -113,7 +113,7 @@ def modal_dlm_analysis(model, grid: np.ndarray, *, displacement, state_labels, o
         lift = R.lift
         n = R.Phi.shape[0]
         lo, hi = float(grid[0]), float(grid[-1])
-        b = b_ref(model.wing)
+        b = b_ref(model)
         points, notes = [], []
         for pt in an.criticals.points:
             what = f"{pt.kind} {pt.direction} of state-space mode {pt.mode + 1}"

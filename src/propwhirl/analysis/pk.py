@@ -323,7 +323,7 @@ def pk_crossing(model, V0: float, p0: complex, *, lo: float, hi: float,
                 V, p, k = _brent_between(model, a, b, pa, pb, xtol, tables)
             except RuntimeError:          # continued from a, another root at b: not this
                 continue                  # root's bracket (was a traceback); a wider one
-            if tables is not None and fixed_mach(model.wing) is None:
+            if tables is not None and fixed_mach(getattr(model, "wing", model)) is None:
                 exact = matched_crossing(model, V, p, (pb.real - pa.real) / (b - a), lo=lo,
                                          hi=hi, xtol=xtol, tables=tables)
                 if exact is not None:
@@ -355,7 +355,7 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
     if strip_twin(model) is not model:  # doublet-lattice tables: every Mach subsonic, first
         check_speed_mach(model, V)
         tables = check_tables(tables)
-        matched = fixed_mach(model.wing) is None
+        matched = fixed_mach(getattr(model, "wing", model)) is None
     if n_modes is None:
         n_modes = None if _is_section(model) else WING_MODES
     elif not isinstance(n_modes, (int, np.integer)) or n_modes < 1:
@@ -482,9 +482,9 @@ def dlm_notes(model, sweep: PKSweep, tables: DlmTables | None = None) -> list[st
     """What a doublet-lattice p-k analysis used (:data:`DLM_NOTE` first: panels, Mach, k
     convention) and, when broken, the panel-length guideline at the first speed and the
     highest followed frequency (:func:`propwhirl.model.aerodynamics.dlm_mesh.guideline_note`)."""
-    aero = dlm_aerodynamics(model.wing, tables)
+    aero = dlm_aerodynamics(model, tables)
     m = aero.mesh
-    fixed = fixed_mach(model.wing)
+    fixed = fixed_mach(getattr(model, "wing", model))
     mach = ("Mach V/a at each speed" if fixed is None
             else f"Mach {fixed:g} at every speed (dlm_mach: not matched to V/a)")
     out = [f"{DLM_NOTE} panels ({m.n_chord} chordwise x {m.n_span} spanwise on the half-wing, "

@@ -68,7 +68,7 @@ def choose_method(model, method: str) -> str:
     dlm = can.aerodynamics == "doublet lattice"
     if dlm:
         require_panelaero()                 # before the finite-state tracking starts
-        check_memory(model.wing)            # one AIC of its panels within the memory limit
+        check_memory(model)                 # one AIC of its panels within the memory limit
     if method == "pk":
         return "pk"
     if dlm:                 # the modal Roger state space, its crossings the p-k's

@@ -118,7 +118,7 @@ def _structure(job: Job, assembly=None) -> tuple[object, InVacuo]:
     """The model's assembly (a doublet-lattice wing's with the job's tables) and its
     structure without aerodynamics, each built once."""
     if assembly is None:
-        dlm = getattr(getattr(job.finite, "wing", None), "aero", "") == "dlm"
+        dlm = getattr(getattr(job.finite, "wing", job.finite), "aero", "") == "dlm"
         assembly = (job.finite.assembly(dlm_tables=job.tables) if dlm else
                     job.finite.assembly())
     return assembly, InVacuo.of(assembly.without_aerodynamics())

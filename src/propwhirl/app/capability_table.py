@@ -23,6 +23,7 @@ from propwhirl.cases.ch09_baseline import (baseline_flight, baseline_propeller, 
 from propwhirl.model import (FlightCondition, Installation, ModalInstallation,
                              ModalPropellerWing, ModalStructure, PropellerWing, StripPlanform,
                              TypicalSection)
+from propwhirl.model.aerodynamics.planform import Planform
 from propwhirl.model.protocol import COMMANDS, METHODS, STRUCTURES, Capabilities, capabilities
 
 
@@ -35,17 +36,20 @@ def _beam(aero: str = "strip", propellers: bool = True):
     return PropellerWing(wing, flight, props, name=f"beam ({aero})")
 
 
-def _modal(mount: str):
-    beam = _beam()
+def _modal(mount: str, aero: str = "strip"):
+    beam = _beam(aero)
     if mount == "on-grid":
         s, hubs, _ = ModalStructure.with_mounts(beam, 6)
         grid = hubs[0]
     else:
         s, grid = ModalStructure.from_wing(beam.wing, 6), beam.wing.n_nodes
     grids = tuple(int(g) for g in s.grid_ids[: beam.wing.n_nodes])
+    dlm = {} if aero == "strip" else dict(aero="dlm",
+                                          dlm_planform=Planform.from_wing(beam.wing))
     return ModalPropellerWing(s, grids, StripPlanform.from_wing(beam.wing), beam.flight,
                               (ModalInstallation(baseline_propeller(), grid, mount),),
-                              name=f"modal ({mount})")
+                              name=f"modal ({mount})" if aero == "strip" else
+                              f"modal ({mount}, {aero})", **dlm)
 
 
 def _isolated():
@@ -70,6 +74,8 @@ SAMPLES: tuple[tuple[str, str, str, Callable[[], object]], ...] = (
      lambda: _modal("flexible")),
     ("on-grid", "modal propeller-wing, mounts in the modes",
      "`write_modes(model, path, mount=\"on-grid\")`", lambda: _modal("on-grid")),
+    ("modal-dlm", "modal propeller-wing, doublet lattice",
+     "`aero = \"dlm\"` and `[dlm]` (a planform)", lambda: _modal("flexible", "dlm")),
     ("isolated", "isolated propeller (rigid wing)", "`type = \"isolated-propeller\"`",
      _isolated),
     ("section", "typical section", "none (Python API)", _section),

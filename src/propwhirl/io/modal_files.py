@@ -31,10 +31,13 @@ from propwhirl import validate as v
 from propwhirl.io import schema
 from propwhirl.io.model_files import Table, Writer, from_table, toml_error
 from propwhirl.io.tables import OMITTED, Key, TableSpec, markdown, read
+from propwhirl.model.aerodynamics.planform import Planform
 from propwhirl.model.flight import FlightCondition
-from propwhirl.model.modal import MOUNTS, ModalInstallation, ModalPropellerWing, check_hub_grids
+from propwhirl.model.modal import (AERO, MOUNTS, ModalInstallation, ModalPropellerWing,
+                                  check_hub_grids)
 from propwhirl.model.modal_structure import MAX_MODES, ModalStructure, StripPlanform, id_list
 from propwhirl.model.propellers.propeller import Propeller
+from propwhirl.model.structure.wing import DEFAULT_CHORDWISE, DLM_MACH_MAX, DLM_MATCHED
 from propwhirl.model.systems import PropellerWing
 
 FORMAT = "propwhirl-modal-model"
@@ -252,6 +255,28 @@ SWITCHES_TABLE = TableSpec("[switches]", "Model switches.", tuple(
         ("wing_aero", "the strips' aerodynamics"),
         ("propeller_aero", "the propellers' aerodynamics"),
         ("rotating", "the rotors' gyroscopic coupling"))))
+DLM_TABLE = TableSpec("[dlm]", "The doublet lattice's lifting surface (as NASTRAN's CAERO1: "
+                      "the leading edge and the streamwise chord at two or more spanwise "
+                      "stations, linear between them, and the panel counts), in the modes' "
+                      "frame, within the wing grids' span; one entry per station in each list.", (
+    Key("leading_edge_x_m", "numbers", "x of the leading edge at each station [m]",
+        items=(2, None), must="a list of {fewest} or more numbers"),
+    Key("leading_edge_y_m", "numbers", "y of each station [m], increasing, >= 0 (y = 0 the "
+        "plane of symmetry), within the wing grids' span", items=(2, None),
+        must="a list of {fewest} or more numbers"),
+    Key("leading_edge_z_m", "numbers", "z of the leading edge at each station [m]; omitted: "
+        "0 (a flat planform)", items=(2, None), default=OMITTED,
+        must="a list of {fewest} or more numbers"),
+    Key("chord_m", "numbers", "the streamwise chord at each station [m], > 0", items=(2, None),
+        must="a list of {fewest} or more numbers"),
+    Key("chordwise_panels", "integer", "panels along each chord", range=(1, None),
+        default=DEFAULT_CHORDWISE),
+    Key("spanwise_panels", "integer", "equal panel strips along the span; omitted: the fewest "
+        "with a panel aspect ratio (width / length) <= 2", range=(1, None), default=OMITTED),
+    Key("mach", "number", "the Mach number of the doublet-lattice loads at every speed; "
+        "omitted: V/a at each analysed speed (matched)", range=(0.0, DLM_MACH_MAX),
+        default=OMITTED),
+))
 INSTALLATION = TableSpec("installations[i]", "A propeller at a hub grid.", (
     Key("propeller", "string", "the key of a `[propellers.KEY]` table"),
     Key("grid", "integer", "its hub grid (an id of the modes file)"),
@@ -272,6 +297,11 @@ TOP = TableSpec("Top level", "A modal propeller-wing: the modes' description.", 
                 + ", ".join(f'{k} = "{u}"' for k, u in UNITS.items())),
     Key("modes", "table", "the modes file: `[modes]`", table=MODES_TABLE),
     Key("strips", "table", "the strips: `[strips]`", table=STRIPS_TABLE),
+    Key("aero", "string", "the wing aerodynamics: the strips, or the doublet lattice on the "
+        "`[dlm]` planform (the strips then the finite-state twin the p-k method tracks with)",
+        choices=AERO, default="strip"),
+    Key("dlm", "table", "the doublet lattice's planform: `[dlm]` (needed with aero = "
+        "\"dlm\")", table=DLM_TABLE, default=OMITTED),
     Key("flight", "model table", "the flight condition, as in a model file "
         "([Model files](model-file.md), `[flight]`)"),
     Key("switches", "table", "model switches: `[switches]`", table=SWITCHES_TABLE,
@@ -315,17 +345,40 @@ def _from_dict(data: dict[str, Any], path: Path) -> ModalPropellerWing:
     planform = StripPlanform(**{f: np.array(x) for f, x in values.items()},
                              aero_model=strips["aero_model"], source=f"{path} [strips]")
     switches = {k: top["switches"][k] for k in SWITCHES_TABLE.names}
+    dlm_planform, dlm_mach = _dlm_planform(top["dlm"], path)
+    if top["aero"] == "dlm" and dlm_planform is None:
+        raise _fail(str(path), "aero = \"dlm\" needs the [dlm] table (the doublet lattice's "
+                    "planform: leading_edge_x_m, leading_edge_y_m, chord_m)")
     return ModalPropellerWing(
         structure, tuple(modes["wing_grids"]), planform, flight,
         tuple(ModalInstallation(ctx[t["propeller"]], t["grid"], t["mount"], t["aero"])
-              for t in installations), name=top["name"], **switches)
+              for t in installations), name=top["name"], **switches, aero=top["aero"],
+        dlm_planform=dlm_planform, dlm_mach=dlm_mach)
+
+
+def _dlm_planform(dlm, path: Path) -> tuple[Planform | None, float | str]:
+    """The :class:`~propwhirl.model.aerodynamics.planform.Planform` and the Mach setting of a
+    ``[dlm]`` table as read (None, "speed" when there is none); the lists' lengths checked."""
+    if dlm is None:
+        return None, DLM_MATCHED
+    n = len(dlm["leading_edge_y_m"])
+    z = dlm["leading_edge_z_m"]
+    for k in ("leading_edge_x_m", "chord_m") + (("leading_edge_z_m",) if z is not None else ()):
+        if len(dlm[k]) != n:
+            raise dlm.table.bad(k, f"a list of {n} numbers (one per station, as "
+                                "leading_edge_y_m)")
+    le = np.stack([dlm["leading_edge_x_m"], dlm["leading_edge_y_m"],
+                   np.zeros(n) if z is None else z], axis=1)
+    planform = Planform(le, np.array(dlm["chord_m"], float), dlm["chordwise_panels"],
+                        dlm["spanwise_panels"], source=f"{path} [dlm]")
+    return planform, DLM_MATCHED if dlm["mach"] is None else float(dlm["mach"])
 
 
 def docs_parts() -> dict[str, str]:
     """The generated parts of docs/modal-structures.md: the description's key tables."""
     return {f"modal {name}": markdown(spec) for name, spec in (
         ("top", TOP), ("units", UNITS_TABLE), ("modes", MODES_TABLE),
-        ("strips", STRIPS_TABLE), ("switches", SWITCHES_TABLE),
+        ("strips", STRIPS_TABLE), ("dlm", DLM_TABLE), ("switches", SWITCHES_TABLE),
         ("installations", INSTALLATION))}
 
 
@@ -346,11 +399,15 @@ def _check_targets(path: Path, npz: Path) -> None:
 
 # =============================================================================== writing
 def _write_modal_file(path: Path, npz: Path, header: str, dumps, *, name: str, structure,
-                      planform, installations, wing_grids, flight, switches) -> None:
+                      planform, installations, wing_grids, flight, switches,
+                      aero: str = "strip", dlm_planform: Planform | None = None,
+                      dlm_mach: float | str = DLM_MATCHED) -> None:
     """The modal model file (TOML at ``path``, ``header`` first) and its modes (``npz``), the
     one document :func:`write_modes` and :func:`save_modal_model` write; ``installations``
     holds (installation, grid, mount) and ``switches`` (wing_aero, propeller_aero,
-    rotating); ``dumps`` is tomli-w's (the callers check the extra and the targets)."""
+    rotating); ``aero``, ``dlm_planform`` and ``dlm_mach`` the doublet lattice (written only
+    when there is a planform); ``dumps`` is tomli-w's (the callers check the extra and the
+    targets)."""
     s = structure
     w = Writer()
     rows = [{"propeller": w.propeller_key(inst.propeller), "grid": int(g), "mount": m,
@@ -367,6 +424,17 @@ def _write_modal_file(path: Path, npz: Path, header: str, dumps, *, name: str, s
         "switches": dict(zip(("wing_aero", "propeller_aero", "rotating"), switches)),
         "propellers": w.propellers,
     }
+    if dlm_planform is not None:
+        p = dlm_planform
+        doc["aero"] = aero
+        doc["dlm"] = {"leading_edge_x_m": [float(x) for x in p.leading_edge[:, 0]],
+                      "leading_edge_y_m": [float(x) for x in p.leading_edge[:, 1]],
+                      "leading_edge_z_m": [float(x) for x in p.leading_edge[:, 2]],
+                      "chord_m": [float(x) for x in p.chord],
+                      "chordwise_panels": int(p.chordwise_panels),
+                      **({} if p.spanwise_panels is None
+                         else {"spanwise_panels": int(p.spanwise_panels)}),
+                      **({} if isinstance(dlm_mach, str) else {"mach": float(dlm_mach)})}
     buf = io.BytesIO()
     np.savez(buf, **{k: np.asarray(getattr(s, k), dtype=np.int64 if k == "grid_ids"
                                    else np.float64) for k in ARRAYS})
@@ -457,7 +525,10 @@ def write_modes(model: PropellerWing, path: str | Path, n_modes: int | None = No
                       installations=[(inst, g, m) for inst, g, m in
                                      zip(model.propellers, grids, mounts)],
                       wing_grids=s.grid_ids[:wing.n_nodes], flight=model.flight,
-                      switches=(model.wing_aero, model.propeller_aero, model.rotating))
+                      switches=(model.wing_aero, model.propeller_aero, model.rotating),
+                      aero=wing.aero,
+                      dlm_planform=Planform.from_wing(wing) if wing.aero == "dlm" else None,
+                      dlm_mach=wing.dlm_mach)
     return path, npz
 
 
@@ -517,5 +588,7 @@ def save_modal_model(model: ModalPropellerWing, path: str | Path) -> tuple[Path,
                       installations=[(inst, int(inst.grid), inst.mount)
                                      for inst in model.propellers],
                       wing_grids=model.wing_grids, flight=model.flight,
-                      switches=(model.wing_aero, model.propeller_aero, model.rotating))
+                      switches=(model.wing_aero, model.propeller_aero, model.rotating),
+                      aero=model.aero, dlm_planform=model.dlm_planform,
+                      dlm_mach=model.dlm_mach)
     return path, npz

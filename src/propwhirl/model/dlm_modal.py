@@ -35,7 +35,7 @@ import numpy as np
 import scipy.linalg as sla
 
 from propwhirl import validate as v
-from propwhirl.model.structure.assembly import free_dofs
+from propwhirl.model.aerodynamics.dlm_surface import surface_of
 from propwhirl.model.aerodynamics.dlm_rfa import (DEFAULT_LAGS, b_ref, coefficients, fit_ks,
                                                   roger_system, tracking_ks)
 from propwhirl.model.reduction import CUTOFF_FACTOR, cutoff
@@ -142,7 +142,7 @@ class ModalRoger:
         with np.errstate(all="ignore"):
             dry = self.assembly.with_switches(wing_aero=False).blocks(V, omega).dense()
         labels = self.labels()
-        return roger_system(dry, A, V, b_ref(model.wing), model.flight.density,
+        return roger_system(dry, A, V, b_ref(model), model.flight.density,
                             self.lags, labels[2 * self.r + self.n_dry_lags:], self.Phi,
                             labels[:self.r])
 
@@ -178,7 +178,7 @@ def modal_roger(model, speeds, *, assembly=None,
     >>> R.r, R.n_states, np.round(R.frequencies_hz, 1).tolist()
     (6, 36, [7.7, 15.2, 39.1, 55.6, 72.3, 100.1])
     """
-    if getattr(getattr(model, "wing", None), "aero", None) != "dlm" or not model.wing_aero:
+    if getattr(getattr(model, "wing", model), "aero", None) != "dlm" or not model.wing_aero:
         raise v.InputError(f"model = {getattr(model, 'name', model)!r:.60} is invalid for the "
                            "modal Roger state space: needs a wing with aero = 'dlm'")
     V = np.atleast_1d(v.positive("speeds", speeds, "m/s"))
@@ -192,11 +192,11 @@ def modal_roger(model, speeds, *, assembly=None,
     w2, shapes = sla.eigh(K, M)
     f_all = np.sqrt(np.abs(w2)) / (2 * np.pi)
     ref, fc = cutoff(assembly, f_all, shapes, M, factor)
-    fit_hz = fit_ks()[-1] * V.max() / (2 * np.pi * b_ref(model.wing))
+    fit_hz = fit_ks()[-1] * V.max() / (2 * np.pi * b_ref(model))
     fc = min(fc, fit_hz)
     n_keep = max(int(np.sum(f_all <= fc)), min(MIN_MODES, f_all.size))
     with np.errstate(all="ignore"):
         dry = assembly.with_switches(wing_aero=False).blocks(V[:1]).dense()
-    n_w = int(free_dofs(model.wing.n_nodes).size)
+    n_w = int(surface_of(model).keep.size)
     return ModalRoger(assembly, shapes[:, :n_keep], f_all[:n_keep], fc, ref, f_all, n_w,
                       tuple(dry.w_labels))

@@ -23,6 +23,7 @@ from propwhirl import validate as v
 from propwhirl.generated import strip_aero, typical_section
 from propwhirl.model.aerodynamics.compressibility import lift_slope_factor, lift_slopes
 from propwhirl.model.aerodynamics.dlm import DlmTables, pk_system_dlm
+from propwhirl.model.aerodynamics.dlm_surface import surface_of
 from propwhirl.model.aerodynamics.theodorsen import theodorsen
 from propwhirl.model.protocol import capabilities, refusal
 from propwhirl.model.structure.assembly import free_dofs, place
@@ -47,10 +48,14 @@ check_section = check_pk_model
 
 def reference_semichord(model) -> float:
     """Semichord [m] of the reduced frequency k = ω b / V reported: the section's b, the
-    wing's root semichord."""
-    structure = capabilities(model).structure       # the model contract says which it is
+    wing's root semichord (a modal model's: its doublet-lattice planform's root semichord,
+    else its first strip's)."""
+    can = capabilities(model)                       # the model contract says which it is
+    structure = can.structure
     if structure == "section":
         return float(model.b)
+    if can.aerodynamics == "doublet lattice":       # the doublet lattice's k, one b_ref
+        return surface_of(model).b_ref
     if structure == "modes":                        # its first (root) strip's
         return float(0.5 * model.planform.chord[0])
     return float(model.wing.node_properties()["b"][0])
@@ -98,10 +103,10 @@ def pk_system(model, V: float, tables: DlmTables | None = None, own_mach: bool =
     can = capabilities(model)                       # the model contract says which it is
     if can.structure == "section":
         return lambda omega: section_pk_matrices(model, V, omega * model.b / V)
+    if can.aerodynamics == "doublet lattice":     # panels instead of the strips (any structure)
+        return pk_system_dlm(model, V, K_MIN, tables, own_mach)
     if can.structure == "modes":
         return modal_pk_system(model, V)
-    if can.aerodynamics == "doublet lattice":     # panels instead of the strips
-        return pk_system_dlm(model, V, K_MIN, tables, own_mach)
     dry = replace(model, wing_aero=False).second_order(np.array([V]))
     if dry.n_lag:
         raise v.InputError(f"model = {model.name!r} is invalid for the p-k method: its "

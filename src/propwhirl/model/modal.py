@@ -14,6 +14,20 @@ aerodynamics as a :class:`~propwhirl.model.structure.wing.Wing`'s,
 (:func:`~propwhirl.model.modal_structure.strip_interpolation`) the aerodynamic matrices are
 (TΦ)ᵀ A_strip (TΦ), the lag states' couplings projected the same way.
 
+**Doublet lattice on the modes** (``aero = "dlm"``, issue 34 item 3).  The panels of the
+``dlm_planform`` (:class:`~propwhirl.model.aerodynamics.planform.Planform`, a CAERO1's
+corners, chords and counts) are splined to the modes by the strips' own rule
+(:func:`~propwhirl.model.modal_structure.axis_spline` at each panel's points: the normal
+displacement and the streamwise slope from the wing grids' six components), so the
+generalised aerodynamic forces are Q(k, M) = −(Z_l Φ)ᵀ diag(A) Q_jj (S_j Φ + i k̄ Z_j Φ) on
+the modal coordinates (:mod:`propwhirl.model.aerodynamics.dlm`), fitted by Roger's
+rational functions (:mod:`propwhirl.model.aerodynamics.dlm_rfa`: the default analysis's
+modal Roger state space, its crossings converged by the p-k) or iterated by the p-k
+(``method = "pk"``); the strips stay the model's finite-state twin (what the p-k tracks
+and names its modes with).  On a beam model written with all its modes and a grid at every
+node the spline is the beam's own interpolation, exact, and the GAFs are the beam's:
+docs/modal-structures.md gives the measured differences.
+
 **Propellers.**  Each sits at a hub grid.  ``mount = "flexible"`` (way a): its own pitch and
 yaw DOFs and springs, as a :class:`~propwhirl.model.systems.PropellerWing`'s, its generated
 block (:mod:`propwhirl.model.propeller_blocks`, 4×4 on [θ, ψ, h_P, α_P]) coupled through the
@@ -29,6 +43,8 @@ chapter 8's loads through the hub's motion).
 """
 from __future__ import annotations
 
+import functools
+import hashlib
 from dataclasses import dataclass, field, replace
 from types import MappingProxyType
 from typing import Literal
@@ -39,20 +55,27 @@ from propwhirl import limits
 from propwhirl import validate as v
 from propwhirl.generated import prop_hub
 from propwhirl.model.aerodynamics import validity
+from propwhirl.model.aerodynamics.dlm import DlmTables, check_tables
+from propwhirl.model.aerodynamics.dlm_surface import DlmSurface
+from propwhirl.model.aerodynamics.planform import Planform
 from propwhirl.model.structure.assembly import LAG_STATES, call_blocks, strip_aero_blocks
 from propwhirl.model.base import EvaluatorBase, StateSpaceModel
 from propwhirl.model.fields import spec
 from propwhirl.model.flight import FlightCondition
-from propwhirl.model.modal_structure import (ModalStructure, StripPlanform, check_strip_sweep,
-                                            id_list, strip_interpolation)
+from propwhirl.model.modal_structure import (ModalStructure, StripPlanform, axis_spline,
+                                            check_strip_sweep, id_list, strip_interpolation)
 from propwhirl.model.propellers.propeller import Propeller
 from propwhirl.model.propeller_blocks import (propeller_constants_at, propeller_matrices,
                                              propeller_values)
 from propwhirl.model.protocol import REASONS, Capabilities, DofMap, HubDofs, PropellerDofs
 from propwhirl.model.statespace import SecondOrder
+from propwhirl.model.structure.wing import DLM_MATCHED, check_dlm_mach
 
 #: How a propeller sits on its hub grid (module docstring).
 MOUNTS = ("flexible", "rigid", "on-grid")
+#: The wing aerodynamics of a modal model (its ``aero``): the strips, or the doublet lattice
+#: on its ``dlm_planform`` (module docstring).
+AERO = ("strip", "dlm")
 
 
 @dataclass(frozen=True)
@@ -151,12 +174,24 @@ class ModalPropellerWing(StateSpaceModel):
         The propellers, at most one per hub grid.
     wing_aero, propeller_aero, rotating : bool
         Switches as :class:`~propwhirl.model.systems.PropellerWing`'s: wing aerodynamics,
-        propeller aerodynamics, propellers spinning.  The wing aerodynamics are strips, an
+        propeller aerodynamics, propellers spinning.  The strips (``aero = "strip"``) are an
         unswept wing's: a reference axis (the wing grids' line) swept by more than
         :data:`~propwhirl.model.modal_structure.STRIP_SWEEP_LIMIT_DEG` is refused with them
-        (:func:`~propwhirl.model.modal_structure.check_strip_sweep`), not without them.
+        (:func:`~propwhirl.model.modal_structure.check_strip_sweep`), not without them nor
+        with the doublet lattice (``aero = "dlm"``), which takes a swept planform (nor when a
+        ``dlm_planform`` is given: the doublet lattice's strip twin, which its p-k tracks
+        with, is such a model).
     name : str
         Label.
+    aero : {"strip", "dlm"}
+        The wing aerodynamics: the strips, or the doublet lattice on ``dlm_planform``
+        (module docstring; the strips then the finite-state twin the p-k tracks with).
+    dlm_planform : Planform or None
+        The lifting surface (:class:`~propwhirl.model.aerodynamics.planform.Planform`, in
+        the modes' frame [m]); needed with ``aero = "dlm"``, within the wing grids' span.
+    dlm_mach : float or "speed"
+        The Mach number of the doublet-lattice loads, as a beam wing's ``dlm_mach``:
+        "speed" (V/a at each analysed speed) or one number in [0, 0.9].
 
     Examples
     --------
@@ -191,6 +226,9 @@ class ModalPropellerWing(StateSpaceModel):
     propeller_aero: bool = True
     rotating: bool = True
     name: str = "modal propeller-wing"
+    aero: Literal["strip", "dlm"] = "strip"
+    dlm_planform: Planform | None = None
+    dlm_mach: float | Literal["speed"] = DLM_MATCHED
 
     def __post_init__(self) -> None:
         for k in ("wing_aero", "propeller_aero", "rotating"):
@@ -215,8 +253,74 @@ class ModalPropellerWing(StateSpaceModel):
         s = self.structure
         check_hub_grids(s, [inst.grid for inst in self.propellers])
         strip_interpolation(s, self.wing_grids, self.planform)   # checks the grids now
-        if self.wing_aero:                    # the strips: an unswept wing's aerodynamics
+        self._check_dlm()
+        # the strips are an unswept wing's: refused on a swept axis as the model's own wing
+        # aerodynamics; a model with a dlm_planform is (or is the strip twin of, which the
+        # doublet lattice's p-k tracks with) a doublet-lattice model
+        if self.wing_aero and self.aero == "strip" and self.dlm_planform is None:
             check_strip_sweep(s, self.wing_grids)
+
+    def _check_dlm(self) -> None:
+        """The doublet-lattice fields: ``aero`` one of :data:`AERO`, ``dlm_planform`` a
+        Planform (needed with "dlm") whose span lies within the wing grids', ``dlm_mach``."""
+        if not (isinstance(self.aero, str) and self.aero in AERO):
+            raise v.InputError(f"aero = {v.short_repr(self.aero)} is invalid: must be one of "
+                               + ", ".join(map(repr, AERO)))
+        check_dlm_mach(self.dlm_mach)
+        p = self.dlm_planform
+        if p is None:
+            if self.aero == "dlm":
+                raise v.InputError("dlm_planform = None is invalid with aero = 'dlm': the "
+                                   "doublet lattice needs its panels' planform (a Planform: "
+                                   "leading-edge corners, chords, panel counts)")
+            return
+        if not isinstance(p, Planform):
+            raise v.InputError(f"dlm_planform = {v.short_repr(p)} is invalid: must be a "
+                               "Planform (propwhirl.model.aerodynamics.planform) or None")
+        s = self.structure
+        yg = s.xyz[[s.index(g) for g in self.wing_grids], 1]
+        tol = 1e-9 * max(1.0, float(yg[-1] - yg[0]))
+        bad = np.flatnonzero((p.y < yg[0] - tol) | (p.y > yg[-1] + tol))
+        if bad.size:
+            i = int(bad[0])
+            raise v.InputError(f"{p.source}: leading_edge[{i}] y = {p.y[i]:.6g} m is outside "
+                               f"the wing grids' span [{yg[0]:.6g}, {yg[-1]:.6g}] m: its "
+                               "panels cannot be splined to the modes (give stations within "
+                               "the wing_grids' span)")
+
+    def dlm_surface(self) -> DlmSurface:
+        """The doublet lattice's view of this model
+        (:class:`~propwhirl.model.aerodynamics.dlm_surface.DlmSurface`): its ``dlm_planform``,
+        the spline to its modal coordinates
+        (:func:`~propwhirl.model.modal_structure.axis_spline` composed with the modes), every
+        mode loaded, b_ref the planform's root semichord, its ``dlm_mach``; built once per
+        model."""
+        return self._dlm_surface
+
+    @functools.cached_property
+    def _dlm_surface(self) -> DlmSurface:
+        p = self.dlm_planform
+        if p is None:
+            raise v.InputError(f"model {self.name!r} has no dlm_planform: the doublet lattice "
+                               "needs one (aero = 'dlm')")
+        s, grids = self.structure, self.wing_grids
+        Phi = s.shapes                                          # (n_modes, n_grids, 6)
+
+        def outside(i: int, lo: float, hi: float) -> str:
+            return (f"{p.source}: a panel point is outside the wing grids' span "
+                    f"[{lo:.6g}, {hi:.6g}] m")
+
+        def spline(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            Z, S = axis_spline(s, grids, points[:, 0], points[:, 1], outside)
+            return (np.einsum("pgc,mgc->pm", Z, Phi), np.einsum("pgc,mgc->pm", S, Phi))
+
+        digest = hashlib.sha256()
+        for a in (Phi, s.xyz, np.asarray(grids, dtype=np.int64)):
+            digest.update(np.ascontiguousarray(a).tobytes())
+        n = s.n_modes
+        return DlmSurface(p, spline, n, np.arange(n), p.b_ref, self.dlm_mach,
+                          ("modes", p.key(), digest.hexdigest()),
+                          tuple(f"mode {k + 1}" for k in range(n)))
 
     def capabilities(self) -> Capabilities:
         """What this model can do (:class:`~propwhirl.model.protocol.Capabilities`): its
@@ -224,8 +328,12 @@ class ModalPropellerWing(StateSpaceModel):
         differences, every command but the reduced method (it is reduced already), a NASTRAN
         deck and a file upgrade; a Campbell diagram needs a propeller that whirls (own mount
         or hub grid)."""
+        dlm = self.wing_aero and self.aero == "dlm"
         why = {"reduced": REASONS["modal-reduced"], "exact-sensitivity": REASONS["modal-exact"],
                "export": REASONS["modal-export"], "upgrade-model": REASONS["modal-upgrade"]}
+        if dlm:     # "reduced": the modal Roger state space (its modes below a cut-off)
+            del why["reduced"]
+            why["sensitivity"] = why["exact-sensitivity"] = REASONS["dlm-derivatives"]
         if not self.wing_aero:
             why["pk"] = REASONS["no-wing-aero-pk"]
         if not self.dof_map().whirling():
@@ -234,8 +342,9 @@ class ModalPropellerWing(StateSpaceModel):
         props = ("both" if mounts == {"flexible", "on-grid"} else "own mounts"
                  if mounts == {"flexible"} else "hub grids" if mounts else "none")
         return Capabilities("modal propeller-wing", "modes",
-                            "strip" if self.wing_aero else "none", "central difference",
-                            props, tuple(why.items()))
+                            "doublet lattice" if dlm else "strip" if self.wing_aero else "none",
+                            "none" if dlm else "central difference", props,
+                            tuple(why.items()))
 
     def with_(self, **changes) -> "ModalPropellerWing":
         """A copy with fields replaced (``dataclasses.replace``)."""
@@ -250,9 +359,11 @@ class ModalPropellerWing(StateSpaceModel):
         """The same structure and propellers with wing and propeller aerodynamics off."""
         return self.with_(wing_aero=False, propeller_aero=False)
 
-    def assembly(self) -> "ModalAssembly":
-        """The speed-independent parts (a new :class:`ModalAssembly` each call)."""
-        return ModalAssembly.build(self)
+    def assembly(self, dlm_tables: DlmTables | None = None) -> "ModalAssembly":
+        """The speed-independent parts (a new :class:`ModalAssembly` each call);
+        ``dlm_tables``: with ``aero = "dlm"`` the doublet-lattice tables its evaluations read
+        and fill (the analysis's; None: new ones)."""
+        return ModalAssembly.build(self, dlm_tables)
 
     def second_order(self, V, omega=None) -> SecondOrder:
         """The second-order system at airspeeds V [m/s] (:meth:`ModalAssembly.second_order`)."""
@@ -279,7 +390,10 @@ class ModalPropellerWing(StateSpaceModel):
             node += [-1, -1]
             prop += [j, j]
         w_labels: tuple[str, ...] = ()
-        if self.wing_aero:
+        if self.wing_aero and self.aero == "dlm":       # the Roger lag states ("mode i lag l")
+            from propwhirl.model.aerodynamics.dlm_rfa import lag_labels
+            w_labels = lag_labels(self)[0]
+        elif self.wing_aero:
             k = LAG_STATES[self.planform.aero_model]
             w_labels = tuple(f"strip {s + 1} w{r + 1}" for s in range(self.planform.y.size)
                              for r in range(k))
@@ -326,7 +440,11 @@ class ModalAssembly(EvaluatorBase):
     strips:     (n_strips, 2, n_q): each strip's [h, α] from q (T Φ);
     hubs:       per installation (its local DOFs, 2 or 4, n_q): [θ, ψ,] h_P, α_P from q;
     constants:  per installation its generated blocks' speed-independent arguments;
-    states:     the :class:`~propwhirl.model.protocol.DofMap`.
+    states:     the :class:`~propwhirl.model.protocol.DofMap`;
+    dlm_tables, dlm_fit_ks: with ``aero = "dlm"`` as a
+                :class:`~propwhirl.model.systems.PropellerWingAssembly`'s (the analysis's
+                doublet-lattice tables; the Roger fits' reduced frequencies, None: the full
+                state space's).
     """
 
     model: ModalPropellerWing
@@ -335,9 +453,12 @@ class ModalAssembly(EvaluatorBase):
     hubs: tuple[np.ndarray, ...]
     constants: tuple
     states: DofMap
+    dlm_tables: DlmTables | None = None
+    dlm_fit_ks: tuple[float, ...] | None = None
 
     @classmethod
-    def build(cls, model: ModalPropellerWing) -> "ModalAssembly":
+    def build(cls, model: ModalPropellerWing,
+              dlm_tables: DlmTables | None = None) -> "ModalAssembly":
         s = model.structure
         nm = s.n_modes
         flex = model.flexible
@@ -376,15 +497,38 @@ class ModalAssembly(EvaluatorBase):
             consts.append(MappingProxyType(c))
         for X in (*mats, strips):
             X.flags.writeable = False
-        return cls(model, mats, strips, tuple(hubs), tuple(consts), model.dof_map())
+        tables = check_tables(dlm_tables) if model.aero == "dlm" else None
+        return cls(model, mats, strips, tuple(hubs), tuple(consts), model.dof_map(), tables)
 
     def dof_map(self) -> DofMap:
         return self.states
 
     def without_aerodynamics(self) -> "ModalAssembly":
         """The assembly of ``model.without_aerodynamics()`` (same parts)."""
-        model = self.model.without_aerodynamics()
+        return self.with_switches(wing_aero=False, propeller_aero=False)
+
+    def with_switches(self, **switches) -> "ModalAssembly":
+        """The assembly of the model with switches changed (``wing_aero``,
+        ``propeller_aero``, ``rotating``, ``name``): the same parts, a new model and DOF
+        map."""
+        bad = sorted(set(switches) - {"wing_aero", "propeller_aero", "rotating", "name"})
+        if bad:
+            raise v.InputError(f"with_switches: {bad} are not switches (wing_aero, "
+                               "propeller_aero, rotating, name)")
+        model = self.model.with_(**switches)
         return replace(self, model=model, states=model.dof_map())
+
+    def blocks(self, V: np.ndarray, omega=None) -> "_Dense":
+        """The system at the airspeeds V [m/s] (1-D, not checked) as
+        :meth:`~propwhirl.model.systems.PropellerWingAssembly.blocks` gives a beam's, for
+        what reads ``blocks(V).dense()`` (the doublet-lattice Roger state space's dry part):
+        a modal model's matrices are dense already.  Not with the wing's doublet lattice on
+        (its Roger state space: :meth:`second_order`)."""
+        if self.model.wing_aero and self.model.aero == "dlm":
+            raise v.InputError(f"model {self.model.name!r}: aero = 'dlm' has no block form; "
+                               "its Roger state space is second_order's")
+        with np.errstate(all="ignore"):
+            return _Dense(self._assemble(np.atleast_1d(np.asarray(V, float)), omega))
 
     def second_order(self, V, omega=None) -> SecondOrder:
         """S1 q̈ + S2 q̇ + S3 q = S4 w, ẇ = Ww w + Wv q̇ + Wq q at airspeeds V [m/s] (array).
@@ -395,7 +539,11 @@ class ModalAssembly(EvaluatorBase):
         if validity.has_aerodynamics(model):
             validity.check_mach(V, model.flight.speed_of_sound)
         with np.errstate(all="ignore"):
-            sys = self._assemble(V, omega)
+            if model.wing_aero and model.aero == "dlm":    # the doublet lattice's Roger fit
+                from propwhirl.model.aerodynamics import dlm_rfa
+                sys = dlm_rfa.second_order(self, V, omega)
+            else:
+                sys = self._assemble(V, omega)
         return self._checked(sys, V, {"omega": omega})
 
     def _assemble(self, V: np.ndarray, omega) -> SecondOrder:
@@ -432,6 +580,16 @@ class ModalAssembly(EvaluatorBase):
         for s in range(ns):
             Ww[:, s * k:(s + 1) * k, s * k:(s + 1) * k] = a["Ww"][:, s]
         return SecondOrder(*S, S4, Ww, Wv, Wq, self.states.q_labels, self.states.w_labels)
+
+
+@dataclass(frozen=True)
+class _Dense:
+    """A modal system where a beam's local blocks are asked for: ``dense()`` is it."""
+
+    system: SecondOrder
+
+    def dense(self) -> SecondOrder:
+        return self.system
 
 
 def _mount_mass(propeller: Propeller, ea: float, density: float) -> np.ndarray:

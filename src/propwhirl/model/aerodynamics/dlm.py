@@ -44,10 +44,10 @@ import numpy as np
 
 from propwhirl import validate as v
 from propwhirl.model.aerodynamics import dlm_cache
-from propwhirl.model.structure.assembly import free_dofs
 # the Mach limits the Wing checks its dlm_mach against (they live with the field)
 from propwhirl.model.structure.wing import DLM_MACH_MAX as MACH_MAX, DLM_MATCHED as MATCHED
-from propwhirl.model.aerodynamics.dlm_mesh import PanelMesh, panel_mesh, spline
+from propwhirl.model.aerodynamics.dlm_mesh import PanelMesh
+from propwhirl.model.aerodynamics.dlm_surface import DlmSurface, surface_of
 
 #: first non-zero reduced frequency of the tables (on the reference semichord)
 K_FIRST = 0.01
@@ -131,8 +131,8 @@ def fixed_mach(wing) -> float | None:
 
 def wing_mach(model, V: float) -> float:
     """The Mach number of ``model``'s doublet-lattice loads at airspeed V [m/s]: its wing's
-    fixed ``dlm_mach``, or V / a (``dlm_mach = "speed"``)."""
-    m = fixed_mach(model.wing)
+    (or modal model's) fixed ``dlm_mach``, or V / a (``dlm_mach = "speed"``)."""
+    m = fixed_mach(getattr(model, "wing", model))
     return float(V) / model.flight.speed_of_sound if m is None else m
 
 
@@ -160,22 +160,32 @@ def check_mach(mach: float, V: float | None = None) -> None:
 
 
 class DlmAerodynamics:
-    """The doublet-lattice GAFs of one wing geometry: panels, spline, lazily filled tables.
+    """The doublet-lattice GAFs of one lifting surface and spline: panels, spline, lazily
+    filled tables.
 
-    wing: the :class:`~propwhirl.model.structure.wing.Wing`; b_ref [m]: the semichord of k (default the
-    root semichord).  :meth:`gaf` is the interpolated Q(k, M) (3 n_nodes, 3 n_nodes) on the
-    wing's bending–torsion DOFs (root included), :meth:`exact` the one computed at (k, M).
-    ``evaluations`` counts the AIC matrices computed (each an (2n)² complex kernel).
+    wing: a beam :class:`~propwhirl.model.structure.wing.Wing` (its panels ``n_chord`` x
+    ``n_span``, default its own counts) or any model's
+    :class:`~propwhirl.model.aerodynamics.dlm_surface.DlmSurface` (a modal model's: its
+    planform splined to its modes); b_ref [m]: the semichord of k (default the root
+    semichord).  :meth:`gaf` is the interpolated Q(k, M) (n_dof, n_dof) on the spline's DOFs
+    (a beam's 3 n_nodes bending–torsion DOFs, root included; the loaded ones ``keep``),
+    :meth:`exact` the one computed at (k, M).  ``evaluations`` counts the AIC matrices
+    computed (each an (2n)² complex kernel).
     """
 
     def __init__(self, wing, b_ref: float | None = None, n_chord: int | None = None,
                  n_span: int | None = None):
-        self.mesh: PanelMesh = panel_mesh(wing, n_chord, n_span)
-        self.b_ref = float(wing.node_properties()["b"][0] if b_ref is None else b_ref)
+        surface = (DlmSurface.from_wing(wing, n_chord, n_span)
+                   if not isinstance(wing, DlmSurface) else wing)
+        self.surface = surface
+        self.mesh: PanelMesh = surface.planform.mesh()
+        self.b_ref = float(surface.b_ref if b_ref is None else b_ref)
         self.grid = self.mesh.mirrored().aerogrid()         # both half-wings
-        self.n_nodes = wing.n_nodes
-        Zj, Sj = spline(wing, self.mesh.points(0.75))
-        Zl, _ = spline(wing, self.mesh.points(0.25))
+        self.n_dof = surface.n_dof
+        #: the DOFs the panels load (the beam's free ones: root removed; every mode)
+        self.keep = surface.keep
+        Zj, Sj = surface.spline(self.mesh.points(0.75))
+        Zl, _ = surface.spline(self.mesh.points(0.25))
         self._Zj, self._Sj = Zj, Sj
         self._left = -(Zl.T * self.mesh.area[None, :])
         self._table: dict[tuple[int, int], np.ndarray] = {}
@@ -222,7 +232,7 @@ class DlmAerodynamics:
         return Q
 
     def exact(self, mach: float, k: float, Qjj: np.ndarray | None = None) -> np.ndarray:
-        """Q(k, M) (3 n_nodes, 3 n_nodes) complex computed at k [-] and Mach (no table), from
+        """Q(k, M) (n_dof, n_dof) complex computed at k [-] and Mach (no table), from
         the AIC ``Qjj`` when given (computed elsewhere: :meth:`fill`)."""
         kbar = float(k) / self.b_ref
         Qjj = self.aic(mach, k) if Qjj is None else Qjj
@@ -243,7 +253,7 @@ class DlmAerodynamics:
         return 0.0 if i == 0 else K_FIRST * 10.0 ** ((i - 1) / K_PER_DECADE)
 
     def node(self, im: int, ik: int) -> np.ndarray:
-        """Q (3 n_nodes, 3 n_nodes) of table node (Mach im · MACH_STEP, k :meth:`k_node` (ik)),
+        """Q (n_dof, n_dof) of table node (Mach im · MACH_STEP, k :meth:`k_node` (ik)),
         computed once (no interpolation)."""
         return self.column_node(im * MACH_STEP, ik)
 
@@ -326,7 +336,7 @@ class DlmAerodynamics:
         lo = max(0, i - 1)
         nodes = range(lo, lo + 4)
         ks = np.array([self.k_node(j) for j in nodes])
-        out = np.zeros((3 * self.n_nodes, 3 * self.n_nodes), complex)
+        out = np.zeros((self.n_dof, self.n_dof), complex)
         for j, kj in zip(nodes, ks):
             w = np.prod([(k - km) / (kj - km) for km in ks if km != kj])
             out += w * self.column_node(mach, j)
@@ -361,11 +371,10 @@ class DlmAerodynamics:
 
 
 def geometry_key(wing) -> tuple:
-    """What a wing's doublet-lattice tables depend on (its nodes' y, b, a and panel counts):
-    two wings with the same key share their tables in a :class:`DlmTables`."""
-    node = wing.node_properties()
-    return (tuple(np.round(node["y"], 12)), tuple(np.round(node["b"], 12)),
-            tuple(np.round(node["a"], 12)), wing.dlm_chordwise_panels, wing.dlm_spanwise_panels)
+    """What a wing's (or any model's surface's) doublet-lattice tables depend on
+    (:attr:`DlmSurface.key`: a beam's nodes' y, b, a and panel counts; a modal model's
+    planform and spline): two with the same key share their tables in a :class:`DlmTables`."""
+    return surface_of(wing).key
 
 
 class DlmTables:
@@ -422,14 +431,16 @@ class DlmTables:
         return f"DlmTables({len(self)} of at most {self.size} geometries)"
 
     def aero(self, wing) -> DlmAerodynamics:
-        """The :class:`DlmAerodynamics` of ``wing``'s geometry (its panel counts, root
-        semichord), created on first use; the least recently used geometry is dropped beyond
-        :attr:`size`."""
-        key = geometry_key(wing)
+        """The :class:`DlmAerodynamics` of ``wing``'s geometry (a beam wing, a model or a
+        :class:`~propwhirl.model.aerodynamics.dlm_surface.DlmSurface`: its panel counts, root
+        semichord, spline), created on first use; the least recently used geometry is dropped
+        beyond :attr:`size`."""
+        surface = surface_of(wing)
+        key = surface.key
         if key in self._aero:
             self._aero.move_to_end(key)
             return self._aero[key]
-        aero = DlmAerodynamics(wing)
+        aero = DlmAerodynamics(surface)
         self._aero[key] = aero
         while len(self._aero) > self.size:
             self._aero.popitem(last=False)
@@ -447,9 +458,12 @@ def check_tables(tables) -> DlmTables:
 
 
 def dlm_aerodynamics(wing, tables: DlmTables | None = None) -> DlmAerodynamics:
-    """The :class:`DlmAerodynamics` of ``wing`` in ``tables`` (shared by every wing of the
-    same geometry there); without tables a new one, filled by its caller alone."""
-    return DlmAerodynamics(wing) if tables is None else tables.aero(wing)
+    """The :class:`DlmAerodynamics` of ``wing`` (a beam wing, a model or a
+    :class:`~propwhirl.model.aerodynamics.dlm_surface.DlmSurface`) in ``tables`` (shared by
+    every one of the same geometry there); without tables a new one, filled by its caller
+    alone."""
+    surface = surface_of(wing)
+    return DlmAerodynamics(surface) if tables is None else tables.aero(surface)
 
 
 def pk_system_dlm(model, V: float, k_min: float, tables: DlmTables | None = None,
@@ -465,11 +479,12 @@ def pk_system_dlm(model, V: float, k_min: float, tables: DlmTables | None = None
     converged with, :func:`propwhirl.analysis.pk.matched_crossing`); at a fixed ``dlm_mach``
     always from the AICs of that very Mach, cubic in k only."""
     mach = wing_mach(model, V)
-    exact = fixed_mach(model.wing) is not None
+    surface = surface_of(model)
+    exact = fixed_mach(surface) is not None
     check_mach(mach, V)
     dry = replace(model, wing_aero=False).second_order(np.array([V]))
-    aero = dlm_aerodynamics(model.wing, tables)
-    keep = free_dofs(model.wing.n_nodes)
+    aero = dlm_aerodynamics(surface, tables)
+    keep = aero.keep
     q = 0.5 * model.flight.density * V ** 2
     structure = (dry.S1[0], dry.S2[0], dry.S3[0])
     b = aero.b_ref
@@ -487,10 +502,13 @@ def pk_system_dlm(model, V: float, k_min: float, tables: DlmTables | None = None
 
 
 def strip_twin(model):
-    """The model with strip aerodynamics on its wing (``aero = "strip"``), the model itself
-    when it has them: the finite-state model a doublet-lattice p-k analysis tracks and names
-    its modes with, starts its p-k roots from and reports beside its events."""
+    """The model with strip aerodynamics on its wing (``aero = "strip"``: a beam wing's, a
+    modal model's strips), the model itself when it has them: the finite-state model a
+    doublet-lattice p-k analysis tracks and names its modes with, starts its p-k roots from
+    and reports beside its events."""
     wing = getattr(model, "wing", None)
-    if wing is None or wing.aero != "dlm":
+    if wing is None:
+        return model.with_(aero="strip") if getattr(model, "aero", "strip") == "dlm" else model
+    if wing.aero != "dlm":
         return model
     return model.with_(wing=replace(wing, aero="strip"))

@@ -112,38 +112,25 @@ class PanelMesh:
                 "offset_P3": p4 + 0.25 * l2, "n": self.n}
 
 
-def _planform(wing, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Leading- and trailing-edge x [m] (aft of the elastic axis) at spanwise positions y."""
-    node = wing.node_properties()
-    b = np.interp(y, node["y"], node["b"])
-    a = np.interp(y, node["y"], node["a"])
-    return -(1.0 + a) * b, (1.0 - a) * b
-
-
 def check_memory(wing, n_chord: int | None = None, n_span: int | None = None) -> None:
     """InputError, before any panel is built, when one AIC of the wing's panels
-    (:func:`panel_counts`) would exceed the memory limit (:func:`propwhirl.limits.check_panels`,
-    naming the counts that fit)."""
+    (:func:`panel_counts`; ``wing`` may also be a model, its doublet-lattice planform's counts)
+    would exceed the memory limit (:func:`propwhirl.limits.check_panels`, naming the counts
+    that fit)."""
+    if n_chord is None and n_span is None:
+        from propwhirl.model.aerodynamics.dlm_surface import surface_of
+        limits.check_panels(*surface_of(wing).planform.counts())
+        return
     limits.check_panels(*panel_counts(wing, n_chord, n_span))
 
 
 def panel_mesh(wing, n_chord: int | None = None, n_span: int | None = None) -> PanelMesh:
     """The DLM panels of ``wing``'s half planform (counts: :func:`panel_counts`; refused when
-    their AIC would exceed the memory limit, :func:`check_memory`)."""
-    n_chord, n_span = panel_counts(wing, n_chord, n_span)
-    limits.check_panels(n_chord, n_span)
-    ys = np.linspace(0.0, wing.semi_span, n_span + 1)
-    le, te = _planform(wing, ys)
-    f = np.linspace(0.0, 1.0, n_chord + 1)
-    x = le[:, None] + (te - le)[:, None] * f[None, :]              # (n_span + 1, n_chord + 1)
-    i, j = np.meshgrid(np.arange(n_span), np.arange(n_chord), indexing="ij")
-    i, j = i.ravel(), j.ravel()
-
-    def corner(di, dj):
-        return np.stack([x[i + di, j + dj], ys[i + di], np.zeros(i.size)], axis=1)
-
-    corners = np.stack([corner(0, 0), corner(0, 1), corner(1, 1), corner(1, 0)], axis=1)
-    return PanelMesh(corners, n_chord, n_span)
+    their AIC would exceed the memory limit, :func:`check_memory`): the panels of its
+    :meth:`~propwhirl.model.aerodynamics.planform.Planform.from_wing`, one case of any
+    planform's."""
+    from propwhirl.model.aerodynamics.planform import Planform
+    return Planform.from_wing(wing, n_chord, n_span).mesh()
 
 
 def guideline_note(mesh: PanelMesh, V: float, f_hz: float) -> str | None:

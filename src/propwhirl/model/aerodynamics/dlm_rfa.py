@@ -43,10 +43,10 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.model.structure.assembly import free_dofs, wing_dof_labels
 from propwhirl.model.aerodynamics.dlm import (MACH_MAX, MACH_STEP, DlmAerodynamics, DlmTables,
                                               check_mach, dlm_aerodynamics, fixed_mach,
                                               snap_mach, wing_mach)
+from propwhirl.model.aerodynamics.dlm_surface import surface_of
 from propwhirl.model.statespace import SecondOrder
 from propwhirl.model.statespace import state_matrix as statespace_matrix
 
@@ -91,7 +91,7 @@ def roger_fit(model, mach: float, ks, lags=DEFAULT_LAGS,
     reduced frequencies ``ks`` (at least 3 + len(lags) of them, >= 0) with lag roots
     ``lags`` (> 0, distinct), Q from ``tables`` (None: new ones).  InputError for bad
     arguments, before any AIC is computed."""
-    if getattr(getattr(model, "wing", None), "aero", None) != "dlm":
+    if getattr(getattr(model, "wing", model), "aero", None) != "dlm":
         raise v.InputError(f"model = {getattr(model, 'name', model)!r:.60} is invalid for the "
                            "Roger fit: needs a wing with aero = 'dlm'")
     check_mach(float(mach))
@@ -102,8 +102,8 @@ def roger_fit(model, mach: float, ks, lags=DEFAULT_LAGS,
     if np.any(ks < 0) or np.unique(ks).size < 3 + lags.size:
         raise v.InputError(f"ks has {np.unique(ks).size} distinct reduced frequencies >= 0: "
                            f"the fit needs at least {3 + lags.size}")
-    aero = dlm_aerodynamics(model.wing, tables)
-    keep = free_dofs(model.wing.n_nodes)
+    aero = dlm_aerodynamics(model, tables)
+    keep = aero.keep
     Q = np.stack([aero.gaf(mach, k)[np.ix_(keep, keep)] for k in ks])      # (m, n_w, n_w)
     return lstsq_fit(Q, ks, lags, float(mach), aero.b_ref)
 
@@ -207,8 +207,10 @@ def roger_system(dry: SecondOrder, A: np.ndarray, V: np.ndarray, b_ref: float, r
 # ----------------------------------------------------------------------------- the runtime's
 def b_ref(wing) -> float:
     """The reference semichord [m] of the doublet-lattice k (the root semichord, as
-    :class:`~propwhirl.model.aerodynamics.dlm.DlmAerodynamics` has it), without any table."""
-    return float(wing.node_properties()["b"][0])
+    :class:`~propwhirl.model.aerodynamics.dlm.DlmAerodynamics` has it) of a beam wing or a
+    model (:func:`~propwhirl.model.aerodynamics.dlm_surface.surface_of`), without any
+    table."""
+    return surface_of(wing).b_ref
 
 
 def fit_ks(k_max: float = K_MAX) -> np.ndarray:
@@ -253,7 +255,7 @@ def column_fit(aero: DlmAerodynamics, mach: float, ks: np.ndarray | None = None,
     mach = snap_mach(mach)
 
     def make() -> RogerFit:
-        keep = free_dofs(aero.n_nodes)
+        keep = aero.keep
         nodes = {aero.k_node(i): i for i in range(len(ks) + 64)}
         if any(k not in nodes for k in ks):          # not the tables' own k: interpolated
             Q = np.stack([aero.gaf(mach, k, exact_mach=True)[np.ix_(keep, keep)] for k in ks])
@@ -283,8 +285,8 @@ def coefficients(model, V, ks: np.ndarray | None = None,
     V = np.atleast_1d(np.asarray(V, float))
     for Vi in V:
         check_mach(wing_mach(model, Vi), Vi)
-    aero = dlm_aerodynamics(model.wing, tables)
-    fixed = fixed_mach(model.wing)
+    aero = dlm_aerodynamics(model, tables)
+    fixed = fixed_mach(aero.surface)
     if fixed is not None:
         A = column_fit(aero, fixed, ks).A
         return np.broadcast_to(A, (V.size,) + A.shape).copy()
@@ -302,14 +304,12 @@ def coefficients(model, V, ks: np.ndarray | None = None,
 
 
 def lag_labels(model, lags=DEFAULT_LAGS) -> tuple[tuple[str, ...], tuple[int, ...]]:
-    """Labels ("node i h lag l") and wing nodes of the Roger lag states of ``model``: lag by
-    lag, every free wing DOF (h, φ, α of nodes >= 1)."""
-
-    nn = model.wing.n_nodes
-    keep = free_dofs(nn)
-    dofs = np.asarray(wing_dof_labels(nn), dtype=object)[keep]
-    labels = tuple(f"{d} lag {l + 1}" for l in range(len(lags)) for d in dofs)
-    nodes = tuple(int(i // 3) for _ in range(len(lags)) for i in keep)
+    """Labels ("node i h lag l", a modal model's "mode i lag l") and wing nodes (-1: none) of
+    the Roger lag states of ``model``: lag by lag, every DOF the panels load (a beam's free
+    wing DOFs, h, φ, α of nodes >= 1; a modal model's modes)."""
+    surface = surface_of(model)
+    labels = tuple(f"{d} lag {l + 1}" for l in range(len(lags)) for d in surface.labels)
+    nodes = tuple(n for _ in range(len(lags)) for n in surface.nodes)
     return labels, nodes
 
 
@@ -328,7 +328,7 @@ def second_order(assembly, V: np.ndarray, omega=None) -> SecondOrder:
     A = coefficients(model, V, ks, tables=assembly.dlm_tables)
     dry = assembly.with_switches(wing_aero=False).blocks(V, omega).dense()
     labels, _ = lag_labels(model, DEFAULT_LAGS)
-    return roger_system(dry, A, V, b_ref(model.wing), model.flight.density, DEFAULT_LAGS,
+    return roger_system(dry, A, V, b_ref(model), model.flight.density, DEFAULT_LAGS,
                         labels)
 
 
@@ -337,8 +337,8 @@ def fits_used(model, V, ks: np.ndarray | None = None,
     """The runtime's node fits (:func:`node_fit`, over ``ks``: default :func:`fit_ks`) that
     airspeeds between min(V) and max(V) [m/s] use (computed if not yet, in ``tables``: the
     analysis's), by Mach."""
-    aero = dlm_aerodynamics(model.wing, tables)
-    fixed = fixed_mach(model.wing)
+    aero = dlm_aerodynamics(model, tables)
+    fixed = fixed_mach(aero.surface)
     if fixed is not None:
         return [column_fit(aero, fixed, ks)]
     a = model.flight.speed_of_sound
@@ -357,10 +357,10 @@ def rfa_note(model, V, modal=None, tables: DlmTables | None = None) -> str:
     :class:`~propwhirl.model.dlm_modal.ModalRoger`, the default analysis: its fits over
     :func:`tracking_ks`) the modes it kept and that its crossings are the p-k method's;
     ``tables``: the analysis's (the fits it used)."""
-    aero = dlm_aerodynamics(model.wing, tables)
+    aero = dlm_aerodynamics(model, tables)
     m = aero.mesh
     V = np.atleast_1d(np.asarray(V, float))
-    fixed = fixed_mach(model.wing)
+    fixed = fixed_mach(aero.surface)
     where = ("at every Mach node, linear in Mach V/a" if fixed is None else
              f"at the fixed Mach {fixed:g} (dlm_mach) for every speed")
     fits = fits_used(model, V, None if modal is None else tracking_ks(), tables)
@@ -384,7 +384,7 @@ def extrapolation_notes(model, events) -> list[str]:
     there the Roger state space extrapolates Q (at low speeds a structural mode's k is large
     and its small aerodynamic damping can change sign), so the event is to be checked by the
     p-k method or by analysing from higher speeds."""
-    b = b_ref(model.wing)
+    b = b_ref(model)
     top = float(fit_ks()[-1])
     out = []
     for e in events:

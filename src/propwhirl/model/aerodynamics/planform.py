@@ -1,0 +1,215 @@
+"""A lifting surface's planform for the doublet lattice, independent of the structure
+(issue 34 item 3).
+
+:class:`Planform` is what NASTRAN's CAERO1 card gives: the leading-edge corners (x, y, z)
+[m] and the chords [m] at the root and the tip (the chord streamwise, along +x), and the
+chordwise and spanwise panel counts — generalised to any number of spanwise *stations* (two
+for a CAERO1, :meth:`Planform.caero1`): between stations the leading edge (x, z) and the
+chord are linear in y.  The leading edge may lie anywhere: sweep (x varying with y), taper,
+dihedral (z varying with y) and a root away from the plane of symmetry (y₀ > 0) are all
+planforms.  The frame is the wing frame of the structure it is splined to (x aft along the
+flow, y spanwise outboard, z up); the plane y = 0 is the plane of symmetry (the other
+half-wing mirrored, :meth:`~propwhirl.model.aerodynamics.dlm_mesh.PanelMesh.mirrored`).
+
+**Panels** (:meth:`Planform.mesh`): the span y₀ … y_N divided into ``spanwise_panels``
+equal strips in y, each local chord into ``chordwise_panels`` equal divisions (NASTRAN's
+equal divisions without LSPAN/LCHORD).  Defaults: 8 along the chord
+(:data:`~propwhirl.model.structure.wing.DEFAULT_CHORDWISE`) and, spanwise, the fewest strips
+no wider than :data:`~propwhirl.model.structure.wing.MAX_ASPECT` = 2 times the shortest
+panel length (:meth:`Planform.counts`): the beam wing's own defaults.
+
+**The beam wing's planform** (:meth:`Planform.from_wing`): the stations are the edges of
+its panel strips, each with the wing's leading and trailing edges there, −(1 + a) b and
+(1 − a) b aft of the elastic axis (b, a linear between the wing's nodes), z = 0.  Its panels
+are therefore, bit for bit, the panels the beam doublet lattice always had: the beam DLM is
+one case of this planform (``tests/model/test_planform.py``).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from propwhirl import limits
+from propwhirl import validate as v
+from propwhirl.model.structure.wing import DEFAULT_CHORDWISE, MAX_ASPECT, MAX_PANELS
+
+#: most spanwise stations of a planform
+MAX_STATIONS = 1000
+
+
+def _floats(source: str, key: str, value, shape: tuple) -> np.ndarray:
+    """``value`` as a read-only float array of ``shape`` (-1: any length), finite; else a
+    one-line InputError naming ``source`` and ``key``."""
+    try:
+        raw = None if isinstance(value, (str, bytes)) else np.asarray(value)
+        arr = None if raw is None or raw.dtype.kind in "bcmMUSVO" else np.array(raw, float)
+    except (TypeError, ValueError, OverflowError):
+        arr = None
+    if arr is None or arr.ndim != len(shape) or any(
+            s not in (-1, n) for s, n in zip(shape, arr.shape)):
+        want = tuple("n" if s == -1 else s for s in shape)
+        raise v.InputError(f"{source}: {key} = {v.short_repr(value)} is invalid: must be real "
+                           f"numbers of shape {want} [m]")
+    if not np.all(np.isfinite(arr)):
+        i = tuple(int(j) for j in np.argwhere(~np.isfinite(arr))[0])
+        raise v.InputError(f"{source}: {key}{list(i)} = {arr[i]} is invalid: must be finite")
+    arr.flags.writeable = False
+    return arr
+
+
+@dataclass(frozen=True, eq=False)
+class Planform:
+    """A half-wing's lifting surface for the doublet lattice (module docstring).
+
+    Parameters
+    ----------
+    leading_edge : ndarray
+        (n_stations, 3) the leading edge (x, y, z) [m] at each spanwise station, y strictly
+        increasing and >= 0 (the plane y = 0 is the plane of symmetry); at least two
+        stations (a CAERO1's root and tip corners 1 and 4).
+    chord : ndarray
+        (n_stations,) the streamwise chord [m] at each station, > 0.
+    chordwise_panels : int
+        Panels along each chord (>= 1; default 8, the beam wing's).
+    spanwise_panels : int or None
+        Equal strips along the span (>= 1); None: the fewest with every panel's width at
+        most :data:`~propwhirl.model.structure.wing.MAX_ASPECT` times the shortest panel
+        length.
+    source : str
+        What it is called in error messages (the key of a model file: ``dlm_planform``).
+
+    Examples
+    --------
+    A swept, tapered CAERO1 with 4 x 6 panels:
+
+    >>> from propwhirl.model.aerodynamics.planform import Planform
+    >>> p = Planform.caero1((0.0, 0.0, 0.0), (1.0, 5.0, 0.0), 2.0, 1.0, 4, 6)
+    >>> m = p.mesh()
+    >>> m.n, round(float(m.area.sum()), 6)             # 5 m x (2 + 1)/2 m
+    (24, 7.5)
+    >>> p.counts(), p.b_ref                            # b_ref: the root semichord [m]
+    ((4, 6), 1.0)
+    """
+
+    leading_edge: np.ndarray
+    chord: np.ndarray
+    chordwise_panels: int = DEFAULT_CHORDWISE
+    spanwise_panels: int | None = None
+    source: str = "dlm_planform"
+
+    def __post_init__(self) -> None:
+        src = self.source if isinstance(self.source, str) else "dlm_planform"
+        object.__setattr__(self, "source", src)
+        le = _floats(src, "leading_edge", self.leading_edge, (-1, 3))
+        n = le.shape[0]
+        if not 2 <= n <= MAX_STATIONS:
+            raise v.InputError(f"{src}: leading_edge has {n} stations: give 2 to "
+                               f"{MAX_STATIONS} (a CAERO1: the root and the tip)")
+        c = _floats(src, "chord", self.chord, (n,))
+        y = le[:, 1]
+        if y[0] < 0:
+            raise v.InputError(f"{src}: leading_edge[0] y = {y[0]:.6g} m is invalid: must be "
+                               ">= 0 (the plane y = 0 is the plane of symmetry)")
+        bad = np.flatnonzero(np.diff(y) <= 0)
+        if bad.size:
+            i = int(bad[0]) + 1
+            raise v.InputError(f"{src}: leading_edge[{i}] y = {y[i]:.6g} m is invalid: the "
+                               "stations' y must increase from root to tip")
+        bad = np.flatnonzero(c <= 0)
+        if bad.size:
+            i = int(bad[0])
+            raise v.InputError(f"{src}: chord[{i}] = {c[i]:.6g} m is invalid: must be > 0")
+        object.__setattr__(self, "leading_edge", le)
+        object.__setattr__(self, "chord", c)
+        v.integer_at_least("chordwise_panels", self.chordwise_panels, 1)
+        if self.spanwise_panels is not None:
+            v.integer_at_least("spanwise_panels", self.spanwise_panels, 1)
+        nc, ns = self.counts()
+        if nc * ns > MAX_PANELS:
+            raise v.InputError(
+                f"{src}: chordwise_panels x spanwise_panels = {nc} x {ns} = {nc * ns} panels "
+                f"is invalid: must be at most {MAX_PANELS} (give fewer panels, or "
+                "spanwise_panels explicitly)")
+
+    # ------------------------------------------------------------------ constructors
+    @classmethod
+    def caero1(cls, root_leading_edge, tip_leading_edge, root_chord: float, tip_chord: float,
+               chordwise_panels: int = DEFAULT_CHORDWISE, spanwise_panels: int | None = None,
+               source: str = "dlm_planform") -> "Planform":
+        """NASTRAN's CAERO1: the leading-edge corners (x, y, z) [m] at the root (point 1) and
+        the tip (point 4), the streamwise chords [m] there (X12, X43) and the panel counts
+        (NSPAN, NCHORD)."""
+        return cls([root_leading_edge, tip_leading_edge], [root_chord, tip_chord],
+                   chordwise_panels, spanwise_panels, source)
+
+    @classmethod
+    def from_wing(cls, wing, n_chord: int | None = None,
+                  n_span: int | None = None) -> "Planform":
+        """The planform of a beam :class:`~propwhirl.model.structure.wing.Wing` as its doublet
+        lattice has always had it (module docstring): stations at its panel strips' edges
+        (counts :func:`~propwhirl.model.structure.wing.panel_counts`: its
+        ``dlm_chordwise_panels``, ``dlm_spanwise_panels`` or the defaults), the elastic axis
+        at x = 0."""
+        from propwhirl.model.structure.wing import panel_counts
+        n_chord, n_span = panel_counts(wing, n_chord, n_span)
+        ys = np.linspace(0.0, wing.semi_span, n_span + 1)
+        node = wing.node_properties()
+        b = np.interp(ys, node["y"], node["b"])
+        a = np.interp(ys, node["y"], node["a"])
+        le, te = -(1.0 + a) * b, (1.0 - a) * b
+        return cls(np.stack([le, ys, np.zeros_like(ys)], axis=1), te - le, n_chord, n_span,
+                   f"planform of wing {getattr(wing, 'name', '')}".rstrip())
+
+    # ------------------------------------------------------------------ what it is
+    @property
+    def y(self) -> np.ndarray:
+        """The stations' y [m]."""
+        return self.leading_edge[:, 1]
+
+    @property
+    def span(self) -> float:
+        """y_N − y₀ [m]."""
+        return float(self.y[-1] - self.y[0])
+
+    @property
+    def b_ref(self) -> float:
+        """The root semichord [m] (the reduced frequency's k = ω b_ref / V)."""
+        return float(0.5 * self.chord[0])
+
+    def counts(self) -> tuple[int, int]:
+        """(chordwise, spanwise) panel counts, the spanwise default resolved (class
+        docstring)."""
+        nc = int(self.chordwise_panels)
+        if self.spanwise_panels is not None:
+            return nc, int(self.spanwise_panels)
+        c_min = float(np.min(self.chord))
+        return nc, max(1, int(np.ceil(self.span * nc / (MAX_ASPECT * c_min) - 1e-9)))
+
+    def key(self) -> tuple:
+        """What its panels depend on (two planforms with the same key have the same panels)."""
+        return (self.leading_edge.tobytes(), self.chord.tobytes(), self.counts())
+
+    def mesh(self):
+        """The panels (:class:`~propwhirl.model.aerodynamics.dlm_mesh.PanelMesh`, panel
+        p = i_span · n_chord + i_chord; module docstring); refused before any is built when
+        one AIC of them would exceed the memory limit
+        (:func:`propwhirl.limits.check_panels`)."""
+        from propwhirl.model.aerodynamics.dlm_mesh import PanelMesh
+        n_chord, n_span = self.counts()
+        limits.check_panels(n_chord, n_span)
+        y_st = self.y
+        ys = np.linspace(y_st[0], y_st[-1], n_span + 1)
+        le_x = np.interp(ys, y_st, self.leading_edge[:, 0])
+        le_z = np.interp(ys, y_st, self.leading_edge[:, 2])
+        c = np.interp(ys, y_st, self.chord)
+        f = np.linspace(0.0, 1.0, n_chord + 1)
+        x = le_x[:, None] + c[:, None] * f[None, :]                # (n_span + 1, n_chord + 1)
+        i, j = np.meshgrid(np.arange(n_span), np.arange(n_chord), indexing="ij")
+        i, j = i.ravel(), j.ravel()
+
+        def corner(di, dj):
+            return np.stack([x[i + di, j + dj], ys[i + di], le_z[i + di]], axis=1)
+
+        corners = np.stack([corner(0, 0), corner(0, 1), corner(1, 1), corner(1, 0)], axis=1)
+        return PanelMesh(corners, n_chord, n_span)
