@@ -187,3 +187,44 @@ def test_propwhirl_import_writes_a_swept_stick_as_a_modal_model_file(tmp_path, b
     direct = read_bdf(path, units="si", base=base.with_(propellers=(), wing_aero=False))
     np.testing.assert_array_equal(back.structure.shapes, direct.structure.shapes)
     np.testing.assert_array_equal(back.structure.xyz, direct.structure.xyz)
+
+
+def test_the_doublet_lattice_serves_it(tmp_path, base):
+    """With the base's wing on the doublet lattice (4 x 8 panels: bounded work), the swept
+    stick's modal model gets its panels on the swept planform (a CAERO1 of the base's chords
+    at the root and tip grids).  Barely swept (0.001 deg: the tip 0.1 mm aft) it is the
+    straight deck's beam DLM model: every event within 2 xtol (the modal DLM's agreement with
+    the beam DLM, tests/model/test_modal_dlm.py; measured 0.004 m/s).  Swept 30 deg aft, the
+    bending-torsion wash-out of a swept-back wing removes the divergence (161.2 m/s unswept)
+    from the range and raises the flutter (measured 138.4 -> 163.6 m/s)."""
+    from dataclasses import replace
+
+    pytest.importorskip("panelaero")
+    from propwhirl.analysis import analyse
+    from propwhirl.engine import XTOL
+
+    dlm = base.with_(propellers=(), flight=replace(base.flight, speed_range=(10.0, 250.0, 5.0)),
+                     wing=replace(base.wing, aero="dlm", dlm_chordwise_panels=4,
+                                  dlm_spanwise_panels=8))
+    straight = read_bdf(write(tmp_path, "straight.bdf", bare(DECK.read_text())), units="si",
+                        base=dlm)
+    ref = analyse(straight).events
+    assert [(e.kind, e.event) for e in ref] == [("flutter", "onset"), ("divergence", "onset")]
+    notes: list[str] = []
+    barely = read_bdf(write(tmp_path, "barely.bdf", swept(bare(DECK.read_text()), 0.001)),
+                      units="si", base=dlm, notes=notes)
+    assert isinstance(barely, ModalPropellerWing) and barely.aero == "dlm"
+    assert any("doublet-lattice panels on the swept planform" in n for n in notes)
+    events = analyse(barely).events
+    assert [(e.kind, e.event) for e in events] == [(e.kind, e.event) for e in ref]
+    for a, b in zip(events, ref):
+        assert abs(a.V - b.V) <= 2 * XTOL, (a.V, b.V)
+    m = read_bdf(write(tmp_path, "swept.bdf", swept(bare(DECK.read_text()), SWEEP)),
+                 units="si", base=dlm)
+    p = m.dlm_planform
+    np.testing.assert_allclose(p.leading_edge[:, :2], planform_corners(m)[[0, 3], :2],
+                               atol=1e-12)
+    events = analyse(m).events
+    assert not [e for e in events if e.kind == "divergence"]
+    flutter = [e.V for e in events if e.kind == "flutter"]
+    assert flutter and min(flutter) > 1.1 * ref[0].V

@@ -28,8 +28,8 @@ What maps to what (docs/modal-structures.md, "NASTRAN bulk data", has the table)
   :meth:`~propwhirl.model.modal_structure.ModalStructure.from_wing`), each propeller on its
   wing grid with the deck's mount, its shaft along basic x; the strips refuse a sweep beyond
   :data:`~propwhirl.model.modal_structure.STRIP_SWEEP_LIMIT_DEG` by name (their aerodynamics
-  are an unswept wing's) and :func:`planform_corners` gives the planform as CAERO1's corners
-  for a doublet lattice.
+  are an unswept wing's), the base wing's doublet lattice (``aero = "dlm"``) takes it, its
+  panels on the swept planform (a CAERO1; :func:`planform_corners`).
 
 What a BDF cannot say comes from ``base``, a propwhirl model: the flight condition, the
 chords, the elastic axis's and aerodynamic centre's chordwise positions, the aerodynamics,
@@ -65,6 +65,7 @@ from propwhirl.io import nastran_mounts
 from propwhirl.io.nastran_deck import (  # noqa: F401 (re-exported: their old home)
     MODEL_CARDS, SETTING_CARDS, Deck, Grid, cord2r_axes, fail, parse, require_pynastran)
 from propwhirl.io.nastran import unit_system
+from propwhirl.model.aerodynamics.planform import Planform
 from propwhirl.model.fields import check_values
 from propwhirl.model.modal import ModalInstallation, ModalPropellerWing
 from propwhirl.model.modal_structure import ModalStructure, StripPlanform
@@ -585,7 +586,9 @@ def _swept(deck: Deck, stick: Stick, wing: Wing, model: PropellerWing, mounts, i
     the stick); each propeller on its wing grid with the deck's mount (``installations``:
     "rigid" or "flexible", its shaft along the basic x axis, coupled through the grid's
     heave and basic R_y).  Strip aerodynamics refuse a stick swept by more than
-    :data:`~propwhirl.model.modal_structure.STRIP_SWEEP_LIMIT_DEG` (by name)."""
+    :data:`~propwhirl.model.modal_structure.STRIP_SWEEP_LIMIT_DEG` (by name); the base wing's
+    doublet lattice (``aero = "dlm"``) takes it: its panels (the base's counts and Mach) on
+    the swept planform, a CAERO1 of :func:`planform_corners`."""
     straight = ModalStructure.from_wing(wing)
     lam = math.radians(stick.sweep)
     c, s = math.cos(lam), math.sin(lam)
@@ -611,15 +614,25 @@ def _swept(deck: Deck, stick: Stick, wing: Wing, model: PropellerWing, mounts, i
         p = inst.propeller if inst.rotation is None else replace(inst.propeller,
                                                                   rotation=inst.rotation)
         props.append(ModalInstallation(p, m.wing_grid, inst.mount, inst.aero))
+    dlm = {}
+    if wing.aero == "dlm":          # the base's doublet lattice: panels on the swept planform
+        nodes = wing.node_properties()           # the chord 2b, the axis a b aft of mid-chord
+        (p1, c1), (p4, c4) = ((stick.positions[k] - [(1.0 + nodes["a"][k]) * nodes["b"][k],
+                                                     0.0, 0.0], 2.0 * nodes["b"][k])
+                              for k in (0, -1))
+        dlm = dict(aero="dlm", dlm_mach=wing.dlm_mach, dlm_planform=Planform.caero1(
+            p1, p4, float(c1), float(c4), wing.dlm_chordwise_panels, wing.dlm_spanwise_panels,
+            source=f"{deck.where} (the base's planform on its swept stick)"))
     deck.notes.append(f"{deck.where}: its stick is swept by {stick.sweep:.1f} deg: read as the "
                       f"{structure.n_modes} modes of its straight beam ({wing.element_count} "
                       f"elements, {wing.semi_span:.6g} m along its axis) on its grids, a modal "
-                      "model (the propellers on their wing grids, the base's chords streamwise)")
+                      "model (the propellers on their wing grids, the base's chords streamwise"
+                      + (", its doublet-lattice panels on the swept planform)" if dlm else ")"))
     try:
         return ModalPropellerWing(structure, stick.grids, planform, model.flight, tuple(props),
                                   wing_aero=model.wing_aero, propeller_aero=model.propeller_aero,
                                   rotating=model.rotating, name=f"{model.name} (swept stick of "
-                                  f"{name})")
+                                  f"{name})", **dlm)
     except v.InputError as exc:
         msg = str(exc)
         raise v.InputError(msg if msg.startswith(deck.where) else f"{deck.where}: {msg}") \
@@ -650,8 +663,12 @@ def planform_corners(model: ModalPropellerWing) -> np.ndarray:
     >>> planform_corners(m).round(3).tolist()
     [[-0.625, 0.0, 0.0], [0.625, 0.0, 0.0], [0.4, 5.7, 0.0], [-0.4, 5.7, 0.0]]
     """
-    s, p = model.structure, model.planform
-    ends = s.xyz[[s.index(model.wing_grids[0]), s.index(model.wing_grids[-1])]]
+    return _corners(model.structure, model.wing_grids, model.planform)
+
+
+def _corners(s: ModalStructure, wing_grids, p: StripPlanform) -> np.ndarray:
+    """:func:`planform_corners` of a structure, its wing grids and its strips."""
+    ends = s.xyz[[s.index(wing_grids[0]), s.index(wing_grids[-1])]]
     out = []
     for end in ends:
         y = float(end[1])
