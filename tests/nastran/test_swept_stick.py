@@ -228,3 +228,28 @@ def test_the_doublet_lattice_serves_it(tmp_path, base):
     assert not [e for e in events if e.kind == "divergence"]
     flutter = [e.V for e in events if e.kind == "flutter"]
     assert flutter and min(flutter) > 1.1 * ref[0].V
+
+
+def test_hinged_propellers_on_a_barely_swept_stick_are_the_beam_models(tmp_path, base):
+    """tests/data/nastran/wing_two_propellers.bdf (two propellers on pitch and yaw hinges,
+    CELAS2 springs), held in its plane: swept by 0.001 deg (strips still: under 5 deg) its
+    modal model — the stick's 39 modes, each propeller's own pitch and yaw on its wing grid —
+    gives the straight deck's beam model's instabilities within 2 xtol (the same structure
+    and strips, the tip 0.1 mm aft)."""
+    from propwhirl.analysis import analyse
+    from propwhirl.engine import XTOL
+
+    text = (Path(__file__).resolve().parents[1] / "data" / "nastran"
+            / "wing_two_propellers.bdf").read_text().replace("ENDDATA", HELD + "ENDDATA")
+    hubs = (1001, 2001)
+    beam = read_bdf(write(tmp_path, "straight.bdf", text), units="si", base=base, hubs=hubs)
+    m = read_bdf(write(tmp_path, "barely.bdf", swept(text, 0.001)), units="si", base=base,
+                 hubs=hubs)
+    assert isinstance(m, ModalPropellerWing)
+    assert [(p.grid, p.mount) for p in m.propellers] == [(5, "flexible"), (14, "flexible")]
+    assert [p.propeller for p in m.propellers] == [p.propeller for p in beam.propellers]
+    ref, events = analyse(beam).events, analyse(m).events
+    assert len(ref) >= 3
+    assert [(e.kind, e.event) for e in events] == [(e.kind, e.event) for e in ref]
+    for a, b in zip(events, ref):
+        assert abs(a.V - b.V) <= 2 * XTOL, (a.V, b.V)
