@@ -44,8 +44,9 @@ ALL := $(VENV)/.stamp-codegen+data+dlm+docs+tables+test+plots+toml+notebooks+dis
 # ALL's (pip would drop the main environment to numpy 1.26); propwhirl, pyNastran and the extras
 # tests/nastran needs, in one pip request (one resolution: numpy 1.26).  `notebooks` (nbclient,
 # nbformat, ipykernel: matplotlib comes with pyNastran) runs examples/nastran_walkthrough.ipynb
-# there; measured from scratch with a warm pip cache: 55 s and 421 MB without it, 90 s and
-# 513 MB with it (numpy 1.26.4 either way, pip check clean).
+# there; measured from scratch with a warm pip cache, two builds each on 2 shared cores at load
+# 5-7: 55-72 s and 421 MB without it, 90-92 s and 513 MB with it (numpy 1.26.4 either way,
+# pip check clean).
 NASTRAN_VENV := .venv-nastran
 NASTRAN_STAMP := $(NASTRAN_VENV)/.stamp-nastran+test+toml+tables+dlm+notebooks
 
