@@ -142,3 +142,13 @@ def test_the_spline_along_a_swept_axis_carries_rigid_rotations_exactly():
     assert np.allclose(z, -(np.outer(p[:, 1], r[:, 0]) - np.outer(p[:, 0], r[:, 1])),
                        atol=1e-14)
     assert np.allclose(slope, r[:, 1][None, :], atol=1e-15)
+
+
+def test_a_modal_dlm_model_pickles_after_its_surface_is_built(pair):
+    """A study sends models to worker processes: the surface built on first use (closures)
+    stays behind, the copy builds its own, the same."""
+    import pickle
+    _, m = pair
+    key = m.dlm_surface().key
+    back = pickle.loads(pickle.dumps(m))
+    assert "_dlm_surface" not in back.__dict__ and back.dlm_surface().key == key

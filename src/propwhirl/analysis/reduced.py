@@ -19,13 +19,14 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from propwhirl import limits
 from propwhirl import validate as v
 from propwhirl.engine import analyse as engine_analyse
 from propwhirl.engine import single_thread_blas
 from propwhirl.engine.correction import correct_crossing, full_order_pair
 from propwhirl.engine.results import Analysis, Criticals
 from propwhirl.model.aerodynamics.dlm import require_panelaero
-from propwhirl.model.aerodynamics.dlm_mesh import check_memory
+from propwhirl.model.aerodynamics.dlm_surface import surface_of
 from propwhirl.model.protocol import capabilities
 from propwhirl.model.reduction import CUTOFF_FACTOR, ReducedModel, reduce
 
@@ -68,7 +69,8 @@ def choose_method(model, method: str) -> str:
     dlm = can.aerodynamics == "doublet lattice"
     if dlm:
         require_panelaero()                 # before the finite-state tracking starts
-        check_memory(model)                 # one AIC of its panels within the memory limit
+        # one AIC of its panels within the memory limit, before any is built
+        limits.check_panels(*surface_of(model).planform.counts())
     if method == "pk":
         return "pk"
     if dlm:                 # the modal Roger state space, its crossings the p-k's

@@ -53,6 +53,11 @@ def model_summary(model: Any) -> list[tuple[str, str]]:
                     if mu == 0 and lam == 0 else
                     f"Rayleigh C = μ M + λ K, μ = {mu:g} 1/s, λ = {lam:g} s"))
         out.append(("wing aerodynamics", _wing_aero(model, wing)))
+    elif getattr(model, "aero", None) == "dlm" and getattr(model, "wing_aero", False):
+        nc, ns = model.dlm_planform.counts()          # a modal model's doublet lattice
+        out.append(("wing aerodynamics", f"doublet lattice on the modes, {nc} chordwise × "
+                    f"{ns} spanwise panels, Mach {model.dlm_mach}, its Roger "
+                    "rational-function fit"))
     props = _propellers(model)
     if props:
         total = sum(i.propeller.pivot_inertia()["M_P"] for i in props

@@ -54,7 +54,7 @@ import numpy as np
 from propwhirl import limits
 from propwhirl import validate as v
 from propwhirl.generated import prop_hub
-from propwhirl.model.aerodynamics import validity
+from propwhirl.model.aerodynamics import dlm_rfa, validity
 from propwhirl.model.aerodynamics.dlm import DlmTables, check_tables
 from propwhirl.model.aerodynamics.dlm_surface import DlmSurface
 from propwhirl.model.aerodynamics.planform import Planform
@@ -297,6 +297,13 @@ class ModalPropellerWing(StateSpaceModel):
         model."""
         return self._dlm_surface
 
+    def __getstate__(self) -> dict:
+        """Pickled (a study's worker processes) without the doublet-lattice surface built
+        on first use: the receiving process builds its own."""
+        state = dict(self.__dict__)
+        state.pop("_dlm_surface", None)
+        return state
+
     @functools.cached_property
     def _dlm_surface(self) -> DlmSurface:
         p = self.dlm_planform
@@ -391,8 +398,7 @@ class ModalPropellerWing(StateSpaceModel):
             prop += [j, j]
         w_labels: tuple[str, ...] = ()
         if self.wing_aero and self.aero == "dlm":       # the Roger lag states ("mode i lag l")
-            from propwhirl.model.aerodynamics.dlm_rfa import lag_labels
-            w_labels = lag_labels(self)[0]
+            w_labels = dlm_rfa.lag_labels(self)[0]
         elif self.wing_aero:
             k = LAG_STATES[self.planform.aero_model]
             w_labels = tuple(f"strip {s + 1} w{r + 1}" for s in range(self.planform.y.size)
@@ -540,7 +546,6 @@ class ModalAssembly(EvaluatorBase):
             validity.check_mach(V, model.flight.speed_of_sound)
         with np.errstate(all="ignore"):
             if model.wing_aero and model.aero == "dlm":    # the doublet lattice's Roger fit
-                from propwhirl.model.aerodynamics import dlm_rfa
                 sys = dlm_rfa.second_order(self, V, omega)
             else:
                 sys = self._assemble(V, omega)

@@ -32,11 +32,10 @@ first order, so its spline columns are zero.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 
 from propwhirl import limits, validate as v
+from propwhirl.model.aerodynamics.planform import PanelMesh, Planform  # noqa: F401
 from propwhirl.model.structure.mesh import beam_interpolation
 # the panel counts are the wing's own fields, checked with it (model/structure/wing.py)
 from propwhirl.model.structure.wing import (DEFAULT_CHORDWISE, MAX_ASPECT,  # noqa: F401
@@ -46,81 +45,10 @@ from propwhirl.model.structure.wing import (DEFAULT_CHORDWISE, MAX_ASPECT,  # no
 GUIDELINE = 0.08
 
 
-@dataclass(frozen=True)
-class PanelMesh:
-    """The panels of a half-wing (arrays in metres, x aft from the elastic axis, y spanwise,
-    z up; panel p = i_span · n_chord + i_chord).
-
-    corners (n, 4, 3): leading-edge inboard, trailing-edge inboard, trailing-edge outboard,
-    leading-edge outboard corners; n_chord, n_span: the counts.
-    """
-
-    corners: np.ndarray
-    n_chord: int
-    n_span: int
-
-    @property
-    def n(self) -> int:
-        """Number of panels."""
-        return self.corners.shape[0]
-
-    def _edges(self):
-        p1, p2, p3, p4 = (self.corners[:, i] for i in range(4))
-        return p1, p2 - p1, p3 - p4, p4 - p1, p3 - p2
-
-    @property
-    def length(self) -> np.ndarray:
-        """Chordwise length of each panel (mean of its side edges) [m]."""
-        _, l1, l2, _, _ = self._edges()
-        return 0.5 * (l1[:, 0] + l2[:, 0])
-
-    @property
-    def width(self) -> np.ndarray:
-        """Spanwise width of each panel [m]."""
-        _, _, _, b1, b2 = self._edges()
-        return 0.5 * (b1[:, 1] + b2[:, 1])
-
-    @property
-    def area(self) -> np.ndarray:
-        """Area of each panel [m²] (trapezoid)."""
-        _, l1, l2, b1, b2 = self._edges()
-        return np.linalg.norm(np.cross(0.5 * (l1 + l2), 0.5 * (b1 + b2)), axis=1)
-
-    def points(self, fraction: float) -> np.ndarray:
-        """Points (n, 3) at ``fraction`` of each panel's chord, mid-width [m]: 0.25 the
-        doublet line (force point), 0.75 the collocation point."""
-        p1, l1, l2, b1, _ = self._edges()
-        return p1 + fraction * 0.5 * (l1 + l2) + 0.5 * b1
-
-    def mirrored(self) -> "PanelMesh":
-        """The panels of both half-wings: the mirror image in the root plane y = 0 (panel p of
-        the other half at index p), then these; every panel still defined from left to right
-        (its corners reordered), so every normal points up."""
-        m = self.corners[:, [3, 2, 1, 0]] * np.array([1.0, -1.0, 1.0])
-        return PanelMesh(np.concatenate([m, self.corners]), self.n_chord, 2 * self.n_span)
-
-    def aerogrid(self) -> dict:
-        """The panels in PanelAero's ``aerogrid`` form (its DLM and VLM read l, A, N,
-        offset_l / _k / _j at 1/4, 1/2, 3/4 chord, offset_P1 / _P3 the doublet line's ends)."""
-        p1, l1, l2, b1, _ = self._edges()
-        p4 = self.corners[:, 3]
-        normal = np.cross(l1, b1)
-        normal /= np.linalg.norm(normal, axis=1)[:, None]
-        return {"l": self.length, "A": self.area, "N": normal,
-                "offset_l": self.points(0.25), "offset_k": self.points(0.5),
-                "offset_j": self.points(0.75), "offset_P1": p1 + 0.25 * l1,
-                "offset_P3": p4 + 0.25 * l2, "n": self.n}
-
-
 def check_memory(wing, n_chord: int | None = None, n_span: int | None = None) -> None:
     """InputError, before any panel is built, when one AIC of the wing's panels
-    (:func:`panel_counts`; ``wing`` may also be a model, its doublet-lattice planform's counts)
-    would exceed the memory limit (:func:`propwhirl.limits.check_panels`, naming the counts
-    that fit)."""
-    if n_chord is None and n_span is None:
-        from propwhirl.model.aerodynamics.dlm_surface import surface_of
-        limits.check_panels(*surface_of(wing).planform.counts())
-        return
+    (:func:`panel_counts`) would exceed the memory limit (:func:`propwhirl.limits.check_panels`,
+    naming the counts that fit)."""
     limits.check_panels(*panel_counts(wing, n_chord, n_span))
 
 
@@ -129,7 +57,6 @@ def panel_mesh(wing, n_chord: int | None = None, n_span: int | None = None) -> P
     their AIC would exceed the memory limit, :func:`check_memory`): the panels of its
     :meth:`~propwhirl.model.aerodynamics.planform.Planform.from_wing`, one case of any
     planform's."""
-    from propwhirl.model.aerodynamics.planform import Planform
     return Planform.from_wing(wing, n_chord, n_span).mesh()
 
 

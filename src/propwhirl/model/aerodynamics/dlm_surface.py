@@ -30,7 +30,10 @@ from collections.abc import Callable
 
 import numpy as np
 
+from propwhirl.model.aerodynamics.dlm_mesh import spline
 from propwhirl.model.aerodynamics.planform import Planform
+from propwhirl.model.structure.assembly import free_dofs, wing_dof_labels
+from propwhirl.model.structure.wing import panel_counts
 
 
 class DlmSurface:
@@ -87,13 +90,10 @@ class DlmSurface:
         (:meth:`Planform.from_wing`, counts as given or the wing's), the beam's own spline
         on its 3 n_nodes bending–torsion DOFs, the free ones loaded (the root's removed),
         b_ref its root semichord, its ``dlm_mach``."""
-        from propwhirl.model.aerodynamics.dlm_mesh import spline
-        from propwhirl.model.structure.assembly import free_dofs, wing_dof_labels
         nn = wing.n_nodes
         keep = free_dofs(nn)
 
         def key() -> tuple:
-            from propwhirl.model.structure.wing import panel_counts
             node = wing.node_properties()
             return ("beam", tuple(np.round(node["y"], 12)), tuple(np.round(node["b"], 12)),
                     tuple(np.round(node["a"], 12)), panel_counts(wing, n_chord, n_span))

@@ -32,10 +32,76 @@ import numpy as np
 
 from propwhirl import limits
 from propwhirl import validate as v
-from propwhirl.model.structure.wing import DEFAULT_CHORDWISE, MAX_ASPECT, MAX_PANELS
+from propwhirl.model.structure.wing import (DEFAULT_CHORDWISE, MAX_ASPECT, MAX_PANELS,
+                                           panel_counts)
 
 #: most spanwise stations of a planform
 MAX_STATIONS = 1000
+
+
+@dataclass(frozen=True)
+class PanelMesh:
+    """The panels of a half-wing (arrays in metres in the wing frame: x aft, y spanwise, z up; panel p = i_span · n_chord + i_chord).
+
+    corners (n, 4, 3): leading-edge inboard, trailing-edge inboard, trailing-edge outboard,
+    leading-edge outboard corners; n_chord, n_span: the counts.
+    """
+
+    corners: np.ndarray
+    n_chord: int
+    n_span: int
+
+    @property
+    def n(self) -> int:
+        """Number of panels."""
+        return self.corners.shape[0]
+
+    def _edges(self):
+        p1, p2, p3, p4 = (self.corners[:, i] for i in range(4))
+        return p1, p2 - p1, p3 - p4, p4 - p1, p3 - p2
+
+    @property
+    def length(self) -> np.ndarray:
+        """Chordwise length of each panel (mean of its side edges) [m]."""
+        _, l1, l2, _, _ = self._edges()
+        return 0.5 * (l1[:, 0] + l2[:, 0])
+
+    @property
+    def width(self) -> np.ndarray:
+        """Spanwise width of each panel [m]."""
+        _, _, _, b1, b2 = self._edges()
+        return 0.5 * (b1[:, 1] + b2[:, 1])
+
+    @property
+    def area(self) -> np.ndarray:
+        """Area of each panel [m²] (trapezoid)."""
+        _, l1, l2, b1, b2 = self._edges()
+        return np.linalg.norm(np.cross(0.5 * (l1 + l2), 0.5 * (b1 + b2)), axis=1)
+
+    def points(self, fraction: float) -> np.ndarray:
+        """Points (n, 3) at ``fraction`` of each panel's chord, mid-width [m]: 0.25 the
+        doublet line (force point), 0.75 the collocation point."""
+        p1, l1, l2, b1, _ = self._edges()
+        return p1 + fraction * 0.5 * (l1 + l2) + 0.5 * b1
+
+    def mirrored(self) -> "PanelMesh":
+        """The panels of both half-wings: the mirror image in the root plane y = 0 (panel p of
+        the other half at index p), then these; every panel still defined from left to right
+        (its corners reordered), so every normal points up."""
+        m = self.corners[:, [3, 2, 1, 0]] * np.array([1.0, -1.0, 1.0])
+        return PanelMesh(np.concatenate([m, self.corners]), self.n_chord, 2 * self.n_span)
+
+    def aerogrid(self) -> dict:
+        """The panels in PanelAero's ``aerogrid`` form (its DLM and VLM read l, A, N,
+        offset_l / _k / _j at 1/4, 1/2, 3/4 chord, offset_P1 / _P3 the doublet line's ends)."""
+        p1, l1, l2, b1, _ = self._edges()
+        p4 = self.corners[:, 3]
+        normal = np.cross(l1, b1)
+        normal /= np.linalg.norm(normal, axis=1)[:, None]
+        return {"l": self.length, "A": self.area, "N": normal,
+                "offset_l": self.points(0.25), "offset_k": self.points(0.5),
+                "offset_j": self.points(0.75), "offset_P1": p1 + 0.25 * l1,
+                "offset_P3": p4 + 0.25 * l2, "n": self.n}
 
 
 def _floats(source: str, key: str, value, shape: tuple) -> np.ndarray:
@@ -151,7 +217,6 @@ class Planform:
         (counts :func:`~propwhirl.model.structure.wing.panel_counts`: its
         ``dlm_chordwise_panels``, ``dlm_spanwise_panels`` or the defaults), the elastic axis
         at x = 0."""
-        from propwhirl.model.structure.wing import panel_counts
         n_chord, n_span = panel_counts(wing, n_chord, n_span)
         ys = np.linspace(0.0, wing.semi_span, n_span + 1)
         node = wing.node_properties()
@@ -191,11 +256,10 @@ class Planform:
         return (self.leading_edge.tobytes(), self.chord.tobytes(), self.counts())
 
     def mesh(self):
-        """The panels (:class:`~propwhirl.model.aerodynamics.dlm_mesh.PanelMesh`, panel
+        """The panels (:class:`PanelMesh`, panel
         p = i_span · n_chord + i_chord; module docstring); refused before any is built when
         one AIC of them would exceed the memory limit
         (:func:`propwhirl.limits.check_panels`)."""
-        from propwhirl.model.aerodynamics.dlm_mesh import PanelMesh
         n_chord, n_span = self.counts()
         limits.check_panels(n_chord, n_span)
         y_st = self.y

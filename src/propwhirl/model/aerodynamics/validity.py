@@ -277,9 +277,10 @@ def analysis_warnings(model, speed_range: tuple[float, float],
 
 
 def _dlm_wing(model):
-    """The ``dlm_mach`` of ``model``'s wing ("speed" or a number) when it has doublet-lattice
-    aerodynamics on, else None."""
-    wing = getattr(model, "wing", None)
+    """The ``dlm_mach`` of ``model``'s wing (or modal model's: its own ``aero`` and
+    ``dlm_mach``) ("speed" or a number) when it has doublet-lattice aerodynamics on, else
+    None."""
+    wing = getattr(model, "wing", model)
     if not getattr(model, "wing_aero", False) or getattr(wing, "aero", "strip") != "dlm":
         return None
     m = getattr(wing, "dlm_mach", "speed")
