@@ -3,7 +3,7 @@
 #   make test      the whole test suite (long checks included: pytest marker `long`), then
 #                  make test-nastran
 #   make test-nastran  the NASTRAN tests (tests/nastran) in .venv-nastran, an environment of its
-#                  own: pyNastran 1.4.1 needs numpy < 2 (~1 min and ~420 MB to build once), and
+#                  own: pyNastran 1.4.1 needs numpy < 2 (~1.5 min and ~510 MB to build once), and
 #                  there too the checks whose numbers depend on the platform's LAPACK
 #                  (NUMPY1_TESTS: numpy 1.26 is supported as well as 2.x)
 #   make test-fast the suite without the `long` checks
@@ -46,9 +46,13 @@ ALL := $(VENV)/.stamp-codegen+data+dlm+docs+tables+test+plots+toml+notebooks+dis
 
 # The NASTRAN environment: pyNastran 1.4.1 needs numpy < 2, so the `nastran` extra is never one of
 # ALL's (pip would drop the main environment to numpy 1.26); propwhirl, pyNastran and the extras
-# tests/nastran needs, in one pip request (one resolution: numpy 1.26).
+# tests/nastran needs, in one pip request (one resolution: numpy 1.26).  `notebooks` (nbclient,
+# nbformat, ipykernel: matplotlib comes with pyNastran) runs examples/nastran_walkthrough.ipynb
+# there; measured from scratch with a warm pip cache, two builds each on 2 shared cores at load
+# 5-7: 55-72 s and 421 MB without it, 90-92 s and 513 MB with it (numpy 1.26.4 either way,
+# pip check clean).
 NASTRAN_VENV := .venv-nastran
-NASTRAN_STAMP := $(NASTRAN_VENV)/.stamp-nastran+test+toml+tables+dlm
+NASTRAN_STAMP := $(NASTRAN_VENV)/.stamp-nastran+test+toml+tables+dlm+notebooks
 
 $(NASTRAN_VENV)/bin/python:
 	$(PYTHON) -m venv $(NASTRAN_VENV)
@@ -62,7 +66,7 @@ NUMPY1_TESTS := tests/analysis/test_mode_names_propellers.py tests/model/test_mo
 	tests/io/test_modal_files.py tests/test_result_protocol.py
 
 $(NASTRAN_STAMP): pyproject.toml | $(NASTRAN_VENV)/bin/python
-	$(NASTRAN_VENV)/bin/python -m pip install --quiet --disable-pip-version-check -e ".[nastran,test,toml,tables,dlm]"
+	$(NASTRAN_VENV)/bin/python -m pip install --quiet --disable-pip-version-check -e ".[nastran,test,toml,tables,dlm,notebooks]"
 	touch $@
 
 # Chromium and its chromedriver from the distribution (Debian: chromium, chromium-driver) for the

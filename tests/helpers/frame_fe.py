@@ -6,7 +6,7 @@ OP2 without NASTRAN.
 What it reads (pyNastran parses the deck; SI or any consistent units, no WTMASS): GRID in the
 basic frame; CBAR with an orientation vector X1-X3, PBAR (A, I1, I2, J, NSM), MAT1 (E, G,
 RHO); CONM2 on its grid (no offset; I11, I22, I33); RBE2 holding 123456 (no chains); SPC1
-123456.  Elements: Euler-Bernoulli beams with the consistent mass matrix (Przemieniecki),
+(any components).  Elements: Euler-Bernoulli beams with the consistent mass matrix (Przemieniecki),
 plane 1 (x, the orientation vector) bending with I1, plane 2 with I2, torsion with J and the
 polar inertia RHO (I1 + I2); RBE2 by eliminating the dependent grids' DOFs (rigid-body
 kinematics u_d = u_i + θ_i × (r_d − r_i)); SPC1 by removing the DOFs.  Anything else is an
@@ -101,12 +101,13 @@ def modes(path: Path, n_modes: int = 40):
                 [1, 0, 0, 0, dz, -dy], [0, 1, 0, -dz, 0, dx], [0, 0, 1, dy, -dx, 0],
                 [0, 0, 0, 1, 0, 0], [0, 0, 0, 0, 1, 0], [0, 0, 0, 0, 0, 1]])
             T[6 * j:6 * j + 6] = rows
-    held = set()
+    held = set()                           # held DOFs (6 grid + component - 1)
     for spcs in bdf.spcs.values():
         for s in spcs:
-            assert s.type == "SPC1" and str(s.components) == "123456", s
-            held |= {index[int(g)] for g in s.nodes}
-    keep = [k for k in range(n) if k // 6 not in dependent and k // 6 not in held]
+            assert s.type == "SPC1", s
+            held |= {6 * index[int(g)] + int(c) - 1 for g in s.nodes
+                     for c in str(s.components)}
+    keep = [k for k in range(n) if k // 6 not in dependent and k not in held]
     T = T[:, keep]
     Kr, Mr = T.T @ K @ T, T.T @ M @ T
     w2, phi = scipy.linalg.eigh(Kr, Mr, subset_by_index=[0, n_modes - 1])

@@ -162,19 +162,24 @@ def test_the_pylon_model_on_the_command_line_to_a_campaign_and_its_report(tmp_pa
     assert "two propellers on pylons" in html and "pylons.toml" in html
 
 
-def test_a_swept_grid_line_is_noted(tmp_path, base):
-    """Issue 36 item 6e: the OP2 route splines the strips to a swept FE wing; their
-    aerodynamics carries no sweep, and the import says so (the unswept deck says nothing)."""
+def test_a_swept_grid_line_is_refused_by_the_strips(tmp_path, base):
+    """Issue 36 item 6e: the OP2 of a swept FE wing is read; its strip aerodynamics (an
+    unswept wing's) refuse it by name, and without them the structure is read (the unswept
+    deck's strips take it)."""
     ids, xyz, w2, shapes = frame_fe.modes(DECK, 20)
-    notes: list[str] = []
     op2 = write_op2_arrays(tmp_path / "straight.op2", ids, xyz, w2, shapes, "si")
     read_op2(op2, units="si", base=base, hubs=list(HUBS), wing_grids=list(WING_GRIDS),
-             mount="on-grid", mass_normalised=True, notes=notes)
-    assert not any("swept" in n for n in notes), notes
+             mount="on-grid", mass_normalised=True)
     swept = xyz.copy()
     swept[:, 0] += np.tan(np.radians(20.0)) * swept[:, 1]
     op2 = write_op2_arrays(tmp_path / "swept.op2", ids, swept, w2, shapes, "si")
-    read_op2(op2, units="si", base=base, hubs=list(HUBS), wing_grids=list(WING_GRIDS),
-             mount="on-grid", mass_normalised=True, notes=notes)
-    (note,) = [n for n in notes if "swept" in n]
-    assert "swept by 20.0 deg" in note and "not modelled" in note
+    with pytest.raises(InputError) as info:
+        read_op2(op2, units="si", base=base, hubs=list(HUBS), wing_grids=list(WING_GRIDS),
+                 mount="on-grid", mass_normalised=True)
+    message = str(info.value)
+    assert message.startswith(f"{op2} (subcase 1): wing_grids (GRID 1 to GRID 14) make a "
+                              "reference axis swept by 20.0 deg") and "\n" not in message
+    assert "doublet lattice" in message
+    m = read_op2(op2, units="si", base=base.with_(wing_aero=False), hubs=list(HUBS),
+                 wing_grids=list(WING_GRIDS), mount="on-grid", mass_normalised=True)
+    assert m.structure.n_modes == 20 and not m.wing_aero

@@ -93,8 +93,11 @@ CASES = [
     ("a CBUSH mount", R + [["CBUSH", 78, 1, 101, 102]], ["CBUSH 78", "CELAS2"], {}),
     ("an MPC", R + [["MPC", 5, 101, 1, 1.0, 102, 1, -1.0]], ["MPC 5", "not read"], {}),
     # ---------------------------------------------------------------- the stick
-    ("swept stick", swap(R, "GRID", 4, d.grid(4, d.STICK_X + 0.2, 1.5, d.STICK_Z, "2")),
-     ["GRID 4 lies 0.2 m off (in x)", "swept"], {}),
+    ("bent stick", swap(R, "GRID", 4, d.grid(4, d.STICK_X + 0.2, 1.5, d.STICK_Z, "2")),
+     ["GRID 4 lies 0.2 m off the line from the root GRID 1 to the tip GRID 5", "a bent stick"],
+     {}),
+    ("stick with dihedral", swap(R, "GRID", 4, d.grid(4, d.STICK_X, 1.5, d.STICK_Z + 0.1, "2")),
+     ["GRID 4 lies 0.1 m off (in z)", "dihedral"], {}),
     ("left wing", on_all(R, "GRID", lambda c: c[:4] + [d.L(-c[4].value)] + c[5:]),
      ["not outboard", "mirror"], {}),
     ("branch", R + [d.grid(6, d.STICK_X, 1.0, 1.0, "2"), ["CBAR", 5, 10, 3, 6, 0.0, 0.0, 1.0]],

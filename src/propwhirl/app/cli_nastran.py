@@ -18,7 +18,8 @@ only when the whole deck was read (atomically; any problem is one line naming th
 card and its id, exit code 2).  ``import`` of an OP2 (a file ending in .op2) reads a
 SOL 103's eigenvectors and grids into a modal model (:func:`propwhirl.io.nastran_op2.read_op2`;
 the same extra) and writes it as a modal model file (MODAL.toml and MODAL.modes.npz).
-``export`` writes a model (a file or a case name) as a SOL 103
+A swept stick is read as a modal model (its straight beam's modes on its swept grids) and
+written as a modal model file, as an OP2's.  ``export`` writes a model (a file or a case name) as a SOL 103
 deck (:func:`propwhirl.io.nastran_write.write_bdf`; no extra needed) and prints the hub grids
 to give ``import``.
 """
@@ -67,6 +68,18 @@ def _import(args: argparse.Namespace) -> int:
     notes: list[str] = []
     model = nastran_read.read_bdf(args.bdf, units=args.units, base=base, hubs=args.hubs or (),
                                   notes=notes, base_name=f"--base {args.base}")
+    if not isinstance(model, PropellerWing):        # a swept stick: its modes, a modal model
+        from propwhirl.io import modal_files  # lazy: only when the command runs
+
+        npz = args.out.removesuffix(".toml") + ".modes.npz"
+        _not_an_input(npz, {"MODEL.bdf": args.bdf, "--base": args.base})
+        toml, npz_path = modal_files.save_modal_model(model, args.out)
+        print_notes(notes)
+        s = model.structure
+        echo(f"wrote {toml} and {npz_path.name} (modal model of the swept stick: "
+             f"{s.n_modes} modes, {s.frequencies_hz[0]:.4g}-{s.frequencies_hz[-1]:.4g} Hz, "
+             f"{s.grid_ids.size} grids; read in {args.units} units)")
+        return 0
     io.save_model(model, args.out)
     print_notes(notes)
     hubs = f"; propellers at hub GRID {', '.join(map(str, args.hubs))}" if args.hubs else ""

@@ -21,7 +21,10 @@ elements that hold all six components.  Its mount is one of two patterns:
   shaft) are left out (noted), which a stiff short beam makes small.
 
 Its masses are the CONM2 on the body's grids, each a point mass on the shaft: the one on the
-hub grid is the rotor (its c.g. the propeller plane, its I11 the spin inertia I_Omega), the
+hub grid is the rotor (its c.g. the propeller plane, its I11 the spin inertia I_Omega — only:
+a rotor on its bearings is not turned by the nacelle's roll, so it adds no roll inertia to the
+wing, where NASTRAN's rigid CONM2 counts I11 as the hub grid's R_x inertia too;
+docs/modal-structures.md, "The rotor's I11", and tests/nastran/test_spin_inertia.py), the
 others ``masses``; their I22 and I33 (about y and z through their c.g.) add to the pitch and
 yaw inertias (``inertia`` I_theta_P, I_psi_P).  Positions are measured aft of the wing's
 mid-chord at the hub's wing node (the base model's chord and elastic axis place the stick on
@@ -479,7 +482,8 @@ def installation(deck, mount: Mount, inst: Installation, wing: Wing, stick) -> I
     stiffness and damping (the base propeller's damping kind kept: GE is g = 2 zeta)."""
     nodes = wing.node_properties()
     a_b = float(nodes["a"][mount.node] * nodes["b"][mount.node])
-    x0 = float(stick.origin[0])
+    # the stick's x at the propeller's wing grid (a swept stick's grids move aft outboard)
+    x0 = float(stick.positions[mount.node][0] if stick.sweep else stick.origin[0])
     who = f"hub GRID {mount.hub}"
 
     def aft(x_basic: float) -> float:          # aft of the mid-chord at the propeller's node

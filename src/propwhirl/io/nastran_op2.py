@@ -26,7 +26,10 @@ What maps to what (docs/modal-structures.md, "Modes from an OP2"):
   condition, the switches and every propeller, each at its hub grid (``hubs``, in the
   base's order) either "on-grid" (its mass and mount are in the modes: way b, the usual case
   of a FE model with nacelles) or with the base's own mount (``mount="own"``: the modes are
-  the bare wing's).
+  the bare wing's).  The strips are an unswept wing's: wing grids whose line is swept by more
+  than :data:`~propwhirl.model.modal_structure.STRIP_SWEEP_LIMIT_DEG` are refused with them
+  (the model's :func:`~propwhirl.model.modal_structure.check_strip_sweep`: the doublet lattice
+  takes a swept wing), and read with a base whose wing aerodynamics are off.
 
 **Free structures.** A free aircraft's SOL 103 (no SPC: a whole or half aircraft, symmetric or
 antisymmetric) has rigid-body modes, at λ ≈ 0.  A clamped structure (the default) has none:
@@ -214,29 +217,6 @@ def _check_span(xyz: np.ndarray, wing_idx: list[int], wing_ids: tuple[int, ...],
         notes.append(f"{where}: {text}: the strips are the base's, splined to the grids")
 
 
-#: Sweep [deg] of the wing grids' line beyond which an OP2 import notes that the strips carry
-#: no sweep: a tapered wing's elastic axis leans a few degrees without being a swept wing.
-SWEEP_NOTE_DEG = 5.0
-
-
-def _check_sweep(xyz: np.ndarray, wing_idx: list[int], wing_ids: tuple[int, ...], where: str,
-                 notes: list[str]) -> None:
-    """A note when the wing grids' line (x against y, least squares) is swept by more than
-    :data:`SWEEP_NOTE_DEG`: the strips are splined to the swept grids, so their kinematics
-    follow the structure, but their aerodynamics is that of an unswept wing (no cos Λ of
-    the normal flow, no sweep in the lift slope): the analysis does not model the sweep."""
-    y, x = xyz[wing_idx, 1], xyz[wing_idx, 0]
-    if len(wing_idx) < 2 or not float(np.ptp(y)) > 0.0:
-        return
-    sweep = float(np.degrees(np.arctan(np.polyfit(y, x, 1)[0])))
-    if abs(sweep) > SWEEP_NOTE_DEG:
-        notes.append(f"{where}: the wing grids GRID {wing_ids[0]} to GRID {wing_ids[-1]} are "
-                     f"swept by {sweep:.1f} deg (more than {SWEEP_NOTE_DEG:g}): the strips "
-                     "follow the swept structure but their aerodynamics is an unswept wing's "
-                     "(no sweep in the normal flow or the lift slope), so the sweep's "
-                     "aerodynamic effect is not modelled")
-
-
 def _in_modes(ids: np.ndarray, grid: int, what: str, where: str) -> int:
     hit = np.flatnonzero(ids == grid)
     if not hit.size:
@@ -422,7 +402,6 @@ def read_op2(path: str | Path, *, units: str | None = None, base=None,
     wing_idx = [_in_modes(ids, g, "wing", where) for g in wing_ids]
     xyz, turned = _geometry(op2, ids, where, u)
     _check_span(xyz, wing_idx, wing_ids, base, u, where, here)
-    _check_sweep(xyz, wing_idx, wing_ids, where, here)
     for i, axes in enumerate(turned):                    # components in the basic frame
         if axes is not None:
             data[:, i, :3] = data[:, i, :3] @ axes

@@ -20,6 +20,16 @@ What maps to what (docs/modal-structures.md, "NASTRAN bulk data", has the table)
   PBARL/PBEAML of TYPE ROD or TUBE give A, I, J by their closed forms;
 * **the propellers** — :mod:`propwhirl.io.nastran_mounts`: each hub grid (``hubs``, one per
   installation of ``base``) and the rigid body it belongs to.
+* **a swept stick** — its grids on one line in the basic x-y plane at an angle Λ to y (aft
+  positive), held in its plane and along its axis (T_x, T_y, R_z on every stick grid): the
+  straight beam along its own axis as above (``semi_span`` its length), and the model a
+  :class:`~propwhirl.model.modal.ModalPropellerWing` of that beam's modes turned into the
+  basic frame on the stick's grids (the generated beam matrices:
+  :meth:`~propwhirl.model.modal_structure.ModalStructure.from_wing`), each propeller on its
+  wing grid with the deck's mount, its shaft along basic x; the strips refuse a sweep beyond
+  :data:`~propwhirl.model.modal_structure.STRIP_SWEEP_LIMIT_DEG` by name (their aerodynamics
+  are an unswept wing's), the base wing's doublet lattice (``aero = "dlm"``) takes it, its
+  panels on the swept planform (a CAERO1; :func:`planform_corners`).
 
 What a BDF cannot say comes from ``base``, a propwhirl model: the flight condition, the
 chords, the elastic axis's and aerodynamic centre's chordwise positions, the aerodynamics,
@@ -27,7 +37,9 @@ the Rayleigh damping and, of each propeller, its rotor and aerodynamics (radius,
 operation, rotation, derivatives) — and the pivots and mount stiffness of a rigid mount.
 
 Refused by name, with the reason (never dropped): any other card (shells, solids, CBUSH,
-MPC, CORD1R, ...); a free-field line of more than nine fields (pyNastran drops the rest); a swept, bent or left-hand stick; beam offsets (WA/WB, PBEAM N1/N2) and a
+MPC, CORD1R, ...); a free-field line of more than nine fields (pyNastran drops the rest); a
+bent or left-hand stick, one with dihedral, a swept one free in its plane; beam offsets
+(WA/WB, PBEAM N1/N2) and a
 non-structural mass off the chord line (vertical M1/M2); pin flags; CBEAM warping (SA/SB,
 PBEAM CW); a product of inertia I12 or principal planes neither vertical nor chordwise; a
 tapered element (PBEAM/PBEAML stations that differ); a second load path (two elements or a
@@ -53,7 +65,10 @@ from propwhirl.io import nastran_mounts
 from propwhirl.io.nastran_deck import (  # noqa: F401 (re-exported: their old home)
     MODEL_CARDS, SETTING_CARDS, Deck, Grid, cord2r_axes, fail, parse, require_pynastran)
 from propwhirl.io.nastran import unit_system
+from propwhirl.model.aerodynamics.planform import Planform
 from propwhirl.model.fields import check_values
+from propwhirl.model.modal import ModalInstallation, ModalPropellerWing
+from propwhirl.model.modal_structure import ModalStructure, StripPlanform
 from propwhirl.model.structure.mesh import MIN_ELEMENT_FRACTION, tolerance
 from propwhirl.model.systems import PropellerWing
 from propwhirl.model.structure.wing import Wing
@@ -74,7 +89,9 @@ class Stick:
     grids: grid ids from the root to the tip; y: their positions along the wing [m] from the
     root; origin: the root grid's basic position [m]; elements: "CBAR 3" ... per element;
     sections: per element EI, EI_chordwise, GJ [N m²], m [kg/m], x_cg [m, aft of the axis],
-    polar [kg m]; in_plane: the stick's T_x and R_z are free.
+    polar [kg m]; in_plane: the stick's T_x and R_z are free; sweep: the angle of its axis
+    to the basic y axis [deg, positive aft; 0: along y], ``y`` then the distance along it;
+    positions: the grids' basic positions [m] (root to tip).
     """
 
     grids: tuple[int, ...]
@@ -84,6 +101,8 @@ class Stick:
     sections: dict[str, np.ndarray]
     in_plane: bool
     mount_beams: tuple[nastran_mounts.MountBeam, ...] = ()
+    sweep: float = 0.0
+    positions: np.ndarray | None = None
 
 
 def _beams(deck: Deck) -> list:
@@ -155,30 +174,57 @@ def _stick(deck: Deck, hubs: tuple[int, ...] = ()) -> Stick:
                         f"the stick that starts at the clamped GRID {clamped[0]}: a second "
                         "load path or a second structure")
     pos = np.array([deck.grids[g].xyz for g in order])
-    L = pos[-1, 1] - pos[0, 1]
+    axis, sweep = _axis(deck, order, pos)
+    L = float((pos[-1] - pos[0]) @ axis)
     tol = tolerance(abs(L))
-    for g, p, q in zip(order[1:], pos[1:], pos[:-1]):
-        off = p - pos[0]
-        if abs(off[0]) > tol or abs(off[2]) > tol:
-            axis = "x" if abs(off[0]) >= abs(off[2]) else "z"
-            raise deck.fail(f"GRID {g} lies {max(abs(off[0]), abs(off[2])):.6g} m off (in {axis}) "
-                            f"the line along y through the root GRID {order[0]}: a swept or "
-                            "bent stick; propwhirl's wing is straight along the basic y axis")
-        if not p[1] - q[1] > tol:
+    y = (pos - pos[0]) @ axis                       # along the stick's axis from the root
+    for g, p, q, s, s0 in zip(order[1:], pos[1:], pos[:-1], y[1:], y[:-1]):
+        if not s - s0 > tol:
             raise deck.fail(f"GRID {g} (y = {p[1]:.6g} m) is not outboard of the grid before "
                             f"it on the stick (y = {q[1]:.6g} m): the stick must run from the "
                             "root along +y (a left wing: mirror it)")
-    y = pos[:, 1] - pos[0, 1]
     names = tuple(f"{deck.bdf.elements[e].type} {e}" for e in elements)
     for name, dy in zip(names, np.diff(y)):
         if dy < MIN_ELEMENT_FRACTION * L:
             raise deck.fail(f"{name} is {dy:.3g} m long, shorter than {MIN_ELEMENT_FRACTION:g} "
                             f"of the semi-span ({MIN_ELEMENT_FRACTION * L:.3g} m): merge it "
                             "with a neighbour")
-    in_plane = _stick_constraints(deck, order)
+    in_plane = _stick_constraints(deck, order, sweep)
     sections = _sections(deck, [deck.bdf.elements[e] for e in elements], ends, names)
     mount_beams = tuple(_mount_beam(deck, e) for e in mounting)
-    return Stick(tuple(order), y, pos[0], names, sections, in_plane, mount_beams)
+    return Stick(tuple(order), y, pos[0], names, sections, in_plane, mount_beams, sweep, pos)
+
+
+def _axis(deck: Deck, order: list[int], pos: np.ndarray) -> tuple[np.ndarray, float]:
+    """The stick's axis (a unit vector in the basic x-y plane) and its sweep [deg, positive
+    aft]: the basic y axis when every grid lies on the line along y through the root (within
+    the mesh's tolerance), else the line from the root to the tip grid, on which every grid
+    must lie (a bent stick, or one leaving the x-y plane, is refused naming its first grid
+    off)."""
+    tol = tolerance(float(np.linalg.norm(pos[-1] - pos[0])))
+    off = pos - pos[0]
+    if np.all(np.abs(off[:, [0, 2]]) <= tol):
+        return np.array([0.0, 1.0, 0.0]), 0.0
+    for g, o in zip(order[1:], off[1:]):
+        if abs(o[2]) > tol:
+            raise deck.fail(f"GRID {g} lies {abs(o[2]):.6g} m off (in z) the plane z = "
+                            f"{pos[0, 2]:.6g} m of the root GRID {order[0]}: a stick with "
+                            "dihedral or bent; propwhirl's wing (swept or not) lies in the "
+                            "basic x-y plane")
+    tip = off[-1]
+    if not tip[1] > tol:
+        raise deck.fail(f"GRID {order[-1]} (y = {pos[-1, 1]:.6g} m), the stick's tip, is not "
+                        f"outboard of its root GRID {order[0]} (y = {pos[0, 1]:.6g} m): the "
+                        "stick must run from the root along +y (a left wing: mirror it)")
+    axis = np.array([tip[0], tip[1], 0.0]) / float(np.hypot(tip[0], tip[1]))
+    for g, o in zip(order[1:-1], off[1:-1]):
+        dist = float(np.linalg.norm(o - (o @ axis) * axis))
+        if dist > tol:
+            raise deck.fail(f"GRID {g} lies {dist:.6g} m off the line from the root GRID "
+                            f"{order[0]} to the tip GRID {order[-1]}: a bent stick; "
+                            "propwhirl's wing is straight (along y, or swept: its grids on one "
+                            "line in the basic x-y plane)")
+    return axis, float(np.degrees(np.arctan2(axis[0], axis[1])))
 
 
 def _chordwise(deck: Deck, e) -> bool:
@@ -215,15 +261,27 @@ def _mount_beam(deck: Deck, e) -> nastran_mounts.MountBeam:
                                     s["EI"], s["EI_chordwise"], s["GJ"], s["ge"])
 
 
-def _stick_constraints(deck: Deck, order: list[int]) -> bool:
+def _stick_constraints(deck: Deck, order: list[int], sweep: float = 0.0) -> bool:
     """True when the stick bends in its plane (T_x and R_z free along it); refuses supports
-    along the span and a mix; notes a free axial motion."""
+    along the span and a mix; notes a free axial motion.  A swept stick (``sweep`` ≠ 0 deg)
+    must be held in its plane and along its axis (T_x, T_y, R_z on every grid): in the basic
+    frame its in-plane bending and its axial motion mix T_x and T_y."""
     held = [deck.constraints.get(g, set()) for g in order[1:]]
     for g, h in zip(order[1:], held):
         if h & {3, 4, 5}:
             raise deck.fail(f"GRID {g} (on the stick) holds component(s) "
                             f"{''.join(map(str, sorted(h & {3, 4, 5})))}: a support along the "
                             "span; propwhirl's wing is held at its root only")
+    if sweep:
+        for g, h in zip(order[1:], held):
+            if not h >= {1, 2, 6}:
+                raise deck.fail(f"GRID {g} (on the stick, swept by {sweep:.1f} deg) leaves "
+                                f"component(s) {''.join(map(str, sorted({1, 2, 6} - h)))} "
+                                "free: a swept stick is read rigid in its plane and along its "
+                                "axis (hold T_x, T_y and R_z, components 126, on every stick "
+                                "grid): propwhirl's swept wing bends out of its plane and "
+                                "twists")
+        return False
     plane = [h & {1, 6} for h in held]
     if all(p == {1, 6} for p in plane):
         in_plane = False
@@ -517,6 +575,115 @@ def _wing(deck: Deck, stick: Stick, base_wing: Wing, base: str) -> Wing:
     return replace(draft, centre_of_gravity=_values(cg))
 
 
+def _swept(deck: Deck, stick: Stick, wing: Wing, model: PropellerWing, mounts, installations,
+           name: str) -> ModalPropellerWing:
+    """The modal model of a swept stick: the modes of its straight beam (``wing``, the stick
+    along its own axis: the generated beam matrices, :meth:`ModalStructure.from_wing`, every
+    mode), turned into the basic frame on the stick's grids — each grid's translations and
+    rotations in the stick's frame (x' aft normal to the axis, y' along it, z up) rotated by
+    the sweep about z; the strips of the base's wing moved onto the swept axis (stations
+    y = y_root + s cos Λ, widths × cos Λ, streamwise chords: the base's, its elastic axis on
+    the stick); each propeller on its wing grid with the deck's mount (``installations``:
+    "rigid" or "flexible", its shaft along the basic x axis, coupled through the grid's
+    heave and basic R_y).  Strip aerodynamics refuse a stick swept by more than
+    :data:`~propwhirl.model.modal_structure.STRIP_SWEEP_LIMIT_DEG` (by name); the base wing's
+    doublet lattice (``aero = "dlm"``) takes it: its panels (the base's counts and Mach) on
+    the swept planform, a CAERO1 of :func:`planform_corners`."""
+    straight = ModalStructure.from_wing(wing)
+    lam = math.radians(stick.sweep)
+    c, s = math.cos(lam), math.sin(lam)
+    turn = np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])   # columns: x', y', z
+    local = straight.shapes
+    shapes = np.concatenate([local[..., :3] @ turn.T, local[..., 3:] @ turn.T], axis=-1)
+    source = f"{deck.where} (the modes of its stick, swept by {stick.sweep:.1f} deg)"
+    structure = ModalStructure(grid_ids=np.array(stick.grids, dtype=np.int64),
+                               xyz=stick.positions, frequencies_hz=straight.frequencies_hz,
+                               modal_mass=straight.modal_mass,
+                               damping_ratio=straight.damping_ratio, shapes=shapes,
+                               source=source)
+    strips = StripPlanform.from_wing(wing)
+    x0, y0 = float(stick.origin[0]), float(stick.origin[1])
+    planform = replace(strips, y=y0 + c * strips.y, width=c * strips.width,
+                       leading_edge_x=x0 + s * strips.y + strips.leading_edge_x,
+                       source=f"{deck.where} (the base's strips on its swept stick)")
+    props = []
+    for m, inst in zip(mounts, installations):
+        if inst.state != "operating":
+            raise deck.fail(f"hub GRID {m.hub}: the base's installation is {inst.state}: a "
+                            "swept stick is read as a modal model, whose propellers operate")
+        p = inst.propeller if inst.rotation is None else replace(inst.propeller,
+                                                                  rotation=inst.rotation)
+        props.append(ModalInstallation(p, m.wing_grid, inst.mount, inst.aero))
+    dlm = {}
+    if wing.aero == "dlm":          # the base's doublet lattice: panels on the swept planform
+        nodes = wing.node_properties()           # the chord 2b, the axis a b aft of mid-chord
+        (p1, c1), (p4, c4) = ((stick.positions[k] - [(1.0 + nodes["a"][k]) * nodes["b"][k],
+                                                     0.0, 0.0], 2.0 * nodes["b"][k])
+                              for k in (0, -1))
+        dlm = dict(aero="dlm", dlm_mach=wing.dlm_mach, dlm_planform=Planform.caero1(
+            p1, p4, float(c1), float(c4), wing.dlm_chordwise_panels, wing.dlm_spanwise_panels,
+            source=f"{deck.where} (the base's planform on its swept stick)"))
+    deck.notes.append(f"{deck.where}: its stick is swept by {stick.sweep:.1f} deg: read as the "
+                      f"{structure.n_modes} modes of its straight beam ({wing.element_count} "
+                      f"elements, {wing.semi_span:.6g} m along its axis) on its grids, a modal "
+                      "model (the propellers on their wing grids, the base's chords streamwise"
+                      + (", its doublet-lattice panels on the swept planform)" if dlm else ")"))
+    try:
+        return ModalPropellerWing(structure, stick.grids, planform, model.flight, tuple(props),
+                                  wing_aero=model.wing_aero, propeller_aero=model.propeller_aero,
+                                  rotating=model.rotating, name=f"{model.name} (swept stick of "
+                                  f"{name})", **dlm)
+    except v.InputError as exc:
+        msg = str(exc)
+        raise v.InputError(msg if msg.startswith(deck.where) else f"{deck.where}: {msg}") \
+            from None
+
+
+def planform_corners(model: ModalPropellerWing) -> np.ndarray:
+    """The lifting surface of a modal model as NASTRAN's CAERO1 gives one: its four corners
+    [m] in the basic frame, (4, 3) — P1 the root's leading edge, P2 the root's trailing edge,
+    P3 the tip's trailing edge, P4 the tip's leading edge (X12 = P2 − P1 and X43 = P3 − P4
+    along x: the streamwise chords) — at the y and z of its first and last wing grid, the
+    leading edge's x and the chord linear through the strips nearest each end (a swept
+    stick's :func:`read_bdf` model has a strip at its tip grid; at the root, where no strip
+    is, this is exact for a linear taper with one elastic-axis fraction).  What a
+    doublet-lattice planform of a swept stick (issue 34, item 3) starts from.
+
+    Examples
+    --------
+    A straight wing's modal model (the baseline wing: 5.7 m, its chord tapering from 1.25 m
+    to 0.8 m, the elastic axis at mid-chord on x = 0):
+
+    >>> from propwhirl.cases.ch09_baseline import baseline_flight, baseline_wing
+    >>> from propwhirl.model import ModalPropellerWing, ModalStructure, StripPlanform
+    >>> wing = baseline_wing(n_elements=6)
+    >>> s = ModalStructure.from_wing(wing, n_modes=4)
+    >>> m = ModalPropellerWing(s, tuple(int(g) for g in s.grid_ids),
+    ...                        StripPlanform.from_wing(wing), baseline_flight())
+    >>> planform_corners(m).round(3).tolist()
+    [[-0.625, 0.0, 0.0], [0.625, 0.0, 0.0], [0.4, 5.7, 0.0], [-0.4, 5.7, 0.0]]
+    """
+    return _corners(model.structure, model.wing_grids, model.planform)
+
+
+def _corners(s: ModalStructure, wing_grids, p: StripPlanform) -> np.ndarray:
+    """:func:`planform_corners` of a structure, its wing grids and its strips."""
+    ends = s.xyz[[s.index(wing_grids[0]), s.index(wing_grids[-1])]]
+    out = []
+    for end in ends:
+        y = float(end[1])
+        if p.y.size == 1:
+            le, chord = float(p.leading_edge_x[0]), float(p.chord[0])
+        else:
+            i = int(np.clip(np.searchsorted(p.y, y) - 1, 0, p.y.size - 2))
+            w = (y - p.y[i]) / (p.y[i + 1] - p.y[i])
+            le = float(p.leading_edge_x[i] + w * (p.leading_edge_x[i + 1] - p.leading_edge_x[i]))
+            chord = float(p.chord[i] + w * (p.chord[i + 1] - p.chord[i]))
+        out.append((np.array([le, y, end[2]]), np.array([le + chord, y, end[2]])))
+    (p1, p2), (p4, p3) = out
+    return np.array([p1, p2, p3, p4])
+
+
 def _as_model(base, where: str) -> PropellerWing:
     if base is None:
         raise fail(where, "a BDF holds the structure only: give the base model (base=...; "
@@ -572,9 +739,12 @@ def read_bdf(path: str | Path, *, units: str | None = None, base=None,
 
     Returns
     -------
-    PropellerWing
+    PropellerWing or ModalPropellerWing
         ``base`` with the BDF's structure, whole (or an InputError, one line naming the
-        file, the card and its id)
+        file, the card and its id); for a swept stick the modal model of its modes (the
+        module's notes), whose strip aerodynamics refuse a sweep of more than
+        :data:`~propwhirl.model.modal_structure.STRIP_SWEEP_LIMIT_DEG` (a base with
+        ``wing_aero = False`` reads its structure alone)
 
     Examples
     --------
@@ -605,6 +775,11 @@ def read_bdf(path: str | Path, *, units: str | None = None, base=None,
     mounts = nastran_mounts.read(deck, stick, hub_grids)
     installations = tuple(nastran_mounts.installation(deck, m, inst, wing, stick)
                           for m, inst in zip(mounts, model.propellers))
+    if stick.sweep:
+        out = _swept(deck, stick, wing, model, mounts, installations, Path(str(path)).name)
+        if notes is not None:
+            notes.extend(notes_here)
+        return out
     try:
         out = replace(model, wing=wing, propellers=installations)
     except v.InputError as exc:
@@ -615,4 +790,4 @@ def read_bdf(path: str | Path, *, units: str | None = None, base=None,
 
 
 __all__ = ["Deck", "MODEL_CARDS", "SECTION_TYPES", "SETTING_CARDS", "Stick", "cord2r_axes",
-           "hub_ids", "read_bdf", "require_pynastran"]
+           "hub_ids", "planform_corners", "read_bdf", "require_pynastran"]

@@ -63,7 +63,7 @@ from propwhirl.model.base import EvaluatorBase, StateSpaceModel
 from propwhirl.model.fields import spec
 from propwhirl.model.flight import FlightCondition
 from propwhirl.model.modal_structure import (ModalStructure, StripPlanform, axis_spline,
-                                            id_list, strip_interpolation)
+                                            check_strip_sweep, id_list, strip_interpolation)
 from propwhirl.model.propellers.propeller import Propeller
 from propwhirl.model.propeller_blocks import (propeller_constants_at, propeller_matrices,
                                              propeller_values)
@@ -174,7 +174,13 @@ class ModalPropellerWing(StateSpaceModel):
         The propellers, at most one per hub grid.
     wing_aero, propeller_aero, rotating : bool
         Switches as :class:`~propwhirl.model.systems.PropellerWing`'s: wing aerodynamics,
-        propeller aerodynamics, propellers spinning.
+        propeller aerodynamics, propellers spinning.  The strips (``aero = "strip"``) are an
+        unswept wing's: a reference axis (the wing grids' line) swept by more than
+        :data:`~propwhirl.model.modal_structure.STRIP_SWEEP_LIMIT_DEG` is refused with them
+        (:func:`~propwhirl.model.modal_structure.check_strip_sweep`), not without them nor
+        with the doublet lattice (``aero = "dlm"``), which takes a swept planform (nor when a
+        ``dlm_planform`` is given: the doublet lattice's strip twin, which its p-k tracks
+        with, is such a model).
     name : str
         Label.
     aero : {"strip", "dlm"}
@@ -248,6 +254,11 @@ class ModalPropellerWing(StateSpaceModel):
         check_hub_grids(s, [inst.grid for inst in self.propellers])
         strip_interpolation(s, self.wing_grids, self.planform)   # checks the grids now
         self._check_dlm()
+        # the strips are an unswept wing's: refused on a swept axis as the model's own wing
+        # aerodynamics; a model with a dlm_planform is (or is the strip twin of, which the
+        # doublet lattice's p-k tracks with) a doublet-lattice model
+        if self.wing_aero and self.aero == "strip" and self.dlm_planform is None:
+            check_strip_sweep(s, self.wing_grids)
 
     def _check_dlm(self) -> None:
         """The doublet-lattice fields: ``aero`` one of :data:`AERO`, ``dlm_planform`` a

@@ -515,6 +515,42 @@ def axis_spline(structure: ModalStructure, wing_grids, x: np.ndarray, y: np.ndar
     return Z, S
 
 
+#: Sweep [deg] of a modal model's reference axis (its wing grids' line) beyond which its strip
+#: aerodynamics refuse it (:func:`check_strip_sweep`): a tapered wing's elastic axis at a chord
+#: fraction leans a few degrees without being a swept wing (cos 5° = 0.996).
+STRIP_SWEEP_LIMIT_DEG = 5.0
+
+
+def reference_sweep(structure: ModalStructure, wing_grids) -> float:
+    """Sweep Λ [deg] of the wing grids' line, positive aft: the least-squares slope of their x
+    against their y, Λ = atan(dx/dy) (0 for a line of grids along y)."""
+    idx = np.array([structure.index(int(g), "wing_grids") for g in wing_grids], dtype=int)
+    y, x = structure.xyz[idx, 1], structure.xyz[idx, 0]
+    if idx.size < 2 or not float(np.ptp(y)) > 0.0:
+        return 0.0
+    return float(np.degrees(np.arctan(np.polyfit(y - y.mean(), x - x.mean(), 1)[0])))
+
+
+def check_strip_sweep(structure: ModalStructure, wing_grids) -> None:
+    """Refuse a reference axis swept by more than :data:`STRIP_SWEEP_LIMIT_DEG` under strip
+    aerodynamics, one line: the key, the angle, why, and what to use.  The strips here are an
+    unswept wing's: streamwise strips with the normal flow and the lift slope of an unswept
+    section (no cos Λ); their spline (:func:`axis_spline`) follows a swept axis, their
+    aerodynamics do not.  A swept wing's lifting surface is the doublet lattice's
+    (``aero = "dlm"``: panels on its ``dlm_planform``, splined to the grids by the same
+    rule)."""
+    sweep = reference_sweep(structure, wing_grids)
+    if abs(sweep) > STRIP_SWEEP_LIMIT_DEG:
+        ids = [int(g) for g in wing_grids]
+        raise v.InputError(
+            f"{structure.source}: wing_grids (GRID {ids[0]} to GRID {ids[-1]}) make a reference "
+            f"axis swept by {sweep:.1f} deg, more than the {STRIP_SWEEP_LIMIT_DEG:g} deg the "
+            "strip aerodynamics take: propwhirl's strips are an unswept wing's (no cos(sweep) in "
+            "the normal flow or the lift slope); a swept wing takes the doublet lattice (aero = "
+            "'dlm' with a dlm_planform: panels on its planform), or wing_aero = false for its "
+            "structure alone")
+
+
 def _twist_weights(yg: np.ndarray, ys: np.ndarray, kind: str) -> np.ndarray:
     """Weights (n_strips, n_grids) of the twist at stations ``ys`` from its values at the
     grids ``yg``: "linear" (piecewise), or "cubic" (the not-a-knot cubic spline through the
