@@ -165,13 +165,17 @@ def test_study_reuses_the_aics_across_variants(monkeypatch):
     assert np.allclose(fine, np.round(fine), rtol=0, atol=1e-6)
 
 
-def test_exact_sensitivities_refused_on_a_dlm_wing():
+def test_a_dlm_wings_sensitivities_are_central_differences_and_gradients_refused():
+    """Issue 34 item 2: a doublet-lattice wing's sensitivities are central differences of its
+    crossing's p-k root, said so on every row (was: refused, R5); the gradients for
+    optimisation stay exact-only and refuse it in one line naming the paths and why."""
     m = patil_dlm()
     a = analyse(m, speeds=PATIL_SPEEDS)
-    with pytest.raises(InputError, match=r"^wing.aero = 'dlm' is invalid for exact "
-                                         r"sensitivities and gradients: [^\n]*$"):
-        critical_sensitivities(m, a)
-    with pytest.raises(InputError, match="wing.aero = 'dlm' is invalid for exact sensitivities"):
+    s = critical_sensitivities(m, a)
+    assert s.sensitivities and {x.derivative for x in s.sensitivities} == {
+        "central difference (p-k)"}
+    with pytest.raises(InputError, match=r"^paths \['wing.GJ\[0\]'\] have no exact "
+                                         r"derivatives \(the doublet-lattice[^\n]*$"):
         CriticalSpeed(m, ["wing.GJ[0]"])
 
 
