@@ -1,6 +1,8 @@
 """The p-k method with the exact Theodorsen function (propwhirl.analysis.pk) against an
 independent solution of the classical flutter determinant, the analytic divergence speed, and
 the finite-state (Jones) eigenvalue analysis."""
+from pathlib import Path
+
 import numpy as np
 import pytest
 from scipy.optimize import brentq
@@ -10,6 +12,8 @@ from propwhirl.analysis import analyse
 from propwhirl.analysis.pk import pk_flutter, pk_sweep
 from propwhirl.model.systems import FlightCondition, TypicalSection
 from propwhirl.validate import InputError
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 RHO = 1.225
 SPEEDS = np.linspace(5.0, 200.0, 40)
@@ -194,3 +198,25 @@ def test_the_pk_follows_the_mode_that_flutters_between_two_close_modes():
     # exact Theodorsen (p-k) against the finite-state lags (default): 0.7 % apart here
     assert flutter[0].V == pytest.approx(ref[0].V, rel=0.01)
     assert flutter[0].frequency_hz == pytest.approx(ref[0].frequency_hz, rel=0.03)
+
+
+def test_the_pk_follows_each_of_many_near_identical_propellers_whirl_modes():
+    """x57_like: seven propellers, six near-identical (whirl modes ~1e-3 apart). The p-k
+    followed the lowest six modes only, and those of a cluster collapsed onto one root speed
+    by speed: no instability, where the default has whirl flutter from 80.0 m/s. It now
+    follows the modes up to the reduced models' cut-off, each on a root of its own."""
+    from propwhirl import io
+    from propwhirl.analysis import analyse
+    from propwhirl.analysis.pk import followed_modes, pk_sweep
+
+    model = io.load_model(EXAMPLES / "x57_like.toml")
+    V = np.arange(60.0, 100.1, 5.0)
+    assert followed_modes(model, V) == 18
+    r = pk_sweep(model, V)
+    for i in range(V.size):                      # no two modes on one root at any speed
+        p = r.roots[i][np.isfinite(r.roots[i])]
+        gap = np.abs(p[:, None] - p[None, :]) + np.eye(p.size) * 1e9
+        assert gap.min() > 1e-7 * np.abs(p).min()
+    pk, fs = analyse(model, V, method="pk"), analyse(model, V)
+    assert pk.critical is not None and pk.critical.kind == "flutter"
+    assert pk.critical.V == pytest.approx(fs.critical.V, rel=5e-3)

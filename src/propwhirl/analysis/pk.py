@@ -43,6 +43,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.linalg as sla
 from scipy.optimize import brentq, linear_sum_assignment
 
 from propwhirl import validate as v
@@ -53,6 +54,8 @@ from propwhirl.analysis.participation import with_participation
 from propwhirl.engine import mac
 from propwhirl.model.aerodynamics import compressibility
 from propwhirl.model.protocol import capabilities
+from propwhirl.model.dlm_modal import kept_modes
+from propwhirl.model.reduction import cutoff
 from propwhirl.model.aerodynamics.dlm import (DlmTables, check_speed_mach, check_tables,
                                               dlm_aerodynamics, fixed_mach, strip_twin)
 from propwhirl.model.aerodynamics.dlm_mesh import guideline_note
@@ -71,7 +74,8 @@ KTOL = 1e-7
 #: a root with Im p below this fraction of its in-vacuo frequency is non-oscillatory
 #: (a crossing of such a root is divergence, not flutter)
 STATIC = 1e-6
-#: in-vacuo modes a wing's p-k sweep follows by default (lowest frequencies first)
+#: the fewest in-vacuo modes a wing's p-k sweep follows by default (lowest frequencies first;
+#: :func:`followed_modes`)
 WING_MODES = 6
 #: the note that opens a doublet-lattice analysis's notes (ModelAnalysis.doublet_lattice)
 DLM_NOTE = "p-k aerodynamics: doublet-lattice"
@@ -190,6 +194,80 @@ def pk_root(model, V: float, p0: complex, *, ktol: float = KTOL, maxiter: int = 
     raise RuntimeError(f"p-k iteration did not converge at V = {V} m/s (k = {k})")
 
 
+#: two modes' p-k roots closer than this fraction of |p| are one root (the iteration's own
+#: accuracy is KTOL in k; the closest distinct roots of six near-identical propellers on
+#: x57_like are ~1e-4 apart)
+SAME_ROOT = 1e-7
+
+
+#: modes whose start roots' |p| are within this fraction of each other form a cluster
+#: (near-identical propellers, a mount's pitch and yaw: x57_like's are 0.7-7 % apart) whose
+#: roots :func:`_separate` keeps apart
+CLUSTER = 0.1
+
+
+def _separate(model, V: float, system, guess: np.ndarray, p: np.ndarray,
+              k: np.ndarray, near: np.ndarray) -> None:
+    """Modes whose p-k iterations at V [m/s] met one root each take a root of their own, in
+    place (``p`` [1/s], ``k``).  Near-identical propellers' whirl modes (a cluster ~1e-3 apart
+    in frequency, whose roots move by more than that between speeds) otherwise collapse onto
+    one root speed by speed: x57_like's p-k followed 6 of its 18 modes as one and found none of
+    the whirl flutter the default has at 80 m/s.  Only modes of one cluster are separated:
+    their start roots' |p| (``near``) within :data:`CLUSTER` of each other; modes far apart
+    that meet are a flutter coalescence, where the p-k following the root both reach is its
+    classical behaviour (the wingtip model's 7.8 and 17.8 Hz modes: backward whirl flutter).
+
+    Such a group is iterated together at one k (its roots' mean): each step the roots of
+    :func:`pk_matrix` at that k not held by another mode are assigned one to one to the
+    group's roots (least total distance; first to their ``guess``es, the roots extrapolated
+    from the last two speeds), until the k converges.  Each member then takes the root of its
+    own k (:func:`pk_root` from the group's) where that keeps every root distinct, else keeps
+    the group's: the group's frequencies differ by ~0.1 %, so Q at the mean k is theirs to
+    that (a test measures the crossing speeds against the default's)."""
+    b = reference_semichord(model)
+    ok = np.flatnonzero(np.isfinite(p))
+    done: set[int] = set()
+    for j in ok:
+        if j in done:
+            continue
+        group = [int(l) for l in ok if abs(p[l] - p[j]) <= SAME_ROOT * abs(p[j])
+                 and abs(near[l] - near[j]) <= CLUSTER * near[j]]
+        done.update(group)
+        if len(group) < 2:
+            continue
+        others = np.array([p[l] for l in ok if l not in group])
+        cur = guess[group].copy()
+        kg = float(np.mean(np.abs(cur.imag))) * b / V
+        for _ in range(100):
+            lam = np.linalg.eigvals(_first_order(system, max(kg, K_MIN) * V / b))
+            lam = lam[lam.imag >= 0]
+            if others.size:                          # roots other modes hold are not theirs
+                held = np.min(np.abs(lam[:, None] - others[None, :]), axis=1)
+                lam = lam[held > SAME_ROOT * np.abs(lam)]
+            if lam.size < len(group):
+                break
+            rows, cols = linear_sum_assignment(np.abs(cur[:, None] - lam[None, :]))
+            cur = lam[cols][np.argsort(rows)]
+            k_new = float(np.mean(np.abs(cur.imag))) * b / V
+            if abs(k_new - kg) <= KTOL * max(k_new, K_MIN):
+                break
+            kg = k_new
+        else:
+            continue
+        if lam.size < len(group):
+            continue
+        for r, l in enumerate(group):
+            p[l], k[l] = cur[r], abs(cur[r].imag) * b / V
+        for r, l in enumerate(group):                # each at its own k where it stays its own
+            try:
+                q, kq = pk_root(model, V, cur[r], system=system)
+            except RuntimeError:
+                continue
+            rest = np.delete(p[ok], np.flatnonzero(ok == l))
+            if np.all(np.abs(rest - q) > SAME_ROOT * abs(q)):
+                p[l], k[l] = q, kq
+
+
 def pk_mode(model, V: float, p0: complex, *, system=None, tables: DlmTables | None = None,
             own_mach: bool = False) -> tuple[complex, float, np.ndarray]:
     """The p-k root [1/s] nearest ``p0`` at V [m/s] (:func:`pk_root`), its k [-] and its
@@ -203,6 +281,28 @@ def pk_mode(model, V: float, p0: complex, *, system=None, tables: DlmTables | No
     i = int(np.argmin(np.abs(lam - p)))
     x = X[:, i] if lam[i].imag >= 0 else X[:, i].conj()
     return p, k, x / np.linalg.norm(x)
+
+
+def followed_modes(model, speeds) -> int:
+    """How many in-vacuo modes (lowest first) a wing's p-k sweep over ``speeds`` [m/s]
+    follows by default: the modes the default's state space keeps — on strips every mode up
+    to the reduced models' cut-off (:func:`propwhirl.model.reduction.cutoff`:
+    :data:`~propwhirl.model.reduction.CUTOFF_FACTOR` times the highest of the second bending,
+    first torsion, first chordwise and every propeller-dominated mode), at least
+    :data:`WING_MODES`; on a doublet-lattice wing the modal Roger state space's
+    (:func:`propwhirl.model.dlm_modal.kept_modes`: also no higher than its fit's range).
+    A fixed six missed every whirl mode of a wing with many propellers (x57_like: its seven
+    propellers' modes are its 2nd to 15th; the p-k found no instability where the default has
+    whirl flutter at 80.0 m/s); on strips x57_like follows 18, the four-propeller example 15,
+    the wingtip model 7."""
+    twin = strip_twin(model)
+    iv = InVacuo.of(twin.without_aerodynamics())
+    w2, shapes = sla.eigh(iv.K, iv.M)
+    f = np.sqrt(np.abs(w2)) / (2 * np.pi)
+    if twin is not model:
+        return kept_modes(model, model, f, shapes, iv.M, speeds)[0]
+    _, fc = cutoff(model, f, shapes, iv.M)
+    return max(int(np.sum(f <= fc)), min(WING_MODES, f.size))
 
 
 def _start_roots(model, V: float, n_modes: int | None) -> tuple[np.ndarray, tuple[str, ...]]:
@@ -348,7 +448,8 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
     flutter and divergence crossings (Re p = 0, refined by Brent's method to ``xtol`` [m/s]).
 
     ``n_modes``: how many in-vacuo modes (lowest frequencies first) to follow; default every
-    mode of a typical section, the lowest :data:`WING_MODES` of a wing.  ``tables``: a
+    mode of a typical section, those up to the reduced models' cut-off of a wing
+    (:func:`followed_modes`).  ``tables``: a
     doublet-lattice wing's (the analysis's; None: new ones for this sweep).
     """
     check_pk_model(model)
@@ -365,7 +466,7 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
         tables = check_tables(tables)
         matched = fixed_mach(getattr(model, "wing", model)) is None
     if n_modes is None:
-        n_modes = None if _is_section(model) else WING_MODES
+        n_modes = None if _is_section(model) else followed_modes(model, V)
     elif not isinstance(n_modes, (int, np.integer)) or n_modes < 1:
         raise v.InputError(f"n_modes = {n_modes!r} is invalid: must be an integer >= 1")
     start, labels = _start_roots(model, V[0], n_modes)
@@ -376,6 +477,8 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
     lost: list[tuple[str, float]] = []
     for i, Vi in enumerate(V):
         system = pk_system(model, Vi, tables)  # the structure and propellers once per speed
+        guess = p.copy() if i < 2 else 2 * roots[i - 1] - roots[i - 2]  # extrapolated
+        guess = np.where(np.isfinite(guess), guess, p)
         for j in range(start.size):
             if not np.isfinite(p[j]):
                 ks[i, j] = np.nan
@@ -385,6 +488,7 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
             except RuntimeError:           # k does not converge: stop following this mode
                 p[j], ks[i, j] = complex(np.nan, np.nan), np.nan
                 lost.append((labels[j], float(Vi)))
+        _separate(model, Vi, system, guess, p, ks[i], vacuum)
         roots[i] = p
     events = []
     for j in range(start.size):

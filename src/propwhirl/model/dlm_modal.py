@@ -152,6 +152,22 @@ class ModalRoger:
         return state_matrix(self.second_order(V, **options), V)
 
 
+def kept_modes(model, assembly, f_all: np.ndarray, shapes: np.ndarray, M: np.ndarray,
+               speeds, factor: float = CUTOFF_FACTOR) -> tuple[int, float, float]:
+    """(n, f_ref, f_c): how many of the in-vacuo modes (frequencies ``f_all`` [Hz], ascending;
+    ``shapes`` M-orthonormal over the model's DOFs, mass ``M``) a doublet-lattice wing's
+    modal analyses keep — the modal Roger state space (:func:`modal_roger`) and the p-k's
+    followed modes (:func:`propwhirl.analysis.pk.followed_modes`): those up to the reduced
+    models' cut-off f_c (:func:`~propwhirl.model.reduction.cutoff`; ``assembly`` the model's
+    or the model) and no higher than the fit's highest reduced frequency at the highest of
+    ``speeds`` [m/s] (beyond it Q is extrapolated, and beyond the panels' own validity: the
+    false criticals of issue 37 item 1), at least :data:`MIN_MODES`; f_ref and f_c [Hz]."""
+    ref, fc = cutoff(assembly, f_all, shapes, M, factor)
+    fit_hz = fit_ks()[-1] * float(np.max(speeds)) / (2 * np.pi * b_ref(model))
+    fc = min(fc, fit_hz)
+    return max(int(np.sum(f_all <= fc)), min(MIN_MODES, f_all.size)), ref, fc
+
+
 def modal_roger(model, speeds, *, assembly=None,
                 structure: tuple[np.ndarray, np.ndarray] | None = None,
                 factor: float = CUTOFF_FACTOR) -> ModalRoger:
@@ -191,10 +207,7 @@ def modal_roger(model, speeds, *, assembly=None,
     M, K = structure
     w2, shapes = sla.eigh(K, M)
     f_all = np.sqrt(np.abs(w2)) / (2 * np.pi)
-    ref, fc = cutoff(assembly, f_all, shapes, M, factor)
-    fit_hz = fit_ks()[-1] * V.max() / (2 * np.pi * b_ref(model))
-    fc = min(fc, fit_hz)
-    n_keep = max(int(np.sum(f_all <= fc)), min(MIN_MODES, f_all.size))
+    n_keep, ref, fc = kept_modes(model, assembly, f_all, shapes, M, V, factor)
     with np.errstate(all="ignore"):
         dry = assembly.with_switches(wing_aero=False).blocks(V[:1]).dense()
     n_w = int(surface_of(model).keep.size)
