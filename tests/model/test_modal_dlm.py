@@ -65,7 +65,8 @@ def test_the_file_holds_the_planform_and_the_model_says_doublet_lattice(pair):
                           Planform.from_wing(b.wing).mesh().corners)
     c = capabilities(m)
     assert c.aerodynamics == "doublet lattice" and c.supports("pk") and c.supports("reduced")
-    assert "doublet-lattice" in c.refusal("sensitivity")
+    assert c.supports("sensitivity") and c.derivatives == "central difference"
+    assert not c.supports("exact-sensitivity")
     assert m.dof_map().w_labels[0] == "mode 1 lag 1"
 
 
@@ -152,3 +153,24 @@ def test_a_modal_dlm_model_pickles_after_its_surface_is_built(pair):
     key = m.dlm_surface().key
     back = pickle.loads(pickle.dumps(m))
     assert "_dlm_surface" not in back.__dict__ and back.dlm_surface().key == key
+
+
+def test_modal_dlm_sensitivities_are_the_beam_dlm_models(pair):
+    """Issue 34 item 2 on the new kind: a modal doublet-lattice model's sensitivities are
+    central differences of its crossing's p-k root (the AICs read from the analysis's tables),
+    and equal the beam DLM model's where the modal model is the beam model (measured:
+    dV/df_theta 0.165366 vs 0.165367 m/s per Hz, dV/drho -70.3127 vs -70.3127)."""
+    from propwhirl.analysis import critical_sensitivities
+    from propwhirl.model.aerodynamics.dlm import DlmTables
+
+    b, m = pair
+    paths = ["propellers[0].propeller.f_theta", "flight.density"]
+    got = {}
+    for key, model in (("beam", b), ("modal", m)):
+        tables = DlmTables()
+        a = analyse(model, SPEEDS, dlm_tables=tables)
+        s = critical_sensitivities(model, a, dlm_tables=tables, params=paths)
+        assert {x.derivative for x in s.sensitivities} == {"central difference (p-k)"}
+        got[key] = {x.path: x.dV_dp for x in s.sensitivities}
+    for path in paths:
+        assert got["modal"][path] == pytest.approx(got["beam"][path], rel=1e-4)

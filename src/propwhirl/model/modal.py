@@ -331,8 +331,9 @@ class ModalPropellerWing(StateSpaceModel):
 
     def capabilities(self) -> Capabilities:
         """What this model can do (:class:`~propwhirl.model.protocol.Capabilities`): its
-        structure the modes, strip aerodynamics on its strips, sensitivities by central
-        differences, every command but the reduced method (it is reduced already), a NASTRAN
+        structure the modes, strip aerodynamics on its strips or doublet-lattice panels on
+        its planform, sensitivities by central differences (of the state matrix; of the p-k
+        root on panels), every command but the reduced method (it is reduced already), a NASTRAN
         deck and a file upgrade; a Campbell diagram needs a propeller that whirls (own mount
         or hub grid)."""
         dlm = self.wing_aero and self.aero == "dlm"
@@ -340,7 +341,6 @@ class ModalPropellerWing(StateSpaceModel):
                "export": REASONS["modal-export"], "upgrade-model": REASONS["modal-upgrade"]}
         if dlm:     # "reduced": the modal Roger state space (its modes below a cut-off)
             del why["reduced"]
-            why["sensitivity"] = why["exact-sensitivity"] = REASONS["modal-dlm-derivatives"]
         if not self.wing_aero:
             why["pk"] = REASONS["no-wing-aero-pk"]
         if not self.dof_map().whirling():
@@ -350,8 +350,7 @@ class ModalPropellerWing(StateSpaceModel):
                  if mounts == {"flexible"} else "hub grids" if mounts else "none")
         return Capabilities("modal propeller-wing", "modes",
                             "doublet lattice" if dlm else "strip" if self.wing_aero else "none",
-                            "none" if dlm else "central difference", props,
-                            tuple(why.items()), "none" if dlm else "modal")
+                            "central difference", props, tuple(why.items()), "modal")
 
     def with_(self, **changes) -> "ModalPropellerWing":
         """A copy with fields replaced (``dataclasses.replace``)."""

@@ -518,10 +518,6 @@ class Capabilities:
 REASONS = {
     "modal-reduced": "a modal model is reduced already (one coordinate per mode): the reduced "
                      "method would not pay; use the default method (dense)",
-    "modal-dlm-derivatives": "a modal model's doublet-lattice loads have no parameter "
-                             "derivatives (its parameters are the modes', not the panels' "
-                             "beam): use `propwhirl sweep` on the parameter path (the critical "
-                             "speed against it)",
     "modal-exact": "exact derivatives exist for the beam model's generated blocks only "
                    "(model/derivatives.py): a modal model's sensitivities are central "
                    "differences of its state matrix",
