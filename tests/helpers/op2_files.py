@@ -83,7 +83,8 @@ def write_op2_arrays(path: Path, grid_ids, xyz, eigenvalues, shapes, units: str 
 
 #: Root components a free structure's root leaves free, by case: the whole aircraft's wing
 #: (heave, roll, pitch), a half aircraft's symmetric (heave, pitch) and antisymmetric (roll).
-FREE_ROOTS = {"free": (0, 1, 2), "symmetric": (0, 2), "antisymmetric": (1,)}
+FREE_ROOTS = {"free": (0, 1, 2), "symmetric": (0, 2), "antisymmetric": (1,),
+              "plunge-roll": (0, 1)}
 
 
 def free_free_modes(wing, body_mass: float, body_roll_inertia: float,
