@@ -111,9 +111,10 @@ class ModalStructure:
     free : bool
         The structure is free (a whole or half aircraft, not a clamped wing): its modes below
         :data:`RIGID_BODY_HZ` (at 0 <= f) are rigid-body modes, accepted when each is a
-        plunge, a roll or a mix of the two (:func:`rigid_body_kind`; the strips' lift damps
-        both) and then taken as exactly rigid (:func:`plunge_roll_shape`); a rigid pitch, yaw, surge or sway is refused naming the mode (with the wing
-        alone pitch and yaw are statically unstable by construction: no tail).  False (the
+        plunge or a roll (about any axis along x: :func:`rigid_body_kind`; the strips' lift
+        damps both) and then taken as exactly rigid (:func:`plunge_roll_shape`); a rigid
+        pitch, yaw, surge or sway is refused naming the mode (with the wing alone pitch and
+        yaw are statically unstable by construction: no tail).  False (the
         default): no mode below :data:`RIGID_BODY_HZ`.
 
     Examples
@@ -359,7 +360,7 @@ class ModalStructure:
 
 #: Rigid-body modes a free structure may keep with the wing alone: the strips' lift damps a
 #: plunge and a roll (its velocity changes the angle of attack; its displacement does not).
-KEPT_RIGID_BODY = ("plunge", "roll", "plunge and roll")
+KEPT_RIGID_BODY = ("plunge", "roll")
 #: Share of a rigid-body mode's largest motion below which a freedom is counted absent.
 RIGID_SHARE = 1e-4
 #: Residual of the rigid-body fit (relative) above which a mode is no rigid-body motion.
@@ -369,13 +370,14 @@ _REFUSED_RIGID = {
              "construction and its divergence would be the missing tail's, not the wing's; "
              "give the structure a tail or hold pitch (its SPC; or leave the rigid-body modes "
              "out: read_op2(free=True) without keep_rigid, the heavy-body limit)",
-    "surge or sway": "the strips give an in-plane rigid translation no force (a neutral "
-                     "root): hold it in the FE model or leave it out",
+    "surge": "the strips give an in-plane rigid translation no force (a neutral root): "
+             "hold it in the FE model or leave it out",
     "mechanism": "its shape is no rigid-body motion of the grids (a mechanism of the FE "
                  "model): remove it",
 }
 for _k in ("yaw", "pitch and yaw"):
     _REFUSED_RIGID[_k] = _REFUSED_RIGID["pitch"]
+_REFUSED_RIGID["sway"] = _REFUSED_RIGID["surge"]
 
 
 def _rigid_fit(xyz: np.ndarray, shape: np.ndarray):
@@ -407,11 +409,12 @@ def rigid_body_kind(xyz: np.ndarray, shape: np.ndarray) -> str:
     by the grids' largest distance L from c (at least 1 m); a residual over
     :data:`RIGID_FIT` of the motion is a "mechanism".  Of the freedoms' sizes — the
     translations |t_x|, |t_y|, |t_z| and the rotations L |θ_x|, L |θ_y|, L |θ_z| — those over
-    :data:`RIGID_SHARE` of the largest are present: a rotation about y is a "pitch", about z a
-    "yaw", a translation along x or y a "surge or sway"; otherwise a translation along z is a
-    "plunge", a rotation about x a "roll" (a roll about an axis away from c has both:
-    "plunge and roll").  Returns the first that applies of "mechanism", "pitch and yaw",
-    "pitch", "yaw", "surge or sway", "plunge and roll", "roll", "plunge".
+    :data:`RIGID_SHARE` of the largest are present.  A rotation about y is a "pitch", about
+    z a "yaw" ("pitch and yaw" both); a rotation about x alone is a "roll" — about an axis
+    along x through any point, so its translation across x (y, z) only places the axis — but
+    with a translation along x a "surge"; without rotation a translation along z is a
+    "plunge", along x a "surge", along y a "sway" (the first that applies, in this order:
+    "mechanism", "pitch and yaw", "pitch", "yaw", "surge", "roll", "sway", "plunge").
 
     Parameters
     ----------
@@ -429,24 +432,24 @@ def rigid_body_kind(xyz: np.ndarray, shape: np.ndarray) -> str:
         return "pitch and yaw"
     if on[4] or on[5]:
         return "pitch" if on[4] else "yaw"
-    if on[0] or on[1]:
-        return "surge or sway"
-    if on[2] and on[3]:
-        return "plunge and roll"
-    return "roll" if on[3] else "plunge"
+    if on[0]:
+        return "surge"
+    if on[3]:
+        return "roll"
+    return "sway" if on[1] else "plunge"
 
 
 def plunge_roll_shape(xyz: np.ndarray, shape: np.ndarray) -> np.ndarray:
     """(n_grids, 6) the plunge and roll of a rigid-body mode's fit (:func:`rigid_body_kind`)
-    at the grids, exactly rigid: T_z = t_z + θ_x (y − c_y), T_y = −θ_x (z − c_z), R_x = θ_x,
-    the rest 0 [m, rad].  A free structure's kept rigid-body modes are taken so: the fit's
-    residual (an eigensolver's rounding, below :data:`RIGID_FIT`) and its freedoms below
-    :data:`RIGID_SHARE` would otherwise be a spurious aerodynamic stiffness on a coordinate
-    that has none (a twist of 1e-11 rad on the plunge gave a real root of +7e-7 1/s: a false
-    divergence)."""
+    at the grids, exactly rigid: T_y = t_y − θ_x (z − c_z), T_z = t_z + θ_x (y − c_y),
+    R_x = θ_x, the rest 0 [m, rad] (t_y only with a roll: the height of its axis).  A free
+    structure's kept rigid-body modes are taken so: the fit's residual (an eigensolver's
+    rounding, below :data:`RIGID_FIT`) and its freedoms below :data:`RIGID_SHARE` would
+    otherwise be a spurious aerodynamic stiffness on a coordinate that has none (a twist of
+    1e-11 rad on the plunge gave a real root of +7e-7 1/s: a false divergence)."""
     x, A, L, _ = _rigid_fit(xyz, shape)
     keep = np.zeros(6)
-    keep[2], keep[3] = x[2], x[3]
+    keep[1:4] = x[1:4]
     out = (A @ keep).reshape(-1, 6)
     out[:, 3:] /= L
     return out
