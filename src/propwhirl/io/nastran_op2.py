@@ -42,7 +42,10 @@ at zero — the body's mean axes fixed in space, the limit of a body much heavie
 heavy fuselage's model equal the clamped wing's, a light fuselage's do not).  The rigid-body
 modes themselves are not analysed (their flight mechanics would need aerodynamics on every
 surface that holds the body — a tail where pitch is free — which the strips of one wing do
-not give: with the wing alone only plunge and roll are physical freedoms).
+not give: with the wing alone only plunge and roll are physical freedoms).  With
+``keep_rigid=True`` too they are kept — at 0 Hz, undamped, the strips' aerodynamics on them —
+when each is a plunge or a roll; a rigid pitch, yaw, surge or sway is refused naming the
+mode (:class:`~propwhirl.model.modal_structure.ModalStructure`, ``free``).
 """
 from __future__ import annotations
 
