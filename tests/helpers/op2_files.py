@@ -83,7 +83,8 @@ def write_op2_arrays(path: Path, grid_ids, xyz, eigenvalues, shapes, units: str 
 
 #: Root components a free structure's root leaves free, by case: the whole aircraft's wing
 #: (heave, roll, pitch), a half aircraft's symmetric (heave, pitch) and antisymmetric (roll).
-FREE_ROOTS = {"free": (0, 1, 2), "symmetric": (0, 2), "antisymmetric": (1,)}
+FREE_ROOTS = {"free": (0, 1, 2), "symmetric": (0, 2), "antisymmetric": (1,),
+              "plunge-roll": (0, 1)}
 
 
 def free_free_modes(wing, body_mass: float, body_roll_inertia: float,
@@ -120,3 +121,46 @@ def free_free_modes(wing, body_mass: float, body_roll_inertia: float,
     xyz = np.zeros((wing.n_nodes, 3))
     xyz[:, 1] = wing.node_y
     return 1 + np.arange(wing.n_nodes), xyz, w2, shapes
+
+
+def root_body(wing) -> tuple[float, float, float]:
+    """The beam wing's own rigid-body mass [kg], roll and pitch inertia about its root
+    [kg m²] (the body's are κ times these)."""
+    from propwhirl.model.structure.assembly import wing_structure
+
+    M = wing_structure(wing)[0]
+    shapes = np.zeros((3, M.shape[0]))
+    shapes[0, 0::3] = 1.0
+    shapes[1, 0::3], shapes[1, 1::3] = wing.node_y, 1.0
+    shapes[2, 2::3] = 1.0
+    return tuple(float(r @ M @ r) for r in shapes)
+
+
+def free_modal_model(base, kappa: float, free: str = "plunge-roll",
+                     rigid_below_hz: float = 0.1):
+    """The modal model of ``base`` (a one-propeller PropellerWing, mount "own") with its wing
+    on a root body of κ times the wing's mass and inertias (:func:`free_free_modes`), free in
+    ``FREE_ROOTS[free]``, every mode kept (``ModalStructure(free=True)``): the rigid-body ones
+    (below ``rigid_below_hz``) at 0 Hz undamped, the elastic ones with the base wing's
+    Rayleigh damping; the strips the base wing's.  Returns (model, number of rigid modes)."""
+    from propwhirl.model.modal import ModalInstallation, ModalPropellerWing
+    from propwhirl.model.modal_structure import StripPlanform
+
+    mass, roll, pitch = root_body(base.wing)
+    ids, xyz, w2, shapes = free_free_modes(base.wing, kappa * mass, kappa * roll,
+                                           kappa * pitch, free)
+    f = np.sqrt(np.abs(w2)) / (2.0 * np.pi)
+    rigid = f < rigid_below_hz
+    f = np.where(rigid, 0.0, f)
+    w = 2.0 * np.pi * np.where(rigid, 1.0, f)
+    mu, lam = base.wing.rayleigh
+    zeta = np.where(rigid, 0.0, 0.5 * (mu / w + lam * w))
+    s = ModalStructure(grid_ids=ids, xyz=xyz, frequencies_hz=f, modal_mass=np.ones(f.size),
+                       damping_ratio=zeta, shapes=shapes, free=True,
+                       source=f"{free} root body, kappa {kappa:g}")
+    inst = tuple(ModalInstallation(i.propeller, int(ids[n]), i.mount, i.aero)
+                 for i, n in zip(base.propellers, base.nodes))
+    model = ModalPropellerWing(s, [int(g) for g in ids], StripPlanform.from_wing(base.wing),
+                               base.flight, inst, wing_aero=base.wing_aero,
+                               propeller_aero=base.propeller_aero, rotating=base.rotating)
+    return model, int(rigid.sum())

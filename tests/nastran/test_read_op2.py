@@ -130,6 +130,8 @@ def test_command_line_errors_are_one_line_and_write_nothing(tmp_path, capsys):
     assert "units not stated" in err
     err = _one_line(capsys, common + ["--hubs", "26", "--units", "si", "--rigid-below", "1"])
     assert "--rigid-below" in err and "--free" in err
+    err = _one_line(capsys, common + ["--hubs", "26", "--units", "si", "--keep-rigid"])
+    assert "--keep-rigid" in err and "--free" in err
     bdf = tmp_path / "x.bdf"
     bdf.write_text("ENDDATA\n")
     err = _one_line(capsys, ["import", str(bdf), "--out", str(out), "--units", "si",
@@ -199,6 +201,26 @@ def test_rigid_body_modes_are_refused_unless_the_structure_is_said_free(tmp_path
                                          "rigid-body modes"):
         read_op2(path, units="si", base=WINGTIP, hubs=[26], wing_grids=list(ids),
                  mount="own", mass_normalised=True, free=True)
+
+
+def test_a_free_structures_plunge_and_roll_are_kept_and_its_pitch_refused(tmp_path):
+    """``keep_rigid``: an OP2 of a wing on a heavy body free in plunge and roll keeps both
+    rigid-body modes (0 Hz, undamped) and gives the clamped wing's instabilities; one free
+    in pitch too is refused naming a mode and the missing tail (docs/modal-structures.md)."""
+    _, model, notes = _free_model(tmp_path, 1e4, "plunge-roll", free=True, keep_rigid=True)
+    s = model.structure
+    assert s.free and s.n_modes == 3 * WINGTIP.wing.n_nodes - 1
+    assert np.all(s.frequencies_hz[:2] == 0.0) and np.all(s.damping_ratio[:2] == 0.0)
+    assert len(notes) == 1 and "2 rigid-body mode(s)" in notes[0] and "kept" in notes[0]
+    got, ref = analyse(model).events, analyse(WINGTIP).events
+    assert all(g.V > 0.999 * ref[0].V for g in got)
+    for e in ref:
+        assert min(abs(g.V - e.V) for g in got) < 5e-4 * e.V, e
+    with pytest.raises(InputError, match=r"free\.op2 .*: mode [123] \(0 Hz\) is a rigid-body "
+                                         r".*pitch.*no tail"):
+        _free_model(tmp_path, 1e4, "free", free=True, keep_rigid=True)
+    with pytest.raises(InputError, match=r"keep_rigid = True is invalid: .*free=True"):
+        _free_model(tmp_path, 1e4, "plunge-roll", keep_rigid=True)
 
 
 # ------------------------------------------------------------------------ the file's problems

@@ -51,6 +51,7 @@ from scipy.optimize import linear_sum_assignment
 
 from propwhirl import validate as v
 from propwhirl.engine import follow, single_thread_blas
+from propwhirl.model.modal_structure import RIGID_BODY_HZ
 
 
 #: Relative gap below which two in-vacuo frequencies are one repeated frequency (ω_j − ω_i ≤
@@ -203,8 +204,14 @@ def label_modes(model, basis: np.ndarray | None = None, modes: Modes | None = No
         modes, _ = model_modes(model, basis, in_vacuo)
     f0 = modes.frequency_hz
     kinds = ["wing"] * f0.size
+    # a free structure's rigid-body modes (ω = 0: no stiffness) are 'rigid k'; the Campbell
+    # diagram, whose pencil needs K > 0, follows the elastic modes alone (on their shapes)
+    rigid = modes.omega < 2.0 * np.pi * RIGID_BODY_HZ
+    for i in np.flatnonzero(rigid):
+        kinds[i] = "rigid"
+    elastic = np.flatnonzero(~rigid)
     flex = _flexible_propellers(model)
-    if flex:
+    if flex and elastic.size:
         own = [p for p, on_grid in flex if not on_grid]
         f_mount = min(min(p.stiffness()[0] / p.pivot_inertia()["I_theta_P"],
                           p.stiffness()[1] / p.pivot_inertia()["I_psi_P"])
@@ -214,21 +221,24 @@ def label_modes(model, basis: np.ndarray | None = None, modes: Modes | None = No
         rpm = 0.1 * f_mount * 60.0 / (2.0 * np.pi)
         # 2 nodes resolve every thesis model; near-repeated mount modes (64 equal propellers
         # on a reduced basis) stay unresolved after any number: bounded (issue 20.9)
-        tracks = track_gyroscopic(GyroscopicSystem.of(model, basis=basis, in_vacuo=in_vacuo),
+        on = basis if not rigid.any() else modes.shapes[:, elastic]
+        tracks = track_gyroscopic(GyroscopicSystem.of(model, basis=on, in_vacuo=in_vacuo),
                                   np.array([0.0, rpm]) * 2.0 * np.pi / 60.0, max_nodes=32)
-        delta = tracks.omega[-1] - tracks.omega[0]
+        delta = np.zeros(f0.size)
+        delta[elastic] = tracks.omega[-1] - tracks.omega[0]
         n = len(flex)
-        order = np.argsort(delta)
+        order = elastic[np.argsort(delta[elastic])]
         for i in order[:n]:
             kinds[i] = "backward"
         for i in order[::-1][:n]:
             kinds[i] = "forward"
-        for g in repeated_groups(modes.omega):      # by their frequency just above Ω = 0
+        for g in repeated_groups(modes.omega[elastic]):   # by their frequency above Ω = 0
+            g = elastic[g]
             by_slope = g[np.argsort(delta[g], kind="stable")]
             kinds_g = [kinds[i] for i in by_slope]
             for i, kind in zip(g, kinds_g):
                 kinds[i] = kind
-    counters = {"backward": 0, "forward": 0, "wing": 0}
+    counters = {"backward": 0, "forward": 0, "wing": 0, "rigid": 0}
     out = []
     for kind, f in zip(kinds, f0):
         counters[kind] += 1

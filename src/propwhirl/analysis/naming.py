@@ -247,7 +247,7 @@ def named_modes(model: Model, sw: Sweep, basis: np.ndarray | None = None,
         for k, lab in _matched(X0[sw.displacement][:, osc], lam0[osc], modes, ref):
             names[osc[k]] = lab
         if len(_spinning_flexible(dm)) >= 2:
-            whirls = [k for k in osc if not names[k].startswith("wing")]
+            whirls = [k for k in osc if not names[k].startswith(("wing", "rigid"))]
             thesis_names = list(names)
             names = propeller_names(model, sw, names, whirls, in_vacuo)
             return _partners(sw, names), _partners(sw, thesis_names)

@@ -5,7 +5,7 @@ BDF and a beam model as a BDF (docs/modal-structures.md, "NASTRAN bulk data").
                     [--hubs GRID [GRID ...]]
     propwhirl import MODES.op2 --out MODAL.toml --units ... --base BASE.toml --hubs GRID ...
                     --wing-grids GRID GRID ... [--mount on-grid|own] [--modes N]
-                    [--damping rayleigh|ZETA] [--subcase N] [--free [--rigid-below HZ]]
+                    [--damping rayleigh|ZETA] [--subcase N] [--free [--keep-rigid] [--rigid-below HZ]]
                     [--mass-normalised]
     propwhirl export MODEL --out MODEL.bdf [--units si|mm-t-s|in-lbf-s]
 
@@ -54,6 +54,7 @@ def _import(args: argparse.Namespace) -> int:
     for flag, value in (("--wing-grids", args.wing_grids), ("--modes", args.modes),
                         ("--subcase", args.subcase), ("--rigid-below", args.rigid_below),
                         ("--free", args.free or None),
+                        ("--keep-rigid", args.keep_rigid or None),
                         ("--mass-normalised", args.mass_normalised or None)):
         if value is not None:
             raise InputError(f"{flag} is for an OP2's modes: {args.bdf} is read as a BDF")
@@ -114,6 +115,9 @@ def _import_op2(args: argparse.Namespace) -> int:
                          "with propellers (type \"propeller-wing\")")
     notes: list[str] = []
     free = {} if args.rigid_below is None else {"rigid_body_hz": args.rigid_below}
+    if args.keep_rigid and not args.free:
+        raise InputError("--keep-rigid keeps a free structure's plunge and roll rigid-body "
+                         "modes: give --free too")
     if args.rigid_below is not None and not args.free:
         raise InputError("--rigid-below is the threshold of a free structure's rigid-body "
                          "modes: give --free too")
@@ -121,7 +125,7 @@ def _import_op2(args: argparse.Namespace) -> int:
         args.bdf, units=args.units, base=base, hubs=args.hubs or (),
         wing_grids=args.wing_grids or (), mount=args.mount, n_modes=args.modes,
         damping=_damping(args.damping), subcase=args.subcase, free=args.free,
-        mass_normalised=args.mass_normalised, notes=notes, **free)
+        mass_normalised=args.mass_normalised, notes=notes, keep_rigid=args.keep_rigid, **free)
     toml, npz_path = modal_files.save_modal_model(model, args.out)
     print_notes(notes)
     s = model.structure
@@ -184,6 +188,9 @@ def add_commands(sub) -> None:
                    "the only one)")
     p.add_argument("--free", action="store_true", help="an OP2: the structure is free; its "
                    "rigid-body modes are left out (docs/modal-structures.md)")
+    p.add_argument("--keep-rigid", action="store_true", help="with --free: keep the "
+                   "rigid-body modes, each a plunge or a roll (a rigid pitch or yaw is "
+                   "refused: no tail)")
     p.add_argument("--rigid-below", type=float, metavar="HZ", help="with --free: the modes "
                    "below HZ are rigid-body modes (default 0.1)")
     p.add_argument("--mass-normalised", action="store_true", help="an OP2 without an "

@@ -117,10 +117,11 @@ def read_arrays(path: Path, expected: dict[str, tuple[tuple[int, ...], np.dtype]
 
 
 def load_modes(path: str | Path, n_modes: int, n_grids: int, where: str | None = None,
-               what: str = "modes file") -> ModalStructure:
+               what: str = "modes file", free: bool = False) -> ModalStructure:
     """The :class:`~propwhirl.model.modal.ModalStructure` of the ``.npz`` at ``path`` (a
     `what`), whose arrays must have the sizes given (checked before reading); errors name
-    the file."""
+    the file.  ``free``: the structure is free (its plunge and roll rigid-body modes
+    kept; :class:`~propwhirl.model.modal_structure.ModalStructure`)."""
     path = Path(v.file_path("path", path, "a modes file (.npz)"))
     if where is not None and not isinstance(where, str):
         raise v.fail("where", where, "invalid: must be a str (how errors name the file) or None")
@@ -132,7 +133,7 @@ def load_modes(path: str | Path, n_modes: int, n_grids: int, where: str | None =
                 "damping_ratio": ((nm,), np.float64), "shapes": ((nm, ng, 6), np.float64)}
     arrays = read_arrays(path, expected, where,
                          f" (n_modes = {nm}, n_grids = {ng} as the model file states)", what)
-    return ModalStructure(**arrays, source=where)
+    return ModalStructure(**arrays, source=where, free=free)
 
 
 def modes_path(path: str | Path) -> Path | None:
@@ -235,6 +236,10 @@ MODES_TABLE = TableSpec("[modes]", "The modes file and its sizes, checked before
     Key("wing_grids", "integers", "the reference-axis grids the strips are splined to, root to "
         "tip (ids of the modes file)", items=(2, None),
         must="a list of two or more grid ids (integers)"),
+    Key("free", "boolean", "`true`: the structure is free (a whole or half aircraft): its "
+        "modes below 0.001 Hz are rigid-body modes, kept when a plunge or a roll (a rigid "
+        "pitch or yaw is refused by name: no tail); `false`: clamped, none below 0.001 Hz",
+        default=False),
 ))
 STRIPS_TABLE = TableSpec("[strips]", "One entry per strip in each list, all lists of the same "
                          "length.", (
@@ -335,7 +340,8 @@ def _from_dict(data: dict[str, Any], path: Path) -> ModalPropellerWing:
             raise t.table.bad("propeller", "the key of a [propellers.KEY] table ("
                               + (", ".join(ctx) or "none given") + ")")
     # only now the arrays: the description is whole and consistent
-    structure = load_modes(file, modes["n_modes"], modes["n_grids"], what="[modes] file")
+    structure = load_modes(file, modes["n_modes"], modes["n_grids"], what="[modes] file",
+                           free=modes["free"])
     ids = set(int(i) for i in structure.grid_ids)
     for i, g in enumerate(modes["wing_grids"]):
         if g not in ids:
@@ -417,7 +423,8 @@ def _write_modal_file(path: Path, npz: Path, header: str, dumps, *, name: str, s
         "installations": rows,
         "units": dict(UNITS),
         "modes": {"file": npz.name, "n_modes": s.n_modes, "n_grids": int(s.grid_ids.size),
-                  "wing_grids": [int(g) for g in wing_grids]},
+                  "wing_grids": [int(g) for g in wing_grids],
+                  **({"free": True} if s.free else {})},
         "strips": {"aero_model": planform.aero_model,
                    **{k: [float(x) for x in getattr(planform, f)] for k, f in STRIP_KEYS}},
         "flight": w.encode(flight, "flight"),

@@ -42,7 +42,10 @@ at zero — the body's mean axes fixed in space, the limit of a body much heavie
 heavy fuselage's model equal the clamped wing's, a light fuselage's do not).  The rigid-body
 modes themselves are not analysed (their flight mechanics would need aerodynamics on every
 surface that holds the body — a tail where pitch is free — which the strips of one wing do
-not give: with the wing alone only plunge and roll are physical freedoms).
+not give: with the wing alone only plunge and roll are physical freedoms).  With
+``keep_rigid=True`` too they are kept — at 0 Hz, undamped, the strips' aerodynamics on them —
+when each is a plunge or a roll; a rigid pitch, yaw, surge or sway is refused naming the
+mode (:class:`~propwhirl.model.modal_structure.ModalStructure`, ``free``).
 """
 from __future__ import annotations
 
@@ -226,10 +229,10 @@ def _in_modes(ids: np.ndarray, grid: int, what: str, where: str) -> int:
 
 
 def _kept_modes(freq: np.ndarray, modes: np.ndarray, free: bool, rigid_body_hz: float,
-                where: str, notes: list[str]) -> np.ndarray:
+                where: str, notes: list[str], keep_rigid: bool = False) -> np.ndarray:
     """Indices of the modes kept: every one of a clamped structure (none may be rigid), the
     elastic ones of a free structure (its rigid-body modes, below ``rigid_body_hz``, left
-    out and said)."""
+    out and said), or with ``keep_rigid`` all of a free structure's."""
     if not free:
         low = np.flatnonzero(freq < RIGID_BODY_HZ)
         if low.size:
@@ -246,6 +249,12 @@ def _kept_modes(freq: np.ndarray, modes: np.ndarray, free: bool, rigid_body_hz: 
                            f"{id_list(modes[rigid])}): a free body has at most "
                            f"{MAX_RIGID_BODY_MODES} rigid-body modes; the others are a "
                            "mechanism of the FE model (or lower --rigid-below)")
+    if rigid.size and keep_rigid:
+        notes.append(f"{where}: the structure is free: its {rigid.size} rigid-body mode(s) "
+                     f"below {rigid_body_hz:g} Hz (mode(s) {id_list(modes[rigid])}) kept at "
+                     "0 Hz, undamped (each a plunge or a roll: docs/modal-structures.md, "
+                     "'Free structures')")
+        return np.arange(freq.size)
     if rigid.size:
         notes.append(f"{where}: the structure is free: its {rigid.size} rigid-body mode(s) "
                      f"below {rigid_body_hz:g} Hz (mode(s) {id_list(modes[rigid])}) left out; "
@@ -257,9 +266,13 @@ def _kept_modes(freq: np.ndarray, modes: np.ndarray, free: bool, rigid_body_hz: 
     return np.flatnonzero(freq >= rigid_body_hz)
 
 
-def _damping(damping, base: PropellerWing, omega: np.ndarray, where: str) -> np.ndarray:
+def _damping(damping, base: PropellerWing, omega: np.ndarray, where: str,
+             rigid: np.ndarray | None = None) -> np.ndarray:
     if isinstance(damping, str) and damping == "rayleigh":
         mu, lam = base.wing.rayleigh
+        if rigid is not None and rigid.any():    # kept rigid-body modes: undamped
+            w = np.where(rigid, 1.0, omega)
+            return np.where(rigid, 0.0, 0.5 * (mu / w + lam * w))
         return 0.5 * (mu / omega + lam * omega)
     if isinstance(damping, (list, tuple, np.ndarray)):
         z = np.asarray(damping, dtype=float) if all(
@@ -296,7 +309,7 @@ def read_op2(path: str | Path, *, units: str | None = None, base=None,
              mount: str = "on-grid", n_modes: int | None = None, damping="rayleigh",
              subcase: int | None = None, free: bool = False,
              rigid_body_hz: float = RIGID_BODY_HZ_FREE, mass_normalised: bool = False,
-             notes: list[str] | None = None) -> ModalPropellerWing:
+             notes: list[str] | None = None, keep_rigid: bool = False) -> ModalPropellerWing:
     """The modal model of a NASTRAN SOL 103 OP2's modes (the module docstring says what maps
     to what).
 
@@ -329,6 +342,10 @@ def read_op2(path: str | Path, *, units: str | None = None, base=None,
         The structure is free (rigid-body modes expected and left out; module docstring).
     rigid_body_hz : float
         [Hz] With ``free``: the modes below this are rigid-body modes (at most six).
+    keep_rigid : bool
+        With ``free``: the rigid-body modes are kept (at 0 Hz, undamped) instead of left
+        out, each a plunge or a roll (a rigid pitch, yaw, surge or sway is refused naming the
+        mode: :class:`~propwhirl.model.modal_structure.ModalStructure`, ``free``).
     mass_normalised : bool
         The eigenvectors are mass-normalised (generalised masses 1); needed only when the OP2
         has no eigenvalue table (LAMA), whose generalised masses are used otherwise.
@@ -373,6 +390,9 @@ def read_op2(path: str | Path, *, units: str | None = None, base=None,
         n_modes = v.integer_at_least("n_modes", n_modes, 1)
     if free:
         rigid_body_hz = float(v.positive("rigid_body_hz", rigid_body_hz, "Hz"))
+    if not isinstance(keep_rigid, (bool, np.bool_)) or (keep_rigid and not free):
+        raise fail(where, f"keep_rigid = {v.short_repr(keep_rigid)} is invalid: must be "
+                           "true or false, and true only for a free structure (free=True)")
     fileio.check_input(path, "OP2 file", MAX_OP2_BYTES,
                        bound=f"propwhirl reads OP2s of at most {MAX_OP2_BYTES // 2 ** 30} GiB")
     op2 = _read(Path(path), where)
@@ -408,7 +428,7 @@ def read_op2(path: str | Path, *, units: str | None = None, base=None,
             data[:, i, 3:] = data[:, i, 3:] @ axes
     gm = _generalised_masses(op2, modes.size, modes, mass_normalised, where)
     freq = np.sign(eigns) * np.sqrt(np.abs(eigns)) / (2.0 * np.pi)
-    kept = _kept_modes(freq, modes, free, rigid_body_hz, where, here)
+    kept = _kept_modes(freq, modes, free, rigid_body_hz, where, here, keep_rigid)
     if n_modes is not None:
         if n_modes > kept.size:
             raise fail(where, f"n_modes = {n_modes} is invalid: the OP2 has {kept.size} "
@@ -426,6 +446,8 @@ def read_op2(path: str | Path, *, units: str | None = None, base=None,
     shapes = data[kept].copy()
     shapes[:, :, :3] *= u.length
     f = freq[kept]
+    rigid = f < rigid_body_hz if (free and keep_rigid) else np.zeros(f.size, dtype=bool)
+    f = np.where(rigid, 0.0, f)                   # kept rigid-body modes: 0 Hz, undamped
     structure_src = f"{where} (subcase {table.isubcase})"
     for j, h in enumerate(hub_idx):
         if not np.any(shapes[:, h, :]):
@@ -434,8 +456,9 @@ def read_op2(path: str | Path, *, units: str | None = None, base=None,
     try:
         s = ModalStructure(grid_ids=ids, xyz=xyz, frequencies_hz=f,
                            modal_mass=gm[kept] * u.mass * u.length ** 2,
-                           damping_ratio=_damping(damping, base, 2.0 * np.pi * f, where),
-                           shapes=shapes, source=structure_src)
+                           damping_ratio=_damping(damping, base, 2.0 * np.pi * f, where,
+                                                  rigid),
+                           shapes=shapes, source=structure_src, free=bool(free))
         installations = tuple(
             ModalInstallation(inst.propeller, hub,
                               "on-grid" if mount == "on-grid" else inst.mount, inst.aero)

@@ -97,7 +97,8 @@ class ModalStructure:
     xyz : ndarray
         (n_grids, 3) grid positions [m] in the wing frame (x aft, y outboard, z up).
     frequencies_hz : ndarray
-        (n_modes,) natural frequencies [Hz], all above :data:`RIGID_BODY_HZ`.
+        (n_modes,) natural frequencies [Hz], all above :data:`RIGID_BODY_HZ` (but a free
+        structure's rigid-body modes, ``free``).
     modal_mass : ndarray
         (n_modes,) generalised masses φᵀ M φ [kg, with φ in m and rad], > 0.
     damping_ratio : ndarray
@@ -107,6 +108,14 @@ class ModalStructure:
         [m, m, m, rad, rad, rad].
     source : str
         Where it came from (a file's name), for the error messages.
+    free : bool
+        The structure is free (a whole or half aircraft, not a clamped wing): its modes below
+        :data:`RIGID_BODY_HZ` (at 0 <= f) are rigid-body modes, accepted when each is a
+        plunge or a roll (about any axis along x: :func:`rigid_body_kind`; the strips' lift
+        damps both) and then taken as exactly rigid (:func:`plunge_roll_shape`); a rigid
+        pitch, yaw, surge or sway is refused naming the mode (with the wing alone pitch and
+        yaw are statically unstable by construction: no tail).  False (the
+        default): no mode below :data:`RIGID_BODY_HZ`.
 
     Examples
     --------
@@ -135,6 +144,7 @@ class ModalStructure:
         range=(0.0, 1.0), ends="[)"))
     shapes: np.ndarray
     source: str = "modal structure"
+    free: bool = False
 
     def __post_init__(self) -> None:
         src = self.source
@@ -172,12 +182,21 @@ class ModalStructure:
                 f"{src}: frequencies_hz[{i}] = {f[i]:.6g} Hz is outside the valid range "
                 f"[{v.fmt_bound(RIGID_BODY_HZ)}, {v.fmt_bound(MAX_FREQUENCY_HZ)}] Hz (mode "
                 f"{i + 1}): (2π f)² beyond the rates an analysis takes")
+        if not isinstance(self.free, (bool, np.bool_)):
+            raise v.InputError(f"{src}: free = {v.short_repr(self.free)} is invalid: must be "
+                               "true or false")
+        put("free", bool(self.free))
         low = np.flatnonzero(f < RIGID_BODY_HZ)
-        if low.size:
-            i = int(low[0])
+        if low.size and (not self.free or np.any(f[low] < 0)):
+            i = int(low[0]) if not self.free else int(low[np.argmax(f[low] < 0)])
             raise v.InputError(
                 f"{src}: frequencies_hz[{i}] = {f[i]:.6g} Hz is a rigid-body mode (below "
-                f"{RIGID_BODY_HZ:g} Hz): a cantilever wing has none; remove it (mode {i + 1})")
+                f"{RIGID_BODY_HZ:g} Hz): a cantilever wing has none; remove it, or keep a "
+                f"plunge or roll of a free structure by saying it is free (free = true) "
+                f"(mode {i + 1})"
+                if not self.free else
+                f"{src}: frequencies_hz[{i}] = {f[i]:.6g} Hz is invalid: a free structure's "
+                f"rigid-body mode is at 0 <= f < {RIGID_BODY_HZ:g} Hz (mode {i + 1})")
         bad = np.flatnonzero(self.modal_mass <= 0)
         if bad.size:
             i = int(bad[0])
@@ -192,6 +211,17 @@ class ModalStructure:
         if zero.size:
             raise v.InputError(f"{src}: shapes[{int(zero[0])}] is zero at every grid: mode "
                                f"{int(zero[0]) + 1} has no motion")
+        if low.size:                               # a free structure's rigid-body modes
+            shapes = np.array(self.shapes)
+            for i in low:
+                kind = rigid_body_kind(self.xyz, shapes[i])
+                if kind not in KEPT_RIGID_BODY:
+                    raise v.InputError(
+                        f"{src}: mode {int(i) + 1} ({f[i]:.3g} Hz) is a rigid-body {kind}: "
+                        + _REFUSED_RIGID.get(kind, _REFUSED_RIGID["pitch"]))
+                shapes[i] = plunge_roll_shape(self.xyz, shapes[i])
+            shapes.flags.writeable = False
+            put("shapes", shapes)
 
     @classmethod
     def from_wing(cls, wing, n_modes: int | None = None, first_id: int = 1) -> "ModalStructure":
@@ -326,6 +356,103 @@ class ModalStructure:
         m, w, z = self.modal_mass, self.omega, self.damping_ratio
         with np.errstate(over="ignore"):   # inf: the state matrix's check names the entry
             return np.diag(m), np.diag(2.0 * z * m * w), np.diag(m * w * w)
+
+
+#: Rigid-body modes a free structure may keep with the wing alone: the strips' lift damps a
+#: plunge and a roll (its velocity changes the angle of attack; its displacement does not).
+KEPT_RIGID_BODY = ("plunge", "roll")
+#: Share of a rigid-body mode's largest motion below which a freedom is counted absent.
+RIGID_SHARE = 1e-4
+#: Residual of the rigid-body fit (relative) above which a mode is no rigid-body motion.
+RIGID_FIT = 1e-3
+_REFUSED_RIGID = {
+    "pitch": "a wing alone has no tail, so a rigid pitch (or yaw) is statically unstable by "
+             "construction and its divergence would be the missing tail's, not the wing's; "
+             "give the structure a tail or hold pitch (its SPC; or leave the rigid-body modes "
+             "out: read_op2(free=True) without keep_rigid, the heavy-body limit)",
+    "surge": "the strips give an in-plane rigid translation no force (a neutral root): "
+             "hold it in the FE model or leave it out",
+    "mechanism": "its shape is no rigid-body motion of the grids (a mechanism of the FE "
+                 "model): remove it",
+}
+for _k in ("yaw", "pitch and yaw"):
+    _REFUSED_RIGID[_k] = _REFUSED_RIGID["pitch"]
+_REFUSED_RIGID["sway"] = _REFUSED_RIGID["surge"]
+
+
+def _rigid_fit(xyz: np.ndarray, shape: np.ndarray):
+    """(x = [t, θ], A, L, residual ok) of the least-squares rigid motion of
+    :func:`rigid_body_kind` (A maps x to the grids' [T, L R] stacked)."""
+    xyz = np.asarray(xyz, dtype=float)
+    u = np.asarray(shape, dtype=float)
+    r = xyz - xyz.mean(axis=0)
+    L = max(1.0, float(np.max(np.linalg.norm(r, axis=1))))
+    n = xyz.shape[0]
+    A = np.zeros((n, 6, 6))
+    A[:, :3, :3] = np.eye(3)
+    zero = np.zeros(n)                  # θ × r = −r × θ: the skew matrix of r, negated
+    A[:, :3, 3:] = np.stack([np.stack([zero, r[:, 2], -r[:, 1]], -1),
+                             np.stack([-r[:, 2], zero, r[:, 0]], -1),
+                             np.stack([r[:, 1], -r[:, 0], zero], -1)], axis=1)
+    A[:, 3:, 3:] = L * np.eye(3)
+    b = np.concatenate([u[:, :3], L * u[:, 3:]], axis=1).reshape(6 * n)
+    A = A.reshape(6 * n, 6)
+    x = np.linalg.lstsq(A, b, rcond=None)[0]
+    return x, A, L, bool(np.linalg.norm(A @ x - b) <= RIGID_FIT * np.linalg.norm(b))
+
+
+def rigid_body_kind(xyz: np.ndarray, shape: np.ndarray) -> str:
+    """What rigid-body motion a mode shape is, from its six components at the grids.
+
+    The rule: the grids' motion is fitted (least squares) by a rigid motion about the grids'
+    centroid c, T_g = t + θ × (x_g − c) and R_g = θ at every grid g, the rotations weighted
+    by the grids' largest distance L from c (at least 1 m); a residual over
+    :data:`RIGID_FIT` of the motion is a "mechanism".  Of the freedoms' sizes — the
+    translations |t_x|, |t_y|, |t_z| and the rotations L |θ_x|, L |θ_y|, L |θ_z| — those over
+    :data:`RIGID_SHARE` of the largest are present.  A rotation about y is a "pitch", about
+    z a "yaw" ("pitch and yaw" both); a rotation about x alone is a "roll" — about an axis
+    along x through any point, so its translation across x (y, z) only places the axis — but
+    with a translation along x a "surge"; without rotation a translation along z is a
+    "plunge", along x a "surge", along y a "sway" (the first that applies, in this order:
+    "mechanism", "pitch and yaw", "pitch", "yaw", "surge", "roll", "sway", "plunge").
+
+    Parameters
+    ----------
+    xyz : ndarray
+        (n_grids, 3) grid positions [m] (x aft, y outboard, z up).
+    shape : ndarray
+        (n_grids, 6) the mode's [T_x, T_y, T_z, R_x, R_y, R_z] [m, rad].
+    """
+    x, _, L, ok = _rigid_fit(xyz, shape)
+    if not ok:
+        return "mechanism"
+    size = np.abs(x) * np.array([1, 1, 1, L, L, L])
+    on = size > RIGID_SHARE * size.max()
+    if on[4] and on[5]:
+        return "pitch and yaw"
+    if on[4] or on[5]:
+        return "pitch" if on[4] else "yaw"
+    if on[0]:
+        return "surge"
+    if on[3]:
+        return "roll"
+    return "sway" if on[1] else "plunge"
+
+
+def plunge_roll_shape(xyz: np.ndarray, shape: np.ndarray) -> np.ndarray:
+    """(n_grids, 6) the plunge and roll of a rigid-body mode's fit (:func:`rigid_body_kind`)
+    at the grids, exactly rigid: T_y = t_y − θ_x (z − c_z), T_z = t_z + θ_x (y − c_y),
+    R_x = θ_x, the rest 0 [m, rad] (t_y only with a roll: the height of its axis).  A free
+    structure's kept rigid-body modes are taken so: the fit's residual (an eigensolver's
+    rounding, below :data:`RIGID_FIT`) and its freedoms below :data:`RIGID_SHARE` would
+    otherwise be a spurious aerodynamic stiffness on a coordinate that has none (a twist of
+    1e-11 rad on the plunge gave a real root of +7e-7 1/s: a false divergence)."""
+    x, A, L, _ = _rigid_fit(xyz, shape)
+    keep = np.zeros(6)
+    keep[1:4] = x[1:4]
+    out = (A @ keep).reshape(-1, 6)
+    out[:, 3:] /= L
+    return out
 
 
 def id_list(ids, limit: int = 8) -> str:
