@@ -143,3 +143,25 @@ def test_old_files_load_clamped_and_a_free_structure_round_trips(tmp_path):
     toml2.write_text(edited)
     with pytest.raises(InputError, match=r"rigid-body mode .*free = true"):
         load_modal_model(toml2)
+
+
+def test_the_pk_and_the_doublet_lattice_refuse_kept_rigid_modes_in_one_line():
+    """The p-k follows the oscillatory in-vacuo modes: on a free structure (κ = 10⁴) it missed
+    the slow flutter the divergence root makes with the plunge (the default's critical,
+    143.15 m/s) and reported 160.55 m/s. Refused through the capabilities, saying why; the
+    doublet lattice (whose crossings the p-k converges) likewise, at construction."""
+    from dataclasses import replace
+
+    from propwhirl.model.aerodynamics.planform import Planform
+    from propwhirl.model.protocol import capabilities
+
+    base = wingtip_propeller_wing()
+    model, _ = free_modal_model(base, 1e4, "plunge-roll")
+    c = capabilities(model)
+    assert not c.supports("pk") and "rigid-body roots" in c.refusal("pk")
+    with pytest.raises(InputError, match=r"^method = 'pk' is invalid for this model: ") as exc:
+        analyse(model, np.arange(120.0, 181.0, 30.0), method="pk")
+    assert "\n" not in str(exc.value) and "rigid-body" in str(exc.value)
+    with pytest.raises(InputError, match=r"^aero = 'dlm' is invalid with rigid-body modes "
+                                         r"kept[^\n]*$"):
+        replace(model, aero="dlm", dlm_planform=Planform.from_wing(base.wing))

@@ -62,8 +62,9 @@ from propwhirl.model.structure.assembly import LAG_STATES, call_blocks, strip_ae
 from propwhirl.model.base import EvaluatorBase, StateSpaceModel
 from propwhirl.model.fields import spec
 from propwhirl.model.flight import FlightCondition
-from propwhirl.model.modal_structure import (ModalStructure, StripPlanform, axis_spline,
-                                            check_strip_sweep, id_list, strip_interpolation)
+from propwhirl.model.modal_structure import (RIGID_BODY_HZ, ModalStructure, StripPlanform,
+                                            axis_spline, check_strip_sweep, id_list,
+                                            strip_interpolation)
 from propwhirl.model.propellers.propeller import Propeller
 from propwhirl.model.propeller_blocks import (propeller_constants_at, propeller_matrices,
                                              propeller_values)
@@ -267,6 +268,13 @@ class ModalPropellerWing(StateSpaceModel):
             raise v.InputError(f"aero = {v.short_repr(self.aero)} is invalid: must be one of "
                                + ", ".join(map(repr, AERO)))
         check_dlm_mach(self.dlm_mach)
+        if self.aero == "dlm" and self.wing_aero \
+                and np.any(self.structure.frequencies_hz < RIGID_BODY_HZ):
+            raise v.InputError(
+                "aero = 'dlm' is invalid with rigid-body modes kept (a free structure's plunge "
+                "or roll, frequencies_hz < 0.001 Hz): the doublet lattice's crossings are "
+                "converged by the p-k method, which follows the oscillatory modes only; use "
+                "aero = 'strip' on the free structure, or leave the rigid-body modes out")
         p = self.dlm_planform
         if p is None:
             if self.aero == "dlm":
@@ -343,6 +351,8 @@ class ModalPropellerWing(StateSpaceModel):
             del why["reduced"]
         if not self.wing_aero:
             why["pk"] = REASONS["no-wing-aero-pk"]
+        elif np.any(self.structure.frequencies_hz < RIGID_BODY_HZ):    # rigid-body modes kept
+            why["pk"] = REASONS["free-pk"]
         if not self.dof_map().whirling():
             why["campbell"] = REASONS["no-whirl"]
         mounts = {inst.mount for inst in self.propellers} - {"rigid"}
