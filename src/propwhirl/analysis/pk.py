@@ -92,7 +92,10 @@ class PKFlutter:
     Attributes: mode index (in the order of the in-vacuo frequencies), its in-vacuo label,
     flutter speed V [m/s], frequency [rad/s] and frequency_hz [Hz], reduced frequency k [-],
     the direction ("onset": Re p becomes positive with increasing V; "end") and the kind
-    ("flutter"; "divergence" for a non-oscillatory root, frequency 0).
+    ("flutter"; "divergence" for a non-oscillatory root, frequency 0) and the p-k root
+    [1/s] at the crossing (None: not given) — what names the event
+    (:func:`pk_instabilities`): in a cluster of near-identical modes the swept root before the
+    crossing is nearer another member's root at the crossing than its own.
     """
 
     mode: int
@@ -102,6 +105,7 @@ class PKFlutter:
     k: float
     event: str = "onset"
     kind: str = "flutter"
+    root: complex | None = None
 
     @property
     def frequency_hz(self) -> float:
@@ -528,7 +532,7 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
             events.append(PKFlutter(j, labels[j], float(Vf), 0.0 if static else float(abs(p.imag)),
                                     0.0 if static else float(k),
                                     "onset" if sigma[i] < 0 else "end",
-                                    "divergence" if static else "flutter"))
+                                    "divergence" if static else "flutter", complex(p)))
     events.sort(key=lambda e: (e.V, e.mode))
     unique: list[PKFlutter] = []
     for e in events:  # two followed modes that hopped onto the same root: report it once
@@ -670,7 +674,7 @@ def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: flo
     for f in r.flutter:
         i = int(np.flatnonzero(r.speeds <= f.V)[-1])
         add(f.kind, "onset" if f.event == "onset" else "recovery", f.mode, f.V,
-            complex(r.roots[i, f.mode]), f.kind == "flutter")
+            complex(r.roots[i, f.mode]) if f.root is None else f.root, f.kind == "flutter")
     events = with_participation(model, events, shapes)
     order = sorted(range(len(events)), key=lambda i: (events[i].V, events[i].mode))
     return [events[i] for i in order]
