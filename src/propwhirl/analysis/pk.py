@@ -204,9 +204,17 @@ def pk_root(model, V: float, p0: complex, *, ktol: float = KTOL, maxiter: int = 
 SAME_ROOT = 1e-7
 
 
-#: modes whose start roots' |p| are within this fraction of each other form a cluster
-#: (near-identical propellers, a mount's pitch and yaw: x57_like's are 0.7-7 % apart) whose
-#: roots :func:`_separate` keeps apart
+#: two followed modes whose p-k roots are closer than this fraction of |p| met on one root
+#: (:func:`_separate`): the iteration converges k to :data:`KTOL`, so one root reached by two
+#: modes each at its own k differs by up to ~1e-6 (x57_like at 80 m/s: 8e-7, which
+#: :data:`SAME_ROOT` missed, and one of its six whirl flutters went unfollowed); the closest
+#: distinct roots of its near-identical propellers are ~1e-4 apart
+MET = 1e-5
+
+
+#: modes whose start roots' |p|, or whose roots extrapolated to the speed, are within this
+#: fraction of each other form a cluster (near-identical propellers, a mount's pitch and yaw:
+#: x57_like's are 0.7-7 % apart) whose roots :func:`_separate` keeps apart
 CLUSTER = 0.1
 
 
@@ -217,25 +225,31 @@ def _separate(model, V: float, system, guess: np.ndarray, p: np.ndarray,
     in frequency, whose roots move by more than that between speeds) otherwise collapse onto
     one root speed by speed: x57_like's p-k followed 6 of its 18 modes as one and found none of
     the whirl flutter the default has at 80 m/s.  Only modes of one cluster are separated:
-    their start roots' |p| (``near``) within :data:`CLUSTER` of each other; modes far apart
-    that meet are a flutter coalescence, where the p-k following the root both reach is its
-    classical behaviour (the wingtip model's 7.8 and 17.8 Hz modes: backward whirl flutter).
+    roots within :data:`MET` of each other whose start roots' |p| (``near``), or whose
+    ``guess``es (the roots extrapolated from the last two speeds), are within :data:`CLUSTER`
+    of each other — a mode whose frequency falls fast with V meets another that way
+    (x57_like's 11.24 Hz mode at 60 m/s landed on the 7.4 Hz one and propeller 7's backward
+    whirl flutter at 83.5 m/s went unfollowed); modes far apart that jump onto one root are a
+    flutter coalescence, where the p-k following the root both reach is its classical
+    behaviour (the wingtip model's 7.8 and 17.8 Hz modes: backward whirl flutter).
 
     Such a group is iterated together at one k (its roots' mean): each step the roots of
     :func:`pk_matrix` at that k not held by another mode are assigned one to one to the
-    group's roots (least total distance; first to their ``guess``es, the roots extrapolated
-    from the last two speeds), until the k converges.  Each member then takes the root of its
-    own k (:func:`pk_root` from the group's) where that keeps every root distinct, else keeps
-    the group's: the group's frequencies differ by ~0.1 %, so Q at the mean k is theirs to
-    that (a test measures the crossing speeds against the default's)."""
+    group's roots (least total distance; first to their ``guess``es), until the k converges.
+    Each member then takes the root of its own k (:func:`pk_root` from the group's) where
+    that root is still nearest its own of the group's and apart from every other mode's, else
+    keeps the group's: the group's frequencies differ by ~0.1 %, so Q at the mean k is theirs
+    to that (a test measures the crossing speeds against the default's)."""
     b = reference_semichord(model)
     ok = np.flatnonzero(np.isfinite(p))
     done: set[int] = set()
+    g_abs = np.abs(guess)
     for j in ok:
         if j in done:
             continue
-        group = [int(l) for l in ok if abs(p[l] - p[j]) <= SAME_ROOT * abs(p[j])
-                 and abs(near[l] - near[j]) <= CLUSTER * near[j]]
+        group = [int(l) for l in ok if abs(p[l] - p[j]) <= MET * abs(p[j])
+                 and (abs(near[l] - near[j]) <= CLUSTER * near[j]
+                      or abs(g_abs[l] - g_abs[j]) <= CLUSTER * g_abs[j])]
         done.update(group)
         if len(group) < 2:
             continue
@@ -247,7 +261,7 @@ def _separate(model, V: float, system, guess: np.ndarray, p: np.ndarray,
             lam = lam[lam.imag >= 0]
             if others.size:                          # roots other modes hold are not theirs
                 held = np.min(np.abs(lam[:, None] - others[None, :]), axis=1)
-                lam = lam[held > SAME_ROOT * np.abs(lam)]
+                lam = lam[held > MET * np.abs(lam)]
             if lam.size < len(group):
                 break
             rows, cols = linear_sum_assignment(np.abs(cur[:, None] - lam[None, :]))
@@ -268,7 +282,8 @@ def _separate(model, V: float, system, guess: np.ndarray, p: np.ndarray,
             except RuntimeError:
                 continue
             rest = np.delete(p[ok], np.flatnonzero(ok == l))
-            if np.all(np.abs(rest - q) > SAME_ROOT * abs(q)):
+            if (int(np.argmin(np.abs(cur - q))) == r
+                    and np.all(np.abs(rest - q) > MET * abs(q))):
                 p[l], k[l] = q, kq
 
 
@@ -352,6 +367,49 @@ def _brent_between(model, a: float, b: float, pa: complex, pb: complex, xtol: fl
         raise RuntimeError(f"p-k bracket [{a}, {b}] m/s lost its sign change") from None
     p, k = pk_root(model, V, guess(V), tables=tables)
     return float(V), p, float(k)
+
+
+#: a crossing whose root keeps more than this fraction of the larger |Re p| of its bracket's
+#: ends is no crossing but a hop: Brent's method converged onto a speed where the root
+#: continued from the bracket's left end jumps to another mode's (:func:`_continued`)
+HOP = 0.05
+#: speed steps :func:`_continued` continues a mode by across a bracket
+CONTINUATION_STEPS = 16
+
+
+def _continued(model, a: float, b: float, pa: complex, xtol: float,
+               tables) -> tuple[float, complex, float] | None:
+    """The crossing (Re p = 0) of the mode whose p-k root is ``pa`` [1/s] at a [m/s],
+    continued to b [m/s] in :data:`CONTINUATION_STEPS` steps, each speed's root from the one
+    extrapolated from the last two (so that it stays on its own branch where other modes' roots
+    lie nearer its root at a than its own: a cluster of near-identical propellers), refined by
+    Brent's method to ``xtol`` on the first step whose ends' roots change sign: (V, p, k), or
+    None when the continued root keeps its sign (the bracket's sign change was a hop onto
+    another mode's root).  RuntimeError when a root does not converge or hops again."""
+    xs = np.linspace(a, b, CONTINUATION_STEPS + 1)
+    prev, cur = complex(pa), complex(pa)
+    for x0, x1 in zip(xs[:-1], xs[1:]):
+        guess = 2 * cur - prev if x0 > a else cur
+        nxt, _ = pk_root(model, float(x1), guess, tables=tables)
+        if cur.real != 0 and nxt.real != 0 and (cur.real > 0) != (nxt.real > 0):
+            left = cur
+
+            def decay(x: float) -> float:
+                return pk_root(model, x, left + (nxt - left) * (x - x0) / (x1 - x0),
+                               tables=tables)[0].real
+
+            try:
+                V = brentq(decay, float(x0), float(x1), xtol=xtol)
+            except ValueError:
+                raise RuntimeError(f"p-k continuation [{x0}, {x1}] m/s lost its sign "
+                                   "change") from None
+            p, k = pk_root(model, V, left + (nxt - left) * (V - x0) / (x1 - x0),
+                           tables=tables)
+            if abs(p.real) > HOP * max(abs(left.real), abs(nxt.real)):
+                raise RuntimeError(f"p-k root hops between {x0} and {x1} m/s")
+            return float(V), p, float(k)
+        prev, cur = cur, nxt
+    return None
 
 
 #: secant steps :func:`matched_crossing` takes at most
@@ -521,6 +579,16 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
             except RuntimeError:
                 lost.append((labels[j], float(V[i])))
                 continue
+            if abs(p.real) > HOP * max(abs(sigma[i]), abs(sigma[i + 1])):
+                try:               # Brent met a hop onto another mode's root: the mode's own
+                    found = _continued(model, float(V[i]), float(V[i + 1]), roots[i, j],
+                                       xtol, tables)
+                except RuntimeError:
+                    lost.append((labels[j], float(V[i])))
+                    continue
+                if found is None:  # no crossing of its own: the sign change was the hop's
+                    continue
+                Vf, p, k = found
             if matched:                    # converged with the AICs at its own Mach
                 exact = matched_crossing(model, Vf, p,
                                          (sigma[i + 1] - sigma[i]) / (V[i + 1] - V[i]),
@@ -655,9 +723,14 @@ def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: flo
                          "there: check it with method='dense')")
     events, shapes = [], []
 
-    def add(kind: str, event: str, j: int, V: float, p0: complex, benign: bool) -> None:
+    def add(kind: str, event: str, j: int, V: float, p0: complex, benign: bool,
+            root: complex | None = None) -> None:
         # a crossing's shape at its own Mach's AICs, as it was converged (matched_crossing)
-        p, _, x = pk_mode(model, V, p0, tables=tables, own_mach=event != "unstable-at-start")
+        own = event != "unstable-at-start"
+        p, _, x = pk_mode(model, V, p0, tables=tables, own_mach=own)
+        if root is not None and abs(p - root) > MET * abs(root):
+            # from the swept root before it another root (a cluster's): the crossing's own
+            p, _, x = pk_mode(model, V, root, tables=tables, own_mach=own)
         mode = tracked_mode(sweep, x, p, V) if use_shape else tracked[j]
         label = event_label(sweep, names, mode, x, mass) if use_shape else names[mode]
         f_hz = 0.0 if kind == "divergence" else float(abs(p.imag) / (2 * np.pi))
@@ -674,7 +747,7 @@ def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: flo
     for f in r.flutter:
         i = int(np.flatnonzero(r.speeds <= f.V)[-1])
         add(f.kind, "onset" if f.event == "onset" else "recovery", f.mode, f.V,
-            complex(r.roots[i, f.mode]) if f.root is None else f.root, f.kind == "flutter")
+            complex(r.roots[i, f.mode]), f.kind == "flutter", f.root)
     events = with_participation(model, events, shapes)
     order = sorted(range(len(events)), key=lambda i: (events[i].V, events[i].mode))
     return [events[i] for i in order]
