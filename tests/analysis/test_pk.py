@@ -245,3 +245,26 @@ def test_the_pk_names_each_whirl_flutter_of_near_identical_propellers_as_the_def
         assert by_label[e.label].frequency_hz == pytest.approx(e.frequency_hz, rel=0.01)
         assert by_label[e.label].V == pytest.approx(e.V, rel=5e-3)
     assert pk.critical.label == fs.critical.label
+
+
+def test_one_to_one_gives_each_event_of_a_cluster_its_own_mode():
+    """Two onsets close in speed that tracked_mode gives one mode are assigned one to one by
+    their shapes' MAC; an event far in speed, or of another direction, keeps its mode."""
+    from types import SimpleNamespace
+
+    from propwhirl.analysis.pk import one_to_one
+
+    shapes = np.array([[1.0, 0.1j, 0.0], [0.1, 1.0, 0.0], [0.0, 0.0, 1.0]])  # mode per column
+    X = np.zeros((2, 6, 3), complex)
+    X[:, :3] = shapes
+    sw = SimpleNamespace(V=np.array([80.0, 85.0]), physical=np.ones((2, 3), bool),
+                         displacement=np.arange(6) < 3, eigenvectors=X)
+    x0, x1 = shapes[:, 0] * 1j, shapes[:, 1] * (1 - 2j)
+    on = ("flutter", "onset")
+    assert one_to_one(sw, [0, 0], [x0, x1], [80.0, 80.5], [on, on]) == [0, 1]
+    assert one_to_one(sw, [0, 0], [x1, x0], [80.0, 80.5], [on, on]) == [1, 0]
+    assert one_to_one(sw, [0, 0], [x0, x1], [80.0, 120.0], [on, on]) == [0, 0]
+    assert one_to_one(sw, [0, 0], [x0, x1], [80.0, 80.5],
+                      [on, ("flutter", "recovery")]) == [0, 0]
+    # a mode another event of the window holds is not given again
+    assert one_to_one(sw, [0, 0, 1], [x0, x1, x1], [80.0, 80.5, 80.2], [on, on, on]) == [0, 2, 1]

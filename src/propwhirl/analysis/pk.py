@@ -40,7 +40,7 @@ analysis's to reuse its AICs).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.linalg as sla
@@ -642,6 +642,47 @@ def tracked_mode(sweep, x: np.ndarray, p: complex, V: float) -> int:
     return int(near[np.argmin(np.abs(lam - p))])
 
 
+#: events of one kind and direction whose speeds are within this fraction of each other are one
+#: cluster's (:func:`one_to_one`)
+TOGETHER = 0.05
+
+
+def one_to_one(sweep, modes, shapes, speeds, keys) -> list[int]:
+    """The tracked modes of events (``modes``: each one's :func:`tracked_mode`), with those
+    that name two or more events of one key (kind, direction) within :data:`TOGETHER` of each
+    other's speed [m/s] assigned one to one instead: those events to the physical modes of
+    ``sweep`` not named by another event of that key and window, by the least total 1 − MAC
+    (eq. 5.14) of their displacement ``shapes`` against the modes' at each event's swept speed
+    nearest (Hungarian method).  A cluster of near-identical propellers has one mode's name
+    per event — never two different events under one name (issue 34 item 4); events of
+    modes apart keep their own."""
+    out = [int(m) for m in modes]
+    V = np.asarray(speeds, dtype=float)
+    n = int(np.count_nonzero(sweep.displacement))
+    for a in range(len(out)):
+        near = [b for b in range(len(out)) if keys[b] == keys[a]
+                and abs(V[b] - V[a]) <= TOGETHER * V[a]]
+        clash = [b for b in near if out[b] == out[a]]
+        if len(clash) < 2:
+            continue
+        taken = {out[b] for b in near if b not in clash}
+        t = np.argmin(np.abs(np.asarray(sweep.V)[None, :] - V[clash, None]), axis=1)
+        ids = np.array([k for k in np.flatnonzero(np.all(sweep.physical[t], axis=0))
+                        if k not in taken])
+        if ids.size < len(clash):
+            continue
+        X = np.asarray(sweep.eigenvectors)[t][:, sweep.displacement][:, :, ids]  # (e, n, ids)
+        q = np.stack([np.asarray(shapes[b])[:n] for b in clash])                 # (e, n)
+        across = np.abs(np.einsum("en,enk->ek", q.conj(), X)) ** 2
+        norms = (np.sum(np.abs(q) ** 2, axis=1)[:, None]
+                 * np.sum(np.abs(X) ** 2, axis=1))
+        cost = 1.0 - across / np.where(norms > 0, norms, 1.0)
+        rows, cols = linear_sum_assignment(cost)
+        for r, c in zip(rows, cols):
+            out[clash[r]] = int(ids[c])
+    return out
+
+
 #: the modes whose MAC is within this fraction of the best are candidates (:func:`tracked_mode`)
 MAC_BAND = 0.9
 #: central-difference step [m/s] of the p-k damping ratio for the benignity (eq. 5.13)
@@ -748,6 +789,11 @@ def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: flo
         i = int(np.flatnonzero(r.speeds <= f.V)[-1])
         add(f.kind, "onset" if f.event == "onset" else "recovery", f.mode, f.V,
             complex(r.roots[i, f.mode]), f.kind == "flutter", f.root)
+    if use_shape:                         # never two events of one cluster under one name
+        modes = one_to_one(sweep, [e.mode for e in events], [s[0] for s in shapes],
+                           [e.V for e in events], [(e.kind, e.event) for e in events])
+        events = [e if m == e.mode else replace(e, mode=m, label=event_label(
+            sweep, names, m, shapes[i][0], mass)) for i, (e, m) in enumerate(zip(events, modes))]
     events = with_participation(model, events, shapes)
     order = sorted(range(len(events)), key=lambda i: (events[i].V, events[i].mode))
     return [events[i] for i in order]
