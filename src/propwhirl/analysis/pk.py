@@ -24,15 +24,16 @@ its modes with and reports beside its events is its strip twin
 The modes to follow start from the finite-state eigenvalues of the model's own state matrix
 (Leishman–Nguyen or Wagner lag states) at the first speed, and are continued speed by speed.
 The flutter speed of a mode is where its p-k decay rate Re p crosses zero from below, refined by
-Brent's method to ``xtol`` (0.01 m/s by default); on a Mach-matched doublet-lattice wing then
+Brent's method to ``xtol`` (0.01 m/s by default; where the mode's root hopped onto another's
+between two speeds, on its own branch continued across the bracket, :func:`_continued`); on a Mach-matched doublet-lattice wing then
 converged with Q at the crossing's own Mach (:func:`matched_crossing`).  The p-k root is exact
 (Theodorsen's C at the mode's frequency) only at Re p = 0, i.e. at the flutter point;
 elsewhere its damping is the usual p-k approximation.
 
 In ``analyse(model, method="pk")`` (:func:`pk_instabilities`) each crossing's p-k eigenvector
 (:func:`pk_mode`; its displacements on the model's own DOFs) names the tracked finite-state
-mode it is (:func:`tracked_mode`, by MAC) and gives the event's whirl sense and propeller
-participation; the benignity is the slope of the p-k damping ratio at the crossing.
+mode it is (:func:`tracked_mode`, by MAC; events of one cluster of near-identical modes one
+to one, :func:`one_to_one`) and gives the event's whirl sense and propeller participation; the benignity is the slope of the p-k damping ratio at the crossing.
 
 On a doublet-lattice wing every function reads Q(k, M) from ``tables``, the analysis's
 :class:`~propwhirl.model.aerodynamics.dlm.DlmTables` (None: new ones for that call — give the
@@ -733,7 +734,8 @@ def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: flo
     ``start_roots`` are the tracked modes' finite-state eigenvalues [1/s] at ``speeds[0]``
     and ``names`` their labels.  With the finite-state ``sweep`` (its eigenvectors), each
     event's mode is the tracked mode of its p-k mode shape at the event
-    (:func:`tracked_mode`; where that is an aerodynamic lag root at the first speed, named
+    (:func:`tracked_mode`; those that name two events of one cluster assigned one to one,
+    :func:`one_to_one`; where that is an aerodynamic lag root at the first speed, named
     after the structural mode the shape is, :func:`propwhirl.analysis.naming.event_label`,
     with the structural ``mass`` matrix — default: the finite-state model's); without it,
     the tracked mode whose root at the first speed is nearest the root the p-k mode started
