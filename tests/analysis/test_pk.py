@@ -220,3 +220,51 @@ def test_the_pk_follows_each_of_many_near_identical_propellers_whirl_modes():
     pk, fs = analyse(model, V, method="pk"), analyse(model, V)
     assert pk.critical is not None and pk.critical.kind == "flutter"
     assert pk.critical.V == pytest.approx(fs.critical.V, rel=5e-3)
+
+
+def test_the_pk_names_each_whirl_flutter_of_near_identical_propellers_as_the_default():
+    """x57_like (issue 34 item 4): never two different events under one name, each named as
+    the default names it. The p-k named its events from the swept root before the crossing
+    (in a cluster nearer another mode's root at the crossing: the critical was 'forward whirl,
+    propeller 7' at 7.26 Hz, where the default's is '(1 of 6, collective)' at 7.02 Hz, and
+    two events were '(3 of 6)'), two modes of the cluster met on one root 8e-7 apart (one
+    flutter unfollowed), and a mode whose root hopped onto another's between two speeds had
+    its 'crossing' at the hop (propeller 7's, Re p = -0.025 there)."""
+    from propwhirl import io
+
+    model = io.load_model(EXAMPLES / "x57_like.toml")
+    V = np.linspace(10, 120, 23)
+    pk, fs = analyse(model, V, method="pk"), analyse(model, V)
+    onsets = [e for e in pk.events if e.kind == "flutter" and e.event == "onset"]
+    ref = [e for e in fs.events if e.kind == "flutter" and e.event == "onset"]
+    assert len(ref) == 6
+    assert len({e.label for e in onsets}) == len(onsets)          # one event, one name
+    assert sorted(e.label for e in onsets) == sorted(e.label for e in ref)
+    by_label = {e.label: e for e in onsets}
+    for e in ref:
+        assert by_label[e.label].frequency_hz == pytest.approx(e.frequency_hz, rel=0.01)
+        assert by_label[e.label].V == pytest.approx(e.V, rel=5e-3)
+    assert pk.critical.label == fs.critical.label
+
+
+def test_one_to_one_gives_each_event_of_a_cluster_its_own_mode():
+    """Two onsets close in speed that tracked_mode gives one mode are assigned one to one by
+    their shapes' MAC; an event far in speed, or of another direction, keeps its mode."""
+    from types import SimpleNamespace
+
+    from propwhirl.analysis.pk import one_to_one
+
+    shapes = np.array([[1.0, 0.1j, 0.0], [0.1, 1.0, 0.0], [0.0, 0.0, 1.0]])  # mode per column
+    X = np.zeros((2, 6, 3), complex)
+    X[:, :3] = shapes
+    sw = SimpleNamespace(V=np.array([80.0, 85.0]), physical=np.ones((2, 3), bool),
+                         displacement=np.arange(6) < 3, eigenvectors=X)
+    x0, x1 = shapes[:, 0] * 1j, shapes[:, 1] * (1 - 2j)
+    on = ("flutter", "onset")
+    assert one_to_one(sw, [0, 0], [x0, x1], [80.0, 80.5], [on, on]) == [0, 1]
+    assert one_to_one(sw, [0, 0], [x1, x0], [80.0, 80.5], [on, on]) == [1, 0]
+    assert one_to_one(sw, [0, 0], [x0, x1], [80.0, 120.0], [on, on]) == [0, 0]
+    assert one_to_one(sw, [0, 0], [x0, x1], [80.0, 80.5],
+                      [on, ("flutter", "recovery")]) == [0, 0]
+    # a mode another event of the window holds is not given again
+    assert one_to_one(sw, [0, 0, 1], [x0, x1, x1], [80.0, 80.5, 80.2], [on, on, on]) == [0, 2, 1]

@@ -24,15 +24,16 @@ its modes with and reports beside its events is its strip twin
 The modes to follow start from the finite-state eigenvalues of the model's own state matrix
 (Leishman–Nguyen or Wagner lag states) at the first speed, and are continued speed by speed.
 The flutter speed of a mode is where its p-k decay rate Re p crosses zero from below, refined by
-Brent's method to ``xtol`` (0.01 m/s by default); on a Mach-matched doublet-lattice wing then
+Brent's method to ``xtol`` (0.01 m/s by default; where the mode's root hopped onto another's
+between two speeds, on its own branch continued across the bracket, :func:`_continued`); on a Mach-matched doublet-lattice wing then
 converged with Q at the crossing's own Mach (:func:`matched_crossing`).  The p-k root is exact
 (Theodorsen's C at the mode's frequency) only at Re p = 0, i.e. at the flutter point;
 elsewhere its damping is the usual p-k approximation.
 
 In ``analyse(model, method="pk")`` (:func:`pk_instabilities`) each crossing's p-k eigenvector
 (:func:`pk_mode`; its displacements on the model's own DOFs) names the tracked finite-state
-mode it is (:func:`tracked_mode`, by MAC) and gives the event's whirl sense and propeller
-participation; the benignity is the slope of the p-k damping ratio at the crossing.
+mode it is (:func:`tracked_mode`, by MAC; events of one cluster of near-identical modes one
+to one, :func:`one_to_one`) and gives the event's whirl sense and propeller participation; the benignity is the slope of the p-k damping ratio at the crossing.
 
 On a doublet-lattice wing every function reads Q(k, M) from ``tables``, the analysis's
 :class:`~propwhirl.model.aerodynamics.dlm.DlmTables` (None: new ones for that call — give the
@@ -40,7 +41,7 @@ analysis's to reuse its AICs).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.linalg as sla
@@ -92,7 +93,10 @@ class PKFlutter:
     Attributes: mode index (in the order of the in-vacuo frequencies), its in-vacuo label,
     flutter speed V [m/s], frequency [rad/s] and frequency_hz [Hz], reduced frequency k [-],
     the direction ("onset": Re p becomes positive with increasing V; "end") and the kind
-    ("flutter"; "divergence" for a non-oscillatory root, frequency 0).
+    ("flutter"; "divergence" for a non-oscillatory root, frequency 0) and the p-k root
+    [1/s] at the crossing (None: not given) — what names the event
+    (:func:`pk_instabilities`): in a cluster of near-identical modes the swept root before the
+    crossing is nearer another member's root at the crossing than its own.
     """
 
     mode: int
@@ -102,6 +106,7 @@ class PKFlutter:
     k: float
     event: str = "onset"
     kind: str = "flutter"
+    root: complex | None = None
 
     @property
     def frequency_hz(self) -> float:
@@ -200,9 +205,17 @@ def pk_root(model, V: float, p0: complex, *, ktol: float = KTOL, maxiter: int = 
 SAME_ROOT = 1e-7
 
 
-#: modes whose start roots' |p| are within this fraction of each other form a cluster
-#: (near-identical propellers, a mount's pitch and yaw: x57_like's are 0.7-7 % apart) whose
-#: roots :func:`_separate` keeps apart
+#: two followed modes whose p-k roots are closer than this fraction of |p| met on one root
+#: (:func:`_separate`): the iteration converges k to :data:`KTOL`, so one root reached by two
+#: modes each at its own k differs by up to ~1e-6 (x57_like at 80 m/s: 8e-7, which
+#: :data:`SAME_ROOT` missed, and one of its six whirl flutters went unfollowed); the closest
+#: distinct roots of its near-identical propellers are ~1e-4 apart
+MET = 1e-5
+
+
+#: modes whose start roots' |p|, or whose roots extrapolated to the speed, are within this
+#: fraction of each other form a cluster (near-identical propellers, a mount's pitch and yaw:
+#: x57_like's are 0.7-7 % apart) whose roots :func:`_separate` keeps apart
 CLUSTER = 0.1
 
 
@@ -213,25 +226,31 @@ def _separate(model, V: float, system, guess: np.ndarray, p: np.ndarray,
     in frequency, whose roots move by more than that between speeds) otherwise collapse onto
     one root speed by speed: x57_like's p-k followed 6 of its 18 modes as one and found none of
     the whirl flutter the default has at 80 m/s.  Only modes of one cluster are separated:
-    their start roots' |p| (``near``) within :data:`CLUSTER` of each other; modes far apart
-    that meet are a flutter coalescence, where the p-k following the root both reach is its
-    classical behaviour (the wingtip model's 7.8 and 17.8 Hz modes: backward whirl flutter).
+    roots within :data:`MET` of each other whose start roots' |p| (``near``), or whose
+    ``guess``es (the roots extrapolated from the last two speeds), are within :data:`CLUSTER`
+    of each other — a mode whose frequency falls fast with V meets another that way
+    (x57_like's 11.24 Hz mode at 60 m/s landed on the 7.4 Hz one and propeller 7's backward
+    whirl flutter at 83.5 m/s went unfollowed); modes far apart that jump onto one root are a
+    flutter coalescence, where the p-k following the root both reach is its classical
+    behaviour (the wingtip model's 7.8 and 17.8 Hz modes: backward whirl flutter).
 
     Such a group is iterated together at one k (its roots' mean): each step the roots of
     :func:`pk_matrix` at that k not held by another mode are assigned one to one to the
-    group's roots (least total distance; first to their ``guess``es, the roots extrapolated
-    from the last two speeds), until the k converges.  Each member then takes the root of its
-    own k (:func:`pk_root` from the group's) where that keeps every root distinct, else keeps
-    the group's: the group's frequencies differ by ~0.1 %, so Q at the mean k is theirs to
-    that (a test measures the crossing speeds against the default's)."""
+    group's roots (least total distance; first to their ``guess``es), until the k converges.
+    Each member then takes the root of its own k (:func:`pk_root` from the group's) where
+    that root is still nearest its own of the group's and apart from every other mode's, else
+    keeps the group's: the group's frequencies differ by ~0.1 %, so Q at the mean k is theirs
+    to that (a test measures the crossing speeds against the default's)."""
     b = reference_semichord(model)
     ok = np.flatnonzero(np.isfinite(p))
     done: set[int] = set()
+    g_abs = np.abs(guess)
     for j in ok:
         if j in done:
             continue
-        group = [int(l) for l in ok if abs(p[l] - p[j]) <= SAME_ROOT * abs(p[j])
-                 and abs(near[l] - near[j]) <= CLUSTER * near[j]]
+        group = [int(l) for l in ok if abs(p[l] - p[j]) <= MET * abs(p[j])
+                 and (abs(near[l] - near[j]) <= CLUSTER * near[j]
+                      or abs(g_abs[l] - g_abs[j]) <= CLUSTER * g_abs[j])]
         done.update(group)
         if len(group) < 2:
             continue
@@ -243,7 +262,7 @@ def _separate(model, V: float, system, guess: np.ndarray, p: np.ndarray,
             lam = lam[lam.imag >= 0]
             if others.size:                          # roots other modes hold are not theirs
                 held = np.min(np.abs(lam[:, None] - others[None, :]), axis=1)
-                lam = lam[held > SAME_ROOT * np.abs(lam)]
+                lam = lam[held > MET * np.abs(lam)]
             if lam.size < len(group):
                 break
             rows, cols = linear_sum_assignment(np.abs(cur[:, None] - lam[None, :]))
@@ -264,7 +283,8 @@ def _separate(model, V: float, system, guess: np.ndarray, p: np.ndarray,
             except RuntimeError:
                 continue
             rest = np.delete(p[ok], np.flatnonzero(ok == l))
-            if np.all(np.abs(rest - q) > SAME_ROOT * abs(q)):
+            if (int(np.argmin(np.abs(cur - q))) == r
+                    and np.all(np.abs(rest - q) > MET * abs(q))):
                 p[l], k[l] = q, kq
 
 
@@ -348,6 +368,49 @@ def _brent_between(model, a: float, b: float, pa: complex, pb: complex, xtol: fl
         raise RuntimeError(f"p-k bracket [{a}, {b}] m/s lost its sign change") from None
     p, k = pk_root(model, V, guess(V), tables=tables)
     return float(V), p, float(k)
+
+
+#: a crossing whose root keeps more than this fraction of the larger |Re p| of its bracket's
+#: ends is no crossing but a hop: Brent's method converged onto a speed where the root
+#: continued from the bracket's left end jumps to another mode's (:func:`_continued`)
+HOP = 0.05
+#: speed steps :func:`_continued` continues a mode by across a bracket
+CONTINUATION_STEPS = 16
+
+
+def _continued(model, a: float, b: float, pa: complex, xtol: float,
+               tables) -> tuple[float, complex, float] | None:
+    """The crossing (Re p = 0) of the mode whose p-k root is ``pa`` [1/s] at a [m/s],
+    continued to b [m/s] in :data:`CONTINUATION_STEPS` steps, each speed's root from the one
+    extrapolated from the last two (so that it stays on its own branch where other modes' roots
+    lie nearer its root at a than its own: a cluster of near-identical propellers), refined by
+    Brent's method to ``xtol`` on the first step whose ends' roots change sign: (V, p, k), or
+    None when the continued root keeps its sign (the bracket's sign change was a hop onto
+    another mode's root).  RuntimeError when a root does not converge or hops again."""
+    xs = np.linspace(a, b, CONTINUATION_STEPS + 1)
+    prev, cur = complex(pa), complex(pa)
+    for x0, x1 in zip(xs[:-1], xs[1:]):
+        guess = 2 * cur - prev if x0 > a else cur
+        nxt, _ = pk_root(model, float(x1), guess, tables=tables)
+        if cur.real != 0 and nxt.real != 0 and (cur.real > 0) != (nxt.real > 0):
+            left = cur
+
+            def decay(x: float) -> float:
+                return pk_root(model, x, left + (nxt - left) * (x - x0) / (x1 - x0),
+                               tables=tables)[0].real
+
+            try:
+                V = brentq(decay, float(x0), float(x1), xtol=xtol)
+            except ValueError:
+                raise RuntimeError(f"p-k continuation [{x0}, {x1}] m/s lost its sign "
+                                   "change") from None
+            p, k = pk_root(model, V, left + (nxt - left) * (V - x0) / (x1 - x0),
+                           tables=tables)
+            if abs(p.real) > HOP * max(abs(left.real), abs(nxt.real)):
+                raise RuntimeError(f"p-k root hops between {x0} and {x1} m/s")
+            return float(V), p, float(k)
+        prev, cur = cur, nxt
+    return None
 
 
 #: secant steps :func:`matched_crossing` takes at most
@@ -517,6 +580,16 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
             except RuntimeError:
                 lost.append((labels[j], float(V[i])))
                 continue
+            if abs(p.real) > HOP * max(abs(sigma[i]), abs(sigma[i + 1])):
+                try:               # Brent met a hop onto another mode's root: the mode's own
+                    found = _continued(model, float(V[i]), float(V[i + 1]), roots[i, j],
+                                       xtol, tables)
+                except RuntimeError:
+                    lost.append((labels[j], float(V[i])))
+                    continue
+                if found is None:  # no crossing of its own: the sign change was the hop's
+                    continue
+                Vf, p, k = found
             if matched:                    # converged with the AICs at its own Mach
                 exact = matched_crossing(model, Vf, p,
                                          (sigma[i + 1] - sigma[i]) / (V[i + 1] - V[i]),
@@ -528,7 +601,7 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
             events.append(PKFlutter(j, labels[j], float(Vf), 0.0 if static else float(abs(p.imag)),
                                     0.0 if static else float(k),
                                     "onset" if sigma[i] < 0 else "end",
-                                    "divergence" if static else "flutter"))
+                                    "divergence" if static else "flutter", complex(p)))
     events.sort(key=lambda e: (e.V, e.mode))
     unique: list[PKFlutter] = []
     for e in events:  # two followed modes that hopped onto the same root: report it once
@@ -568,6 +641,47 @@ def tracked_mode(sweep, x: np.ndarray, p: complex, V: float) -> int:
     lam = sweep.eigenvalues[t, near]
     lam = np.where(lam.imag < 0, lam.conj(), lam)
     return int(near[np.argmin(np.abs(lam - p))])
+
+
+#: events of one kind and direction whose speeds are within this fraction of each other are one
+#: cluster's (:func:`one_to_one`)
+TOGETHER = 0.05
+
+
+def one_to_one(sweep, modes, shapes, speeds, keys) -> list[int]:
+    """The tracked modes of events (``modes``: each one's :func:`tracked_mode`), with those
+    that name two or more events of one key (kind, direction) within :data:`TOGETHER` of each
+    other's speed [m/s] assigned one to one instead: those events to the physical modes of
+    ``sweep`` not named by another event of that key and window, by the least total 1 − MAC
+    (eq. 5.14) of their displacement ``shapes`` against the modes' at each event's swept speed
+    nearest (Hungarian method).  A cluster of near-identical propellers has one mode's name
+    per event — never two different events under one name (issue 34 item 4); events of
+    modes apart keep their own."""
+    out = [int(m) for m in modes]
+    V = np.asarray(speeds, dtype=float)
+    n = int(np.count_nonzero(sweep.displacement))
+    for a in range(len(out)):
+        near = [b for b in range(len(out)) if keys[b] == keys[a]
+                and abs(V[b] - V[a]) <= TOGETHER * V[a]]
+        clash = [b for b in near if out[b] == out[a]]
+        if len(clash) < 2:
+            continue
+        taken = {out[b] for b in near if b not in clash}
+        t = np.argmin(np.abs(np.asarray(sweep.V)[None, :] - V[clash, None]), axis=1)
+        ids = np.array([k for k in np.flatnonzero(np.all(sweep.physical[t], axis=0))
+                        if k not in taken])
+        if ids.size < len(clash):
+            continue
+        X = np.asarray(sweep.eigenvectors)[t][:, sweep.displacement][:, :, ids]  # (e, n, ids)
+        q = np.stack([np.asarray(shapes[b])[:n] for b in clash])                 # (e, n)
+        across = np.abs(np.einsum("en,enk->ek", q.conj(), X)) ** 2
+        norms = (np.sum(np.abs(q) ** 2, axis=1)[:, None]
+                 * np.sum(np.abs(X) ** 2, axis=1))
+        cost = 1.0 - across / np.where(norms > 0, norms, 1.0)
+        rows, cols = linear_sum_assignment(cost)
+        for r, c in zip(rows, cols):
+            out[clash[r]] = int(ids[c])
+    return out
 
 
 #: the modes whose MAC is within this fraction of the best are candidates (:func:`tracked_mode`)
@@ -620,7 +734,8 @@ def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: flo
     ``start_roots`` are the tracked modes' finite-state eigenvalues [1/s] at ``speeds[0]``
     and ``names`` their labels.  With the finite-state ``sweep`` (its eigenvectors), each
     event's mode is the tracked mode of its p-k mode shape at the event
-    (:func:`tracked_mode`; where that is an aerodynamic lag root at the first speed, named
+    (:func:`tracked_mode`; those that name two events of one cluster assigned one to one,
+    :func:`one_to_one`; where that is an aerodynamic lag root at the first speed, named
     after the structural mode the shape is, :func:`propwhirl.analysis.naming.event_label`,
     with the structural ``mass`` matrix — default: the finite-state model's); without it,
     the tracked mode whose root at the first speed is nearest the root the p-k mode started
@@ -651,9 +766,14 @@ def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: flo
                          "there: check it with method='dense')")
     events, shapes = [], []
 
-    def add(kind: str, event: str, j: int, V: float, p0: complex, benign: bool) -> None:
+    def add(kind: str, event: str, j: int, V: float, p0: complex, benign: bool,
+            root: complex | None = None) -> None:
         # a crossing's shape at its own Mach's AICs, as it was converged (matched_crossing)
-        p, _, x = pk_mode(model, V, p0, tables=tables, own_mach=event != "unstable-at-start")
+        own = event != "unstable-at-start"
+        p, _, x = pk_mode(model, V, p0, tables=tables, own_mach=own)
+        if root is not None and abs(p - root) > MET * abs(root):
+            # from the swept root before it another root (a cluster's): the crossing's own
+            p, _, x = pk_mode(model, V, root, tables=tables, own_mach=own)
         mode = tracked_mode(sweep, x, p, V) if use_shape else tracked[j]
         label = event_label(sweep, names, mode, x, mass) if use_shape else names[mode]
         f_hz = 0.0 if kind == "divergence" else float(abs(p.imag) / (2 * np.pi))
@@ -670,7 +790,12 @@ def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: flo
     for f in r.flutter:
         i = int(np.flatnonzero(r.speeds <= f.V)[-1])
         add(f.kind, "onset" if f.event == "onset" else "recovery", f.mode, f.V,
-            complex(r.roots[i, f.mode]), f.kind == "flutter")
+            complex(r.roots[i, f.mode]), f.kind == "flutter", f.root)
+    if use_shape:                         # never two events of one cluster under one name
+        modes = one_to_one(sweep, [e.mode for e in events], [s[0] for s in shapes],
+                           [e.V for e in events], [(e.kind, e.event) for e in events])
+        events = [e if m == e.mode else replace(e, mode=m, label=event_label(
+            sweep, names, m, shapes[i][0], mass)) for i, (e, m) in enumerate(zip(events, modes))]
     events = with_participation(model, events, shapes)
     order = sorted(range(len(events)), key=lambda i: (events[i].V, events[i].mode))
     return [events[i] for i in order]
