@@ -25,15 +25,21 @@ The modes to follow start from the finite-state eigenvalues of the model's own s
 (Leishman–Nguyen or Wagner lag states) at the first speed, and are continued speed by speed.
 The flutter speed of a mode is where its p-k decay rate Re p crosses zero from below, refined by
 Brent's method to ``xtol`` (0.01 m/s by default; where the mode's root hopped onto another's
-between two speeds, on its own branch continued across the bracket, :func:`_continued`); on a Mach-matched doublet-lattice wing then
-converged with Q at the crossing's own Mach (:func:`matched_crossing`).  The p-k root is exact
+between two speeds, on its own branch continued across the bracket, :func:`_continued`); on
+a Mach-matched doublet-lattice wing then converged with Q at the crossing's own Mach
+(:func:`matched_crossing`).  The p-k root is exact
 (Theodorsen's C at the mode's frequency) only at Re p = 0, i.e. at the flutter point;
 elsewhere its damping is the usual p-k approximation.
 
 In ``analyse(model, method="pk")`` (:func:`pk_instabilities`) each crossing's p-k eigenvector
 (:func:`pk_mode`; its displacements on the model's own DOFs) names the tracked finite-state
 mode it is (:func:`tracked_mode`, by MAC; events of one cluster of near-identical modes one
-to one, :func:`one_to_one`) and gives the event's whirl sense and propeller participation; the benignity is the slope of the p-k damping ratio at the crossing.
+to one, :func:`one_to_one`) and gives the event's whirl sense and propeller participation;
+the benignity is the slope of the p-k damping ratio at the crossing.
+
+Which modes a wing's sweep follows (:func:`followed_modes`) is the default's choice: those its
+reduced or modal Roger state space keeps, each from a finite-state root of its own
+(:func:`_start_roots`) and kept on its own root speed by speed (:func:`_separate`).
 
 On a doublet-lattice wing every function reads Q(k, M) from ``tables``, the analysis's
 :class:`~propwhirl.model.aerodynamics.dlm.DlmTables` (None: new ones for that call — give the
