@@ -219,7 +219,9 @@ def test_the_pk_follows_each_of_many_near_identical_propellers_whirl_modes():
         assert gap.min() > 1e-7 * np.abs(p).min()
     pk, fs = analyse(model, V, method="pk"), analyse(model, V)
     assert pk.critical is not None and pk.critical.kind == "flutter"
-    assert pk.critical.V == pytest.approx(fs.critical.V, rel=5e-3)
+    # the whirl flutter is the propellers' (quasi-steady Houbolt-Reed loads): the exact C(k)
+    # and the finite-state lags differ little there (measured 2.5e-5 relative)
+    assert pk.critical.V == pytest.approx(fs.critical.V, rel=1e-4)
 
 
 def test_the_pk_names_each_whirl_flutter_of_near_identical_propellers_as_the_default():
