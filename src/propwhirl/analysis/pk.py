@@ -23,6 +23,9 @@ its modes with and reports beside its events is its strip twin
 
 The modes to follow start from the finite-state eigenvalues of the model's own state matrix
 (Leishman–Nguyen or Wagner lag states) at the first speed, and are continued speed by speed.
+Divergence is also found where no followed root shows it: where the p-k equation's matrix at
+p = 0 is singular (:mod:`propwhirl.analysis.pk_divergence`; a pair split on the real axis may
+leave the sweep on its stable real root).
 The flutter speed of a mode is where its p-k decay rate Re p crosses zero from below, refined by
 Brent's method to ``xtol`` (0.01 m/s by default; where the mode's root hopped onto another's
 between two speeds, on its own branch continued across the bracket, :func:`_continued`); on
@@ -58,6 +61,7 @@ from propwhirl.analysis.events import Instability
 from propwhirl.analysis.modes import InVacuo
 from propwhirl.analysis.naming import event_label, whirl
 from propwhirl.analysis.participation import with_participation
+from propwhirl.analysis.pk_divergence import divergence_crossings
 from propwhirl.engine import mac
 from propwhirl.model.aerodynamics import compressibility
 from propwhirl.model.protocol import capabilities
@@ -608,6 +612,23 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
                                     0.0 if static else float(k),
                                     "onset" if sigma[i] < 0 else "end",
                                     "divergence" if static else "flutter", complex(p)))
+    for c in divergence_crossings(model, V, xtol=xtol, tables=tables):
+        event = "onset" if c.direction == "onset" else "end"
+        Vd, pd = c.V, c.p
+        if matched:                        # converged with the AICs at its own Mach
+            exact = matched_crossing(model, Vd, pd, c.slope, lo=float(V[0]),
+                                     hi=float(V[-1]), xtol=xtol, tables=tables)
+            if exact is not None:
+                Vd, pd = exact[0], complex(exact[1].real, 0.0)
+        if any(e.kind == "divergence" and e.event == event
+               and abs(e.V - Vd) <= 2 * xtol for e in events):
+            continue                    # the sweep followed that real root itself
+        i = int(np.flatnonzero(V <= Vd)[-1])
+        ok = np.flatnonzero(np.isfinite(roots[i]))
+        if ok.size == 0:
+            continue
+        j = int(ok[np.argmin(np.abs(roots[i, ok]))])   # the mode whose root is nearest p = 0
+        events.append(PKFlutter(j, labels[j], Vd, 0.0, 0.0, event, "divergence", pd))
     events.sort(key=lambda e: (e.V, e.mode))
     unique: list[PKFlutter] = []
     for e in events:  # two followed modes that hopped onto the same root: report it once
