@@ -7,6 +7,7 @@ Before: ``analyse(model)`` on Goland's wing (4 x 7, 8 x 14 panels; 10 and 20 ele
 (k = 7 to 100, far beyond the fit's k <= 1.78); the full Roger state space ("dense") still
 does, and is kept as the fit's own reference."""
 import dataclasses
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -164,3 +165,22 @@ def test_the_counted_aics_are_those_the_analysis_computes(monkeypatch, vgf, colu
     assert [(e.kind, e.event, e.label, e.V, e.frequency_hz) for e in counted.events] == \
         [(e.kind, e.event, e.label, e.V, e.frequency_hz) for e in plain.events]
     assert counted.events and np.array_equal(counted.sweep.eigenvalues, plain.sweep.eigenvalues)
+
+
+def test_two_state_space_crossings_on_one_pk_root_are_one_event():
+    """x57_like on panels (six near-identical propellers): two of the Roger state space's
+    whirl-flutter crossings (80.2 and 80.8 m/s) converge onto one p-k root at 79.952 m/s and
+    were reported as two events, one named after a mode whose own crossing was 0.8 m/s away.
+    One event per p-k root, and a note says which crossing was merged."""
+    from propwhirl.io import load_model
+
+    m = load_model(Path(__file__).resolve().parents[2] / "examples" / "x57_like.toml")
+    m = m.with_(wing=dataclasses.replace(m.wing, aero="dlm", dlm_mach=0.24))
+    a = analyse(m, np.arange(60.0, 100.1, 5.0))
+    flutter = [e for e in a.events if e.kind == "flutter" and e.event == "onset"]
+    for i, e in enumerate(flutter):
+        for f in flutter[i + 1:]:
+            assert not (abs(e.V - f.V) <= 2 * XTOL
+                        and abs(e.frequency_hz - f.frequency_hz) <= 1e-5 * e.frequency_hz), (e, f)
+    assert a.critical.V == pytest.approx(79.952, abs=0.01)
+    assert any("converged onto the same p-k crossing" in w for w in a.warnings)

@@ -11,7 +11,8 @@ method converges (issue 37, item 1).
    frequency, p-k root and mode shape are the p-k's (at Re p = 0 the p-k root is exact).  A
    crossing the p-k does not have (its root keeps its sign over ±16 % of the speed) is not
    reported: a note gives the state space's speed and the p-k's verdict.  A crossing whose k
-   iteration does not converge keeps the state space's speed, with a note;
+   iteration does not converge keeps the state space's speed, with a note.  Two crossings
+   that converge onto one p-k root are one event (:func:`one_per_root`), with a note;
 3. a mode the state space finds unstable at the first speed is reported only when its p-k
    root there is unstable too.
 
@@ -30,13 +31,20 @@ from propwhirl.analysis.pk import (CROSSING_SPREAD, pk_benignity, pk_crossing, p
                                    pk_root)
 from propwhirl.analysis.reduced import LiftedEigenvectors
 from propwhirl.engine import analyse as engine_analyse
-from propwhirl.engine import single_thread_blas
+from propwhirl.engine import mac, single_thread_blas
 from propwhirl.engine.results import Analysis, Criticals
 from propwhirl.engine.tracker import ANALYSE_INITIAL_STEP, initial_speeds
 from propwhirl.model.aerodynamics.dlm import (MACH_STEP, DlmTables, dlm_aerodynamics,
                                               fixed_mach, snap_mach)
 from propwhirl.model.dlm_modal import ModalRoger, modal_roger
 from propwhirl.model.aerodynamics.dlm_rfa import TRACKING_K_NODES, b_ref, mach_nodes
+
+
+#: two converged crossings whose p-k roots are within this fraction of |p| (and speeds within
+#: 2 xtol) are one (x57_like: two of its six near-identical propellers' state-space crossings,
+#: 80.80 and 81.09 m/s, both converge onto the root at 79.952 m/s, 2e-7 apart; the closest
+#: distinct roots of that cluster are ~1e-4 apart)
+ONE_ROOT = 1e-5
 
 
 @dataclass(frozen=True)
@@ -95,6 +103,38 @@ def full_state(assembly, V: float, p: complex, q: np.ndarray) -> np.ndarray:
     return x / np.linalg.norm(x)
 
 
+def one_per_root(sweep, converged: list, xtol: float) -> tuple[list, list[str]]:
+    """The converged crossings (``converged``: (point, its p-k displacement shape, what the
+    state-space crossing was)) with those that converged onto one p-k root (speeds within
+    2 ``xtol`` [m/s], roots within :data:`ONE_ROOT` of |p|) reported once, and a note for
+    each left out.  Of such a group the point kept is the state-space mode whose shape at the
+    swept speed nearest the crossing is most the p-k's (MAC, eq. 5.14): x57_like's
+    near-identical propellers gave two events at 79.952 m/s, one named after a mode whose
+    own crossing was at 80.80 m/s."""
+    n = int(np.count_nonzero(sweep.displacement))
+    speeds = np.asarray(sweep.V)
+    kept: list = []
+    notes = []
+    for pt, x, what in converged:
+        t = int(np.argmin(np.abs(speeds - pt.V)))
+        fit = float(mac(x, sweep.eigenvectors[t, sweep.displacement, pt.mode][:n]))
+        same = [i for i, (q, _, _, _) in enumerate(kept)
+                if q.kind == pt.kind and q.direction == pt.direction
+                and abs(q.V - pt.V) <= 2 * xtol
+                and abs(q.eigenvalue - pt.eigenvalue) <= ONE_ROOT * abs(pt.eigenvalue)]
+        if not same:
+            kept.append((pt, x, what, fit))
+            continue
+        q, xq, what_q, fit_q = kept[same[0]]
+        if fit > fit_q:
+            kept[same[0]] = (pt, x, what, fit)
+            what, what_q = what_q, what
+        notes.append(f"V = {pt.V:.2f} m/s: the {what} converged onto the same p-k crossing "
+                     f"as the {what_q}, whose shape it is more (MAC {max(fit, fit_q):.3f} "
+                     f"vs {min(fit, fit_q):.3f}): reported once")
+    return [q for q, _, _, _ in kept], notes
+
+
 def modal_dlm_analysis(model, grid: np.ndarray, *, displacement, state_labels, options=None,
                        xtol: float, vgf: bool = False, assembly=None,
                        structure: tuple[np.ndarray, np.ndarray] | None = None) -> ModalDlmRun:
@@ -115,6 +155,7 @@ def modal_dlm_analysis(model, grid: np.ndarray, *, displacement, state_labels, o
         lo, hi = float(grid[0]), float(grid[-1])
         b = b_ref(model)
         points, notes = [], []
+        converged: list = []         # (point, its p-k displacement shape, what)
         for pt in an.criticals.points:
             what = f"{pt.kind} {pt.direction} of state-space mode {pt.mode + 1}"
             try:
@@ -141,11 +182,11 @@ def modal_dlm_analysis(model, grid: np.ndarray, *, displacement, state_labels, o
             flutter = pt.kind == "flutter"
             half = 0.5 * (pt.bracket[1] - pt.bracket[0])
             bz = pk_benignity(model, c.V, p, tables) if flutter else None
-            points.append(replace(
+            converged.append((replace(
                 pt, V=c.V, bracket=(c.V - half, c.V + half), direction=c.direction,
                 eigenvalue=p, frequency_hz=float(abs(p.imag) / (2 * np.pi)) if flutter else 0.0,
                 eigenvector=full_state(R.assembly, c.V, p, x[:n]),
-                benignity=bz, dzeta_dV=None if bz is None else 1.0 / bz))
+                benignity=bz, dzeta_dV=None if bz is None else 1.0 / bz), x[:n], what))
         start = []
         for k in an.criticals.unstable_at_start:
             lam0 = complex(an.sweep.eigenvalues[0, k])
@@ -161,11 +202,14 @@ def modal_dlm_analysis(model, grid: np.ndarray, *, displacement, state_labels, o
                              f"({abs(lam0.imag) / (2 * np.pi):.4g} Hz) is unstable at the first "
                              f"speed in the Roger state space but stable in the p-k method on "
                              f"Q(k) (Re p = {p.real:.3g} 1/s): not reported")
-        points.sort(key=lambda q: q.V)
-        crit = Criticals(tuple(points), an.criticals.humps, tuple(start),
-                         dict(an.criticals.stats, pk_converged=len(points)))
         sw = an.sweep
         lifted = replace(sw, eigenvectors=LiftedEigenvectors(sw.eigenvectors, lift),
                          state_labels=tuple(state_labels), displacement=np.asarray(displacement),
                          stats=dict(sw.stats, reduced_states=R.n_states, reduced_r=R.r))
+        once, merged = one_per_root(lifted, converged, xtol)
+        points += once
+        notes += merged
+        points.sort(key=lambda q: q.V)
+        crit = Criticals(tuple(points), an.criticals.humps, tuple(start),
+                         dict(an.criticals.stats, pk_converged=len(points)))
         return ModalDlmRun(Analysis(lifted, crit), R, tuple(notes))
