@@ -384,6 +384,36 @@ def _brent_between(model, a: float, b: float, pa: complex, pb: complex, xtol: fl
 #: ends is no crossing but a hop: Brent's method converged onto a speed where the root
 #: continued from the bracket's left end jumps to another mode's (:func:`_continued`)
 HOP = 0.05
+#: a crossing across which the root, continued as Brent's method did, moves by more than this
+#: fraction of the mode's frequency within ±2 xtol is a hop too (:func:`_jumps`)
+JUMP = 0.01
+
+
+def _jumps(model, Vf: float, bracket: tuple[float, float], ends: tuple[complex, complex],
+           xtol: float, scale: float, tables) -> bool:
+    """Whether the p-k root at the crossing speed Vf [m/s] jumps: continued from the
+    ``bracket``'s [m/s] left root ``ends[0]`` and from the root interpolated between its ends'
+    (both ways Brent's method may have solved it), at Vf ∓ 2 ``xtol`` it differs by more than
+    :data:`JUMP` × ``scale`` [1/s] (the mode's in-vacuo frequency or |p|). A true crossing is
+    continuous there (a change of ~1e-4 of the frequency); Brent's method converges onto a hop
+    as readily — the wingtip example's 17.7 Hz mode, whose root went from the 6 Hz mode's (Re p
+    = −0.57) to the 7 Hz mode's (+18.4) between two speeds, had false flutter onsets and
+    recoveries from 160.9 to 256.2 m/s, which the |Re p| test (:data:`HOP`, of the larger
+    end's) passed."""
+    a, b = Vf - 2 * xtol, Vf + 2 * xtol
+    v0, v1 = bracket
+    for guess in (lambda x: ends[0],
+                  lambda x: ends[0] + (ends[1] - ends[0]) * (x - v0) / (v1 - v0)):
+        try:
+            lo, _ = pk_root(model, a, guess(a), tables=tables)
+            hi, _ = pk_root(model, b, guess(b), tables=tables)
+        except RuntimeError:
+            return True
+        if abs(hi - lo) > JUMP * scale:
+            return True
+    return False
+
+
 #: speed steps :func:`_continued` continues a mode by across a bracket
 CONTINUATION_STEPS = 16
 
@@ -590,7 +620,10 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
             except RuntimeError:
                 lost.append((labels[j], float(V[i])))
                 continue
-            if abs(p.real) > HOP * max(abs(sigma[i]), abs(sigma[i + 1])):
+            if (abs(p.real) > HOP * max(abs(sigma[i]), abs(sigma[i + 1]))
+                    or _jumps(model, Vf, (float(V[i]), float(V[i + 1])),
+                              (roots[i, j], roots[i + 1, j]), xtol, max(vacuum[j], abs(p)),
+                              tables)):
                 try:               # Brent met a hop onto another mode's root: the mode's own
                     found = _continued(model, float(V[i]), float(V[i + 1]), roots[i, j],
                                        xtol, tables)

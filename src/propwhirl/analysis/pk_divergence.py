@@ -6,8 +6,9 @@ axis it splits into two real roots, one moving left and one towards p = 0, and t
 follows whichever lies nearer the pair's last root — on ``examples/x57_like.toml`` the one
 moving left, so the p-k reported no divergence where the default finds it at 226.2 m/s.
 
-At p = 0 the p-k equation [(M_s − M_a) p² − C_a p + (K_s − K_a(k))] q̂ = 0 is the static one,
-(K_s − K_a(0; V)) q̂ = 0 (k = 0: Theodorsen's C(0) = 1, the doublet lattice's steady Q), so
+At p = 0 the p-k equation [(M_s − M_a) p² − C_a p + (K_s − K_a(k))] q̂ = 0 is the static
+one, (K_s − K_a(0; V)) q̂ = 0 (k = 0: Theodorsen's C(0) = 1, the doublet lattice's steady
+Q), so
 
     det T(0; V) = det(M) · Π_i (−p_i(V))
 
@@ -61,7 +62,7 @@ def _root_near_zero(model, V: float, tables) -> complex:
     """The real root [1/s] of the p-k equation at k → 0 nearest p = 0 at V [m/s]."""
     M, C, K = pk_system(model, V, tables)(K_MIN * V / reference_semichord(model))
     n = M.shape[0]
-    eye, zero = np.eye(n), np.zeros((n, n))     # the pencil [[0, I], [−K, −C]] − p [[I, 0], [0, M]]
+    eye, zero = np.eye(n), np.zeros((n, n))   # pencil [[0, I], [−K, −C]] − p [[I, 0], [0, M]]
     lam = sla.eigvals(np.block([[zero, eye], [-K, -C]]), np.block([[eye, zero], [zero, M]]))
     lam = lam[np.isfinite(lam)]
     return complex(lam[np.argmin(np.abs(lam))])
