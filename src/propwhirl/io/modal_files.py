@@ -121,8 +121,9 @@ def load_modes(path: str | Path, n_modes: int, n_grids: int, where: str | None =
                what: str = "modes file", free: bool = False) -> ModalStructure:
     """The :class:`~propwhirl.model.modal.ModalStructure` of the ``.npz`` at ``path`` (a
     `what`), whose arrays must have the sizes given (checked before reading); errors name
-    the file.  ``free``: the structure is free (its plunge and roll rigid-body modes
-    kept; :class:`~propwhirl.model.modal_structure.ModalStructure`)."""
+    the file.  ``free``: the structure is free (its plunge, roll and pitch rigid-body
+    modes kept, a pitch needing a tail in the model:
+    :class:`~propwhirl.model.modal_structure.ModalStructure`)."""
     path = Path(v.file_path("path", path, "a modes file (.npz)"))
     if where is not None and not isinstance(where, str):
         raise v.fail("where", where, "invalid: must be a str (how errors name the file) or None")
