@@ -106,3 +106,36 @@ def test_a_clamped_structure_refuses_a_rigid_mode_and_says_how_to_keep_it():
     with pytest.raises(InputError, match=r"frequencies_hz\[0\] = -1e-06 Hz is invalid"):
         structure(rigid(t=(0, 0, 1e-3)), f=(-1e-6, 3.0))
     assert structure(rigid(t=(0, 0, 1e-3))).free
+
+
+def test_a_pitch_spread_over_the_rigid_modes_is_turned_into_one_without_changing_the_roots():
+    """Any mass-orthonormal basis of the rigid-body modes is the same structure: the tailed
+    free body's rigid modes mixed by a rotation (and scaled to other modal masses) give a
+    structure with the pitch in one mode again, modal masses 1, and the same roots; the
+    altitude and roll angle keep exactly zero roots (no false divergence)."""
+    from dataclasses import replace
+
+    from helpers.op2_files import tailed_modal_model
+    from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
+
+    model, n = tailed_modal_model(wingtip_propeller_wing(), 1e2)
+    s = model.structure
+    assert [k for _, k in s.rigid_body_modes()].count("pitch") == 1
+    Q = np.linalg.qr(np.random.default_rng(3).normal(size=(n, n)))[0]
+    mass = np.array([2.0, 0.5, 3.0])
+    shapes = np.array(s.shapes)
+    shapes[:n] = np.einsum("ij,jgc->igc", Q, s.shapes[:n]) * np.sqrt(mass)[:, None, None]
+    modal_mass = np.array(s.modal_mass)
+    modal_mass[:n] = mass
+    mixed = replace(s, shapes=shapes, modal_mass=modal_mass)
+    assert [k for _, k in mixed.rigid_body_modes()].count("pitch") == 1
+    assert np.all(mixed.modal_mass[:n] == 1.0)
+    V = np.array([60.0, 130.0])
+    a = np.linalg.eigvals(model.state_matrix(V))
+    b = np.linalg.eigvals(model.with_(structure=mixed).state_matrix(V))
+    for x, y in zip(a, b):
+        x, y = np.sort_complex(x), np.sort_complex(y)
+        np.testing.assert_allclose(y, x, rtol=1e-7, atol=1e-9 * np.abs(x).max())
+        assert np.count_nonzero(y == 0) >= 2                  # altitude and roll angle
+    K = model.with_(structure=mixed).second_order(V).S3
+    assert np.count_nonzero(np.all(K == 0.0, axis=1)) >= 2       # their columns: exactly 0
