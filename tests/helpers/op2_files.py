@@ -88,11 +88,13 @@ FREE_ROOTS = {"free": (0, 1, 2), "symmetric": (0, 2), "antisymmetric": (1,),
 
 
 def free_free_modes(wing, body_mass: float, body_roll_inertia: float,
-                    body_pitch_inertia: float, free: str = "free"):
+                    body_pitch_inertia: float, free: str = "free", body_x: float = 0.0):
     """The modes of a beam wing whose root, instead of being clamped, carries a rigid body
     (a fuselage: mass [kg] on the root's heave, roll inertia [kg m²] on its bending slope φ,
     pitch inertia [kg m²] on its twist α) and is free in the components of
-    ``FREE_ROOTS[free]`` (the others held): the beam's own element matrices
+    ``FREE_ROOTS[free]`` (the others held); ``body_x`` [m]: the body's centre of gravity aft
+    of the root's elastic axis (its pitch inertia about it: the root's twist carries
+    m x² + I, and the heave–twist coupling m x): the beam's own element matrices
     (:func:`propwhirl.model.structure.assembly.wing_structure`), every mode mass-normalised,
     the rigid-body ones at ω² ≈ 0.  Returns (grid ids, xyz [m], ω² [1/s²], shapes
     (n_modes, n_grids, 6) [m, rad] in the wing frame: T_z = −h, R_x = −φ, R_y = α)."""
@@ -104,7 +106,9 @@ def free_free_modes(wing, body_mass: float, body_roll_inertia: float,
     M = np.array(M, dtype=float)
     M[0, 0] += body_mass
     M[1, 1] += body_roll_inertia
-    M[2, 2] += body_pitch_inertia
+    M[2, 2] += body_pitch_inertia + body_mass * body_x ** 2
+    M[0, 2] += body_mass * body_x                # down at x: h + x α
+    M[2, 0] += body_mass * body_x
     keep = np.array([i for i in range(M.shape[0]) if i >= 3 or i in FREE_ROOTS[free]])
     w2, X = scipy.linalg.eigh(K[np.ix_(keep, keep)], M[np.ix_(keep, keep)])
     n = w2.size
@@ -164,3 +168,99 @@ def free_modal_model(base, kappa: float, free: str = "plunge-roll",
                                base.flight, inst, wing_aero=base.wing_aero,
                                propeller_aero=base.propeller_aero, rotating=base.rotating)
     return model, int(rigid.sum())
+
+
+#: The horizontal tail of the free-body cases (a half aircraft's, on a rigid arm from the root
+#: body): its aerodynamic centre ``arm`` [m] aft of the body's centre of gravity, semi-span
+#: [m], chord [m], strips, grids; the body's pitch radius of gyration [m] (its pitch inertia
+#: κ m_wing r_y²) and its centre of gravity ``body_x`` [m] aft of the wing's elastic axis
+#: (-0.25: the mean chord's quarter point, where an aircraft's centre of gravity usually is).
+TAIL = dict(arm=3.5, semi_span=1.2, chord=0.7, n_strips=6, n_grids=5, radius_of_gyration=1.4,
+            body_x=-0.25)
+
+
+def tail_surface(x_ac: float, first_id: int = 101, aero_model: str = "leishman-nguyen"):
+    """The :data:`TAIL`'s grids' positions (n_grids, 3) [m] (its reference axis along y at
+    x = ``x_ac``, from the plane of symmetry) and its :class:`ModalSurface` (unswept strips,
+    the aerodynamic centre and the reference axis at the quarter chord, C_lα = 2π)."""
+    from propwhirl.model.modal_structure import StripPlanform
+    from propwhirl.model.modal_surface import ModalSurface
+
+    n, ns, b, c = TAIL["n_grids"], TAIL["n_strips"], TAIL["semi_span"], TAIL["chord"]
+    xyz = np.zeros((n, 3))
+    xyz[:, 0], xyz[:, 1] = x_ac, np.linspace(0.0, b, n)
+    w = b / ns
+    one = np.ones(ns)
+    planform = StripPlanform(y=(np.arange(ns) + 0.5) * w, width=w * one, chord=c * one,
+                             leading_edge_x=(x_ac - 0.25 * c) * one, elastic_axis=0.25 * one,
+                             aerodynamic_centre=0.25 * one, lift_slope=2.0 * np.pi * one,
+                             aero_model=aero_model, source="tail strips")
+    return xyz, ModalSurface(grids=tuple(first_id + np.arange(n)), planform=planform)
+
+
+def tailed_modal_model(base, kappa: float, arm: float = TAIL["arm"], tail: bool = True,
+                       rigid_below_hz: float = 0.1):
+    """The modal model of ``base`` (a one-propeller PropellerWing) on a root body free in
+    plunge, roll and pitch (:func:`free_free_modes`, ``"free"``) of κ times the wing's mass
+    and roll inertia, pitch inertia κ m_wing r_y² (:data:`TAIL`), with a horizontal tail on
+    a rigid arm: its grids ``arm`` [m] aft of the body's centre of gravity (negative: ahead),
+    moving with the body in every mode (the root grid's rigid motion, T_z = T_z0 + R_x0 y −
+    R_y0 x, the rotations the root's), its strips a second lifting surface (``tail`` False:
+    the grids without the surface).  The rigid-body modes below ``rigid_below_hz`` at 0 Hz
+    undamped; the elastic ones with the base wing's Rayleigh damping.  Returns (model, number
+    of rigid modes)."""
+    from propwhirl.model.modal import ModalInstallation, ModalPropellerWing
+    from propwhirl.model.modal_structure import StripPlanform
+
+    mass, roll, _ = root_body(base.wing)
+    pitch = kappa * mass * TAIL["radius_of_gyration"] ** 2
+    x_b = TAIL["body_x"]
+    ids, xyz, w2, shapes = free_free_modes(base.wing, kappa * mass, kappa * roll, pitch, "free",
+                                           x_b)
+    txyz, surface = tail_surface(x_b + arm, first_id=int(ids[-1]) + 100,
+                                 aero_model=base.wing.aero_model)
+    root = shapes[:, 0, :]                        # the root grid, at the origin
+    moves = np.zeros((shapes.shape[0], txyz.shape[0], 6))
+    moves[:, :, 2] = (root[:, 2:3] + root[:, 3:4] * txyz[None, :, 1]
+                      - root[:, 4:5] * txyz[None, :, 0])
+    moves[:, :, 3:] = root[:, None, 3:]
+    f = np.sqrt(np.abs(w2)) / (2.0 * np.pi)
+    rigid = f < rigid_below_hz
+    f = np.where(rigid, 0.0, f)
+    w = 2.0 * np.pi * np.where(rigid, 1.0, f)
+    mu, lam = base.wing.rayleigh
+    zeta = np.where(rigid, 0.0, 0.5 * (mu / w + lam * w))
+    s = ModalStructure(grid_ids=np.concatenate([ids, np.array(surface.grids)]),
+                       xyz=np.concatenate([xyz, txyz]), frequencies_hz=f,
+                       modal_mass=np.ones(f.size), damping_ratio=zeta,
+                       shapes=np.concatenate([shapes, moves], axis=1), free=True,
+                       source=f"tailed root body, kappa {kappa:g}")
+    inst = tuple(ModalInstallation(i.propeller, int(ids[n]), i.mount, i.aero)
+                 for i, n in zip(base.propellers, base.nodes))
+    model = ModalPropellerWing(s, [int(g) for g in ids], StripPlanform.from_wing(base.wing),
+                               base.flight, inst, wing_aero=base.wing_aero,
+                               propeller_aero=base.propeller_aero, rotating=base.rotating,
+                               surfaces=(surface,) if tail else ())
+    return model, int(rigid.sum())
+
+
+def centre_of_gravity_x(model) -> float:
+    """x [m] of the centre of gravity of a free modal model with a rigid plunge and pitch:
+    from its structural mass (modes and propellers, :meth:`ModalAssembly.second_order`'s
+    S1 with the aerodynamics off) on the rigid plunge q_h (T_z = 1 m at every grid) and
+    pitch q_θ (R_y = 1 rad about x = 0, T_z = −x) in its rigid-body coordinates:
+    x_cg = −q_hᵀ M q_θ / q_hᵀ M q_h."""
+    s = model.structure
+    rigid = [i for i, _ in s.rigid_body_modes()]
+    Phi = s.shapes[rigid].reshape(len(rigid), -1).T          # (6 n_grids, n_rigid)
+    M = model.without_aerodynamics().second_order(np.array([1.0])).S1[0]
+    q = []
+    for shape in ("plunge", "pitch"):
+        u = np.zeros((s.grid_ids.size, 6))
+        u[:, 2] = 1.0 if shape == "plunge" else -s.xyz[:, 0]
+        if shape == "pitch":
+            u[:, 4] = 1.0
+        x = np.zeros(M.shape[0])
+        x[rigid] = np.linalg.lstsq(Phi, u.reshape(-1), rcond=None)[0]
+        q.append(x)
+    return float(-(q[0] @ M @ q[1]) / (q[0] @ M @ q[0]))

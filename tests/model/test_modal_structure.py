@@ -1,7 +1,9 @@
 """Free structures (issue 36, item 4): a free modal structure keeps its plunge and roll
-rigid-body modes and is analysed without a false event; a rigid pitch or yaw is refused by
-name (a wing alone has no tail); the heavy body's instabilities are the clamped wing's, a
-light body's are not (docs/validation.md, "Free structures with plunge and roll kept")."""
+rigid-body modes and is analysed without a false event; a rigid pitch is refused by name on a
+wing-alone model (no tail: tests/model/test_modal_surface.py has the tail); the heavy body's
+instabilities are the clamped wing's, a light body's are not (docs/validation.md, "Free
+structures with plunge and roll kept"). The rigid-body modes' classification:
+tests/model/test_rigid_body.py."""
 from __future__ import annotations
 
 import numpy as np
@@ -13,73 +15,8 @@ from propwhirl.analysis.modes import label_modes
 from propwhirl.analysis.stability import analyse
 from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
 from propwhirl.io.modal_files import load_modal_model, save_modal_model, write_modes
-from propwhirl.model.modal_structure import (ModalStructure, plunge_roll_shape,
-                                             rigid_body_kind)
-
-XYZ = np.array([[0.0, 0.0, 0.0], [0.1, 2.0, 0.0], [-0.1, 4.0, 0.05], [0.3, 6.0, 0.0]])
-
-
-def rigid(t=(0.0, 0.0, 0.0), theta=(0.0, 0.0, 0.0), about=(0.0, 0.0, 0.0)) -> np.ndarray:
-    """The grids' six components of a rigid motion: translation t [m], rotation θ [rad] about
-    the point ``about``."""
-    out = np.zeros((XYZ.shape[0], 6))
-    out[:, :3] = np.asarray(t) + np.cross(theta, XYZ - np.asarray(about))
-    out[:, 3:] = theta
-    return out
-
-
-@pytest.mark.parametrize("shape, kind", [
-    (rigid(t=(0, 0, 1e-3)), "plunge"),
-    (rigid(theta=(2e-4, 0, 0), about=(0, 3.0, 0.0125)), "roll"),
-    (rigid(theta=(2e-4, 0, 0)), "roll"),            # about the root's axis: still a roll
-    (rigid(t=(0, 3e-4, 0), theta=(2e-4, 0, 0)), "roll"),      # an axis higher up
-    (rigid(t=(1e-4, 0, 0), theta=(2e-4, 0, 0)), "surge"),     # along the roll axis
-    (rigid(t=(0, 1e-3, 0)), "sway"),
-    (rigid(theta=(0, 1e-3, 0)), "pitch"),
-    (rigid(t=(0, 0, 1e-3), theta=(0, 0, 1e-3)), "yaw"),
-    (rigid(theta=(0, 1e-3, 1e-3)), "pitch and yaw"),
-    (rigid(t=(1e-3, 0, 0)), "surge"),
-])
-def test_a_rigid_mode_is_classified_from_its_shape_at_the_grids(shape, kind):
-    assert rigid_body_kind(XYZ, shape) == kind
-
-
-def test_a_shape_that_bends_is_a_mechanism():
-    shape = rigid(t=(0, 0, 1e-3))
-    shape[:, 2] += 1e-3 * (XYZ[:, 1] / 6.0) ** 2              # bending: no rigid motion
-    assert rigid_body_kind(XYZ, shape) == "mechanism"
-
-
-def test_the_kept_shape_is_exactly_rigid():
-    shape = rigid(theta=(2e-4, 0, 0)) + 1e-15 * np.arange(24).reshape(4, 6)
-    out = plunge_roll_shape(XYZ, shape)
-    assert np.all(out[:, [0, 4, 5]] == 0.0)           # no surge, pitch, yaw: not even 1e-15
-    np.testing.assert_allclose(out, rigid(theta=(2e-4, 0, 0)), rtol=0, atol=1e-13)
-
-
-def structure(shape, f=(0.0, 3.0), free=True):
-    second = rigid(t=(0, 0, 1e-3))
-    second[:, 2] *= (XYZ[:, 1] / 6.0) ** 2
-    return ModalStructure(grid_ids=[1, 2, 3, 4], xyz=XYZ, frequencies_hz=list(f),
-                          modal_mass=[1.0, 1.0], damping_ratio=[0.0, 0.02],
-                          shapes=np.stack([shape, second]), free=free)
-
-
-@pytest.mark.parametrize("theta, kind", [((0, 1e-3, 0), "pitch"), ((0, 0, 1e-3), "yaw")])
-def test_a_rigid_pitch_or_yaw_is_refused_by_name(theta, kind):
-    with pytest.raises(InputError, match=rf"^modal structure: mode 1 \(0 Hz\) is a "
-                                         rf"rigid-body {kind}: .*no tail.*hold pitch"):
-        structure(rigid(theta=theta))
-
-
-def test_a_clamped_structure_refuses_a_rigid_mode_and_says_how_to_keep_it():
-    with pytest.raises(InputError, match=r"frequencies_hz\[0\] = 0 Hz is a rigid-body mode.*"
-                                         r"free = true"):
-        structure(rigid(t=(0, 0, 1e-3)), free=False)
-    with pytest.raises(InputError, match=r"frequencies_hz\[0\] = -1e-06 Hz is invalid"):
-        structure(rigid(t=(0, 0, 1e-3)), f=(-1e-6, 3.0))
-    assert structure(rigid(t=(0, 0, 1e-3))).free
-
+from propwhirl.model.modal import ModalPropellerWing
+from propwhirl.model.modal_structure import ModalStructure, StripPlanform
 
 @pytest.fixture(scope="module")
 def clamped():
@@ -116,15 +53,23 @@ def test_a_light_body_changes_the_instabilities(clamped):
     assert not any(abs(g.V - clamped[0].V) < 0.05 * clamped[0].V for g in got)
 
 
-def test_a_free_root_with_pitch_is_refused_naming_the_mode():
-    wing = wingtip_propeller_wing().wing
-    mass, roll, pitch = root_body(wing)
-    ids, xyz, w2, shapes = free_free_modes(wing, 1e2 * mass, 1e2 * roll, 1e2 * pitch, "free")
+def test_a_free_root_with_pitch_is_refused_naming_the_mode_without_a_tail():
+    """The structure keeps its pitch (a tail may hold it); the wing-alone model refuses it,
+    naming the mode and saying to add a tail surface."""
+    base = wingtip_propeller_wing()
+    mass, roll, pitch = root_body(base.wing)
+    ids, xyz, w2, shapes = free_free_modes(base.wing, 1e2 * mass, 1e2 * roll, 1e2 * pitch,
+                                           "free")
     f = np.sqrt(np.abs(w2)) / (2 * np.pi)
     f[f < 0.1] = 0.0
-    with pytest.raises(InputError, match=r"mode [123] \(0 Hz\) is a rigid-body .*pitch"):
-        ModalStructure(grid_ids=ids, xyz=xyz, frequencies_hz=f, modal_mass=np.ones(f.size),
+    s = ModalStructure(grid_ids=ids, xyz=xyz, frequencies_hz=f, modal_mass=np.ones(f.size),
                        damping_ratio=np.where(f > 0, 0.01, 0.0), shapes=shapes, free=True)
+    assert "pitch" in [kind for _, kind in s.rigid_body_modes()]
+    with pytest.raises(InputError, match=r"^[^\n]*mode [123] \(0 Hz\) is a rigid-body pitch: "
+                                         r"a wing alone has no tail.*add a tail.*surfaces"
+                                         r"[^\n]*$"):
+        ModalPropellerWing(s, [int(g) for g in ids], StripPlanform.from_wing(base.wing),
+                           base.flight)
 
 
 def test_old_files_load_clamped_and_a_free_structure_round_trips(tmp_path):

@@ -16,7 +16,7 @@ import dataclasses
 import numpy as np
 import pytest
 
-from helpers.op2_files import free_free_modes, write_op2, write_op2_arrays
+from helpers.op2_files import free_free_modes, tailed_modal_model, write_op2, write_op2_arrays
 from propwhirl import io
 from propwhirl.analysis import analyse
 from propwhirl.app import cli
@@ -221,6 +221,46 @@ def test_a_free_structures_plunge_and_roll_are_kept_and_its_pitch_refused(tmp_pa
         _free_model(tmp_path, 1e4, "free", free=True, keep_rigid=True)
     with pytest.raises(InputError, match=r"keep_rigid = True is invalid: .*free=True"):
         _free_model(tmp_path, 1e4, "plunge-roll", keep_rigid=True)
+
+
+def test_a_tail_given_to_read_op2_keeps_the_free_pitch(tmp_path):
+    """The wing on a body free in plunge, roll and pitch with a tail on a rigid arm
+    (tests/helpers/op2_files.tailed_modal_model) through an OP2: with the tail's surface given,
+    the pitch is kept and the model is the one built directly (single precision: its roots
+    at 100 m/s to 1e-5); without it the pitch is refused, saying to add a tail."""
+    direct, n_rigid = tailed_modal_model(WINGTIP, 1e2)
+    s = direct.structure
+    path = write_op2(s, tmp_path / "tail.op2")
+    args = dict(units="si", base=WINGTIP, hubs=[26], wing_grids=list(direct.wing_grids),
+                mount="own", mass_normalised=True, free=True, keep_rigid=True)
+    model = read_op2(path, surfaces=direct.surfaces, **args)
+    assert [k for _, k in model.structure.rigid_body_modes()].count("pitch") == 1
+    assert model.dof_map().w_labels == direct.dof_map().w_labels
+    V = np.array([100.0])
+    a, b = (np.sort_complex(np.linalg.eigvals(m.state_matrix(V)[0])) for m in (direct, model))
+    big = np.abs(a) > 1e-3
+    np.testing.assert_allclose(b[big], a[big], rtol=1e-5)
+    with pytest.raises(InputError, match=r"tail\.op2 .*rigid-body pitch: a wing alone has no "
+                                         r"tail.*add a tail"):
+        read_op2(path, **args)
+
+
+def test_the_base_installations_rotation_and_state_apply_as_on_the_bdf_route(tmp_path):
+    """read_op2 reads the base's installation as the BDF route's swept stick does
+    (nastran_read.modal_installation): its ``rotation`` override on the propeller, a stopped or
+    feathered installation refused in one line naming the file and the hub grid."""
+    inst = WINGTIP.propellers[0]
+    assert inst.propeller.rotation == 1
+    turned = WINGTIP.with_(propellers=(dataclasses.replace(inst, rotation=-1),))
+    _, model = _own(turned, tmp_path)
+    assert model.propellers[0].propeller.rotation == -1
+    _, same = _own(WINGTIP, tmp_path)
+    assert same.propellers[0].propeller.rotation == 1
+    stopped = WINGTIP.with_(propellers=(dataclasses.replace(inst, state="stopped"),))
+    with pytest.raises(InputError, match=r"^[^\n]*wing\.op2[^\n]*: hub GRID 26: the base's "
+                                         r"installation is stopped: an OP2 is read as "
+                                         r"a modal model, whose propellers operate$"):
+        _own(stopped, tmp_path)
 
 
 # ------------------------------------------------------------------------ the file's problems

@@ -189,8 +189,9 @@ def add_commands(sub) -> None:
     p.add_argument("--free", action="store_true", help="an OP2: the structure is free; its "
                    "rigid-body modes are left out (docs/modal-structures.md)")
     p.add_argument("--keep-rigid", action="store_true", help="with --free: keep the "
-                   "rigid-body modes, each a plunge or a roll (a rigid pitch or yaw is "
-                   "refused: no tail)")
+                   "rigid-body modes, each a plunge or a roll (a rigid pitch needs a tail, "
+                   "which the command line does not give: read_op2(..., surfaces=...) or a "
+                   "modal model file's [[surfaces]]; a yaw is refused: no fin)")
     p.add_argument("--rigid-below", type=float, metavar="HZ", help="with --free: the modes "
                    "below HZ are rigid-body modes (default 0.1)")
     p.add_argument("--mass-normalised", action="store_true", help="an OP2 without an "

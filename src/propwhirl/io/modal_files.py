@@ -36,6 +36,7 @@ from propwhirl.model.flight import FlightCondition
 from propwhirl.model.modal import (AERO, MOUNTS, ModalInstallation, ModalPropellerWing,
                                   check_hub_grids)
 from propwhirl.model.modal_structure import MAX_MODES, ModalStructure, StripPlanform, id_list
+from propwhirl.model.modal_surface import MAX_SURFACES, ModalSurface
 from propwhirl.model.propellers.propeller import Propeller
 from propwhirl.model.structure.wing import DEFAULT_CHORDWISE, DLM_MACH_MAX, DLM_MATCHED
 from propwhirl.model.systems import PropellerWing
@@ -120,8 +121,9 @@ def load_modes(path: str | Path, n_modes: int, n_grids: int, where: str | None =
                what: str = "modes file", free: bool = False) -> ModalStructure:
     """The :class:`~propwhirl.model.modal.ModalStructure` of the ``.npz`` at ``path`` (a
     `what`), whose arrays must have the sizes given (checked before reading); errors name
-    the file.  ``free``: the structure is free (its plunge and roll rigid-body modes
-    kept; :class:`~propwhirl.model.modal_structure.ModalStructure`)."""
+    the file.  ``free``: the structure is free (its plunge, roll and pitch rigid-body
+    modes kept, a pitch needing a tail in the model:
+    :class:`~propwhirl.model.modal_structure.ModalStructure`)."""
     path = Path(v.file_path("path", path, "a modes file (.npz)"))
     if where is not None and not isinstance(where, str):
         raise v.fail("where", where, "invalid: must be a str (how errors name the file) or None")
@@ -237,14 +239,15 @@ MODES_TABLE = TableSpec("[modes]", "The modes file and its sizes, checked before
         "tip (ids of the modes file)", items=(2, None),
         must="a list of two or more grid ids (integers)"),
     Key("free", "boolean", "`true`: the structure is free (a whole or half aircraft): its "
-        "modes below 0.001 Hz are rigid-body modes, kept when a plunge or a roll (a rigid "
-        "pitch or yaw is refused by name: no tail); `false`: clamped, none below 0.001 Hz",
-        default=False),
+        "modes below 0.001 Hz are rigid-body modes, kept when a plunge, a roll or — with a "
+        "tail in `surfaces` — a pitch (a pitch without a tail, a yaw, surge or sway is "
+        "refused by name); `false`: clamped, none below 0.001 Hz", default=False),
 ))
 STRIPS_TABLE = TableSpec("[strips]", "One entry per strip in each list, all lists of the same "
                          "length.", (
     *(Key(k, "numbers", doc) for k, doc in (
-        ("y_m", "stations y [m], increasing, within the wing grids' span"),
+        ("y_m", "stations y [m], increasing, within the span of the grids they are splined "
+         "to (`wing_grids`; a surface's `grids`)"),
         ("width_m", "strip widths [m]"),
         ("chord_m", "chords [m]"),
         ("leading_edge_x_m", "x of the leading edge in the wing frame [m]"),
@@ -255,9 +258,19 @@ STRIPS_TABLE = TableSpec("[strips]", "One entry per strip in each list, all list
     Key("aero_model", "string", "the strips' unsteady aerodynamics (lag states)",
         choices=("leishman-nguyen", "wagner"), default="leishman-nguyen"),
 ))
+SURFACE = TableSpec("surfaces[i]", "A lifting surface besides the wing (a horizontal tail): "
+                    "its strips, as `[strips]` (one entry per strip in each list), splined to "
+                    "its own reference-axis grids; a free structure's rigid pitch needs one.", (
+    Key("name", "string", "its name: the first word of its strips' lag states (`\"tail strip 1 "
+        "w1\"`), each surface its own", default="tail"),
+    Key("grids", "integers", "its reference-axis grids, root to tip (ids of the modes file; on "
+        "a free structure grids that move with the body)", items=(2, None),
+        must="a list of two or more grid ids (integers)"),
+    *STRIPS_TABLE.keys,
+))
 SWITCHES_TABLE = TableSpec("[switches]", "Model switches.", tuple(
     Key(k, "boolean", doc, default=True) for k, doc in (
-        ("wing_aero", "the strips' aerodynamics"),
+        ("wing_aero", "the strips' aerodynamics (the wing's and every surface's)"),
         ("propeller_aero", "the propellers' aerodynamics"),
         ("rotating", "the rotors' gyroscopic coupling"))))
 DLM_TABLE = TableSpec("[dlm]", "The doublet lattice's lifting surface (as NASTRAN's CAERO1: "
@@ -316,6 +329,10 @@ TOP = TableSpec("Top level", "A modal propeller-wing: the modes' description.", 
     Key("installations", "tables", "the propellers at hub grids, one table each: "
         "`installations[i]`", table=INSTALLATION, default=OMITTED,
         must="a list of tables {{propeller, grid, mount, aero}}"),
+    Key("surfaces", "tables", "lifting surfaces besides the wing (a tail), one table "
+        "`[[surfaces]]` each: `surfaces[i]`; omitted: the wing alone", table=SURFACE,
+        items=(0, MAX_SURFACES), default=OMITTED,
+        must="a list of at most {most} tables {{name, grids, y_m, width_m, chord_m, ...}}"),
 ))
 
 
@@ -325,11 +342,9 @@ def _from_dict(data: dict[str, Any], path: Path) -> ModalPropellerWing:
     top = read(Table(data, "", TOP.names), TOP)
     modes, strips = top["modes"], top["strips"]
     file = path.parent / modes["file"]
-    values = {f: strips[k] for k, f in STRIP_KEYS}
-    n_strips = len(values["y"])
-    for k, f in STRIP_KEYS:
-        if len(values[f]) != n_strips:
-            raise strips.table.bad(k, f"a list of {n_strips} numbers (one per strip, as y_m)")
+    planform = _strips(strips, f"{path} [strips]")
+    surfaces = [(t, _strips(t, f"{path} surfaces[{i}]"))
+                for i, t in enumerate(top["surfaces"] or [])]
     flight = from_table(FlightCondition, Table(top["flight"], "flight",
                                                schema.table_keys(FlightCondition)), {})
     ctx = {k: from_table(Propeller, Table(p, f"propellers.{k}", schema.table_keys(Propeller)),
@@ -348,8 +363,6 @@ def _from_dict(data: dict[str, Any], path: Path) -> ModalPropellerWing:
             raise _fail(str(path), f"[modes] wing_grids[{i}] = {g} is not a grid of {file} "
                         f"(grids {id_list(structure.grid_ids)})")
     check_hub_grids(structure, [t["grid"] for t in installations], "installations")
-    planform = StripPlanform(**{f: np.array(x) for f, x in values.items()},
-                             aero_model=strips["aero_model"], source=f"{path} [strips]")
     switches = {k: top["switches"][k] for k in SWITCHES_TABLE.names}
     dlm_planform, dlm_mach = _dlm_planform(top["dlm"], path)
     if top["aero"] == "dlm" and dlm_planform is None:
@@ -359,7 +372,28 @@ def _from_dict(data: dict[str, Any], path: Path) -> ModalPropellerWing:
         structure, tuple(modes["wing_grids"]), planform, flight,
         tuple(ModalInstallation(ctx[t["propeller"]], t["grid"], t["mount"], t["aero"])
               for t in installations), name=top["name"], **switches, aero=top["aero"],
-        dlm_planform=dlm_planform, dlm_mach=dlm_mach)
+        dlm_planform=dlm_planform, dlm_mach=dlm_mach,
+        surfaces=tuple(_surface(t, p, i) for i, (t, p) in enumerate(surfaces)))
+
+
+def _strips(t, source: str) -> StripPlanform:
+    """The :class:`StripPlanform` of a table read with the strips' keys (``[strips]``, a
+    ``surfaces[i]``): its lists one per strip, as ``y_m``."""
+    values = {f: t[k] for k, f in STRIP_KEYS}
+    n_strips = len(values["y"])
+    for k, f in STRIP_KEYS:
+        if len(values[f]) != n_strips:
+            raise t.table.bad(k, f"a list of {n_strips} numbers (one per strip, as y_m)")
+    return StripPlanform(**{f: np.array(x) for f, x in values.items()},
+                         aero_model=t["aero_model"], source=source)
+
+
+def _surface(t, planform: StripPlanform, i: int) -> ModalSurface:
+    """The :class:`ModalSurface` of a ``surfaces[i]`` table read; its errors naming it."""
+    try:
+        return ModalSurface(grids=tuple(t["grids"]), planform=planform, name=t["name"])
+    except v.InputError as exc:
+        raise v.InputError(f"[surfaces[{i}]] {exc}") from None
 
 
 def _dlm_planform(dlm, path: Path) -> tuple[Planform | None, float | str]:
@@ -385,7 +419,7 @@ def docs_parts() -> dict[str, str]:
     return {f"modal {name}": markdown(spec) for name, spec in (
         ("top", TOP), ("units", UNITS_TABLE), ("modes", MODES_TABLE),
         ("strips", STRIPS_TABLE), ("dlm", DLM_TABLE), ("switches", SWITCHES_TABLE),
-        ("installations", INSTALLATION))}
+        ("installations", INSTALLATION), ("surfaces", SURFACE))}
 
 
 def _check_targets(path: Path, npz: Path) -> None:
@@ -407,13 +441,14 @@ def _check_targets(path: Path, npz: Path) -> None:
 def _write_modal_file(path: Path, npz: Path, header: str, dumps, *, name: str, structure,
                       planform, installations, wing_grids, flight, switches,
                       aero: str = "strip", dlm_planform: Planform | None = None,
-                      dlm_mach: float | str = DLM_MATCHED) -> None:
+                      dlm_mach: float | str = DLM_MATCHED, surfaces=()) -> None:
     """The modal model file (TOML at ``path``, ``header`` first) and its modes (``npz``), the
     one document :func:`write_modes` and :func:`save_modal_model` write; ``installations``
     holds (installation, grid, mount) and ``switches`` (wing_aero, propeller_aero,
     rotating); ``aero``, ``dlm_planform`` and ``dlm_mach`` the doublet lattice (written only
-    when there is a planform); ``dumps`` is tomli-w's (the callers check the extra and the
-    targets)."""
+    when there is a planform); ``surfaces`` the further lifting surfaces (written only when
+    there are some: ``[[surfaces]]``); ``dumps`` is tomli-w's (the callers check the extra and
+    the targets)."""
     s = structure
     w = Writer()
     rows = [{"propeller": w.propeller_key(inst.propeller), "grid": int(g), "mount": m,
@@ -425,12 +460,14 @@ def _write_modal_file(path: Path, npz: Path, header: str, dumps, *, name: str, s
         "modes": {"file": npz.name, "n_modes": s.n_modes, "n_grids": int(s.grid_ids.size),
                   "wing_grids": [int(g) for g in wing_grids],
                   **({"free": True} if s.free else {})},
-        "strips": {"aero_model": planform.aero_model,
-                   **{k: [float(x) for x in getattr(planform, f)] for k, f in STRIP_KEYS}},
+        "strips": _strip_keys(planform),
         "flight": w.encode(flight, "flight"),
         "switches": dict(zip(("wing_aero", "propeller_aero", "rotating"), switches)),
         "propellers": w.propellers,
     }
+    if surfaces:
+        doc["surfaces"] = [{"name": surf.name, "grids": [int(g) for g in surf.grids],
+                            **_strip_keys(surf.planform)} for surf in surfaces]
     if dlm_planform is not None:
         p = dlm_planform
         doc["aero"] = aero
@@ -447,6 +484,12 @@ def _write_modal_file(path: Path, npz: Path, header: str, dumps, *, name: str, s
                                    else np.float64) for k in ARRAYS})
     fileio.write_bytes(npz, buf.getvalue(), what="modes file")
     fileio.write_text(path, header + dumps(doc), what="modal model file")
+
+
+def _strip_keys(planform: StripPlanform) -> dict[str, Any]:
+    """The strips' keys of a file (``[strips]``, a ``surfaces[i]``) for ``planform``."""
+    return {"aero_model": planform.aero_model,
+            **{k: [float(x) for x in getattr(planform, f)] for k, f in STRIP_KEYS}}
 
 
 def write_modes(model: PropellerWing, path: str | Path, n_modes: int | None = None,
@@ -541,9 +584,9 @@ def write_modes(model: PropellerWing, path: str | Path, n_modes: int | None = No
 
 def save_modal_model(model: ModalPropellerWing, path: str | Path) -> tuple[Path, Path]:
     """Write a :class:`~propwhirl.model.modal.ModalPropellerWing` (its modes, wing grids,
-    strips, installations, flight condition, switches and propellers) as a modal model file:
-    the modes to ``<stem>.modes.npz`` beside ``path``, the TOML description to ``path``, in
-    the format :func:`load_modal_model` reads (docs/modal-structures.md).  The targets are
+    strips, further surfaces, installations, flight condition, switches and propellers) as a
+    modal model file: the modes to ``<stem>.modes.npz`` beside ``path``, the TOML
+    description to ``path``, in the format :func:`load_modal_model` reads (docs/modal-structures.md).  The targets are
     checked as :func:`write_modes` checks them (a new path or a modal model file; regular
     files; apart).  Needs tomli-w.
 
@@ -597,5 +640,5 @@ def save_modal_model(model: ModalPropellerWing, path: str | Path) -> tuple[Path,
                       wing_grids=model.wing_grids, flight=model.flight,
                       switches=(model.wing_aero, model.propeller_aero, model.rotating),
                       aero=model.aero, dlm_planform=model.dlm_planform,
-                      dlm_mach=model.dlm_mach)
+                      dlm_mach=model.dlm_mach, surfaces=model.surfaces)
     return path, npz

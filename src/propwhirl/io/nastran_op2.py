@@ -40,12 +40,13 @@ analysis then runs on the free structure's elastic modes with its rigid-body coo
 at zero — the body's mean axes fixed in space, the limit of a body much heavier than the wing
 (docs/validation.md, "Free-free structures", has the table: the elastic instabilities of a
 heavy fuselage's model equal the clamped wing's, a light fuselage's do not).  The rigid-body
-modes themselves are not analysed (their flight mechanics would need aerodynamics on every
-surface that holds the body — a tail where pitch is free — which the strips of one wing do
-not give: with the wing alone only plunge and roll are physical freedoms).  With
+modes themselves are not analysed (their flight mechanics needs aerodynamics on every
+surface that holds the body — a tail where pitch is free, ``surfaces`` — and with the wing
+alone only plunge and roll are physical freedoms).  With
 ``keep_rigid=True`` too they are kept — at 0 Hz, undamped, the strips' aerodynamics on them —
-when each is a plunge or a roll; a rigid pitch, yaw, surge or sway is refused naming the
-mode (:class:`~propwhirl.model.modal_structure.ModalStructure`, ``free``).
+when each is a plunge or a roll, or a pitch where ``surfaces`` gives a tail (a second lifting
+surface on grids of the OP2); a yaw (no fin), surge or sway, or a pitch without a tail, is
+refused naming the mode (:mod:`propwhirl.model.rigid_body`).
 """
 from __future__ import annotations
 
@@ -63,7 +64,8 @@ from propwhirl import validate as v
 from propwhirl.io.nastran import INSTALL_HINT, UnitSystem, unit_system
 from propwhirl.io import nastran_read
 from propwhirl.io.nastran_deck import fail
-from propwhirl.model.modal import ModalInstallation, ModalPropellerWing
+from propwhirl.model.modal import ModalPropellerWing
+from propwhirl.model.modal_surface import ModalSurface
 from propwhirl.model.modal_structure import (MAX_MODES, RIGID_BODY_HZ, ModalStructure,
                                              StripPlanform, id_list)
 from propwhirl.model.systems import PropellerWing
@@ -309,7 +311,8 @@ def read_op2(path: str | Path, *, units: str | None = None, base=None,
              mount: str = "on-grid", n_modes: int | None = None, damping="rayleigh",
              subcase: int | None = None, free: bool = False,
              rigid_body_hz: float = RIGID_BODY_HZ_FREE, mass_normalised: bool = False,
-             notes: list[str] | None = None, keep_rigid: bool = False) -> ModalPropellerWing:
+             notes: list[str] | None = None, keep_rigid: bool = False,
+             surfaces: Sequence[ModalSurface] = ()) -> ModalPropellerWing:
     """The modal model of a NASTRAN SOL 103 OP2's modes (the module docstring says what maps
     to what).
 
@@ -322,7 +325,9 @@ def read_op2(path: str | Path, *, units: str | None = None, base=None,
         The deck's unit system, one of "si", "mm-t-s", "in-lbf-s" (NASTRAN has none).
     base : PropellerWing
         What an OP2 cannot say: the strips, the flight condition, the switches, the
-        propellers (its structure is replaced by the modes).
+        propellers (its structure is replaced by the modes; each installation's ``rotation``
+        override applied, a stopped or feathered one refused: a modal model's propellers
+        operate, as the BDF route's swept stick).
     hubs : sequence of int
         The hub grid of each of ``base``'s installations, in their order.
     wing_grids : sequence of int
@@ -344,8 +349,13 @@ def read_op2(path: str | Path, *, units: str | None = None, base=None,
         [Hz] With ``free``: the modes below this are rigid-body modes (at most six).
     keep_rigid : bool
         With ``free``: the rigid-body modes are kept (at 0 Hz, undamped) instead of left
-        out, each a plunge or a roll (a rigid pitch, yaw, surge or sway is refused naming the
-        mode: :class:`~propwhirl.model.modal_structure.ModalStructure`, ``free``).
+        out, each a plunge, a roll or — with a tail in ``surfaces`` — a pitch (a yaw, surge or
+        sway, or a pitch without a tail, is refused naming the mode:
+        :mod:`propwhirl.model.rigid_body`).
+    surfaces : sequence of ModalSurface
+        Lifting surfaces besides the wing on grids of the OP2 (a tail:
+        :class:`~propwhirl.model.modal_surface.ModalSurface`, its grids' ids as in the deck,
+        its strips in SI), e.g. to keep a free aircraft's rigid pitch.
     mass_normalised : bool
         The eigenvectors are mass-normalised (generalised masses 1); needed only when the OP2
         has no eigenvalue table (LAMA), whose generalised masses are used otherwise.
@@ -460,13 +470,15 @@ def read_op2(path: str | Path, *, units: str | None = None, base=None,
                                                   rigid),
                            shapes=shapes, source=structure_src, free=bool(free))
         installations = tuple(
-            ModalInstallation(inst.propeller, hub,
-                              "on-grid" if mount == "on-grid" else inst.mount, inst.aero)
+            nastran_read.modal_installation(
+                inst, hub, "on-grid" if mount == "on-grid" else inst.mount, hub,
+                lambda text: fail(where, text), "an OP2")
             for inst, hub in zip(base.propellers, hubs))
         model = ModalPropellerWing(s, wing_ids, _planform(base, xyz, wing_idx), base.flight,
                                    installations, wing_aero=base.wing_aero,
                                    propeller_aero=base.propeller_aero, rotating=base.rotating,
-                                   name=f"{base.name} (modes of {Path(str(path)).name})")
+                                   name=f"{base.name} (modes of {Path(str(path)).name})",
+                                   surfaces=surfaces)
     except v.InputError as exc:
         msg = str(exc)
         raise v.InputError(msg if msg.startswith(where) else f"{where}: {msg}") from None

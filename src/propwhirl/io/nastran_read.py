@@ -575,6 +575,21 @@ def _wing(deck: Deck, stick: Stick, base_wing: Wing, base: str) -> Wing:
     return replace(draft, centre_of_gravity=_values(cg))
 
 
+def modal_installation(inst, grid: int, mount: str, hub: int, fail, what: str
+                       ) -> ModalInstallation:
+    """The base model's installation ``inst`` as a modal model's, at ``grid`` with ``mount``:
+    its propeller with the installation's ``rotation`` override applied, its ``aero`` kept;
+    a stopped or feathered one (``state``) refused, ``fail(text)`` the error naming the file
+    (a modal model's propellers operate).  The BDF's swept stick and the OP2's modes
+    (:func:`propwhirl.io.nastran_op2.read_op2`) both read a base's installations so; ``what``
+    says which, ``hub`` the hub grid the message names."""
+    if inst.state != "operating":
+        raise fail(f"hub GRID {hub}: the base's installation is {inst.state}: {what} is read "
+                   "as a modal model, whose propellers operate")
+    p = inst.propeller if inst.rotation is None else replace(inst.propeller,
+                                                              rotation=inst.rotation)
+    return ModalInstallation(p, grid, mount, inst.aero)
+
 def _swept(deck: Deck, stick: Stick, wing: Wing, model: PropellerWing, mounts, installations,
            name: str) -> ModalPropellerWing:
     """The modal model of a swept stick: the modes of its straight beam (``wing``, the stick
@@ -606,14 +621,8 @@ def _swept(deck: Deck, stick: Stick, wing: Wing, model: PropellerWing, mounts, i
     planform = replace(strips, y=y0 + c * strips.y, width=c * strips.width,
                        leading_edge_x=x0 + s * strips.y + strips.leading_edge_x,
                        source=f"{deck.where} (the base's strips on its swept stick)")
-    props = []
-    for m, inst in zip(mounts, installations):
-        if inst.state != "operating":
-            raise deck.fail(f"hub GRID {m.hub}: the base's installation is {inst.state}: a "
-                            "swept stick is read as a modal model, whose propellers operate")
-        p = inst.propeller if inst.rotation is None else replace(inst.propeller,
-                                                                  rotation=inst.rotation)
-        props.append(ModalInstallation(p, m.wing_grid, inst.mount, inst.aero))
+    props = [modal_installation(inst, m.wing_grid, inst.mount, m.hub, deck.fail,
+                                "a swept stick") for m, inst in zip(mounts, installations)]
     dlm = {}
     if wing.aero == "dlm":          # the base's doublet lattice: panels on the swept planform
         nodes = wing.node_properties()           # the chord 2b, the axis a b aft of mid-chord

@@ -16,6 +16,7 @@ units throughout.  The modules' old paths (``propwhirl.model.wing`` …) are the
 from propwhirl.model.flight import FlightCondition
 from propwhirl.model.modal import ModalInstallation, ModalPropellerWing
 from propwhirl.model.modal_structure import ModalStructure, StripPlanform
+from propwhirl.model.modal_surface import ModalSurface
 from propwhirl.model.propellers.propeller import MeasuredDerivatives, PointMass, Propeller
 from propwhirl.model.systems import (Installation, IsolatedPropeller,
                                      PropellerWing, TypicalSection, node_at)
@@ -23,5 +24,6 @@ from propwhirl.model.structure.wing import LiftSlope, Wing
 
 __all__ = ["FlightCondition", "Installation", "IsolatedPropeller", "LiftSlope",
            "MeasuredDerivatives", "ModalInstallation", "ModalPropellerWing", "ModalStructure",
+           "ModalSurface",
            "PointMass", "Propeller", "PropellerWing", "StripPlanform", "TypicalSection", "Wing",
            "node_at"]

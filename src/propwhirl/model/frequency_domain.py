@@ -138,22 +138,24 @@ def modal_pk_system(model, V: float):
     propellers as they are (:meth:`ModalAssembly.second_order` with the wing aerodynamics
     off), every strip with the exact Theodorsen loads at its own k = ω b_s / V projected on
     the coordinates as the finite-state strips are, (TΦ)ᵀ A_s (TΦ)
-    (:mod:`propwhirl.model.modal`)."""
+    (:mod:`propwhirl.model.modal`), a further surface's (a tail's) strips likewise."""
     assembly = model.with_(wing_aero=False).assembly()
     dry = assembly.second_order(np.array([V]))
     if dry.n_lag:
         raise v.InputError(f"model = {model.name!r} is invalid for the p-k method: its "
                            "propeller aerodynamics has lag states")
-    node = model.planform.node_properties()
-    width = node["width"][:, None, None]
-    P = assembly.strips                                   # (n_strips, 2, n_dof): [h, α] of q
+    # the wing's strips, then each further surface's (a tail): (nodes, P (n_strips, 2, n_dof))
+    parts = [(p.node_properties(), P) for p, P in assembly.lifting_surfaces()]
     structure = (dry.S1[0], dry.S2[0], dry.S3[0])
 
     def matrices(omega: float):
-        strips = _strip(model.flight.density, V, node["b"], node["a"], node["Cla"],
-                        node["ac"], omega)
-        return tuple(S - np.einsum("sim,sij,sjn->mn", P, width * A, P)
-                     for S, A in zip(structure, strips))
+        out = [np.array(S, dtype=float) for S in structure]
+        for node, P in parts:
+            strips = _strip(model.flight.density, V, node["b"], node["a"], node["Cla"],
+                            node["ac"], omega)
+            for X, A in zip(out, strips):
+                X -= np.einsum("sim,sij,sjn->mn", P, node["width"][:, None, None] * A, P)
+        return tuple(out)
 
     return matrices
 

@@ -14,6 +14,12 @@ aerodynamics as a :class:`~propwhirl.model.structure.wing.Wing`'s,
 (:func:`~propwhirl.model.modal_structure.strip_interpolation`) the aerodynamic matrices are
 (TΦ)ᵀ A_strip (TΦ), the lag states' couplings projected the same way.
 
+**Further lifting surfaces** (``surfaces``, issue 36 item 4).  A tail
+(:class:`~propwhirl.model.modal_surface.ModalSurface`): strips on its own grids, splined and
+loaded as the wing's, its lag states after the wing's ("tail strip s w r"); with strip
+aerodynamics only.  A free structure's rigid pitch needs one
+(:mod:`propwhirl.model.rigid_body`: the wing alone admits plunge and roll).
+
 **Doublet lattice on the modes** (``aero = "dlm"``, issue 34 item 3).  The panels of the
 ``dlm_planform`` (:class:`~propwhirl.model.aerodynamics.planform.Planform`, a CAERO1's
 corners, chords and counts) are splined to the modes by the strips' own rule
@@ -58,13 +64,17 @@ from propwhirl.model.aerodynamics import dlm_rfa, validity
 from propwhirl.model.aerodynamics.dlm import DlmTables, check_tables
 from propwhirl.model.aerodynamics.dlm_surface import DlmSurface
 from propwhirl.model.aerodynamics.planform import Planform
-from propwhirl.model.structure.assembly import LAG_STATES, call_blocks, strip_aero_blocks
+from propwhirl.model.structure.assembly import LAG_STATES, call_blocks
 from propwhirl.model.base import EvaluatorBase, StateSpaceModel
 from propwhirl.model.fields import spec
 from propwhirl.model.flight import FlightCondition
 from propwhirl.model.modal_structure import (RIGID_BODY_HZ, ModalStructure, StripPlanform,
                                             axis_spline, check_strip_sweep, id_list,
                                             strip_interpolation)
+from propwhirl.model.modal_surface import (ModalSurface, check_surfaces, strip_rows,
+                                          strip_system)
+from propwhirl.model.modal_surface import grid_ids as _grid_ids
+from propwhirl.model.rigid_body import check_rigid_freedoms
 from propwhirl.model.propellers.propeller import Propeller
 from propwhirl.model.propeller_blocks import (propeller_constants_at, propeller_matrices,
                                              propeller_values)
@@ -120,19 +130,6 @@ class ModalInstallation:
             raise v.InputError(f"mount = {v.short_repr(self.mount)} is invalid: must be one of "
                                + ", ".join(map(repr, MOUNTS)))
         v.boolean("aero", self.aero)
-
-
-def _grid_ids(name: str, grids) -> tuple[int, ...]:
-    """``grids`` as a tuple of grid ids; an InputError naming ``name`` unless it is a sequence
-    (or 1-D integer array) of integers."""
-    arr = np.asarray(grids, dtype=object) if isinstance(grids, (tuple, list, np.ndarray)) \
-        else None
-    if arr is None or arr.ndim != 1 or not all(
-            isinstance(g, (int, np.integer)) and not isinstance(g, (bool, np.bool_))
-            for g in arr):
-        raise v.InputError(f"{name} = {v.short_repr(grids)} is invalid: must be a sequence of "
-                           "grid ids (integers)")
-    return tuple(int(g) for g in arr)
 
 
 def check_hub_grids(structure: ModalStructure, grids, name: str = "propellers") -> None:
@@ -193,6 +190,12 @@ class ModalPropellerWing(StateSpaceModel):
     dlm_mach : float or "speed"
         The Mach number of the doublet-lattice loads, as a beam wing's ``dlm_mach``:
         "speed" (V/a at each analysed speed) or one number in [0, 0.9].
+    surfaces : tuple of ModalSurface
+        Lifting surfaces besides the wing (a tail:
+        :class:`~propwhirl.model.modal_surface.ModalSurface`, strips on its own grids), their
+        strips' loads switched with ``wing_aero``; with the strips only (``aero = "strip"``).
+        A free structure's rigid pitch needs one (:mod:`propwhirl.model.rigid_body`: the wing
+        alone admits plunge and roll).
 
     Examples
     --------
@@ -230,6 +233,7 @@ class ModalPropellerWing(StateSpaceModel):
     aero: Literal["strip", "dlm"] = "strip"
     dlm_planform: Planform | None = None
     dlm_mach: float | Literal["speed"] = DLM_MATCHED
+    surfaces: tuple[ModalSurface, ...] = ()
 
     def __post_init__(self) -> None:
         for k in ("wing_aero", "propeller_aero", "rotating"):
@@ -255,6 +259,12 @@ class ModalPropellerWing(StateSpaceModel):
         check_hub_grids(s, [inst.grid for inst in self.propellers])
         strip_interpolation(s, self.wing_grids, self.planform)   # checks the grids now
         self._check_dlm()
+        object.__setattr__(self, "surfaces", check_surfaces(s, self.surfaces, self.wing_aero))
+        if self.surfaces and self.aero == "dlm":
+            raise v.InputError("surfaces is invalid with aero = 'dlm': the doublet lattice "
+                               "takes the wing's dlm_planform alone; a tail's strips go with "
+                               "aero = 'strip'")
+        check_rigid_freedoms(s, len(self.surfaces))
         # the strips are an unswept wing's: refused on a swept axis as the model's own wing
         # aerodynamics; a model with a dlm_planform is (or is the strip twin of, which the
         # doublet lattice's p-k tracks with) a doublet-lattice model
@@ -391,7 +401,8 @@ class ModalPropellerWing(StateSpaceModel):
 
     def dof_map(self) -> DofMap:
         """The states: η of every mode ("mode k", kind "eta"), then θ, ψ of each flexibly
-        mounted propeller, then the lag states of every strip ("strip s w1", ...)."""
+        mounted propeller, then the lag states of every strip ("strip s w1", ...), then
+        those of each further surface's ("tail strip s w1", ...)."""
         n = self.structure.n_modes
         labels = [f"mode {k + 1}" for k in range(n)]
         kinds, node, prop = ["eta"] * n, [-1] * n, [-1] * n
@@ -412,6 +423,7 @@ class ModalPropellerWing(StateSpaceModel):
             k = LAG_STATES[self.planform.aero_model]
             w_labels = tuple(f"strip {s + 1} w{r + 1}" for s in range(self.planform.y.size)
                              for r in range(k))
+            w_labels += tuple(x for surf in self.surfaces for x in surf.lag_labels())
         return DofMap(tuple(labels), tuple(kinds), tuple(node), tuple(prop), w_labels,
                       (-1,) * len(w_labels), tuple(props), hubs=self._hubs(len(labels)))
 
@@ -453,6 +465,7 @@ class ModalAssembly(EvaluatorBase):
 
     structure:  the generalised (n_q, n_q) M, C, K (modes and propeller DOFs), read-only;
     strips:     (n_strips, 2, n_q): each strip's [h, α] from q (T Φ);
+    surfaces:   the same, one array per further lifting surface (``model.surfaces``);
     hubs:       per installation (its local DOFs, 2 or 4, n_q): [θ, ψ,] h_P, α_P from q;
     constants:  per installation its generated blocks' speed-independent arguments;
     states:     the :class:`~propwhirl.model.protocol.DofMap`;
@@ -470,6 +483,7 @@ class ModalAssembly(EvaluatorBase):
     states: DofMap
     dlm_tables: DlmTables | None = None
     dlm_fit_ks: tuple[float, ...] | None = None
+    surfaces: tuple[np.ndarray, ...] = ()
 
     @classmethod
     def build(cls, model: ModalPropellerWing,
@@ -482,9 +496,9 @@ class ModalAssembly(EvaluatorBase):
         for X, Xm in zip(mats, s.generalised()):
             X[:nm, :nm] = Xm
         Phi = s.shapes.transpose(1, 2, 0)                      # (n_grids, 6, n_modes)
-        T = strip_interpolation(s, model.wing_grids, model.planform)
-        strips = np.zeros((model.planform.y.size, 2, n))
-        strips[:, :, :nm] = np.einsum("scgk,gkm->scm", T, Phi)
+        strips = strip_rows(s, model.wing_grids, model.planform, n)
+        tails = tuple(strip_rows(s, surf.grids, surf.planform, n, f"surfaces[{j}].grids")
+                      for j, surf in enumerate(model.surfaces))
         hubs, consts = [], []
         for j, inst in enumerate(model.propellers):
             g = s.index(inst.grid)
@@ -510,10 +524,16 @@ class ModalAssembly(EvaluatorBase):
             hub.flags.writeable = False
             hubs.append(hub)
             consts.append(MappingProxyType(c))
-        for X in (*mats, strips):
+        for X in mats:
             X.flags.writeable = False
         tables = check_tables(dlm_tables) if model.aero == "dlm" else None
-        return cls(model, mats, strips, tuple(hubs), tuple(consts), model.dof_map(), tables)
+        return cls(model, mats, strips, tuple(hubs), tuple(consts), model.dof_map(), tables,
+                   surfaces=tails)
+
+    def lifting_surfaces(self) -> tuple[tuple[StripPlanform, np.ndarray], ...]:
+        """(planform, strip rows) of the wing, then of each further surface."""
+        return ((self.model.planform, self.strips),
+                *zip((surf.planform for surf in self.model.surfaces), self.surfaces))
 
     def dof_map(self) -> DofMap:
         return self.states
@@ -580,19 +600,7 @@ class ModalAssembly(EvaluatorBase):
             z = np.zeros((nV, 0, n))
             return SecondOrder(*S, np.zeros((nV, n, 0)), np.zeros((nV, 0, 0)), z, z.copy(),
                                self.states.q_labels, ())
-        a = strip_aero_blocks(model.planform.node_properties(), model.planform.aero_model,
-                              model.flight.density, V)
-        P = self.strips                                           # (ns, 2, n)
-        for Si, A in zip(S, (a["Ma"], a["Ca"], a["Ka"])):
-            Si -= np.einsum("sim,vsij,sjn->vmn", P, A, P)
-        ns, k = P.shape[0], a["Ww"].shape[-1]
-        m = ns * k
-        S4 = np.einsum("sim,vsir->vmsr", P, a["W0"]).reshape(nV, n, m)
-        Wv = np.einsum("vsri,sin->vsrn", a["Wv"], P).reshape(nV, m, n)
-        Wq = np.einsum("vsri,sin->vsrn", a["Wq"], P).reshape(nV, m, n)
-        Ww = np.zeros((nV, m, m))
-        for s in range(ns):
-            Ww[:, s * k:(s + 1) * k, s * k:(s + 1) * k] = a["Ww"][:, s]
+        S4, Ww, Wv, Wq = strip_system(S, self.lifting_surfaces(), model.flight.density, V)
         return SecondOrder(*S, S4, Ww, Wv, Wq, self.states.q_labels, self.states.w_labels)
 
 

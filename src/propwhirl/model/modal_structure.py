@@ -42,6 +42,8 @@ from propwhirl.model.fields import spec
 from propwhirl.model.structure.assembly import LAG_STATES, free_dofs, wing_structure
 from propwhirl.model.structure.mesh import beam_interpolation
 from propwhirl.model.propeller_blocks import propeller_constants
+from propwhirl.model.rigid_body import (KEPT_RIGID_BODY, RIGID_FIT, RIGID_SHARE,  # noqa: F401
+                                        one_pitch, refusal, rigid_body_kind, rigid_shape)
 
 #: Components of a grid's motion in a mode shape, in the order of the last axis of ``shapes``.
 COMPONENTS = ("T_x", "T_y", "T_z", "R_x", "R_y", "R_z")
@@ -111,10 +113,11 @@ class ModalStructure:
     free : bool
         The structure is free (a whole or half aircraft, not a clamped wing): its modes below
         :data:`RIGID_BODY_HZ` (at 0 <= f) are rigid-body modes, accepted when each is a
-        plunge or a roll (about any axis along x: :func:`rigid_body_kind`; the strips' lift
-        damps both) and then taken as exactly rigid (:func:`plunge_roll_shape`); a rigid
-        pitch, yaw, surge or sway is refused naming the mode (with the wing alone pitch and
-        yaw are statically unstable by construction: no tail).  False (the
+        plunge, a roll (about any axis along x) or a pitch
+        (:func:`~propwhirl.model.rigid_body.rigid_body_kind`) and then taken as exactly rigid
+        (:func:`~propwhirl.model.rigid_body.rigid_shape`); a rigid yaw (no fin), surge or
+        sway is refused naming the mode.  A pitch needs a tail: the model on the structure
+        refuses it with the wing alone (:mod:`propwhirl.model.rigid_body`).  False (the
         default): no mode below :data:`RIGID_BODY_HZ`.
 
     Examples
@@ -212,16 +215,18 @@ class ModalStructure:
             raise v.InputError(f"{src}: shapes[{int(zero[0])}] is zero at every grid: mode "
                                f"{int(zero[0]) + 1} has no motion")
         if low.size:                               # a free structure's rigid-body modes
-            shapes = np.array(self.shapes)
             for i in low:
-                kind = rigid_body_kind(self.xyz, shapes[i])
-                if kind not in KEPT_RIGID_BODY:
-                    raise v.InputError(
-                        f"{src}: mode {int(i) + 1} ({f[i]:.3g} Hz) is a rigid-body {kind}: "
-                        + _REFUSED_RIGID.get(kind, _REFUSED_RIGID["pitch"]))
-                shapes[i] = plunge_roll_shape(self.xyz, shapes[i])
-            shapes.flags.writeable = False
-            put("shapes", shapes)
+                kind = rigid_body_kind(self.xyz, self.shapes[i])
+                why = refusal(kind)
+                if why is not None:
+                    raise v.InputError(f"{src}: mode {int(i) + 1} ({f[i]:.3g} Hz) is a "
+                                       f"rigid-body {kind}: {why}")
+            shapes, mass = one_pitch(self.xyz, self.shapes, self.modal_mass, low)
+            for i in low:
+                shapes[i] = rigid_shape(self.xyz, shapes[i])
+            for k, x in (("shapes", shapes), ("modal_mass", mass)):
+                x.flags.writeable = False
+                put(k, x)
 
     @classmethod
     def from_wing(cls, wing, n_modes: int | None = None, first_id: int = 1) -> "ModalStructure":
@@ -341,6 +346,12 @@ class ModalStructure:
                                f"(grids {id_list(self.grid_ids)})")
         return int(hit[0])
 
+    def rigid_body_modes(self) -> tuple[tuple[int, str], ...]:
+        """(mode index, kind) of each rigid-body mode kept (a free structure's, below
+        :data:`RIGID_BODY_HZ`; :func:`~propwhirl.model.rigid_body.rigid_body_kind`)."""
+        return tuple((int(i), rigid_body_kind(self.xyz, self.shapes[i]))
+                     for i in np.flatnonzero(self.frequencies_hz < RIGID_BODY_HZ))
+
     def truncated(self, n_modes: int) -> "ModalStructure":
         """The structure with its first ``n_modes`` modes only."""
         n = v.integer_at_least("n_modes", n_modes, 1)
@@ -356,103 +367,6 @@ class ModalStructure:
         m, w, z = self.modal_mass, self.omega, self.damping_ratio
         with np.errstate(over="ignore"):   # inf: the state matrix's check names the entry
             return np.diag(m), np.diag(2.0 * z * m * w), np.diag(m * w * w)
-
-
-#: Rigid-body modes a free structure may keep with the wing alone: the strips' lift damps a
-#: plunge and a roll (its velocity changes the angle of attack; its displacement does not).
-KEPT_RIGID_BODY = ("plunge", "roll")
-#: Share of a rigid-body mode's largest motion below which a freedom is counted absent.
-RIGID_SHARE = 1e-4
-#: Residual of the rigid-body fit (relative) above which a mode is no rigid-body motion.
-RIGID_FIT = 1e-3
-_REFUSED_RIGID = {
-    "pitch": "a wing alone has no tail, so a rigid pitch (or yaw) is statically unstable by "
-             "construction and its divergence would be the missing tail's, not the wing's; "
-             "give the structure a tail or hold pitch (its SPC; or leave the rigid-body modes "
-             "out: read_op2(free=True) without keep_rigid, the heavy-body limit)",
-    "surge": "the strips give an in-plane rigid translation no force (a neutral root): "
-             "hold it in the FE model or leave it out",
-    "mechanism": "its shape is no rigid-body motion of the grids (a mechanism of the FE "
-                 "model): remove it",
-}
-for _k in ("yaw", "pitch and yaw"):
-    _REFUSED_RIGID[_k] = _REFUSED_RIGID["pitch"]
-_REFUSED_RIGID["sway"] = _REFUSED_RIGID["surge"]
-
-
-def _rigid_fit(xyz: np.ndarray, shape: np.ndarray):
-    """(x = [t, θ], A, L, residual ok) of the least-squares rigid motion of
-    :func:`rigid_body_kind` (A maps x to the grids' [T, L R] stacked)."""
-    xyz = np.asarray(xyz, dtype=float)
-    u = np.asarray(shape, dtype=float)
-    r = xyz - xyz.mean(axis=0)
-    L = max(1.0, float(np.max(np.linalg.norm(r, axis=1))))
-    n = xyz.shape[0]
-    A = np.zeros((n, 6, 6))
-    A[:, :3, :3] = np.eye(3)
-    zero = np.zeros(n)                  # θ × r = −r × θ: the skew matrix of r, negated
-    A[:, :3, 3:] = np.stack([np.stack([zero, r[:, 2], -r[:, 1]], -1),
-                             np.stack([-r[:, 2], zero, r[:, 0]], -1),
-                             np.stack([r[:, 1], -r[:, 0], zero], -1)], axis=1)
-    A[:, 3:, 3:] = L * np.eye(3)
-    b = np.concatenate([u[:, :3], L * u[:, 3:]], axis=1).reshape(6 * n)
-    A = A.reshape(6 * n, 6)
-    x = np.linalg.lstsq(A, b, rcond=None)[0]
-    return x, A, L, bool(np.linalg.norm(A @ x - b) <= RIGID_FIT * np.linalg.norm(b))
-
-
-def rigid_body_kind(xyz: np.ndarray, shape: np.ndarray) -> str:
-    """What rigid-body motion a mode shape is, from its six components at the grids.
-
-    The rule: the grids' motion is fitted (least squares) by a rigid motion about the grids'
-    centroid c, T_g = t + θ × (x_g − c) and R_g = θ at every grid g, the rotations weighted
-    by the grids' largest distance L from c (at least 1 m); a residual over
-    :data:`RIGID_FIT` of the motion is a "mechanism".  Of the freedoms' sizes — the
-    translations |t_x|, |t_y|, |t_z| and the rotations L |θ_x|, L |θ_y|, L |θ_z| — those over
-    :data:`RIGID_SHARE` of the largest are present.  A rotation about y is a "pitch", about
-    z a "yaw" ("pitch and yaw" both); a rotation about x alone is a "roll" — about an axis
-    along x through any point, so its translation across x (y, z) only places the axis — but
-    with a translation along x a "surge"; without rotation a translation along z is a
-    "plunge", along x a "surge", along y a "sway" (the first that applies, in this order:
-    "mechanism", "pitch and yaw", "pitch", "yaw", "surge", "roll", "sway", "plunge").
-
-    Parameters
-    ----------
-    xyz : ndarray
-        (n_grids, 3) grid positions [m] (x aft, y outboard, z up).
-    shape : ndarray
-        (n_grids, 6) the mode's [T_x, T_y, T_z, R_x, R_y, R_z] [m, rad].
-    """
-    x, _, L, ok = _rigid_fit(xyz, shape)
-    if not ok:
-        return "mechanism"
-    size = np.abs(x) * np.array([1, 1, 1, L, L, L])
-    on = size > RIGID_SHARE * size.max()
-    if on[4] and on[5]:
-        return "pitch and yaw"
-    if on[4] or on[5]:
-        return "pitch" if on[4] else "yaw"
-    if on[0]:
-        return "surge"
-    if on[3]:
-        return "roll"
-    return "sway" if on[1] else "plunge"
-
-
-def plunge_roll_shape(xyz: np.ndarray, shape: np.ndarray) -> np.ndarray:
-    """(n_grids, 6) the plunge and roll of a rigid-body mode's fit (:func:`rigid_body_kind`)
-    at the grids, exactly rigid: T_y = t_y − θ_x (z − c_z), T_z = t_z + θ_x (y − c_y),
-    R_x = θ_x, the rest 0 [m, rad] (t_y only with a roll: the height of its axis).  A free
-    structure's kept rigid-body modes are taken so: the fit's residual (an eigensolver's
-    rounding, below :data:`RIGID_FIT`) and its freedoms below :data:`RIGID_SHARE` would
-    otherwise be a spurious aerodynamic stiffness on a coordinate that has none (a twist of
-    1e-11 rad on the plunge gave a real root of +7e-7 1/s: a false divergence)."""
-    x, A, L, _ = _rigid_fit(xyz, shape)
-    keep = np.zeros(6)
-    keep[1:4] = x[1:4]
-    out = (A @ keep).reshape(-1, 6)
-    out[:, 3:] /= L
-    return out
 
 
 def id_list(ids, limit: int = 8) -> str:
@@ -559,26 +473,33 @@ class StripPlanform:
 
 
 def strip_interpolation(structure: ModalStructure, wing_grids, planform: StripPlanform,
-                        twist_spline: str = "linear") -> np.ndarray:
+                        twist_spline: str = "linear", key: str = "wing_grids") -> np.ndarray:
     """T (n_strips, 2, n_grids, 6): each strip's heave h [m] (positive down, at its elastic
     axis) and twist α [rad] (nose up) from the grids' six components: :func:`axis_spline`
     (the one rule, the doublet-lattice panels' too) at each strip's station and elastic axis.
 
     ``wing_grids``: ids of the reference-axis grids, strictly increasing in y; every strip
-    must lie within their span (an error names the first that does not)."""
+    must lie within their span (an error names the first that does not); ``key``: how the
+    errors name the grids (a tail's ``surfaces[j].grids``)."""
     ys = planform.y
     x_ea = planform.leading_edge_x + planform.elastic_axis * planform.chord
 
     def outside(i: int, lo: float, hi: float) -> str:
-        return (f"{planform.source}: y[{i}] = {ys[i]:.6g} m is outside the wing grids' span "
-                f"[{lo:.6g}, {hi:.6g}] m")
+        return (f"{planform.source}: y[{i}] = {ys[i]:.6g} m is outside the {_grids(key)}' "
+                f"span [{lo:.6g}, {hi:.6g}] m")
 
-    Z, S = axis_spline(structure, wing_grids, x_ea, ys, outside, twist_spline)
+    Z, S = axis_spline(structure, wing_grids, x_ea, ys, outside, twist_spline, key)
     return np.stack([Z, S], axis=1)
 
 
+def _grids(key: str) -> str:
+    """How an error names the grids of ``key``: "wing grids", or the key itself."""
+    return "wing grids" if key == "wing_grids" else key
+
+
 def axis_spline(structure: ModalStructure, wing_grids, x: np.ndarray, y: np.ndarray,
-                outside=None, twist_spline: str = "linear") -> tuple[np.ndarray, np.ndarray]:
+                outside=None, twist_spline: str = "linear", key: str = "wing_grids"
+                ) -> tuple[np.ndarray, np.ndarray]:
     """The beam spline along the reference axis of the ``wing_grids``: at points (x, y) [m]
     of the wing's plane, (Z, S) each (n, n_grids, 6) — Z the weights of the grids' six
     components in the point's displacement normal to the wing, positive down [m] (z = Z · u),
@@ -603,18 +524,19 @@ def axis_spline(structure: ModalStructure, wing_grids, x: np.ndarray, y: np.ndar
     2.4 %.
 
     ``wing_grids`` strictly increasing in y, at least 2; ``outside(i, lo, hi)``: the one-line
-    message for point i outside the grids' span [lo, hi] [m] (default a generic one)."""
+    message for point i outside the grids' span [lo, hi] [m] (default a generic one);
+    ``key``: how the errors name the grids."""
     src = structure.source
-    idx = np.array([structure.index(int(g), f"wing_grids[{i}]")
+    idx = np.array([structure.index(int(g), f"{key}[{i}]")
                     for i, g in enumerate(wing_grids)], dtype=int)
     if idx.size < 2:
-        raise v.InputError(f"{src}: wing_grids has {idx.size} grid(s): the spline needs at "
+        raise v.InputError(f"{src}: {key} has {idx.size} grid(s): the spline needs at "
                            "least 2")
     yg = structure.xyz[idx, 1]
     if np.any(np.diff(yg) <= 0):
         i = int(np.argmax(np.diff(yg) <= 0)) + 1
-        raise v.InputError(f"{src}: wing_grids[{i}] = {int(wing_grids[i])} (y = {yg[i]:.6g} m) "
-                           "is invalid: the wing grids must be ordered root to tip, y "
+        raise v.InputError(f"{src}: {key}[{i}] = {int(wing_grids[i])} (y = {yg[i]:.6g} m) "
+                           f"is invalid: the {_grids(key)} must be ordered root to tip, y "
                            "increasing")
     x = np.asarray(x, dtype=float)
     ys = np.asarray(y, dtype=float)
@@ -623,7 +545,7 @@ def axis_spline(structure: ModalStructure, wing_grids, x: np.ndarray, y: np.ndar
     if out.size:
         i = int(out[0])
         raise v.InputError(outside(i, float(yg[0]), float(yg[-1])) if outside is not None else
-                           f"{src}: a point at y = {ys[i]:.6g} m is outside the wing grids' "
+                           f"{src}: a point at y = {ys[i]:.6g} m is outside the {_grids(key)}' "
                            f"span [{yg[0]:.6g}, {yg[-1]:.6g}] m")
     Z = np.zeros((ys.size, structure.grid_ids.size, 6))
     S = np.zeros_like(Z)
@@ -648,17 +570,17 @@ def axis_spline(structure: ModalStructure, wing_grids, x: np.ndarray, y: np.ndar
 STRIP_SWEEP_LIMIT_DEG = 5.0
 
 
-def reference_sweep(structure: ModalStructure, wing_grids) -> float:
+def reference_sweep(structure: ModalStructure, wing_grids, key: str = "wing_grids") -> float:
     """Sweep Λ [deg] of the wing grids' line, positive aft: the least-squares slope of their x
     against their y, Λ = atan(dx/dy) (0 for a line of grids along y)."""
-    idx = np.array([structure.index(int(g), "wing_grids") for g in wing_grids], dtype=int)
+    idx = np.array([structure.index(int(g), key) for g in wing_grids], dtype=int)
     y, x = structure.xyz[idx, 1], structure.xyz[idx, 0]
     if idx.size < 2 or not float(np.ptp(y)) > 0.0:
         return 0.0
     return float(np.degrees(np.arctan(np.polyfit(y - y.mean(), x - x.mean(), 1)[0])))
 
 
-def check_strip_sweep(structure: ModalStructure, wing_grids) -> None:
+def check_strip_sweep(structure: ModalStructure, wing_grids, key: str = "wing_grids") -> None:
     """Refuse a reference axis swept by more than :data:`STRIP_SWEEP_LIMIT_DEG` under strip
     aerodynamics, one line: the key, the angle, why, and what to use.  The strips here are an
     unswept wing's: streamwise strips with the normal flow and the lift slope of an unswept
@@ -666,11 +588,11 @@ def check_strip_sweep(structure: ModalStructure, wing_grids) -> None:
     aerodynamics do not.  A swept wing's lifting surface is the doublet lattice's
     (``aero = "dlm"``: panels on its ``dlm_planform``, splined to the grids by the same
     rule)."""
-    sweep = reference_sweep(structure, wing_grids)
+    sweep = reference_sweep(structure, wing_grids, key)
     if abs(sweep) > STRIP_SWEEP_LIMIT_DEG:
         ids = [int(g) for g in wing_grids]
         raise v.InputError(
-            f"{structure.source}: wing_grids (GRID {ids[0]} to GRID {ids[-1]}) make a reference "
+            f"{structure.source}: {key} (GRID {ids[0]} to GRID {ids[-1]}) make a reference "
             f"axis swept by {sweep:.1f} deg, more than the {STRIP_SWEEP_LIMIT_DEG:g} deg the "
             "strip aerodynamics take: propwhirl's strips are an unswept wing's (no cos(sweep) in "
             "the normal flow or the lift slope); a swept wing takes the doublet lattice (aero = "

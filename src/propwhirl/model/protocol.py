@@ -536,9 +536,9 @@ REASONS = {
                            "derivatives: a wing with it has sensitivities by central "
                            "differences of its state matrix",
     "free-pk": "the p-k method follows the oscillatory in-vacuo modes: a free structure's "
-               "rigid-body roots (plunge, roll) and the slow flutter they make with the "
-               "divergence root (0.04 Hz on a body 10^4 times the wing) are not among them; "
-               "use the default method (dense), which tracks every root",
+               "rigid-body roots (plunge, roll, with a tail pitch) and the slow flutter they "
+               "make with the divergence root (0.04 Hz on a body 10^4 times the wing) are not "
+               "among them; use the default method (dense), which tracks every root",
     "no-wing-aero-pk": "the p-k method iterates the wing's unsteady aerodynamics on the "
                        "frequency, and the wing aerodynamics are off: the dense method is exact",
     "rigid-pk": "the p-k method iterates the wing's unsteady aerodynamics on the frequency: an "
