@@ -58,6 +58,7 @@ from propwhirl.analysis.events import Instability
 from propwhirl.analysis.modes import InVacuo
 from propwhirl.analysis.naming import event_label, whirl
 from propwhirl.analysis.participation import with_participation
+from propwhirl.analysis.pk_basis import first_order, pk_basis, pk_roots
 from propwhirl.engine import mac
 from propwhirl.model.aerodynamics import compressibility
 from propwhirl.model.protocol import capabilities
@@ -113,6 +114,9 @@ class PKFlutter:
     event: str = "onset"
     kind: str = "flutter"
     root: complex | None = None
+    #: the full-order crossing's speed minus the reduced sweep's [m/s] (the Galerkin basis's
+    #: truncation error there, :mod:`propwhirl.analysis.pk_basis`); None: swept on full DOFs
+    shift: float | None = None
 
     @property
     def frequency_hz(self) -> float:
@@ -137,6 +141,8 @@ class PKSweep:
     #: (mode label, V [m/s]) where the k iteration of a mode did not converge: the mode is not
     #: followed beyond that speed (its roots NaN there) — said, never silently dropped
     lost: tuple[tuple[str, float], ...] = ()
+    #: the size r of the Galerkin basis the sweep iterated on (0: the model's own DOFs)
+    basis_size: int = 0
 
     @property
     def damping(self) -> np.ndarray:
@@ -161,14 +167,8 @@ def pk_matrix(model, V: float, k: float, tables: DlmTables | None = None) -> np.
                         max(k, K_MIN) * V / reference_semichord(model))
 
 
-def _first_order(system, omega: float) -> np.ndarray:
-    M, Cd, K = system(omega)
-    n = M.shape[0]
-    A = np.zeros((2 * n, 2 * n))
-    A[:n, n:] = np.eye(n)
-    A[n:, :n] = -np.linalg.solve(M, K)
-    A[n:, n:] = -np.linalg.solve(M, Cd)
-    return A
+#: the first-order matrix of a p-k system (:func:`propwhirl.analysis.pk_basis.first_order`)
+_first_order = first_order
 
 
 def pk_root(model, V: float, p0: complex, *, ktol: float = KTOL, maxiter: int = 200,
@@ -178,31 +178,16 @@ def pk_root(model, V: float, p0: complex, *, ktol: float = KTOL, maxiter: int = 
 
     Fixed-point iteration k ← Im p · b / V (b: the reference semichord) with the root of
     :func:`pk_matrix` nearest the previous one, under-relaxed (halving the step, down to
-    1/64) while the steps oscillate without shrinking; raises RuntimeError when k does not converge
-    in ``maxiter`` iterations.  ``system``: :func:`pk_system` of (model, V) if already built
+    1/64) while the steps oscillate without shrinking (:func:`propwhirl.analysis.pk_basis.pk_roots`,
+    of one mode); raises RuntimeError when k does not converge in ``maxiter`` iterations.  ``system``: :func:`pk_system` of (model, V) if already built
     (else built with ``tables`` and ``own_mach``: a Mach-matched doublet-lattice wing's Q at
     its own Mach V/a, :func:`matched_crossing`, not between the tables' Mach nodes).
     """
-    b = reference_semichord(model)
     system = pk_system(model, V, tables, own_mach) if system is None else system
-    p = complex(p0)
-    k = abs(p.imag) * b / V
-    relax, last = 1.0, 0.0
-    for _ in range(maxiter):
-        lam = np.linalg.eigvals(_first_order(system, max(k, K_MIN) * V / b))
-        lam = lam[lam.imag >= 0] if np.any(lam.imag > 0) else lam
-        p = complex(lam[np.argmin(np.abs(lam - p))])
-        k_new = abs(p.imag) * b / V
-        step = k_new - k
-        if abs(step) <= ktol * max(k_new, K_MIN):
-            return p, k_new
-        if step * last < 0 and abs(step) >= 0.5 * abs(last):  # oscillating, not shrinking
-            relax = max(relax / 2, 1 / 64)
-        elif step * last > 0:                                  # monotone again
-            relax = min(2 * relax, 1.0)
-        last = step
-        k = k + relax * step
-    raise RuntimeError(f"p-k iteration did not converge at V = {V} m/s (k = {k})")
+    p, k = pk_roots(model, V, [p0], system, ktol=ktol, maxiter=maxiter)
+    if not np.isfinite(k[0]):
+        raise RuntimeError(f"p-k iteration did not converge at V = {V} m/s (from p = {p0})")
+    return complex(p[0]), float(k[0])
 
 
 #: two modes' p-k roots closer than this fraction of |p| are one root (the iteration's own
@@ -355,25 +340,33 @@ def _start_roots(model, V: float, n_modes: int | None) -> tuple[np.ndarray, tupl
 
 
 def _brent_between(model, a: float, b: float, pa: complex, pb: complex, xtol: float,
-                   tables) -> tuple[float, complex, float]:
+                   tables, solve=None) -> tuple[float, complex, float]:
     """Brent's method on Re p between the speeds a < b [m/s] whose p-k roots ``pa`` and
     ``pb`` [1/s] have opposite signs of Re p, each speed's root continued from the root
     interpolated linearly between them (so that both ends are the roots the bracket was
     found with, not another mode's a far start jumps to): (V, p, k).  RuntimeError when a
-    root does not converge or the ends' roots lose their signs."""
+    root does not converge or the ends' roots lose their signs.  ``solve``: (V, p0) ↦ (p, k),
+    the root at V from p0 (default: :func:`pk_root` on the full DOFs, with ``tables``)."""
+    solve = _full_solver(model, tables) if solve is None else solve
 
     def guess(x: float) -> complex:
         return pa + (pb - pa) * (x - a) / (b - a)
 
     def decay(x: float) -> float:
-        return pk_root(model, x, guess(x), tables=tables)[0].real
+        return solve(x, guess(x))[0].real
 
     try:
         V = brentq(decay, a, b, xtol=xtol)
     except ValueError:             # the ends' roots re-solved lost their signs: not a bracket
         raise RuntimeError(f"p-k bracket [{a}, {b}] m/s lost its sign change") from None
-    p, k = pk_root(model, V, guess(V), tables=tables)
+    p, k = solve(V, guess(V))
     return float(V), p, float(k)
+
+
+def _full_solver(model, tables):
+    """(V, p0) ↦ :func:`pk_root` of ``model`` on its full DOFs (``tables``: a doublet-lattice
+    wing's)."""
+    return lambda x, p0: pk_root(model, x, p0, tables=tables)
 
 
 #: a crossing whose root keeps more than this fraction of the larger |Re p| of its bracket's
@@ -385,33 +378,33 @@ CONTINUATION_STEPS = 16
 
 
 def _continued(model, a: float, b: float, pa: complex, xtol: float,
-               tables) -> tuple[float, complex, float] | None:
+               tables, solve=None) -> tuple[float, complex, float] | None:
     """The crossing (Re p = 0) of the mode whose p-k root is ``pa`` [1/s] at a [m/s],
     continued to b [m/s] in :data:`CONTINUATION_STEPS` steps, each speed's root from the one
     extrapolated from the last two (so that it stays on its own branch where other modes' roots
     lie nearer its root at a than its own: a cluster of near-identical propellers), refined by
     Brent's method to ``xtol`` on the first step whose ends' roots change sign: (V, p, k), or
     None when the continued root keeps its sign (the bracket's sign change was a hop onto
-    another mode's root).  RuntimeError when a root does not converge or hops again."""
+    another mode's root).  RuntimeError when a root does not converge or hops again.
+    ``solve``: as :func:`_brent_between`'s."""
+    solve = _full_solver(model, tables) if solve is None else solve
     xs = np.linspace(a, b, CONTINUATION_STEPS + 1)
     prev, cur = complex(pa), complex(pa)
     for x0, x1 in zip(xs[:-1], xs[1:]):
         guess = 2 * cur - prev if x0 > a else cur
-        nxt, _ = pk_root(model, float(x1), guess, tables=tables)
+        nxt, _ = solve(float(x1), guess)
         if cur.real != 0 and nxt.real != 0 and (cur.real > 0) != (nxt.real > 0):
             left = cur
 
             def decay(x: float) -> float:
-                return pk_root(model, x, left + (nxt - left) * (x - x0) / (x1 - x0),
-                               tables=tables)[0].real
+                return solve(x, left + (nxt - left) * (x - x0) / (x1 - x0))[0].real
 
             try:
                 V = brentq(decay, float(x0), float(x1), xtol=xtol)
             except ValueError:
                 raise RuntimeError(f"p-k continuation [{x0}, {x1}] m/s lost its sign "
                                    "change") from None
-            p, k = pk_root(model, V, left + (nxt - left) * (V - x0) / (x1 - x0),
-                           tables=tables)
+            p, k = solve(V, left + (nxt - left) * (V - x0) / (x1 - x0))
             if abs(p.real) > HOP * max(abs(left.real), abs(nxt.real)):
                 raise RuntimeError(f"p-k root hops between {x0} and {x1} m/s")
             return float(V), p, float(k)
@@ -442,13 +435,27 @@ def matched_crossing(model, V0: float, p0: complex, slope: float, *, lo: float, 
     touching zero) turns that into metres per second of onset.  At its own Mach, the onset
     is the one the same wing has with its ``dlm_mach`` fixed at the onset's own V/a (tested).
     """
+    return full_crossing(model, V0, p0, slope, lo=lo, hi=hi, xtol=xtol, tables=tables,
+                         own_mach=True)
+
+
+def full_crossing(model, V0: float, p0: complex, slope: float, *, lo: float, hi: float,
+                  xtol: float = XTOL, tables: DlmTables | None = None,
+                  own_mach: bool = False) -> tuple[float, complex, float] | None:
+    """The crossing Re p = 0 on the full DOFs of the mode whose root is near ``p0`` [1/s] at
+    ``V0`` [m/s] (a crossing found on a Galerkin basis or on interpolated tables), by the secant
+    method from ``slope`` d Re p/dV [1/s per m/s]: each step's p-k root from the last, until the
+    step is within ``xtol`` / 10 [m/s]: (V, p, k), or None when the secant leaves [``lo``,
+    ``hi``], meets a flat Re p or takes more than :data:`MATCHED_STEPS` steps.  ``own_mach``:
+    a Mach-matched doublet-lattice wing's Q at each speed's own Mach (:func:`matched_crossing`).
+    Where the reduced crossing is within xtol / 10 of the full one, one p-k root decides it."""
     if not np.isfinite(slope) or slope == 0.0:
         return None
     V, guess = float(V0), complex(p0)
     prev = None                                  # (V, Re p) of the previous exact point
     for _ in range(MATCHED_STEPS):
         try:
-            p, k = pk_root(model, V, guess, tables=tables, own_mach=True)
+            p, k = pk_root(model, V, guess, tables=tables, own_mach=own_mach)
         except RuntimeError:
             return None
         if prev is not None and p.real != prev[1]:
@@ -512,14 +519,18 @@ def pk_crossing(model, V0: float, p0: complex, *, lo: float, hi: float,
 
 
 def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
-             tables: DlmTables | None = None) -> PKSweep:
+             tables: DlmTables | None = None, modal: bool = True) -> PKSweep:
     """p-k roots of the modes of a typical section or a wing over ``speeds`` [m/s] and their
     flutter and divergence crossings (Re p = 0, refined by Brent's method to ``xtol`` [m/s]).
 
     ``n_modes``: how many in-vacuo modes (lowest frequencies first) to follow; default every
     mode of a typical section, those up to the reduced models' cut-off of a wing
     (:func:`followed_modes`).  ``tables``: a
-    doublet-lattice wing's (the analysis's; None: new ones for this sweep).
+    doublet-lattice wing's (the analysis's; None: new ones for this sweep).  ``modal`` (a beam
+    wing): the sweep and Brent's method on the Galerkin basis of
+    :func:`propwhirl.analysis.pk_basis.pk_basis`, each crossing then converged on the full
+    DOFs (:func:`full_crossing`; its shift from the reduced crossing in
+    :attr:`PKFlutter.shift`); False: everything on the full DOFs.
     """
     check_pk_model(model)
     V = np.asarray(speeds, dtype=float)
@@ -539,24 +550,25 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
     elif not isinstance(n_modes, (int, np.integer)) or n_modes < 1:
         raise v.InputError(f"n_modes = {n_modes!r} is invalid: must be an integer >= 1")
     start, labels = _start_roots(model, V[0], n_modes)
+    basis = pk_basis(model, V, tables) if modal else None
+    full = _full_solver(model, tables)
+    solve = full if basis is None else (
+        lambda x, p0: pk_root(model, x, p0, system=pk_system(model, x, tables, basis=basis)))
     vacuum = np.abs(start)
     roots = np.empty((V.size, start.size), complex)
-    ks = np.empty((V.size, start.size))
+    ks = np.full((V.size, start.size), np.nan)
     p = start.copy()
     lost: list[tuple[str, float]] = []
     for i, Vi in enumerate(V):
-        system = pk_system(model, Vi, tables)  # the structure and propellers once per speed
+        # the structure and propellers (projected) once per speed
+        system = pk_system(model, Vi, tables, basis=basis)
         guess = p.copy() if i < 2 else 2 * roots[i - 1] - roots[i - 2]  # extrapolated
         guess = np.where(np.isfinite(guess), guess, p)
-        for j in range(start.size):
-            if not np.isfinite(p[j]):
-                ks[i, j] = np.nan
-                continue
-            try:
-                p[j], ks[i, j] = pk_root(model, Vi, p[j], system=system)
-            except RuntimeError:           # k does not converge: stop following this mode
-                p[j], ks[i, j] = complex(np.nan, np.nan), np.nan
-                lost.append((labels[j], float(Vi)))
+        live = np.flatnonzero(np.isfinite(p))
+        if live.size:                  # every followed mode's k iteration at once
+            p[live], ks[i, live] = pk_roots(model, Vi, p[live], system, ktol=KTOL)
+        for j in live[~np.isfinite(ks[i, live])]:  # k does not converge: not followed on
+            lost.append((labels[j], float(Vi)))
         _separate(model, Vi, system, guess, p, ks[i], vacuum)
         roots[i] = p
     events = []
@@ -566,48 +578,40 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
         for i in np.flatnonzero(ok & (np.sign(sigma[:-1]) != np.sign(sigma[1:]))):
             if sigma[i] == 0.0:
                 continue
-            guess = [roots[i, j]]
-
-            def decay(x: float) -> float:
-                # continue from the bracket's left root (a near root keeps the same mode)
-                p, _ = pk_root(model, x, guess[0], tables=tables)
-                return p.real
-
+            bracket = (float(V[i]), float(V[i + 1]), roots[i, j], roots[i + 1, j],
+                       sigma[i], sigma[i + 1])
             try:
-                Vf = brentq(decay, V[i], V[i + 1], xtol=xtol)
-                p, k = pk_root(model, Vf, roots[i, j], tables=tables)
-            except ValueError:   # the right end, continued from the left root, is another
-                try:             # mode's: each speed from the root between the ends'
-                    Vf, p, k = _brent_between(model, float(V[i]), float(V[i + 1]),
-                                              roots[i, j], roots[i + 1, j], xtol, tables)
-                except RuntimeError:
-                    lost.append((labels[j], float(V[i])))
-                    continue
+                found = _bracketed(model, bracket, xtol, tables, solve)
             except RuntimeError:
                 lost.append((labels[j], float(V[i])))
                 continue
-            if abs(p.real) > HOP * max(abs(sigma[i]), abs(sigma[i + 1])):
-                try:               # Brent met a hop onto another mode's root: the mode's own
-                    found = _continued(model, float(V[i]), float(V[i + 1]), roots[i, j],
-                                       xtol, tables)
-                except RuntimeError:
-                    lost.append((labels[j], float(V[i])))
-                    continue
-                if found is None:  # no crossing of its own: the sign change was the hop's
-                    continue
-                Vf, p, k = found
-            if matched:                    # converged with the AICs at its own Mach
-                exact = matched_crossing(model, Vf, p,
-                                         (sigma[i + 1] - sigma[i]) / (V[i + 1] - V[i]),
-                                         lo=float(V[0]), hi=float(V[-1]), xtol=xtol,
-                                         tables=tables)
-                if exact is not None:
-                    Vf, p, k = exact
+            if found is None:      # no crossing of its own: the sign change was the hop's
+                continue
+            Vf, p, k = found
+            shift = None
+            if basis is not None:      # converged on the full DOFs (at its own Mach)
+                slope = (sigma[i + 1] - sigma[i]) / (V[i + 1] - V[i])
+                exact = full_crossing(model, Vf, p, slope, lo=float(V[0]), hi=float(V[-1]),
+                                      xtol=xtol, tables=tables, own_mach=matched)
+                if exact is None:      # the secant failed: the bracket on the full DOFs
+                    try:
+                        exact = _bracketed(model, bracket, xtol, tables, full)
+                    except RuntimeError:
+                        lost.append((labels[j], float(V[i])))
+                        continue
+                    if exact is None:
+                        continue
+                    exact = _matched(model, exact, bracket, V, xtol, tables, matched)
+                shift = exact[0] - Vf
+                Vf, p, k = exact
+            else:
+                Vf, p, k = _matched(model, found, bracket, V, xtol, tables, matched)
             static = abs(p.imag) <= STATIC * vacuum[j]
             events.append(PKFlutter(j, labels[j], float(Vf), 0.0 if static else float(abs(p.imag)),
                                     0.0 if static else float(k),
                                     "onset" if sigma[i] < 0 else "end",
-                                    "divergence" if static else "flutter", complex(p)))
+                                    "divergence" if static else "flutter", complex(p),
+                                    None if shift is None else float(shift)))
     events.sort(key=lambda e: (e.V, e.mode))
     unique: list[PKFlutter] = []
     for e in events:  # two followed modes that hopped onto the same root: report it once
@@ -616,7 +620,46 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
                    for u in unique):
             unique.append(e)
     events = unique
-    return PKSweep(V, roots, ks, labels, tuple(events), start, tuple(lost))
+    return PKSweep(V, roots, ks, labels, tuple(events), start, tuple(lost),
+                   0 if basis is None else basis.r)
+
+
+def _bracketed(model, bracket, xtol: float, tables,
+               solve) -> tuple[float, complex, float] | None:
+    """The crossing of one mode in a bracket of the sweep, ``bracket`` = (a, b, p_a, p_b,
+    Re p_a, Re p_b) (speeds [m/s], the mode's roots [1/s] there, of opposite signs of Re p),
+    each root by ``solve`` (V, p0) ↦ (p, k): Brent's method on Re p continued from the left
+    root; where the right end so continued is another mode's, :func:`_brent_between`; where
+    Brent met a hop onto another mode's root, the mode continued across the bracket
+    (:func:`_continued`; None: no crossing of its own).  RuntimeError when a root does not
+    converge."""
+    a, b, pa, pb, sa, sb = bracket
+
+    def decay(x: float) -> float:
+        # continue from the bracket's left root (a near root keeps the same mode)
+        return solve(x, pa)[0].real
+
+    try:
+        Vf = brentq(decay, a, b, xtol=xtol)
+        p, k = solve(Vf, pa)
+    except ValueError:   # the right end, continued from the left root, is another mode's:
+        # each speed from the root between the ends'
+        Vf, p, k = _brent_between(model, a, b, pa, pb, xtol, tables, solve)
+    if abs(p.real) > HOP * max(abs(sa), abs(sb)):
+        # Brent met a hop onto another mode's root: the mode's own
+        return _continued(model, a, b, pa, xtol, tables, solve)
+    return float(Vf), p, float(k)
+
+
+def _matched(model, found, bracket, V, xtol: float, tables, matched: bool):
+    """``found`` (V, p, k), converged with the AICs at its own Mach on a Mach-matched
+    doublet-lattice wing (:func:`matched_crossing`; kept where that fails)."""
+    if not matched:
+        return found
+    a, b, _, _, sa, sb = bracket
+    exact = matched_crossing(model, found[0], found[1], (sb - sa) / (b - a), lo=float(V[0]),
+                             hi=float(V[-1]), xtol=xtol, tables=tables)
+    return found if exact is None else exact
 
 
 def pk_flutter(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,

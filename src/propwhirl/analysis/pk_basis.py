@@ -1,0 +1,92 @@
+"""The p-k sweep on modes (issue 37 item 2: modal reduction for the p-k): the Galerkin basis a
+wing's sweep iterates on, and the k iteration of several modes at once.
+
+A beam wing's p-k sweep (:func:`propwhirl.analysis.pk.pk_sweep`) follows its modes on the
+projection Φᵀ (M, C(ω), K(ω)) Φ of the p-k equation (:func:`pk_basis`): Φ is the default's own
+reduced basis (:func:`propwhirl.model.reduction.dof_basis`, one place for that choice — the
+in-vacuo modes up to the reduced models' cut-off and the static correction vectors at the middle
+and the top of the speed range, M-orthonormal; a doublet-lattice wing's from its strip twin),
+r ≈ 10–30 instead of the model's hundreds of DOFs.  The strips' loads are summed on Φ's rows
+strip by strip; a doublet-lattice wing's Q tables are projected on Φ once for every speed and k
+(the interpolation in k and Mach is linear in the tables' values, so it commutes with the
+projection: :class:`~propwhirl.model.frequency_domain.Galerkin`).  Every crossing the reduced
+sweep finds is then converged on the full DOFs (:func:`propwhirl.analysis.pk.full_crossing`), so
+the reported speeds, frequencies and mode shapes are the full model's; the shift from the
+reduced crossing is the basis's truncation error there (:attr:`PKFlutter.shift
+<propwhirl.analysis.pk.PKFlutter>`).  Typical sections (2 DOFs) and modal models (already
+modal) are swept on their own DOFs.
+
+:func:`pk_roots` iterates the followed modes of one speed together — each with its own k and
+its own rules (nearest root, relaxation; those of :func:`propwhirl.analysis.pk.pk_root`, which
+is its one-mode case) — solving the eigenproblems of all of them in one batched
+``np.linalg.eigvals`` call.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from propwhirl.model.aerodynamics.dlm import DlmTables, strip_twin
+from propwhirl.model.frequency_domain import K_MIN, Galerkin, reference_semichord
+from propwhirl.model.protocol import capabilities
+from propwhirl.model.reduction import dof_basis
+
+
+def pk_basis(model, speeds, tables: DlmTables | None = None) -> Galerkin | None:
+    """The Galerkin basis of the p-k sweep of ``model`` over ``speeds`` [m/s] (module
+    docstring), or None for a model swept on its own DOFs (a typical section, a modal model).
+    ``tables``: a doublet-lattice wing's (the analysis's: the projected tables read them)."""
+    if capabilities(model).structure != "beam":
+        return None
+    return Galerkin(model, dof_basis(strip_twin(model), np.asarray(speeds, float)), tables)
+
+
+def first_order(system, omega: float) -> np.ndarray:
+    """The first-order matrix [[0, I], [−M⁻¹K, −M⁻¹C]] of the p-k system ``system`` (ω ↦ (M, C,
+    K), :func:`~propwhirl.model.frequency_domain.pk_system`) at ω [rad/s]."""
+    M, Cd, K = system(omega)
+    n = M.shape[0]
+    A = np.zeros((2 * n, 2 * n))
+    A[:n, n:] = np.eye(n)
+    A[n:, :n] = -np.linalg.solve(M, K)
+    A[n:, n:] = -np.linalg.solve(M, Cd)
+    return A
+
+
+def pk_roots(model, V: float, p0, system, *, ktol: float,
+             maxiter: int = 200) -> tuple[np.ndarray, np.ndarray]:
+    """The p-k roots [1/s] at airspeed V [m/s] of the modes whose roots were ``p0`` [1/s], and
+    their k [-]: for each mode the fixed-point iteration k ← Im p · b / V (b: the reference
+    semichord) with the root of the first-order matrix nearest the previous one, under-relaxed
+    (halving the step, down to 1/64) while its steps oscillate without shrinking, until k moves
+    by no more than ``ktol`` of itself; the eigenvalues of all modes still iterating solved
+    in one batched call.  A mode whose k does not converge in ``maxiter`` iterations gets NaN
+    (root and k).  ``system``: the p-k system at V (full or projected)."""
+    b = reference_semichord(model)
+    p = np.array(p0, dtype=complex).ravel()
+    k = np.abs(p.imag) * b / V
+    m = p.size
+    relax, last = np.ones(m), np.zeros(m)
+    kout = np.full(m, np.nan)
+    active = np.ones(m, dtype=bool)
+    for _ in range(maxiter):
+        ids = np.flatnonzero(active)
+        if ids.size == 0:
+            break
+        lams = np.linalg.eigvals(np.stack([first_order(system, max(k[j], K_MIN) * V / b)
+                                           for j in ids]))
+        for lam, j in zip(lams, ids):
+            lam = lam[lam.imag >= 0] if np.any(lam.imag > 0) else lam
+            p[j] = lam[np.argmin(np.abs(lam - p[j]))]
+            k_new = abs(p[j].imag) * b / V
+            step = k_new - k[j]
+            if abs(step) <= ktol * max(k_new, K_MIN):
+                kout[j], active[j] = k_new, False
+                continue
+            if step * last[j] < 0 and abs(step) >= 0.5 * abs(last[j]):  # oscillating
+                relax[j] = max(relax[j] / 2, 1 / 64)
+            elif step * last[j] > 0:                                    # monotone again
+                relax[j] = min(2 * relax[j], 1.0)
+            last[j] = step
+            k[j] = k[j] + relax[j] * step
+    p[active] = complex(np.nan, np.nan)
+    return p, kout
