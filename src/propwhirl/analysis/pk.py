@@ -58,7 +58,8 @@ from propwhirl.analysis.events import Instability
 from propwhirl.analysis.modes import InVacuo
 from propwhirl.analysis.naming import event_label, whirl
 from propwhirl.analysis.participation import with_participation
-from propwhirl.analysis.pk_basis import first_order, pk_basis, pk_roots
+from propwhirl.analysis.pk_basis import (BASIS_TOL, basis_error, first_order, pk_basis,
+                                        pk_roots)
 from propwhirl.engine import mac
 from propwhirl.model.aerodynamics import compressibility
 from propwhirl.model.protocol import capabilities
@@ -440,22 +441,26 @@ def matched_crossing(model, V0: float, p0: complex, slope: float, *, lo: float, 
 
 
 def full_crossing(model, V0: float, p0: complex, slope: float, *, lo: float, hi: float,
-                  xtol: float = XTOL, tables: DlmTables | None = None,
-                  own_mach: bool = False) -> tuple[float, complex, float] | None:
+                  xtol: float = XTOL, tables: DlmTables | None = None, own_mach: bool = False,
+                  start=None) -> tuple[float, complex, float] | None:
     """The crossing Re p = 0 on the full DOFs of the mode whose root is near ``p0`` [1/s] at
     ``V0`` [m/s] (a crossing found on a Galerkin basis or on interpolated tables), by the secant
     method from ``slope`` d Re p/dV [1/s per m/s]: each step's p-k root from the last, until the
     step is within ``xtol`` / 10 [m/s]: (V, p, k), or None when the secant leaves [``lo``,
     ``hi``], meets a flat Re p or takes more than :data:`MATCHED_STEPS` steps.  ``own_mach``:
     a Mach-matched doublet-lattice wing's Q at each speed's own Mach (:func:`matched_crossing`).
-    Where the reduced crossing is within xtol / 10 of the full one, one p-k root decides it."""
+    ``start``: V ↦ the root each speed's k iteration starts from (the one the crossing was
+    bracketed with, :func:`_bracketed`: near a coalescence the p-k has two roots there, and the
+    start decides which); None: from the previous step's root.  Where the reduced crossing is
+    within xtol / 10 of the full one, one p-k root decides it."""
     if not np.isfinite(slope) or slope == 0.0:
         return None
     V, guess = float(V0), complex(p0)
     prev = None                                  # (V, Re p) of the previous exact point
     for _ in range(MATCHED_STEPS):
         try:
-            p, k = pk_root(model, V, guess, tables=tables, own_mach=own_mach)
+            p, k = pk_root(model, V, guess if start is None else start(V), tables=tables,
+                           own_mach=own_mach)
         except RuntimeError:
             return None
         if prev is not None and p.real != prev[1]:
@@ -571,6 +576,10 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
             lost.append((labels[j], float(Vi)))
         _separate(model, Vi, system, guess, p, ks[i], vacuum)
         roots[i] = p
+    if basis is not None and basis_error(model, float(V[-1]), roots[-1], tables,
+                                         ktol=KTOL) > BASIS_TOL:
+        # the basis does not hold the full model's roots at the top speed: the full DOFs
+        return pk_sweep(model, V, xtol=xtol, n_modes=n_modes, tables=tables, modal=False)
     events = []
     for j in range(start.size):
         sigma = roots[:, j].real
@@ -587,12 +596,16 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
                 continue
             if found is None:      # no crossing of its own: the sign change was the hop's
                 continue
-            Vf, p, k = found
+            Vf, p, k, start_at = found
             shift = None
             if basis is not None:      # converged on the full DOFs (at its own Mach)
                 slope = (sigma[i + 1] - sigma[i]) / (V[i + 1] - V[i])
-                exact = full_crossing(model, Vf, p, slope, lo=float(V[0]), hi=float(V[-1]),
-                                      xtol=xtol, tables=tables, own_mach=matched)
+                # within the bracket, each speed from the root Brent's method started from
+                # (matched: continued, as matched_crossing converges a full-order crossing)
+                exact = full_crossing(
+                    model, Vf, p, slope, lo=float(V[0] if matched else V[i]),
+                    hi=float(V[-1] if matched else V[i + 1]), xtol=xtol, tables=tables,
+                    own_mach=matched, start=None if matched else start_at)
                 if exact is None:      # the secant failed: the bracket on the full DOFs
                     try:
                         exact = _bracketed(model, bracket, xtol, tables, full)
@@ -601,11 +614,11 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
                         continue
                     if exact is None:
                         continue
-                    exact = _matched(model, exact, bracket, V, xtol, tables, matched)
+                    exact = _matched(model, exact[:3], bracket, V, xtol, tables, matched)
                 shift = exact[0] - Vf
                 Vf, p, k = exact
             else:
-                Vf, p, k = _matched(model, found, bracket, V, xtol, tables, matched)
+                Vf, p, k = _matched(model, found[:3], bracket, V, xtol, tables, matched)
             static = abs(p.imag) <= STATIC * vacuum[j]
             events.append(PKFlutter(j, labels[j], float(Vf), 0.0 if static else float(abs(p.imag)),
                                     0.0 if static else float(k),
@@ -624,20 +637,22 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
                    0 if basis is None else basis.r)
 
 
-def _bracketed(model, bracket, xtol: float, tables,
-               solve) -> tuple[float, complex, float] | None:
+def _bracketed(model, bracket, xtol: float, tables, solve):
     """The crossing of one mode in a bracket of the sweep, ``bracket`` = (a, b, p_a, p_b,
     Re p_a, Re p_b) (speeds [m/s], the mode's roots [1/s] there, of opposite signs of Re p),
     each root by ``solve`` (V, p0) ↦ (p, k): Brent's method on Re p continued from the left
     root; where the right end so continued is another mode's, :func:`_brent_between`; where
     Brent met a hop onto another mode's root, the mode continued across the bracket
-    (:func:`_continued`; None: no crossing of its own).  RuntimeError when a root does not
-    converge."""
+    (:func:`_continued`; None: no crossing of its own): (V, p, k, start), ``start`` V ↦ the
+    root each speed's iteration started from.  RuntimeError when a root does not converge."""
     a, b, pa, pb, sa, sb = bracket
 
     def decay(x: float) -> float:
         # continue from the bracket's left root (a near root keeps the same mode)
         return solve(x, pa)[0].real
+
+    def start(x: float) -> complex:
+        return pa
 
     try:
         Vf = brentq(decay, a, b, xtol=xtol)
@@ -645,10 +660,14 @@ def _bracketed(model, bracket, xtol: float, tables,
     except ValueError:   # the right end, continued from the left root, is another mode's:
         # each speed from the root between the ends'
         Vf, p, k = _brent_between(model, a, b, pa, pb, xtol, tables, solve)
+
+        def start(x: float) -> complex:
+            return pa + (pb - pa) * (x - a) / (b - a)
     if abs(p.real) > HOP * max(abs(sa), abs(sb)):
         # Brent met a hop onto another mode's root: the mode's own
-        return _continued(model, a, b, pa, xtol, tables, solve)
-    return float(Vf), p, float(k)
+        found = _continued(model, a, b, pa, xtol, tables, solve)
+        return None if found is None else found + (None,)
+    return float(Vf), p, float(k), start
 
 
 def _matched(model, found, bracket, V, xtol: float, tables, matched: bool):
