@@ -58,7 +58,7 @@ from propwhirl.analysis.events import Instability
 from propwhirl.analysis.modes import InVacuo
 from propwhirl.analysis.naming import event_label, whirl
 from propwhirl.analysis.participation import with_participation
-from propwhirl.analysis.pk_basis import (BASIS_TOL, basis_error, first_order, pk_basis,
+from propwhirl.analysis.pk_basis import (BASIS_REL, BASIS_TOL, basis_error, first_order, pk_basis,
                                         pk_roots)
 from propwhirl.engine import mac
 from propwhirl.model.aerodynamics import compressibility
@@ -576,8 +576,8 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
             lost.append((labels[j], float(Vi)))
         _separate(model, Vi, system, guess, p, ks[i], vacuum)
         roots[i] = p
-    if basis is not None and basis_error(model, float(V[-1]), roots[-1], tables,
-                                         ktol=KTOL) > BASIS_TOL:
+    if basis is not None and np.any(np.array(basis_error(
+            model, float(V[-1]), roots[-1], tables, ktol=KTOL)) > (BASIS_TOL, BASIS_REL)):
         # the basis does not hold the full model's roots at the top speed: the full DOFs
         return pk_sweep(model, V, xtol=xtol, n_modes=n_modes, tables=tables, modal=False)
     events = []
