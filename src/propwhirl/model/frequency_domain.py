@@ -154,12 +154,15 @@ def pk_system(model, V: float, tables: DlmTables | None = None, own_mach: bool =
         rows = np.zeros((3 * nn, Phi.shape[1]))
         rows[keep] = Phi[:keep.size]
         P = rows[qrows]                                   # (n_strips, 2, r): [h, α] of η
+        r = Phi.shape[1]
+        # Σ_s P_sᵀ (w_s A_s) P_s as one product: (s, i, j) flattened against P_si,m P_sj,n
+        G = np.einsum("sim,sjn->sijmn", P, P).reshape(-1, r * r)
         reduced = tuple(Phi.T @ S @ Phi for S in structure)
 
         def projected(omega: float):
             strips = _strip(model.flight.density, V, node["b"], node["a"], cla, node["ac"],
                             omega)
-            return tuple(S - np.einsum("sim,sij,sjn->mn", P, width * A, P)
+            return tuple(S - ((width * A).reshape(-1) @ G).reshape(r, r)
                          for S, A in zip(reduced, strips))
 
         return projected
