@@ -27,7 +27,21 @@ The flutter speed of a mode is where its p-k decay rate Re p crosses zero from b
 Brent's method to ``xtol`` (0.01 m/s by default; where the mode's root hopped onto another's
 between two speeds, on its own branch continued across the bracket, :func:`_continued`); on
 a Mach-matched doublet-lattice wing then converged with Q at the crossing's own Mach
-(:func:`matched_crossing`).  The p-k root is exact
+(:func:`matched_crossing`).
+
+**The sweep is modal, the crossings full-order** (issue 37 item 2).  A beam wing's sweep — every
+speed's k iterations and Brent's method on each bracket — runs on a Galerkin basis Φ
+(:mod:`propwhirl.analysis.pk_basis`: the default's reduced basis and the p-k's own static
+correction, r ≈ 10–30 instead of the model's hundreds of DOFs; a doublet-lattice wing's Q
+tables projected on it once), the followed modes of a speed iterated together (one batched
+eigensolve, :func:`~propwhirl.analysis.pk_basis.pk_roots`).  Every crossing it finds is then
+converged on the full DOFs by the secant method within its bracket, each speed's root from the
+one Brent's method started from (:func:`full_crossing`; Brent's method on the full DOFs where
+the secant fails), so the reported speed, frequency and mode shape are the full model's; its
+shift from the reduced crossing is :attr:`PKFlutter.shift`.  Where the basis does not hold
+the full roots at the top speed (:func:`~propwhirl.analysis.pk_basis.basis_error`), the whole
+sweep runs on the full DOFs; ``pk_sweep(modal=False)`` always does.  Typical sections and modal
+models are swept on their own DOFs.  The p-k root is exact
 (Theodorsen's C at the mode's frequency) only at Re p = 0, i.e. at the flutter point;
 elsewhere its damping is the usual p-k approximation.
 
@@ -50,7 +64,6 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 import numpy as np
-import scipy.linalg as sla
 from scipy.optimize import brentq, linear_sum_assignment
 
 from propwhirl import validate as v
@@ -58,13 +71,14 @@ from propwhirl.analysis.events import Instability
 from propwhirl.analysis.modes import InVacuo
 from propwhirl.analysis.naming import event_label, whirl
 from propwhirl.analysis.participation import with_participation
-from propwhirl.analysis.pk_basis import (BASIS_REL, BASIS_TOL, basis_error, first_order, pk_basis,
-                                        pk_roots)
-from propwhirl.engine import mac
+# the modes followed and their start, and the naming of events: with their own modules
+from propwhirl.analysis.pk_basis import (BASIS_REL, BASIS_TOL, WING_MODES,  # noqa: F401
+                                        _start_roots, basis_error, first_order, followed_modes,
+                                        pk_basis, pk_roots)
+from propwhirl.analysis.pk_naming import (MAC_BAND, TOGETHER, one_to_one,  # noqa: F401
+                                         tracked_mode)
 from propwhirl.model.aerodynamics import compressibility
 from propwhirl.model.protocol import capabilities
-from propwhirl.model.dlm_modal import kept_modes
-from propwhirl.model.reduction import cutoff
 from propwhirl.model.aerodynamics.dlm import (DlmTables, check_speed_mach, check_tables,
                                               dlm_aerodynamics, fixed_mach, strip_twin)
 from propwhirl.model.aerodynamics.dlm_mesh import guideline_note
@@ -83,9 +97,6 @@ KTOL = 1e-7
 #: a root with Im p below this fraction of its in-vacuo frequency is non-oscillatory
 #: (a crossing of such a root is divergence, not flutter)
 STATIC = 1e-6
-#: the fewest in-vacuo modes a wing's p-k sweep follows by default (lowest frequencies first;
-#: :func:`followed_modes`)
-WING_MODES = 6
 #: the note that opens a doublet-lattice analysis's notes (ModelAnalysis.doublet_lattice)
 DLM_NOTE = "p-k aerodynamics: doublet-lattice"
 
@@ -116,7 +127,9 @@ class PKFlutter:
     kind: str = "flutter"
     root: complex | None = None
     #: the full-order crossing's speed minus the reduced sweep's [m/s] (the Galerkin basis's
-    #: truncation error there, :mod:`propwhirl.analysis.pk_basis`); None: swept on full DOFs
+    #: truncation error there, :mod:`propwhirl.analysis.pk_basis`; on a Mach-matched
+    #: doublet-lattice wing with the move to Q at the crossing's own Mach,
+    #: :func:`matched_crossing`); None: swept on the full DOFs
     shift: float | None = None
 
     @property
@@ -179,10 +192,12 @@ def pk_root(model, V: float, p0: complex, *, ktol: float = KTOL, maxiter: int = 
 
     Fixed-point iteration k ← Im p · b / V (b: the reference semichord) with the root of
     :func:`pk_matrix` nearest the previous one, under-relaxed (halving the step, down to
-    1/64) while the steps oscillate without shrinking (:func:`propwhirl.analysis.pk_basis.pk_roots`,
-    of one mode); raises RuntimeError when k does not converge in ``maxiter`` iterations.  ``system``: :func:`pk_system` of (model, V) if already built
-    (else built with ``tables`` and ``own_mach``: a Mach-matched doublet-lattice wing's Q at
-    its own Mach V/a, :func:`matched_crossing`, not between the tables' Mach nodes).
+    1/64) while the steps oscillate without shrinking
+    (:func:`propwhirl.analysis.pk_basis.pk_roots` of one mode); raises RuntimeError when k
+    does not converge in ``maxiter`` iterations.  ``system``: :func:`pk_system` of (model, V)
+    if already built (full or projected; else built with ``tables`` and ``own_mach``: a
+    Mach-matched doublet-lattice wing's Q at its own Mach V/a, :func:`matched_crossing`, not
+    between the tables' Mach nodes).
     """
     system = pk_system(model, V, tables, own_mach) if system is None else system
     p, k = pk_roots(model, V, [p0], system, ktol=ktol, maxiter=maxiter)
@@ -293,51 +308,6 @@ def pk_mode(model, V: float, p0: complex, *, system=None, tables: DlmTables | No
     i = int(np.argmin(np.abs(lam - p)))
     x = X[:, i] if lam[i].imag >= 0 else X[:, i].conj()
     return p, k, x / np.linalg.norm(x)
-
-
-def followed_modes(model, speeds) -> int:
-    """How many in-vacuo modes (lowest first) a wing's p-k sweep over ``speeds`` [m/s]
-    follows by default: the modes the default's state space keeps — on strips every mode up
-    to the reduced models' cut-off (:func:`propwhirl.model.reduction.cutoff`:
-    :data:`~propwhirl.model.reduction.CUTOFF_FACTOR` times the highest of the second bending,
-    first torsion, first chordwise and every propeller-dominated mode), at least
-    :data:`WING_MODES`; on a doublet-lattice wing the modal Roger state space's
-    (:func:`propwhirl.model.dlm_modal.kept_modes`: also no higher than its fit's range).
-    A fixed six missed every whirl mode of a wing with many propellers (x57_like: its seven
-    propellers' modes are its 2nd to 15th; the p-k found no instability where the default has
-    whirl flutter at 80.0 m/s); on strips x57_like follows 18, the four-propeller example 15,
-    the wingtip model 7."""
-    twin = strip_twin(model)
-    iv = InVacuo.of(twin.without_aerodynamics())
-    w2, shapes = sla.eigh(iv.K, iv.M)
-    f = np.sqrt(np.abs(w2)) / (2 * np.pi)
-    if twin is not model:
-        return kept_modes(model, model, f, shapes, iv.M, speeds)[0]
-    _, fc = cutoff(model, f, shapes, iv.M)
-    return max(int(np.sum(f <= fc)), min(WING_MODES, f.size))
-
-
-def _start_roots(model, V: float, n_modes: int | None) -> tuple[np.ndarray, tuple[str, ...]]:
-    """The finite-state eigenvalues at V [m/s] of the model's oscillatory modes (one per
-    in-vacuo mode, the lowest `n_modes`), and the modes' labels.
-
-    Each in-vacuo root gets its own finite-state root: the one-to-one assignment of least
-    total relative distance |p − ω|/|ω| (Hungarian method), not each root's nearest — two
-    close modes (the wingtip wing's 16.68 and 18.06 Hz) would otherwise both start from the
-    root at 17.96 Hz and the other mode, the one that flutters, would never be followed."""
-    model = strip_twin(model)           # a doublet-lattice wing starts from its strips
-    vac = np.linalg.eigvals(model.without_aerodynamics().state_matrix(np.array([V]))[0])
-    vac = vac[vac.imag > 0]
-    vac = vac[np.argsort(vac.imag)][:n_modes]
-    fs = np.linalg.eigvals(model.state_matrix(np.array([V]))[0])
-    fs = fs[fs.imag > 0]
-    cost = np.abs(fs[None, :] - vac[:, None]) / np.abs(vac)[:, None]
-    rows, cols = linear_sum_assignment(cost)       # rows: every in-vacuo mode (fewer than fs)
-    vac = vac[rows]
-    start = fs[cols]
-    labels = tuple(f"mode {j + 1} ({w.imag / (2 * np.pi):.4g} Hz in vacuo)"
-                   for j, w in enumerate(vac))
-    return start, labels
 
 
 def _brent_between(model, a: float, b: float, pa: complex, pb: complex, xtol: float,
@@ -497,7 +467,8 @@ def pk_crossing(model, V0: float, p0: complex, *, lo: float, hi: float,
     [``lo``, ``hi``] [m/s]) where the p-k root continued from ``p0`` changes sign, refined by
     the secant method from the bracket's ends to ``xtol`` / 10 [m/s] (:func:`full_crossing`,
     each speed's root from the one interpolated between the ends'; Brent's method to ``xtol``
-    where the secant fails, :func:`_brent_between`).  None when the p-k root keeps its sign over the widest
+    where the secant fails, :func:`_brent_between`).  None when the p-k root keeps its sign
+    over the widest
     bracket (the p-k has no crossing there); RuntimeError when the k iteration does not
     converge.  What the default analysis of a doublet-lattice wing converges its modal Roger
     state space's crossings with (:mod:`propwhirl.analysis.modal_dlm`)."""
@@ -699,72 +670,6 @@ def pk_flutter(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
     return pk_sweep(model, speeds, xtol=xtol, n_modes=n_modes, tables=tables).flutter
 
 
-def tracked_mode(sweep, x: np.ndarray, p: complex, V: float) -> int:
-    """The finite-state tracked mode (a column of ``sweep``) a p-k mode shape is, at V [m/s].
-
-    At the swept speed nearest V, of the physical modes whose displacement shape has a MAC
-    (eq. 5.14) with the p-k shape ``x`` (its first ``n_dof`` entries) within
-    :data:`MAC_BAND` of the best, the one whose eigenvalue is nearest the p-k root ``p``
-    [1/s].  (The band matters for real roots: near divergence the static shapes of several
-    real roots are almost collinear, and the diverging one is the root nearest p ≈ 0.)
-    The p-k continuation may pass through a veering onto another finite-state branch than
-    the one it started from (the wingtip model's forward-whirl flutter is reached from the
-    in-vacuo "wing 2" mode), so the shape at the event, not the start, names the mode.
-    """
-    n = int(np.count_nonzero(sweep.displacement))      # the states q first, then q̇, lags
-    t = int(np.argmin(np.abs(sweep.V - V)))
-    q = np.asarray(x)[:n]
-    ids = np.flatnonzero(sweep.physical[t])
-    macs = np.array([mac(q, sweep.eigenvectors[t, sweep.displacement, k]) for k in ids])
-    near = ids[macs >= MAC_BAND * macs.max()]
-    lam = sweep.eigenvalues[t, near]
-    lam = np.where(lam.imag < 0, lam.conj(), lam)
-    return int(near[np.argmin(np.abs(lam - p))])
-
-
-#: events of one kind and direction whose speeds are within this fraction of each other are one
-#: cluster's (:func:`one_to_one`)
-TOGETHER = 0.05
-
-
-def one_to_one(sweep, modes, shapes, speeds, keys) -> list[int]:
-    """The tracked modes of events (``modes``: each one's :func:`tracked_mode`), with those
-    that name two or more events of one key (kind, direction) within :data:`TOGETHER` of each
-    other's speed [m/s] assigned one to one instead: those events to the physical modes of
-    ``sweep`` not named by another event of that key and window, by the least total 1 − MAC
-    (eq. 5.14) of their displacement ``shapes`` against the modes' at each event's swept speed
-    nearest (Hungarian method).  A cluster of near-identical propellers has one mode's name
-    per event — never two different events under one name (issue 34 item 4); events of
-    modes apart keep their own."""
-    out = [int(m) for m in modes]
-    V = np.asarray(speeds, dtype=float)
-    n = int(np.count_nonzero(sweep.displacement))
-    for a in range(len(out)):
-        near = [b for b in range(len(out)) if keys[b] == keys[a]
-                and abs(V[b] - V[a]) <= TOGETHER * V[a]]
-        clash = [b for b in near if out[b] == out[a]]
-        if len(clash) < 2:
-            continue
-        taken = {out[b] for b in near if b not in clash}
-        t = np.argmin(np.abs(np.asarray(sweep.V)[None, :] - V[clash, None]), axis=1)
-        ids = np.array([k for k in np.flatnonzero(np.all(sweep.physical[t], axis=0))
-                        if k not in taken])
-        if ids.size < len(clash):
-            continue
-        X = np.asarray(sweep.eigenvectors)[t][:, sweep.displacement][:, :, ids]  # (e, n, ids)
-        q = np.stack([np.asarray(shapes[b])[:n] for b in clash])                 # (e, n)
-        across = np.abs(np.einsum("en,enk->ek", q.conj(), X)) ** 2
-        norms = (np.sum(np.abs(q) ** 2, axis=1)[:, None]
-                 * np.sum(np.abs(X) ** 2, axis=1))
-        cost = 1.0 - across / np.where(norms > 0, norms, 1.0)
-        rows, cols = linear_sum_assignment(cost)
-        for r, c in zip(rows, cols):
-            out[clash[r]] = int(ids[c])
-    return out
-
-
-#: the modes whose MAC is within this fraction of the best are candidates (:func:`tracked_mode`)
-MAC_BAND = 0.9
 #: central-difference step [m/s] of the p-k damping ratio for the benignity (eq. 5.13)
 BENIGNITY_STEP = 0.1
 

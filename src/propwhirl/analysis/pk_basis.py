@@ -16,6 +16,9 @@ reduced crossing is the basis's truncation error there (:attr:`PKFlutter.shift
 <propwhirl.analysis.pk.PKFlutter>`).  Typical sections (2 DOFs) and modal models (already
 modal) are swept on their own DOFs.
 
+Which modes a wing's sweep follows and where each starts (:func:`followed_modes`,
+:func:`_start_roots`) is decided here too.
+
 :func:`pk_roots` iterates the followed modes of one speed together — each with its own k and
 its own rules (nearest root, relaxation; those of :func:`propwhirl.analysis.pk.pk_root`, which
 is its one-mode case) — solving the eigenproblems of all of them in one batched
@@ -25,12 +28,18 @@ from __future__ import annotations
 
 import numpy as np
 import scipy.linalg as sla
+from scipy.optimize import linear_sum_assignment
 
 from propwhirl.analysis.modes import InVacuo
 from propwhirl.model.aerodynamics.dlm import DlmTables, strip_twin
+from propwhirl.model.dlm_modal import kept_modes
 from propwhirl.model.frequency_domain import K_MIN, Galerkin, pk_system, reference_semichord
 from propwhirl.model.protocol import capabilities
-from propwhirl.model.reduction import dof_basis
+from propwhirl.model.reduction import cutoff, dof_basis
+
+#: the fewest in-vacuo modes a wing's p-k sweep follows by default (lowest frequencies first;
+#: :func:`followed_modes`)
+WING_MODES = 6
 
 
 #: relative eigenvalue threshold of the M-Gram matrix below which a basis vector is dependent
@@ -149,3 +158,48 @@ def pk_roots(model, V: float, p0, system, *, ktol: float,
             k[j] = k[j] + relax[j] * step
     p[active] = complex(np.nan, np.nan)
     return p, kout
+
+
+def followed_modes(model, speeds) -> int:
+    """How many in-vacuo modes (lowest first) a wing's p-k sweep over ``speeds`` [m/s]
+    follows by default: the modes the default's state space keeps — on strips every mode up
+    to the reduced models' cut-off (:func:`propwhirl.model.reduction.cutoff`:
+    :data:`~propwhirl.model.reduction.CUTOFF_FACTOR` times the highest of the second bending,
+    first torsion, first chordwise and every propeller-dominated mode), at least
+    :data:`WING_MODES`; on a doublet-lattice wing the modal Roger state space's
+    (:func:`propwhirl.model.dlm_modal.kept_modes`: also no higher than its fit's range).
+    A fixed six missed every whirl mode of a wing with many propellers (x57_like: its seven
+    propellers' modes are its 2nd to 15th; the p-k found no instability where the default has
+    whirl flutter at 80.0 m/s); on strips x57_like follows 18, the four-propeller example 15,
+    the wingtip model 7."""
+    twin = strip_twin(model)
+    iv = InVacuo.of(twin.without_aerodynamics())
+    w2, shapes = sla.eigh(iv.K, iv.M)
+    f = np.sqrt(np.abs(w2)) / (2 * np.pi)
+    if twin is not model:
+        return kept_modes(model, model, f, shapes, iv.M, speeds)[0]
+    _, fc = cutoff(model, f, shapes, iv.M)
+    return max(int(np.sum(f <= fc)), min(WING_MODES, f.size))
+
+
+def _start_roots(model, V: float, n_modes: int | None) -> tuple[np.ndarray, tuple[str, ...]]:
+    """The finite-state eigenvalues at V [m/s] of the model's oscillatory modes (one per
+    in-vacuo mode, the lowest `n_modes`), and the modes' labels.
+
+    Each in-vacuo root gets its own finite-state root: the one-to-one assignment of least
+    total relative distance |p − ω|/|ω| (Hungarian method), not each root's nearest — two
+    close modes (the wingtip wing's 16.68 and 18.06 Hz) would otherwise both start from the
+    root at 17.96 Hz and the other mode, the one that flutters, would never be followed."""
+    model = strip_twin(model)           # a doublet-lattice wing starts from its strips
+    vac = np.linalg.eigvals(model.without_aerodynamics().state_matrix(np.array([V]))[0])
+    vac = vac[vac.imag > 0]
+    vac = vac[np.argsort(vac.imag)][:n_modes]
+    fs = np.linalg.eigvals(model.state_matrix(np.array([V]))[0])
+    fs = fs[fs.imag > 0]
+    cost = np.abs(fs[None, :] - vac[:, None]) / np.abs(vac)[:, None]
+    rows, cols = linear_sum_assignment(cost)       # rows: every in-vacuo mode (fewer than fs)
+    vac = vac[rows]
+    start = fs[cols]
+    labels = tuple(f"mode {j + 1} ({w.imag / (2 * np.pi):.4g} Hz in vacuo)"
+                   for j, w in enumerate(vac))
+    return start, labels
