@@ -53,7 +53,7 @@ the benignity is the slope of the p-k damping ratio at the crossing.
 
 Which modes a wing's sweep follows (:func:`followed_modes`) is the default's choice: those its
 reduced or modal Roger state space keeps, each from a finite-state root of its own
-(:func:`_start_roots`) and kept on its own root speed by speed (:func:`_separate`).
+(:func:`~propwhirl.analysis.pk_basis.start_roots`) and kept on its own root speed by speed (:func:`_separate`).
 
 On a doublet-lattice wing every function reads Q(k, M) from ``tables``, the analysis's
 :class:`~propwhirl.model.aerodynamics.dlm.DlmTables` (None: new ones for that call — give the
@@ -73,7 +73,7 @@ from propwhirl.analysis.naming import event_label, whirl
 from propwhirl.analysis.participation import with_participation
 # the modes followed and their start, and the naming of events: with their own modules
 from propwhirl.analysis.pk_basis import (BASIS_REL, BASIS_TOL, WING_MODES,  # noqa: F401
-                                        _start_roots, basis_error, first_order, followed_modes,
+                                        start_roots, basis_error, first_order, followed_modes,
                                         pk_basis, pk_roots)
 from propwhirl.analysis.pk_naming import (MAC_BAND, TOGETHER, one_to_one,  # noqa: F401
                                          tracked_mode)
@@ -88,6 +88,9 @@ from propwhirl.model.frequency_domain import (
     pk_system,
     reference_semichord,
 )
+
+#: the old private name of :func:`~propwhirl.analysis.pk_basis.start_roots`
+_start_roots = start_roots
 
 #: accuracy of every flutter speed [m/s]
 XTOL = 0.01
@@ -536,7 +539,7 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
         n_modes = None if _is_section(model) else followed_modes(model, V)
     elif not isinstance(n_modes, (int, np.integer)) or n_modes < 1:
         raise v.InputError(f"n_modes = {n_modes!r} is invalid: must be an integer >= 1")
-    start, labels = _start_roots(model, V[0], n_modes)
+    start, labels = start_roots(model, V[0], n_modes)
     basis = pk_basis(model, V, tables) if modal else None
     full = _full_solver(model, tables)
     solve = full if basis is None else (

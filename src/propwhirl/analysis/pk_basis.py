@@ -17,7 +17,7 @@ reduced crossing is the basis's truncation error there (:attr:`PKFlutter.shift
 modal) are swept on their own DOFs.
 
 Which modes a wing's sweep follows and where each starts (:func:`followed_modes`,
-:func:`_start_roots`) is decided here too.
+:func:`start_roots`) is decided here too.
 
 :func:`pk_roots` iterates the followed modes of one speed together — each with its own k and
 its own rules (nearest root, relaxation; those of :func:`propwhirl.analysis.pk.pk_root`, which
@@ -182,7 +182,7 @@ def followed_modes(model, speeds) -> int:
     return max(int(np.sum(f <= fc)), min(WING_MODES, f.size))
 
 
-def _start_roots(model, V: float, n_modes: int | None) -> tuple[np.ndarray, tuple[str, ...]]:
+def start_roots(model, V: float, n_modes: int | None) -> tuple[np.ndarray, tuple[str, ...]]:
     """The finite-state eigenvalues at V [m/s] of the model's oscillatory modes (one per
     in-vacuo mode, the lowest `n_modes`), and the modes' labels.
 
