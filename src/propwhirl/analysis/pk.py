@@ -144,7 +144,9 @@ class PKFlutter:
 class PKSweep:
     """The p-k roots of every mode over a speed grid.
 
-    speeds [m/s] (nV,); roots (nV, nmodes) complex p [1/s]; k (nV, nmodes) reduced frequencies;
+    speeds [m/s] (nV,); roots (nV, nmodes) complex p [1/s] (on the Galerkin basis where
+    :attr:`basis_size` > 0: within the basis check's 1 % of the full model's, the crossings
+    the full model's); k (nV, nmodes) reduced frequencies;
     labels of the modes; flutter: the crossings, sorted by speed; start: the finite-state
     eigenvalues [1/s] at the first speed the modes started from.
     """
