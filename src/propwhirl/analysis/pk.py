@@ -470,10 +470,7 @@ def pk_crossing(model, V0: float, p0: complex, *, lo: float, hi: float,
     """The p-k crossing (Re p = 0) of the mode whose root is near ``p0`` [1/s] at V0 [m/s]:
     a bracket around V0 of half-width :data:`CROSSING_SPREAD` × V0 (widened in turn, within
     [``lo``, ``hi``] [m/s]) where the p-k root continued from ``p0`` changes sign, refined by
-    the secant method from the bracket's ends to ``xtol`` / 10 [m/s] (:func:`full_crossing`,
-    each speed's root from the one interpolated between the ends'; Brent's method to ``xtol``
-    where the secant fails, :func:`_brent_between`).  None when the p-k root keeps its sign
-    over the widest
+    Brent's method to ``xtol`` [m/s].  None when the p-k root keeps its sign over the widest
     bracket (the p-k has no crossing there); RuntimeError when the k iteration does not
     converge.  What the default analysis of a doublet-lattice wing converges its modal Roger
     state space's crossings with (:mod:`propwhirl.analysis.modal_dlm`)."""
@@ -486,17 +483,8 @@ def pk_crossing(model, V0: float, p0: complex, *, lo: float, hi: float,
         pb, _ = pk_root(model, b, guess["hi"], tables=tables)
         guess["lo"], guess["hi"] = pa, pb
         if pa.real != 0 and pb.real != 0 and (pa.real > 0) != (pb.real > 0):
-            slope = (pb.real - pa.real) / (b - a)
-
-            def start(x: float, a=a, b=b, pa=pa, pb=pb) -> complex:
-                return pa + (pb - pa) * (x - a) / (b - a)
-
-            V0 = a - pa.real / slope           # the secant from the bracket's ends, each
-            found = full_crossing(model, V0, start(V0), slope, lo=a, hi=b, xtol=xtol,
-                                  tables=tables, start=start)    # speed from between theirs
             try:
-                V, p, k = found if found is not None else _brent_between(
-                    model, a, b, pa, pb, xtol, tables)
+                V, p, k = _brent_between(model, a, b, pa, pb, xtol, tables)
             except RuntimeError:          # continued from a, another root at b: not this
                 continue                  # root's bracket (was a traceback); a wider one
             if tables is not None and fixed_mach(getattr(model, "wing", model)) is None:
