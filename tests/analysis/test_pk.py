@@ -161,7 +161,16 @@ def test_a_mode_whose_k_iteration_fails_is_said_not_dropped(monkeypatch):
             raise RuntimeError("no convergence (test)")
         return real(model, V, p0, **kw)
 
+    real_roots = PK.pk_roots
+
+    def failing_roots(model, V, p0, system, **kw):   # the sweep's batched k iterations
+        if V >= stop:
+            n = np.size(p0)
+            return np.full(n, complex(np.nan, np.nan)), np.full(n, np.nan)
+        return real_roots(model, V, p0, system, **kw)
+
     monkeypatch.setattr(PK, "pk_root", failing)
+    monkeypatch.setattr(PK, "pk_roots", failing_roots)
     r = PK.pk_sweep(sec, SPEEDS)
     assert len(r.lost) == len(r.labels) and all(V == stop for _, V in r.lost)
     assert np.all(np.isnan(r.roots[3:])) and np.all(np.isfinite(r.roots[:3]))

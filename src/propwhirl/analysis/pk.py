@@ -30,7 +30,21 @@ The flutter speed of a mode is where its p-k decay rate Re p crosses zero from b
 Brent's method to ``xtol`` (0.01 m/s by default; where the mode's root hopped onto another's
 between two speeds, on its own branch continued across the bracket, :func:`_continued`); on
 a Mach-matched doublet-lattice wing then converged with Q at the crossing's own Mach
-(:func:`matched_crossing`).  The p-k root is exact
+(:func:`matched_crossing`).
+
+**The sweep is modal, the crossings full-order** (issue 37 item 2).  A beam wing's sweep — every
+speed's k iterations and Brent's method on each bracket — runs on a Galerkin basis Φ
+(:mod:`propwhirl.analysis.pk_basis`: the default's reduced basis and the p-k's own static
+correction, r ≈ 10–30 instead of the model's hundreds of DOFs; a doublet-lattice wing's Q
+tables projected on it once), the followed modes of a speed iterated together (one batched
+eigensolve, :func:`~propwhirl.analysis.pk_basis.pk_roots`).  Every crossing it finds is then
+converged on the full DOFs by the secant method within its bracket, each speed's root from the
+one Brent's method started from (:func:`full_crossing`; Brent's method on the full DOFs where
+the secant fails), so the reported speed, frequency and mode shape are the full model's; its
+shift from the reduced crossing is :attr:`PKFlutter.shift`.  Where the basis does not hold
+the full roots at the top speed (:func:`~propwhirl.analysis.pk_basis.basis_error`), the whole
+sweep runs on the full DOFs; ``pk_sweep(modal=False)`` always does.  Typical sections and modal
+models are swept on their own DOFs.  The p-k root is exact
 (Theodorsen's C at the mode's frequency) only at Re p = 0, i.e. at the flutter point;
 elsewhere its damping is the usual p-k approximation.
 
@@ -42,7 +56,7 @@ the benignity is the slope of the p-k damping ratio at the crossing.
 
 Which modes a wing's sweep follows (:func:`followed_modes`) is the default's choice: those its
 reduced or modal Roger state space keeps, each from a finite-state root of its own
-(:func:`_start_roots`) and kept on its own root speed by speed (:func:`_separate`).
+(:func:`~propwhirl.analysis.pk_basis.start_roots`) and kept on its own root speed by speed (:func:`_separate`).
 
 On a doublet-lattice wing every function reads Q(k, M) from ``tables``, the analysis's
 :class:`~propwhirl.model.aerodynamics.dlm.DlmTables` (None: new ones for that call — give the
@@ -53,7 +67,6 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 import numpy as np
-import scipy.linalg as sla
 from scipy.optimize import brentq, linear_sum_assignment
 
 from propwhirl import validate as v
@@ -62,11 +75,14 @@ from propwhirl.analysis.modes import InVacuo
 from propwhirl.analysis.naming import event_label, whirl
 from propwhirl.analysis.participation import with_participation
 from propwhirl.analysis.pk_divergence import divergence_crossings
-from propwhirl.engine import mac
+# the modes followed and their start, and the naming of events: with their own modules
+from propwhirl.analysis.pk_basis import (BASIS_REL, BASIS_TOL, WING_MODES,  # noqa: F401
+                                        start_roots, basis_error, first_order, followed_modes,
+                                        pk_basis, pk_roots)
+from propwhirl.analysis.pk_naming import (MAC_BAND, TOGETHER, one_to_one,  # noqa: F401
+                                         tracked_mode)
 from propwhirl.model.aerodynamics import compressibility
 from propwhirl.model.protocol import capabilities
-from propwhirl.model.dlm_modal import kept_modes
-from propwhirl.model.reduction import cutoff
 from propwhirl.model.aerodynamics.dlm import (DlmTables, check_speed_mach, check_tables,
                                               dlm_aerodynamics, fixed_mach, strip_twin)
 from propwhirl.model.aerodynamics.dlm_mesh import guideline_note
@@ -77,6 +93,9 @@ from propwhirl.model.frequency_domain import (
     reference_semichord,
 )
 
+#: the old private name of :func:`~propwhirl.analysis.pk_basis.start_roots`
+_start_roots = start_roots
+
 #: accuracy of every flutter speed [m/s]
 XTOL = 0.01
 #: relative convergence of the reduced frequency in the p-k iteration (a wing's eigenvalues carry
@@ -85,9 +104,6 @@ KTOL = 1e-7
 #: a root with Im p below this fraction of its in-vacuo frequency is non-oscillatory
 #: (a crossing of such a root is divergence, not flutter)
 STATIC = 1e-6
-#: the fewest in-vacuo modes a wing's p-k sweep follows by default (lowest frequencies first;
-#: :func:`followed_modes`)
-WING_MODES = 6
 #: the note that opens a doublet-lattice analysis's notes (ModelAnalysis.doublet_lattice)
 DLM_NOTE = "p-k aerodynamics: doublet-lattice"
 
@@ -117,6 +133,11 @@ class PKFlutter:
     event: str = "onset"
     kind: str = "flutter"
     root: complex | None = None
+    #: the full-order crossing's speed minus the reduced sweep's [m/s] (the Galerkin basis's
+    #: truncation error there, :mod:`propwhirl.analysis.pk_basis`; on a Mach-matched
+    #: doublet-lattice wing with the move to Q at the crossing's own Mach,
+    #: :func:`matched_crossing`); None: swept on the full DOFs
+    shift: float | None = None
 
     @property
     def frequency_hz(self) -> float:
@@ -127,7 +148,9 @@ class PKFlutter:
 class PKSweep:
     """The p-k roots of every mode over a speed grid.
 
-    speeds [m/s] (nV,); roots (nV, nmodes) complex p [1/s]; k (nV, nmodes) reduced frequencies;
+    speeds [m/s] (nV,); roots (nV, nmodes) complex p [1/s] (on the Galerkin basis where
+    :attr:`basis_size` > 0: within the basis check's 1 % of the full model's, the crossings
+    the full model's); k (nV, nmodes) reduced frequencies;
     labels of the modes; flutter: the crossings, sorted by speed; start: the finite-state
     eigenvalues [1/s] at the first speed the modes started from.
     """
@@ -141,6 +164,8 @@ class PKSweep:
     #: (mode label, V [m/s]) where the k iteration of a mode did not converge: the mode is not
     #: followed beyond that speed (its roots NaN there) — said, never silently dropped
     lost: tuple[tuple[str, float], ...] = ()
+    #: the size r of the Galerkin basis the sweep iterated on (0: the model's own DOFs)
+    basis_size: int = 0
 
     @property
     def damping(self) -> np.ndarray:
@@ -165,14 +190,8 @@ def pk_matrix(model, V: float, k: float, tables: DlmTables | None = None) -> np.
                         max(k, K_MIN) * V / reference_semichord(model))
 
 
-def _first_order(system, omega: float) -> np.ndarray:
-    M, Cd, K = system(omega)
-    n = M.shape[0]
-    A = np.zeros((2 * n, 2 * n))
-    A[:n, n:] = np.eye(n)
-    A[n:, :n] = -np.linalg.solve(M, K)
-    A[n:, n:] = -np.linalg.solve(M, Cd)
-    return A
+#: the first-order matrix of a p-k system (:func:`propwhirl.analysis.pk_basis.first_order`)
+_first_order = first_order
 
 
 def pk_root(model, V: float, p0: complex, *, ktol: float = KTOL, maxiter: int = 200,
@@ -182,31 +201,18 @@ def pk_root(model, V: float, p0: complex, *, ktol: float = KTOL, maxiter: int = 
 
     Fixed-point iteration k ← Im p · b / V (b: the reference semichord) with the root of
     :func:`pk_matrix` nearest the previous one, under-relaxed (halving the step, down to
-    1/64) while the steps oscillate without shrinking; raises RuntimeError when k does not converge
-    in ``maxiter`` iterations.  ``system``: :func:`pk_system` of (model, V) if already built
-    (else built with ``tables`` and ``own_mach``: a Mach-matched doublet-lattice wing's Q at
-    its own Mach V/a, :func:`matched_crossing`, not between the tables' Mach nodes).
+    1/64) while the steps oscillate without shrinking
+    (:func:`propwhirl.analysis.pk_basis.pk_roots` of one mode); raises RuntimeError when k
+    does not converge in ``maxiter`` iterations.  ``system``: :func:`pk_system` of (model, V)
+    if already built (full or projected; else built with ``tables`` and ``own_mach``: a
+    Mach-matched doublet-lattice wing's Q at its own Mach V/a, :func:`matched_crossing`, not
+    between the tables' Mach nodes).
     """
-    b = reference_semichord(model)
     system = pk_system(model, V, tables, own_mach) if system is None else system
-    p = complex(p0)
-    k = abs(p.imag) * b / V
-    relax, last = 1.0, 0.0
-    for _ in range(maxiter):
-        lam = np.linalg.eigvals(_first_order(system, max(k, K_MIN) * V / b))
-        lam = lam[lam.imag >= 0] if np.any(lam.imag > 0) else lam
-        p = complex(lam[np.argmin(np.abs(lam - p))])
-        k_new = abs(p.imag) * b / V
-        step = k_new - k
-        if abs(step) <= ktol * max(k_new, K_MIN):
-            return p, k_new
-        if step * last < 0 and abs(step) >= 0.5 * abs(last):  # oscillating, not shrinking
-            relax = max(relax / 2, 1 / 64)
-        elif step * last > 0:                                  # monotone again
-            relax = min(2 * relax, 1.0)
-        last = step
-        k = k + relax * step
-    raise RuntimeError(f"p-k iteration did not converge at V = {V} m/s (k = {k})")
+    p, k = pk_roots(model, V, [p0], system, ktol=ktol, maxiter=maxiter)
+    if not np.isfinite(k[0]):
+        raise RuntimeError(f"p-k iteration did not converge at V = {V} m/s (from p = {p0})")
+    return complex(p[0]), float(k[0])
 
 
 #: two modes' p-k roots closer than this fraction of |p| are one root (the iteration's own
@@ -313,71 +319,34 @@ def pk_mode(model, V: float, p0: complex, *, system=None, tables: DlmTables | No
     return p, k, x / np.linalg.norm(x)
 
 
-def followed_modes(model, speeds) -> int:
-    """How many in-vacuo modes (lowest first) a wing's p-k sweep over ``speeds`` [m/s]
-    follows by default: the modes the default's state space keeps — on strips every mode up
-    to the reduced models' cut-off (:func:`propwhirl.model.reduction.cutoff`:
-    :data:`~propwhirl.model.reduction.CUTOFF_FACTOR` times the highest of the second bending,
-    first torsion, first chordwise and every propeller-dominated mode), at least
-    :data:`WING_MODES`; on a doublet-lattice wing the modal Roger state space's
-    (:func:`propwhirl.model.dlm_modal.kept_modes`: also no higher than its fit's range).
-    A fixed six missed every whirl mode of a wing with many propellers (x57_like: its seven
-    propellers' modes are its 2nd to 15th; the p-k found no instability where the default has
-    whirl flutter at 80.0 m/s); on strips x57_like follows 18, the four-propeller example 15,
-    the wingtip model 7."""
-    twin = strip_twin(model)
-    iv = InVacuo.of(twin.without_aerodynamics())
-    w2, shapes = sla.eigh(iv.K, iv.M)
-    f = np.sqrt(np.abs(w2)) / (2 * np.pi)
-    if twin is not model:
-        return kept_modes(model, model, f, shapes, iv.M, speeds)[0]
-    _, fc = cutoff(model, f, shapes, iv.M)
-    return max(int(np.sum(f <= fc)), min(WING_MODES, f.size))
-
-
-def _start_roots(model, V: float, n_modes: int | None) -> tuple[np.ndarray, tuple[str, ...]]:
-    """The finite-state eigenvalues at V [m/s] of the model's oscillatory modes (one per
-    in-vacuo mode, the lowest `n_modes`), and the modes' labels.
-
-    Each in-vacuo root gets its own finite-state root: the one-to-one assignment of least
-    total relative distance |p − ω|/|ω| (Hungarian method), not each root's nearest — two
-    close modes (the wingtip wing's 16.68 and 18.06 Hz) would otherwise both start from the
-    root at 17.96 Hz and the other mode, the one that flutters, would never be followed."""
-    model = strip_twin(model)           # a doublet-lattice wing starts from its strips
-    vac = np.linalg.eigvals(model.without_aerodynamics().state_matrix(np.array([V]))[0])
-    vac = vac[vac.imag > 0]
-    vac = vac[np.argsort(vac.imag)][:n_modes]
-    fs = np.linalg.eigvals(model.state_matrix(np.array([V]))[0])
-    fs = fs[fs.imag > 0]
-    cost = np.abs(fs[None, :] - vac[:, None]) / np.abs(vac)[:, None]
-    rows, cols = linear_sum_assignment(cost)       # rows: every in-vacuo mode (fewer than fs)
-    vac = vac[rows]
-    start = fs[cols]
-    labels = tuple(f"mode {j + 1} ({w.imag / (2 * np.pi):.4g} Hz in vacuo)"
-                   for j, w in enumerate(vac))
-    return start, labels
-
-
 def _brent_between(model, a: float, b: float, pa: complex, pb: complex, xtol: float,
-                   tables) -> tuple[float, complex, float]:
+                   tables, solve=None) -> tuple[float, complex, float]:
     """Brent's method on Re p between the speeds a < b [m/s] whose p-k roots ``pa`` and
     ``pb`` [1/s] have opposite signs of Re p, each speed's root continued from the root
     interpolated linearly between them (so that both ends are the roots the bracket was
     found with, not another mode's a far start jumps to): (V, p, k).  RuntimeError when a
-    root does not converge or the ends' roots lose their signs."""
+    root does not converge or the ends' roots lose their signs.  ``solve``: (V, p0) ↦ (p, k),
+    the root at V from p0 (default: :func:`pk_root` on the full DOFs, with ``tables``)."""
+    solve = _full_solver(model, tables) if solve is None else solve
 
     def guess(x: float) -> complex:
         return pa + (pb - pa) * (x - a) / (b - a)
 
     def decay(x: float) -> float:
-        return pk_root(model, x, guess(x), tables=tables)[0].real
+        return solve(x, guess(x))[0].real
 
     try:
         V = brentq(decay, a, b, xtol=xtol)
     except ValueError:             # the ends' roots re-solved lost their signs: not a bracket
         raise RuntimeError(f"p-k bracket [{a}, {b}] m/s lost its sign change") from None
-    p, k = pk_root(model, V, guess(V), tables=tables)
+    p, k = solve(V, guess(V))
     return float(V), p, float(k)
+
+
+def _full_solver(model, tables):
+    """(V, p0) ↦ :func:`pk_root` of ``model`` on its full DOFs (``tables``: a doublet-lattice
+    wing's)."""
+    return lambda x, p0: pk_root(model, x, p0, tables=tables)
 
 
 #: a crossing whose root keeps more than this fraction of the larger |Re p| of its bracket's
@@ -389,24 +358,24 @@ HOP = 0.05
 JUMP = 0.01
 
 
-def _jumps(model, Vf: float, bracket: tuple[float, float], ends: tuple[complex, complex],
-           xtol: float, scale: float, tables) -> bool:
-    """Whether the p-k root at the crossing speed Vf [m/s] jumps: continued from the
-    ``bracket``'s [m/s] left root ``ends[0]`` and from the root interpolated between its ends'
-    (both ways Brent's method may have solved it), at Vf ∓ 2 ``xtol`` it differs by more than
-    :data:`JUMP` × ``scale`` [1/s] (the mode's in-vacuo frequency or |p|). A true crossing is
-    continuous there (a change of ~1e-4 of the frequency); Brent's method converges onto a hop
-    as readily — the wingtip example's 17.7 Hz mode, whose root went from the 6 Hz mode's (Re p
-    = −0.57) to the 7 Hz mode's (+18.4) between two speeds, had false flutter onsets and
-    recoveries from 160.9 to 256.2 m/s, which the |Re p| test (:data:`HOP`, of the larger
-    end's) passed."""
+def _jumps(solve, Vf: float, bracket: tuple[float, float], ends: tuple[complex, complex],
+           xtol: float, scale: float) -> bool:
+    """Whether the p-k root at the crossing speed Vf [m/s] jumps: continued by ``solve``
+    (V, p0) ↦ (p, k) from the ``bracket``'s [m/s] left root ``ends[0]`` and from the root
+    interpolated between its ends' (both ways Brent's method may have solved it), at
+    Vf ∓ 2 ``xtol`` it differs by more than :data:`JUMP` × ``scale`` [1/s] (the mode's
+    in-vacuo frequency or |p|).  A true crossing is continuous there (a change of ~1e-4 of the
+    frequency); Brent's method converges onto a hop as readily — the wingtip example's
+    17.7 Hz mode, whose root went from the 6 Hz mode's (Re p = −0.57) to the 7 Hz mode's
+    (+18.4) between two speeds, had false flutter onsets and recoveries from 160.9 to
+    256.2 m/s, which the |Re p| test (:data:`HOP`, of the larger end's) passed."""
     a, b = Vf - 2 * xtol, Vf + 2 * xtol
     v0, v1 = bracket
     for guess in (lambda x: ends[0],
                   lambda x: ends[0] + (ends[1] - ends[0]) * (x - v0) / (v1 - v0)):
         try:
-            lo, _ = pk_root(model, a, guess(a), tables=tables)
-            hi, _ = pk_root(model, b, guess(b), tables=tables)
+            lo, _ = solve(a, guess(a))
+            hi, _ = solve(b, guess(b))
         except RuntimeError:
             return True
         if abs(hi - lo) > JUMP * scale:
@@ -419,33 +388,33 @@ CONTINUATION_STEPS = 16
 
 
 def _continued(model, a: float, b: float, pa: complex, xtol: float,
-               tables) -> tuple[float, complex, float] | None:
+               tables, solve=None) -> tuple[float, complex, float] | None:
     """The crossing (Re p = 0) of the mode whose p-k root is ``pa`` [1/s] at a [m/s],
     continued to b [m/s] in :data:`CONTINUATION_STEPS` steps, each speed's root from the one
     extrapolated from the last two (so that it stays on its own branch where other modes' roots
     lie nearer its root at a than its own: a cluster of near-identical propellers), refined by
     Brent's method to ``xtol`` on the first step whose ends' roots change sign: (V, p, k), or
     None when the continued root keeps its sign (the bracket's sign change was a hop onto
-    another mode's root).  RuntimeError when a root does not converge or hops again."""
+    another mode's root).  RuntimeError when a root does not converge or hops again.
+    ``solve``: as :func:`_brent_between`'s."""
+    solve = _full_solver(model, tables) if solve is None else solve
     xs = np.linspace(a, b, CONTINUATION_STEPS + 1)
     prev, cur = complex(pa), complex(pa)
     for x0, x1 in zip(xs[:-1], xs[1:]):
         guess = 2 * cur - prev if x0 > a else cur
-        nxt, _ = pk_root(model, float(x1), guess, tables=tables)
+        nxt, _ = solve(float(x1), guess)
         if cur.real != 0 and nxt.real != 0 and (cur.real > 0) != (nxt.real > 0):
             left = cur
 
             def decay(x: float) -> float:
-                return pk_root(model, x, left + (nxt - left) * (x - x0) / (x1 - x0),
-                               tables=tables)[0].real
+                return solve(x, left + (nxt - left) * (x - x0) / (x1 - x0))[0].real
 
             try:
                 V = brentq(decay, float(x0), float(x1), xtol=xtol)
             except ValueError:
                 raise RuntimeError(f"p-k continuation [{x0}, {x1}] m/s lost its sign "
                                    "change") from None
-            p, k = pk_root(model, V, left + (nxt - left) * (V - x0) / (x1 - x0),
-                           tables=tables)
+            p, k = solve(V, left + (nxt - left) * (V - x0) / (x1 - x0))
             if abs(p.real) > HOP * max(abs(left.real), abs(nxt.real)):
                 raise RuntimeError(f"p-k root hops between {x0} and {x1} m/s")
             return float(V), p, float(k)
@@ -476,13 +445,31 @@ def matched_crossing(model, V0: float, p0: complex, slope: float, *, lo: float, 
     touching zero) turns that into metres per second of onset.  At its own Mach, the onset
     is the one the same wing has with its ``dlm_mach`` fixed at the onset's own V/a (tested).
     """
+    return full_crossing(model, V0, p0, slope, lo=lo, hi=hi, xtol=xtol, tables=tables,
+                         own_mach=True)
+
+
+def full_crossing(model, V0: float, p0: complex, slope: float, *, lo: float, hi: float,
+                  xtol: float = XTOL, tables: DlmTables | None = None, own_mach: bool = False,
+                  start=None) -> tuple[float, complex, float] | None:
+    """The crossing Re p = 0 on the full DOFs of the mode whose root is near ``p0`` [1/s] at
+    ``V0`` [m/s] (a crossing found on a Galerkin basis or on interpolated tables), by the secant
+    method from ``slope`` d Re p/dV [1/s per m/s]: each step's p-k root from the last, until the
+    step is within ``xtol`` / 10 [m/s]: (V, p, k), or None when the secant leaves [``lo``,
+    ``hi``], meets a flat Re p or takes more than :data:`MATCHED_STEPS` steps.  ``own_mach``:
+    a Mach-matched doublet-lattice wing's Q at each speed's own Mach (:func:`matched_crossing`).
+    ``start``: V ↦ the root each speed's k iteration starts from (the one the crossing was
+    bracketed with, :func:`_bracketed`: near a coalescence the p-k has two roots there, and the
+    start decides which); None: from the previous step's root.  Where the reduced crossing is
+    within xtol / 10 of the full one, one p-k root decides it."""
     if not np.isfinite(slope) or slope == 0.0:
         return None
     V, guess = float(V0), complex(p0)
     prev = None                                  # (V, Re p) of the previous exact point
     for _ in range(MATCHED_STEPS):
         try:
-            p, k = pk_root(model, V, guess, tables=tables, own_mach=True)
+            p, k = pk_root(model, V, guess if start is None else start(V), tables=tables,
+                           own_mach=own_mach)
         except RuntimeError:
             return None
         if prev is not None and p.real != prev[1]:
@@ -546,14 +533,18 @@ def pk_crossing(model, V0: float, p0: complex, *, lo: float, hi: float,
 
 
 def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
-             tables: DlmTables | None = None) -> PKSweep:
+             tables: DlmTables | None = None, modal: bool = True) -> PKSweep:
     """p-k roots of the modes of a typical section or a wing over ``speeds`` [m/s] and their
     flutter and divergence crossings (Re p = 0, refined by Brent's method to ``xtol`` [m/s]).
 
     ``n_modes``: how many in-vacuo modes (lowest frequencies first) to follow; default every
     mode of a typical section, those up to the reduced models' cut-off of a wing
     (:func:`followed_modes`).  ``tables``: a
-    doublet-lattice wing's (the analysis's; None: new ones for this sweep).
+    doublet-lattice wing's (the analysis's; None: new ones for this sweep).  ``modal`` (a beam
+    wing): the sweep and Brent's method on the Galerkin basis of
+    :func:`propwhirl.analysis.pk_basis.pk_basis`, each crossing then converged on the full
+    DOFs (:func:`full_crossing`; its shift from the reduced crossing in
+    :attr:`PKFlutter.shift`); False: everything on the full DOFs.
     """
     check_pk_model(model)
     V = np.asarray(speeds, dtype=float)
@@ -572,27 +563,32 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
         n_modes = None if _is_section(model) else followed_modes(model, V)
     elif not isinstance(n_modes, (int, np.integer)) or n_modes < 1:
         raise v.InputError(f"n_modes = {n_modes!r} is invalid: must be an integer >= 1")
-    start, labels = _start_roots(model, V[0], n_modes)
+    start, labels = start_roots(model, V[0], n_modes)
+    basis = pk_basis(model, V, tables) if modal else None
+    full = _full_solver(model, tables)
+    solve = full if basis is None else (
+        lambda x, p0: pk_root(model, x, p0, system=pk_system(model, x, tables, basis=basis)))
     vacuum = np.abs(start)
     roots = np.empty((V.size, start.size), complex)
-    ks = np.empty((V.size, start.size))
+    ks = np.full((V.size, start.size), np.nan)
     p = start.copy()
     lost: list[tuple[str, float]] = []
     for i, Vi in enumerate(V):
-        system = pk_system(model, Vi, tables)  # the structure and propellers once per speed
+        # the structure and propellers (projected) once per speed
+        system = pk_system(model, Vi, tables, basis=basis)
         guess = p.copy() if i < 2 else 2 * roots[i - 1] - roots[i - 2]  # extrapolated
         guess = np.where(np.isfinite(guess), guess, p)
-        for j in range(start.size):
-            if not np.isfinite(p[j]):
-                ks[i, j] = np.nan
-                continue
-            try:
-                p[j], ks[i, j] = pk_root(model, Vi, p[j], system=system)
-            except RuntimeError:           # k does not converge: stop following this mode
-                p[j], ks[i, j] = complex(np.nan, np.nan), np.nan
-                lost.append((labels[j], float(Vi)))
+        live = np.flatnonzero(np.isfinite(p))
+        if live.size:                  # every followed mode's k iteration at once
+            p[live], ks[i, live] = pk_roots(model, Vi, p[live], system, ktol=KTOL)
+        for j in live[~np.isfinite(ks[i, live])]:  # k does not converge: not followed on
+            lost.append((labels[j], float(Vi)))
         _separate(model, Vi, system, guess, p, ks[i], vacuum)
         roots[i] = p
+    if basis is not None and np.any(np.array(basis_error(
+            model, float(V[-1]), roots[-1], tables, ktol=KTOL)) > (BASIS_TOL, BASIS_REL)):
+        # the basis does not hold the full model's roots at the top speed: the full DOFs
+        return pk_sweep(model, V, xtol=xtol, n_modes=n_modes, tables=tables, modal=False)
     events = []
     for j in range(start.size):
         sigma = roots[:, j].real
@@ -600,51 +596,44 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
         for i in np.flatnonzero(ok & (np.sign(sigma[:-1]) != np.sign(sigma[1:]))):
             if sigma[i] == 0.0:
                 continue
-            guess = [roots[i, j]]
-
-            def decay(x: float) -> float:
-                # continue from the bracket's left root (a near root keeps the same mode)
-                p, _ = pk_root(model, x, guess[0], tables=tables)
-                return p.real
-
+            bracket = (float(V[i]), float(V[i + 1]), roots[i, j], roots[i + 1, j],
+                       sigma[i], sigma[i + 1])
             try:
-                Vf = brentq(decay, V[i], V[i + 1], xtol=xtol)
-                p, k = pk_root(model, Vf, roots[i, j], tables=tables)
-            except ValueError:   # the right end, continued from the left root, is another
-                try:             # mode's: each speed from the root between the ends'
-                    Vf, p, k = _brent_between(model, float(V[i]), float(V[i + 1]),
-                                              roots[i, j], roots[i + 1, j], xtol, tables)
-                except RuntimeError:
-                    lost.append((labels[j], float(V[i])))
-                    continue
+                found = _bracketed(model, bracket, xtol, tables, solve, vacuum[j])
             except RuntimeError:
                 lost.append((labels[j], float(V[i])))
                 continue
-            if (abs(p.real) > HOP * max(abs(sigma[i]), abs(sigma[i + 1]))
-                    or _jumps(model, Vf, (float(V[i]), float(V[i + 1])),
-                              (roots[i, j], roots[i + 1, j]), xtol, max(vacuum[j], abs(p)),
-                              tables)):
-                try:               # Brent met a hop onto another mode's root: the mode's own
-                    found = _continued(model, float(V[i]), float(V[i + 1]), roots[i, j],
-                                       xtol, tables)
-                except RuntimeError:
-                    lost.append((labels[j], float(V[i])))
-                    continue
-                if found is None:  # no crossing of its own: the sign change was the hop's
-                    continue
-                Vf, p, k = found
-            if matched:                    # converged with the AICs at its own Mach
-                exact = matched_crossing(model, Vf, p,
-                                         (sigma[i + 1] - sigma[i]) / (V[i + 1] - V[i]),
-                                         lo=float(V[0]), hi=float(V[-1]), xtol=xtol,
-                                         tables=tables)
-                if exact is not None:
-                    Vf, p, k = exact
+            if found is None:      # no crossing of its own: the sign change was the hop's
+                continue
+            Vf, p, k, start_at = found
+            shift = None
+            if basis is not None:      # converged on the full DOFs (at its own Mach)
+                slope = (sigma[i + 1] - sigma[i]) / (V[i + 1] - V[i])
+                # within the bracket, each speed from the root Brent's method started from
+                # (matched: continued, as matched_crossing converges a full-order crossing)
+                exact = full_crossing(
+                    model, Vf, p, slope, lo=float(V[0] if matched else V[i]),
+                    hi=float(V[-1] if matched else V[i + 1]), xtol=xtol, tables=tables,
+                    own_mach=matched, start=None if matched else start_at)
+                if exact is None:      # the secant failed: the bracket on the full DOFs
+                    try:
+                        exact = _bracketed(model, bracket, xtol, tables, full, vacuum[j])
+                    except RuntimeError:
+                        lost.append((labels[j], float(V[i])))
+                        continue
+                    if exact is None:
+                        continue
+                    exact = _matched(model, exact[:3], bracket, V, xtol, tables, matched)
+                shift = exact[0] - Vf
+                Vf, p, k = exact
+            else:
+                Vf, p, k = _matched(model, found[:3], bracket, V, xtol, tables, matched)
             static = abs(p.imag) <= STATIC * vacuum[j]
             events.append(PKFlutter(j, labels[j], float(Vf), 0.0 if static else float(abs(p.imag)),
                                     0.0 if static else float(k),
                                     "onset" if sigma[i] < 0 else "end",
-                                    "divergence" if static else "flutter", complex(p)))
+                                    "divergence" if static else "flutter", complex(p),
+                                    None if shift is None else float(shift)))
     for c in divergence_crossings(model, V, xtol=xtol, tables=tables):
         event = "onset" if c.direction == "onset" else "end"
         Vd, pd = c.V, c.p
@@ -670,7 +659,53 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
                    for u in unique):
             unique.append(e)
     events = unique
-    return PKSweep(V, roots, ks, labels, tuple(events), start, tuple(lost))
+    return PKSweep(V, roots, ks, labels, tuple(events), start, tuple(lost),
+                   0 if basis is None else basis.r)
+
+
+def _bracketed(model, bracket, xtol: float, tables, solve, scale: float):
+    """The crossing of one mode in a bracket of the sweep, ``bracket`` = (a, b, p_a, p_b,
+    Re p_a, Re p_b) (speeds [m/s], the mode's roots [1/s] there, of opposite signs of Re p),
+    each root by ``solve`` (V, p0) ↦ (p, k): Brent's method on Re p continued from the left
+    root; where the right end so continued is another mode's, :func:`_brent_between`; where
+    Brent met a hop onto another mode's root, the mode continued across the bracket
+    (:func:`_continued`; None: no crossing of its own): (V, p, k, start), ``start`` V ↦ the
+    root each speed's iteration started from.  RuntimeError when a root does not converge."""
+    a, b, pa, pb, sa, sb = bracket
+
+    def decay(x: float) -> float:
+        # continue from the bracket's left root (a near root keeps the same mode)
+        return solve(x, pa)[0].real
+
+    def start(x: float) -> complex:
+        return pa
+
+    try:
+        Vf = brentq(decay, a, b, xtol=xtol)
+        p, k = solve(Vf, pa)
+    except ValueError:   # the right end, continued from the left root, is another mode's:
+        # each speed from the root between the ends'
+        Vf, p, k = _brent_between(model, a, b, pa, pb, xtol, tables, solve)
+
+        def start(x: float) -> complex:
+            return pa + (pb - pa) * (x - a) / (b - a)
+    if abs(p.real) > HOP * max(abs(sa), abs(sb)) or _jumps(
+            solve, float(Vf), (a, b), (pa, pb), xtol, max(scale, abs(p))):
+        # Brent met a hop onto another mode's root: the mode's own
+        found = _continued(model, a, b, pa, xtol, tables, solve)
+        return None if found is None else found + (None,)
+    return float(Vf), p, float(k), start
+
+
+def _matched(model, found, bracket, V, xtol: float, tables, matched: bool):
+    """``found`` (V, p, k), converged with the AICs at its own Mach on a Mach-matched
+    doublet-lattice wing (:func:`matched_crossing`; kept where that fails)."""
+    if not matched:
+        return found
+    a, b, _, _, sa, sb = bracket
+    exact = matched_crossing(model, found[0], found[1], (sb - sa) / (b - a), lo=float(V[0]),
+                             hi=float(V[-1]), xtol=xtol, tables=tables)
+    return found if exact is None else exact
 
 
 def pk_flutter(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
@@ -680,72 +715,6 @@ def pk_flutter(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
     return pk_sweep(model, speeds, xtol=xtol, n_modes=n_modes, tables=tables).flutter
 
 
-def tracked_mode(sweep, x: np.ndarray, p: complex, V: float) -> int:
-    """The finite-state tracked mode (a column of ``sweep``) a p-k mode shape is, at V [m/s].
-
-    At the swept speed nearest V, of the physical modes whose displacement shape has a MAC
-    (eq. 5.14) with the p-k shape ``x`` (its first ``n_dof`` entries) within
-    :data:`MAC_BAND` of the best, the one whose eigenvalue is nearest the p-k root ``p``
-    [1/s].  (The band matters for real roots: near divergence the static shapes of several
-    real roots are almost collinear, and the diverging one is the root nearest p ≈ 0.)
-    The p-k continuation may pass through a veering onto another finite-state branch than
-    the one it started from (the wingtip model's forward-whirl flutter is reached from the
-    in-vacuo "wing 2" mode), so the shape at the event, not the start, names the mode.
-    """
-    n = int(np.count_nonzero(sweep.displacement))      # the states q first, then q̇, lags
-    t = int(np.argmin(np.abs(sweep.V - V)))
-    q = np.asarray(x)[:n]
-    ids = np.flatnonzero(sweep.physical[t])
-    macs = np.array([mac(q, sweep.eigenvectors[t, sweep.displacement, k]) for k in ids])
-    near = ids[macs >= MAC_BAND * macs.max()]
-    lam = sweep.eigenvalues[t, near]
-    lam = np.where(lam.imag < 0, lam.conj(), lam)
-    return int(near[np.argmin(np.abs(lam - p))])
-
-
-#: events of one kind and direction whose speeds are within this fraction of each other are one
-#: cluster's (:func:`one_to_one`)
-TOGETHER = 0.05
-
-
-def one_to_one(sweep, modes, shapes, speeds, keys) -> list[int]:
-    """The tracked modes of events (``modes``: each one's :func:`tracked_mode`), with those
-    that name two or more events of one key (kind, direction) within :data:`TOGETHER` of each
-    other's speed [m/s] assigned one to one instead: those events to the physical modes of
-    ``sweep`` not named by another event of that key and window, by the least total 1 − MAC
-    (eq. 5.14) of their displacement ``shapes`` against the modes' at each event's swept speed
-    nearest (Hungarian method).  A cluster of near-identical propellers has one mode's name
-    per event — never two different events under one name (issue 34 item 4); events of
-    modes apart keep their own."""
-    out = [int(m) for m in modes]
-    V = np.asarray(speeds, dtype=float)
-    n = int(np.count_nonzero(sweep.displacement))
-    for a in range(len(out)):
-        near = [b for b in range(len(out)) if keys[b] == keys[a]
-                and abs(V[b] - V[a]) <= TOGETHER * V[a]]
-        clash = [b for b in near if out[b] == out[a]]
-        if len(clash) < 2:
-            continue
-        taken = {out[b] for b in near if b not in clash}
-        t = np.argmin(np.abs(np.asarray(sweep.V)[None, :] - V[clash, None]), axis=1)
-        ids = np.array([k for k in np.flatnonzero(np.all(sweep.physical[t], axis=0))
-                        if k not in taken])
-        if ids.size < len(clash):
-            continue
-        X = np.asarray(sweep.eigenvectors)[t][:, sweep.displacement][:, :, ids]  # (e, n, ids)
-        q = np.stack([np.asarray(shapes[b])[:n] for b in clash])                 # (e, n)
-        across = np.abs(np.einsum("en,enk->ek", q.conj(), X)) ** 2
-        norms = (np.sum(np.abs(q) ** 2, axis=1)[:, None]
-                 * np.sum(np.abs(X) ** 2, axis=1))
-        cost = 1.0 - across / np.where(norms > 0, norms, 1.0)
-        rows, cols = linear_sum_assignment(cost)
-        for r, c in zip(rows, cols):
-            out[clash[r]] = int(ids[c])
-    return out
-
-
-#: the modes whose MAC is within this fraction of the best are candidates (:func:`tracked_mode`)
-MAC_BAND = 0.9
 #: central-difference step [m/s] of the p-k damping ratio for the benignity (eq. 5.13)
 BENIGNITY_STEP = 0.1
 

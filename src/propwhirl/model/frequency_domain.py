@@ -22,7 +22,7 @@ import numpy as np
 from propwhirl import validate as v
 from propwhirl.generated import strip_aero, typical_section
 from propwhirl.model.aerodynamics.compressibility import lift_slope_factor, lift_slopes
-from propwhirl.model.aerodynamics.dlm import DlmTables, pk_system_dlm
+from propwhirl.model.aerodynamics.dlm import DlmTables, dlm_aerodynamics, pk_system_dlm
 from propwhirl.model.aerodynamics.dlm_surface import surface_of
 from propwhirl.model.aerodynamics.theodorsen import theodorsen
 from propwhirl.model.protocol import capabilities, refusal
@@ -89,7 +89,30 @@ def section_pk_matrices(model, V: float, k: float) -> tuple[np.ndarray, np.ndarr
     return Ms - Ma, -Ca, Ks - Ka
 
 
-def pk_system(model, V: float, tables: DlmTables | None = None, own_mach: bool = False):
+class Galerkin:
+    """A Galerkin basis of a wing's p-k equation: Φ (n_dof, r) over the model's DOFs
+    (:func:`pk_system`'s, the wing's first), real; on a doublet-lattice wing also its tables
+    projected on Φ's wing rows once for every speed and k
+    (:class:`~propwhirl.model.aerodynamics.dlm.ProjectedGaf`, reading ``tables``, the
+    analysis's).  Made for one analysis (the projected tables are kept here)."""
+
+    def __init__(self, model, Phi: np.ndarray, tables: DlmTables | None = None):
+        self.Phi = np.asarray(Phi, dtype=float)
+        self.gaf = None
+        if capabilities(model).aerodynamics == "doublet lattice":
+            aero = dlm_aerodynamics(surface_of(model), tables)
+            Psi = np.zeros((aero.n_dof, self.Phi.shape[1]))
+            Psi[aero.keep] = self.Phi[:aero.keep.size]
+            self.gaf = aero.projected(Psi)
+
+    @property
+    def r(self) -> int:
+        """The basis's size."""
+        return self.Phi.shape[1]
+
+
+def pk_system(model, V: float, tables: DlmTables | None = None, own_mach: bool = False,
+              basis: Galerkin | None = None):
     """ω ↦ (M, C, K) of the p-k equation of `model` at airspeed V [m/s] and frequency ω [rad/s]:
     the typical section (:func:`section_pk_matrices`) or a PropellerWing (its structure and
     propellers, computed once, every wing strip with the exact Theodorsen loads at its own
@@ -99,12 +122,19 @@ def pk_system(model, V: float, tables: DlmTables | None = None, own_mach: bool =
     (:class:`~propwhirl.model.aerodynamics.dlm.DlmTables`; None: new ones); ``own_mach``:
     a Mach-matched doublet-lattice wing's Q at its own Mach V/a (the fine columns around it),
     not between the tables' Mach nodes
-    (:func:`~propwhirl.model.aerodynamics.dlm.pk_system_dlm`)."""
+    (:func:`~propwhirl.model.aerodynamics.dlm.pk_system_dlm`); ``basis``: a beam wing's
+    :class:`Galerkin` basis Φ, the system projected on it, Φᵀ (M, C, K) Φ (r, r): the
+    structure once per speed, the strips' loads summed over the strips on Φ's rows (a
+    doublet-lattice wing's Q from the tables projected once, :class:`Galerkin`)."""
     can = capabilities(model)                       # the model contract says which it is
+    if basis is not None and can.structure in ("section", "modes"):
+        raise v.InputError(f"basis = {type(basis).__name__} is invalid for the p-k system of "
+                           f"a model of structure {can.structure!r}: a beam wing's only")
     if can.structure == "section":
         return lambda omega: section_pk_matrices(model, V, omega * model.b / V)
     if can.aerodynamics == "doublet lattice":     # panels instead of the strips (any structure)
-        return pk_system_dlm(model, V, K_MIN, tables, own_mach)
+        return pk_system_dlm(model, V, K_MIN, tables, own_mach,
+                             None if basis is None else (basis.Phi, basis.gaf))
     if can.structure == "modes":
         return modal_pk_system(model, V)
     dry = replace(model, wing_aero=False).second_order(np.array([V]))
@@ -119,6 +149,23 @@ def pk_system(model, V: float, tables: DlmTables | None = None, own_mach: bool =
     qrows = 3 * np.arange(nn)[:, None] + np.array([0, 2])[None, :]   # h_i, α_i
     keep = free_dofs(nn)
     structure = (dry.S1[0], dry.S2[0], dry.S3[0])
+    if basis is not None:
+        Phi = basis.Phi
+        rows = np.zeros((3 * nn, Phi.shape[1]))
+        rows[keep] = Phi[:keep.size]
+        P = rows[qrows]                                   # (n_strips, 2, r): [h, α] of η
+        r = Phi.shape[1]
+        # Σ_s P_sᵀ (w_s A_s) P_s as one product: (s, i, j) flattened against P_si,m P_sj,n
+        G = np.einsum("sim,sjn->sijmn", P, P).reshape(-1, r * r)
+        reduced = tuple(Phi.T @ S @ Phi for S in structure)
+
+        def projected(omega: float):
+            strips = _strip(model.flight.density, V, node["b"], node["a"], cla, node["ac"],
+                            omega)
+            return tuple(S - ((width * A).reshape(-1) @ G).reshape(r, r)
+                         for S, A in zip(reduced, strips))
+
+        return projected
 
     def matrices(omega: float):
         strips = _strip(model.flight.density, V, node["b"], node["a"], cla, node["ac"], omega)

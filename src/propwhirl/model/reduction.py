@@ -127,6 +127,14 @@ def modal_basis(model, speeds, *, cutoff_hz: float | None = None,
     return _modal_basis(model.assembly(), speeds, cutoff_hz, factor)[0]
 
 
+def dof_basis(model, speeds) -> np.ndarray:
+    """Φ of :func:`modal_basis` (the default's cut-off) over the model's kept DOFs (n_dof, r),
+    M-orthonormal: the Galerkin basis the p-k sweep of a beam wing iterates on
+    (:mod:`propwhirl.analysis.pk_basis`)."""
+    basis, blocks = _modal_basis(model.assembly(), speeds, None, CUTOFF_FACTOR)
+    return basis.Phi[blocks.keep_q]
+
+
 def _modal_basis(assembly, speeds, cutoff_hz: float | None, factor: float,
                  structure: tuple[np.ndarray, np.ndarray] | None = None
                  ) -> tuple[ModalBasis, BlockSystem]:

@@ -412,16 +412,7 @@ class DlmAerodynamics:
     def _in_k(self, im: int | float, k: float, *, mach: float | None = None) -> np.ndarray:
         """Cubic Lagrange interpolation in k through the four table nodes around k, in the
         column of Mach node ``im`` (or of Mach ``mach`` when given)."""
-        mach = im * MACH_STEP if mach is None else mach
-        i = 0 if k < K_FIRST else 1 + int(np.floor(np.log10(k / K_FIRST) * K_PER_DECADE + 1e-12))
-        lo = max(0, i - 1)
-        nodes = range(lo, lo + 4)
-        ks = np.array([self.k_node(j) for j in nodes])
-        out = np.zeros((self.n_dof, self.n_dof), complex)
-        for j, kj in zip(nodes, ks):
-            w = np.prod([(k - km) / (kj - km) for km in ks if km != kj])
-            out += w * self.column_node(mach, j)
-        return out
+        return _in_k(self.column_node, self.n_dof, im, k, mach)
 
     def gaf(self, mach: float, k: float, *, exact_mach: bool = False,
             fine: bool = False) -> np.ndarray:
@@ -430,25 +421,76 @@ class DlmAerodynamics:
         (:func:`snap_mach`), cubic in k only: one Mach's AICs, none of its neighbours'; with
         ``fine`` linear in Mach between the columns :data:`MACH_FINE` apart around it (a
         matched crossing's own Mach, its error there)."""
-        check_mach(mach)
-        k = max(float(k), 0.0)
-        if exact_mach:
-            return self._in_k(0, k, mach=snap_mach(mach))
-        if fine:
-            x = float(mach) / MACH_FINE
-            i = int(np.floor(x + 1e-9))
-            t = x - i
-            Q = self._in_k(0, k, mach=snap_mach(i * MACH_FINE))
-            if t > 1e-9:
-                Q = (1 - t) * Q + t * self._in_k(0, k, mach=snap_mach((i + 1) * MACH_FINE))
-            return Q
-        x = mach / MACH_STEP
-        im = min(int(np.floor(x + 1e-12)), int(round(MACH_MAX / MACH_STEP)))
-        t = x - im
-        Q = self._in_k(im, k)
+        return _gaf(self.column_node, self.n_dof, mach, k, exact_mach, fine)
+
+    def projected(self, Psi: np.ndarray) -> "ProjectedGaf":
+        """The tables projected on the real basis ``Psi`` (n_dof, r): :class:`ProjectedGaf`."""
+        return ProjectedGaf(self, Psi)
+
+
+class ProjectedGaf:
+    """Ψᵀ Q(k, M) Ψ (r, r) of a :class:`DlmAerodynamics` ``aero`` on a real basis ``Psi``
+    (n_dof, r): every table node read is projected once (kept here, for the one analysis that
+    made it), and :meth:`gaf` interpolates the projected nodes exactly as
+    :meth:`DlmAerodynamics.gaf` does the full ones — the interpolation is linear in the nodes'
+    values, so it commutes with the projection (the p-k sweep on a Galerkin basis,
+    :mod:`propwhirl.analysis.pk_basis`)."""
+
+    def __init__(self, aero: DlmAerodynamics, Psi: np.ndarray):
+        self.aero, self.Psi = aero, np.asarray(Psi, dtype=float)
+        self._nodes: dict[tuple[float, int], np.ndarray] = {}
+
+    def column_node(self, mach: float, ik: int) -> np.ndarray:
+        """Ψᵀ Q Ψ of :meth:`DlmAerodynamics.column_node` (mach, ik)."""
+        key = (float(mach), ik)
+        if key not in self._nodes:
+            self._nodes[key] = self.Psi.T @ self.aero.column_node(mach, ik) @ self.Psi
+        return self._nodes[key]
+
+    def gaf(self, mach: float, k: float, *, exact_mach: bool = False,
+            fine: bool = False) -> np.ndarray:
+        """Ψᵀ Q(k, M) Ψ [-] (:meth:`DlmAerodynamics.gaf`'s interpolation)."""
+        return _gaf(self.column_node, self.Psi.shape[1], mach, k, exact_mach, fine)
+
+
+def _in_k(node: Callable[[float, int], np.ndarray], n: int, im: int | float, k: float,
+          mach: float | None = None) -> np.ndarray:
+    """Cubic Lagrange interpolation in k of the (n, n) table nodes ``node(mach, ik)`` through
+    the four around k, in the column of Mach node ``im`` (or of Mach ``mach`` when given)."""
+    mach = im * MACH_STEP if mach is None else mach
+    i = 0 if k < K_FIRST else 1 + int(np.floor(np.log10(k / K_FIRST) * K_PER_DECADE + 1e-12))
+    lo = max(0, i - 1)
+    nodes = range(lo, lo + 4)
+    ks = np.array([DlmAerodynamics.k_node(j) for j in nodes])
+    out = np.zeros((n, n), complex)
+    for j, kj in zip(nodes, ks):
+        w = np.prod([(k - km) / (kj - km) for km in ks if km != kj])
+        out += w * node(mach, j)
+    return out
+
+
+def _gaf(node: Callable[[float, int], np.ndarray], n: int, mach: float, k: float,
+         exact_mach: bool, fine: bool) -> np.ndarray:
+    """Q(k, M) from the table nodes ``node(mach, ik)`` (:meth:`DlmAerodynamics.gaf`)."""
+    check_mach(mach)
+    k = max(float(k), 0.0)
+    if exact_mach:
+        return _in_k(node, n, 0, k, snap_mach(mach))
+    if fine:
+        x = float(mach) / MACH_FINE
+        i = int(np.floor(x + 1e-9))
+        t = x - i
+        Q = _in_k(node, n, 0, k, snap_mach(i * MACH_FINE))
         if t > 1e-9:
-            Q = (1 - t) * Q + t * self._in_k(im + 1, k)
+            Q = (1 - t) * Q + t * _in_k(node, n, 0, k, snap_mach((i + 1) * MACH_FINE))
         return Q
+    x = mach / MACH_STEP
+    im = min(int(np.floor(x + 1e-12)), int(round(MACH_MAX / MACH_STEP)))
+    t = x - im
+    Q = _in_k(node, n, im, k)
+    if t > 1e-9:
+        Q = (1 - t) * Q + t * _in_k(node, n, im + 1, k)
+    return Q
 
 
 def geometry_key(wing) -> tuple:
@@ -548,7 +590,7 @@ def dlm_aerodynamics(wing, tables: DlmTables | None = None) -> DlmAerodynamics:
 
 
 def pk_system_dlm(model, V: float, k_min: float, tables: DlmTables | None = None,
-                  own_mach: bool = False):
+                  own_mach: bool = False, basis: tuple | None = None):
     """ω ↦ (M, C, K) of the p-k equation of a PropellerWing with doublet-lattice wing
     aerodynamics at airspeed V [m/s]: its structure and propellers (the model's own second-order
     system with the wing aerodynamics off), minus the DLM loads in the p-k form
@@ -558,7 +600,10 @@ def pk_system_dlm(model, V: float, k_min: float, tables: DlmTables | None = None
     interpolated in Mach between the table's Mach nodes (linear), or with ``own_mach`` between
     the fine columns :data:`MACH_FINE` apart around this Mach (what a matched crossing is
     converged with, :func:`propwhirl.analysis.pk.matched_crossing`); at a fixed ``dlm_mach``
-    always from the AICs of that very Mach, cubic in k only."""
+    always from the AICs of that very Mach, cubic in k only.  ``basis``: (Φ, G), a Galerkin
+    basis Φ (n, r) over the model's DOFs and G the tables projected on it
+    (:meth:`DlmAerodynamics.projected` of Φ's wing rows on the spline's DOFs): the system
+    projected, Φᵀ (M, C, K) Φ (r, r), Q read from G."""
     mach = wing_mach(model, V)
     surface = surface_of(model)
     exact = fixed_mach(surface) is not None
@@ -569,6 +614,17 @@ def pk_system_dlm(model, V: float, k_min: float, tables: DlmTables | None = None
     q = 0.5 * model.flight.density * V ** 2
     structure = (dry.S1[0], dry.S2[0], dry.S3[0])
     b = aero.b_ref
+    if basis is not None:
+        Phi, projected = basis
+        structure = tuple(Phi.T @ X @ Phi for X in structure)
+
+        def reduced(omega: float):
+            k = max(float(omega) * b / V, k_min)
+            Q = q * projected.gaf(mach, k, exact_mach=exact, fine=own_mach)
+            M, C, K = structure
+            return M, C - Q.imag / (k * V / b), K - Q.real
+
+        return reduced
 
     def matrices(omega: float):
         k = max(float(omega) * b / V, k_min)

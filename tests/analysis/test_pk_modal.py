@@ -1,0 +1,162 @@
+"""The p-k sweep on a Galerkin basis (issue 37 item 2: modal reduction for the p-k).
+
+A beam wing's p-k sweep iterates on the default's reduced basis Φ (in-vacuo modes up to the
+cut-off and the static correction vectors) and converges every crossing it finds on the full
+DOFs. Its crossings are the full-order sweep's (``pk_sweep(modal=False)``) to xtol: same modes,
+directions and kinds, speeds within XTOL = 0.01 m/s (Brent's own accuracy on the full path),
+frequencies within 1e-4 (relative). The work is bounded by counting the eigenproblems of the
+model's full size: the full-order sweep solves one per mode, speed and k iteration; the modal
+one only those of the check of its basis at the top speed (pk_basis.basis_error) and of the
+full-order convergence of its crossings.
+
+Measured (full-size eigenproblems of the sweep, modal / full order): Goland strips 19 / 444,
+wingtip model on strips 21 / 388, the 6-element wingtip wing on 3 × 8 panels at Mach 0.6
+35 / 315 and Mach-matched 91 / 909 (each crossing converged at its own Mach: the secant from
+the reduced crossing on the tables' Mach interpolation, up to 28 m/s away on the
+forward-whirl hump, as matched_crossing from the full-order one)."""
+import dataclasses
+
+import numpy as np
+import pytest
+
+from propwhirl.analysis import pk, pk_basis
+from propwhirl.analysis.pk import XTOL, pk_sweep
+from propwhirl.cases.ch10_other_wings import wingtip_propeller_wing
+from propwhirl.model import FlightCondition, PropellerWing, Wing
+from propwhirl.model.frequency_domain import pk_system
+
+
+def goland(**kw) -> PropellerWing:
+    """Goland's wing (10 elements) at sea level."""
+    wing = Wing(semi_span=6.096, root_chord=1.8288, mass_per_length=35.71, polar_inertia=8.64,
+                EI=9.77e6, GJ=0.987e6, elastic_axis=0.33, centre_of_gravity=0.43,
+                n_elements=10, **kw)
+    return PropellerWing(wing, FlightCondition(1.225), name="goland")
+
+
+def small_wingtip(mach) -> PropellerWing:
+    """The thesis's wingtip model on 6 elements and 3 × 8 panels."""
+    m = wingtip_propeller_wing()
+    return m.with_(wing=dataclasses.replace(m.wing, n_elements=6, aero="dlm", dlm_mach=mach,
+                                            dlm_chordwise_panels=3, dlm_spanwise_panels=8))
+
+
+def counted(monkeypatch, n_full: int) -> list[int]:
+    """Count the first-order matrices of the model's full size (2 n_full) the k iterations
+    solve."""
+    sizes: list[int] = []
+    real = pk_basis.first_order
+
+    def first_order(system, omega):
+        A = real(system, omega)
+        sizes.append(A.shape[0])
+        return A
+
+    monkeypatch.setattr(pk_basis, "first_order", first_order)
+    return sizes
+
+
+def same_crossings(modal, full):
+    assert [(e.mode, e.event, e.kind) for e in modal.flutter] == \
+        [(e.mode, e.event, e.kind) for e in full.flutter]
+    for a, b in zip(modal.flutter, full.flutter):
+        assert a.V == pytest.approx(b.V, abs=XTOL)
+        assert a.frequency == pytest.approx(b.frequency, rel=1e-4, abs=1e-6)
+        assert a.shift is not None and b.shift is None
+
+
+CASES = {
+    "goland strips": (lambda: goland(), np.arange(120.0, 271.0, 10.0), 30),
+    "wingtip propeller wing": (wingtip_propeller_wing, np.linspace(100.0, 200.0, 11), 30),
+}
+DLM_CASES = {
+    "wingtip 3x8 Mach 0.6": (lambda: small_wingtip(0.6), np.arange(140.0, 231.0, 10.0), 50),
+    "wingtip 3x8 matched": (lambda: small_wingtip("speed"), np.arange(140.0, 231.0, 10.0), 120),
+}
+
+
+def _compare(monkeypatch, make, speeds, most):
+    model = make()
+    n = model.dof_map().n_dof
+    sizes = counted(monkeypatch, n)
+    modal = pk_sweep(model, speeds)
+    full_size_modal = sizes.count(2 * n)
+    sizes.clear()
+    full = pk_sweep(model, speeds, modal=False)
+    full_size_full = sizes.count(2 * n)
+    assert modal.flutter, "a case with crossings"
+    assert 0 < modal.basis_size < n and full.basis_size == 0
+    same_crossings(modal, full)
+    # the full-size eigenproblems: only the crossings' convergence (measured: module docstring)
+    assert full_size_modal <= most
+    assert full_size_full > 5 * full_size_modal
+
+
+@pytest.mark.parametrize("case", sorted(CASES))
+def test_modal_sweep_crossings_are_the_full_order_sweeps(monkeypatch, case):
+    _compare(monkeypatch, *CASES[case])
+
+
+@pytest.mark.parametrize("case", sorted(DLM_CASES))
+def test_modal_sweep_crossings_are_the_full_order_sweeps_on_panels(monkeypatch, case):
+    pytest.importorskip("panelaero")
+    _compare(monkeypatch, *DLM_CASES[case])
+
+
+def _projection_is_exact(model, speeds, tables=None):
+    basis = pk_basis.pk_basis(model, speeds, tables)
+    Phi = basis.Phi
+    for V, omega in ((float(speeds[0]), 30.0), (float(speeds[-1]), 111.0)):
+        full = pk_system(model, V, tables)(omega)
+        reduced = pk_system(model, V, tables, basis=basis)(omega)
+        for X, Xr in zip(full, reduced):
+            assert Xr == pytest.approx(Phi.T @ X @ Phi, rel=1e-10, abs=1e-9 * np.abs(Xr).max())
+
+
+def test_projected_strips_are_the_projection_of_the_full_system():
+    """Φᵀ (M, C(ω), K(ω)) Φ of the full p-k system, built strip by strip on Φ's rows."""
+    model = wingtip_propeller_wing()
+    _projection_is_exact(model, np.array([100.0, 200.0]))
+
+
+def test_projected_tables_are_the_projection_of_the_full_system():
+    """A doublet-lattice wing's Q tables projected once interpolate (cubic in k, linear in
+    Mach) to the projection of the full Q: the interpolation commutes with it."""
+    pytest.importorskip("panelaero")
+    from propwhirl.model.aerodynamics.dlm import DlmTables
+    _projection_is_exact(small_wingtip("speed"), np.array([140.0, 212.0]), DlmTables())
+
+
+def test_the_basis_holds_the_defaults_and_only_a_beam_wing_has_one():
+    """The basis spans the default's reduced basis (one place for the cut-off) and adds the
+    p-k's own static correction, M-orthonormal; a typical section is swept on its own DOFs."""
+    from propwhirl.model import TypicalSection
+    from propwhirl.model.reduction import reduce
+    model = wingtip_propeller_wing()
+    V = np.linspace(100.0, 200.0, 11)
+    basis = pk_basis.pk_basis(model, V)
+    Phi = basis.Phi
+    from propwhirl.analysis.modes import InVacuo
+    M = InVacuo.of(model.without_aerodynamics()).M       # the structure's mass
+    assert Phi.T @ M @ Phi == pytest.approx(np.eye(basis.r), abs=1e-9)
+    D = reduce(model, V).dof_basis                      # M-orthonormal too
+    assert basis.r > D.shape[1]
+    residual = D - Phi @ (Phi.T @ M @ D)                # D in the span of Φ
+    assert np.abs(residual).max() < 1e-6 * np.abs(D).max()     # measured 2.7e-8
+    sec = TypicalSection(b=1.0, a=-0.2, x_alpha=0.1, r_alpha=np.sqrt(0.24),
+                         m=20 * np.pi * 1.225, omega_h=20.0, omega_alpha=50.0,
+                         flight=FlightCondition(1.225))
+    assert pk_basis.pk_basis(sec, V) is None
+    assert pk_sweep(sec, np.linspace(5.0, 200.0, 40)).basis_size == 0
+
+
+def test_batched_roots_are_each_modes_own(monkeypatch):
+    """pk_roots of several modes at once gives each the root pk_root gives it alone."""
+    model = wingtip_propeller_wing()
+    V = 150.0
+    start, _ = pk._start_roots(model, V, 7)
+    system = pk_system(model, V)
+    together, kt = pk_basis.pk_roots(model, V, start, system, ktol=pk.KTOL)
+    for p0, p, k in zip(start, together, kt):
+        q, kq = pk.pk_root(model, V, p0, system=system)
+        assert p == q and k == kq
