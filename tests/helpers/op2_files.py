@@ -140,6 +140,17 @@ def root_body(wing) -> tuple[float, float, float]:
     return tuple(float(r @ M @ r) for r in shapes)
 
 
+def free_frequencies(wing, w2: np.ndarray, rigid_below_hz: float):
+    """Frequencies [Hz] of the eigenvalues ``w2`` [rad²/s²] (those below ``rigid_below_hz``
+    rigid: 0) and the wing's Rayleigh damping ratios at them (0 on the rigid modes)."""
+    f = np.sqrt(np.abs(w2)) / (2.0 * np.pi)
+    rigid = f < rigid_below_hz
+    f = np.where(rigid, 0.0, f)
+    w = 2.0 * np.pi * np.where(rigid, 1.0, f)
+    mu, lam = wing.rayleigh
+    return f, np.where(rigid, 0.0, 0.5 * (mu / w + lam * w))
+
+
 def free_modal_model(base, kappa: float, free: str = "plunge-roll",
                      rigid_below_hz: float = 0.1):
     """The modal model of ``base`` (a one-propeller PropellerWing, mount "own") with its wing
@@ -153,12 +164,7 @@ def free_modal_model(base, kappa: float, free: str = "plunge-roll",
     mass, roll, pitch = root_body(base.wing)
     ids, xyz, w2, shapes = free_free_modes(base.wing, kappa * mass, kappa * roll,
                                            kappa * pitch, free)
-    f = np.sqrt(np.abs(w2)) / (2.0 * np.pi)
-    rigid = f < rigid_below_hz
-    f = np.where(rigid, 0.0, f)
-    w = 2.0 * np.pi * np.where(rigid, 1.0, f)
-    mu, lam = base.wing.rayleigh
-    zeta = np.where(rigid, 0.0, 0.5 * (mu / w + lam * w))
+    f, zeta = free_frequencies(base.wing, w2, rigid_below_hz)
     s = ModalStructure(grid_ids=ids, xyz=xyz, frequencies_hz=f, modal_mass=np.ones(f.size),
                        damping_ratio=zeta, shapes=shapes, free=True,
                        source=f"{free} root body, kappa {kappa:g}")
@@ -167,7 +173,7 @@ def free_modal_model(base, kappa: float, free: str = "plunge-roll",
     model = ModalPropellerWing(s, [int(g) for g in ids], StripPlanform.from_wing(base.wing),
                                base.flight, inst, wing_aero=base.wing_aero,
                                propeller_aero=base.propeller_aero, rotating=base.rotating)
-    return model, int(rigid.sum())
+    return model, int(np.count_nonzero(f == 0.0))
 
 
 #: The horizontal tail of the free-body cases (a half aircraft's, on a rigid arm from the root
@@ -224,12 +230,7 @@ def tailed_modal_model(base, kappa: float, arm: float = TAIL["arm"], tail: bool 
     moves[:, :, 2] = (root[:, 2:3] + root[:, 3:4] * txyz[None, :, 1]
                       - root[:, 4:5] * txyz[None, :, 0])
     moves[:, :, 3:] = root[:, None, 3:]
-    f = np.sqrt(np.abs(w2)) / (2.0 * np.pi)
-    rigid = f < rigid_below_hz
-    f = np.where(rigid, 0.0, f)
-    w = 2.0 * np.pi * np.where(rigid, 1.0, f)
-    mu, lam = base.wing.rayleigh
-    zeta = np.where(rigid, 0.0, 0.5 * (mu / w + lam * w))
+    f, zeta = free_frequencies(base.wing, w2, rigid_below_hz)
     s = ModalStructure(grid_ids=np.concatenate([ids, np.array(surface.grids)]),
                        xyz=np.concatenate([xyz, txyz]), frequencies_hz=f,
                        modal_mass=np.ones(f.size), damping_ratio=zeta,
@@ -241,7 +242,7 @@ def tailed_modal_model(base, kappa: float, arm: float = TAIL["arm"], tail: bool 
                                base.flight, inst, wing_aero=base.wing_aero,
                                propeller_aero=base.propeller_aero, rotating=base.rotating,
                                surfaces=(surface,) if tail else ())
-    return model, int(rigid.sum())
+    return model, int(np.count_nonzero(f == 0.0))
 
 
 def centre_of_gravity_x(model) -> float:

@@ -35,15 +35,13 @@ from propwhirl.model.aerodynamics.dlm import DlmTables, strip_twin
 from propwhirl.model.dlm_modal import kept_modes
 from propwhirl.model.frequency_domain import K_MIN, Galerkin, pk_system, reference_semichord
 from propwhirl.model.protocol import capabilities
-from propwhirl.model.reduction import cutoff, dof_basis
+from propwhirl.model.reduction import GRAM_TOL, cutoff, dof_basis
 
 #: the fewest in-vacuo modes a wing's p-k sweep follows by default (lowest frequencies first;
 #: :func:`followed_modes`)
 WING_MODES = 6
 
 
-#: relative eigenvalue threshold of the M-Gram matrix below which a basis vector is dependent
-GRAM_TOL = 1e-12
 #: the reduced sweep is kept when at the top speed (:func:`basis_error`) each reduced root is
 #: within this fraction of its distance to the nearest other followed mode's from the full
 #: model's root continued from it (each mode then takes the same root by the nearest-root rule
