@@ -125,13 +125,14 @@ def one_per_root(sweep, converged: list, xtol: float) -> tuple[list, list[str]]:
         if not same:
             kept.append((pt, x, what, fit))
             continue
-        q, xq, what_q, fit_q = kept[same[0]]
+        _, _, what_q, fit_q = kept[same[0]]
         if fit > fit_q:
             kept[same[0]] = (pt, x, what, fit)
             what, what_q = what_q, what
         notes.append(f"V = {pt.V:.2f} m/s: the {what} converged onto the same p-k crossing "
-                     f"as the {what_q}, whose shape it is more (MAC {max(fit, fit_q):.3f} "
-                     f"vs {min(fit, fit_q):.3f}): reported once")
+                     f"as the {what_q}: reported once, as the latter (the MAC of its "
+                     f"state-space shape with the p-k's {max(fit, fit_q):.3f}, the other's "
+                     f"{min(fit, fit_q):.3f})")
     return [q for q, _, _, _ in kept], notes
 
 
