@@ -9,6 +9,7 @@ real int or float (numpy scalars included), never a bool, a string, a complex nu
 from __future__ import annotations
 
 import math
+import re
 from typing import Any
 
 import numpy as np
@@ -64,8 +65,9 @@ class InputError(ValueError):
 
 
 def short_repr(value: Any, limit: int = 60) -> str:
-    """repr(value), cut to `limit` characters (a huge list must not flood the terminal)."""
-    text = repr(value)
+    """repr(value) on one line (an array's rows joined), cut to `limit` characters (a huge list
+    must not flood the terminal)."""
+    text = re.sub(r"\s*\n\s*", " ", repr(value))
     return text if len(text) <= limit else text[: limit - 3] + "..."
 
 
@@ -243,6 +245,45 @@ def file_path(name: str, value: Any, what: str = "a file"):
         raise fail(name, value, f"invalid: must be the path of {what} (a str or os.PathLike), "
                    f"got {got}")
     return value
+
+
+def shaped_array(source: str, key: str, value, shape: tuple, dtype=float,
+                 unit: str = "") -> np.ndarray:
+    """``value`` as a read-only copy of ``shape`` (-1: any length) and ``dtype``, finite; else
+    a one-line InputError naming ``source`` (a file or model) and ``key``: never a silent cast
+    of a bool, complex, date, string or object array, nor of a non-integral value to integers.
+
+    >>> shaped_array("wing", "y", [0.0, 1.5], (-1,)).tolist()
+    [0.0, 1.5]
+    >>> shaped_array("wing", "chord", [1.0], (2,), unit="m")
+    Traceback (most recent call last):
+    ...
+    propwhirl.validate.InputError: wing: chord = [1.0] is invalid: has shape (1,), must be real numbers of shape (2,) [m]
+    """
+    try:
+        raw = None if isinstance(value, (str, bytes)) else np.asarray(value)
+    except (TypeError, ValueError, OverflowError):
+        raw = None
+    if raw is not None and raw.dtype.kind in "bcmMUSVO":   # never cast to a number silently
+        raise InputError(f"{source}: {key} has dtype {raw.dtype}, must be real numbers")
+    try:
+        arr = None if raw is None else np.array(value, dtype=dtype, copy=True)
+    except (TypeError, ValueError, OverflowError):
+        arr = None
+    if arr is not None and np.dtype(dtype).kind == "i":
+        if raw.dtype.kind not in "iu" or not np.array_equal(raw, arr):
+            raise InputError(f"{source}: {key} has dtype {raw.dtype}, must be integers")
+    if arr is None or arr.ndim != len(shape) or any(
+            s not in (-1, n) for s, n in zip(shape, arr.shape)):
+        got = None if arr is None else arr.shape
+        want = tuple("n" if s == -1 else s for s in shape)
+        raise InputError(f"{source}: {key} = {short_repr(value)} is invalid: has shape {got}, "
+                         f"must be real numbers of shape {want}{f' [{unit}]' if unit else ''}")
+    if arr.dtype.kind == "f" and not np.all(np.isfinite(arr)):
+        i = tuple(int(x) for x in np.argwhere(~np.isfinite(arr))[0])
+        raise InputError(f"{source}: {key}{list(i)} = {arr[i]} is invalid: must be finite")
+    arr.flags.writeable = False
+    return arr
 
 
 def is_finite_number(x: Any) -> bool:

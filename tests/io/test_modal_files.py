@@ -70,16 +70,22 @@ CASES = [
 ]
 
 
-@pytest.mark.parametrize("edit, words", CASES, ids=[c[0][1][:20] for c in CASES])
-def test_a_bad_description_is_one_line_naming_file_key_and_id(tmp_path, edit, words):
-    toml, npz = write_modes(wingtip_propeller_wing(), tmp_path / "wingtip.toml")
+def _refused_in_one_line(toml, edit, words) -> None:
+    """The file ``toml`` with ``edit`` (old, new) made is refused in one line that starts with
+    its path and holds every one of ``words``."""
     _edit(toml, *edit)
     with pytest.raises(InputError) as e:
         load_modal_model(toml)
     msg = str(e.value)
     assert "\n" not in msg and msg.startswith(str(toml)), msg
     for w in words:
-        assert w in msg, msg
+        assert w in msg, (w, msg)
+
+
+@pytest.mark.parametrize("edit, words", CASES, ids=[c[0][1][:20] for c in CASES])
+def test_a_bad_description_is_one_line_naming_file_key_and_id(tmp_path, edit, words):
+    toml, _ = write_modes(wingtip_propeller_wing(), tmp_path / "wingtip.toml")
+    _refused_in_one_line(toml, edit, words)
 
 
 def _rewrite_npz(npz, **changes):
@@ -354,13 +360,7 @@ def test_a_doublet_lattice_model_round_trips_with_its_planform(tmp_path):
 ])
 def test_a_bad_planform_is_one_line_naming_the_key(tmp_path, edit, words):
     toml, _ = write_modes(_dlm_beam(), tmp_path / "dlm.toml")
-    _edit(toml, *edit)
-    with pytest.raises(InputError) as e:
-        load_modal_model(toml)
-    msg = str(e.value)
-    assert "\n" not in msg and msg.startswith(str(toml)), msg
-    for w in words:
-        assert w in msg, (w, msg)
+    _refused_in_one_line(toml, edit, words)
 
 
 def test_aero_dlm_without_a_planform_is_refused(tmp_path):

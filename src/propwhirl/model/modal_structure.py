@@ -59,34 +59,6 @@ MAX_MODES = 1000
 MAX_STRIPS = 1000
 
 
-def _array(source: str, key: str, value, shape: tuple, dtype=float) -> np.ndarray:
-    """`value` as a read-only copy of `shape` (-1: any length) and dtype, finite; else a
-    one-line error naming `source` and `key`."""
-    try:
-        raw = None if isinstance(value, (str, bytes)) else np.asarray(value)
-    except (TypeError, ValueError, OverflowError):
-        raw = None
-    if raw is not None and raw.dtype.kind in "bcmMUSV":   # never cast to a number silently
-        raise v.InputError(f"{source}: {key} has dtype {raw.dtype}, must be real numbers")
-    try:
-        arr = None if raw is None else np.array(value, dtype=dtype, copy=True)
-    except (TypeError, ValueError, OverflowError):
-        arr = None
-    if arr is not None and np.dtype(dtype).kind == "i":
-        if raw.dtype.kind not in "iu" or not np.array_equal(raw, arr):
-            raise v.InputError(f"{source}: {key} has dtype {raw.dtype}, must be integers")
-    if arr is None or arr.ndim != len(shape) or any(
-            s not in (-1, n) for s, n in zip(shape, arr.shape)):
-        got = None if arr is None else arr.shape
-        raise v.InputError(f"{source}: {key} has shape {got}, must be "
-                           f"{tuple('n' if s == -1 else s for s in shape)}")
-    if arr.dtype.kind == "f" and not np.all(np.isfinite(arr)):
-        i = tuple(int(x) for x in np.argwhere(~np.isfinite(arr))[0])
-        raise v.InputError(f"{source}: {key}{list(i)} = {arr[i]} is invalid: must be finite")
-    arr.flags.writeable = False
-    return arr
-
-
 @dataclass(frozen=True, eq=False)
 class ModalStructure:
     """The normal modes of a structure, at named grid points (SI units; frame in the module
@@ -151,9 +123,9 @@ class ModalStructure:
 
     def __post_init__(self) -> None:
         src = self.source
-        ids = _array(src, "grid_ids", self.grid_ids, (-1,), dtype=np.int64)
+        ids = v.shaped_array(src, "grid_ids", self.grid_ids, (-1,), dtype=np.int64)
         ng = ids.size
-        f = _array(src, "frequencies_hz", self.frequencies_hz, (-1,))
+        f = v.shaped_array(src, "frequencies_hz", self.frequencies_hz, (-1,))
         nm = f.size
         if nm > MAX_MODES:
             raise v.InputError(f"{src}: {nm} modes is too many: at most {MAX_MODES} (keep the "
@@ -163,11 +135,11 @@ class ModalStructure:
                                "structure needs at least one mode and one grid")
         put = lambda k, x: object.__setattr__(self, k, x)  # noqa: E731
         put("grid_ids", ids)
-        put("xyz", _array(src, "xyz", self.xyz, (ng, 3)))
+        put("xyz", v.shaped_array(src, "xyz", self.xyz, (ng, 3)))
         put("frequencies_hz", f)
-        put("modal_mass", _array(src, "modal_mass", self.modal_mass, (nm,)))
-        put("damping_ratio", _array(src, "damping_ratio", self.damping_ratio, (nm,)))
-        put("shapes", _array(src, "shapes", self.shapes, (nm, ng, 6)))
+        put("modal_mass", v.shaped_array(src, "modal_mass", self.modal_mass, (nm,)))
+        put("damping_ratio", v.shaped_array(src, "damping_ratio", self.damping_ratio, (nm,)))
+        put("shapes", v.shaped_array(src, "shapes", self.shapes, (nm, ng, 6)))
         if np.any(ids <= 0):
             i = int(np.argmax(ids <= 0))
             raise v.InputError(f"{src}: grid_ids[{i}] = {ids[i]} is invalid: grid ids must be "
@@ -425,14 +397,14 @@ class StripPlanform:
 
     def __post_init__(self) -> None:
         src = self.source
-        y = _array(src, "y", self.y, (-1,))
+        y = v.shaped_array(src, "y", self.y, (-1,))
         n = y.size
         if n == 0 or n > MAX_STRIPS:
             raise v.InputError(f"{src}: y has {n} strips: give 1 to {MAX_STRIPS}")
         object.__setattr__(self, "y", y)
         for k in ("width", "chord", "leading_edge_x", "elastic_axis", "aerodynamic_centre",
                   "lift_slope"):
-            object.__setattr__(self, k, _array(src, k, getattr(self, k), (n,)))
+            object.__setattr__(self, k, v.shaped_array(src, k, getattr(self, k), (n,)))
         if n > 1 and np.any(np.diff(y) <= 0):
             i = int(np.argmax(np.diff(y) <= 0)) + 1
             raise v.InputError(f"{src}: y[{i}] = {y[i]:.6g} m is invalid: the strips' "

@@ -104,26 +104,6 @@ class PanelMesh:
                 "offset_P3": p4 + 0.25 * l2, "n": self.n}
 
 
-def _floats(source: str, key: str, value, shape: tuple) -> np.ndarray:
-    """``value`` as a read-only float array of ``shape`` (-1: any length), finite; else a
-    one-line InputError naming ``source`` and ``key``."""
-    try:
-        raw = None if isinstance(value, (str, bytes)) else np.asarray(value)
-        arr = None if raw is None or raw.dtype.kind in "bcmMUSVO" else np.array(raw, float)
-    except (TypeError, ValueError, OverflowError):
-        arr = None
-    if arr is None or arr.ndim != len(shape) or any(
-            s not in (-1, n) for s, n in zip(shape, arr.shape)):
-        want = tuple("n" if s == -1 else s for s in shape)
-        raise v.InputError(f"{source}: {key} = {v.short_repr(value)} is invalid: must be real "
-                           f"numbers of shape {want} [m]")
-    if not np.all(np.isfinite(arr)):
-        i = tuple(int(j) for j in np.argwhere(~np.isfinite(arr))[0])
-        raise v.InputError(f"{source}: {key}{list(i)} = {arr[i]} is invalid: must be finite")
-    arr.flags.writeable = False
-    return arr
-
-
 @dataclass(frozen=True, eq=False)
 class Planform:
     """A half-wing's lifting surface for the doublet lattice (module docstring).
@@ -167,12 +147,12 @@ class Planform:
     def __post_init__(self) -> None:
         src = self.source if isinstance(self.source, str) else "dlm_planform"
         object.__setattr__(self, "source", src)
-        le = _floats(src, "leading_edge", self.leading_edge, (-1, 3))
+        le = v.shaped_array(src, "leading_edge", self.leading_edge, (-1, 3), unit="m")
         n = le.shape[0]
         if not 2 <= n <= MAX_STATIONS:
             raise v.InputError(f"{src}: leading_edge has {n} stations: give 2 to "
                                f"{MAX_STATIONS} (a CAERO1: the root and the tip)")
-        c = _floats(src, "chord", self.chord, (n,))
+        c = v.shaped_array(src, "chord", self.chord, (n,), unit="m")
         y = le[:, 1]
         if y[0] < 0:
             raise v.InputError(f"{src}: leading_edge[0] y = {y[0]:.6g} m is invalid: must be "
