@@ -37,7 +37,7 @@ from dataclasses import replace
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.analysis.pk import pk_crossing, pk_root
+from propwhirl.analysis.pk import pk_root
 from propwhirl.engine.correction import full_order_root, real_direction
 from propwhirl.model.aerodynamics import compressibility as pg
 from propwhirl.model.aerodynamics.validity import MACH_COMPRESSIBLE
@@ -98,7 +98,7 @@ def _root(model, V: float, lam: complex, x: np.ndarray):
 
 
 def crossing(model, V0: float, lam0: complex, x0: np.ndarray, top: float,
-             slope: float | None = None, direction: int = 0) -> float | None:
+             slope: float | None = None, direction: int = 0, root=None) -> float | None:
     """The speed [m/s] where ``model``'s root continued from (V0, λ0, x0) crosses Re λ = 0:
     Newton's first step with ``slope`` (d Re λ/dV [1/m] of the original root, e.g. the
     sweep's; without it a step of :data:`FIRST_STEP`), then the secant method, each step at
@@ -107,8 +107,13 @@ def crossing(model, V0: float, lam0: complex, x0: np.ndarray, top: float,
     pencil beyond the last point when the secant did not straddle it) in ``direction`` (+1:
     Re λ rising with V, an onset; −1: a recovery; 0: either).  None when a root is lost, the
     speed leaves (0, ``top``], :data:`MAX_STEPS` pencils do not converge it or it is not
-    confirmed."""
-    got = _root(model, V0, lam0, x0)
+    confirmed.  ``root``: (V, λ, x) ↦ (λ, x) or None, the root at V continued from (λ, x)
+    (default: the full-order pencil's, :func:`_root`; a p-k analysis's: the p-k root,
+    :func:`pk_warnings`)."""
+    if root is None:
+        def root(V, lam, x):
+            return _root(model, V, lam, x)
+    got = root(V0, lam0, x0)
     if got is None:
         return None
     lam, x = got
@@ -122,14 +127,14 @@ def crossing(model, V0: float, lam0: complex, x0: np.ndarray, top: float,
     for _ in range(MAX_STEPS - 1):
         if not 0.0 < Vb <= top:
             return None
-        got = _root(model, Vb, lam, x)
+        got = root(Vb, lam, x)
         if got is None:
             return None
         lam, x = got
         sb = lam.real
         points.append((Vb, sb))
         if abs(Vb - Va) <= VTOL * Vb or sb == 0.0:
-            return Vb if _confirmed(model, points, lam, x, direction, top) else None
+            return Vb if _confirmed(root, points, lam, x, direction, top) else None
         if sb == sa:
             return None
         step = -sb * (Vb - Va) / (sb - sa)
@@ -138,7 +143,7 @@ def crossing(model, V0: float, lam0: complex, x0: np.ndarray, top: float,
     return None
 
 
-def _confirmed(model, points, lam, x, direction: int, top: float) -> bool:
+def _confirmed(root, points, lam, x, direction: int, top: float) -> bool:
     """Whether the secant's ``points`` (V, Re λ), converged at the last, cross zero there in
     ``direction``: the nearest point on the other side of the last (one more pencil, a
     :data:`VTOL` step beyond, when none is), with Re λ rising (+1) or falling (−1)."""
@@ -150,7 +155,7 @@ def _confirmed(model, points, lam, x, direction: int, top: float) -> bool:
         Vc = Vb + away * VTOL * Vb
         if not 0.0 < Vc <= top:
             return False
-        got = _root(model, Vc, lam, x)
+        got = root(Vc, lam, x)
         if got is None or got[0].real * sb >= 0:
             return False
         other = [(Vc, got[0].real)]
@@ -225,9 +230,11 @@ def event_warnings(model, events, points, top: float, comp, sweep=None) -> list[
 
 def pk_warnings(model, events, top: float) -> tuple[str, ...]:
     """:func:`event_warnings` of a p-k analysis (``analyse(method="pk")``): each onset and
-    recovery's crossing on the twin by :func:`propwhirl.analysis.pk.pk_crossing` (the twin's
-    p-k root at the event's speed and frequency, a bracket widened around it, Brent's
-    method), in the event's direction."""
+    recovery's crossing on the twin by :func:`crossing` on the twin's p-k roots
+    (:func:`propwhirl.analysis.pk.pk_root`, each from the last; the first at the event's
+    speed from its frequency), confirmed in the event's direction: the secant to
+    :data:`VTOL`, as the default's (was Brent's method to 0.01 m/s in a bracket widened
+    around the event: ~3 times the p-k roots for a warning stated to 0.1 %)."""
     if not applies(model):
         return ()
     a = float(model.flight.speed_of_sound)
@@ -238,16 +245,22 @@ def pk_warnings(model, events, top: float) -> tuple[str, ...]:
         if not _checked(e, a) or e.V > hi:
             continue
         omega = 2 * np.pi * e.frequency_hz
-        try:
-            p0, _ = pk_root(comp, e.V, complex(0.0, omega) if omega > 0 else 0j)
-            c = pk_crossing(comp, e.V, p0, lo=0.5 * e.V, hi=hi)
-        except RuntimeError:            # the k iteration did not converge: not found
-            c = None
-        Vc = c.V if c is not None and c.direction == e.event else None
+        Vc = crossing(comp, e.V, complex(0.0, omega) if omega > 0 else 0j, None, hi,
+                      direction=1 if e.event == "onset" else -1,
+                      root=lambda V, p, x: _pk_root(comp, V, p))
         line = _event_line(e, Vc, a)
         if line is not None:
             out.append(line)
     return tuple(out)
+
+
+def _pk_root(model, V: float, p0: complex):
+    """(the p-k root of ``model`` at V [m/s] from ``p0``, None), or None where the k iteration
+    does not converge or V is beyond the twin's Mach."""
+    try:
+        return pk_root(model, V, p0)[0], None
+    except (RuntimeError, v.InputError):
+        return None
 
 
 def hump_warnings(model, sweep, events, top: float, comp) -> list[str]:

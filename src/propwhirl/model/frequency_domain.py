@@ -72,7 +72,8 @@ def section_structure(model) -> tuple[np.ndarray, np.ndarray]:
 
 def _strip(rho, V, b, a, Cla, ac, omega):
     """Exact-Theodorsen strip matrices (M_a, C_a, K_a) per unit span at frequency ω [rad/s];
-    b, a, Cla, ac scalars or arrays (one per strip)."""
+    b, a, Cla, ac scalars or arrays (one per strip); ω a scalar, or an array (m, 1) for m
+    frequencies at once (the blocks then (m, n_strips, 2, 2))."""
     k = np.maximum(np.asarray(omega * np.asarray(b, float) / V, float), K_MIN)
     C = theodorsen(k)
     aero = strip_aero.theodorsen_blocks(rho=rho, V=V, b=b, a=a, Cla=Cla, ac=ac, k=k,
@@ -111,6 +112,17 @@ class Galerkin:
         return self.Phi.shape[1]
 
 
+def over_omega(matrices):
+    """``matrices`` (ω ↦ (M, C, K) at one frequency) also taking an array of frequencies
+    (m,), returning stacks (m, n, n): what :func:`pk_system` returns where its loads are not
+    evaluated for several frequencies at once."""
+    def system(omega):
+        if np.ndim(omega) == 0:
+            return matrices(float(omega))
+        return tuple(np.stack(x) for x in zip(*(matrices(float(w)) for w in omega)))
+    return system
+
+
 def pk_system(model, V: float, tables: DlmTables | None = None, own_mach: bool = False,
               basis: Galerkin | None = None):
     """ω ↦ (M, C, K) of the p-k equation of `model` at airspeed V [m/s] and frequency ω [rad/s]:
@@ -125,18 +137,21 @@ def pk_system(model, V: float, tables: DlmTables | None = None, own_mach: bool =
     (:func:`~propwhirl.model.aerodynamics.dlm.pk_system_dlm`); ``basis``: a beam wing's
     :class:`Galerkin` basis Φ, the system projected on it, Φᵀ (M, C, K) Φ (r, r): the
     structure once per speed, the strips' loads summed over the strips on Φ's rows (a
-    doublet-lattice wing's Q from the tables projected once, :class:`Galerkin`)."""
+    doublet-lattice wing's Q from the tables projected once, :class:`Galerkin`).  ω may be
+    an array (m,) of frequencies: then stacks (m, n, n) (:func:`over_omega`; a beam wing's
+    projected strips evaluated for all of them in one call — the p-k iteration of all
+    followed modes at once, :func:`propwhirl.analysis.pk_basis.pk_roots`)."""
     can = capabilities(model)                       # the model contract says which it is
     if basis is not None and can.structure in ("section", "modes"):
         raise v.InputError(f"basis = {type(basis).__name__} is invalid for the p-k system of "
                            f"a model of structure {can.structure!r}: a beam wing's only")
     if can.structure == "section":
-        return lambda omega: section_pk_matrices(model, V, omega * model.b / V)
+        return over_omega(lambda omega: section_pk_matrices(model, V, omega * model.b / V))
     if can.aerodynamics == "doublet lattice":     # panels instead of the strips (any structure)
-        return pk_system_dlm(model, V, K_MIN, tables, own_mach,
-                             None if basis is None else (basis.Phi, basis.gaf))
+        return over_omega(pk_system_dlm(model, V, K_MIN, tables, own_mach,
+                                        None if basis is None else (basis.Phi, basis.gaf)))
     if can.structure == "modes":
-        return modal_pk_system(model, V)
+        return over_omega(modal_pk_system(model, V))
     dry = replace(model, wing_aero=False).second_order(np.array([V]))
     if dry.n_lag:
         raise v.InputError(f"model = {model.name!r} is invalid for the p-k method: its "
@@ -159,11 +174,12 @@ def pk_system(model, V: float, tables: DlmTables | None = None, own_mach: bool =
         G = np.einsum("sim,sjn->sijmn", P, P).reshape(-1, r * r)
         reduced = tuple(Phi.T @ S @ Phi for S in structure)
 
-        def projected(omega: float):
+        def projected(omega):
+            w = np.asarray(omega, float)
             strips = _strip(model.flight.density, V, node["b"], node["a"], cla, node["ac"],
-                            omega)
-            return tuple(S - ((width * A).reshape(-1) @ G).reshape(r, r)
-                         for S, A in zip(reduced, strips))
+                            w[..., None])       # (..., n_strips, 2, 2)
+            return tuple(S - ((width * A).reshape(w.shape + (-1,)) @ G)
+                         .reshape(w.shape + (r, r)) for S, A in zip(reduced, strips))
 
         return projected
 
@@ -177,7 +193,7 @@ def pk_system(model, V: float, tables: DlmTables | None = None, own_mach: bool =
             out.append(X)
         return tuple(out)
 
-    return matrices
+    return over_omega(matrices)
 
 
 def modal_pk_system(model, V: float):
