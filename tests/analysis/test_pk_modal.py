@@ -175,12 +175,23 @@ def _systems():
             "typical section": pk_system(sec, 50.0)}
 
 
+def _dlm_systems():
+    pytest.importorskip("panelaero")
+    from propwhirl.model.aerodynamics.dlm import DlmTables
+    model, tables = small_wingtip(0.6), DlmTables()
+    basis = pk_basis.pk_basis(model, np.array([140.0, 230.0]), tables)
+    return {"panels, full DOFs": pk_system(model, 180.0, tables),
+            "panels, on the basis": pk_system(model, 180.0, tables, basis=basis)}
+
+
 @pytest.mark.parametrize("name", ["strips, full DOFs", "strips, on the basis",
-                                  "typical section"])
+                                  "typical section", "panels, full DOFs",
+                                  "panels, on the basis"])
 def test_a_system_over_several_frequencies_is_each_frequencys(name):
     """ω an array: the matrices of every ω stacked, each equal to the one-ω call (the k
-    iteration of all followed modes builds them together)."""
-    system = _systems()[name]
+    iteration of all followed modes builds them together; the doublet lattice's projected
+    tables interpolated in k for all of them at once)."""
+    system = (_dlm_systems() if name.startswith("panels") else _systems())[name]
     omegas = np.array([3.0, 30.0, 111.0])
     stacked = system(omegas)
     A = pk_basis.first_order(system, omegas)
@@ -213,3 +224,18 @@ def test_the_secant_converges_to_the_plain_iterations_root_in_fewer_steps(monkey
         assert fast == pytest.approx(plain, rel=10 * pk.KTOL)
         assert kf == pytest.approx(kp, rel=10 * pk.KTOL)
         assert len(calls) < n_plain and sum(calls) < sum_plain
+
+
+def test_the_structure_is_assembled_once_per_sweep_not_per_speed(monkeypatch):
+    """The p-k system adds its loads to the structure and propellers assembled once
+    (frequency_domain.dry_assembly), not at each speed, Brent step and k iteration: the
+    Goland wing's sweep over 16 speeds assembled 77 times before, 8 now (the finite-state
+    start roots, the bases and the one dry assembly)."""
+    from propwhirl.model import systems
+    calls = []
+    real = systems.PropellerWingAssembly.build.__func__
+    monkeypatch.setattr(systems.PropellerWingAssembly, "build", classmethod(
+        lambda cls, *a, **k: calls.append(1) or real(cls, *a, **k)))
+    sweep = pk_sweep(goland(), np.arange(120.0, 271.0, 10.0))
+    assert sweep.flutter
+    assert len(calls) <= 8

@@ -41,6 +41,7 @@ from propwhirl.analysis.pk import pk_root
 from propwhirl.engine.correction import full_order_root, real_direction
 from propwhirl.model.aerodynamics import compressibility as pg
 from propwhirl.model.aerodynamics.validity import MACH_COMPRESSIBLE
+from propwhirl.model.frequency_domain import dry_assembly
 
 #: relative move of an event's speed [-] from which the warning is given (2 %: beyond the
 #: crossing's accuracy, within the 3 % to which the thesis's speeds are reproduced)
@@ -239,6 +240,7 @@ def pk_warnings(model, events, top: float) -> tuple[str, ...]:
         return ()
     a = float(model.flight.speed_of_sound)
     comp = twin(model)
+    dry = dry_assembly(comp)             # its structure and propellers, assembled once
     hi = min(top, pg.MACH_MAX * a)
     out = []
     for e in events:
@@ -247,18 +249,19 @@ def pk_warnings(model, events, top: float) -> tuple[str, ...]:
         omega = 2 * np.pi * e.frequency_hz
         Vc = crossing(comp, e.V, complex(0.0, omega) if omega > 0 else 0j, None, hi,
                       direction=1 if e.event == "onset" else -1,
-                      root=lambda V, p, x: _pk_root(comp, V, p))
+                      root=lambda V, p, x: _pk_root(comp, V, p, dry))
         line = _event_line(e, Vc, a)
         if line is not None:
             out.append(line)
     return tuple(out)
 
 
-def _pk_root(model, V: float, p0: complex):
+def _pk_root(model, V: float, p0: complex, dry=None):
     """(the p-k root of ``model`` at V [m/s] from ``p0``, None), or None where the k iteration
-    does not converge or V is beyond the twin's Mach."""
+    does not converge or V is beyond the twin's Mach (``dry``: the model's
+    :func:`~propwhirl.model.frequency_domain.dry_assembly`)."""
     try:
-        return pk_root(model, V, p0)[0], None
+        return pk_root(model, V, p0, dry=dry)[0], None
     except (RuntimeError, v.InputError):
         return None
 

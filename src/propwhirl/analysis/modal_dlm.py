@@ -148,6 +148,7 @@ def modal_dlm_analysis(model, grid: np.ndarray, *, displacement, state_labels, o
     with single_thread_blas():
         R = modal_roger(model, grid, assembly=assembly, structure=structure)
         tables = R.assembly.dlm_tables
+        dry = R.assembly.with_switches(wing_aero=False)  # the p-k's structure, not re-assembled
         an = engine_analyse(R.state_matrix, grid, displacement=R.displacement,
                             state_labels=R.labels(), options=options, xtol=xtol,
                             **({"initial_step": None} if vgf else {}))
@@ -161,7 +162,7 @@ def modal_dlm_analysis(model, grid: np.ndarray, *, displacement, state_labels, o
             what = f"{pt.kind} {pt.direction} of state-space mode {pt.mode + 1}"
             try:
                 c = pk_crossing(model, pt.V, pt.eigenvalue, lo=lo, hi=hi, xtol=xtol,
-                                tables=tables)
+                                tables=tables, dry=dry)
             except RuntimeError:
                 x0 = lift @ pt.eigenvector
                 points.append(replace(pt, eigenvector=x0 / np.linalg.norm(x0)))
@@ -178,11 +179,11 @@ def modal_dlm_analysis(model, grid: np.ndarray, *, displacement, state_labels, o
                              f"{min(hi, (1 + CROSSING_SPREAD[-1]) * pt.V):.2f} m/s): not "
                              "reported")
                 continue
-            p, k, x = pk_mode(model, c.V, c.p, tables=tables, own_mach=True)
+            p, k, x = pk_mode(model, c.V, c.p, tables=tables, own_mach=True, dry=dry)
             p = p if p.imag >= 0 else p.conjugate()
             flutter = pt.kind == "flutter"
             half = 0.5 * (pt.bracket[1] - pt.bracket[0])
-            bz = pk_benignity(model, c.V, p, tables) if flutter else None
+            bz = pk_benignity(model, c.V, p, tables, dry) if flutter else None
             converged.append((replace(
                 pt, V=c.V, bracket=(c.V - half, c.V + half), direction=c.direction,
                 eigenvalue=p, frequency_hz=float(abs(p.imag) / (2 * np.pi)) if flutter else 0.0,
@@ -192,7 +193,7 @@ def modal_dlm_analysis(model, grid: np.ndarray, *, displacement, state_labels, o
         for k in an.criticals.unstable_at_start:
             lam0 = complex(an.sweep.eigenvalues[0, k])
             try:
-                p, _ = pk_root(model, lo, lam0, tables=tables)
+                p, _ = pk_root(model, lo, lam0, tables=tables, dry=dry)
             except RuntimeError:
                 start.append(k)
                 continue

@@ -89,6 +89,7 @@ from propwhirl.model.aerodynamics.dlm_mesh import guideline_note
 from propwhirl.model.frequency_domain import (
     K_MIN,
     check_pk_model,
+    dry_assembly,
     pk_system,
     reference_semichord,
 )
@@ -196,7 +197,7 @@ _first_order = first_order
 
 def pk_root(model, V: float, p0: complex, *, ktol: float = KTOL, maxiter: int = 200,
             system=None, tables: DlmTables | None = None,
-            own_mach: bool = False) -> tuple[complex, float]:
+            own_mach: bool = False, dry=None) -> tuple[complex, float]:
     """The p-k root [1/s] of the mode nearest ``p0`` at airspeed V [m/s], and its k [-].
 
     Fixed-point iteration k ← Im p · b / V (b: the reference semichord) with the root of
@@ -206,9 +207,10 @@ def pk_root(model, V: float, p0: complex, *, ktol: float = KTOL, maxiter: int = 
     does not converge in ``maxiter`` iterations.  ``system``: :func:`pk_system` of (model, V)
     if already built (full or projected; else built with ``tables`` and ``own_mach``: a
     Mach-matched doublet-lattice wing's Q at its own Mach V/a, :func:`matched_crossing`, not
-    between the tables' Mach nodes).
+    between the tables' Mach nodes; ``dry``: the analysis's
+    :func:`~propwhirl.model.frequency_domain.dry_assembly` of the model).
     """
-    system = pk_system(model, V, tables, own_mach) if system is None else system
+    system = pk_system(model, V, tables, own_mach, dry=dry) if system is None else system
     p, k = pk_roots(model, V, [p0], system, ktol=ktol, maxiter=maxiter)
     if not np.isfinite(k[0]):
         raise RuntimeError(f"p-k iteration did not converge at V = {V} m/s (from p = {p0})")
@@ -305,13 +307,13 @@ def _separate(model, V: float, system, guess: np.ndarray, p: np.ndarray,
 
 
 def pk_mode(model, V: float, p0: complex, *, system=None, tables: DlmTables | None = None,
-            own_mach: bool = False) -> tuple[complex, float, np.ndarray]:
+            own_mach: bool = False, dry=None) -> tuple[complex, float, np.ndarray]:
     """The p-k root [1/s] nearest ``p0`` at V [m/s] (:func:`pk_root`), its k [-] and its
     eigenvector: the first-order state (q̂, p q̂) on the model's degrees of freedom (the
     first ``dof_map().n_dof`` entries are the displacement shape q̂, the same DOFs as the
     finite-state model's, which adds only its lag states after them), scaled to unit norm."""
     b = reference_semichord(model)
-    system = pk_system(model, V, tables, own_mach) if system is None else system
+    system = pk_system(model, V, tables, own_mach, dry=dry) if system is None else system
     p, k = pk_root(model, V, p0, system=system)
     lam, X = np.linalg.eig(_first_order(system, max(k, K_MIN) * V / b))
     i = int(np.argmin(np.abs(lam - p)))
@@ -343,10 +345,10 @@ def _brent_between(model, a: float, b: float, pa: complex, pb: complex, xtol: fl
     return float(V), p, float(k)
 
 
-def _full_solver(model, tables):
+def _full_solver(model, tables, dry=None):
     """(V, p0) ↦ :func:`pk_root` of ``model`` on its full DOFs (``tables``: a doublet-lattice
-    wing's)."""
-    return lambda x, p0: pk_root(model, x, p0, tables=tables)
+    wing's; ``dry``: the analysis's :func:`~propwhirl.model.frequency_domain.dry_assembly`)."""
+    return lambda x, p0: pk_root(model, x, p0, tables=tables, dry=dry)
 
 
 #: a crossing whose root keeps more than this fraction of the larger |Re p| of its bracket's
@@ -427,8 +429,8 @@ MATCHED_STEPS = 12
 
 
 def matched_crossing(model, V0: float, p0: complex, slope: float, *, lo: float, hi: float,
-                     xtol: float = XTOL,
-                     tables: DlmTables | None = None) -> tuple[float, complex, float] | None:
+                     xtol: float = XTOL, tables: DlmTables | None = None,
+                     dry=None) -> tuple[float, complex, float] | None:
     """The crossing Re p = 0 of a Mach-matched doublet-lattice wing with Q at the Mach V/a of
     every speed tried (issue 37 item 5): from the AICs of the fine columns
     (:data:`~propwhirl.model.aerodynamics.dlm.MACH_FINE` = 0.001 apart) around it, within 2e-7
@@ -446,12 +448,12 @@ def matched_crossing(model, V0: float, p0: complex, slope: float, *, lo: float, 
     is the one the same wing has with its ``dlm_mach`` fixed at the onset's own V/a (tested).
     """
     return full_crossing(model, V0, p0, slope, lo=lo, hi=hi, xtol=xtol, tables=tables,
-                         own_mach=True)
+                         own_mach=True, dry=dry)
 
 
 def full_crossing(model, V0: float, p0: complex, slope: float, *, lo: float, hi: float,
                   xtol: float = XTOL, tables: DlmTables | None = None, own_mach: bool = False,
-                  start=None) -> tuple[float, complex, float] | None:
+                  start=None, dry=None) -> tuple[float, complex, float] | None:
     """The crossing Re p = 0 on the full DOFs of the mode whose root is near ``p0`` [1/s] at
     ``V0`` [m/s] (a crossing found on a Galerkin basis or on interpolated tables), by the secant
     method from ``slope`` d Re p/dV [1/s per m/s]: each step's p-k root from the last, until the
@@ -469,7 +471,7 @@ def full_crossing(model, V0: float, p0: complex, slope: float, *, lo: float, hi:
     for _ in range(MATCHED_STEPS):
         try:
             p, k = pk_root(model, V, guess if start is None else start(V), tables=tables,
-                           own_mach=own_mach)
+                           own_mach=own_mach, dry=dry)
         except RuntimeError:
             return None
         if prev is not None and p.real != prev[1]:
@@ -500,7 +502,8 @@ class PKCrossing:
 
 
 def pk_crossing(model, V0: float, p0: complex, *, lo: float, hi: float,
-                xtol: float = XTOL, tables: DlmTables | None = None) -> PKCrossing | None:
+                xtol: float = XTOL, tables: DlmTables | None = None,
+                dry=None) -> PKCrossing | None:
     """The p-k crossing (Re p = 0) of the mode whose root is near ``p0`` [1/s] at V0 [m/s]:
     a bracket around V0 of half-width :data:`CROSSING_SPREAD` × V0 (widened in turn, within
     [``lo``, ``hi``] [m/s]) where the p-k root continued from ``p0`` changes sign, refined by
@@ -513,17 +516,18 @@ def pk_crossing(model, V0: float, p0: complex, *, lo: float, hi: float,
     guess = {"lo": complex(p0), "hi": complex(p0)}
     for s in CROSSING_SPREAD:
         a, b = max(lo, V0 * (1 - s)), min(hi, V0 * (1 + s))
-        pa, _ = pk_root(model, a, guess["lo"], tables=tables)
-        pb, _ = pk_root(model, b, guess["hi"], tables=tables)
+        pa, _ = pk_root(model, a, guess["lo"], tables=tables, dry=dry)
+        pb, _ = pk_root(model, b, guess["hi"], tables=tables, dry=dry)
         guess["lo"], guess["hi"] = pa, pb
         if pa.real != 0 and pb.real != 0 and (pa.real > 0) != (pb.real > 0):
             try:
-                V, p, k = _brent_between(model, a, b, pa, pb, xtol, tables)
+                V, p, k = _brent_between(model, a, b, pa, pb, xtol, tables,
+                                         _full_solver(model, tables, dry))
             except RuntimeError:          # continued from a, another root at b: not this
                 continue                  # root's bracket (was a traceback); a wider one
             if tables is not None and fixed_mach(getattr(model, "wing", model)) is None:
                 exact = matched_crossing(model, V, p, (pb.real - pa.real) / (b - a), lo=lo,
-                                         hi=hi, xtol=xtol, tables=tables)
+                                         hi=hi, xtol=xtol, tables=tables, dry=dry)
                 if exact is not None:
                     V, p, k = exact
             return PKCrossing(float(V), p, float(k), "onset" if pa.real < 0 else "recovery")
@@ -565,9 +569,11 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
         raise v.InputError(f"n_modes = {n_modes!r} is invalid: must be an integer >= 1")
     start, labels = start_roots(model, V[0], n_modes)
     basis = pk_basis(model, V, tables) if modal else None
-    full = _full_solver(model, tables)
+    dry = dry_assembly(model)                   # the structure and propellers, assembled once
+    full = _full_solver(model, tables, dry)
     solve = full if basis is None else (
-        lambda x, p0: pk_root(model, x, p0, system=pk_system(model, x, tables, basis=basis)))
+        lambda x, p0: pk_root(model, x, p0,
+                              system=pk_system(model, x, tables, basis=basis, dry=dry)))
     vacuum = np.abs(start)
     roots = np.empty((V.size, start.size), complex)
     ks = np.full((V.size, start.size), np.nan)
@@ -575,7 +581,7 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
     lost: list[tuple[str, float]] = []
     for i, Vi in enumerate(V):
         # the structure and propellers (projected) once per speed
-        system = pk_system(model, Vi, tables, basis=basis)
+        system = pk_system(model, Vi, tables, basis=basis, dry=dry)
         guess = p.copy() if i < 2 else 2 * roots[i - 1] - roots[i - 2]  # extrapolated
         guess = np.where(np.isfinite(guess), guess, p)
         live = np.flatnonzero(np.isfinite(p))
@@ -586,7 +592,8 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
         _separate(model, Vi, system, guess, p, ks[i], vacuum)
         roots[i] = p
     if basis is not None and np.any(np.array(basis_error(
-            model, float(V[-1]), roots[-1], tables, ktol=KTOL)) > (BASIS_TOL, BASIS_REL)):
+            model, float(V[-1]), roots[-1], tables, ktol=KTOL, dry=dry))
+            > (BASIS_TOL, BASIS_REL)):
         # the basis does not hold the full model's roots at the top speed: the full DOFs
         return pk_sweep(model, V, xtol=xtol, n_modes=n_modes, tables=tables, modal=False)
     events = []
@@ -614,7 +621,7 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
                 exact = full_crossing(
                     model, Vf, p, slope, lo=float(V[0] if matched else V[i]),
                     hi=float(V[-1] if matched else V[i + 1]), xtol=xtol, tables=tables,
-                    own_mach=matched, start=None if matched else start_at)
+                    own_mach=matched, start=None if matched else start_at, dry=dry)
                 if exact is None:      # the secant failed: the bracket on the full DOFs
                     try:
                         exact = _bracketed(model, bracket, xtol, tables, full, vacuum[j])
@@ -623,23 +630,23 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
                         continue
                     if exact is None:
                         continue
-                    exact = _matched(model, exact[:3], bracket, V, xtol, tables, matched)
+                    exact = _matched(model, exact[:3], bracket, V, xtol, tables, matched, dry)
                 shift = exact[0] - Vf
                 Vf, p, k = exact
             else:
-                Vf, p, k = _matched(model, found[:3], bracket, V, xtol, tables, matched)
+                Vf, p, k = _matched(model, found[:3], bracket, V, xtol, tables, matched, dry)
             static = abs(p.imag) <= STATIC * vacuum[j]
             events.append(PKFlutter(j, labels[j], float(Vf), 0.0 if static else float(abs(p.imag)),
                                     0.0 if static else float(k),
                                     "onset" if sigma[i] < 0 else "end",
                                     "divergence" if static else "flutter", complex(p),
                                     None if shift is None else float(shift)))
-    for c in divergence_crossings(model, V, xtol=xtol, tables=tables):
+    for c in divergence_crossings(model, V, xtol=xtol, tables=tables, dry=dry):
         event = "onset" if c.direction == "onset" else "end"
         Vd, pd = c.V, c.p
         if matched:                        # converged with the AICs at its own Mach
             exact = matched_crossing(model, Vd, pd, c.slope, lo=float(V[0]),
-                                     hi=float(V[-1]), xtol=xtol, tables=tables)
+                                     hi=float(V[-1]), xtol=xtol, tables=tables, dry=dry)
             if exact is not None:
                 Vd, pd = exact[0], complex(exact[1].real, 0.0)
         if any(e.kind == "divergence" and e.event == event
@@ -697,14 +704,14 @@ def _bracketed(model, bracket, xtol: float, tables, solve, scale: float):
     return float(Vf), p, float(k), start
 
 
-def _matched(model, found, bracket, V, xtol: float, tables, matched: bool):
+def _matched(model, found, bracket, V, xtol: float, tables, matched: bool, dry=None):
     """``found`` (V, p, k), converged with the AICs at its own Mach on a Mach-matched
     doublet-lattice wing (:func:`matched_crossing`; kept where that fails)."""
     if not matched:
         return found
     a, b, _, _, sa, sb = bracket
     exact = matched_crossing(model, found[0], found[1], (sb - sa) / (b - a), lo=float(V[0]),
-                             hi=float(V[-1]), xtol=xtol, tables=tables)
+                             hi=float(V[-1]), xtol=xtol, tables=tables, dry=dry)
     return found if exact is None else exact
 
 
@@ -720,13 +727,13 @@ BENIGNITY_STEP = 0.1
 
 
 def pk_benignity(model, V: float, p: complex,
-                 tables: DlmTables | None = None) -> float | None:
+                 tables: DlmTables | None = None, dry=None) -> float | None:
     """(dζ/dV)⁻¹ [m/s] (eq. 5.13) of the p-k root through ``p`` at V, ζ = −Re p/|p| (eq. 5.5),
     by a central difference of :data:`BENIGNITY_STEP`; None if dζ/dV is 0 or a root is lost."""
     h = BENIGNITY_STEP
     try:
-        lo, _ = pk_root(model, V - h, p, tables=tables)
-        hi, _ = pk_root(model, V + h, p, tables=tables)
+        lo, _ = pk_root(model, V - h, p, tables=tables, dry=dry)
+        hi, _ = pk_root(model, V + h, p, tables=tables, dry=dry)
     except RuntimeError:
         return None
     dz = (-hi.real / abs(hi) + lo.real / abs(lo)) / (2 * h)
@@ -779,6 +786,7 @@ def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: flo
     dlm = strip_twin(model) is not model
     tables = check_tables(tables) if dlm else None
     r = pk_sweep(model, speeds, xtol=xtol, tables=tables)
+    dry = dry_assembly(model)
     if notes is not None and dlm:
         notes.extend(dlm_notes(model, r, tables))
     dm = model.dof_map()
@@ -799,17 +807,17 @@ def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: flo
             root: complex | None = None) -> None:
         # a crossing's shape at its own Mach's AICs, as it was converged (matched_crossing)
         own = event != "unstable-at-start"
-        p, _, x = pk_mode(model, V, p0, tables=tables, own_mach=own)
+        p, _, x = pk_mode(model, V, p0, tables=tables, own_mach=own, dry=dry)
         if root is not None and abs(p - root) > MET * abs(root):
             # from the swept root before it another root (a cluster's): the crossing's own
-            p, _, x = pk_mode(model, V, root, tables=tables, own_mach=own)
+            p, _, x = pk_mode(model, V, root, tables=tables, own_mach=own, dry=dry)
         mode = tracked_mode(sweep, x, p, V) if use_shape else tracked[j]
         label = event_label(sweep, names, mode, x, mass) if use_shape else names[mode]
         f_hz = 0.0 if kind == "divergence" else float(abs(p.imag) / (2 * np.pi))
         events.append(Instability(
             kind, event, mode, label, float(V), f_hz,
             whirl(dm, x[:n], p) if kind == "flutter" else None,
-            pk_benignity(model, V, p, tables) if benign else None))
+            pk_benignity(model, V, p, tables, dry) if benign else None))
         shapes.append((x[:n], p, float(V)))
 
     for j, p0 in enumerate(r.roots[0]):

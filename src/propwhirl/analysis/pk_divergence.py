@@ -46,10 +46,11 @@ class StaticCrossing:
     slope: float
 
 
-def static_stiffness(model, V: float, tables=None) -> np.ndarray:
+def static_stiffness(model, V: float, tables=None, dry=None) -> np.ndarray:
     """K_s − K_a(k → 0; V): the p-k equation's matrix at p = 0 at airspeed V [m/s]
-    (:func:`propwhirl.model.frequency_domain.pk_system` at ω = K_MIN · V / b_ref)."""
-    return pk_system(model, V, tables)(K_MIN * V / reference_semichord(model))[2]
+    (:func:`propwhirl.model.frequency_domain.pk_system` at ω = K_MIN · V / b_ref; ``dry``:
+    the analysis's :func:`~propwhirl.model.frequency_domain.dry_assembly`)."""
+    return pk_system(model, V, tables, dry=dry)(K_MIN * V / reference_semichord(model))[2]
 
 
 def _scaled_det(K: np.ndarray) -> float:
@@ -58,9 +59,9 @@ def _scaled_det(K: np.ndarray) -> float:
     return float(sign * np.exp(logdet / K.shape[0])) if sign != 0 else 0.0
 
 
-def _root_near_zero(model, V: float, tables) -> complex:
+def _root_near_zero(model, V: float, tables, dry=None) -> complex:
     """The real root [1/s] of the p-k equation at k → 0 nearest p = 0 at V [m/s]."""
-    M, C, K = pk_system(model, V, tables)(K_MIN * V / reference_semichord(model))
+    M, C, K = pk_system(model, V, tables, dry=dry)(K_MIN * V / reference_semichord(model))
     n = M.shape[0]
     eye, zero = np.eye(n), np.zeros((n, n))   # pencil [[0, I], [−K, −C]] − p [[I, 0], [0, M]]
     lam = sla.eigvals(np.block([[zero, eye], [-K, -C]]), np.block([[eye, zero], [zero, M]]))
@@ -68,23 +69,24 @@ def _root_near_zero(model, V: float, tables) -> complex:
     return complex(lam[np.argmin(np.abs(lam))])
 
 
-def divergence_crossings(model, speeds, *, xtol: float,
-                         tables=None) -> tuple[StaticCrossing, ...]:
+def divergence_crossings(model, speeds, *, xtol: float, tables=None,
+                         dry=None) -> tuple[StaticCrossing, ...]:
     """The divergence crossings of the p-k equation of ``model`` over the increasing
     airspeeds ``speeds`` [m/s] (module docstring), each to ``xtol`` [m/s].  ``tables``: a
     doublet-lattice wing's (the analysis's; a Mach-matched wing's Q between the tables' Mach
-    nodes, which the p-k sweep then converges at the crossing's own Mach)."""
+    nodes, which the p-k sweep then converges at the crossing's own Mach); ``dry``: the
+    analysis's :func:`~propwhirl.model.frequency_domain.dry_assembly`."""
     V = np.asarray(speeds, dtype=float)
-    d = np.array([_scaled_det(static_stiffness(model, x, tables)) for x in V])
+    d = np.array([_scaled_det(static_stiffness(model, x, tables, dry)) for x in V])
     out = []
     for i in np.flatnonzero(d[:-1] * d[1:] < 0):
         a, b = float(V[i]), float(V[i + 1])
-        Vd = brentq(lambda x: _scaled_det(static_stiffness(model, x, tables)), a, b,
+        Vd = brentq(lambda x: _scaled_det(static_stiffness(model, x, tables, dry)), a, b,
                     xtol=xtol)
         h = min(xtol, 0.25 * (b - a))
-        lo = _root_near_zero(model, max(a, Vd - h), tables)
-        hi = _root_near_zero(model, min(b, Vd + h), tables)
-        p = _root_near_zero(model, Vd, tables)
+        lo = _root_near_zero(model, max(a, Vd - h), tables, dry)
+        hi = _root_near_zero(model, min(b, Vd + h), tables, dry)
+        p = _root_near_zero(model, Vd, tables, dry)
         out.append(StaticCrossing(float(Vd), complex(p.real, 0.0),
                                   "onset" if hi.real > lo.real else "recovery",
                                   float((hi.real - lo.real) / (2 * h))))

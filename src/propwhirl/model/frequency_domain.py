@@ -123,8 +123,20 @@ def over_omega(matrices):
     return system
 
 
+def dry_assembly(model):
+    """The assembly (:meth:`~propwhirl.model.systems.PropellerWing.assembly`) of a beam
+    wing's ``model`` with its wing aerodynamics off: its structure and propellers, which the
+    p-k system adds its loads to at every speed (:func:`pk_system`'s ``dry``), built once by
+    an analysis instead of at every speed (the Goland wing's p-k analysis over 16 speeds
+    assembled its structure 94 times, its sweep 77); None for a typical section or a modal model (they build
+    their own)."""
+    if capabilities(model).structure != "beam":
+        return None
+    return replace(model, wing_aero=False).assembly()
+
+
 def pk_system(model, V: float, tables: DlmTables | None = None, own_mach: bool = False,
-              basis: Galerkin | None = None):
+              basis: Galerkin | None = None, dry=None):
     """ω ↦ (M, C, K) of the p-k equation of `model` at airspeed V [m/s] and frequency ω [rad/s]:
     the typical section (:func:`section_pk_matrices`) or a PropellerWing (its structure and
     propellers, computed once, every wing strip with the exact Theodorsen loads at its own
@@ -140,7 +152,9 @@ def pk_system(model, V: float, tables: DlmTables | None = None, own_mach: bool =
     doublet-lattice wing's Q from the tables projected once, :class:`Galerkin`).  ω may be
     an array (m,) of frequencies: then stacks (m, n, n) (:func:`over_omega`; a beam wing's
     projected strips evaluated for all of them in one call — the p-k iteration of all
-    followed modes at once, :func:`propwhirl.analysis.pk_basis.pk_roots`)."""
+    followed modes at once, :func:`propwhirl.analysis.pk_basis.pk_roots`).  ``dry``: a beam
+    wing's :func:`dry_assembly` of ``model``, built once by the analysis (None: built
+    here)."""
     can = capabilities(model)                       # the model contract says which it is
     if basis is not None and can.structure in ("section", "modes"):
         raise v.InputError(f"basis = {type(basis).__name__} is invalid for the p-k system of "
@@ -148,11 +162,12 @@ def pk_system(model, V: float, tables: DlmTables | None = None, own_mach: bool =
     if can.structure == "section":
         return over_omega(lambda omega: section_pk_matrices(model, V, omega * model.b / V))
     if can.aerodynamics == "doublet lattice":     # panels instead of the strips (any structure)
-        return over_omega(pk_system_dlm(model, V, K_MIN, tables, own_mach,
-                                        None if basis is None else (basis.Phi, basis.gaf)))
+        system = pk_system_dlm(model, V, K_MIN, tables, own_mach,
+                               None if basis is None else (basis.Phi, basis.gaf), dry)
+        return system if basis is not None else over_omega(system)   # projected: vectorised
     if can.structure == "modes":
         return over_omega(modal_pk_system(model, V))
-    dry = replace(model, wing_aero=False).second_order(np.array([V]))
+    dry = (dry_assembly(model) if dry is None else dry).second_order(np.array([V]))
     if dry.n_lag:
         raise v.InputError(f"model = {model.name!r} is invalid for the p-k method: its "
                            "propeller aerodynamics has lag states")

@@ -447,33 +447,46 @@ class ProjectedGaf:
             self._nodes[key] = self.Psi.T @ self.aero.column_node(mach, ik) @ self.Psi
         return self._nodes[key]
 
-    def gaf(self, mach: float, k: float, *, exact_mach: bool = False,
+    def gaf(self, mach: float, k, *, exact_mach: bool = False,
             fine: bool = False) -> np.ndarray:
-        """Ψᵀ Q(k, M) Ψ [-] (:meth:`DlmAerodynamics.gaf`'s interpolation)."""
+        """Ψᵀ Q(k, M) Ψ [-] (:meth:`DlmAerodynamics.gaf`'s interpolation); ``k`` a scalar or
+        an array (m,) (then (m, r, r))."""
         return _gaf(self.column_node, self.Psi.shape[1], mach, k, exact_mach, fine)
 
 
-def _in_k(node: Callable[[float, int], np.ndarray], n: int, im: int | float, k: float,
+def _in_k(node: Callable[[float, int], np.ndarray], n: int, im: int | float, k,
           mach: float | None = None) -> np.ndarray:
     """Cubic Lagrange interpolation in k of the (n, n) table nodes ``node(mach, ik)`` through
-    the four around k, in the column of Mach node ``im`` (or of Mach ``mach`` when given)."""
+    the four around k, in the column of Mach node ``im`` (or of Mach ``mach`` when given);
+    ``k`` a scalar, or an array (m,) of reduced frequencies interpolated together (m, n, n):
+    the p-k iteration of several modes at once."""
     mach = im * MACH_STEP if mach is None else mach
-    i = 0 if k < K_FIRST else 1 + int(np.floor(np.log10(k / K_FIRST) * K_PER_DECADE + 1e-12))
-    lo = max(0, i - 1)
-    nodes = range(lo, lo + 4)
-    ks = np.array([DlmAerodynamics.k_node(j) for j in nodes])
-    out = np.zeros((n, n), complex)
-    for j, kj in zip(nodes, ks):
-        w = np.prod([(k - km) / (kj - km) for km in ks if km != kj])
-        out += w * node(mach, j)
-    return out
+    kk = np.atleast_1d(np.asarray(k, dtype=float))
+    above = np.maximum(kk, K_FIRST) / K_FIRST
+    i = np.where(kk < K_FIRST, 0,
+                 1 + np.floor(np.log10(above) * K_PER_DECADE + 1e-12).astype(int))
+    idx = np.maximum(0, i - 1)[:, None] + np.arange(4)      # (m, 4): the nodes around each k
+    uniq, pos = np.unique(idx, return_inverse=True)
+    pos = pos.reshape(idx.shape)
+    ks = np.array([DlmAerodynamics.k_node(int(j)) for j in uniq])[pos]
+    nodes = np.stack([node(mach, int(j)) for j in uniq])
+    out = np.zeros((kk.size, n, n), complex)
+    for a in range(4):
+        w = None
+        for b in range(4):
+            if b != a:
+                f = (kk - ks[:, b]) / (ks[:, a] - ks[:, b])
+                w = f if w is None else w * f
+        out += w[:, None, None] * nodes[pos[:, a]]
+    return out if np.ndim(k) else out[0]
 
 
-def _gaf(node: Callable[[float, int], np.ndarray], n: int, mach: float, k: float,
+def _gaf(node: Callable[[float, int], np.ndarray], n: int, mach: float, k,
          exact_mach: bool, fine: bool) -> np.ndarray:
-    """Q(k, M) from the table nodes ``node(mach, ik)`` (:meth:`DlmAerodynamics.gaf`)."""
+    """Q(k, M) from the table nodes ``node(mach, ik)`` (:meth:`DlmAerodynamics.gaf`); ``k``
+    a scalar or an array (m,) (then (m, n, n))."""
     check_mach(mach)
-    k = max(float(k), 0.0)
+    k = max(float(k), 0.0) if np.ndim(k) == 0 else np.maximum(np.asarray(k, float), 0.0)
     if exact_mach:
         return _in_k(node, n, 0, k, snap_mach(mach))
     if fine:
@@ -590,7 +603,7 @@ def dlm_aerodynamics(wing, tables: DlmTables | None = None) -> DlmAerodynamics:
 
 
 def pk_system_dlm(model, V: float, k_min: float, tables: DlmTables | None = None,
-                  own_mach: bool = False, basis: tuple | None = None):
+                  own_mach: bool = False, basis: tuple | None = None, dry=None):
     """ω ↦ (M, C, K) of the p-k equation of a PropellerWing with doublet-lattice wing
     aerodynamics at airspeed V [m/s]: its structure and propellers (the model's own second-order
     system with the wing aerodynamics off), minus the DLM loads in the p-k form
@@ -603,12 +616,15 @@ def pk_system_dlm(model, V: float, k_min: float, tables: DlmTables | None = None
     always from the AICs of that very Mach, cubic in k only.  ``basis``: (Φ, G), a Galerkin
     basis Φ (n, r) over the model's DOFs and G the tables projected on it
     (:meth:`DlmAerodynamics.projected` of Φ's wing rows on the spline's DOFs): the system
-    projected, Φᵀ (M, C, K) Φ (r, r), Q read from G."""
+    projected, Φᵀ (M, C, K) Φ (r, r), Q read from G, for one ω or an array (m,) of them
+    (then (m, r, r)).  ``dry``: the model's assembly with
+    its wing aerodynamics off, built once by the analysis (None: built here;
+    :func:`propwhirl.model.frequency_domain.dry_assembly`)."""
     mach = wing_mach(model, V)
     surface = surface_of(model)
     exact = fixed_mach(surface) is not None
     check_mach(mach, V)
-    dry = replace(model, wing_aero=False).second_order(np.array([V]))
+    dry = (replace(model, wing_aero=False) if dry is None else dry).second_order(np.array([V]))
     aero = dlm_aerodynamics(surface, tables)
     keep = aero.keep
     q = 0.5 * model.flight.density * V ** 2
@@ -618,11 +634,13 @@ def pk_system_dlm(model, V: float, k_min: float, tables: DlmTables | None = None
         Phi, projected = basis
         structure = tuple(Phi.T @ X @ Phi for X in structure)
 
-        def reduced(omega: float):
-            k = max(float(omega) * b / V, k_min)
+        def reduced(omega):
+            k = np.maximum(np.asarray(omega, float) * b / V, k_min)   # one or several ω
             Q = q * projected.gaf(mach, k, exact_mach=exact, fine=own_mach)
             M, C, K = structure
-            return M, C - Q.imag / (k * V / b), K - Q.real
+            w = (k * V / b)[..., None, None]
+            return (M if Q.ndim == 2 else np.broadcast_to(M, Q.shape), C - Q.imag / w,
+                    K - Q.real)
 
         return reduced
 
