@@ -127,22 +127,32 @@ def test_projected_tables_are_the_projection_of_the_full_system():
     _projection_is_exact(small_wingtip("speed"), np.array([140.0, 212.0]), DlmTables())
 
 
-def test_the_basis_holds_the_defaults_and_only_a_beam_wing_has_one():
-    """The basis spans the default's reduced basis (one place for the cut-off) and adds the
-    p-k's own static correction, M-orthonormal; a typical section is swept on its own DOFs."""
+def test_the_basis_holds_the_followed_modes_and_only_a_beam_wing_has_one():
+    """The basis spans the in-vacuo modes the sweep follows (one place for that choice:
+    followed_modes) and their static correction under the p-k's steady loads,
+    M-orthonormal; a typical section is swept on its own DOFs."""
+    import scipy.linalg as sla
+    from propwhirl.analysis.modes import InVacuo
     from propwhirl.model import TypicalSection
-    from propwhirl.model.reduction import reduce
+    from propwhirl.model.frequency_domain import pk_system as system
     model = wingtip_propeller_wing()
     V = np.linspace(100.0, 200.0, 11)
     basis = pk_basis.pk_basis(model, V)
     Phi = basis.Phi
-    from propwhirl.analysis.modes import InVacuo
-    M = InVacuo.of(model.without_aerodynamics()).M       # the structure's mass
+    iv = InVacuo.of(model.without_aerodynamics())
+    M = iv.M                                            # the structure's mass
     assert Phi.T @ M @ Phi == pytest.approx(np.eye(basis.r), abs=1e-9)
-    D = reduce(model, V).dof_basis                      # M-orthonormal too
-    assert basis.r > D.shape[1]
-    residual = D - Phi @ (Phi.T @ M @ D)                # D in the span of Φ
-    assert np.abs(residual).max() < 1e-6 * np.abs(D).max()     # measured 2.7e-8
+    n = pk_basis.followed_modes(model, V)
+    _, shapes = sla.eigh(iv.K, M)
+    top = sla.solve(iv.K, (system(model, 200.0)(0.0)[2] - iv.K) @ shapes[:, :n])
+    from propwhirl.model.reduction import GRAM_TOL
+    for D in (shapes[:, :n], top):        # in the span of Φ (unit vectors: up to the
+        D = D / np.sqrt(np.einsum("ij,ij->j", D, M @ D))    # √GRAM_TOL of a dropped one)
+        residual = D - Phi @ (Phi.T @ M @ D)
+        assert np.abs(residual).max() < 10 * np.sqrt(GRAM_TOL)
+    assert n < basis.r <= 3 * n
+    more = pk_basis.pk_basis(model, V, n_modes=n + 2)   # the modes a caller asks for
+    assert more.r > basis.r
     sec = TypicalSection(b=1.0, a=-0.2, x_alpha=0.1, r_alpha=np.sqrt(0.24),
                          m=20 * np.pi * 1.225, omega_h=20.0, omega_alpha=50.0,
                          flight=FlightCondition(1.225))

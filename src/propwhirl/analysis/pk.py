@@ -568,7 +568,7 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
     elif not isinstance(n_modes, (int, np.integer)) or n_modes < 1:
         raise v.InputError(f"n_modes = {n_modes!r} is invalid: must be an integer >= 1")
     start, labels = start_roots(model, V[0], n_modes)
-    basis = pk_basis(model, V, tables) if modal else None
+    basis = pk_basis(model, V, tables, n_modes) if modal else None
     dry = dry_assembly(model)                   # the structure and propellers, assembled once
     full = _full_solver(model, tables, dry)
     solve = full if basis is None else (

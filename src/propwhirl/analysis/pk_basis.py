@@ -2,11 +2,11 @@
 wing's sweep iterates on, and the k iteration of several modes at once.
 
 A beam wing's p-k sweep (:func:`propwhirl.analysis.pk.pk_sweep`) follows its modes on the
-projection Φᵀ (M, C(ω), K(ω)) Φ of the p-k equation (:func:`pk_basis`): Φ is the default's own
-reduced basis (:func:`propwhirl.model.reduction.dof_basis`, one place for that choice — the
-in-vacuo modes up to the reduced models' cut-off and the static correction vectors at the middle
-and the top of the speed range, M-orthonormal; a doublet-lattice wing's from its strip twin),
-r ≈ 10–30 instead of the model's hundreds of DOFs.  The strips' loads are summed on Φ's rows
+projection Φᵀ (M, C(ω), K(ω)) Φ of the p-k equation (:func:`pk_basis`): Φ holds the in-vacuo
+modes the sweep follows (:func:`followed_modes`, one place for that choice) and their static
+correction under the p-k's steady loads at the middle and the top of the speed range,
+M-orthonormal (a doublet-lattice wing's from its strip twin), r ≈ 10–30 instead of the model's
+hundreds of DOFs.  The strips' loads are summed on Φ's rows
 strip by strip; a doublet-lattice wing's Q tables are projected on Φ once for every speed and k
 (the interpolation in k and Mach is linear in the tables' values, so it commutes with the
 projection: :class:`~propwhirl.model.frequency_domain.Galerkin`).  Every crossing the reduced
@@ -35,7 +35,7 @@ from propwhirl.model.aerodynamics.dlm import DlmTables, strip_twin
 from propwhirl.model.dlm_modal import kept_modes
 from propwhirl.model.frequency_domain import K_MIN, Galerkin, pk_system, reference_semichord
 from propwhirl.model.protocol import capabilities
-from propwhirl.model.reduction import GRAM_TOL, cutoff, dof_basis
+from propwhirl.model.reduction import GRAM_TOL, cutoff
 
 #: the fewest in-vacuo modes a wing's p-k sweep follows by default (lowest frequencies first;
 #: :func:`followed_modes`)
@@ -55,28 +55,52 @@ BASIS_TOL = 0.1
 BASIS_REL = 0.01
 
 
-def pk_basis(model, speeds, tables: DlmTables | None = None) -> Galerkin | None:
+def pk_basis(model, speeds, tables: DlmTables | None = None,
+             n_modes: int | None = None) -> Galerkin | None:
     """The Galerkin basis of the p-k sweep of ``model`` over ``speeds`` [m/s] (module
     docstring), or None for a model swept on its own DOFs (a typical section, a modal model).
-    ``tables``: a doublet-lattice wing's (the analysis's: the projected tables read them).
+    ``tables``: a doublet-lattice wing's (the analysis's: the projected tables read them);
+    ``n_modes``: how many in-vacuo modes the sweep follows (default :func:`followed_modes`).
 
-    The default's basis Φ (:func:`~propwhirl.model.reduction.dof_basis` of the strip twin) and
-    the p-k's own static correction of it, K_s⁻¹ (K(V, k → 0) − K_s) Φ at the middle and the
-    top of the range (K_s the structure's stiffness, K(V, 0) the strip twin's p-k stiffness:
-    the steady loads of the exact Theodorsen strips, the propellers' as they are), the whole
-    M-orthonormal (dependent vectors dropped): on the wingtip example it brings the reduced
-    roots from 4e-3 to 2.5e-5 of the full ones at 300 m/s, on x57_like from 2e-5 to 1.4e-6
-    (its propellers' whirl modes are 1e-4 apart)."""
+    The in-vacuo modes Φ the sweep follows (of the strip twin's structure: the lowest
+    ``n_modes``) and their static correction under the p-k's own steady loads,
+    K_s⁻¹ (K(V, k → 0) − K_s) Φ at the middle and the top of the range (K_s the structure's
+    stiffness, K(V, 0) the strip twin's p-k stiffness: the steady loads of the exact
+    Theodorsen strips, the propellers' as they are), the whole M-orthonormal (dependent
+    vectors dropped).  Measured at the top speed (:func:`basis_error`: the largest error
+    relative to |p| and to the distance from the nearest other root; the examples over 60
+    speeds), this basis / the one the sweep used before — the default's
+    (:func:`~propwhirl.model.reduction.dof_basis`: its modes and their finite-state static
+    correction) with this correction added:
+
+    ==================  ======  ==================  ==================
+    case                r       relative            to the nearest
+    ==================  ======  ==================  ==================
+    x57_like            29/35   3.2e-5 / 1.4e-6     1.8e-4 / 2.4e-5
+    four_propeller      24/29   1.7e-5 / 1.3e-5     7.4e-5 / 6.1e-5
+    wingtip             11/14   1.3e-4 / 9.2e-6     4.2e-4 / 3.0e-5
+    Goland strips       14/17   1.5e-5 / 1.8e-5     1.0e-4 / 1.3e-4
+    Goland 4 × 7 DLM    11/17   2.2e-4 / 6.8e-5     2.8e-4 / 2.4e-4
+    ==================  ======  ==================  ==================
+
+    Every crossing is converged on the full DOFs anyway
+    (:func:`propwhirl.analysis.pk.full_crossing`): the same events on every case of
+    ``benchmarks/pk_events_compare.py`` (speeds within 0.0014 m/s), the sweeps 4-23 %
+    faster."""
     if capabilities(model).structure != "beam":
         return None
     V = np.asarray(speeds, float)
     twin = strip_twin(model)
-    Phi = dof_basis(twin, V)
     iv = InVacuo.of(twin.without_aerodynamics())
+    _, shapes = sla.eigh(iv.K, iv.M)
+    n = followed_modes(model, V) if n_modes is None else int(n_modes)
+    Phi = shapes[:, :n]
     cho = sla.cho_factor(iv.K)
     B = np.hstack([Phi] + [sla.cho_solve(cho, (pk_system(twin, x)(0.0)[2] - iv.K) @ Phi)
                            for x in (0.5 * (V[0] + V[-1]), V[-1])])
     M = iv.M
+    norm2 = np.einsum("ij,ij->j", B, M @ B)       # a zero correction (no steady load) adds
+    B = B[:, norm2 > GRAM_TOL * norm2.max()]      # nothing: dropped before the normalisation
     for _ in range(2):                    # M-orthonormal, dependent vectors dropped; twice,
         B = B / np.sqrt(np.einsum("ij,ij->j", B, M @ B))     # for the rounding of the first
         g, U = sla.eigh(B.T @ M @ B)
