@@ -506,8 +506,11 @@ def pk_crossing(model, V0: float, p0: complex, *, lo: float, hi: float,
                 dry=None) -> PKCrossing | None:
     """The p-k crossing (Re p = 0) of the mode whose root is near ``p0`` [1/s] at V0 [m/s]:
     a bracket around V0 of half-width :data:`CROSSING_SPREAD` × V0 (widened in turn, within
-    [``lo``, ``hi``] [m/s]) where the p-k root continued from ``p0`` changes sign, refined by
-    Brent's method to ``xtol`` [m/s].  None when the p-k root keeps its sign over the widest
+    [``lo``, ``hi``] [m/s]) where the p-k root continued from ``p0`` changes sign, refined
+    within it by the secant method from its ends' roots (:func:`full_crossing`, each speed's
+    root from the one interpolated between the ends', to ``xtol`` / 10; 2-3 p-k roots where
+    Brent's method took 5-6), by Brent's method to ``xtol`` [m/s] where the secant leaves
+    the bracket.  None when the p-k root keeps its sign over the widest
     bracket (the p-k has no crossing there); RuntimeError when the k iteration does not
     converge.  What the default analysis of a doublet-lattice wing converges its modal Roger
     state space's crossings with (:mod:`propwhirl.analysis.modal_dlm`)."""
@@ -520,11 +523,20 @@ def pk_crossing(model, V0: float, p0: complex, *, lo: float, hi: float,
         pb, _ = pk_root(model, b, guess["hi"], tables=tables, dry=dry)
         guess["lo"], guess["hi"] = pa, pb
         if pa.real != 0 and pb.real != 0 and (pa.real > 0) != (pb.real > 0):
-            try:
-                V, p, k = _brent_between(model, a, b, pa, pb, xtol, tables,
-                                         _full_solver(model, tables, dry))
-            except RuntimeError:          # continued from a, another root at b: not this
-                continue                  # root's bracket (was a traceback); a wider one
+            def start(x: float, a=a, b=b, pa=pa, pb=pb) -> complex:
+                return pa + (pb - pa) * (x - a) / (b - a)
+            slope = (pb.real - pa.real) / (b - a)
+            V1 = a - pa.real / slope                  # the secant from the ends' roots
+            found = full_crossing(model, V1, start(V1), slope, lo=a, hi=b, xtol=xtol,
+                                  tables=tables, start=start, dry=dry)
+            if found is not None:
+                V, p, k = found
+            else:                         # the secant left the bracket: Brent's method
+                try:
+                    V, p, k = _brent_between(model, a, b, pa, pb, xtol, tables,
+                                             _full_solver(model, tables, dry))
+                except RuntimeError:      # continued from a, another root at b: not this
+                    continue              # root's bracket (was a traceback); a wider one
             if tables is not None and fixed_mach(getattr(model, "wing", model)) is None:
                 exact = matched_crossing(model, V, p, (pb.real - pa.real) / (b - a), lo=lo,
                                          hi=hi, xtol=xtol, tables=tables, dry=dry)
