@@ -197,6 +197,11 @@ def _same_events(n: dict, pw: dict) -> list[str]:
     return out
 
 
+def _s(x: float) -> str:
+    """CPU seconds: two decimals below 1 s (the small rows' ratios are read from them)."""
+    return f"{x:.2f}" if x < 1 else f"{x:.1f}"
+
+
 def table(rows: dict, load: tuple[float, float], have_nastran: bool) -> str:
     lines = [f"Measured by `benchmarks/nastran95_side_by_side.py` on {time.strftime('%Y-%m-%d')}: "
              f"{os.cpu_count()} cores, load average {load[0]:.1f} before and {load[1]:.1f} "
@@ -215,11 +220,11 @@ def table(rows: dict, load: tuple[float, float], have_nastran: bool) -> str:
     for case, r in rows.items():
         n, pk, auto = r.get("nastran95"), r["pk"], r["auto"]
         ncpu = "–" if n is None else f"{n['cpu_s']:.2f} ({n['aics']})"
-        ratio = (lambda x: "–" if n is None or n["cpu_s"] <= 0 else f"{x / n['cpu_s']:.1f}")
+        ratio = (lambda x: "–" if n is None or n["cpu_s"] <= 0 else f"{x / n['cpu_s']:.2f}")
         ncrit = "–" if n is None else _crit(n["critical"])
         dv = "–" if n is None else "; ".join(_same_events(n, pk)) or "–"
-        lines.append(f"| {CASES[case][0]} | {ncpu} | {pk['cpu_s']:.1f} ({pk['process_cpu_s']:.1f}) "
-                     f"| {auto['cpu_s']:.1f} ({auto['process_cpu_s']:.1f}) | {ratio(pk['cpu_s'])} "
+        lines.append(f"| {CASES[case][0]} | {ncpu} | {_s(pk['cpu_s'])} ({_s(pk['process_cpu_s'])}) "
+                     f"| {_s(auto['cpu_s'])} ({_s(auto['process_cpu_s'])}) | {ratio(pk['cpu_s'])} "
                      f"| {ratio(auto['cpu_s'])} | {ncrit} | {_crit(pk['critical'])} "
                      f"| {_crit(auto['critical'])} | {dv} |")
     if have_nastran:
@@ -229,6 +234,14 @@ def table(rows: dict, load: tuple[float, float], have_nastran: bool) -> str:
                       "are each refined by another PK run at speeds "
                       f"{REFINE_STEP} m/s apart within ±{REFINE_HALF} m/s (its AICs computed "
                       "again): CPU of those runs, not in the table: " + "; ".join(ref) + ".  "
+                      "Context, not the goal's column: propwhirl's crossings are converged to "
+                      "0.01 m/s inside its own CPU; against NASTRAN-95's run and that "
+                      "refinement together, p-k / default: " + "; ".join(
+                          f"{CASES[c][0]}: {r['pk']['cpu_s'] / tot:.2f} / "
+                          f"{r['auto']['cpu_s'] / tot:.2f}"
+                          for c, r in rows.items() if r.get("nastran95")
+                          and (tot := r["nastran95"]["cpu_s"] + r["nastran95"]["refine_cpu_s"])
+                          > 0) + ".  "
                       "The default's differences from NASTRAN-95, each onset: " + "; ".join(
                           f"{CASES[c][0]}: " + ("; ".join(_same_events(r["nastran95"], r["auto"]))
                                                 or "–")
