@@ -184,3 +184,23 @@ def test_two_state_space_crossings_on_one_pk_root_are_one_event():
                         and abs(e.frequency_hz - f.frequency_hz) <= 1e-5 * e.frequency_hz), (e, f)
     assert a.critical.V == pytest.approx(79.952, abs=0.01)
     assert any("converged onto the same p-k crossing" in w for w in a.warnings)
+
+
+def test_a_crossing_converged_onto_another_cluster_members_root_is_named_by_its_shape():
+    """x57_like on 4 × 37 panels, Mach-matched over 1-148 m/s: the Roger state space's
+    crossing of the mode named "forward whirl, propeller 7" (at the first speed) converges
+    onto the p-k root of the backward collective whirl of propellers 1-6 at 79.955 m/s
+    (shape and participation: MAC 1.00 with that mode, 0.00 with its own); the critical was
+    named after the mode it was found from. Now after the mode of its branch its shape is, and
+    never two events under one name."""
+    from propwhirl.io import load_model
+
+    m = load_model(Path(__file__).resolve().parents[2] / "examples" / "x57_like.toml")
+    m = m.with_(wing=dataclasses.replace(m.wing, aero="dlm", dlm_chordwise_panels=4))
+    a = analyse(m, np.arange(1.0, 150.0, 7.0))
+    c = a.critical
+    assert c.V == pytest.approx(79.955, abs=0.01)
+    assert c.whirl == "backward"
+    assert c.label == "backward whirl, propellers 1–6 (1 of 6, collective)"
+    labels = [e.label for e in a.events if e.kind == "flutter" and e.event == "onset"]
+    assert len(labels) == len(set(labels))

@@ -12,7 +12,9 @@ method converges (issue 37, item 1).
    crossing the p-k does not have (its root keeps its sign over ±16 % of the speed) is not
    reported: a note gives the state space's speed and the p-k's verdict.  A crossing whose k
    iteration does not converge keeps the state space's speed, with a note.  Two crossings
-   that converge onto one p-k root are one event (:func:`one_per_root`), with a note;
+   that converge onto one p-k root are one event (:func:`one_per_root`), with a note; each
+   flutter crossing is named after the tracked mode of its own branch that its p-k shape is
+   (:func:`propwhirl.analysis.pk_naming.by_shape`);
 3. a mode the state space finds unstable at the first speed is reported only when its p-k
    root there is unstable too.
 
@@ -29,6 +31,7 @@ import numpy as np
 
 from propwhirl.analysis.pk import (CROSSING_SPREAD, pk_benignity, pk_crossing, pk_mode,
                                    pk_root)
+from propwhirl.analysis.pk_naming import by_shape
 from propwhirl.analysis.reduced import LiftedEigenvectors
 from propwhirl.engine import analyse as engine_analyse
 from propwhirl.engine import mac, single_thread_blas
@@ -105,7 +108,7 @@ def full_state(assembly, V: float, p: complex, q: np.ndarray) -> np.ndarray:
 
 def one_per_root(sweep, converged: list, xtol: float) -> tuple[list, list[str]]:
     """The converged crossings (``converged``: (point, its p-k displacement shape, what the
-    state-space crossing was)) with those that converged onto one p-k root (speeds within
+    state-space crossing was), returned so) with those that converged onto one p-k root (speeds within
     2 ``xtol`` [m/s], roots within :data:`ONE_ROOT` of |p|) reported once, and a note for
     each left out.  Of such a group the point kept is the state-space mode whose shape at the
     swept speed nearest the crossing is most the p-k's (MAC, eq. 5.14): x57_like's
@@ -133,7 +136,7 @@ def one_per_root(sweep, converged: list, xtol: float) -> tuple[list, list[str]]:
                      f"as the {what_q}: reported once, as the latter (the MAC of its "
                      f"state-space shape with the p-k's {max(fit, fit_q):.3f}, the other's "
                      f"{min(fit, fit_q):.3f})")
-    return [q for q, _, _, _ in kept], notes
+    return [(q, x, what) for q, x, what, _ in kept], notes
 
 
 def modal_dlm_analysis(model, grid: np.ndarray, *, displacement, state_labels, options=None,
@@ -209,7 +212,13 @@ def modal_dlm_analysis(model, grid: np.ndarray, *, displacement, state_labels, o
                          state_labels=tuple(state_labels), displacement=np.asarray(displacement),
                          stats=dict(sw.stats, reduced_states=R.n_states, reduced_r=R.r))
         once, merged = one_per_root(lifted, converged, xtol)
-        points += once
+        # each named after the mode its p-k shape is (in a cluster the p-k may converge a
+        # crossing onto another member's root)
+        modes = by_shape(lifted, [q.mode for q, _, _ in once], [x for _, x, _ in once],
+                         [q.eigenvalue for q, _, _ in once], [q.V for q, _, _ in once],
+                         [(q.kind, q.direction) for q, _, _ in once])
+        points += [q if m == q.mode else replace(q, mode=m)
+                   for (q, _, _), m in zip(once, modes)]
         notes += merged
         points.sort(key=lambda q: q.V)
         crit = Criticals(tuple(points), an.criticals.humps, tuple(start),

@@ -1,7 +1,8 @@
 """Which tracked finite-state mode a p-k event is (``analyse(model, method="pk")``,
-:func:`propwhirl.analysis.pk.pk_instabilities`): the mode of its p-k shape by MAC
+:func:`propwhirl.analysis.pk.pk_instabilities`; the doublet-lattice default's crossings
+converged by the p-k, :mod:`propwhirl.analysis.modal_dlm`): the mode of its p-k shape by MAC
 (:func:`tracked_mode`), and the events of one cluster of near-identical modes assigned one to
-one (:func:`one_to_one`)."""
+one (:func:`one_to_one`); :func:`by_shape` both, where the mode's own root is the p-k's."""
 from __future__ import annotations
 
 import numpy as np
@@ -32,6 +33,12 @@ def tracked_mode(sweep, x: np.ndarray, p: complex, V: float) -> int:
     lam = np.where(lam.imag < 0, lam.conj(), lam)
     return int(near[np.argmin(np.abs(lam - p))])
 
+
+#: the tracked mode a p-k shape names must have its root, at the swept speed nearest the
+#: event, within this fraction of |p| of the p-k root (:func:`by_shape`,
+#: :func:`one_to_one` given the roots): the same branch, not a lag root or another mode
+#: whose shape happens to resemble it
+SAME_BRANCH = 0.1
 
 #: events of one kind and direction whose speeds are within this fraction of each other are one
 #: cluster's (:func:`one_to_one`)
@@ -76,3 +83,50 @@ def one_to_one(sweep, modes, shapes, speeds, keys) -> list[int]:
 
 #: the modes whose MAC is within this fraction of the best are candidates (:func:`tracked_mode`)
 MAC_BAND = 0.9
+
+
+def by_shape(sweep, modes, shapes, roots, speeds, keys) -> list[int]:
+    """The tracked modes of p-k crossings found from the tracked modes ``modes`` of ``sweep``
+    (each event's p-k displacement shape in ``shapes``, root p [1/s] in ``roots``, speed
+    [m/s] in ``speeds``, (kind, direction) in ``keys``): the flutter crossings of one key
+    within :data:`TOGETHER` of each other's speed assigned one to one to the modes their
+    shapes are — the least total 1 − MAC (eq. 5.14) at each event's swept speed nearest —
+    among the modes of their own branch there (a root within :data:`SAME_BRANCH` of |p| of
+    the p-k root: a Roger state space's lag roots have displacement parts).  A group
+    without such an assignment keeps the modes it was found from, and so does a divergence.
+
+    The doublet-lattice default converges each crossing of its state space by the p-k
+    (:func:`propwhirl.analysis.pk.pk_crossing`), which in a cluster of near-identical
+    propellers may land on another member's root: x57_like's critical (79.95 m/s, the
+    backward whirl of propellers 1-6 in its shape and participation) was named after
+    propeller 7's forward whirl, the state-space mode it was found from (MAC 0.00; with the
+    backward collective 1.00).  The names stay those of the modes at the first speed: that
+    mode, named propeller 7's forward whirl there, whirls backward at the cluster's
+    frequency near 80 m/s, and one of the cluster's crossings is its own."""
+    out = [int(m) for m in modes]
+    V = np.asarray(sweep.V)
+    n = int(np.count_nonzero(sweep.displacement))
+    flutter = [i for i, p in enumerate(roots) if complex(p).imag != 0]
+    done: set[int] = set()
+    for a in flutter:
+        if a in done:
+            continue
+        group = [b for b in flutter if b not in done and keys[b] == keys[a]
+                 and abs(speeds[b] - speeds[a]) <= TOGETHER * speeds[a]]
+        done.update(group)
+        cost = np.full((len(group), sweep.eigenvalues.shape[1]), 2.0)
+        for r, b in enumerate(group):
+            t = int(np.argmin(np.abs(V - speeds[b])))
+            p = complex(roots[b])
+            p = p.conjugate() if p.imag < 0 else p
+            q = np.asarray(shapes[b])[:n]
+            for k in np.flatnonzero(sweep.physical[t]):
+                lam = complex(sweep.eigenvalues[t, k])
+                lam = lam.conjugate() if lam.imag < 0 else lam
+                if abs(lam - p) <= SAME_BRANCH * abs(p):
+                    cost[r, k] = 1.0 - mac(q, sweep.eigenvectors[t, sweep.displacement, k])
+        rows, cols = linear_sum_assignment(cost)
+        if len(rows) == len(group) and np.all(cost[rows, cols] < 2.0):
+            for r, c in zip(rows, cols):
+                out[group[r]] = int(c)
+    return out
