@@ -1,7 +1,7 @@
 """The p-k analysis beside the finite-state one (analyse(model, method="pk")): the side-by-side
 table of every instability (propwhirl.analysis.summary.compare_methods), the finite-state events
 kept in the result and its file, and the participation and benignity of the p-k events
-(propwhirl.analysis.pk.pk_instabilities)."""
+(propwhirl.analysis.pk_events.pk_instabilities)."""
 import json
 from dataclasses import replace
 

@@ -48,11 +48,14 @@ models are swept on their own DOFs.  The p-k root is exact
 (Theodorsen's C at the mode's frequency) only at Re p = 0, i.e. at the flutter point;
 elsewhere its damping is the usual p-k approximation.
 
-In ``analyse(model, method="pk")`` (:func:`pk_instabilities`) each crossing's p-k eigenvector
-(:func:`pk_mode`; its displacements on the model's own DOFs) names the tracked finite-state
-mode it is (:func:`tracked_mode`, by MAC; events of one cluster of near-identical modes one
-to one, :func:`one_to_one`) and gives the event's whirl sense and propeller participation;
-the benignity is the slope of the p-k damping ratio at the crossing.
+In ``analyse(model, method="pk")``
+(:func:`propwhirl.analysis.pk_events.pk_instabilities`) each crossing's p-k eigenvector
+(:func:`pk_shape` of its root; its displacements on the model's own DOFs) names the tracked
+finite-state mode it is (:func:`~propwhirl.analysis.pk_naming.tracked_mode`, by MAC; events of
+one cluster of near-identical modes one to one,
+:func:`~propwhirl.analysis.pk_naming.one_to_one`) and gives the event's whirl sense and
+propeller participation; the benignity is the slope of the p-k damping ratio at the crossing
+(:func:`pk_benignity`).
 
 Which modes a wing's sweep follows (:func:`followed_modes`) is the default's choice: those its
 reduced or modal Roger state space keeps, each from a finite-state root of its own
@@ -64,16 +67,12 @@ analysis's to reuse its AICs).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import brentq, linear_sum_assignment
 
 from propwhirl import validate as v
-from propwhirl.analysis.events import Instability
-from propwhirl.analysis.modes import InVacuo
-from propwhirl.analysis.naming import event_label, whirl
-from propwhirl.analysis.participation import with_participation
 from propwhirl.analysis.pk_divergence import divergence_crossings
 # the modes followed and their start, and the naming of events: with their own modules
 from propwhirl.analysis.pk_basis import (BASIS_REL, BASIS_TOL, WING_MODES,  # noqa: F401
@@ -84,8 +83,7 @@ from propwhirl.analysis.pk_naming import (MAC_BAND, TOGETHER, one_to_one,  # noq
 from propwhirl.model.aerodynamics import compressibility
 from propwhirl.model.protocol import capabilities
 from propwhirl.model.aerodynamics.dlm import (DlmTables, check_speed_mach, check_tables,
-                                              dlm_aerodynamics, fixed_mach, strip_twin)
-from propwhirl.model.aerodynamics.dlm_mesh import guideline_note
+                                              fixed_mach, strip_twin)
 from propwhirl.model.frequency_domain import (
     K_MIN,
     check_pk_model,
@@ -105,7 +103,8 @@ KTOL = 1e-7
 #: a root with Im p below this fraction of its in-vacuo frequency is non-oscillatory
 #: (a crossing of such a root is divergence, not flutter)
 STATIC = 1e-6
-#: the note that opens a doublet-lattice analysis's notes (ModelAnalysis.doublet_lattice)
+#: the note that opens a doublet-lattice analysis's notes (ModelAnalysis.doublet_lattice;
+#: :func:`propwhirl.analysis.pk_events.dlm_notes`)
 DLM_NOTE = "p-k aerodynamics: doublet-lattice"
 
 
@@ -122,7 +121,7 @@ class PKFlutter:
     the direction ("onset": Re p becomes positive with increasing V; "end") and the kind
     ("flutter"; "divergence" for a non-oscillatory root, frequency 0) and the p-k root
     [1/s] at the crossing (None: not given) — what names the event
-    (:func:`pk_instabilities`): in a cluster of near-identical modes the swept root before the
+    (:func:`propwhirl.analysis.pk_events.pk_instabilities`): in a cluster of near-identical modes the swept root before the
     crossing is nearer another member's root at the crossing than its own.
     """
 
@@ -774,104 +773,3 @@ def pk_benignity(model, V: float, p: complex,
         return None
     dz = (-hi.real / abs(hi) + lo.real / abs(lo)) / (2 * h)
     return 1.0 / dz if dz != 0 else None
-
-
-def dlm_notes(model, sweep: PKSweep, tables: DlmTables | None = None) -> list[str]:
-    """What a doublet-lattice p-k analysis used (:data:`DLM_NOTE` first: panels, Mach, k
-    convention) and, when broken, the panel-length guideline at the first speed and the
-    highest followed frequency (:func:`propwhirl.model.aerodynamics.dlm_mesh.guideline_note`)."""
-    aero = dlm_aerodynamics(model, tables)
-    m = aero.mesh
-    fixed = fixed_mach(getattr(model, "wing", model))
-    mach = ("Mach V/a at each speed" if fixed is None
-            else f"Mach {fixed:g} at every speed (dlm_mach: not matched to V/a)")
-    out = [f"{DLM_NOTE} panels ({m.n_chord} chordwise x {m.n_span} spanwise on the half-wing, "
-           f"root a plane of symmetry), {mach}, k = omega b_ref / V on the root "
-           f"semichord b_ref = {aero.b_ref:.4g} m; the finite-state events beside them are the "
-           "strip model's"]
-    f = np.abs(sweep.roots[0].imag[np.isfinite(sweep.roots[0])]) / (2 * np.pi)
-    if f.size:
-        note = guideline_note(m, float(sweep.speeds[0]), float(f.max()))
-        if note is not None:
-            out.append(note)
-    return out
-
-
-def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: float = XTOL,
-                     notes: list | None = None, sweep=None, mass: np.ndarray | None = None,
-                     tables: DlmTables | None = None):
-    """The p-k crossings as :class:`~propwhirl.analysis.stability.Instability` events of the
-    finite-state analysis's tracked modes (``analyse(model, method="pk")``).
-
-    ``start_roots`` are the tracked modes' finite-state eigenvalues [1/s] at ``speeds[0]``
-    and ``names`` their labels.  With the finite-state ``sweep`` (its eigenvectors), each
-    event's mode is the tracked mode of its p-k mode shape at the event
-    (:func:`tracked_mode`; those that name two events of one cluster assigned one to one,
-    :func:`one_to_one`; where that is an aerodynamic lag root at the first speed, named
-    after the structural mode the shape is, :func:`propwhirl.analysis.naming.event_label`,
-    with the structural ``mass`` matrix — default: the finite-state model's); without it,
-    the tracked mode whose root at the first speed is nearest the root the p-k mode started
-    from.
-    Events: "onset" / "recovery" of flutter or divergence, and "unstable-at-start" when
-    Re p > 0 at the first speed, each with the whirl sense and the propellers' participation
-    of its p-k mode shape (:mod:`propwhirl.analysis.participation`: the p-k eigenvector's
-    displacements are on the model's own DOFs) and, for flutter crossings, the benignity
-    (dζ/dV)⁻¹ of the p-k root [m/s] (:func:`pk_benignity`).  ``tables``: a doublet-lattice
-    wing's (the analysis's; None: new ones).
-    """
-    dlm = strip_twin(model) is not model
-    tables = check_tables(tables) if dlm else None
-    r = pk_sweep(model, speeds, xtol=xtol, tables=tables)
-    dry = dry_assembly(model)
-    if notes is not None and dlm:
-        notes.extend(dlm_notes(model, r, tables))
-    dm = model.dof_map()
-    n = dm.n_dof
-    tracked = [int(np.argmin(np.abs(np.asarray(start_roots) - p))) for p in r.start]
-    use_shape = sweep is not None and sweep.eigenvectors is not None
-    if use_shape and mass is None:
-        mass = InVacuo.of(strip_twin(model).without_aerodynamics()).M
-    if notes is not None:                     # modes the p-k iteration lost: said, not dropped
-        for label, V in r.lost:
-            mode = names[tracked[r.labels.index(label)]]
-            notes.append(f"p-k: the k iteration of {mode} did not converge at V = {V:.2f} m/s; "
-                         "that mode is not followed beyond it (no crossing of it is reported "
-                         "there: check it with method='dense')")
-    events, shapes = [], []
-
-    def add(kind: str, event: str, j: int, V: float, p0: complex, benign: bool,
-            root: complex | None = None) -> None:
-        # a crossing's shape at its own Mach's AICs, as it was converged (matched_crossing):
-        # its own root's (root: the sweep's crossing), not one continued again from the swept
-        # root before it (in a cluster that may be another member's)
-        own = event != "unstable-at-start"
-        if root is not None:
-            p = complex(root)
-            x = pk_shape(model, V, p, tables=tables, own_mach=own, dry=dry)
-        else:
-            p, _, x = pk_mode(model, V, p0, tables=tables, own_mach=own, dry=dry)
-        mode = tracked_mode(sweep, x, p, V) if use_shape else tracked[j]
-        label = event_label(sweep, names, mode, x, mass) if use_shape else names[mode]
-        f_hz = 0.0 if kind == "divergence" else float(abs(p.imag) / (2 * np.pi))
-        events.append(Instability(
-            kind, event, mode, label, float(V), f_hz,
-            whirl(dm, x[:n], p) if kind == "flutter" else None,
-            pk_benignity(model, V, p, tables, dry) if benign else None))
-        shapes.append((x[:n], p, float(V)))
-
-    for j, p0 in enumerate(r.roots[0]):
-        if p0.real > 0:
-            kind = "flutter" if abs(p0.imag) > STATIC * abs(r.start[j]) else "divergence"
-            add(kind, "unstable-at-start", j, float(r.speeds[0]), p0, False)
-    for f in r.flutter:
-        i = int(np.flatnonzero(r.speeds <= f.V)[-1])
-        add(f.kind, "onset" if f.event == "onset" else "recovery", f.mode, f.V,
-            complex(r.roots[i, f.mode]), f.kind == "flutter", f.root)
-    if use_shape:                         # never two events of one cluster under one name
-        modes = one_to_one(sweep, [e.mode for e in events], [s[0] for s in shapes],
-                           [e.V for e in events], [(e.kind, e.event) for e in events])
-        events = [e if m == e.mode else replace(e, mode=m, label=event_label(
-            sweep, names, m, shapes[i][0], mass)) for i, (e, m) in enumerate(zip(events, modes))]
-    events = with_participation(model, events, shapes)
-    order = sorted(range(len(events)), key=lambda i: (events[i].V, events[i].mode))
-    return [events[i] for i in order]

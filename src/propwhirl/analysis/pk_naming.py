@@ -1,5 +1,5 @@
 """Which tracked finite-state mode a p-k event is (``analyse(model, method="pk")``,
-:func:`propwhirl.analysis.pk.pk_instabilities`; the doublet-lattice default's crossings
+:func:`propwhirl.analysis.pk_events.pk_instabilities`; the doublet-lattice default's crossings
 converged by the p-k, :mod:`propwhirl.analysis.modal_dlm`): the mode of its p-k shape by MAC
 (:func:`tracked_mode`), and the events of one cluster of near-identical modes assigned one to
 one (:func:`one_to_one`); :func:`by_shape` both, where the mode's own root is the p-k's."""

@@ -38,7 +38,8 @@ from propwhirl.analysis.naming import (event_label, mode_content, named_modes, w
 from propwhirl.analysis.participation import (ModeParticipation, branch_point_shape,  # noqa: F401
                                               events_csv, events_table, participation_lines,
                                               with_participation)
-from propwhirl.analysis.pk import DLM_NOTE, pk_instabilities
+from propwhirl.analysis.pk import DLM_NOTE
+from propwhirl.analysis.pk_events import pk_instabilities
 from propwhirl.analysis.reduced import choose_method
 from propwhirl.analysis.runners import Job, Tracked, track
 from propwhirl.model.aerodynamics import compressibility
