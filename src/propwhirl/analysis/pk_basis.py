@@ -37,6 +37,13 @@ from propwhirl.model.frequency_domain import K_MIN, Galerkin, pk_system, referen
 from propwhirl.model.protocol import capabilities
 from propwhirl.model.reduction import GRAM_TOL, cutoff
 
+#: a mode with several roots within its reach at a new speed takes the one of its own shape
+#: (:func:`pk_roots`' ``ref``) when that one's MAC with its last shape is at least this and
+#: the next one's at most half of it, else the nearest root (x57_like's cluster, this rule
+#: without the sweep's shorter steps: 0.9 left propeller 7's onset unfollowed on its 10 m/s
+#: grid, 0.7 followed it)
+MAC_CLEAR = 0.7
+
 #: the fewest in-vacuo modes a wing's p-k sweep follows by default (lowest frequencies first;
 #: :func:`followed_modes`)
 WING_MODES = 6
@@ -144,7 +151,7 @@ def first_order(system, omega) -> np.ndarray:
 
 
 def pk_roots(model, V: float, p0, system, *, ktol: float, maxiter: int = 200,
-             secant: bool = True) -> tuple[np.ndarray, np.ndarray]:
+             secant: bool = True, ref=None, window=None) -> tuple[np.ndarray, np.ndarray]:
     """The p-k roots [1/s] at airspeed V [m/s] of the modes whose roots were ``p0`` [1/s], and
     their k [-]: for each mode the fixed point k = Im p(k) · b / V (b: the reference
     semichord; p(k) the root of the first-order matrix at k nearest the previous one), until
@@ -154,7 +161,11 @@ def pk_roots(model, V: float, p0, system, *, ktol: float, maxiter: int = 200,
     [−9, 0.99] there), else the plain step k ← k + h under-relaxed (halving, down to 1/64) while the steps oscillate without
     shrinking; the converged root is the same fixed point either way, the secant only takes
     fewer steps (in the Goland wing's sweep 3–4 instead of 5–9; ``secant=False``: the plain steps
-    only).  The first-order matrices of all
+    only).  ``ref`` (one first-order eigenvector or None per mode) and ``window`` (a radius
+    [1/s] per mode): at the first step a mode with several roots within its window of p0
+    takes the one whose eigenvector's MAC with its ``ref`` is clearly the best
+    (:data:`MAC_CLEAR`), else the nearest — a tight cluster's modes followed by their shapes
+    (:func:`propwhirl.analysis.pk.pk_sweep`).  The first-order matrices of all
     modes still iterating are built together and their eigenvalues solved in one batched
     call.  A mode whose k does not converge in ``maxiter`` iterations gets NaN (root and k).
     ``system``: the p-k system at V (full or projected; vectorised over ω,
@@ -167,14 +178,26 @@ def pk_roots(model, V: float, p0, system, *, ktol: float, maxiter: int = 200,
     k_prev, h_prev = np.full(m, np.nan), np.full(m, np.nan)
     kout = np.full(m, np.nan)
     active = np.ones(m, dtype=bool)
-    for _ in range(maxiter):
+    for it in range(maxiter):
         ids = np.flatnonzero(active)
         if ids.size == 0:
             break
-        lams = np.linalg.eigvals(first_order(system, np.maximum(k[ids], K_MIN) * V / b))
-        for lam, j in zip(lams, ids):
+        A = first_order(system, np.maximum(k[ids], K_MIN) * V / b)
+        lams = np.linalg.eigvals(A)
+        for a, (lam, j) in enumerate(zip(lams, ids)):
             lam = lam[lam.imag >= 0] if np.any(lam.imag > 0) else lam
-            p[j] = lam[np.argmin(np.abs(lam - p[j]))]
+            pick = int(np.argmin(np.abs(lam - p[j])))
+            if it == 0 and ref is not None and ref[j] is not None:
+                near = np.flatnonzero(np.abs(lam - p[j]) <= window[j])
+                if near.size > 1:       # several roots within the mode's reach: its shape's
+                    w, X = np.linalg.eig(A[a])
+                    fit = np.array([abs(np.vdot(ref[j], X[:, c])) ** 2 / (
+                        np.vdot(ref[j], ref[j]).real * np.vdot(X[:, c], X[:, c]).real)
+                        for c in (int(np.argmin(np.abs(w - lam[n]))) for n in near)])
+                    order = np.argsort(fit)[::-1]
+                    if fit[order[0]] >= MAC_CLEAR and fit[order[1]] <= 0.5 * fit[order[0]]:
+                        pick = int(near[order[0]])
+            p[j] = lam[pick]
             k_new = abs(p[j].imag) * b / V
             step = k_new - k[j]
             if abs(step) <= ktol * max(k_new, K_MIN):
