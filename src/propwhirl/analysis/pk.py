@@ -737,14 +737,17 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
 
 def _cluster_shapes(model, V: float, system, p: np.ndarray, k: np.ndarray) -> list:
     """The first-order eigenvectors (the k-iteration's ``system`` at V [m/s], each root's own
-    k) of the roots ``p`` [1/s] that have another followed root within :data:`TIGHT` of |p|,
-    None for the others: the shapes the tight cluster's modes are followed by at the next
+    k) of the roots ``p`` [1/s] that have another followed root within :data:`TIGHT` of |p|
+    (not on the same root, within :data:`MET`), None for the others: the shapes the tight cluster's modes are followed by at the next
     step (:func:`~propwhirl.analysis.pk_basis.pk_roots`' ``ref``)."""
     out = [None] * p.size
     ok = np.flatnonzero(np.isfinite(p))
     if ok.size < 2:
         return out
-    d = np.where(np.eye(ok.size, dtype=bool), np.inf, np.abs(p[ok][:, None] - p[ok][None, :]))
+    d = np.abs(p[ok][:, None] - p[ok][None, :])
+    # another root near, not the same one (two modes met on one root: a coalescence, which
+    # shapes do not tell apart; _separate decides those)
+    d = np.where(np.eye(ok.size, dtype=bool) | (d <= MET * np.abs(p[ok])[:, None]), np.inf, d)
     near = ok[np.min(d, axis=1) <= TIGHT * np.abs(p[ok])]
     if near.size == 0:
         return out
