@@ -121,8 +121,9 @@ class PKFlutter:
     the direction ("onset": Re p becomes positive with increasing V; "end") and the kind
     ("flutter"; "divergence" for a non-oscillatory root, frequency 0) and the p-k root
     [1/s] at the crossing (None: not given) — what names the event
-    (:func:`propwhirl.analysis.pk_events.pk_instabilities`): in a cluster of near-identical modes the swept root before the
-    crossing is nearer another member's root at the crossing than its own.
+    (:func:`propwhirl.analysis.pk_events.pk_instabilities`): in a cluster of near-identical
+    modes the swept root before the crossing is nearer another member's root at the crossing
+    than its own.
     """
 
     mode: int
@@ -582,7 +583,9 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
     wing): the sweep and Brent's method on the Galerkin basis of
     :func:`propwhirl.analysis.pk_basis.pk_basis`, each crossing then converged on the full
     DOFs (:func:`full_crossing`; its shift from the reduced crossing in
-    :attr:`PKFlutter.shift`); False: everything on the full DOFs.
+    :attr:`PKFlutter.shift`); False: everything on the full DOFs.  A tight cluster of roots
+    (:data:`TIGHT`: near-identical propellers) is followed by its modes' shapes in shorter
+    steps between the speeds, its crossings bracketed in those steps.
     """
     check_pk_model(model)
     V = np.asarray(speeds, dtype=float)
@@ -738,8 +741,9 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
 def _cluster_shapes(model, V: float, system, p: np.ndarray, k: np.ndarray) -> list:
     """The first-order eigenvectors (the k-iteration's ``system`` at V [m/s], each root's own
     k) of the roots ``p`` [1/s] that have another followed root within :data:`TIGHT` of |p|
-    (not on the same root, within :data:`MET`), None for the others: the shapes the tight cluster's modes are followed by at the next
-    step (:func:`~propwhirl.analysis.pk_basis.pk_roots`' ``ref``)."""
+    (not on the same root, within :data:`MET`), None for the others: the shapes the tight
+    cluster's modes are followed by at the next step
+    (:func:`~propwhirl.analysis.pk_basis.pk_roots`' ``ref``)."""
     out = [None] * p.size
     ok = np.flatnonzero(np.isfinite(p))
     if ok.size < 2:
