@@ -158,10 +158,10 @@ def pk_roots(model, V: float, p0, system, *, ktol: float, maxiter: int = 200,
     an iterate's k moves by no more than ``ktol`` of itself.  Each step is the secant step on
     the residual h(k) = Im p(k) b / V − k through the last two iterates where that step is
     0.1 to 100 times the plain step h in its direction (the map k ↦ k + h has a slope in
-    [−9, 0.99] there), else the plain step k ← k + h under-relaxed (halving, down to 1/64) while the steps oscillate without
-    shrinking; the converged root is the same fixed point either way, the secant only takes
-    fewer steps (in the Goland wing's sweep 3–4 instead of 5–9; ``secant=False``: the plain steps
-    only).  ``ref`` (one first-order eigenvector or None per mode) and ``window`` (a radius
+    [−9, 0.99] there), else the plain step k ← k + h under-relaxed (halving, down to 1/64)
+    while the steps oscillate without shrinking; the converged root is the same fixed point
+    either way, the secant only takes fewer steps (in the Goland wing's sweep 3–4 instead of
+    5–9; ``secant=False``: the plain steps only).  ``ref`` (one first-order eigenvector or None per mode) and ``window`` (a radius
     [1/s] per mode): at the first step a mode with several roots within its window of p0
     takes the one whose eigenvector's MAC with its ``ref`` is clearly the best
     (:data:`MAC_CLEAR`), else the nearest — a tight cluster's modes followed by their shapes
