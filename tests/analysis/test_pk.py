@@ -248,7 +248,7 @@ def test_the_pk_critical_of_near_identical_propellers_does_not_depend_on_the_gri
     V = np.arange(1.0, 120.1, 2.5)
     onsets = [e for e in pk_sweep(model, V).flutter if e.event == "onset"]
     fs = analyse(model, V)
-    assert onsets[0].V == pytest.approx(fs.critical.V, rel=1e-3)
+    assert onsets[0].V == pytest.approx(fs.critical.V, rel=1e-4)   # measured 3e-5
     assert len(onsets) >= 5                        # the cluster's own crossings (measured 5)
 
 

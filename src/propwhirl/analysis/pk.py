@@ -572,7 +572,7 @@ def pk_crossing(model, V0: float, p0: complex, *, lo: float, hi: float,
 
 
 def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
-             tables: DlmTables | None = None, modal: bool = True) -> PKSweep:
+             tables: DlmTables | None = None, modal: bool = True, dry=None) -> PKSweep:
     """p-k roots of the modes of a typical section or a wing over ``speeds`` [m/s] and their
     flutter and divergence crossings (Re p = 0, refined by Brent's method to ``xtol`` [m/s]).
 
@@ -583,9 +583,10 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
     wing): the sweep and Brent's method on the Galerkin basis of
     :func:`propwhirl.analysis.pk_basis.pk_basis`, each crossing then converged on the full
     DOFs (:func:`full_crossing`; its shift from the reduced crossing in
-    :attr:`PKFlutter.shift`); False: everything on the full DOFs.  A tight cluster of roots
-    (:data:`TIGHT`: near-identical propellers) is followed by its modes' shapes in shorter
-    steps between the speeds, its crossings bracketed in those steps.
+    :attr:`PKFlutter.shift`); False: everything on the full DOFs.  ``dry``: the analysis's
+    :func:`~propwhirl.model.frequency_domain.dry_assembly` (None: built here).  A tight
+    cluster of roots (:data:`TIGHT`: near-identical propellers) is followed by its modes'
+    shapes in shorter steps between the speeds, its crossings bracketed in those steps.
     """
     check_pk_model(model)
     V = np.asarray(speeds, dtype=float)
@@ -606,7 +607,7 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
         raise v.InputError(f"n_modes = {n_modes!r} is invalid: must be an integer >= 1")
     start, labels = start_roots(model, V[0], n_modes)
     basis = pk_basis(model, V, tables, n_modes) if modal else None
-    dry = dry_assembly(model)                   # the structure and propellers, assembled once
+    dry = dry_assembly(model) if dry is None else dry   # structure and propellers, once
     full = _full_solver(model, tables, dry)
     solve = full if basis is None else (
         lambda x, p0: pk_root(model, x, p0,

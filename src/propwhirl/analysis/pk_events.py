@@ -68,8 +68,8 @@ def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: flo
     """
     dlm = strip_twin(model) is not model
     tables = check_tables(tables) if dlm else None
-    r = pk_sweep(model, speeds, xtol=xtol, tables=tables)
-    dry = dry_assembly(model)
+    dry = dry_assembly(model)                   # the sweep's and the events' one assembly
+    r = pk_sweep(model, speeds, xtol=xtol, tables=tables, dry=dry)
     if notes is not None and dlm:
         notes.extend(dlm_notes(model, r, tables))
     dm = model.dof_map()
