@@ -655,7 +655,7 @@ def pk_sweep(model, speeds, *, xtol: float = XTOL, n_modes: int | None = None,
         ks[i] = kk
         roots[i] = p
     if basis is not None and np.any(np.array(basis_error(
-            model, float(V[-1]), roots[-1], tables, ktol=KTOL, dry=dry))
+            model, float(V[-1]), roots[-1], tables, dry=dry))
             > (BASIS_TOL, BASIS_REL)):
         # the basis does not hold the full model's roots at the top speed: the full DOFs
         return pk_sweep(model, V, xtol=xtol, n_modes=n_modes, tables=tables, modal=False)

@@ -117,19 +117,21 @@ def pk_basis(model, speeds, tables: DlmTables | None = None,
 
 
 def basis_error(model, V: float, roots: np.ndarray, tables: DlmTables | None = None,
-                *, ktol: float, dry=None) -> tuple[float, float]:
+                *, dry=None) -> tuple[float, float]:
     """The largest |p_r − p| / d and |p_r − p| / |p| of the reduced sweep's ``roots`` p_r
-    [1/s] at V [m/s] (the finite ones) from the full model's roots p each continued from its
-    own (:func:`pk_roots` on the full DOFs), d the distance of p from the nearest other of
-    those roots (two modes on one root, within 1e-5 of |p|, are one); inf when one does not
-    converge there.  ``dry``: the analysis's
+    [1/s] at V [m/s] (the finite ones, each converged at its own k), p the full model's root
+    at that same k nearest p_r (the root the full model's k iteration takes there: the full
+    first-order matrices of every root's k in one batched eigensolve, no k iteration), d the
+    distance of p from the nearest other of those roots (two modes on one root, within 1e-5
+    of |p|, are one).  ``dry``: the analysis's
     :func:`~propwhirl.model.frequency_domain.dry_assembly`."""
     live = roots[np.isfinite(roots)]
     if live.size == 0:
         return 0.0, 0.0
-    full, k = pk_roots(model, V, live, pk_system(model, V, tables, dry=dry), ktol=ktol)
-    if not np.all(np.isfinite(k)):
-        return float("inf"), float("inf")
+    b = reference_semichord(model)
+    lams = np.linalg.eigvals(first_order(pk_system(model, V, tables, dry=dry),
+                                         np.maximum(np.abs(live.imag) * b / V, K_MIN) * V / b))
+    full = np.array([lam[np.argmin(np.abs(lam - p))] for lam, p in zip(lams, live)])
     worst = 0.0
     for j, p in enumerate(full):
         d = np.abs(full - p)

@@ -26,7 +26,7 @@ from propwhirl.model.aerodynamics.dlm import DlmTables, dlm_aerodynamics, pk_sys
 from propwhirl.model.aerodynamics.dlm_surface import surface_of
 from propwhirl.model.aerodynamics.theodorsen import theodorsen
 from propwhirl.model.protocol import capabilities, refusal
-from propwhirl.model.structure.assembly import free_dofs, place
+from propwhirl.model.structure.assembly import free_dofs
 
 #: reduced frequency used for a (numerically) non-oscillatory root: G(k)/k is singular at 0
 K_MIN = 1e-6
@@ -151,7 +151,7 @@ def pk_system(model, V: float, tables: DlmTables | None = None, own_mach: bool =
     structure once per speed, the strips' loads summed over the strips on Φ's rows (a
     doublet-lattice wing's Q from the tables projected once, :class:`Galerkin`).  ω may be
     an array (m,) of frequencies: then stacks (m, n, n) (:func:`over_omega`; a beam wing's
-    projected strips evaluated for all of them in one call — the p-k iteration of all
+    strips, projected or not, evaluated for all of them in one call — the p-k iteration of all
     followed modes at once, :func:`propwhirl.analysis.pk_basis.pk_roots`).  ``dry``: a beam
     wing's :func:`dry_assembly` of ``model``, built once by the analysis (None: built
     here)."""
@@ -198,17 +198,25 @@ def pk_system(model, V: float, tables: DlmTables | None = None, own_mach: bool =
 
         return projected
 
-    def matrices(omega: float):
-        strips = _strip(model.flight.density, V, node["b"], node["a"], cla, node["ac"], omega)
+    nk = keep.size
+    rows, cols = qrows[:, :, None], qrows[:, None, :]
+
+    def matrices(omega):
+        # the strips' blocks of every ω at once, placed (non-overlapping: one strip per
+        # node) and subtracted from the structure's on the free DOFs
+        w = np.asarray(omega, float)
+        strips = _strip(model.flight.density, V, node["b"], node["a"], cla, node["ac"],
+                        w[..., None])                  # (..., n_strips, 2, 2)
         out = []
         for S, A in zip(structure, strips):
-            X = np.array(S, dtype=float)
-            X[:keep.size, :keep.size] -= place(width * A, qrows, qrows,
-                                               (3 * nn, 3 * nn))[np.ix_(keep, keep)]
+            loads = np.zeros(w.shape + (3 * nn, 3 * nn))
+            loads[..., rows, cols] = width * A
+            X = np.array(np.broadcast_to(S, w.shape + S.shape), dtype=float)
+            X[..., :nk, :nk] -= loads[..., keep[:, None], keep[None, :]]
             out.append(X)
         return tuple(out)
 
-    return over_omega(matrices)
+    return matrices
 
 
 def modal_pk_system(model, V: float):
