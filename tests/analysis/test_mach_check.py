@@ -126,3 +126,15 @@ def test_pk_analysis_is_checked_by_the_pk_on_the_twin():
         assert same and abs(twin - same[0].V) <= 0.05
     assert not compressibility_lines(analyse(m, speeds=speeds, method="pk",
                                              compressibility_check=False))
+
+
+def test_the_pk_check_on_the_sweeps_basis_says_what_the_full_dofs_say():
+    """A p-k analysis checks its events on the Galerkin basis its sweep kept (the twin's
+    static correction spans the same vectors: its steady loads are the model's times 1/β):
+    the same warnings, word for word, as the twin's p-k on every DOF."""
+    m = wingtip_propeller_wing()
+    speeds = np.arange(100.0, 231.0, 10.0)
+    a = analyse(m, speeds=speeds, method="pk")
+    lines = compressibility_lines(a)
+    assert len(lines) == 2
+    assert list(mach_check.pk_warnings(m, a.events, float(speeds[-1]))) == lines

@@ -41,7 +41,7 @@ from propwhirl.analysis.pk import pk_root
 from propwhirl.engine.correction import full_order_root, real_direction
 from propwhirl.model.aerodynamics import compressibility as pg
 from propwhirl.model.aerodynamics.validity import MACH_COMPRESSIBLE
-from propwhirl.model.frequency_domain import dry_assembly
+from propwhirl.model.frequency_domain import Galerkin, dry_assembly, pk_system
 
 #: relative move of an event's speed [-] from which the warning is given (2 %: beyond the
 #: crossing's accuracy, within the 3 % to which the thesis's speeds are reproduced)
@@ -229,18 +229,23 @@ def event_warnings(model, events, points, top: float, comp, sweep=None) -> list[
     return out
 
 
-def pk_warnings(model, events, top: float) -> tuple[str, ...]:
+def pk_warnings(model, events, top: float, basis: Galerkin | None = None) -> tuple[str, ...]:
     """:func:`event_warnings` of a p-k analysis (``analyse(method="pk")``): each onset and
     recovery's crossing on the twin by :func:`crossing` on the twin's p-k roots
     (:func:`propwhirl.analysis.pk.pk_root`, each from the last; the first at the event's
     speed from its frequency), confirmed in the event's direction: the secant to
     :data:`VTOL`, as the default's (was Brent's method to 0.01 m/s in a bracket widened
-    around the event: ~3 times the p-k roots for a warning stated to 0.1 %)."""
+    around the event: ~3 times the p-k roots for a warning stated to 0.1 %).  ``basis``: the
+    p-k sweep's Galerkin basis of ``model`` (:func:`~propwhirl.analysis.pk_basis.pk_basis`,
+    where the sweep kept it), the twin's roots then on it — its static correction is the
+    twin's too, the twin's steady strip loads being the model's times one factor 1/β — else
+    on the twin's DOFs."""
     if not applies(model):
         return ()
     a = float(model.flight.speed_of_sound)
     comp = twin(model)
     dry = dry_assembly(comp)             # its structure and propellers, assembled once
+    on = None if basis is None else Galerkin(comp, basis.Phi)
     hi = min(top, pg.MACH_MAX * a)
     out = []
     for e in events:
@@ -249,19 +254,21 @@ def pk_warnings(model, events, top: float) -> tuple[str, ...]:
         omega = 2 * np.pi * e.frequency_hz
         Vc = crossing(comp, e.V, complex(0.0, omega) if omega > 0 else 0j, None, hi,
                       direction=1 if e.event == "onset" else -1,
-                      root=lambda V, p, x: _pk_root(comp, V, p, dry))
+                      root=lambda V, p, x: _pk_root(comp, V, p, dry, on))
         line = _event_line(e, Vc, a)
         if line is not None:
             out.append(line)
     return tuple(out)
 
 
-def _pk_root(model, V: float, p0: complex, dry=None):
+def _pk_root(model, V: float, p0: complex, dry=None, basis: Galerkin | None = None):
     """(the p-k root of ``model`` at V [m/s] from ``p0``, None), or None where the k iteration
     does not converge or V is beyond the twin's Mach (``dry``: the model's
-    :func:`~propwhirl.model.frequency_domain.dry_assembly`)."""
+    :func:`~propwhirl.model.frequency_domain.dry_assembly`; ``basis``: on that Galerkin
+    basis)."""
     try:
-        return pk_root(model, V, p0, dry=dry)[0], None
+        system = None if basis is None else pk_system(model, V, basis=basis, dry=dry)
+        return pk_root(model, V, p0, dry=dry, system=system)[0], None
     except (RuntimeError, v.InputError):
         return None
 

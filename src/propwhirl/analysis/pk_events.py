@@ -16,11 +16,12 @@ from propwhirl.analysis.naming import event_label, whirl
 from propwhirl.analysis.participation import with_participation
 from propwhirl.analysis.pk import (DLM_NOTE, STATIC, XTOL, PKSweep, pk_benignity, pk_mode,
                                    pk_shape, pk_sweep)
+from propwhirl.analysis.pk_basis import pk_basis
 from propwhirl.analysis.pk_naming import one_to_one, tracked_mode
 from propwhirl.model.aerodynamics.dlm import (DlmTables, check_tables, dlm_aerodynamics,
                                               fixed_mach, strip_twin)
 from propwhirl.model.aerodynamics.dlm_mesh import guideline_note
-from propwhirl.model.frequency_domain import dry_assembly
+from propwhirl.model.frequency_domain import Galerkin, dry_assembly
 
 
 def dlm_notes(model, sweep: PKSweep, tables: DlmTables | None = None) -> list[str]:
@@ -46,7 +47,7 @@ def dlm_notes(model, sweep: PKSweep, tables: DlmTables | None = None) -> list[st
 
 def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: float = XTOL,
                      notes: list | None = None, sweep=None, mass: np.ndarray | None = None,
-                     tables: DlmTables | None = None):
+                     tables: DlmTables | None = None, basis: Galerkin | None = None):
     """The p-k crossings as :class:`~propwhirl.analysis.stability.Instability` events of the
     finite-state analysis's tracked modes (``analyse(model, method="pk")``).
 
@@ -64,12 +65,19 @@ def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: flo
     of its p-k mode shape (:mod:`propwhirl.analysis.participation`: the p-k eigenvector's
     displacements are on the model's own DOFs) and, for flutter crossings, the benignity
     (dζ/dV)⁻¹ of the p-k root [m/s] (:func:`pk_benignity`).  ``tables``: a doublet-lattice
-    wing's (the analysis's; None: new ones).
+    wing's (the analysis's; None: new ones).  ``basis``: the Galerkin basis of the sweep
+    (:func:`~propwhirl.analysis.pk_basis.pk_basis`; None: built here).
+
+    Returns the events and the basis the sweep kept (None where it ran on the model's DOFs:
+    a typical section, a modal model, or a basis that failed the sweep's check at the top
+    speed) — the analysis's Mach check's (:func:`propwhirl.analysis.mach_check.pk_warnings`).
     """
     dlm = strip_twin(model) is not model
     tables = check_tables(tables) if dlm else None
     dry = dry_assembly(model)                   # the sweep's and the events' one assembly
-    r = pk_sweep(model, speeds, xtol=xtol, tables=tables, dry=dry)
+    basis = pk_basis(model, speeds, tables) if basis is None else basis
+    r = pk_sweep(model, speeds, xtol=xtol, tables=tables, dry=dry, basis=basis)
+    kept = basis if r.basis_size else None
     if notes is not None and dlm:
         notes.extend(dlm_notes(model, r, tables))
     dm = model.dof_map()
@@ -121,4 +129,4 @@ def pk_instabilities(model, start_roots: np.ndarray, names, speeds, *, xtol: flo
             sweep, names, m, shapes[i][0], mass)) for i, (e, m) in enumerate(zip(events, modes))]
     events = with_participation(model, events, shapes)
     order = sorted(range(len(events)), key=lambda i: (events[i].V, events[i].mode))
-    return [events[i] for i in order]
+    return [events[i] for i in order], kept

@@ -668,8 +668,9 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
     if chosen == "pk":  # the tracked finite-state modes, their crossings by the exact p-k method
         finite_state = FiniteState(aero_model_of(model),
                                    tuple(sorted(events, key=lambda e: (e.V, e.mode))))
-        events = pk_instabilities(model, sw.eigenvalues[0], names, grid, xtol=xtol,
-                                  notes=pk_notes, sweep=sw, mass=t.in_vacuo.M, tables=tables)
+        events, basis = pk_instabilities(model, sw.eigenvalues[0], names, grid, xtol=xtol,
+                                         notes=pk_notes, sweep=sw, mass=t.in_vacuo.M,
+                                         tables=tables)
     events.sort(key=lambda e: (e.V, e.mode))
     notes = validity.analysis_warnings(
         model, (float(sw.V[0]), float(sw.V[-1])),
@@ -680,7 +681,7 @@ def analyse(model: Model, speeds=None, *, xtol: float = XTOL, vgf: bool = False,
             model, events, t.analysis.criticals.points if t.analysis.criticals else (), sw,
             t.assembly)
     elif compressibility_check:  # the p-k's events, by the p-k on the Prandtl-Glauert twin
-        notes = tuple(notes) + mach_check.pk_warnings(model, events, float(sw.V[-1]))
+        notes = tuple(notes) + mach_check.pk_warnings(model, events, float(sw.V[-1]), basis)
     notes = t.notes_first + tuple(notes) + tuple(
         f"V = {p.V:.2f} m/s ({p.kind} {p.direction} of {names[p.mode]}): not converged on the "
         "full-order model; the speed is the reduced model's (run method='dense' to check)"
