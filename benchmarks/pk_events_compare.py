@@ -1,7 +1,8 @@
 """The p-k events of ``analyse(model, speeds, method="pk")`` on a fixed set of models, written
 to JSON (``--out``), and two such files compared (``--compare before.json after.json``): for
-each case the events (kind, onset/end, mode name, frequency) matched in order and the largest
-|ΔV| [m/s] and |Δf| [Hz] (issue 37: the modal p-k sweep must leave every event unchanged).
+each case the events (kind, onset/end, mode name, frequency) matched in order, the largest
+|ΔV| [m/s], |Δf| [Hz] and relative change of the benignity, and whether the analysis's notes
+(its warnings) are the same (issue 37: the modal p-k sweep must leave every event unchanged).
 
 Run from the repository root (one BLAS thread)::
 
@@ -83,7 +84,9 @@ def run(names, out: Path) -> None:
         a = analyse(model, speeds, method="pk")
         cpu = time.process_time() - t0
         got[name] = {"cpu_s": cpu, "events": [[e.kind, e.event, e.label, float(e.V),
-                                               float(e.frequency_hz)] for e in a.events]}
+                                               float(e.frequency_hz), e.benignity]
+                                              for e in a.events],
+                     "notes": list(a.warnings)}
         print(f"{name}: {cpu:.1f} s, {len(a.events)} events", flush=True)
         out.write_text(json.dumps(got, indent=1))
 
@@ -91,8 +94,8 @@ def run(names, out: Path) -> None:
 def compare(before: Path, after: Path) -> None:
     b, a = json.loads(before.read_text()), json.loads(after.read_text())
     print("| case | events | same kind/direction/name | max abs dV [m/s] | max abs df [Hz] "
-          "| CPU before [s] | CPU after [s] |")
-    print("|---|---:|---|---:|---:|---:|---:|")
+          "| max rel. d benignity | same notes | CPU before [s] | CPU after [s] |")
+    print("|---|---:|---|---:|---:|---:|---|---:|---:|")
     for name in b:
         if name not in a:
             continue
@@ -100,8 +103,18 @@ def compare(before: Path, after: Path) -> None:
         same = len(eb) == len(ea) and all(x[:3] == y[:3] for x, y in zip(eb, ea))
         dv = max((abs(x[3] - y[3]) for x, y in zip(eb, ea)), default=0.0)
         df = max((abs(x[4] - y[4]) for x, y in zip(eb, ea)), default=0.0)
+        # benignity and notes: in files written since they were recorded (else "-")
+        pairs = [(x[5], y[5]) for x, y in zip(eb, ea) if len(x) > 5 and len(y) > 5]
+        db = max((abs(y / x - 1) if x and y else float(x != y) for x, y in pairs
+                  if x is not None or y is not None), default=0.0)
+        nb, na = b[name].get("notes"), a[name].get("notes")
+        notes = "-" if nb is None or na is None else "yes" if nb == na else "NO"
         print(f"| {name} | {len(eb)} / {len(ea)} | {'yes' if same else 'NO'} | {dv:.4f} | "
-              f"{df:.5f} | {b[name]['cpu_s']:.1f} | {a[name]['cpu_s']:.1f} |")
+              f"{df:.5f} | {db:.1e} | {notes} | {b[name]['cpu_s']:.1f} | "
+              f"{a[name]['cpu_s']:.1f} |")
+        if notes == "NO":
+            for x in sorted(set(nb) ^ set(na)):
+                print("   " + ("before " if x in nb else "after  ") + x)
         if not same:
             for x in eb:
                 print("   before", x)
