@@ -18,10 +18,10 @@ pytest.importorskip("panelaero")
 from propwhirl.analysis import analyse  # noqa: E402
 from propwhirl.analysis import modal_dlm  # noqa: E402
 from propwhirl.analysis.modes import InVacuo  # noqa: E402
-from propwhirl.analysis.pk import PKCrossing, pk_crossing  # noqa: E402
+from propwhirl.analysis.pk import PKCrossing, pk_crossing, pk_sweep  # noqa: E402
 from propwhirl.engine import XTOL  # noqa: E402
 from propwhirl.model import FlightCondition, PropellerWing, Wing  # noqa: E402
-from propwhirl.model.aerodynamics import dlm_rfa  # noqa: E402
+from propwhirl.model.aerodynamics import dlm, dlm_rfa  # noqa: E402
 from propwhirl.model.dlm_modal import ModalRoger, modal_roger  # noqa: E402
 
 RHO = 1.02                                   # SHARPy's Goland case (tests/model/test_dlm_goland)
@@ -169,21 +169,32 @@ def test_the_counted_aics_are_those_the_analysis_computes(monkeypatch, vgf, colu
 
 def test_two_state_space_crossings_on_one_pk_root_are_one_event():
     """x57_like on panels (six near-identical propellers): two of the Roger state space's
-    whirl-flutter crossings (80.2 and 80.8 m/s) converge onto one p-k root at 79.952 m/s and
-    were reported as two events, one named after a mode whose own crossing was 0.8 m/s away.
-    One event per p-k root, and a note says which crossing was merged."""
+    whirl-flutter crossings (80.2 and 80.8 m/s) converged onto one p-k root at 79.952 m/s and
+    were reported as two events, one named after a mode whose own crossing was 0.8 m/s away;
+    then (merged into one, with a note) three others converged onto hops between members,
+    "onsets" at 80.34, 80.38 and 80.39 m/s (Re p = +0.0034 1/s there) that the p-k does not
+    have, and two of its onsets were missing. Now each crossing follows its own member by
+    the state-space mode's shape: one event per p-k root, and the cluster's onsets are the
+    p-k sweep's, one to one (measured: within 0.0011 m/s)."""
     from propwhirl.io import load_model
 
     m = load_model(Path(__file__).resolve().parents[2] / "examples" / "x57_like.toml")
     m = m.with_(wing=dataclasses.replace(m.wing, aero="dlm", dlm_mach=0.24))
-    a = analyse(m, np.arange(60.0, 100.1, 5.0))
+    speeds = np.arange(60.0, 100.1, 5.0)
+    tables = dlm.DlmTables()
+    a = analyse(m, speeds, dlm_tables=tables)
     flutter = [e for e in a.events if e.kind == "flutter" and e.event == "onset"]
     for i, e in enumerate(flutter):
         for f in flutter[i + 1:]:
             assert not (abs(e.V - f.V) <= 2 * XTOL
                         and abs(e.frequency_hz - f.frequency_hz) <= 1e-5 * e.frequency_hz), (e, f)
     assert a.critical.V == pytest.approx(79.952, abs=0.01)
-    assert any("converged onto the same p-k crossing" in w for w in a.warnings)
+    pk = [f for f in pk_sweep(m, speeds, tables=tables).flutter
+          if f.kind == "flutter" and f.event == "onset"]
+    assert len(pk) == len(flutter) == 6
+    for e, f in zip(flutter, pk):
+        assert e.V == pytest.approx(f.V, abs=XTOL)
+        assert e.frequency_hz == pytest.approx(f.frequency / (2 * np.pi), rel=1e-4)
 
 
 def test_a_crossing_converged_onto_another_cluster_members_root_is_named_by_its_shape():

@@ -165,7 +165,7 @@ def modal_dlm_analysis(model, grid: np.ndarray, *, displacement, state_labels, o
             what = f"{pt.kind} {pt.direction} of state-space mode {pt.mode + 1}"
             try:
                 c = pk_crossing(model, pt.V, pt.eigenvalue, lo=lo, hi=hi, xtol=xtol,
-                                tables=tables, dry=dry)
+                                tables=tables, dry=dry, shape=(lift @ pt.eigenvector)[:n])
             except RuntimeError:
                 x0 = lift @ pt.eigenvector
                 points.append(replace(pt, eigenvector=x0 / np.linalg.norm(x0)))

@@ -198,7 +198,8 @@ _first_order = first_order
 
 def pk_root(model, V: float, p0: complex, *, ktol: float = KTOL, maxiter: int = 200,
             system=None, tables: DlmTables | None = None,
-            own_mach: bool = False, dry=None) -> tuple[complex, float]:
+            own_mach: bool = False, dry=None, ref=None,
+            window: float = 0.0) -> tuple[complex, float]:
     """The p-k root [1/s] of the mode nearest ``p0`` at airspeed V [m/s], and its k [-].
 
     Fixed-point iteration k ← Im p · b / V (b: the reference semichord) with the root of
@@ -209,10 +210,15 @@ def pk_root(model, V: float, p0: complex, *, ktol: float = KTOL, maxiter: int = 
     if already built (full or projected; else built with ``tables`` and ``own_mach``: a
     Mach-matched doublet-lattice wing's Q at its own Mach V/a, :func:`matched_crossing`, not
     between the tables' Mach nodes; ``dry``: the analysis's
-    :func:`~propwhirl.model.frequency_domain.dry_assembly` of the model).
+    :func:`~propwhirl.model.frequency_domain.dry_assembly` of the model).  ``ref`` (a
+    first-order eigenvector of ``system``'s size) and ``window`` [1/s]: with several roots
+    within ``window`` of ``p0`` the one of ``ref``'s shape where its MAC is clearly the best
+    (:func:`~propwhirl.analysis.pk_basis.pk_roots`: a tight cluster's member followed by
+    its shape).
     """
     system = pk_system(model, V, tables, own_mach, dry=dry) if system is None else system
-    p, k = pk_roots(model, V, [p0], system, ktol=ktol, maxiter=maxiter)
+    p, k = pk_roots(model, V, [p0], system, ktol=ktol, maxiter=maxiter,
+                    ref=None if ref is None else [ref], window=[window])
     if not np.isfinite(k[0]):
         raise RuntimeError(f"p-k iteration did not converge at V = {V} m/s (from p = {p0})")
     return complex(p[0]), float(k[0])
@@ -369,10 +375,11 @@ def _brent_between(model, a: float, b: float, pa: complex, pb: complex, xtol: fl
     return float(V), p, float(k)
 
 
-def _full_solver(model, tables, dry=None):
+def _full_solver(model, tables, dry=None, ref=None, window: float = 0.0):
     """(V, p0) ↦ :func:`pk_root` of ``model`` on its full DOFs (``tables``: a doublet-lattice
-    wing's; ``dry``: the analysis's :func:`~propwhirl.model.frequency_domain.dry_assembly`)."""
-    return lambda x, p0: pk_root(model, x, p0, tables=tables, dry=dry)
+    wing's; ``dry``: the analysis's :func:`~propwhirl.model.frequency_domain.dry_assembly`;
+    ``ref``, ``window``: the root by its shape in a tight cluster)."""
+    return lambda x, p0: pk_root(model, x, p0, tables=tables, dry=dry, ref=ref, window=window)
 
 
 #: a crossing whose root keeps more than this fraction of the larger |Re p| of its bracket's
@@ -450,11 +457,18 @@ def _continued(model, a: float, b: float, pa: complex, xtol: float,
 
 #: secant steps :func:`matched_crossing` takes at most
 MATCHED_STEPS = 12
+#: a secant step whose slope d Re p/dV is more than this times the step's before converged on
+#: a hop (:func:`full_crossing`): x57_like's six near-identical propellers on panels, where
+#: the root continued from the one interpolated between a bracket's ends lands on a
+#: neighbour's (~1e-3 of |p| away, Re p 0.018 1/s apart) within 0.01 m/s — slopes ~2 1/s
+#: per m/s there against the branches' own 0.015
+SLOPE_JUMP = 10.0
 
 
 def matched_crossing(model, V0: float, p0: complex, slope: float, *, lo: float, hi: float,
                      xtol: float = XTOL, tables: DlmTables | None = None,
-                     dry=None) -> tuple[float, complex, float] | None:
+                     dry=None, ref=None,
+                     window: float = 0.0) -> tuple[float, complex, float] | None:
     """The crossing Re p = 0 of a Mach-matched doublet-lattice wing with Q at the Mach V/a of
     every speed tried (issue 37 item 5): from the AICs of the fine columns
     (:data:`~propwhirl.model.aerodynamics.dlm.MACH_FINE` = 0.001 apart) around it, within 2e-7
@@ -470,14 +484,16 @@ def matched_crossing(model, V0: float, p0: complex, slope: float, *, lo: float, 
     the AICs at that Mach (Mach 0.6-0.66); a near-neutral whirl mode (a damping hump just
     touching zero) turns that into metres per second of onset.  At its own Mach, the onset
     is the one the same wing has with its ``dlm_mach`` fixed at the onset's own V/a (tested).
+    ``ref``, ``window``: each root's by its shape in a tight cluster (:func:`pk_root`).
     """
     return full_crossing(model, V0, p0, slope, lo=lo, hi=hi, xtol=xtol, tables=tables,
-                         own_mach=True, dry=dry)
+                         own_mach=True, dry=dry, ref=ref, window=window)
 
 
 def full_crossing(model, V0: float, p0: complex, slope: float, *, lo: float, hi: float,
                   xtol: float = XTOL, tables: DlmTables | None = None, own_mach: bool = False,
-                  start=None, dry=None) -> tuple[float, complex, float] | None:
+                  start=None, dry=None, ref=None,
+                  window: float = 0.0) -> tuple[float, complex, float] | None:
     """The crossing Re p = 0 on the full DOFs of the mode whose root is near ``p0`` [1/s] at
     ``V0`` [m/s] (a crossing found on a Galerkin basis or on interpolated tables), by the secant
     method from ``slope`` d Re p/dV [1/s per m/s]: each step's p-k root from the last, until the
@@ -486,22 +502,29 @@ def full_crossing(model, V0: float, p0: complex, slope: float, *, lo: float, hi:
     a Mach-matched doublet-lattice wing's Q at each speed's own Mach (:func:`matched_crossing`).
     ``start``: V ↦ the root each speed's k iteration starts from (the one the crossing was
     bracketed with, :func:`_bracketed`: near a coalescence the p-k has two roots there, and the
-    start decides which); None: from the previous step's root.  Where the reduced crossing is
-    within xtol / 10 of the full one, one p-k root decides it."""
+    start decides which); None: from the previous step's root.  ``ref``, ``window``: each
+    root's by its shape in a tight cluster (:func:`pk_root`).  Where the reduced crossing is
+    within xtol / 10 of the full one, one p-k root decides it.  A root that hops from one
+    mode's branch to another's between the last two steps makes the secant's slope steep and
+    its step short without a crossing: a converged step whose slope is over :data:`SLOPE_JUMP`
+    times the one before (the given ``slope`` for the first) is None."""
     if not np.isfinite(slope) or slope == 0.0:
         return None
     V, guess = float(V0), complex(p0)
+    before = slope                               # the slope of the step before
     prev = None                                  # (V, Re p) of the previous exact point
     for _ in range(MATCHED_STEPS):
         try:
             p, k = pk_root(model, V, guess if start is None else start(V), tables=tables,
-                           own_mach=own_mach, dry=dry)
+                           own_mach=own_mach, dry=dry, ref=ref, window=window)
         except RuntimeError:
             return None
         if prev is not None and p.real != prev[1]:
-            slope = (p.real - prev[1]) / (V - prev[0])        # the secant's
+            before, slope = slope, (p.real - prev[1]) / (V - prev[0])   # the secant's
         step = 0.0 if p.real == 0.0 else -p.real / slope
         if abs(step) <= 0.1 * xtol:
+            if abs(slope) > SLOPE_JUMP * abs(before):          # a hop, not a crossing
+                return None
             return V, p, float(k)
         if not (np.isfinite(step) and lo <= V + step <= hi):
             return None
@@ -527,24 +550,35 @@ class PKCrossing:
 
 def pk_crossing(model, V0: float, p0: complex, *, lo: float, hi: float,
                 xtol: float = XTOL, tables: DlmTables | None = None,
-                dry=None) -> PKCrossing | None:
+                dry=None, shape: np.ndarray | None = None) -> PKCrossing | None:
     """The p-k crossing (Re p = 0) of the mode whose root is near ``p0`` [1/s] at V0 [m/s]:
     a bracket around V0 of half-width :data:`CROSSING_SPREAD` × V0 (widened in turn, within
     [``lo``, ``hi``] [m/s]) where the p-k root continued from ``p0`` changes sign, refined
     within it by the secant method from its ends' roots (:func:`full_crossing`, each speed's
     root from the one interpolated between the ends', to ``xtol`` / 10; 2-3 p-k roots where
     Brent's method took 5-6), by Brent's method to ``xtol`` [m/s] where the secant leaves
-    the bracket.  None when the p-k root keeps its sign over the widest
+    the bracket.  ``shape``: the mode's displacement shape on the model's DOFs (n,) at V0
+    (the state-space crossing's): in a tight cluster (near-identical propellers, roots within
+    :data:`TIGHT` of |p0|) every root is that member's, the one of its shape where the MAC
+    says so clearly (:func:`pk_root`), not the nearest — the nearest is another member's
+    from one speed to the next, and Brent's method converged onto such a hop (x57_like on
+    panels: "onsets" at 80.34-80.39 m/s with Re p = +0.0034 1/s, which the p-k does not
+    have).  A Brent result whose |Re p| keeps :data:`HOP` of its ends' is such a hop: a
+    wider bracket is tried.  None when the p-k root keeps its sign over the widest
     bracket (the p-k has no crossing there); RuntimeError when the k iteration does not
     converge.  What the default analysis of a doublet-lattice wing converges its modal Roger
     state space's crossings with (:mod:`propwhirl.analysis.modal_dlm`)."""
     tables = check_tables(tables) if strip_twin(model) is not model else None
     V0 = float(np.clip(V0, lo, hi))
+    ref, window = None, 0.0
+    if shape is not None:
+        x = np.asarray(shape, dtype=complex)
+        ref, window = np.concatenate([x, complex(p0) * x]), TIGHT * abs(p0)
     guess = {"lo": complex(p0), "hi": complex(p0)}
     for s in CROSSING_SPREAD:
         a, b = max(lo, V0 * (1 - s)), min(hi, V0 * (1 + s))
-        pa, _ = pk_root(model, a, guess["lo"], tables=tables, dry=dry)
-        pb, _ = pk_root(model, b, guess["hi"], tables=tables, dry=dry)
+        pa, _ = pk_root(model, a, guess["lo"], tables=tables, dry=dry, ref=ref, window=window)
+        pb, _ = pk_root(model, b, guess["hi"], tables=tables, dry=dry, ref=ref, window=window)
         guess["lo"], guess["hi"] = pa, pb
         if pa.real != 0 and pb.real != 0 and (pa.real > 0) != (pb.real > 0):
             def start(x: float, a=a, b=b, pa=pa, pb=pb) -> complex:
@@ -552,18 +586,21 @@ def pk_crossing(model, V0: float, p0: complex, *, lo: float, hi: float,
             slope = (pb.real - pa.real) / (b - a)
             V1 = a - pa.real / slope                  # the secant from the ends' roots
             found = full_crossing(model, V1, start(V1), slope, lo=a, hi=b, xtol=xtol,
-                                  tables=tables, start=start, dry=dry)
+                                  tables=tables, start=start, dry=dry, ref=ref, window=window)
             if found is not None:
                 V, p, k = found
             else:                         # the secant left the bracket: Brent's method
                 try:
                     V, p, k = _brent_between(model, a, b, pa, pb, xtol, tables,
-                                             _full_solver(model, tables, dry))
+                                             _full_solver(model, tables, dry, ref, window))
                 except RuntimeError:      # continued from a, another root at b: not this
                     continue              # root's bracket (was a traceback); a wider one
+                if abs(p.real) > HOP * max(abs(pa.real), abs(pb.real)):
+                    continue              # Brent's method converged onto a hop
             if tables is not None and fixed_mach(getattr(model, "wing", model)) is None:
                 exact = matched_crossing(model, V, p, (pb.real - pa.real) / (b - a), lo=lo,
-                                         hi=hi, xtol=xtol, tables=tables, dry=dry)
+                                         hi=hi, xtol=xtol, tables=tables, dry=dry, ref=ref,
+                                         window=window)
                 if exact is not None:
                     V, p, k = exact
             return PKCrossing(float(V), p, float(k), "onset" if pa.real < 0 else "recovery")
