@@ -326,3 +326,32 @@ def test_one_to_one_gives_each_event_of_a_cluster_its_own_mode():
                       [on, ("flutter", "recovery")]) == [0, 0]
     # a mode another event of the window holds is not given again
     assert one_to_one(sw, [0, 0, 1], [x0, x1, x1], [80.0, 80.5, 80.2], [on, on, on]) == [0, 2, 1]
+
+
+def _hopping_roots(monkeypatch):
+    """pk.pk_root replaced by two branches that never cross zero near 80 m/s (Re p −0.0144
+    and +0.0034 1/s, slope 0.015 per m/s) with the root jumping from one to the other at
+    80.3311 m/s, as x57_like's neighbouring propellers' roots did on panels."""
+    from propwhirl.analysis import pk
+
+    def root(model, V, p0, **kw):
+        if V < 80.3311:
+            return complex(-0.0144 + 0.015 * (V - 80.3311), 44.095), 0.2
+        return complex(0.0034 + 0.015 * (V - 80.3311), 44.146), 0.2
+
+    monkeypatch.setattr(pk, "pk_root", root)
+    return pk
+
+
+def test_a_secant_converging_on_a_hop_is_no_crossing(monkeypatch):
+    pk = _hopping_roots(monkeypatch)
+    for V0 in (80.1, 80.4, 80.7):          # the old secant converged on the jump from these
+        assert pk.full_crossing(None, V0, 44.1j, 0.015, lo=78.0, hi=82.0) is None
+
+
+def test_brents_method_converging_on_a_hop_is_no_crossing(monkeypatch):
+    """The bracket around 80.33 m/s changes sign only by the jump: Brent's method converges
+    onto it (Re p = +0.0034 there); that is no crossing of the p-k, so none is reported."""
+    pk = _hopping_roots(monkeypatch)
+    monkeypatch.setattr(pk, "full_crossing", lambda *a, **k: None)   # the secant left it
+    assert pk.pk_crossing(section(), 80.33, 44.1j, lo=79.0, hi=81.0) is None

@@ -457,11 +457,14 @@ def _continued(model, a: float, b: float, pa: complex, xtol: float,
 
 #: secant steps :func:`matched_crossing` takes at most
 MATCHED_STEPS = 12
-#: a secant step whose slope d Re p/dV is more than this times the step's before converged on
-#: a hop (:func:`full_crossing`): x57_like's six near-identical propellers on panels, where
-#: the root continued from the one interpolated between a bracket's ends lands on a
-#: neighbour's (~1e-3 of |p| away, Re p 0.018 1/s apart) within 0.01 m/s — slopes ~2 1/s
-#: per m/s there against the branches' own 0.015
+#: a secant that converges with a slope d Re p/dV over this many times the one it started
+#: from converged onto a hop (:func:`full_crossing`): a root that jumps from one branch to
+#: another with the opposite sign of Re p (x57_like's neighbouring propellers on panels,
+#: ~1e-3 of |p| apart) draws the secant onto the jump with slopes growing without bound
+#: (their two branches in tests/analysis/test_pk.py: 3.7 against 0.015 1/s per m/s, 250
+#: times).  On the crossings of every case of benchmarks/pk_events_compare.py, p-k and
+#: default, the ratio is 0.88-1.6.  A hop this lets pass (a jump of Re p under ~0.005 m/s ×
+#: this × the slope) lies within ~0.05 m/s of its branch's true crossing
 SLOPE_JUMP = 10.0
 
 
@@ -507,11 +510,11 @@ def full_crossing(model, V0: float, p0: complex, slope: float, *, lo: float, hi:
     within xtol / 10 of the full one, one p-k root decides it.  A root that hops from one
     mode's branch to another's between the last two steps makes the secant's slope steep and
     its step short without a crossing: a converged step whose slope is over :data:`SLOPE_JUMP`
-    times the one before (the given ``slope`` for the first) is None."""
+    times the given ``slope`` is None."""
     if not np.isfinite(slope) or slope == 0.0:
         return None
     V, guess = float(V0), complex(p0)
-    before = slope                               # the slope of the step before
+    given = slope
     prev = None                                  # (V, Re p) of the previous exact point
     for _ in range(MATCHED_STEPS):
         try:
@@ -520,10 +523,10 @@ def full_crossing(model, V0: float, p0: complex, slope: float, *, lo: float, hi:
         except RuntimeError:
             return None
         if prev is not None and p.real != prev[1]:
-            before, slope = slope, (p.real - prev[1]) / (V - prev[0])   # the secant's
+            slope = (p.real - prev[1]) / (V - prev[0])        # the secant's
         step = 0.0 if p.real == 0.0 else -p.real / slope
         if abs(step) <= 0.1 * xtol:
-            if abs(slope) > SLOPE_JUMP * abs(before):          # a hop, not a crossing
+            if abs(slope) > SLOPE_JUMP * abs(given):           # a hop, not a crossing
                 return None
             return V, p, float(k)
         if not (np.isfinite(step) and lo <= V + step <= hi):
