@@ -355,3 +355,33 @@ def test_brents_method_converging_on_a_hop_is_no_crossing(monkeypatch):
     pk = _hopping_roots(monkeypatch)
     monkeypatch.setattr(pk, "full_crossing", lambda *a, **k: None)   # the secant left it
     assert pk.pk_crossing(section(), 80.33, 44.1j, lo=79.0, hi=81.0) is None
+
+
+def test_a_sweep_on_the_full_dofs_converges_its_crossings_to_a_tenth_of_xtol():
+    """Patil's wing over 5-200 m/s (swept on its full DOFs: its basis fails the check): each
+    crossing by the secant from its bracket's ends, to xtol / 10 (Brent's method, to xtol,
+    was 0.0017 m/s off the flutter onset at 32.518 m/s), against the same sweep to 1e-5."""
+    from propwhirl.cases.ch07_patil import patil_model
+    V = np.linspace(5.0, 200.0, 12)
+    got = pk_sweep(patil_model(), V)
+    ref = pk_sweep(patil_model(), V, xtol=1e-5)
+    assert got.basis_size == 0 and len(got.flutter) == len(ref.flutter) >= 4
+    for a, b in zip(got.flutter, ref.flutter):
+        assert (a.kind, a.event) == (b.kind, b.event)
+        assert a.V == pytest.approx(b.V, abs=0.1 * 0.01)
+
+
+def test_the_secant_in_a_bracket_leaves_a_hop_to_brents_method(monkeypatch):
+    """_secant_in on two branches with a jump between them (Re p of opposite signs, the
+    x57_like values) converges onto the jump and says so (None): _bracketed then decides."""
+    from propwhirl.analysis import pk
+
+    def solve(V, p0):
+        if V < 80.3311:
+            return complex(-0.0144 + 0.015 * (V - 80.3311), 44.095), 0.2
+        return complex(0.0034 + 0.015 * (V - 80.3311), 44.146), 0.2
+
+    for a, b in ((78.0, 81.1), (78.0, 82.3), (78.3, 81.0)):   # without the check the secant
+        pa, pb = solve(a, 0)[0], solve(b, 0)[0]                # converged onto the jump here
+        bracket = (a, b, pa, pb, pa.real, pb.real)
+        assert pk._secant_in(solve, bracket, 0.01, 44.1, True) is None
