@@ -329,10 +329,10 @@ def test_one_to_one_gives_each_event_of_a_cluster_its_own_mode():
 
 
 def _hopping_roots(monkeypatch):
-    """pk.pk_root replaced by two branches that never cross zero near 80 m/s (Re p −0.0144
-    and +0.0034 1/s, slope 0.015 per m/s) with the root jumping from one to the other at
-    80.3311 m/s, as x57_like's neighbouring propellers' roots did on panels."""
-    from propwhirl.analysis import pk
+    """pk_crossings.pk_root replaced by two branches that never cross zero near 80 m/s (Re p
+    −0.0144 and +0.0034 1/s, slope 0.015 per m/s) with the root jumping from one to the other
+    at 80.3311 m/s, as x57_like's neighbouring propellers' roots did on panels."""
+    from propwhirl.analysis import pk_crossings as pk
 
     def root(model, V, p0, **kw):
         if V < 80.3311:
@@ -374,7 +374,7 @@ def test_a_sweep_on_the_full_dofs_converges_its_crossings_to_a_tenth_of_xtol():
 def test_the_secant_in_a_bracket_leaves_a_hop_to_brents_method(monkeypatch):
     """_secant_in on two branches with a jump between them (Re p of opposite signs, the
     x57_like values) converges onto the jump and says so (None): _bracketed then decides."""
-    from propwhirl.analysis import pk
+    from propwhirl.analysis import pk_crossings as pk
 
     def solve(V, p0):
         if V < 80.3311:

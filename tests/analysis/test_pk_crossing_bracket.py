@@ -9,7 +9,7 @@ from types import SimpleNamespace
 
 import pytest
 
-from propwhirl.analysis import pk
+from propwhirl.analysis import pk_crossings as pk   # where the crossings are refined
 
 
 def two_modes(model, V, p0, **_):

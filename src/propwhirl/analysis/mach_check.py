@@ -37,7 +37,7 @@ from dataclasses import replace
 import numpy as np
 
 from propwhirl import validate as v
-from propwhirl.analysis.pk import pk_root
+from propwhirl.analysis.pk_iteration import pk_root
 from propwhirl.engine.correction import full_order_root, real_direction
 from propwhirl.model.aerodynamics import compressibility as pg
 from propwhirl.model.aerodynamics.validity import MACH_COMPRESSIBLE
@@ -232,7 +232,7 @@ def event_warnings(model, events, points, top: float, comp, sweep=None) -> list[
 def pk_warnings(model, events, top: float, basis: Galerkin | None = None) -> tuple[str, ...]:
     """:func:`event_warnings` of a p-k analysis (``analyse(method="pk")``): each onset and
     recovery's crossing on the twin by :func:`crossing` on the twin's p-k roots
-    (:func:`propwhirl.analysis.pk.pk_root`, each from the last; the first at the event's
+    (:func:`propwhirl.analysis.pk_iteration.pk_root`, each from the last; the first at the event's
     speed from its frequency), confirmed in the event's direction: the secant to
     :data:`VTOL`, as the default's (was Brent's method to 0.01 m/s in a bracket widened
     around the event: ~3 times the p-k roots for a warning stated to 0.1 %).  ``basis``: the

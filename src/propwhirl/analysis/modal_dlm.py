@@ -7,7 +7,7 @@ method converges (issue 37, item 1).
    (:class:`~propwhirl.model.dlm_modal.ModalRoger`: the in-vacuo modes below the cut-off, the
    Roger fit's lag states on them) and locates its crossings;
 2. every crossing is converged by the p-k method on the whole structure with the computed
-   Q(k, M) at the mode's own k (:func:`propwhirl.analysis.pk.pk_crossing`): its speed,
+   Q(k, M) at the mode's own k (:func:`propwhirl.analysis.pk_crossings.pk_crossing`): its speed,
    frequency, p-k root and mode shape are the p-k's (at Re p = 0 the p-k root is exact).  A
    crossing the p-k does not have (its root keeps its sign over ±16 % of the speed) is not
    reported: a note gives the state space's speed and the p-k's verdict.  A crossing whose k
@@ -29,8 +29,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from propwhirl.analysis.pk import (CROSSING_SPREAD, pk_benignity, pk_crossing, pk_mode,
-                                   pk_root)
+from propwhirl.analysis.pk_crossings import CROSSING_SPREAD, pk_benignity, pk_crossing
+from propwhirl.analysis.pk_iteration import pk_mode, pk_root
 from propwhirl.analysis.pk_naming import by_shape
 from propwhirl.analysis.reduced import LiftedEigenvectors
 from propwhirl.engine import analyse as engine_analyse

@@ -10,7 +10,7 @@ hundreds of DOFs.  The strips' loads are summed on Φ's rows
 strip by strip; a doublet-lattice wing's Q tables are projected on Φ once for every speed and k
 (the interpolation in k and Mach is linear in the tables' values, so it commutes with the
 projection: :class:`~propwhirl.model.frequency_domain.Galerkin`).  Every crossing the reduced
-sweep finds is then converged on the full DOFs (:func:`propwhirl.analysis.pk.full_crossing`), so
+sweep finds is then converged on the full DOFs (:func:`propwhirl.analysis.pk_crossings.full_crossing`), so
 the reported speeds, frequencies and mode shapes are the full model's; the shift from the
 reduced crossing is the basis's truncation error there (:attr:`PKFlutter.shift
 <propwhirl.analysis.pk.PKFlutter>`).  Typical sections (2 DOFs) and modal models (already
@@ -20,7 +20,7 @@ Which modes a wing's sweep follows and where each starts (:func:`followed_modes`
 :func:`start_roots`) is decided here too.
 
 :func:`pk_roots` iterates the followed modes of one speed together — each with its own k and
-its own rules (nearest root, relaxation; those of :func:`propwhirl.analysis.pk.pk_root`, which
+its own rules (nearest root, relaxation; those of :func:`propwhirl.analysis.pk_iteration.pk_root`, which
 is its one-mode case) — solving the eigenproblems of all of them in one batched
 ``np.linalg.eigvals`` call.
 """
@@ -91,7 +91,7 @@ def pk_basis(model, speeds, tables: DlmTables | None = None,
     ==================  ======  ==================  ==================
 
     Every crossing is converged on the full DOFs anyway
-    (:func:`propwhirl.analysis.pk.full_crossing`): the same events on every case of
+    (:func:`propwhirl.analysis.pk_crossings.full_crossing`): the same events on every case of
     ``benchmarks/pk_events_compare.py`` (speeds within 0.0014 m/s), the sweeps 4-23 %
     faster."""
     if capabilities(model).structure != "beam":

@@ -18,7 +18,7 @@ swept speeds (one LU per speed), refines each by Brent's method on
 sign(det) · |det|^(1/n) (continuous, of moderate size) to ``xtol``, and says from the real
 root nearest zero on either side whether the wing diverges ("onset") or recovers
 ("recovery"), and that root's slope dp/dV, with which the p-k sweep converges a Mach-matched
-doublet-lattice wing's crossing at its own Mach (:func:`propwhirl.analysis.pk.matched_crossing`).
+doublet-lattice wing's crossing at its own Mach (:func:`propwhirl.analysis.pk_crossings.matched_crossing`).
 No mode is followed, so no split can
 be missed; the divergence speed is the finite-state models' too (their steady loads are the
 same), which the tests use.

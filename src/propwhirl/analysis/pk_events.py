@@ -14,9 +14,10 @@ from propwhirl.analysis.events import Instability
 from propwhirl.analysis.modes import InVacuo
 from propwhirl.analysis.naming import event_label, whirl
 from propwhirl.analysis.participation import with_participation
-from propwhirl.analysis.pk import (DLM_NOTE, STATIC, XTOL, PKSweep, pk_benignity, pk_mode,
-                                   pk_shape, pk_sweep)
+from propwhirl.analysis.pk import DLM_NOTE, PKSweep, pk_sweep
 from propwhirl.analysis.pk_basis import pk_basis
+from propwhirl.analysis.pk_crossings import pk_benignity
+from propwhirl.analysis.pk_iteration import STATIC, XTOL, pk_mode, pk_shape
 from propwhirl.analysis.pk_naming import one_to_one, tracked_mode
 from propwhirl.model.aerodynamics.dlm import (DlmTables, check_tables, dlm_aerodynamics,
                                               fixed_mach, strip_twin)

@@ -96,7 +96,7 @@ def by_shape(sweep, modes, shapes, roots, speeds, keys) -> list[int]:
     without such an assignment keeps the modes it was found from, and so does a divergence.
 
     The doublet-lattice default converges each crossing of its state space by the p-k
-    (:func:`propwhirl.analysis.pk.pk_crossing`), which in a cluster of near-identical
+    (:func:`propwhirl.analysis.pk_crossings.pk_crossing`), which in a cluster of near-identical
     propellers may land on another member's root: x57_like's critical (79.95 m/s, the
     backward whirl of propellers 1-6 in its shape and participation) was named after
     propeller 7's forward whirl, the state-space mode it was found from (MAC 0.00; with the

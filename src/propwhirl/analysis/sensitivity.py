@@ -56,7 +56,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from propwhirl import validate as v
-from propwhirl.analysis.pk import pk_root
+from propwhirl.analysis.pk_iteration import pk_root
 from propwhirl.analysis.stability import ModelAnalysis
 from propwhirl.analysis.summary import text_table
 from propwhirl.engine.correction import full_order_root, real_direction

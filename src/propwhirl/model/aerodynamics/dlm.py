@@ -612,7 +612,7 @@ def pk_system_dlm(model, V: float, k_min: float, tables: DlmTables | None = None
     fixed ``dlm_mach``), Q read from ``tables`` (the analysis's; None: new ones).  Q is
     interpolated in Mach between the table's Mach nodes (linear), or with ``own_mach`` between
     the fine columns :data:`MACH_FINE` apart around this Mach (what a matched crossing is
-    converged with, :func:`propwhirl.analysis.pk.matched_crossing`); at a fixed ``dlm_mach``
+    converged with, :func:`propwhirl.analysis.pk_crossings.matched_crossing`); at a fixed ``dlm_mach``
     always from the AICs of that very Mach, cubic in k only.  ``basis``: (Φ, G), a Galerkin
     basis Φ (n, r) over the model's DOFs and G the tables projected on it
     (:meth:`DlmAerodynamics.projected` of Φ's wing rows on the spline's DOFs): the system
