@@ -1,13 +1,16 @@
 """The README's Python and command-line examples are a contract with users: they run as written.
 
 The Python block of "Using it" runs in a fresh interpreter; every command of its shell block
-runs in order in one temporary folder (``propwhirl`` as ``python -m propwhirl``).  The
+runs in one temporary folder (``propwhirl`` as ``python -m propwhirl``): the one that saves the
+model the others read first, then the others two at a time (the machine's two cores; each
+writes its own files).  The
 reproduction commands of "Reproducing the thesis" run too (the full one is long).
 """
 import re
 import shlex
 import subprocess
 import sys
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import pytest
@@ -44,6 +47,13 @@ def _run(argv: list[str], cwd: Path, timeout: float = 600) -> subprocess.Complet
     return res
 
 
+def _run_all(cmds: list[list[str]], cwd: Path) -> list[subprocess.CompletedProcess]:
+    """:func:`_run` of each command, two at a time (independent commands: each writes its own
+    files), their results in the commands' order."""
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        return list(pool.map(lambda argv: _run(argv, cwd), cmds))
+
+
 def test_python_example_runs(tmp_path):
     (code,) = _blocks(_section("Using it"), "python")
     res = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, capture_output=True,
@@ -57,8 +67,10 @@ def test_command_line_examples_run(tmp_path):
     (block,) = _blocks(_section("Using it"), "sh")
     cmds = _commands(block)
     assert len(cmds) >= 7
-    for argv in cmds:
-        _run(argv, tmp_path)
+    for argv in cmds:                  # the model the others read, first
+        if "--save" in argv:
+            _run(argv, tmp_path)
+    _run_all([argv for argv in cmds if "--save" not in argv], tmp_path)
     for f in ("out/report.txt", "wingtip.toml", "vgf.png", "a.json", "vgf.csv", "campbell.png",
               "sweep.png", "map.png", "boundary.png"):
         assert (tmp_path / f).stat().st_size > 0, f
@@ -73,7 +85,7 @@ def test_many_propeller_examples_run(tmp_path):
     shutil.copytree(root / "examples", tmp_path / "examples",
                     ignore=shutil.ignore_patterns("certification", "*.ipynb", "figures"))
     (block,) = _blocks(_section("Many propellers"), "sh")
-    outs = [_run(argv, tmp_path) for argv in _commands(block)]
+    outs = _run_all(_commands(block), tmp_path)
     assert "margin to 1.15 V_D" in outs[0].stdout
     assert "propellers 1–6" in outs[0].stdout
     assert "propeller 7 at 0.3111 x RPM" in outs[1].stdout     # the cruise propeller's own rpm
@@ -140,7 +152,7 @@ def test_modal_route_examples_run(tmp_path):
     (block,) = _blocks(section, "sh")
     cmds = _commands(block)
     assert [c[:2] for c in cmds] == [["propwhirl", "analyse"], ["propwhirl", "certify"]]
-    analysed, certified = (_run(argv, tmp_path) for argv in cmds)
+    analysed, certified = _run_all(cmds, tmp_path)
     assert "(modal)" in analysed.stdout and "backward whirl, propellers 1–4" in analysed.stdout
     assert "CLEARED" in certified.stdout and "NOT CLEARED" not in certified.stdout
     for j in range(1, 5):       # each mount at 50 %: the critical event names its propeller
