@@ -1,12 +1,12 @@
 """How a p-k crossing (Re p = 0) is refined — one place for that decision — and the
 benignity at one.
 
-* In a bracket of the p-k sweep (:func:`bracket_crossing`, :func:`propwhirl.analysis.pk.pk_sweep`):
-  the secant method from the bracket's ends' roots (:func:`_secant_in`), Brent's method
-  where the secant leaves the bracket or converges onto a hop (:func:`_brent_between`, from
-  the left root or the one interpolated between the ends'), and where Brent's met a hop onto
-  another mode's root (:data:`HOP`, :func:`_jumps`) the mode continued across the bracket
-  (:func:`_continued`).
+* In a bracket of the p-k sweep (:func:`bracket_crossing`,
+  :func:`propwhirl.analysis.pk.pk_sweep`): the secant method from the bracket's ends' roots
+  (:func:`_secant_in`), Brent's method where the secant leaves the bracket or converges onto
+  a hop (:func:`_brent_between`, from the left root or the one interpolated between the
+  ends'), and where Brent's met a hop onto another mode's root (:data:`HOP`, :func:`_jumps`)
+  the mode continued across the bracket (:func:`_continued`).
 * On the full DOFs from a crossing found on a Galerkin basis or on interpolated tables
   (:func:`full_crossing`: the secant, each speed's root from the one the bracket started
   from; a convergence onto a hop, :data:`SLOPE_JUMP`, is none), and with a Mach-matched
@@ -182,8 +182,8 @@ def full_crossing(model, V0: float, p0: complex, slope: float, *, lo: float, hi:
     ``hi``], meets a flat Re p or takes more than :data:`MATCHED_STEPS` steps.  ``own_mach``:
     a Mach-matched doublet-lattice wing's Q at each speed's own Mach (:func:`matched_crossing`).
     ``start``: V ↦ the root each speed's k iteration starts from (the one the crossing was
-    bracketed with, :func:`bracket_crossing`: near a coalescence the p-k has two roots there, and the
-    start decides which); None: from the previous step's root.  ``ref``, ``window``: each
+    bracketed with, :func:`bracket_crossing`: near a coalescence the p-k has two roots there,
+    and the start decides which); None: from the previous step's root.  ``ref``, ``window``: each
     root's by its shape in a tight cluster (:func:`pk_root`).  Where the reduced crossing is
     within xtol / 10 of the full one, one p-k root decides it.  A root that hops from one
     mode's branch to another's between the last two steps makes the secant's slope steep and
@@ -346,8 +346,8 @@ def bracket_crossing(model, bracket, xtol: float, tables, solve, scale: float):
 
 
 def _secant_in(solve, bracket, xtol: float, scale: float, close: bool):
-    """The crossing in a sweep's ``bracket`` (:func:`bracket_crossing`'s) by the secant method from
-    its ends' roots, each speed's root by ``solve`` from the root interpolated between them
+    """The crossing in a sweep's ``bracket`` (:func:`bracket_crossing`'s) by the secant method
+    from its ends' roots, each speed's root by ``solve`` from the root interpolated between them
     (``close``: one branch moving continuously) or from the left one, until a step is within
     ``xtol`` / 10 [m/s]: (V, p, k, start), or None when the secant leaves the bracket, takes
     more than :data:`MATCHED_STEPS` steps, or converges onto a hop — its last slope over

@@ -85,27 +85,27 @@ SAME_ROOT = 1e-7
 
 
 #: two followed modes whose p-k roots are closer than this fraction of |p| met on one root
-#: (:func:`_separate`): the iteration converges k to :data:`KTOL`, so one root reached by two
-#: modes each at its own k differs by up to ~1e-6 (x57_like at 80 m/s: 8e-7, which
-#: :data:`SAME_ROOT` missed, and one of its six whirl flutters went unfollowed); the closest
-#: distinct roots of its near-identical propellers are ~1e-4 apart
+#: (:func:`propwhirl.analysis.pk._separate`): the iteration converges k to :data:`KTOL`, so one
+#: root reached by two modes each at its own k differs by up to ~1e-6 (x57_like at 80 m/s: 8e-7,
+#: which :data:`SAME_ROOT` missed, and one of its six whirl flutters went unfollowed); the
+#: closest distinct roots of its near-identical propellers are ~1e-4 apart
 MET = 1e-5
 
 
 #: modes whose start roots' |p|, or whose roots extrapolated to the speed, are within this
 #: fraction of each other form a cluster (near-identical propellers, a mount's pitch and yaw:
-#: x57_like's are 0.7-7 % apart) whose roots :func:`_separate` keeps apart
+#: x57_like's are 0.7-7 % apart) whose roots :func:`propwhirl.analysis.pk._separate` keeps apart
 CLUSTER = 0.1
 
-#: a tight cluster: a followed root with another within this fraction of |p|.  The sweep
-#: follows such modes by their shapes (:func:`_cluster_shapes`, the MAC in
-#: :func:`~propwhirl.analysis.pk_basis.pk_roots`) in steps that move their roots by no more
-#: than this fraction of |p| (up to :data:`MAX_SUBSTEPS` per interval of the grid), and
-#: brackets their crossings in those steps.  x57_like (six near-identical propellers, roots
-#: ~1e-3 of |p| apart, moving ~9 % of |p| per 10 m/s): with the nearest-root rule alone the
-#: cluster's onsets on 1-250 m/s every 10 / 5 / 2.5 m/s were 5 / 3 / 5 of the default's five
-#: and propeller 7's on two of the three grids; with 0.02 and 0.04 the same six onsets on
-#: every grid (0.04: the sweep 1.7 times the time, 0.02: 2.8 times)
+#: a tight cluster: a followed root with another within this fraction of |p|.  The sweep follows
+#: such modes by their shapes (:func:`propwhirl.analysis.pk._cluster_shapes`, the MAC in
+#: :func:`~propwhirl.analysis.pk_basis.pk_roots`) in steps that move their roots by no more than
+#: this fraction of |p| (up to :data:`~propwhirl.analysis.pk.MAX_SUBSTEPS` per interval of the
+#: grid), and brackets their crossings in those steps.  x57_like (six near-identical propellers,
+#: roots ~1e-3 of |p| apart, moving ~9 % of |p| per 10 m/s): with the nearest-root rule alone
+#: the cluster's onsets on 1-250 m/s every 10 / 5 / 2.5 m/s were 5 / 3 / 5 of the default's five
+#: and propeller 7's on two of the three grids; with 0.02 and 0.04 the same six onsets on every
+#: grid (0.04: the sweep 1.7 times the time, 0.02: 2.8 times)
 TIGHT = 0.04
 
 
