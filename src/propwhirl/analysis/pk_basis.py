@@ -10,19 +10,19 @@ hundreds of DOFs.  The strips' loads are summed on Φ's rows
 strip by strip; a doublet-lattice wing's Q tables are projected on Φ once for every speed and k
 (the interpolation in k and Mach is linear in the tables' values, so it commutes with the
 projection: :class:`~propwhirl.model.frequency_domain.Galerkin`).  Every crossing the reduced
-sweep finds is then converged on the full DOFs (:func:`propwhirl.analysis.pk_crossings.full_crossing`), so
-the reported speeds, frequencies and mode shapes are the full model's; the shift from the
-reduced crossing is the basis's truncation error there (:attr:`PKFlutter.shift
-<propwhirl.analysis.pk.PKFlutter>`).  Typical sections (2 DOFs) and modal models (already
-modal) are swept on their own DOFs.
+sweep finds is then converged on the full DOFs
+(:func:`propwhirl.analysis.pk_crossings.full_crossing`), so the reported speeds, frequencies
+and mode shapes are the full model's; the shift from the reduced crossing is the basis's
+truncation error there (:attr:`PKFlutter.shift <propwhirl.analysis.pk.PKFlutter>`).  Typical
+sections (2 DOFs) and modal models (already modal) are swept on their own DOFs.
 
 Which modes a wing's sweep follows and where each starts (:func:`followed_modes`,
 :func:`start_roots`) is decided here too.
 
 :func:`pk_roots` iterates the followed modes of one speed together — each with its own k and
-its own rules (nearest root, relaxation; those of :func:`propwhirl.analysis.pk_iteration.pk_root`, which
-is its one-mode case) — solving the eigenproblems of all of them in one batched
-``np.linalg.eigvals`` call.
+its own rules (nearest root, relaxation; those of
+:func:`propwhirl.analysis.pk_iteration.pk_root`, which is its one-mode case) — solving the
+eigenproblems of all of them in one batched ``np.linalg.eigvals`` call.
 """
 from __future__ import annotations
 
@@ -31,6 +31,7 @@ import scipy.linalg as sla
 from scipy.optimize import linear_sum_assignment
 
 from propwhirl.analysis.modes import InVacuo
+from propwhirl.engine import mac
 from propwhirl.model.aerodynamics.dlm import DlmTables, strip_twin
 from propwhirl.model.dlm_modal import kept_modes
 from propwhirl.model.frequency_domain import K_MIN, Galerkin, pk_system, reference_semichord
@@ -163,9 +164,10 @@ def pk_roots(model, V: float, p0, system, *, ktol: float, maxiter: int = 200,
     [−9, 0.99] there), else the plain step k ← k + h under-relaxed (halving, down to 1/64)
     while the steps oscillate without shrinking; the converged root is the same fixed point
     either way, the secant only takes fewer steps (in the Goland wing's sweep 3–4 instead of
-    5–9; ``secant=False``: the plain steps only).  ``ref`` (one first-order eigenvector or None per mode) and ``window`` (a radius
-    [1/s] per mode): at the first step a mode with several roots within its window of p0
-    takes the one whose eigenvector's MAC with its ``ref`` is clearly the best
+    5–9; ``secant=False``: the plain steps only).  ``ref`` (one first-order eigenvector or None
+    per mode) and ``window`` (a radius [1/s] per mode): at the first step a mode with several
+    roots within its window of p0 takes the one whose eigenvector's MAC (eq. 5.14,
+    :func:`propwhirl.engine.mac`) with its ``ref`` is clearly the best
     (:data:`MAC_CLEAR`), else the nearest — a tight cluster's modes followed by their shapes
     (:func:`propwhirl.analysis.pk.pk_sweep`).  The first-order matrices of all
     modes still iterating are built together and their eigenvalues solved in one batched
@@ -193,9 +195,8 @@ def pk_roots(model, V: float, p0, system, *, ktol: float, maxiter: int = 200,
                 near = np.flatnonzero(np.abs(lam - p[j]) <= window[j])
                 if near.size > 1:       # several roots within the mode's reach: its shape's
                     w, X = np.linalg.eig(A[a])
-                    fit = np.array([abs(np.vdot(ref[j], X[:, c])) ** 2 / (
-                        np.vdot(ref[j], ref[j]).real * np.vdot(X[:, c], X[:, c]).real)
-                        for c in (int(np.argmin(np.abs(w - lam[n]))) for n in near)])
+                    cols = [int(np.argmin(np.abs(w - lam[n]))) for n in near]
+                    fit = np.ravel(mac(ref[j], X[:, cols]))
                     order = np.argsort(fit)[::-1]
                     if fit[order[0]] >= MAC_CLEAR and fit[order[1]] <= 0.5 * fit[order[0]]:
                         pick = int(near[order[0]])

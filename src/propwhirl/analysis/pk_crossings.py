@@ -189,27 +189,44 @@ def full_crossing(model, V0: float, p0: complex, slope: float, *, lo: float, hi:
     mode's branch to another's between the last two steps makes the secant's slope steep and
     its step short without a crossing: a converged step whose slope is over :data:`SLOPE_JUMP`
     times the given ``slope`` is None."""
+    def solve(x: float, q: complex) -> tuple[complex, float]:
+        return pk_root(model, x, q, tables=tables, own_mach=own_mach, dry=dry, ref=ref,
+                       window=window)
+
+    try:
+        return _secant(solve, float(V0), complex(p0), slope, lo=lo, hi=hi, xtol=xtol,
+                       start=start)
+    except RuntimeError:                      # a root that does not converge
+        return None
+
+
+def _secant(solve, V: float, p0: complex, slope: float, *, lo: float, hi: float, xtol: float,
+            start=None, scale: float | None = None) -> tuple[float, complex, float] | None:
+    """The secant method on Re p from V [m/s] with the first ``slope`` d Re p/dV, each
+    speed's root by ``solve`` (V, p0) ↦ (p, k) from ``start`` (V) (None: from the previous
+    step's root, the first from ``p0``), until a step is within ``xtol`` / 10 [m/s]:
+    (V, p, k) — :func:`full_crossing`'s and :func:`_secant_in`'s.  None when the slope is 0
+    or not finite, a step leaves [``lo``, ``hi``], :data:`MATCHED_STEPS` steps do not
+    converge, or it converged onto a hop: its last slope over :data:`SLOPE_JUMP` times the
+    first, or (``scale`` [1/s] given) its last two roots more than :data:`JUMP` × ``scale``
+    apart.  A RuntimeError of ``solve`` is passed on."""
     if not np.isfinite(slope) or slope == 0.0:
         return None
-    V, guess = float(V0), complex(p0)
-    given = slope
-    prev = None                                  # (V, Re p) of the previous exact point
+    given, guess = slope, complex(p0)
+    prev = None                                  # (V, p) of the previous point
     for _ in range(MATCHED_STEPS):
-        try:
-            p, k = pk_root(model, V, guess if start is None else start(V), tables=tables,
-                           own_mach=own_mach, dry=dry, ref=ref, window=window)
-        except RuntimeError:
-            return None
-        if prev is not None and p.real != prev[1]:
-            slope = (p.real - prev[1]) / (V - prev[0])        # the secant's
+        p, k = solve(V, guess if start is None else start(V))
+        if prev is not None and p.real != prev[1].real:
+            slope = (p.real - prev[1].real) / (V - prev[0])     # the secant's
         step = 0.0 if p.real == 0.0 else -p.real / slope
         if abs(step) <= 0.1 * xtol:
-            if abs(slope) > SLOPE_JUMP * abs(given):           # a hop, not a crossing
-                return None
-            return V, p, float(k)
+            if abs(slope) > SLOPE_JUMP * abs(given) or (
+                    scale is not None and prev is not None and abs(p - prev[1]) > JUMP * scale):
+                return None                                    # a hop, not a crossing
+            return float(V), p, float(k)
         if not (np.isfinite(step) and lo <= V + step <= hi):
             return None
-        prev, guess, V = (V, p.real), p, V + step
+        prev, guess, V = (V, p), p, V + step
     return None
 
 
@@ -347,34 +364,20 @@ def bracket_crossing(model, bracket, xtol: float, tables, solve, scale: float):
 
 def _secant_in(solve, bracket, xtol: float, scale: float, close: bool):
     """The crossing in a sweep's ``bracket`` (:func:`bracket_crossing`'s) by the secant method
-    from its ends' roots, each speed's root by ``solve`` from the root interpolated between them
-    (``close``: one branch moving continuously) or from the left one, until a step is within
-    ``xtol`` / 10 [m/s]: (V, p, k, start), or None when the secant leaves the bracket, takes
-    more than :data:`MATCHED_STEPS` steps, or converges onto a hop — its last slope over
-    :data:`SLOPE_JUMP` times the bracket's, or its last two roots more than :data:`JUMP` ×
-    ``scale`` [1/s] apart (as :func:`_jumps` tests Brent's).  RuntimeError when a root does
-    not converge."""
+    (:func:`_secant`) from its ends' roots, within it, each speed's root by ``solve`` from the
+    root interpolated between them (``close``: one branch moving continuously) or from the
+    left one: (V, p, k, start), or None where :func:`_secant` gives none (its hop test on the
+    last two roots with ``scale`` [1/s], as :func:`_jumps` tests Brent's).  RuntimeError when
+    a root does not converge."""
     a, b, pa, pb, sa, sb = bracket
 
     def start(x: float) -> complex:
         return pa + (pb - pa) * (x - a) / (b - a) if close else pa
 
-    given = slope = (sb - sa) / (b - a)
-    V, prev = a - sa / slope, None
-    for _ in range(MATCHED_STEPS):
-        if not a <= V <= b:
-            return None
-        p, k = solve(V, start(V))
-        if prev is not None and p.real != prev[1].real:
-            slope = (p.real - prev[1].real) / (V - prev[0])
-        step = 0.0 if p.real == 0.0 else -p.real / slope
-        if abs(step) <= 0.1 * xtol:
-            if abs(slope) > SLOPE_JUMP * abs(given) or (
-                    prev is not None and abs(p - prev[1]) > JUMP * scale):
-                return None
-            return float(V), p, float(k), start
-        prev, V = (V, p), V + step
-    return None
+    slope = (sb - sa) / (b - a)
+    found = _secant(solve, a - sa / slope, pa, slope, lo=a, hi=b, xtol=xtol, start=start,
+                    scale=scale)
+    return None if found is None else found + (start,)
 
 
 def at_own_mach(model, found, bracket, V, xtol: float, tables, matched: bool, dry=None):
